@@ -1,0 +1,392 @@
+//! Building a half-edge mesh from an indexed face set (seed 000's "indexed
+//! storage": a position list and polygons as vertex index lists).
+//!
+//! Twins are found with a compressed per-vertex list of outgoing corners
+//! instead of a hash map, so building is linear in the number of corners.
+
+use crate::ids::{NONE, VertexId};
+use crate::mesh::{HalfEdgeMesh, HalfEdgeRecord};
+use glam::DVec3;
+use std::collections::HashMap;
+
+/// Why an indexed face set cannot become a manifold half-edge mesh.
+/// Face and vertex numbers are indices into the input lists.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum BuildError {
+    #[error("face {face} refers to vertex {index}, but there are only {vertex_count} vertices")]
+    IndexOutOfRange { face: usize, index: u32, vertex_count: usize },
+    #[error("face {face} has {sides} vertices; a face needs at least 3")]
+    TooFewSides { face: usize, sides: usize },
+    #[error("face {face} uses vertex {vertex} more than once")]
+    RepeatedVertex { face: usize, vertex: u32 },
+    #[error("edge {a}-{b} is shared by more than two faces (faces {faces:?})")]
+    NonManifoldEdge { a: u32, b: u32, faces: Vec<usize> },
+    #[error("faces {faces:?} both run edge {a}->{b} in the same direction: their orientations disagree")]
+    InconsistentOrientation { a: u32, b: u32, faces: Vec<usize> },
+    #[error("vertex {vertex} joins separate fans of faces (non-manifold vertex)")]
+    NonManifoldVertex { vertex: u32 },
+    #[error("vertex {vertex} has a non-finite position")]
+    NonFinitePosition { vertex: u32 },
+    #[error("the mesh is too large: {what} exceed the 32-bit id space")]
+    TooLarge { what: &'static str },
+}
+
+/// What [`HalfEdgeMesh::from_polygons_repaired`] had to change.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct RepairReport {
+    /// Input face index and the reason it was dropped.
+    pub dropped_faces: Vec<(usize, BuildError)>,
+    /// Input vertices that were duplicated because separate fans met there,
+    /// with the number of copies added.
+    pub split_vertices: Vec<(u32, usize)>,
+    /// Kept input face index for each face id of the result.
+    pub face_origin: Vec<usize>,
+}
+
+impl RepairReport {
+    /// True when the input was used as it was.
+    pub fn is_clean(&self) -> bool {
+        self.dropped_faces.is_empty() && self.split_vertices.is_empty()
+    }
+}
+
+impl std::fmt::Display for RepairReport {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        if self.is_clean() {
+            return write!(f, "no repairs needed");
+        }
+        write!(f, "dropped {} face(s)", self.dropped_faces.len())?;
+        for (i, (face, why)) in self.dropped_faces.iter().take(5).enumerate() {
+            write!(f, "{}face {face}: {why}", if i == 0 { " (" } else { "; " })?;
+        }
+        if self.dropped_faces.len() > 5 {
+            write!(f, "; …")?;
+        }
+        if !self.dropped_faces.is_empty() {
+            write!(f, ")")?;
+        }
+        let copies: usize = self.split_vertices.iter().map(|(_, n)| n).sum();
+        write!(
+            f,
+            ", split {} non-manifold vertex(es) into {copies} extra copies",
+            self.split_vertices.len()
+        )
+    }
+}
+
+fn check_face(face: usize, poly: &[u32], vertex_count: usize) -> Result<(), BuildError> {
+    if poly.len() < 3 {
+        return Err(BuildError::TooFewSides { face, sides: poly.len() });
+    }
+    for (i, &v) in poly.iter().enumerate() {
+        if v as usize >= vertex_count {
+            return Err(BuildError::IndexOutOfRange { face, index: v, vertex_count });
+        }
+        if poly[..i].contains(&v) {
+            return Err(BuildError::RepeatedVertex { face, vertex: v });
+        }
+    }
+    Ok(())
+}
+
+impl HalfEdgeMesh {
+    /// Builds a mesh from positions and polygons (vertex indices,
+    /// counter-clockwise seen from outside). Vertex `i` gets id `i`, face `j`
+    /// gets id `j`, edges are numbered in order of first use.
+    ///
+    /// # Errors
+    /// A [`BuildError`] naming the first face, edge or vertex that breaks
+    /// manifoldness or consistent orientation; nothing is built.
+    ///
+    /// Complexity: O(corners × valence).
+    pub fn from_polygons<P: AsRef<[u32]>>(positions: &[DVec3], polygons: &[P]) -> Result<Self, BuildError> {
+        let nv = positions.len();
+        if nv >= NONE as usize {
+            return Err(BuildError::TooLarge { what: "vertices" });
+        }
+        if let Some(i) = positions.iter().position(|p| !p.is_finite()) {
+            return Err(BuildError::NonFinitePosition { vertex: i as u32 });
+        }
+        // Corners: corner c of face f goes from corner_from[c] to the next corner's vertex.
+        let mut face_start = Vec::with_capacity(polygons.len() + 1);
+        let mut corner_from: Vec<u32> = Vec::new();
+        let mut corner_face: Vec<u32> = Vec::new();
+        face_start.push(0usize);
+        for (fi, poly) in polygons.iter().enumerate() {
+            let poly = poly.as_ref();
+            check_face(fi, poly, nv)?;
+            corner_from.extend_from_slice(poly);
+            corner_face.extend(std::iter::repeat_n(fi as u32, poly.len()));
+            face_start.push(corner_from.len());
+        }
+        let nc = corner_from.len();
+        if nc >= (NONE / 2) as usize {
+            return Err(BuildError::TooLarge { what: "corners" });
+        }
+        let next_corner = |c: usize| -> usize {
+            let f = corner_face[c] as usize;
+            if c + 1 == face_start[f + 1] { face_start[f] } else { c + 1 }
+        };
+        let prev_corner = |c: usize| -> usize {
+            let f = corner_face[c] as usize;
+            if c == face_start[f] { face_start[f + 1] - 1 } else { c - 1 }
+        };
+        let corner_to = |c: usize| corner_from[next_corner(c)];
+
+        // Outgoing corners per vertex (compressed rows).
+        let mut row = vec![0u32; nv + 1];
+        for &v in &corner_from {
+            row[v as usize + 1] += 1;
+        }
+        for i in 0..nv {
+            row[i + 1] += row[i];
+        }
+        let mut fill = row.clone();
+        let mut out_corner = vec![0u32; nc];
+        for (c, &v) in corner_from.iter().enumerate() {
+            out_corner[fill[v as usize] as usize] = c as u32;
+            fill[v as usize] += 1;
+        }
+        let outgoing = |v: u32| &out_corner[row[v as usize] as usize..row[v as usize + 1] as usize];
+
+        // Pair corners into edges.
+        let mut corner_he = vec![NONE; nc];
+        let mut halfedges: Vec<HalfEdgeRecord> = Vec::with_capacity(nc + nc / 8);
+        let blank = HalfEdgeRecord { origin: NONE, next: NONE, prev: NONE, face: NONE };
+        for c in 0..nc {
+            let (a, b) = (corner_from[c], corner_to(c));
+            let same_dir: Vec<usize> = outgoing(a)
+                .iter()
+                .map(|&x| x as usize)
+                .filter(|&x| corner_to(x) == b)
+                .collect();
+            let twins: Vec<usize> = outgoing(b)
+                .iter()
+                .map(|&x| x as usize)
+                .filter(|&x| corner_to(x) == a)
+                .collect();
+            if same_dir.len() + twins.len() > 2 {
+                let mut faces: Vec<usize> = same_dir.iter().chain(&twins).map(|&x| corner_face[x] as usize).collect();
+                faces.sort_unstable();
+                return Err(BuildError::NonManifoldEdge { a: a.min(b), b: a.max(b), faces });
+            }
+            if same_dir.len() > 1 {
+                let faces = same_dir.iter().map(|&x| corner_face[x] as usize).collect();
+                return Err(BuildError::InconsistentOrientation { a, b, faces });
+            }
+            if corner_he[c] != NONE {
+                continue;
+            }
+            let h = halfedges.len() as u32;
+            corner_he[c] = h;
+            halfedges.push(blank);
+            halfedges.push(blank);
+            halfedges[h as usize] = HalfEdgeRecord { origin: a, next: NONE, prev: NONE, face: corner_face[c] };
+            if let Some(&t) = twins.first() {
+                corner_he[t] = h + 1;
+                halfedges[h as usize + 1] = HalfEdgeRecord { origin: b, next: NONE, prev: NONE, face: corner_face[t] };
+            } else {
+                halfedges[h as usize + 1].origin = b;
+            }
+        }
+        if halfedges.len() >= NONE as usize {
+            return Err(BuildError::TooLarge { what: "half-edges" });
+        }
+        for c in 0..nc {
+            let h = corner_he[c] as usize;
+            halfedges[h].next = corner_he[next_corner(c)];
+            halfedges[h].prev = corner_he[prev_corner(c)];
+        }
+        // Boundary half-edges: each vertex may start at most one.
+        let mut boundary_out = vec![NONE; nv];
+        for h in 0..halfedges.len() {
+            if halfedges[h].face == NONE {
+                let o = halfedges[h].origin as usize;
+                if boundary_out[o] != NONE {
+                    return Err(BuildError::NonManifoldVertex { vertex: o as u32 });
+                }
+                boundary_out[o] = h as u32;
+            }
+        }
+        for h in 0..halfedges.len() {
+            if halfedges[h].face == NONE {
+                let target = halfedges[h ^ 1].origin as usize;
+                let n = boundary_out[target];
+                halfedges[h].next = n;
+                halfedges[n as usize].prev = h as u32;
+            }
+        }
+        let mut vertex_out = boundary_out;
+        for v in 0..nv {
+            if vertex_out[v] == NONE {
+                if let Some(&c) = outgoing(v as u32).first() {
+                    vertex_out[v] = corner_he[c as usize];
+                }
+            }
+        }
+        let ne = halfedges.len() / 2;
+        let mesh = HalfEdgeMesh {
+            positions: positions.to_vec(),
+            vertex_out,
+            halfedges,
+            face_halfedge: (0..polygons.len()).map(|f| corner_he[face_start[f]]).collect(),
+            vertex_dead: vec![false; nv],
+            edge_dead: vec![false; ne],
+            face_dead: vec![false; polygons.len()],
+            live_vertices: nv,
+            live_edges: ne,
+            live_faces: polygons.len(),
+        };
+        // Closed fans touching at a vertex (two cones tip to tip) pass the
+        // boundary test above; the fan walk finds them.
+        for v in 0..nv as u32 {
+            let deg = (row[v as usize + 1] - row[v as usize]) as usize
+                + usize::from(mesh.is_boundary_vertex(VertexId(v)));
+            if deg > 0 && mesh.vertex_outgoing(VertexId(v)).take(deg + 1).count() != deg {
+                return Err(BuildError::NonManifoldVertex { vertex: v });
+            }
+        }
+        Ok(mesh)
+    }
+
+    /// Like [`from_polygons`](Self::from_polygons), but repairs instead of
+    /// failing: faces that are malformed or would make an edge non-manifold or
+    /// flip orientation are dropped (first come, first kept), and vertices
+    /// where separate fans meet are duplicated, one copy per extra fan.
+    /// Non-finite positions drop the faces that use them.
+    ///
+    /// Complexity: O(corners) expected (hash map of directed edges).
+    pub fn from_polygons_repaired<P: AsRef<[u32]>>(
+        positions: &[DVec3],
+        polygons: &[P],
+    ) -> Result<(Self, RepairReport), BuildError> {
+        let mut report = RepairReport::default();
+        let mut kept: Vec<Vec<u32>> = Vec::new();
+        let mut used: HashMap<(u32, u32), usize> = HashMap::new(); // directed edge -> kept face
+        for (fi, poly) in polygons.iter().enumerate() {
+            let poly = poly.as_ref();
+            if let Err(e) = check_face(fi, poly, positions.len()) {
+                report.dropped_faces.push((fi, e));
+                continue;
+            }
+            if let Some(&v) = poly.iter().find(|&&v| !positions[v as usize].is_finite()) {
+                report.dropped_faces.push((fi, BuildError::NonFinitePosition { vertex: v }));
+                continue;
+            }
+            let n = poly.len();
+            let conflict = (0..n).find_map(|i| {
+                let (a, b) = (poly[i], poly[(i + 1) % n]);
+                if let Some(&other) = used.get(&(a, b)) {
+                    let faces = vec![report.face_origin[other], fi];
+                    return Some(if used.contains_key(&(b, a)) {
+                        BuildError::NonManifoldEdge { a: a.min(b), b: a.max(b), faces }
+                    } else {
+                        BuildError::InconsistentOrientation { a, b, faces }
+                    });
+                }
+                None
+            });
+            if let Some(e) = conflict {
+                report.dropped_faces.push((fi, e));
+                continue;
+            }
+            for i in 0..n {
+                used.insert((poly[i], poly[(i + 1) % n]), kept.len());
+            }
+            report.face_origin.push(fi);
+            kept.push(poly.to_vec());
+        }
+
+        // Split vertices where separate fans meet: corners around a vertex that
+        // share an edge belong to one fan (union-find over corners).
+        let corner_base: Vec<usize> = kept
+            .iter()
+            .scan(0, |acc, p| {
+                let b = *acc;
+                *acc += p.len();
+                Some(b)
+            })
+            .collect();
+        let total: usize = kept.iter().map(Vec::len).sum();
+        let mut parent: Vec<usize> = (0..total).collect();
+        fn find(parent: &mut [usize], mut x: usize) -> usize {
+            while parent[x] != x {
+                parent[x] = parent[parent[x]];
+                x = parent[x];
+            }
+            x
+        }
+        for (f, poly) in kept.iter().enumerate() {
+            let n = poly.len();
+            for i in 0..n {
+                let (a, b) = (poly[i], poly[(i + 1) % n]);
+                if let Some(&g) = used.get(&(b, a)) {
+                    let other = &kept[g];
+                    let m = other.len();
+                    let j = other.iter().position(|&x| x == b).expect("edge b->a lies in face g");
+                    // In face g the edge runs b (corner j) -> a (corner j+1).
+                    let pairs = [(corner_base[f] + i, corner_base[g] + (j + 1) % m), (corner_base[f] + (i + 1) % n, corner_base[g] + j)];
+                    for (x, y) in pairs {
+                        let (rx, ry) = (find(&mut parent, x), find(&mut parent, y));
+                        parent[rx] = ry;
+                    }
+                }
+            }
+        }
+        let mut new_positions = positions.to_vec();
+        let mut fan_vertex: HashMap<usize, u32> = HashMap::new(); // fan root -> vertex id
+        let mut first_fan: HashMap<u32, usize> = HashMap::new(); // vertex -> its first fan root
+        let mut copies: HashMap<u32, usize> = HashMap::new();
+        for (f, poly) in kept.iter_mut().enumerate() {
+            for (i, v) in poly.iter_mut().enumerate() {
+                let root = find(&mut parent, corner_base[f] + i);
+                if let Some(&nv) = fan_vertex.get(&root) {
+                    *v = nv;
+                    continue;
+                }
+                let orig = *v;
+                let id = match first_fan.get(&orig) {
+                    None => {
+                        first_fan.insert(orig, root);
+                        orig
+                    }
+                    Some(_) => {
+                        new_positions.push(positions[orig as usize]);
+                        *copies.entry(orig).or_default() += 1;
+                        (new_positions.len() - 1) as u32
+                    }
+                };
+                fan_vertex.insert(root, id);
+                *v = id;
+            }
+        }
+        report.split_vertices = copies.into_iter().collect();
+        report.split_vertices.sort_unstable();
+        let mesh = Self::from_polygons(&new_positions, &kept)?;
+        Ok((mesh, report))
+    }
+
+    /// Positions and polygons (vertex ids as indices) of the live faces, for
+    /// export. Dead vertex slots keep their index, so the output may contain
+    /// unused positions; use [`compacted`](Self::compacted) first to avoid that.
+    pub fn to_polygons(&self) -> (Vec<DVec3>, Vec<Vec<u32>>) {
+        let polys = self.faces().map(|f| self.face_vertices(f).map(|v| v.0).collect()).collect();
+        (self.positions.clone(), polys)
+    }
+
+    /// A copy with dead slots removed and ids renumbered densely, in the old
+    /// order. Returns the new mesh.
+    pub fn compacted(&self) -> HalfEdgeMesh {
+        let mut vmap = vec![NONE; self.positions.len()];
+        let mut positions = Vec::with_capacity(self.vertex_count());
+        for v in self.vertices() {
+            vmap[v.index()] = positions.len() as u32;
+            positions.push(self.position(v));
+        }
+        let polys: Vec<Vec<u32>> = self
+            .faces()
+            .map(|f| self.face_vertices(f).map(|v| vmap[v.index()]).collect())
+            .collect();
+        HalfEdgeMesh::from_polygons(&positions, &polys).expect("a valid mesh stays valid when renumbered")
+    }
+}

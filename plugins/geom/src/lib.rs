@@ -1,0 +1,18 @@
+//! Hedra's modeling kernel, free of Bevy: half-edge meshes with typed ids, the
+//! validator, building from indexed polygons, primitives; the Euler operators,
+//! modeling operations, subdivision, curves and surfaces build on these.
+//!
+//! All math is in `f64` ([`glam::DVec3`]); render code converts to `f32`.
+
+pub mod build;
+pub mod ids;
+pub mod mesh;
+pub mod primitives;
+pub mod validate;
+
+pub use build::{BuildError, RepairReport};
+pub use glam::{DMat4, DQuat, DVec2, DVec3};
+pub use ids::{EdgeId, ElementId, FaceId, HalfEdgeId, VertexId};
+pub use mesh::{HalfEdgeMesh, MeshData, MeshStats};
+pub use primitives::{Primitive, PrimitiveError};
+pub use validate::{ValidationError, Violation};

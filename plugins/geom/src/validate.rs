@@ -1,0 +1,288 @@
+//! The one validator of half-edge invariants (geometry-central's
+//! `validateConnectivity`): called after every operator in the tests, and on
+//! every mesh read from a file. It never panics, even on corrupted records.
+
+use crate::ids::{FaceId, HalfEdgeId, NONE, VertexId};
+use crate::mesh::HalfEdgeMesh;
+use std::fmt;
+
+/// One broken invariant, naming the elements involved.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Violation {
+    /// A record refers to an id outside its array or to a dead element.
+    DanglingReference { element: String, field: &'static str, value: u32 },
+    /// `next(prev(h)) != h` or `prev(next(h)) != h`.
+    BrokenLink { halfedge: HalfEdgeId },
+    /// `origin(next(h)) != target(h)`.
+    DisconnectedLoop { halfedge: HalfEdgeId },
+    /// Consecutive half-edges of a loop disagree on their face.
+    FaceMismatch { halfedge: HalfEdgeId },
+    /// An edge from a vertex to itself.
+    SelfLoop { halfedge: HalfEdgeId },
+    /// A face's loop does not come back to its start, or has fewer than 3 sides.
+    BadFaceLoop { face: FaceId, len: usize },
+    /// A face's half-edge count differs from the half-edges that name it.
+    StrayFaceHalfEdge { face: FaceId },
+    /// `origin(vertex_halfedge(v)) != v`.
+    WrongVertexHalfEdge { vertex: VertexId },
+    /// The fan around a vertex misses some of its outgoing half-edges.
+    NonManifoldVertex { vertex: VertexId, fan: usize, outgoing: usize },
+    /// A boundary vertex whose stored half-edge is not a boundary one.
+    BoundaryNotFirst { vertex: VertexId },
+    /// A non-finite coordinate.
+    NonFinitePosition { vertex: VertexId },
+    /// Cached live counts disagree with the flags.
+    WrongCount { what: &'static str, cached: usize, actual: usize },
+}
+
+impl fmt::Display for Violation {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Violation::DanglingReference { element, field, value } => {
+                write!(f, "{element}: {field} refers to missing element {value}")
+            }
+            Violation::BrokenLink { halfedge } => write!(f, "{halfedge}: next/prev links disagree"),
+            Violation::DisconnectedLoop { halfedge } => {
+                write!(f, "{halfedge}: next half-edge does not start at its target")
+            }
+            Violation::FaceMismatch { halfedge } => {
+                write!(f, "{halfedge}: next half-edge lies on another face")
+            }
+            Violation::SelfLoop { halfedge } => write!(f, "{halfedge}: edge joins a vertex to itself"),
+            Violation::BadFaceLoop { face, len } => {
+                write!(f, "{face}: loop is not a closed polygon ({len} half-edges walked)")
+            }
+            Violation::StrayFaceHalfEdge { face } => {
+                write!(f, "{face}: half-edges name this face outside its loop")
+            }
+            Violation::WrongVertexHalfEdge { vertex } => {
+                write!(f, "{vertex}: its half-edge does not start at it")
+            }
+            Violation::NonManifoldVertex { vertex, fan, outgoing } => write!(
+                f,
+                "{vertex}: non-manifold, its fan reaches {fan} of {outgoing} outgoing half-edges"
+            ),
+            Violation::BoundaryNotFirst { vertex } => {
+                write!(f, "{vertex}: on a boundary but its half-edge is interior")
+            }
+            Violation::NonFinitePosition { vertex } => write!(f, "{vertex}: position is not finite"),
+            Violation::WrongCount { what, cached, actual } => {
+                write!(f, "{what} count is {cached} but {actual} are live")
+            }
+        }
+    }
+}
+
+/// The result of a failed [`HalfEdgeMesh::validate`]: every violation found
+/// (at most [`ValidationError::LIMIT`]).
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub struct ValidationError {
+    pub violations: Vec<Violation>,
+}
+
+impl ValidationError {
+    /// At most this many violations are collected.
+    pub const LIMIT: usize = 20;
+}
+
+impl fmt::Display for ValidationError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "invalid mesh: ")?;
+        for (i, v) in self.violations.iter().enumerate() {
+            if i > 0 {
+                write!(f, "; ")?;
+            }
+            write!(f, "{v}")?;
+        }
+        Ok(())
+    }
+}
+
+impl HalfEdgeMesh {
+    /// Checks every connectivity invariant: references in range and live,
+    /// twin/next/prev consistency, closed face loops of at least three sides,
+    /// manifold vertex fans with the boundary half-edge first, finite positions
+    /// and the cached counts.
+    ///
+    /// # Errors
+    /// [`ValidationError`] listing the violations found.
+    ///
+    /// Complexity: O(V + E + F).
+    pub fn validate(&self) -> Result<(), ValidationError> {
+        let mut out = Vec::new();
+        self.check_records(&mut out);
+        if out.is_empty() {
+            self.check_loops_and_fans(&mut out);
+        }
+        if out.is_empty() {
+            Ok(())
+        } else {
+            out.truncate(ValidationError::LIMIT);
+            Err(ValidationError { violations: out })
+        }
+    }
+
+    /// Pass 1: array sizes, id ranges and liveness, so pass 2 can index freely.
+    fn check_records(&self, out: &mut Vec<Violation>) {
+        let nv = self.positions.len();
+        let nh = self.halfedges.len();
+        let nf = self.face_halfedge.len();
+        if self.vertex_out.len() != nv || self.vertex_dead.len() != nv {
+            out.push(Violation::WrongCount { what: "vertex record", cached: self.vertex_out.len(), actual: nv });
+            return;
+        }
+        if self.edge_dead.len() * 2 != nh || self.face_dead.len() != nf {
+            out.push(Violation::WrongCount { what: "edge record", cached: self.edge_dead.len() * 2, actual: nh });
+            return;
+        }
+        let live_v = self.vertex_dead.iter().filter(|d| !**d).count();
+        let live_e = self.edge_dead.iter().filter(|d| !**d).count();
+        let live_f = self.face_dead.iter().filter(|d| !**d).count();
+        for (what, cached, actual) in [
+            ("vertex", self.live_vertices, live_v),
+            ("edge", self.live_edges, live_e),
+            ("face", self.live_faces, live_f),
+        ] {
+            if cached != actual {
+                out.push(Violation::WrongCount { what, cached, actual });
+            }
+        }
+        let live_vertex = |x: u32| (x as usize) < nv && !self.vertex_dead[x as usize];
+        let live_he = |x: u32| (x as usize) < nh && !self.edge_dead[x as usize / 2];
+        let live_face = |x: u32| (x as usize) < nf && !self.face_dead[x as usize];
+        let push = |out: &mut Vec<Violation>, element: String, field, value| {
+            if out.len() < ValidationError::LIMIT {
+                out.push(Violation::DanglingReference { element, field, value });
+            }
+        };
+        for v in self.vertices() {
+            let h = self.vertex_out[v.index()];
+            if h != NONE && !live_he(h) {
+                push(out, v.to_string(), "half-edge", h);
+            }
+            if !self.positions[v.index()].is_finite() {
+                out.push(Violation::NonFinitePosition { vertex: v });
+            }
+        }
+        for h in self.halfedges() {
+            let r = &self.halfedges[h.index()];
+            if !live_vertex(r.origin) {
+                push(out, h.to_string(), "origin", r.origin);
+            }
+            if !live_he(r.next) {
+                push(out, h.to_string(), "next", r.next);
+            }
+            if !live_he(r.prev) {
+                push(out, h.to_string(), "prev", r.prev);
+            }
+            if r.face != NONE && !live_face(r.face) {
+                push(out, h.to_string(), "face", r.face);
+            }
+        }
+        for f in self.faces() {
+            let h = self.face_halfedge[f.index()];
+            if !live_he(h) {
+                push(out, f.to_string(), "half-edge", h);
+            }
+        }
+    }
+
+    /// Pass 2: links, loops and fans.
+    fn check_loops_and_fans(&self, out: &mut Vec<Violation>) {
+        let full = |out: &Vec<Violation>| out.len() >= ValidationError::LIMIT;
+        for h in self.halfedges() {
+            if full(out) {
+                return;
+            }
+            let n = self.next(h);
+            let p = self.prev(h);
+            if self.prev(n) != h || self.next(p) != h {
+                out.push(Violation::BrokenLink { halfedge: h });
+            } else if self.origin(n) != self.target(h) {
+                out.push(Violation::DisconnectedLoop { halfedge: h });
+            } else if self.face(n) != self.face(h) {
+                out.push(Violation::FaceMismatch { halfedge: h });
+            }
+            if self.origin(h) == self.target(h) {
+                out.push(Violation::SelfLoop { halfedge: h });
+            }
+        }
+        if !out.is_empty() {
+            return;
+        }
+        // Face loops: closed, at least 3 sides, and own all half-edges naming them.
+        let mut named = vec![0usize; self.face_halfedge.len()];
+        for h in self.halfedges() {
+            if let Some(f) = self.face(h) {
+                named[f.index()] += 1;
+            }
+        }
+        for f in self.faces() {
+            if full(out) {
+                return;
+            }
+            let start = self.face_halfedge(f);
+            let mut len = 0;
+            let mut h = start;
+            let mut closed = false;
+            while len <= self.halfedges.len() {
+                if self.face(h) != Some(f) {
+                    break;
+                }
+                len += 1;
+                h = self.next(h);
+                if h == start {
+                    closed = true;
+                    break;
+                }
+            }
+            if !closed || len < 3 {
+                out.push(Violation::BadFaceLoop { face: f, len });
+            } else if named[f.index()] != len {
+                out.push(Violation::StrayFaceHalfEdge { face: f });
+            }
+        }
+        // Vertex fans: the circulation reaches every outgoing half-edge.
+        let mut outgoing = vec![0usize; self.positions.len()];
+        let mut boundary_out = vec![0usize; self.positions.len()];
+        for h in self.halfedges() {
+            let o = self.origin(h).index();
+            outgoing[o] += 1;
+            if self.is_boundary_halfedge(h) {
+                boundary_out[o] += 1;
+            }
+        }
+        for v in self.vertices() {
+            if full(out) {
+                return;
+            }
+            let Some(start) = self.vertex_halfedge(v) else {
+                if outgoing[v.index()] != 0 {
+                    out.push(Violation::NonManifoldVertex { vertex: v, fan: 0, outgoing: outgoing[v.index()] });
+                }
+                continue;
+            };
+            if self.origin(start) != v {
+                out.push(Violation::WrongVertexHalfEdge { vertex: v });
+                continue;
+            }
+            let mut fan = 0;
+            let mut h = start;
+            loop {
+                if self.origin(h) != v {
+                    break;
+                }
+                fan += 1;
+                h = self.prev(h).twin();
+                if h == start || fan > outgoing[v.index()] {
+                    break;
+                }
+            }
+            if fan != outgoing[v.index()] || boundary_out[v.index()] > 1 {
+                out.push(Violation::NonManifoldVertex { vertex: v, fan, outgoing: outgoing[v.index()] });
+            } else if boundary_out[v.index()] == 1 && !self.is_boundary_halfedge(start) {
+                out.push(Violation::BoundaryNotFirst { vertex: v });
+            }
+        }
+    }
+}
