@@ -1,1 +1,17 @@
-//! doc
+//! Hedra's document, free of Bevy: the scene graph, the commands users and
+//! scripts issue, reversible transactions and the undo history, the
+//! versioned `.hedra.ron` file and exports.
+
+pub mod command;
+pub mod export;
+pub mod file;
+pub mod history;
+pub mod report;
+pub mod scene;
+pub mod script;
+pub mod session;
+
+pub use command::{Command, CommandError, NodeRef};
+pub use history::{History, NodeChange, Transaction};
+pub use scene::{Document, MeshContent, Node, NodeContent, NodeId, Transform};
+pub use session::{Applied, Session};

@@ -1,0 +1,397 @@
+//! User-level commands: what the GUI issues and what `hedra run` scripts list.
+//!
+//! A command is decided against the current document and turns into a
+//! [`Transaction`] (Fornjot's "commands decide, events apply"). Deciding
+//! never mutates, so a failing command leaves the document untouched.
+
+use crate::history::{NodeChange, Transaction};
+use crate::scene::{Document, MeshContent, Node, NodeContent, NodeId, Transform};
+use glam::{DQuat, DVec3};
+use hedra_geom::{BuildError, HalfEdgeMesh, Primitive, PrimitiveError};
+use serde::{Deserialize, Serialize};
+use std::fmt;
+use std::sync::Arc;
+
+/// A node named by id or by (unique) name, so scripts need not know ids.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub enum NodeRef {
+    Id(u64),
+    Name(String),
+}
+
+impl fmt::Display for NodeRef {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            NodeRef::Id(i) => write!(f, "node #{i}"),
+            NodeRef::Name(n) => write!(f, "node '{n}'"),
+        }
+    }
+}
+
+impl From<NodeId> for NodeRef {
+    fn from(id: NodeId) -> Self {
+        NodeRef::Id(id.0)
+    }
+}
+
+/// Everything a user can do to a document. Each variant is documented with
+/// a RON example in `docs/commands.md`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub enum Command {
+    /// Adds a primitive mesh node.
+    AddPrimitive {
+        primitive: Primitive,
+        #[serde(default)]
+        name: Option<String>,
+        #[serde(default)]
+        parent: Option<NodeRef>,
+        #[serde(default)]
+        transform: Transform,
+    },
+    /// Adds a mesh from explicit positions and polygons (vertex index lists,
+    /// counter-clockwise seen from outside).
+    AddMesh {
+        name: String,
+        positions: Vec<DVec3>,
+        polygons: Vec<Vec<u32>>,
+        #[serde(default)]
+        parent: Option<NodeRef>,
+        #[serde(default)]
+        transform: Transform,
+    },
+    /// Adds an empty (grouping) node.
+    AddEmpty {
+        name: String,
+        #[serde(default)]
+        parent: Option<NodeRef>,
+        #[serde(default)]
+        transform: Transform,
+    },
+    /// Rebuilds a primitive node with new parameters ("adjust last operation").
+    SetPrimitive { node: NodeRef, primitive: Primitive },
+    /// Sets local transforms of one or more nodes in one step.
+    SetTransforms { nodes: Vec<(NodeRef, Transform)> },
+    /// Moves nodes by an offset in their parent's space.
+    Translate { nodes: Vec<NodeRef>, offset: DVec3 },
+    /// Rotates nodes about their own origin around an axis (degrees).
+    Rotate { nodes: Vec<NodeRef>, axis: DVec3, degrees: f64 },
+    /// Multiplies nodes' scale.
+    Scale { nodes: Vec<NodeRef>, factor: DVec3 },
+    Rename { node: NodeRef, name: String },
+    /// Gives a node a new parent (`None` for the root). With `keep_world`
+    /// the node stays where it is in the world.
+    Reparent {
+        node: NodeRef,
+        parent: Option<NodeRef>,
+        #[serde(default = "yes")]
+        keep_world: bool,
+    },
+    SetVisible { nodes: Vec<NodeRef>, visible: bool },
+    /// Deletes nodes with their descendants.
+    Delete { nodes: Vec<NodeRef> },
+    /// Copies nodes with their descendants; copies get new ids and names.
+    Duplicate { nodes: Vec<NodeRef> },
+}
+
+fn yes() -> bool {
+    true
+}
+
+/// Why a command was refused. The document is unchanged.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum CommandError {
+    #[error("{0} does not exist")]
+    UnknownNode(NodeRef),
+    #[error("{node} is not a mesh")]
+    NotAMesh { node: String },
+    #[error("{node} was not made from a primitive (or has been edited since)")]
+    NotAPrimitive { node: String },
+    #[error("cannot parent {node} to {parent}: it would become its own ancestor")]
+    Cycle { node: String, parent: String },
+    #[error("invalid transform for {node}: values must be finite and scale non-zero")]
+    BadTransform { node: String },
+    #[error("a node name cannot be empty")]
+    EmptyName,
+    #[error("nothing to do: {0}")]
+    Nothing(&'static str),
+    #[error(transparent)]
+    Primitive(#[from] PrimitiveError),
+    #[error("bad mesh: {0}")]
+    Mesh(#[from] BuildError),
+}
+
+impl Command {
+    /// The label shown in the history panel.
+    pub fn label(&self) -> String {
+        match self {
+            Command::AddPrimitive { primitive, .. } => format!("Add {}", primitive.display_name()),
+            Command::AddMesh { name, .. } => format!("Add Mesh '{name}'"),
+            Command::AddEmpty { name, .. } => format!("Add Empty '{name}'"),
+            Command::SetPrimitive { primitive, .. } => format!("Adjust {}", primitive.display_name()),
+            Command::SetTransforms { nodes } => format!("Transform {}", plural(nodes.len(), "node")),
+            Command::Translate { nodes, .. } => format!("Move {}", plural(nodes.len(), "node")),
+            Command::Rotate { nodes, .. } => format!("Rotate {}", plural(nodes.len(), "node")),
+            Command::Scale { nodes, .. } => format!("Scale {}", plural(nodes.len(), "node")),
+            Command::Rename { name, .. } => format!("Rename to '{name}'"),
+            Command::Reparent { .. } => "Set Parent".to_string(),
+            Command::SetVisible { visible, .. } => if *visible { "Show" } else { "Hide" }.to_string(),
+            Command::Delete { nodes } => format!("Delete {}", plural(nodes.len(), "node")),
+            Command::Duplicate { nodes } => format!("Duplicate {}", plural(nodes.len(), "node")),
+        }
+    }
+}
+
+fn plural(n: usize, what: &str) -> String {
+    if n == 1 { format!("1 {what}") } else { format!("{n} {what}s") }
+}
+
+impl Document {
+    /// Resolves a node reference.
+    ///
+    /// # Errors
+    /// [`CommandError::UnknownNode`] when no node matches.
+    pub fn resolve(&self, r: &NodeRef) -> Result<NodeId, CommandError> {
+        match r {
+            NodeRef::Id(i) if self.nodes.contains_key(&NodeId(*i)) => Ok(NodeId(*i)),
+            NodeRef::Name(n) => self.find_by_name(n).map(|n| n.id).ok_or_else(|| CommandError::UnknownNode(r.clone())),
+            _ => Err(CommandError::UnknownNode(r.clone())),
+        }
+    }
+
+    fn label_of(&self, id: NodeId) -> String {
+        self.nodes.get(&id).map_or_else(|| id.to_string(), |n| format!("'{}' ({id})", n.name))
+    }
+
+    /// Decides a command: the transaction it would apply, or why not.
+    /// The document is not changed; apply the result with
+    /// [`Transaction::apply`].
+    ///
+    /// # Errors
+    /// A [`CommandError`] naming the node or value at fault.
+    pub fn decide(&self, cmd: &Command, serial: u64) -> Result<Transaction, CommandError> {
+        let mut plan = Plan { doc: self, next_id: self.next_node_id, changes: Vec::new() };
+        plan.run(cmd)?;
+        if plan.changes.is_empty() {
+            return Err(CommandError::Nothing("the command changes nothing"));
+        }
+        Ok(Transaction {
+            serial,
+            label: cmd.label(),
+            command: Some(cmd.clone()),
+            changes: plan.changes,
+            next_id_before: self.next_node_id,
+            next_id_after: plan.next_id,
+        })
+    }
+}
+
+/// Collects the node changes of one command.
+struct Plan<'a> {
+    doc: &'a Document,
+    next_id: u64,
+    changes: Vec<NodeChange>,
+}
+
+impl Plan<'_> {
+    /// The node as this plan currently sees it (later changes win).
+    fn current(&self, id: NodeId) -> Option<&Node> {
+        match self.changes.iter().rev().find(|c| c.id == id) {
+            Some(c) => c.after.as_ref(),
+            None => self.doc.nodes.get(&id),
+        }
+    }
+
+    fn resolve(&self, r: &NodeRef) -> Result<NodeId, CommandError> {
+        self.doc.resolve(r)
+    }
+
+    fn set(&mut self, node: Node) {
+        if let Some(c) = self.changes.iter_mut().find(|c| c.id == node.id) {
+            c.after = Some(node);
+        } else {
+            let before = self.doc.nodes.get(&node.id).cloned();
+            if before.as_ref() != Some(&node) {
+                self.changes.push(NodeChange { id: node.id, before, after: Some(node) });
+            }
+        }
+    }
+
+    fn remove(&mut self, id: NodeId) {
+        if let Some(c) = self.changes.iter_mut().find(|c| c.id == id) {
+            c.after = None;
+        } else {
+            let before = self.doc.nodes.get(&id).cloned();
+            self.changes.push(NodeChange { id, before, after: None });
+        }
+    }
+
+    fn taken_name(&self, name: &str) -> bool {
+        self.doc.nodes.values().any(|n| n.name == name && self.current(n.id).is_some_and(|c| c.name == name))
+            || self.changes.iter().any(|c| c.after.as_ref().is_some_and(|n| n.name == name))
+    }
+
+    fn unique_name(&self, name: &str) -> String {
+        if !self.taken_name(name) {
+            return name.to_string();
+        }
+        let base = match name.rsplit_once('.') {
+            Some((b, s)) if s.len() == 3 && s.chars().all(|c| c.is_ascii_digit()) => b,
+            _ => name,
+        };
+        (1..).map(|i| format!("{base}.{i:03}")).find(|n| !self.taken_name(n)).expect("a free suffix exists")
+    }
+
+    fn add_node(&mut self, name: &str, parent: &Option<NodeRef>, transform: Transform, content: NodeContent) -> Result<NodeId, CommandError> {
+        if name.trim().is_empty() {
+            return Err(CommandError::EmptyName);
+        }
+        let parent = parent.as_ref().map(|p| self.resolve(p)).transpose()?;
+        let id = NodeId(self.next_id);
+        if !transform.is_usable() {
+            return Err(CommandError::BadTransform { node: name.to_string() });
+        }
+        self.next_id += 1;
+        let name = self.unique_name(name);
+        self.set(Node { id, name, parent, transform, visible: true, content });
+        Ok(id)
+    }
+
+    fn node(&self, r: &NodeRef) -> Result<Node, CommandError> {
+        let id = self.resolve(r)?;
+        Ok(self.current(id).cloned().ok_or(CommandError::UnknownNode(r.clone()))?)
+    }
+
+    fn set_transform(&mut self, mut node: Node, transform: Transform) -> Result<(), CommandError> {
+        if !transform.is_usable() {
+            return Err(CommandError::BadTransform { node: self.doc.label_of(node.id) });
+        }
+        node.transform = transform;
+        self.set(node);
+        Ok(())
+    }
+
+    fn run(&mut self, cmd: &Command) -> Result<(), CommandError> {
+        match cmd {
+            Command::AddPrimitive { primitive, name, parent, transform } => {
+                let mesh = primitive.build()?;
+                let name = name.clone().unwrap_or_else(|| primitive.display_name().to_string());
+                let content = NodeContent::Mesh(MeshContent { mesh: Arc::new(mesh), primitive: Some(primitive.clone()) });
+                self.add_node(&name, parent, *transform, content)?;
+            }
+            Command::AddMesh { name, positions, polygons, parent, transform } => {
+                let mesh = HalfEdgeMesh::from_polygons(positions, polygons)?;
+                let content = NodeContent::Mesh(MeshContent { mesh: Arc::new(mesh), primitive: None });
+                self.add_node(name, parent, *transform, content)?;
+            }
+            Command::AddEmpty { name, parent, transform } => {
+                self.add_node(name, parent, *transform, NodeContent::Empty)?;
+            }
+            Command::SetPrimitive { node, primitive } => {
+                let mut n = self.node(node)?;
+                let NodeContent::Mesh(content) = &n.content else {
+                    return Err(CommandError::NotAMesh { node: self.doc.label_of(n.id) });
+                };
+                match &content.primitive {
+                    Some(old) if old.kind() == primitive.kind() => {}
+                    _ => return Err(CommandError::NotAPrimitive { node: self.doc.label_of(n.id) }),
+                }
+                let mesh = primitive.build()?;
+                n.content = NodeContent::Mesh(MeshContent { mesh: Arc::new(mesh), primitive: Some(primitive.clone()) });
+                self.set(n);
+            }
+            Command::SetTransforms { nodes } => {
+                for (r, t) in nodes {
+                    let n = self.node(r)?;
+                    self.set_transform(n, *t)?;
+                }
+            }
+            Command::Translate { nodes, offset } => {
+                for r in nodes {
+                    let n = self.node(r)?;
+                    let t = Transform { translation: n.transform.translation + *offset, ..n.transform };
+                    self.set_transform(n, t)?;
+                }
+            }
+            Command::Rotate { nodes, axis, degrees } => {
+                let Some(axis) = axis.try_normalize() else {
+                    return Err(CommandError::Nothing("the rotation axis is zero"));
+                };
+                let q = DQuat::from_axis_angle(axis, degrees.to_radians());
+                for r in nodes {
+                    let n = self.node(r)?;
+                    let t = Transform { rotation: (q * n.transform.rotation).normalize(), ..n.transform };
+                    self.set_transform(n, t)?;
+                }
+            }
+            Command::Scale { nodes, factor } => {
+                for r in nodes {
+                    let n = self.node(r)?;
+                    let t = Transform { scale: n.transform.scale * *factor, ..n.transform };
+                    self.set_transform(n, t)?;
+                }
+            }
+            Command::Rename { node, name } => {
+                if name.trim().is_empty() {
+                    return Err(CommandError::EmptyName);
+                }
+                let mut n = self.node(node)?;
+                if n.name != *name {
+                    n.name = self.unique_name(name);
+                    self.set(n);
+                }
+            }
+            Command::Reparent { node, parent, keep_world } => {
+                let mut n = self.node(node)?;
+                let new_parent = parent.as_ref().map(|p| self.resolve(p)).transpose()?;
+                if let Some(p) = new_parent {
+                    if self.doc.is_ancestor(n.id, p) {
+                        return Err(CommandError::Cycle { node: self.doc.label_of(n.id), parent: self.doc.label_of(p) });
+                    }
+                }
+                if *keep_world {
+                    let world = self.doc.world_matrix(n.id);
+                    let parent_world = new_parent.map_or(glam::DMat4::IDENTITY, |p| self.doc.world_matrix(p));
+                    n.transform = Transform::from_matrix(parent_world.inverse() * world);
+                }
+                n.parent = new_parent;
+                self.set(n);
+            }
+            Command::SetVisible { nodes, visible } => {
+                for r in nodes {
+                    let mut n = self.node(r)?;
+                    n.visible = *visible;
+                    self.set(n);
+                }
+            }
+            Command::Delete { nodes } => {
+                for r in nodes {
+                    let id = self.resolve(r)?;
+                    for x in self.doc.subtree(id).into_iter().rev() {
+                        if self.current(x).is_some() {
+                            self.remove(x);
+                        }
+                    }
+                }
+            }
+            Command::Duplicate { nodes } => {
+                for r in nodes {
+                    let root = self.resolve(r)?;
+                    let subtree = self.doc.subtree(root);
+                    let mut map = std::collections::HashMap::new();
+                    for &old in &subtree {
+                        map.insert(old, NodeId(self.next_id));
+                        self.next_id += 1;
+                    }
+                    for &old in &subtree {
+                        let mut n = self.current(old).cloned().ok_or(CommandError::UnknownNode(NodeRef::Id(old.0)))?;
+                        n.id = map[&old];
+                        n.parent = if old == root { n.parent } else { n.parent.map(|p| map[&p]) };
+                        n.name = self.unique_name(&n.name);
+                        self.set(n);
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,448 @@
+//! The `.hedra.ron` scene file: the scene and its undo history in one RON
+//! document.
+//!
+//! ```text
+//! (
+//!     format: "hedra-scene",
+//!     version: 1,
+//!     meshes: [ ... ],            // mesh pool, shared by nodes and history
+//!     scene: (next_node_id: 4, nodes: [ ... ]),
+//!     history: (meshes: [ ... ], done: [ ... ], undone: [ ... ], ...),
+//! )
+//! ```
+//!
+//! Meshes are stored once in a pool and referenced by index, so the many
+//! history steps that share a mesh cost one copy. The history comes last and
+//! is read separately: when it is damaged the scene still opens, without
+//! undo, and the caller gets a warning. Saving is atomic: a temporary file in
+//! the same folder is written and synced, the old file is kept as
+//! `.hedra.ron.bak`, and a rename puts the new file in place.
+//!
+//! Format versions: each older version has one typed migration function to
+//! the next (`migrate_vN_to_vN1`); there is only version 1 so far.
+
+use crate::command::Command;
+use crate::history::{History, NodeChange, Transaction};
+use crate::scene::{Document, MeshContent, Node, NodeContent, NodeId, Transform};
+use crate::session::Session;
+use hedra_geom::{HalfEdgeMesh, Primitive};
+use ron::value::RawValue;
+use serde::{Deserialize, Serialize};
+use std::collections::HashMap;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+/// The format name written at the top of every scene file.
+pub const FORMAT_NAME: &str = "hedra-scene";
+/// The newest format version this build reads and the one it writes.
+pub const FORMAT_VERSION: u32 = 1;
+/// The scene file extension.
+pub const EXTENSION: &str = "hedra.ron";
+
+/// Why a scene file could not be read or written.
+#[derive(Debug, thiserror::Error)]
+pub enum FileError {
+    #[error("{path}: {source}")]
+    Io { path: PathBuf, source: std::io::Error },
+    #[error("{path}: not a Hedra scene file ({reason})")]
+    NotAScene { path: PathBuf, reason: String },
+    #[error("{path}: written by a newer Hedra (format version {version}); this build reads versions up to {FORMAT_VERSION}")]
+    NewerVersion { path: PathBuf, version: u32 },
+    #[error("{path}:{line}:{column}: {message}")]
+    Parse { path: PathBuf, line: usize, column: usize, message: String },
+    #[error("{path}: {message}")]
+    Invalid { path: PathBuf, message: String },
+}
+
+/// A scene read from a file, with what the reader had to give up.
+#[derive(Debug)]
+pub struct Loaded {
+    pub session: Session,
+    /// Problems that did not stop the scene from opening (damaged history).
+    pub warnings: Vec<String>,
+}
+
+// ----- stored forms --------------------------------------------------------
+
+#[derive(Serialize, Deserialize)]
+enum StoredContent {
+    Empty,
+    Mesh {
+        mesh: usize,
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        primitive: Option<Primitive>,
+    },
+}
+
+#[derive(Serialize, Deserialize)]
+struct StoredNode {
+    id: NodeId,
+    name: String,
+    #[serde(default)]
+    parent: Option<NodeId>,
+    #[serde(default)]
+    transform: Transform,
+    #[serde(default = "visible_default")]
+    visible: bool,
+    content: StoredContent,
+}
+
+fn visible_default() -> bool {
+    true
+}
+
+#[derive(Serialize, Deserialize)]
+struct StoredScene {
+    next_node_id: u64,
+    nodes: Vec<StoredNode>,
+}
+
+#[derive(Serialize, Deserialize)]
+struct StoredChange {
+    id: NodeId,
+    before: Option<StoredNode>,
+    after: Option<StoredNode>,
+}
+
+#[derive(Serialize, Deserialize)]
+struct StoredTransaction {
+    serial: u64,
+    label: String,
+    #[serde(default)]
+    command: Option<Command>,
+    changes: Vec<StoredChange>,
+    next_id_before: u64,
+    next_id_after: u64,
+}
+
+#[derive(Serialize, Deserialize)]
+struct StoredHistory {
+    /// Meshes only the history uses; index `i` here is pool index `scene_meshes + i`.
+    meshes: Vec<HalfEdgeMesh>,
+    done: Vec<StoredTransaction>,
+    undone: Vec<StoredTransaction>,
+    #[serde(default)]
+    dropped: usize,
+    next_serial: u64,
+    max_steps: usize,
+}
+
+#[derive(Serialize)]
+struct FileOut<'a> {
+    format: &'static str,
+    version: u32,
+    meshes: Vec<&'a HalfEdgeMesh>,
+    scene: StoredScene,
+    history: StoredHistory,
+}
+
+#[derive(Deserialize)]
+struct FileIn {
+    format: String,
+    version: u32,
+    meshes: Vec<HalfEdgeMesh>,
+    scene: StoredScene,
+    #[serde(default)]
+    history: Option<Box<RawValue>>,
+}
+
+// ----- writing ---------------------------------------------------------------
+
+/// Collects meshes into a pool, each `Arc` once.
+struct MeshPool<'a> {
+    index: HashMap<*const HalfEdgeMesh, usize>,
+    meshes: Vec<&'a HalfEdgeMesh>,
+}
+
+impl<'a> MeshPool<'a> {
+    fn add(&mut self, m: &'a Arc<HalfEdgeMesh>) -> usize {
+        *self.index.entry(Arc::as_ptr(m)).or_insert_with(|| {
+            self.meshes.push(m);
+            self.meshes.len() - 1
+        })
+    }
+    fn node(&mut self, n: &'a Node) -> StoredNode {
+        StoredNode {
+            id: n.id,
+            name: n.name.clone(),
+            parent: n.parent,
+            transform: n.transform,
+            visible: n.visible,
+            content: match &n.content {
+                NodeContent::Empty => StoredContent::Empty,
+                NodeContent::Mesh(m) => StoredContent::Mesh { mesh: self.add(&m.mesh), primitive: m.primitive.clone() },
+            },
+        }
+    }
+    fn transaction(&mut self, t: &'a Transaction) -> StoredTransaction {
+        StoredTransaction {
+            serial: t.serial,
+            label: t.label.clone(),
+            command: t.command.clone(),
+            changes: t
+                .changes
+                .iter()
+                .map(|c| StoredChange {
+                    id: c.id,
+                    before: c.before.as_ref().map(|n| self.node(n)),
+                    after: c.after.as_ref().map(|n| self.node(n)),
+                })
+                .collect(),
+            next_id_before: t.next_id_before,
+            next_id_after: t.next_id_after,
+        }
+    }
+}
+
+/// The text of a scene file for a session.
+pub fn to_string(session: &Session) -> String {
+    let mut pool = MeshPool { index: HashMap::new(), meshes: Vec::new() };
+    let scene = StoredScene {
+        next_node_id: session.doc.next_node_id,
+        nodes: session.doc.nodes().map(|n| pool.node(n)).collect(),
+    };
+    let scene_meshes = pool.meshes.len();
+    let h = &session.history;
+    let done = h.done.iter().map(|t| pool.transaction(t)).collect();
+    let undone = h.undone.iter().map(|t| pool.transaction(t)).collect();
+    let history_meshes = pool.meshes.split_off(scene_meshes).into_iter().cloned().collect();
+    let file = FileOut {
+        format: FORMAT_NAME,
+        version: FORMAT_VERSION,
+        meshes: pool.meshes,
+        scene,
+        history: StoredHistory {
+            meshes: history_meshes,
+            done,
+            undone,
+            dropped: h.dropped,
+            next_serial: h.next_serial,
+            max_steps: h.max_steps,
+        },
+    };
+    let config = ron::ser::PrettyConfig::new().depth_limit(3).struct_names(false);
+    let mut text = ron::ser::to_string_pretty(&file, config).expect("scene data always serialises");
+    text.push('\n');
+    text
+}
+
+fn io(path: &Path) -> impl FnOnce(std::io::Error) -> FileError + '_ {
+    move |source| FileError::Io { path: path.to_path_buf(), source }
+}
+
+/// Writes `text` to `path` atomically: a temporary file in the same folder,
+/// synced, the previous file kept as `<path>.bak`, then a rename. A failure
+/// at any point leaves the old file in place.
+///
+/// # Errors
+/// [`FileError::Io`] naming the path.
+pub fn write_atomic(path: &Path, text: &str) -> Result<(), FileError> {
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    let name = path.file_name().ok_or_else(|| FileError::Io {
+        path: path.to_path_buf(),
+        source: std::io::Error::new(std::io::ErrorKind::InvalidInput, "not a file name"),
+    })?;
+    let tmp = dir.join(format!(".{}.tmp-{}", name.to_string_lossy(), std::process::id()));
+    let result = (|| {
+        let mut f = std::fs::File::create(&tmp).map_err(io(&tmp))?;
+        f.write_all(text.as_bytes()).map_err(io(&tmp))?;
+        f.sync_all().map_err(io(&tmp))?;
+        drop(f);
+        if path.exists() {
+            let mut bak = path.as_os_str().to_owned();
+            bak.push(".bak");
+            let bak = PathBuf::from(bak);
+            let _ = std::fs::remove_file(&bak);
+            if std::fs::hard_link(path, &bak).is_err() {
+                std::fs::copy(path, &bak).map_err(io(&bak))?;
+            }
+        }
+        std::fs::rename(&tmp, path).map_err(io(path))?;
+        if let Ok(d) = std::fs::File::open(&dir) {
+            let _ = d.sync_all();
+        }
+        Ok(())
+    })();
+    if result.is_err() {
+        let _ = std::fs::remove_file(&tmp);
+    }
+    result
+}
+
+/// Saves a session to `path` atomically and marks it saved.
+///
+/// # Errors
+/// [`FileError::Io`] when the folder is not writable, the disk is full, ….
+pub fn save(session: &mut Session, path: &Path) -> Result<(), FileError> {
+    write_atomic(path, &to_string(session))?;
+    session.mark_saved();
+    Ok(())
+}
+
+// ----- reading ---------------------------------------------------------------
+
+/// Reads a scene file.
+///
+/// # Errors
+/// A [`FileError`] naming the file, and the line and column of a syntax error.
+pub fn load(path: &Path) -> Result<Loaded, FileError> {
+    let bytes = std::fs::read(path).map_err(io(path))?;
+    let text = String::from_utf8(bytes)
+        .map_err(|e| FileError::NotAScene { path: path.to_path_buf(), reason: format!("not UTF-8 text ({e})") })?;
+    from_str(&text, path)
+}
+
+/// Reads scene file text; `path` is only used in messages.
+///
+/// # Errors
+/// As [`load`].
+pub fn from_str(text: &str, path: &Path) -> Result<Loaded, FileError> {
+    let version = sniff_header(text).map_err(|reason| FileError::NotAScene { path: path.to_path_buf(), reason })?;
+    if version > FORMAT_VERSION {
+        return Err(FileError::NewerVersion { path: path.to_path_buf(), version });
+    }
+    if version == 0 {
+        return Err(FileError::NotAScene { path: path.to_path_buf(), reason: "format version 0 does not exist".into() });
+    }
+    // Version 1 is current; older versions would be migrated here, one typed
+    // step at a time, before `read_v1`.
+    read_v1(text, path)
+}
+
+/// Finds `format: "hedra-scene"` and `version: N` near the top of the text,
+/// without parsing the rest (so even a damaged file gets a clear answer).
+fn sniff_header(text: &str) -> Result<u32, String> {
+    let head: String = text.chars().take(1024).collect();
+    let after = |key: &str| head.find(key).map(|i| head[i + key.len()..].trim_start());
+    let format = after("format:").ok_or("no format header")?;
+    let format = format.strip_prefix('"').and_then(|f| f.split('"').next()).ok_or("malformed format header")?;
+    if format != FORMAT_NAME {
+        return Err(format!("format is '{format}', expected '{FORMAT_NAME}'"));
+    }
+    let version = after("version:").ok_or("no version header")?;
+    let digits: String = version.chars().take_while(char::is_ascii_digit).collect();
+    digits.parse().map_err(|_| "malformed version header".to_string())
+}
+
+fn parse_error(path: &Path, e: ron::error::SpannedError) -> FileError {
+    FileError::Parse { path: path.to_path_buf(), line: e.span.start.line, column: e.span.start.col, message: e.code.to_string() }
+}
+
+fn read_v1(text: &str, path: &Path) -> Result<Loaded, FileError> {
+    let mut warnings = Vec::new();
+    // `history: (…)` is read as `Some(raw)`; the history is parsed later on its own.
+    let options = ron::Options::default().with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME);
+    let file: FileIn = match options.from_str(text) {
+        Ok(f) => f,
+        Err(e) => {
+            // A syntax error inside the history: retry with the history cut off.
+            let history_start = text.find("\n    history:");
+            let history_line = history_start.map(|i| text[..i].lines().count() + 1);
+            match (history_start, history_line) {
+                (Some(cut), Some(hl)) if e.span.start.line >= hl => {
+                    let truncated = format!("{}\n)", &text[..cut]);
+                    let f: FileIn = options.from_str(&truncated).map_err(|_| parse_error(path, e.clone()))?;
+                    warnings.push(format!(
+                        "the undo history could not be read ({}); the scene opened without it",
+                        parse_error(path, e)
+                    ));
+                    f
+                }
+                _ => return Err(parse_error(path, e)),
+            }
+        }
+    };
+    if file.format != FORMAT_NAME || file.version != 1 {
+        return Err(FileError::NotAScene { path: path.to_path_buf(), reason: "header fields disagree".into() });
+    }
+    let invalid = |message: String| FileError::Invalid { path: path.to_path_buf(), message };
+    let scene_pool: Vec<Arc<HalfEdgeMesh>> = file.meshes.into_iter().map(Arc::new).collect();
+    let mut doc = Document::new();
+    doc.next_node_id = file.scene.next_node_id;
+    for sn in file.scene.nodes {
+        let node = restore_node(sn, &scene_pool).map_err(&invalid)?;
+        if doc.nodes.insert(node.id, node).is_some() {
+            return Err(invalid("two nodes share one id".into()));
+        }
+    }
+    doc.check().map_err(&invalid)?;
+    let mut session = Session { doc, history: History::default(), saved_serial: None };
+    if let Some(raw) = file.history {
+        match restore_history(&raw, scene_pool, &session.doc) {
+            Ok(h) => session.history = h,
+            Err(why) => warnings.push(format!("the undo history is damaged ({why}); the scene opened without it")),
+        }
+    }
+    session.mark_saved();
+    Ok(Loaded { session, warnings })
+}
+
+fn restore_node(sn: StoredNode, pool: &[Arc<HalfEdgeMesh>]) -> Result<Node, String> {
+    let content = match sn.content {
+        StoredContent::Empty => NodeContent::Empty,
+        StoredContent::Mesh { mesh, primitive } => {
+            let m = pool.get(mesh).ok_or_else(|| format!("node {} '{}' uses mesh {mesh}, which is not stored", sn.id, sn.name))?;
+            NodeContent::Mesh(MeshContent { mesh: m.clone(), primitive })
+        }
+    };
+    Ok(Node { id: sn.id, name: sn.name, parent: sn.parent, transform: sn.transform, visible: sn.visible, content })
+}
+
+fn restore_history(raw: &RawValue, mut pool: Vec<Arc<HalfEdgeMesh>>, doc: &Document) -> Result<History, String> {
+    let stored: StoredHistory = raw.into_rust().map_err(|e| format!("{} at history line {}, column {}", e.code, e.span.start.line, e.span.start.col))?;
+    pool.extend(stored.meshes.into_iter().map(Arc::new));
+    let restore_tx = |t: StoredTransaction| -> Result<Transaction, String> {
+        let mut changes = Vec::with_capacity(t.changes.len());
+        for c in t.changes {
+            changes.push(NodeChange {
+                id: c.id,
+                before: c.before.map(|n| restore_node(n, &pool)).transpose()?,
+                after: c.after.map(|n| restore_node(n, &pool)).transpose()?,
+            });
+        }
+        Ok(Transaction { serial: t.serial, label: t.label, command: t.command, changes, next_id_before: t.next_id_before, next_id_after: t.next_id_after })
+    };
+    let done = stored.done.into_iter().map(&restore_tx).collect::<Result<Vec<_>, _>>()?;
+    let undone = stored.undone.into_iter().map(&restore_tx).collect::<Result<Vec<_>, _>>()?;
+    let history = History {
+        done,
+        undone,
+        max_steps: stored.max_steps.max(1),
+        dropped: stored.dropped,
+        next_serial: stored.next_serial,
+        ..History::default()
+    };
+    // The steps must chain exactly from the stored scene: undo each on a
+    // copy, checking it ends where the scene (or the next step) starts,
+    // then redo them all back to the scene.
+    let mut probe_doc = doc.clone();
+    for t in history.done.iter().rev() {
+        if !t.fits(&probe_doc, false) {
+            return Err(format!("step '{}' does not lead to the state after it", t.label));
+        }
+        t.apply(&mut probe_doc, false);
+    }
+    probe_doc.check().map_err(|e| format!("undoing every step gives a broken scene: {e}"))?;
+    for t in &history.done {
+        t.apply(&mut probe_doc, true);
+    }
+    if probe_doc != *doc {
+        return Err("the steps do not lead to the saved scene".into());
+    }
+    let mut redo_doc = doc.clone();
+    for t in history.undone.iter().rev() {
+        if !t.fits(&redo_doc, true) {
+            return Err(format!("redo step '{}' does not start from the scene", t.label));
+        }
+        t.apply(&mut redo_doc, true);
+    }
+    let serials: Vec<u64> = history.done.iter().chain(history.undone.iter().rev()).map(|t| t.serial).collect();
+    if serials.windows(2).any(|w| w[0] >= w[1]) || serials.last().is_some_and(|&s| s >= history.next_serial) {
+        return Err("step serial numbers are out of order".into());
+    }
+    Ok(history)
+}

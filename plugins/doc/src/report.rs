@@ -1,0 +1,148 @@
+//! What `hedra info` prints: nodes with their kind, parent and world
+//! transform, and for each mesh its counts and invariants. The JSON form is
+//! documented in `docs/info-json.md`.
+
+use crate::scene::{Document, NodeContent};
+use crate::session::Session;
+use hedra_geom::MeshStats;
+use serde::Serialize;
+use std::fmt::Write;
+
+#[derive(Serialize)]
+pub struct SceneReport {
+    pub format_version: u32,
+    pub nodes: Vec<NodeReport>,
+    pub history: HistoryReport,
+}
+
+#[derive(Serialize)]
+pub struct NodeReport {
+    pub id: u64,
+    pub name: String,
+    pub kind: &'static str,
+    pub parent: Option<u64>,
+    pub visible: bool,
+    pub local: TransformReport,
+    pub world: TransformReport,
+    pub mesh: Option<MeshReport>,
+}
+
+#[derive(Serialize)]
+pub struct TransformReport {
+    pub translation: [f64; 3],
+    /// Quaternion `[x, y, z, w]`.
+    pub rotation: [f64; 4],
+    pub scale: [f64; 3],
+}
+
+#[derive(Serialize)]
+pub struct MeshReport {
+    pub vertices: usize,
+    pub edges: usize,
+    pub faces: usize,
+    pub boundary_loops: usize,
+    pub shells: usize,
+    pub euler_characteristic: i64,
+    pub genus: Option<i64>,
+    pub closed: bool,
+    pub manifold: bool,
+    pub valid: bool,
+    pub validation_error: Option<String>,
+    pub primitive: Option<String>,
+}
+
+#[derive(Serialize)]
+pub struct HistoryReport {
+    pub undo_steps: usize,
+    pub redo_steps: usize,
+    pub dropped_steps: usize,
+    /// Labels of the undoable steps, oldest first.
+    pub labels: Vec<String>,
+}
+
+fn transform(t: &crate::scene::Transform) -> TransformReport {
+    TransformReport { translation: t.translation.to_array(), rotation: t.rotation.to_array(), scale: t.scale.to_array() }
+}
+
+fn mesh_report(s: MeshStats, primitive: Option<String>) -> MeshReport {
+    MeshReport {
+        vertices: s.vertices,
+        edges: s.edges,
+        faces: s.faces,
+        boundary_loops: s.boundary_loops,
+        shells: s.shells,
+        euler_characteristic: s.euler_characteristic,
+        genus: s.genus,
+        closed: s.closed,
+        manifold: s.manifold,
+        valid: s.validation.is_ok(),
+        validation_error: s.validation.err(),
+        primitive,
+    }
+}
+
+impl SceneReport {
+    pub fn new(session: &Session) -> Self {
+        let doc: &Document = &session.doc;
+        let nodes = doc
+            .nodes()
+            .map(|n| NodeReport {
+                id: n.id.0,
+                name: n.name.clone(),
+                kind: n.content.kind(),
+                parent: n.parent.map(|p| p.0),
+                visible: n.visible,
+                local: transform(&n.transform),
+                world: transform(&doc.world_transform(n.id)),
+                mesh: match &n.content {
+                    NodeContent::Mesh(m) => Some(mesh_report(m.mesh.stats(), m.primitive.as_ref().map(|p| p.kind().to_string()))),
+                    NodeContent::Empty => None,
+                },
+            })
+            .collect();
+        let h = &session.history;
+        SceneReport {
+            format_version: crate::file::FORMAT_VERSION,
+            nodes,
+            history: HistoryReport {
+                undo_steps: h.done().len(),
+                redo_steps: h.undone().len(),
+                dropped_steps: h.dropped,
+                labels: h.done().iter().map(|t| t.label.clone()).collect(),
+            },
+        }
+    }
+
+    pub fn to_json(&self) -> String {
+        serde_json::to_string_pretty(self).expect("reports always serialise")
+    }
+
+    /// Human-readable text, one block per node.
+    pub fn to_text(&self) -> String {
+        let mut out = String::new();
+        let v3 = |a: [f64; 3]| format!("({:.4}, {:.4}, {:.4})", a[0], a[1], a[2]);
+        for n in &self.nodes {
+            let parent = n.parent.map_or("-".to_string(), |p| format!("#{p}"));
+            let _ = writeln!(out, "#{} {} [{}] parent {} {}", n.id, n.name, n.kind, parent, if n.visible { "" } else { "(hidden)" });
+            let _ = writeln!(out, "    world: translation {} scale {} rotation {:?}", v3(n.world.translation), v3(n.world.scale), n.world.rotation);
+            if let Some(m) = &n.mesh {
+                let _ = writeln!(
+                    out,
+                    "    mesh: V {} E {} F {}, boundary loops {}, shells {}, Euler characteristic {}, genus {}, {}, {}",
+                    m.vertices,
+                    m.edges,
+                    m.faces,
+                    m.boundary_loops,
+                    m.shells,
+                    m.euler_characteristic,
+                    m.genus.map_or("?".into(), |g| g.to_string()),
+                    if m.closed { "closed" } else { "open" },
+                    if m.manifold { "manifold" } else { "NOT manifold" },
+                );
+                let _ = writeln!(out, "    validate: {}", m.validation_error.as_deref().unwrap_or("ok"));
+            }
+        }
+        let _ = writeln!(out, "history: {} undo step(s), {} redo step(s)", self.history.undo_steps, self.history.redo_steps);
+        out
+    }
+}

@@ -1,0 +1,238 @@
+//! The scene graph: named nodes with a parent, a local transform and content
+//! (seed 004: "scene storage as geometry + topology + hierarchy + local/world
+//! transforms"). World transforms are derived by composing the parents' local
+//! transforms, root first.
+
+use glam::{DMat4, DQuat, DVec3};
+use hedra_geom::{HalfEdgeMesh, Primitive};
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+use std::fmt;
+use std::sync::Arc;
+
+/// A node's stable id: monotonic, written to files, never an ECS entity.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
+#[serde(transparent)]
+pub struct NodeId(pub u64);
+
+impl fmt::Display for NodeId {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "#{}", self.0)
+    }
+}
+
+/// Translation, rotation and scale, applied as T·R·S.
+#[derive(Copy, Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Transform {
+    #[serde(default)]
+    pub translation: DVec3,
+    #[serde(default = "identity_rotation")]
+    pub rotation: DQuat,
+    #[serde(default = "unit_scale")]
+    pub scale: DVec3,
+}
+
+fn identity_rotation() -> DQuat {
+    DQuat::IDENTITY
+}
+fn unit_scale() -> DVec3 {
+    DVec3::ONE
+}
+
+impl Default for Transform {
+    fn default() -> Self {
+        Transform::IDENTITY
+    }
+}
+
+impl Transform {
+    pub const IDENTITY: Transform = Transform { translation: DVec3::ZERO, rotation: DQuat::IDENTITY, scale: DVec3::ONE };
+
+    pub fn from_translation(t: DVec3) -> Self {
+        Transform { translation: t, ..Self::IDENTITY }
+    }
+    pub fn to_matrix(&self) -> DMat4 {
+        DMat4::from_scale_rotation_translation(self.scale, self.rotation, self.translation)
+    }
+    /// Decomposes an affine matrix (shear is lost).
+    pub fn from_matrix(m: DMat4) -> Self {
+        let (scale, rotation, translation) = m.to_scale_rotation_translation();
+        Transform { translation, rotation: rotation.normalize(), scale }
+    }
+    /// True when every component is finite and no scale is zero.
+    pub fn is_usable(&self) -> bool {
+        self.translation.is_finite()
+            && self.rotation.is_finite()
+            && self.rotation.length() > 1e-9
+            && self.scale.is_finite()
+            && self.scale.abs().min_element() > 1e-12
+    }
+}
+
+/// A mesh node's content: the half-edge mesh (shared between history steps)
+/// and, while it is still a pristine primitive, the parameters it was made
+/// from, so they can be adjusted.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MeshContent {
+    pub mesh: Arc<HalfEdgeMesh>,
+    pub primitive: Option<Primitive>,
+}
+
+/// What a node holds.
+#[derive(Clone, Debug, PartialEq)]
+pub enum NodeContent {
+    /// A transform-only node for grouping.
+    Empty,
+    Mesh(MeshContent),
+}
+
+impl NodeContent {
+    /// A short kind name for listings ("empty", "mesh").
+    pub fn kind(&self) -> &'static str {
+        match self {
+            NodeContent::Empty => "empty",
+            NodeContent::Mesh(_) => "mesh",
+        }
+    }
+    pub fn mesh(&self) -> Option<&HalfEdgeMesh> {
+        match self {
+            NodeContent::Mesh(m) => Some(&m.mesh),
+            NodeContent::Empty => None,
+        }
+    }
+}
+
+/// A scene-graph node.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Node {
+    pub id: NodeId,
+    pub name: String,
+    pub parent: Option<NodeId>,
+    pub transform: Transform,
+    pub visible: bool,
+    pub content: NodeContent,
+}
+
+/// The scene: the single source of truth for what the user made.
+#[derive(Clone, Debug, PartialEq, Default)]
+pub struct Document {
+    pub(crate) nodes: BTreeMap<NodeId, Node>,
+    pub(crate) next_node_id: u64,
+}
+
+impl Document {
+    pub fn new() -> Self {
+        Document { nodes: BTreeMap::new(), next_node_id: 1 }
+    }
+    pub fn node(&self, id: NodeId) -> Option<&Node> {
+        self.nodes.get(&id)
+    }
+    /// All nodes in id order (creation order).
+    pub fn nodes(&self) -> impl Iterator<Item = &Node> {
+        self.nodes.values()
+    }
+    pub fn node_count(&self) -> usize {
+        self.nodes.len()
+    }
+    /// The id the next new node gets.
+    pub fn next_node_id(&self) -> NodeId {
+        NodeId(self.next_node_id)
+    }
+    pub fn find_by_name(&self, name: &str) -> Option<&Node> {
+        self.nodes.values().find(|n| n.name == name)
+    }
+    /// Nodes without a parent, in id order.
+    pub fn roots(&self) -> impl Iterator<Item = &Node> {
+        self.nodes.values().filter(|n| n.parent.is_none())
+    }
+    /// Direct children in id order.
+    pub fn children(&self, id: NodeId) -> impl Iterator<Item = &Node> {
+        self.nodes.values().filter(move |n| n.parent == Some(id))
+    }
+    /// The node and all its descendants, parents before children.
+    pub fn subtree(&self, id: NodeId) -> Vec<NodeId> {
+        let mut out = vec![id];
+        let mut i = 0;
+        while i < out.len() {
+            let p = out[i];
+            out.extend(self.children(p).map(|c| c.id));
+            i += 1;
+        }
+        out
+    }
+    /// True when `ancestor` is `id` or one of its parents.
+    pub fn is_ancestor(&self, ancestor: NodeId, id: NodeId) -> bool {
+        let mut cur = Some(id);
+        let mut guard = self.nodes.len() + 1;
+        while let Some(c) = cur {
+            if c == ancestor {
+                return true;
+            }
+            guard -= 1;
+            if guard == 0 {
+                return false;
+            }
+            cur = self.nodes.get(&c).and_then(|n| n.parent);
+        }
+        false
+    }
+    /// The node's world matrix: parents' local matrices composed root first.
+    pub fn world_matrix(&self, id: NodeId) -> DMat4 {
+        let mut m = DMat4::IDENTITY;
+        let mut cur = Some(id);
+        let mut guard = self.nodes.len() + 1;
+        while let Some(c) = cur {
+            let Some(n) = self.nodes.get(&c) else { break };
+            m = n.transform.to_matrix() * m;
+            cur = n.parent;
+            guard -= 1;
+            if guard == 0 {
+                break;
+            }
+        }
+        m
+    }
+    /// The node's world transform, decomposed.
+    pub fn world_transform(&self, id: NodeId) -> Transform {
+        Transform::from_matrix(self.world_matrix(id))
+    }
+    /// `name` if unused, else `name.001`, `name.002`, … like Blender.
+    pub fn unique_name(&self, name: &str) -> String {
+        let taken = |n: &str| self.nodes.values().any(|x| x.name == n);
+        if !taken(name) {
+            return name.to_string();
+        }
+        let base = match name.rsplit_once('.') {
+            Some((b, suffix)) if suffix.len() == 3 && suffix.chars().all(|c| c.is_ascii_digit()) => b,
+            _ => name,
+        };
+        (1..)
+            .map(|i| format!("{base}.{i:03}"))
+            .find(|n| !taken(n))
+            .expect("some suffix is free")
+    }
+
+    /// Checks the tree: parents exist, no cycles, ids match keys, transforms usable.
+    pub fn check(&self) -> Result<(), String> {
+        for (id, n) in &self.nodes {
+            if *id != n.id {
+                return Err(format!("node {} is stored under id {}", n.id, id));
+            }
+            if id.0 >= self.next_node_id {
+                return Err(format!("node {id} is not below the next id {}", self.next_node_id));
+            }
+            if let Some(p) = n.parent {
+                if !self.nodes.contains_key(&p) {
+                    return Err(format!("node {id} '{}' has missing parent {p}", n.name));
+                }
+                if self.is_ancestor(*id, p) {
+                    return Err(format!("node {id} '{}' is its own ancestor", n.name));
+                }
+            }
+            if !n.transform.translation.is_finite() || !n.transform.rotation.is_finite() || !n.transform.scale.is_finite() {
+                return Err(format!("node {id} '{}' has a non-finite transform", n.name));
+            }
+        }
+        Ok(())
+    }
+}

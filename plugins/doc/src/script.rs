@@ -1,0 +1,52 @@
+//! `hedra run` scripts: a RON list of [`Command`]s applied in order, each one
+//! undo step. Optional fields may be written without `Some(…)`.
+
+use crate::command::{Command, CommandError};
+use crate::session::{Applied, Session};
+use ron::extensions::Extensions;
+use std::path::{Path, PathBuf};
+
+/// Why a script stopped.
+#[derive(Debug, thiserror::Error)]
+pub enum ScriptError {
+    #[error("{path}:{line}:{column}: {message}")]
+    Parse { path: PathBuf, line: usize, column: usize, message: String },
+    #[error("{path}: command {index} ({label}): {error}")]
+    Command { path: PathBuf, index: usize, label: String, error: CommandError },
+}
+
+/// Parses script text into commands.
+///
+/// # Errors
+/// [`ScriptError::Parse`] with line and column (an unknown command name is
+/// reported there too).
+pub fn parse(text: &str, path: &Path) -> Result<Vec<Command>, ScriptError> {
+    let options = ron::Options::default().with_default_extension(Extensions::IMPLICIT_SOME);
+    options.from_str(text).map_err(|e| ScriptError::Parse {
+        path: path.to_path_buf(),
+        line: e.span.start.line,
+        column: e.span.start.col,
+        message: e.code.to_string(),
+    })
+}
+
+/// Applies commands in order. On the first failure the session keeps the
+/// steps applied so far; callers that must not write partial results
+/// (the CLI) simply discard the session.
+///
+/// # Errors
+/// [`ScriptError::Command`] naming the 1-based command index.
+pub fn run(session: &mut Session, commands: &[Command], path: &Path) -> Result<Vec<Applied>, ScriptError> {
+    commands
+        .iter()
+        .enumerate()
+        .map(|(i, c)| {
+            session.execute(c).map_err(|error| ScriptError::Command {
+                path: path.to_path_buf(),
+                index: i + 1,
+                label: c.label(),
+                error,
+            })
+        })
+        .collect()
+}

@@ -1,0 +1,100 @@
+//! A document with its history: the one place commands are applied, for the
+//! GUI, the CLI and the tests alike.
+
+use crate::command::{Command, CommandError};
+use crate::history::{History, Transaction};
+use crate::scene::{Document, NodeId};
+
+/// An open document, its undo history and whether it changed since saving.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Session {
+    pub doc: Document,
+    pub history: History,
+    /// History serial at the last save or load (`None`: never saved).
+    pub saved_serial: Option<u64>,
+}
+
+impl Default for Session {
+    fn default() -> Self {
+        Session { doc: Document::new(), history: History::default(), saved_serial: Some(0) }
+    }
+}
+
+/// What an applied command did.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Applied {
+    pub label: String,
+    /// Nodes that did not exist before (for selecting them).
+    pub created: Vec<NodeId>,
+}
+
+impl Session {
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// True when the document differs from the last save.
+    pub fn is_dirty(&self) -> bool {
+        self.saved_serial != Some(self.history.current_serial())
+    }
+
+    /// Marks the current state as saved.
+    pub fn mark_saved(&mut self) {
+        self.saved_serial = Some(self.history.current_serial());
+    }
+
+    /// Decides and applies a command as one undo step.
+    ///
+    /// # Errors
+    /// The command's [`CommandError`]; the document and history are unchanged.
+    pub fn execute(&mut self, cmd: &Command) -> Result<Applied, CommandError> {
+        let serial = self.history.next_serial;
+        let t = self.doc.decide(cmd, serial)?;
+        self.history.take_serial();
+        Ok(self.commit(t))
+    }
+
+    /// Applies an already decided transaction and pushes it.
+    pub fn commit(&mut self, t: Transaction) -> Applied {
+        t.apply(&mut self.doc, true);
+        let applied = Applied {
+            label: t.label.clone(),
+            created: t.changes.iter().filter(|c| c.before.is_none() && c.after.is_some()).map(|c| c.id).collect(),
+        };
+        self.history.push(t);
+        applied
+    }
+
+    /// Re-runs the last step with a changed command (Blender's "adjust last
+    /// operation"): undo it, execute `cmd`; if that fails, the old step is
+    /// restored and the error returned.
+    ///
+    /// # Errors
+    /// [`CommandError::Nothing`] without a step to adjust, or `cmd`'s error.
+    pub fn adjust_last(&mut self, cmd: &Command) -> Result<Applied, CommandError> {
+        if !self.history.can_undo() {
+            return Err(CommandError::Nothing("there is no operation to adjust"));
+        }
+        let redo_branch = std::mem::take(&mut self.history.undone);
+        self.history.undo(&mut self.doc);
+        match self.execute(cmd) {
+            Ok(a) => Ok(a),
+            Err(e) => {
+                self.history.redo(&mut self.doc);
+                self.history.undone = redo_branch;
+                Err(e)
+            }
+        }
+    }
+
+    pub fn undo(&mut self) -> Option<String> {
+        self.history.undo(&mut self.doc).map(|t| t.label.clone())
+    }
+    pub fn redo(&mut self) -> Option<String> {
+        self.history.redo(&mut self.doc).map(|t| t.label.clone())
+    }
+    /// Undoes or redoes to `position` done steps.
+    pub fn jump_to(&mut self, position: usize) {
+        self.history.jump_to(&mut self.doc, position);
+    }
+}
