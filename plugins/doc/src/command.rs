@@ -5,7 +5,7 @@
 //! never mutates, so a failing command leaves the document untouched.
 
 use crate::history::{NodeChange, Transaction};
-use crate::scene::{Document, MeshContent, Node, NodeContent, NodeId, Transform};
+use crate::scene::{Document, MeshContent, Node, NodeContent, NodeId, Shading, Transform};
 use glam::{DQuat, DVec3};
 use hedra_geom::{BuildError, HalfEdgeMesh, Primitive, PrimitiveError};
 use serde::{Deserialize, Serialize};
@@ -87,10 +87,20 @@ pub enum Command {
         keep_world: bool,
     },
     SetVisible { nodes: Vec<NodeRef>, visible: bool },
+    /// Flat or smooth shading of mesh nodes.
+    SetShading { nodes: Vec<NodeRef>, shading: Shading },
     /// Deletes nodes with their descendants.
     Delete { nodes: Vec<NodeRef> },
     /// Copies nodes with their descendants; copies get new ids and names.
     Duplicate { nodes: Vec<NodeRef> },
+}
+
+/// Round primitives start smooth, boxy ones flat, as in most modelers.
+fn primitive_shading(p: &Primitive) -> Shading {
+    match p {
+        Primitive::UvSphere { .. } | Primitive::IcoSphere { .. } | Primitive::Torus { .. } => Shading::Smooth,
+        _ => Shading::Flat,
+    }
 }
 
 fn yes() -> bool {
@@ -135,6 +145,7 @@ impl Command {
             Command::Rename { name, .. } => format!("Rename to '{name}'"),
             Command::Reparent { .. } => "Set Parent".to_string(),
             Command::SetVisible { visible, .. } => if *visible { "Show" } else { "Hide" }.to_string(),
+            Command::SetShading { shading, .. } => format!("Shade {shading:?}"),
             Command::Delete { nodes } => format!("Delete {}", plural(nodes.len(), "node")),
             Command::Duplicate { nodes } => format!("Duplicate {}", plural(nodes.len(), "node")),
         }
@@ -275,12 +286,12 @@ impl Plan<'_> {
             Command::AddPrimitive { primitive, name, parent, transform } => {
                 let mesh = primitive.build()?;
                 let name = name.clone().unwrap_or_else(|| primitive.display_name().to_string());
-                let content = NodeContent::Mesh(MeshContent { mesh: Arc::new(mesh), primitive: Some(primitive.clone()) });
+                let content = NodeContent::Mesh(MeshContent { mesh: Arc::new(mesh), primitive: Some(primitive.clone()), shading: primitive_shading(primitive) });
                 self.add_node(&name, parent, *transform, content)?;
             }
             Command::AddMesh { name, positions, polygons, parent, transform } => {
                 let mesh = HalfEdgeMesh::from_polygons(positions, polygons)?;
-                let content = NodeContent::Mesh(MeshContent { mesh: Arc::new(mesh), primitive: None });
+                let content = NodeContent::Mesh(MeshContent { mesh: Arc::new(mesh), primitive: None, shading: Shading::Flat });
                 self.add_node(name, parent, *transform, content)?;
             }
             Command::AddEmpty { name, parent, transform } => {
@@ -296,7 +307,7 @@ impl Plan<'_> {
                     _ => return Err(CommandError::NotAPrimitive { node: self.doc.label_of(n.id) }),
                 }
                 let mesh = primitive.build()?;
-                n.content = NodeContent::Mesh(MeshContent { mesh: Arc::new(mesh), primitive: Some(primitive.clone()) });
+                n.content = NodeContent::Mesh(MeshContent { mesh: Arc::new(mesh), primitive: Some(primitive.clone()), shading: content.shading });
                 self.set(n);
             }
             Command::SetTransforms { nodes } => {
@@ -360,6 +371,16 @@ impl Plan<'_> {
                 for r in nodes {
                     let mut n = self.node(r)?;
                     n.visible = *visible;
+                    self.set(n);
+                }
+            }
+            Command::SetShading { nodes, shading } => {
+                for r in nodes {
+                    let mut n = self.node(r)?;
+                    let NodeContent::Mesh(content) = &mut n.content else {
+                        return Err(CommandError::NotAMesh { node: self.doc.label_of(n.id) });
+                    };
+                    content.shading = *shading;
                     self.set(n);
                 }
             }

@@ -23,7 +23,7 @@
 
 use crate::command::Command;
 use crate::history::{History, NodeChange, Transaction};
-use crate::scene::{Document, MeshContent, Node, NodeContent, NodeId, Transform};
+use crate::scene::{Document, MeshContent, Node, NodeContent, NodeId, Shading, Transform};
 use crate::session::Session;
 use hedra_geom::{HalfEdgeMesh, Primitive};
 use ron::value::RawValue;
@@ -72,6 +72,8 @@ enum StoredContent {
         mesh: usize,
         #[serde(default, skip_serializing_if = "Option::is_none")]
         primitive: Option<Primitive>,
+        #[serde(default)]
+        shading: Shading,
     },
 }
 
@@ -171,7 +173,7 @@ impl<'a> MeshPool<'a> {
             visible: n.visible,
             content: match &n.content {
                 NodeContent::Empty => StoredContent::Empty,
-                NodeContent::Mesh(m) => StoredContent::Mesh { mesh: self.add(&m.mesh), primitive: m.primitive.clone() },
+                NodeContent::Mesh(m) => StoredContent::Mesh { mesh: self.add(&m.mesh), primitive: m.primitive.clone(), shading: m.shading },
             },
         }
     }
@@ -384,9 +386,9 @@ fn read_v1(text: &str, path: &Path) -> Result<Loaded, FileError> {
 fn restore_node(sn: StoredNode, pool: &[Arc<HalfEdgeMesh>]) -> Result<Node, String> {
     let content = match sn.content {
         StoredContent::Empty => NodeContent::Empty,
-        StoredContent::Mesh { mesh, primitive } => {
+        StoredContent::Mesh { mesh, primitive, shading } => {
             let m = pool.get(mesh).ok_or_else(|| format!("node {} '{}' uses mesh {mesh}, which is not stored", sn.id, sn.name))?;
-            NodeContent::Mesh(MeshContent { mesh: m.clone(), primitive })
+            NodeContent::Mesh(MeshContent { mesh: m.clone(), primitive, shading })
         }
     };
     Ok(Node { id: sn.id, name: sn.name, parent: sn.parent, transform: sn.transform, visible: sn.visible, content })

@@ -13,5 +13,5 @@ pub mod session;
 
 pub use command::{Command, CommandError, NodeRef};
 pub use history::{History, NodeChange, Transaction};
-pub use scene::{Document, MeshContent, Node, NodeContent, NodeId, Transform};
+pub use scene::{Document, MeshContent, Node, NodeContent, NodeId, Shading, Transform};
 pub use session::{Applied, Session};

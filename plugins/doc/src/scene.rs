@@ -76,6 +76,16 @@ impl Transform {
 pub struct MeshContent {
     pub mesh: Arc<HalfEdgeMesh>,
     pub primitive: Option<Primitive>,
+    pub shading: Shading,
+}
+
+/// How a mesh is shaded: one normal per face (split at every edge, so a cube
+/// shows crisp faces) or per vertex (area-weighted average).
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub enum Shading {
+    #[default]
+    Flat,
+    Smooth,
 }
 
 /// What a node holds.

@@ -8,6 +8,7 @@ pub mod build;
 pub mod ids;
 pub mod mesh;
 pub mod primitives;
+pub mod query;
 pub mod validate;
 
 pub use build::{BuildError, RepairReport};

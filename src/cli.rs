@@ -1,0 +1,161 @@
+//! Headless subcommands: the same document code as the GUI, no window.
+//!
+//! Every error is one line on stderr and a non-zero exit code, and no output
+//! file is written unless the whole command succeeded.
+
+use clap::{Parser, Subcommand};
+use hedra_doc::file::{self, FileError};
+use hedra_doc::report::SceneReport;
+use hedra_doc::{Session, script};
+use std::path::{Path, PathBuf};
+
+/// Hedra: polygon, subdivision and NURBS modeling. Without a subcommand,
+/// opens the modeling window (optionally on FILE).
+#[derive(Parser, Debug)]
+#[command(name = "hedra", version, args_conflicts_with_subcommands = true)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Option<Sub>,
+    /// A scene (.hedra.ron) to open in the window.
+    pub file: Option<PathBuf>,
+    /// Save a screenshot of the window to this PNG after `--frames` frames, then quit.
+    #[arg(long)]
+    pub screenshot: Option<PathBuf>,
+    /// Frames to render before the screenshot.
+    #[arg(long, default_value_t = 30)]
+    pub frames: u32,
+}
+
+#[derive(Subcommand, Debug)]
+pub enum Sub {
+    /// Print the scene's nodes and, for each mesh, its counts and invariants.
+    Info {
+        file: PathBuf,
+        /// One JSON object instead of text (schema: docs/info-json.md).
+        #[arg(long)]
+        json: bool,
+    },
+    /// Apply a RON script of commands (docs/commands.md) and save the result with its history.
+    Run {
+        script: PathBuf,
+        /// Start from this scene instead of an empty one.
+        #[arg(long)]
+        input: Option<PathBuf>,
+        #[arg(short, long)]
+        output: PathBuf,
+    },
+    /// Undo steps of a saved scene's history.
+    Undo {
+        file: PathBuf,
+        #[arg(long, default_value_t = 1)]
+        steps: usize,
+        #[arg(short, long)]
+        output: PathBuf,
+    },
+    /// Redo steps of a saved scene's history.
+    Redo {
+        file: PathBuf,
+        #[arg(long, default_value_t = 1)]
+        steps: usize,
+        #[arg(short, long)]
+        output: PathBuf,
+    },
+    /// Write the scene's meshes in world space (OBJ, n-gons kept).
+    Export {
+        file: PathBuf,
+        #[arg(short, long)]
+        output: PathBuf,
+    },
+}
+
+/// A CLI failure: the message printed after `hedra: error: `.
+#[derive(Debug)]
+pub struct CliError(pub String);
+
+impl<E: std::fmt::Display> From<E> for CliError {
+    fn from(e: E) -> Self {
+        CliError(e.to_string())
+    }
+}
+
+fn load(path: &Path) -> Result<Session, CliError> {
+    let loaded = file::load(path)?;
+    for w in &loaded.warnings {
+        eprintln!("hedra: warning: {}: {w}", path.display());
+    }
+    Ok(loaded.session)
+}
+
+fn save(session: &mut Session, path: &Path) -> Result<(), FileError> {
+    file::save(session, path)
+}
+
+/// Runs a headless subcommand.
+///
+/// # Errors
+/// [`CliError`] with a one-line message.
+pub fn run(sub: Sub) -> Result<(), CliError> {
+    match sub {
+        Sub::Info { file, json } => {
+            let session = load(&file)?;
+            let report = SceneReport::new(&session);
+            if json {
+                println!("{}", report.to_json());
+            } else {
+                print!("{}", report.to_text());
+            }
+        }
+        Sub::Run { script: script_path, input, output } => {
+            let text = std::fs::read_to_string(&script_path).map_err(|e| CliError(format!("{}: {e}", script_path.display())))?;
+            let commands = script::parse(&text, &script_path)?;
+            let mut session = match input {
+                Some(p) => load(&p)?,
+                None => Session::new(),
+            };
+            let applied = script::run(&mut session, &commands, &script_path)?;
+            save(&mut session, &output)?;
+            eprintln!("hedra: applied {} command(s), wrote {}", applied.len(), output.display());
+        }
+        Sub::Undo { file, steps, output } | Sub::Redo { file, steps, output } if steps == 0 => {
+            let _ = (file, output);
+            return Err(CliError("--steps must be at least 1".into()));
+        }
+        Sub::Undo { file, steps, output } => {
+            let mut session = load(&file)?;
+            let available = session.history.done().len();
+            if steps > available {
+                return Err(CliError(format!("{}: only {available} step(s) can be undone, not {steps}", file.display())));
+            }
+            for _ in 0..steps {
+                session.undo();
+            }
+            save(&mut session, &output)?;
+        }
+        Sub::Redo { file, steps, output } => {
+            let mut session = load(&file)?;
+            let available = session.history.undone().len();
+            if steps > available {
+                return Err(CliError(format!("{}: only {available} step(s) can be redone, not {steps}", file.display())));
+            }
+            for _ in 0..steps {
+                session.redo();
+            }
+            save(&mut session, &output)?;
+        }
+        Sub::Export { file, output } => {
+            let session = load(&file)?;
+            let ext = output.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
+            let text = match ext.as_str() {
+                "obj" => hedra_doc::export::to_obj(&session.doc),
+                other => {
+                    return Err(CliError(format!(
+                        "{}: unsupported export format '.{other}' (supported: .obj)",
+                        output.display()
+                    )));
+                }
+            };
+            file::write_atomic(&output, &text)?;
+        }
+    }
+    Ok(())
+}
