@@ -1,1 +1,248 @@
-//! placeholder
+//! Object-mode editing: selection, picking in the viewport, Blender-style
+//! shortcuts and the modal move/rotate/scale tool (G/R/S).
+//!
+//! Tools never touch the document directly: they preview on entities and
+//! send one [`DocRequest`] when the user confirms, so a drag is one undo step.
+
+use bevy::prelude::*;
+use bevy::window::PrimaryWindow;
+use glam::{DMat4, DQuat, DVec3};
+use hedra_doc::{Command, Document, NodeContent, NodeId, NodeRef, Transform as DocTransform};
+use hedra_scene::{DocChanged, DocRequest, DocState, InputGate, NodeEntities, SceneSystems, ViewportCamera};
+
+pub mod modal;
+
+pub use modal::{Axis, ModalTransform, TransformKind, TransformTool};
+
+/// Selected nodes, in the order they were selected; the last one is active.
+#[derive(Resource, Default, Debug, Clone, PartialEq)]
+pub struct Selection {
+    pub nodes: Vec<NodeId>,
+}
+
+impl Selection {
+    pub fn active(&self) -> Option<NodeId> {
+        self.nodes.last().copied()
+    }
+    pub fn contains(&self, id: NodeId) -> bool {
+        self.nodes.contains(&id)
+    }
+    pub fn set(&mut self, ids: impl IntoIterator<Item = NodeId>) {
+        self.nodes = ids.into_iter().collect();
+    }
+    /// Adds `id` (making it active), or removes it when it already is active.
+    pub fn toggle(&mut self, id: NodeId) {
+        if self.active() == Some(id) {
+            self.nodes.retain(|&n| n != id);
+        } else {
+            self.nodes.retain(|&n| n != id);
+            self.nodes.push(id);
+        }
+    }
+    pub fn refs(&self) -> Vec<NodeRef> {
+        self.nodes.iter().map(|&n| NodeRef::from(n)).collect()
+    }
+}
+
+/// Edit systems run after the document is applied and mirrored.
+#[derive(SystemSet, Debug, Clone, PartialEq, Eq, Hash)]
+pub struct EditSystems;
+
+/// Selection, picking, shortcuts and the transform tool.
+pub struct EditPlugin;
+
+impl Plugin for EditPlugin {
+    fn build(&self, app: &mut App) {
+        app.init_resource::<Selection>()
+            .init_resource::<TransformTool>()
+            .configure_sets(Update, EditSystems.after(SceneSystems::Sync))
+            .add_systems(
+                Update,
+                (
+                    follow_document_changes,
+                    modal::drive_transform_tool,
+                    object_shortcuts,
+                    pick_objects,
+                )
+                    .chain()
+                    .in_set(EditSystems),
+            );
+    }
+}
+
+/// Selects what a command created; drops deleted nodes from the selection.
+pub fn follow_document_changes(mut changes: MessageReader<DocChanged>, mut selection: ResMut<Selection>, state: Res<DocState>) {
+    for c in changes.read() {
+        if c.replaced {
+            selection.nodes.clear();
+        } else if !c.created.is_empty() {
+            // Select the top-most created nodes (a duplicated hierarchy selects its root).
+            let doc = &state.session.doc;
+            let roots = c.created.iter().copied().filter(|id| doc.node(*id).is_some_and(|n| !n.parent.is_some_and(|p| c.created.contains(&p))));
+            selection.set(roots);
+        }
+    }
+    let doc = &state.session.doc;
+    if selection.nodes.iter().any(|id| doc.node(*id).is_none()) {
+        selection.nodes.retain(|id| doc.node(*id).is_some());
+    }
+}
+
+/// True when a node and all its parents are visible.
+pub fn visible(doc: &Document, id: NodeId) -> bool {
+    hedra_doc::export::is_visible(doc, id)
+}
+
+/// The nearest visible mesh node under a world-space ray, with the hit distance.
+pub fn pick_node(doc: &Document, origin: DVec3, dir: DVec3) -> Option<(NodeId, f64)> {
+    let mut best: Option<(NodeId, f64)> = None;
+    for node in doc.nodes() {
+        let NodeContent::Mesh(content) = &node.content else { continue };
+        if !visible(doc, node.id) {
+            continue;
+        }
+        let world = doc.world_matrix(node.id);
+        let inv = world.inverse();
+        if !inv.is_finite() {
+            continue;
+        }
+        let lo = inv.transform_point3(origin);
+        let ld = inv.transform_vector3(dir);
+        if let Some((_, t)) = hedra_geom::query::ray_cast(&content.mesh, lo, ld) {
+            // `t` is the same parameter along the world ray (affine map).
+            let dist = t * dir.length();
+            if best.is_none_or(|(_, d)| dist < d) {
+                best = Some((node.id, dist));
+            }
+        }
+    }
+    best
+}
+
+/// The world-space ray under the cursor, in `f64`.
+pub fn cursor_ray(window: &Window, camera: &Camera, camera_transform: &GlobalTransform) -> Option<(DVec3, DVec3)> {
+    let cursor = window.cursor_position()?;
+    let ray = camera.viewport_to_world(camera_transform, cursor).ok()?;
+    Some((ray.origin.as_dvec3(), Vec3::from(ray.direction).as_dvec3()))
+}
+
+/// Click selects the object under the cursor (Shift toggles), click on empty space deselects.
+fn pick_objects(
+    buttons: Res<ButtonInput<MouseButton>>,
+    keys: Res<ButtonInput<KeyCode>>,
+    gate: Res<InputGate>,
+    tool: Res<TransformTool>,
+    window: Single<&Window, With<PrimaryWindow>>,
+    camera: Single<(&Camera, &GlobalTransform), With<ViewportCamera>>,
+    state: Res<DocState>,
+    mut selection: ResMut<Selection>,
+) {
+    if !buttons.just_pressed(MouseButton::Left) || !gate.pointer_free || tool.active.is_some() || tool.just_finished {
+        return;
+    }
+    if keys.any_pressed([KeyCode::AltLeft, KeyCode::AltRight]) {
+        return; // Alt+drag orbits
+    }
+    let (cam, cam_t) = *camera;
+    let Some((origin, dir)) = cursor_ray(&window, cam, cam_t) else { return };
+    let hit = pick_node(&state.session.doc, origin, dir).map(|(id, _)| id);
+    let shift = keys.any_pressed([KeyCode::ShiftLeft, KeyCode::ShiftRight]);
+    match (hit, shift) {
+        (Some(id), true) => selection.toggle(id),
+        (Some(id), false) => selection.set([id]),
+        (None, false) => selection.nodes.clear(),
+        (None, true) => {}
+    }
+}
+
+fn ctrl(keys: &ButtonInput<KeyCode>) -> bool {
+    keys.any_pressed([KeyCode::ControlLeft, KeyCode::ControlRight, KeyCode::SuperLeft, KeyCode::SuperRight])
+}
+fn shift(keys: &ButtonInput<KeyCode>) -> bool {
+    keys.any_pressed([KeyCode::ShiftLeft, KeyCode::ShiftRight])
+}
+fn alt(keys: &ButtonInput<KeyCode>) -> bool {
+    keys.any_pressed([KeyCode::AltLeft, KeyCode::AltRight])
+}
+
+/// Object-mode keys: Ctrl+Z / Ctrl+Shift+Z, A / Alt+A, X / Delete, Shift+D,
+/// H / Alt+H, G / R / S.
+#[allow(clippy::too_many_arguments)]
+fn object_shortcuts(
+    keys: Res<ButtonInput<KeyCode>>,
+    gate: Res<InputGate>,
+    mut tool: ResMut<TransformTool>,
+    mut selection: ResMut<Selection>,
+    state: Res<DocState>,
+    mut requests: MessageWriter<DocRequest>,
+    window: Single<&Window, With<PrimaryWindow>>,
+    camera: Single<(&Camera, &GlobalTransform), With<ViewportCamera>>,
+    entities: Res<NodeEntities>,
+) {
+    if !gate.keyboard_free || tool.active.is_some() {
+        return;
+    }
+    let doc = &state.session.doc;
+    let (ctrl, shift, alt) = (ctrl(&keys), shift(&keys), alt(&keys));
+    let pressed = |k: KeyCode| keys.just_pressed(k);
+    if ctrl && pressed(KeyCode::KeyZ) {
+        requests.write(if shift { DocRequest::Redo } else { DocRequest::Undo });
+        return;
+    }
+    if ctrl && pressed(KeyCode::KeyY) {
+        requests.write(DocRequest::Redo);
+        return;
+    }
+    if ctrl {
+        return; // other Ctrl shortcuts belong to the menus
+    }
+    if pressed(KeyCode::KeyA) && !shift {
+        if alt {
+            selection.nodes.clear();
+        } else {
+            selection.set(doc.nodes().filter(|n| visible(doc, n.id)).map(|n| n.id));
+        }
+    }
+    if pressed(KeyCode::KeyH) {
+        if alt {
+            let hidden: Vec<NodeRef> = doc.nodes().filter(|n| !n.visible).map(|n| n.id.into()).collect();
+            if !hidden.is_empty() {
+                requests.write(DocRequest::Execute(Command::SetVisible { nodes: hidden, visible: true }));
+            }
+        } else if !selection.nodes.is_empty() {
+            requests.write(DocRequest::Execute(Command::SetVisible { nodes: selection.refs(), visible: false }));
+        }
+    }
+    if (pressed(KeyCode::KeyX) || pressed(KeyCode::Delete)) && !selection.nodes.is_empty() {
+        requests.write(DocRequest::Execute(Command::Delete { nodes: selection.refs() }));
+    }
+    if shift && pressed(KeyCode::KeyD) && !selection.nodes.is_empty() {
+        requests.write(DocRequest::Execute(Command::Duplicate { nodes: selection.refs() }));
+        tool.grab_after_duplicate = true;
+    }
+    let kind = if shift || alt {
+        None
+    } else if pressed(KeyCode::KeyG) {
+        Some(TransformKind::Grab)
+    } else if pressed(KeyCode::KeyR) {
+        Some(TransformKind::Rotate)
+    } else if pressed(KeyCode::KeyS) {
+        Some(TransformKind::Scale)
+    } else {
+        None
+    };
+    if let Some(kind) = kind {
+        let (cam, cam_t) = *camera;
+        tool.active = ModalTransform::start(kind, doc, &selection.nodes, &entities, &window, cam, cam_t);
+    }
+}
+
+/// Local transform that puts a node at `world` under a parent at `parent_world`.
+pub fn local_from_world(parent_world: DMat4, world: DMat4) -> DocTransform {
+    DocTransform::from_matrix(parent_world.inverse() * world)
+}
+
+/// Rotation about a pivot as a matrix.
+pub fn rotation_about(pivot: DVec3, rotation: DQuat) -> DMat4 {
+    DMat4::from_translation(pivot) * DMat4::from_quat(rotation) * DMat4::from_translation(-pivot)
+}

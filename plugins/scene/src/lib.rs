@@ -1,1 +1,392 @@
-//! placeholder
+//! The document inside the app, and its projection into the ECS.
+//!
+//! [`DocState`] holds the one [`Session`]; [`DocRequest`] messages are the
+//! only way to change it, and [`apply_requests`] is the only system that
+//! applies them. After every change [`sync_entities`] mirrors the document:
+//! one entity per node with `Transform`, `ChildOf`, `Visibility` and, for
+//! meshes, a render mesh built from the half-edge mesh.
+
+use bevy::asset::RenderAssetUsages;
+use bevy::mesh::{Indices, PrimitiveTopology};
+use bevy::prelude::*;
+use hedra_doc::file;
+use hedra_doc::{Command, NodeContent, NodeId, Session, Shading};
+use hedra_geom::HalfEdgeMesh;
+use hedra_geom::query::triangulate_face;
+use std::collections::HashMap;
+use std::path::PathBuf;
+
+/// The open document, where it lives on disk, and a change counter.
+#[derive(Resource, Default)]
+pub struct DocState {
+    pub session: Session,
+    pub path: Option<PathBuf>,
+    /// Increases on every change of the document (command, undo, load, …).
+    pub revision: u64,
+}
+
+impl DocState {
+    /// The file name for titles ("untitled" before the first save).
+    pub fn display_name(&self) -> String {
+        self.path
+            .as_ref()
+            .and_then(|p| p.file_name())
+            .map_or_else(|| "untitled".to_string(), |n| n.to_string_lossy().into_owned())
+    }
+}
+
+/// A request to change the document or its file. Sent by tools, panels and
+/// shortcuts; applied in order by [`apply_requests`].
+#[derive(Message, Clone, Debug)]
+pub enum DocRequest {
+    Execute(Command),
+    /// Re-run the last step with changed parameters.
+    AdjustLast(Command),
+    Undo,
+    Redo,
+    /// Undo or redo until this many steps are done.
+    JumpTo(usize),
+    /// Replace the document with an empty one (callers ask about unsaved changes first).
+    New,
+    Open(PathBuf),
+    Save(PathBuf),
+}
+
+/// Sent after a request changed the document.
+#[derive(Message, Clone, Debug, Default)]
+pub struct DocChanged {
+    /// Nodes the change created (tools select them).
+    pub created: Vec<NodeId>,
+    /// True when a new document replaced the old one (New/Open).
+    pub replaced: bool,
+}
+
+/// The user-facing outcome of the latest request (status bar, error popups).
+#[derive(Resource, Default, Debug)]
+pub struct StatusMessage {
+    pub text: String,
+    pub is_error: bool,
+    /// Warnings that need acknowledging (damaged history, …).
+    pub warnings: Vec<String>,
+    pub serial: u64,
+}
+
+impl StatusMessage {
+    pub fn info(&mut self, text: impl Into<String>) {
+        self.text = text.into();
+        self.is_error = false;
+        self.serial += 1;
+    }
+    pub fn error(&mut self, text: impl Into<String>) {
+        self.text = text.into();
+        self.is_error = true;
+        self.serial += 1;
+    }
+}
+
+/// The document node an entity mirrors.
+#[derive(Component, Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct NodeEntity(pub NodeId);
+
+/// Which half-edge mesh (by identity) and shading the render mesh was built from.
+#[derive(Component, Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ProjectedMesh {
+    pub source: usize,
+    pub shading: Shading,
+}
+
+/// Node id → entity, kept by [`sync_entities`].
+#[derive(Resource, Default, Debug)]
+pub struct NodeEntities(pub HashMap<NodeId, Entity>);
+
+/// The material every mesh node uses.
+#[derive(Resource, Clone)]
+pub struct MeshMaterial(pub Handle<StandardMaterial>);
+
+/// System sets, in order.
+#[derive(SystemSet, Debug, Clone, PartialEq, Eq, Hash)]
+pub enum SceneSystems {
+    /// Applies [`DocRequest`]s.
+    Apply,
+    /// Mirrors the document into entities.
+    Sync,
+}
+
+/// Document state, the apply system and the ECS projection.
+pub struct ScenePlugin;
+
+impl Plugin for ScenePlugin {
+    fn build(&self, app: &mut App) {
+        app.init_resource::<DocState>()
+            .init_resource::<StatusMessage>()
+            .init_resource::<NodeEntities>()
+            .init_resource::<InputGate>()
+            .add_message::<DocRequest>()
+            .add_message::<DocChanged>()
+            .configure_sets(Update, (SceneSystems::Apply, SceneSystems::Sync).chain())
+            .add_systems(Startup, setup_material)
+            .add_systems(Update, apply_requests.in_set(SceneSystems::Apply))
+            .add_systems(Update, sync_entities.in_set(SceneSystems::Sync));
+    }
+}
+
+fn setup_material(mut commands: Commands, mut materials: ResMut<Assets<StandardMaterial>>) {
+    let handle = materials.add(StandardMaterial {
+        base_color: Color::srgb(0.72, 0.72, 0.75),
+        perceptual_roughness: 0.55,
+        // Open meshes (planes, grids, holes) show their back faces too.
+        double_sided: true,
+        cull_mode: None,
+        ..default()
+    });
+    commands.insert_resource(MeshMaterial(handle));
+}
+
+/// The one system that changes the document.
+pub fn apply_requests(
+    mut requests: MessageReader<DocRequest>,
+    mut state: ResMut<DocState>,
+    mut status: ResMut<StatusMessage>,
+    mut changed: MessageWriter<DocChanged>,
+) {
+    for request in requests.read() {
+        let state = &mut *state;
+        let result: Result<Option<DocChanged>, String> = match request {
+            DocRequest::Execute(cmd) => state.session.execute(cmd).map_err(|e| e.to_string()).map(|a| {
+                status.info(a.label.clone());
+                Some(DocChanged { created: a.created, replaced: false })
+            }),
+            DocRequest::AdjustLast(cmd) => state.session.adjust_last(cmd).map_err(|e| e.to_string()).map(|a| {
+                status.info(a.label.clone());
+                Some(DocChanged { created: a.created, replaced: false })
+            }),
+            DocRequest::Undo => Ok(match state.session.undo() {
+                Some(label) => {
+                    status.info(format!("Undo {label}"));
+                    Some(DocChanged::default())
+                }
+                None => {
+                    status.info("Nothing to undo");
+                    None
+                }
+            }),
+            DocRequest::Redo => Ok(match state.session.redo() {
+                Some(label) => {
+                    status.info(format!("Redo {label}"));
+                    Some(DocChanged::default())
+                }
+                None => {
+                    status.info("Nothing to redo");
+                    None
+                }
+            }),
+            DocRequest::JumpTo(n) => {
+                state.session.jump_to(*n);
+                Ok(Some(DocChanged::default()))
+            }
+            DocRequest::New => {
+                state.session = Session::new();
+                state.path = None;
+                status.info("New scene");
+                Ok(Some(DocChanged { created: vec![], replaced: true }))
+            }
+            DocRequest::Open(path) => match file::load(path) {
+                Ok(loaded) => {
+                    state.session = loaded.session;
+                    state.path = Some(path.clone());
+                    status.info(format!("Opened {}", path.display()));
+                    status.warnings.extend(loaded.warnings);
+                    Ok(Some(DocChanged { created: vec![], replaced: true }))
+                }
+                Err(e) => Err(e.to_string()),
+            },
+            DocRequest::Save(path) => match file::save(&mut state.session, path) {
+                Ok(()) => {
+                    state.path = Some(path.clone());
+                    status.info(format!("Saved {}", path.display()));
+                    // The document is unchanged, but the title's `*` must go.
+                    Ok(Some(DocChanged::default()))
+                }
+                Err(e) => Err(format!("Save failed, nothing was lost: {e}")),
+            },
+        };
+        match result {
+            Ok(Some(c)) => {
+                state.revision += 1;
+                changed.write(c);
+            }
+            Ok(None) => {}
+            Err(e) => status.error(e),
+        }
+    }
+}
+
+/// Mirrors the document into entities whenever its revision changes.
+pub fn sync_entities(
+    mut commands: Commands,
+    state: Res<DocState>,
+    mut seen_revision: Local<Option<u64>>,
+    mut map: ResMut<NodeEntities>,
+    mut meshes: ResMut<Assets<Mesh>>,
+    material: Option<Res<MeshMaterial>>,
+    mut existing: Query<(&mut Transform, &mut Visibility, Option<&ChildOf>, Option<&ProjectedMesh>, Option<&Mesh3d>)>,
+) {
+    if *seen_revision == Some(state.revision) {
+        return;
+    }
+    *seen_revision = Some(state.revision);
+    let doc = &state.session.doc;
+
+    // Spawn missing entities first so parents exist for ChildOf.
+    for node in doc.nodes() {
+        if !map.0.get(&node.id).is_some_and(|e| existing.contains(*e)) {
+            let e = commands.spawn((NodeEntity(node.id), Name::new(node.name.clone()), Transform::default(), Visibility::default())).id();
+            map.0.insert(node.id, e);
+        }
+    }
+    for node in doc.nodes() {
+        let e = map.0[&node.id];
+        let transform = Transform {
+            translation: node.transform.translation.as_vec3(),
+            rotation: node.transform.rotation.as_quat(),
+            scale: node.transform.scale.as_vec3(),
+        };
+        let visibility = if node.visible { Visibility::Inherited } else { Visibility::Hidden };
+        let parent = node.parent.and_then(|p| map.0.get(&p).copied());
+        let mut ec = commands.entity(e);
+        ec.insert(Name::new(node.name.clone()));
+        match existing.get_mut(e) {
+            Ok((mut t, mut v, child_of, projected, mesh3d)) => {
+                if *t != transform {
+                    *t = transform;
+                }
+                if *v != visibility {
+                    *v = visibility;
+                }
+                match (parent, child_of.map(|c| c.parent())) {
+                    (Some(p), Some(old)) if p == old => {}
+                    (Some(p), _) => {
+                        ec.insert(ChildOf(p));
+                    }
+                    (None, Some(_)) => {
+                        ec.remove::<ChildOf>();
+                    }
+                    (None, None) => {}
+                }
+                project_mesh(&mut ec, node, projected.copied(), mesh3d, &mut meshes, material.as_deref());
+            }
+            Err(_) => {
+                ec.insert((transform, visibility));
+                if let Some(p) = parent {
+                    ec.insert(ChildOf(p));
+                }
+                project_mesh(&mut ec, node, None, None, &mut meshes, material.as_deref());
+            }
+        }
+    }
+    // Despawn entities of deleted nodes (after reparenting, so survivors are detached first).
+    let gone: Vec<NodeId> = map.0.keys().filter(|id| doc.node(**id).is_none()).copied().collect();
+    for id in gone {
+        if let Some(e) = map.0.remove(&id) {
+            commands.entity(e).remove::<ChildOf>();
+            commands.entity(e).try_despawn();
+        }
+    }
+}
+
+fn project_mesh(
+    ec: &mut EntityCommands,
+    node: &hedra_doc::Node,
+    projected: Option<ProjectedMesh>,
+    mesh3d: Option<&Mesh3d>,
+    meshes: &mut Assets<Mesh>,
+    material: Option<&MeshMaterial>,
+) {
+    let NodeContent::Mesh(content) = &node.content else {
+        if projected.is_some() {
+            ec.remove::<(Mesh3d, MeshMaterial3d<StandardMaterial>, ProjectedMesh)>();
+        }
+        return;
+    };
+    let wanted = ProjectedMesh { source: std::sync::Arc::as_ptr(&content.mesh) as usize, shading: content.shading };
+    if projected == Some(wanted) {
+        return;
+    }
+    let render = render_mesh(&content.mesh, content.shading);
+    match mesh3d.filter(|m| meshes.contains(&m.0)) {
+        Some(m) => {
+            if let Some(mut existing) = meshes.get_mut(&m.0) {
+                *existing = render;
+            }
+        }
+        None => {
+            ec.insert(Mesh3d(meshes.add(render)));
+        }
+    }
+    if let Some(m) = material {
+        ec.insert(MeshMaterial3d(m.0.clone()));
+    }
+    ec.insert(wanted);
+}
+
+/// A triangle render mesh of a half-edge mesh. Flat shading gives each face
+/// its own corners with the face normal (a cube gets 24 vertices: seed 000's
+/// "cube problem"); smooth shading shares corners with area-weighted vertex
+/// normals.
+pub fn render_mesh(mesh: &HalfEdgeMesh, shading: Shading) -> Mesh {
+    let mut positions: Vec<[f32; 3]> = Vec::new();
+    let mut normals: Vec<[f32; 3]> = Vec::new();
+    let mut indices: Vec<u32> = Vec::new();
+    match shading {
+        Shading::Flat => {
+            for f in mesh.faces() {
+                let n = mesh.face_normal(f).as_vec3().to_array();
+                let base = positions.len() as u32;
+                let mut local = HashMap::new();
+                for v in mesh.face_vertices(f) {
+                    local.insert(v, positions.len() as u32 - base);
+                    positions.push(mesh.position(v).as_vec3().to_array());
+                    normals.push(n);
+                }
+                for tri in triangulate_face(mesh, f) {
+                    indices.extend(tri.iter().map(|v| base + local[v]));
+                }
+            }
+        }
+        Shading::Smooth => {
+            let mut index = vec![u32::MAX; mesh.vertex_capacity()];
+            for v in mesh.vertices() {
+                index[v.index()] = positions.len() as u32;
+                positions.push(mesh.position(v).as_vec3().to_array());
+                normals.push(mesh.vertex_normal(v).as_vec3().to_array());
+            }
+            for f in mesh.faces() {
+                for tri in triangulate_face(mesh, f) {
+                    indices.extend(tri.iter().map(|v| index[v.index()]));
+                }
+            }
+        }
+    }
+    Mesh::new(PrimitiveTopology::TriangleList, RenderAssetUsages::MAIN_WORLD | RenderAssetUsages::RENDER_WORLD)
+        .with_inserted_attribute(Mesh::ATTRIBUTE_POSITION, positions)
+        .with_inserted_attribute(Mesh::ATTRIBUTE_NORMAL, normals)
+        .with_inserted_indices(Indices::U32(indices))
+}
+
+/// Whether viewport tools may use the pointer and keyboard this frame; the
+/// UI clears these while the pointer is over a panel or a text field has focus.
+#[derive(Resource, Debug, Clone, Copy)]
+pub struct InputGate {
+    pub pointer_free: bool,
+    pub keyboard_free: bool,
+}
+
+impl Default for InputGate {
+    fn default() -> Self {
+        InputGate { pointer_free: true, keyboard_free: true }
+    }
+}
+
+/// Marks the 3D camera the viewport renders and tools cast rays from.
+#[derive(Component, Debug, Default)]
+pub struct ViewportCamera;

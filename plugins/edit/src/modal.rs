@@ -1,0 +1,304 @@
+//! The modal transform tool, as in Blender: G moves, R rotates, S scales the
+//! selected objects about their median; X/Y/Z constrain to a world axis
+//! (press again to free); typing a number gives an exact amount; Enter or a
+//! left click confirms as one undo step; Esc or a right click restores.
+
+use crate::{local_from_world, rotation_about};
+use bevy::prelude::*;
+use bevy::window::PrimaryWindow;
+use glam::{DMat4, DQuat, DVec3};
+use hedra_doc::{Command, Document, NodeId, NodeRef, Transform as DocTransform};
+use hedra_scene::{DocRequest, DocState, NodeEntities, ViewportCamera};
+
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub enum TransformKind {
+    Grab,
+    Rotate,
+    Scale,
+}
+
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub enum Axis {
+    X,
+    Y,
+    Z,
+}
+
+impl Axis {
+    pub fn vector(self) -> DVec3 {
+        match self {
+            Axis::X => DVec3::X,
+            Axis::Y => DVec3::Y,
+            Axis::Z => DVec3::Z,
+        }
+    }
+}
+
+/// The tool's state; `active` is `Some` while a G/R/S is running.
+#[derive(Resource, Default, Debug)]
+pub struct TransformTool {
+    pub active: Option<ModalTransform>,
+    /// Set on the frame a tool ended, so the confirming click selects nothing.
+    pub just_finished: bool,
+    /// Shift+D: start moving the copies as soon as they exist.
+    pub grab_after_duplicate: bool,
+}
+
+#[derive(Clone, Debug)]
+struct Item {
+    id: NodeId,
+    entity: Option<Entity>,
+    local: DocTransform,
+    world: DMat4,
+    parent_world: DMat4,
+}
+
+/// A running G/R/S.
+#[derive(Clone, Debug)]
+pub struct ModalTransform {
+    pub kind: TransformKind,
+    pub axis: Option<Axis>,
+    /// Digits typed so far (an exact distance, angle in degrees, or factor).
+    pub typed: String,
+    start_cursor: Vec2,
+    pivot: DVec3,
+    pivot_screen: Vec2,
+    items: Vec<Item>,
+    /// What the status bar shows ("Move X 1.250").
+    pub readout: String,
+}
+
+impl ModalTransform {
+    /// Starts a tool on the selected nodes; `None` without a selection or cursor.
+    pub fn start(
+        kind: TransformKind,
+        doc: &Document,
+        selection: &[NodeId],
+        entities: &NodeEntities,
+        window: &Window,
+        camera: &Camera,
+        camera_transform: &GlobalTransform,
+    ) -> Option<ModalTransform> {
+        // Children of selected nodes move with their parent: skip them.
+        let roots: Vec<NodeId> = selection
+            .iter()
+            .copied()
+            .filter(|&id| doc.node(id).is_some() && !selection.iter().any(|&other| other != id && doc.is_ancestor(other, id)))
+            .collect();
+        if roots.is_empty() {
+            return None;
+        }
+        let items: Vec<Item> = roots
+            .iter()
+            .map(|&id| {
+                let node = doc.node(id).expect("filtered above");
+                Item {
+                    id,
+                    entity: entities.0.get(&id).copied(),
+                    local: node.transform,
+                    world: doc.world_matrix(id),
+                    parent_world: node.parent.map_or(DMat4::IDENTITY, |p| doc.world_matrix(p)),
+                }
+            })
+            .collect();
+        let pivot = items.iter().map(|i| i.world.w_axis.truncate()).sum::<DVec3>() / items.len() as f64;
+        let start_cursor = window.cursor_position()?;
+        let pivot_screen = camera.world_to_viewport(camera_transform, pivot.as_vec3()).unwrap_or(start_cursor);
+        Some(ModalTransform { kind, axis: None, typed: String::new(), start_cursor, pivot, pivot_screen, items, readout: String::new() })
+    }
+
+    fn typed_value(&self) -> Option<f64> {
+        let t = self.typed.trim();
+        if t.is_empty() || t == "-" {
+            return None;
+        }
+        t.parse().ok()
+    }
+
+    /// New local transforms for the cursor position (window coordinates).
+    pub fn compute(&mut self, cursor: Vec2, ray_at: impl Fn(Vec2) -> Option<(DVec3, DVec3)>, view_dir: DVec3) -> Vec<(NodeId, DocTransform)> {
+        let axis_name = self.axis.map_or(String::new(), |a| format!(" {a:?}"));
+        match self.kind {
+            TransformKind::Grab => {
+                let delta = if let Some(v) = self.typed_value() {
+                    self.axis.unwrap_or(Axis::X).vector() * v
+                } else {
+                    let plane_hit = |p: Vec2| -> Option<DVec3> {
+                        let (o, d) = ray_at(p)?;
+                        let denom = d.dot(view_dir);
+                        (denom.abs() > 1e-12).then(|| o + d * ((self.pivot - o).dot(view_dir) / denom))
+                    };
+                    match (plane_hit(self.start_cursor), plane_hit(cursor)) {
+                        (Some(a), Some(b)) => {
+                            let d = b - a;
+                            self.axis.map_or(d, |ax| ax.vector() * d.dot(ax.vector()))
+                        }
+                        _ => DVec3::ZERO,
+                    }
+                };
+                self.readout = format!("Move{axis_name} ({:.4}, {:.4}, {:.4})", delta.x, delta.y, delta.z);
+                let m = DMat4::from_translation(delta);
+                self.items.iter().map(|i| (i.id, local_from_world(i.parent_world, m * i.world))).collect()
+            }
+            TransformKind::Rotate => {
+                let degrees = self.typed_value().unwrap_or_else(|| {
+                    let a = (self.start_cursor - self.pivot_screen).to_angle();
+                    let b = (cursor - self.pivot_screen).to_angle();
+                    // Screen y points down: a clockwise drag on screen is a negative angle.
+                    -((b - a) as f64).to_degrees()
+                });
+                // Without a constraint, rotate about the view axis (towards the viewer).
+                let axis = self.axis.map_or(-view_dir, Axis::vector);
+                self.readout = format!("Rotate{axis_name} {degrees:.2}°");
+                let m = rotation_about(self.pivot, DQuat::from_axis_angle(axis.normalize(), degrees.to_radians()));
+                self.items
+                    .iter()
+                    .map(|i| {
+                        let mut t = local_from_world(i.parent_world, m * i.world);
+                        t.scale = i.local.scale; // keep the exact scale through the decomposition
+                        (i.id, t)
+                    })
+                    .collect()
+            }
+            TransformKind::Scale => {
+                let factor = self.typed_value().unwrap_or_else(|| {
+                    let d0 = (self.start_cursor - self.pivot_screen).length().max(1.0);
+                    ((cursor - self.pivot_screen).length() / d0) as f64
+                });
+                let f = match self.axis {
+                    None => DVec3::splat(factor),
+                    Some(a) => DVec3::ONE + a.vector() * (factor - 1.0),
+                };
+                self.readout = format!("Scale{axis_name} {factor:.4}");
+                self.items
+                    .iter()
+                    .map(|i| {
+                        let p = i.world.w_axis.truncate();
+                        let moved = self.pivot + f * (p - self.pivot);
+                        let translation = i.parent_world.inverse().transform_point3(moved);
+                        (i.id, DocTransform { translation, rotation: i.local.rotation, scale: i.local.scale * f })
+                    })
+                    .collect()
+            }
+        }
+    }
+
+    /// Puts the original transforms back on the previewed entities.
+    fn restore(&self, transforms: &mut Query<&mut Transform>) {
+        for i in &self.items {
+            if let Some(mut t) = i.entity.and_then(|e| transforms.get_mut(e).ok()) {
+                *t = to_bevy(&i.local);
+            }
+        }
+    }
+
+    fn entity_of(&self, id: NodeId) -> Option<Entity> {
+        self.items.iter().find(|i| i.id == id).and_then(|i| i.entity)
+    }
+}
+
+/// A document transform as a Bevy one.
+pub fn to_bevy(t: &DocTransform) -> Transform {
+    Transform { translation: t.translation.as_vec3(), rotation: t.rotation.as_quat(), scale: t.scale.as_vec3() }
+}
+
+const DIGIT_KEYS: [(KeyCode, char); 24] = [
+    (KeyCode::Digit0, '0'),
+    (KeyCode::Digit1, '1'),
+    (KeyCode::Digit2, '2'),
+    (KeyCode::Digit3, '3'),
+    (KeyCode::Digit4, '4'),
+    (KeyCode::Digit5, '5'),
+    (KeyCode::Digit6, '6'),
+    (KeyCode::Digit7, '7'),
+    (KeyCode::Digit8, '8'),
+    (KeyCode::Digit9, '9'),
+    (KeyCode::Numpad0, '0'),
+    (KeyCode::Numpad1, '1'),
+    (KeyCode::Numpad2, '2'),
+    (KeyCode::Numpad3, '3'),
+    (KeyCode::Numpad4, '4'),
+    (KeyCode::Numpad5, '5'),
+    (KeyCode::Numpad6, '6'),
+    (KeyCode::Numpad7, '7'),
+    (KeyCode::Numpad8, '8'),
+    (KeyCode::Numpad9, '9'),
+    (KeyCode::Period, '.'),
+    (KeyCode::NumpadDecimal, '.'),
+    (KeyCode::Minus, '-'),
+    (KeyCode::NumpadSubtract, '-'),
+];
+
+/// Runs the active tool: keys, preview on entities, confirm or cancel.
+#[allow(clippy::too_many_arguments)]
+pub fn drive_transform_tool(
+    mut tool: ResMut<TransformTool>,
+    keys: Res<ButtonInput<KeyCode>>,
+    buttons: Res<ButtonInput<MouseButton>>,
+    window: Single<&Window, With<PrimaryWindow>>,
+    camera: Single<(&Camera, &GlobalTransform), With<ViewportCamera>>,
+    state: Res<DocState>,
+    selection: Res<crate::Selection>,
+    entities: Res<NodeEntities>,
+    mut transforms: Query<&mut Transform>,
+    mut requests: MessageWriter<DocRequest>,
+) {
+    tool.just_finished = false;
+    let (cam, cam_t) = *camera;
+    if tool.grab_after_duplicate && tool.active.is_none() {
+        tool.grab_after_duplicate = false;
+        tool.active = ModalTransform::start(TransformKind::Grab, &state.session.doc, &selection.nodes, &entities, &window, cam, cam_t);
+    }
+    let Some(mut modal) = tool.active.take() else { return };
+
+    if keys.just_pressed(KeyCode::Escape) || buttons.just_pressed(MouseButton::Right) {
+        modal.restore(&mut transforms);
+        tool.just_finished = true;
+        return;
+    }
+    for (key, axis) in [(KeyCode::KeyX, Axis::X), (KeyCode::KeyY, Axis::Y), (KeyCode::KeyZ, Axis::Z)] {
+        if keys.just_pressed(key) {
+            modal.axis = if modal.axis == Some(axis) { None } else { Some(axis) };
+        }
+    }
+    for (key, c) in DIGIT_KEYS {
+        if keys.just_pressed(key) {
+            if c == '-' {
+                // Minus toggles the sign, wherever it is typed.
+                modal.typed = modal.typed.strip_prefix('-').map_or_else(|| format!("-{}", modal.typed), str::to_string);
+            } else {
+                modal.typed.push(c);
+            }
+        }
+    }
+    if keys.just_pressed(KeyCode::Backspace) {
+        modal.typed.pop();
+    }
+    let cursor = window.cursor_position().unwrap_or(modal.start_cursor);
+    let view_dir = (cam_t.rotation() * Vec3::NEG_Z).as_dvec3();
+    let result = modal.compute(cursor, |p| cam.viewport_to_world(cam_t, p).ok().map(|r| (r.origin.as_dvec3(), Vec3::from(r.direction).as_dvec3())), view_dir);
+    if !modal.typed.is_empty() {
+        modal.readout = format!("{} [{}]", modal.readout, modal.typed);
+    }
+    for (id, t) in &result {
+        if let Some(mut et) = modal.entity_of(*id).and_then(|e| transforms.get_mut(e).ok()) {
+            *et = to_bevy(t);
+        }
+    }
+    let confirm = keys.any_just_pressed([KeyCode::Enter, KeyCode::NumpadEnter, KeyCode::Space]) || buttons.just_pressed(MouseButton::Left);
+    if confirm {
+        let changed: Vec<(NodeRef, DocTransform)> = result
+            .into_iter()
+            .filter(|(id, t)| state.session.doc.node(*id).is_some_and(|n| n.transform != *t))
+            .map(|(id, t)| (NodeRef::from(id), t))
+            .collect();
+        if changed.is_empty() {
+            modal.restore(&mut transforms);
+        } else {
+            requests.write(DocRequest::Execute(Command::SetTransforms { nodes: changed }));
+        }
+        tool.just_finished = true;
+        return;
+    }
+    tool.active = Some(modal);
+}
