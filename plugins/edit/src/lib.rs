@@ -127,6 +127,7 @@ pub fn cursor_ray(window: &Window, camera: &Camera, camera_transform: &GlobalTra
 }
 
 /// Click selects the object under the cursor (Shift toggles), click on empty space deselects.
+#[allow(clippy::too_many_arguments)]
 fn pick_objects(
     buttons: Res<ButtonInput<MouseButton>>,
     keys: Res<ButtonInput<KeyCode>>,
@@ -136,9 +137,13 @@ fn pick_objects(
     camera: Single<(&Camera, &GlobalTransform), With<ViewportCamera>>,
     state: Res<DocState>,
     mut selection: ResMut<Selection>,
+    gizmo: Option<Res<TransformGizmoState>>,
 ) {
     if !buttons.just_pressed(MouseButton::Left) || !gate.pointer_free || tool.active.is_some() || tool.just_finished {
         return;
+    }
+    if gizmo.is_some_and(|g| g.hovered_axis.is_some() || g.active) {
+        return; // the click grabs a gizmo handle
     }
     if keys.any_pressed([KeyCode::AltLeft, KeyCode::AltRight]) {
         return; // Alt+drag orbits
@@ -168,7 +173,7 @@ fn alt(keys: &ButtonInput<KeyCode>) -> bool {
 /// Object-mode keys: Ctrl+Z / Ctrl+Shift+Z, A / Alt+A, X / Delete, Shift+D,
 /// H / Alt+H, G / R / S.
 #[allow(clippy::too_many_arguments)]
-fn object_shortcuts(
+pub fn object_shortcuts(
     keys: Res<ButtonInput<KeyCode>>,
     gate: Res<InputGate>,
     mut tool: ResMut<TransformTool>,

@@ -1,1 +1,308 @@
-//! placeholder
+//! The 3D viewport: orbit camera, ground grid and axes, edge overlays with
+//! the selection highlighted, and the transform gizmo on the active object.
+
+use bevy::core_pipeline::tonemapping::Tonemapping;
+use bevy::input::mouse::{AccumulatedMouseMotion, AccumulatedMouseScroll, MouseScrollUnit};
+use bevy::prelude::*;
+use glam::DVec3;
+use hedra_doc::{NodeContent, NodeRef, Transform as DocTransform};
+use hedra_edit::{EditSystems, Selection, TransformTool};
+use hedra_scene::{DocRequest, DocState, InputGate, NodeEntities, NodeEntity, ProjectedMesh, ViewportCamera};
+use std::f32::consts::FRAC_PI_2;
+
+/// Orbit camera state (Blender-style: turntable around a focus point).
+#[derive(Component, Debug, Clone, Copy, PartialEq)]
+pub struct OrbitCamera {
+    pub focus: Vec3,
+    pub yaw: f32,
+    pub pitch: f32,
+    pub distance: f32,
+}
+
+impl Default for OrbitCamera {
+    fn default() -> Self {
+        OrbitCamera { focus: Vec3::ZERO, yaw: 0.75, pitch: -0.5, distance: 12.0 }
+    }
+}
+
+impl OrbitCamera {
+    pub fn transform(&self) -> Transform {
+        let rotation = Quat::from_euler(EulerRot::YXZ, self.yaw, self.pitch, 0.0);
+        Transform { translation: self.focus + rotation * Vec3::Z * self.distance, rotation, scale: Vec3::ONE }
+    }
+}
+
+/// Overlay child entity showing a mesh node's edges.
+#[derive(Component, Debug)]
+pub struct EdgeOverlay {
+    pub source: ProjectedMesh,
+    pub selected: bool,
+}
+
+pub struct ViewportPlugin;
+
+impl Plugin for ViewportPlugin {
+    fn build(&self, app: &mut App) {
+        app.insert_resource(ClearColor(Color::srgb(0.23, 0.23, 0.25)))
+            .insert_resource(GlobalAmbientLight { brightness: 400.0, ..default() })
+            .add_plugins(TransformGizmoPlugin)
+            .add_systems(Startup, spawn_camera)
+            .add_systems(Update, (camera_controls, frame_selection, draw_grid).chain().after(EditSystems))
+            .add_systems(Update, (update_edge_overlays, focus_gizmo_on_active, commit_gizmo_drag).after(EditSystems));
+    }
+}
+
+fn spawn_camera(mut commands: Commands) {
+    let orbit = OrbitCamera::default();
+    commands.spawn((
+        Camera3d::default(),
+        ViewportCamera,
+        TransformGizmoCamera,
+        orbit,
+        orbit.transform(),
+        Tonemapping::TonyMcMapface,
+        Msaa::Sample4,
+        children![(
+            // A headlight slightly above and left of the eye, like a studio key light.
+            DirectionalLight { illuminance: 6_000.0, ..default() },
+            Transform::from_xyz(-2.0, 3.0, 4.0).looking_at(Vec3::ZERO, Vec3::Y),
+        )],
+    ));
+}
+
+/// Middle mouse orbits, Shift+middle pans, Ctrl+middle or the wheel zooms,
+/// Alt+left orbits (trackpads); numpad 1/3/7 give front/right/top views.
+#[allow(clippy::too_many_arguments)]
+fn camera_controls(
+    buttons: Res<ButtonInput<MouseButton>>,
+    keys: Res<ButtonInput<KeyCode>>,
+    motion: Res<AccumulatedMouseMotion>,
+    scroll: Res<AccumulatedMouseScroll>,
+    gate: Res<InputGate>,
+    tool: Res<TransformTool>,
+    mut dragging: Local<bool>,
+    mut camera: Single<(&mut OrbitCamera, &mut Transform), With<ViewportCamera>>,
+) {
+    let (orbit, transform) = &mut *camera;
+    let alt = keys.any_pressed([KeyCode::AltLeft, KeyCode::AltRight]);
+    let shift = keys.any_pressed([KeyCode::ShiftLeft, KeyCode::ShiftRight]);
+    let ctrl = keys.any_pressed([KeyCode::ControlLeft, KeyCode::ControlRight]);
+    let drag_button = buttons.pressed(MouseButton::Middle) || (alt && buttons.pressed(MouseButton::Left));
+    let drag_start = buttons.just_pressed(MouseButton::Middle) || (alt && buttons.just_pressed(MouseButton::Left));
+    if drag_start && gate.pointer_free && tool.active.is_none() {
+        *dragging = true;
+    }
+    if !drag_button {
+        *dragging = false;
+    }
+    let delta = motion.delta;
+    if *dragging && delta != Vec2::ZERO {
+        if shift {
+            let scale = orbit.distance * 0.0015;
+            let right = transform.rotation * Vec3::X;
+            let up = transform.rotation * Vec3::Y;
+            orbit.focus += (-right * delta.x + up * delta.y) * scale;
+        } else if ctrl {
+            orbit.distance = (orbit.distance * (1.0 + delta.y * 0.01)).clamp(0.01, 1e5);
+        } else {
+            orbit.yaw -= delta.x * 0.008;
+            orbit.pitch = (orbit.pitch - delta.y * 0.008).clamp(-FRAC_PI_2 + 0.001, FRAC_PI_2 - 0.001);
+        }
+    }
+    if gate.pointer_free && scroll.delta.y != 0.0 {
+        let lines = match scroll.unit {
+            MouseScrollUnit::Line => scroll.delta.y,
+            MouseScrollUnit::Pixel => scroll.delta.y / 40.0,
+        };
+        orbit.distance = (orbit.distance * 0.88f32.powf(lines)).clamp(0.01, 1e5);
+    }
+    if gate.keyboard_free && tool.active.is_none() {
+        let flip = if ctrl { std::f32::consts::PI } else { 0.0 };
+        if keys.just_pressed(KeyCode::Numpad1) {
+            (orbit.yaw, orbit.pitch) = (flip, 0.0);
+        }
+        if keys.just_pressed(KeyCode::Numpad3) {
+            (orbit.yaw, orbit.pitch) = (FRAC_PI_2 + flip, 0.0);
+        }
+        if keys.just_pressed(KeyCode::Numpad7) {
+            (orbit.yaw, orbit.pitch) = (0.0, if ctrl { FRAC_PI_2 - 0.001 } else { -FRAC_PI_2 + 0.001 });
+        }
+    }
+    let wanted = orbit.transform();
+    if **transform != wanted {
+        **transform = wanted;
+    }
+}
+
+/// World-space bounds of the given nodes' meshes (or positions for empties).
+pub fn world_bounds(state: &DocState, ids: impl IntoIterator<Item = hedra_doc::NodeId>) -> Option<(DVec3, DVec3)> {
+    let doc = &state.session.doc;
+    let mut acc: Option<(DVec3, DVec3)> = None;
+    let mut add = |p: DVec3| {
+        acc = Some(acc.map_or((p, p), |(lo, hi)| (lo.min(p), hi.max(p))));
+    };
+    for id in ids {
+        let world = doc.world_matrix(id);
+        match doc.node(id).map(|n| &n.content) {
+            Some(NodeContent::Mesh(m)) => {
+                if let Some((lo, hi)) = m.mesh.bounds() {
+                    for i in 0..8 {
+                        let c = DVec3::new(if i & 1 == 0 { lo.x } else { hi.x }, if i & 2 == 0 { lo.y } else { hi.y }, if i & 4 == 0 { lo.z } else { hi.z });
+                        add(world.transform_point3(c));
+                    }
+                }
+            }
+            Some(_) => add(world.w_axis.truncate()),
+            None => {}
+        }
+    }
+    acc
+}
+
+/// F or Numpad . frames the selection, Home frames everything.
+fn frame_selection(
+    keys: Res<ButtonInput<KeyCode>>,
+    gate: Res<InputGate>,
+    tool: Res<TransformTool>,
+    selection: Res<Selection>,
+    state: Res<DocState>,
+    mut camera: Single<&mut OrbitCamera, With<ViewportCamera>>,
+) {
+    if !gate.keyboard_free || tool.active.is_some() {
+        return;
+    }
+    let ctrl = keys.any_pressed([KeyCode::ControlLeft, KeyCode::ControlRight]);
+    let bounds = if !ctrl && (keys.just_pressed(KeyCode::KeyF) || keys.just_pressed(KeyCode::NumpadDecimal)) {
+        if selection.nodes.is_empty() {
+            world_bounds(&state, state.session.doc.nodes().map(|n| n.id))
+        } else {
+            world_bounds(&state, selection.nodes.iter().copied())
+        }
+    } else if keys.just_pressed(KeyCode::Home) {
+        world_bounds(&state, state.session.doc.nodes().map(|n| n.id))
+    } else {
+        return;
+    };
+    if let Some((lo, hi)) = bounds {
+        camera.focus = ((lo + hi) * 0.5).as_vec3();
+        let radius = ((hi - lo).length() * 0.5).max(0.1) as f32;
+        camera.distance = radius / (22.5f32.to_radians()).sin() * 1.1;
+    }
+}
+
+fn draw_grid(mut gizmos: Gizmos) {
+    gizmos.grid(Quat::from_rotation_x(FRAC_PI_2), UVec2::splat(20), Vec2::splat(1.0), LinearRgba::gray(0.36));
+    gizmos.line(Vec3::new(-10.0, 0.0, 0.0), Vec3::new(10.0, 0.0, 0.0), Color::srgb(0.85, 0.25, 0.3));
+    gizmos.line(Vec3::new(0.0, 0.0, -10.0), Vec3::new(0.0, 0.0, 10.0), Color::srgb(0.25, 0.45, 0.9));
+    gizmos.line(Vec3::ZERO, Vec3::new(0.0, 1.0, 0.0), Color::srgb(0.35, 0.8, 0.3));
+}
+
+/// Keeps one retained line gizmo per mesh node with its edges: dark for
+/// unselected meshes, orange for selected ones (yellow for the active one).
+/// Rebuilt only when the mesh or its selection state changes.
+#[allow(clippy::too_many_arguments)]
+fn update_edge_overlays(
+    mut commands: Commands,
+    state: Res<DocState>,
+    selection: Res<Selection>,
+    nodes: Query<(Entity, &NodeEntity, &ProjectedMesh, Option<&Children>)>,
+    mut overlays: Query<(&mut EdgeOverlay, &Gizmo)>,
+    mut assets: ResMut<Assets<GizmoAsset>>,
+) {
+    for (entity, node, projected, children) in &nodes {
+        let selected = selection.contains(node.0);
+        let active = selection.active() == Some(node.0);
+        let existing = children.and_then(|c| c.iter().find(|c| overlays.contains(*c)));
+        if let Some(child) = existing {
+            if let Ok((overlay, _)) = overlays.get(child) {
+                if overlay.source == *projected && overlay.selected == selected && !(selected && selection.is_changed()) {
+                    continue;
+                }
+            }
+        }
+        let Some(NodeContent::Mesh(content)) = state.session.doc.node(node.0).map(|n| &n.content) else { continue };
+        let color = match (selected, active) {
+            (true, true) => Color::srgb(1.0, 0.78, 0.25),
+            (true, false) => Color::srgb(0.95, 0.45, 0.1),
+            _ => Color::srgba(0.05, 0.05, 0.07, 0.8),
+        };
+        let mut asset = GizmoAsset::new();
+        let m = &content.mesh;
+        for e in m.edges() {
+            let [a, b] = m.edge_vertices(e);
+            asset.line(m.position(a).as_vec3(), m.position(b).as_vec3(), color);
+        }
+        let width = if selected { 2.5 } else { 1.0 };
+        match existing {
+            Some(child) => {
+                if let Ok((mut overlay, gizmo)) = overlays.get_mut(child) {
+                    if let Some(mut a) = assets.get_mut(&gizmo.handle) {
+                        *a = asset;
+                    }
+                    overlay.source = *projected;
+                    overlay.selected = selected;
+                    commands.entity(child).insert(Gizmo { handle: gizmo.handle.clone(), line_config: GizmoLineConfig { width, ..default() }, depth_bias: -0.0005 });
+                }
+            }
+            None => {
+                let handle = assets.add(asset);
+                commands.spawn((
+                    EdgeOverlay { source: *projected, selected },
+                    Gizmo { handle, line_config: GizmoLineConfig { width, ..default() }, depth_bias: -0.0005 },
+                    Transform::IDENTITY,
+                    ChildOf(entity),
+                ));
+            }
+        }
+    }
+}
+
+/// The transform gizmo follows the active object.
+fn focus_gizmo_on_active(
+    mut commands: Commands,
+    selection: Res<Selection>,
+    entities: Res<NodeEntities>,
+    focused: Query<Entity, With<TransformGizmoFocus>>,
+    gizmo_state: Res<TransformGizmoState>,
+) {
+    if gizmo_state.active {
+        return;
+    }
+    let wanted = selection.active().and_then(|id| entities.0.get(&id).copied());
+    for e in &focused {
+        if Some(e) != wanted {
+            commands.entity(e).remove::<TransformGizmoFocus>();
+        }
+    }
+    if let Some(e) = wanted {
+        if !focused.contains(e) {
+            commands.entity(e).try_insert(TransformGizmoFocus);
+        }
+    }
+}
+
+/// When a gizmo drag ends, the entity's new transform becomes one document step.
+fn commit_gizmo_drag(
+    gizmo_state: Res<TransformGizmoState>,
+    mut was_active: Local<Option<Entity>>,
+    nodes: Query<(&NodeEntity, &Transform)>,
+    state: Res<DocState>,
+    mut requests: MessageWriter<DocRequest>,
+) {
+    if gizmo_state.active {
+        *was_active = gizmo_state.entity;
+        return;
+    }
+    let Some(entity) = was_active.take() else { return };
+    let Ok((node, t)) = nodes.get(entity) else { return };
+    let Some(doc_node) = state.session.doc.node(node.0) else { return };
+    let new = DocTransform { translation: t.translation.as_dvec3(), rotation: t.rotation.as_dquat().normalize(), scale: t.scale.as_dvec3() };
+    let old = DocTransform {
+        translation: doc_node.transform.translation.as_vec3().as_dvec3(),
+        rotation: doc_node.transform.rotation.as_quat().as_dquat(),
+        scale: doc_node.transform.scale.as_vec3().as_dvec3(),
+    };
+    if new != old {
+        requests.write(DocRequest::Execute(hedra_doc::Command::SetTransforms { nodes: vec![(NodeRef::from(node.0), new)] }));
+    }
+}
