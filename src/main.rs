@@ -1,1 +1,31 @@
-fn main() {}
+//! `hedra`: the modeling window, or a headless subcommand.
+
+use clap::Parser;
+use hedra::cli::{Cli, run};
+use std::process::ExitCode;
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    match cli.command {
+        Some(sub) => match run(sub) {
+            Ok(()) => ExitCode::SUCCESS,
+            Err(e) => {
+                eprintln!("hedra: error: {}", e.0);
+                ExitCode::FAILURE
+            }
+        },
+        None => {
+            if let Some(f) = &cli.file {
+                if !f.exists() {
+                    eprintln!("hedra: error: {}: no such file", f.display());
+                    return ExitCode::FAILURE;
+                }
+            }
+            let options = hedra::GuiOptions { file: cli.file, screenshot: cli.screenshot, frames: cli.frames };
+            match hedra::gui_app(options).run() {
+                bevy::app::AppExit::Success => ExitCode::SUCCESS,
+                bevy::app::AppExit::Error(_) => ExitCode::FAILURE,
+            }
+        }
+    }
+}

@@ -1,1 +1,356 @@
-//! placeholder
+//! Panels, menus, dialogs and the status bar (egui), plus the window title
+//! and the file workflow (open, save, ask before discarding changes).
+
+use bevy::camera::visibility::RenderLayers;
+use bevy::camera::{CameraOutputMode, Viewport};
+use bevy::prelude::*;
+use bevy::render::render_resource::BlendState;
+use bevy::window::{PrimaryWindow, WindowCloseRequested};
+use bevy_egui::{EguiGlobalSettings, EguiPlugin, EguiPrimaryContextPass, PrimaryEguiContext, egui};
+use hedra_doc::{Command, NodeId, Transform as DocTransform};
+use hedra_edit::{Selection, TransformTool};
+use hedra_scene::{DocRequest, DocState, InputGate, StatusMessage, ViewportCamera};
+
+pub mod files;
+mod panels;
+
+pub use files::{FilePurpose, Pending, Preferences, SamplesDir};
+
+/// Everything the panels remember between frames.
+#[derive(Resource)]
+pub struct UiState {
+    pub show_outliner: bool,
+    pub show_properties: bool,
+    pub show_history: bool,
+    /// Shift+A menu position, while open.
+    pub add_menu_at: Option<egui::Pos2>,
+    /// Waiting for the user to decide about unsaved changes.
+    pub confirm: Option<Pending>,
+    /// Runs after the next successful save (Save before New/Open/Quit).
+    pub after_save: Option<Pending>,
+    pub path_prompt: Option<files::PathPrompt>,
+    pub dialog: Option<files::DialogTask>,
+    pub dialog_backend: bool,
+    /// Node being renamed in the outliner and the edited name.
+    pub rename: Option<(NodeId, String)>,
+    /// Transform fields being dragged in the properties panel (committed on release).
+    pub transform_edit: Option<(NodeId, DocTransform)>,
+    /// The 3D area left by the panels, in logical pixels.
+    pub viewport_rect: Option<egui::Rect>,
+    pub last_title: String,
+}
+
+impl Default for UiState {
+    fn default() -> Self {
+        UiState {
+            show_outliner: true,
+            show_properties: true,
+            show_history: false,
+            add_menu_at: None,
+            confirm: None,
+            after_save: None,
+            path_prompt: None,
+            dialog: None,
+            dialog_backend: files::dialog_backend_available(),
+            rename: None,
+            transform_edit: None,
+            viewport_rect: None,
+            last_title: String::new(),
+        }
+    }
+}
+
+/// Requests from menus and keys that need the file workflow.
+#[derive(Message, Clone, Debug, PartialEq)]
+pub enum FileAction {
+    New,
+    Open,
+    OpenPath(std::path::PathBuf),
+    Save,
+    SaveAs,
+    ExportObj,
+    Quit,
+}
+
+pub struct UiPlugin;
+
+impl Plugin for UiPlugin {
+    fn build(&self, app: &mut App) {
+        app.add_plugins(EguiPlugin::default())
+            .init_resource::<UiState>()
+            .insert_resource(Preferences::load())
+            .add_message::<FileAction>()
+            .add_systems(Startup, spawn_ui_camera)
+            .add_systems(EguiPrimaryContextPass, panels::draw_ui)
+            .add_systems(
+                Update,
+                (
+                    global_shortcuts,
+                    handle_file_actions,
+                    poll_file_dialog,
+                    on_close_requested,
+                    on_file_dropped,
+                    remember_recent,
+                    update_title,
+                    apply_viewport_rect,
+                )
+                    .chain()
+                    .before(hedra_scene::SceneSystems::Apply),
+            );
+    }
+}
+
+/// egui draws through its own camera, so the 3D camera can be given just
+/// the area between the panels.
+fn spawn_ui_camera(mut commands: Commands, mut settings: ResMut<EguiGlobalSettings>) {
+    settings.auto_create_primary_context = false;
+    commands.spawn((
+        PrimaryEguiContext,
+        Camera2d,
+        RenderLayers::none(),
+        Camera {
+            // After the 3D view (0) and Bevy's transform-gizmo overlay (1).
+            order: 2,
+            output_mode: CameraOutputMode::Write { blend_state: Some(BlendState::ALPHA_BLENDING), clear_color: ClearColorConfig::None },
+            clear_color: ClearColorConfig::Custom(Color::NONE),
+            ..default()
+        },
+    ));
+}
+
+/// Gives the 3D camera the area the panels leave free.
+fn apply_viewport_rect(
+    ui: Res<UiState>,
+    window: Single<&Window, With<PrimaryWindow>>,
+    mut camera: Single<&mut Camera, With<ViewportCamera>>,
+) {
+    let Some(rect) = ui.viewport_rect else { return };
+    let scale = window.scale_factor();
+    let (w, h) = (window.physical_width(), window.physical_height());
+    let x = ((rect.min.x * scale).max(0.0) as u32).min(w.saturating_sub(1));
+    let y = ((rect.min.y * scale).max(0.0) as u32).min(h.saturating_sub(1));
+    let width = ((rect.width() * scale) as u32).clamp(1, w.saturating_sub(x).max(1));
+    let height = ((rect.height() * scale) as u32).clamp(1, h.saturating_sub(y).max(1));
+    let viewport = Viewport { physical_position: UVec2::new(x, y), physical_size: UVec2::new(width, height), ..default() };
+    if camera.viewport.as_ref().is_none_or(|v| v.physical_position != viewport.physical_position || v.physical_size != viewport.physical_size) {
+        camera.viewport = Some(viewport);
+    }
+}
+
+fn ctrl(keys: &ButtonInput<KeyCode>) -> bool {
+    keys.any_pressed([KeyCode::ControlLeft, KeyCode::ControlRight, KeyCode::SuperLeft, KeyCode::SuperRight])
+}
+
+/// Ctrl+N/O/S, Ctrl+Shift+S, Ctrl+Q, Shift+A.
+fn global_shortcuts(
+    keys: Res<ButtonInput<KeyCode>>,
+    gate: Res<InputGate>,
+    tool: Res<TransformTool>,
+    window: Single<&Window, With<PrimaryWindow>>,
+    mut ui: ResMut<UiState>,
+    mut actions: MessageWriter<FileAction>,
+) {
+    if !gate.keyboard_free || tool.active.is_some() {
+        return;
+    }
+    let shift = keys.any_pressed([KeyCode::ShiftLeft, KeyCode::ShiftRight]);
+    if ctrl(&keys) {
+        if keys.just_pressed(KeyCode::KeyN) {
+            actions.write(FileAction::New);
+        }
+        if keys.just_pressed(KeyCode::KeyO) {
+            actions.write(FileAction::Open);
+        }
+        if keys.just_pressed(KeyCode::KeyS) {
+            actions.write(if shift { FileAction::SaveAs } else { FileAction::Save });
+        }
+        if keys.just_pressed(KeyCode::KeyQ) {
+            actions.write(FileAction::Quit);
+        }
+    } else if shift && keys.just_pressed(KeyCode::KeyA) {
+        ui.add_menu_at = window.cursor_position().map(|c| egui::pos2(c.x, c.y));
+    }
+}
+
+/// Runs file actions, asking first when unsaved changes would be lost.
+#[allow(clippy::too_many_arguments)]
+fn handle_file_actions(
+    mut actions: MessageReader<FileAction>,
+    mut ui: ResMut<UiState>,
+    state: Res<DocState>,
+    mut requests: MessageWriter<DocRequest>,
+    mut exit: MessageWriter<AppExit>,
+    mut status: ResMut<StatusMessage>,
+) {
+    for action in actions.read() {
+        let dirty = state.session.is_dirty();
+        let guarded = |p: Pending, ui: &mut UiState| -> Option<Pending> {
+            if dirty {
+                ui.confirm = Some(p);
+                None
+            } else {
+                Some(p)
+            }
+        };
+        let now = match action {
+            FileAction::New => guarded(Pending::New, &mut ui),
+            FileAction::Open => guarded(Pending::BrowseOpen, &mut ui),
+            FileAction::OpenPath(p) => guarded(Pending::Open(p.clone()), &mut ui),
+            FileAction::Quit => guarded(Pending::Quit, &mut ui),
+            FileAction::Save => {
+                match &state.path {
+                    Some(p) => {
+                        requests.write(DocRequest::Save(p.clone()));
+                    }
+                    None => begin_path(&mut ui, FilePurpose::SaveAs, &state),
+                }
+                None
+            }
+            FileAction::SaveAs => {
+                begin_path(&mut ui, FilePurpose::SaveAs, &state);
+                None
+            }
+            FileAction::ExportObj => {
+                begin_path(&mut ui, FilePurpose::ExportObj, &state);
+                None
+            }
+        };
+        if let Some(p) = now {
+            run_pending(p, &mut ui, &state, &mut requests, &mut exit, &mut status);
+        }
+    }
+}
+
+/// Carries out an action whose unsaved-changes question is settled.
+pub fn run_pending(
+    p: Pending,
+    ui: &mut UiState,
+    state: &DocState,
+    requests: &mut MessageWriter<DocRequest>,
+    exit: &mut MessageWriter<AppExit>,
+    _status: &mut StatusMessage,
+) {
+    match p {
+        Pending::New => {
+            requests.write(DocRequest::New);
+        }
+        Pending::Open(path) => {
+            requests.write(DocRequest::Open(path));
+        }
+        Pending::BrowseOpen => begin_path(ui, FilePurpose::Open, state),
+        Pending::Quit => {
+            exit.write(AppExit::Success);
+        }
+    }
+}
+
+/// Shows the path prompt and, when a dialog backend exists, the native dialog.
+pub fn begin_path(ui: &mut UiState, purpose: FilePurpose, state: &DocState) {
+    let start_dir = state.path.as_ref().and_then(|p| p.parent().map(|d| d.to_path_buf())).or_else(|| std::env::current_dir().ok());
+    let text = match purpose {
+        FilePurpose::Open => String::new(),
+        FilePurpose::SaveAs => state.path.as_ref().map(|p| p.display().to_string()).unwrap_or_else(|| {
+            start_dir.clone().unwrap_or_default().join("untitled.hedra.ron").display().to_string()
+        }),
+        FilePurpose::ExportObj => start_dir.clone().unwrap_or_default().join("export.obj").display().to_string(),
+    };
+    ui.path_prompt = Some(files::PathPrompt { purpose, text });
+    if ui.dialog_backend && ui.dialog.is_none() {
+        ui.dialog = Some(files::spawn_dialog(purpose, start_dir));
+    }
+}
+
+/// Applies a chosen path for its purpose.
+pub fn use_path(purpose: FilePurpose, path: std::path::PathBuf, state: &DocState, requests: &mut MessageWriter<DocRequest>, status: &mut StatusMessage) {
+    match purpose {
+        FilePurpose::Open => {
+            requests.write(DocRequest::Open(path));
+        }
+        FilePurpose::SaveAs => {
+            requests.write(DocRequest::Save(files::with_scene_extension(path)));
+        }
+        FilePurpose::ExportObj => {
+            let text = hedra_doc::export::to_obj(&state.session.doc);
+            match hedra_doc::file::write_atomic(&path, &text) {
+                Ok(()) => status.info(format!("Exported {}", path.display())),
+                Err(e) => status.error(format!("Export failed: {e}")),
+            }
+        }
+    }
+}
+
+fn poll_file_dialog(mut ui: ResMut<UiState>, state: Res<DocState>, mut requests: MessageWriter<DocRequest>, mut status: ResMut<StatusMessage>) {
+    let Some(task) = ui.dialog.as_mut() else { return };
+    let Some(result) = files::poll_dialog(task) else { return };
+    let purpose = task.purpose;
+    ui.dialog = None;
+    if let Some(path) = result {
+        ui.path_prompt = None;
+        use_path(purpose, path, &state, &mut requests, &mut status);
+    }
+    // `None`: cancelled, or the backend failed; the path prompt stays open.
+}
+
+fn on_close_requested(mut closes: MessageReader<WindowCloseRequested>, mut actions: MessageWriter<FileAction>) {
+    if closes.read().count() > 0 {
+        actions.write(FileAction::Quit);
+    }
+}
+
+fn on_file_dropped(mut drops: MessageReader<FileDragAndDrop>, mut actions: MessageWriter<FileAction>, mut status: ResMut<StatusMessage>) {
+    for d in drops.read() {
+        if let FileDragAndDrop::DroppedFile { path_buf, .. } = d {
+            if path_buf.to_string_lossy().ends_with(".ron") {
+                actions.write(FileAction::OpenPath(path_buf.clone()));
+            } else {
+                status.error(format!("{}: Hedra opens .hedra.ron scenes", path_buf.display()));
+            }
+        }
+    }
+}
+
+/// Adds opened and saved files to the recent list, and runs what waited for a save.
+#[allow(clippy::too_many_arguments)]
+fn remember_recent(
+    state: Res<DocState>,
+    mut last_path: Local<Option<std::path::PathBuf>>,
+    mut prefs: ResMut<Preferences>,
+    mut ui: ResMut<UiState>,
+    mut requests: MessageWriter<DocRequest>,
+    mut exit: MessageWriter<AppExit>,
+    mut status: ResMut<StatusMessage>,
+) {
+    if state.path != *last_path {
+        *last_path = state.path.clone();
+        if let Some(p) = &state.path {
+            prefs.add_recent(p);
+            if let Err(e) = prefs.save() {
+                warn!("could not save preferences: {e}");
+            }
+        }
+    }
+    if !state.session.is_dirty() {
+        if let Some(p) = ui.after_save.take() {
+            run_pending(p, &mut ui, &state, &mut requests, &mut exit, &mut status);
+        }
+    }
+}
+
+/// "Hedra — name.hedra.ron *" while there are unsaved changes.
+fn update_title(state: Res<DocState>, mut ui: ResMut<UiState>, mut window: Single<&mut Window, With<PrimaryWindow>>) {
+    let title = format!("Hedra — {}{}", state.display_name(), if state.session.is_dirty() { " *" } else { "" });
+    if ui.last_title != title {
+        window.title = title.clone();
+        ui.last_title = title;
+    }
+}
+
+/// Sends a command from a panel.
+pub fn execute(requests: &mut MessageWriter<DocRequest>, cmd: Command) {
+    requests.write(DocRequest::Execute(cmd));
+}
+
+/// The selected nodes as command references.
+pub fn selected_refs(selection: &Selection) -> Vec<hedra_doc::NodeRef> {
+    selection.refs()
+}

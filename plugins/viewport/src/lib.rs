@@ -47,6 +47,7 @@ impl Plugin for ViewportPlugin {
             .insert_resource(GlobalAmbientLight { brightness: 400.0, ..default() })
             .add_plugins(TransformGizmoPlugin)
             .add_systems(Startup, spawn_camera)
+            .add_systems(PostStartup, overlay_cameras_keep_the_picture)
             .add_systems(Update, (camera_controls, frame_selection, draw_grid).chain().after(EditSystems))
             .add_systems(Update, (update_edge_overlays, focus_gizmo_on_active, commit_gizmo_drag).after(EditSystems));
     }
@@ -68,6 +69,14 @@ fn spawn_camera(mut commands: Commands) {
             Transform::from_xyz(-2.0, 3.0, 4.0).looking_at(Vec3::ZERO, Vec3::Y),
         )],
     ));
+}
+
+/// Bevy's transform gizmo renders through a second 3D camera; it must draw
+/// over the viewport, not clear it.
+fn overlay_cameras_keep_the_picture(mut cameras: Query<&mut Camera, (With<Camera3d>, Without<ViewportCamera>)>) {
+    for mut c in &mut cameras {
+        c.clear_color = ClearColorConfig::None;
+    }
 }
 
 /// Middle mouse orbits, Shift+middle pans, Ctrl+middle or the wheel zooms,

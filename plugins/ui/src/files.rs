@@ -1,0 +1,150 @@
+//! File handling in the window: dialogs (rfd, with a typed-path fallback),
+//! asking before unsaved changes are discarded, recent files and samples.
+
+use bevy::prelude::*;
+use bevy::tasks::{IoTaskPool, Task, futures::check_ready};
+use serde::{Deserialize, Serialize};
+use std::path::{Path, PathBuf};
+
+/// What a chosen path is for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FilePurpose {
+    Open,
+    SaveAs,
+    ExportObj,
+}
+
+impl FilePurpose {
+    pub fn title(self) -> &'static str {
+        match self {
+            FilePurpose::Open => "Open Scene",
+            FilePurpose::SaveAs => "Save Scene As",
+            FilePurpose::ExportObj => "Export OBJ",
+        }
+    }
+    fn filter(self) -> (&'static str, &'static [&'static str]) {
+        match self {
+            FilePurpose::Open | FilePurpose::SaveAs => ("Hedra scene", &["ron"]),
+            FilePurpose::ExportObj => ("Wavefront OBJ", &["obj"]),
+        }
+    }
+}
+
+/// Something to do once the user has decided about unsaved changes.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Pending {
+    New,
+    Open(PathBuf),
+    /// Show the Open dialog.
+    BrowseOpen,
+    Quit,
+}
+
+/// The path prompt: a text field, with "Browse…" when a dialog backend exists.
+#[derive(Clone, Debug)]
+pub struct PathPrompt {
+    pub purpose: FilePurpose,
+    pub text: String,
+}
+
+/// A native file dialog running on the IO pool (it blocks its thread).
+pub struct DialogTask {
+    pub purpose: FilePurpose,
+    pub task: Task<Option<PathBuf>>,
+}
+
+/// True when rfd can show a dialog here: a desktop portal over D-Bus or zenity.
+pub fn dialog_backend_available() -> bool {
+    std::env::var_os("DBUS_SESSION_BUS_ADDRESS").is_some()
+        || std::env::var_os("PATH")
+            .is_some_and(|paths| std::env::split_paths(&paths).any(|p| p.join("zenity").is_file()))
+}
+
+pub fn spawn_dialog(purpose: FilePurpose, start_dir: Option<PathBuf>) -> DialogTask {
+    let (name, exts) = purpose.filter();
+    let task = IoTaskPool::get().spawn(async move {
+        let mut d = rfd::FileDialog::new().set_title(purpose.title()).add_filter(name, exts);
+        if let Some(dir) = start_dir {
+            d = d.set_directory(dir);
+        }
+        match purpose {
+            FilePurpose::Open => d.pick_file(),
+            FilePurpose::SaveAs => d.set_file_name("untitled.hedra.ron").save_file(),
+            FilePurpose::ExportObj => d.set_file_name("export.obj").save_file(),
+        }
+    });
+    DialogTask { purpose, task }
+}
+
+/// Polls a running dialog; `Some(result)` once it closed.
+pub fn poll_dialog(task: &mut DialogTask) -> Option<Option<PathBuf>> {
+    check_ready(&mut task.task)
+}
+
+/// Adds the scene extension when a typed save path has none.
+pub fn with_scene_extension(path: PathBuf) -> PathBuf {
+    let s = path.to_string_lossy();
+    if s.ends_with(".hedra.ron") || s.ends_with(".ron") {
+        path
+    } else {
+        PathBuf::from(format!("{s}.hedra.ron"))
+    }
+}
+
+/// Preferences kept between runs: recent files.
+#[derive(Resource, Debug, Default, Clone, Serialize, Deserialize)]
+pub struct Preferences {
+    pub recent: Vec<PathBuf>,
+}
+
+impl Preferences {
+    const MAX_RECENT: usize = 10;
+
+    /// `$HEDRA_CONFIG_DIR`, else `$XDG_CONFIG_HOME/hedra`, else `~/.config/hedra`.
+    pub fn dir() -> Option<PathBuf> {
+        if let Some(d) = std::env::var_os("HEDRA_CONFIG_DIR") {
+            return Some(PathBuf::from(d));
+        }
+        if let Some(d) = std::env::var_os("XDG_CONFIG_HOME") {
+            return Some(PathBuf::from(d).join("hedra"));
+        }
+        std::env::var_os("HOME").map(|h| PathBuf::from(h).join(".config/hedra"))
+    }
+
+    /// Reads the preferences; a missing or unreadable file gives defaults.
+    pub fn load() -> Self {
+        Self::dir()
+            .and_then(|d| std::fs::read_to_string(d.join("preferences.ron")).ok())
+            .and_then(|t| ron::from_str(&t).ok())
+            .unwrap_or_default()
+    }
+
+    /// Writes the preferences (atomically); failures only cost the recent list.
+    pub fn save(&self) -> Result<(), String> {
+        let dir = Self::dir().ok_or("no configuration folder (HOME is not set)")?;
+        std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+        let text = ron::ser::to_string_pretty(self, ron::ser::PrettyConfig::default()).map_err(|e| e.to_string())?;
+        hedra_doc::file::write_atomic(&dir.join("preferences.ron"), &text).map_err(|e| e.to_string())
+    }
+
+    /// Puts `path` first in the recent list.
+    pub fn add_recent(&mut self, path: &Path) {
+        let path = std::fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf());
+        self.recent.retain(|p| *p != path);
+        self.recent.insert(0, path);
+        self.recent.truncate(Self::MAX_RECENT);
+    }
+}
+
+/// Where the sample scenes live (`assets/samples`).
+#[derive(Resource, Debug, Clone)]
+pub struct SamplesDir(pub PathBuf);
+
+/// Sample scene files, sorted by name.
+pub fn list_samples(dir: &Path) -> Vec<PathBuf> {
+    let mut v: Vec<PathBuf> = std::fs::read_dir(dir)
+        .map(|rd| rd.filter_map(|e| e.ok().map(|e| e.path())).filter(|p| p.to_string_lossy().ends_with(".hedra.ron")).collect())
+        .unwrap_or_default();
+    v.sort();
+    v
+}

@@ -1,0 +1,116 @@
+//! The Hedra application: the plugin group of the Bevy crates, the windowed
+//! app, a windowless app for tests, and the headless CLI.
+
+use bevy::app::PluginGroupBuilder;
+use bevy::prelude::*;
+use bevy::render::view::screenshot::{Screenshot, ScreenshotCaptured, save_to_disk};
+use bevy::window::WindowResolution;
+use std::path::PathBuf;
+
+pub mod cli;
+
+pub use hedra_doc as doc;
+pub use hedra_geom as geom;
+
+/// Hedra's own plugins, in dependency order.
+pub struct HedraPlugins;
+
+impl PluginGroup for HedraPlugins {
+    fn build(self) -> PluginGroupBuilder {
+        PluginGroupBuilder::start::<Self>()
+            .add(hedra_scene::ScenePlugin)
+            .add(hedra_edit::EditPlugin)
+            .add(hedra_viewport::ViewportPlugin)
+            .add(hedra_ui::UiPlugin)
+    }
+}
+
+/// Where the bundled assets (sample scenes) are.
+pub fn assets_dir() -> PathBuf {
+    PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/assets"))
+}
+
+/// How the window starts.
+#[derive(Debug, Default, Clone)]
+pub struct GuiOptions {
+    /// A scene to open.
+    pub file: Option<PathBuf>,
+    /// Save a screenshot after `frames` frames and quit.
+    pub screenshot: Option<PathBuf>,
+    pub frames: u32,
+}
+
+/// The windowed modeling app.
+pub fn gui_app(options: GuiOptions) -> App {
+    let mut app = App::new();
+    app.add_plugins(DefaultPlugins.set(WindowPlugin {
+        primary_window: Some(Window {
+            title: "Hedra".into(),
+            resolution: WindowResolution::new(1280, 800),
+            ..default()
+        }),
+        // Closing asks about unsaved changes first (hedra_ui handles the request).
+        close_when_requested: false,
+        ..default()
+    }))
+    .add_plugins(HedraPlugins)
+    .insert_resource(hedra_ui::SamplesDir(assets_dir().join("samples")));
+    if let Some(path) = options.file {
+        app.add_systems(Startup, move |mut requests: MessageWriter<hedra_scene::DocRequest>| {
+            requests.write(hedra_scene::DocRequest::Open(path.clone()));
+        });
+    }
+    if let Some(path) = options.screenshot {
+        app.insert_resource(ScreenshotPlan { path, after_frames: options.frames.max(1), frame: 0, requested: false, done: false })
+            .add_systems(Update, take_screenshot);
+    }
+    app
+}
+
+/// `--screenshot`: capture the window once after some frames, then quit.
+#[derive(Resource, Debug)]
+pub struct ScreenshotPlan {
+    pub path: PathBuf,
+    pub after_frames: u32,
+    pub frame: u32,
+    pub requested: bool,
+    pub done: bool,
+}
+
+fn take_screenshot(mut commands: Commands, mut plan: ResMut<ScreenshotPlan>, mut exit: MessageWriter<AppExit>) {
+    plan.frame += 1;
+    if plan.done {
+        exit.write(AppExit::Success);
+        return;
+    }
+    if !plan.requested && plan.frame >= plan.after_frames {
+        plan.requested = true;
+        let path = plan.path.clone();
+        let mut saver = save_to_disk(path);
+        commands.spawn(Screenshot::primary_window()).observe(move |ev: On<ScreenshotCaptured>, mut plan: ResMut<ScreenshotPlan>| {
+            saver(ev);
+            plan.done = true;
+        });
+    }
+    if plan.frame > plan.after_frames + 600 {
+        error!("the screenshot was not captured after {} frames", plan.frame);
+        exit.write(AppExit::error());
+    }
+}
+
+/// A windowless app with the document, its projection and the edit logic,
+/// for tests: no renderer, no egui.
+pub fn headless_app() -> App {
+    let mut app = App::new();
+    app.add_plugins((
+        MinimalPlugins,
+        TransformPlugin,
+        bevy::input::InputPlugin,
+        AssetPlugin::default(),
+        bevy::mesh::MeshPlugin,
+    ))
+    .init_asset::<StandardMaterial>()
+    .add_plugins((hedra_scene::ScenePlugin, hedra_edit::EditPlugin));
+    app
+}
+
