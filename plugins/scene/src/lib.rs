@@ -23,6 +23,9 @@ pub struct DocState {
     pub path: Option<PathBuf>,
     /// Increases on every change of the document (command, undo, load, …).
     pub revision: u64,
+    /// History serial when this document was created or opened: steps up to
+    /// it were made in an earlier session (no "adjust last operation" for them).
+    pub opened_serial: u64,
 }
 
 impl DocState {
@@ -187,6 +190,7 @@ pub fn apply_requests(
             DocRequest::New => {
                 state.session = Session::new();
                 state.path = None;
+                state.opened_serial = 0;
                 status.info("New scene");
                 Ok(Some(DocChanged { created: vec![], replaced: true }))
             }
@@ -194,6 +198,7 @@ pub fn apply_requests(
                 Ok(loaded) => {
                     state.session = loaded.session;
                     state.path = Some(path.clone());
+                    state.opened_serial = state.session.history.current_serial();
                     status.info(format!("Opened {}", path.display()));
                     status.warnings.extend(loaded.warnings);
                     Ok(Some(DocChanged { created: vec![], replaced: true }))

@@ -481,6 +481,9 @@ pub fn primitive_editor(ui: &mut egui::Ui, p: &mut Primitive) -> bool {
 /// it added a primitive, editable in place.
 fn adjust_last_window(ctx: &egui::Context, viewport: egui::Rect, model: &Model, events: &mut Vec<UiEvent>) {
     let Some(last) = model.state.session.history.done().last() else { return };
+    if last.serial <= model.state.opened_serial {
+        return;
+    }
     let Some(Command::AddPrimitive { primitive, name, parent, transform }) = &last.command else { return };
     egui::Window::new(format!("Adjust Last: {}", last.label))
         .id("adjust-last".into())

@@ -46,6 +46,7 @@ impl Plugin for ViewportPlugin {
         app.insert_resource(ClearColor(Color::srgb(0.23, 0.23, 0.25)))
             .insert_resource(GlobalAmbientLight { brightness: 400.0, ..default() })
             .add_plugins(TransformGizmoPlugin)
+            .insert_gizmo_config(AxisGizmos, GizmoConfig { line: GizmoLineConfig { width: 2.0, ..default() }, depth_bias: -0.001, ..default() })
             .add_systems(Startup, spawn_camera)
             .add_systems(PostStartup, overlay_cameras_keep_the_picture)
             .add_systems(Update, (camera_controls, frame_selection, draw_grid).chain().after(EditSystems))
@@ -199,11 +200,15 @@ fn frame_selection(
     }
 }
 
-fn draw_grid(mut gizmos: Gizmos) {
-    gizmos.grid(Quat::from_rotation_x(FRAC_PI_2), UVec2::splat(20), Vec2::splat(1.0), LinearRgba::gray(0.36));
-    gizmos.line(Vec3::new(-10.0, 0.0, 0.0), Vec3::new(10.0, 0.0, 0.0), Color::srgb(0.85, 0.25, 0.3));
-    gizmos.line(Vec3::new(0.0, 0.0, -10.0), Vec3::new(0.0, 0.0, 10.0), Color::srgb(0.25, 0.45, 0.9));
-    gizmos.line(Vec3::ZERO, Vec3::new(0.0, 1.0, 0.0), Color::srgb(0.35, 0.8, 0.3));
+/// Axis lines are drawn over the grid lines they coincide with.
+#[derive(Default, Reflect, GizmoConfigGroup)]
+pub struct AxisGizmos;
+
+fn draw_grid(mut grid: Gizmos, mut axes: Gizmos<AxisGizmos>) {
+    grid.grid(Quat::from_rotation_x(FRAC_PI_2), UVec2::splat(20), Vec2::splat(1.0), LinearRgba::gray(0.3));
+    axes.line(Vec3::new(-10.0, 0.0, 0.0), Vec3::new(10.0, 0.0, 0.0), Color::srgb(0.85, 0.25, 0.3));
+    axes.line(Vec3::new(0.0, 0.0, -10.0), Vec3::new(0.0, 0.0, 10.0), Color::srgb(0.25, 0.45, 0.9));
+    axes.line(Vec3::ZERO, Vec3::new(0.0, 1.0, 0.0), Color::srgb(0.35, 0.8, 0.3));
 }
 
 /// Keeps one retained line gizmo per mesh node with its edges: dark for

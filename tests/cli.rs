@@ -1,0 +1,196 @@
+//! The `hedra` command line, run as a user would: scripts, info, undo/redo,
+//! export and every error path (message, exit code, no output file).
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn hedra(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_hedra")).args(args).output().expect("the hedra binary runs")
+}
+
+fn script(name: &str) -> String {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/scripts").join(name).display().to_string()
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+fn build_hierarchy(dir: &Path) -> PathBuf {
+    let out = dir.join("rig.hedra.ron");
+    let o = hedra(&["run", &script("hierarchy.ron"), "-o", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    out
+}
+
+fn info_json(file: &Path) -> serde_json::Value {
+    let o = hedra(&["info", file.to_str().unwrap(), "--json"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    serde_json::from_slice(&o.stdout).expect("info --json prints one JSON object")
+}
+
+fn close(a: &serde_json::Value, b: [f64; 3]) -> bool {
+    (0..3).all(|i| (a[i].as_f64().unwrap() - b[i]).abs() < 1e-9)
+}
+
+#[test]
+fn run_builds_a_hierarchy_and_info_reports_it_field_by_field() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = build_hierarchy(dir.path());
+    let j = info_json(&file);
+    assert_eq!(j["format_version"], 1);
+    let nodes = j["nodes"].as_array().unwrap();
+    assert_eq!(nodes.len(), 5);
+    let by_name = |n: &str| nodes.iter().find(|x| x["name"] == n).unwrap_or_else(|| panic!("no node {n}"));
+
+    let rig = by_name("Rig");
+    assert_eq!(rig["kind"], "empty");
+    assert!(rig["mesh"].is_null());
+    assert!(rig["parent"].is_null());
+
+    let body = by_name("Body");
+    assert_eq!(body["kind"], "mesh");
+    assert_eq!(body["parent"], rig["id"]);
+    // Rig at (1,2,3) scaled 2: the body's local (0.5,0,0) lands at (2,2,3).
+    assert!(close(&body["world"]["translation"], [2.0, 2.0, 3.0]), "{}", body["world"]);
+    assert!(close(&body["world"]["scale"], [2.0, 2.0, 2.0]));
+    let m = &body["mesh"];
+    assert_eq!((m["vertices"].as_u64(), m["edges"].as_u64(), m["faces"].as_u64()), (Some(8), Some(12), Some(6)));
+    assert_eq!(m["euler_characteristic"], 2);
+    assert_eq!(m["boundary_loops"], 0);
+    assert_eq!(m["closed"], true);
+    assert_eq!(m["manifold"], true);
+    assert_eq!(m["valid"], true);
+    assert_eq!(m["primitive"], "cube");
+
+    let wheel = by_name("Wheel");
+    assert_eq!(wheel["parent"], body["id"]);
+    assert_eq!(wheel["mesh"]["euler_characteristic"], 0);
+    assert_eq!(wheel["mesh"]["genus"], 1);
+    // Local (0,-1,0) under Body (world (2,2,3), scale 2): (2, 0, 3).
+    assert!(close(&wheel["world"]["translation"], [2.0, 0.0, 3.0]), "{}", wheel["world"]);
+
+    let ground = by_name("Ground");
+    assert_eq!(ground["mesh"]["boundary_loops"], 1);
+    assert_eq!(ground["mesh"]["closed"], false);
+    assert_eq!(ground["mesh"]["euler_characteristic"], 1);
+
+    let tetra = by_name("Tetra");
+    assert_eq!(tetra["mesh"]["faces"], 4);
+    assert!(tetra["mesh"]["primitive"].is_null());
+
+    assert_eq!(j["history"]["undo_steps"], 6);
+    assert_eq!(j["history"]["labels"][0], "Add Empty 'Rig'");
+
+    // The text form names the same things.
+    let o = hedra(&["info", file.to_str().unwrap()]);
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(text.contains("#2 Body [mesh] parent #1"), "{text}");
+    assert!(text.contains("mesh: V 8 E 12 F 6"), "{text}");
+    assert!(text.contains("validate: ok"));
+}
+
+#[test]
+fn undo_and_redo_step_the_saved_history() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = build_hierarchy(dir.path());
+    let undone = dir.path().join("undone.hedra.ron");
+    let o = hedra(&["undo", file.to_str().unwrap(), "--steps", "2", "-o", undone.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let j = info_json(&undone);
+    let names: Vec<&str> = j["nodes"].as_array().unwrap().iter().map(|n| n["name"].as_str().unwrap()).collect();
+    assert_eq!(names, ["Rig", "Body", "Wheel"], "adding Ground and Tetra is undone");
+    assert_eq!(j["history"]["undo_steps"], 4);
+    assert_eq!(j["history"]["redo_steps"], 2);
+
+    let redone = dir.path().join("redone.hedra.ron");
+    let o = hedra(&["redo", undone.to_str().unwrap(), "--steps", "2", "-o", redone.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(std::fs::read_to_string(&redone).unwrap(), std::fs::read_to_string(&file).unwrap(), "redo returns the exact file");
+
+    // Undo everything: an empty scene.
+    let empty = dir.path().join("empty.hedra.ron");
+    assert!(hedra(&["undo", file.to_str().unwrap(), "--steps", "6", "-o", empty.to_str().unwrap()]).status.success());
+    assert_eq!(info_json(&empty)["nodes"].as_array().unwrap().len(), 0);
+}
+
+#[test]
+fn run_on_an_input_scene_appends_to_its_history() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = build_hierarchy(dir.path());
+    let extra = dir.path().join("extra.ron");
+    std::fs::write(&extra, "[Delete(nodes: [Name(\"Ground\")]), Rename(node: Name(\"Tetra\"), name: \"Pyramid\")]").unwrap();
+    let out = dir.path().join("out.hedra.ron");
+    let o = hedra(&["run", extra.to_str().unwrap(), "--input", file.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let j = info_json(&out);
+    assert_eq!(j["history"]["undo_steps"], 8);
+    let names: Vec<&str> = j["nodes"].as_array().unwrap().iter().map(|n| n["name"].as_str().unwrap()).collect();
+    assert!(names.contains(&"Pyramid") && !names.contains(&"Ground"), "{names:?}");
+}
+
+#[test]
+fn export_writes_world_space_obj_with_ngons() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("c.hedra.ron");
+    let s = dir.path().join("s.ron");
+    std::fs::write(&s, "[AddPrimitive(primitive: Cylinder(segments: 6, radius: 1.0, depth: 2.0), transform: (translation: (10.0, 0.0, 0.0)))]").unwrap();
+    assert!(hedra(&["run", s.to_str().unwrap(), "-o", file.to_str().unwrap()]).status.success());
+    let obj = dir.path().join("c.obj");
+    let o = hedra(&["export", file.to_str().unwrap(), "-o", obj.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = std::fs::read_to_string(&obj).unwrap();
+    let v: Vec<Vec<f64>> = text.lines().filter(|l| l.starts_with("v ")).map(|l| l[2..].split(' ').map(|x| x.parse().unwrap()).collect()).collect();
+    let f: Vec<usize> = text.lines().filter(|l| l.starts_with("f ")).map(|l| l.split(' ').count() - 1).collect();
+    assert_eq!(v.len(), 12);
+    assert!(v.iter().all(|p| (p[0] - 10.0).abs() <= 1.0 + 1e-9), "positions are in world space");
+    assert_eq!(f.iter().filter(|&&n| n == 6).count(), 2, "hexagon caps stay n-gons");
+    assert_eq!(f.iter().filter(|&&n| n == 4).count(), 6);
+}
+
+/// Runs a failing command and checks the one-line message, the exit code and
+/// that no output file appeared.
+fn fails(args: &[&str], output: &Path, expected: &str) {
+    let o = hedra(args);
+    let err = stderr(&o);
+    assert!(!o.status.success(), "{args:?} succeeded");
+    assert_eq!(o.status.code(), Some(1), "{args:?}");
+    assert!(err.contains(expected), "{args:?}: stderr was {err:?}, expected {expected:?}");
+    assert_eq!(err.trim_end().lines().count(), 1, "one line: {err:?}");
+    assert!(!output.exists(), "{args:?} wrote {}", output.display());
+}
+
+#[test]
+fn every_error_path_says_why_exits_non_zero_and_writes_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = |n: &str| dir.path().join(n);
+    let out = d("out.hedra.ron");
+    let o = out.to_str().unwrap();
+
+    fails(&["info", d("missing.hedra.ron").to_str().unwrap()], &out, "missing.hedra.ron: No such file");
+
+    std::fs::write(d("bad.ron"), "[\n  AddPrimitive(primitive: Cube(size: 2.0),\n  Bogus\n]").unwrap();
+    fails(&["run", d("bad.ron").to_str().unwrap(), "-o", o], &out, "bad.ron:3:");
+
+    std::fs::write(d("unknown.ron"), "[Explode(power: 9)]").unwrap();
+    fails(&["run", d("unknown.ron").to_str().unwrap(), "-o", o], &out, "Explode");
+
+    std::fs::write(d("noid.ron"), "[AddPrimitive(primitive: Cube(size: 1.0)), Delete(nodes: [Id(42)])]").unwrap();
+    fails(&["run", d("noid.ron").to_str().unwrap(), "-o", o], &out, "command 2 (Delete 1 node): node #42 does not exist");
+
+    std::fs::write(d("badmesh.ron"), "[AddMesh(name: \"M\", positions: [(0.0,0.0,0.0)], polygons: [[0, 1, 2]])]").unwrap();
+    fails(&["run", d("badmesh.ron").to_str().unwrap(), "-o", o], &out, "face 0 refers to vertex 1");
+
+    std::fs::write(d("newer.hedra.ron"), "(\n    format: \"hedra-scene\",\n    version: 99,\n)").unwrap();
+    fails(&["info", d("newer.hedra.ron").to_str().unwrap()], &out, "newer Hedra (format version 99)");
+
+    std::fs::write(d("empty.ron"), "[]").unwrap();
+    assert!(hedra(&["run", d("empty.ron").to_str().unwrap(), "-o", d("e.hedra.ron").to_str().unwrap()]).status.success());
+    fails(&["undo", d("e.hedra.ron").to_str().unwrap(), "-o", o], &out, "only 0 step(s) can be undone");
+    fails(&["redo", d("e.hedra.ron").to_str().unwrap(), "--steps", "3", "-o", o], &out, "only 0 step(s) can be redone");
+    fails(&["export", d("e.hedra.ron").to_str().unwrap(), "-o", d("x.fbx").to_str().unwrap()], &d("x.fbx"), "unsupported export format '.fbx'");
+
+    // A usage error is reported by the argument parser with its own exit code.
+    let o = hedra(&["info"]);
+    assert!(!o.status.success());
+}
