@@ -60,6 +60,14 @@ pub enum Sub {
         #[arg(short, long)]
         output: PathBuf,
     },
+    /// Import meshes (OBJ) as new nodes of a new scene (or of --input) and save it.
+    Import {
+        file: PathBuf,
+        #[arg(long)]
+        input: Option<PathBuf>,
+        #[arg(short, long)]
+        output: PathBuf,
+    },
     /// Write the scene's meshes in world space (OBJ, n-gons kept).
     Export {
         file: PathBuf,
@@ -105,8 +113,13 @@ pub fn run(sub: Sub) -> Result<(), CliError> {
                 print!("{}", report.to_text());
             }
         }
-        Sub::Run { script: script_path, input, output } => {
-            let text = std::fs::read_to_string(&script_path).map_err(|e| CliError(format!("{}: {e}", script_path.display())))?;
+        Sub::Run {
+            script: script_path,
+            input,
+            output,
+        } => {
+            let text = std::fs::read_to_string(&script_path)
+                .map_err(|e| CliError(format!("{}: {e}", script_path.display())))?;
             let commands = script::parse(&text, &script_path)?;
             let mut session = match input {
                 Some(p) => load(&p)?,
@@ -114,37 +127,93 @@ pub fn run(sub: Sub) -> Result<(), CliError> {
             };
             let applied = script::run(&mut session, &commands, &script_path)?;
             save(&mut session, &output)?;
-            eprintln!("hedra: applied {} command(s), wrote {}", applied.len(), output.display());
+            eprintln!(
+                "hedra: applied {} command(s), wrote {}",
+                applied.len(),
+                output.display()
+            );
         }
-        Sub::Undo { file, steps, output } | Sub::Redo { file, steps, output } if steps == 0 => {
+        Sub::Undo {
+            file,
+            steps,
+            output,
+        }
+        | Sub::Redo {
+            file,
+            steps,
+            output,
+        } if steps == 0 => {
             let _ = (file, output);
             return Err(CliError("--steps must be at least 1".into()));
         }
-        Sub::Undo { file, steps, output } => {
+        Sub::Undo {
+            file,
+            steps,
+            output,
+        } => {
             let mut session = load(&file)?;
             let available = session.history.done().len();
             if steps > available {
-                return Err(CliError(format!("{}: only {available} step(s) can be undone, not {steps}", file.display())));
+                return Err(CliError(format!(
+                    "{}: only {available} step(s) can be undone, not {steps}",
+                    file.display()
+                )));
             }
             for _ in 0..steps {
                 session.undo();
             }
             save(&mut session, &output)?;
         }
-        Sub::Redo { file, steps, output } => {
+        Sub::Redo {
+            file,
+            steps,
+            output,
+        } => {
             let mut session = load(&file)?;
             let available = session.history.undone().len();
             if steps > available {
-                return Err(CliError(format!("{}: only {available} step(s) can be redone, not {steps}", file.display())));
+                return Err(CliError(format!(
+                    "{}: only {available} step(s) can be redone, not {steps}",
+                    file.display()
+                )));
             }
             for _ in 0..steps {
                 session.redo();
             }
             save(&mut session, &output)?;
         }
+        Sub::Import {
+            file,
+            input,
+            output,
+        } => {
+            let meshes = hedra_doc::import::import_file(&file)?;
+            for note in hedra_doc::import::describe_repairs(&meshes) {
+                eprintln!("hedra: warning: {}: {note}", file.display());
+            }
+            let mut session = match input {
+                Some(p) => load(&p)?,
+                None => Session::new(),
+            };
+            let name = file.file_name().map_or_else(
+                || file.display().to_string(),
+                |n| n.to_string_lossy().into_owned(),
+            );
+            let applied = session.import(&meshes, &format!("Import {name}"));
+            save(&mut session, &output)?;
+            eprintln!(
+                "hedra: imported {} object(s), wrote {}",
+                applied.created.len(),
+                output.display()
+            );
+        }
         Sub::Export { file, output } => {
             let session = load(&file)?;
-            let ext = output.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
+            let ext = output
+                .extension()
+                .and_then(|e| e.to_str())
+                .unwrap_or("")
+                .to_ascii_lowercase();
             let text = match ext.as_str() {
                 "obj" => hedra_doc::export::to_obj(&session.doc),
                 other => {

@@ -56,13 +56,22 @@ pub fn gui_app(options: GuiOptions) -> App {
     .add_plugins(HedraPlugins)
     .insert_resource(hedra_ui::SamplesDir(assets_dir().join("samples")));
     if let Some(path) = options.file {
-        app.add_systems(Startup, move |mut requests: MessageWriter<hedra_scene::DocRequest>| {
-            requests.write(hedra_scene::DocRequest::Open(path.clone()));
-        });
+        app.add_systems(
+            Startup,
+            move |mut requests: MessageWriter<hedra_scene::DocRequest>| {
+                requests.write(hedra_scene::DocRequest::Open(path.clone()));
+            },
+        );
     }
     if let Some(path) = options.screenshot {
-        app.insert_resource(ScreenshotPlan { path, after_frames: options.frames.max(1), frame: 0, requested: false, done: false })
-            .add_systems(Update, take_screenshot);
+        app.insert_resource(ScreenshotPlan {
+            path,
+            after_frames: options.frames.max(1),
+            frame: 0,
+            requested: false,
+            done: false,
+        })
+        .add_systems(Update, take_screenshot);
     }
     app
 }
@@ -77,7 +86,11 @@ pub struct ScreenshotPlan {
     pub done: bool,
 }
 
-fn take_screenshot(mut commands: Commands, mut plan: ResMut<ScreenshotPlan>, mut exit: MessageWriter<AppExit>) {
+fn take_screenshot(
+    mut commands: Commands,
+    mut plan: ResMut<ScreenshotPlan>,
+    mut exit: MessageWriter<AppExit>,
+) {
     plan.frame += 1;
     if plan.done {
         exit.write(AppExit::Success);
@@ -87,13 +100,18 @@ fn take_screenshot(mut commands: Commands, mut plan: ResMut<ScreenshotPlan>, mut
         plan.requested = true;
         let path = plan.path.clone();
         let mut saver = save_to_disk(path);
-        commands.spawn(Screenshot::primary_window()).observe(move |ev: On<ScreenshotCaptured>, mut plan: ResMut<ScreenshotPlan>| {
-            saver(ev);
-            plan.done = true;
-        });
+        commands.spawn(Screenshot::primary_window()).observe(
+            move |ev: On<ScreenshotCaptured>, mut plan: ResMut<ScreenshotPlan>| {
+                saver(ev);
+                plan.done = true;
+            },
+        );
     }
     if plan.frame > plan.after_frames + 600 {
-        error!("the screenshot was not captured after {} frames", plan.frame);
+        error!(
+            "the screenshot was not captured after {} frames",
+            plan.frame
+        );
         exit.write(AppExit::error());
     }
 }
@@ -113,4 +131,3 @@ pub fn headless_app() -> App {
     .add_plugins((hedra_scene::ScenePlugin, hedra_edit::EditPlugin));
     app
 }
-

@@ -21,7 +21,11 @@ fn main() -> ExitCode {
                     return ExitCode::FAILURE;
                 }
             }
-            let options = hedra::GuiOptions { file: cli.file, screenshot: cli.screenshot, frames: cli.frames };
+            let options = hedra::GuiOptions {
+                file: cli.file,
+                screenshot: cli.screenshot,
+                frames: cli.frames,
+            };
             match hedra::gui_app(options).run() {
                 bevy::app::AppExit::Success => ExitCode::SUCCESS,
                 bevy::app::AppExit::Error(_) => ExitCode::FAILURE,

@@ -24,7 +24,14 @@ fn node_entities(app: &mut App) -> Vec<(Entity, String)> {
 fn commands_spawn_entities_with_meshes_and_hierarchy_and_undo_removes_them() {
     let mut app = hedra::headless_app();
     app.update();
-    send(&mut app, DocRequest::Execute(Command::AddEmpty { name: "Group".into(), parent: None, transform: DocTransform::from_translation(hedra_geom::DVec3::new(0.0, 2.0, 0.0)) }));
+    send(
+        &mut app,
+        DocRequest::Execute(Command::AddEmpty {
+            name: "Group".into(),
+            parent: None,
+            transform: DocTransform::from_translation(hedra_geom::DVec3::new(0.0, 2.0, 0.0)),
+        }),
+    );
     send(
         &mut app,
         DocRequest::Execute(Command::AddPrimitive {
@@ -35,32 +42,77 @@ fn commands_spawn_entities_with_meshes_and_hierarchy_and_undo_removes_them() {
         }),
     );
     let ents = node_entities(&mut app);
-    assert_eq!(ents.iter().map(|e| e.1.as_str()).collect::<Vec<_>>(), ["Box", "Group"]);
+    assert_eq!(
+        ents.iter().map(|e| e.1.as_str()).collect::<Vec<_>>(),
+        ["Box", "Group"]
+    );
     let (box_e, group_e) = (ents[0].0, ents[1].0);
     let world = app.world();
-    assert_eq!(world.get::<ChildOf>(box_e).map(|c| c.parent()), Some(group_e));
-    assert_eq!(world.get::<GlobalTransform>(box_e).unwrap().translation(), Vec3::new(1.0, 2.0, 0.0));
-    let mesh = world.get::<Mesh3d>(box_e).expect("mesh nodes get a render mesh");
+    assert_eq!(
+        world.get::<ChildOf>(box_e).map(|c| c.parent()),
+        Some(group_e)
+    );
+    assert_eq!(
+        world.get::<GlobalTransform>(box_e).unwrap().translation(),
+        Vec3::new(1.0, 2.0, 0.0)
+    );
+    let mesh = world
+        .get::<Mesh3d>(box_e)
+        .expect("mesh nodes get a render mesh");
     let render = world.resource::<Assets<Mesh>>().get(&mesh.0).unwrap();
-    assert_eq!(render.count_vertices(), 24, "a flat cube has split normals: 6 faces x 4 corners");
+    assert_eq!(
+        render.count_vertices(),
+        24,
+        "a flat cube has split normals: 6 faces x 4 corners"
+    );
     assert_eq!(render.indices().unwrap().len(), 36);
     assert!(world.get::<Mesh3d>(group_e).is_none());
 
     // Move, then undo: the entity follows the document both ways.
-    send(&mut app, DocRequest::Execute(Command::Translate { nodes: vec![NodeRef::Name("Box".into())], offset: hedra_geom::DVec3::new(0.0, 0.0, 5.0) }));
-    assert_eq!(app.world().get::<Transform>(box_e).unwrap().translation, Vec3::new(1.0, 0.0, 5.0));
+    send(
+        &mut app,
+        DocRequest::Execute(Command::Translate {
+            nodes: vec![NodeRef::Name("Box".into())],
+            offset: hedra_geom::DVec3::new(0.0, 0.0, 5.0),
+        }),
+    );
+    assert_eq!(
+        app.world().get::<Transform>(box_e).unwrap().translation,
+        Vec3::new(1.0, 0.0, 5.0)
+    );
     send(&mut app, DocRequest::Undo);
-    assert_eq!(app.world().get::<Transform>(box_e).unwrap().translation, Vec3::new(1.0, 0.0, 0.0));
+    assert_eq!(
+        app.world().get::<Transform>(box_e).unwrap().translation,
+        Vec3::new(1.0, 0.0, 0.0)
+    );
 
     // Reparent to the root keeps the world position; the entity loses ChildOf.
-    send(&mut app, DocRequest::Execute(Command::Reparent { node: NodeRef::Name("Box".into()), parent: None, keep_world: true }));
+    send(
+        &mut app,
+        DocRequest::Execute(Command::Reparent {
+            node: NodeRef::Name("Box".into()),
+            parent: None,
+            keep_world: true,
+        }),
+    );
     assert!(app.world().get::<ChildOf>(box_e).is_none());
-    assert_eq!(app.world().get::<Transform>(box_e).unwrap().translation, Vec3::new(1.0, 2.0, 0.0));
+    assert_eq!(
+        app.world().get::<Transform>(box_e).unwrap().translation,
+        Vec3::new(1.0, 2.0, 0.0)
+    );
     send(&mut app, DocRequest::Undo);
-    assert_eq!(app.world().get::<ChildOf>(box_e).map(|c| c.parent()), Some(group_e));
+    assert_eq!(
+        app.world().get::<ChildOf>(box_e).map(|c| c.parent()),
+        Some(group_e)
+    );
 
     // Delete the group: both entities go; undo brings both back.
-    send(&mut app, DocRequest::Execute(Command::Delete { nodes: vec![NodeRef::Name("Group".into())] }));
+    send(
+        &mut app,
+        DocRequest::Execute(Command::Delete {
+            nodes: vec![NodeRef::Name("Group".into())],
+        }),
+    );
     assert!(node_entities(&mut app).is_empty());
     send(&mut app, DocRequest::Undo);
     assert_eq!(node_entities(&mut app).len(), 2);
@@ -72,20 +124,56 @@ fn changing_shading_or_primitive_rebuilds_only_that_render_mesh() {
     let mut app = hedra::headless_app();
     app.update();
     for name in ["A", "B"] {
-        send(&mut app, DocRequest::Execute(Command::AddPrimitive { primitive: Primitive::UvSphere { segments: 8, rings: 4, radius: 1.0 }, name: Some(name.into()), parent: None, transform: DocTransform::IDENTITY }));
+        send(
+            &mut app,
+            DocRequest::Execute(Command::AddPrimitive {
+                primitive: Primitive::UvSphere {
+                    segments: 8,
+                    rings: 4,
+                    radius: 1.0,
+                },
+                name: Some(name.into()),
+                parent: None,
+                transform: DocTransform::IDENTITY,
+            }),
+        );
     }
     let ents = node_entities(&mut app);
     let before_b = *app.world().get::<ProjectedMesh>(ents[1].0).unwrap();
-    send(&mut app, DocRequest::Execute(Command::SetShading { nodes: vec![NodeRef::Name("A".into())], shading: hedra_doc::Shading::Flat }));
+    send(
+        &mut app,
+        DocRequest::Execute(Command::SetShading {
+            nodes: vec![NodeRef::Name("A".into())],
+            shading: hedra_doc::Shading::Flat,
+        }),
+    );
     let a_mesh = app.world().get::<Mesh3d>(ents[0].0).unwrap().0.clone();
     let render = app.world().resource::<Assets<Mesh>>().get(&a_mesh).unwrap();
     // Flat: each of the 32 faces has its own corners (16 triangles x 3 + 16 quads x 4).
     assert_eq!(render.count_vertices(), 16 * 3 + 16 * 4);
-    assert_eq!(*app.world().get::<ProjectedMesh>(ents[1].0).unwrap(), before_b, "B was not rebuilt");
-    send(&mut app, DocRequest::Execute(Command::SetPrimitive { node: NodeRef::Name("B".into()), primitive: Primitive::UvSphere { segments: 16, rings: 8, radius: 1.0 } }));
+    assert_eq!(
+        *app.world().get::<ProjectedMesh>(ents[1].0).unwrap(),
+        before_b,
+        "B was not rebuilt"
+    );
+    send(
+        &mut app,
+        DocRequest::Execute(Command::SetPrimitive {
+            node: NodeRef::Name("B".into()),
+            primitive: Primitive::UvSphere {
+                segments: 16,
+                rings: 8,
+                radius: 1.0,
+            },
+        }),
+    );
     let b_mesh = app.world().get::<Mesh3d>(ents[1].0).unwrap().0.clone();
     let render = app.world().resource::<Assets<Mesh>>().get(&b_mesh).unwrap();
-    assert_eq!(render.count_vertices(), 16 * 7 + 2, "smooth shading shares corners");
+    assert_eq!(
+        render.count_vertices(),
+        16 * 7 + 2,
+        "smooth shading shares corners"
+    );
 }
 
 #[test]
@@ -93,28 +181,57 @@ fn a_failing_command_reports_an_error_and_changes_nothing() {
     let mut app = hedra::headless_app();
     app.update();
     let before = app.world().resource::<DocState>().revision;
-    send(&mut app, DocRequest::Execute(Command::Delete { nodes: vec![NodeRef::Name("Nope".into())] }));
+    send(
+        &mut app,
+        DocRequest::Execute(Command::Delete {
+            nodes: vec![NodeRef::Name("Nope".into())],
+        }),
+    );
     let status = app.world().resource::<StatusMessage>();
     assert!(status.is_error);
     assert_eq!(status.text, "node 'Nope' does not exist");
     assert_eq!(app.world().resource::<DocState>().revision, before);
     // Opening a missing file says so and keeps the document.
-    send(&mut app, DocRequest::Open("/nonexistent/x.hedra.ron".into()));
+    send(
+        &mut app,
+        DocRequest::Open("/nonexistent/x.hedra.ron".into()),
+    );
     let status = app.world().resource::<StatusMessage>();
-    assert!(status.is_error && status.text.contains("/nonexistent/x.hedra.ron"), "{}", status.text);
+    assert!(
+        status.is_error && status.text.contains("/nonexistent/x.hedra.ron"),
+        "{}",
+        status.text
+    );
 }
 
 #[test]
 fn new_selection_follows_created_nodes() {
     let mut app = hedra::headless_app();
     app.update();
-    send(&mut app, DocRequest::Execute(Command::AddPrimitive { primitive: Primitive::Cube { size: 1.0 }, name: None, parent: None, transform: DocTransform::IDENTITY }));
+    send(
+        &mut app,
+        DocRequest::Execute(Command::AddPrimitive {
+            primitive: Primitive::Cube { size: 1.0 },
+            name: None,
+            parent: None,
+            transform: DocTransform::IDENTITY,
+        }),
+    );
     let sel = app.world().resource::<hedra_edit::Selection>().clone();
     assert_eq!(sel.nodes.len(), 1);
-    send(&mut app, DocRequest::Execute(Command::Duplicate { nodes: sel.refs() }));
+    send(
+        &mut app,
+        DocRequest::Execute(Command::Duplicate { nodes: sel.refs() }),
+    );
     let sel2 = app.world().resource::<hedra_edit::Selection>().clone();
     assert_eq!(sel2.nodes.len(), 1);
     assert_ne!(sel2.nodes, sel.nodes, "the copy is selected");
     send(&mut app, DocRequest::Undo);
-    assert!(app.world().resource::<hedra_edit::Selection>().nodes.is_empty(), "the undone copy left the selection");
+    assert!(
+        app.world()
+            .resource::<hedra_edit::Selection>()
+            .nodes
+            .is_empty(),
+        "the undone copy left the selection"
+    );
 }

@@ -5,11 +5,18 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 fn hedra(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_hedra")).args(args).output().expect("the hedra binary runs")
+    Command::new(env!("CARGO_BIN_EXE_hedra"))
+        .args(args)
+        .output()
+        .expect("the hedra binary runs")
 }
 
 fn script(name: &str) -> String {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/scripts").join(name).display().to_string()
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/scripts")
+        .join(name)
+        .display()
+        .to_string()
 }
 
 fn stderr(o: &Output) -> String {
@@ -41,7 +48,12 @@ fn run_builds_a_hierarchy_and_info_reports_it_field_by_field() {
     assert_eq!(j["format_version"], 1);
     let nodes = j["nodes"].as_array().unwrap();
     assert_eq!(nodes.len(), 5);
-    let by_name = |n: &str| nodes.iter().find(|x| x["name"] == n).unwrap_or_else(|| panic!("no node {n}"));
+    let by_name = |n: &str| {
+        nodes
+            .iter()
+            .find(|x| x["name"] == n)
+            .unwrap_or_else(|| panic!("no node {n}"))
+    };
 
     let rig = by_name("Rig");
     assert_eq!(rig["kind"], "empty");
@@ -52,10 +64,21 @@ fn run_builds_a_hierarchy_and_info_reports_it_field_by_field() {
     assert_eq!(body["kind"], "mesh");
     assert_eq!(body["parent"], rig["id"]);
     // Rig at (1,2,3) scaled 2: the body's local (0.5,0,0) lands at (2,2,3).
-    assert!(close(&body["world"]["translation"], [2.0, 2.0, 3.0]), "{}", body["world"]);
+    assert!(
+        close(&body["world"]["translation"], [2.0, 2.0, 3.0]),
+        "{}",
+        body["world"]
+    );
     assert!(close(&body["world"]["scale"], [2.0, 2.0, 2.0]));
     let m = &body["mesh"];
-    assert_eq!((m["vertices"].as_u64(), m["edges"].as_u64(), m["faces"].as_u64()), (Some(8), Some(12), Some(6)));
+    assert_eq!(
+        (
+            m["vertices"].as_u64(),
+            m["edges"].as_u64(),
+            m["faces"].as_u64()
+        ),
+        (Some(8), Some(12), Some(6))
+    );
     assert_eq!(m["euler_characteristic"], 2);
     assert_eq!(m["boundary_loops"], 0);
     assert_eq!(m["closed"], true);
@@ -68,7 +91,11 @@ fn run_builds_a_hierarchy_and_info_reports_it_field_by_field() {
     assert_eq!(wheel["mesh"]["euler_characteristic"], 0);
     assert_eq!(wheel["mesh"]["genus"], 1);
     // Local (0,-1,0) under Body (world (2,2,3), scale 2): (2, 0, 3).
-    assert!(close(&wheel["world"]["translation"], [2.0, 0.0, 3.0]), "{}", wheel["world"]);
+    assert!(
+        close(&wheel["world"]["translation"], [2.0, 0.0, 3.0]),
+        "{}",
+        wheel["world"]
+    );
 
     let ground = by_name("Ground");
     assert_eq!(ground["mesh"]["boundary_loops"], 1);
@@ -95,22 +122,60 @@ fn undo_and_redo_step_the_saved_history() {
     let dir = tempfile::tempdir().unwrap();
     let file = build_hierarchy(dir.path());
     let undone = dir.path().join("undone.hedra.ron");
-    let o = hedra(&["undo", file.to_str().unwrap(), "--steps", "2", "-o", undone.to_str().unwrap()]);
+    let o = hedra(&[
+        "undo",
+        file.to_str().unwrap(),
+        "--steps",
+        "2",
+        "-o",
+        undone.to_str().unwrap(),
+    ]);
     assert!(o.status.success(), "{}", stderr(&o));
     let j = info_json(&undone);
-    let names: Vec<&str> = j["nodes"].as_array().unwrap().iter().map(|n| n["name"].as_str().unwrap()).collect();
-    assert_eq!(names, ["Rig", "Body", "Wheel"], "adding Ground and Tetra is undone");
+    let names: Vec<&str> = j["nodes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|n| n["name"].as_str().unwrap())
+        .collect();
+    assert_eq!(
+        names,
+        ["Rig", "Body", "Wheel"],
+        "adding Ground and Tetra is undone"
+    );
     assert_eq!(j["history"]["undo_steps"], 4);
     assert_eq!(j["history"]["redo_steps"], 2);
 
     let redone = dir.path().join("redone.hedra.ron");
-    let o = hedra(&["redo", undone.to_str().unwrap(), "--steps", "2", "-o", redone.to_str().unwrap()]);
+    let o = hedra(&[
+        "redo",
+        undone.to_str().unwrap(),
+        "--steps",
+        "2",
+        "-o",
+        redone.to_str().unwrap(),
+    ]);
     assert!(o.status.success(), "{}", stderr(&o));
-    assert_eq!(std::fs::read_to_string(&redone).unwrap(), std::fs::read_to_string(&file).unwrap(), "redo returns the exact file");
+    assert_eq!(
+        std::fs::read_to_string(&redone).unwrap(),
+        std::fs::read_to_string(&file).unwrap(),
+        "redo returns the exact file"
+    );
 
     // Undo everything: an empty scene.
     let empty = dir.path().join("empty.hedra.ron");
-    assert!(hedra(&["undo", file.to_str().unwrap(), "--steps", "6", "-o", empty.to_str().unwrap()]).status.success());
+    assert!(
+        hedra(&[
+            "undo",
+            file.to_str().unwrap(),
+            "--steps",
+            "6",
+            "-o",
+            empty.to_str().unwrap()
+        ])
+        .status
+        .success()
+    );
     assert_eq!(info_json(&empty)["nodes"].as_array().unwrap().len(), 0);
 }
 
@@ -119,14 +184,33 @@ fn run_on_an_input_scene_appends_to_its_history() {
     let dir = tempfile::tempdir().unwrap();
     let file = build_hierarchy(dir.path());
     let extra = dir.path().join("extra.ron");
-    std::fs::write(&extra, "[Delete(nodes: [Name(\"Ground\")]), Rename(node: Name(\"Tetra\"), name: \"Pyramid\")]").unwrap();
+    std::fs::write(
+        &extra,
+        "[Delete(nodes: [Name(\"Ground\")]), Rename(node: Name(\"Tetra\"), name: \"Pyramid\")]",
+    )
+    .unwrap();
     let out = dir.path().join("out.hedra.ron");
-    let o = hedra(&["run", extra.to_str().unwrap(), "--input", file.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+    let o = hedra(&[
+        "run",
+        extra.to_str().unwrap(),
+        "--input",
+        file.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ]);
     assert!(o.status.success(), "{}", stderr(&o));
     let j = info_json(&out);
     assert_eq!(j["history"]["undo_steps"], 8);
-    let names: Vec<&str> = j["nodes"].as_array().unwrap().iter().map(|n| n["name"].as_str().unwrap()).collect();
-    assert!(names.contains(&"Pyramid") && !names.contains(&"Ground"), "{names:?}");
+    let names: Vec<&str> = j["nodes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|n| n["name"].as_str().unwrap())
+        .collect();
+    assert!(
+        names.contains(&"Pyramid") && !names.contains(&"Ground"),
+        "{names:?}"
+    );
 }
 
 #[test]
@@ -135,16 +219,40 @@ fn export_writes_world_space_obj_with_ngons() {
     let file = dir.path().join("c.hedra.ron");
     let s = dir.path().join("s.ron");
     std::fs::write(&s, "[AddPrimitive(primitive: Cylinder(segments: 6, radius: 1.0, depth: 2.0), transform: (translation: (10.0, 0.0, 0.0)))]").unwrap();
-    assert!(hedra(&["run", s.to_str().unwrap(), "-o", file.to_str().unwrap()]).status.success());
+    assert!(
+        hedra(&["run", s.to_str().unwrap(), "-o", file.to_str().unwrap()])
+            .status
+            .success()
+    );
     let obj = dir.path().join("c.obj");
-    let o = hedra(&["export", file.to_str().unwrap(), "-o", obj.to_str().unwrap()]);
+    let o = hedra(&[
+        "export",
+        file.to_str().unwrap(),
+        "-o",
+        obj.to_str().unwrap(),
+    ]);
     assert!(o.status.success(), "{}", stderr(&o));
     let text = std::fs::read_to_string(&obj).unwrap();
-    let v: Vec<Vec<f64>> = text.lines().filter(|l| l.starts_with("v ")).map(|l| l[2..].split(' ').map(|x| x.parse().unwrap()).collect()).collect();
-    let f: Vec<usize> = text.lines().filter(|l| l.starts_with("f ")).map(|l| l.split(' ').count() - 1).collect();
+    let v: Vec<Vec<f64>> = text
+        .lines()
+        .filter(|l| l.starts_with("v "))
+        .map(|l| l[2..].split(' ').map(|x| x.parse().unwrap()).collect())
+        .collect();
+    let f: Vec<usize> = text
+        .lines()
+        .filter(|l| l.starts_with("f "))
+        .map(|l| l.split(' ').count() - 1)
+        .collect();
     assert_eq!(v.len(), 12);
-    assert!(v.iter().all(|p| (p[0] - 10.0).abs() <= 1.0 + 1e-9), "positions are in world space");
-    assert_eq!(f.iter().filter(|&&n| n == 6).count(), 2, "hexagon caps stay n-gons");
+    assert!(
+        v.iter().all(|p| (p[0] - 10.0).abs() <= 1.0 + 1e-9),
+        "positions are in world space"
+    );
+    assert_eq!(
+        f.iter().filter(|&&n| n == 6).count(),
+        2,
+        "hexagon caps stay n-gons"
+    );
     assert_eq!(f.iter().filter(|&&n| n == 4).count(), 6);
 }
 
@@ -155,7 +263,10 @@ fn fails(args: &[&str], output: &Path, expected: &str) {
     let err = stderr(&o);
     assert!(!o.status.success(), "{args:?} succeeded");
     assert_eq!(o.status.code(), Some(1), "{args:?}");
-    assert!(err.contains(expected), "{args:?}: stderr was {err:?}, expected {expected:?}");
+    assert!(
+        err.contains(expected),
+        "{args:?}: stderr was {err:?}, expected {expected:?}"
+    );
     assert_eq!(err.trim_end().lines().count(), 1, "one line: {err:?}");
     assert!(!output.exists(), "{args:?} wrote {}", output.display());
 }
@@ -167,30 +278,161 @@ fn every_error_path_says_why_exits_non_zero_and_writes_nothing() {
     let out = d("out.hedra.ron");
     let o = out.to_str().unwrap();
 
-    fails(&["info", d("missing.hedra.ron").to_str().unwrap()], &out, "missing.hedra.ron: No such file");
+    fails(
+        &["info", d("missing.hedra.ron").to_str().unwrap()],
+        &out,
+        "missing.hedra.ron: No such file",
+    );
 
-    std::fs::write(d("bad.ron"), "[\n  AddPrimitive(primitive: Cube(size: 2.0),\n  Bogus\n]").unwrap();
-    fails(&["run", d("bad.ron").to_str().unwrap(), "-o", o], &out, "bad.ron:3:");
+    std::fs::write(
+        d("bad.ron"),
+        "[\n  AddPrimitive(primitive: Cube(size: 2.0),\n  Bogus\n]",
+    )
+    .unwrap();
+    fails(
+        &["run", d("bad.ron").to_str().unwrap(), "-o", o],
+        &out,
+        "bad.ron:3:",
+    );
 
     std::fs::write(d("unknown.ron"), "[Explode(power: 9)]").unwrap();
-    fails(&["run", d("unknown.ron").to_str().unwrap(), "-o", o], &out, "Explode");
+    fails(
+        &["run", d("unknown.ron").to_str().unwrap(), "-o", o],
+        &out,
+        "Explode",
+    );
 
-    std::fs::write(d("noid.ron"), "[AddPrimitive(primitive: Cube(size: 1.0)), Delete(nodes: [Id(42)])]").unwrap();
-    fails(&["run", d("noid.ron").to_str().unwrap(), "-o", o], &out, "command 2 (Delete 1 node): node #42 does not exist");
+    std::fs::write(
+        d("noid.ron"),
+        "[AddPrimitive(primitive: Cube(size: 1.0)), Delete(nodes: [Id(42)])]",
+    )
+    .unwrap();
+    fails(
+        &["run", d("noid.ron").to_str().unwrap(), "-o", o],
+        &out,
+        "command 2 (Delete 1 node): node #42 does not exist",
+    );
 
-    std::fs::write(d("badmesh.ron"), "[AddMesh(name: \"M\", positions: [(0.0,0.0,0.0)], polygons: [[0, 1, 2]])]").unwrap();
-    fails(&["run", d("badmesh.ron").to_str().unwrap(), "-o", o], &out, "face 0 refers to vertex 1");
+    std::fs::write(
+        d("badmesh.ron"),
+        "[AddMesh(name: \"M\", positions: [(0.0,0.0,0.0)], polygons: [[0, 1, 2]])]",
+    )
+    .unwrap();
+    fails(
+        &["run", d("badmesh.ron").to_str().unwrap(), "-o", o],
+        &out,
+        "face 0 refers to vertex 1",
+    );
 
-    std::fs::write(d("newer.hedra.ron"), "(\n    format: \"hedra-scene\",\n    version: 99,\n)").unwrap();
-    fails(&["info", d("newer.hedra.ron").to_str().unwrap()], &out, "newer Hedra (format version 99)");
+    std::fs::write(
+        d("newer.hedra.ron"),
+        "(\n    format: \"hedra-scene\",\n    version: 99,\n)",
+    )
+    .unwrap();
+    fails(
+        &["info", d("newer.hedra.ron").to_str().unwrap()],
+        &out,
+        "newer Hedra (format version 99)",
+    );
 
     std::fs::write(d("empty.ron"), "[]").unwrap();
-    assert!(hedra(&["run", d("empty.ron").to_str().unwrap(), "-o", d("e.hedra.ron").to_str().unwrap()]).status.success());
-    fails(&["undo", d("e.hedra.ron").to_str().unwrap(), "-o", o], &out, "only 0 step(s) can be undone");
-    fails(&["redo", d("e.hedra.ron").to_str().unwrap(), "--steps", "3", "-o", o], &out, "only 0 step(s) can be redone");
-    fails(&["export", d("e.hedra.ron").to_str().unwrap(), "-o", d("x.fbx").to_str().unwrap()], &d("x.fbx"), "unsupported export format '.fbx'");
+    assert!(
+        hedra(&[
+            "run",
+            d("empty.ron").to_str().unwrap(),
+            "-o",
+            d("e.hedra.ron").to_str().unwrap()
+        ])
+        .status
+        .success()
+    );
+    fails(
+        &["undo", d("e.hedra.ron").to_str().unwrap(), "-o", o],
+        &out,
+        "only 0 step(s) can be undone",
+    );
+    fails(
+        &[
+            "redo",
+            d("e.hedra.ron").to_str().unwrap(),
+            "--steps",
+            "3",
+            "-o",
+            o,
+        ],
+        &out,
+        "only 0 step(s) can be redone",
+    );
+    fails(
+        &[
+            "export",
+            d("e.hedra.ron").to_str().unwrap(),
+            "-o",
+            d("x.fbx").to_str().unwrap(),
+        ],
+        &d("x.fbx"),
+        "unsupported export format '.fbx'",
+    );
 
     // A usage error is reported by the argument parser with its own exit code.
     let o = hedra(&["info"]);
     assert!(!o.status.success());
+}
+
+#[test]
+fn import_turns_obj_objects_into_nodes_and_reports_repairs() {
+    let dir = tempfile::tempdir().unwrap();
+    let obj = dir.path().join("in.obj");
+    std::fs::write(&obj, "o Fan\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 2 1 5\no Quad\nv 0 0 3\nv 1 0 3\nv 1 1 3\nv 0 1 3\nf 6 7 8 9\n").unwrap();
+    let out = dir.path().join("imported.hedra.ron");
+    let o = hedra(&["import", obj.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("Fan: dropped 1 face(s)"),
+        "{}",
+        stderr(&o)
+    );
+    let j = info_json(&out);
+    let nodes = j["nodes"].as_array().unwrap();
+    assert_eq!(nodes.len(), 2);
+    assert_eq!(nodes[0]["name"], "Fan");
+    assert_eq!(nodes[0]["mesh"]["faces"], 2);
+    assert_eq!(nodes[1]["mesh"]["faces"], 1);
+    assert_eq!(j["history"]["labels"][0], "Import in.obj");
+    // Export and re-import give the same counts.
+    let back = dir.path().join("back.obj");
+    assert!(
+        hedra(&[
+            "export",
+            out.to_str().unwrap(),
+            "-o",
+            back.to_str().unwrap()
+        ])
+        .status
+        .success()
+    );
+    let again = dir.path().join("again.hedra.ron");
+    assert!(
+        hedra(&[
+            "import",
+            back.to_str().unwrap(),
+            "-o",
+            again.to_str().unwrap()
+        ])
+        .status
+        .success()
+    );
+    let k = info_json(&again);
+    assert_eq!(k["nodes"][0]["mesh"]["faces"], 2);
+    assert_eq!(k["nodes"][1]["mesh"]["vertices"], 4);
+    fails(
+        &[
+            "import",
+            dir.path().join("x.stl").to_str().unwrap(),
+            "-o",
+            dir.path().join("n.hedra.ron").to_str().unwrap(),
+        ],
+        &dir.path().join("n.hedra.ron"),
+        "unsupported format '.stl'",
+    );
 }

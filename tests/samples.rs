@@ -5,7 +5,11 @@ use std::path::{Path, PathBuf};
 
 fn samples() -> Vec<PathBuf> {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/samples");
-    let mut v: Vec<PathBuf> = std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().path()).filter(|p| p.to_string_lossy().ends_with(".hedra.ron")).collect();
+    let mut v: Vec<PathBuf> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.to_string_lossy().ends_with(".hedra.ron"))
+        .collect();
     v.sort();
     v
 }
@@ -16,20 +20,36 @@ fn every_sample_loads_validates_and_can_undo() {
     assert!(!all.is_empty());
     for p in all {
         let loaded = hedra_doc::file::load(&p).unwrap_or_else(|e| panic!("{e}"));
-        assert!(loaded.warnings.is_empty(), "{}: {:?}", p.display(), loaded.warnings);
+        assert!(
+            loaded.warnings.is_empty(),
+            "{}: {:?}",
+            p.display(),
+            loaded.warnings
+        );
         let mut s = loaded.session;
         assert!(s.doc.node_count() > 0, "{}", p.display());
         for n in s.doc.nodes() {
             if let Some(m) = n.content.mesh() {
-                m.validate().unwrap_or_else(|e| panic!("{} {}: {e}", p.display(), n.name));
+                m.validate()
+                    .unwrap_or_else(|e| panic!("{} {}: {e}", p.display(), n.name));
             }
         }
         assert!(s.history.can_undo(), "{} has history", p.display());
         while s.undo().is_some() {}
-        assert_eq!(s.doc.node_count(), 0, "{}: undoing everything empties the scene", p.display());
+        assert_eq!(
+            s.doc.node_count(),
+            0,
+            "{}: undoing everything empties the scene",
+            p.display()
+        );
         // Saving gives back the same bytes as the file (samples are up to date).
         while s.redo().is_some() {}
-        assert_eq!(hedra_doc::file::to_string(&s), std::fs::read_to_string(&p).unwrap(), "{} is not in canonical form", p.display());
+        assert_eq!(
+            hedra_doc::file::to_string(&s),
+            std::fs::read_to_string(&p).unwrap(),
+            "{} is not in canonical form",
+            p.display()
+        );
     }
 }
 
@@ -39,7 +59,12 @@ fn gui_smoke_test_renders_the_scene_under_xvfb() {
     let dir = tempfile::tempdir().unwrap();
     let shot = dir.path().join("shot.png");
     let status = std::process::Command::new("xvfb-run")
-        .args(["-a", "-s", "-screen 0 1280x800x24", env!("CARGO_BIN_EXE_hedra")])
+        .args([
+            "-a",
+            "-s",
+            "-screen 0 1280x800x24",
+            env!("CARGO_BIN_EXE_hedra"),
+        ])
         .arg(&sample)
         .arg("--screenshot")
         .arg(&shot)
@@ -49,8 +74,15 @@ fn gui_smoke_test_renders_the_scene_under_xvfb() {
         .output()
         .expect("xvfb-run is installed (scripts/setup installs it)");
     let log = String::from_utf8_lossy(&status.stderr);
-    assert!(status.status.success(), "the app exited with {}: {}", status.status, &log[log.len().saturating_sub(3000)..]);
-    let decoder = png::Decoder::new(std::io::BufReader::new(std::fs::File::open(&shot).expect("screenshot written")));
+    assert!(
+        status.status.success(),
+        "the app exited with {}: {}",
+        status.status,
+        &log[log.len().saturating_sub(3000)..]
+    );
+    let decoder = png::Decoder::new(std::io::BufReader::new(
+        std::fs::File::open(&shot).expect("screenshot written"),
+    ));
     let mut reader = decoder.read_info().unwrap();
     let mut buf = vec![0; reader.output_buffer_size().unwrap()];
     let info = reader.next_frame(&mut buf).unwrap();
@@ -67,7 +99,11 @@ fn gui_smoke_test_renders_the_scene_under_xvfb() {
             colours.insert(pixel(x, y));
         }
     }
-    assert!(colours.len() > 200, "only {} colours: blank or single-colour image", colours.len());
+    assert!(
+        colours.len() > 200,
+        "only {} colours: blank or single-colour image",
+        colours.len()
+    );
     // The 3D view in the middle shows lit geometry: light grey mesh pixels exist.
     let mut bright = 0;
     for y in 200..600 {
@@ -78,5 +114,8 @@ fn gui_smoke_test_renders_the_scene_under_xvfb() {
             }
         }
     }
-    assert!(bright > 2000, "only {bright} bright pixels in the viewport: the meshes are not rendered");
+    assert!(
+        bright > 2000,
+        "only {bright} bright pixels in the viewport: the meshes are not rendered"
+    );
 }

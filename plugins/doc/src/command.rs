@@ -68,16 +68,34 @@ pub enum Command {
         transform: Transform,
     },
     /// Rebuilds a primitive node with new parameters ("adjust last operation").
-    SetPrimitive { node: NodeRef, primitive: Primitive },
+    SetPrimitive {
+        node: NodeRef,
+        primitive: Primitive,
+    },
     /// Sets local transforms of one or more nodes in one step.
-    SetTransforms { nodes: Vec<(NodeRef, Transform)> },
+    SetTransforms {
+        nodes: Vec<(NodeRef, Transform)>,
+    },
     /// Moves nodes by an offset in their parent's space.
-    Translate { nodes: Vec<NodeRef>, offset: DVec3 },
+    Translate {
+        nodes: Vec<NodeRef>,
+        offset: DVec3,
+    },
     /// Rotates nodes about their own origin around an axis (degrees).
-    Rotate { nodes: Vec<NodeRef>, axis: DVec3, degrees: f64 },
+    Rotate {
+        nodes: Vec<NodeRef>,
+        axis: DVec3,
+        degrees: f64,
+    },
     /// Multiplies nodes' scale.
-    Scale { nodes: Vec<NodeRef>, factor: DVec3 },
-    Rename { node: NodeRef, name: String },
+    Scale {
+        nodes: Vec<NodeRef>,
+        factor: DVec3,
+    },
+    Rename {
+        node: NodeRef,
+        name: String,
+    },
     /// Gives a node a new parent (`None` for the root). With `keep_world`
     /// the node stays where it is in the world.
     Reparent {
@@ -86,19 +104,31 @@ pub enum Command {
         #[serde(default = "yes")]
         keep_world: bool,
     },
-    SetVisible { nodes: Vec<NodeRef>, visible: bool },
+    SetVisible {
+        nodes: Vec<NodeRef>,
+        visible: bool,
+    },
     /// Flat or smooth shading of mesh nodes.
-    SetShading { nodes: Vec<NodeRef>, shading: Shading },
+    SetShading {
+        nodes: Vec<NodeRef>,
+        shading: Shading,
+    },
     /// Deletes nodes with their descendants.
-    Delete { nodes: Vec<NodeRef> },
+    Delete {
+        nodes: Vec<NodeRef>,
+    },
     /// Copies nodes with their descendants; copies get new ids and names.
-    Duplicate { nodes: Vec<NodeRef> },
+    Duplicate {
+        nodes: Vec<NodeRef>,
+    },
 }
 
 /// Round primitives start smooth, boxy ones flat, as in most modelers.
 fn primitive_shading(p: &Primitive) -> Shading {
     match p {
-        Primitive::UvSphere { .. } | Primitive::IcoSphere { .. } | Primitive::Torus { .. } => Shading::Smooth,
+        Primitive::UvSphere { .. } | Primitive::IcoSphere { .. } | Primitive::Torus { .. } => {
+            Shading::Smooth
+        }
         _ => Shading::Flat,
     }
 }
@@ -137,14 +167,20 @@ impl Command {
             Command::AddPrimitive { primitive, .. } => format!("Add {}", primitive.display_name()),
             Command::AddMesh { name, .. } => format!("Add Mesh '{name}'"),
             Command::AddEmpty { name, .. } => format!("Add Empty '{name}'"),
-            Command::SetPrimitive { primitive, .. } => format!("Adjust {}", primitive.display_name()),
-            Command::SetTransforms { nodes } => format!("Transform {}", plural(nodes.len(), "node")),
+            Command::SetPrimitive { primitive, .. } => {
+                format!("Adjust {}", primitive.display_name())
+            }
+            Command::SetTransforms { nodes } => {
+                format!("Transform {}", plural(nodes.len(), "node"))
+            }
             Command::Translate { nodes, .. } => format!("Move {}", plural(nodes.len(), "node")),
             Command::Rotate { nodes, .. } => format!("Rotate {}", plural(nodes.len(), "node")),
             Command::Scale { nodes, .. } => format!("Scale {}", plural(nodes.len(), "node")),
             Command::Rename { name, .. } => format!("Rename to '{name}'"),
             Command::Reparent { .. } => "Set Parent".to_string(),
-            Command::SetVisible { visible, .. } => if *visible { "Show" } else { "Hide" }.to_string(),
+            Command::SetVisible { visible, .. } => {
+                if *visible { "Show" } else { "Hide" }.to_string()
+            }
             Command::SetShading { shading, .. } => format!("Shade {shading:?}"),
             Command::Delete { nodes } => format!("Delete {}", plural(nodes.len(), "node")),
             Command::Duplicate { nodes } => format!("Duplicate {}", plural(nodes.len(), "node")),
@@ -153,7 +189,11 @@ impl Command {
 }
 
 fn plural(n: usize, what: &str) -> String {
-    if n == 1 { format!("1 {what}") } else { format!("{n} {what}s") }
+    if n == 1 {
+        format!("1 {what}")
+    } else {
+        format!("{n} {what}s")
+    }
 }
 
 impl Document {
@@ -164,13 +204,18 @@ impl Document {
     pub fn resolve(&self, r: &NodeRef) -> Result<NodeId, CommandError> {
         match r {
             NodeRef::Id(i) if self.nodes.contains_key(&NodeId(*i)) => Ok(NodeId(*i)),
-            NodeRef::Name(n) => self.find_by_name(n).map(|n| n.id).ok_or_else(|| CommandError::UnknownNode(r.clone())),
+            NodeRef::Name(n) => self
+                .find_by_name(n)
+                .map(|n| n.id)
+                .ok_or_else(|| CommandError::UnknownNode(r.clone())),
             _ => Err(CommandError::UnknownNode(r.clone())),
         }
     }
 
     fn label_of(&self, id: NodeId) -> String {
-        self.nodes.get(&id).map_or_else(|| id.to_string(), |n| format!("'{}' ({id})", n.name))
+        self.nodes
+            .get(&id)
+            .map_or_else(|| id.to_string(), |n| format!("'{}' ({id})", n.name))
     }
 
     /// Decides a command: the transaction it would apply, or why not.
@@ -180,7 +225,11 @@ impl Document {
     /// # Errors
     /// A [`CommandError`] naming the node or value at fault.
     pub fn decide(&self, cmd: &Command, serial: u64) -> Result<Transaction, CommandError> {
-        let mut plan = Plan { doc: self, next_id: self.next_node_id, changes: Vec::new() };
+        let mut plan = Plan {
+            doc: self,
+            next_id: self.next_node_id,
+            changes: Vec::new(),
+        };
         plan.run(cmd)?;
         if plan.changes.is_empty() {
             return Err(CommandError::Nothing("the command changes nothing"));
@@ -222,7 +271,11 @@ impl Plan<'_> {
         } else {
             let before = self.doc.nodes.get(&node.id).cloned();
             if before.as_ref() != Some(&node) {
-                self.changes.push(NodeChange { id: node.id, before, after: Some(node) });
+                self.changes.push(NodeChange {
+                    id: node.id,
+                    before,
+                    after: Some(node),
+                });
             }
         }
     }
@@ -232,13 +285,23 @@ impl Plan<'_> {
             c.after = None;
         } else {
             let before = self.doc.nodes.get(&id).cloned();
-            self.changes.push(NodeChange { id, before, after: None });
+            self.changes.push(NodeChange {
+                id,
+                before,
+                after: None,
+            });
         }
     }
 
     fn taken_name(&self, name: &str) -> bool {
-        self.doc.nodes.values().any(|n| n.name == name && self.current(n.id).is_some_and(|c| c.name == name))
-            || self.changes.iter().any(|c| c.after.as_ref().is_some_and(|n| n.name == name))
+        self.doc
+            .nodes
+            .values()
+            .any(|n| n.name == name && self.current(n.id).is_some_and(|c| c.name == name))
+            || self
+                .changes
+                .iter()
+                .any(|c| c.after.as_ref().is_some_and(|n| n.name == name))
     }
 
     fn unique_name(&self, name: &str) -> String {
@@ -249,32 +312,55 @@ impl Plan<'_> {
             Some((b, s)) if s.len() == 3 && s.chars().all(|c| c.is_ascii_digit()) => b,
             _ => name,
         };
-        (1..).map(|i| format!("{base}.{i:03}")).find(|n| !self.taken_name(n)).expect("a free suffix exists")
+        (1..)
+            .map(|i| format!("{base}.{i:03}"))
+            .find(|n| !self.taken_name(n))
+            .expect("a free suffix exists")
     }
 
-    fn add_node(&mut self, name: &str, parent: &Option<NodeRef>, transform: Transform, content: NodeContent) -> Result<NodeId, CommandError> {
+    fn add_node(
+        &mut self,
+        name: &str,
+        parent: &Option<NodeRef>,
+        transform: Transform,
+        content: NodeContent,
+    ) -> Result<NodeId, CommandError> {
         if name.trim().is_empty() {
             return Err(CommandError::EmptyName);
         }
         let parent = parent.as_ref().map(|p| self.resolve(p)).transpose()?;
         let id = NodeId(self.next_id);
         if !transform.is_usable() {
-            return Err(CommandError::BadTransform { node: name.to_string() });
+            return Err(CommandError::BadTransform {
+                node: name.to_string(),
+            });
         }
         self.next_id += 1;
         let name = self.unique_name(name);
-        self.set(Node { id, name, parent, transform, visible: true, content });
+        self.set(Node {
+            id,
+            name,
+            parent,
+            transform,
+            visible: true,
+            content,
+        });
         Ok(id)
     }
 
     fn node(&self, r: &NodeRef) -> Result<Node, CommandError> {
         let id = self.resolve(r)?;
-        Ok(self.current(id).cloned().ok_or(CommandError::UnknownNode(r.clone()))?)
+        Ok(self
+            .current(id)
+            .cloned()
+            .ok_or(CommandError::UnknownNode(r.clone()))?)
     }
 
     fn set_transform(&mut self, mut node: Node, transform: Transform) -> Result<(), CommandError> {
         if !transform.is_usable() {
-            return Err(CommandError::BadTransform { node: self.doc.label_of(node.id) });
+            return Err(CommandError::BadTransform {
+                node: self.doc.label_of(node.id),
+            });
         }
         node.transform = transform;
         self.set(node);
@@ -283,31 +369,66 @@ impl Plan<'_> {
 
     fn run(&mut self, cmd: &Command) -> Result<(), CommandError> {
         match cmd {
-            Command::AddPrimitive { primitive, name, parent, transform } => {
+            Command::AddPrimitive {
+                primitive,
+                name,
+                parent,
+                transform,
+            } => {
                 let mesh = primitive.build()?;
-                let name = name.clone().unwrap_or_else(|| primitive.display_name().to_string());
-                let content = NodeContent::Mesh(MeshContent { mesh: Arc::new(mesh), primitive: Some(primitive.clone()), shading: primitive_shading(primitive) });
+                let name = name
+                    .clone()
+                    .unwrap_or_else(|| primitive.display_name().to_string());
+                let content = NodeContent::Mesh(MeshContent {
+                    mesh: Arc::new(mesh),
+                    primitive: Some(primitive.clone()),
+                    shading: primitive_shading(primitive),
+                });
                 self.add_node(&name, parent, *transform, content)?;
             }
-            Command::AddMesh { name, positions, polygons, parent, transform } => {
+            Command::AddMesh {
+                name,
+                positions,
+                polygons,
+                parent,
+                transform,
+            } => {
                 let mesh = HalfEdgeMesh::from_polygons(positions, polygons)?;
-                let content = NodeContent::Mesh(MeshContent { mesh: Arc::new(mesh), primitive: None, shading: Shading::Flat });
+                let content = NodeContent::Mesh(MeshContent {
+                    mesh: Arc::new(mesh),
+                    primitive: None,
+                    shading: Shading::Flat,
+                });
                 self.add_node(name, parent, *transform, content)?;
             }
-            Command::AddEmpty { name, parent, transform } => {
+            Command::AddEmpty {
+                name,
+                parent,
+                transform,
+            } => {
                 self.add_node(name, parent, *transform, NodeContent::Empty)?;
             }
             Command::SetPrimitive { node, primitive } => {
                 let mut n = self.node(node)?;
                 let NodeContent::Mesh(content) = &n.content else {
-                    return Err(CommandError::NotAMesh { node: self.doc.label_of(n.id) });
+                    return Err(CommandError::NotAMesh {
+                        node: self.doc.label_of(n.id),
+                    });
                 };
                 match &content.primitive {
                     Some(old) if old.kind() == primitive.kind() => {}
-                    _ => return Err(CommandError::NotAPrimitive { node: self.doc.label_of(n.id) }),
+                    _ => {
+                        return Err(CommandError::NotAPrimitive {
+                            node: self.doc.label_of(n.id),
+                        });
+                    }
                 }
                 let mesh = primitive.build()?;
-                n.content = NodeContent::Mesh(MeshContent { mesh: Arc::new(mesh), primitive: Some(primitive.clone()), shading: content.shading });
+                n.content = NodeContent::Mesh(MeshContent {
+                    mesh: Arc::new(mesh),
+                    primitive: Some(primitive.clone()),
+                    shading: content.shading,
+                });
                 self.set(n);
             }
             Command::SetTransforms { nodes } => {
@@ -319,25 +440,38 @@ impl Plan<'_> {
             Command::Translate { nodes, offset } => {
                 for r in nodes {
                     let n = self.node(r)?;
-                    let t = Transform { translation: n.transform.translation + *offset, ..n.transform };
+                    let t = Transform {
+                        translation: n.transform.translation + *offset,
+                        ..n.transform
+                    };
                     self.set_transform(n, t)?;
                 }
             }
-            Command::Rotate { nodes, axis, degrees } => {
+            Command::Rotate {
+                nodes,
+                axis,
+                degrees,
+            } => {
                 let Some(axis) = axis.try_normalize() else {
                     return Err(CommandError::Nothing("the rotation axis is zero"));
                 };
                 let q = DQuat::from_axis_angle(axis, degrees.to_radians());
                 for r in nodes {
                     let n = self.node(r)?;
-                    let t = Transform { rotation: (q * n.transform.rotation).normalize(), ..n.transform };
+                    let t = Transform {
+                        rotation: (q * n.transform.rotation).normalize(),
+                        ..n.transform
+                    };
                     self.set_transform(n, t)?;
                 }
             }
             Command::Scale { nodes, factor } => {
                 for r in nodes {
                     let n = self.node(r)?;
-                    let t = Transform { scale: n.transform.scale * *factor, ..n.transform };
+                    let t = Transform {
+                        scale: n.transform.scale * *factor,
+                        ..n.transform
+                    };
                     self.set_transform(n, t)?;
                 }
             }
@@ -351,17 +485,25 @@ impl Plan<'_> {
                     self.set(n);
                 }
             }
-            Command::Reparent { node, parent, keep_world } => {
+            Command::Reparent {
+                node,
+                parent,
+                keep_world,
+            } => {
                 let mut n = self.node(node)?;
                 let new_parent = parent.as_ref().map(|p| self.resolve(p)).transpose()?;
                 if let Some(p) = new_parent {
                     if self.doc.is_ancestor(n.id, p) {
-                        return Err(CommandError::Cycle { node: self.doc.label_of(n.id), parent: self.doc.label_of(p) });
+                        return Err(CommandError::Cycle {
+                            node: self.doc.label_of(n.id),
+                            parent: self.doc.label_of(p),
+                        });
                     }
                 }
                 if *keep_world {
                     let world = self.doc.world_matrix(n.id);
-                    let parent_world = new_parent.map_or(glam::DMat4::IDENTITY, |p| self.doc.world_matrix(p));
+                    let parent_world =
+                        new_parent.map_or(glam::DMat4::IDENTITY, |p| self.doc.world_matrix(p));
                     n.transform = Transform::from_matrix(parent_world.inverse() * world);
                 }
                 n.parent = new_parent;
@@ -378,7 +520,9 @@ impl Plan<'_> {
                 for r in nodes {
                     let mut n = self.node(r)?;
                     let NodeContent::Mesh(content) = &mut n.content else {
-                        return Err(CommandError::NotAMesh { node: self.doc.label_of(n.id) });
+                        return Err(CommandError::NotAMesh {
+                            node: self.doc.label_of(n.id),
+                        });
                     };
                     content.shading = *shading;
                     self.set(n);
@@ -404,9 +548,16 @@ impl Plan<'_> {
                         self.next_id += 1;
                     }
                     for &old in &subtree {
-                        let mut n = self.current(old).cloned().ok_or(CommandError::UnknownNode(NodeRef::Id(old.0)))?;
+                        let mut n = self
+                            .current(old)
+                            .cloned()
+                            .ok_or(CommandError::UnknownNode(NodeRef::Id(old.0)))?;
                         n.id = map[&old];
-                        n.parent = if old == root { n.parent } else { n.parent.map(|p| map[&p]) };
+                        n.parent = if old == root {
+                            n.parent
+                        } else {
+                            n.parent.map(|p| map[&p])
+                        };
                         n.name = self.unique_name(&n.name);
                         self.set(n);
                     }

@@ -10,7 +10,9 @@ pub fn to_obj(doc: &Document) -> String {
     let mut out = String::from("# Hedra OBJ export\n");
     let mut base = 1usize;
     for node in doc.nodes() {
-        let NodeContent::Mesh(content) = &node.content else { continue };
+        let NodeContent::Mesh(content) = &node.content else {
+            continue;
+        };
         if !is_visible(doc, node.id) {
             continue;
         }

@@ -44,13 +44,23 @@ pub const EXTENSION: &str = "hedra.ron";
 #[derive(Debug, thiserror::Error)]
 pub enum FileError {
     #[error("{path}: {source}")]
-    Io { path: PathBuf, source: std::io::Error },
+    Io {
+        path: PathBuf,
+        source: std::io::Error,
+    },
     #[error("{path}: not a Hedra scene file ({reason})")]
     NotAScene { path: PathBuf, reason: String },
-    #[error("{path}: written by a newer Hedra (format version {version}); this build reads versions up to {FORMAT_VERSION}")]
+    #[error(
+        "{path}: written by a newer Hedra (format version {version}); this build reads versions up to {FORMAT_VERSION}"
+    )]
     NewerVersion { path: PathBuf, version: u32 },
     #[error("{path}:{line}:{column}: {message}")]
-    Parse { path: PathBuf, line: usize, column: usize, message: String },
+    Parse {
+        path: PathBuf,
+        line: usize,
+        column: usize,
+        message: String,
+    },
     #[error("{path}: {message}")]
     Invalid { path: PathBuf, message: String },
 }
@@ -173,7 +183,11 @@ impl<'a> MeshPool<'a> {
             visible: n.visible,
             content: match &n.content {
                 NodeContent::Empty => StoredContent::Empty,
-                NodeContent::Mesh(m) => StoredContent::Mesh { mesh: self.add(&m.mesh), primitive: m.primitive.clone(), shading: m.shading },
+                NodeContent::Mesh(m) => StoredContent::Mesh {
+                    mesh: self.add(&m.mesh),
+                    primitive: m.primitive.clone(),
+                    shading: m.shading,
+                },
             },
         }
     }
@@ -199,7 +213,10 @@ impl<'a> MeshPool<'a> {
 
 /// The text of a scene file for a session.
 pub fn to_string(session: &Session) -> String {
-    let mut pool = MeshPool { index: HashMap::new(), meshes: Vec::new() };
+    let mut pool = MeshPool {
+        index: HashMap::new(),
+        meshes: Vec::new(),
+    };
     let scene = StoredScene {
         next_node_id: session.doc.next_node_id,
         nodes: session.doc.nodes().map(|n| pool.node(n)).collect(),
@@ -208,7 +225,12 @@ pub fn to_string(session: &Session) -> String {
     let h = &session.history;
     let done = h.done.iter().map(|t| pool.transaction(t)).collect();
     let undone = h.undone.iter().map(|t| pool.transaction(t)).collect();
-    let history_meshes = pool.meshes.split_off(scene_meshes).into_iter().cloned().collect();
+    let history_meshes = pool
+        .meshes
+        .split_off(scene_meshes)
+        .into_iter()
+        .cloned()
+        .collect();
     let file = FileOut {
         format: FORMAT_NAME,
         version: FORMAT_VERSION,
@@ -223,14 +245,19 @@ pub fn to_string(session: &Session) -> String {
             max_steps: h.max_steps,
         },
     };
-    let config = ron::ser::PrettyConfig::new().depth_limit(3).struct_names(false);
+    let config = ron::ser::PrettyConfig::new()
+        .depth_limit(3)
+        .struct_names(false);
     let mut text = ron::ser::to_string_pretty(&file, config).expect("scene data always serialises");
     text.push('\n');
     text
 }
 
 fn io(path: &Path) -> impl FnOnce(std::io::Error) -> FileError + '_ {
-    move |source| FileError::Io { path: path.to_path_buf(), source }
+    move |source| FileError::Io {
+        path: path.to_path_buf(),
+        source,
+    }
 }
 
 /// Writes `text` to `path` atomically: a temporary file in the same folder,
@@ -248,7 +275,11 @@ pub fn write_atomic(path: &Path, text: &str) -> Result<(), FileError> {
         path: path.to_path_buf(),
         source: std::io::Error::new(std::io::ErrorKind::InvalidInput, "not a file name"),
     })?;
-    let tmp = dir.join(format!(".{}.tmp-{}", name.to_string_lossy(), std::process::id()));
+    let tmp = dir.join(format!(
+        ".{}.tmp-{}",
+        name.to_string_lossy(),
+        std::process::id()
+    ));
     let result = (|| {
         let mut f = std::fs::File::create(&tmp).map_err(io(&tmp))?;
         f.write_all(text.as_bytes()).map_err(io(&tmp))?;
@@ -293,8 +324,10 @@ pub fn save(session: &mut Session, path: &Path) -> Result<(), FileError> {
 /// A [`FileError`] naming the file, and the line and column of a syntax error.
 pub fn load(path: &Path) -> Result<Loaded, FileError> {
     let bytes = std::fs::read(path).map_err(io(path))?;
-    let text = String::from_utf8(bytes)
-        .map_err(|e| FileError::NotAScene { path: path.to_path_buf(), reason: format!("not UTF-8 text ({e})") })?;
+    let text = String::from_utf8(bytes).map_err(|e| FileError::NotAScene {
+        path: path.to_path_buf(),
+        reason: format!("not UTF-8 text ({e})"),
+    })?;
     from_str(&text, path)
 }
 
@@ -303,12 +336,21 @@ pub fn load(path: &Path) -> Result<Loaded, FileError> {
 /// # Errors
 /// As [`load`].
 pub fn from_str(text: &str, path: &Path) -> Result<Loaded, FileError> {
-    let version = sniff_header(text).map_err(|reason| FileError::NotAScene { path: path.to_path_buf(), reason })?;
+    let version = sniff_header(text).map_err(|reason| FileError::NotAScene {
+        path: path.to_path_buf(),
+        reason,
+    })?;
     if version > FORMAT_VERSION {
-        return Err(FileError::NewerVersion { path: path.to_path_buf(), version });
+        return Err(FileError::NewerVersion {
+            path: path.to_path_buf(),
+            version,
+        });
     }
     if version == 0 {
-        return Err(FileError::NotAScene { path: path.to_path_buf(), reason: "format version 0 does not exist".into() });
+        return Err(FileError::NotAScene {
+            path: path.to_path_buf(),
+            reason: "format version 0 does not exist".into(),
+        });
     }
     // Version 1 is current; older versions would be migrated here, one typed
     // step at a time, before `read_v1`.
@@ -321,23 +363,34 @@ fn sniff_header(text: &str) -> Result<u32, String> {
     let head: String = text.chars().take(1024).collect();
     let after = |key: &str| head.find(key).map(|i| head[i + key.len()..].trim_start());
     let format = after("format:").ok_or("no format header")?;
-    let format = format.strip_prefix('"').and_then(|f| f.split('"').next()).ok_or("malformed format header")?;
+    let format = format
+        .strip_prefix('"')
+        .and_then(|f| f.split('"').next())
+        .ok_or("malformed format header")?;
     if format != FORMAT_NAME {
         return Err(format!("format is '{format}', expected '{FORMAT_NAME}'"));
     }
     let version = after("version:").ok_or("no version header")?;
     let digits: String = version.chars().take_while(char::is_ascii_digit).collect();
-    digits.parse().map_err(|_| "malformed version header".to_string())
+    digits
+        .parse()
+        .map_err(|_| "malformed version header".to_string())
 }
 
 fn parse_error(path: &Path, e: ron::error::SpannedError) -> FileError {
-    FileError::Parse { path: path.to_path_buf(), line: e.span.start.line, column: e.span.start.col, message: e.code.to_string() }
+    FileError::Parse {
+        path: path.to_path_buf(),
+        line: e.span.start.line,
+        column: e.span.start.col,
+        message: e.code.to_string(),
+    }
 }
 
 fn read_v1(text: &str, path: &Path) -> Result<Loaded, FileError> {
     let mut warnings = Vec::new();
     // `history: (…)` is read as `Some(raw)`; the history is parsed later on its own.
-    let options = ron::Options::default().with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME);
+    let options =
+        ron::Options::default().with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME);
     let file: FileIn = match options.from_str(text) {
         Ok(f) => f,
         Err(e) => {
@@ -347,7 +400,9 @@ fn read_v1(text: &str, path: &Path) -> Result<Loaded, FileError> {
             match (history_start, history_line) {
                 (Some(cut), Some(hl)) if e.span.start.line >= hl => {
                     let truncated = format!("{}\n)", &text[..cut]);
-                    let f: FileIn = options.from_str(&truncated).map_err(|_| parse_error(path, e.clone()))?;
+                    let f: FileIn = options
+                        .from_str(&truncated)
+                        .map_err(|_| parse_error(path, e.clone()))?;
                     warnings.push(format!(
                         "the undo history could not be read ({}); the scene opened without it",
                         parse_error(path, e)
@@ -359,9 +414,15 @@ fn read_v1(text: &str, path: &Path) -> Result<Loaded, FileError> {
         }
     };
     if file.format != FORMAT_NAME || file.version != 1 {
-        return Err(FileError::NotAScene { path: path.to_path_buf(), reason: "header fields disagree".into() });
+        return Err(FileError::NotAScene {
+            path: path.to_path_buf(),
+            reason: "header fields disagree".into(),
+        });
     }
-    let invalid = |message: String| FileError::Invalid { path: path.to_path_buf(), message };
+    let invalid = |message: String| FileError::Invalid {
+        path: path.to_path_buf(),
+        message,
+    };
     let scene_pool: Vec<Arc<HalfEdgeMesh>> = file.meshes.into_iter().map(Arc::new).collect();
     let mut doc = Document::new();
     doc.next_node_id = file.scene.next_node_id;
@@ -372,11 +433,17 @@ fn read_v1(text: &str, path: &Path) -> Result<Loaded, FileError> {
         }
     }
     doc.check().map_err(&invalid)?;
-    let mut session = Session { doc, history: History::default(), saved_serial: None };
+    let mut session = Session {
+        doc,
+        history: History::default(),
+        saved_serial: None,
+    };
     if let Some(raw) = file.history {
         match restore_history(&raw, scene_pool, &session.doc) {
             Ok(h) => session.history = h,
-            Err(why) => warnings.push(format!("the undo history is damaged ({why}); the scene opened without it")),
+            Err(why) => warnings.push(format!(
+                "the undo history is damaged ({why}); the scene opened without it"
+            )),
         }
     }
     session.mark_saved();
@@ -386,16 +453,45 @@ fn read_v1(text: &str, path: &Path) -> Result<Loaded, FileError> {
 fn restore_node(sn: StoredNode, pool: &[Arc<HalfEdgeMesh>]) -> Result<Node, String> {
     let content = match sn.content {
         StoredContent::Empty => NodeContent::Empty,
-        StoredContent::Mesh { mesh, primitive, shading } => {
-            let m = pool.get(mesh).ok_or_else(|| format!("node {} '{}' uses mesh {mesh}, which is not stored", sn.id, sn.name))?;
-            NodeContent::Mesh(MeshContent { mesh: m.clone(), primitive, shading })
+        StoredContent::Mesh {
+            mesh,
+            primitive,
+            shading,
+        } => {
+            let m = pool.get(mesh).ok_or_else(|| {
+                format!(
+                    "node {} '{}' uses mesh {mesh}, which is not stored",
+                    sn.id, sn.name
+                )
+            })?;
+            NodeContent::Mesh(MeshContent {
+                mesh: m.clone(),
+                primitive,
+                shading,
+            })
         }
     };
-    Ok(Node { id: sn.id, name: sn.name, parent: sn.parent, transform: sn.transform, visible: sn.visible, content })
+    Ok(Node {
+        id: sn.id,
+        name: sn.name,
+        parent: sn.parent,
+        transform: sn.transform,
+        visible: sn.visible,
+        content,
+    })
 }
 
-fn restore_history(raw: &RawValue, mut pool: Vec<Arc<HalfEdgeMesh>>, doc: &Document) -> Result<History, String> {
-    let stored: StoredHistory = raw.into_rust().map_err(|e| format!("{} at history line {}, column {}", e.code, e.span.start.line, e.span.start.col))?;
+fn restore_history(
+    raw: &RawValue,
+    mut pool: Vec<Arc<HalfEdgeMesh>>,
+    doc: &Document,
+) -> Result<History, String> {
+    let stored: StoredHistory = raw.into_rust().map_err(|e| {
+        format!(
+            "{} at history line {}, column {}",
+            e.code, e.span.start.line, e.span.start.col
+        )
+    })?;
     pool.extend(stored.meshes.into_iter().map(Arc::new));
     let restore_tx = |t: StoredTransaction| -> Result<Transaction, String> {
         let mut changes = Vec::with_capacity(t.changes.len());
@@ -406,10 +502,25 @@ fn restore_history(raw: &RawValue, mut pool: Vec<Arc<HalfEdgeMesh>>, doc: &Docum
                 after: c.after.map(|n| restore_node(n, &pool)).transpose()?,
             });
         }
-        Ok(Transaction { serial: t.serial, label: t.label, command: t.command, changes, next_id_before: t.next_id_before, next_id_after: t.next_id_after })
+        Ok(Transaction {
+            serial: t.serial,
+            label: t.label,
+            command: t.command,
+            changes,
+            next_id_before: t.next_id_before,
+            next_id_after: t.next_id_after,
+        })
     };
-    let done = stored.done.into_iter().map(&restore_tx).collect::<Result<Vec<_>, _>>()?;
-    let undone = stored.undone.into_iter().map(&restore_tx).collect::<Result<Vec<_>, _>>()?;
+    let done = stored
+        .done
+        .into_iter()
+        .map(&restore_tx)
+        .collect::<Result<Vec<_>, _>>()?;
+    let undone = stored
+        .undone
+        .into_iter()
+        .map(&restore_tx)
+        .collect::<Result<Vec<_>, _>>()?;
     let history = History {
         done,
         undone,
@@ -424,11 +535,16 @@ fn restore_history(raw: &RawValue, mut pool: Vec<Arc<HalfEdgeMesh>>, doc: &Docum
     let mut probe_doc = doc.clone();
     for t in history.done.iter().rev() {
         if !t.fits(&probe_doc, false) {
-            return Err(format!("step '{}' does not lead to the state after it", t.label));
+            return Err(format!(
+                "step '{}' does not lead to the state after it",
+                t.label
+            ));
         }
         t.apply(&mut probe_doc, false);
     }
-    probe_doc.check().map_err(|e| format!("undoing every step gives a broken scene: {e}"))?;
+    probe_doc
+        .check()
+        .map_err(|e| format!("undoing every step gives a broken scene: {e}"))?;
     for t in &history.done {
         t.apply(&mut probe_doc, true);
     }
@@ -438,12 +554,22 @@ fn restore_history(raw: &RawValue, mut pool: Vec<Arc<HalfEdgeMesh>>, doc: &Docum
     let mut redo_doc = doc.clone();
     for t in history.undone.iter().rev() {
         if !t.fits(&redo_doc, true) {
-            return Err(format!("redo step '{}' does not start from the scene", t.label));
+            return Err(format!(
+                "redo step '{}' does not start from the scene",
+                t.label
+            ));
         }
         t.apply(&mut redo_doc, true);
     }
-    let serials: Vec<u64> = history.done.iter().chain(history.undone.iter().rev()).map(|t| t.serial).collect();
-    if serials.windows(2).any(|w| w[0] >= w[1]) || serials.last().is_some_and(|&s| s >= history.next_serial) {
+    let serials: Vec<u64> = history
+        .done
+        .iter()
+        .chain(history.undone.iter().rev())
+        .map(|t| t.serial)
+        .collect();
+    if serials.windows(2).any(|w| w[0] >= w[1])
+        || serials.last().is_some_and(|&s| s >= history.next_serial)
+    {
         return Err("step serial numbers are out of order".into());
     }
     Ok(history)

@@ -38,8 +38,11 @@ pub struct Transaction {
 impl Transaction {
     /// Applies the step forward (`redo`) or backward (`undo`).
     pub fn apply(&self, doc: &mut Document, forward: bool) {
-        let changes: Box<dyn Iterator<Item = &NodeChange>> =
-            if forward { Box::new(self.changes.iter()) } else { Box::new(self.changes.iter().rev()) };
+        let changes: Box<dyn Iterator<Item = &NodeChange>> = if forward {
+            Box::new(self.changes.iter())
+        } else {
+            Box::new(self.changes.iter().rev())
+        };
         for c in changes {
             let target = if forward { &c.after } else { &c.before };
             match target {
@@ -51,7 +54,11 @@ impl Transaction {
                 }
             }
         }
-        doc.next_node_id = if forward { self.next_id_after } else { self.next_id_before };
+        doc.next_node_id = if forward {
+            self.next_id_after
+        } else {
+            self.next_id_before
+        };
     }
 
     /// True when the document is in the state this step starts from
@@ -179,7 +186,11 @@ impl History {
         for t in self.done.iter().chain(&self.undone) {
             for c in &t.changes {
                 total += 256;
-                for m in [c.before.as_ref(), c.after.as_ref()].into_iter().flatten().filter_map(mesh_arc) {
+                for m in [c.before.as_ref(), c.after.as_ref()]
+                    .into_iter()
+                    .flatten()
+                    .filter_map(mesh_arc)
+                {
                     if seen.insert(Arc::as_ptr(m)) {
                         total += mesh_bytes(m);
                     }

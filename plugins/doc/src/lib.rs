@@ -6,6 +6,7 @@ pub mod command;
 pub mod export;
 pub mod file;
 pub mod history;
+pub mod import;
 pub mod report;
 pub mod scene;
 pub mod script;

@@ -61,7 +61,11 @@ pub struct HistoryReport {
 }
 
 fn transform(t: &crate::scene::Transform) -> TransformReport {
-    TransformReport { translation: t.translation.to_array(), rotation: t.rotation.to_array(), scale: t.scale.to_array() }
+    TransformReport {
+        translation: t.translation.to_array(),
+        rotation: t.rotation.to_array(),
+        scale: t.scale.to_array(),
+    }
 }
 
 fn mesh_report(s: MeshStats, primitive: Option<String>) -> MeshReport {
@@ -95,7 +99,10 @@ impl SceneReport {
                 local: transform(&n.transform),
                 world: transform(&doc.world_transform(n.id)),
                 mesh: match &n.content {
-                    NodeContent::Mesh(m) => Some(mesh_report(m.mesh.stats(), m.primitive.as_ref().map(|p| p.kind().to_string()))),
+                    NodeContent::Mesh(m) => Some(mesh_report(
+                        m.mesh.stats(),
+                        m.primitive.as_ref().map(|p| p.kind().to_string()),
+                    )),
                     NodeContent::Empty => None,
                 },
             })
@@ -123,8 +130,22 @@ impl SceneReport {
         let v3 = |a: [f64; 3]| format!("({:.4}, {:.4}, {:.4})", a[0], a[1], a[2]);
         for n in &self.nodes {
             let parent = n.parent.map_or("-".to_string(), |p| format!("#{p}"));
-            let _ = writeln!(out, "#{} {} [{}] parent {} {}", n.id, n.name, n.kind, parent, if n.visible { "" } else { "(hidden)" });
-            let _ = writeln!(out, "    world: translation {} scale {} rotation {:?}", v3(n.world.translation), v3(n.world.scale), n.world.rotation);
+            let _ = writeln!(
+                out,
+                "#{} {} [{}] parent {} {}",
+                n.id,
+                n.name,
+                n.kind,
+                parent,
+                if n.visible { "" } else { "(hidden)" }
+            );
+            let _ = writeln!(
+                out,
+                "    world: translation {} scale {} rotation {:?}",
+                v3(n.world.translation),
+                v3(n.world.scale),
+                n.world.rotation
+            );
             if let Some(m) = &n.mesh {
                 let _ = writeln!(
                     out,
@@ -137,12 +158,24 @@ impl SceneReport {
                     m.euler_characteristic,
                     m.genus.map_or("?".into(), |g| g.to_string()),
                     if m.closed { "closed" } else { "open" },
-                    if m.manifold { "manifold" } else { "NOT manifold" },
+                    if m.manifold {
+                        "manifold"
+                    } else {
+                        "NOT manifold"
+                    },
                 );
-                let _ = writeln!(out, "    validate: {}", m.validation_error.as_deref().unwrap_or("ok"));
+                let _ = writeln!(
+                    out,
+                    "    validate: {}",
+                    m.validation_error.as_deref().unwrap_or("ok")
+                );
             }
         }
-        let _ = writeln!(out, "history: {} undo step(s), {} redo step(s)", self.history.undo_steps, self.history.redo_steps);
+        let _ = writeln!(
+            out,
+            "history: {} undo step(s), {} redo step(s)",
+            self.history.undo_steps, self.history.redo_steps
+        );
         out
     }
 }

@@ -46,10 +46,17 @@ impl Default for Transform {
 }
 
 impl Transform {
-    pub const IDENTITY: Transform = Transform { translation: DVec3::ZERO, rotation: DQuat::IDENTITY, scale: DVec3::ONE };
+    pub const IDENTITY: Transform = Transform {
+        translation: DVec3::ZERO,
+        rotation: DQuat::IDENTITY,
+        scale: DVec3::ONE,
+    };
 
     pub fn from_translation(t: DVec3) -> Self {
-        Transform { translation: t, ..Self::IDENTITY }
+        Transform {
+            translation: t,
+            ..Self::IDENTITY
+        }
     }
     pub fn to_matrix(&self) -> DMat4 {
         DMat4::from_scale_rotation_translation(self.scale, self.rotation, self.translation)
@@ -57,7 +64,11 @@ impl Transform {
     /// Decomposes an affine matrix (shear is lost).
     pub fn from_matrix(m: DMat4) -> Self {
         let (scale, rotation, translation) = m.to_scale_rotation_translation();
-        Transform { translation, rotation: rotation.normalize(), scale }
+        Transform {
+            translation,
+            rotation: rotation.normalize(),
+            scale,
+        }
     }
     /// True when every component is finite and no scale is zero.
     pub fn is_usable(&self) -> bool {
@@ -132,7 +143,10 @@ pub struct Document {
 
 impl Document {
     pub fn new() -> Self {
-        Document { nodes: BTreeMap::new(), next_node_id: 1 }
+        Document {
+            nodes: BTreeMap::new(),
+            next_node_id: 1,
+        }
     }
     pub fn node(&self, id: NodeId) -> Option<&Node> {
         self.nodes.get(&id)
@@ -213,7 +227,11 @@ impl Document {
             return name.to_string();
         }
         let base = match name.rsplit_once('.') {
-            Some((b, suffix)) if suffix.len() == 3 && suffix.chars().all(|c| c.is_ascii_digit()) => b,
+            Some((b, suffix))
+                if suffix.len() == 3 && suffix.chars().all(|c| c.is_ascii_digit()) =>
+            {
+                b
+            }
             _ => name,
         };
         (1..)
@@ -229,7 +247,10 @@ impl Document {
                 return Err(format!("node {} is stored under id {}", n.id, id));
             }
             if id.0 >= self.next_node_id {
-                return Err(format!("node {id} is not below the next id {}", self.next_node_id));
+                return Err(format!(
+                    "node {id} is not below the next id {}",
+                    self.next_node_id
+                ));
             }
             if let Some(p) = n.parent {
                 if !self.nodes.contains_key(&p) {
@@ -239,7 +260,10 @@ impl Document {
                     return Err(format!("node {id} '{}' is its own ancestor", n.name));
                 }
             }
-            if !n.transform.translation.is_finite() || !n.transform.rotation.is_finite() || !n.transform.scale.is_finite() {
+            if !n.transform.translation.is_finite()
+                || !n.transform.rotation.is_finite()
+                || !n.transform.scale.is_finite()
+            {
                 return Err(format!("node {id} '{}' has a non-finite transform", n.name));
             }
         }

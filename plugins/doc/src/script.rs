@@ -10,9 +10,19 @@ use std::path::{Path, PathBuf};
 #[derive(Debug, thiserror::Error)]
 pub enum ScriptError {
     #[error("{path}:{line}:{column}: {message}")]
-    Parse { path: PathBuf, line: usize, column: usize, message: String },
+    Parse {
+        path: PathBuf,
+        line: usize,
+        column: usize,
+        message: String,
+    },
     #[error("{path}: command {index} ({label}): {error}")]
-    Command { path: PathBuf, index: usize, label: String, error: CommandError },
+    Command {
+        path: PathBuf,
+        index: usize,
+        label: String,
+        error: CommandError,
+    },
 }
 
 /// Parses script text into commands.
@@ -36,7 +46,11 @@ pub fn parse(text: &str, path: &Path) -> Result<Vec<Command>, ScriptError> {
 ///
 /// # Errors
 /// [`ScriptError::Command`] naming the 1-based command index.
-pub fn run(session: &mut Session, commands: &[Command], path: &Path) -> Result<Vec<Applied>, ScriptError> {
+pub fn run(
+    session: &mut Session,
+    commands: &[Command],
+    path: &Path,
+) -> Result<Vec<Applied>, ScriptError> {
     commands
         .iter()
         .enumerate()

@@ -16,7 +16,11 @@ pub struct Session {
 
 impl Default for Session {
     fn default() -> Self {
-        Session { doc: Document::new(), history: History::default(), saved_serial: Some(0) }
+        Session {
+            doc: Document::new(),
+            history: History::default(),
+            saved_serial: Some(0),
+        }
     }
 }
 
@@ -59,7 +63,12 @@ impl Session {
         t.apply(&mut self.doc, true);
         let applied = Applied {
             label: t.label.clone(),
-            created: t.changes.iter().filter(|c| c.before.is_none() && c.after.is_some()).map(|c| c.id).collect(),
+            created: t
+                .changes
+                .iter()
+                .filter(|c| c.before.is_none() && c.after.is_some())
+                .map(|c| c.id)
+                .collect(),
         };
         self.history.push(t);
         applied
@@ -85,6 +94,13 @@ impl Session {
                 Err(e)
             }
         }
+    }
+
+    /// Adds imported meshes as one undo step.
+    pub fn import(&mut self, meshes: &[crate::import::ImportedMesh], label: &str) -> Applied {
+        let serial = self.history.take_serial();
+        let t = self.doc.decide_import(meshes, label, serial);
+        self.commit(t)
     }
 
     pub fn undo(&mut self) -> Option<String> {

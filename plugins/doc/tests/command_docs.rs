@@ -4,7 +4,10 @@ use std::path::Path;
 
 #[test]
 fn every_command_example_in_the_docs_runs() {
-    let md = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/commands.md")).unwrap();
+    let md = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/commands.md"),
+    )
+    .unwrap();
     let mut blocks = Vec::new();
     let mut current: Option<String> = None;
     for line in md.lines() {
@@ -23,16 +26,30 @@ fn every_command_example_in_the_docs_runs() {
     }
     assert!(blocks.len() >= 15, "found only {} examples", blocks.len());
     let script = format!("[\n{}\n]", blocks.join(",\n"));
-    let commands = hedra_doc::script::parse(&script, Path::new("docs/commands.md")).unwrap_or_else(|e| panic!("{e}"));
+    let commands = hedra_doc::script::parse(&script, Path::new("docs/commands.md"))
+        .unwrap_or_else(|e| panic!("{e}"));
     // Every command variant has an example.
-    let mut kinds: Vec<String> = commands.iter().map(|c| format!("{c:?}").split([' ', '{', '(']).next().unwrap().to_string()).collect();
+    let mut kinds: Vec<String> = commands
+        .iter()
+        .map(|c| {
+            format!("{c:?}")
+                .split([' ', '{', '('])
+                .next()
+                .unwrap()
+                .to_string()
+        })
+        .collect();
     kinds.sort();
     kinds.dedup();
     assert_eq!(kinds.len(), 14, "{kinds:?}");
     let mut session = hedra_doc::Session::new();
-    hedra_doc::script::run(&mut session, &commands, Path::new("docs/commands.md")).unwrap_or_else(|e| panic!("{e}"));
+    hedra_doc::script::run(&mut session, &commands, Path::new("docs/commands.md"))
+        .unwrap_or_else(|e| panic!("{e}"));
     let doc = &session.doc;
-    assert!(doc.find_by_name("Pyramid").is_some_and(|n| n.parent.is_none()));
+    assert!(
+        doc.find_by_name("Pyramid")
+            .is_some_and(|n| n.parent.is_none())
+    );
     assert!(doc.find_by_name("Box.001").is_none());
     assert_eq!(session.history.done().len(), commands.len());
 }

@@ -10,7 +10,12 @@ fn name(n: &str) -> NodeRef {
 }
 
 fn add(p: Primitive, n: &str) -> Command {
-    Command::AddPrimitive { primitive: p, name: Some(n.into()), parent: None, transform: Transform::IDENTITY }
+    Command::AddPrimitive {
+        primitive: p,
+        name: Some(n.into()),
+        parent: None,
+        transform: Transform::IDENTITY,
+    }
 }
 
 fn cube() -> Primitive {
@@ -23,7 +28,11 @@ fn add_undo_redo_restores_exact_documents() {
     let empty = s.doc.clone();
     s.execute(&add(cube(), "Box")).unwrap();
     let one = s.doc.clone();
-    s.execute(&Command::Translate { nodes: vec![name("Box")], offset: DVec3::new(1.0, 2.0, 3.0) }).unwrap();
+    s.execute(&Command::Translate {
+        nodes: vec![name("Box")],
+        offset: DVec3::new(1.0, 2.0, 3.0),
+    })
+    .unwrap();
     let two = s.doc.clone();
     assert_eq!(s.undo().as_deref(), Some("Move 1 node"));
     assert_eq!(s.doc, one);
@@ -45,7 +54,10 @@ fn names_are_made_unique_like_blender() {
     }
     let names: Vec<_> = s.doc.nodes().map(|n| n.name.clone()).collect();
     assert_eq!(names, ["Cube", "Cube.001", "Cube.002"]);
-    s.execute(&Command::Duplicate { nodes: vec![name("Cube.001")] }).unwrap();
+    s.execute(&Command::Duplicate {
+        nodes: vec![name("Cube.001")],
+    })
+    .unwrap();
     assert!(s.doc.find_by_name("Cube.003").is_some());
 }
 
@@ -55,7 +67,11 @@ fn world_transforms_compose_parents_and_reparent_keeps_world_position() {
     s.execute(&Command::AddEmpty {
         name: "Base".into(),
         parent: None,
-        transform: Transform { translation: DVec3::new(10.0, 0.0, 0.0), rotation: DQuat::from_rotation_y(90f64.to_radians()), scale: DVec3::splat(2.0) },
+        transform: Transform {
+            translation: DVec3::new(10.0, 0.0, 0.0),
+            rotation: DQuat::from_rotation_y(90f64.to_radians()),
+            scale: DVec3::splat(2.0),
+        },
     })
     .unwrap();
     s.execute(&Command::AddPrimitive {
@@ -68,16 +84,36 @@ fn world_transforms_compose_parents_and_reparent_keeps_world_position() {
     let arm = s.doc.find_by_name("Arm").unwrap().id;
     // Base rotates +X to -Z and scales by 2: (1,0,0) -> (0,0,-2), then moves by 10 in X.
     let world = s.doc.world_transform(arm);
-    assert!(world.translation.abs_diff_eq(DVec3::new(10.0, 0.0, -2.0), 1e-12), "{:?}", world.translation);
+    assert!(
+        world
+            .translation
+            .abs_diff_eq(DVec3::new(10.0, 0.0, -2.0), 1e-12),
+        "{:?}",
+        world.translation
+    );
     assert!(world.scale.abs_diff_eq(DVec3::splat(2.0), 1e-12));
-    s.execute(&Command::Reparent { node: name("Arm"), parent: None, keep_world: true }).unwrap();
+    s.execute(&Command::Reparent {
+        node: name("Arm"),
+        parent: None,
+        keep_world: true,
+    })
+    .unwrap();
     let after = s.doc.world_transform(arm);
-    assert!(after.translation.abs_diff_eq(DVec3::new(10.0, 0.0, -2.0), 1e-9));
+    assert!(
+        after
+            .translation
+            .abs_diff_eq(DVec3::new(10.0, 0.0, -2.0), 1e-9)
+    );
     assert!(after.scale.abs_diff_eq(DVec3::splat(2.0), 1e-9));
     assert_eq!(s.doc.node(arm).unwrap().parent, None);
     // Without keep_world the local transform (now (10, 0, -2)) stays and the
     // parent applies on top: rotate to (-2, 0, -10), scale to (-4, 0, -20), move by 10.
-    s.execute(&Command::Reparent { node: name("Arm"), parent: Some(name("Base")), keep_world: false }).unwrap();
+    s.execute(&Command::Reparent {
+        node: name("Arm"),
+        parent: Some(name("Base")),
+        keep_world: false,
+    })
+    .unwrap();
     let t = s.doc.world_transform(arm).translation;
     assert!(t.abs_diff_eq(DVec3::new(6.0, 0.0, -20.0), 1e-9), "{t:?}");
 }
@@ -85,21 +121,61 @@ fn world_transforms_compose_parents_and_reparent_keeps_world_position() {
 #[test]
 fn errors_name_the_culprit_and_change_nothing() {
     let mut s = Session::new();
-    s.execute(&Command::AddEmpty { name: "A".into(), parent: None, transform: Transform::IDENTITY }).unwrap();
-    s.execute(&Command::AddEmpty { name: "B".into(), parent: Some(name("A")), transform: Transform::IDENTITY }).unwrap();
+    s.execute(&Command::AddEmpty {
+        name: "A".into(),
+        parent: None,
+        transform: Transform::IDENTITY,
+    })
+    .unwrap();
+    s.execute(&Command::AddEmpty {
+        name: "B".into(),
+        parent: Some(name("A")),
+        transform: Transform::IDENTITY,
+    })
+    .unwrap();
     let before = s.clone();
-    let e = s.execute(&Command::Reparent { node: name("A"), parent: Some(name("B")), keep_world: true }).unwrap_err();
+    let e = s
+        .execute(&Command::Reparent {
+            node: name("A"),
+            parent: Some(name("B")),
+            keep_world: true,
+        })
+        .unwrap_err();
     assert!(matches!(e, CommandError::Cycle { .. }), "{e}");
     assert!(e.to_string().contains("its own ancestor"));
-    let e = s.execute(&Command::Delete { nodes: vec![NodeRef::Id(99)] }).unwrap_err();
+    let e = s
+        .execute(&Command::Delete {
+            nodes: vec![NodeRef::Id(99)],
+        })
+        .unwrap_err();
     assert_eq!(e.to_string(), "node #99 does not exist");
-    let e = s.execute(&Command::Scale { nodes: vec![name("A")], factor: DVec3::new(1.0, 0.0, 1.0) }).unwrap_err();
+    let e = s
+        .execute(&Command::Scale {
+            nodes: vec![name("A")],
+            factor: DVec3::new(1.0, 0.0, 1.0),
+        })
+        .unwrap_err();
     assert!(matches!(e, CommandError::BadTransform { .. }));
     let e = s
-        .execute(&Command::AddMesh { name: "Bad".into(), positions: vec![DVec3::ZERO; 3], polygons: vec![vec![0, 1, 5]], parent: None, transform: Transform::IDENTITY })
+        .execute(&Command::AddMesh {
+            name: "Bad".into(),
+            positions: vec![DVec3::ZERO; 3],
+            polygons: vec![vec![0, 1, 5]],
+            parent: None,
+            transform: Transform::IDENTITY,
+        })
         .unwrap_err();
     assert!(e.to_string().contains("face 0 refers to vertex 5"), "{e}");
-    let e = s.execute(&add(Primitive::UvSphere { segments: 1, rings: 2, radius: 1.0 }, "S")).unwrap_err();
+    let e = s
+        .execute(&add(
+            Primitive::UvSphere {
+                segments: 1,
+                rings: 2,
+                radius: 1.0,
+            },
+            "S",
+        ))
+        .unwrap_err();
     assert!(e.to_string().contains("segments"), "{e}");
     assert_eq!(s, before);
 }
@@ -107,11 +183,24 @@ fn errors_name_the_culprit_and_change_nothing() {
 #[test]
 fn delete_takes_descendants_and_undo_brings_them_back() {
     let mut s = Session::new();
-    s.execute(&Command::AddEmpty { name: "A".into(), parent: None, transform: Transform::IDENTITY }).unwrap();
+    s.execute(&Command::AddEmpty {
+        name: "A".into(),
+        parent: None,
+        transform: Transform::IDENTITY,
+    })
+    .unwrap();
     s.execute(&add(cube(), "C")).unwrap();
-    s.execute(&Command::Reparent { node: name("C"), parent: Some(name("A")), keep_world: true }).unwrap();
+    s.execute(&Command::Reparent {
+        node: name("C"),
+        parent: Some(name("A")),
+        keep_world: true,
+    })
+    .unwrap();
     let full = s.doc.clone();
-    s.execute(&Command::Delete { nodes: vec![name("A")] }).unwrap();
+    s.execute(&Command::Delete {
+        nodes: vec![name("A")],
+    })
+    .unwrap();
     assert_eq!(s.doc.node_count(), 0);
     s.undo();
     assert_eq!(s.doc, full);
@@ -120,33 +209,101 @@ fn delete_takes_descendants_and_undo_brings_them_back() {
 #[test]
 fn duplicate_copies_subtrees_with_new_ids_and_shared_meshes() {
     let mut s = Session::new();
-    s.execute(&Command::AddEmpty { name: "A".into(), parent: None, transform: Transform::IDENTITY }).unwrap();
-    s.execute(&Command::AddPrimitive { primitive: cube(), name: Some("C".into()), parent: Some(name("A")), transform: Transform::IDENTITY }).unwrap();
-    let applied = s.execute(&Command::Duplicate { nodes: vec![name("A")] }).unwrap();
+    s.execute(&Command::AddEmpty {
+        name: "A".into(),
+        parent: None,
+        transform: Transform::IDENTITY,
+    })
+    .unwrap();
+    s.execute(&Command::AddPrimitive {
+        primitive: cube(),
+        name: Some("C".into()),
+        parent: Some(name("A")),
+        transform: Transform::IDENTITY,
+    })
+    .unwrap();
+    let applied = s
+        .execute(&Command::Duplicate {
+            nodes: vec![name("A")],
+        })
+        .unwrap();
     assert_eq!(applied.created.len(), 2);
     let a1 = s.doc.find_by_name("A.001").unwrap();
     let c1 = s.doc.find_by_name("C.001").unwrap();
     assert_eq!(c1.parent, Some(a1.id));
-    let (NodeContent::Mesh(m0), NodeContent::Mesh(m1)) = (&s.doc.find_by_name("C").unwrap().content, &c1.content) else { panic!() };
-    assert!(std::sync::Arc::ptr_eq(&m0.mesh, &m1.mesh), "copies share the mesh until edited");
+    let (NodeContent::Mesh(m0), NodeContent::Mesh(m1)) =
+        (&s.doc.find_by_name("C").unwrap().content, &c1.content)
+    else {
+        panic!()
+    };
+    assert!(
+        std::sync::Arc::ptr_eq(&m0.mesh, &m1.mesh),
+        "copies share the mesh until edited"
+    );
 }
 
 #[test]
 fn adjust_last_operation_rebuilds_the_primitive_in_one_step() {
     let mut s = Session::new();
-    s.execute(&add(Primitive::UvSphere { segments: 8, rings: 4, radius: 1.0 }, "S")).unwrap();
-    s.adjust_last(&add(Primitive::UvSphere { segments: 16, rings: 8, radius: 2.0 }, "S")).unwrap();
+    s.execute(&add(
+        Primitive::UvSphere {
+            segments: 8,
+            rings: 4,
+            radius: 1.0,
+        },
+        "S",
+    ))
+    .unwrap();
+    s.adjust_last(&add(
+        Primitive::UvSphere {
+            segments: 16,
+            rings: 8,
+            radius: 2.0,
+        },
+        "S",
+    ))
+    .unwrap();
     assert_eq!(s.history.done().len(), 1);
-    let m = s.doc.find_by_name("S").unwrap().content.mesh().unwrap().clone();
+    let m = s
+        .doc
+        .find_by_name("S")
+        .unwrap()
+        .content
+        .mesh()
+        .unwrap()
+        .clone();
     assert_eq!(m.face_count(), 16 * 8);
     // A bad adjustment keeps the previous result.
-    let e = s.adjust_last(&add(Primitive::UvSphere { segments: 0, rings: 8, radius: 2.0 }, "S")).unwrap_err();
+    let e = s
+        .adjust_last(&add(
+            Primitive::UvSphere {
+                segments: 0,
+                rings: 8,
+                radius: 2.0,
+            },
+            "S",
+        ))
+        .unwrap_err();
     assert!(e.to_string().contains("segments"));
-    assert_eq!(s.doc.find_by_name("S").unwrap().content.mesh().unwrap().face_count(), 128);
+    assert_eq!(
+        s.doc
+            .find_by_name("S")
+            .unwrap()
+            .content
+            .mesh()
+            .unwrap()
+            .face_count(),
+        128
+    );
     assert_eq!(s.history.done().len(), 1);
     // SetPrimitive on a node made from another kind is refused.
     s.execute(&add(cube(), "C")).unwrap();
-    let e = s.execute(&Command::SetPrimitive { node: name("C"), primitive: Primitive::Plane { size: 1.0 } }).unwrap_err();
+    let e = s
+        .execute(&Command::SetPrimitive {
+            node: name("C"),
+            primitive: Primitive::Plane { size: 1.0 },
+        })
+        .unwrap_err();
     assert!(matches!(e, CommandError::NotAPrimitive { .. }));
 }
 
@@ -157,7 +314,11 @@ fn history_limits_drop_the_oldest_steps_and_the_rest_still_undo() {
     s.execute(&add(cube(), "C")).unwrap();
     let mut states = vec![s.doc.clone()];
     for i in 0..5 {
-        s.execute(&Command::Translate { nodes: vec![name("C")], offset: DVec3::X * (i + 1) as f64 }).unwrap();
+        s.execute(&Command::Translate {
+            nodes: vec![name("C")],
+            offset: DVec3::X * (i + 1) as f64,
+        })
+        .unwrap();
         states.push(s.doc.clone());
     }
     assert_eq!(s.history.done().len(), 3);
@@ -179,7 +340,8 @@ fn jump_to_moves_through_history() {
     let mut s = Session::new();
     let mut states = vec![s.doc.clone()];
     for k in Primitive::KINDS {
-        s.execute(&add(Primitive::default_of(k).unwrap(), k)).unwrap();
+        s.execute(&add(Primitive::default_of(k).unwrap(), k))
+            .unwrap();
         states.push(s.doc.clone());
     }
     s.jump_to(2);
@@ -198,25 +360,62 @@ fn arb_command() -> impl Strategy<Value = Command> {
     prop_oneof![
         (kinds, prop::option::of(node.clone())).prop_map(|(k, parent)| Command::AddPrimitive {
             primitive: match Primitive::default_of(k).unwrap() {
-                Primitive::UvSphere { .. } => Primitive::UvSphere { segments: 6, rings: 4, radius: 1.0 },
-                Primitive::Torus { .. } => Primitive::Torus { major_segments: 6, minor_segments: 4, major_radius: 1.0, minor_radius: 0.3 },
-                Primitive::Cylinder { .. } => Primitive::Cylinder { segments: 5, radius: 1.0, depth: 1.0 },
-                Primitive::Cone { .. } => Primitive::Cone { segments: 5, radius: 1.0, depth: 1.0 },
-                Primitive::IcoSphere { .. } => Primitive::IcoSphere { subdivisions: 0, radius: 1.0 },
+                Primitive::UvSphere { .. } => Primitive::UvSphere {
+                    segments: 6,
+                    rings: 4,
+                    radius: 1.0
+                },
+                Primitive::Torus { .. } => Primitive::Torus {
+                    major_segments: 6,
+                    minor_segments: 4,
+                    major_radius: 1.0,
+                    minor_radius: 0.3
+                },
+                Primitive::Cylinder { .. } => Primitive::Cylinder {
+                    segments: 5,
+                    radius: 1.0,
+                    depth: 1.0
+                },
+                Primitive::Cone { .. } => Primitive::Cone {
+                    segments: 5,
+                    radius: 1.0,
+                    depth: 1.0
+                },
+                Primitive::IcoSphere { .. } => Primitive::IcoSphere {
+                    subdivisions: 0,
+                    radius: 1.0
+                },
                 p => p,
             },
             name: None,
             parent,
             transform: Transform::IDENTITY,
         }),
-        (node.clone(), -5.0..5.0f64).prop_map(|(n, x)| Command::Translate { nodes: vec![n], offset: DVec3::new(x, 1.0, -x) }),
-        (node.clone(), 0.0..360.0f64).prop_map(|(n, d)| Command::Rotate { nodes: vec![n], axis: DVec3::Y, degrees: d }),
-        (node.clone(), prop::option::of(node.clone()), any::<bool>())
-            .prop_map(|(n, p, keep_world)| Command::Reparent { node: n, parent: p, keep_world }),
-        node.clone().prop_map(|n| Command::Delete { nodes: vec![n] }),
-        node.clone().prop_map(|n| Command::Duplicate { nodes: vec![n] }),
+        (node.clone(), -5.0..5.0f64).prop_map(|(n, x)| Command::Translate {
+            nodes: vec![n],
+            offset: DVec3::new(x, 1.0, -x)
+        }),
+        (node.clone(), 0.0..360.0f64).prop_map(|(n, d)| Command::Rotate {
+            nodes: vec![n],
+            axis: DVec3::Y,
+            degrees: d
+        }),
+        (node.clone(), prop::option::of(node.clone()), any::<bool>()).prop_map(
+            |(n, p, keep_world)| Command::Reparent {
+                node: n,
+                parent: p,
+                keep_world
+            }
+        ),
+        node.clone()
+            .prop_map(|n| Command::Delete { nodes: vec![n] }),
+        node.clone()
+            .prop_map(|n| Command::Duplicate { nodes: vec![n] }),
         (node.clone(), "[a-z]{1,6}").prop_map(|(n, name)| Command::Rename { node: n, name }),
-        (node, any::<bool>()).prop_map(|(n, v)| Command::SetVisible { nodes: vec![n], visible: v }),
+        (node, any::<bool>()).prop_map(|(n, v)| Command::SetVisible {
+            nodes: vec![n],
+            visible: v
+        }),
     ]
 }
 

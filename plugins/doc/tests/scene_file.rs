@@ -9,13 +9,49 @@ use std::path::Path;
 fn sample_session() -> Session {
     let mut s = Session::new();
     let cmds = vec![
-        Command::AddEmpty { name: "Table".into(), parent: None, transform: Transform::from_translation(DVec3::new(0.0, 1.0, 0.0)) },
-        Command::AddPrimitive { primitive: Primitive::Cube { size: 2.0 }, name: Some("Top".into()), parent: Some(NodeRef::Name("Table".into())), transform: Transform::IDENTITY },
-        Command::AddPrimitive { primitive: Primitive::Cylinder { segments: 8, radius: 0.1, depth: 1.0 }, name: Some("Leg".into()), parent: Some(NodeRef::Name("Table".into())), transform: Transform::IDENTITY },
-        Command::Translate { nodes: vec![NodeRef::Name("Leg".into())], offset: DVec3::new(0.8, -0.5, 0.8) },
-        Command::Duplicate { nodes: vec![NodeRef::Name("Leg".into())] },
-        Command::Translate { nodes: vec![NodeRef::Name("Leg.001".into())], offset: DVec3::new(-1.6, 0.0, 0.0) },
-        Command::AddPrimitive { primitive: Primitive::Torus { major_segments: 12, minor_segments: 6, major_radius: 1.0, minor_radius: 0.2 }, name: None, parent: None, transform: Transform::IDENTITY },
+        Command::AddEmpty {
+            name: "Table".into(),
+            parent: None,
+            transform: Transform::from_translation(DVec3::new(0.0, 1.0, 0.0)),
+        },
+        Command::AddPrimitive {
+            primitive: Primitive::Cube { size: 2.0 },
+            name: Some("Top".into()),
+            parent: Some(NodeRef::Name("Table".into())),
+            transform: Transform::IDENTITY,
+        },
+        Command::AddPrimitive {
+            primitive: Primitive::Cylinder {
+                segments: 8,
+                radius: 0.1,
+                depth: 1.0,
+            },
+            name: Some("Leg".into()),
+            parent: Some(NodeRef::Name("Table".into())),
+            transform: Transform::IDENTITY,
+        },
+        Command::Translate {
+            nodes: vec![NodeRef::Name("Leg".into())],
+            offset: DVec3::new(0.8, -0.5, 0.8),
+        },
+        Command::Duplicate {
+            nodes: vec![NodeRef::Name("Leg".into())],
+        },
+        Command::Translate {
+            nodes: vec![NodeRef::Name("Leg.001".into())],
+            offset: DVec3::new(-1.6, 0.0, 0.0),
+        },
+        Command::AddPrimitive {
+            primitive: Primitive::Torus {
+                major_segments: 12,
+                minor_segments: 6,
+                major_radius: 1.0,
+                minor_radius: 0.2,
+            },
+            name: None,
+            parent: None,
+            transform: Transform::IDENTITY,
+        },
     ];
     for c in &cmds {
         s.execute(c).unwrap();
@@ -32,7 +68,11 @@ fn save_load_save_gives_the_same_bytes_and_keeps_history() {
     file::save(&mut s, &path).unwrap();
     assert!(!s.is_dirty());
     let first = std::fs::read_to_string(&path).unwrap();
-    assert!(first.starts_with("(\n    format: \"hedra-scene\",\n    version: 1,"), "{}", &first[..60]);
+    assert!(
+        first.starts_with("(\n    format: \"hedra-scene\",\n    version: 1,"),
+        "{}",
+        &first[..60]
+    );
 
     let loaded = file::load(&path).unwrap();
     assert!(loaded.warnings.is_empty(), "{:?}", loaded.warnings);
@@ -59,17 +99,46 @@ fn save_load_save_gives_the_same_bytes_and_keeps_history() {
 #[test]
 fn meshes_shared_between_history_steps_are_stored_once() {
     let mut s = Session::new();
-    s.execute(&Command::AddPrimitive { primitive: Primitive::UvSphere { segments: 32, rings: 16, radius: 1.0 }, name: None, parent: None, transform: Transform::IDENTITY }).unwrap();
+    s.execute(&Command::AddPrimitive {
+        primitive: Primitive::UvSphere {
+            segments: 32,
+            rings: 16,
+            radius: 1.0,
+        },
+        name: None,
+        parent: None,
+        transform: Transform::IDENTITY,
+    })
+    .unwrap();
     for i in 0..20 {
-        s.execute(&Command::Translate { nodes: vec![NodeRef::Id(1)], offset: DVec3::X * (i + 1) as f64 }).unwrap();
+        s.execute(&Command::Translate {
+            nodes: vec![NodeRef::Id(1)],
+            offset: DVec3::X * (i + 1) as f64,
+        })
+        .unwrap();
     }
     let text = file::to_string(&s);
     let one_step = {
         let mut t = Session::new();
-        t.execute(&Command::AddPrimitive { primitive: Primitive::UvSphere { segments: 32, rings: 16, radius: 1.0 }, name: None, parent: None, transform: Transform::IDENTITY }).unwrap();
+        t.execute(&Command::AddPrimitive {
+            primitive: Primitive::UvSphere {
+                segments: 32,
+                rings: 16,
+                radius: 1.0,
+            },
+            name: None,
+            parent: None,
+            transform: Transform::IDENTITY,
+        })
+        .unwrap();
         file::to_string(&t).len()
     };
-    assert!(text.len() < one_step * 2, "21 steps on one mesh cost {} bytes vs {} for one", text.len(), one_step);
+    assert!(
+        text.len() < one_step * 2,
+        "21 steps on one mesh cost {} bytes vs {} for one",
+        text.len(),
+        one_step
+    );
 }
 
 #[test]
@@ -77,7 +146,10 @@ fn newer_versions_and_other_files_are_refused_clearly() {
     let p = Path::new("x.hedra.ron");
     let e = file::from_str("(\n    format: \"hedra-scene\",\n    version: 7,\n)", p).unwrap_err();
     assert!(matches!(e, FileError::NewerVersion { version: 7, .. }));
-    assert!(e.to_string().contains("newer Hedra (format version 7)"), "{e}");
+    assert!(
+        e.to_string().contains("newer Hedra (format version 7)"),
+        "{e}"
+    );
     let e = file::from_str("(name: \"something else\")", p).unwrap_err();
     assert!(e.to_string().contains("not a Hedra scene file"), "{e}");
     let e = file::from_str("(\n    format: \"blender\",\n    version: 1,\n)", p).unwrap_err();
@@ -89,9 +161,15 @@ fn syntax_errors_give_file_line_and_column() {
     let s = sample_session();
     let text = file::to_string(&s).replacen("scene: (", "scene: ((", 1);
     let e = file::from_str(&text, Path::new("broken.hedra.ron")).unwrap_err();
-    let FileError::Parse { line, column, .. } = &e else { panic!("{e}") };
+    let FileError::Parse { line, column, .. } = &e else {
+        panic!("{e}")
+    };
     assert!(*line > 1 && *column > 1);
-    assert!(e.to_string().starts_with(&format!("broken.hedra.ron:{line}:{column}: ")), "{e}");
+    assert!(
+        e.to_string()
+            .starts_with(&format!("broken.hedra.ron:{line}:{column}: ")),
+        "{e}"
+    );
 }
 
 #[test]
@@ -100,19 +178,39 @@ fn damaged_history_still_opens_the_scene_with_a_warning() {
     let text = file::to_string(&s);
     let cut = text.find("\n    history:").unwrap();
     // Syntax damage inside the history.
-    let broken = format!("{}{}", &text[..cut], text[cut..].replacen("done: [", "done: [[[", 1));
+    let broken = format!(
+        "{}{}",
+        &text[..cut],
+        text[cut..].replacen("done: [", "done: [[[", 1)
+    );
     let loaded = file::from_str(&broken, Path::new("t.hedra.ron")).unwrap();
     assert_eq!(loaded.session.doc, s.doc);
     assert!(!loaded.session.history.can_undo());
     assert_eq!(loaded.warnings.len(), 1);
-    assert!(loaded.warnings[0].contains("undo history could not be read"), "{:?}", loaded.warnings);
+    assert!(
+        loaded.warnings[0].contains("undo history could not be read"),
+        "{:?}",
+        loaded.warnings
+    );
     // Semantic damage: a step that refers to a mesh that is not stored.
-    let bad_ref = format!("{}{}", &text[..cut], text[cut..].replacen("mesh: 0", "mesh: 999", 1));
+    let bad_ref = format!(
+        "{}{}",
+        &text[..cut],
+        text[cut..].replacen("mesh: 0", "mesh: 999", 1)
+    );
     let loaded = file::from_str(&bad_ref, Path::new("t.hedra.ron")).unwrap();
     assert_eq!(loaded.session.doc, s.doc);
-    assert!(loaded.warnings[0].contains("undo history is damaged"), "{:?}", loaded.warnings);
+    assert!(
+        loaded.warnings[0].contains("undo history is damaged"),
+        "{:?}",
+        loaded.warnings
+    );
     // A step whose result does not match the scene.
-    let wrong = format!("{}{}", &text[..cut], text[cut..].replacen("name: \"Leg\",", "name: \"Log\",", 1));
+    let wrong = format!(
+        "{}{}",
+        &text[..cut],
+        text[cut..].replacen("name: \"Leg\",", "name: \"Log\",", 1)
+    );
     let loaded = file::from_str(&wrong, Path::new("t.hedra.ron")).unwrap();
     assert!(!loaded.warnings.is_empty());
     assert!(!loaded.session.history.can_undo());
@@ -133,17 +231,30 @@ fn atomic_save_keeps_a_backup_and_a_failed_save_loses_nothing() {
     let mut s = sample_session();
     file::save(&mut s, &path).unwrap();
     let v1 = std::fs::read_to_string(&path).unwrap();
-    s.execute(&Command::AddEmpty { name: "New".into(), parent: None, transform: Transform::IDENTITY }).unwrap();
+    s.execute(&Command::AddEmpty {
+        name: "New".into(),
+        parent: None,
+        transform: Transform::IDENTITY,
+    })
+    .unwrap();
     assert!(s.is_dirty());
     file::save(&mut s, &path).unwrap();
     let bak = dir.path().join("a.hedra.ron.bak");
     assert_eq!(std::fs::read_to_string(&bak).unwrap(), v1);
     assert_ne!(std::fs::read_to_string(&path).unwrap(), v1);
     // No temporary files are left behind.
-    let names: Vec<_> = std::fs::read_dir(dir.path()).unwrap().map(|e| e.unwrap().file_name()).collect();
+    let names: Vec<_> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
     assert_eq!(names.len(), 2, "{names:?}");
     // Saving into a folder that does not exist fails, says where, and keeps the session dirty.
-    s.execute(&Command::AddEmpty { name: "More".into(), parent: None, transform: Transform::IDENTITY }).unwrap();
+    s.execute(&Command::AddEmpty {
+        name: "More".into(),
+        parent: None,
+        transform: Transform::IDENTITY,
+    })
+    .unwrap();
     let e = file::save(&mut s, &dir.path().join("missing/b.hedra.ron")).unwrap_err();
     assert!(e.to_string().contains("missing"), "{e}");
     assert!(s.is_dirty());

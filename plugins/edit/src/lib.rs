@@ -8,7 +8,9 @@ use bevy::prelude::*;
 use bevy::window::PrimaryWindow;
 use glam::{DMat4, DQuat, DVec3};
 use hedra_doc::{Command, Document, NodeContent, NodeId, NodeRef, Transform as DocTransform};
-use hedra_scene::{DocChanged, DocRequest, DocState, InputGate, NodeEntities, SceneSystems, ViewportCamera};
+use hedra_scene::{
+    DocChanged, DocRequest, DocState, InputGate, NodeEntities, SceneSystems, ViewportCamera,
+};
 
 pub mod modal;
 
@@ -71,14 +73,21 @@ impl Plugin for EditPlugin {
 }
 
 /// Selects what a command created; drops deleted nodes from the selection.
-pub fn follow_document_changes(mut changes: MessageReader<DocChanged>, mut selection: ResMut<Selection>, state: Res<DocState>) {
+pub fn follow_document_changes(
+    mut changes: MessageReader<DocChanged>,
+    mut selection: ResMut<Selection>,
+    state: Res<DocState>,
+) {
     for c in changes.read() {
         if c.replaced {
             selection.nodes.clear();
         } else if !c.created.is_empty() {
             // Select the top-most created nodes (a duplicated hierarchy selects its root).
             let doc = &state.session.doc;
-            let roots = c.created.iter().copied().filter(|id| doc.node(*id).is_some_and(|n| !n.parent.is_some_and(|p| c.created.contains(&p))));
+            let roots = c.created.iter().copied().filter(|id| {
+                doc.node(*id)
+                    .is_some_and(|n| !n.parent.is_some_and(|p| c.created.contains(&p)))
+            });
             selection.set(roots);
         }
     }
@@ -97,7 +106,9 @@ pub fn visible(doc: &Document, id: NodeId) -> bool {
 pub fn pick_node(doc: &Document, origin: DVec3, dir: DVec3) -> Option<(NodeId, f64)> {
     let mut best: Option<(NodeId, f64)> = None;
     for node in doc.nodes() {
-        let NodeContent::Mesh(content) = &node.content else { continue };
+        let NodeContent::Mesh(content) = &node.content else {
+            continue;
+        };
         if !visible(doc, node.id) {
             continue;
         }
@@ -120,7 +131,11 @@ pub fn pick_node(doc: &Document, origin: DVec3, dir: DVec3) -> Option<(NodeId, f
 }
 
 /// The world-space ray under the cursor, in `f64`.
-pub fn cursor_ray(window: &Window, camera: &Camera, camera_transform: &GlobalTransform) -> Option<(DVec3, DVec3)> {
+pub fn cursor_ray(
+    window: &Window,
+    camera: &Camera,
+    camera_transform: &GlobalTransform,
+) -> Option<(DVec3, DVec3)> {
     let cursor = window.cursor_position()?;
     let ray = camera.viewport_to_world(camera_transform, cursor).ok()?;
     Some((ray.origin.as_dvec3(), Vec3::from(ray.direction).as_dvec3()))
@@ -139,7 +154,11 @@ fn pick_objects(
     mut selection: ResMut<Selection>,
     gizmo: Option<Res<TransformGizmoState>>,
 ) {
-    if !buttons.just_pressed(MouseButton::Left) || !gate.pointer_free || tool.active.is_some() || tool.just_finished {
+    if !buttons.just_pressed(MouseButton::Left)
+        || !gate.pointer_free
+        || tool.active.is_some()
+        || tool.just_finished
+    {
         return;
     }
     if gizmo.is_some_and(|g| g.hovered_axis.is_some() || g.active) {
@@ -149,7 +168,9 @@ fn pick_objects(
         return; // Alt+drag orbits
     }
     let (cam, cam_t) = *camera;
-    let Some((origin, dir)) = cursor_ray(&window, cam, cam_t) else { return };
+    let Some((origin, dir)) = cursor_ray(&window, cam, cam_t) else {
+        return;
+    };
     let hit = pick_node(&state.session.doc, origin, dir).map(|(id, _)| id);
     let shift = keys.any_pressed([KeyCode::ShiftLeft, KeyCode::ShiftRight]);
     match (hit, shift) {
@@ -161,7 +182,12 @@ fn pick_objects(
 }
 
 fn ctrl(keys: &ButtonInput<KeyCode>) -> bool {
-    keys.any_pressed([KeyCode::ControlLeft, KeyCode::ControlRight, KeyCode::SuperLeft, KeyCode::SuperRight])
+    keys.any_pressed([
+        KeyCode::ControlLeft,
+        KeyCode::ControlRight,
+        KeyCode::SuperLeft,
+        KeyCode::SuperRight,
+    ])
 }
 fn shift(keys: &ButtonInput<KeyCode>) -> bool {
     keys.any_pressed([KeyCode::ShiftLeft, KeyCode::ShiftRight])
@@ -191,7 +217,11 @@ pub fn object_shortcuts(
     let (ctrl, shift, alt) = (ctrl(&keys), shift(&keys), alt(&keys));
     let pressed = |k: KeyCode| keys.just_pressed(k);
     if ctrl && pressed(KeyCode::KeyZ) {
-        requests.write(if shift { DocRequest::Redo } else { DocRequest::Undo });
+        requests.write(if shift {
+            DocRequest::Redo
+        } else {
+            DocRequest::Undo
+        });
         return;
     }
     if ctrl && pressed(KeyCode::KeyY) {
@@ -210,19 +240,33 @@ pub fn object_shortcuts(
     }
     if pressed(KeyCode::KeyH) {
         if alt {
-            let hidden: Vec<NodeRef> = doc.nodes().filter(|n| !n.visible).map(|n| n.id.into()).collect();
+            let hidden: Vec<NodeRef> = doc
+                .nodes()
+                .filter(|n| !n.visible)
+                .map(|n| n.id.into())
+                .collect();
             if !hidden.is_empty() {
-                requests.write(DocRequest::Execute(Command::SetVisible { nodes: hidden, visible: true }));
+                requests.write(DocRequest::Execute(Command::SetVisible {
+                    nodes: hidden,
+                    visible: true,
+                }));
             }
         } else if !selection.nodes.is_empty() {
-            requests.write(DocRequest::Execute(Command::SetVisible { nodes: selection.refs(), visible: false }));
+            requests.write(DocRequest::Execute(Command::SetVisible {
+                nodes: selection.refs(),
+                visible: false,
+            }));
         }
     }
     if (pressed(KeyCode::KeyX) || pressed(KeyCode::Delete)) && !selection.nodes.is_empty() {
-        requests.write(DocRequest::Execute(Command::Delete { nodes: selection.refs() }));
+        requests.write(DocRequest::Execute(Command::Delete {
+            nodes: selection.refs(),
+        }));
     }
     if shift && pressed(KeyCode::KeyD) && !selection.nodes.is_empty() {
-        requests.write(DocRequest::Execute(Command::Duplicate { nodes: selection.refs() }));
+        requests.write(DocRequest::Execute(Command::Duplicate {
+            nodes: selection.refs(),
+        }));
         tool.grab_after_duplicate = true;
     }
     let kind = if shift || alt {
@@ -238,7 +282,8 @@ pub fn object_shortcuts(
     };
     if let Some(kind) = kind {
         let (cam, cam_t) = *camera;
-        tool.active = ModalTransform::start(kind, doc, &selection.nodes, &entities, &window, cam, cam_t);
+        tool.active =
+            ModalTransform::start(kind, doc, &selection.nodes, &entities, &window, cam, cam_t);
     }
 }
 

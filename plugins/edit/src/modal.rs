@@ -83,7 +83,12 @@ impl ModalTransform {
         let roots: Vec<NodeId> = selection
             .iter()
             .copied()
-            .filter(|&id| doc.node(id).is_some() && !selection.iter().any(|&other| other != id && doc.is_ancestor(other, id)))
+            .filter(|&id| {
+                doc.node(id).is_some()
+                    && !selection
+                        .iter()
+                        .any(|&other| other != id && doc.is_ancestor(other, id))
+            })
             .collect();
         if roots.is_empty() {
             return None;
@@ -101,10 +106,25 @@ impl ModalTransform {
                 }
             })
             .collect();
-        let pivot = items.iter().map(|i| i.world.w_axis.truncate()).sum::<DVec3>() / items.len() as f64;
+        let pivot = items
+            .iter()
+            .map(|i| i.world.w_axis.truncate())
+            .sum::<DVec3>()
+            / items.len() as f64;
         let start_cursor = window.cursor_position()?;
-        let pivot_screen = camera.world_to_viewport(camera_transform, pivot.as_vec3()).unwrap_or(start_cursor);
-        Some(ModalTransform { kind, axis: None, typed: String::new(), start_cursor, pivot, pivot_screen, items, readout: String::new() })
+        let pivot_screen = camera
+            .world_to_viewport(camera_transform, pivot.as_vec3())
+            .unwrap_or(start_cursor);
+        Some(ModalTransform {
+            kind,
+            axis: None,
+            typed: String::new(),
+            start_cursor,
+            pivot,
+            pivot_screen,
+            items,
+            readout: String::new(),
+        })
     }
 
     fn typed_value(&self) -> Option<f64> {
@@ -116,7 +136,12 @@ impl ModalTransform {
     }
 
     /// New local transforms for the cursor position (window coordinates).
-    pub fn compute(&mut self, cursor: Vec2, ray_at: impl Fn(Vec2) -> Option<(DVec3, DVec3)>, view_dir: DVec3) -> Vec<(NodeId, DocTransform)> {
+    pub fn compute(
+        &mut self,
+        cursor: Vec2,
+        ray_at: impl Fn(Vec2) -> Option<(DVec3, DVec3)>,
+        view_dir: DVec3,
+    ) -> Vec<(NodeId, DocTransform)> {
         let axis_name = self.axis.map_or(String::new(), |a| format!(" {a:?}"));
         match self.kind {
             TransformKind::Grab => {
@@ -126,7 +151,8 @@ impl ModalTransform {
                     let plane_hit = |p: Vec2| -> Option<DVec3> {
                         let (o, d) = ray_at(p)?;
                         let denom = d.dot(view_dir);
-                        (denom.abs() > 1e-12).then(|| o + d * ((self.pivot - o).dot(view_dir) / denom))
+                        (denom.abs() > 1e-12)
+                            .then(|| o + d * ((self.pivot - o).dot(view_dir) / denom))
                     };
                     match (plane_hit(self.start_cursor), plane_hit(cursor)) {
                         (Some(a), Some(b)) => {
@@ -136,9 +162,15 @@ impl ModalTransform {
                         _ => DVec3::ZERO,
                     }
                 };
-                self.readout = format!("Move{axis_name} ({:.4}, {:.4}, {:.4})", delta.x, delta.y, delta.z);
+                self.readout = format!(
+                    "Move{axis_name} ({:.4}, {:.4}, {:.4})",
+                    delta.x, delta.y, delta.z
+                );
                 let m = DMat4::from_translation(delta);
-                self.items.iter().map(|i| (i.id, local_from_world(i.parent_world, m * i.world))).collect()
+                self.items
+                    .iter()
+                    .map(|i| (i.id, local_from_world(i.parent_world, m * i.world)))
+                    .collect()
             }
             TransformKind::Rotate => {
                 let degrees = self.typed_value().unwrap_or_else(|| {
@@ -150,7 +182,10 @@ impl ModalTransform {
                 // Without a constraint, rotate about the view axis (towards the viewer).
                 let axis = self.axis.map_or(-view_dir, Axis::vector);
                 self.readout = format!("Rotate{axis_name} {degrees:.2}°");
-                let m = rotation_about(self.pivot, DQuat::from_axis_angle(axis.normalize(), degrees.to_radians()));
+                let m = rotation_about(
+                    self.pivot,
+                    DQuat::from_axis_angle(axis.normalize(), degrees.to_radians()),
+                );
                 self.items
                     .iter()
                     .map(|i| {
@@ -176,7 +211,14 @@ impl ModalTransform {
                         let p = i.world.w_axis.truncate();
                         let moved = self.pivot + f * (p - self.pivot);
                         let translation = i.parent_world.inverse().transform_point3(moved);
-                        (i.id, DocTransform { translation, rotation: i.local.rotation, scale: i.local.scale * f })
+                        (
+                            i.id,
+                            DocTransform {
+                                translation,
+                                rotation: i.local.rotation,
+                                scale: i.local.scale * f,
+                            },
+                        )
                     })
                     .collect()
             }
@@ -193,13 +235,20 @@ impl ModalTransform {
     }
 
     fn entity_of(&self, id: NodeId) -> Option<Entity> {
-        self.items.iter().find(|i| i.id == id).and_then(|i| i.entity)
+        self.items
+            .iter()
+            .find(|i| i.id == id)
+            .and_then(|i| i.entity)
     }
 }
 
 /// A document transform as a Bevy one.
 pub fn to_bevy(t: &DocTransform) -> Transform {
-    Transform { translation: t.translation.as_vec3(), rotation: t.rotation.as_quat(), scale: t.scale.as_vec3() }
+    Transform {
+        translation: t.translation.as_vec3(),
+        rotation: t.rotation.as_quat(),
+        scale: t.scale.as_vec3(),
+    }
 }
 
 const DIGIT_KEYS: [(KeyCode, char); 24] = [
@@ -247,25 +296,46 @@ pub fn drive_transform_tool(
     let (cam, cam_t) = *camera;
     if tool.grab_after_duplicate && tool.active.is_none() {
         tool.grab_after_duplicate = false;
-        tool.active = ModalTransform::start(TransformKind::Grab, &state.session.doc, &selection.nodes, &entities, &window, cam, cam_t);
+        tool.active = ModalTransform::start(
+            TransformKind::Grab,
+            &state.session.doc,
+            &selection.nodes,
+            &entities,
+            &window,
+            cam,
+            cam_t,
+        );
     }
-    let Some(mut modal) = tool.active.take() else { return };
+    let Some(mut modal) = tool.active.take() else {
+        return;
+    };
 
     if keys.just_pressed(KeyCode::Escape) || buttons.just_pressed(MouseButton::Right) {
         modal.restore(&mut transforms);
         tool.just_finished = true;
         return;
     }
-    for (key, axis) in [(KeyCode::KeyX, Axis::X), (KeyCode::KeyY, Axis::Y), (KeyCode::KeyZ, Axis::Z)] {
+    for (key, axis) in [
+        (KeyCode::KeyX, Axis::X),
+        (KeyCode::KeyY, Axis::Y),
+        (KeyCode::KeyZ, Axis::Z),
+    ] {
         if keys.just_pressed(key) {
-            modal.axis = if modal.axis == Some(axis) { None } else { Some(axis) };
+            modal.axis = if modal.axis == Some(axis) {
+                None
+            } else {
+                Some(axis)
+            };
         }
     }
     for (key, c) in DIGIT_KEYS {
         if keys.just_pressed(key) {
             if c == '-' {
                 // Minus toggles the sign, wherever it is typed.
-                modal.typed = modal.typed.strip_prefix('-').map_or_else(|| format!("-{}", modal.typed), str::to_string);
+                modal.typed = modal
+                    .typed
+                    .strip_prefix('-')
+                    .map_or_else(|| format!("-{}", modal.typed), str::to_string);
             } else {
                 modal.typed.push(c);
             }
@@ -276,26 +346,46 @@ pub fn drive_transform_tool(
     }
     let cursor = window.cursor_position().unwrap_or(modal.start_cursor);
     let view_dir = (cam_t.rotation() * Vec3::NEG_Z).as_dvec3();
-    let result = modal.compute(cursor, |p| cam.viewport_to_world(cam_t, p).ok().map(|r| (r.origin.as_dvec3(), Vec3::from(r.direction).as_dvec3())), view_dir);
+    let result = modal.compute(
+        cursor,
+        |p| {
+            cam.viewport_to_world(cam_t, p)
+                .ok()
+                .map(|r| (r.origin.as_dvec3(), Vec3::from(r.direction).as_dvec3()))
+        },
+        view_dir,
+    );
     if !modal.typed.is_empty() {
         modal.readout = format!("{} [{}]", modal.readout, modal.typed);
     }
     for (id, t) in &result {
-        if let Some(mut et) = modal.entity_of(*id).and_then(|e| transforms.get_mut(e).ok()) {
+        if let Some(mut et) = modal
+            .entity_of(*id)
+            .and_then(|e| transforms.get_mut(e).ok())
+        {
             *et = to_bevy(t);
         }
     }
-    let confirm = keys.any_just_pressed([KeyCode::Enter, KeyCode::NumpadEnter, KeyCode::Space]) || buttons.just_pressed(MouseButton::Left);
+    let confirm = keys.any_just_pressed([KeyCode::Enter, KeyCode::NumpadEnter, KeyCode::Space])
+        || buttons.just_pressed(MouseButton::Left);
     if confirm {
         let changed: Vec<(NodeRef, DocTransform)> = result
             .into_iter()
-            .filter(|(id, t)| state.session.doc.node(*id).is_some_and(|n| n.transform != *t))
+            .filter(|(id, t)| {
+                state
+                    .session
+                    .doc
+                    .node(*id)
+                    .is_some_and(|n| n.transform != *t)
+            })
             .map(|(id, t)| (NodeRef::from(id), t))
             .collect();
         if changed.is_empty() {
             modal.restore(&mut transforms);
         } else {
-            requests.write(DocRequest::Execute(Command::SetTransforms { nodes: changed }));
+            requests.write(DocRequest::Execute(Command::SetTransforms {
+                nodes: changed,
+            }));
         }
         tool.just_finished = true;
         return;

@@ -14,14 +14,20 @@ use std::collections::HashMap;
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 pub enum BuildError {
     #[error("face {face} refers to vertex {index}, but there are only {vertex_count} vertices")]
-    IndexOutOfRange { face: usize, index: u32, vertex_count: usize },
+    IndexOutOfRange {
+        face: usize,
+        index: u32,
+        vertex_count: usize,
+    },
     #[error("face {face} has {sides} vertices; a face needs at least 3")]
     TooFewSides { face: usize, sides: usize },
     #[error("face {face} uses vertex {vertex} more than once")]
     RepeatedVertex { face: usize, vertex: u32 },
     #[error("edge {a}-{b} is shared by more than two faces (faces {faces:?})")]
     NonManifoldEdge { a: u32, b: u32, faces: Vec<usize> },
-    #[error("faces {faces:?} both run edge {a}->{b} in the same direction: their orientations disagree")]
+    #[error(
+        "faces {faces:?} both run edge {a}->{b} in the same direction: their orientations disagree"
+    )]
     InconsistentOrientation { a: u32, b: u32, faces: Vec<usize> },
     #[error("vertex {vertex} joins separate fans of faces (non-manifold vertex)")]
     NonManifoldVertex { vertex: u32 },
@@ -76,11 +82,18 @@ impl std::fmt::Display for RepairReport {
 
 fn check_face(face: usize, poly: &[u32], vertex_count: usize) -> Result<(), BuildError> {
     if poly.len() < 3 {
-        return Err(BuildError::TooFewSides { face, sides: poly.len() });
+        return Err(BuildError::TooFewSides {
+            face,
+            sides: poly.len(),
+        });
     }
     for (i, &v) in poly.iter().enumerate() {
         if v as usize >= vertex_count {
-            return Err(BuildError::IndexOutOfRange { face, index: v, vertex_count });
+            return Err(BuildError::IndexOutOfRange {
+                face,
+                index: v,
+                vertex_count,
+            });
         }
         if poly[..i].contains(&v) {
             return Err(BuildError::RepeatedVertex { face, vertex: v });
@@ -99,7 +112,10 @@ impl HalfEdgeMesh {
     /// manifoldness or consistent orientation; nothing is built.
     ///
     /// Complexity: O(corners × valence).
-    pub fn from_polygons<P: AsRef<[u32]>>(positions: &[DVec3], polygons: &[P]) -> Result<Self, BuildError> {
+    pub fn from_polygons<P: AsRef<[u32]>>(
+        positions: &[DVec3],
+        polygons: &[P],
+    ) -> Result<Self, BuildError> {
         let nv = positions.len();
         if nv >= NONE as usize {
             return Err(BuildError::TooLarge { what: "vertices" });
@@ -125,11 +141,19 @@ impl HalfEdgeMesh {
         }
         let next_corner = |c: usize| -> usize {
             let f = corner_face[c] as usize;
-            if c + 1 == face_start[f + 1] { face_start[f] } else { c + 1 }
+            if c + 1 == face_start[f + 1] {
+                face_start[f]
+            } else {
+                c + 1
+            }
         };
         let prev_corner = |c: usize| -> usize {
             let f = corner_face[c] as usize;
-            if c == face_start[f] { face_start[f + 1] - 1 } else { c - 1 }
+            if c == face_start[f] {
+                face_start[f + 1] - 1
+            } else {
+                c - 1
+            }
         };
         let corner_to = |c: usize| corner_from[next_corner(c)];
 
@@ -152,7 +176,12 @@ impl HalfEdgeMesh {
         // Pair corners into edges.
         let mut corner_he = vec![NONE; nc];
         let mut halfedges: Vec<HalfEdgeRecord> = Vec::with_capacity(nc + nc / 8);
-        let blank = HalfEdgeRecord { origin: NONE, next: NONE, prev: NONE, face: NONE };
+        let blank = HalfEdgeRecord {
+            origin: NONE,
+            next: NONE,
+            prev: NONE,
+            face: NONE,
+        };
         for c in 0..nc {
             let (a, b) = (corner_from[c], corner_to(c));
             let same_dir: Vec<usize> = outgoing(a)
@@ -166,9 +195,17 @@ impl HalfEdgeMesh {
                 .filter(|&x| corner_to(x) == a)
                 .collect();
             if same_dir.len() + twins.len() > 2 {
-                let mut faces: Vec<usize> = same_dir.iter().chain(&twins).map(|&x| corner_face[x] as usize).collect();
+                let mut faces: Vec<usize> = same_dir
+                    .iter()
+                    .chain(&twins)
+                    .map(|&x| corner_face[x] as usize)
+                    .collect();
                 faces.sort_unstable();
-                return Err(BuildError::NonManifoldEdge { a: a.min(b), b: a.max(b), faces });
+                return Err(BuildError::NonManifoldEdge {
+                    a: a.min(b),
+                    b: a.max(b),
+                    faces,
+                });
             }
             if same_dir.len() > 1 {
                 let faces = same_dir.iter().map(|&x| corner_face[x] as usize).collect();
@@ -181,10 +218,20 @@ impl HalfEdgeMesh {
             corner_he[c] = h;
             halfedges.push(blank);
             halfedges.push(blank);
-            halfedges[h as usize] = HalfEdgeRecord { origin: a, next: NONE, prev: NONE, face: corner_face[c] };
+            halfedges[h as usize] = HalfEdgeRecord {
+                origin: a,
+                next: NONE,
+                prev: NONE,
+                face: corner_face[c],
+            };
             if let Some(&t) = twins.first() {
                 corner_he[t] = h + 1;
-                halfedges[h as usize + 1] = HalfEdgeRecord { origin: b, next: NONE, prev: NONE, face: corner_face[t] };
+                halfedges[h as usize + 1] = HalfEdgeRecord {
+                    origin: b,
+                    next: NONE,
+                    prev: NONE,
+                    face: corner_face[t],
+                };
             } else {
                 halfedges[h as usize + 1].origin = b;
             }
@@ -229,7 +276,9 @@ impl HalfEdgeMesh {
             positions: positions.to_vec(),
             vertex_out,
             halfedges,
-            face_halfedge: (0..polygons.len()).map(|f| corner_he[face_start[f]]).collect(),
+            face_halfedge: (0..polygons.len())
+                .map(|f| corner_he[face_start[f]])
+                .collect(),
             vertex_dead: vec![false; nv],
             edge_dead: vec![false; ne],
             face_dead: vec![false; polygons.len()],
@@ -270,7 +319,9 @@ impl HalfEdgeMesh {
                 continue;
             }
             if let Some(&v) = poly.iter().find(|&&v| !positions[v as usize].is_finite()) {
-                report.dropped_faces.push((fi, BuildError::NonFinitePosition { vertex: v }));
+                report
+                    .dropped_faces
+                    .push((fi, BuildError::NonFinitePosition { vertex: v }));
                 continue;
             }
             let n = poly.len();
@@ -279,7 +330,11 @@ impl HalfEdgeMesh {
                 if let Some(&other) = used.get(&(a, b)) {
                     let faces = vec![report.face_origin[other], fi];
                     return Some(if used.contains_key(&(b, a)) {
-                        BuildError::NonManifoldEdge { a: a.min(b), b: a.max(b), faces }
+                        BuildError::NonManifoldEdge {
+                            a: a.min(b),
+                            b: a.max(b),
+                            faces,
+                        }
                     } else {
                         BuildError::InconsistentOrientation { a, b, faces }
                     });
@@ -323,9 +378,15 @@ impl HalfEdgeMesh {
                 if let Some(&g) = used.get(&(b, a)) {
                     let other = &kept[g];
                     let m = other.len();
-                    let j = other.iter().position(|&x| x == b).expect("edge b->a lies in face g");
+                    let j = other
+                        .iter()
+                        .position(|&x| x == b)
+                        .expect("edge b->a lies in face g");
                     // In face g the edge runs b (corner j) -> a (corner j+1).
-                    let pairs = [(corner_base[f] + i, corner_base[g] + (j + 1) % m), (corner_base[f] + (i + 1) % n, corner_base[g] + j)];
+                    let pairs = [
+                        (corner_base[f] + i, corner_base[g] + (j + 1) % m),
+                        (corner_base[f] + (i + 1) % n, corner_base[g] + j),
+                    ];
                     for (x, y) in pairs {
                         let (rx, ry) = (find(&mut parent, x), find(&mut parent, y));
                         parent[rx] = ry;
@@ -370,16 +431,29 @@ impl HalfEdgeMesh {
     /// export. Dead vertex slots keep their index, so the output may contain
     /// unused positions; use [`compacted`](Self::compacted) first to avoid that.
     pub fn to_polygons(&self) -> (Vec<DVec3>, Vec<Vec<u32>>) {
-        let polys = self.faces().map(|f| self.face_vertices(f).map(|v| v.0).collect()).collect();
+        let polys = self
+            .faces()
+            .map(|f| self.face_vertices(f).map(|v| v.0).collect())
+            .collect();
         (self.positions.clone(), polys)
     }
 
-    /// A copy with dead slots removed and ids renumbered densely, in the old
+    /// Self when there are no dead slots, else [`compacted`](Self::compacted).
+    pub fn compacted_if_needed(self) -> HalfEdgeMesh {
+        let unused = self.vertices().any(|v| self.is_isolated_vertex(v));
+        if self.vertex_count() == self.vertex_capacity() && !unused {
+            self
+        } else {
+            self.compacted()
+        }
+    }
+
+    /// A copy with dead slots (and vertices no face uses) removed and ids renumbered densely, in the old
     /// order. Returns the new mesh.
     pub fn compacted(&self) -> HalfEdgeMesh {
         let mut vmap = vec![NONE; self.positions.len()];
         let mut positions = Vec::with_capacity(self.vertex_count());
-        for v in self.vertices() {
+        for v in self.vertices().filter(|&v| !self.is_isolated_vertex(v)) {
             vmap[v.index()] = positions.len() as u32;
             positions.push(self.position(v));
         }
@@ -387,6 +461,7 @@ impl HalfEdgeMesh {
             .faces()
             .map(|f| self.face_vertices(f).map(|v| vmap[v.index()]).collect())
             .collect();
-        HalfEdgeMesh::from_polygons(&positions, &polys).expect("a valid mesh stays valid when renumbered")
+        HalfEdgeMesh::from_polygons(&positions, &polys)
+            .expect("a valid mesh stays valid when renumbered")
     }
 }

@@ -390,7 +390,8 @@ impl HalfEdgeMesh {
             0
         };
         let shells = self.shell_count();
-        let euler = self.vertex_count() as i64 - self.edge_count() as i64 + self.face_count() as i64;
+        let euler =
+            self.vertex_count() as i64 - self.edge_count() as i64 + self.face_count() as i64;
         let two_g = 2 * shells as i64 - boundary_loops as i64 - euler;
         let genus = (validation.is_ok() && two_g >= 0 && two_g % 2 == 0).then_some(two_g / 2);
         MeshStats {

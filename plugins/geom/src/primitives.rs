@@ -17,15 +17,36 @@ pub enum Primitive {
     /// An axis-aligned cube centred at the origin.
     Cube { size: f64 },
     /// A plane of `x_segments × z_segments` quads.
-    Grid { x_segments: u32, z_segments: u32, size: f64 },
-    UvSphere { segments: u32, rings: u32, radius: f64 },
+    Grid {
+        x_segments: u32,
+        z_segments: u32,
+        size: f64,
+    },
+    UvSphere {
+        segments: u32,
+        rings: u32,
+        radius: f64,
+    },
     /// An icosahedron split `subdivisions` times (0 is the icosahedron).
     IcoSphere { subdivisions: u32, radius: f64 },
     /// Y-aligned, n-gon caps.
-    Cylinder { segments: u32, radius: f64, depth: f64 },
+    Cylinder {
+        segments: u32,
+        radius: f64,
+        depth: f64,
+    },
     /// Apex up, n-gon base.
-    Cone { segments: u32, radius: f64, depth: f64 },
-    Torus { major_segments: u32, minor_segments: u32, major_radius: f64, minor_radius: f64 },
+    Cone {
+        segments: u32,
+        radius: f64,
+        depth: f64,
+    },
+    Torus {
+        major_segments: u32,
+        minor_segments: u32,
+        major_radius: f64,
+        minor_radius: f64,
+    },
 }
 
 /// A primitive parameter outside its allowed range.
@@ -50,18 +71,51 @@ impl Primitive {
         Some(match kind {
             "plane" => Primitive::Plane { size: 2.0 },
             "cube" => Primitive::Cube { size: 2.0 },
-            "grid" => Primitive::Grid { x_segments: 10, z_segments: 10, size: 2.0 },
-            "uv_sphere" => Primitive::UvSphere { segments: 32, rings: 16, radius: 1.0 },
-            "ico_sphere" => Primitive::IcoSphere { subdivisions: 2, radius: 1.0 },
-            "cylinder" => Primitive::Cylinder { segments: 32, radius: 1.0, depth: 2.0 },
-            "cone" => Primitive::Cone { segments: 32, radius: 1.0, depth: 2.0 },
-            "torus" => Primitive::Torus { major_segments: 48, minor_segments: 12, major_radius: 1.0, minor_radius: 0.25 },
+            "grid" => Primitive::Grid {
+                x_segments: 10,
+                z_segments: 10,
+                size: 2.0,
+            },
+            "uv_sphere" => Primitive::UvSphere {
+                segments: 32,
+                rings: 16,
+                radius: 1.0,
+            },
+            "ico_sphere" => Primitive::IcoSphere {
+                subdivisions: 2,
+                radius: 1.0,
+            },
+            "cylinder" => Primitive::Cylinder {
+                segments: 32,
+                radius: 1.0,
+                depth: 2.0,
+            },
+            "cone" => Primitive::Cone {
+                segments: 32,
+                radius: 1.0,
+                depth: 2.0,
+            },
+            "torus" => Primitive::Torus {
+                major_segments: 48,
+                minor_segments: 12,
+                major_radius: 1.0,
+                minor_radius: 0.25,
+            },
             _ => return None,
         })
     }
 
     /// Every kind name accepted by [`default_of`](Self::default_of).
-    pub const KINDS: [&'static str; 8] = ["plane", "cube", "grid", "uv_sphere", "ico_sphere", "cylinder", "cone", "torus"];
+    pub const KINDS: [&'static str; 8] = [
+        "plane",
+        "cube",
+        "grid",
+        "uv_sphere",
+        "ico_sphere",
+        "cylinder",
+        "cone",
+        "torus",
+    ];
 
     /// The kind name (`"cube"`, …).
     pub fn kind(&self) -> &'static str {
@@ -101,40 +155,93 @@ impl Primitive {
             if value.is_finite() && value > 0.0 && value < 1e9 {
                 Ok(())
             } else {
-                Err(PrimitiveError { primitive: name, parameter, value: value.to_string(), allowed: "a finite length > 0" })
+                Err(PrimitiveError {
+                    primitive: name,
+                    parameter,
+                    value: value.to_string(),
+                    allowed: "a finite length > 0",
+                })
             }
         };
         let count = |parameter, value: u32, min: u32, max: u32, allowed| {
             if (min..=max).contains(&value) {
                 Ok(())
             } else {
-                Err(PrimitiveError { primitive: name, parameter, value: value.to_string(), allowed })
+                Err(PrimitiveError {
+                    primitive: name,
+                    parameter,
+                    value: value.to_string(),
+                    allowed,
+                })
             }
         };
         match *self {
             Primitive::Plane { size } | Primitive::Cube { size } => length("size", size),
-            Primitive::Grid { x_segments, z_segments, size } => {
+            Primitive::Grid {
+                x_segments,
+                z_segments,
+                size,
+            } => {
                 count("x_segments", x_segments, 1, MAX_SEGMENTS, "1 to 4096")?;
                 count("z_segments", z_segments, 1, MAX_SEGMENTS, "1 to 4096")?;
                 length("size", size)
             }
-            Primitive::UvSphere { segments, rings, radius } => {
+            Primitive::UvSphere {
+                segments,
+                rings,
+                radius,
+            } => {
                 count("segments", segments, 3, MAX_SEGMENTS, "3 to 4096")?;
                 count("rings", rings, 2, MAX_SEGMENTS, "2 to 4096")?;
                 length("radius", radius)
             }
-            Primitive::IcoSphere { subdivisions, radius } => {
-                count("subdivisions", subdivisions, 0, MAX_ICO_SUBDIVISIONS, "0 to 9")?;
+            Primitive::IcoSphere {
+                subdivisions,
+                radius,
+            } => {
+                count(
+                    "subdivisions",
+                    subdivisions,
+                    0,
+                    MAX_ICO_SUBDIVISIONS,
+                    "0 to 9",
+                )?;
                 length("radius", radius)
             }
-            Primitive::Cylinder { segments, radius, depth } | Primitive::Cone { segments, radius, depth } => {
+            Primitive::Cylinder {
+                segments,
+                radius,
+                depth,
+            }
+            | Primitive::Cone {
+                segments,
+                radius,
+                depth,
+            } => {
                 count("segments", segments, 3, MAX_SEGMENTS, "3 to 4096")?;
                 length("radius", radius)?;
                 length("depth", depth)
             }
-            Primitive::Torus { major_segments, minor_segments, major_radius, minor_radius } => {
-                count("major_segments", major_segments, 3, MAX_SEGMENTS, "3 to 4096")?;
-                count("minor_segments", minor_segments, 3, MAX_SEGMENTS, "3 to 4096")?;
+            Primitive::Torus {
+                major_segments,
+                minor_segments,
+                major_radius,
+                minor_radius,
+            } => {
+                count(
+                    "major_segments",
+                    major_segments,
+                    3,
+                    MAX_SEGMENTS,
+                    "3 to 4096",
+                )?;
+                count(
+                    "minor_segments",
+                    minor_segments,
+                    3,
+                    MAX_SEGMENTS,
+                    "3 to 4096",
+                )?;
                 length("major_radius", major_radius)?;
                 length("minor_radius", minor_radius)?;
                 if minor_radius >= major_radius {
@@ -159,16 +266,39 @@ impl Primitive {
         let (positions, polygons) = match *self {
             Primitive::Plane { size } => grid(1, 1, size),
             Primitive::Cube { size } => cube(size),
-            Primitive::Grid { x_segments, z_segments, size } => grid(x_segments, z_segments, size),
-            Primitive::UvSphere { segments, rings, radius } => uv_sphere(segments, rings, radius),
-            Primitive::IcoSphere { subdivisions, radius } => ico_sphere(subdivisions, radius),
-            Primitive::Cylinder { segments, radius, depth } => lathe(segments, radius, depth, false),
-            Primitive::Cone { segments, radius, depth } => lathe(segments, radius, depth, true),
-            Primitive::Torus { major_segments, minor_segments, major_radius, minor_radius } => {
-                torus(major_segments, minor_segments, major_radius, minor_radius)
-            }
+            Primitive::Grid {
+                x_segments,
+                z_segments,
+                size,
+            } => grid(x_segments, z_segments, size),
+            Primitive::UvSphere {
+                segments,
+                rings,
+                radius,
+            } => uv_sphere(segments, rings, radius),
+            Primitive::IcoSphere {
+                subdivisions,
+                radius,
+            } => ico_sphere(subdivisions, radius),
+            Primitive::Cylinder {
+                segments,
+                radius,
+                depth,
+            } => lathe(segments, radius, depth, false),
+            Primitive::Cone {
+                segments,
+                radius,
+                depth,
+            } => lathe(segments, radius, depth, true),
+            Primitive::Torus {
+                major_segments,
+                minor_segments,
+                major_radius,
+                minor_radius,
+            } => torus(major_segments, minor_segments, major_radius, minor_radius),
         };
-        Ok(HalfEdgeMesh::from_polygons(&positions, &polygons).expect("primitive polygons are manifold"))
+        Ok(HalfEdgeMesh::from_polygons(&positions, &polygons)
+            .expect("primitive polygons are manifold"))
     }
 }
 
@@ -178,7 +308,13 @@ fn cube(size: f64) -> Polygons {
     let h = size / 2.0;
     // Vertex i has x = bit 0, y = bit 1, z = bit 2.
     let positions = (0..8)
-        .map(|i| DVec3::new(if i & 1 == 0 { -h } else { h }, if i & 2 == 0 { -h } else { h }, if i & 4 == 0 { -h } else { h }))
+        .map(|i| {
+            DVec3::new(
+                if i & 1 == 0 { -h } else { h },
+                if i & 2 == 0 { -h } else { h },
+                if i & 4 == 0 { -h } else { h },
+            )
+        })
         .collect();
     let faces = vec![
         vec![0, 4, 6, 2], // -X
@@ -195,7 +331,11 @@ fn grid(nx: u32, nz: u32, size: f64) -> Polygons {
     let mut positions = Vec::with_capacity(((nx + 1) * (nz + 1)) as usize);
     for j in 0..=nz {
         for i in 0..=nx {
-            positions.push(DVec3::new(size * (i as f64 / nx as f64 - 0.5), 0.0, size * (j as f64 / nz as f64 - 0.5)));
+            positions.push(DVec3::new(
+                size * (i as f64 / nx as f64 - 0.5),
+                0.0,
+                size * (j as f64 / nz as f64 - 0.5),
+            ));
         }
     }
     let id = |i: u32, j: u32| j * (nx + 1) + i;
@@ -219,7 +359,11 @@ fn uv_sphere(segments: u32, rings: u32, radius: f64) -> Polygons {
     for k in 1..rings {
         let theta = PI * k as f64 / rings as f64;
         for s in 0..n {
-            positions.push(ring_point(radius * theta.sin(), TAU * s as f64 / n as f64, radius * theta.cos()));
+            positions.push(ring_point(
+                radius * theta.sin(),
+                TAU * s as f64 / n as f64,
+                radius * theta.cos(),
+            ));
         }
     }
     positions.push(DVec3::new(0.0, -radius, 0.0));
@@ -231,7 +375,12 @@ fn uv_sphere(segments: u32, rings: u32, radius: f64) -> Polygons {
     }
     for k in 1..rings - 1 {
         for s in 0..n {
-            faces.push(vec![ring(k, s), ring(k, s + 1), ring(k + 1, s + 1), ring(k + 1, s)]);
+            faces.push(vec![
+                ring(k, s),
+                ring(k, s + 1),
+                ring(k + 1, s + 1),
+                ring(k + 1, s),
+            ]);
         }
     }
     for s in 0..n {
@@ -244,7 +393,9 @@ fn uv_sphere(segments: u32, rings: u32, radius: f64) -> Polygons {
 fn lathe(segments: u32, radius: f64, depth: f64, apex: bool) -> Polygons {
     let n = segments;
     let h = depth / 2.0;
-    let mut positions: Vec<DVec3> = (0..n).map(|s| ring_point(radius, TAU * s as f64 / n as f64, -h)).collect();
+    let mut positions: Vec<DVec3> = (0..n)
+        .map(|s| ring_point(radius, TAU * s as f64 / n as f64, -h))
+        .collect();
     let lower = |s: u32| s % n;
     let mut faces = vec![(0..n).collect::<Vec<u32>>()];
     if apex {

@@ -43,9 +43,15 @@ pub fn triangulate_face(mesh: &HalfEdgeMesh, f: FaceId) -> Vec<[VertexId; 3]> {
             _ => false,
         };
         return if use13 {
-            vec![[verts[1], verts[2], verts[3]], [verts[1], verts[3], verts[0]]]
+            vec![
+                [verts[1], verts[2], verts[3]],
+                [verts[1], verts[3], verts[0]],
+            ]
         } else {
-            vec![[verts[0], verts[1], verts[2]], [verts[0], verts[2], verts[3]]]
+            vec![
+                [verts[0], verts[1], verts[2]],
+                [verts[0], verts[2], verts[3]],
+            ]
         };
     }
     let mut idx: Vec<usize> = (0..n).collect();
@@ -59,11 +65,16 @@ pub fn triangulate_face(mesh: &HalfEdgeMesh, f: FaceId) -> Vec<[VertexId; 3]> {
             if cross2(pts[b] - pts[a], pts[c] - pts[b]) <= 0.0 {
                 return false; // reflex or flat corner
             }
-            !idx.iter().any(|&p| p != a && p != b && p != c && in_triangle(pts[p], pts[a], pts[b], pts[c]))
+            !idx.iter()
+                .any(|&p| p != a && p != b && p != c && in_triangle(pts[p], pts[a], pts[b], pts[c]))
         });
         let Some(i) = ear else { break };
         let m = idx.len();
-        out.push([verts[idx[(i + m - 1) % m]], verts[idx[i]], verts[idx[(i + 1) % m]]]);
+        out.push([
+            verts[idx[(i + m - 1) % m]],
+            verts[idx[i]],
+            verts[idx[(i + 1) % m]],
+        ]);
         idx.remove(i);
     }
     if idx.len() == 3 {
@@ -78,7 +89,9 @@ pub fn triangulate_face(mesh: &HalfEdgeMesh, f: FaceId) -> Vec<[VertexId; 3]> {
 }
 
 fn fan(verts: &[VertexId]) -> Vec<[VertexId; 3]> {
-    (1..verts.len() - 1).map(|i| [verts[0], verts[i], verts[i + 1]]).collect()
+    (1..verts.len() - 1)
+        .map(|i| [verts[0], verts[i], verts[i + 1]])
+        .collect()
 }
 
 fn cross2(a: DVec2, b: DVec2) -> f64 {
@@ -124,7 +137,13 @@ pub fn ray_cast(mesh: &HalfEdgeMesh, origin: DVec3, dir: DVec3) -> Option<(FaceI
     let mut best: Option<(FaceId, f64)> = None;
     for f in mesh.faces() {
         for [a, b, c] in triangulate_face(mesh, f) {
-            if let Some(t) = ray_triangle(origin, dir, mesh.position(a), mesh.position(b), mesh.position(c)) {
+            if let Some(t) = ray_triangle(
+                origin,
+                dir,
+                mesh.position(a),
+                mesh.position(b),
+                mesh.position(c),
+            ) {
                 if best.is_none_or(|(_, bt)| t < bt) {
                     best = Some((f, t));
                 }

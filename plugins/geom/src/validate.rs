@@ -10,7 +10,11 @@ use std::fmt;
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum Violation {
     /// A record refers to an id outside its array or to a dead element.
-    DanglingReference { element: String, field: &'static str, value: u32 },
+    DanglingReference {
+        element: String,
+        field: &'static str,
+        value: u32,
+    },
     /// `next(prev(h)) != h` or `prev(next(h)) != h`.
     BrokenLink { halfedge: HalfEdgeId },
     /// `origin(next(h)) != target(h)`.
@@ -26,19 +30,31 @@ pub enum Violation {
     /// `origin(vertex_halfedge(v)) != v`.
     WrongVertexHalfEdge { vertex: VertexId },
     /// The fan around a vertex misses some of its outgoing half-edges.
-    NonManifoldVertex { vertex: VertexId, fan: usize, outgoing: usize },
+    NonManifoldVertex {
+        vertex: VertexId,
+        fan: usize,
+        outgoing: usize,
+    },
     /// A boundary vertex whose stored half-edge is not a boundary one.
     BoundaryNotFirst { vertex: VertexId },
     /// A non-finite coordinate.
     NonFinitePosition { vertex: VertexId },
     /// Cached live counts disagree with the flags.
-    WrongCount { what: &'static str, cached: usize, actual: usize },
+    WrongCount {
+        what: &'static str,
+        cached: usize,
+        actual: usize,
+    },
 }
 
 impl fmt::Display for Violation {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            Violation::DanglingReference { element, field, value } => {
+            Violation::DanglingReference {
+                element,
+                field,
+                value,
+            } => {
                 write!(f, "{element}: {field} refers to missing element {value}")
             }
             Violation::BrokenLink { halfedge } => write!(f, "{halfedge}: next/prev links disagree"),
@@ -48,9 +64,14 @@ impl fmt::Display for Violation {
             Violation::FaceMismatch { halfedge } => {
                 write!(f, "{halfedge}: next half-edge lies on another face")
             }
-            Violation::SelfLoop { halfedge } => write!(f, "{halfedge}: edge joins a vertex to itself"),
+            Violation::SelfLoop { halfedge } => {
+                write!(f, "{halfedge}: edge joins a vertex to itself")
+            }
             Violation::BadFaceLoop { face, len } => {
-                write!(f, "{face}: loop is not a closed polygon ({len} half-edges walked)")
+                write!(
+                    f,
+                    "{face}: loop is not a closed polygon ({len} half-edges walked)"
+                )
             }
             Violation::StrayFaceHalfEdge { face } => {
                 write!(f, "{face}: half-edges name this face outside its loop")
@@ -58,15 +79,25 @@ impl fmt::Display for Violation {
             Violation::WrongVertexHalfEdge { vertex } => {
                 write!(f, "{vertex}: its half-edge does not start at it")
             }
-            Violation::NonManifoldVertex { vertex, fan, outgoing } => write!(
+            Violation::NonManifoldVertex {
+                vertex,
+                fan,
+                outgoing,
+            } => write!(
                 f,
                 "{vertex}: non-manifold, its fan reaches {fan} of {outgoing} outgoing half-edges"
             ),
             Violation::BoundaryNotFirst { vertex } => {
                 write!(f, "{vertex}: on a boundary but its half-edge is interior")
             }
-            Violation::NonFinitePosition { vertex } => write!(f, "{vertex}: position is not finite"),
-            Violation::WrongCount { what, cached, actual } => {
+            Violation::NonFinitePosition { vertex } => {
+                write!(f, "{vertex}: position is not finite")
+            }
+            Violation::WrongCount {
+                what,
+                cached,
+                actual,
+            } => {
                 write!(f, "{what} count is {cached} but {actual} are live")
             }
         }
@@ -128,11 +159,19 @@ impl HalfEdgeMesh {
         let nh = self.halfedges.len();
         let nf = self.face_halfedge.len();
         if self.vertex_out.len() != nv || self.vertex_dead.len() != nv {
-            out.push(Violation::WrongCount { what: "vertex record", cached: self.vertex_out.len(), actual: nv });
+            out.push(Violation::WrongCount {
+                what: "vertex record",
+                cached: self.vertex_out.len(),
+                actual: nv,
+            });
             return;
         }
         if self.edge_dead.len() * 2 != nh || self.face_dead.len() != nf {
-            out.push(Violation::WrongCount { what: "edge record", cached: self.edge_dead.len() * 2, actual: nh });
+            out.push(Violation::WrongCount {
+                what: "edge record",
+                cached: self.edge_dead.len() * 2,
+                actual: nh,
+            });
             return;
         }
         let live_v = self.vertex_dead.iter().filter(|d| !**d).count();
@@ -144,7 +183,11 @@ impl HalfEdgeMesh {
             ("face", self.live_faces, live_f),
         ] {
             if cached != actual {
-                out.push(Violation::WrongCount { what, cached, actual });
+                out.push(Violation::WrongCount {
+                    what,
+                    cached,
+                    actual,
+                });
             }
         }
         let live_vertex = |x: u32| (x as usize) < nv && !self.vertex_dead[x as usize];
@@ -152,7 +195,11 @@ impl HalfEdgeMesh {
         let live_face = |x: u32| (x as usize) < nf && !self.face_dead[x as usize];
         let push = |out: &mut Vec<Violation>, element: String, field, value| {
             if out.len() < ValidationError::LIMIT {
-                out.push(Violation::DanglingReference { element, field, value });
+                out.push(Violation::DanglingReference {
+                    element,
+                    field,
+                    value,
+                });
             }
         };
         for v in self.vertices() {
@@ -258,7 +305,11 @@ impl HalfEdgeMesh {
             }
             let Some(start) = self.vertex_halfedge(v) else {
                 if outgoing[v.index()] != 0 {
-                    out.push(Violation::NonManifoldVertex { vertex: v, fan: 0, outgoing: outgoing[v.index()] });
+                    out.push(Violation::NonManifoldVertex {
+                        vertex: v,
+                        fan: 0,
+                        outgoing: outgoing[v.index()],
+                    });
                 }
                 continue;
             };
@@ -279,7 +330,11 @@ impl HalfEdgeMesh {
                 }
             }
             if fan != outgoing[v.index()] || boundary_out[v.index()] > 1 {
-                out.push(Violation::NonManifoldVertex { vertex: v, fan, outgoing: outgoing[v.index()] });
+                out.push(Violation::NonManifoldVertex {
+                    vertex: v,
+                    fan,
+                    outgoing: outgoing[v.index()],
+                });
             } else if boundary_out[v.index()] == 1 && !self.is_boundary_halfedge(start) {
                 out.push(Violation::BoundaryNotFirst { vertex: v });
             }

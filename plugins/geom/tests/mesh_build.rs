@@ -3,7 +3,10 @@
 use hedra_geom::{BuildError, DVec3, HalfEdgeMesh, Primitive, VertexId};
 
 fn all_primitives() -> Vec<Primitive> {
-    Primitive::KINDS.iter().map(|k| Primitive::default_of(k).unwrap()).collect()
+    Primitive::KINDS
+        .iter()
+        .map(|k| Primitive::default_of(k).unwrap())
+        .collect()
 }
 
 #[test]
@@ -35,7 +38,11 @@ fn every_primitive_is_valid_outward_and_has_the_right_euler_characteristic() {
         // Every face normal points away from the centre for the convex closed ones.
         if ["cube", "uv_sphere", "ico_sphere", "cylinder"].contains(&p.kind()) {
             for f in m.faces() {
-                assert!(m.face_normal(f).dot(m.face_centroid(f)) > 0.0, "{} {f}", p.kind());
+                assert!(
+                    m.face_normal(f).dot(m.face_centroid(f)) > 0.0,
+                    "{} {f}",
+                    p.kind()
+                );
             }
         }
     }
@@ -49,26 +56,90 @@ fn primitive_counts_match_known_values() {
     };
     assert_eq!(count(Primitive::Cube { size: 2.0 }), (8, 12, 6));
     assert_eq!(count(Primitive::Plane { size: 2.0 }), (4, 4, 1));
-    assert_eq!(count(Primitive::Grid { x_segments: 3, z_segments: 2, size: 1.0 }), (12, 17, 6));
-    assert_eq!(count(Primitive::IcoSphere { subdivisions: 0, radius: 1.0 }), (12, 30, 20));
-    assert_eq!(count(Primitive::IcoSphere { subdivisions: 1, radius: 1.0 }), (42, 120, 80));
-    assert_eq!(count(Primitive::UvSphere { segments: 8, rings: 4, radius: 1.0 }), (26, 56, 32));
-    assert_eq!(count(Primitive::Cylinder { segments: 6, radius: 1.0, depth: 1.0 }), (12, 18, 8));
-    assert_eq!(count(Primitive::Cone { segments: 6, radius: 1.0, depth: 1.0 }), (7, 12, 7));
     assert_eq!(
-        count(Primitive::Torus { major_segments: 8, minor_segments: 4, major_radius: 1.0, minor_radius: 0.2 }),
+        count(Primitive::Grid {
+            x_segments: 3,
+            z_segments: 2,
+            size: 1.0
+        }),
+        (12, 17, 6)
+    );
+    assert_eq!(
+        count(Primitive::IcoSphere {
+            subdivisions: 0,
+            radius: 1.0
+        }),
+        (12, 30, 20)
+    );
+    assert_eq!(
+        count(Primitive::IcoSphere {
+            subdivisions: 1,
+            radius: 1.0
+        }),
+        (42, 120, 80)
+    );
+    assert_eq!(
+        count(Primitive::UvSphere {
+            segments: 8,
+            rings: 4,
+            radius: 1.0
+        }),
+        (26, 56, 32)
+    );
+    assert_eq!(
+        count(Primitive::Cylinder {
+            segments: 6,
+            radius: 1.0,
+            depth: 1.0
+        }),
+        (12, 18, 8)
+    );
+    assert_eq!(
+        count(Primitive::Cone {
+            segments: 6,
+            radius: 1.0,
+            depth: 1.0
+        }),
+        (7, 12, 7)
+    );
+    assert_eq!(
+        count(Primitive::Torus {
+            major_segments: 8,
+            minor_segments: 4,
+            major_radius: 1.0,
+            minor_radius: 0.2
+        }),
         (32, 64, 32)
     );
 }
 
 #[test]
 fn primitives_are_quads_where_the_shape_allows() {
-    let sphere = Primitive::UvSphere { segments: 8, rings: 4, radius: 1.0 }.build().unwrap();
-    let quads = sphere.faces().filter(|&f| sphere.face_degree(f) == 4).count();
+    let sphere = Primitive::UvSphere {
+        segments: 8,
+        rings: 4,
+        radius: 1.0,
+    }
+    .build()
+    .unwrap();
+    let quads = sphere
+        .faces()
+        .filter(|&f| sphere.face_degree(f) == 4)
+        .count();
     assert_eq!(quads, 8 * 2, "two quad bands between the pole fans");
-    let cyl = Primitive::Cylinder { segments: 6, radius: 1.0, depth: 1.0 }.build().unwrap();
+    let cyl = Primitive::Cylinder {
+        segments: 6,
+        radius: 1.0,
+        depth: 1.0,
+    }
+    .build()
+    .unwrap();
     let degrees: Vec<usize> = cyl.faces().map(|f| cyl.face_degree(f)).collect();
-    assert_eq!(degrees.iter().filter(|&&d| d == 6).count(), 2, "two hexagon caps");
+    assert_eq!(
+        degrees.iter().filter(|&&d| d == 6).count(),
+        2,
+        "two hexagon caps"
+    );
     assert_eq!(degrees.iter().filter(|&&d| d == 4).count(), 6);
 }
 
@@ -79,7 +150,12 @@ fn cube_positions_and_sizes() {
     assert_eq!(lo, DVec3::splat(-1.0));
     assert_eq!(hi, DVec3::splat(1.0));
     assert!((m.volume() - 8.0).abs() < 1e-12);
-    let ico = Primitive::IcoSphere { subdivisions: 2, radius: 3.0 }.build().unwrap();
+    let ico = Primitive::IcoSphere {
+        subdivisions: 2,
+        radius: 3.0,
+    }
+    .build()
+    .unwrap();
     for v in ico.vertices() {
         assert!((ico.position(v).length() - 3.0).abs() < 1e-12);
     }
@@ -87,15 +163,31 @@ fn cube_positions_and_sizes() {
 
 #[test]
 fn bad_primitive_parameters_are_refused_by_name() {
-    let e = Primitive::UvSphere { segments: 2, rings: 4, radius: 1.0 }.build().unwrap_err();
+    let e = Primitive::UvSphere {
+        segments: 2,
+        rings: 4,
+        radius: 1.0,
+    }
+    .build()
+    .unwrap_err();
     assert_eq!(e.parameter, "segments");
     let e = Primitive::Cube { size: f64::NAN }.build().unwrap_err();
     assert_eq!(e.parameter, "size");
-    let e = Primitive::Torus { major_segments: 8, minor_segments: 8, major_radius: 1.0, minor_radius: 2.0 }
-        .build()
-        .unwrap_err();
+    let e = Primitive::Torus {
+        major_segments: 8,
+        minor_segments: 8,
+        major_radius: 1.0,
+        minor_radius: 2.0,
+    }
+    .build()
+    .unwrap_err();
     assert_eq!(e.parameter, "minor_radius");
-    let e = Primitive::IcoSphere { subdivisions: 40, radius: 1.0 }.build().unwrap_err();
+    let e = Primitive::IcoSphere {
+        subdivisions: 40,
+        radius: 1.0,
+    }
+    .build()
+    .unwrap_err();
     assert!(e.to_string().contains("subdivisions = 40"), "{e}");
 }
 
@@ -116,7 +208,11 @@ fn from_polygons_names_the_problem() {
     let p = square_positions();
     assert_eq!(
         HalfEdgeMesh::from_polygons(&p, &[vec![0, 1, 9]]).unwrap_err(),
-        BuildError::IndexOutOfRange { face: 0, index: 9, vertex_count: 7 }
+        BuildError::IndexOutOfRange {
+            face: 0,
+            index: 9,
+            vertex_count: 7
+        }
     );
     assert_eq!(
         HalfEdgeMesh::from_polygons(&p, &[vec![0, 1, 2], vec![0, 2, 2, 3]]).unwrap_err(),
@@ -127,12 +223,23 @@ fn from_polygons_names_the_problem() {
         BuildError::TooFewSides { face: 0, sides: 2 }
     );
     // Edge 0-1 used by three triangles.
-    let e = HalfEdgeMesh::from_polygons(&p, &[vec![0, 1, 2], vec![1, 0, 4], vec![1, 0, 5]]).unwrap_err();
-    assert!(matches!(e, BuildError::NonManifoldEdge { a: 0, b: 1, .. }), "{e:?}");
+    let e = HalfEdgeMesh::from_polygons(&p, &[vec![0, 1, 2], vec![1, 0, 4], vec![1, 0, 5]])
+        .unwrap_err();
+    assert!(
+        matches!(e, BuildError::NonManifoldEdge { a: 0, b: 1, .. }),
+        "{e:?}"
+    );
     assert!(e.to_string().contains("more than two faces"));
     // Two faces running 0->1 the same way.
     let e = HalfEdgeMesh::from_polygons(&p, &[vec![0, 1, 2], vec![0, 1, 4]]).unwrap_err();
-    assert_eq!(e, BuildError::InconsistentOrientation { a: 0, b: 1, faces: vec![0, 1] });
+    assert_eq!(
+        e,
+        BuildError::InconsistentOrientation {
+            a: 0,
+            b: 1,
+            faces: vec![0, 1]
+        }
+    );
     // Bow-tie: two triangles touching at vertex 1 only.
     let e = HalfEdgeMesh::from_polygons(&p, &[vec![0, 1, 3], vec![1, 6, 2]]).unwrap_err();
     assert_eq!(e, BuildError::NonManifoldVertex { vertex: 1 });
@@ -159,10 +266,15 @@ fn two_closed_fans_meeting_at_a_vertex_are_non_manifold() {
     .iter()
     .map(|&(x, y, z)| DVec3::new(x, y, z))
     .collect();
-    let tet = |a: u32, b: u32, c: u32, d: u32| vec![vec![a, c, b], vec![a, b, d], vec![a, d, c], vec![b, c, d]];
+    let tet = |a: u32, b: u32, c: u32, d: u32| {
+        vec![vec![a, c, b], vec![a, b, d], vec![a, d, c], vec![b, c, d]]
+    };
     let mut faces = tet(0, 1, 2, 3);
     faces.extend(tet(0, 4, 5, 6));
-    assert_eq!(HalfEdgeMesh::from_polygons(&p, &faces).unwrap_err(), BuildError::NonManifoldVertex { vertex: 0 });
+    assert_eq!(
+        HalfEdgeMesh::from_polygons(&p, &faces).unwrap_err(),
+        BuildError::NonManifoldVertex { vertex: 0 }
+    );
     let (m, report) = HalfEdgeMesh::from_polygons_repaired(&p, &faces).unwrap();
     m.validate().unwrap();
     assert_eq!(report.split_vertices, vec![(0, 1)]);
@@ -173,17 +285,29 @@ fn two_closed_fans_meeting_at_a_vertex_are_non_manifold() {
 #[test]
 fn repair_drops_the_offending_faces_and_splits_bowties() {
     let p = square_positions();
-    let faces = vec![vec![0, 1, 2], vec![1, 0, 4], vec![1, 0, 5], vec![0, 1, 9], vec![1, 6, 5]];
+    let faces = vec![
+        vec![0, 1, 2],
+        vec![1, 0, 4],
+        vec![1, 0, 5],
+        vec![0, 1, 9],
+        vec![1, 6, 5],
+    ];
     let (m, report) = HalfEdgeMesh::from_polygons_repaired(&p, &faces).unwrap();
     m.validate().unwrap();
     let dropped: Vec<usize> = report.dropped_faces.iter().map(|(f, _)| *f).collect();
     assert_eq!(dropped, vec![2, 3]);
     assert_eq!(report.face_origin, vec![0, 1, 4]);
     assert_eq!(m.face_count(), 3);
-    assert_eq!(report.split_vertices, vec![(1, 1)], "face 4 touches the others only at vertex 1");
+    assert_eq!(
+        report.split_vertices,
+        vec![(1, 1)],
+        "face 4 touches the others only at vertex 1"
+    );
     assert_eq!(m.vertex_count(), 8);
     assert!(report.to_string().contains("dropped 2 face(s)"), "{report}");
-    let clean = HalfEdgeMesh::from_polygons_repaired(&p, &[vec![0, 1, 2]]).unwrap().1;
+    let clean = HalfEdgeMesh::from_polygons_repaired(&p, &[vec![0, 1, 2]])
+        .unwrap()
+        .1;
     assert!(clean.is_clean());
 }
 
@@ -196,7 +320,10 @@ fn traversal_of_the_cube() {
         for w in m.vertex_neighbors(v) {
             // Neighbours of a cube corner differ in exactly one coordinate.
             let d = m.position(v) - m.position(w);
-            assert_eq!((d.x != 0.0) as u8 + (d.y != 0.0) as u8 + (d.z != 0.0) as u8, 1);
+            assert_eq!(
+                (d.x != 0.0) as u8 + (d.y != 0.0) as u8 + (d.z != 0.0) as u8,
+                1
+            );
         }
     }
     for f in m.faces() {
@@ -214,7 +341,13 @@ fn traversal_of_the_cube() {
 
 #[test]
 fn ron_round_trip_keeps_every_id() {
-    let m = Primitive::UvSphere { segments: 6, rings: 4, radius: 1.0 }.build().unwrap();
+    let m = Primitive::UvSphere {
+        segments: 6,
+        rings: 4,
+        radius: 1.0,
+    }
+    .build()
+    .unwrap();
     let text = ron::to_string(&m).unwrap();
     let back: HalfEdgeMesh = ron::from_str(&text).unwrap();
     assert_eq!(back, m);
@@ -233,5 +366,9 @@ fn corrupted_stored_mesh_is_refused_with_the_element_named() {
     assert!(e.starts_with("invalid mesh"), "{e}");
     let mut data = hedra_geom::MeshData::from(m);
     data.positions.pop();
-    assert!(HalfEdgeMesh::try_from(data).unwrap_err().contains("positions"));
+    assert!(
+        HalfEdgeMesh::try_from(data)
+            .unwrap_err()
+            .contains("positions")
+    );
 }

@@ -5,26 +5,41 @@ use hedra_geom::{DVec3, FaceId, HalfEdgeMesh, Primitive};
 
 fn area(m: &HalfEdgeMesh, tris: &[[hedra_geom::VertexId; 3]]) -> DVec3 {
     tris.iter()
-        .map(|[a, b, c]| (m.position(*b) - m.position(*a)).cross(m.position(*c) - m.position(*a)) * 0.5)
+        .map(|[a, b, c]| {
+            (m.position(*b) - m.position(*a)).cross(m.position(*c) - m.position(*a)) * 0.5
+        })
         .sum()
 }
 
 #[test]
 fn concave_ngon_triangulates_inside_its_outline() {
     // An L-shaped hexagon in the XY plane (counter-clockwise): area 3.
-    let p: Vec<DVec3> = [(0.0, 0.0), (2.0, 0.0), (2.0, 1.0), (1.0, 1.0), (1.0, 2.0), (0.0, 2.0)]
-        .iter()
-        .map(|&(x, y)| DVec3::new(x, y, 0.0))
-        .collect();
+    let p: Vec<DVec3> = [
+        (0.0, 0.0),
+        (2.0, 0.0),
+        (2.0, 1.0),
+        (1.0, 1.0),
+        (1.0, 2.0),
+        (0.0, 2.0),
+    ]
+    .iter()
+    .map(|&(x, y)| DVec3::new(x, y, 0.0))
+    .collect();
     let m = HalfEdgeMesh::from_polygons(&p, &[vec![0, 1, 2, 3, 4, 5]]).unwrap();
     let tris = triangulate_face(&m, FaceId(0));
     assert_eq!(tris.len(), 4);
     let a = area(&m, &tris);
-    assert!((a - DVec3::new(0.0, 0.0, 3.0)).length() < 1e-12, "{a:?}: every triangle keeps the orientation");
+    assert!(
+        (a - DVec3::new(0.0, 0.0, 3.0)).length() < 1e-12,
+        "{a:?}: every triangle keeps the orientation"
+    );
     // No triangle covers the notch at (1.5, 1.5).
     for [a, b, c] in &tris {
         let centroid = (m.position(*a) + m.position(*b) + m.position(*c)) / 3.0;
-        assert!(!(centroid.x > 1.0 && centroid.y > 1.0), "triangle in the notch");
+        assert!(
+            !(centroid.x > 1.0 && centroid.y > 1.0),
+            "triangle in the notch"
+        );
     }
 }
 
@@ -46,7 +61,13 @@ fn ray_cast_hits_the_nearest_face() {
     let m = Primitive::Cube { size: 2.0 }.build().unwrap();
     let (f, t) = ray_cast(&m, DVec3::new(0.2, 0.3, 10.0), DVec3::new(0.0, 0.0, -1.0)).unwrap();
     assert!((t - 9.0).abs() < 1e-12);
-    assert!(m.face_normal(f).abs_diff_eq(DVec3::Z, 1e-12), "the +Z face is hit first");
+    assert!(
+        m.face_normal(f).abs_diff_eq(DVec3::Z, 1e-12),
+        "the +Z face is hit first"
+    );
     assert!(ray_cast(&m, DVec3::new(5.0, 0.0, 10.0), DVec3::new(0.0, 0.0, -1.0)).is_none());
-    assert!(ray_cast(&m, DVec3::new(0.0, 0.0, 10.0), DVec3::new(0.0, 0.0, 1.0)).is_none(), "behind the origin");
+    assert!(
+        ray_cast(&m, DVec3::new(0.0, 0.0, 10.0), DVec3::new(0.0, 0.0, 1.0)).is_none(),
+        "behind the origin"
+    );
 }

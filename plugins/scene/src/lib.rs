@@ -31,10 +31,10 @@ pub struct DocState {
 impl DocState {
     /// The file name for titles ("untitled" before the first save).
     pub fn display_name(&self) -> String {
-        self.path
-            .as_ref()
-            .and_then(|p| p.file_name())
-            .map_or_else(|| "untitled".to_string(), |n| n.to_string_lossy().into_owned())
+        self.path.as_ref().and_then(|p| p.file_name()).map_or_else(
+            || "untitled".to_string(),
+            |n| n.to_string_lossy().into_owned(),
+        )
     }
 }
 
@@ -53,6 +53,8 @@ pub enum DocRequest {
     New,
     Open(PathBuf),
     Save(PathBuf),
+    /// Add the meshes of an OBJ file as new nodes (one step).
+    Import(PathBuf),
 }
 
 /// Sent after a request changed the document.
@@ -154,67 +156,111 @@ pub fn apply_requests(
 ) {
     for request in requests.read() {
         let state = &mut *state;
-        let result: Result<Option<DocChanged>, String> = match request {
-            DocRequest::Execute(cmd) => state.session.execute(cmd).map_err(|e| e.to_string()).map(|a| {
-                status.info(a.label.clone());
-                Some(DocChanged { created: a.created, replaced: false })
-            }),
-            DocRequest::AdjustLast(cmd) => state.session.adjust_last(cmd).map_err(|e| e.to_string()).map(|a| {
-                status.info(a.label.clone());
-                Some(DocChanged { created: a.created, replaced: false })
-            }),
-            DocRequest::Undo => Ok(match state.session.undo() {
-                Some(label) => {
-                    status.info(format!("Undo {label}"));
-                    Some(DocChanged::default())
-                }
-                None => {
-                    status.info("Nothing to undo");
-                    None
-                }
-            }),
-            DocRequest::Redo => Ok(match state.session.redo() {
-                Some(label) => {
-                    status.info(format!("Redo {label}"));
-                    Some(DocChanged::default())
-                }
-                None => {
-                    status.info("Nothing to redo");
-                    None
-                }
-            }),
-            DocRequest::JumpTo(n) => {
-                state.session.jump_to(*n);
-                Ok(Some(DocChanged::default()))
-            }
-            DocRequest::New => {
-                state.session = Session::new();
-                state.path = None;
-                state.opened_serial = 0;
-                status.info("New scene");
-                Ok(Some(DocChanged { created: vec![], replaced: true }))
-            }
-            DocRequest::Open(path) => match file::load(path) {
-                Ok(loaded) => {
-                    state.session = loaded.session;
-                    state.path = Some(path.clone());
-                    state.opened_serial = state.session.history.current_serial();
-                    status.info(format!("Opened {}", path.display()));
-                    status.warnings.extend(loaded.warnings);
-                    Ok(Some(DocChanged { created: vec![], replaced: true }))
-                }
-                Err(e) => Err(e.to_string()),
-            },
-            DocRequest::Save(path) => match file::save(&mut state.session, path) {
-                Ok(()) => {
-                    state.path = Some(path.clone());
-                    status.info(format!("Saved {}", path.display()));
-                    // The document is unchanged, but the title's `*` must go.
+        let result: Result<Option<DocChanged>, String> =
+            match request {
+                DocRequest::Execute(cmd) => state
+                    .session
+                    .execute(cmd)
+                    .map_err(|e| e.to_string())
+                    .map(|a| {
+                        status.info(a.label.clone());
+                        Some(DocChanged {
+                            created: a.created,
+                            replaced: false,
+                        })
+                    }),
+                DocRequest::AdjustLast(cmd) => state
+                    .session
+                    .adjust_last(cmd)
+                    .map_err(|e| e.to_string())
+                    .map(|a| {
+                        status.info(a.label.clone());
+                        Some(DocChanged {
+                            created: a.created,
+                            replaced: false,
+                        })
+                    }),
+                DocRequest::Undo => Ok(match state.session.undo() {
+                    Some(label) => {
+                        status.info(format!("Undo {label}"));
+                        Some(DocChanged::default())
+                    }
+                    None => {
+                        status.info("Nothing to undo");
+                        None
+                    }
+                }),
+                DocRequest::Redo => Ok(match state.session.redo() {
+                    Some(label) => {
+                        status.info(format!("Redo {label}"));
+                        Some(DocChanged::default())
+                    }
+                    None => {
+                        status.info("Nothing to redo");
+                        None
+                    }
+                }),
+                DocRequest::JumpTo(n) => {
+                    state.session.jump_to(*n);
                     Ok(Some(DocChanged::default()))
                 }
-                Err(e) => Err(format!("Save failed, nothing was lost: {e}")),
-            },
-        };
+                DocRequest::New => {
+                    state.session = Session::new();
+                    state.path = None;
+                    state.opened_serial = 0;
+                    status.info("New scene");
+                    Ok(Some(DocChanged {
+                        created: vec![],
+                        replaced: true,
+                    }))
+                }
+                DocRequest::Open(path) => match file::load(path) {
+                    Ok(loaded) => {
+                        state.session = loaded.session;
+                        state.path = Some(path.clone());
+                        state.opened_serial = state.session.history.current_serial();
+                        status.info(format!("Opened {}", path.display()));
+                        status.warnings.extend(loaded.warnings);
+                        Ok(Some(DocChanged {
+                            created: vec![],
+                            replaced: true,
+                        }))
+                    }
+                    Err(e) => Err(e.to_string()),
+                },
+                DocRequest::Import(path) => match hedra_doc::import::import_file(path) {
+                    Ok(meshes) => {
+                        let name = path.file_name().map_or_else(
+                            || path.display().to_string(),
+                            |n| n.to_string_lossy().into_owned(),
+                        );
+                        let a = state.session.import(&meshes, &format!("Import {name}"));
+                        status.info(format!(
+                            "Imported {} object(s) from {name}",
+                            a.created.len()
+                        ));
+                        status.warnings.extend(
+                            hedra_doc::import::describe_repairs(&meshes)
+                                .into_iter()
+                                .map(|n| format!("{name}: {n}")),
+                        );
+                        Ok(Some(DocChanged {
+                            created: a.created,
+                            replaced: false,
+                        }))
+                    }
+                    Err(e) => Err(e.to_string()),
+                },
+                DocRequest::Save(path) => match file::save(&mut state.session, path) {
+                    Ok(()) => {
+                        state.path = Some(path.clone());
+                        status.info(format!("Saved {}", path.display()));
+                        // The document is unchanged, but the title's `*` must go.
+                        Ok(Some(DocChanged::default()))
+                    }
+                    Err(e) => Err(format!("Save failed, nothing was lost: {e}")),
+                },
+            };
         match result {
             Ok(Some(c)) => {
                 state.revision += 1;
@@ -234,7 +280,13 @@ pub fn sync_entities(
     mut map: ResMut<NodeEntities>,
     mut meshes: ResMut<Assets<Mesh>>,
     material: Option<Res<MeshMaterial>>,
-    mut existing: Query<(&mut Transform, &mut Visibility, Option<&ChildOf>, Option<&ProjectedMesh>, Option<&Mesh3d>)>,
+    mut existing: Query<(
+        &mut Transform,
+        &mut Visibility,
+        Option<&ChildOf>,
+        Option<&ProjectedMesh>,
+        Option<&Mesh3d>,
+    )>,
 ) {
     if *seen_revision == Some(state.revision) {
         return;
@@ -245,7 +297,14 @@ pub fn sync_entities(
     // Spawn missing entities first so parents exist for ChildOf.
     for node in doc.nodes() {
         if !map.0.get(&node.id).is_some_and(|e| existing.contains(*e)) {
-            let e = commands.spawn((NodeEntity(node.id), Name::new(node.name.clone()), Transform::default(), Visibility::default())).id();
+            let e = commands
+                .spawn((
+                    NodeEntity(node.id),
+                    Name::new(node.name.clone()),
+                    Transform::default(),
+                    Visibility::default(),
+                ))
+                .id();
             map.0.insert(node.id, e);
         }
     }
@@ -256,7 +315,11 @@ pub fn sync_entities(
             rotation: node.transform.rotation.as_quat(),
             scale: node.transform.scale.as_vec3(),
         };
-        let visibility = if node.visible { Visibility::Inherited } else { Visibility::Hidden };
+        let visibility = if node.visible {
+            Visibility::Inherited
+        } else {
+            Visibility::Hidden
+        };
         let parent = node.parent.and_then(|p| map.0.get(&p).copied());
         let mut ec = commands.entity(e);
         ec.insert(Name::new(node.name.clone()));
@@ -278,7 +341,14 @@ pub fn sync_entities(
                     }
                     (None, None) => {}
                 }
-                project_mesh(&mut ec, node, projected.copied(), mesh3d, &mut meshes, material.as_deref());
+                project_mesh(
+                    &mut ec,
+                    node,
+                    projected.copied(),
+                    mesh3d,
+                    &mut meshes,
+                    material.as_deref(),
+                );
             }
             Err(_) => {
                 ec.insert((transform, visibility));
@@ -290,7 +360,12 @@ pub fn sync_entities(
         }
     }
     // Despawn entities of deleted nodes (after reparenting, so survivors are detached first).
-    let gone: Vec<NodeId> = map.0.keys().filter(|id| doc.node(**id).is_none()).copied().collect();
+    let gone: Vec<NodeId> = map
+        .0
+        .keys()
+        .filter(|id| doc.node(**id).is_none())
+        .copied()
+        .collect();
     for id in gone {
         if let Some(e) = map.0.remove(&id) {
             commands.entity(e).remove::<ChildOf>();
@@ -313,7 +388,10 @@ fn project_mesh(
         }
         return;
     };
-    let wanted = ProjectedMesh { source: std::sync::Arc::as_ptr(&content.mesh) as usize, shading: content.shading };
+    let wanted = ProjectedMesh {
+        source: std::sync::Arc::as_ptr(&content.mesh) as usize,
+        shading: content.shading,
+    };
     if projected == Some(wanted) {
         return;
     }
@@ -372,10 +450,13 @@ pub fn render_mesh(mesh: &HalfEdgeMesh, shading: Shading) -> Mesh {
             }
         }
     }
-    Mesh::new(PrimitiveTopology::TriangleList, RenderAssetUsages::MAIN_WORLD | RenderAssetUsages::RENDER_WORLD)
-        .with_inserted_attribute(Mesh::ATTRIBUTE_POSITION, positions)
-        .with_inserted_attribute(Mesh::ATTRIBUTE_NORMAL, normals)
-        .with_inserted_indices(Indices::U32(indices))
+    Mesh::new(
+        PrimitiveTopology::TriangleList,
+        RenderAssetUsages::MAIN_WORLD | RenderAssetUsages::RENDER_WORLD,
+    )
+    .with_inserted_attribute(Mesh::ATTRIBUTE_POSITION, positions)
+    .with_inserted_attribute(Mesh::ATTRIBUTE_NORMAL, normals)
+    .with_inserted_indices(Indices::U32(indices))
 }
 
 /// Whether viewport tools may use the pointer and keyboard this frame; the
@@ -388,7 +469,10 @@ pub struct InputGate {
 
 impl Default for InputGate {
     fn default() -> Self {
-        InputGate { pointer_free: true, keyboard_free: true }
+        InputGate {
+            pointer_free: true,
+            keyboard_free: true,
+        }
     }
 }
 

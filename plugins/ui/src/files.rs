@@ -11,6 +11,7 @@ use std::path::{Path, PathBuf};
 pub enum FilePurpose {
     Open,
     SaveAs,
+    ImportObj,
     ExportObj,
 }
 
@@ -19,13 +20,14 @@ impl FilePurpose {
         match self {
             FilePurpose::Open => "Open Scene",
             FilePurpose::SaveAs => "Save Scene As",
+            FilePurpose::ImportObj => "Import OBJ",
             FilePurpose::ExportObj => "Export OBJ",
         }
     }
     fn filter(self) -> (&'static str, &'static [&'static str]) {
         match self {
             FilePurpose::Open | FilePurpose::SaveAs => ("Hedra scene", &["ron"]),
-            FilePurpose::ExportObj => ("Wavefront OBJ", &["obj"]),
+            FilePurpose::ImportObj | FilePurpose::ExportObj => ("Wavefront OBJ", &["obj"]),
         }
     }
 }
@@ -63,12 +65,14 @@ pub fn dialog_backend_available() -> bool {
 pub fn spawn_dialog(purpose: FilePurpose, start_dir: Option<PathBuf>) -> DialogTask {
     let (name, exts) = purpose.filter();
     let task = IoTaskPool::get().spawn(async move {
-        let mut d = rfd::FileDialog::new().set_title(purpose.title()).add_filter(name, exts);
+        let mut d = rfd::FileDialog::new()
+            .set_title(purpose.title())
+            .add_filter(name, exts);
         if let Some(dir) = start_dir {
             d = d.set_directory(dir);
         }
         match purpose {
-            FilePurpose::Open => d.pick_file(),
+            FilePurpose::Open | FilePurpose::ImportObj => d.pick_file(),
             FilePurpose::SaveAs => d.set_file_name("untitled.hedra.ron").save_file(),
             FilePurpose::ExportObj => d.set_file_name("export.obj").save_file(),
         }
@@ -123,8 +127,10 @@ impl Preferences {
     pub fn save(&self) -> Result<(), String> {
         let dir = Self::dir().ok_or("no configuration folder (HOME is not set)")?;
         std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
-        let text = ron::ser::to_string_pretty(self, ron::ser::PrettyConfig::default()).map_err(|e| e.to_string())?;
-        hedra_doc::file::write_atomic(&dir.join("preferences.ron"), &text).map_err(|e| e.to_string())
+        let text = ron::ser::to_string_pretty(self, ron::ser::PrettyConfig::default())
+            .map_err(|e| e.to_string())?;
+        hedra_doc::file::write_atomic(&dir.join("preferences.ron"), &text)
+            .map_err(|e| e.to_string())
     }
 
     /// Puts `path` first in the recent list.
@@ -143,7 +149,11 @@ pub struct SamplesDir(pub PathBuf);
 /// Sample scene files, sorted by name.
 pub fn list_samples(dir: &Path) -> Vec<PathBuf> {
     let mut v: Vec<PathBuf> = std::fs::read_dir(dir)
-        .map(|rd| rd.filter_map(|e| e.ok().map(|e| e.path())).filter(|p| p.to_string_lossy().ends_with(".hedra.ron")).collect())
+        .map(|rd| {
+            rd.filter_map(|e| e.ok().map(|e| e.path()))
+                .filter(|p| p.to_string_lossy().ends_with(".hedra.ron"))
+                .collect()
+        })
         .unwrap_or_default();
     v.sort();
     v

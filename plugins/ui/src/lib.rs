@@ -68,6 +68,7 @@ pub enum FileAction {
     OpenPath(std::path::PathBuf),
     Save,
     SaveAs,
+    ImportObj,
     ExportObj,
     Quit,
 }
@@ -111,7 +112,10 @@ fn spawn_ui_camera(mut commands: Commands, mut settings: ResMut<EguiGlobalSettin
         Camera {
             // After the 3D view (0) and Bevy's transform-gizmo overlay (1).
             order: 2,
-            output_mode: CameraOutputMode::Write { blend_state: Some(BlendState::ALPHA_BLENDING), clear_color: ClearColorConfig::None },
+            output_mode: CameraOutputMode::Write {
+                blend_state: Some(BlendState::ALPHA_BLENDING),
+                clear_color: ClearColorConfig::None,
+            },
             clear_color: ClearColorConfig::Custom(Color::NONE),
             ..default()
         },
@@ -131,14 +135,26 @@ fn apply_viewport_rect(
     let y = ((rect.min.y * scale).max(0.0) as u32).min(h.saturating_sub(1));
     let width = ((rect.width() * scale) as u32).clamp(1, w.saturating_sub(x).max(1));
     let height = ((rect.height() * scale) as u32).clamp(1, h.saturating_sub(y).max(1));
-    let viewport = Viewport { physical_position: UVec2::new(x, y), physical_size: UVec2::new(width, height), ..default() };
-    if camera.viewport.as_ref().is_none_or(|v| v.physical_position != viewport.physical_position || v.physical_size != viewport.physical_size) {
+    let viewport = Viewport {
+        physical_position: UVec2::new(x, y),
+        physical_size: UVec2::new(width, height),
+        ..default()
+    };
+    if camera.viewport.as_ref().is_none_or(|v| {
+        v.physical_position != viewport.physical_position
+            || v.physical_size != viewport.physical_size
+    }) {
         camera.viewport = Some(viewport);
     }
 }
 
 fn ctrl(keys: &ButtonInput<KeyCode>) -> bool {
-    keys.any_pressed([KeyCode::ControlLeft, KeyCode::ControlRight, KeyCode::SuperLeft, KeyCode::SuperRight])
+    keys.any_pressed([
+        KeyCode::ControlLeft,
+        KeyCode::ControlRight,
+        KeyCode::SuperLeft,
+        KeyCode::SuperRight,
+    ])
 }
 
 /// Ctrl+N/O/S, Ctrl+Shift+S, Ctrl+Q, Shift+A.
@@ -162,7 +178,11 @@ fn global_shortcuts(
             actions.write(FileAction::Open);
         }
         if keys.just_pressed(KeyCode::KeyS) {
-            actions.write(if shift { FileAction::SaveAs } else { FileAction::Save });
+            actions.write(if shift {
+                FileAction::SaveAs
+            } else {
+                FileAction::Save
+            });
         }
         if keys.just_pressed(KeyCode::KeyQ) {
             actions.write(FileAction::Quit);
@@ -214,6 +234,10 @@ fn handle_file_actions(
                 begin_path(&mut ui, FilePurpose::ExportObj, &state);
                 None
             }
+            FileAction::ImportObj => {
+                begin_path(&mut ui, FilePurpose::ImportObj, &state);
+                None
+            }
         };
         if let Some(p) = now {
             run_pending(p, &mut ui, &state, &mut requests, &mut exit, &mut status);
@@ -246,13 +270,31 @@ pub fn run_pending(
 
 /// Shows the path prompt and, when a dialog backend exists, the native dialog.
 pub fn begin_path(ui: &mut UiState, purpose: FilePurpose, state: &DocState) {
-    let start_dir = state.path.as_ref().and_then(|p| p.parent().map(|d| d.to_path_buf())).or_else(|| std::env::current_dir().ok());
+    let start_dir = state
+        .path
+        .as_ref()
+        .and_then(|p| p.parent().map(|d| d.to_path_buf()))
+        .or_else(|| std::env::current_dir().ok());
     let text = match purpose {
-        FilePurpose::Open => String::new(),
-        FilePurpose::SaveAs => state.path.as_ref().map(|p| p.display().to_string()).unwrap_or_else(|| {
-            start_dir.clone().unwrap_or_default().join("untitled.hedra.ron").display().to_string()
-        }),
-        FilePurpose::ExportObj => start_dir.clone().unwrap_or_default().join("export.obj").display().to_string(),
+        FilePurpose::Open | FilePurpose::ImportObj => String::new(),
+        FilePurpose::SaveAs => state
+            .path
+            .as_ref()
+            .map(|p| p.display().to_string())
+            .unwrap_or_else(|| {
+                start_dir
+                    .clone()
+                    .unwrap_or_default()
+                    .join("untitled.hedra.ron")
+                    .display()
+                    .to_string()
+            }),
+        FilePurpose::ExportObj => start_dir
+            .clone()
+            .unwrap_or_default()
+            .join("export.obj")
+            .display()
+            .to_string(),
     };
     ui.path_prompt = Some(files::PathPrompt { purpose, text });
     if ui.dialog_backend && ui.dialog.is_none() {
@@ -261,13 +303,22 @@ pub fn begin_path(ui: &mut UiState, purpose: FilePurpose, state: &DocState) {
 }
 
 /// Applies a chosen path for its purpose.
-pub fn use_path(purpose: FilePurpose, path: std::path::PathBuf, state: &DocState, requests: &mut MessageWriter<DocRequest>, status: &mut StatusMessage) {
+pub fn use_path(
+    purpose: FilePurpose,
+    path: std::path::PathBuf,
+    state: &DocState,
+    requests: &mut MessageWriter<DocRequest>,
+    status: &mut StatusMessage,
+) {
     match purpose {
         FilePurpose::Open => {
             requests.write(DocRequest::Open(path));
         }
         FilePurpose::SaveAs => {
             requests.write(DocRequest::Save(files::with_scene_extension(path)));
+        }
+        FilePurpose::ImportObj => {
+            requests.write(DocRequest::Import(path));
         }
         FilePurpose::ExportObj => {
             let text = hedra_doc::export::to_obj(&state.session.doc);
@@ -279,9 +330,18 @@ pub fn use_path(purpose: FilePurpose, path: std::path::PathBuf, state: &DocState
     }
 }
 
-fn poll_file_dialog(mut ui: ResMut<UiState>, state: Res<DocState>, mut requests: MessageWriter<DocRequest>, mut status: ResMut<StatusMessage>) {
-    let Some(task) = ui.dialog.as_mut() else { return };
-    let Some(result) = files::poll_dialog(task) else { return };
+fn poll_file_dialog(
+    mut ui: ResMut<UiState>,
+    state: Res<DocState>,
+    mut requests: MessageWriter<DocRequest>,
+    mut status: ResMut<StatusMessage>,
+) {
+    let Some(task) = ui.dialog.as_mut() else {
+        return;
+    };
+    let Some(result) = files::poll_dialog(task) else {
+        return;
+    };
     let purpose = task.purpose;
     ui.dialog = None;
     if let Some(path) = result {
@@ -291,19 +351,33 @@ fn poll_file_dialog(mut ui: ResMut<UiState>, state: Res<DocState>, mut requests:
     // `None`: cancelled, or the backend failed; the path prompt stays open.
 }
 
-fn on_close_requested(mut closes: MessageReader<WindowCloseRequested>, mut actions: MessageWriter<FileAction>) {
+fn on_close_requested(
+    mut closes: MessageReader<WindowCloseRequested>,
+    mut actions: MessageWriter<FileAction>,
+) {
     if closes.read().count() > 0 {
         actions.write(FileAction::Quit);
     }
 }
 
-fn on_file_dropped(mut drops: MessageReader<FileDragAndDrop>, mut actions: MessageWriter<FileAction>, mut status: ResMut<StatusMessage>) {
+fn on_file_dropped(
+    mut drops: MessageReader<FileDragAndDrop>,
+    mut actions: MessageWriter<FileAction>,
+    mut requests: MessageWriter<DocRequest>,
+    mut status: ResMut<StatusMessage>,
+) {
     for d in drops.read() {
         if let FileDragAndDrop::DroppedFile { path_buf, .. } = d {
-            if path_buf.to_string_lossy().ends_with(".ron") {
+            let name = path_buf.to_string_lossy().to_ascii_lowercase();
+            if name.ends_with(".ron") {
                 actions.write(FileAction::OpenPath(path_buf.clone()));
+            } else if name.ends_with(".obj") {
+                requests.write(DocRequest::Import(path_buf.clone()));
             } else {
-                status.error(format!("{}: Hedra opens .hedra.ron scenes", path_buf.display()));
+                status.error(format!(
+                    "{}: Hedra opens .hedra.ron scenes and imports .obj files",
+                    path_buf.display()
+                ));
             }
         }
     }
@@ -337,8 +411,16 @@ fn remember_recent(
 }
 
 /// "Hedra — name.hedra.ron *" while there are unsaved changes.
-fn update_title(state: Res<DocState>, mut ui: ResMut<UiState>, mut window: Single<&mut Window, With<PrimaryWindow>>) {
-    let title = format!("Hedra — {}{}", state.display_name(), if state.session.is_dirty() { " *" } else { "" });
+fn update_title(
+    state: Res<DocState>,
+    mut ui: ResMut<UiState>,
+    mut window: Single<&mut Window, With<PrimaryWindow>>,
+) {
+    let title = format!(
+        "Hedra — {}{}",
+        state.display_name(),
+        if state.session.is_dirty() { " *" } else { "" }
+    );
     if ui.last_title != title {
         window.title = title.clone();
         ui.last_title = title;

@@ -7,7 +7,9 @@ use bevy::ecs::system::SystemParam;
 use bevy::prelude::*;
 use bevy_egui::{EguiContexts, egui};
 use glam::{DQuat, DVec3, EulerRot};
-use hedra_doc::{Command, Document, NodeContent, NodeId, NodeRef, Shading, Transform as DocTransform};
+use hedra_doc::{
+    Command, Document, NodeContent, NodeId, NodeRef, Shading, Transform as DocTransform,
+};
 use hedra_edit::{Selection, TransformTool};
 use hedra_geom::Primitive;
 use hedra_scene::{DocRequest, DocState, InputGate, NodeEntities, StatusMessage};
@@ -54,23 +56,34 @@ pub fn draw_ui(
     let mut root = egui::Ui::new(
         ctx.clone(),
         "hedra-root".into(),
-        egui::UiBuilder::new().layer_id(egui::LayerId::background()).max_rect(ctx.viewport_rect()),
+        egui::UiBuilder::new()
+            .layer_id(egui::LayerId::background())
+            .max_rect(ctx.viewport_rect()),
     );
     let doc = &model.state.session.doc;
 
-    egui::Panel::top("menu").show(&mut root, |ui| menu_bar(ui, &mut ui_state, &model, &mut events));
+    egui::Panel::top("menu").show(&mut root, |ui| {
+        menu_bar(ui, &mut ui_state, &model, &mut events)
+    });
     egui::Panel::bottom("status").show(&mut root, |ui| status_bar(ui, &model));
     if ui_state.show_outliner {
-        egui::Panel::left("outliner").resizable(true).default_size(220.0).show(&mut root, |ui| {
-            ui.heading("Outliner");
-            ui.separator();
-            outliner(ui, doc, &model.selection, &mut ui_state, &mut events);
-        });
+        egui::Panel::left("outliner")
+            .resizable(true)
+            .default_size(220.0)
+            .show(&mut root, |ui| {
+                ui.heading("Outliner");
+                ui.separator();
+                outliner(ui, doc, &model.selection, &mut ui_state, &mut events);
+            });
     }
     if ui_state.show_properties {
-        egui::Panel::right("properties").resizable(true).default_size(270.0).show(&mut root, |ui| {
-            egui::ScrollArea::vertical().show(ui, |ui| properties(ui, &model, &mut ui_state, &mut events));
-        });
+        egui::Panel::right("properties")
+            .resizable(true)
+            .default_size(270.0)
+            .show(&mut root, |ui| {
+                egui::ScrollArea::vertical()
+                    .show(ui, |ui| properties(ui, &model, &mut ui_state, &mut events));
+            });
     }
     let free = root.available_rect_before_wrap();
     ui_state.viewport_rect = Some(free);
@@ -84,7 +97,9 @@ pub fn draw_ui(
 
     // Viewport input is free when the pointer is over the 3D area and egui is not busy.
     let cursor = window.cursor_position().map(|c| egui::pos2(c.x, c.y));
-    gate.pointer_free = cursor.is_some_and(|c| free.contains(c)) && !ctx.egui_is_using_pointer() && !ctx.is_pointer_over_egui();
+    gate.pointer_free = cursor.is_some_and(|c| free.contains(c))
+        && !ctx.egui_is_using_pointer()
+        && !ctx.is_pointer_over_egui();
     gate.keyboard_free = !ctx.egui_wants_keyboard_input();
 
     // Apply what the panels decided.
@@ -105,7 +120,12 @@ pub fn draw_ui(
             }
             UiEvent::Error(e) => model.status.error(e),
             UiEvent::Preview(id, t) => {
-                if let Some(mut et) = model.entities.0.get(&id).and_then(|e| transforms.get_mut(*e).ok()) {
+                if let Some(mut et) = model
+                    .entities
+                    .0
+                    .get(&id)
+                    .and_then(|e| transforms.get_mut(*e).ok())
+                {
                     *et = hedra_edit::modal::to_bevy(&t);
                 }
             }
@@ -138,12 +158,19 @@ fn menu_bar(ui: &mut egui::Ui, state: &mut UiState, model: &Model, events: &mut 
                 }
             });
             ui.menu_button("Open Sample", |ui| {
-                let samples = model.samples.as_ref().map(|d| files::list_samples(&d.0)).unwrap_or_default();
+                let samples = model
+                    .samples
+                    .as_ref()
+                    .map(|d| files::list_samples(&d.0))
+                    .unwrap_or_default();
                 if samples.is_empty() {
                     ui.label("(no samples found)");
                 }
                 for p in samples {
-                    let name = p.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+                    let name = p
+                        .file_name()
+                        .map(|n| n.to_string_lossy().into_owned())
+                        .unwrap_or_default();
                     if ui.button(name).clicked() {
                         events.push(UiEvent::File(FileAction::OpenPath(p)));
                     }
@@ -158,8 +185,9 @@ fn menu_bar(ui: &mut egui::Ui, state: &mut UiState, model: &Model, events: &mut 
             }
             ui.separator();
             ui.menu_button("Import", |ui| {
-                ui.add_enabled(false, egui::Button::new("OBJ / STL / glTF…"))
-                    .on_disabled_hover_text("Importing other formats is not available yet; open .hedra.ron scenes instead.");
+                if ui.button("Wavefront OBJ (.obj)…").clicked() {
+                    events.push(UiEvent::File(FileAction::ImportObj));
+                }
             });
             ui.menu_button("Export", |ui| {
                 if ui.button("Wavefront OBJ (.obj)…").clicked() {
@@ -173,10 +201,16 @@ fn menu_bar(ui: &mut egui::Ui, state: &mut UiState, model: &Model, events: &mut 
         });
         ui.menu_button("Edit", |ui| {
             let h = &model.state.session.history;
-            if ui.add_enabled(h.can_undo(), egui::Button::new("Undo\tCtrl+Z")).clicked() {
+            if ui
+                .add_enabled(h.can_undo(), egui::Button::new("Undo\tCtrl+Z"))
+                .clicked()
+            {
                 events.push(UiEvent::Request(DocRequest::Undo));
             }
-            if ui.add_enabled(h.can_redo(), egui::Button::new("Redo\tCtrl+Shift+Z")).clicked() {
+            if ui
+                .add_enabled(h.can_redo(), egui::Button::new("Redo\tCtrl+Shift+Z"))
+                .clicked()
+            {
                 events.push(UiEvent::Request(DocRequest::Redo));
             }
             ui.separator();
@@ -186,26 +220,66 @@ fn menu_bar(ui: &mut egui::Ui, state: &mut UiState, model: &Model, events: &mut 
         ui.menu_button("Object", |ui| {
             let sel = model.selection.refs();
             let any = !sel.is_empty();
-            if ui.add_enabled(any, egui::Button::new("Duplicate\tShift+D")).clicked() {
+            if ui
+                .add_enabled(any, egui::Button::new("Duplicate\tShift+D"))
+                .clicked()
+            {
                 exec(events, Command::Duplicate { nodes: sel.clone() });
             }
-            if ui.add_enabled(any, egui::Button::new("Delete\tX")).clicked() {
+            if ui
+                .add_enabled(any, egui::Button::new("Delete\tX"))
+                .clicked()
+            {
                 exec(events, Command::Delete { nodes: sel.clone() });
             }
             if ui.add_enabled(any, egui::Button::new("Hide\tH")).clicked() {
-                exec(events, Command::SetVisible { nodes: sel.clone(), visible: false });
+                exec(
+                    events,
+                    Command::SetVisible {
+                        nodes: sel.clone(),
+                        visible: false,
+                    },
+                );
             }
-            if ui.add_enabled(any, egui::Button::new("Clear Parent")).clicked() {
+            if ui
+                .add_enabled(any, egui::Button::new("Clear Parent"))
+                .clicked()
+            {
                 for r in &sel {
-                    exec(events, Command::Reparent { node: r.clone(), parent: None, keep_world: true });
+                    exec(
+                        events,
+                        Command::Reparent {
+                            node: r.clone(),
+                            parent: None,
+                            keep_world: true,
+                        },
+                    );
                 }
             }
             ui.separator();
-            if ui.add_enabled(any, egui::Button::new("Shade Flat")).clicked() {
-                exec(events, Command::SetShading { nodes: sel.clone(), shading: Shading::Flat });
+            if ui
+                .add_enabled(any, egui::Button::new("Shade Flat"))
+                .clicked()
+            {
+                exec(
+                    events,
+                    Command::SetShading {
+                        nodes: sel.clone(),
+                        shading: Shading::Flat,
+                    },
+                );
             }
-            if ui.add_enabled(any, egui::Button::new("Shade Smooth")).clicked() {
-                exec(events, Command::SetShading { nodes: sel, shading: Shading::Smooth });
+            if ui
+                .add_enabled(any, egui::Button::new("Shade Smooth"))
+                .clicked()
+            {
+                exec(
+                    events,
+                    Command::SetShading {
+                        nodes: sel,
+                        shading: Shading::Smooth,
+                    },
+                );
             }
         });
         ui.menu_button("View", |ui| {
@@ -223,7 +297,15 @@ fn add_primitive_buttons(ui: &mut egui::Ui, events: &mut Vec<UiEvent>) {
     for kind in Primitive::KINDS {
         let p = Primitive::default_of(kind).expect("listed kinds have defaults");
         if ui.button(p.display_name()).clicked() {
-            exec(events, Command::AddPrimitive { primitive: p, name: None, parent: None, transform: DocTransform::IDENTITY });
+            exec(
+                events,
+                Command::AddPrimitive {
+                    primitive: p,
+                    name: None,
+                    parent: None,
+                    transform: DocTransform::IDENTITY,
+                },
+            );
             ui.close();
         }
     }
@@ -232,24 +314,34 @@ fn add_primitive_buttons(ui: &mut egui::Ui, events: &mut Vec<UiEvent>) {
 fn add_menu(ctx: &egui::Context, state: &mut UiState, events: &mut Vec<UiEvent>) {
     let Some(pos) = state.add_menu_at else { return };
     let mut close = false;
-    let area = egui::Area::new("add-menu".into()).fixed_pos(pos).order(egui::Order::Foreground).show(ctx, |ui| {
-        egui::Frame::menu(ui.style()).show(ui, |ui| {
-            ui.label(egui::RichText::new("Add").strong());
-            ui.separator();
-            let before = events.len();
-            add_primitive_buttons(ui, events);
-            if events.len() > before {
-                close = true;
-            }
+    let area = egui::Area::new("add-menu".into())
+        .fixed_pos(pos)
+        .order(egui::Order::Foreground)
+        .show(ctx, |ui| {
+            egui::Frame::menu(ui.style()).show(ui, |ui| {
+                ui.label(egui::RichText::new("Add").strong());
+                ui.separator();
+                let before = events.len();
+                add_primitive_buttons(ui, events);
+                if events.len() > before {
+                    close = true;
+                }
+            });
         });
-    });
-    let clicked_outside = ctx.input(|i| i.pointer.any_pressed()) && !area.response.contains_pointer();
+    let clicked_outside =
+        ctx.input(|i| i.pointer.any_pressed()) && !area.response.contains_pointer();
     if close || clicked_outside || ctx.input(|i| i.key_pressed(egui::Key::Escape)) {
         state.add_menu_at = None;
     }
 }
 
-fn outliner(ui: &mut egui::Ui, doc: &Document, selection: &Selection, state: &mut UiState, events: &mut Vec<UiEvent>) {
+fn outliner(
+    ui: &mut egui::Ui,
+    doc: &Document,
+    selection: &Selection,
+    state: &mut UiState,
+    events: &mut Vec<UiEvent>,
+) {
     egui::ScrollArea::vertical().show(ui, |ui| {
         for root in doc.roots() {
             outliner_row(ui, doc, root.id, 0, selection, state, events);
@@ -258,18 +350,39 @@ fn outliner(ui: &mut egui::Ui, doc: &Document, selection: &Selection, state: &mu
         let rest = ui.available_size().max(egui::vec2(10.0, 40.0));
         let (_, resp) = ui.allocate_exact_size(rest, egui::Sense::hover());
         if let Some(dragged) = resp.dnd_release_payload::<NodeId>() {
-            exec(events, Command::Reparent { node: NodeRef::from(*dragged), parent: None, keep_world: true });
+            exec(
+                events,
+                Command::Reparent {
+                    node: NodeRef::from(*dragged),
+                    parent: None,
+                    keep_world: true,
+                },
+            );
         }
     });
 }
 
-fn outliner_row(ui: &mut egui::Ui, doc: &Document, id: NodeId, depth: usize, selection: &Selection, state: &mut UiState, events: &mut Vec<UiEvent>) {
+fn outliner_row(
+    ui: &mut egui::Ui,
+    doc: &Document,
+    id: NodeId,
+    depth: usize,
+    selection: &Selection,
+    state: &mut UiState,
+    events: &mut Vec<UiEvent>,
+) {
     let Some(node) = doc.node(id) else { return };
     ui.horizontal(|ui| {
         ui.add_space(depth as f32 * 14.0);
         let eye = if node.visible { "👁" } else { "–" };
         if ui.small_button(eye).on_hover_text("Show / hide").clicked() {
-            exec(events, Command::SetVisible { nodes: vec![id.into()], visible: !node.visible });
+            exec(
+                events,
+                Command::SetVisible {
+                    nodes: vec![id.into()],
+                    visible: !node.visible,
+                },
+            );
         }
         let icon = match node.content {
             NodeContent::Mesh(_) => "▣",
@@ -281,8 +394,17 @@ fn outliner_row(ui: &mut egui::Ui, doc: &Document, id: NodeId, depth: usize, sel
             resp.request_focus();
             if resp.lost_focus() {
                 let name = text.trim().to_string();
-                if ui.input(|i| !i.key_pressed(egui::Key::Escape)) && !name.is_empty() && name != node.name {
-                    exec(events, Command::Rename { node: id.into(), name });
+                if ui.input(|i| !i.key_pressed(egui::Key::Escape))
+                    && !name.is_empty()
+                    && name != node.name
+                {
+                    exec(
+                        events,
+                        Command::Rename {
+                            node: id.into(),
+                            name,
+                        },
+                    );
                 }
                 state.rename = None;
             }
@@ -290,8 +412,13 @@ fn outliner_row(ui: &mut egui::Ui, doc: &Document, id: NodeId, depth: usize, sel
         }
         let selected = selection.contains(id);
         let text = egui::RichText::new(format!("{icon} {}", node.name));
-        let text = if selection.active() == Some(id) { text.strong() } else { text };
-        let resp = ui.add(egui::Button::selectable(selected, text).sense(egui::Sense::click_and_drag()));
+        let text = if selection.active() == Some(id) {
+            text.strong()
+        } else {
+            text
+        };
+        let resp =
+            ui.add(egui::Button::selectable(selected, text).sense(egui::Sense::click_and_drag()));
         resp.dnd_set_drag_payload(id);
         if resp.clicked() {
             let additive = ui.input(|i| i.modifiers.shift || i.modifiers.ctrl);
@@ -302,7 +429,14 @@ fn outliner_row(ui: &mut egui::Ui, doc: &Document, id: NodeId, depth: usize, sel
         }
         if let Some(dragged) = resp.dnd_release_payload::<NodeId>() {
             if *dragged != id {
-                exec(events, Command::Reparent { node: NodeRef::from(*dragged), parent: Some(id.into()), keep_world: true });
+                exec(
+                    events,
+                    Command::Reparent {
+                        node: NodeRef::from(*dragged),
+                        parent: Some(id.into()),
+                        keep_world: true,
+                    },
+                );
             }
         }
         resp.context_menu(|ui| {
@@ -311,15 +445,32 @@ fn outliner_row(ui: &mut egui::Ui, doc: &Document, id: NodeId, depth: usize, sel
                 ui.close();
             }
             if ui.button("Duplicate").clicked() {
-                exec(events, Command::Duplicate { nodes: vec![id.into()] });
+                exec(
+                    events,
+                    Command::Duplicate {
+                        nodes: vec![id.into()],
+                    },
+                );
                 ui.close();
             }
             if node.parent.is_some() && ui.button("Clear Parent").clicked() {
-                exec(events, Command::Reparent { node: id.into(), parent: None, keep_world: true });
+                exec(
+                    events,
+                    Command::Reparent {
+                        node: id.into(),
+                        parent: None,
+                        keep_world: true,
+                    },
+                );
                 ui.close();
             }
             if ui.button("Delete").clicked() {
-                exec(events, Command::Delete { nodes: vec![id.into()] });
+                exec(
+                    events,
+                    Command::Delete {
+                        nodes: vec![id.into()],
+                    },
+                );
                 ui.close();
             }
         });
@@ -332,9 +483,24 @@ fn outliner_row(ui: &mut egui::Ui, doc: &Document, id: NodeId, depth: usize, sel
 fn vec3_row(ui: &mut egui::Ui, label: &str, v: &mut DVec3, speed: f64) -> egui::Response {
     ui.horizontal(|ui| {
         ui.label(label);
-        let mut r = ui.add(egui::DragValue::new(&mut v.x).speed(speed).prefix("X ").max_decimals(4));
-        r |= ui.add(egui::DragValue::new(&mut v.y).speed(speed).prefix("Y ").max_decimals(4));
-        r |= ui.add(egui::DragValue::new(&mut v.z).speed(speed).prefix("Z ").max_decimals(4));
+        let mut r = ui.add(
+            egui::DragValue::new(&mut v.x)
+                .speed(speed)
+                .prefix("X ")
+                .max_decimals(4),
+        );
+        r |= ui.add(
+            egui::DragValue::new(&mut v.y)
+                .speed(speed)
+                .prefix("Y ")
+                .max_decimals(4),
+        );
+        r |= ui.add(
+            egui::DragValue::new(&mut v.z)
+                .speed(speed)
+                .prefix("Z ")
+                .max_decimals(4),
+        );
         r
     })
     .inner
@@ -357,75 +523,110 @@ fn properties(ui: &mut egui::Ui, model: &Model, state: &mut UiState, events: &mu
     }
     ui.add_space(6.0);
 
-    egui::CollapsingHeader::new("Transform").default_open(true).show(ui, |ui| {
-        let mut t = match &state.transform_edit {
-            Some((eid, t)) if *eid == id => *t,
-            _ => node.transform,
-        };
-        let (ex, ey, ez) = t.rotation.to_euler(EulerRot::XYZ);
-        let mut euler = DVec3::new(ex.to_degrees(), ey.to_degrees(), ez.to_degrees());
-        let mut changed = false;
-        let mut resp = vec3_row(ui, "Location", &mut t.translation, 0.01);
-        changed |= resp.changed();
-        let r = vec3_row(ui, "Rotation°", &mut euler, 0.5);
-        if r.changed() {
-            t.rotation = DQuat::from_euler(EulerRot::XYZ, euler.x.to_radians(), euler.y.to_radians(), euler.z.to_radians());
-            changed = true;
-        }
-        resp |= r;
-        let r = vec3_row(ui, "Scale", &mut t.scale, 0.01);
-        changed |= r.changed();
-        resp |= r;
-        if changed {
-            state.transform_edit = Some((id, t));
-            events.push(UiEvent::Preview(id, t));
-        }
-        // A drag or a typed value becomes one step when the field is let go.
-        let busy = resp.dragged() || resp.has_focus();
-        if !busy {
-            if let Some((eid, edited)) = state.transform_edit.take() {
-                if eid == id && edited != node.transform {
-                    if edited.is_usable() {
-                        exec(events, Command::SetTransforms { nodes: vec![(id.into(), edited)] });
-                    } else {
-                        events.push(UiEvent::Preview(id, node.transform));
-                        events.push(UiEvent::Error("A scale of zero (or a non-finite value) is not allowed".into()));
+    egui::CollapsingHeader::new("Transform")
+        .default_open(true)
+        .show(ui, |ui| {
+            let mut t = match &state.transform_edit {
+                Some((eid, t)) if *eid == id => *t,
+                _ => node.transform,
+            };
+            let (ex, ey, ez) = t.rotation.to_euler(EulerRot::XYZ);
+            let mut euler = DVec3::new(ex.to_degrees(), ey.to_degrees(), ez.to_degrees());
+            let mut changed = false;
+            let mut resp = vec3_row(ui, "Location", &mut t.translation, 0.01);
+            changed |= resp.changed();
+            let r = vec3_row(ui, "Rotation°", &mut euler, 0.5);
+            if r.changed() {
+                t.rotation = DQuat::from_euler(
+                    EulerRot::XYZ,
+                    euler.x.to_radians(),
+                    euler.y.to_radians(),
+                    euler.z.to_radians(),
+                );
+                changed = true;
+            }
+            resp |= r;
+            let r = vec3_row(ui, "Scale", &mut t.scale, 0.01);
+            changed |= r.changed();
+            resp |= r;
+            if changed {
+                state.transform_edit = Some((id, t));
+                events.push(UiEvent::Preview(id, t));
+            }
+            // A drag or a typed value becomes one step when the field is let go.
+            let busy = resp.dragged() || resp.has_focus();
+            if !busy {
+                if let Some((eid, edited)) = state.transform_edit.take() {
+                    if eid == id && edited != node.transform {
+                        if edited.is_usable() {
+                            exec(
+                                events,
+                                Command::SetTransforms {
+                                    nodes: vec![(id.into(), edited)],
+                                },
+                            );
+                        } else {
+                            events.push(UiEvent::Preview(id, node.transform));
+                            events.push(UiEvent::Error(
+                                "A scale of zero (or a non-finite value) is not allowed".into(),
+                            ));
+                        }
                     }
                 }
             }
-        }
-    });
+        });
 
     if let NodeContent::Mesh(content) = &node.content {
-        egui::CollapsingHeader::new("Mesh").default_open(true).show(ui, |ui| {
-            let s = content.mesh.stats();
-            ui.label(format!("Vertices {}   Edges {}   Faces {}", s.vertices, s.edges, s.faces));
-            ui.label(format!(
-                "Euler characteristic {}   {}   boundary loops {}",
-                s.euler_characteristic,
-                if s.closed { "closed" } else { "open" },
-                s.boundary_loops
-            ));
-            match &s.validation {
-                Ok(()) => ui.label("Half-edge structure valid"),
-                Err(e) => ui.colored_label(egui::Color32::LIGHT_RED, e),
-            };
-            ui.horizontal(|ui| {
-                ui.label("Shading");
-                for (sh, label) in [(Shading::Flat, "Flat"), (Shading::Smooth, "Smooth")] {
-                    if ui.selectable_label(content.shading == sh, label).clicked() && content.shading != sh {
-                        exec(events, Command::SetShading { nodes: vec![id.into()], shading: sh });
+        egui::CollapsingHeader::new("Mesh")
+            .default_open(true)
+            .show(ui, |ui| {
+                let s = content.mesh.stats();
+                ui.label(format!(
+                    "Vertices {}   Edges {}   Faces {}",
+                    s.vertices, s.edges, s.faces
+                ));
+                ui.label(format!(
+                    "Euler characteristic {}   {}   boundary loops {}",
+                    s.euler_characteristic,
+                    if s.closed { "closed" } else { "open" },
+                    s.boundary_loops
+                ));
+                match &s.validation {
+                    Ok(()) => ui.label("Half-edge structure valid"),
+                    Err(e) => ui.colored_label(egui::Color32::LIGHT_RED, e),
+                };
+                ui.horizontal(|ui| {
+                    ui.label("Shading");
+                    for (sh, label) in [(Shading::Flat, "Flat"), (Shading::Smooth, "Smooth")] {
+                        if ui.selectable_label(content.shading == sh, label).clicked()
+                            && content.shading != sh
+                        {
+                            exec(
+                                events,
+                                Command::SetShading {
+                                    nodes: vec![id.into()],
+                                    shading: sh,
+                                },
+                            );
+                        }
                     }
-                }
+                });
             });
-        });
         if let Some(p) = &content.primitive {
-            egui::CollapsingHeader::new(format!("{} parameters", p.display_name())).default_open(true).show(ui, |ui| {
-                let mut edited = p.clone();
-                if primitive_editor(ui, &mut edited) {
-                    exec(events, Command::SetPrimitive { node: id.into(), primitive: edited });
-                }
-            });
+            egui::CollapsingHeader::new(format!("{} parameters", p.display_name()))
+                .default_open(true)
+                .show(ui, |ui| {
+                    let mut edited = p.clone();
+                    if primitive_editor(ui, &mut edited) {
+                        exec(
+                            events,
+                            Command::SetPrimitive {
+                                node: id.into(),
+                                primitive: edited,
+                            },
+                        );
+                    }
+                });
         }
     }
 }
@@ -436,38 +637,72 @@ pub fn primitive_editor(ui: &mut egui::Ui, p: &mut Primitive) -> bool {
     let mut len = |ui: &mut egui::Ui, label: &str, v: &mut f64| {
         ui.horizontal(|ui| {
             ui.label(label);
-            changed |= ui.add(egui::DragValue::new(v).speed(0.01).range(0.001..=1e6).max_decimals(4)).changed();
+            changed |= ui
+                .add(
+                    egui::DragValue::new(v)
+                        .speed(0.01)
+                        .range(0.001..=1e6)
+                        .max_decimals(4),
+                )
+                .changed();
         });
     };
     let mut count_changed = false;
     let mut count = |ui: &mut egui::Ui, label: &str, v: &mut u32, min: u32, max: u32| {
         ui.horizontal(|ui| {
             ui.label(label);
-            count_changed |= ui.add(egui::DragValue::new(v).speed(0.1).range(min..=max)).changed();
+            count_changed |= ui
+                .add(egui::DragValue::new(v).speed(0.1).range(min..=max))
+                .changed();
         });
     };
     match p {
         Primitive::Plane { size } | Primitive::Cube { size } => len(ui, "Size", size),
-        Primitive::Grid { x_segments, z_segments, size } => {
+        Primitive::Grid {
+            x_segments,
+            z_segments,
+            size,
+        } => {
             count(ui, "X subdivisions", x_segments, 1, 1000);
             count(ui, "Z subdivisions", z_segments, 1, 1000);
             len(ui, "Size", size);
         }
-        Primitive::UvSphere { segments, rings, radius } => {
+        Primitive::UvSphere {
+            segments,
+            rings,
+            radius,
+        } => {
             count(ui, "Segments", segments, 3, 1000);
             count(ui, "Rings", rings, 2, 1000);
             len(ui, "Radius", radius);
         }
-        Primitive::IcoSphere { subdivisions, radius } => {
+        Primitive::IcoSphere {
+            subdivisions,
+            radius,
+        } => {
             count(ui, "Subdivisions", subdivisions, 0, 7);
             len(ui, "Radius", radius);
         }
-        Primitive::Cylinder { segments, radius, depth } | Primitive::Cone { segments, radius, depth } => {
+        Primitive::Cylinder {
+            segments,
+            radius,
+            depth,
+        }
+        | Primitive::Cone {
+            segments,
+            radius,
+            depth,
+        } => {
             count(ui, "Vertices", segments, 3, 1000);
             len(ui, "Radius", radius);
             len(ui, "Depth", depth);
         }
-        Primitive::Torus { major_segments, minor_segments, major_radius, minor_radius } => {
+        Primitive::Torus {
+            major_segments,
+            minor_segments,
+            major_radius,
+            minor_radius,
+        } => {
             count(ui, "Major segments", major_segments, 3, 1000);
             count(ui, "Minor segments", minor_segments, 3, 1000);
             len(ui, "Major radius", major_radius);
@@ -479,12 +714,27 @@ pub fn primitive_editor(ui: &mut egui::Ui, p: &mut Primitive) -> bool {
 
 /// Blender's "adjust last operation": the parameters of the last step, when
 /// it added a primitive, editable in place.
-fn adjust_last_window(ctx: &egui::Context, viewport: egui::Rect, model: &Model, events: &mut Vec<UiEvent>) {
-    let Some(last) = model.state.session.history.done().last() else { return };
+fn adjust_last_window(
+    ctx: &egui::Context,
+    viewport: egui::Rect,
+    model: &Model,
+    events: &mut Vec<UiEvent>,
+) {
+    let Some(last) = model.state.session.history.done().last() else {
+        return;
+    };
     if last.serial <= model.state.opened_serial {
         return;
     }
-    let Some(Command::AddPrimitive { primitive, name, parent, transform }) = &last.command else { return };
+    let Some(Command::AddPrimitive {
+        primitive,
+        name,
+        parent,
+        transform,
+    }) = &last.command
+    else {
+        return;
+    };
     egui::Window::new(format!("Adjust Last: {}", last.label))
         .id("adjust-last".into())
         .collapsible(true)
@@ -494,39 +744,59 @@ fn adjust_last_window(ctx: &egui::Context, viewport: egui::Rect, model: &Model, 
         .show(ctx, |ui| {
             let mut edited = primitive.clone();
             if primitive_editor(ui, &mut edited) {
-                events.push(UiEvent::Request(DocRequest::AdjustLast(Command::AddPrimitive {
-                    primitive: edited,
-                    name: name.clone(),
-                    parent: parent.clone(),
-                    transform: *transform,
-                })));
+                events.push(UiEvent::Request(DocRequest::AdjustLast(
+                    Command::AddPrimitive {
+                        primitive: edited,
+                        name: name.clone(),
+                        parent: parent.clone(),
+                        transform: *transform,
+                    },
+                )));
             }
         });
 }
 
-fn history_window(ctx: &egui::Context, model: &Model, state: &mut UiState, events: &mut Vec<UiEvent>) {
+fn history_window(
+    ctx: &egui::Context,
+    model: &Model,
+    state: &mut UiState,
+    events: &mut Vec<UiEvent>,
+) {
     let h = &model.state.session.history;
-    egui::Window::new("Undo History").open(&mut state.show_history).default_width(240.0).show(ctx, |ui| {
-        ui.label(format!("{} step(s) kept{}", h.done().len() + h.undone().len(), if h.dropped > 0 { format!(", {} oldest dropped", h.dropped) } else { String::new() }));
-        ui.separator();
-        egui::ScrollArea::vertical().max_height(360.0).show(ui, |ui| {
-            let done = h.done().len();
-            if ui.selectable_label(done == 0, "Original").clicked() {
-                events.push(UiEvent::Request(DocRequest::JumpTo(0)));
-            }
-            for (i, t) in h.done().iter().enumerate() {
-                if ui.selectable_label(i + 1 == done, &t.label).clicked() {
-                    events.push(UiEvent::Request(DocRequest::JumpTo(i + 1)));
+    egui::Window::new("Undo History")
+        .open(&mut state.show_history)
+        .default_width(240.0)
+        .show(ctx, |ui| {
+            ui.label(format!(
+                "{} step(s) kept{}",
+                h.done().len() + h.undone().len(),
+                if h.dropped > 0 {
+                    format!(", {} oldest dropped", h.dropped)
+                } else {
+                    String::new()
                 }
-            }
-            for (k, t) in h.undone().iter().rev().enumerate() {
-                let text = egui::RichText::new(&t.label).weak();
-                if ui.selectable_label(false, text).clicked() {
-                    events.push(UiEvent::Request(DocRequest::JumpTo(done + k + 1)));
-                }
-            }
+            ));
+            ui.separator();
+            egui::ScrollArea::vertical()
+                .max_height(360.0)
+                .show(ui, |ui| {
+                    let done = h.done().len();
+                    if ui.selectable_label(done == 0, "Original").clicked() {
+                        events.push(UiEvent::Request(DocRequest::JumpTo(0)));
+                    }
+                    for (i, t) in h.done().iter().enumerate() {
+                        if ui.selectable_label(i + 1 == done, &t.label).clicked() {
+                            events.push(UiEvent::Request(DocRequest::JumpTo(i + 1)));
+                        }
+                    }
+                    for (k, t) in h.undone().iter().rev().enumerate() {
+                        let text = egui::RichText::new(&t.label).weak();
+                        if ui.selectable_label(false, text).clicked() {
+                            events.push(UiEvent::Request(DocRequest::JumpTo(done + k + 1)));
+                        }
+                    }
+                });
         });
-    });
 }
 
 fn status_bar(ui: &mut egui::Ui, model: &Model) {
@@ -566,28 +836,42 @@ fn dialogs(ctx: &egui::Context, state: &mut UiState, model: &mut Model, writers:
             Pending::New => "starting a new scene",
             _ => "opening another scene",
         };
-        egui::Window::new("Unsaved changes").collapsible(false).resizable(false).anchor(egui::Align2::CENTER_CENTER, [0.0, 0.0]).show(ctx, |ui| {
-            ui.label(format!("Save changes to {} before {what}?", model.state.display_name()));
-            ui.horizontal(|ui| {
-                if ui.button("Save").clicked() {
-                    state.confirm = None;
-                    state.after_save = Some(pending.clone());
-                    match &model.state.path {
-                        Some(p) => {
-                            writers.requests.write(DocRequest::Save(p.clone()));
+        egui::Window::new("Unsaved changes")
+            .collapsible(false)
+            .resizable(false)
+            .anchor(egui::Align2::CENTER_CENTER, [0.0, 0.0])
+            .show(ctx, |ui| {
+                ui.label(format!(
+                    "Save changes to {} before {what}?",
+                    model.state.display_name()
+                ));
+                ui.horizontal(|ui| {
+                    if ui.button("Save").clicked() {
+                        state.confirm = None;
+                        state.after_save = Some(pending.clone());
+                        match &model.state.path {
+                            Some(p) => {
+                                writers.requests.write(DocRequest::Save(p.clone()));
+                            }
+                            None => begin_path(state, FilePurpose::SaveAs, &model.state),
                         }
-                        None => begin_path(state, FilePurpose::SaveAs, &model.state),
                     }
-                }
-                if ui.button("Don't Save").clicked() {
-                    state.confirm = None;
-                    run_pending(pending.clone(), state, &model.state, &mut writers.requests, &mut writers.exit, &mut model.status);
-                }
-                if ui.button("Cancel").clicked() {
-                    state.confirm = None;
-                }
+                    if ui.button("Don't Save").clicked() {
+                        state.confirm = None;
+                        run_pending(
+                            pending.clone(),
+                            state,
+                            &model.state,
+                            &mut writers.requests,
+                            &mut writers.exit,
+                            &mut model.status,
+                        );
+                    }
+                    if ui.button("Cancel").clicked() {
+                        state.confirm = None;
+                    }
+                });
             });
-        });
     }
     // Path prompt (always available; the native dialog may run beside it).
     if let Some(mut prompt) = state.path_prompt.take() {
@@ -601,10 +885,17 @@ fn dialogs(ctx: &egui::Context, state: &mut UiState, model: &mut Model, writers:
             let resp = ui.add(egui::TextEdit::singleline(&mut prompt.text).desired_width(420.0));
             let enter = resp.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
             ui.horizontal(|ui| {
-                let ok = ui.button(if prompt.purpose == FilePurpose::Open { "Open" } else { "Save" }).clicked() || enter;
+                let reading = matches!(prompt.purpose, FilePurpose::Open | FilePurpose::ImportObj);
+                let verb = match prompt.purpose {
+                    FilePurpose::Open => "Open",
+                    FilePurpose::ImportObj => "Import",
+                    FilePurpose::ExportObj => "Export",
+                    FilePurpose::SaveAs => "Save",
+                };
+                let ok = ui.button(verb).clicked() || enter;
                 if ok && !prompt.text.trim().is_empty() {
                     let path = std::path::PathBuf::from(prompt.text.trim());
-                    if prompt.purpose == FilePurpose::Open && !path.exists() {
+                    if reading && !path.exists() {
                         model.status.error(format!("{}: no such file", path.display()));
                     } else {
                         use_path(prompt.purpose, path, &model.state, &mut writers.requests, &mut model.status);
@@ -627,12 +918,16 @@ fn dialogs(ctx: &egui::Context, state: &mut UiState, model: &mut Model, writers:
     // Warnings that need acknowledging (damaged history, …).
     if !model.status.warnings.is_empty() {
         let mut ok = false;
-        egui::Window::new("Warning").collapsible(false).resizable(false).anchor(egui::Align2::CENTER_CENTER, [0.0, 0.0]).show(ctx, |ui| {
-            for w in &model.status.warnings {
-                ui.label(w);
-            }
-            ok = ui.button("OK").clicked();
-        });
+        egui::Window::new("Warning")
+            .collapsible(false)
+            .resizable(false)
+            .anchor(egui::Align2::CENTER_CENTER, [0.0, 0.0])
+            .show(ctx, |ui| {
+                for w in &model.status.warnings {
+                    ui.label(w);
+                }
+                ok = ui.button("OK").clicked();
+            });
         if ok {
             model.status.warnings.clear();
         }

@@ -7,7 +7,9 @@ use bevy::prelude::*;
 use glam::DVec3;
 use hedra_doc::{NodeContent, NodeRef, Transform as DocTransform};
 use hedra_edit::{EditSystems, Selection, TransformTool};
-use hedra_scene::{DocRequest, DocState, InputGate, NodeEntities, NodeEntity, ProjectedMesh, ViewportCamera};
+use hedra_scene::{
+    DocRequest, DocState, InputGate, NodeEntities, NodeEntity, ProjectedMesh, ViewportCamera,
+};
 use std::f32::consts::FRAC_PI_2;
 
 /// Orbit camera state (Blender-style: turntable around a focus point).
@@ -21,14 +23,23 @@ pub struct OrbitCamera {
 
 impl Default for OrbitCamera {
     fn default() -> Self {
-        OrbitCamera { focus: Vec3::ZERO, yaw: 0.75, pitch: -0.5, distance: 12.0 }
+        OrbitCamera {
+            focus: Vec3::ZERO,
+            yaw: 0.75,
+            pitch: -0.5,
+            distance: 12.0,
+        }
     }
 }
 
 impl OrbitCamera {
     pub fn transform(&self) -> Transform {
         let rotation = Quat::from_euler(EulerRot::YXZ, self.yaw, self.pitch, 0.0);
-        Transform { translation: self.focus + rotation * Vec3::Z * self.distance, rotation, scale: Vec3::ONE }
+        Transform {
+            translation: self.focus + rotation * Vec3::Z * self.distance,
+            rotation,
+            scale: Vec3::ONE,
+        }
     }
 }
 
@@ -44,13 +55,39 @@ pub struct ViewportPlugin;
 impl Plugin for ViewportPlugin {
     fn build(&self, app: &mut App) {
         app.insert_resource(ClearColor(Color::srgb(0.23, 0.23, 0.25)))
-            .insert_resource(GlobalAmbientLight { brightness: 400.0, ..default() })
+            .insert_resource(GlobalAmbientLight {
+                brightness: 400.0,
+                ..default()
+            })
             .add_plugins(TransformGizmoPlugin)
-            .insert_gizmo_config(AxisGizmos, GizmoConfig { line: GizmoLineConfig { width: 2.0, ..default() }, depth_bias: -0.001, ..default() })
+            .insert_gizmo_config(
+                AxisGizmos,
+                GizmoConfig {
+                    line: GizmoLineConfig {
+                        width: 2.0,
+                        ..default()
+                    },
+                    depth_bias: -0.001,
+                    ..default()
+                },
+            )
             .add_systems(Startup, spawn_camera)
             .add_systems(PostStartup, overlay_cameras_keep_the_picture)
-            .add_systems(Update, (camera_controls, frame_selection, draw_grid).chain().after(EditSystems))
-            .add_systems(Update, (update_edge_overlays, focus_gizmo_on_active, commit_gizmo_drag).after(EditSystems));
+            .add_systems(
+                Update,
+                (camera_controls, frame_selection, draw_grid)
+                    .chain()
+                    .after(EditSystems),
+            )
+            .add_systems(
+                Update,
+                (
+                    update_edge_overlays,
+                    focus_gizmo_on_active,
+                    commit_gizmo_drag,
+                )
+                    .after(EditSystems),
+            );
     }
 }
 
@@ -66,7 +103,10 @@ fn spawn_camera(mut commands: Commands) {
         Msaa::Sample4,
         children![(
             // A headlight slightly above and left of the eye, like a studio key light.
-            DirectionalLight { illuminance: 6_000.0, ..default() },
+            DirectionalLight {
+                illuminance: 6_000.0,
+                ..default()
+            },
             Transform::from_xyz(-2.0, 3.0, 4.0).looking_at(Vec3::ZERO, Vec3::Y),
         )],
     ));
@@ -74,7 +114,9 @@ fn spawn_camera(mut commands: Commands) {
 
 /// Bevy's transform gizmo renders through a second 3D camera; it must draw
 /// over the viewport, not clear it.
-fn overlay_cameras_keep_the_picture(mut cameras: Query<&mut Camera, (With<Camera3d>, Without<ViewportCamera>)>) {
+fn overlay_cameras_keep_the_picture(
+    mut cameras: Query<&mut Camera, (With<Camera3d>, Without<ViewportCamera>)>,
+) {
     for mut c in &mut cameras {
         c.clear_color = ClearColorConfig::None;
     }
@@ -97,8 +139,10 @@ fn camera_controls(
     let alt = keys.any_pressed([KeyCode::AltLeft, KeyCode::AltRight]);
     let shift = keys.any_pressed([KeyCode::ShiftLeft, KeyCode::ShiftRight]);
     let ctrl = keys.any_pressed([KeyCode::ControlLeft, KeyCode::ControlRight]);
-    let drag_button = buttons.pressed(MouseButton::Middle) || (alt && buttons.pressed(MouseButton::Left));
-    let drag_start = buttons.just_pressed(MouseButton::Middle) || (alt && buttons.just_pressed(MouseButton::Left));
+    let drag_button =
+        buttons.pressed(MouseButton::Middle) || (alt && buttons.pressed(MouseButton::Left));
+    let drag_start = buttons.just_pressed(MouseButton::Middle)
+        || (alt && buttons.just_pressed(MouseButton::Left));
     if drag_start && gate.pointer_free && tool.active.is_none() {
         *dragging = true;
     }
@@ -116,7 +160,8 @@ fn camera_controls(
             orbit.distance = (orbit.distance * (1.0 + delta.y * 0.01)).clamp(0.01, 1e5);
         } else {
             orbit.yaw -= delta.x * 0.008;
-            orbit.pitch = (orbit.pitch - delta.y * 0.008).clamp(-FRAC_PI_2 + 0.001, FRAC_PI_2 - 0.001);
+            orbit.pitch =
+                (orbit.pitch - delta.y * 0.008).clamp(-FRAC_PI_2 + 0.001, FRAC_PI_2 - 0.001);
         }
     }
     if gate.pointer_free && scroll.delta.y != 0.0 {
@@ -135,7 +180,14 @@ fn camera_controls(
             (orbit.yaw, orbit.pitch) = (FRAC_PI_2 + flip, 0.0);
         }
         if keys.just_pressed(KeyCode::Numpad7) {
-            (orbit.yaw, orbit.pitch) = (0.0, if ctrl { FRAC_PI_2 - 0.001 } else { -FRAC_PI_2 + 0.001 });
+            (orbit.yaw, orbit.pitch) = (
+                0.0,
+                if ctrl {
+                    FRAC_PI_2 - 0.001
+                } else {
+                    -FRAC_PI_2 + 0.001
+                },
+            );
         }
     }
     let wanted = orbit.transform();
@@ -145,7 +197,10 @@ fn camera_controls(
 }
 
 /// World-space bounds of the given nodes' meshes (or positions for empties).
-pub fn world_bounds(state: &DocState, ids: impl IntoIterator<Item = hedra_doc::NodeId>) -> Option<(DVec3, DVec3)> {
+pub fn world_bounds(
+    state: &DocState,
+    ids: impl IntoIterator<Item = hedra_doc::NodeId>,
+) -> Option<(DVec3, DVec3)> {
     let doc = &state.session.doc;
     let mut acc: Option<(DVec3, DVec3)> = None;
     let mut add = |p: DVec3| {
@@ -157,7 +212,11 @@ pub fn world_bounds(state: &DocState, ids: impl IntoIterator<Item = hedra_doc::N
             Some(NodeContent::Mesh(m)) => {
                 if let Some((lo, hi)) = m.mesh.bounds() {
                     for i in 0..8 {
-                        let c = DVec3::new(if i & 1 == 0 { lo.x } else { hi.x }, if i & 2 == 0 { lo.y } else { hi.y }, if i & 4 == 0 { lo.z } else { hi.z });
+                        let c = DVec3::new(
+                            if i & 1 == 0 { lo.x } else { hi.x },
+                            if i & 2 == 0 { lo.y } else { hi.y },
+                            if i & 4 == 0 { lo.z } else { hi.z },
+                        );
                         add(world.transform_point3(c));
                     }
                 }
@@ -182,7 +241,9 @@ fn frame_selection(
         return;
     }
     let ctrl = keys.any_pressed([KeyCode::ControlLeft, KeyCode::ControlRight]);
-    let bounds = if !ctrl && (keys.just_pressed(KeyCode::KeyF) || keys.just_pressed(KeyCode::NumpadDecimal)) {
+    let bounds = if !ctrl
+        && (keys.just_pressed(KeyCode::KeyF) || keys.just_pressed(KeyCode::NumpadDecimal))
+    {
         if selection.nodes.is_empty() {
             world_bounds(&state, state.session.doc.nodes().map(|n| n.id))
         } else {
@@ -205,10 +266,27 @@ fn frame_selection(
 pub struct AxisGizmos;
 
 fn draw_grid(mut grid: Gizmos, mut axes: Gizmos<AxisGizmos>) {
-    grid.grid(Quat::from_rotation_x(FRAC_PI_2), UVec2::splat(20), Vec2::splat(1.0), LinearRgba::gray(0.3));
-    axes.line(Vec3::new(-10.0, 0.0, 0.0), Vec3::new(10.0, 0.0, 0.0), Color::srgb(0.85, 0.25, 0.3));
-    axes.line(Vec3::new(0.0, 0.0, -10.0), Vec3::new(0.0, 0.0, 10.0), Color::srgb(0.25, 0.45, 0.9));
-    axes.line(Vec3::ZERO, Vec3::new(0.0, 1.0, 0.0), Color::srgb(0.35, 0.8, 0.3));
+    grid.grid(
+        Quat::from_rotation_x(FRAC_PI_2),
+        UVec2::splat(20),
+        Vec2::splat(1.0),
+        LinearRgba::gray(0.3),
+    );
+    axes.line(
+        Vec3::new(-10.0, 0.0, 0.0),
+        Vec3::new(10.0, 0.0, 0.0),
+        Color::srgb(0.85, 0.25, 0.3),
+    );
+    axes.line(
+        Vec3::new(0.0, 0.0, -10.0),
+        Vec3::new(0.0, 0.0, 10.0),
+        Color::srgb(0.25, 0.45, 0.9),
+    );
+    axes.line(
+        Vec3::ZERO,
+        Vec3::new(0.0, 1.0, 0.0),
+        Color::srgb(0.35, 0.8, 0.3),
+    );
 }
 
 /// Keeps one retained line gizmo per mesh node with its edges: dark for
@@ -229,12 +307,18 @@ fn update_edge_overlays(
         let existing = children.and_then(|c| c.iter().find(|c| overlays.contains(*c)));
         if let Some(child) = existing {
             if let Ok((overlay, _)) = overlays.get(child) {
-                if overlay.source == *projected && overlay.selected == selected && !(selected && selection.is_changed()) {
+                if overlay.source == *projected
+                    && overlay.selected == selected
+                    && !(selected && selection.is_changed())
+                {
                     continue;
                 }
             }
         }
-        let Some(NodeContent::Mesh(content)) = state.session.doc.node(node.0).map(|n| &n.content) else { continue };
+        let Some(NodeContent::Mesh(content)) = state.session.doc.node(node.0).map(|n| &n.content)
+        else {
+            continue;
+        };
         let color = match (selected, active) {
             (true, true) => Color::srgb(1.0, 0.78, 0.25),
             (true, false) => Color::srgb(0.95, 0.45, 0.1),
@@ -255,14 +339,25 @@ fn update_edge_overlays(
                     }
                     overlay.source = *projected;
                     overlay.selected = selected;
-                    commands.entity(child).insert(Gizmo { handle: gizmo.handle.clone(), line_config: GizmoLineConfig { width, ..default() }, depth_bias: -0.0005 });
+                    commands.entity(child).insert(Gizmo {
+                        handle: gizmo.handle.clone(),
+                        line_config: GizmoLineConfig { width, ..default() },
+                        depth_bias: -0.0005,
+                    });
                 }
             }
             None => {
                 let handle = assets.add(asset);
                 commands.spawn((
-                    EdgeOverlay { source: *projected, selected },
-                    Gizmo { handle, line_config: GizmoLineConfig { width, ..default() }, depth_bias: -0.0005 },
+                    EdgeOverlay {
+                        source: *projected,
+                        selected,
+                    },
+                    Gizmo {
+                        handle,
+                        line_config: GizmoLineConfig { width, ..default() },
+                        depth_bias: -0.0005,
+                    },
                     Transform::IDENTITY,
                     ChildOf(entity),
                 ));
@@ -282,7 +377,9 @@ fn focus_gizmo_on_active(
     if gizmo_state.active {
         return;
     }
-    let wanted = selection.active().and_then(|id| entities.0.get(&id).copied());
+    let wanted = selection
+        .active()
+        .and_then(|id| entities.0.get(&id).copied());
     for e in &focused {
         if Some(e) != wanted {
             commands.entity(e).remove::<TransformGizmoFocus>();
@@ -307,16 +404,28 @@ fn commit_gizmo_drag(
         *was_active = gizmo_state.entity;
         return;
     }
-    let Some(entity) = was_active.take() else { return };
-    let Ok((node, t)) = nodes.get(entity) else { return };
-    let Some(doc_node) = state.session.doc.node(node.0) else { return };
-    let new = DocTransform { translation: t.translation.as_dvec3(), rotation: t.rotation.as_dquat().normalize(), scale: t.scale.as_dvec3() };
+    let Some(entity) = was_active.take() else {
+        return;
+    };
+    let Ok((node, t)) = nodes.get(entity) else {
+        return;
+    };
+    let Some(doc_node) = state.session.doc.node(node.0) else {
+        return;
+    };
+    let new = DocTransform {
+        translation: t.translation.as_dvec3(),
+        rotation: t.rotation.as_dquat().normalize(),
+        scale: t.scale.as_dvec3(),
+    };
     let old = DocTransform {
         translation: doc_node.transform.translation.as_vec3().as_dvec3(),
         rotation: doc_node.transform.rotation.as_quat().as_dquat(),
         scale: doc_node.transform.scale.as_vec3().as_dvec3(),
     };
     if new != old {
-        requests.write(DocRequest::Execute(hedra_doc::Command::SetTransforms { nodes: vec![(NodeRef::from(node.0), new)] }));
+        requests.write(DocRequest::Execute(hedra_doc::Command::SetTransforms {
+            nodes: vec![(NodeRef::from(node.0), new)],
+        }));
     }
 }

@@ -1,0 +1,181 @@
+//! Reading meshes from other formats into the scene. OBJ: every object or
+//! group becomes a mesh node, polygons are kept, and faces that cannot join a
+//! manifold half-edge mesh are dropped or split off (with a report).
+
+use crate::history::{NodeChange, Transaction};
+use crate::scene::{Document, MeshContent, Node, NodeContent, NodeId, Shading, Transform};
+use glam::DVec3;
+use hedra_geom::{HalfEdgeMesh, RepairReport};
+use std::path::Path;
+use std::sync::Arc;
+
+/// A mesh read from a file, with what had to be repaired.
+#[derive(Debug)]
+pub struct ImportedMesh {
+    pub name: String,
+    pub mesh: HalfEdgeMesh,
+    pub report: RepairReport,
+}
+
+/// Why a file could not be imported.
+#[derive(Debug, thiserror::Error)]
+pub enum ImportError {
+    #[error("{path}: {message}")]
+    Read { path: String, message: String },
+    #[error("{path}: unsupported format '.{ext}' (supported: .obj)")]
+    Unsupported { path: String, ext: String },
+    #[error("{path}: contains no faces")]
+    Empty { path: String },
+}
+
+/// Parses OBJ text. `path` only names the file in messages.
+///
+/// # Errors
+/// [`ImportError::Read`] when the OBJ is malformed, [`ImportError::Empty`]
+/// when nothing usable remains.
+pub fn obj_from_str(text: &str, path: &str) -> Result<Vec<ImportedMesh>, ImportError> {
+    let options = tobj::LoadOptions {
+        single_index: false,
+        triangulate: false,
+        ..Default::default()
+    };
+    let mut reader = std::io::BufReader::new(text.as_bytes());
+    let (models, _) = tobj::load_obj_buf(&mut reader, &options, |_| {
+        Err(tobj::LoadError::OpenFileFailed)
+    })
+    .map_err(|e| ImportError::Read {
+        path: path.to_string(),
+        message: format!("not a readable OBJ file ({e})"),
+    })?;
+    let mut out = Vec::new();
+    for (i, model) in models.into_iter().enumerate() {
+        let m = model.mesh;
+        let positions: Vec<DVec3> = m
+            .positions
+            .chunks_exact(3)
+            .map(|c| DVec3::new(c[0], c[1], c[2]))
+            .collect();
+        let arities: Vec<u32> = if m.face_arities.is_empty() {
+            vec![3; m.indices.len() / 3]
+        } else {
+            m.face_arities.clone()
+        };
+        let mut polygons = Vec::with_capacity(arities.len());
+        let mut at = 0usize;
+        for a in arities {
+            let end = (at + a as usize).min(m.indices.len());
+            polygons.push(m.indices[at..end].to_vec());
+            at = end;
+        }
+        if polygons.is_empty() {
+            continue;
+        }
+        let (mesh, report) =
+            HalfEdgeMesh::from_polygons_repaired(&positions, &polygons).map_err(|e| {
+                ImportError::Read {
+                    path: path.to_string(),
+                    message: format!("object {}: {e}", model.name),
+                }
+            })?;
+        if mesh.face_count() == 0 {
+            continue;
+        }
+        let name = if model.name.trim().is_empty() || model.name == "unnamed_object" {
+            format!("Object {}", i + 1)
+        } else {
+            model.name
+        };
+        out.push(ImportedMesh {
+            name,
+            mesh: mesh.compacted_if_needed(),
+            report,
+        });
+    }
+    if out.is_empty() {
+        return Err(ImportError::Empty {
+            path: path.to_string(),
+        });
+    }
+    Ok(out)
+}
+
+/// Reads a file by its extension.
+///
+/// # Errors
+/// As [`obj_from_str`], plus unreadable files and unknown extensions.
+pub fn import_file(path: &Path) -> Result<Vec<ImportedMesh>, ImportError> {
+    let shown = path.display().to_string();
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .unwrap_or("")
+        .to_ascii_lowercase();
+    match ext.as_str() {
+        "obj" => {
+            let bytes = std::fs::read(path).map_err(|e| ImportError::Read {
+                path: shown.clone(),
+                message: e.to_string(),
+            })?;
+            obj_from_str(&String::from_utf8_lossy(&bytes), &shown)
+        }
+        other => Err(ImportError::Unsupported {
+            path: shown,
+            ext: other.to_string(),
+        }),
+    }
+}
+
+/// One line per repaired object, for the user.
+pub fn describe_repairs(meshes: &[ImportedMesh]) -> Vec<String> {
+    meshes
+        .iter()
+        .filter(|m| !m.report.is_clean())
+        .map(|m| format!("{}: {}", m.name, m.report))
+        .collect()
+}
+
+impl Document {
+    /// The transaction that adds imported meshes as new top-level nodes.
+    pub fn decide_import(&self, meshes: &[ImportedMesh], label: &str, serial: u64) -> Transaction {
+        let mut next = self.next_node_id;
+        let mut changes = Vec::new();
+        let mut names: Vec<String> = Vec::new();
+        for m in meshes {
+            let mut name = self.unique_name(&m.name);
+            let base = name.clone();
+            let mut k = 1;
+            while names.contains(&name) {
+                name = format!("{base}.{k:03}");
+                k += 1;
+            }
+            names.push(name.clone());
+            let id = NodeId(next);
+            next += 1;
+            let node = Node {
+                id,
+                name,
+                parent: None,
+                transform: Transform::IDENTITY,
+                visible: true,
+                content: NodeContent::Mesh(MeshContent {
+                    mesh: Arc::new(m.mesh.clone()),
+                    primitive: None,
+                    shading: Shading::Flat,
+                }),
+            };
+            changes.push(NodeChange {
+                id,
+                before: None,
+                after: Some(node),
+            });
+        }
+        Transaction {
+            serial,
+            label: label.to_string(),
+            command: None,
+            changes,
+            next_id_before: self.next_node_id,
+            next_id_after: next,
+        }
+    }
+}

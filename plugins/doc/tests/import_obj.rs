@@ -1,0 +1,69 @@
+//! OBJ import: objects become nodes, n-gons stay, bad faces are reported.
+
+use hedra_doc::Session;
+use hedra_doc::import::{describe_repairs, obj_from_str};
+
+const TWO_OBJECTS: &str = "\
+o Quad
+v 0 0 0
+v 1 0 0
+v 1 1 0
+v 0 1 0
+f 1 2 3 4
+o Pentagon
+v 5 0 0
+v 6 0 0
+v 6.5 1 0
+v 5.5 1.8 0
+v 4.5 1 0
+f 5 6 7 8 9
+";
+
+#[test]
+fn objects_become_named_meshes_with_their_polygons() {
+    let meshes = obj_from_str(TWO_OBJECTS, "two.obj").unwrap();
+    assert_eq!(meshes.len(), 2);
+    assert_eq!(meshes[0].name, "Quad");
+    assert_eq!(meshes[1].name, "Pentagon");
+    assert_eq!(meshes[0].mesh.face_count(), 1);
+    assert_eq!(meshes[0].mesh.face_degree(hedra_geom::FaceId(0)), 4);
+    assert_eq!(meshes[1].mesh.vertex_count(), 5);
+    assert_eq!(meshes[1].mesh.face_degree(hedra_geom::FaceId(0)), 5);
+    assert!(describe_repairs(&meshes).is_empty());
+
+    let mut s = Session::new();
+    let applied = s.import(&meshes, "Import two.obj");
+    assert_eq!(applied.created.len(), 2);
+    assert!(s.doc.find_by_name("Pentagon").is_some());
+    s.undo();
+    assert_eq!(s.doc.node_count(), 0);
+}
+
+#[test]
+fn non_manifold_input_is_repaired_and_reported() {
+    // Three triangles on one edge: the third is dropped and named.
+    let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 2 1 5\n";
+    let meshes = obj_from_str(text, "fan.obj").unwrap();
+    assert_eq!(meshes[0].mesh.face_count(), 2);
+    meshes[0].mesh.validate().unwrap();
+    let notes = describe_repairs(&meshes);
+    assert_eq!(notes.len(), 1);
+    assert!(
+        notes[0].contains("dropped 1 face(s)") && notes[0].contains("face 2"),
+        "{notes:?}"
+    );
+}
+
+#[test]
+fn garbage_and_empty_files_are_errors_naming_the_file() {
+    let e = obj_from_str("v 0 0 0\nv 1 0 0\n", "points.obj").unwrap_err();
+    assert_eq!(e.to_string(), "points.obj: contains no faces");
+    let e = obj_from_str("v zero one two\nf 1 2 3\n", "bad.obj").unwrap_err();
+    assert!(
+        e.to_string()
+            .starts_with("bad.obj: not a readable OBJ file"),
+        "{e}"
+    );
+    let e = obj_from_str("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 99\n", "range.obj").unwrap_err();
+    assert!(e.to_string().contains("range.obj"), "{e}");
+}
