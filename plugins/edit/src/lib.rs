@@ -8,6 +8,7 @@ use bevy::prelude::*;
 use bevy::window::PrimaryWindow;
 use glam::{DMat4, DQuat, DVec3};
 use hedra_doc::{Command, Document, NodeContent, NodeId, NodeRef, Transform as DocTransform};
+use hedra_scene::modifiers::{alt, ctrl, shift};
 use hedra_scene::{
     DocChanged, DocRequest, DocState, InputGate, NodeEntities, SceneSystems, ViewportCamera,
 };
@@ -164,7 +165,7 @@ fn pick_objects(
     if gizmo.is_some_and(|g| g.hovered_axis.is_some() || g.active) {
         return; // the click grabs a gizmo handle
     }
-    if keys.any_pressed([KeyCode::AltLeft, KeyCode::AltRight]) {
+    if alt(&keys) {
         return; // Alt+drag orbits
     }
     let (cam, cam_t) = *camera;
@@ -172,28 +173,13 @@ fn pick_objects(
         return;
     };
     let hit = pick_node(&state.session.doc, origin, dir).map(|(id, _)| id);
-    let shift = keys.any_pressed([KeyCode::ShiftLeft, KeyCode::ShiftRight]);
+    let shift = shift(&keys);
     match (hit, shift) {
         (Some(id), true) => selection.toggle(id),
         (Some(id), false) => selection.set([id]),
         (None, false) => selection.nodes.clear(),
         (None, true) => {}
     }
-}
-
-fn ctrl(keys: &ButtonInput<KeyCode>) -> bool {
-    keys.any_pressed([
-        KeyCode::ControlLeft,
-        KeyCode::ControlRight,
-        KeyCode::SuperLeft,
-        KeyCode::SuperRight,
-    ])
-}
-fn shift(keys: &ButtonInput<KeyCode>) -> bool {
-    keys.any_pressed([KeyCode::ShiftLeft, KeyCode::ShiftRight])
-}
-fn alt(keys: &ButtonInput<KeyCode>) -> bool {
-    keys.any_pressed([KeyCode::AltLeft, KeyCode::AltRight])
 }
 
 /// Object-mode keys: Ctrl+Z / Ctrl+Shift+Z, A / Alt+A, X / Delete, Shift+D,

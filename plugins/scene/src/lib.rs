@@ -479,3 +479,24 @@ impl Default for InputGate {
 /// Marks the 3D camera the viewport renders and tools cast rays from.
 #[derive(Component, Debug, Default)]
 pub struct ViewportCamera;
+
+/// Modifier keys, counted as held when pressed this frame too (a quick
+/// Ctrl+S can press and release Ctrl within one frame).
+pub mod modifiers {
+    use bevy::prelude::*;
+
+    fn held(keys: &ButtonInput<KeyCode>, pair: [KeyCode; 2]) -> bool {
+        keys.any_pressed(pair) || keys.any_just_pressed(pair)
+    }
+    /// Ctrl (or the Super/Command key).
+    pub fn ctrl(keys: &ButtonInput<KeyCode>) -> bool {
+        held(keys, [KeyCode::ControlLeft, KeyCode::ControlRight])
+            || held(keys, [KeyCode::SuperLeft, KeyCode::SuperRight])
+    }
+    pub fn shift(keys: &ButtonInput<KeyCode>) -> bool {
+        held(keys, [KeyCode::ShiftLeft, KeyCode::ShiftRight])
+    }
+    pub fn alt(keys: &ButtonInput<KeyCode>) -> bool {
+        held(keys, [KeyCode::AltLeft, KeyCode::AltRight])
+    }
+}

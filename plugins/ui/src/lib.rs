@@ -9,6 +9,7 @@ use bevy::window::{PrimaryWindow, WindowCloseRequested};
 use bevy_egui::{EguiGlobalSettings, EguiPlugin, EguiPrimaryContextPass, PrimaryEguiContext, egui};
 use hedra_doc::{Command, NodeId, Transform as DocTransform};
 use hedra_edit::{Selection, TransformTool};
+use hedra_scene::modifiers::{ctrl, shift};
 use hedra_scene::{DocRequest, DocState, InputGate, StatusMessage, ViewportCamera};
 
 pub mod files;
@@ -148,15 +149,6 @@ fn apply_viewport_rect(
     }
 }
 
-fn ctrl(keys: &ButtonInput<KeyCode>) -> bool {
-    keys.any_pressed([
-        KeyCode::ControlLeft,
-        KeyCode::ControlRight,
-        KeyCode::SuperLeft,
-        KeyCode::SuperRight,
-    ])
-}
-
 /// Ctrl+N/O/S, Ctrl+Shift+S, Ctrl+Q, Shift+A.
 fn global_shortcuts(
     keys: Res<ButtonInput<KeyCode>>,
@@ -169,7 +161,7 @@ fn global_shortcuts(
     if !gate.keyboard_free || tool.active.is_some() {
         return;
     }
-    let shift = keys.any_pressed([KeyCode::ShiftLeft, KeyCode::ShiftRight]);
+    let shift = shift(&keys);
     if ctrl(&keys) {
         if keys.just_pressed(KeyCode::KeyN) {
             actions.write(FileAction::New);

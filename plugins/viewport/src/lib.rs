@@ -7,6 +7,7 @@ use bevy::prelude::*;
 use glam::DVec3;
 use hedra_doc::{NodeContent, NodeRef, Transform as DocTransform};
 use hedra_edit::{EditSystems, Selection, TransformTool};
+use hedra_scene::modifiers;
 use hedra_scene::{
     DocRequest, DocState, InputGate, NodeEntities, NodeEntity, ProjectedMesh, ViewportCamera,
 };
@@ -136,9 +137,9 @@ fn camera_controls(
     mut camera: Single<(&mut OrbitCamera, &mut Transform), With<ViewportCamera>>,
 ) {
     let (orbit, transform) = &mut *camera;
-    let alt = keys.any_pressed([KeyCode::AltLeft, KeyCode::AltRight]);
-    let shift = keys.any_pressed([KeyCode::ShiftLeft, KeyCode::ShiftRight]);
-    let ctrl = keys.any_pressed([KeyCode::ControlLeft, KeyCode::ControlRight]);
+    let alt = modifiers::alt(&keys);
+    let shift = modifiers::shift(&keys);
+    let ctrl = modifiers::ctrl(&keys);
     let drag_button =
         buttons.pressed(MouseButton::Middle) || (alt && buttons.pressed(MouseButton::Left));
     let drag_start = buttons.just_pressed(MouseButton::Middle)
@@ -240,7 +241,7 @@ fn frame_selection(
     if !gate.keyboard_free || tool.active.is_some() {
         return;
     }
-    let ctrl = keys.any_pressed([KeyCode::ControlLeft, KeyCode::ControlRight]);
+    let ctrl = modifiers::ctrl(&keys);
     let bounds = if !ctrl
         && (keys.just_pressed(KeyCode::KeyF) || keys.just_pressed(KeyCode::NumpadDecimal))
     {
