@@ -5,6 +5,7 @@
 //! All math is in `f64` ([`glam::DVec3`]); render code converts to `f32`.
 
 pub mod build;
+pub mod euler;
 pub mod ids;
 pub mod mesh;
 pub mod primitives;
@@ -12,6 +13,7 @@ pub mod query;
 pub mod validate;
 
 pub use build::{BuildError, RepairReport};
+pub use euler::EulerError;
 pub use glam::{DMat4, DQuat, DVec2, DVec3};
 pub use ids::{EdgeId, ElementId, FaceId, HalfEdgeId, VertexId};
 pub use mesh::{HalfEdgeMesh, MeshData, MeshStats};

@@ -1,0 +1,524 @@
+//! Euler operators: the only code that changes mesh connectivity.
+//!
+//! Each operator checks its preconditions first and leaves the mesh untouched
+//! when one fails (a named [`EulerError`]), states its change of V, E, F, and
+//! has a named inverse that restores the mesh (same ids, same links). The
+//! names follow the B-rep literature used in seed 004 (Szirmay-Kalos: MEV,
+//! MEF, edge split, face extrude with its V/E/F bookkeeping) and CGAL's
+//! `Euler_operations.h` inverse pairs.
+//!
+//! All of them keep V − E + F unchanged, so the Euler–Poincaré formula
+//! V − E + F − (L − F) = 2(S − H) holds after every step.
+//!
+//! Elements are allocated at the end of the id space; an inverse applied
+//! right after its operator frees them from the end again, so the arrays
+//! shrink back exactly (otherwise freed ids are marked dead, never reused).
+
+use crate::ids::{EdgeId, FaceId, HalfEdgeId, NONE, VertexId};
+use crate::mesh::{HalfEdgeMesh, HalfEdgeRecord};
+use glam::DVec3;
+
+/// Why an Euler operator refused; the mesh is unchanged.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum EulerError {
+    #[error("{0} does not exist")]
+    Missing(String),
+    #[error("{halfedge} lies on a boundary; the operator needs a face")]
+    NoFace { halfedge: HalfEdgeId },
+    #[error("{a} and {b} are not on the same face loop")]
+    NotSameLoop { a: HalfEdgeId, b: HalfEdgeId },
+    #[error("the new edge would make a face with fewer than 3 sides")]
+    Degenerate,
+    #[error("{vertex} has valence {valence}; the operator needs {needed}")]
+    Valence {
+        vertex: VertexId,
+        valence: usize,
+        needed: &'static str,
+    },
+    #[error("{edge} has the same face on both sides")]
+    SameFace { edge: EdgeId },
+    #[error("{edge} is a boundary edge")]
+    BoundaryEdge { edge: EdgeId },
+    #[error(
+        "faces {a} and {b} share more than one edge; joining them would not give a simple polygon"
+    )]
+    SharedEdges { a: FaceId, b: FaceId },
+    #[error("{edge} is not a dangling edge (no end of valence 1)")]
+    NotDangling { edge: EdgeId },
+    #[error("the new edge would join {vertex} to itself")]
+    SelfLoop { vertex: VertexId },
+    #[error("position is not finite")]
+    NonFinite,
+}
+
+impl HalfEdgeMesh {
+    // ----- allocation -------------------------------------------------------
+
+    fn alloc_vertex(&mut self, p: DVec3) -> VertexId {
+        self.positions.push(p);
+        self.vertex_out.push(NONE);
+        self.vertex_dead.push(false);
+        self.live_vertices += 1;
+        VertexId(self.positions.len() as u32 - 1)
+    }
+
+    fn alloc_edge(&mut self, a: VertexId, b: VertexId) -> HalfEdgeId {
+        let h = self.halfedges.len() as u32;
+        self.halfedges.push(HalfEdgeRecord {
+            origin: a.0,
+            next: NONE,
+            prev: NONE,
+            face: NONE,
+        });
+        self.halfedges.push(HalfEdgeRecord {
+            origin: b.0,
+            next: NONE,
+            prev: NONE,
+            face: NONE,
+        });
+        self.edge_dead.push(false);
+        self.live_edges += 1;
+        HalfEdgeId(h)
+    }
+
+    fn alloc_face(&mut self, h: HalfEdgeId) -> FaceId {
+        self.face_halfedge.push(h.0);
+        self.face_dead.push(false);
+        self.live_faces += 1;
+        FaceId(self.face_halfedge.len() as u32 - 1)
+    }
+
+    fn free_vertex(&mut self, v: VertexId) {
+        self.live_vertices -= 1;
+        if v.index() + 1 == self.positions.len() {
+            self.positions.pop();
+            self.vertex_out.pop();
+            self.vertex_dead.pop();
+        } else {
+            self.vertex_dead[v.index()] = true;
+            self.vertex_out[v.index()] = NONE;
+        }
+    }
+
+    fn free_edge(&mut self, e: EdgeId) {
+        self.live_edges -= 1;
+        if e.index() + 1 == self.edge_dead.len() {
+            self.halfedges.truncate(self.halfedges.len() - 2);
+            self.edge_dead.pop();
+        } else {
+            self.edge_dead[e.index()] = true;
+        }
+    }
+
+    fn free_face(&mut self, f: FaceId) {
+        self.live_faces -= 1;
+        if f.index() + 1 == self.face_halfedge.len() {
+            self.face_halfedge.pop();
+            self.face_dead.pop();
+        } else {
+            self.face_dead[f.index()] = true;
+        }
+    }
+
+    #[inline]
+    fn link(&mut self, h: HalfEdgeId, n: HalfEdgeId) {
+        self.halfedges[h.index()].next = n.0;
+        self.halfedges[n.index()].prev = h.0;
+    }
+
+    #[inline]
+    fn set_face(&mut self, h: HalfEdgeId, f: Option<FaceId>) {
+        self.halfedges[h.index()].face = f.map_or(NONE, |f| f.0);
+    }
+
+    #[inline]
+    fn set_origin(&mut self, h: HalfEdgeId, v: VertexId) {
+        self.halfedges[h.index()].origin = v.0;
+    }
+
+    /// Re-establishes the vertex's stored half-edge: a boundary one if any,
+    /// else `preferred` (an outgoing half-edge known to be live).
+    fn fix_vertex_halfedge(&mut self, v: VertexId, preferred: HalfEdgeId) {
+        self.vertex_out[v.index()] = preferred.0;
+        let boundary = self
+            .vertex_outgoing(v)
+            .find(|&h| self.is_boundary_halfedge(h));
+        if let Some(b) = boundary {
+            self.vertex_out[v.index()] = b.0;
+        }
+    }
+
+    fn check_halfedge(&self, h: HalfEdgeId) -> Result<(), EulerError> {
+        if self.is_halfedge(h) {
+            Ok(())
+        } else {
+            Err(EulerError::Missing(h.to_string()))
+        }
+    }
+
+    fn check_edge(&self, e: EdgeId) -> Result<(), EulerError> {
+        if self.is_edge(e) {
+            Ok(())
+        } else {
+            Err(EulerError::Missing(e.to_string()))
+        }
+    }
+
+    // ----- MEV / KEV ----------------------------------------------------------
+
+    /// MEV, make edge and vertex: a new vertex at `p` joined by a new edge to
+    /// `target(h_in)`, dangling into the face of `h_in` (inserted after `h_in`
+    /// in its loop). ΔV = +1, ΔE = +1, ΔF = 0.
+    ///
+    /// Inverse: [`kill_edge_vertex`](Self::kill_edge_vertex).
+    ///
+    /// # Errors
+    /// [`EulerError::Missing`], [`EulerError::NoFace`] on a boundary loop,
+    /// [`EulerError::NonFinite`].
+    ///
+    /// Complexity: O(1).
+    pub fn make_edge_vertex(
+        &mut self,
+        h_in: HalfEdgeId,
+        p: DVec3,
+    ) -> Result<(EdgeId, VertexId), EulerError> {
+        self.check_halfedge(h_in)?;
+        let face = self
+            .face(h_in)
+            .ok_or(EulerError::NoFace { halfedge: h_in })?;
+        if !p.is_finite() {
+            return Err(EulerError::NonFinite);
+        }
+        let v = self.target(h_in);
+        let n = self.next(h_in);
+        let w = self.alloc_vertex(p);
+        let out = self.alloc_edge(v, w);
+        let back = out.twin();
+        self.set_face(out, Some(face));
+        self.set_face(back, Some(face));
+        self.link(h_in, out);
+        self.link(out, back);
+        self.link(back, n);
+        self.vertex_out[w.index()] = back.0;
+        Ok((out.edge(), w))
+    }
+
+    /// KEV, kill edge and vertex: removes a dangling edge and its end vertex
+    /// of valence 1. ΔV = −1, ΔE = −1.
+    ///
+    /// Inverse: [`make_edge_vertex`](Self::make_edge_vertex).
+    ///
+    /// # Errors
+    /// [`EulerError::Missing`], [`EulerError::NotDangling`].
+    pub fn kill_edge_vertex(&mut self, e: EdgeId) -> Result<VertexId, EulerError> {
+        self.check_edge(e)?;
+        // `out` runs from the kept vertex to the one of valence 1.
+        let (out, w) = [e.halfedge(0), e.halfedge(1)]
+            .into_iter()
+            .map(|h| (h, self.target(h)))
+            .find(|&(h, w)| self.vertex_valence(w) == 1 && self.next(h) == h.twin())
+            .ok_or(EulerError::NotDangling { edge: e })?;
+        let back = out.twin();
+        let v = self.origin(out);
+        if self.vertex_valence(v) == 1 {
+            return Err(EulerError::NotDangling { edge: e }); // an isolated edge
+        }
+        let h_in = self.prev(out);
+        let n = self.next(back);
+        let face = self.face(out);
+        self.link(h_in, n);
+        if let Some(f) = face {
+            if self.face_halfedge[f.index()] == out.0 || self.face_halfedge[f.index()] == back.0 {
+                self.face_halfedge[f.index()] = h_in.0;
+            }
+        }
+        self.free_edge(e);
+        self.free_vertex(w);
+        self.fix_vertex_halfedge(v, n);
+        Ok(w)
+    }
+
+    // ----- MEF / KEF ----------------------------------------------------------
+
+    /// MEF, make edge and face (split face): joins `target(h_a)` to
+    /// `target(h_b)`, two corners of one face loop, with a new edge. The loop
+    /// part after `h_a` keeps the face; the part after `h_b` becomes a new
+    /// face. Half-edge 0 of the new edge runs from `target(h_a)` and lies on
+    /// the kept face. ΔE = +1, ΔF = +1.
+    ///
+    /// Inverse: [`kill_edge_face`](Self::kill_edge_face).
+    ///
+    /// # Errors
+    /// [`EulerError::NotSameLoop`], [`EulerError::NoFace`],
+    /// [`EulerError::Degenerate`] when either new face would have fewer than
+    /// three sides, [`EulerError::SelfLoop`].
+    pub fn make_edge_face(
+        &mut self,
+        h_a: HalfEdgeId,
+        h_b: HalfEdgeId,
+    ) -> Result<(EdgeId, FaceId), EulerError> {
+        self.check_halfedge(h_a)?;
+        self.check_halfedge(h_b)?;
+        let f = self.face(h_a).ok_or(EulerError::NoFace { halfedge: h_a })?;
+        let Some(steps) = self.loop_from(h_a).position(|h| h == h_b) else {
+            return Err(EulerError::NotSameLoop { a: h_a, b: h_b });
+        };
+        let len = self.loop_from(h_a).count();
+        // New loops: h_a..(before h_b) + new = steps + 1 sides, and the rest + 1.
+        if steps < 2 || len - steps < 2 {
+            return Err(EulerError::Degenerate);
+        }
+        let (v, u) = (self.target(h_a), self.target(h_b));
+        if v == u {
+            return Err(EulerError::SelfLoop { vertex: v });
+        }
+        let na = self.next(h_a);
+        let nb = self.next(h_b);
+        let n = self.alloc_edge(v, u);
+        let t = n.twin();
+        self.link(h_a, n);
+        self.link(n, nb);
+        self.link(h_b, t);
+        self.link(t, na);
+        self.set_face(n, Some(f));
+        self.face_halfedge[f.index()] = n.0;
+        let g = self.alloc_face(t);
+        let mut h = t;
+        loop {
+            self.set_face(h, Some(g));
+            h = self.next(h);
+            if h == t {
+                break;
+            }
+        }
+        Ok((n.edge(), g))
+    }
+
+    /// KEF, kill edge and face (join faces): removes an edge between two
+    /// different faces; the face of half-edge 0 absorbs the face of half-edge
+    /// 1. ΔE = −1, ΔF = −1.
+    ///
+    /// Inverse: [`make_edge_face`](Self::make_edge_face).
+    ///
+    /// # Errors
+    /// [`EulerError::BoundaryEdge`], [`EulerError::SameFace`],
+    /// [`EulerError::SharedEdges`] when the faces share another edge.
+    pub fn kill_edge_face(&mut self, e: EdgeId) -> Result<FaceId, EulerError> {
+        self.check_edge(e)?;
+        let (h0, h1) = (e.halfedge(0), e.halfedge(1));
+        let (Some(f0), Some(f1)) = (self.face(h0), self.face(h1)) else {
+            return Err(EulerError::BoundaryEdge { edge: e });
+        };
+        if f0 == f1 {
+            return Err(EulerError::SameFace { edge: e });
+        }
+        if self
+            .face_halfedges(f0)
+            .any(|h| h != h0 && self.face(h.twin()) == Some(f1))
+        {
+            return Err(EulerError::SharedEdges { a: f0, b: f1 });
+        }
+        let (a, b) = (self.origin(h0), self.origin(h1));
+        let (p0, n0, p1, n1) = (self.prev(h0), self.next(h0), self.prev(h1), self.next(h1));
+        let mut h = n1;
+        while h != h1 {
+            self.set_face(h, Some(f0));
+            h = self.next(h);
+        }
+        self.link(p0, n1);
+        self.link(p1, n0);
+        self.face_halfedge[f0.index()] = p0.0;
+        self.free_edge(e);
+        self.free_face(f1);
+        self.fix_vertex_halfedge(a, n1);
+        self.fix_vertex_halfedge(b, n0);
+        Ok(f1)
+    }
+
+    // ----- MVE / KVE ----------------------------------------------------------
+
+    /// MVE, make vertex and edge (split edge): a new vertex at `p` on edge
+    /// `e`. The old edge keeps its id from its start (origin of half-edge 0)
+    /// to the new vertex; a new edge continues to the old end. ΔV = +1, ΔE = +1.
+    ///
+    /// Inverse: [`join_edges`](Self::join_edges).
+    ///
+    /// # Errors
+    /// [`EulerError::Missing`], [`EulerError::NonFinite`].
+    pub fn split_edge(&mut self, e: EdgeId, p: DVec3) -> Result<VertexId, EulerError> {
+        self.check_edge(e)?;
+        if !p.is_finite() {
+            return Err(EulerError::NonFinite);
+        }
+        let h = e.halfedge(0);
+        let o = h.twin();
+        let b = self.origin(o);
+        let (nh, po) = (self.next(h), self.prev(o));
+        let spike_end = nh == o; // b has valence 1
+        let m = self.alloc_vertex(p);
+        let g0 = self.alloc_edge(m, b);
+        let g1 = g0.twin();
+        self.set_origin(o, m);
+        self.set_face(g0, self.face(h));
+        self.set_face(g1, self.face(o));
+        self.link(h, g0);
+        if spike_end {
+            self.link(g0, g1);
+            self.link(g1, o);
+        } else {
+            self.link(g0, nh);
+            self.link(po, g1);
+            self.link(g1, o);
+        }
+        if self.vertex_out[b.index()] == o.0 {
+            self.vertex_out[b.index()] = g1.0;
+        }
+        self.fix_vertex_halfedge(m, o);
+        Ok(m)
+    }
+
+    /// KVE, kill vertex and edge (join edges): removes a vertex of valence 2;
+    /// the edge with the smaller id survives and spans both. ΔV = −1, ΔE = −1.
+    ///
+    /// Inverse: [`split_edge`](Self::split_edge).
+    ///
+    /// # Errors
+    /// [`EulerError::Valence`], [`EulerError::Degenerate`] when a face would
+    /// drop below three sides, [`EulerError::SelfLoop`].
+    pub fn join_edges(&mut self, v: VertexId) -> Result<EdgeId, EulerError> {
+        if !self.is_vertex(v) {
+            return Err(EulerError::Missing(v.to_string()));
+        }
+        let outs: Vec<HalfEdgeId> = self.vertex_outgoing(v).collect();
+        if outs.len() != 2 {
+            return Err(EulerError::Valence {
+                vertex: v,
+                valence: outs.len(),
+                needed: "exactly 2",
+            });
+        }
+        let (keep, kill) = if outs[0].edge() < outs[1].edge() {
+            (outs[0].edge(), outs[1].edge())
+        } else {
+            (outs[1].edge(), outs[0].edge())
+        };
+        // hk: x -> v on the kept edge; hx: v -> y on the killed edge.
+        let hk = if self.target(keep.halfedge(0)) == v {
+            keep.halfedge(0)
+        } else {
+            keep.halfedge(1)
+        };
+        let hx = if self.origin(kill.halfedge(0)) == v {
+            kill.halfedge(0)
+        } else {
+            kill.halfedge(1)
+        };
+        let (x, y) = (self.origin(hk), self.target(hx));
+        if x == y {
+            return Err(EulerError::SelfLoop { vertex: x });
+        }
+        for h in [hk, hx.twin()] {
+            if self.face(h).is_some() && self.loop_from(h).count() < 4 {
+                return Err(EulerError::Degenerate);
+            }
+        }
+        let (tk, tx) = (hk.twin(), hx.twin());
+        let (nx, ptx) = (self.next(hx), self.prev(tx));
+        for f in [self.face(hx), self.face(tx)].into_iter().flatten() {
+            let fh = self.face_halfedge[f.index()];
+            if fh == hx.0 {
+                self.face_halfedge[f.index()] = hk.0;
+            } else if fh == tx.0 {
+                self.face_halfedge[f.index()] = tk.0;
+            }
+        }
+        self.set_origin(tk, y);
+        if nx == tx {
+            // y had valence 1: the joined edge dangles.
+            self.link(hk, tk);
+        } else {
+            self.link(hk, nx);
+            self.link(ptx, tk);
+        }
+        if self.vertex_out[y.index()] == tx.0 {
+            self.vertex_out[y.index()] = tk.0;
+        }
+        self.free_edge(kill);
+        self.free_vertex(v);
+        self.fix_vertex_halfedge(y, tk);
+        self.fix_vertex_halfedge(x, hk);
+        Ok(keep)
+    }
+
+    // ----- composite ------------------------------------------------------------
+
+    /// Extrudes one face along `offset` (seed 004's face extrude): each corner
+    /// grows an edge (MEV), consecutive new corners are joined (MEF), so the
+    /// face becomes the cap and every side gets a new quad. For an n-gon:
+    /// ΔV = +n, ΔE = +2n, ΔF = +n. The cap keeps the face's id.
+    ///
+    /// Inverse: for each side quad, [`kill_edge_face`](Self::kill_edge_face)
+    /// on the edges between new corners, then
+    /// [`kill_edge_vertex`](Self::kill_edge_vertex) on each corner edge.
+    ///
+    /// # Errors
+    /// [`EulerError::Missing`], [`EulerError::NonFinite`].
+    ///
+    /// Complexity: O(n²) for an n-gon (loop walks in MEF).
+    pub fn extrude_face(&mut self, f: FaceId, offset: DVec3) -> Result<Vec<FaceId>, EulerError> {
+        if !self.is_face(f) {
+            return Err(EulerError::Missing(f.to_string()));
+        }
+        if !offset.is_finite() {
+            return Err(EulerError::NonFinite);
+        }
+        let loop_: Vec<HalfEdgeId> = self.face_halfedges(f).collect();
+        // Spikes out of every corner: after each original half-edge h (ending at target(h)).
+        let mut spikes = Vec::with_capacity(loop_.len());
+        for &h in &loop_ {
+            let p = self.position(self.target(h)) + offset;
+            let (e, _) = self
+                .make_edge_vertex(h, p)
+                .expect("checked face and position");
+            let out = if self.origin(e.halfedge(0)) == self.target(h) {
+                e.halfedge(0)
+            } else {
+                e.halfedge(1)
+            };
+            spikes.push(out);
+        }
+        let mut sides = Vec::with_capacity(loop_.len());
+        let mut h_a = spikes[0];
+        for k in 1..=spikes.len() {
+            let h_b = spikes[k % spikes.len()];
+            let (e, g) = self
+                .make_edge_face(h_a, h_b)
+                .expect("corners of an extrusion loop are far enough apart");
+            sides.push(g);
+            h_a = e.halfedge(0);
+        }
+        Ok(sides)
+    }
+
+    /// Structural equality: the same live vertices at the same positions, the
+    /// same live edges with the same half-edge links and faces, the same live
+    /// faces. Ignores free choices (which half-edge a vertex or face stores)
+    /// and trailing dead slots: what "restores the mesh exactly" means.
+    pub fn same_as(&self, other: &HalfEdgeMesh) -> bool {
+        let live = |m: &HalfEdgeMesh| {
+            (
+                m.vertices().collect::<Vec<_>>(),
+                m.edges().collect::<Vec<_>>(),
+                m.faces().collect::<Vec<_>>(),
+            )
+        };
+        if live(self) != live(other) {
+            return false;
+        }
+        self.vertices()
+            .all(|v| self.position(v) == other.position(v))
+            && self
+                .halfedges()
+                .all(|h| self.halfedges[h.index()] == other.halfedges[h.index()])
+    }
+}

@@ -1,0 +1,329 @@
+//! Euler operators: inverse pairs restore the mesh, every precondition
+//! failure leaves it untouched, and random sequences keep it valid with
+//! V − E + F − (L − F) = 2(S − H).
+
+use hedra_geom::{
+    DVec3, EdgeId, EulerError, FaceId, HalfEdgeId, HalfEdgeMesh, Primitive, VertexId,
+};
+use proptest::prelude::*;
+
+fn cube() -> HalfEdgeMesh {
+    Primitive::Cube { size: 2.0 }.build().unwrap()
+}
+
+fn meshes() -> Vec<HalfEdgeMesh> {
+    vec![
+        cube(),
+        Primitive::Grid {
+            x_segments: 3,
+            z_segments: 2,
+            size: 2.0,
+        }
+        .build()
+        .unwrap(),
+        Primitive::Torus {
+            major_segments: 6,
+            minor_segments: 4,
+            major_radius: 1.0,
+            minor_radius: 0.3,
+        }
+        .build()
+        .unwrap(),
+        Primitive::IcoSphere {
+            subdivisions: 0,
+            radius: 1.0,
+        }
+        .build()
+        .unwrap(),
+        Primitive::Cylinder {
+            segments: 5,
+            radius: 1.0,
+            depth: 1.0,
+        }
+        .build()
+        .unwrap(),
+    ]
+}
+
+/// χ = V − E + F, which every operator here preserves (no rings: L = F).
+fn chi(m: &HalfEdgeMesh) -> i64 {
+    m.vertex_count() as i64 - m.edge_count() as i64 + m.face_count() as i64
+}
+
+/// Genus H from χ = 2(S − H) − b per the stats; checked against the start.
+fn euler_poincare_holds(
+    m: &HalfEdgeMesh,
+    shells: usize,
+    genus: i64,
+    boundary_loops: usize,
+) -> bool {
+    let (v, e, f) = (
+        m.vertex_count() as i64,
+        m.edge_count() as i64,
+        m.face_count() as i64,
+    );
+    let loops = f; // no face has an inner ring
+    // Boundary loops are holes of the surface: count them as faces of the closed-up surface.
+    let b = boundary_loops as i64;
+    v - e + (f + b) - (loops - f) == 2 * (shells as i64 - genus)
+}
+
+#[test]
+fn mev_then_kev_restores_the_mesh() {
+    for m0 in meshes() {
+        for h in m0.halfedges().filter(|&h| m0.face(h).is_some()).take(12) {
+            let mut m = m0.clone();
+            let (e, w) = m.make_edge_vertex(h, DVec3::new(0.1, 0.2, 0.3)).unwrap();
+            m.validate().unwrap();
+            assert_eq!(
+                (m.vertex_count(), m.edge_count(), m.face_count()),
+                (m0.vertex_count() + 1, m0.edge_count() + 1, m0.face_count())
+            );
+            assert_eq!(m.vertex_valence(w), 1);
+            assert_eq!(m.kill_edge_vertex(e).unwrap(), w);
+            m.validate().unwrap();
+            assert!(m.same_as(&m0));
+            assert_eq!(
+                m.vertex_capacity(),
+                m0.vertex_capacity(),
+                "freed from the end"
+            );
+        }
+    }
+}
+
+#[test]
+fn mef_then_kef_restores_the_mesh() {
+    for m0 in meshes() {
+        for f in m0.faces().filter(|&f| m0.face_degree(f) >= 4) {
+            let hs: Vec<HalfEdgeId> = m0.face_halfedges(f).collect();
+            let mut m = m0.clone();
+            let (e, g) = m.make_edge_face(hs[0], hs[2]).unwrap();
+            m.validate().unwrap();
+            assert_eq!(m.face_count(), m0.face_count() + 1);
+            assert_eq!(m.face_degree(f) + m.face_degree(g), m0.face_degree(f) + 2);
+            assert_eq!(m.edge_faces(e), [Some(f), Some(g)]);
+            assert_eq!(m.kill_edge_face(e).unwrap(), g);
+            m.validate().unwrap();
+            assert!(m.same_as(&m0), "{f}");
+        }
+    }
+}
+
+#[test]
+fn split_edge_then_join_edges_restores_the_mesh() {
+    for m0 in meshes() {
+        for e in m0.edges() {
+            let mut m = m0.clone();
+            let mid = m0.edge_midpoint(e);
+            let v = m.split_edge(e, mid).unwrap();
+            m.validate().unwrap();
+            assert_eq!(m.vertex_valence(v), 2);
+            assert_eq!(m.position(v), mid);
+            assert_eq!(m.join_edges(v).unwrap(), e);
+            m.validate().unwrap();
+            assert!(m.same_as(&m0), "{e}");
+        }
+    }
+}
+
+#[test]
+fn extrude_face_adds_the_known_counts_and_moves_the_cap() {
+    let mut m = cube();
+    let top = m.faces().find(|&f| m.face_normal(f).y > 0.9).unwrap();
+    let sides = m.extrude_face(top, DVec3::new(0.0, 1.0, 0.0)).unwrap();
+    m.validate().unwrap();
+    assert_eq!(sides.len(), 4);
+    assert_eq!(
+        (m.vertex_count(), m.edge_count(), m.face_count()),
+        (12, 20, 10)
+    );
+    assert_eq!(chi(&m), 2);
+    assert!(
+        m.face_vertices(top)
+            .all(|v| (m.position(v).y - 2.0).abs() < 1e-12),
+        "the cap moved up by 1"
+    );
+    assert!(m.face_normal(top).abs_diff_eq(DVec3::Y, 1e-12));
+    for s in sides {
+        assert_eq!(m.face_degree(s), 4);
+        let n = m.face_normal(s);
+        assert!(
+            n.y.abs() < 1e-12 && (n.length() - 1.0).abs() < 1e-12,
+            "side quads are vertical and outward: {n:?}"
+        );
+        assert!(n.dot(m.face_centroid(s)) > 0.0);
+    }
+    assert!((m.volume() - 12.0).abs() < 1e-9, "2x2x3 box");
+}
+
+#[test]
+fn precondition_failures_are_named_and_change_nothing() {
+    let m0 = cube();
+    let mut m = m0.clone();
+    let f = FaceId(0);
+    let hs: Vec<HalfEdgeId> = m.face_halfedges(f).collect();
+    assert_eq!(m.make_edge_face(hs[0], hs[1]), Err(EulerError::Degenerate));
+    let other = m.face_halfedges(FaceId(1)).next().unwrap();
+    assert_eq!(
+        m.make_edge_face(hs[0], other),
+        Err(EulerError::NotSameLoop { a: hs[0], b: other })
+    );
+    assert_eq!(
+        m.kill_edge_vertex(EdgeId(0)),
+        Err(EulerError::NotDangling { edge: EdgeId(0) })
+    );
+    assert!(matches!(
+        m.join_edges(VertexId(0)),
+        Err(EulerError::Valence { valence: 3, .. })
+    ));
+    assert_eq!(
+        m.split_edge(EdgeId(99), DVec3::ZERO),
+        Err(EulerError::Missing("e99".into()))
+    );
+    assert_eq!(
+        m.split_edge(EdgeId(0), DVec3::NAN),
+        Err(EulerError::NonFinite)
+    );
+    // Joining two cube faces leaves a face whose neighbour shares two edges with it.
+    let e = EdgeId(0);
+    let g = m.kill_edge_face(e).unwrap();
+    let shared = m.edges().find(|&x| {
+        let [a, b] = m.edge_faces(x);
+        a.is_some()
+            && b.is_some()
+            && a != b
+            && m.face_halfedges(a.unwrap())
+                .filter(|h| m.face(h.twin()) == b)
+                .count()
+                > 1
+    });
+    if let Some(x) = shared {
+        let before = m.clone();
+        assert!(matches!(
+            m.kill_edge_face(x),
+            Err(EulerError::SharedEdges { .. })
+        ));
+        assert_eq!(m, before);
+    }
+    let _ = g;
+    // Boundary edges cannot be joined across; a triangle cannot lose a side.
+    let mut grid = Primitive::Plane { size: 1.0 }.build().unwrap();
+    let before = grid.clone();
+    assert!(matches!(
+        grid.kill_edge_face(EdgeId(0)),
+        Err(EulerError::BoundaryEdge { .. })
+    ));
+    let h = grid.halfedges().find(|&h| grid.face(h).is_none()).unwrap();
+    assert_eq!(
+        grid.make_edge_vertex(h, DVec3::ZERO),
+        Err(EulerError::NoFace { halfedge: h })
+    );
+    assert_eq!(grid, before);
+    let mut ico = Primitive::IcoSphere {
+        subdivisions: 0,
+        radius: 1.0,
+    }
+    .build()
+    .unwrap();
+    let v = ico.split_edge(EdgeId(0), DVec3::ZERO).unwrap();
+    let before = ico.clone();
+    // Both faces next to the split edge are triangles-with-a-midpoint (4 sides): joining is fine.
+    assert!(ico.join_edges(v).is_ok());
+    let _ = before;
+    assert_eq!(
+        m0.clone().make_edge_face(hs[0], hs[0]),
+        Err(EulerError::Degenerate)
+    );
+}
+
+#[derive(Clone, Debug)]
+enum Op {
+    Mev(usize, f64),
+    Kev(usize),
+    Mef(usize, usize, usize),
+    Kef(usize),
+    Mve(usize, f64),
+    Kve(usize),
+    Extrude(usize, f64),
+}
+
+fn arb_op() -> impl Strategy<Value = Op> {
+    prop_oneof![
+        (any::<usize>(), -1.0..1.0f64).prop_map(|(a, t)| Op::Mev(a, t)),
+        any::<usize>().prop_map(Op::Kev),
+        (any::<usize>(), any::<usize>(), any::<usize>()).prop_map(|(a, b, c)| Op::Mef(a, b, c)),
+        any::<usize>().prop_map(Op::Kef),
+        (any::<usize>(), 0.1..0.9f64).prop_map(|(a, t)| Op::Mve(a, t)),
+        any::<usize>().prop_map(Op::Kve),
+        (any::<usize>(), -1.0..1.0f64).prop_map(|(a, t)| Op::Extrude(a, t)),
+    ]
+}
+
+fn pick<T: Copy>(items: &[T], i: usize) -> Option<T> {
+    (!items.is_empty()).then(|| items[i % items.len()])
+}
+
+fn apply(m: &mut HalfEdgeMesh, op: &Op) -> Result<(), EulerError> {
+    let faces: Vec<FaceId> = m.faces().collect();
+    let edges: Vec<EdgeId> = m.edges().collect();
+    let verts: Vec<VertexId> = m.vertices().collect();
+    let inner: Vec<HalfEdgeId> = m.halfedges().filter(|&h| m.face(h).is_some()).collect();
+    match *op {
+        Op::Mev(a, t) => {
+            let h = pick(&inner, a).unwrap();
+            let p = m.position(m.target(h)) + DVec3::splat(t * 0.1);
+            m.make_edge_vertex(h, p).map(|_| ())
+        }
+        Op::Kev(a) => m.kill_edge_vertex(pick(&edges, a).unwrap()).map(|_| ()),
+        Op::Mef(a, b, c) => {
+            let f = pick(&faces, a).unwrap();
+            let hs: Vec<HalfEdgeId> = m.face_halfedges(f).collect();
+            m.make_edge_face(hs[b % hs.len()], hs[c % hs.len()])
+                .map(|_| ())
+        }
+        Op::Kef(a) => m.kill_edge_face(pick(&edges, a).unwrap()).map(|_| ()),
+        Op::Mve(a, t) => {
+            let e = pick(&edges, a).unwrap();
+            let [x, y] = m.edge_vertices(e);
+            let p = m.position(x).lerp(m.position(y), t);
+            m.split_edge(e, p).map(|_| ())
+        }
+        Op::Kve(a) => m.join_edges(pick(&verts, a).unwrap()).map(|_| ()),
+        Op::Extrude(a, t) => {
+            let f = pick(&faces, a).unwrap();
+            let n = m.face_normal(f);
+            m.extrude_face(f, n * t).map(|_| ())
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(200))]
+    #[test]
+    fn random_operator_sequences_keep_the_mesh_valid(start in 0usize..5, ops in prop::collection::vec(arb_op(), 1..40)) {
+        let mut m = meshes()[start].clone();
+        let s0 = m.stats();
+        let (shells, genus, chi0) = (s0.shells, s0.genus.unwrap(), chi(&m));
+        let mut applied = 0;
+        for op in &ops {
+            let before = m.clone();
+            match apply(&mut m, op) {
+                Ok(()) => {
+                    applied += 1;
+                    let v = m.validate();
+                    prop_assert!(v.is_ok(), "{:?} broke the mesh: {}", op, v.unwrap_err());
+                }
+                Err(_) => prop_assert_eq!(&m, &before, "a refused {:?} changed the mesh", op),
+            }
+            prop_assert_eq!(chi(&m), chi0, "{:?} changed V - E + F", op);
+            let b = m.boundary_loops().len();
+            prop_assert!(euler_poincare_holds(&m, shells, genus, b));
+            prop_assert_eq!(m.shell_count(), shells);
+        }
+        // Most operations apply (the arguments are drawn from live elements).
+        if ops.len() >= 20 {
+            prop_assert!(applied * 4 >= ops.len(), "only {} of {} operations applied", applied, ops.len());
+        }
+    }
+}
