@@ -1,0 +1,401 @@
+//! Modeling operations built on the Euler operators: what the edit-mode
+//! tools run. Each one checks its input first and returns a named error
+//! without changing the mesh, or applies completely.
+
+use crate::euler::EulerError;
+use crate::ids::{EdgeId, FaceId, HalfEdgeId, VertexId};
+use crate::mesh::HalfEdgeMesh;
+use glam::DVec3;
+
+/// Why a modeling operation refused; the mesh is unchanged.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum ModelingError {
+    #[error("nothing selected: {0}")]
+    Empty(&'static str),
+    #[error("{0} does not exist")]
+    Missing(String),
+    #[error("{edge} has no quad on either side: a loop cut needs a ring of quads")]
+    NoRing { edge: EdgeId },
+    #[error("{a} and {b} do not share a face, or are already joined by an edge")]
+    NotConnectable { a: VertexId, b: VertexId },
+    #[error("{what} must be {allowed}, got {value}")]
+    Parameter {
+        what: &'static str,
+        allowed: &'static str,
+        value: String,
+    },
+    #[error(transparent)]
+    Euler(#[from] EulerError),
+}
+
+fn check_faces(mesh: &HalfEdgeMesh, faces: &[FaceId]) -> Result<(), ModelingError> {
+    if faces.is_empty() {
+        return Err(ModelingError::Empty("no faces"));
+    }
+    match faces.iter().find(|f| !mesh.is_face(**f)) {
+        Some(f) => Err(ModelingError::Missing(f.to_string())),
+        None => Ok(()),
+    }
+}
+
+/// Extrudes each face on its own along its normal by `distance`
+/// (Blender's "extrude individual faces"). Returns the new side faces.
+///
+/// # Errors
+/// [`ModelingError::Missing`] for a dead face, [`ModelingError::Parameter`]
+/// for a non-finite distance.
+pub fn extrude_faces_individual(
+    mesh: &mut HalfEdgeMesh,
+    faces: &[FaceId],
+    distance: f64,
+) -> Result<Vec<FaceId>, ModelingError> {
+    check_faces(mesh, faces)?;
+    if !distance.is_finite() {
+        return Err(ModelingError::Parameter {
+            what: "distance",
+            allowed: "finite",
+            value: distance.to_string(),
+        });
+    }
+    let mut sides = Vec::new();
+    for &f in faces {
+        let n = mesh.face_normal(f);
+        sides.extend(mesh.extrude_face(f, n * distance)?);
+    }
+    Ok(sides)
+}
+
+/// Insets each face on its own: a border of quads `thickness` wide inside
+/// the face, the inner face pushed along the normal by `depth` (Blender's
+/// inset, "individual"). Corners move along their bisector by
+/// thickness / sin(half the corner angle), so the border keeps its width.
+///
+/// # Errors
+/// As [`extrude_faces_individual`]; a thickness below zero is refused.
+pub fn inset_faces_individual(
+    mesh: &mut HalfEdgeMesh,
+    faces: &[FaceId],
+    thickness: f64,
+    depth: f64,
+) -> Result<Vec<FaceId>, ModelingError> {
+    check_faces(mesh, faces)?;
+    if !(thickness.is_finite() && thickness >= 0.0) || !depth.is_finite() {
+        return Err(ModelingError::Parameter {
+            what: "thickness and depth",
+            allowed: "finite, thickness >= 0",
+            value: format!("{thickness}, {depth}"),
+        });
+    }
+    let mut sides = Vec::new();
+    for &f in faces {
+        let normal = mesh.face_normal(f);
+        let corners: Vec<VertexId> = mesh.face_vertices(f).collect();
+        let pts: Vec<DVec3> = corners.iter().map(|&v| mesh.position(v)).collect();
+        let n = pts.len();
+        let targets: Vec<DVec3> = (0..n)
+            .map(|i| {
+                let p = pts[i];
+                let to_prev = (pts[(i + n - 1) % n] - p).normalize_or_zero();
+                let to_next = (pts[(i + 1) % n] - p).normalize_or_zero();
+                let bisector = (to_prev + to_next).normalize_or_zero();
+                let half_angle_sin = (to_prev.angle_between(to_next) / 2.0).sin().max(1e-3);
+                // A reflex corner's bisector points outwards: flip it inwards.
+                let inward = if to_next.cross(to_prev).dot(normal) < 0.0 {
+                    -bisector
+                } else {
+                    bisector
+                };
+                p + inward * (thickness / half_angle_sin) + normal * depth
+            })
+            .collect();
+        sides.extend(mesh.extrude_face(f, DVec3::ZERO)?);
+        for (v, t) in mesh
+            .face_vertices(f)
+            .collect::<Vec<_>>()
+            .into_iter()
+            .zip(rotate_to_match(&corners, mesh, f, &targets))
+        {
+            mesh.set_position(v, t);
+        }
+    }
+    Ok(sides)
+}
+
+/// The cap of an extruded face starts at the corner after the first original
+/// corner; line the targets up with the cap's vertex order by position.
+fn rotate_to_match(
+    original: &[VertexId],
+    mesh: &HalfEdgeMesh,
+    cap: FaceId,
+    targets: &[DVec3],
+) -> Vec<DVec3> {
+    let cap_pts: Vec<DVec3> = mesh.face_vertices(cap).map(|v| mesh.position(v)).collect();
+    let first = mesh.position(original[0]);
+    let shift = cap_pts
+        .iter()
+        .position(|p| p.distance_squared(first) < 1e-24)
+        .unwrap_or(0);
+    (0..cap_pts.len())
+        .map(|i| targets[(i + targets.len() - shift) % targets.len()])
+        .collect()
+}
+
+/// The edge ring through `edge`: half-edges crossing a strip of quads, all
+/// pointing the same way, and whether the ring closes.
+pub fn edge_ring(mesh: &HalfEdgeMesh, edge: EdgeId) -> (Vec<HalfEdgeId>, bool) {
+    let start = edge.halfedge(0);
+    let is_quad = |h: HalfEdgeId| mesh.face(h).is_some_and(|f| mesh.face_degree(f) == 4);
+    let step = |h: HalfEdgeId| -> Option<HalfEdgeId> {
+        is_quad(h).then(|| mesh.next(mesh.next(h)).twin())
+    };
+    let mut forward = vec![start];
+    let mut h = start;
+    while let Some(n) = step(h) {
+        if n == start {
+            return (forward, true);
+        }
+        if forward.contains(&n) || forward.len() > mesh.edge_count() {
+            break;
+        }
+        forward.push(n);
+        h = n;
+    }
+    // Open ring: also walk backwards from the start through the other side.
+    let mut backward = Vec::new();
+    let mut h = start.twin();
+    while let Some(n) = step(h) {
+        let parallel = n.twin();
+        if forward.contains(&parallel) || backward.contains(&parallel) {
+            break;
+        }
+        backward.push(parallel);
+        h = n;
+    }
+    backward.reverse();
+    backward.extend(forward);
+    (backward, false)
+}
+
+/// Loop cut (Blender's Ctrl+R): `cuts` new edge loops across the ring of
+/// quads through `edge`, evenly spaced. Returns the new edges along the loops.
+///
+/// # Errors
+/// [`ModelingError::NoRing`] when no quad touches the edge,
+/// [`ModelingError::Parameter`] for 0 or more than 64 cuts.
+pub fn loop_cut(
+    mesh: &mut HalfEdgeMesh,
+    edge: EdgeId,
+    cuts: u32,
+) -> Result<Vec<EdgeId>, ModelingError> {
+    if !mesh.is_edge(edge) {
+        return Err(ModelingError::Missing(edge.to_string()));
+    }
+    if !(1..=64).contains(&cuts) {
+        return Err(ModelingError::Parameter {
+            what: "cuts",
+            allowed: "1 to 64",
+            value: cuts.to_string(),
+        });
+    }
+    let (ring, closed) = edge_ring(mesh, edge);
+    let quad_between = |a: HalfEdgeId| mesh.face(a).is_some_and(|f| mesh.face_degree(f) == 4);
+    if !ring
+        .iter()
+        .any(|&h| quad_between(h) || quad_between(h.twin()))
+    {
+        return Err(ModelingError::NoRing { edge });
+    }
+    // Faces to cut: between consecutive ring half-edges (each ring half-edge's own face).
+    let faces: Vec<FaceId> = ring
+        .iter()
+        .take(if closed { ring.len() } else { ring.len() - 1 })
+        .map(|&h| mesh.face(h).expect("ring half-edges lie on quads"))
+        .collect();
+    // New vertices on every ring edge, ordered from the half-edge's origin.
+    let mut rails: Vec<Vec<VertexId>> = Vec::with_capacity(ring.len());
+    for &h in &ring {
+        let (pa, pb) = (mesh.position(mesh.origin(h)), mesh.position(mesh.target(h)));
+        let e = h.edge();
+        // `split_edge` keeps the edge from its first vertex `s` to the new one,
+        // so split at the points farthest from `s` first.
+        let from_start = mesh.edge_vertices(e)[0] == mesh.origin(h);
+        let order: Vec<usize> = if from_start {
+            (0..cuts as usize).rev().collect()
+        } else {
+            (0..cuts as usize).collect()
+        };
+        let mut made = vec![VertexId(0); cuts as usize];
+        for k in order {
+            made[k] = mesh.split_edge(e, pa.lerp(pb, (k + 1) as f64 / (cuts + 1) as f64))?;
+        }
+        rails.push(made);
+    }
+    let mut new_edges = Vec::new();
+    for (i, &f) in faces.iter().enumerate() {
+        let next_rail = &rails[(i + 1) % rails.len()];
+        for k in 0..cuts as usize {
+            let (a, b) = (rails[i][k], next_rail[k]);
+            let e = connect_in_shared_face(mesh, a, b, Some(f))?;
+            new_edges.push(e);
+        }
+    }
+    Ok(new_edges)
+}
+
+/// Joins two vertices of a common face by a new edge (MEF), preferring `hint`.
+fn connect_in_shared_face(
+    mesh: &mut HalfEdgeMesh,
+    a: VertexId,
+    b: VertexId,
+    hint: Option<FaceId>,
+) -> Result<EdgeId, ModelingError> {
+    let incoming = |mesh: &HalfEdgeMesh, v: VertexId| -> Vec<HalfEdgeId> {
+        mesh.vertex_outgoing(v)
+            .map(|h| h.twin())
+            .filter(|h| mesh.face(*h).is_some())
+            .collect()
+    };
+    let ins_a = incoming(mesh, a);
+    let ins_b = incoming(mesh, b);
+    let view: &HalfEdgeMesh = mesh;
+    let mut pairs: Vec<(HalfEdgeId, HalfEdgeId)> = Vec::new();
+    for &ha in &ins_a {
+        for &hb in &ins_b {
+            if view.face(hb) == view.face(ha) {
+                pairs.push((ha, hb));
+            }
+        }
+    }
+    pairs.sort_by_key(|(ha, _)| view.face(*ha) != hint);
+    if mesh.find_edge(a, b).is_some() {
+        return Err(ModelingError::NotConnectable { a, b });
+    }
+    let (ha, hb) = *pairs
+        .first()
+        .ok_or(ModelingError::NotConnectable { a, b })?;
+    Ok(mesh.make_edge_face(ha, hb)?.0)
+}
+
+/// Connects pairs of vertices that share a face (Blender's J).
+///
+/// # Errors
+/// [`ModelingError::NotConnectable`] naming the pair.
+pub fn connect_vertices(
+    mesh: &mut HalfEdgeMesh,
+    a: VertexId,
+    b: VertexId,
+) -> Result<EdgeId, ModelingError> {
+    for v in [a, b] {
+        if !mesh.is_vertex(v) {
+            return Err(ModelingError::Missing(v.to_string()));
+        }
+    }
+    connect_in_shared_face(mesh, a, b, None)
+}
+
+/// Splits each edge into `cuts + 1` equal parts. Returns the new vertices.
+///
+/// # Errors
+/// [`ModelingError::Missing`], [`ModelingError::Parameter`] (1 to 64 cuts).
+pub fn subdivide_edges(
+    mesh: &mut HalfEdgeMesh,
+    edges: &[EdgeId],
+    cuts: u32,
+) -> Result<Vec<VertexId>, ModelingError> {
+    if edges.is_empty() {
+        return Err(ModelingError::Empty("no edges"));
+    }
+    if let Some(e) = edges.iter().find(|e| !mesh.is_edge(**e)) {
+        return Err(ModelingError::Missing(e.to_string()));
+    }
+    if !(1..=64).contains(&cuts) {
+        return Err(ModelingError::Parameter {
+            what: "cuts",
+            allowed: "1 to 64",
+            value: cuts.to_string(),
+        });
+    }
+    let mut out = Vec::new();
+    for &e in edges {
+        let [a, b] = mesh.edge_vertices(e);
+        let (pa, pb) = (mesh.position(a), mesh.position(b));
+        // Split from the far end so the original edge keeps shrinking towards `a`.
+        for k in (1..=cuts).rev() {
+            out.push(mesh.split_edge(e, pa.lerp(pb, k as f64 / (cuts + 1) as f64))?);
+        }
+    }
+    Ok(out)
+}
+
+/// Removes edges between two faces, merging the faces (KEF).
+///
+/// # Errors
+/// The first edge that cannot be dissolved, with the reason; edges before it
+/// are dissolved on a copy only, so the mesh stays unchanged on error.
+pub fn dissolve_edges(mesh: &mut HalfEdgeMesh, edges: &[EdgeId]) -> Result<(), ModelingError> {
+    if edges.is_empty() {
+        return Err(ModelingError::Empty("no edges"));
+    }
+    let mut work = mesh.clone();
+    for &e in edges {
+        if !work.is_edge(e) {
+            return Err(ModelingError::Missing(e.to_string()));
+        }
+        work.kill_edge_face(e)?;
+    }
+    *mesh = work;
+    Ok(())
+}
+
+/// Removes vertices of valence 2, joining their edges (KVE).
+///
+/// # Errors
+/// As [`dissolve_edges`].
+pub fn dissolve_vertices(
+    mesh: &mut HalfEdgeMesh,
+    vertices: &[VertexId],
+) -> Result<(), ModelingError> {
+    if vertices.is_empty() {
+        return Err(ModelingError::Empty("no vertices"));
+    }
+    let mut work = mesh.clone();
+    for &v in vertices {
+        work.join_edges(v)?;
+    }
+    *mesh = work;
+    Ok(())
+}
+
+/// Reverses the orientation of every face (flip normals). Connectivity is
+/// relinked half-edge by half-edge: origin becomes the old target, next and
+/// prev swap. ΔV = ΔE = ΔF = 0; applying it twice restores the mesh.
+pub fn flip_normals(mesh: &mut HalfEdgeMesh) {
+    mesh.reverse_orientation();
+}
+
+impl HalfEdgeMesh {
+    /// Reverses every loop (see [`flip_normals`]).
+    pub fn reverse_orientation(&mut self) {
+        let live: Vec<HalfEdgeId> = self.halfedges().collect();
+        let targets: Vec<u32> = live.iter().map(|&h| self.target(h).0).collect();
+        for (&h, &t) in live.iter().zip(&targets) {
+            let r = &mut self.halfedges[h.index()];
+            std::mem::swap(&mut r.next, &mut r.prev);
+            r.origin = t;
+        }
+        // Each vertex's stored half-edge now points into it: use its twin.
+        for v in self.vertices().collect::<Vec<_>>() {
+            if let Some(h) = self.vertex_halfedge(v) {
+                // After the swap `h` ends at v; its twin starts at v.
+                let out = if self.origin(h) == v { h } else { h.twin() };
+                self.vertex_out[v.index()] = out.0;
+                let boundary = self
+                    .vertex_outgoing(v)
+                    .find(|&x| self.is_boundary_halfedge(x));
+                if let Some(b) = boundary {
+                    self.vertex_out[v.index()] = b.0;
+                }
+            }
+        }
+    }
+}

@@ -1,0 +1,205 @@
+//! Modeling operations: counts, positions and validity after each.
+
+use hedra_geom::modeling::{
+    connect_vertices, dissolve_edges, dissolve_vertices, edge_ring, extrude_faces_individual,
+    flip_normals, inset_faces_individual, loop_cut, subdivide_edges,
+};
+use hedra_geom::{DVec3, EdgeId, FaceId, HalfEdgeMesh, ModelingError, Primitive, VertexId};
+
+fn cube() -> HalfEdgeMesh {
+    Primitive::Cube { size: 2.0 }.build().unwrap()
+}
+
+fn counts(m: &HalfEdgeMesh) -> (usize, usize, usize) {
+    (m.vertex_count(), m.edge_count(), m.face_count())
+}
+
+fn top(m: &HalfEdgeMesh) -> FaceId {
+    m.faces().find(|&f| m.face_normal(f).y > 0.9).unwrap()
+}
+
+#[test]
+fn loop_cut_on_a_cube_adds_a_ring_of_edges_halfway() {
+    let mut m = cube();
+    // A vertical edge: its ring goes around the four side faces.
+    let e = m
+        .edges()
+        .find(|&e| {
+            let [a, b] = m.edge_vertices(e);
+            (m.position(a) - m.position(b)).y.abs() > 1.0
+        })
+        .unwrap();
+    let (ring, closed) = edge_ring(&m, e);
+    assert_eq!((ring.len(), closed), (4, true));
+    let new = loop_cut(&mut m, e, 1).unwrap();
+    m.validate().unwrap();
+    assert_eq!(new.len(), 4);
+    assert_eq!(counts(&m), (12, 20, 10));
+    for e in new {
+        let [a, b] = m.edge_vertices(e);
+        assert!(
+            m.position(a).y.abs() < 1e-12 && m.position(b).y.abs() < 1e-12,
+            "the cut lies at half height"
+        );
+    }
+    // Three cuts: evenly spaced at y = -0.5, 0, 0.5 on the remaining ring.
+    let mut m = cube();
+    loop_cut(&mut m, e, 3).unwrap();
+    m.validate().unwrap();
+    assert_eq!(counts(&m), (8 + 12, 12 + 24, 6 + 12));
+    let mut ys: Vec<i64> = m
+        .vertices()
+        .map(|v| (m.position(v).y * 1000.0).round() as i64)
+        .collect();
+    ys.sort();
+    ys.dedup();
+    assert_eq!(ys, vec![-1000, -500, 0, 500, 1000]);
+}
+
+#[test]
+fn loop_cut_on_an_open_grid_cuts_the_whole_strip() {
+    let mut m = Primitive::Grid {
+        x_segments: 3,
+        z_segments: 2,
+        size: 3.0,
+    }
+    .build()
+    .unwrap();
+    let e = m.edges().find(|&e| !m.is_boundary_edge(e)).unwrap();
+    let before = counts(&m);
+    loop_cut(&mut m, e, 1).unwrap();
+    m.validate().unwrap();
+    let after = counts(&m);
+    assert!(
+        after.2 > before.2 && after.2 - before.2 <= 3,
+        "{before:?} -> {after:?}"
+    );
+    assert_eq!(m.stats().euler_characteristic, 1);
+}
+
+#[test]
+fn loop_cut_refuses_triangles_and_bad_counts() {
+    let mut ico = Primitive::IcoSphere {
+        subdivisions: 0,
+        radius: 1.0,
+    }
+    .build()
+    .unwrap();
+    let before = ico.clone();
+    assert_eq!(
+        loop_cut(&mut ico, EdgeId(0), 1),
+        Err(ModelingError::NoRing { edge: EdgeId(0) })
+    );
+    assert_eq!(ico, before);
+    let mut m = cube();
+    assert!(matches!(
+        loop_cut(&mut m, EdgeId(0), 0),
+        Err(ModelingError::Parameter { .. })
+    ));
+    assert!(matches!(
+        loop_cut(&mut m, EdgeId(77), 1),
+        Err(ModelingError::Missing(_))
+    ));
+}
+
+#[test]
+fn extrude_and_inset_individual_faces() {
+    let mut m = cube();
+    let f = top(&m);
+    let sides = extrude_faces_individual(&mut m, &[f], 0.5).unwrap();
+    m.validate().unwrap();
+    assert_eq!(sides.len(), 4);
+    assert!(
+        m.face_vertices(f)
+            .all(|v| (m.position(v).y - 1.5).abs() < 1e-12)
+    );
+
+    let mut m = cube();
+    let f = top(&m);
+    inset_faces_individual(&mut m, &[f], 0.25, 0.0).unwrap();
+    m.validate().unwrap();
+    assert_eq!(counts(&m), (12, 20, 10));
+    let mut xs: Vec<f64> = m.face_vertices(f).map(|v| m.position(v).x.abs()).collect();
+    xs.dedup_by(|a, b| (*a - *b).abs() < 1e-12);
+    assert!(
+        xs.iter().all(|x| (x - 0.75).abs() < 1e-12),
+        "inner square at 0.75: {xs:?}"
+    );
+    assert!(
+        m.face_vertices(f)
+            .all(|v| (m.position(v).y - 1.0).abs() < 1e-12)
+    );
+    assert!(
+        (m.volume() - 8.0).abs() < 1e-9,
+        "an inset without depth keeps the volume"
+    );
+
+    let mut m = cube();
+    let t = top(&m);
+    assert!(inset_faces_individual(&mut m, &[t], -1.0, 0.0).is_err());
+    assert!(matches!(
+        extrude_faces_individual(&mut m, &[], 1.0),
+        Err(ModelingError::Empty(_))
+    ));
+}
+
+#[test]
+fn subdivide_connect_and_dissolve() {
+    let mut m = cube();
+    let f = top(&m);
+    let edges: Vec<EdgeId> = m.face_halfedges(f).map(|h| h.edge()).collect();
+    let new = subdivide_edges(&mut m, &edges[..2], 1).unwrap();
+    m.validate().unwrap();
+    assert_eq!(new.len(), 2);
+    assert_eq!(m.face_degree(f), 6);
+    let e = connect_vertices(&mut m, new[0], new[1]).unwrap();
+    m.validate().unwrap();
+    assert_eq!(m.face_count(), 7);
+    assert_eq!(
+        connect_vertices(&mut m, new[0], new[1]),
+        Err(ModelingError::NotConnectable {
+            a: new[0],
+            b: new[1]
+        })
+    );
+    dissolve_edges(&mut m, &[e]).unwrap();
+    m.validate().unwrap();
+    assert_eq!(m.face_count(), 6);
+    dissolve_vertices(&mut m, &new).unwrap();
+    m.validate().unwrap();
+    assert_eq!(counts(&m), (8, 12, 6));
+    let before = m.clone();
+    assert!(dissolve_vertices(&mut m, &[VertexId(0)]).is_err());
+    assert_eq!(m, before, "a refused dissolve changes nothing");
+}
+
+#[test]
+fn flip_normals_twice_is_the_identity() {
+    let mut m = Primitive::UvSphere {
+        segments: 8,
+        rings: 5,
+        radius: 1.0,
+    }
+    .build()
+    .unwrap();
+    let m0 = m.clone();
+    let v0 = m.volume();
+    flip_normals(&mut m);
+    m.validate().unwrap();
+    assert!((m.volume() + v0).abs() < 1e-9, "inside out");
+    flip_normals(&mut m);
+    assert!(m.same_as(&m0));
+    let mut grid = Primitive::Grid {
+        x_segments: 2,
+        z_segments: 2,
+        size: 1.0,
+    }
+    .build()
+    .unwrap();
+    flip_normals(&mut grid);
+    grid.validate().unwrap();
+    assert!(
+        grid.faces()
+            .all(|f| grid.face_normal(f).abs_diff_eq(-DVec3::Y, 1e-12))
+    );
+}
