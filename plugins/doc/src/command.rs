@@ -4,10 +4,12 @@
 //! [`Transaction`] (Fornjot's "commands decide, events apply"). Deciding
 //! never mutates, so a failing command leaves the document untouched.
 
+use crate::elements::{EdgeSet, FaceSet, VertexSet};
 use crate::history::{NodeChange, Transaction};
 use crate::scene::{Document, MeshContent, Node, NodeContent, NodeId, Shading, Transform};
 use glam::{DQuat, DVec3};
-use hedra_geom::{BuildError, HalfEdgeMesh, Primitive, PrimitiveError};
+use hedra_geom::modeling;
+use hedra_geom::{BuildError, EdgeId, HalfEdgeMesh, Primitive, PrimitiveError, VertexId};
 use serde::{Deserialize, Serialize};
 use std::fmt;
 use std::sync::Arc;
@@ -121,6 +123,71 @@ pub enum Command {
     Duplicate {
         nodes: Vec<NodeRef>,
     },
+
+    // ----- mesh editing (element positions in the node's local space) -----
+    /// Moves vertices by an offset.
+    MoveVertices {
+        node: NodeRef,
+        vertices: VertexSet,
+        offset: DVec3,
+    },
+    /// Sets vertex positions (what the edit-mode move tool sends).
+    SetVertexPositions {
+        node: NodeRef,
+        positions: Vec<(u32, DVec3)>,
+    },
+    /// Extrudes each face on its own along its normal.
+    ExtrudeFaces {
+        node: NodeRef,
+        faces: FaceSet,
+        distance: f64,
+    },
+    /// Insets each face on its own: a border `thickness` wide, the inner face
+    /// pushed by `depth` along the normal.
+    InsetFaces {
+        node: NodeRef,
+        faces: FaceSet,
+        thickness: f64,
+        #[serde(default)]
+        depth: f64,
+    },
+    /// Cuts `cuts` evenly spaced edge loops across the ring of quads through one edge.
+    LoopCut {
+        node: NodeRef,
+        edge: EdgeSet,
+        #[serde(default = "one")]
+        cuts: u32,
+    },
+    /// Splits edges into `cuts + 1` equal parts.
+    SubdivideEdges {
+        node: NodeRef,
+        edges: EdgeSet,
+        #[serde(default = "one")]
+        cuts: u32,
+    },
+    /// Joins two vertices of one face by a new edge, splitting the face.
+    ConnectVertices {
+        node: NodeRef,
+        vertices: VertexSet,
+    },
+    /// Removes edges, merging the faces on their two sides.
+    DissolveEdges {
+        node: NodeRef,
+        edges: EdgeSet,
+    },
+    /// Removes vertices of valence 2, joining their edges.
+    DissolveVertices {
+        node: NodeRef,
+        vertices: VertexSet,
+    },
+    /// Reverses every face of the mesh.
+    FlipNormals {
+        node: NodeRef,
+    },
+}
+
+fn one() -> u32 {
+    1
 }
 
 /// Round primitives start smooth, boxy ones flat, as in most modelers.
@@ -158,6 +225,13 @@ pub enum CommandError {
     Primitive(#[from] PrimitiveError),
     #[error("bad mesh: {0}")]
     Mesh(#[from] BuildError),
+    #[error("{node}: {message}")]
+    Element { node: String, message: String },
+    #[error("{node}: {error}")]
+    Modeling {
+        node: String,
+        error: hedra_geom::ModelingError,
+    },
 }
 
 impl Command {
@@ -184,6 +258,17 @@ impl Command {
             Command::SetShading { shading, .. } => format!("Shade {shading:?}"),
             Command::Delete { nodes } => format!("Delete {}", plural(nodes.len(), "node")),
             Command::Duplicate { nodes } => format!("Duplicate {}", plural(nodes.len(), "node")),
+            Command::MoveVertices { .. } | Command::SetVertexPositions { .. } => {
+                "Move Vertices".to_string()
+            }
+            Command::ExtrudeFaces { .. } => "Extrude Faces".to_string(),
+            Command::InsetFaces { .. } => "Inset Faces".to_string(),
+            Command::LoopCut { cuts, .. } => format!("Loop Cut ({cuts})"),
+            Command::SubdivideEdges { .. } => "Subdivide Edges".to_string(),
+            Command::ConnectVertices { .. } => "Connect Vertices".to_string(),
+            Command::DissolveEdges { .. } => "Dissolve Edges".to_string(),
+            Command::DissolveVertices { .. } => "Dissolve Vertices".to_string(),
+            Command::FlipNormals { .. } => "Flip Normals".to_string(),
         }
     }
 }
@@ -367,6 +452,48 @@ impl Plan<'_> {
         Ok(())
     }
 
+    /// Applies `edit` to a copy of the node's mesh and stores the result
+    /// (no longer an adjustable primitive). `edit` reports element errors as text.
+    fn edit_mesh(
+        &mut self,
+        r: &NodeRef,
+        edit: impl FnOnce(&mut HalfEdgeMesh) -> Result<(), String>,
+    ) -> Result<(), CommandError> {
+        self.model(r, |m| edit(m).map(Ok))
+    }
+
+    /// Like [`edit_mesh`](Self::edit_mesh) for kernel operations that can refuse.
+    fn model(
+        &mut self,
+        r: &NodeRef,
+        edit: impl FnOnce(&mut HalfEdgeMesh) -> Result<Result<(), hedra_geom::ModelingError>, String>,
+    ) -> Result<(), CommandError> {
+        let mut n = self.node(r)?;
+        let label = self.doc.label_of(n.id);
+        let NodeContent::Mesh(content) = &mut n.content else {
+            return Err(CommandError::NotAMesh { node: label });
+        };
+        let mut mesh = (*content.mesh).clone();
+        match edit(&mut mesh) {
+            Err(message) => {
+                return Err(CommandError::Element {
+                    node: label,
+                    message,
+                });
+            }
+            Ok(Err(error)) => return Err(CommandError::Modeling { node: label, error }),
+            Ok(Ok(())) => {}
+        }
+        debug_assert!(
+            mesh.validate().is_ok(),
+            "a modeling operation broke the mesh"
+        );
+        content.mesh = Arc::new(mesh);
+        content.primitive = None;
+        self.set(n);
+        Ok(())
+    }
+
     fn run(&mut self, cmd: &Command) -> Result<(), CommandError> {
         match cmd {
             Command::AddPrimitive {
@@ -537,6 +664,105 @@ impl Plan<'_> {
                         }
                     }
                 }
+            }
+            Command::MoveVertices {
+                node,
+                vertices,
+                offset,
+            } => {
+                self.edit_mesh(node, |m| {
+                    let vs = vertices.resolve(m).map_err(|e| e.0)?;
+                    if !offset.is_finite() {
+                        return Err("the offset is not finite".into());
+                    }
+                    for v in vs {
+                        m.set_position(v, m.position(v) + *offset);
+                    }
+                    Ok(())
+                })?;
+            }
+            Command::SetVertexPositions { node, positions } => {
+                self.edit_mesh(node, |m| {
+                    for &(i, p) in positions {
+                        if !m.is_vertex(VertexId(i)) {
+                            return Err(format!("vertex v{i} does not exist"));
+                        }
+                        if !p.is_finite() {
+                            return Err(format!("vertex v{i}: position is not finite"));
+                        }
+                        m.set_position(VertexId(i), p);
+                    }
+                    Ok(())
+                })?;
+            }
+            Command::ExtrudeFaces {
+                node,
+                faces,
+                distance,
+            } => {
+                self.model(node, |m| {
+                    let fs = faces.resolve(m).map_err(|e| e.0)?;
+                    Ok(modeling::extrude_faces_individual(m, &fs, *distance).map(|_| ()))
+                })?;
+            }
+            Command::InsetFaces {
+                node,
+                faces,
+                thickness,
+                depth,
+            } => {
+                self.model(node, |m| {
+                    let fs = faces.resolve(m).map_err(|e| e.0)?;
+                    Ok(modeling::inset_faces_individual(m, &fs, *thickness, *depth).map(|_| ()))
+                })?;
+            }
+            Command::LoopCut { node, edge, cuts } => {
+                self.model(node, |m| {
+                    let es = edge.resolve(m).map_err(|e| e.0)?;
+                    let [e] = es[..] else {
+                        return Err(format!(
+                            "a loop cut needs exactly one edge, {edge:?} names {}",
+                            es.len()
+                        ));
+                    };
+                    Ok(modeling::loop_cut(m, e, *cuts).map(|_| ()))
+                })?;
+            }
+            Command::SubdivideEdges { node, edges, cuts } => {
+                self.model(node, |m| {
+                    let es = edges.resolve(m).map_err(|e| e.0)?;
+                    Ok(modeling::subdivide_edges(m, &es, *cuts).map(|_| ()))
+                })?;
+            }
+            Command::ConnectVertices { node, vertices } => {
+                self.model(node, |m| {
+                    let vs = vertices.resolve(m).map_err(|e| e.0)?;
+                    let [a, b] = vs[..] else {
+                        return Err(format!(
+                            "connecting needs exactly two vertices, {vertices:?} names {}",
+                            vs.len()
+                        ));
+                    };
+                    Ok(modeling::connect_vertices(m, a, b).map(|_| ()))
+                })?;
+            }
+            Command::DissolveEdges { node, edges } => {
+                self.model(node, |m| {
+                    let es: Vec<EdgeId> = edges.resolve(m).map_err(|e| e.0)?;
+                    Ok(modeling::dissolve_edges(m, &es))
+                })?;
+            }
+            Command::DissolveVertices { node, vertices } => {
+                self.model(node, |m| {
+                    let vs = vertices.resolve(m).map_err(|e| e.0)?;
+                    Ok(modeling::dissolve_vertices(m, &vs))
+                })?;
+            }
+            Command::FlipNormals { node } => {
+                self.model(node, |m| {
+                    modeling::flip_normals(m);
+                    Ok(Ok(()))
+                })?;
             }
             Command::Duplicate { nodes } => {
                 for r in nodes {

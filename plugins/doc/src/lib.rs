@@ -3,6 +3,7 @@
 //! versioned `.hedra.ron` file and exports.
 
 pub mod command;
+pub mod elements;
 pub mod export;
 pub mod file;
 pub mod history;
@@ -13,6 +14,7 @@ pub mod script;
 pub mod session;
 
 pub use command::{Command, CommandError, NodeRef};
+pub use elements::{EdgeSet, FaceSet, VertexSet};
 pub use history::{History, NodeChange, Transaction};
 pub use scene::{Document, MeshContent, Node, NodeContent, NodeId, Shading, Transform};
 pub use session::{Applied, Session};

@@ -41,7 +41,7 @@ fn every_command_example_in_the_docs_runs() {
         .collect();
     kinds.sort();
     kinds.dedup();
-    assert_eq!(kinds.len(), 14, "{kinds:?}");
+    assert_eq!(kinds.len(), 24, "{kinds:?}");
     let mut session = hedra_doc::Session::new();
     hedra_doc::script::run(&mut session, &commands, Path::new("docs/commands.md"))
         .unwrap_or_else(|e| panic!("{e}"));
@@ -52,4 +52,10 @@ fn every_command_example_in_the_docs_runs() {
     );
     assert!(doc.find_by_name("Box.001").is_none());
     assert_eq!(session.history.done().len(), commands.len());
+    // The mesh examples leave a valid block: 2 loop cuts, an extrusion and an inset on the top.
+    let block = doc.find_by_name("Block").unwrap().content.mesh().unwrap();
+    block.validate().unwrap();
+    let s = block.stats();
+    assert_eq!((s.vertices, s.faces), (8 + 8 + 4 + 4, 6 + 8 + 4 + 4));
+    assert!(block.volume() < 0.0, "flipped inside out at the end");
 }

@@ -440,3 +440,97 @@ proptest! {
         prop_assert_eq!(&s.doc, &fin);
     }
 }
+
+#[test]
+fn mesh_commands_edit_the_mesh_undo_exactly_and_name_bad_elements() {
+    use hedra_doc::{EdgeSet, FaceSet, VertexSet};
+    let mut s = Session::new();
+    s.execute(&add(cube(), "C")).unwrap();
+    let before = s.doc.clone();
+    s.execute(&Command::ExtrudeFaces {
+        node: name("C"),
+        faces: FaceSet::Facing {
+            direction: DVec3::Y,
+            degrees: 1.0,
+        },
+        distance: 1.0,
+    })
+    .unwrap();
+    let m = s
+        .doc
+        .find_by_name("C")
+        .unwrap()
+        .content
+        .mesh()
+        .unwrap()
+        .clone();
+    assert_eq!(m.face_count(), 10);
+    assert!(
+        matches!(&s.doc.find_by_name("C").unwrap().content, NodeContent::Mesh(c) if c.primitive.is_none()),
+        "an edited primitive is a plain mesh"
+    );
+    s.execute(&Command::LoopCut {
+        node: name("C"),
+        edge: EdgeSet::Nearest(DVec3::new(1.0, 0.0, 1.0)),
+        cuts: 1,
+    })
+    .unwrap();
+    assert_eq!(
+        s.doc
+            .find_by_name("C")
+            .unwrap()
+            .content
+            .mesh()
+            .unwrap()
+            .face_count(),
+        14
+    );
+    s.undo();
+    s.undo();
+    assert_eq!(s.doc, before);
+
+    let e = s
+        .execute(&Command::ExtrudeFaces {
+            node: name("C"),
+            faces: FaceSet::Ids(vec![99]),
+            distance: 1.0,
+        })
+        .unwrap_err();
+    assert_eq!(e.to_string(), "'C' (#1): face f99 does not exist");
+    let e = s
+        .execute(&Command::ConnectVertices {
+            node: name("C"),
+            vertices: VertexSet::Ids(vec![0, 7]),
+        })
+        .unwrap_err();
+    assert!(e.to_string().contains("do not share a face"), "{e}");
+    let e = s
+        .execute(&Command::LoopCut {
+            node: name("C"),
+            edge: EdgeSet::All,
+            cuts: 1,
+        })
+        .unwrap_err();
+    assert!(e.to_string().contains("exactly one edge"), "{e}");
+    let e = s
+        .execute(&Command::ExtrudeFaces {
+            node: name("C"),
+            faces: FaceSet::Facing {
+                direction: DVec3::new(1.0, 1.0, 1.0),
+                degrees: 5.0,
+            },
+            distance: 1.0,
+        })
+        .unwrap_err();
+    assert!(e.to_string().contains("no face matches"), "{e}");
+    s.execute(&Command::AddEmpty {
+        name: "E".into(),
+        parent: None,
+        transform: Transform::IDENTITY,
+    })
+    .unwrap();
+    let e = s
+        .execute(&Command::FlipNormals { node: name("E") })
+        .unwrap_err();
+    assert!(matches!(e, CommandError::NotAMesh { .. }));
+}

@@ -1,0 +1,189 @@
+//! Mesh elements named in commands: by id, or by a simple predicate so that
+//! scripts do not depend on id order. Positions are in the node's own
+//! (local) space.
+
+use glam::DVec3;
+use hedra_geom::{EdgeId, FaceId, HalfEdgeMesh, VertexId};
+use serde::{Deserialize, Serialize};
+
+/// Faces of a mesh.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub enum FaceSet {
+    All,
+    Ids(Vec<u32>),
+    /// Faces whose normal is within `degrees` of `direction`.
+    Facing {
+        direction: DVec3,
+        degrees: f64,
+    },
+    /// The face whose centre is nearest to a point.
+    Nearest(DVec3),
+}
+
+/// Edges of a mesh.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub enum EdgeSet {
+    All,
+    Ids(Vec<u32>),
+    /// The edge whose midpoint is nearest to a point.
+    Nearest(DVec3),
+    /// The edges around the faces of a face set.
+    OfFaces(Box<FaceSet>),
+}
+
+/// Vertices of a mesh.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub enum VertexSet {
+    All,
+    Ids(Vec<u32>),
+    /// The vertex nearest to a point.
+    Nearest(DVec3),
+    /// For each point, the vertex nearest to it (in that order).
+    NearestEach(Vec<DVec3>),
+    /// Vertices within `radius` of `center`.
+    Within {
+        center: DVec3,
+        radius: f64,
+    },
+    /// The corners of a face set.
+    OfFaces(Box<FaceSet>),
+    /// The ends of an edge set.
+    OfEdges(Box<EdgeSet>),
+}
+
+/// An id in a command that the mesh does not have, or a predicate that
+/// matched nothing.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("{0}")]
+pub struct ElementError(pub String);
+
+fn nearest<T: Copy>(items: impl Iterator<Item = T>, key: impl Fn(T) -> f64) -> Option<T> {
+    items
+        .map(|x| (x, key(x)))
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+        .map(|(x, _)| x)
+}
+
+impl FaceSet {
+    /// The faces this set names, in a stable order.
+    ///
+    /// # Errors
+    /// [`ElementError`] for a missing id or an empty match.
+    pub fn resolve(&self, m: &HalfEdgeMesh) -> Result<Vec<FaceId>, ElementError> {
+        let out: Vec<FaceId> = match self {
+            FaceSet::All => m.faces().collect(),
+            FaceSet::Ids(ids) => {
+                let v: Vec<FaceId> = ids.iter().map(|&i| FaceId(i)).collect();
+                if let Some(f) = v.iter().find(|f| !m.is_face(**f)) {
+                    return Err(ElementError(format!("face {f} does not exist")));
+                }
+                v
+            }
+            FaceSet::Facing { direction, degrees } => {
+                let d = direction.normalize_or_zero();
+                if d == DVec3::ZERO {
+                    return Err(ElementError("the direction of Facing is zero".into()));
+                }
+                let cos = degrees.to_radians().cos();
+                m.faces()
+                    .filter(|&f| m.face_normal(f).dot(d) >= cos - 1e-12)
+                    .collect()
+            }
+            FaceSet::Nearest(p) => nearest(m.faces(), |f| m.face_centroid(f).distance_squared(*p))
+                .into_iter()
+                .collect(),
+        };
+        if out.is_empty() {
+            return Err(ElementError(format!("no face matches {self:?}")));
+        }
+        Ok(out)
+    }
+}
+
+impl EdgeSet {
+    /// The edges this set names.
+    ///
+    /// # Errors
+    /// [`ElementError`] for a missing id or an empty match.
+    pub fn resolve(&self, m: &HalfEdgeMesh) -> Result<Vec<EdgeId>, ElementError> {
+        let out: Vec<EdgeId> = match self {
+            EdgeSet::All => m.edges().collect(),
+            EdgeSet::Ids(ids) => {
+                let v: Vec<EdgeId> = ids.iter().map(|&i| EdgeId(i)).collect();
+                if let Some(e) = v.iter().find(|e| !m.is_edge(**e)) {
+                    return Err(ElementError(format!("edge {e} does not exist")));
+                }
+                v
+            }
+            EdgeSet::Nearest(p) => nearest(m.edges(), |e| m.edge_midpoint(e).distance_squared(*p))
+                .into_iter()
+                .collect(),
+            EdgeSet::OfFaces(faces) => {
+                let mut v: Vec<EdgeId> = faces
+                    .resolve(m)?
+                    .into_iter()
+                    .flat_map(|f| m.face_halfedges(f).map(|h| h.edge()))
+                    .collect();
+                v.sort();
+                v.dedup();
+                v
+            }
+        };
+        if out.is_empty() {
+            return Err(ElementError(format!("no edge matches {self:?}")));
+        }
+        Ok(out)
+    }
+}
+
+impl VertexSet {
+    /// The vertices this set names.
+    ///
+    /// # Errors
+    /// [`ElementError`] for a missing id or an empty match.
+    pub fn resolve(&self, m: &HalfEdgeMesh) -> Result<Vec<VertexId>, ElementError> {
+        let mut out: Vec<VertexId> = match self {
+            VertexSet::All => m.vertices().collect(),
+            VertexSet::Ids(ids) => {
+                let v: Vec<VertexId> = ids.iter().map(|&i| VertexId(i)).collect();
+                if let Some(x) = v.iter().find(|x| !m.is_vertex(**x)) {
+                    return Err(ElementError(format!("vertex {x} does not exist")));
+                }
+                return Ok(v); // keep the given order (ConnectVertices pairs them)
+            }
+            VertexSet::Nearest(p) => nearest(m.vertices(), |v| m.position(v).distance_squared(*p))
+                .into_iter()
+                .collect(),
+            VertexSet::NearestEach(points) => {
+                let v: Vec<VertexId> = points
+                    .iter()
+                    .filter_map(|p| nearest(m.vertices(), |v| m.position(v).distance_squared(*p)))
+                    .collect();
+                if v.is_empty() {
+                    return Err(ElementError("the mesh has no vertices".into()));
+                }
+                return Ok(v);
+            }
+            VertexSet::Within { center, radius } => m
+                .vertices()
+                .filter(|&v| m.position(v).distance(*center) <= *radius)
+                .collect(),
+            VertexSet::OfFaces(f) => f
+                .resolve(m)?
+                .into_iter()
+                .flat_map(|f| m.face_vertices(f))
+                .collect(),
+            VertexSet::OfEdges(e) => e
+                .resolve(m)?
+                .into_iter()
+                .flat_map(|e| m.edge_vertices(e))
+                .collect(),
+        };
+        out.sort();
+        out.dedup();
+        if out.is_empty() {
+            return Err(ElementError(format!("no vertex matches {self:?}")));
+        }
+        Ok(out)
+    }
+}
