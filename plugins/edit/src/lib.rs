@@ -13,8 +13,10 @@ use hedra_scene::{
     DocChanged, DocRequest, DocState, InputGate, NodeEntities, SceneSystems, ViewportCamera,
 };
 
+pub mod mesh_mode;
 pub mod modal;
 
+pub use mesh_mode::{EditMode, ElementKind, ElementSelection, MeshTool, MeshToolKind};
 pub use modal::{Axis, ModalTransform, TransformKind, TransformTool};
 
 /// Selected nodes, in the order they were selected; the last one is active.
@@ -58,14 +60,22 @@ impl Plugin for EditPlugin {
     fn build(&self, app: &mut App) {
         app.init_resource::<Selection>()
             .init_resource::<TransformTool>()
+            .init_resource::<EditMode>()
             .configure_sets(Update, EditSystems.after(SceneSystems::Sync))
             .add_systems(
                 Update,
                 (
                     follow_document_changes,
+                    mesh_mode::follow_changes,
+                    mesh_mode::mode_keys,
+                    undo_keys,
                     modal::drive_transform_tool,
+                    mesh_mode::drive_mesh_tool,
                     object_shortcuts,
+                    mesh_mode::edit_shortcuts,
                     pick_objects,
+                    mesh_mode::select_elements,
+                    mesh_mode::show_preview,
                 )
                     .chain()
                     .in_set(EditSystems),
@@ -182,7 +192,29 @@ fn pick_objects(
     }
 }
 
-/// Object-mode keys: Ctrl+Z / Ctrl+Shift+Z, A / Alt+A, X / Delete, Shift+D,
+/// Ctrl+Z / Ctrl+Shift+Z (and Ctrl+Y), in both modes, when no tool runs.
+pub fn undo_keys(
+    keys: Res<ButtonInput<KeyCode>>,
+    gate: Res<InputGate>,
+    tool: Res<TransformTool>,
+    mode: Res<EditMode>,
+    mut requests: MessageWriter<DocRequest>,
+) {
+    if !gate.keyboard_free || tool.active.is_some() || mode.tool.is_some() || !ctrl(&keys) {
+        return;
+    }
+    if keys.just_pressed(KeyCode::KeyZ) {
+        requests.write(if shift(&keys) {
+            DocRequest::Redo
+        } else {
+            DocRequest::Undo
+        });
+    } else if keys.just_pressed(KeyCode::KeyY) {
+        requests.write(DocRequest::Redo);
+    }
+}
+
+/// Object-mode keys: A / Alt+A, X / Delete, Shift+D,
 /// H / Alt+H, G / R / S.
 #[allow(clippy::too_many_arguments)]
 pub fn object_shortcuts(
@@ -195,25 +227,14 @@ pub fn object_shortcuts(
     window: Single<&Window, With<PrimaryWindow>>,
     camera: Single<(&Camera, &GlobalTransform), With<ViewportCamera>>,
     entities: Res<NodeEntities>,
+    mode: Res<EditMode>,
 ) {
-    if !gate.keyboard_free || tool.active.is_some() {
+    if !gate.keyboard_free || tool.active.is_some() || mode.active() {
         return;
     }
     let doc = &state.session.doc;
     let (ctrl, shift, alt) = (ctrl(&keys), shift(&keys), alt(&keys));
     let pressed = |k: KeyCode| keys.just_pressed(k);
-    if ctrl && pressed(KeyCode::KeyZ) {
-        requests.write(if shift {
-            DocRequest::Redo
-        } else {
-            DocRequest::Undo
-        });
-        return;
-    }
-    if ctrl && pressed(KeyCode::KeyY) {
-        requests.write(DocRequest::Redo);
-        return;
-    }
     if ctrl {
         return; // other Ctrl shortcuts belong to the menus
     }

@@ -10,7 +10,7 @@ use glam::{DQuat, DVec3, EulerRot};
 use hedra_doc::{
     Command, Document, NodeContent, NodeId, NodeRef, Shading, Transform as DocTransform,
 };
-use hedra_edit::{Selection, TransformTool};
+use hedra_edit::{EditMode, ElementKind, Selection, TransformTool};
 use hedra_geom::Primitive;
 use hedra_scene::{DocRequest, DocState, InputGate, NodeEntities, StatusMessage};
 
@@ -39,6 +39,7 @@ pub struct Model<'w> {
     prefs: Res<'w, Preferences>,
     samples: Option<Res<'w, SamplesDir>>,
     entities: Res<'w, NodeEntities>,
+    mode: Res<'w, EditMode>,
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -53,6 +54,8 @@ pub fn draw_ui(
 ) -> Result {
     let ctx = contexts.ctx_mut()?.clone();
     let mut events: Vec<UiEvent> = Vec::new();
+    // Tab belongs to the viewport (edit mode) unless a field is being edited.
+    let focus_before = ctx.memory(|m| m.focused());
     let mut root = egui::Ui::new(
         ctx.clone(),
         "hedra-root".into(),
@@ -100,6 +103,11 @@ pub fn draw_ui(
     gate.pointer_free = cursor.is_some_and(|c| free.contains(c))
         && !ctx.egui_is_using_pointer()
         && !ctx.is_pointer_over_egui();
+    if focus_before.is_none() && ctx.input(|i| i.key_pressed(egui::Key::Tab)) {
+        if let Some(id) = ctx.memory(|m| m.focused()) {
+            ctx.memory_mut(|m| m.surrender_focus(id));
+        }
+    }
     gate.keyboard_free = !ctx.egui_wants_keyboard_input();
 
     // Apply what the panels decided.
@@ -726,15 +734,19 @@ fn adjust_last_window(
     if last.serial <= model.state.opened_serial {
         return;
     }
-    let Some(Command::AddPrimitive {
-        primitive,
-        name,
-        parent,
-        transform,
-    }) = &last.command
-    else {
+    let Some(command) = &last.command else { return };
+    let mut edited = command.clone();
+    let editable = matches!(
+        command,
+        Command::AddPrimitive { .. }
+            | Command::ExtrudeFaces { .. }
+            | Command::InsetFaces { .. }
+            | Command::LoopCut { .. }
+            | Command::SubdivideEdges { .. }
+    );
+    if !editable {
         return;
-    };
+    }
     egui::Window::new(format!("Adjust Last: {}", last.label))
         .id("adjust-last".into())
         .collapsible(true)
@@ -742,18 +754,51 @@ fn adjust_last_window(
         .pivot(egui::Align2::LEFT_BOTTOM)
         .fixed_pos(viewport.left_bottom() + egui::vec2(8.0, -8.0))
         .show(ctx, |ui| {
-            let mut edited = primitive.clone();
-            if primitive_editor(ui, &mut edited) {
-                events.push(UiEvent::Request(DocRequest::AdjustLast(
-                    Command::AddPrimitive {
-                        primitive: edited,
-                        name: name.clone(),
-                        parent: parent.clone(),
-                        transform: *transform,
-                    },
-                )));
+            let changed = match &mut edited {
+                Command::AddPrimitive { primitive, .. } => primitive_editor(ui, primitive),
+                Command::ExtrudeFaces { distance, .. } => {
+                    number_row(ui, "Distance", distance, 0.01, -1e6..=1e6)
+                }
+                Command::InsetFaces {
+                    thickness, depth, ..
+                } => {
+                    number_row(ui, "Thickness", thickness, 0.005, 0.0..=1e6)
+                        | number_row(ui, "Depth", depth, 0.005, -1e6..=1e6)
+                }
+                Command::LoopCut { cuts, .. } | Command::SubdivideEdges { cuts, .. } => {
+                    ui.horizontal(|ui| {
+                        ui.label("Cuts");
+                        ui.add(egui::DragValue::new(cuts).speed(0.1).range(1..=64))
+                            .changed()
+                    })
+                    .inner
+                }
+                _ => false,
+            };
+            if changed {
+                events.push(UiEvent::Request(DocRequest::AdjustLast(edited.clone())));
             }
         });
+}
+
+fn number_row(
+    ui: &mut egui::Ui,
+    label: &str,
+    v: &mut f64,
+    speed: f64,
+    range: std::ops::RangeInclusive<f64>,
+) -> bool {
+    ui.horizontal(|ui| {
+        ui.label(label);
+        ui.add(
+            egui::DragValue::new(v)
+                .speed(speed)
+                .range(range)
+                .max_decimals(4),
+        )
+        .changed()
+    })
+    .inner
 }
 
 fn history_window(
@@ -801,21 +846,41 @@ fn history_window(
 
 fn status_bar(ui: &mut egui::Ui, model: &Model) {
     ui.horizontal(|ui| {
-        ui.label(egui::RichText::new("Object Mode").strong());
-        ui.separator();
         let doc = &model.state.session.doc;
-        let sel = &model.selection.nodes;
-        match (sel.len(), model.selection.active().and_then(|a| doc.node(a))) {
-            (0, _) | (_, None) => ui.label("Nothing selected"),
-            (1, Some(n)) => ui.label(format!("Selected: {}", n.name)),
-            (k, Some(n)) => ui.label(format!("{k} selected, active: {}", n.name)),
-        };
-        ui.separator();
-        if let Some(m) = &model.tool.active {
-            ui.label(egui::RichText::new(&m.readout).color(egui::Color32::from_rgb(255, 200, 80)));
-            ui.label("X/Y/Z constrain · type a value · Enter/click confirm · Esc/right-click cancel");
+        let edit = &model.mode;
+        if let Some(node) = edit.node.and_then(|n| doc.node(n)) {
+            let kind = match edit.kind {
+                ElementKind::Vertex => "Vertex",
+                ElementKind::Edge => "Edge",
+                ElementKind::Face => "Face",
+            };
+            ui.label(egui::RichText::new(format!("Edit Mode · {kind}")).strong().color(egui::Color32::from_rgb(255, 170, 80)));
+            ui.separator();
+            let s = &edit.selection;
+            ui.label(format!("{}: {} vertices, {} edges, {} faces selected", node.name, s.vertices.len(), s.edges.len(), s.faces.len()));
+            ui.separator();
+            if let Some(t) = &edit.tool {
+                ui.label(egui::RichText::new(&t.readout).color(egui::Color32::from_rgb(255, 200, 80)));
+                ui.label("move the mouse · type a value · Enter/click confirm · Esc/right-click cancel");
+            } else {
+                ui.label("1/2/3 vertex/edge/face · click select · A all · G move · E extrude · I inset · Ctrl+R loop cut · J connect · X dissolve · Tab object mode");
+            }
         } else {
-            ui.label("G move · R rotate · S scale · X delete · Shift+D duplicate · Shift+A add · Ctrl+Z undo · MMB orbit");
+            ui.label(egui::RichText::new("Object Mode").strong());
+            ui.separator();
+            let sel = &model.selection.nodes;
+            match (sel.len(), model.selection.active().and_then(|a| doc.node(a))) {
+                (0, _) | (_, None) => ui.label("Nothing selected"),
+                (1, Some(n)) => ui.label(format!("Selected: {}", n.name)),
+                (k, Some(n)) => ui.label(format!("{k} selected, active: {}", n.name)),
+            };
+            ui.separator();
+            if let Some(m) = &model.tool.active {
+                ui.label(egui::RichText::new(&m.readout).color(egui::Color32::from_rgb(255, 200, 80)));
+                ui.label("X/Y/Z constrain · type a value · Enter/click confirm · Esc/right-click cancel");
+            } else {
+                ui.label("G move · R rotate · S scale · X delete · Shift+D duplicate · Shift+A add · Tab edit mesh · Ctrl+Z undo · MMB orbit");
+            }
         }
         ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
             let s = &model.status;

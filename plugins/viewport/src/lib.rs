@@ -6,7 +6,7 @@ use bevy::input::mouse::{AccumulatedMouseMotion, AccumulatedMouseScroll, MouseSc
 use bevy::prelude::*;
 use glam::DVec3;
 use hedra_doc::{NodeContent, NodeRef, Transform as DocTransform};
-use hedra_edit::{EditSystems, Selection, TransformTool};
+use hedra_edit::{EditMode, EditSystems, ElementKind, Selection, TransformTool};
 use hedra_scene::modifiers;
 use hedra_scene::{
     DocRequest, DocState, InputGate, NodeEntities, NodeEntity, ProjectedMesh, ViewportCamera,
@@ -44,11 +44,13 @@ impl OrbitCamera {
     }
 }
 
-/// Overlay child entity showing a mesh node's edges.
-#[derive(Component, Debug)]
+/// Overlay child entity showing a mesh node's edges, and what it was built for.
+#[derive(Component, Debug, Clone, Copy, PartialEq, Eq)]
 pub struct EdgeOverlay {
     pub source: ProjectedMesh,
     pub selected: bool,
+    pub active: bool,
+    pub shown: bool,
 }
 
 pub struct ViewportPlugin;
@@ -86,6 +88,7 @@ impl Plugin for ViewportPlugin {
                     update_edge_overlays,
                     focus_gizmo_on_active,
                     commit_gizmo_drag,
+                    draw_edit_overlay,
                 )
                     .after(EditSystems),
             );
@@ -291,33 +294,38 @@ fn draw_grid(mut grid: Gizmos, mut axes: Gizmos<AxisGizmos>) {
 }
 
 /// Keeps one retained line gizmo per mesh node with its edges: dark for
-/// unselected meshes, orange for selected ones (yellow for the active one).
-/// Rebuilt only when the mesh or its selection state changes.
+/// unselected meshes, orange for selected ones (yellow for the active one),
+/// empty for hidden nodes and for the mesh in edit mode (drawn live there).
+/// Retained gizmos ignore `Visibility`, so hiding means an empty asset.
+/// Rebuilt only when the mesh, its selection state or its visibility changes.
 #[allow(clippy::too_many_arguments)]
 fn update_edge_overlays(
     mut commands: Commands,
     state: Res<DocState>,
     selection: Res<Selection>,
+    mode: Res<EditMode>,
     nodes: Query<(Entity, &NodeEntity, &ProjectedMesh, Option<&Children>)>,
     mut overlays: Query<(&mut EdgeOverlay, &Gizmo)>,
     mut assets: ResMut<Assets<GizmoAsset>>,
 ) {
+    let doc = &state.session.doc;
     for (entity, node, projected, children) in &nodes {
         let selected = selection.contains(node.0);
         let active = selection.active() == Some(node.0);
+        let shown = hedra_edit::visible(doc, node.0) && mode.node != Some(node.0);
+        let wanted = EdgeOverlay {
+            source: *projected,
+            selected,
+            active,
+            shown,
+        };
         let existing = children.and_then(|c| c.iter().find(|c| overlays.contains(*c)));
         if let Some(child) = existing {
-            if let Ok((overlay, _)) = overlays.get(child) {
-                if overlay.source == *projected
-                    && overlay.selected == selected
-                    && !(selected && selection.is_changed())
-                {
-                    continue;
-                }
+            if overlays.get(child).is_ok_and(|(o, _)| *o == wanted) {
+                continue;
             }
         }
-        let Some(NodeContent::Mesh(content)) = state.session.doc.node(node.0).map(|n| &n.content)
-        else {
+        let Some(NodeContent::Mesh(content)) = doc.node(node.0).map(|n| &n.content) else {
             continue;
         };
         let color = match (selected, active) {
@@ -326,23 +334,27 @@ fn update_edge_overlays(
             _ => Color::srgba(0.05, 0.05, 0.07, 0.8),
         };
         let mut asset = GizmoAsset::new();
-        let m = &content.mesh;
-        for e in m.edges() {
-            let [a, b] = m.edge_vertices(e);
-            asset.line(m.position(a).as_vec3(), m.position(b).as_vec3(), color);
+        if shown {
+            let m = &content.mesh;
+            for e in m.edges() {
+                let [a, b] = m.edge_vertices(e);
+                asset.line(m.position(a).as_vec3(), m.position(b).as_vec3(), color);
+            }
         }
-        let width = if selected { 2.5 } else { 1.0 };
+        let line_config = GizmoLineConfig {
+            width: if selected { 2.5 } else { 1.0 },
+            ..default()
+        };
         match existing {
             Some(child) => {
                 if let Ok((mut overlay, gizmo)) = overlays.get_mut(child) {
                     if let Some(mut a) = assets.get_mut(&gizmo.handle) {
                         *a = asset;
                     }
-                    overlay.source = *projected;
-                    overlay.selected = selected;
+                    *overlay = wanted;
                     commands.entity(child).insert(Gizmo {
                         handle: gizmo.handle.clone(),
-                        line_config: GizmoLineConfig { width, ..default() },
+                        line_config,
                         depth_bias: -0.0005,
                     });
                 }
@@ -350,13 +362,10 @@ fn update_edge_overlays(
             None => {
                 let handle = assets.add(asset);
                 commands.spawn((
-                    EdgeOverlay {
-                        source: *projected,
-                        selected,
-                    },
+                    wanted,
                     Gizmo {
                         handle,
-                        line_config: GizmoLineConfig { width, ..default() },
+                        line_config,
                         depth_bias: -0.0005,
                     },
                     Transform::IDENTITY,
@@ -374,13 +383,19 @@ fn focus_gizmo_on_active(
     entities: Res<NodeEntities>,
     focused: Query<Entity, With<TransformGizmoFocus>>,
     gizmo_state: Res<TransformGizmoState>,
+    mode: Res<EditMode>,
 ) {
     if gizmo_state.active {
         return;
     }
-    let wanted = selection
-        .active()
-        .and_then(|id| entities.0.get(&id).copied());
+    // No object gizmo in edit mode.
+    let wanted = if mode.active() {
+        None
+    } else {
+        selection
+            .active()
+            .and_then(|id| entities.0.get(&id).copied())
+    };
     for e in &focused {
         if Some(e) != wanted {
             commands.entity(e).remove::<TransformGizmoFocus>();
@@ -428,5 +443,75 @@ fn commit_gizmo_drag(
         requests.write(DocRequest::Execute(hedra_doc::Command::SetTransforms {
             nodes: vec![(NodeRef::from(node.0), new)],
         }));
+    }
+}
+
+/// Edit mode: the edited mesh's edges, vertices (in vertex mode) and the
+/// selection, drawn every frame from the preview or the document.
+fn draw_edit_overlay(
+    mode: Res<EditMode>,
+    state: Res<DocState>,
+    camera: Single<&GlobalTransform, With<ViewportCamera>>,
+    mut gizmos: Gizmos<AxisGizmos>,
+) {
+    let Some(node) = mode.node else { return };
+    let Some(mesh) = mode
+        .preview
+        .clone()
+        .or_else(|| hedra_edit::mesh_mode::edited_mesh(&state, &mode))
+    else {
+        return;
+    };
+    let world = state.session.doc.world_matrix(node);
+    let at = |v: hedra_geom::VertexId| world.transform_point3(mesh.position(v)).as_vec3();
+    let sel = &mode.selection;
+    let selected_vertices = sel.all_vertices(&mesh);
+    let orange = Color::srgb(1.0, 0.55, 0.1);
+    for e in mesh.edges() {
+        let [a, b] = mesh.edge_vertices(e);
+        let hot = sel.edges.contains(&e)
+            || (mode.kind == ElementKind::Vertex
+                && selected_vertices.contains(&a)
+                && selected_vertices.contains(&b))
+            || mesh
+                .edge_faces(e)
+                .iter()
+                .flatten()
+                .any(|f| sel.faces.contains(f));
+        gizmos.line(
+            at(a),
+            at(b),
+            if hot {
+                orange
+            } else {
+                Color::srgb(0.08, 0.08, 0.1)
+            },
+        );
+    }
+    let cam = *camera;
+    let rotation = cam.rotation();
+    if mode.kind == ElementKind::Vertex {
+        for v in mesh.vertices() {
+            let p = at(v);
+            let r = cam.translation().distance(p) * 0.004;
+            let c = if sel.vertices.contains(&v) {
+                orange
+            } else {
+                Color::srgb(0.05, 0.05, 0.05)
+            };
+            gizmos.circle(Isometry3d::new(p, rotation), r, c);
+        }
+    }
+    if mode.kind == ElementKind::Face {
+        for f in mesh.faces() {
+            let p = world.transform_point3(mesh.face_centroid(f)).as_vec3();
+            let r = cam.translation().distance(p) * 0.003;
+            let c = if sel.faces.contains(&f) {
+                orange
+            } else {
+                Color::srgb(0.1, 0.1, 0.1)
+            };
+            gizmos.circle(Isometry3d::new(p, rotation), r, c);
+        }
     }
 }

@@ -1,0 +1,729 @@
+//! Edit mode: Tab enters it on the active mesh; 1/2/3 pick vertices, edges
+//! or faces; click / Shift-click / A / Alt+A / Ctrl+I select; G moves,
+//! E extrudes, I insets, Ctrl+R loop-cuts, J connects two vertices,
+//! X dissolves. Every tool is modal like Blender's: the mouse drives the
+//! amount, typed numbers are exact, Enter or a click confirms as one undo
+//! step, Esc or a right click restores. While a tool runs the command is
+//! decided on a copy each frame and shown as a preview.
+
+use crate::modal::Axis;
+use crate::{Selection, TransformTool, cursor_ray};
+use bevy::prelude::*;
+use bevy::window::PrimaryWindow;
+use glam::{DMat4, DVec3};
+use hedra_doc::{Command, EdgeSet, FaceSet, NodeContent, NodeId, NodeRef, VertexSet};
+use hedra_geom::{EdgeId, FaceId, HalfEdgeMesh, VertexId};
+use hedra_scene::modifiers::{alt, ctrl, shift};
+use hedra_scene::{DocChanged, DocRequest, DocState, InputGate, NodeEntities, ViewportCamera};
+use std::collections::BTreeSet;
+use std::sync::Arc;
+
+/// Which elements clicks select.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+pub enum ElementKind {
+    #[default]
+    Vertex,
+    Edge,
+    Face,
+}
+
+/// Selected elements of the edited mesh (ids).
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct ElementSelection {
+    pub vertices: BTreeSet<VertexId>,
+    pub edges: BTreeSet<EdgeId>,
+    pub faces: BTreeSet<FaceId>,
+}
+
+impl ElementSelection {
+    pub fn is_empty(&self) -> bool {
+        self.vertices.is_empty() && self.edges.is_empty() && self.faces.is_empty()
+    }
+    /// Every vertex touched by the selection.
+    pub fn all_vertices(&self, m: &HalfEdgeMesh) -> BTreeSet<VertexId> {
+        let mut out = self.vertices.clone();
+        for &e in &self.edges {
+            out.extend(m.edge_vertices(e));
+        }
+        for &f in &self.faces {
+            out.extend(m.face_vertices(f));
+        }
+        out
+    }
+    /// Drops ids the mesh no longer has.
+    pub fn retain_live(&mut self, m: &HalfEdgeMesh) {
+        self.vertices.retain(|v| m.is_vertex(*v));
+        self.edges.retain(|e| m.is_edge(*e));
+        self.faces.retain(|f| m.is_face(*f));
+    }
+}
+
+/// The modal mesh tools.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub enum MeshToolKind {
+    Move,
+    Extrude,
+    Inset,
+    LoopCut,
+}
+
+/// A running mesh tool.
+#[derive(Clone, Debug)]
+pub struct MeshTool {
+    pub kind: MeshToolKind,
+    pub axis: Option<Axis>,
+    pub typed: String,
+    start_cursor: Vec2,
+    pivot: DVec3,
+    /// Loop cut: the edge under the cursor and the number of cuts.
+    edge: Option<EdgeId>,
+    cuts: u32,
+    pub readout: String,
+}
+
+/// Edit-mode state: the edited node, element mode, selection, running tool.
+#[derive(Resource, Default, Debug)]
+pub struct EditMode {
+    pub node: Option<NodeId>,
+    pub kind: ElementKind,
+    pub selection: ElementSelection,
+    pub tool: Option<MeshTool>,
+    /// The mesh as the running tool would leave it (shown instead of the document's).
+    pub preview: Option<Arc<HalfEdgeMesh>>,
+    /// Set on the frame a tool ended, so its confirming click selects nothing.
+    pub just_finished: bool,
+}
+
+impl EditMode {
+    pub fn active(&self) -> bool {
+        self.node.is_some()
+    }
+}
+
+/// The mesh being edited, as the document has it.
+pub fn edited_mesh(state: &DocState, mode: &EditMode) -> Option<Arc<HalfEdgeMesh>> {
+    let node = state.session.doc.node(mode.node?)?;
+    match &node.content {
+        NodeContent::Mesh(m) => Some(m.mesh.clone()),
+        NodeContent::Empty => None,
+    }
+}
+
+/// Tab toggles edit mode on the active mesh; 1/2/3 choose the element kind.
+pub fn mode_keys(
+    keys: Res<ButtonInput<KeyCode>>,
+    gate: Res<InputGate>,
+    mut mode: ResMut<EditMode>,
+    selection: Res<Selection>,
+    state: Res<DocState>,
+    tool: Res<TransformTool>,
+    mut status: ResMut<hedra_scene::StatusMessage>,
+) {
+    if !gate.keyboard_free || tool.active.is_some() || mode.tool.is_some() {
+        return;
+    }
+    if keys.just_pressed(KeyCode::Tab) {
+        if mode.active() {
+            mode.node = None;
+            mode.selection = ElementSelection::default();
+        } else {
+            match selection.active().and_then(|id| state.session.doc.node(id)) {
+                Some(n) if matches!(n.content, NodeContent::Mesh(_)) => {
+                    mode.node = Some(n.id);
+                    mode.selection = ElementSelection::default();
+                }
+                Some(n) => status.error(format!(
+                    "'{}' is not a mesh: only meshes have an edit mode",
+                    n.name
+                )),
+                None => status.error("Select a mesh to edit (click it), then press Tab"),
+            }
+        }
+    }
+    if !mode.active() || ctrl(&keys) {
+        return;
+    }
+    let new_kind = if keys.just_pressed(KeyCode::Digit1) {
+        Some(ElementKind::Vertex)
+    } else if keys.just_pressed(KeyCode::Digit2) {
+        Some(ElementKind::Edge)
+    } else if keys.just_pressed(KeyCode::Digit3) {
+        Some(ElementKind::Face)
+    } else {
+        None
+    };
+    if let (Some(k), Some(mesh)) = (new_kind, edited_mesh(&state, &mode)) {
+        if k != mode.kind {
+            // Convert the selection like Blender: keep what the new kind can express.
+            let verts = mode.selection.all_vertices(&mesh);
+            let mut sel = ElementSelection::default();
+            match k {
+                ElementKind::Vertex => sel.vertices = verts,
+                ElementKind::Edge => {
+                    sel.edges = mesh
+                        .edges()
+                        .filter(|&e| mesh.edge_vertices(e).iter().all(|v| verts.contains(v)))
+                        .collect()
+                }
+                ElementKind::Face => {
+                    sel.faces = mesh
+                        .faces()
+                        .filter(|&f| mesh.face_vertices(f).all(|v| verts.contains(&v)))
+                        .collect()
+                }
+            }
+            mode.selection = sel;
+            mode.kind = k;
+        }
+    }
+}
+
+/// Leaves edit mode when its node disappears; keeps the selection to live ids.
+pub fn follow_changes(
+    mut changes: MessageReader<DocChanged>,
+    mut mode: ResMut<EditMode>,
+    state: Res<DocState>,
+) {
+    if changes.read().count() == 0 {
+        return;
+    }
+    match edited_mesh(&state, &mode) {
+        Some(m) => mode.selection.retain_live(&m),
+        None => {
+            mode.node = None;
+            mode.selection = ElementSelection::default();
+            mode.tool = None;
+            mode.preview = None;
+        }
+    }
+}
+
+/// Screen distance (logical pixels) within which a vertex or edge is picked.
+const PICK_RADIUS: f32 = 12.0;
+
+/// The element under the cursor: vertices and edges by screen distance,
+/// faces by ray.
+pub fn element_under_cursor(
+    kind: ElementKind,
+    mesh: &HalfEdgeMesh,
+    world: DMat4,
+    window: &Window,
+    camera: &Camera,
+    camera_transform: &GlobalTransform,
+) -> Option<ElementHit> {
+    let cursor = window.cursor_position()?;
+    let screen = |p: DVec3| {
+        camera
+            .world_to_viewport(camera_transform, world.transform_point3(p).as_vec3())
+            .ok()
+    };
+    match kind {
+        ElementKind::Vertex => mesh
+            .vertices()
+            .filter_map(|v| screen(mesh.position(v)).map(|s| (v, s.distance(cursor))))
+            .filter(|(_, d)| *d <= PICK_RADIUS)
+            .min_by(|a, b| a.1.total_cmp(&b.1))
+            .map(|(v, _)| ElementHit::Vertex(v)),
+        ElementKind::Edge => mesh
+            .edges()
+            .filter_map(|e| {
+                let [a, b] = mesh.edge_vertices(e);
+                let (sa, sb) = (screen(mesh.position(a))?, screen(mesh.position(b))?);
+                Some((e, point_segment_distance(cursor, sa, sb)))
+            })
+            .filter(|(_, d)| *d <= PICK_RADIUS)
+            .min_by(|a, b| a.1.total_cmp(&b.1))
+            .map(|(e, _)| ElementHit::Edge(e)),
+        ElementKind::Face => {
+            let (o, d) = cursor_ray(window, camera, camera_transform)?;
+            let inv = world.inverse();
+            hedra_geom::query::ray_cast(mesh, inv.transform_point3(o), inv.transform_vector3(d))
+                .map(|(f, _)| ElementHit::Face(f))
+        }
+    }
+}
+
+/// A picked element.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub enum ElementHit {
+    Vertex(VertexId),
+    Edge(EdgeId),
+    Face(FaceId),
+}
+
+fn point_segment_distance(p: Vec2, a: Vec2, b: Vec2) -> f32 {
+    let ab = b - a;
+    let t = if ab.length_squared() > 0.0 {
+        ((p - a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    p.distance(a + ab * t)
+}
+
+/// Click selects the element under the cursor (Shift toggles); A, Alt+A, Ctrl+I.
+#[allow(clippy::too_many_arguments)]
+pub fn select_elements(
+    buttons: Res<ButtonInput<MouseButton>>,
+    keys: Res<ButtonInput<KeyCode>>,
+    gate: Res<InputGate>,
+    mut mode: ResMut<EditMode>,
+    state: Res<DocState>,
+    window: Single<&Window, With<PrimaryWindow>>,
+    camera: Single<(&Camera, &GlobalTransform), With<ViewportCamera>>,
+) {
+    if !mode.active() || mode.tool.is_some() || mode.just_finished {
+        return;
+    }
+    let Some(mesh) = edited_mesh(&state, &mode) else {
+        return;
+    };
+    let kind = mode.kind;
+    if gate.keyboard_free && !ctrl(&keys) && keys.just_pressed(KeyCode::KeyA) && !shift(&keys) {
+        let sel = &mut mode.selection;
+        *sel = ElementSelection::default();
+        if !alt(&keys) {
+            match kind {
+                ElementKind::Vertex => sel.vertices = mesh.vertices().collect(),
+                ElementKind::Edge => sel.edges = mesh.edges().collect(),
+                ElementKind::Face => sel.faces = mesh.faces().collect(),
+            }
+        }
+    }
+    if gate.keyboard_free && ctrl(&keys) && keys.just_pressed(KeyCode::KeyI) {
+        let sel = &mut mode.selection;
+        match kind {
+            ElementKind::Vertex => {
+                sel.vertices = mesh
+                    .vertices()
+                    .filter(|v| !sel.vertices.contains(v))
+                    .collect()
+            }
+            ElementKind::Edge => {
+                sel.edges = mesh.edges().filter(|e| !sel.edges.contains(e)).collect()
+            }
+            ElementKind::Face => {
+                sel.faces = mesh.faces().filter(|f| !sel.faces.contains(f)).collect()
+            }
+        }
+    }
+    if !buttons.just_pressed(MouseButton::Left) || !gate.pointer_free || alt(&keys) {
+        return;
+    }
+    let world = state.session.doc.world_matrix(mode.node.expect("active"));
+    let (cam, cam_t) = *camera;
+    let hit = element_under_cursor(kind, &mesh, world, &window, cam, cam_t);
+    let additive = shift(&keys);
+    let sel = &mut mode.selection;
+    if !additive {
+        *sel = ElementSelection::default();
+    }
+    fn toggle<T: Ord + Copy>(set: &mut BTreeSet<T>, x: T) {
+        if !set.remove(&x) {
+            set.insert(x);
+        }
+    }
+    match hit {
+        Some(ElementHit::Vertex(v)) => toggle(&mut sel.vertices, v),
+        Some(ElementHit::Edge(e)) => toggle(&mut sel.edges, e),
+        Some(ElementHit::Face(f)) => toggle(&mut sel.faces, f),
+        None => {}
+    }
+}
+
+/// Starts tools and runs instant ones (J, X).
+#[allow(clippy::too_many_arguments)]
+pub fn edit_shortcuts(
+    keys: Res<ButtonInput<KeyCode>>,
+    gate: Res<InputGate>,
+    mut mode: ResMut<EditMode>,
+    state: Res<DocState>,
+    window: Single<&Window, With<PrimaryWindow>>,
+    camera: Single<(&Camera, &GlobalTransform), With<ViewportCamera>>,
+    mut requests: MessageWriter<DocRequest>,
+    mut status: ResMut<hedra_scene::StatusMessage>,
+) {
+    if !mode.active() || mode.tool.is_some() || !gate.keyboard_free {
+        return;
+    }
+    let Some(mesh) = edited_mesh(&state, &mode) else {
+        return;
+    };
+    let node = NodeRef::from(mode.node.expect("active"));
+    let world = state.session.doc.world_matrix(mode.node.expect("active"));
+    let (c, s, a) = (ctrl(&keys), shift(&keys), alt(&keys));
+    let Some(cursor) = window.cursor_position() else {
+        return;
+    };
+    let verts = mode.selection.all_vertices(&mesh);
+    let pivot_local = if verts.is_empty() {
+        DVec3::ZERO
+    } else {
+        verts.iter().map(|&v| mesh.position(v)).sum::<DVec3>() / verts.len() as f64
+    };
+    let pivot = world.transform_point3(pivot_local);
+    let start = |kind: MeshToolKind| MeshTool {
+        kind,
+        axis: None,
+        typed: String::new(),
+        start_cursor: cursor,
+        pivot,
+        edge: None,
+        cuts: 1,
+        readout: String::new(),
+    };
+    if c && keys.just_pressed(KeyCode::KeyR) {
+        let (cam, cam_t) = *camera;
+        let edge = match element_under_cursor(ElementKind::Edge, &mesh, world, &window, cam, cam_t)
+        {
+            Some(ElementHit::Edge(e)) => Some(e),
+            _ => mode.selection.edges.iter().next().copied(),
+        };
+        match edge {
+            Some(e) => {
+                let mut t = start(MeshToolKind::LoopCut);
+                t.edge = Some(e);
+                mode.tool = Some(t);
+            }
+            None => status.error(
+                "Loop cut: point at an edge of a quad strip (or select one), then press Ctrl+R",
+            ),
+        }
+        return;
+    }
+    if c || a {
+        return;
+    }
+    if keys.just_pressed(KeyCode::KeyG) {
+        if verts.is_empty() {
+            status.error("Nothing selected to move");
+        } else {
+            mode.tool = Some(start(MeshToolKind::Move));
+        }
+    }
+    if keys.just_pressed(KeyCode::KeyE) && !s {
+        if mode.selection.faces.is_empty() {
+            status.error("Extrude: select faces first (press 3 for face mode)");
+        } else {
+            mode.tool = Some(start(MeshToolKind::Extrude));
+        }
+    }
+    if keys.just_pressed(KeyCode::KeyI) {
+        if mode.selection.faces.is_empty() {
+            status.error("Inset: select faces first (press 3 for face mode)");
+        } else {
+            mode.tool = Some(start(MeshToolKind::Inset));
+        }
+    }
+    if keys.just_pressed(KeyCode::KeyJ) {
+        let vs: Vec<u32> = mode.selection.vertices.iter().map(|v| v.0).collect();
+        if vs.len() == 2 {
+            requests.write(DocRequest::Execute(Command::ConnectVertices {
+                node,
+                vertices: VertexSet::Ids(vs),
+            }));
+        } else {
+            status.error("Connect: select exactly two vertices of one face");
+        }
+    } else if keys.just_pressed(KeyCode::KeyX) || keys.just_pressed(KeyCode::Delete) {
+        let cmd = match mode.kind {
+            ElementKind::Vertex if !mode.selection.vertices.is_empty() => {
+                Some(Command::DissolveVertices {
+                    node,
+                    vertices: VertexSet::Ids(mode.selection.vertices.iter().map(|v| v.0).collect()),
+                })
+            }
+            ElementKind::Edge if !mode.selection.edges.is_empty() => Some(Command::DissolveEdges {
+                node,
+                edges: EdgeSet::Ids(mode.selection.edges.iter().map(|e| e.0).collect()),
+            }),
+            _ => None,
+        };
+        match cmd {
+            Some(c) => {
+                requests.write(DocRequest::Execute(c));
+            }
+            None => {
+                status.error("Dissolve: select vertices of valence 2 or edges between two faces")
+            }
+        }
+    }
+}
+
+fn typed_value(t: &str) -> Option<f64> {
+    let t = t.trim();
+    if t.is_empty() || t == "-" {
+        None
+    } else {
+        t.parse().ok()
+    }
+}
+
+/// The command a tool would run for the cursor position.
+fn tool_command(
+    tool: &mut MeshTool,
+    node: NodeRef,
+    mesh: &HalfEdgeMesh,
+    selection: &ElementSelection,
+    world: DMat4,
+    cursor: Vec2,
+    ray_at: &dyn Fn(Vec2) -> Option<(DVec3, DVec3)>,
+    view_dir: DVec3,
+    pixel_size: f64,
+) -> Command {
+    let drag = (cursor - tool.start_cursor).x as f64 * pixel_size;
+    let faces = || FaceSet::Ids(selection.faces.iter().map(|f| f.0).collect());
+    match tool.kind {
+        MeshToolKind::Move => {
+            let world_delta = if let Some(v) = typed_value(&tool.typed) {
+                tool.axis.unwrap_or(Axis::X).vector() * v
+            } else {
+                let plane_hit = |p: Vec2| -> Option<DVec3> {
+                    let (o, d) = ray_at(p)?;
+                    let denom = d.dot(view_dir);
+                    (denom.abs() > 1e-12).then(|| o + d * ((tool.pivot - o).dot(view_dir) / denom))
+                };
+                match (plane_hit(tool.start_cursor), plane_hit(cursor)) {
+                    (Some(a), Some(b)) => {
+                        let d = b - a;
+                        tool.axis.map_or(d, |ax| ax.vector() * d.dot(ax.vector()))
+                    }
+                    _ => DVec3::ZERO,
+                }
+            };
+            tool.readout = format!(
+                "Move ({:.4}, {:.4}, {:.4})",
+                world_delta.x, world_delta.y, world_delta.z
+            );
+            let offset = world.inverse().transform_vector3(world_delta);
+            let vertices = selection
+                .all_vertices(mesh)
+                .into_iter()
+                .map(|v| v.0)
+                .collect();
+            Command::MoveVertices {
+                node,
+                vertices: VertexSet::Ids(vertices),
+                offset,
+            }
+        }
+        MeshToolKind::Extrude => {
+            let distance = typed_value(&tool.typed).unwrap_or(drag);
+            tool.readout = format!("Extrude {distance:.4}");
+            Command::ExtrudeFaces {
+                node,
+                faces: faces(),
+                distance,
+            }
+        }
+        MeshToolKind::Inset => {
+            let thickness = typed_value(&tool.typed).unwrap_or(drag.abs());
+            tool.readout = format!("Inset thickness {thickness:.4}");
+            Command::InsetFaces {
+                node,
+                faces: faces(),
+                thickness,
+                depth: 0.0,
+            }
+        }
+        MeshToolKind::LoopCut => {
+            let cuts =
+                typed_value(&tool.typed).map_or(tool.cuts, |v| v.round().clamp(1.0, 64.0) as u32);
+            tool.readout = format!("Loop cut: {cuts} cut(s) (wheel or +/- to change)");
+            Command::LoopCut {
+                node,
+                edge: EdgeSet::Ids(vec![tool.edge.expect("loop cut has an edge").0]),
+                cuts,
+            }
+        }
+    }
+}
+
+const DIGITS: [(KeyCode, char); 12] = [
+    (KeyCode::Digit0, '0'),
+    (KeyCode::Digit1, '1'),
+    (KeyCode::Digit2, '2'),
+    (KeyCode::Digit3, '3'),
+    (KeyCode::Digit4, '4'),
+    (KeyCode::Digit5, '5'),
+    (KeyCode::Digit6, '6'),
+    (KeyCode::Digit7, '7'),
+    (KeyCode::Digit8, '8'),
+    (KeyCode::Digit9, '9'),
+    (KeyCode::Period, '.'),
+    (KeyCode::NumpadDecimal, '.'),
+];
+
+/// Runs the active mesh tool: preview each frame, confirm or cancel.
+#[allow(clippy::too_many_arguments)]
+pub fn drive_mesh_tool(
+    mut mode: ResMut<EditMode>,
+    keys: Res<ButtonInput<KeyCode>>,
+    buttons: Res<ButtonInput<MouseButton>>,
+    scroll: Res<bevy::input::mouse::AccumulatedMouseScroll>,
+    window: Single<&Window, With<PrimaryWindow>>,
+    camera: Single<(&Camera, &GlobalTransform), With<ViewportCamera>>,
+    state: Res<DocState>,
+    mut requests: MessageWriter<DocRequest>,
+    mut status: ResMut<hedra_scene::StatusMessage>,
+) {
+    mode.just_finished = false;
+    let Some(mut tool) = mode.tool.take() else {
+        return;
+    };
+    let (Some(node_id), Some(mesh)) = (mode.node, edited_mesh(&state, &mode)) else {
+        mode.preview = None;
+        return;
+    };
+    if keys.just_pressed(KeyCode::Escape) || buttons.just_pressed(MouseButton::Right) {
+        mode.preview = None;
+        mode.just_finished = true;
+        return;
+    }
+    for (key, axis) in [
+        (KeyCode::KeyX, Axis::X),
+        (KeyCode::KeyY, Axis::Y),
+        (KeyCode::KeyZ, Axis::Z),
+    ] {
+        if keys.just_pressed(key) && tool.kind == MeshToolKind::Move {
+            tool.axis = if tool.axis == Some(axis) {
+                None
+            } else {
+                Some(axis)
+            };
+        }
+    }
+    for (key, c) in DIGITS {
+        if keys.just_pressed(key) {
+            tool.typed.push(c);
+        }
+    }
+    if keys.just_pressed(KeyCode::Minus) || keys.just_pressed(KeyCode::NumpadSubtract) {
+        if tool.kind == MeshToolKind::LoopCut {
+            tool.cuts = tool.cuts.saturating_sub(1).max(1);
+        } else {
+            tool.typed = tool
+                .typed
+                .strip_prefix('-')
+                .map_or_else(|| format!("-{}", tool.typed), str::to_string);
+        }
+    }
+    if tool.kind == MeshToolKind::LoopCut
+        && (keys.just_pressed(KeyCode::NumpadAdd)
+            || keys.just_pressed(KeyCode::Equal)
+            || scroll.delta.y > 0.0)
+    {
+        tool.cuts = (tool.cuts + 1).min(64);
+    }
+    if tool.kind == MeshToolKind::LoopCut && scroll.delta.y < 0.0 {
+        tool.cuts = tool.cuts.saturating_sub(1).max(1);
+    }
+    if keys.just_pressed(KeyCode::Backspace) {
+        tool.typed.pop();
+    }
+    let (cam, cam_t) = *camera;
+    let cursor = window.cursor_position().unwrap_or(tool.start_cursor);
+    let world = state.session.doc.world_matrix(node_id);
+    let view_dir = (cam_t.rotation() * Vec3::NEG_Z).as_dvec3();
+    // World size of one pixel at the pivot, so drags feel the same at any zoom.
+    let dist = cam_t
+        .translation()
+        .as_dvec3()
+        .distance(tool.pivot)
+        .max(1e-6);
+    let pixel_size = dist * 0.0008;
+    let ray_at = |p: Vec2| {
+        cam.viewport_to_world(cam_t, p)
+            .ok()
+            .map(|r| (r.origin.as_dvec3(), Vec3::from(r.direction).as_dvec3()))
+    };
+    let cmd = tool_command(
+        &mut tool,
+        NodeRef::from(node_id),
+        &mesh,
+        &mode.selection,
+        world,
+        cursor,
+        &ray_at,
+        view_dir,
+        pixel_size,
+    );
+    if !tool.typed.is_empty() {
+        tool.readout = format!("{} [{}]", tool.readout, tool.typed);
+    }
+    // Decide on a copy: the preview, or the reason it cannot apply.
+    match state.session.doc.decide(&cmd, 0) {
+        Ok(t) => {
+            mode.preview = t
+                .changes
+                .iter()
+                .find(|c| c.id == node_id)
+                .and_then(|c| c.after.as_ref())
+                .and_then(|n| match &n.content {
+                    NodeContent::Mesh(m) => Some(m.mesh.clone()),
+                    NodeContent::Empty => None,
+                });
+        }
+        Err(e) => {
+            mode.preview = None;
+            tool.readout = format!("{} — {e}", tool.readout);
+        }
+    }
+    let confirm = keys.any_just_pressed([KeyCode::Enter, KeyCode::NumpadEnter, KeyCode::Space])
+        || buttons.just_pressed(MouseButton::Left);
+    if confirm {
+        mode.preview = None;
+        mode.just_finished = true;
+        let nothing =
+            matches!(&cmd, Command::MoveVertices { offset, .. } if *offset == DVec3::ZERO);
+        if !nothing {
+            requests.write(DocRequest::Execute(cmd));
+        } else {
+            status.info("Move cancelled (no movement)");
+        }
+        return;
+    }
+    mode.tool = Some(tool);
+}
+
+/// While a tool runs, the edited node shows the preview mesh; afterwards the
+/// document's mesh again.
+pub fn show_preview(
+    mode: Res<EditMode>,
+    state: Res<DocState>,
+    entities: Res<NodeEntities>,
+    mut shown: Local<Option<(NodeId, usize)>>,
+    mesh3d: Query<&Mesh3d>,
+    mut meshes: ResMut<Assets<Mesh>>,
+) {
+    let want: Option<(NodeId, Arc<HalfEdgeMesh>)> = match (mode.node, &mode.preview) {
+        (Some(n), Some(p)) => Some((n, p.clone())),
+        _ => None,
+    };
+    let key = want.as_ref().map(|(n, p)| (*n, Arc::as_ptr(p) as usize));
+    if key == *shown {
+        return;
+    }
+    // Restore the previously previewed node from the document.
+    if let Some((prev, _)) = shown.take() {
+        if let (Some(node), Some(e)) = (state.session.doc.node(prev), entities.0.get(&prev)) {
+            if let (NodeContent::Mesh(c), Ok(h)) = (&node.content, mesh3d.get(*e)) {
+                if let Some(mut m) = meshes.get_mut(&h.0) {
+                    *m = hedra_scene::render_mesh(&c.mesh, c.shading);
+                }
+            }
+        }
+    }
+    if let Some((n, p)) = want {
+        let shading = match state.session.doc.node(n).map(|x| &x.content) {
+            Some(NodeContent::Mesh(c)) => c.shading,
+            _ => hedra_doc::Shading::Flat,
+        };
+        if let Some(h) = entities.0.get(&n).and_then(|e| mesh3d.get(*e).ok()) {
+            if let Some(mut m) = meshes.get_mut(&h.0) {
+                *m = hedra_scene::render_mesh(&p, shading);
+            }
+        }
+        *shown = key;
+    }
+}
