@@ -184,32 +184,41 @@ impl HalfEdgeMesh {
         };
         for c in 0..nc {
             let (a, b) = (corner_from[c], corner_to(c));
-            let same_dir: Vec<usize> = outgoing(a)
+            // Count without allocating: this loop runs once per corner.
+            let same_dir = outgoing(a)
+                .iter()
+                .filter(|&&x| corner_to(x as usize) == b)
+                .count();
+            let mut twins = outgoing(b)
                 .iter()
                 .map(|&x| x as usize)
-                .filter(|&x| corner_to(x) == b)
-                .collect();
-            let twins: Vec<usize> = outgoing(b)
-                .iter()
-                .map(|&x| x as usize)
-                .filter(|&x| corner_to(x) == a)
-                .collect();
-            if same_dir.len() + twins.len() > 2 {
-                let mut faces: Vec<usize> = same_dir
-                    .iter()
-                    .chain(&twins)
-                    .map(|&x| corner_face[x] as usize)
-                    .collect();
-                faces.sort_unstable();
-                return Err(BuildError::NonManifoldEdge {
-                    a: a.min(b),
-                    b: a.max(b),
-                    faces,
+                .filter(|&x| corner_to(x) == a);
+            let first_twin = twins.next();
+            let twin_count = usize::from(first_twin.is_some()) + twins.count();
+            if same_dir + twin_count > 2 || same_dir > 1 {
+                let faces_of = |from: u32, to: u32| -> Vec<usize> {
+                    outgoing(from)
+                        .iter()
+                        .map(|&x| x as usize)
+                        .filter(|&x| corner_to(x) == to)
+                        .map(|x| corner_face[x] as usize)
+                        .collect()
+                };
+                if same_dir + twin_count > 2 {
+                    let mut faces = faces_of(a, b);
+                    faces.extend(faces_of(b, a));
+                    faces.sort_unstable();
+                    return Err(BuildError::NonManifoldEdge {
+                        a: a.min(b),
+                        b: a.max(b),
+                        faces,
+                    });
+                }
+                return Err(BuildError::InconsistentOrientation {
+                    a,
+                    b,
+                    faces: faces_of(a, b),
                 });
-            }
-            if same_dir.len() > 1 {
-                let faces = same_dir.iter().map(|&x| corner_face[x] as usize).collect();
-                return Err(BuildError::InconsistentOrientation { a, b, faces });
             }
             if corner_he[c] != NONE {
                 continue;
@@ -224,7 +233,7 @@ impl HalfEdgeMesh {
                 prev: NONE,
                 face: corner_face[c],
             };
-            if let Some(&t) = twins.first() {
+            if let Some(t) = first_twin {
                 corner_he[t] = h + 1;
                 halfedges[h as usize + 1] = HalfEdgeRecord {
                     origin: b,
