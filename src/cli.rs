@@ -34,6 +34,9 @@ pub enum Sub {
         /// One JSON object instead of text (schema: docs/info-json.md).
         #[arg(long)]
         json: bool,
+        /// Also print each mesh's half-edge and winged-edge tables.
+        #[arg(long)]
+        topology: bool,
     },
     /// Apply a RON script of commands (docs/commands.md) and save the result with its history.
     Run {
@@ -104,13 +107,25 @@ fn save(session: &mut Session, path: &Path) -> Result<(), FileError> {
 /// [`CliError`] with a one-line message.
 pub fn run(sub: Sub) -> Result<(), CliError> {
     match sub {
-        Sub::Info { file, json } => {
+        Sub::Info {
+            file,
+            json,
+            topology,
+        } => {
             let session = load(&file)?;
             let report = SceneReport::new(&session);
             if json {
                 println!("{}", report.to_json());
             } else {
                 print!("{}", report.to_text());
+            }
+            if topology {
+                for node in session.doc.nodes() {
+                    if let Some(mesh) = node.content.mesh() {
+                        println!("topology of #{} {}:", node.id.0, node.name);
+                        print!("{}", hedra_geom::topology::tables(mesh));
+                    }
+                }
             }
         }
         Sub::Run {

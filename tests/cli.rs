@@ -436,3 +436,23 @@ fn import_turns_obj_objects_into_nodes_and_reports_repairs() {
         "unsupported format '.stl'",
     );
 }
+
+#[test]
+fn info_topology_prints_the_half_edge_and_winged_edge_tables() {
+    let dir = tempfile::tempdir().unwrap();
+    let s = dir.path().join("t.ron");
+    std::fs::write(&s, "[AddMesh(name: \"Tetra\", positions: [(0.0,0.0,0.0),(1.0,0.0,0.0),(0.0,1.0,0.0),(0.0,0.0,1.0)], polygons: [[0,2,1],[0,1,3],[0,3,2],[1,2,3]])]").unwrap();
+    let f = dir.path().join("t.hedra.ron");
+    assert!(
+        hedra(&["run", s.to_str().unwrap(), "-o", f.to_str().unwrap()])
+            .status
+            .success()
+    );
+    let o = hedra(&["info", f.to_str().unwrap(), "--topology"]);
+    assert!(o.status.success());
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(text.contains("topology of #1 Tetra:"), "{text}");
+    assert!(text.contains("half-edges: half-edge | vertex | twin | next | prev | face"));
+    assert!(text.contains("  e0 | v0 | v2 | f0 | "), "{text}");
+    assert_eq!(text.lines().filter(|l| l.starts_with("  h")).count(), 12);
+}

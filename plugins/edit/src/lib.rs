@@ -164,8 +164,10 @@ fn pick_objects(
     state: Res<DocState>,
     mut selection: ResMut<Selection>,
     gizmo: Option<Res<TransformGizmoState>>,
+    mode: Res<EditMode>,
 ) {
-    if !buttons.just_pressed(MouseButton::Left)
+    if mode.active()
+        || !buttons.just_pressed(MouseButton::Left)
         || !gate.pointer_free
         || tool.active.is_some()
         || tool.just_finished

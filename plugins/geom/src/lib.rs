@@ -11,6 +11,7 @@ pub mod mesh;
 pub mod modeling;
 pub mod primitives;
 pub mod query;
+pub mod topology;
 pub mod validate;
 
 pub use build::{BuildError, RepairReport};

@@ -467,6 +467,26 @@ fn draw_edit_overlay(
     let sel = &mode.selection;
     let selected_vertices = sel.all_vertices(&mesh);
     let orange = Color::srgb(1.0, 0.55, 0.1);
+    let cyan = Color::srgb(0.2, 0.85, 0.95);
+    // The topology inspector's related elements, for a single selected element.
+    let single = sel.vertices.len() + sel.edges.len() + sel.faces.len() == 1;
+    let mut related_faces = std::collections::BTreeSet::new();
+    let mut related_edges = std::collections::BTreeSet::new();
+    if single {
+        if let Some(&v) = sel.vertices.iter().next().filter(|v| mesh.is_vertex(**v)) {
+            related_faces.extend(mesh.vertex_faces(v));
+        } else if let Some(&e) = sel.edges.iter().next().filter(|e| mesh.is_edge(**e)) {
+            let w = hedra_geom::topology::winged_edge_row(&mesh, e);
+            related_edges.extend([
+                w.left_predecessor,
+                w.left_successor,
+                w.right_predecessor,
+                w.right_successor,
+            ]);
+        } else if let Some(&f) = sel.faces.iter().next().filter(|f| mesh.is_face(**f)) {
+            related_faces.extend(mesh.face_neighbors(f));
+        }
+    }
     for e in mesh.edges() {
         let [a, b] = mesh.edge_vertices(e);
         let hot = sel.edges.contains(&e)
@@ -478,15 +498,20 @@ fn draw_edit_overlay(
                 .iter()
                 .flatten()
                 .any(|f| sel.faces.contains(f));
-        gizmos.line(
-            at(a),
-            at(b),
-            if hot {
-                orange
-            } else {
-                Color::srgb(0.08, 0.08, 0.1)
-            },
-        );
+        let related = related_edges.contains(&e)
+            || mesh
+                .edge_faces(e)
+                .iter()
+                .flatten()
+                .any(|f| related_faces.contains(f));
+        let color = if hot {
+            orange
+        } else if related {
+            cyan
+        } else {
+            Color::srgb(0.08, 0.08, 0.1)
+        };
+        gizmos.line(at(a), at(b), color);
     }
     let cam = *camera;
     let rotation = cam.rotation();

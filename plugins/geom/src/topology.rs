@@ -1,0 +1,142 @@
+//! The tables of seed 000 (Bán): the half-edge record (vertex, sym, face,
+//! next) and the winged-edge row of an edge (start, end, left and right
+//! face, predecessor and successor on each side), plus the neighbour queries
+//! the notes teach. Used by `hedra info --topology` and the inspector panel.
+
+use crate::ids::{EdgeId, FaceId, HalfEdgeId, VertexId};
+use crate::mesh::HalfEdgeMesh;
+use std::fmt::Write;
+
+/// One half-edge's links.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct HalfEdgeRecord {
+    pub halfedge: HalfEdgeId,
+    pub origin: VertexId,
+    pub twin: HalfEdgeId,
+    pub next: HalfEdgeId,
+    pub prev: HalfEdgeId,
+    pub face: Option<FaceId>,
+}
+
+/// One edge's winged-edge row. The edge runs from `start` to `end` along its
+/// half-edge 0; faces are counter-clockwise, so the left face is that
+/// half-edge's face. "Predecessor" and "successor" are the edges before and
+/// after it in the loop of each face.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct WingedEdgeRow {
+    pub edge: EdgeId,
+    pub start: VertexId,
+    pub end: VertexId,
+    pub left_face: Option<FaceId>,
+    pub right_face: Option<FaceId>,
+    pub left_predecessor: EdgeId,
+    pub left_successor: EdgeId,
+    pub right_predecessor: EdgeId,
+    pub right_successor: EdgeId,
+}
+
+pub fn halfedge_record(m: &HalfEdgeMesh, h: HalfEdgeId) -> HalfEdgeRecord {
+    HalfEdgeRecord {
+        halfedge: h,
+        origin: m.origin(h),
+        twin: h.twin(),
+        next: m.next(h),
+        prev: m.prev(h),
+        face: m.face(h),
+    }
+}
+
+pub fn winged_edge_row(m: &HalfEdgeMesh, e: EdgeId) -> WingedEdgeRow {
+    let (l, r) = (e.halfedge(0), e.halfedge(1));
+    WingedEdgeRow {
+        edge: e,
+        start: m.origin(l),
+        end: m.target(l),
+        left_face: m.face(l),
+        right_face: m.face(r),
+        left_predecessor: m.prev(l).edge(),
+        left_successor: m.next(l).edge(),
+        right_predecessor: m.prev(r).edge(),
+        right_successor: m.next(r).edge(),
+    }
+}
+
+fn face_name(f: Option<FaceId>) -> String {
+    f.map_or_else(|| "-".to_string(), |f| f.to_string())
+}
+
+fn list<T: std::fmt::Display>(items: impl Iterator<Item = T>) -> String {
+    items.map(|x| x.to_string()).collect::<Vec<_>>().join(" ")
+}
+
+/// All the tables of a mesh as text: vertices (position, outgoing
+/// half-edge, faces around), faces (half-edge, vertices, neighbours),
+/// half-edges, and the winged-edge table.
+pub fn tables(m: &HalfEdgeMesh) -> String {
+    let mut out = String::new();
+    let _ = writeln!(
+        out,
+        "vertices: vertex | position | half-edge | faces around | neighbours"
+    );
+    for v in m.vertices() {
+        let p = m.position(v);
+        let _ = writeln!(
+            out,
+            "  {v} | ({:.4}, {:.4}, {:.4}) | {} | {} | {}",
+            p.x,
+            p.y,
+            p.z,
+            m.vertex_halfedge(v).map_or("-".into(), |h| h.to_string()),
+            list(m.vertex_faces(v)),
+            list(m.vertex_neighbors(v))
+        );
+    }
+    let _ = writeln!(out, "faces: face | half-edge | vertices | neighbours");
+    for f in m.faces() {
+        let _ = writeln!(
+            out,
+            "  {f} | {} | {} | {}",
+            m.face_halfedge(f),
+            list(m.face_vertices(f)),
+            list(m.face_neighbors(f))
+        );
+    }
+    let _ = writeln!(
+        out,
+        "half-edges: half-edge | vertex | twin | next | prev | face"
+    );
+    for h in m.halfedges() {
+        let r = halfedge_record(m, h);
+        let _ = writeln!(
+            out,
+            "  {} | {} | {} | {} | {} | {}",
+            r.halfedge,
+            r.origin,
+            r.twin,
+            r.next,
+            r.prev,
+            face_name(r.face)
+        );
+    }
+    let _ = writeln!(
+        out,
+        "winged edges: edge | start | end | left face | right face | left pred | left succ | right pred | right succ"
+    );
+    for e in m.edges() {
+        let w = winged_edge_row(m, e);
+        let _ = writeln!(
+            out,
+            "  {} | {} | {} | {} | {} | {} | {} | {} | {}",
+            w.edge,
+            w.start,
+            w.end,
+            face_name(w.left_face),
+            face_name(w.right_face),
+            w.left_predecessor,
+            w.left_successor,
+            w.right_predecessor,
+            w.right_successor
+        );
+    }
+    out
+}
