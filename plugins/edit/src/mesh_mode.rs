@@ -92,6 +92,8 @@ pub struct EditMode {
     pub preview: Option<Arc<HalfEdgeMesh>>,
     /// Set on the frame a tool ended, so its confirming click selects nothing.
     pub just_finished: bool,
+    /// The rectangle being dragged for box selection (window coordinates).
+    pub box_select: Option<(Vec2, Vec2)>,
 }
 
 impl EditMode {
@@ -261,7 +263,26 @@ fn point_segment_distance(p: Vec2, a: Vec2, b: Vec2) -> f32 {
     p.distance(a + ab * t)
 }
 
-/// Click selects the element under the cursor (Shift toggles); A, Alt+A, Ctrl+I.
+/// A left press in edit mode, until release: a click, an Alt+click (loop),
+/// or a box drag.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Press {
+    pub start: Vec2,
+    pub alt: bool,
+    pub ctrl: bool,
+    pub shift: bool,
+}
+
+fn toggle<T: Ord + Copy>(set: &mut BTreeSet<T>, x: T) {
+    if !set.remove(&x) {
+        set.insert(x);
+    }
+}
+
+/// Selection in edit mode: click (Shift toggles), drag a box, Alt+click an
+/// edge loop, Ctrl+Alt+click an edge ring, A / Alt+A / Ctrl+I, Ctrl+Numpad
+/// +/- grow and shrink, L linked under the cursor, Ctrl+L linked to the
+/// selection.
 #[allow(clippy::too_many_arguments)]
 pub fn select_elements(
     buttons: Res<ButtonInput<MouseButton>>,
@@ -271,18 +292,154 @@ pub fn select_elements(
     state: Res<DocState>,
     window: Single<&Window, With<PrimaryWindow>>,
     camera: Single<(&Camera, &GlobalTransform), With<ViewportCamera>>,
+    mut press: Local<Option<Press>>,
 ) {
-    if !mode.active() || mode.tool.is_some() || mode.just_finished {
+    if !mode.active() || mode.tool.is_some() {
+        *press = None;
+        mode.box_select = None;
         return;
     }
     let Some(mesh) = edited_mesh(&state, &mode) else {
         return;
     };
     let kind = mode.kind;
-    if gate.keyboard_free && !ctrl(&keys) && keys.just_pressed(KeyCode::KeyA) && !shift(&keys) {
-        let sel = &mut mode.selection;
+    let world = state.session.doc.world_matrix(mode.node.expect("active"));
+    let (cam, cam_t) = *camera;
+    let cursor = window.cursor_position();
+    if gate.keyboard_free {
+        keyboard_selection(&keys, &mut mode, &mesh, kind, world, &window, cam, cam_t);
+    }
+    if buttons.just_pressed(MouseButton::Left) && gate.pointer_free && !mode.just_finished {
+        if let Some(c) = cursor {
+            *press = Some(Press {
+                start: c,
+                alt: alt(&keys),
+                ctrl: ctrl(&keys),
+                shift: shift(&keys),
+            });
+        }
+    }
+    let Some(p) = *press else { return };
+    let moved = cursor.is_some_and(|c| c.distance(p.start) > 4.0);
+    if buttons.pressed(MouseButton::Left) {
+        if moved && !p.alt {
+            mode.box_select = cursor.map(|c| (p.start, c));
+        }
+        return;
+    }
+    // Released: act once.
+    *press = None;
+    let boxed = mode.box_select.take();
+    let sel = &mut mode.selection;
+    if let Some((a, b)) = boxed {
+        let (lo, hi) = (a.min(b), a.max(b));
+        let inside = |q: DVec3| {
+            camera_point(cam, cam_t, world, q)
+                .is_some_and(|s| s.x >= lo.x && s.y >= lo.y && s.x <= hi.x && s.y <= hi.y)
+        };
+        if !p.shift {
+            *sel = ElementSelection::default();
+        }
+        match kind {
+            ElementKind::Vertex => sel
+                .vertices
+                .extend(mesh.vertices().filter(|&v| inside(mesh.position(v)))),
+            ElementKind::Edge => sel.edges.extend(mesh.edges().filter(|&e| {
+                mesh.edge_vertices(e)
+                    .iter()
+                    .all(|&v| inside(mesh.position(v)))
+            })),
+            ElementKind::Face => sel
+                .faces
+                .extend(mesh.faces().filter(|&f| inside(mesh.face_centroid(f)))),
+        }
+        return;
+    }
+    if p.alt {
+        if moved {
+            return; // Alt+drag orbited the camera
+        }
+        // Loop (Alt) or ring (Ctrl+Alt) through the edge under the cursor.
+        let Some(ElementHit::Edge(e)) =
+            element_under_cursor(ElementKind::Edge, &mesh, world, &window, cam, cam_t)
+        else {
+            return;
+        };
+        let edges = if p.ctrl {
+            hedra_geom::modeling::edge_ring(&mesh, e)
+                .0
+                .into_iter()
+                .map(|h| h.edge())
+                .collect()
+        } else {
+            hedra_geom::topology::edge_loop(&mesh, e)
+        };
+        if !p.shift {
+            *sel = ElementSelection::default();
+        }
+        match kind {
+            ElementKind::Vertex => sel
+                .vertices
+                .extend(edges.iter().flat_map(|&e| mesh.edge_vertices(e))),
+            ElementKind::Edge => sel.edges.extend(edges),
+            ElementKind::Face => sel
+                .faces
+                .extend(edges.iter().flat_map(|&e| mesh.edge_faces(e)).flatten()),
+        }
+        return;
+    }
+    let hit = element_under_cursor(kind, &mesh, world, &window, cam, cam_t);
+    if !p.shift {
         *sel = ElementSelection::default();
-        if !alt(&keys) {
+    }
+    match hit {
+        Some(ElementHit::Vertex(v)) => toggle(&mut sel.vertices, v),
+        Some(ElementHit::Edge(e)) => toggle(&mut sel.edges, e),
+        Some(ElementHit::Face(f)) => toggle(&mut sel.faces, f),
+        None => {}
+    }
+}
+
+/// A mesh-space point on screen (logical pixels), if in front of the camera.
+fn camera_point(cam: &Camera, cam_t: &GlobalTransform, world: DMat4, p: DVec3) -> Option<Vec2> {
+    cam.world_to_viewport(cam_t, world.transform_point3(p).as_vec3())
+        .ok()
+}
+
+#[allow(clippy::too_many_arguments)]
+fn keyboard_selection(
+    keys: &ButtonInput<KeyCode>,
+    mode: &mut EditMode,
+    mesh: &HalfEdgeMesh,
+    kind: ElementKind,
+    world: DMat4,
+    window: &Window,
+    cam: &Camera,
+    cam_t: &GlobalTransform,
+) {
+    let sel = &mut mode.selection;
+    let (c, a, s) = (ctrl(keys), alt(keys), shift(keys));
+    let set_from_vertices = |sel: &mut ElementSelection, verts: &BTreeSet<VertexId>| {
+        *sel = ElementSelection::default();
+        match kind {
+            ElementKind::Vertex => sel.vertices = verts.clone(),
+            ElementKind::Edge => {
+                sel.edges = mesh
+                    .edges()
+                    .filter(|&e| mesh.edge_vertices(e).iter().all(|v| verts.contains(v)))
+                    .collect()
+            }
+            ElementKind::Face => {
+                sel.faces = mesh
+                    .faces()
+                    .filter(|&f| mesh.face_vertices(f).all(|v| verts.contains(&v)))
+                    .collect()
+            }
+        }
+    };
+    if !c && !s && keys.just_pressed(KeyCode::KeyA) {
+        *sel = ElementSelection::default();
+        if !a {
             match kind {
                 ElementKind::Vertex => sel.vertices = mesh.vertices().collect(),
                 ElementKind::Edge => sel.edges = mesh.edges().collect(),
@@ -290,8 +447,7 @@ pub fn select_elements(
             }
         }
     }
-    if gate.keyboard_free && ctrl(&keys) && keys.just_pressed(KeyCode::KeyI) {
-        let sel = &mut mode.selection;
+    if c && keys.just_pressed(KeyCode::KeyI) {
         match kind {
             ElementKind::Vertex => {
                 sel.vertices = mesh
@@ -307,27 +463,43 @@ pub fn select_elements(
             }
         }
     }
-    if !buttons.just_pressed(MouseButton::Left) || !gate.pointer_free || alt(&keys) {
-        return;
+    let grow = c && (keys.just_pressed(KeyCode::NumpadAdd) || keys.just_pressed(KeyCode::Equal));
+    let shrink =
+        c && (keys.just_pressed(KeyCode::NumpadSubtract) || keys.just_pressed(KeyCode::Minus));
+    if grow || shrink {
+        let verts = sel.all_vertices(mesh);
+        let next: BTreeSet<VertexId> = if grow {
+            verts
+                .iter()
+                .flat_map(|&v| std::iter::once(v).chain(mesh.vertex_neighbors(v)))
+                .collect()
+        } else {
+            verts
+                .iter()
+                .copied()
+                .filter(|&v| mesh.vertex_neighbors(v).all(|w| verts.contains(&w)))
+                .collect()
+        };
+        set_from_vertices(sel, &next);
     }
-    let world = state.session.doc.world_matrix(mode.node.expect("active"));
-    let (cam, cam_t) = *camera;
-    let hit = element_under_cursor(kind, &mesh, world, &window, cam, cam_t);
-    let additive = shift(&keys);
-    let sel = &mut mode.selection;
-    if !additive {
-        *sel = ElementSelection::default();
-    }
-    fn toggle<T: Ord + Copy>(set: &mut BTreeSet<T>, x: T) {
-        if !set.remove(&x) {
-            set.insert(x);
+    if keys.just_pressed(KeyCode::KeyL) {
+        let seeds: Vec<VertexId> = if c {
+            sel.all_vertices(mesh).into_iter().collect()
+        } else {
+            match element_under_cursor(kind, mesh, world, window, cam, cam_t) {
+                Some(ElementHit::Vertex(v)) => vec![v],
+                Some(ElementHit::Edge(e)) => mesh.edge_vertices(e).to_vec(),
+                Some(ElementHit::Face(f)) => mesh.face_vertices(f).collect(),
+                None => vec![],
+            }
+        };
+        let mut linked: BTreeSet<VertexId> = hedra_geom::topology::linked_vertices(mesh, seeds)
+            .into_iter()
+            .collect();
+        if !c {
+            linked.extend(sel.all_vertices(mesh));
         }
-    }
-    match hit {
-        Some(ElementHit::Vertex(v)) => toggle(&mut sel.vertices, v),
-        Some(ElementHit::Edge(e)) => toggle(&mut sel.edges, e),
-        Some(ElementHit::Face(f)) => toggle(&mut sel.faces, f),
-        None => {}
+        set_from_vertices(sel, &linked);
     }
 }
 

@@ -140,3 +140,49 @@ pub fn tables(m: &HalfEdgeMesh) -> String {
     }
     out
 }
+
+/// The edge loop through `edge`: continues straight across vertices of
+/// valence 4 (the edge opposite in the fan) and stops at poles, boundaries
+/// or when it closes. Blender's Alt+click.
+pub fn edge_loop(m: &HalfEdgeMesh, edge: EdgeId) -> Vec<EdgeId> {
+    let mut out = vec![edge];
+    for start in [edge.halfedge(0), edge.halfedge(1)] {
+        let mut h = start;
+        loop {
+            let v = m.target(h);
+            if m.vertex_valence(v) != 4 || m.is_boundary_vertex(v) {
+                break;
+            }
+            // Rotate twice around v from the way back: the opposite edge.
+            let back = h.twin();
+            let once = m.prev(back).twin();
+            let opposite = m.prev(once).twin();
+            let e = opposite.edge();
+            if e == edge || out.contains(&e) {
+                return out; // closed loop
+            }
+            out.push(e);
+            h = opposite;
+        }
+    }
+    out
+}
+
+/// Vertices reachable from `seeds` over edges (Blender's select linked).
+pub fn linked_vertices(
+    m: &HalfEdgeMesh,
+    seeds: impl IntoIterator<Item = VertexId>,
+) -> Vec<VertexId> {
+    let mut seen = vec![false; m.vertex_capacity()];
+    let mut stack: Vec<VertexId> = seeds.into_iter().filter(|v| m.is_vertex(*v)).collect();
+    let mut out = Vec::new();
+    while let Some(v) = stack.pop() {
+        if std::mem::replace(&mut seen[v.index()], true) {
+            continue;
+        }
+        out.push(v);
+        stack.extend(m.vertex_neighbors(v).filter(|w| !seen[w.index()]));
+    }
+    out.sort();
+    out
+}

@@ -70,3 +70,62 @@ fn neighbour_queries_of_the_tetrahedron() {
     assert_eq!(text.lines().filter(|l| l.starts_with("  e")).count(), 6);
     assert_eq!(text.lines().filter(|l| l.starts_with("  h")).count(), 12);
 }
+
+#[test]
+fn edge_loops_go_straight_through_valence_four_vertices() {
+    use hedra_geom::Primitive;
+    use hedra_geom::topology::{edge_loop, linked_vertices};
+    // Around a UV sphere's equator: a closed loop of `segments` edges.
+    let m = Primitive::UvSphere {
+        segments: 8,
+        rings: 4,
+        radius: 1.0,
+    }
+    .build()
+    .unwrap();
+    let e = m
+        .edges()
+        .find(|&e| {
+            let [a, b] = m.edge_vertices(e);
+            m.position(a).y.abs() < 1e-9 && m.position(b).y.abs() < 1e-9
+        })
+        .unwrap();
+    let lp = edge_loop(&m, e);
+    assert_eq!(lp.len(), 8);
+    assert!(lp.iter().all(|&x| {
+        m.edge_vertices(x)
+            .iter()
+            .all(|v| m.position(*v).y.abs() < 1e-9)
+    }));
+    // A meridian edge stops at the poles (valence 8).
+    let e = m
+        .edges()
+        .find(|&e| {
+            let [a, b] = m.edge_vertices(e);
+            (m.position(a).y - m.position(b).y).abs() > 0.1
+                && m.vertex_valence(a) == 4
+                && m.vertex_valence(b) == 4
+        })
+        .unwrap();
+    assert_eq!(edge_loop(&m, e).len(), 4, "pole to pole over 4 rings");
+    // On a grid the loop runs to both boundaries.
+    let g = Primitive::Grid {
+        x_segments: 4,
+        z_segments: 3,
+        size: 1.0,
+    }
+    .build()
+    .unwrap();
+    let inner = g
+        .edges()
+        .find(|&e| {
+            !g.is_boundary_edge(e) && g.edge_vertices(e).iter().all(|v| !g.is_boundary_vertex(*v))
+        })
+        .unwrap();
+    let lp = edge_loop(&g, inner);
+    assert!(lp.len() == 4 || lp.len() == 3, "{}", lp.len());
+    assert_eq!(
+        linked_vertices(&g, [hedra_geom::VertexId(0)]).len(),
+        g.vertex_count()
+    );
+}

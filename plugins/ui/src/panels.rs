@@ -90,6 +90,21 @@ pub fn draw_ui(
     }
     let free = root.available_rect_before_wrap();
     ui_state.viewport_rect = Some(free);
+    if let Some((a, b)) = model.mode.box_select {
+        let rect = egui::Rect::from_two_pos(egui::pos2(a.x, a.y), egui::pos2(b.x, b.y));
+        let painter = root.painter_at(free);
+        painter.rect_filled(
+            rect,
+            0.0,
+            egui::Color32::from_rgba_unmultiplied(255, 160, 60, 24),
+        );
+        painter.rect_stroke(
+            rect,
+            0.0,
+            egui::Stroke::new(1.0, egui::Color32::from_rgb(255, 170, 80)),
+            egui::StrokeKind::Inside,
+        );
+    }
 
     if ui_state.show_history {
         history_window(&ctx, &model, &mut ui_state, &mut events);
