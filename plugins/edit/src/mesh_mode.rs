@@ -62,6 +62,8 @@ impl ElementSelection {
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 pub enum MeshToolKind {
     Move,
+    Rotate,
+    Scale,
     Extrude,
     Inset,
     LoopCut,
@@ -75,6 +77,7 @@ pub struct MeshTool {
     pub typed: String,
     start_cursor: Vec2,
     pivot: DVec3,
+    pivot_screen: Vec2,
     /// Loop cut: the edge under the cursor and the number of cuts.
     edge: Option<EdgeId>,
     cuts: u32,
@@ -534,12 +537,17 @@ pub fn edit_shortcuts(
         verts.iter().map(|&v| mesh.position(v)).sum::<DVec3>() / verts.len() as f64
     };
     let pivot = world.transform_point3(pivot_local);
+    let pivot_screen = camera
+        .0
+        .world_to_viewport(camera.1, pivot.as_vec3())
+        .unwrap_or(cursor);
     let start = |kind: MeshToolKind| MeshTool {
         kind,
         axis: None,
         typed: String::new(),
         start_cursor: cursor,
         pivot,
+        pivot_screen,
         edge: None,
         cuts: 1,
         readout: String::new(),
@@ -566,11 +574,17 @@ pub fn edit_shortcuts(
     if c || a {
         return;
     }
-    if keys.just_pressed(KeyCode::KeyG) {
-        if verts.is_empty() {
-            status.error("Nothing selected to move");
-        } else {
-            mode.tool = Some(start(MeshToolKind::Move));
+    for (key, kind) in [
+        (KeyCode::KeyG, MeshToolKind::Move),
+        (KeyCode::KeyR, MeshToolKind::Rotate),
+        (KeyCode::KeyS, MeshToolKind::Scale),
+    ] {
+        if keys.just_pressed(key) {
+            if verts.is_empty() {
+                status.error("Nothing selected to transform");
+            } else {
+                mode.tool = Some(start(kind));
+            }
         }
     }
     if keys.just_pressed(KeyCode::KeyE) && !s {
@@ -679,6 +693,41 @@ fn tool_command(
                 offset,
             }
         }
+        MeshToolKind::Rotate | MeshToolKind::Scale => {
+            let xf: DMat4 = if tool.kind == MeshToolKind::Rotate {
+                let degrees = typed_value(&tool.typed).unwrap_or_else(|| {
+                    let a = (tool.start_cursor - tool.pivot_screen).to_angle();
+                    let b = (cursor - tool.pivot_screen).to_angle();
+                    -((b - a) as f64).to_degrees()
+                });
+                tool.readout = format!("Rotate {degrees:.2}°");
+                let axis = tool.axis.map_or(-view_dir, Axis::vector);
+                crate::rotation_about(
+                    tool.pivot,
+                    glam::DQuat::from_axis_angle(axis.normalize(), degrees.to_radians()),
+                )
+            } else {
+                let factor = typed_value(&tool.typed).unwrap_or_else(|| {
+                    let d0 = (tool.start_cursor - tool.pivot_screen).length().max(1.0);
+                    ((cursor - tool.pivot_screen).length() / d0) as f64
+                });
+                tool.readout = format!("Scale {factor:.4}");
+                let f = tool.axis.map_or(DVec3::splat(factor), |a| {
+                    DVec3::ONE + a.vector() * (factor - 1.0)
+                });
+                DMat4::from_translation(tool.pivot)
+                    * DMat4::from_scale(f)
+                    * DMat4::from_translation(-tool.pivot)
+            };
+            // The world-space transform, applied to mesh-space positions.
+            let local = world.inverse() * xf * world;
+            let positions = selection
+                .all_vertices(mesh)
+                .into_iter()
+                .map(|v| (v.0, local.transform_point3(mesh.position(v))))
+                .collect();
+            Command::SetVertexPositions { node, positions }
+        }
         MeshToolKind::Extrude => {
             let distance = typed_value(&tool.typed).unwrap_or(drag);
             tool.readout = format!("Extrude {distance:.4}");
@@ -757,7 +806,12 @@ pub fn drive_mesh_tool(
         (KeyCode::KeyY, Axis::Y),
         (KeyCode::KeyZ, Axis::Z),
     ] {
-        if keys.just_pressed(key) && tool.kind == MeshToolKind::Move {
+        if keys.just_pressed(key)
+            && matches!(
+                tool.kind,
+                MeshToolKind::Move | MeshToolKind::Rotate | MeshToolKind::Scale
+            )
+        {
             tool.axis = if tool.axis == Some(axis) {
                 None
             } else {
