@@ -209,7 +209,8 @@ impl HalfEdgeMesh {
     /// Inverse: [`make_edge_vertex`](Self::make_edge_vertex).
     ///
     /// # Errors
-    /// [`EulerError::Missing`], [`EulerError::NotDangling`].
+    /// [`EulerError::Missing`], [`EulerError::NotDangling`],
+    /// [`EulerError::Degenerate`] when the face would keep fewer than 3 sides.
     pub fn kill_edge_vertex(&mut self, e: EdgeId) -> Result<VertexId, EulerError> {
         self.check_edge(e)?;
         // `out` runs from the kept vertex to the one of valence 1.
@@ -222,6 +223,9 @@ impl HalfEdgeMesh {
         let v = self.origin(out);
         if self.vertex_valence(v) == 1 {
             return Err(EulerError::NotDangling { edge: e }); // an isolated edge
+        }
+        if self.loop_from(out).count() < 5 {
+            return Err(EulerError::Degenerate); // the face would keep fewer than 3 sides
         }
         let h_in = self.prev(out);
         let n = self.next(back);
