@@ -32,8 +32,8 @@ pub struct UiState {
     pub path_prompt: Option<files::PathPrompt>,
     pub dialog: Option<files::DialogTask>,
     pub dialog_backend: bool,
-    /// Node being renamed in the outliner and the edited name.
-    pub rename: Option<(NodeId, String)>,
+    /// Node being renamed in the outliner.
+    pub rename: Option<Rename>,
     /// Transform fields being dragged in the properties panel (committed on release).
     pub transform_edit: Option<(NodeId, DocTransform)>,
     /// The 3D area left by the panels, in logical pixels.
@@ -58,6 +58,21 @@ impl Default for UiState {
             viewport_rect: None,
             last_title: String::new(),
         }
+    }
+}
+
+/// An outliner rename in progress.
+#[derive(Debug, Clone)]
+pub struct Rename {
+    pub node: NodeId,
+    pub text: String,
+    /// False until the field has been focused with its text selected.
+    pub started: bool,
+}
+
+impl Rename {
+    pub fn new(node: NodeId, name: &str) -> Self {
+        Rename { node, text: name.to_string(), started: false }
     }
 }
 

@@ -411,10 +411,18 @@ fn outliner_row(
             NodeContent::Mesh(_) => "▣",
             NodeContent::Empty => "✛",
         };
-        if let Some((rid, text)) = state.rename.as_mut().filter(|(rid, _)| *rid == id) {
-            let _ = rid;
-            let resp = ui.text_edit_singleline(text);
-            resp.request_focus();
+        if let Some(rename) = state.rename.as_mut().filter(|r| r.node == id) {
+            let mut output = egui::TextEdit::singleline(&mut rename.text).show(ui);
+            let resp = output.response.clone();
+            if !rename.started {
+                // First frame: focus the field with the whole name selected.
+                rename.started = true;
+                resp.request_focus();
+                let all = egui::text::CCursorRange::two(egui::text::CCursor::new(0), egui::text::CCursor::new(rename.text.chars().count()));
+                output.state.cursor.set_char_range(Some(all));
+                output.state.store(ui.ctx(), resp.id);
+            }
+            let text = rename.text.clone();
             if resp.lost_focus() {
                 let name = text.trim().to_string();
                 if ui.input(|i| !i.key_pressed(egui::Key::Escape))
@@ -448,7 +456,7 @@ fn outliner_row(
             events.push(UiEvent::Select(id, additive));
         }
         if resp.double_clicked() {
-            state.rename = Some((id, node.name.clone()));
+            state.rename = Some(crate::Rename::new(id, &node.name));
         }
         if let Some(dragged) = resp.dnd_release_payload::<NodeId>() {
             if *dragged != id {
@@ -464,7 +472,7 @@ fn outliner_row(
         }
         resp.context_menu(|ui| {
             if ui.button("Rename").clicked() {
-                state.rename = Some((id, node.name.clone()));
+                state.rename = Some(crate::Rename::new(id, &node.name));
                 ui.close();
             }
             if ui.button("Duplicate").clicked() {
