@@ -15,6 +15,7 @@ use hedra_scene::{
 
 pub mod mesh_mode;
 pub mod modal;
+pub mod typing;
 
 pub use mesh_mode::{EditMode, ElementKind, ElementSelection, MeshTool, MeshToolKind};
 pub use modal::{Axis, ModalTransform, TransformKind, TransformTool};

@@ -36,6 +36,32 @@ pub struct ElementSelection {
 }
 
 impl ElementSelection {
+    /// The elements of `kind` whose vertices all lie in `verts` (how Blender
+    /// converts a selection between vertex, edge and face mode).
+    pub fn from_vertices(
+        kind: ElementKind,
+        mesh: &HalfEdgeMesh,
+        verts: &BTreeSet<VertexId>,
+    ) -> Self {
+        let mut sel = ElementSelection::default();
+        match kind {
+            ElementKind::Vertex => sel.vertices = verts.clone(),
+            ElementKind::Edge => {
+                sel.edges = mesh
+                    .edges()
+                    .filter(|&e| mesh.edge_vertices(e).iter().all(|v| verts.contains(v)))
+                    .collect()
+            }
+            ElementKind::Face => {
+                sel.faces = mesh
+                    .faces()
+                    .filter(|&f| mesh.face_vertices(f).all(|v| verts.contains(&v)))
+                    .collect()
+            }
+        }
+        sel
+    }
+
     pub fn is_empty(&self) -> bool {
         self.vertices.is_empty() && self.edges.is_empty() && self.faces.is_empty()
     }
@@ -74,7 +100,7 @@ pub enum MeshToolKind {
 pub struct MeshTool {
     pub kind: MeshToolKind,
     pub axis: Option<Axis>,
-    pub typed: String,
+    pub typed: crate::typing::TypedNumber,
     start_cursor: Vec2,
     pivot: DVec3,
     pivot_screen: Vec2,
@@ -160,24 +186,8 @@ pub fn mode_keys(
     if let (Some(k), Some(mesh)) = (new_kind, edited_mesh(&state, &mode)) {
         if k != mode.kind {
             // Convert the selection like Blender: keep what the new kind can express.
-            let verts = mode.selection.all_vertices(&mesh);
-            let mut sel = ElementSelection::default();
-            match k {
-                ElementKind::Vertex => sel.vertices = verts,
-                ElementKind::Edge => {
-                    sel.edges = mesh
-                        .edges()
-                        .filter(|&e| mesh.edge_vertices(e).iter().all(|v| verts.contains(v)))
-                        .collect()
-                }
-                ElementKind::Face => {
-                    sel.faces = mesh
-                        .faces()
-                        .filter(|&f| mesh.face_vertices(f).all(|v| verts.contains(&v)))
-                        .collect()
-                }
-            }
-            mode.selection = sel;
+            mode.selection =
+                ElementSelection::from_vertices(k, &mesh, &mode.selection.all_vertices(&mesh));
             mode.kind = k;
         }
     }
@@ -423,22 +433,7 @@ fn keyboard_selection(
     let sel = &mut mode.selection;
     let (c, a, s) = (ctrl(keys), alt(keys), shift(keys));
     let set_from_vertices = |sel: &mut ElementSelection, verts: &BTreeSet<VertexId>| {
-        *sel = ElementSelection::default();
-        match kind {
-            ElementKind::Vertex => sel.vertices = verts.clone(),
-            ElementKind::Edge => {
-                sel.edges = mesh
-                    .edges()
-                    .filter(|&e| mesh.edge_vertices(e).iter().all(|v| verts.contains(v)))
-                    .collect()
-            }
-            ElementKind::Face => {
-                sel.faces = mesh
-                    .faces()
-                    .filter(|&f| mesh.face_vertices(f).all(|v| verts.contains(&v)))
-                    .collect()
-            }
-        }
+        *sel = ElementSelection::from_vertices(kind, mesh, verts);
     };
     if !c && !s && keys.just_pressed(KeyCode::KeyA) {
         *sel = ElementSelection::default();
@@ -544,7 +539,7 @@ pub fn edit_shortcuts(
     let start = |kind: MeshToolKind| MeshTool {
         kind,
         axis: None,
-        typed: String::new(),
+        typed: Default::default(),
         start_cursor: cursor,
         pivot,
         pivot_screen,
@@ -636,15 +631,6 @@ pub fn edit_shortcuts(
     }
 }
 
-fn typed_value(t: &str) -> Option<f64> {
-    let t = t.trim();
-    if t.is_empty() || t == "-" {
-        None
-    } else {
-        t.parse().ok()
-    }
-}
-
 /// The command a tool would run for the cursor position.
 fn tool_command(
     tool: &mut MeshTool,
@@ -661,7 +647,7 @@ fn tool_command(
     let faces = || FaceSet::Ids(selection.faces.iter().map(|f| f.0).collect());
     match tool.kind {
         MeshToolKind::Move => {
-            let world_delta = if let Some(v) = typed_value(&tool.typed) {
+            let world_delta = if let Some(v) = tool.typed.value() {
                 tool.axis.unwrap_or(Axis::X).vector() * v
             } else {
                 let plane_hit = |p: Vec2| -> Option<DVec3> {
@@ -695,7 +681,7 @@ fn tool_command(
         }
         MeshToolKind::Rotate | MeshToolKind::Scale => {
             let xf: DMat4 = if tool.kind == MeshToolKind::Rotate {
-                let degrees = typed_value(&tool.typed).unwrap_or_else(|| {
+                let degrees = tool.typed.value().unwrap_or_else(|| {
                     let a = (tool.start_cursor - tool.pivot_screen).to_angle();
                     let b = (cursor - tool.pivot_screen).to_angle();
                     -((b - a) as f64).to_degrees()
@@ -707,7 +693,7 @@ fn tool_command(
                     glam::DQuat::from_axis_angle(axis.normalize(), degrees.to_radians()),
                 )
             } else {
-                let factor = typed_value(&tool.typed).unwrap_or_else(|| {
+                let factor = tool.typed.value().unwrap_or_else(|| {
                     let d0 = (tool.start_cursor - tool.pivot_screen).length().max(1.0);
                     ((cursor - tool.pivot_screen).length() / d0) as f64
                 });
@@ -729,7 +715,7 @@ fn tool_command(
             Command::SetVertexPositions { node, positions }
         }
         MeshToolKind::Extrude => {
-            let distance = typed_value(&tool.typed).unwrap_or(drag);
+            let distance = tool.typed.value().unwrap_or(drag);
             tool.readout = format!("Extrude {distance:.4}");
             Command::ExtrudeFaces {
                 node,
@@ -738,7 +724,7 @@ fn tool_command(
             }
         }
         MeshToolKind::Inset => {
-            let thickness = typed_value(&tool.typed).unwrap_or(drag.abs());
+            let thickness = tool.typed.value().unwrap_or(drag.abs());
             tool.readout = format!("Inset thickness {thickness:.4}");
             Command::InsetFaces {
                 node,
@@ -748,8 +734,10 @@ fn tool_command(
             }
         }
         MeshToolKind::LoopCut => {
-            let cuts =
-                typed_value(&tool.typed).map_or(tool.cuts, |v| v.round().clamp(1.0, 64.0) as u32);
+            let cuts = tool
+                .typed
+                .value()
+                .map_or(tool.cuts, |v| v.round().clamp(1.0, 64.0) as u32);
             tool.readout = format!("Loop cut: {cuts} cut(s) (wheel or +/- to change)");
             Command::LoopCut {
                 node,
@@ -759,21 +747,6 @@ fn tool_command(
         }
     }
 }
-
-const DIGITS: [(KeyCode, char); 12] = [
-    (KeyCode::Digit0, '0'),
-    (KeyCode::Digit1, '1'),
-    (KeyCode::Digit2, '2'),
-    (KeyCode::Digit3, '3'),
-    (KeyCode::Digit4, '4'),
-    (KeyCode::Digit5, '5'),
-    (KeyCode::Digit6, '6'),
-    (KeyCode::Digit7, '7'),
-    (KeyCode::Digit8, '8'),
-    (KeyCode::Digit9, '9'),
-    (KeyCode::Period, '.'),
-    (KeyCode::NumpadDecimal, '.'),
-];
 
 /// Runs the active mesh tool: preview each frame, confirm or cancel.
 #[allow(clippy::too_many_arguments)]
@@ -819,33 +792,19 @@ pub fn drive_mesh_tool(
             };
         }
     }
-    for (key, c) in DIGITS {
-        if keys.just_pressed(key) {
-            tool.typed.push(c);
-        }
-    }
-    if keys.just_pressed(KeyCode::Minus) || keys.just_pressed(KeyCode::NumpadSubtract) {
-        if tool.kind == MeshToolKind::LoopCut {
+    let loop_cut = tool.kind == MeshToolKind::LoopCut;
+    // Loop cut: minus, plus and the wheel change the number of cuts.
+    tool.typed.read(&keys, !loop_cut);
+    if loop_cut {
+        let less = keys.any_just_pressed([KeyCode::Minus, KeyCode::NumpadSubtract])
+            || scroll.delta.y < 0.0;
+        let more =
+            keys.any_just_pressed([KeyCode::NumpadAdd, KeyCode::Equal]) || scroll.delta.y > 0.0;
+        if less {
             tool.cuts = tool.cuts.saturating_sub(1).max(1);
-        } else {
-            tool.typed = tool
-                .typed
-                .strip_prefix('-')
-                .map_or_else(|| format!("-{}", tool.typed), str::to_string);
+        } else if more {
+            tool.cuts = (tool.cuts + 1).min(64);
         }
-    }
-    if tool.kind == MeshToolKind::LoopCut
-        && (keys.just_pressed(KeyCode::NumpadAdd)
-            || keys.just_pressed(KeyCode::Equal)
-            || scroll.delta.y > 0.0)
-    {
-        tool.cuts = (tool.cuts + 1).min(64);
-    }
-    if tool.kind == MeshToolKind::LoopCut && scroll.delta.y < 0.0 {
-        tool.cuts = tool.cuts.saturating_sub(1).max(1);
-    }
-    if keys.just_pressed(KeyCode::Backspace) {
-        tool.typed.pop();
     }
     let (cam, cam_t) = *camera;
     let cursor = window.cursor_position().unwrap_or(tool.start_cursor);
@@ -875,7 +834,7 @@ pub fn drive_mesh_tool(
         pixel_size,
     );
     if !tool.typed.is_empty() {
-        tool.readout = format!("{} [{}]", tool.readout, tool.typed);
+        tool.readout = format!("{} [{}]", tool.readout, tool.typed.as_str());
     }
     // Decide on a copy: the preview, or the reason it cannot apply.
     match state.session.doc.decide(&cmd, 0) {

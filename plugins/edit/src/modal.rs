@@ -59,7 +59,7 @@ pub struct ModalTransform {
     pub kind: TransformKind,
     pub axis: Option<Axis>,
     /// Digits typed so far (an exact distance, angle in degrees, or factor).
-    pub typed: String,
+    pub typed: crate::typing::TypedNumber,
     start_cursor: Vec2,
     pivot: DVec3,
     pivot_screen: Vec2,
@@ -118,21 +118,13 @@ impl ModalTransform {
         Some(ModalTransform {
             kind,
             axis: None,
-            typed: String::new(),
+            typed: Default::default(),
             start_cursor,
             pivot,
             pivot_screen,
             items,
             readout: String::new(),
         })
-    }
-
-    fn typed_value(&self) -> Option<f64> {
-        let t = self.typed.trim();
-        if t.is_empty() || t == "-" {
-            return None;
-        }
-        t.parse().ok()
     }
 
     /// New local transforms for the cursor position (window coordinates).
@@ -145,7 +137,7 @@ impl ModalTransform {
         let axis_name = self.axis.map_or(String::new(), |a| format!(" {a:?}"));
         match self.kind {
             TransformKind::Grab => {
-                let delta = if let Some(v) = self.typed_value() {
+                let delta = if let Some(v) = self.typed.value() {
                     self.axis.unwrap_or(Axis::X).vector() * v
                 } else {
                     let plane_hit = |p: Vec2| -> Option<DVec3> {
@@ -173,7 +165,7 @@ impl ModalTransform {
                     .collect()
             }
             TransformKind::Rotate => {
-                let degrees = self.typed_value().unwrap_or_else(|| {
+                let degrees = self.typed.value().unwrap_or_else(|| {
                     let a = (self.start_cursor - self.pivot_screen).to_angle();
                     let b = (cursor - self.pivot_screen).to_angle();
                     // Screen y points down: a clockwise drag on screen is a negative angle.
@@ -196,7 +188,7 @@ impl ModalTransform {
                     .collect()
             }
             TransformKind::Scale => {
-                let factor = self.typed_value().unwrap_or_else(|| {
+                let factor = self.typed.value().unwrap_or_else(|| {
                     let d0 = (self.start_cursor - self.pivot_screen).length().max(1.0);
                     ((cursor - self.pivot_screen).length() / d0) as f64
                 });
@@ -251,33 +243,6 @@ pub fn to_bevy(t: &DocTransform) -> Transform {
     }
 }
 
-const DIGIT_KEYS: [(KeyCode, char); 24] = [
-    (KeyCode::Digit0, '0'),
-    (KeyCode::Digit1, '1'),
-    (KeyCode::Digit2, '2'),
-    (KeyCode::Digit3, '3'),
-    (KeyCode::Digit4, '4'),
-    (KeyCode::Digit5, '5'),
-    (KeyCode::Digit6, '6'),
-    (KeyCode::Digit7, '7'),
-    (KeyCode::Digit8, '8'),
-    (KeyCode::Digit9, '9'),
-    (KeyCode::Numpad0, '0'),
-    (KeyCode::Numpad1, '1'),
-    (KeyCode::Numpad2, '2'),
-    (KeyCode::Numpad3, '3'),
-    (KeyCode::Numpad4, '4'),
-    (KeyCode::Numpad5, '5'),
-    (KeyCode::Numpad6, '6'),
-    (KeyCode::Numpad7, '7'),
-    (KeyCode::Numpad8, '8'),
-    (KeyCode::Numpad9, '9'),
-    (KeyCode::Period, '.'),
-    (KeyCode::NumpadDecimal, '.'),
-    (KeyCode::Minus, '-'),
-    (KeyCode::NumpadSubtract, '-'),
-];
-
 /// Runs the active tool: keys, preview on entities, confirm or cancel.
 #[allow(clippy::too_many_arguments)]
 pub fn drive_transform_tool(
@@ -328,22 +293,7 @@ pub fn drive_transform_tool(
             };
         }
     }
-    for (key, c) in DIGIT_KEYS {
-        if keys.just_pressed(key) {
-            if c == '-' {
-                // Minus toggles the sign, wherever it is typed.
-                modal.typed = modal
-                    .typed
-                    .strip_prefix('-')
-                    .map_or_else(|| format!("-{}", modal.typed), str::to_string);
-            } else {
-                modal.typed.push(c);
-            }
-        }
-    }
-    if keys.just_pressed(KeyCode::Backspace) {
-        modal.typed.pop();
-    }
+    modal.typed.read(&keys, true);
     let cursor = window.cursor_position().unwrap_or(modal.start_cursor);
     let view_dir = (cam_t.rotation() * Vec3::NEG_Z).as_dvec3();
     let result = modal.compute(
@@ -356,7 +306,7 @@ pub fn drive_transform_tool(
         view_dir,
     );
     if !modal.typed.is_empty() {
-        modal.readout = format!("{} [{}]", modal.readout, modal.typed);
+        modal.readout = format!("{} [{}]", modal.readout, modal.typed.as_str());
     }
     for (id, t) in &result {
         if let Some(mut et) = modal

@@ -72,7 +72,11 @@ pub struct Rename {
 
 impl Rename {
     pub fn new(node: NodeId, name: &str) -> Self {
-        Rename { node, text: name.to_string(), started: false }
+        Rename {
+            node,
+            text: name.to_string(),
+            started: false,
+        }
     }
 }
 

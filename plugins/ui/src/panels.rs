@@ -418,7 +418,10 @@ fn outliner_row(
                 // First frame: focus the field with the whole name selected.
                 rename.started = true;
                 resp.request_focus();
-                let all = egui::text::CCursorRange::two(egui::text::CCursor::new(0), egui::text::CCursor::new(rename.text.chars().count()));
+                let all = egui::text::CCursorRange::two(
+                    egui::text::CCursor::new(0),
+                    egui::text::CCursor::new(rename.text.chars().count()),
+                );
                 output.state.cursor.set_char_range(Some(all));
                 output.state.store(ui.ctx(), resp.id);
             }
