@@ -184,6 +184,20 @@ pub enum Command {
     FlipNormals {
         node: NodeRef,
     },
+    /// Turns a closed mesh that faces inwards outwards (no change otherwise).
+    RecalculateNormals {
+        node: NodeRef,
+    },
+    /// Deletes faces, keeping their edges: each becomes a hole.
+    MakeHoles {
+        node: NodeRef,
+        faces: FaceSet,
+    },
+    /// Fills the boundary loops through the given edges with a face each.
+    FillHoles {
+        node: NodeRef,
+        edges: EdgeSet,
+    },
 }
 
 fn one() -> u32 {
@@ -269,6 +283,9 @@ impl Command {
             Command::DissolveEdges { .. } => "Dissolve Edges".to_string(),
             Command::DissolveVertices { .. } => "Dissolve Vertices".to_string(),
             Command::FlipNormals { .. } => "Flip Normals".to_string(),
+            Command::RecalculateNormals { .. } => "Recalculate Normals".to_string(),
+            Command::MakeHoles { .. } => "Delete Faces".to_string(),
+            Command::FillHoles { .. } => "Fill".to_string(),
         }
     }
 }
@@ -756,6 +773,26 @@ impl Plan<'_> {
                 self.model(node, |m| {
                     let vs = vertices.resolve(m).map_err(|e| e.0)?;
                     Ok(modeling::dissolve_vertices(m, &vs))
+                })?;
+            }
+            Command::RecalculateNormals { node } => {
+                self.model(node, |m| {
+                    if !modeling::recalculate_normals_outward(m) {
+                        return Err("the mesh already faces outwards (or is open)".into());
+                    }
+                    Ok(Ok(()))
+                })?;
+            }
+            Command::MakeHoles { node, faces } => {
+                self.model(node, |m| {
+                    let fs = faces.resolve(m).map_err(|e| e.0)?;
+                    Ok(modeling::make_holes(m, &fs))
+                })?;
+            }
+            Command::FillHoles { node, edges } => {
+                self.model(node, |m| {
+                    let es = edges.resolve(m).map_err(|e| e.0)?;
+                    Ok(modeling::fill_holes(m, &es).map(|_| ()))
                 })?;
             }
             Command::FlipNormals { node } => {

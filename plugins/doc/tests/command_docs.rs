@@ -41,7 +41,7 @@ fn every_command_example_in_the_docs_runs() {
         .collect();
     kinds.sort();
     kinds.dedup();
-    assert_eq!(kinds.len(), 24, "{kinds:?}");
+    assert_eq!(kinds.len(), 27, "{kinds:?}");
     let mut session = hedra_doc::Session::new();
     hedra_doc::script::run(&mut session, &commands, Path::new("docs/commands.md"))
         .unwrap_or_else(|e| panic!("{e}"));
@@ -57,5 +57,9 @@ fn every_command_example_in_the_docs_runs() {
     block.validate().unwrap();
     let s = block.stats();
     assert_eq!((s.vertices, s.faces), (8 + 8 + 4 + 4, 6 + 8 + 4 + 4));
-    assert!(block.volume() < 0.0, "flipped inside out at the end");
+    assert!(
+        block.volume() > 0.0,
+        "flipped inside out, then recalculated outwards"
+    );
+    assert!(s.closed, "the hole was filled again");
 }

@@ -566,7 +566,45 @@ pub fn edit_shortcuts(
         }
         return;
     }
+    if keys.just_pressed(KeyCode::KeyN) && (a || s) {
+        let cmd = if a {
+            Command::FlipNormals { node: node.clone() }
+        } else {
+            Command::RecalculateNormals { node: node.clone() }
+        };
+        requests.write(DocRequest::Execute(cmd));
+        return;
+    }
     if c || a {
+        return;
+    }
+    if keys.just_pressed(KeyCode::KeyF) {
+        let edges: Vec<u32> = mode
+            .selection
+            .edges
+            .iter()
+            .map(|e| e.0)
+            .chain(
+                // In vertex mode: the boundary edges between selected vertices.
+                mesh.edges()
+                    .filter(|&e| {
+                        mesh.is_boundary_edge(e)
+                            && mesh
+                                .edge_vertices(e)
+                                .iter()
+                                .all(|v| mode.selection.vertices.contains(v))
+                    })
+                    .map(|e| e.0),
+            )
+            .collect();
+        if edges.is_empty() {
+            status.error("Fill: select edges (or vertices) around a hole");
+        } else {
+            requests.write(DocRequest::Execute(Command::FillHoles {
+                node: node.clone(),
+                edges: EdgeSet::Ids(edges),
+            }));
+        }
         return;
     }
     for (key, kind) in [
@@ -618,15 +656,18 @@ pub fn edit_shortcuts(
                 node,
                 edges: EdgeSet::Ids(mode.selection.edges.iter().map(|e| e.0).collect()),
             }),
+            ElementKind::Face if !mode.selection.faces.is_empty() => Some(Command::MakeHoles {
+                node,
+                faces: FaceSet::Ids(mode.selection.faces.iter().map(|f| f.0).collect()),
+            }),
             _ => None,
         };
         match cmd {
             Some(c) => {
                 requests.write(DocRequest::Execute(c));
             }
-            None => {
-                status.error("Dissolve: select vertices of valence 2 or edges between two faces")
-            }
+            None => status
+                .error("X: select vertices (valence 2) or edges to dissolve, or faces to delete"),
         }
     }
 }

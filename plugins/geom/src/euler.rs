@@ -454,6 +454,79 @@ impl HalfEdgeMesh {
         Ok(keep)
     }
 
+    // ----- KFMH / MFKH -----------------------------------------------------------
+
+    /// Kill face, make hole: the face's loop becomes a boundary loop; its
+    /// edges and vertices stay (Blender's "delete only faces"). In the
+    /// Euler–Poincaré count a boundary loop is a ring of the surface, so
+    /// ΔF = −1 and Δ(boundary loops) = +1. Only for faces that touch no
+    /// boundary, so every vertex keeps a single boundary wedge.
+    ///
+    /// Inverse: [`fill_hole`](Self::fill_hole).
+    ///
+    /// # Errors
+    /// [`EulerError::Missing`], [`EulerError::BoundaryEdge`] when the face
+    /// touches a boundary (at an edge or a vertex).
+    pub fn make_hole(&mut self, f: FaceId) -> Result<HalfEdgeId, EulerError> {
+        if !self.is_face(f) {
+            return Err(EulerError::Missing(f.to_string()));
+        }
+        let loop_: Vec<HalfEdgeId> = self.face_halfedges(f).collect();
+        if let Some(&h) = loop_.iter().find(|&&h| {
+            self.is_boundary_vertex(self.origin(h)) || self.is_boundary_halfedge(h.twin())
+        }) {
+            return Err(EulerError::BoundaryEdge { edge: h.edge() });
+        }
+        // A loop that passes a vertex twice (a dangling edge inside the face)
+        // would leave that vertex with two boundary wedges.
+        let mut corners: Vec<u32> = loop_.iter().map(|&h| self.origin(h).0).collect();
+        corners.sort_unstable();
+        if let Some(w) = corners.windows(2).find(|w| w[0] == w[1]) {
+            return Err(EulerError::Valence {
+                vertex: VertexId(w[0]),
+                valence: 2,
+                needed: "to appear once in the face's loop",
+            });
+        }
+        for &h in &loop_ {
+            self.set_face(h, None);
+            // The vertex now lies on a boundary: store the boundary half-edge.
+            let v = self.origin(h);
+            self.vertex_out[v.index()] = h.0;
+        }
+        self.free_face(f);
+        Ok(loop_[0])
+    }
+
+    /// Make face, kill hole: a new face fills the boundary loop through `h`
+    /// (Blender's F on a closed boundary). ΔF = +1.
+    ///
+    /// Inverse: [`make_hole`](Self::make_hole).
+    ///
+    /// # Errors
+    /// [`EulerError::Missing`], [`EulerError::NoFace`]-like misuse when `h`
+    /// is not on a boundary ([`EulerError::SameFace`]), and
+    /// [`EulerError::Degenerate`] for a loop of fewer than three edges.
+    pub fn fill_hole(&mut self, h: HalfEdgeId) -> Result<FaceId, EulerError> {
+        self.check_halfedge(h)?;
+        if !self.is_boundary_halfedge(h) {
+            return Err(EulerError::SameFace { edge: h.edge() });
+        }
+        let loop_: Vec<HalfEdgeId> = self.loop_from(h).collect();
+        if loop_.len() < 3 {
+            return Err(EulerError::Degenerate);
+        }
+        let f = self.alloc_face(h);
+        for &x in &loop_ {
+            self.set_face(x, Some(f));
+        }
+        for &x in &loop_ {
+            let v = self.origin(x);
+            self.fix_vertex_halfedge(v, x);
+        }
+        Ok(f)
+    }
+
     // ----- composite ------------------------------------------------------------
 
     /// Extrudes one face along `offset` (seed 004's face extrude): each corner

@@ -246,6 +246,8 @@ enum Op {
     Mve(usize, f64),
     Kve(usize),
     Extrude(usize, f64),
+    Hole(usize),
+    Fill(usize),
 }
 
 fn arb_op() -> impl Strategy<Value = Op> {
@@ -257,6 +259,8 @@ fn arb_op() -> impl Strategy<Value = Op> {
         (any::<usize>(), 0.1..0.9f64).prop_map(|(a, t)| Op::Mve(a, t)),
         any::<usize>().prop_map(Op::Kve),
         (any::<usize>(), -1.0..1.0f64).prop_map(|(a, t)| Op::Extrude(a, t)),
+        any::<usize>().prop_map(Op::Hole),
+        any::<usize>().prop_map(Op::Fill),
     ]
 }
 
@@ -295,6 +299,15 @@ fn apply(m: &mut HalfEdgeMesh, op: &Op) -> Result<(), EulerError> {
             let n = m.face_normal(f);
             m.extrude_face(f, n * t).map(|_| ())
         }
+        Op::Hole(a) => m.make_hole(pick(&faces, a).unwrap()).map(|_| ()),
+        Op::Fill(a) => {
+            let boundary: Vec<HalfEdgeId> =
+                m.halfedges().filter(|&h| m.face(h).is_none()).collect();
+            match pick(&boundary, a) {
+                Some(h) => m.fill_hole(h).map(|_| ()),
+                None => Err(EulerError::Degenerate),
+            }
+        }
     }
 }
 
@@ -305,6 +318,7 @@ proptest! {
         let mut m = meshes()[start].clone();
         let s0 = m.stats();
         let (shells, genus, chi0) = (s0.shells, s0.genus.unwrap(), chi(&m));
+        let b0 = s0.boundary_loops as i64;
         for op in &ops {
             let before = m.clone();
             match apply(&mut m, op) {
@@ -314,8 +328,8 @@ proptest! {
                 }
                 Err(_) => prop_assert_eq!(&m, &before, "a refused {:?} changed the mesh", op),
             }
-            prop_assert_eq!(chi(&m), chi0, "{:?} changed V - E + F", op);
             let b = m.boundary_loops().len();
+            prop_assert_eq!(chi(&m) + b as i64, chi0 + b0, "{:?} changed V - E + F + holes", op);
             prop_assert!(euler_poincare_holds(&m, shells, genus, b));
             prop_assert_eq!(m.shell_count(), shells);
         }

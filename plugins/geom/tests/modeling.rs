@@ -203,3 +203,46 @@ fn flip_normals_twice_is_the_identity() {
             .all(|f| grid.face_normal(f).abs_diff_eq(-DVec3::Y, 1e-12))
     );
 }
+
+#[test]
+fn make_hole_then_fill_restores_and_counts_change_by_one_face() {
+    use hedra_geom::modeling::{fill_holes, make_holes, recalculate_normals_outward};
+    let m0 = cube();
+    let mut m = m0.clone();
+    let f = top(&m);
+    let h = m.make_hole(f).unwrap();
+    m.validate().unwrap();
+    assert_eq!(counts(&m), (8, 12, 5));
+    assert_eq!(m.boundary_loops().len(), 1);
+    let g = m.fill_hole(h).unwrap();
+    m.validate().unwrap();
+    assert_ne!(g, f, "ids are never reused: the filled face is new");
+    assert_eq!(counts(&m), counts(&m0));
+    assert!(
+        m.face_normal(g).abs_diff_eq(DVec3::Y, 1e-12),
+        "the fill faces the same way as the old face"
+    );
+    assert!(m.stats().closed);
+    // A face next to the new hole is refused; the mesh is unchanged.
+    let mut m = cube();
+    let t = top(&m);
+    let side = m.face_neighbors(t).next().unwrap();
+    let before = m.clone();
+    assert!(make_holes(&mut m, &[t, side]).is_err());
+    assert_eq!(m, before);
+    make_holes(&mut m, &[t]).unwrap();
+    let e = m
+        .face_halfedges(side)
+        .map(|h| h.edge())
+        .find(|&e| m.is_boundary_edge(e))
+        .unwrap();
+    let filled = fill_holes(&mut m, &[e]).unwrap();
+    assert_eq!(filled.len(), 1);
+    m.validate().unwrap();
+    assert!(m.stats().closed);
+    // Recalculate outward: an inside-out cube is turned back.
+    flip_normals(&mut m);
+    assert!(recalculate_normals_outward(&mut m));
+    assert!(m.volume() > 0.0);
+    assert!(!recalculate_normals_outward(&mut m));
+}

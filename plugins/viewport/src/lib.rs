@@ -240,13 +240,17 @@ fn frame_selection(
     selection: Res<Selection>,
     state: Res<DocState>,
     mut camera: Single<&mut OrbitCamera, With<ViewportCamera>>,
+    mode: Res<EditMode>,
 ) {
     if !gate.keyboard_free || tool.active.is_some() {
         return;
     }
+    // In edit mode F fills holes; Numpad . still frames.
+    let f_frames = !mode.active();
     let ctrl = modifiers::ctrl(&keys);
     let bounds = if !ctrl
-        && (keys.just_pressed(KeyCode::KeyF) || keys.just_pressed(KeyCode::NumpadDecimal))
+        && ((f_frames && keys.just_pressed(KeyCode::KeyF))
+            || keys.just_pressed(KeyCode::NumpadDecimal))
     {
         if selection.nodes.is_empty() {
             world_bounds(&state, state.session.doc.nodes().map(|n| n.id))
