@@ -24,6 +24,13 @@ pub struct Cli {
     /// Frames to render before the screenshot.
     #[arg(long, default_value_t = 30)]
     pub frames: u32,
+    /// Start in edit mode on this mesh node (by name).
+    #[arg(long, value_name = "NODE")]
+    pub edit: Option<String>,
+    /// With --edit: select these faces, a face set as in scripts,
+    /// e.g. "Facing(direction: (0.0, 1.0, 0.0), degrees: 10.0)".
+    #[arg(long, value_name = "FACES", requires = "edit")]
+    pub select: Option<String>,
 }
 
 #[derive(Subcommand, Debug)]

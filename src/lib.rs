@@ -38,6 +38,8 @@ pub struct GuiOptions {
     /// Save a screenshot after `frames` frames and quit.
     pub screenshot: Option<PathBuf>,
     pub frames: u32,
+    /// Start in edit mode on this node, with these faces selected.
+    pub edit: Option<(String, Option<hedra_doc::FaceSet>)>,
 }
 
 /// The windowed modeling app.
@@ -63,6 +65,12 @@ pub fn gui_app(options: GuiOptions) -> App {
             },
         );
     }
+    if let Some((node, faces)) = options.edit {
+        app.add_systems(
+            Update,
+            start_in_edit_mode(node, faces).after(hedra_scene::SceneSystems::Sync),
+        );
+    }
     if let Some(path) = options.screenshot {
         app.insert_resource(ScreenshotPlan {
             path,
@@ -74,6 +82,48 @@ pub fn gui_app(options: GuiOptions) -> App {
         .add_systems(Update, take_screenshot);
     }
     app
+}
+
+/// `--edit NODE [--select FACES]`: once the node exists, select it, enter
+/// edit mode in face mode and select the faces.
+fn start_in_edit_mode(
+    node: String,
+    faces: Option<hedra_doc::FaceSet>,
+) -> impl FnMut(
+    Res<hedra_scene::DocState>,
+    ResMut<hedra_edit::Selection>,
+    ResMut<hedra_edit::EditMode>,
+    ResMut<hedra_scene::StatusMessage>,
+) {
+    let mut done = false;
+    let mut frames = 0;
+    move |state, mut selection, mut mode, mut status| {
+        if done {
+            return;
+        }
+        frames += 1;
+        let Some(n) = state.session.doc.find_by_name(&node) else {
+            if frames == 60 {
+                status.error(format!("--edit: there is no node named '{node}'"));
+                done = true;
+            }
+            return;
+        };
+        done = true;
+        let Some(mesh) = n.content.mesh() else {
+            status.error(format!("--edit: '{node}' is not a mesh"));
+            return;
+        };
+        selection.set([n.id]);
+        mode.node = Some(n.id);
+        mode.kind = hedra_edit::ElementKind::Face;
+        if let Some(set) = &faces {
+            match set.resolve(mesh) {
+                Ok(fs) => mode.selection.faces = fs.into_iter().collect(),
+                Err(e) => status.error(format!("--select: {e}")),
+            }
+        }
+    }
 }
 
 /// `--screenshot`: capture the window once after some frames, then quit.

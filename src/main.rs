@@ -21,10 +21,24 @@ fn main() -> ExitCode {
                     return ExitCode::FAILURE;
                 }
             }
+            let faces = match cli
+                .select
+                .as_deref()
+                .map(ron::from_str::<hedra::doc::FaceSet>)
+            {
+                None => None,
+                Some(Ok(f)) => Some(f),
+                Some(Err(e)) => {
+                    eprintln!("hedra: error: --select: {e}");
+                    return ExitCode::FAILURE;
+                }
+            };
+            let edit = cli.edit.map(|n| (n, faces));
             let options = hedra::GuiOptions {
                 file: cli.file,
                 screenshot: cli.screenshot,
                 frames: cli.frames,
+                edit,
             };
             match hedra::gui_app(options).run() {
                 bevy::app::AppExit::Success => ExitCode::SUCCESS,

@@ -119,3 +119,131 @@ fn gui_smoke_test_renders_the_scene_under_xvfb() {
         "only {bright} bright pixels in the viewport: the meshes are not rendered"
     );
 }
+
+/// Runs the app on a sample and returns the screenshot's pixels (RGB) and size.
+fn screenshot(sample: &str, extra: &[&str]) -> (Vec<[u8; 3]>, u32, u32) {
+    let sample = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("assets/samples")
+        .join(sample);
+    let dir = tempfile::tempdir().unwrap();
+    let shot = dir.path().join("shot.png");
+    let out = std::process::Command::new("xvfb-run")
+        .args([
+            "-a",
+            "-s",
+            "-screen 0 1280x800x24",
+            env!("CARGO_BIN_EXE_hedra"),
+        ])
+        .arg(&sample)
+        .args(extra)
+        .arg("--screenshot")
+        .arg(&shot)
+        .args(["--frames", "40"])
+        .env("WGPU_BACKEND", "vulkan")
+        .env("HEDRA_CONFIG_DIR", dir.path())
+        .output()
+        .expect("xvfb-run is installed (scripts/setup installs it)");
+    let log = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        out.status.success(),
+        "the app exited with {}: {}",
+        out.status,
+        &log[log.len().saturating_sub(3000)..]
+    );
+    let decoder = png::Decoder::new(std::io::BufReader::new(
+        std::fs::File::open(&shot).expect("screenshot written"),
+    ));
+    let mut reader = decoder.read_info().unwrap();
+    let mut buf = vec![0; reader.output_buffer_size().unwrap()];
+    let info = reader.next_frame(&mut buf).unwrap();
+    let px = info.color_type.samples();
+    let pixels = buf
+        .chunks(px)
+        .take((info.width * info.height) as usize)
+        .map(|c| [c[0], c[1], c[2]])
+        .collect();
+    (pixels, info.width, info.height)
+}
+
+#[test]
+fn edit_mode_screenshot_shows_the_edited_chair_with_its_selection() {
+    let (pixels, w, h) = screenshot(
+        "chair.hedra.ron",
+        &[
+            "--edit",
+            "Chair",
+            "--select",
+            "Facing(direction: (0.0, 1.0, 0.0), degrees: 5.0)",
+        ],
+    );
+    assert_eq!((w, h), (1280, 800));
+    // Selected faces are outlined in orange (1.0, 0.55, 0.1): count orange pixels in the viewport.
+    let orange = pixels
+        .iter()
+        .enumerate()
+        .filter(|(i, _)| {
+            let (x, y) = ((*i as u32) % w, (*i as u32) / w);
+            (230..1000).contains(&x) && (30..770).contains(&y)
+        })
+        .filter(|(_, [r, g, b])| *r > 200 && (90..190).contains(g) && *b < 90)
+        .count();
+    assert!(
+        orange > 300,
+        "only {orange} orange pixels: the face selection is not highlighted"
+    );
+}
+
+#[test]
+fn the_chair_script_gives_the_same_mesh_through_the_app_as_through_the_cli() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let script = std::fs::read_to_string(root.join("assets/scripts/chair.ron")).unwrap();
+    let commands = hedra_doc::script::parse(&script, Path::new("chair.ron")).unwrap();
+    let mut app = hedra::headless_app();
+    app.update();
+    for c in commands {
+        app.world_mut()
+            .write_message(hedra_scene::DocRequest::Execute(c));
+        app.update();
+    }
+    let state = app.world().resource::<hedra_scene::DocState>();
+    assert!(
+        !app.world()
+            .resource::<hedra_scene::StatusMessage>()
+            .is_error
+    );
+    let via_app = state
+        .session
+        .doc
+        .find_by_name("Chair")
+        .unwrap()
+        .content
+        .mesh()
+        .unwrap()
+        .clone();
+    let cli = hedra_doc::file::load(&root.join("assets/samples/chair.hedra.ron"))
+        .unwrap()
+        .session;
+    let via_cli = cli
+        .doc
+        .find_by_name("Chair")
+        .unwrap()
+        .content
+        .mesh()
+        .unwrap();
+    assert_eq!(
+        &via_app, via_cli,
+        "the GUI's apply system and `hedra run` build the same mesh"
+    );
+    via_app.validate().unwrap();
+    // Cube 8/12/6; each loop cut of n ring faces adds n V, 2n E, n F (2 cuts on a
+    // ring of 4, then 2 on a ring of 8): 32/60/30; each extruded or inset quad
+    // adds 4/8/4 (4 legs, 3 back rest quads, 3 insets): 72/140/70.
+    assert_eq!(
+        (
+            via_app.vertex_count(),
+            via_app.edge_count(),
+            via_app.face_count()
+        ),
+        (72, 140, 70)
+    );
+}

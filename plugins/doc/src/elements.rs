@@ -18,6 +18,8 @@ pub enum FaceSet {
     },
     /// The face whose centre is nearest to a point.
     Nearest(DVec3),
+    /// For each point, the face whose centre is nearest to it.
+    NearestEach(Vec<DVec3>),
 }
 
 /// Edges of a mesh.
@@ -92,6 +94,14 @@ impl FaceSet {
             FaceSet::Nearest(p) => nearest(m.faces(), |f| m.face_centroid(f).distance_squared(*p))
                 .into_iter()
                 .collect(),
+            FaceSet::NearestEach(points) => {
+                let mut v: Vec<FaceId> = points
+                    .iter()
+                    .filter_map(|p| nearest(m.faces(), |f| m.face_centroid(f).distance_squared(*p)))
+                    .collect();
+                v.dedup();
+                v
+            }
         };
         if out.is_empty() {
             return Err(ElementError(format!("no face matches {self:?}")));
