@@ -49,6 +49,22 @@ pub enum EulerError {
     SelfLoop { vertex: VertexId },
     #[error("position is not finite")]
     NonFinite,
+    #[error("{a} and {b} share a neighbour; collapsing their edge would double an edge")]
+    SharedNeighbours { a: VertexId, b: VertexId },
+    #[error("the half-edges do not delimit a part of {vertex}'s fan")]
+    NotInFan { vertex: VertexId },
+}
+
+/// What [`HalfEdgeMesh::collapse_edge`] needs to be undone by
+/// [`HalfEdgeMesh::split_vertex`]: the kept vertex, the range of its fan
+/// that belonged to the removed vertex, and both old positions.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Collapse {
+    pub kept: VertexId,
+    pub first: HalfEdgeId,
+    pub last: HalfEdgeId,
+    pub kept_position: DVec3,
+    pub removed_position: DVec3,
 }
 
 impl HalfEdgeMesh {
@@ -452,6 +468,144 @@ impl HalfEdgeMesh {
         self.fix_vertex_halfedge(y, tk);
         self.fix_vertex_halfedge(x, hk);
         Ok(keep)
+    }
+
+    // ----- edge collapse / vertex split ----------------------------------------------
+
+    /// Edge collapse (seed 004's progressive-mesh step): removes the edge of
+    /// `h` and its end vertex; every edge of that vertex moves to the start
+    /// vertex, which goes to `p`. The faces on both sides lose one side.
+    /// ΔV = −1, ΔE = −1.
+    ///
+    /// Inverse: [`split_vertex`](Self::split_vertex) with the returned
+    /// [`Collapse`] record (and the old positions it keeps).
+    ///
+    /// # Errors
+    /// [`EulerError::Degenerate`] when a face beside the edge is a triangle,
+    /// [`EulerError::SharedNeighbours`] when the two vertices have a common
+    /// neighbour (the result would have a double edge), and
+    /// [`EulerError::BoundaryEdge`] when both ends are on a boundary but the
+    /// edge is not (the surface would be pinched).
+    pub fn collapse_edge(&mut self, h: HalfEdgeId, p: DVec3) -> Result<Collapse, EulerError> {
+        self.check_halfedge(h)?;
+        if !p.is_finite() {
+            return Err(EulerError::NonFinite);
+        }
+        let t = h.twin();
+        let (a, b) = (self.origin(h), self.target(h));
+        if self.face(h) == self.face(t) {
+            // A dangling or bridging edge: use kill_edge_vertex / kill_edge_face.
+            return Err(EulerError::SameFace { edge: h.edge() });
+        }
+        for x in [h, t] {
+            if self.face(x).is_some() && self.loop_from(x).count() < 4 {
+                return Err(EulerError::Degenerate);
+            }
+        }
+        if self.vertex_neighbors(a).filter(|&n| n == b).count() > 1 {
+            return Err(EulerError::SelfLoop { vertex: a }); // a second edge a-b would become a loop
+        }
+        if self
+            .vertex_neighbors(a)
+            .any(|n| n != b && self.vertex_neighbors(b).any(|m| m == n))
+        {
+            return Err(EulerError::SharedNeighbours { a, b });
+        }
+        if self.is_boundary_vertex(a)
+            && self.is_boundary_vertex(b)
+            && !self.is_boundary_edge(h.edge())
+        {
+            return Err(EulerError::BoundaryEdge { edge: h.edge() });
+        }
+        let record = Collapse {
+            kept: a,
+            first: self.prev(t).twin(),
+            last: self.next(h),
+            kept_position: self.position(a),
+            removed_position: self.position(b),
+        };
+        let moved: Vec<HalfEdgeId> = self.vertex_outgoing(b).filter(|&o| o != t).collect();
+        for &o in &moved {
+            self.set_origin(o, a);
+        }
+        let (ph, nh, pt, nt) = (self.prev(h), self.next(h), self.prev(t), self.next(t));
+        self.link(ph, nh);
+        self.link(pt, nt);
+        for (x, replacement) in [(h, nh), (t, nt)] {
+            if let Some(f) = self.face(x) {
+                if self.face_halfedge[f.index()] == x.0 {
+                    self.face_halfedge[f.index()] = replacement.0;
+                }
+            }
+        }
+        self.free_edge(h.edge());
+        self.free_vertex(b);
+        self.set_position(a, p);
+        self.fix_vertex_halfedge(a, nh);
+        Ok(record)
+    }
+
+    /// Vertex split, the inverse of [`collapse_edge`](Self::collapse_edge): the
+    /// outgoing half-edges of `v` from `first` to `last` (in fan order) move to
+    /// a new vertex at `p`, joined to `v` by a new edge; the faces of `last`
+    /// and of `first`'s twin gain one side each. ΔV = +1, ΔE = +1.
+    ///
+    /// # Errors
+    /// [`EulerError::Missing`], [`EulerError::NotInFan`] when the half-edges
+    /// do not start at `v` or would take all of its edges.
+    pub fn split_vertex(
+        &mut self,
+        v: VertexId,
+        first: HalfEdgeId,
+        last: HalfEdgeId,
+        p: DVec3,
+    ) -> Result<EdgeId, EulerError> {
+        if !self.is_vertex(v) {
+            return Err(EulerError::Missing(v.to_string()));
+        }
+        self.check_halfedge(first)?;
+        self.check_halfedge(last)?;
+        if !p.is_finite() {
+            return Err(EulerError::NonFinite);
+        }
+        if self.origin(first) != v || self.origin(last) != v {
+            return Err(EulerError::NotInFan { vertex: v });
+        }
+        let fan: Vec<HalfEdgeId> = self.vertex_outgoing(v).collect();
+        let start = fan
+            .iter()
+            .position(|&o| o == first)
+            .expect("first starts at v");
+        let moved: Vec<HalfEdgeId> = fan
+            .iter()
+            .cycle()
+            .skip(start)
+            .take(fan.len())
+            .copied()
+            .take_while(|&o| o != last)
+            .chain(std::iter::once(last))
+            .collect();
+        if moved.len() >= fan.len() {
+            return Err(EulerError::NotInFan { vertex: v });
+        }
+        let before_last = self.prev(last);
+        let into_first = first.twin();
+        let after_first = self.next(into_first);
+        let w = self.alloc_vertex(p);
+        let h = self.alloc_edge(v, w);
+        let t = h.twin();
+        for &o in &moved {
+            self.set_origin(o, w);
+        }
+        self.set_face(h, self.face(last));
+        self.link(before_last, h);
+        self.link(h, last);
+        self.set_face(t, self.face(into_first));
+        self.link(into_first, t);
+        self.link(t, after_first);
+        self.fix_vertex_halfedge(w, last);
+        self.fix_vertex_halfedge(v, h);
+        Ok(h.edge())
     }
 
     // ----- KFMH / MFKH -----------------------------------------------------------

@@ -423,6 +423,30 @@ pub fn recalculate_normals_outward(mesh: &mut HalfEdgeMesh) -> bool {
     }
 }
 
+/// Collapses each edge to its midpoint (edge collapse).
+///
+/// # Errors
+/// The first edge that cannot collapse, with the reason; the mesh is unchanged.
+pub fn collapse_edges(
+    mesh: &mut HalfEdgeMesh,
+    edges: &[EdgeId],
+) -> Result<Vec<VertexId>, ModelingError> {
+    if edges.is_empty() {
+        return Err(ModelingError::Empty("no edges"));
+    }
+    let mut work = mesh.clone();
+    let mut kept = Vec::new();
+    for &e in edges {
+        if !work.is_edge(e) {
+            continue; // removed by an earlier collapse of this call
+        }
+        let mid = work.edge_midpoint(e);
+        kept.push(work.collapse_edge(e.halfedge(0), mid)?.kept);
+    }
+    *mesh = work;
+    Ok(kept)
+}
+
 /// Reverses the orientation of every face (flip normals). Connectivity is
 /// relinked half-edge by half-edge: origin becomes the old target, next and
 /// prev swap. ΔV = ΔE = ΔF = 0; applying it twice restores the mesh.

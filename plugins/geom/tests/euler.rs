@@ -248,6 +248,8 @@ enum Op {
     Extrude(usize, f64),
     Hole(usize),
     Fill(usize),
+    Collapse(usize),
+    SplitVertex(usize, usize, usize),
 }
 
 fn arb_op() -> impl Strategy<Value = Op> {
@@ -261,6 +263,9 @@ fn arb_op() -> impl Strategy<Value = Op> {
         (any::<usize>(), -1.0..1.0f64).prop_map(|(a, t)| Op::Extrude(a, t)),
         any::<usize>().prop_map(Op::Hole),
         any::<usize>().prop_map(Op::Fill),
+        any::<usize>().prop_map(Op::Collapse),
+        (any::<usize>(), any::<usize>(), any::<usize>())
+            .prop_map(|(a, b, c)| Op::SplitVertex(a, b, c)),
     ]
 }
 
@@ -300,6 +305,21 @@ fn apply(m: &mut HalfEdgeMesh, op: &Op) -> Result<(), EulerError> {
             m.extrude_face(f, n * t).map(|_| ())
         }
         Op::Hole(a) => m.make_hole(pick(&faces, a).unwrap()).map(|_| ()),
+        Op::Collapse(a) => {
+            let h = pick(&m.halfedges().collect::<Vec<_>>(), a).unwrap();
+            let p = m.edge_midpoint(h.edge());
+            m.collapse_edge(h, p).map(|_| ())
+        }
+        Op::SplitVertex(a, b, c) => {
+            let v = pick(&verts, a).unwrap();
+            let fan: Vec<HalfEdgeId> = m.vertex_outgoing(v).collect();
+            match (pick(&fan, b), pick(&fan, c)) {
+                (Some(x), Some(y)) => m
+                    .split_vertex(v, x, y, m.position(v) + DVec3::splat(0.01))
+                    .map(|_| ()),
+                _ => Err(EulerError::Degenerate),
+            }
+        }
         Op::Fill(a) => {
             let boundary: Vec<HalfEdgeId> =
                 m.halfedges().filter(|&h| m.face(h).is_none()).collect();
@@ -334,4 +354,107 @@ proptest! {
             prop_assert_eq!(m.shell_count(), shells);
         }
     }
+}
+
+#[test]
+fn split_vertex_then_collapse_restores_the_mesh() {
+    let m0 = Primitive::Grid {
+        x_segments: 3,
+        z_segments: 3,
+        size: 3.0,
+    }
+    .build()
+    .unwrap();
+    // An interior vertex of valence 4.
+    let v = m0.vertices().find(|&v| !m0.is_boundary_vertex(v)).unwrap();
+    let fan: Vec<HalfEdgeId> = m0.vertex_outgoing(v).collect();
+    let mut m = m0.clone();
+    let p0 = m.position(v);
+    let e = m
+        .split_vertex(v, fan[0], fan[1], p0 + DVec3::new(0.1, 0.0, 0.1))
+        .unwrap();
+    m.validate().unwrap();
+    assert_eq!(
+        (m.vertex_count(), m.edge_count(), m.face_count()),
+        (m0.vertex_count() + 1, m0.edge_count() + 1, m0.face_count())
+    );
+    let h = if m.origin(e.halfedge(0)) == v {
+        e.halfedge(0)
+    } else {
+        e.halfedge(1)
+    };
+    let rec = m.collapse_edge(h, p0).unwrap();
+    m.validate().unwrap();
+    assert!(m.same_as(&m0), "collapse undoes the split");
+    assert_eq!(rec.kept, v);
+}
+
+#[test]
+fn collapse_then_split_restores_the_shape() {
+    let m0 = Primitive::Grid {
+        x_segments: 3,
+        z_segments: 3,
+        size: 3.0,
+    }
+    .build()
+    .unwrap();
+    let e = m0
+        .edges()
+        .find(|&e| {
+            m0.edge_vertices(e)
+                .iter()
+                .all(|&v| !m0.is_boundary_vertex(v))
+        })
+        .unwrap();
+    let mut m = m0.clone();
+    let h = e.halfedge(0);
+    let mid = m.edge_midpoint(e);
+    let rec = m.collapse_edge(h, mid).unwrap();
+    m.validate().unwrap();
+    assert_eq!(
+        (m.vertex_count(), m.edge_count(), m.face_count()),
+        (15, 23, 9)
+    );
+    assert_eq!(
+        m.faces().filter(|&f| m.face_degree(f) == 3).count(),
+        2,
+        "the two quads beside the edge became triangles"
+    );
+    m.split_vertex(rec.kept, rec.first, rec.last, rec.removed_position)
+        .unwrap();
+    m.set_position(rec.kept, rec.kept_position);
+    m.validate().unwrap();
+    let shape = |m: &HalfEdgeMesh| {
+        let mut polys: Vec<Vec<(i64, i64)>> = m
+            .faces()
+            .map(|f| {
+                let mut p: Vec<(i64, i64)> = m
+                    .face_vertices(f)
+                    .map(|v| {
+                        (
+                            (m.position(v).x * 1e6).round() as i64,
+                            (m.position(v).z * 1e6).round() as i64,
+                        )
+                    })
+                    .collect();
+                let k = p.iter().enumerate().min_by_key(|(_, x)| **x).unwrap().0;
+                p.rotate_left(k);
+                p
+            })
+            .collect();
+        polys.sort();
+        polys
+    };
+    assert_eq!(shape(&m), shape(&m0), "the same polygons again (new ids)");
+    // Triangles beside an edge refuse; so does a pinch between two boundaries.
+    let mut ico = Primitive::IcoSphere {
+        subdivisions: 0,
+        radius: 1.0,
+    }
+    .build()
+    .unwrap();
+    assert_eq!(
+        ico.collapse_edge(EdgeId(0).halfedge(0), DVec3::ZERO),
+        Err(EulerError::Degenerate)
+    );
 }

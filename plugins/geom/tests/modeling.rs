@@ -246,3 +246,34 @@ fn make_hole_then_fill_restores_and_counts_change_by_one_face() {
     assert!(m.volume() > 0.0);
     assert!(!recalculate_normals_outward(&mut m));
 }
+
+#[test]
+fn collapse_edges_merges_each_edge_into_its_midpoint() {
+    use hedra_geom::modeling::collapse_edges;
+    let mut g = Primitive::Grid {
+        x_segments: 3,
+        z_segments: 3,
+        size: 3.0,
+    }
+    .build()
+    .unwrap();
+    let e = g
+        .edges()
+        .find(|&e| g.edge_vertices(e).iter().all(|&v| !g.is_boundary_vertex(v)))
+        .unwrap();
+    let mid = g.edge_midpoint(e);
+    let kept = collapse_edges(&mut g, &[e]).unwrap();
+    g.validate().unwrap();
+    assert_eq!(g.vertex_count(), 15);
+    assert_eq!(g.position(kept[0]), mid);
+    // A triangle beside the edge would vanish: refused, unchanged.
+    let mut ico = Primitive::IcoSphere {
+        subdivisions: 0,
+        radius: 1.0,
+    }
+    .build()
+    .unwrap();
+    let before = ico.clone();
+    assert!(collapse_edges(&mut ico, &[EdgeId(0)]).is_err());
+    assert_eq!(ico, before);
+}
