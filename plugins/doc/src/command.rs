@@ -198,6 +198,11 @@ pub enum Command {
         node: NodeRef,
         edges: EdgeSet,
     },
+    /// Collapses each edge into a vertex at its midpoint.
+    CollapseEdges {
+        node: NodeRef,
+        edges: EdgeSet,
+    },
 }
 
 fn one() -> u32 {
@@ -286,6 +291,7 @@ impl Command {
             Command::RecalculateNormals { .. } => "Recalculate Normals".to_string(),
             Command::MakeHoles { .. } => "Delete Faces".to_string(),
             Command::FillHoles { .. } => "Fill".to_string(),
+            Command::CollapseEdges { .. } => "Collapse Edges".to_string(),
         }
     }
 }
@@ -793,6 +799,12 @@ impl Plan<'_> {
                 self.model(node, |m| {
                     let es = edges.resolve(m).map_err(|e| e.0)?;
                     Ok(modeling::fill_holes(m, &es).map(|_| ()))
+                })?;
+            }
+            Command::CollapseEdges { node, edges } => {
+                self.model(node, |m| {
+                    let es = edges.resolve(m).map_err(|e| e.0)?;
+                    Ok(modeling::collapse_edges(m, &es).map(|_| ()))
                 })?;
             }
             Command::FlipNormals { node } => {

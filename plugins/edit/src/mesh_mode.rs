@@ -634,6 +634,16 @@ pub fn edit_shortcuts(
             mode.tool = Some(start(MeshToolKind::Inset));
         }
     }
+    if keys.just_pressed(KeyCode::KeyM) {
+        if mode.selection.edges.is_empty() {
+            status.error("Collapse: select edges (press 2 for edge mode)");
+        } else {
+            requests.write(DocRequest::Execute(Command::CollapseEdges {
+                node: node.clone(),
+                edges: EdgeSet::Ids(mode.selection.edges.iter().map(|e| e.0).collect()),
+            }));
+        }
+    }
     if keys.just_pressed(KeyCode::KeyJ) {
         let vs: Vec<u32> = mode.selection.vertices.iter().map(|v| v.0).collect();
         if vs.len() == 2 {
