@@ -425,14 +425,21 @@ pub fn render_mesh(mesh: &HalfEdgeMesh, shading: Shading) -> Mesh {
             for f in mesh.faces() {
                 let n = mesh.face_normal(f).as_vec3().to_array();
                 let base = positions.len() as u32;
-                let mut local = HashMap::new();
-                for v in mesh.face_vertices(f) {
-                    local.insert(v, positions.len() as u32 - base);
+                let corners: Vec<hedra_geom::VertexId> = mesh.face_vertices(f).collect();
+                for &v in &corners {
                     positions.push(mesh.position(v).as_vec3().to_array());
                     normals.push(n);
                 }
+                // Faces are small: find each triangle corner by a linear search.
+                let corner = |v: &hedra_geom::VertexId| {
+                    base + corners
+                        .iter()
+                        .position(|c| c == v)
+                        .expect("a triangle corner is a face corner")
+                        as u32
+                };
                 for tri in triangulate_face(mesh, f) {
-                    indices.extend(tri.iter().map(|v| base + local[v]));
+                    indices.extend(tri.iter().map(corner));
                 }
             }
         }

@@ -519,8 +519,13 @@ fn draw_edit_overlay(
     }
     let cam = *camera;
     let rotation = cam.rotation();
+    // Dense meshes: dots only for the selection, so the view stays fluid.
+    let dense = mesh.vertex_count() > 20_000;
     if mode.kind == ElementKind::Vertex {
-        for v in mesh.vertices() {
+        for v in mesh
+            .vertices()
+            .filter(|v| !dense || sel.vertices.contains(v))
+        {
             let p = at(v);
             let r = cam.translation().distance(p) * 0.004;
             let c = if sel.vertices.contains(&v) {
@@ -528,11 +533,13 @@ fn draw_edit_overlay(
             } else {
                 Color::srgb(0.05, 0.05, 0.05)
             };
-            gizmos.circle(Isometry3d::new(p, rotation), r, c);
+            gizmos
+                .circle(Isometry3d::new(p, rotation), r, c)
+                .resolution(8);
         }
     }
     if mode.kind == ElementKind::Face {
-        for f in mesh.faces() {
+        for f in mesh.faces().filter(|f| !dense || sel.faces.contains(f)) {
             let p = world.transform_point3(mesh.face_centroid(f)).as_vec3();
             let r = cam.translation().distance(p) * 0.003;
             let c = if sel.faces.contains(&f) {
@@ -540,7 +547,9 @@ fn draw_edit_overlay(
             } else {
                 Color::srgb(0.1, 0.1, 0.1)
             };
-            gizmos.circle(Isometry3d::new(p, rotation), r, c);
+            gizmos
+                .circle(Isometry3d::new(p, rotation), r, c)
+                .resolution(8);
         }
     }
 }
