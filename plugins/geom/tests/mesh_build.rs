@@ -372,3 +372,28 @@ fn corrupted_stored_mesh_is_refused_with_the_element_named() {
             .contains("positions")
     );
 }
+
+mod random_input {
+    use hedra_geom::{DVec3, HalfEdgeMesh};
+    use proptest::prelude::*;
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(300))]
+        /// Arbitrary polygon soups: the strict builder gives a valid mesh or
+        /// an error; the repairing builder always gives a valid mesh.
+        #[test]
+        fn any_polygon_soup_builds_valid_or_is_refused(
+            n in 1usize..12,
+            polys in prop::collection::vec(prop::collection::vec(0u32..14, 0..6), 0..14),
+        ) {
+            let positions: Vec<DVec3> = (0..n).map(|i| DVec3::new(i as f64, (i * i % 7) as f64, (i % 3) as f64)).collect();
+            if let Ok(m) = HalfEdgeMesh::from_polygons(&positions, &polys) {
+                prop_assert!(m.validate().is_ok());
+                prop_assert_eq!(m.face_count(), polys.len());
+            }
+            let (m, report) = HalfEdgeMesh::from_polygons_repaired(&positions, &polys).unwrap();
+            prop_assert!(m.validate().is_ok(), "{:?}", m.validate());
+            prop_assert_eq!(m.face_count() + report.dropped_faces.len(), polys.len());
+        }
+    }
+}
