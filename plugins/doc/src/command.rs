@@ -142,6 +142,13 @@ pub enum Command {
         faces: FaceSet,
         distance: f64,
     },
+    /// Extrudes faces as one region along their average normal; faces
+    /// inside the region stay joined.
+    ExtrudeRegion {
+        node: NodeRef,
+        faces: FaceSet,
+        distance: f64,
+    },
     /// Insets each face on its own: a border `thickness` wide, the inner face
     /// pushed by `depth` along the normal.
     InsetFaces {
@@ -281,6 +288,7 @@ impl Command {
                 "Move Vertices".to_string()
             }
             Command::ExtrudeFaces { .. } => "Extrude Faces".to_string(),
+            Command::ExtrudeRegion { .. } => "Extrude Region".to_string(),
             Command::InsetFaces { .. } => "Inset Faces".to_string(),
             Command::LoopCut { cuts, .. } => format!("Loop Cut ({cuts})"),
             Command::SubdivideEdges { .. } => "Subdivide Edges".to_string(),
@@ -716,6 +724,24 @@ impl Plan<'_> {
                         m.set_position(VertexId(i), p);
                     }
                     Ok(())
+                })?;
+            }
+            Command::ExtrudeRegion {
+                node,
+                faces,
+                distance,
+            } => {
+                self.model(node, |m| {
+                    let fs = faces.resolve(m).map_err(|e| e.0)?;
+                    let normal = fs
+                        .iter()
+                        .map(|&f| m.face_area_vector(f))
+                        .sum::<DVec3>()
+                        .normalize_or_zero();
+                    if normal == DVec3::ZERO {
+                        return Err("the faces' normals cancel out: no direction to extrude".into());
+                    }
+                    Ok(modeling::extrude_region(m, &fs, normal * *distance).map(|_| ()))
                 })?;
             }
             Command::ExtrudeFaces {

@@ -65,13 +65,19 @@ impl ElementSelection {
     pub fn is_empty(&self) -> bool {
         self.vertices.is_empty() && self.edges.is_empty() && self.faces.is_empty()
     }
-    /// Every vertex touched by the selection.
+    /// Every vertex touched by the selection (elements the mesh does not
+    /// have are skipped).
     pub fn all_vertices(&self, m: &HalfEdgeMesh) -> BTreeSet<VertexId> {
-        let mut out = self.vertices.clone();
-        for &e in &self.edges {
+        let mut out: BTreeSet<VertexId> = self
+            .vertices
+            .iter()
+            .copied()
+            .filter(|v| m.is_vertex(*v))
+            .collect();
+        for &e in self.edges.iter().filter(|e| m.is_edge(**e)) {
             out.extend(m.edge_vertices(e));
         }
-        for &f in &self.faces {
+        for &f in self.faces.iter().filter(|f| m.is_face(**f)) {
             out.extend(m.face_vertices(f));
         }
         out
@@ -88,6 +94,8 @@ impl ElementSelection {
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 pub enum MeshToolKind {
     Move,
+    /// Extrude the selected faces each on its own (Alt+E).
+    ExtrudeIndividual,
     Rotate,
     Scale,
     Extrude,
@@ -566,6 +574,14 @@ pub fn edit_shortcuts(
         }
         return;
     }
+    if a && keys.just_pressed(KeyCode::KeyE) {
+        if mode.selection.faces.is_empty() {
+            status.error("Extrude: select faces first (press 3 for face mode)");
+        } else {
+            mode.tool = Some(start(MeshToolKind::ExtrudeIndividual));
+        }
+        return;
+    }
     if keys.just_pressed(KeyCode::KeyN) && (a || s) {
         let cmd = if a {
             Command::FlipNormals { node: node.clone() }
@@ -765,13 +781,21 @@ fn tool_command(
                 .collect();
             Command::SetVertexPositions { node, positions }
         }
-        MeshToolKind::Extrude => {
+        MeshToolKind::Extrude | MeshToolKind::ExtrudeIndividual => {
             let distance = tool.typed.value().unwrap_or(drag);
             tool.readout = format!("Extrude {distance:.4}");
-            Command::ExtrudeFaces {
-                node,
-                faces: faces(),
-                distance,
+            if tool.kind == MeshToolKind::Extrude {
+                Command::ExtrudeRegion {
+                    node,
+                    faces: faces(),
+                    distance,
+                }
+            } else {
+                Command::ExtrudeFaces {
+                    node,
+                    faces: faces(),
+                    distance,
+                }
             }
         }
         MeshToolKind::Inset => {
@@ -908,6 +932,21 @@ pub fn drive_mesh_tool(
     let confirm = keys.any_just_pressed([KeyCode::Enter, KeyCode::NumpadEnter, KeyCode::Space])
         || buttons.just_pressed(MouseButton::Left);
     if confirm {
+        // A region extrude makes new cap faces, allocated last: select them,
+        // as Blender keeps the extruded faces selected.
+        if tool.kind == MeshToolKind::Extrude {
+            if let Some(p) = &mode.preview {
+                let n = mode.selection.faces.len();
+                let caps: BTreeSet<FaceId> = p
+                    .faces()
+                    .collect::<Vec<_>>()
+                    .into_iter()
+                    .rev()
+                    .take(n)
+                    .collect();
+                mode.selection.faces = caps;
+            }
+        }
         mode.preview = None;
         mode.just_finished = true;
         let nothing =

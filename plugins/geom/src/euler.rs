@@ -70,7 +70,7 @@ pub struct Collapse {
 impl HalfEdgeMesh {
     // ----- allocation -------------------------------------------------------
 
-    fn alloc_vertex(&mut self, p: DVec3) -> VertexId {
+    pub(crate) fn alloc_vertex(&mut self, p: DVec3) -> VertexId {
         self.positions.push(p);
         self.vertex_out.push(NONE);
         self.vertex_dead.push(false);
@@ -78,7 +78,7 @@ impl HalfEdgeMesh {
         VertexId(self.positions.len() as u32 - 1)
     }
 
-    fn alloc_edge(&mut self, a: VertexId, b: VertexId) -> HalfEdgeId {
+    pub(crate) fn alloc_edge(&mut self, a: VertexId, b: VertexId) -> HalfEdgeId {
         let h = self.halfedges.len() as u32;
         self.halfedges.push(HalfEdgeRecord {
             origin: a.0,
@@ -97,14 +97,14 @@ impl HalfEdgeMesh {
         HalfEdgeId(h)
     }
 
-    fn alloc_face(&mut self, h: HalfEdgeId) -> FaceId {
+    pub(crate) fn alloc_face(&mut self, h: HalfEdgeId) -> FaceId {
         self.face_halfedge.push(h.0);
         self.face_dead.push(false);
         self.live_faces += 1;
         FaceId(self.face_halfedge.len() as u32 - 1)
     }
 
-    fn free_vertex(&mut self, v: VertexId) {
+    pub(crate) fn free_vertex(&mut self, v: VertexId) {
         self.live_vertices -= 1;
         if v.index() + 1 == self.positions.len() {
             self.positions.pop();
@@ -116,7 +116,7 @@ impl HalfEdgeMesh {
         }
     }
 
-    fn free_edge(&mut self, e: EdgeId) {
+    pub(crate) fn free_edge(&mut self, e: EdgeId) {
         self.live_edges -= 1;
         if e.index() + 1 == self.edge_dead.len() {
             self.halfedges.truncate(self.halfedges.len() - 2);
@@ -126,7 +126,7 @@ impl HalfEdgeMesh {
         }
     }
 
-    fn free_face(&mut self, f: FaceId) {
+    pub(crate) fn free_face(&mut self, f: FaceId) {
         self.live_faces -= 1;
         if f.index() + 1 == self.face_halfedge.len() {
             self.face_halfedge.pop();
@@ -137,24 +137,24 @@ impl HalfEdgeMesh {
     }
 
     #[inline]
-    fn link(&mut self, h: HalfEdgeId, n: HalfEdgeId) {
+    pub(crate) fn link(&mut self, h: HalfEdgeId, n: HalfEdgeId) {
         self.halfedges[h.index()].next = n.0;
         self.halfedges[n.index()].prev = h.0;
     }
 
     #[inline]
-    fn set_face(&mut self, h: HalfEdgeId, f: Option<FaceId>) {
+    pub(crate) fn set_face(&mut self, h: HalfEdgeId, f: Option<FaceId>) {
         self.halfedges[h.index()].face = f.map_or(NONE, |f| f.0);
     }
 
     #[inline]
-    fn set_origin(&mut self, h: HalfEdgeId, v: VertexId) {
+    pub(crate) fn set_origin(&mut self, h: HalfEdgeId, v: VertexId) {
         self.halfedges[h.index()].origin = v.0;
     }
 
     /// Re-establishes the vertex's stored half-edge: a boundary one if any,
     /// else `preferred` (an outgoing half-edge known to be live).
-    fn fix_vertex_halfedge(&mut self, v: VertexId, preferred: HalfEdgeId) {
+    pub(crate) fn fix_vertex_halfedge(&mut self, v: VertexId, preferred: HalfEdgeId) {
         self.vertex_out[v.index()] = preferred.0;
         let boundary = self
             .vertex_outgoing(v)

@@ -9,6 +9,7 @@ pub mod euler;
 pub mod ids;
 pub mod mesh;
 pub mod modeling;
+pub mod patch;
 pub mod primitives;
 pub mod query;
 pub mod topology;

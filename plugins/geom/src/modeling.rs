@@ -26,6 +26,8 @@ pub enum ModelingError {
         allowed: &'static str,
         value: String,
     },
+    #[error("the result would not be a valid mesh: {0}")]
+    Invalid(String),
     #[error(transparent)]
     Euler(#[from] EulerError),
 }
@@ -65,6 +67,79 @@ pub fn extrude_faces_individual(
         sides.extend(mesh.extrude_face(f, n * distance)?);
     }
     Ok(sides)
+}
+
+/// Extrudes a region of faces as one (Blender's E): the region is lifted by
+/// `offset`, side quads join its boundary to where it was, and faces inside
+/// the region stay joined. Vertices inside the region keep their ids; the
+/// boundary gets new vertices and the caps are new faces, returned in the
+/// order of `faces`. Built from [`HalfEdgeMesh::delete_faces`] and
+/// [`HalfEdgeMesh::add_face`]; the result is validated before it replaces
+/// the mesh.
+///
+/// # Errors
+/// [`ModelingError::Missing`], [`ModelingError::Parameter`] for a non-finite
+/// offset, [`ModelingError::Invalid`] when the region's shape cannot be
+/// extruded manifold (for example two regions touching at one vertex).
+pub fn extrude_region(
+    mesh: &mut HalfEdgeMesh,
+    faces: &[FaceId],
+    offset: DVec3,
+) -> Result<Vec<FaceId>, ModelingError> {
+    check_faces(mesh, faces)?;
+    if !offset.is_finite() {
+        return Err(ModelingError::Parameter {
+            what: "offset",
+            allowed: "finite",
+            value: format!("{offset:?}"),
+        });
+    }
+    let mut region: Vec<FaceId> = faces.to_vec();
+    region.sort();
+    region.dedup();
+    let in_region = |f: Option<FaceId>| f.is_some_and(|f| region.binary_search(&f).is_ok());
+    let boundary: Vec<(VertexId, VertexId)> = region
+        .iter()
+        .flat_map(|&f| mesh.face_halfedges(f))
+        .filter(|&h| !in_region(mesh.face(h.twin())))
+        .map(|h| (mesh.origin(h), mesh.target(h)))
+        .collect();
+    let polys: Vec<Vec<VertexId>> = faces
+        .iter()
+        .map(|&f| mesh.face_vertices(f).collect())
+        .collect();
+    let mut work = mesh.clone();
+    work.delete_faces(&region, true);
+    let mut copy = std::collections::HashMap::new();
+    let mut moved = std::collections::HashSet::new();
+    for p in &polys {
+        for &v in p {
+            if boundary.iter().any(|&(a, _)| a == v) {
+                if !copy.contains_key(&v) {
+                    copy.insert(v, work.add_vertex(work.position(v) + offset)?);
+                }
+            } else if moved.insert(v) {
+                work.set_position(v, work.position(v) + offset);
+            }
+        }
+    }
+    let lift = |v: VertexId| copy.get(&v).copied().unwrap_or(v);
+    let invalid = |why: String| ModelingError::Invalid(why);
+    for &(a, b) in &boundary {
+        work.add_face(&[a, b, lift(b), lift(a)])
+            .map_err(|e| invalid(format!("side of edge {a}-{b}: {e}")))?;
+    }
+    let mut caps = Vec::with_capacity(polys.len());
+    for p in &polys {
+        let lifted: Vec<VertexId> = p.iter().map(|&v| lift(v)).collect();
+        caps.push(
+            work.add_face(&lifted)
+                .map_err(|e| invalid(format!("cap: {e}")))?,
+        );
+    }
+    work.validate().map_err(|e| invalid(e.to_string()))?;
+    *mesh = work;
+    Ok(caps)
 }
 
 /// Insets each face on its own: a border of quads `thickness` wide inside

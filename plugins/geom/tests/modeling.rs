@@ -277,3 +277,96 @@ fn collapse_edges_merges_each_edge_into_its_midpoint() {
     assert!(collapse_edges(&mut ico, &[EdgeId(0)]).is_err());
     assert_eq!(ico, before);
 }
+
+#[test]
+fn region_extrude_keeps_the_region_joined() {
+    use hedra_geom::modeling::extrude_region;
+    // The 3x3 top of a loop-cut cube: extrude the middle row of three faces as one.
+    let mut g = Primitive::Grid {
+        x_segments: 3,
+        z_segments: 3,
+        size: 3.0,
+    }
+    .build()
+    .unwrap();
+    let row: Vec<FaceId> = g
+        .faces()
+        .filter(|&f| g.face_centroid(f).z.abs() < 0.1)
+        .collect();
+    assert_eq!(row.len(), 3);
+    let caps = extrude_region(&mut g, &row, DVec3::new(0.0, 1.0, 0.0)).unwrap();
+    g.validate().unwrap();
+    assert_eq!(caps.len(), 3);
+    // 8 boundary vertices of the row get copies; the row's 4 inner edges stay inside.
+    assert_eq!(g.vertex_count(), 16 + 8);
+    assert_eq!(g.face_count(), 9 + 8, "8 side quads around the row");
+    for &c in &caps {
+        assert!(
+            g.face_vertices(c)
+                .all(|v| (g.position(v).y - 1.0).abs() < 1e-12)
+        );
+        assert!(g.face_normal(c).abs_diff_eq(DVec3::Y, 1e-12));
+    }
+    // The caps are joined: the middle cap shares edges with both neighbours.
+    let shared = g
+        .face_neighbors(caps[1])
+        .filter(|n| caps.contains(n))
+        .count();
+    assert_eq!(shared, 2);
+    // A 2x2 block has an inner vertex: it keeps its id and moves with the caps.
+    let mut g = Primitive::Grid {
+        x_segments: 3,
+        z_segments: 3,
+        size: 3.0,
+    }
+    .build()
+    .unwrap();
+    let block: Vec<FaceId> = g
+        .faces()
+        .filter(|&f| g.face_centroid(f).x < 0.1 && g.face_centroid(f).z < 0.1)
+        .collect();
+    assert_eq!(block.len(), 4);
+    let inner = g
+        .vertices()
+        .find(|&v| block.iter().all(|&f| g.face_vertices(f).any(|x| x == v)))
+        .unwrap();
+    extrude_region(&mut g, &block, DVec3::new(0.0, 0.5, 0.0)).unwrap();
+    g.validate().unwrap();
+    assert!(
+        (g.position(inner).y - 0.5).abs() < 1e-12,
+        "the inner vertex moved with the region"
+    );
+    assert_eq!(
+        g.vertex_count(),
+        16 + 8,
+        "the 8 boundary vertices of the block were copied"
+    );
+    // On a closed cube the whole top extrudes to a 2x2x3 box.
+    let mut c = cube();
+    let t = top(&c);
+    extrude_region(&mut c, &[t], DVec3::Y).unwrap();
+    c.validate().unwrap();
+    assert!((c.volume() - 12.0).abs() < 1e-9);
+    assert_eq!(counts(&c), (12, 20, 10));
+}
+
+#[test]
+fn region_extrude_of_a_closed_mesh_stays_closed() {
+    use hedra_geom::modeling::{extrude_region, loop_cut};
+    let mut c = cube();
+    let e = c
+        .edges()
+        .find(|&e| {
+            let [a, b] = c.edge_vertices(e);
+            (c.position(a) - c.position(b)).y.abs() > 1.0
+        })
+        .unwrap();
+    loop_cut(&mut c, e, 2).unwrap();
+    let side: Vec<FaceId> = c.faces().filter(|&f| c.face_normal(f).x > 0.9).collect();
+    assert_eq!(side.len(), 3);
+    extrude_region(&mut c, &side, DVec3::new(0.25, 0.0, 0.0)).unwrap();
+    c.validate().unwrap();
+    let s = c.stats();
+    assert!(s.closed, "{s:?}");
+    assert_eq!(s.euler_characteristic, 2);
+}

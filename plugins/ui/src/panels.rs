@@ -1072,6 +1072,11 @@ fn topology_inspector(
             }
         });
     };
+    // The selection can briefly name elements of the next mesh (a tool that
+    // just confirmed): show only what this mesh has.
+    let mut live = sel.clone();
+    live.retain_live(m);
+    let sel = &live;
     let total = sel.vertices.len() + sel.edges.len() + sel.faces.len();
     if total != 1 {
         ui.label("Select exactly one vertex, edge or face to see its records; related elements are drawn in cyan.");
