@@ -158,6 +158,15 @@ pub enum Command {
         #[serde(default)]
         depth: f64,
     },
+    /// Insets faces as one region: a border `thickness` wide inside the
+    /// region's outline, the region pushed by `depth` along its normal.
+    InsetRegion {
+        node: NodeRef,
+        faces: FaceSet,
+        thickness: f64,
+        #[serde(default)]
+        depth: f64,
+    },
     /// Cuts `cuts` evenly spaced edge loops across the ring of quads through one edge.
     LoopCut {
         node: NodeRef,
@@ -290,6 +299,7 @@ impl Command {
             Command::ExtrudeFaces { .. } => "Extrude Faces".to_string(),
             Command::ExtrudeRegion { .. } => "Extrude Region".to_string(),
             Command::InsetFaces { .. } => "Inset Faces".to_string(),
+            Command::InsetRegion { .. } => "Inset Region".to_string(),
             Command::LoopCut { cuts, .. } => format!("Loop Cut ({cuts})"),
             Command::SubdivideEdges { .. } => "Subdivide Edges".to_string(),
             Command::ConnectVertices { .. } => "Connect Vertices".to_string(),
@@ -763,6 +773,17 @@ impl Plan<'_> {
                 self.model(node, |m| {
                     let fs = faces.resolve(m).map_err(|e| e.0)?;
                     Ok(modeling::inset_faces_individual(m, &fs, *thickness, *depth).map(|_| ()))
+                })?;
+            }
+            Command::InsetRegion {
+                node,
+                faces,
+                thickness,
+                depth,
+            } => {
+                self.model(node, |m| {
+                    let fs = faces.resolve(m).map_err(|e| e.0)?;
+                    Ok(modeling::inset_region(m, &fs, *thickness, *depth).map(|_| ()))
                 })?;
             }
             Command::LoopCut { node, edge, cuts } => {

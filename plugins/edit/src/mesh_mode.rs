@@ -96,6 +96,8 @@ pub enum MeshToolKind {
     Move,
     /// Extrude the selected faces each on its own (Alt+E).
     ExtrudeIndividual,
+    /// Inset the selected faces each on its own (Alt+I).
+    InsetIndividual,
     Rotate,
     Scale,
     Extrude,
@@ -574,6 +576,14 @@ pub fn edit_shortcuts(
         }
         return;
     }
+    if a && keys.just_pressed(KeyCode::KeyI) {
+        if mode.selection.faces.is_empty() {
+            status.error("Inset: select faces first (press 3 for face mode)");
+        } else {
+            mode.tool = Some(start(MeshToolKind::InsetIndividual));
+        }
+        return;
+    }
     if a && keys.just_pressed(KeyCode::KeyE) {
         if mode.selection.faces.is_empty() {
             status.error("Extrude: select faces first (press 3 for face mode)");
@@ -798,14 +808,23 @@ fn tool_command(
                 }
             }
         }
-        MeshToolKind::Inset => {
+        MeshToolKind::Inset | MeshToolKind::InsetIndividual => {
             let thickness = tool.typed.value().unwrap_or(drag.abs());
             tool.readout = format!("Inset thickness {thickness:.4}");
-            Command::InsetFaces {
-                node,
-                faces: faces(),
-                thickness,
-                depth: 0.0,
+            if tool.kind == MeshToolKind::Inset {
+                Command::InsetRegion {
+                    node,
+                    faces: faces(),
+                    thickness,
+                    depth: 0.0,
+                }
+            } else {
+                Command::InsetFaces {
+                    node,
+                    faces: faces(),
+                    thickness,
+                    depth: 0.0,
+                }
             }
         }
         MeshToolKind::LoopCut => {
@@ -934,7 +953,7 @@ pub fn drive_mesh_tool(
     if confirm {
         // A region extrude makes new cap faces, allocated last: select them,
         // as Blender keeps the extruded faces selected.
-        if tool.kind == MeshToolKind::Extrude {
+        if matches!(tool.kind, MeshToolKind::Extrude | MeshToolKind::Inset) {
             if let Some(p) = &mode.preview {
                 let n = mode.selection.faces.len();
                 let caps: BTreeSet<FaceId> = p

@@ -94,6 +94,75 @@ pub fn extrude_region(
             value: format!("{offset:?}"),
         });
     }
+    rebuild_region(mesh, faces, |_, p| p + offset, |_, p| p + offset)
+}
+
+/// Insets a region of faces as one (Blender's I): a border `thickness` wide
+/// runs inside the region's outline, and the region is pushed by `depth`
+/// along its average normal. Corners of the outline move along the bisector
+/// of their two outline edges by thickness / cos(half the turn), so the
+/// border keeps its width.
+///
+/// # Errors
+/// As [`extrude_region`]; thickness must be finite and not negative.
+pub fn inset_region(
+    mesh: &mut HalfEdgeMesh,
+    faces: &[FaceId],
+    thickness: f64,
+    depth: f64,
+) -> Result<Vec<FaceId>, ModelingError> {
+    check_faces(mesh, faces)?;
+    if !(thickness.is_finite() && thickness >= 0.0) || !depth.is_finite() {
+        return Err(ModelingError::Parameter {
+            what: "thickness and depth",
+            allowed: "finite, thickness >= 0",
+            value: format!("{thickness}, {depth}"),
+        });
+    }
+    let normal = faces
+        .iter()
+        .map(|&f| mesh.face_area_vector(f))
+        .sum::<DVec3>()
+        .normalize_or_zero();
+    let in_region = |f: Option<FaceId>| f.is_some_and(|f| faces.contains(&f));
+    // Inward normals (in the region's plane) of the outline edges at each corner.
+    let mut inward: std::collections::HashMap<VertexId, Vec<DVec3>> =
+        std::collections::HashMap::new();
+    for &f in faces {
+        for h in mesh
+            .face_halfedges(f)
+            .filter(|&h| !in_region(mesh.face(h.twin())))
+        {
+            let d =
+                (mesh.position(mesh.target(h)) - mesh.position(mesh.origin(h))).normalize_or_zero();
+            let n_edge = normal.cross(d);
+            for v in [mesh.origin(h), mesh.target(h)] {
+                inward.entry(v).or_default().push(n_edge);
+            }
+        }
+    }
+    let corner = |v: VertexId, p: DVec3| -> DVec3 {
+        let dirs = &inward[&v];
+        let bisector = dirs.iter().copied().sum::<DVec3>().normalize_or_zero();
+        let cos_half = if dirs.len() == 2 {
+            dirs[0].dot(bisector).max(1e-3)
+        } else {
+            1.0
+        };
+        p + bisector * (thickness / cos_half) + normal * depth
+    };
+    rebuild_region(mesh, faces, corner, |_, p| p + normal * depth)
+}
+
+/// Replaces a region of faces by caps over new outline vertices placed by
+/// `outline` and old inner vertices moved by `inner`, joined to the old
+/// outline by side quads: the shared core of region extrude and inset.
+fn rebuild_region(
+    mesh: &mut HalfEdgeMesh,
+    faces: &[FaceId],
+    outline: impl Fn(VertexId, DVec3) -> DVec3,
+    inner: impl Fn(VertexId, DVec3) -> DVec3,
+) -> Result<Vec<FaceId>, ModelingError> {
     let mut region: Vec<FaceId> = faces.to_vec();
     region.sort();
     region.dedup();
@@ -116,10 +185,12 @@ pub fn extrude_region(
         for &v in p {
             if boundary.iter().any(|&(a, _)| a == v) {
                 if !copy.contains_key(&v) {
-                    copy.insert(v, work.add_vertex(work.position(v) + offset)?);
+                    let at = outline(v, work.position(v));
+                    copy.insert(v, work.add_vertex(at)?);
                 }
             } else if moved.insert(v) {
-                work.set_position(v, work.position(v) + offset);
+                let at = inner(v, work.position(v));
+                work.set_position(v, at);
             }
         }
     }

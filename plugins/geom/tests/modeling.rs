@@ -370,3 +370,42 @@ fn region_extrude_of_a_closed_mesh_stays_closed() {
     assert!(s.closed, "{s:?}");
     assert_eq!(s.euler_characteristic, 2);
 }
+
+#[test]
+fn region_inset_keeps_a_border_of_the_given_width() {
+    use hedra_geom::modeling::inset_region;
+    // A 4x4 grid's central 2x2 block, inset by 0.1.
+    let mut g = Primitive::Grid {
+        x_segments: 4,
+        z_segments: 4,
+        size: 4.0,
+    }
+    .build()
+    .unwrap();
+    let block: Vec<FaceId> = g
+        .faces()
+        .filter(|&f| g.face_centroid(f).x.abs() < 1.0 && g.face_centroid(f).z.abs() < 1.0)
+        .collect();
+    assert_eq!(block.len(), 4);
+    let caps = inset_region(&mut g, &block, 0.1, 0.0).unwrap();
+    g.validate().unwrap();
+    // The caps' outline is the square max(|x|, |z|) = 0.9; the centre vertex stays.
+    for &c in &caps {
+        for v in g.face_vertices(c) {
+            let p = g.position(v);
+            let d = p.x.abs().max(p.z.abs());
+            assert!(
+                d < 1e-12
+                    || (d - 0.9).abs() < 1e-9
+                    || ((p.x.abs() < 1e-12 || p.z.abs() < 1e-12) && (d - 0.9).abs() < 1e-9),
+                "{p:?}"
+            );
+        }
+    }
+    assert_eq!(g.face_count(), 16 + 8, "8 border quads around the block");
+    let area: f64 = g.faces().map(|f| g.face_area_vector(f).length()).sum();
+    assert!(
+        (area - 16.0).abs() < 1e-9,
+        "an inset without depth keeps the area: {area}"
+    );
+}

@@ -775,7 +775,9 @@ fn adjust_last_window(
         command,
         Command::AddPrimitive { .. }
             | Command::ExtrudeFaces { .. }
+            | Command::ExtrudeRegion { .. }
             | Command::InsetFaces { .. }
+            | Command::InsetRegion { .. }
             | Command::LoopCut { .. }
             | Command::SubdivideEdges { .. }
     );
@@ -791,10 +793,14 @@ fn adjust_last_window(
         .show(ctx, |ui| {
             let changed = match &mut edited {
                 Command::AddPrimitive { primitive, .. } => primitive_editor(ui, primitive),
-                Command::ExtrudeFaces { distance, .. } => {
+                Command::ExtrudeFaces { distance, .. }
+                | Command::ExtrudeRegion { distance, .. } => {
                     number_row(ui, "Distance", distance, 0.01, -1e6..=1e6)
                 }
                 Command::InsetFaces {
+                    thickness, depth, ..
+                }
+                | Command::InsetRegion {
                     thickness, depth, ..
                 } => {
                     number_row(ui, "Thickness", thickness, 0.005, 0.0..=1e6)
