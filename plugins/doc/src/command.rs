@@ -219,6 +219,11 @@ pub enum Command {
         node: NodeRef,
         edges: EdgeSet,
     },
+    /// Joins two boundary loops (named by some of their edges) with quads.
+    BridgeLoops {
+        node: NodeRef,
+        edges: EdgeSet,
+    },
 }
 
 fn one() -> u32 {
@@ -310,6 +315,7 @@ impl Command {
             Command::MakeHoles { .. } => "Delete Faces".to_string(),
             Command::FillHoles { .. } => "Fill".to_string(),
             Command::CollapseEdges { .. } => "Collapse Edges".to_string(),
+            Command::BridgeLoops { .. } => "Bridge Edge Loops".to_string(),
         }
     }
 }
@@ -846,6 +852,12 @@ impl Plan<'_> {
                 self.model(node, |m| {
                     let es = edges.resolve(m).map_err(|e| e.0)?;
                     Ok(modeling::fill_holes(m, &es).map(|_| ()))
+                })?;
+            }
+            Command::BridgeLoops { node, edges } => {
+                self.model(node, |m| {
+                    let es = edges.resolve(m).map_err(|e| e.0)?;
+                    Ok(modeling::bridge_loops(m, &es).map(|_| ()))
                 })?;
             }
             Command::CollapseEdges { node, edges } => {

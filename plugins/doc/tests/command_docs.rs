@@ -41,7 +41,7 @@ fn every_command_example_in_the_docs_runs() {
         .collect();
     kinds.sort();
     kinds.dedup();
-    assert_eq!(kinds.len(), 30, "{kinds:?}");
+    assert_eq!(kinds.len(), 31, "{kinds:?}");
     let mut session = hedra_doc::Session::new();
     hedra_doc::script::run(&mut session, &commands, Path::new("docs/commands.md"))
         .unwrap_or_else(|e| panic!("{e}"));
@@ -53,6 +53,8 @@ fn every_command_example_in_the_docs_runs() {
     assert!(doc.find_by_name("Box.001").is_none());
     assert_eq!(session.history.done().len(), commands.len());
     // The mesh examples leave a valid block: 2 loop cuts, an extrusion and an inset on the top.
+    let bridge = doc.find_by_name("Bridge").unwrap().content.mesh().unwrap();
+    assert!(bridge.stats().closed, "the two squares became a closed box");
     let block = doc.find_by_name("Block").unwrap().content.mesh().unwrap();
     block.validate().unwrap();
     let s = block.stats();

@@ -10,9 +10,10 @@
 //! All of them keep V − E + F unchanged, so the Euler–Poincaré formula
 //! V − E + F − (L − F) = 2(S − H) holds after every step.
 //!
-//! Elements are allocated at the end of the id space; an inverse applied
-//! right after its operator frees them from the end again, so the arrays
-//! shrink back exactly (otherwise freed ids are marked dead, never reused).
+//! Elements are allocated at the end of the id space and freed by marking
+//! them dead, so an id is never handed out twice (until an explicit
+//! compaction): an inverse restores every live element with the same id and
+//! links, leaving the freed slots dead at the end.
 
 use crate::ids::{EdgeId, FaceId, HalfEdgeId, NONE, VertexId};
 use crate::mesh::{HalfEdgeMesh, HalfEdgeRecord};
@@ -104,36 +105,23 @@ impl HalfEdgeMesh {
         FaceId(self.face_halfedge.len() as u32 - 1)
     }
 
+    /// Marks a vertex dead; its id is never handed out again.
     pub(crate) fn free_vertex(&mut self, v: VertexId) {
         self.live_vertices -= 1;
-        if v.index() + 1 == self.positions.len() {
-            self.positions.pop();
-            self.vertex_out.pop();
-            self.vertex_dead.pop();
-        } else {
-            self.vertex_dead[v.index()] = true;
-            self.vertex_out[v.index()] = NONE;
-        }
+        self.vertex_dead[v.index()] = true;
+        self.vertex_out[v.index()] = NONE;
     }
 
+    /// Marks an edge dead; its ids are never handed out again.
     pub(crate) fn free_edge(&mut self, e: EdgeId) {
         self.live_edges -= 1;
-        if e.index() + 1 == self.edge_dead.len() {
-            self.halfedges.truncate(self.halfedges.len() - 2);
-            self.edge_dead.pop();
-        } else {
-            self.edge_dead[e.index()] = true;
-        }
+        self.edge_dead[e.index()] = true;
     }
 
+    /// Marks a face dead; its id is never handed out again.
     pub(crate) fn free_face(&mut self, f: FaceId) {
         self.live_faces -= 1;
-        if f.index() + 1 == self.face_halfedge.len() {
-            self.face_halfedge.pop();
-            self.face_dead.pop();
-        } else {
-            self.face_dead[f.index()] = true;
-        }
+        self.face_dead[f.index()] = true;
     }
 
     #[inline]

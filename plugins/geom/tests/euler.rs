@@ -85,9 +85,10 @@ fn mev_then_kev_restores_the_mesh() {
             assert!(m.same_as(&m0));
             assert_eq!(
                 m.vertex_capacity(),
-                m0.vertex_capacity(),
-                "freed from the end"
+                m0.vertex_capacity() + 1,
+                "the freed id stays dead, never reused"
             );
+            assert!(!m.is_vertex(w));
         }
     }
 }

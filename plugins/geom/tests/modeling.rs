@@ -409,3 +409,55 @@ fn region_inset_keeps_a_border_of_the_given_width() {
         "an inset without depth keeps the area: {area}"
     );
 }
+
+#[test]
+fn bridging_two_facing_squares_makes_a_closed_box() {
+    use hedra_geom::modeling::bridge_loops;
+    let p: Vec<DVec3> = [
+        (-1.0, -1.0, -1.0),
+        (1.0, -1.0, -1.0),
+        (1.0, -1.0, 1.0),
+        (-1.0, -1.0, 1.0),
+        (-1.0, 1.0, -1.0),
+        (1.0, 1.0, -1.0),
+        (1.0, 1.0, 1.0),
+        (-1.0, 1.0, 1.0),
+    ]
+    .iter()
+    .map(|&(x, y, z)| DVec3::new(x, y, z))
+    .collect();
+    // Bottom faces down, top faces up: two shells with one hole each.
+    let mut m = HalfEdgeMesh::from_polygons(&p, &[vec![0, 1, 2, 3], vec![4, 7, 6, 5]]).unwrap();
+    assert_eq!(m.shell_count(), 2);
+    let one_each: Vec<EdgeId> = m.boundary_loops().iter().map(|l| l[0].edge()).collect();
+    let quads = bridge_loops(&mut m, &one_each).unwrap();
+    m.validate().unwrap();
+    assert_eq!(quads.len(), 4);
+    let s = m.stats();
+    assert!(s.closed);
+    assert_eq!((s.vertices, s.edges, s.faces, s.shells), (8, 12, 6, 1));
+    assert!(
+        (m.volume() - 8.0).abs() < 1e-9,
+        "the sides face outwards: {}",
+        m.volume()
+    );
+    for &q in &quads {
+        assert!(
+            (m.face_area_vector(q).length() - 4.0).abs() < 1e-9,
+            "vertical sides, not twisted"
+        );
+    }
+    // Bridging needs two loops of equal length.
+    let mut g = Primitive::Grid {
+        x_segments: 2,
+        z_segments: 2,
+        size: 1.0,
+    }
+    .build()
+    .unwrap();
+    let e = g.edges().find(|&e| g.is_boundary_edge(e)).unwrap();
+    assert!(matches!(
+        bridge_loops(&mut g, &[e]),
+        Err(ModelingError::Parameter { .. })
+    ));
+}

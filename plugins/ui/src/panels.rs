@@ -240,6 +240,9 @@ fn menu_bar(ui: &mut egui::Ui, state: &mut UiState, model: &Model, events: &mut 
             ui.checkbox(&mut state.show_history, "Undo History");
         });
         ui.menu_button("Add", |ui| add_primitive_buttons(ui, events));
+        if let Some(node) = model.mode.node {
+            ui.menu_button("Mesh", |ui| mesh_menu(ui, node, &model.mode, events));
+        }
         ui.menu_button("Object", |ui| {
             let sel = model.selection.refs();
             let any = !sel.is_empty();
@@ -1156,4 +1159,112 @@ fn topology_inspector(
             "inspector-face",
         );
     }
+}
+
+/// Edit mode's Mesh menu: every tool on the current selection. Amounts start
+/// at sensible defaults and are changed in the Adjust Last window, as in
+/// Blender; the keys run the same tools interactively.
+fn mesh_menu(ui: &mut egui::Ui, node: NodeId, mode: &EditMode, events: &mut Vec<UiEvent>) {
+    use hedra_doc::{EdgeSet, FaceSet, VertexSet};
+    let sel = &mode.selection;
+    let faces = || FaceSet::Ids(sel.faces.iter().map(|f| f.0).collect());
+    let edges = || EdgeSet::Ids(sel.edges.iter().map(|e| e.0).collect());
+    let vertices = || VertexSet::Ids(sel.vertices.iter().map(|v| v.0).collect());
+    let n = NodeRef::from(node);
+    let (has_f, has_e, has_v) = (
+        !sel.faces.is_empty(),
+        !sel.edges.is_empty(),
+        !sel.vertices.is_empty(),
+    );
+    let mut item = |ui: &mut egui::Ui, label: &str, enabled: bool, cmd: &dyn Fn() -> Command| {
+        if ui.add_enabled(enabled, egui::Button::new(label)).clicked() {
+            exec(events, cmd());
+            ui.close();
+        }
+    };
+    ui.label(egui::RichText::new("Faces").weak());
+    item(ui, "Extrude Region\tE", has_f, &|| Command::ExtrudeRegion {
+        node: n.clone(),
+        faces: faces(),
+        distance: 0.5,
+    });
+    item(ui, "Extrude Individual\tAlt+E", has_f, &|| {
+        Command::ExtrudeFaces {
+            node: n.clone(),
+            faces: faces(),
+            distance: 0.5,
+        }
+    });
+    item(ui, "Inset Region\tI", has_f, &|| Command::InsetRegion {
+        node: n.clone(),
+        faces: faces(),
+        thickness: 0.1,
+        depth: 0.0,
+    });
+    item(ui, "Inset Individual\tAlt+I", has_f, &|| {
+        Command::InsetFaces {
+            node: n.clone(),
+            faces: faces(),
+            thickness: 0.1,
+            depth: 0.0,
+        }
+    });
+    item(ui, "Delete Faces (keep edges)\tX", has_f, &|| {
+        Command::MakeHoles {
+            node: n.clone(),
+            faces: faces(),
+        }
+    });
+    ui.separator();
+    ui.label(egui::RichText::new("Edges").weak());
+    item(ui, "Loop Cut\tCtrl+R", sel.edges.len() == 1, &|| {
+        Command::LoopCut {
+            node: n.clone(),
+            edge: edges(),
+            cuts: 1,
+        }
+    });
+    item(ui, "Subdivide", has_e, &|| Command::SubdivideEdges {
+        node: n.clone(),
+        edges: edges(),
+        cuts: 1,
+    });
+    item(ui, "Bridge Edge Loops", has_e, &|| Command::BridgeLoops {
+        node: n.clone(),
+        edges: edges(),
+    });
+    item(ui, "Fill\tF", has_e, &|| Command::FillHoles {
+        node: n.clone(),
+        edges: edges(),
+    });
+    item(ui, "Collapse\tM", has_e, &|| Command::CollapseEdges {
+        node: n.clone(),
+        edges: edges(),
+    });
+    item(ui, "Dissolve Edges\tX", has_e, &|| Command::DissolveEdges {
+        node: n.clone(),
+        edges: edges(),
+    });
+    ui.separator();
+    ui.label(egui::RichText::new("Vertices").weak());
+    item(ui, "Connect\tJ", sel.vertices.len() == 2, &|| {
+        Command::ConnectVertices {
+            node: n.clone(),
+            vertices: vertices(),
+        }
+    });
+    item(ui, "Dissolve Vertices\tX", has_v, &|| {
+        Command::DissolveVertices {
+            node: n.clone(),
+            vertices: vertices(),
+        }
+    });
+    ui.separator();
+    ui.label(egui::RichText::new("Normals").weak());
+    item(ui, "Flip\tAlt+N", true, &|| Command::FlipNormals {
+        node: n.clone(),
+    });
+    item(ui, "Recalculate Outside\tShift+N", true, &|| {
+        Command::RecalculateNormals { node: n.clone() }
+    });
 }
