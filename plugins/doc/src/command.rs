@@ -219,6 +219,11 @@ pub enum Command {
         node: NodeRef,
         edges: EdgeSet,
     },
+    /// Merges vertices joined by edges into one at their centre.
+    MergeVertices {
+        node: NodeRef,
+        vertices: VertexSet,
+    },
     /// Joins two boundary loops (named by some of their edges) with quads.
     BridgeLoops {
         node: NodeRef,
@@ -316,6 +321,7 @@ impl Command {
             Command::FillHoles { .. } => "Fill".to_string(),
             Command::CollapseEdges { .. } => "Collapse Edges".to_string(),
             Command::BridgeLoops { .. } => "Bridge Edge Loops".to_string(),
+            Command::MergeVertices { .. } => "Merge at Center".to_string(),
         }
     }
 }
@@ -852,6 +858,12 @@ impl Plan<'_> {
                 self.model(node, |m| {
                     let es = edges.resolve(m).map_err(|e| e.0)?;
                     Ok(modeling::fill_holes(m, &es).map(|_| ()))
+                })?;
+            }
+            Command::MergeVertices { node, vertices } => {
+                self.model(node, |m| {
+                    let vs = vertices.resolve(m).map_err(|e| e.0)?;
+                    Ok(modeling::merge_at_center(m, &vs).map(|_| ()))
                 })?;
             }
             Command::BridgeLoops { node, edges } => {

@@ -660,7 +660,16 @@ pub fn edit_shortcuts(
             mode.tool = Some(start(MeshToolKind::Inset));
         }
     }
-    if keys.just_pressed(KeyCode::KeyM) {
+    if keys.just_pressed(KeyCode::KeyM) && mode.kind == ElementKind::Vertex {
+        if mode.selection.vertices.len() < 2 {
+            status.error("Merge: select two or more vertices joined by edges");
+        } else {
+            requests.write(DocRequest::Execute(Command::MergeVertices {
+                node: node.clone(),
+                vertices: VertexSet::Ids(mode.selection.vertices.iter().map(|v| v.0).collect()),
+            }));
+        }
+    } else if keys.just_pressed(KeyCode::KeyM) {
         if mode.selection.edges.is_empty() {
             status.error("Collapse: select edges (press 2 for edge mode)");
         } else {

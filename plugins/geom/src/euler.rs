@@ -533,6 +533,137 @@ impl HalfEdgeMesh {
         Ok(record)
     }
 
+    /// Edge collapse that also removes the triangles beside the edge (the
+    /// general form of seed 004's progressive-mesh collapse, pmp-library's
+    /// `collapse` with its link condition): the end vertex of `h` merges
+    /// into its start, which goes to `p`; each triangle beside the edge
+    /// disappears with one of its other edges. ΔV = −1, ΔE = −1 − t,
+    /// ΔF = −t for t triangles (0, 1 or 2).
+    ///
+    /// Inverse: [`split_vertex`](Self::split_vertex), then
+    /// [`make_edge_face`](Self::make_edge_face) for each removed triangle.
+    ///
+    /// # Errors
+    /// As [`collapse_edge`](Self::collapse_edge), except that triangles are
+    /// allowed; [`EulerError::Degenerate`] when both sides are triangles on
+    /// the same apex or a triangle's other edges are both on a boundary.
+    pub fn collapse_edge_removing_triangles(
+        &mut self,
+        h: HalfEdgeId,
+        p: DVec3,
+    ) -> Result<VertexId, EulerError> {
+        self.check_halfedge(h)?;
+        if !p.is_finite() {
+            return Err(EulerError::NonFinite);
+        }
+        let t = h.twin();
+        let (a, b) = (self.origin(h), self.target(h));
+        if self.face(h) == self.face(t) {
+            return Err(EulerError::SameFace { edge: h.edge() });
+        }
+        let apex = |x: HalfEdgeId| -> Option<VertexId> {
+            (self.face(x).is_some() && self.loop_from(x).count() == 3)
+                .then(|| self.target(self.next(x)))
+        };
+        let (vl, vr) = (apex(h), apex(t));
+        if vl.is_some() && vl == vr {
+            return Err(EulerError::Degenerate);
+        }
+        for x in [h, t] {
+            if apex(x).is_some() {
+                let (x1, x2) = (self.next(x), self.next(self.next(x)));
+                if self.is_boundary_halfedge(x1.twin()) && self.is_boundary_halfedge(x2.twin()) {
+                    return Err(EulerError::Degenerate);
+                }
+            }
+        }
+        if self.vertex_neighbors(a).filter(|&n| n == b).count() > 1 {
+            return Err(EulerError::SelfLoop { vertex: a });
+        }
+        if self.vertex_neighbors(a).any(|n| {
+            n != b && Some(n) != vl && Some(n) != vr && self.vertex_neighbors(b).any(|m| m == n)
+        }) {
+            return Err(EulerError::SharedNeighbours { a, b });
+        }
+        if self.is_boundary_vertex(a)
+            && self.is_boundary_vertex(b)
+            && !self.is_boundary_edge(h.edge())
+        {
+            return Err(EulerError::BoundaryEdge { edge: h.edge() });
+        }
+        // No interior vertex may drop below valence 3 (a tetrahedron would
+        // fold into two triangles glued along all their edges).
+        let mut merged: Vec<VertexId> = self
+            .vertex_neighbors(a)
+            .chain(self.vertex_neighbors(b))
+            .filter(|&n| n != a && n != b)
+            .collect();
+        merged.sort();
+        merged.dedup();
+        let interior = |v: VertexId| !self.is_boundary_vertex(v);
+        if merged.len() < 3 && interior(a) && interior(b) {
+            return Err(EulerError::Degenerate);
+        }
+        if [vl, vr]
+            .into_iter()
+            .flatten()
+            .any(|v| interior(v) && self.vertex_valence(v) <= 3)
+        {
+            return Err(EulerError::Degenerate);
+        }
+        let (tri_h, tri_t) = (vl.is_some(), vr.is_some());
+        let mut candidates: Vec<HalfEdgeId> = self.vertex_outgoing(a).filter(|&o| o != h).collect();
+        let moved: Vec<HalfEdgeId> = self.vertex_outgoing(b).filter(|&o| o != t).collect();
+        candidates.extend(&moved);
+        for &o in &moved {
+            self.set_origin(o, a);
+        }
+        let (ph, nh, pt, nt) = (self.prev(h), self.next(h), self.prev(t), self.next(t));
+        self.link(ph, nh);
+        self.link(pt, nt);
+        for (x, replacement) in [(h, nh), (t, nt)] {
+            if let Some(f) = self.face(x) {
+                if self.face_halfedge[f.index()] == x.0 {
+                    self.face_halfedge[f.index()] = replacement.0;
+                }
+            }
+        }
+        self.free_edge(h.edge());
+        self.free_vertex(b);
+        self.set_position(a, p);
+        // Each triangle is now a two-sided loop [h0, h1]: drop it and the edge
+        // of h0; h1 takes the place of h0's twin in the face beyond.
+        for (is_tri, h0) in [(tri_h, nh), (tri_t, nt)] {
+            if !is_tri {
+                continue;
+            }
+            let h1 = self.next(h0);
+            let o0 = h0.twin();
+            let gone = self.face(h0).expect("the loop is a face");
+            let (on, op) = (self.next(o0), self.prev(o0));
+            self.link(h1, on);
+            self.link(op, h1);
+            self.set_face(h1, self.face(o0));
+            if let Some(fo) = self.face(o0) {
+                if self.face_halfedge[fo.index()] == o0.0 {
+                    self.face_halfedge[fo.index()] = h1.0;
+                }
+            }
+            // h1 runs from the triangle's apex to `a`; `a` is fixed below.
+            let apex_vertex = self.origin(h1);
+            self.free_edge(h0.edge());
+            self.free_face(gone);
+            self.fix_vertex_halfedge(apex_vertex, h1);
+        }
+        if let Some(o) = candidates
+            .into_iter()
+            .find(|&o| self.is_halfedge(o) && self.origin(o) == a)
+        {
+            self.fix_vertex_halfedge(a, o);
+        }
+        Ok(a)
+    }
+
     /// Vertex split, the inverse of [`collapse_edge`](Self::collapse_edge): the
     /// outgoing half-edges of `v` from `first` to `last` (in fan order) move to
     /// a new vertex at `p`, joined to `v` by a new edge; the faces of `last`

@@ -587,10 +587,54 @@ pub fn collapse_edges(
             continue; // removed by an earlier collapse of this call
         }
         let mid = work.edge_midpoint(e);
-        kept.push(work.collapse_edge(e.halfedge(0), mid)?.kept);
+        kept.push(work.collapse_edge_removing_triangles(e.halfedge(0), mid)?);
     }
     *mesh = work;
     Ok(kept)
+}
+
+/// Merges vertices joined by edges into one at their centre (Blender's
+/// M ▸ At Center), collapsing the edges between them; faces that shrink to
+/// nothing disappear.
+///
+/// # Errors
+/// [`ModelingError::Empty`] for fewer than two vertices,
+/// [`ModelingError::NotConnectable`] when the vertices are not all joined
+/// by edges among themselves, or the reason a collapse was refused; the
+/// mesh is unchanged on error.
+pub fn merge_at_center(
+    mesh: &mut HalfEdgeMesh,
+    vertices: &[VertexId],
+) -> Result<VertexId, ModelingError> {
+    if vertices.len() < 2 {
+        return Err(ModelingError::Empty("merging needs at least two vertices"));
+    }
+    if let Some(v) = vertices.iter().find(|v| !mesh.is_vertex(**v)) {
+        return Err(ModelingError::Missing(v.to_string()));
+    }
+    let center = vertices.iter().map(|&v| mesh.position(v)).sum::<DVec3>() / vertices.len() as f64;
+    let mut work = mesh.clone();
+    let mut alive: Vec<VertexId> = vertices.to_vec();
+    alive.sort();
+    alive.dedup();
+    while alive.len() > 1 {
+        let edge = work.edges().find(|&e| {
+            work.edge_vertices(e)
+                .iter()
+                .all(|v| alive.binary_search(v).is_ok())
+        });
+        let Some(e) = edge else {
+            return Err(ModelingError::NotConnectable {
+                a: alive[0],
+                b: alive[1],
+            });
+        };
+        work.collapse_edge_removing_triangles(e.halfedge(0), center)?;
+        alive.retain(|&v| work.is_vertex(v));
+    }
+    work.set_position(alive[0], center);
+    *mesh = work;
+    Ok(alive[0])
 }
 
 /// Reverses the orientation of every face (flip normals). Connectivity is

@@ -250,6 +250,7 @@ enum Op {
     Hole(usize),
     Fill(usize),
     Collapse(usize),
+    CollapseAny(usize),
     SplitVertex(usize, usize, usize),
 }
 
@@ -265,6 +266,7 @@ fn arb_op() -> impl Strategy<Value = Op> {
         any::<usize>().prop_map(Op::Hole),
         any::<usize>().prop_map(Op::Fill),
         any::<usize>().prop_map(Op::Collapse),
+        any::<usize>().prop_map(Op::CollapseAny),
         (any::<usize>(), any::<usize>(), any::<usize>())
             .prop_map(|(a, b, c)| Op::SplitVertex(a, b, c)),
     ]
@@ -310,6 +312,11 @@ fn apply(m: &mut HalfEdgeMesh, op: &Op) -> Result<(), EulerError> {
             let h = pick(&m.halfedges().collect::<Vec<_>>(), a).unwrap();
             let p = m.edge_midpoint(h.edge());
             m.collapse_edge(h, p).map(|_| ())
+        }
+        Op::CollapseAny(a) => {
+            let h = pick(&m.halfedges().collect::<Vec<_>>(), a).unwrap();
+            let p = m.edge_midpoint(h.edge());
+            m.collapse_edge_removing_triangles(h, p).map(|_| ())
         }
         Op::SplitVertex(a, b, c) => {
             let v = pick(&verts, a).unwrap();
@@ -457,5 +464,47 @@ fn collapse_then_split_restores_the_shape() {
     assert_eq!(
         ico.collapse_edge(EdgeId(0).halfedge(0), DVec3::ZERO),
         Err(EulerError::Degenerate)
+    );
+}
+
+#[test]
+fn collapse_removing_triangles_on_triangle_meshes() {
+    let mut m = Primitive::IcoSphere {
+        subdivisions: 1,
+        radius: 1.0,
+    }
+    .build()
+    .unwrap();
+    let (v, e, f) = (m.vertex_count(), m.edge_count(), m.face_count());
+    let h = m.halfedges().next().unwrap();
+    let mid = m.edge_midpoint(h.edge());
+    let kept = m.collapse_edge_removing_triangles(h, mid).unwrap();
+    m.validate().unwrap();
+    assert_eq!(
+        (m.vertex_count(), m.edge_count(), m.face_count()),
+        (v - 1, e - 3, f - 2)
+    );
+    assert_eq!(m.position(kept), mid);
+    assert!(m.stats().closed);
+    // Collapsing down to a tetrahedron is as far as it goes.
+    let mut steps = 0;
+    loop {
+        let Some(h) = m.halfedges().find(|&h| {
+            m.clone()
+                .collapse_edge_removing_triangles(h, DVec3::ZERO)
+                .is_ok()
+        }) else {
+            break;
+        };
+        let p = m.edge_midpoint(h.edge());
+        m.collapse_edge_removing_triangles(h, p).unwrap();
+        m.validate().unwrap();
+        steps += 1;
+        assert!(steps < 100);
+    }
+    assert_eq!(
+        (m.vertex_count(), m.face_count()),
+        (4, 4),
+        "a tetrahedron is left"
     );
 }

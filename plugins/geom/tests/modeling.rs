@@ -266,16 +266,26 @@ fn collapse_edges_merges_each_edge_into_its_midpoint() {
     g.validate().unwrap();
     assert_eq!(g.vertex_count(), 15);
     assert_eq!(g.position(kept[0]), mid);
-    // A triangle beside the edge would vanish: refused, unchanged.
+    // Triangles beside the edge vanish with it: an icosahedron loses 1 V, 3 E, 2 F.
     let mut ico = Primitive::IcoSphere {
         subdivisions: 0,
         radius: 1.0,
     }
     .build()
     .unwrap();
-    let before = ico.clone();
-    assert!(collapse_edges(&mut ico, &[EdgeId(0)]).is_err());
-    assert_eq!(ico, before);
+    collapse_edges(&mut ico, &[EdgeId(0)]).unwrap();
+    ico.validate().unwrap();
+    assert_eq!(counts(&ico), (11, 27, 18));
+    // A tetrahedron cannot lose an edge (it would fold flat): refused, unchanged.
+    let p = [DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z];
+    let mut tet = HalfEdgeMesh::from_polygons(
+        &p,
+        &[vec![0, 2, 1], vec![0, 1, 3], vec![0, 3, 2], vec![1, 2, 3]],
+    )
+    .unwrap();
+    let before = tet.clone();
+    assert!(collapse_edges(&mut tet, &[EdgeId(0)]).is_err());
+    assert_eq!(tet, before);
 }
 
 #[test]
@@ -460,4 +470,36 @@ fn bridging_two_facing_squares_makes_a_closed_box() {
         bridge_loops(&mut g, &[e]),
         Err(ModelingError::Parameter { .. })
     ));
+}
+
+#[test]
+fn merge_at_center_joins_a_patch_into_one_vertex() {
+    use hedra_geom::modeling::merge_at_center;
+    let mut g = Primitive::Grid {
+        x_segments: 3,
+        z_segments: 3,
+        size: 3.0,
+    }
+    .build()
+    .unwrap();
+    let inner: Vec<VertexId> = g.vertices().filter(|&v| !g.is_boundary_vertex(v)).collect();
+    assert_eq!(inner.len(), 4);
+    let v = merge_at_center(&mut g, &inner).unwrap();
+    g.validate().unwrap();
+    assert!(g.position(v).length() < 1e-12, "at the centre");
+    assert_eq!(g.vertex_count(), 13);
+    assert_eq!(
+        g.face_count(),
+        8,
+        "the middle quad is gone; its four neighbours became triangles"
+    );
+    assert_eq!(g.vertex_valence(v), 8);
+    // Vertices that no edge joins are refused; nothing changes.
+    let mut c = cube();
+    let before = c.clone();
+    assert!(matches!(
+        merge_at_center(&mut c, &[VertexId(0), VertexId(7)]),
+        Err(ModelingError::NotConnectable { .. })
+    ));
+    assert_eq!(c, before);
 }

@@ -1253,6 +1253,12 @@ fn mesh_menu(ui: &mut egui::Ui, node: NodeId, mode: &EditMode, events: &mut Vec<
             vertices: vertices(),
         }
     });
+    item(ui, "Merge at Center\tM", sel.vertices.len() >= 2, &|| {
+        Command::MergeVertices {
+            node: n.clone(),
+            vertices: vertices(),
+        }
+    });
     item(ui, "Dissolve Vertices\tX", has_v, &|| {
         Command::DissolveVertices {
             node: n.clone(),
