@@ -219,6 +219,13 @@ pub enum Command {
         node: NodeRef,
         edges: EdgeSet,
     },
+    /// Extrudes boundary edges: a quad on each edge's open side, reaching to
+    /// copies of its ends moved by `offset`.
+    ExtrudeEdges {
+        node: NodeRef,
+        edges: EdgeSet,
+        offset: DVec3,
+    },
     /// Merges vertices joined by edges into one at their centre.
     MergeVertices {
         node: NodeRef,
@@ -322,6 +329,7 @@ impl Command {
             Command::CollapseEdges { .. } => "Collapse Edges".to_string(),
             Command::BridgeLoops { .. } => "Bridge Edge Loops".to_string(),
             Command::MergeVertices { .. } => "Merge at Center".to_string(),
+            Command::ExtrudeEdges { .. } => "Extrude Edges".to_string(),
         }
     }
 }
@@ -858,6 +866,16 @@ impl Plan<'_> {
                 self.model(node, |m| {
                     let es = edges.resolve(m).map_err(|e| e.0)?;
                     Ok(modeling::fill_holes(m, &es).map(|_| ()))
+                })?;
+            }
+            Command::ExtrudeEdges {
+                node,
+                edges,
+                offset,
+            } => {
+                self.model(node, |m| {
+                    let es = edges.resolve(m).map_err(|e| e.0)?;
+                    Ok(modeling::extrude_boundary_edges(m, &es, *offset).map(|_| ()))
                 })?;
             }
             Command::MergeVertices { node, vertices } => {

@@ -41,7 +41,7 @@ fn every_command_example_in_the_docs_runs() {
         .collect();
     kinds.sort();
     kinds.dedup();
-    assert_eq!(kinds.len(), 32, "{kinds:?}");
+    assert_eq!(kinds.len(), 33, "{kinds:?}");
     let mut session = hedra_doc::Session::new();
     hedra_doc::script::run(&mut session, &commands, Path::new("docs/commands.md"))
         .unwrap_or_else(|e| panic!("{e}"));
@@ -53,6 +53,12 @@ fn every_command_example_in_the_docs_runs() {
     assert!(doc.find_by_name("Box.001").is_none());
     assert_eq!(session.history.done().len(), commands.len());
     // The mesh examples leave a valid block: 2 loop cuts, an extrusion and an inset on the top.
+    let tray = doc.find_by_name("Tray").unwrap().content.mesh().unwrap();
+    assert_eq!(
+        (tray.vertex_count(), tray.face_count()),
+        (8, 5),
+        "a plane with four walls"
+    );
     let patch = doc.find_by_name("Patch").unwrap().content.mesh().unwrap();
     assert_eq!(
         (patch.vertex_count(), patch.face_count()),

@@ -96,6 +96,8 @@ pub enum MeshToolKind {
     Move,
     /// Extrude the selected faces each on its own (Alt+E).
     ExtrudeIndividual,
+    /// Extrude the selected boundary edges (E in edge mode), moved like G.
+    ExtrudeEdges,
     /// Inset the selected faces each on its own (Alt+I).
     InsetIndividual,
     Rotate,
@@ -646,7 +648,13 @@ pub fn edit_shortcuts(
             }
         }
     }
-    if keys.just_pressed(KeyCode::KeyE) && !s {
+    if keys.just_pressed(KeyCode::KeyE) && !s && mode.kind == ElementKind::Edge {
+        if mode.selection.edges.is_empty() {
+            status.error("Extrude: select boundary edges first");
+        } else {
+            mode.tool = Some(start(MeshToolKind::ExtrudeEdges));
+        }
+    } else if keys.just_pressed(KeyCode::KeyE) && !s {
         if mode.selection.faces.is_empty() {
             status.error("Extrude: select faces first (press 3 for face mode)");
         } else {
@@ -732,7 +740,7 @@ fn tool_command(
     let drag = (cursor - tool.start_cursor).x as f64 * pixel_size;
     let faces = || FaceSet::Ids(selection.faces.iter().map(|f| f.0).collect());
     match tool.kind {
-        MeshToolKind::Move => {
+        MeshToolKind::Move | MeshToolKind::ExtrudeEdges => {
             let world_delta = if let Some(v) = tool.typed.value() {
                 tool.axis.unwrap_or(Axis::X).vector() * v
             } else {
@@ -749,11 +757,24 @@ fn tool_command(
                     _ => DVec3::ZERO,
                 }
             };
+            let verb = if tool.kind == MeshToolKind::Move {
+                "Move"
+            } else {
+                "Extrude edges"
+            };
             tool.readout = format!(
-                "Move ({:.4}, {:.4}, {:.4})",
+                "{verb} ({:.4}, {:.4}, {:.4})",
                 world_delta.x, world_delta.y, world_delta.z
             );
             let offset = world.inverse().transform_vector3(world_delta);
+            if tool.kind == MeshToolKind::ExtrudeEdges {
+                let edges = EdgeSet::Ids(selection.edges.iter().map(|e| e.0).collect());
+                return Command::ExtrudeEdges {
+                    node,
+                    edges,
+                    offset,
+                };
+            }
             let vertices = selection
                 .all_vertices(mesh)
                 .into_iter()

@@ -739,3 +739,60 @@ pub fn bridge_loops(
     *mesh = work;
     Ok(out)
 }
+
+/// Extrudes boundary edges (Blender's E on edges of an open border): each
+/// gets a new quad on its open side, reaching to copies of its ends moved by
+/// `offset`; neighbouring edges share the copies. Returns the new faces.
+///
+/// # Errors
+/// [`ModelingError::NotBoundary`] for an edge with faces on both sides,
+/// [`ModelingError::Invalid`] when the quads cannot be added manifold; the
+/// mesh is unchanged on error.
+pub fn extrude_boundary_edges(
+    mesh: &mut HalfEdgeMesh,
+    edges: &[EdgeId],
+    offset: DVec3,
+) -> Result<Vec<FaceId>, ModelingError> {
+    if edges.is_empty() {
+        return Err(ModelingError::Empty("no edges"));
+    }
+    if !offset.is_finite() {
+        return Err(ModelingError::Parameter {
+            what: "offset",
+            allowed: "finite",
+            value: format!("{offset:?}"),
+        });
+    }
+    let mut sides = Vec::with_capacity(edges.len());
+    for &e in edges {
+        if !mesh.is_edge(e) {
+            return Err(ModelingError::Missing(e.to_string()));
+        }
+        let h = [e.halfedge(0), e.halfedge(1)]
+            .into_iter()
+            .find(|&h| mesh.is_boundary_halfedge(h))
+            .ok_or(ModelingError::NotBoundary { edge: e })?;
+        sides.push((mesh.origin(h), mesh.target(h)));
+    }
+    let mut work = mesh.clone();
+    let mut copy = std::collections::HashMap::new();
+    for &(x, y) in &sides {
+        for v in [x, y] {
+            if !copy.contains_key(&v) {
+                let c = work.add_vertex(work.position(v) + offset)?;
+                copy.insert(v, c);
+            }
+        }
+    }
+    let mut out = Vec::with_capacity(sides.len());
+    for &(x, y) in &sides {
+        let f = work
+            .add_face(&[x, y, copy[&y], copy[&x]])
+            .map_err(|e| ModelingError::Invalid(format!("edge {x}-{y}: {e}")))?;
+        out.push(f);
+    }
+    work.validate()
+        .map_err(|e| ModelingError::Invalid(e.to_string()))?;
+    *mesh = work;
+    Ok(out)
+}

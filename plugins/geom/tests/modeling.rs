@@ -503,3 +503,36 @@ fn merge_at_center_joins_a_patch_into_one_vertex() {
     ));
     assert_eq!(c, before);
 }
+
+#[test]
+fn extruding_the_border_of_a_plane_grows_a_wall() {
+    use hedra_geom::modeling::extrude_boundary_edges;
+    let mut p = Primitive::Plane { size: 2.0 }.build().unwrap();
+    let border: Vec<EdgeId> = p.edges().collect();
+    let walls = extrude_boundary_edges(&mut p, &border, DVec3::new(0.0, 1.0, 0.0)).unwrap();
+    p.validate().unwrap();
+    assert_eq!(walls.len(), 4);
+    assert_eq!(
+        counts(&p),
+        (8, 12, 5),
+        "an open box: the plane and four walls"
+    );
+    assert_eq!(p.boundary_loops().len(), 1);
+    // The walls sit on the plane's open side: an open box whose inside faces up.
+    for &w in &walls {
+        assert!(p.face_normal(w).y.abs() < 1e-12);
+    }
+    // Interior edges are refused.
+    let mut g = Primitive::Grid {
+        x_segments: 2,
+        z_segments: 2,
+        size: 1.0,
+    }
+    .build()
+    .unwrap();
+    let inner = g.edges().find(|&e| !g.is_boundary_edge(e)).unwrap();
+    assert_eq!(
+        extrude_boundary_edges(&mut g, &[inner], DVec3::Y),
+        Err(ModelingError::NotBoundary { edge: inner })
+    );
+}
