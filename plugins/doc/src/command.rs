@@ -226,6 +226,26 @@ pub enum Command {
         edges: EdgeSet,
         offset: DVec3,
     },
+    /// Merges faces into one by removing the edges between them.
+    DissolveFaces {
+        node: NodeRef,
+        faces: FaceSet,
+    },
+    /// Deletes faces with the edges and vertices only they use.
+    DeleteFaces {
+        node: NodeRef,
+        faces: FaceSet,
+    },
+    /// Deletes edges with the faces around them.
+    DeleteEdges {
+        node: NodeRef,
+        edges: EdgeSet,
+    },
+    /// Deletes vertices with the faces around them.
+    DeleteVertices {
+        node: NodeRef,
+        vertices: VertexSet,
+    },
     /// Merges vertices joined by edges into one at their centre.
     MergeVertices {
         node: NodeRef,
@@ -324,11 +344,15 @@ impl Command {
             Command::DissolveVertices { .. } => "Dissolve Vertices".to_string(),
             Command::FlipNormals { .. } => "Flip Normals".to_string(),
             Command::RecalculateNormals { .. } => "Recalculate Normals".to_string(),
-            Command::MakeHoles { .. } => "Delete Faces".to_string(),
+            Command::MakeHoles { .. } => "Delete Only Faces".to_string(),
             Command::FillHoles { .. } => "Fill".to_string(),
             Command::CollapseEdges { .. } => "Collapse Edges".to_string(),
             Command::BridgeLoops { .. } => "Bridge Edge Loops".to_string(),
             Command::MergeVertices { .. } => "Merge at Center".to_string(),
+            Command::DissolveFaces { .. } => "Dissolve Faces".to_string(),
+            Command::DeleteFaces { .. } => "Delete Faces".to_string(),
+            Command::DeleteEdges { .. } => "Delete Edges".to_string(),
+            Command::DeleteVertices { .. } => "Delete Vertices".to_string(),
             Command::ExtrudeEdges { .. } => "Extrude Edges".to_string(),
         }
     }
@@ -876,6 +900,38 @@ impl Plan<'_> {
                 self.model(node, |m| {
                     let es = edges.resolve(m).map_err(|e| e.0)?;
                     Ok(modeling::extrude_boundary_edges(m, &es, *offset).map(|_| ()))
+                })?;
+            }
+            Command::DissolveFaces { node, faces } => {
+                self.model(node, |m| {
+                    let fs = faces.resolve(m).map_err(|e| e.0)?;
+                    Ok(modeling::dissolve_faces(m, &fs).map(|_| ()))
+                })?;
+            }
+            Command::DeleteFaces { node, faces } => {
+                self.model(node, |m| {
+                    let fs = faces.resolve(m).map_err(|e| e.0)?;
+                    Ok(modeling::delete_faces(m, &fs))
+                })?;
+            }
+            Command::DeleteEdges { node, edges } => {
+                self.model(node, |m| {
+                    let es = edges.resolve(m).map_err(|e| e.0)?;
+                    let fs = modeling::faces_around_edges(m, &es);
+                    if fs.is_empty() {
+                        return Err("the edges have no faces to delete".into());
+                    }
+                    Ok(modeling::delete_faces(m, &fs))
+                })?;
+            }
+            Command::DeleteVertices { node, vertices } => {
+                self.model(node, |m| {
+                    let vs = vertices.resolve(m).map_err(|e| e.0)?;
+                    let fs = modeling::faces_around_vertices(m, &vs);
+                    if fs.is_empty() {
+                        return Err("the vertices have no faces to delete".into());
+                    }
+                    Ok(modeling::delete_faces(m, &fs))
                 })?;
             }
             Command::MergeVertices { node, vertices } => {

@@ -41,7 +41,7 @@ fn every_command_example_in_the_docs_runs() {
         .collect();
     kinds.sort();
     kinds.dedup();
-    assert_eq!(kinds.len(), 33, "{kinds:?}");
+    assert_eq!(kinds.len(), 37, "{kinds:?}");
     let mut session = hedra_doc::Session::new();
     hedra_doc::script::run(&mut session, &commands, Path::new("docs/commands.md"))
         .unwrap_or_else(|e| panic!("{e}"));
@@ -53,6 +53,19 @@ fn every_command_example_in_the_docs_runs() {
     assert!(doc.find_by_name("Box.001").is_none());
     assert_eq!(session.history.done().len(), commands.len());
     // The mesh examples leave a valid block: 2 loop cuts, an extrusion and an inset on the top.
+    let floor = doc.find_by_name("Floor").unwrap().content.mesh().unwrap();
+    assert_eq!(
+        (floor.face_count(), floor.vertex_count()),
+        (1, 12),
+        "the grid dissolved into its outline"
+    );
+    let crate_ = doc.find_by_name("Crate").unwrap().content.mesh().unwrap();
+    crate_.validate().unwrap();
+    assert_eq!(
+        crate_.face_count(),
+        0,
+        "a corner, an opposite edge's faces and the last face: all six gone"
+    );
     let tray = doc.find_by_name("Tray").unwrap().content.mesh().unwrap();
     assert_eq!(
         (tray.vertex_count(), tray.face_count()),

@@ -594,6 +594,15 @@ pub fn edit_shortcuts(
         }
         return;
     }
+    if c && keys.just_pressed(KeyCode::KeyX) {
+        match delete_or_dissolve(node.clone(), mode.kind, &mode.selection, true) {
+            Some(cmd) => {
+                requests.write(DocRequest::Execute(cmd));
+            }
+            None => status.error("Ctrl+X: select what to dissolve"),
+        }
+        return;
+    }
     if keys.just_pressed(KeyCode::KeyN) && (a || s) {
         let cmd = if a {
             Command::FlipNormals { node: node.clone() }
@@ -698,30 +707,54 @@ pub fn edit_shortcuts(
             status.error("Connect: select exactly two vertices of one face");
         }
     } else if keys.just_pressed(KeyCode::KeyX) || keys.just_pressed(KeyCode::Delete) {
-        let cmd = match mode.kind {
-            ElementKind::Vertex if !mode.selection.vertices.is_empty() => {
-                Some(Command::DissolveVertices {
-                    node,
-                    vertices: VertexSet::Ids(mode.selection.vertices.iter().map(|v| v.0).collect()),
-                })
-            }
-            ElementKind::Edge if !mode.selection.edges.is_empty() => Some(Command::DissolveEdges {
-                node,
-                edges: EdgeSet::Ids(mode.selection.edges.iter().map(|e| e.0).collect()),
-            }),
-            ElementKind::Face if !mode.selection.faces.is_empty() => Some(Command::MakeHoles {
-                node,
-                faces: FaceSet::Ids(mode.selection.faces.iter().map(|f| f.0).collect()),
-            }),
-            _ => None,
-        };
-        match cmd {
+        match delete_or_dissolve(node, mode.kind, &mode.selection, false) {
             Some(c) => {
                 requests.write(DocRequest::Execute(c));
             }
-            None => status
-                .error("X: select vertices (valence 2) or edges to dissolve, or faces to delete"),
+            None => status.error("X: select what to delete (Ctrl+X dissolves)"),
         }
+    }
+}
+
+/// X deletes the selected elements of the current kind with what only they
+/// use; Ctrl+X dissolves them (merging what is around).
+fn delete_or_dissolve(
+    node: NodeRef,
+    kind: ElementKind,
+    sel: &ElementSelection,
+    dissolve: bool,
+) -> Option<Command> {
+    let vertices = || VertexSet::Ids(sel.vertices.iter().map(|v| v.0).collect());
+    let edges = || EdgeSet::Ids(sel.edges.iter().map(|e| e.0).collect());
+    let faces = || FaceSet::Ids(sel.faces.iter().map(|f| f.0).collect());
+    match (kind, dissolve) {
+        (ElementKind::Vertex, _) if sel.vertices.is_empty() => None,
+        (ElementKind::Edge, _) if sel.edges.is_empty() => None,
+        (ElementKind::Face, _) if sel.faces.is_empty() => None,
+        (ElementKind::Vertex, false) => Some(Command::DeleteVertices {
+            node,
+            vertices: vertices(),
+        }),
+        (ElementKind::Edge, false) => Some(Command::DeleteEdges {
+            node,
+            edges: edges(),
+        }),
+        (ElementKind::Face, false) => Some(Command::DeleteFaces {
+            node,
+            faces: faces(),
+        }),
+        (ElementKind::Vertex, true) => Some(Command::DissolveVertices {
+            node,
+            vertices: vertices(),
+        }),
+        (ElementKind::Edge, true) => Some(Command::DissolveEdges {
+            node,
+            edges: edges(),
+        }),
+        (ElementKind::Face, true) => Some(Command::DissolveFaces {
+            node,
+            faces: faces(),
+        }),
     }
 }
 

@@ -796,3 +796,131 @@ pub fn extrude_boundary_edges(
     *mesh = work;
     Ok(out)
 }
+
+/// Merges adjacent faces into one by removing the edges between them, and
+/// then the edges left dangling inside (Blender's dissolve faces). Returns
+/// the faces left of the region.
+///
+/// # Errors
+/// [`ModelingError::Missing`], [`ModelingError::Invalid`] if the result
+/// would not be valid; the mesh is unchanged on error.
+pub fn dissolve_faces(
+    mesh: &mut HalfEdgeMesh,
+    faces: &[FaceId],
+) -> Result<Vec<FaceId>, ModelingError> {
+    check_faces(mesh, faces)?;
+    let mut region: std::collections::BTreeSet<FaceId> = faces.iter().copied().collect();
+    let mut work = mesh.clone();
+    // Grow one face over its region neighbours, one neighbour at a time, so
+    // the growing face never closes a ring: the edges it shares with the
+    // neighbour form one chain; join the chain's inner vertices (KVE) until
+    // one edge is left, then remove it (KEF).
+    let mut pending: Vec<FaceId> = region.iter().copied().collect();
+    while let Some(seed) = pending.pop() {
+        if !work.is_face(seed) {
+            continue;
+        }
+        let mut current = seed;
+        loop {
+            let shared: Vec<HalfEdgeId> = work
+                .face_halfedges(current)
+                .filter(|&h| {
+                    work.face(h.twin())
+                        .is_some_and(|g| g != current && region.contains(&g))
+                })
+                .collect();
+            let Some(&first) = shared.first() else { break };
+            let other = work.face(first.twin()).expect("filtered");
+            let chain: Vec<HalfEdgeId> = shared
+                .iter()
+                .copied()
+                .filter(|&h| work.face(h.twin()) == Some(other))
+                .collect();
+            // Inner vertices of the chain (both of their edges are in it).
+            for &h in &chain {
+                let v = work.target(h);
+                if chain.iter().any(|&g| work.origin(g) == v) && work.vertex_valence(v) == 2 {
+                    let _ = work.join_edges(v);
+                }
+            }
+            let remaining: Vec<HalfEdgeId> = work
+                .halfedges()
+                .filter(|&h| work.face(h) == Some(current) && work.face(h.twin()) == Some(other))
+                .collect();
+            let Some(&h) = remaining.first() else { break };
+            // Keep `current`: it must be the face of the half-edge 0 side.
+            let e = h.edge();
+            let survivor_side = if e.halfedge(0) == h { current } else { other };
+            match work.kill_edge_face(e) {
+                Ok(gone) => {
+                    region.remove(&gone);
+                    current = survivor_side;
+                }
+                Err(_) => break,
+            }
+        }
+    }
+    // Remove edges left dangling inside the merged faces.
+    loop {
+        let dangling = work.edges().find(|&e| {
+            let [a, b] = work.edge_faces(e);
+            a.is_some()
+                && a == b
+                && region.contains(&a.unwrap())
+                && work
+                    .edge_vertices(e)
+                    .iter()
+                    .any(|&v| work.vertex_valence(v) == 1)
+        });
+        let Some(e) = dangling else { break };
+        if work.kill_edge_vertex(e).is_err() {
+            break;
+        }
+    }
+    work.validate()
+        .map_err(|e| ModelingError::Invalid(e.to_string()))?;
+    *mesh = work;
+    Ok(region.into_iter().collect())
+}
+
+/// Deletes faces together with the edges and vertices no other face uses
+/// (Blender's X ▸ Faces). For X ▸ Edges and X ▸ Vertices pass the faces
+/// around them ([`faces_around_edges`], [`faces_around_vertices`]).
+///
+/// # Errors
+/// [`ModelingError::Invalid`] when the rest would not be a manifold mesh
+/// (for example two holes meeting at one vertex); the mesh is unchanged.
+pub fn delete_faces(mesh: &mut HalfEdgeMesh, faces: &[FaceId]) -> Result<(), ModelingError> {
+    check_faces(mesh, faces)?;
+    let mut work = mesh.clone();
+    work.delete_faces(faces, false);
+    work.validate()
+        .map_err(|e| ModelingError::Invalid(e.to_string()))?;
+    *mesh = work;
+    Ok(())
+}
+
+/// The faces touching any of the edges.
+pub fn faces_around_edges(mesh: &HalfEdgeMesh, edges: &[EdgeId]) -> Vec<FaceId> {
+    let mut out: Vec<FaceId> = edges
+        .iter()
+        .filter(|e| mesh.is_edge(**e))
+        .flat_map(|&e| mesh.edge_faces(e))
+        .flatten()
+        .collect();
+    out.sort();
+    out.dedup();
+    out
+}
+
+/// The faces touching any of the vertices.
+pub fn faces_around_vertices(mesh: &HalfEdgeMesh, vertices: &[VertexId]) -> Vec<FaceId> {
+    let mut out: Vec<FaceId> = vertices
+        .iter()
+        .filter(|v| mesh.is_vertex(**v))
+        .flat_map(|&v| mesh.vertex_faces(v))
+        .collect();
+    out.sort();
+    out.dedup();
+    out
+}

@@ -536,3 +536,43 @@ fn extruding_the_border_of_a_plane_grows_a_wall() {
         Err(ModelingError::NotBoundary { edge: inner })
     );
 }
+
+#[test]
+fn dissolving_a_block_of_faces_leaves_one_face() {
+    use hedra_geom::modeling::dissolve_faces;
+    let mut g = Primitive::Grid {
+        x_segments: 3,
+        z_segments: 3,
+        size: 3.0,
+    }
+    .build()
+    .unwrap();
+    let all: Vec<FaceId> = g.faces().collect();
+    let left = dissolve_faces(&mut g, &all).unwrap();
+    g.validate().unwrap();
+    assert_eq!(left.len(), 1, "one face");
+    assert_eq!(g.face_count(), 1);
+    assert_eq!(g.face_degree(left[0]), 12, "the outline of the grid");
+    assert_eq!(
+        g.vertex_count(),
+        12,
+        "the four inner vertices went with their edges"
+    );
+}
+
+#[test]
+fn deleting_faces_edges_and_vertices_cleans_up_loose_geometry() {
+    use hedra_geom::modeling::{delete_faces, faces_around_vertices};
+    let mut c = cube();
+    let t = top(&c);
+    delete_faces(&mut c, &[t]).unwrap();
+    c.validate().unwrap();
+    assert_eq!(counts(&c), (8, 12, 5));
+    // Deleting a vertex takes the three faces around it, its three edges and itself.
+    let mut c = cube();
+    let fs = faces_around_vertices(&c, &[VertexId(0)]);
+    delete_faces(&mut c, &fs).unwrap();
+    c.validate().unwrap();
+    assert_eq!(counts(&c), (7, 9, 3));
+    assert!(!c.is_vertex(VertexId(0)));
+}

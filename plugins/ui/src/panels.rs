@@ -1209,7 +1209,7 @@ fn mesh_menu(ui: &mut egui::Ui, node: NodeId, mode: &EditMode, events: &mut Vec<
             depth: 0.0,
         }
     });
-    item(ui, "Delete Faces (keep edges)\tX", has_f, &|| {
+    item(ui, "Delete Only Faces (keep edges)", has_f, &|| {
         Command::MakeHoles {
             node: n.clone(),
             faces: faces(),
