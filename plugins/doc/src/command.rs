@@ -8,7 +8,7 @@ use crate::elements::{EdgeSet, FaceSet, VertexSet};
 use crate::history::{NodeChange, Transaction};
 use crate::scene::{Document, MeshContent, Node, NodeContent, NodeId, Shading, Transform};
 use glam::{DQuat, DVec3};
-use hedra_geom::modeling;
+use hedra_geom::modeling::{self, MirrorAxis};
 use hedra_geom::{BuildError, EdgeId, HalfEdgeMesh, Primitive, PrimitiveError, VertexId};
 use serde::{Deserialize, Serialize};
 use std::fmt;
@@ -226,6 +226,17 @@ pub enum Command {
         edges: EdgeSet,
         offset: DVec3,
     },
+    /// Mirrors vertices across the plane through their median perpendicular to an axis.
+    MirrorVertices {
+        node: NodeRef,
+        vertices: VertexSet,
+        axis: MirrorAxis,
+    },
+    /// Replaces the negative side of the mesh by a mirror image of the positive side.
+    Symmetrize {
+        node: NodeRef,
+        axis: MirrorAxis,
+    },
     /// Merges faces into one by removing the edges between them.
     DissolveFaces {
         node: NodeRef,
@@ -350,6 +361,8 @@ impl Command {
             Command::BridgeLoops { .. } => "Bridge Edge Loops".to_string(),
             Command::MergeVertices { .. } => "Merge at Center".to_string(),
             Command::DissolveFaces { .. } => "Dissolve Faces".to_string(),
+            Command::MirrorVertices { axis, .. } => format!("Mirror {axis:?}"),
+            Command::Symmetrize { axis, .. } => format!("Symmetrize {axis:?}"),
             Command::DeleteFaces { .. } => "Delete Faces".to_string(),
             Command::DeleteEdges { .. } => "Delete Edges".to_string(),
             Command::DeleteVertices { .. } => "Delete Vertices".to_string(),
@@ -901,6 +914,19 @@ impl Plan<'_> {
                     let es = edges.resolve(m).map_err(|e| e.0)?;
                     Ok(modeling::extrude_boundary_edges(m, &es, *offset).map(|_| ()))
                 })?;
+            }
+            Command::MirrorVertices {
+                node,
+                vertices,
+                axis,
+            } => {
+                self.model(node, |m| {
+                    let vs = vertices.resolve(m).map_err(|e| e.0)?;
+                    Ok(modeling::mirror_vertices(m, &vs, *axis))
+                })?;
+            }
+            Command::Symmetrize { node, axis } => {
+                self.model(node, |m| Ok(modeling::symmetrize(m, *axis)))?;
             }
             Command::DissolveFaces { node, faces } => {
                 self.model(node, |m| {

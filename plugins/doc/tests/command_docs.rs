@@ -41,7 +41,7 @@ fn every_command_example_in_the_docs_runs() {
         .collect();
     kinds.sort();
     kinds.dedup();
-    assert_eq!(kinds.len(), 37, "{kinds:?}");
+    assert_eq!(kinds.len(), 39, "{kinds:?}");
     let mut session = hedra_doc::Session::new();
     hedra_doc::script::run(&mut session, &commands, Path::new("docs/commands.md"))
         .unwrap_or_else(|e| panic!("{e}"));
@@ -53,6 +53,18 @@ fn every_command_example_in_the_docs_runs() {
     assert!(doc.find_by_name("Box.001").is_none());
     assert_eq!(session.history.done().len(), commands.len());
     // The mesh examples leave a valid block: 2 loop cuts, an extrusion and an inset on the top.
+    let half = doc.find_by_name("Half").unwrap().content.mesh().unwrap();
+    let (lo, hi) = half.bounds().unwrap();
+    assert!(
+        (lo.x + hi.x).abs() < 1e-12 && hi.x > 1.0,
+        "symmetric across x = 0: {lo:?} {hi:?}"
+    );
+    assert!(half.stats().closed);
+    let spike = doc.find_by_name("Spike").unwrap().content.mesh().unwrap();
+    assert!(
+        spike.volume() > 0.0,
+        "the mirrored cone still faces outwards"
+    );
     let floor = doc.find_by_name("Floor").unwrap().content.mesh().unwrap();
     assert_eq!(
         (floor.face_count(), floor.vertex_count()),

@@ -576,3 +576,68 @@ fn deleting_faces_edges_and_vertices_cleans_up_loose_geometry() {
     assert_eq!(counts(&c), (7, 9, 3));
     assert!(!c.is_vertex(VertexId(0)));
 }
+
+#[test]
+fn symmetrize_mirrors_the_positive_half() {
+    use hedra_geom::modeling::{MirrorAxis, loop_cut, symmetrize};
+    // A cube cut at x = 0, with the +X half pulled out: symmetrize copies it to −X.
+    let mut c = cube();
+    let e = c
+        .edges()
+        .find(|&e| {
+            let [a, b] = c.edge_vertices(e);
+            (c.position(a) - c.position(b)).x.abs() > 1.0
+        })
+        .unwrap();
+    loop_cut(&mut c, e, 1).unwrap();
+    for v in c.vertices().collect::<Vec<_>>() {
+        if c.position(v).x > 0.5 {
+            c.set_position(v, c.position(v) + DVec3::new(1.0, 0.0, 0.0));
+        }
+    }
+    symmetrize(&mut c, MirrorAxis::X).unwrap();
+    c.validate().unwrap();
+    assert!(c.stats().closed);
+    let (lo, hi) = c.bounds().unwrap();
+    assert!(
+        (lo.x + 2.0).abs() < 1e-12 && (hi.x - 2.0).abs() < 1e-12,
+        "{lo:?} {hi:?}"
+    );
+    assert!(
+        (c.volume() - 16.0).abs() < 1e-9,
+        "two halves of 2x2x2: {}",
+        c.volume()
+    );
+    assert_eq!(counts(&c), (12, 20, 10));
+    // A plain cube is crossed by the plane: refused, unchanged.
+    let mut c = cube();
+    let before = c.clone();
+    assert!(matches!(
+        symmetrize(&mut c, MirrorAxis::X),
+        Err(ModelingError::Parameter { .. })
+    ));
+    assert_eq!(c, before);
+}
+
+#[test]
+fn mirroring_a_whole_part_keeps_it_facing_outwards() {
+    use hedra_geom::modeling::{MirrorAxis, mirror_vertices};
+    let mut c = Primitive::Cone {
+        segments: 6,
+        radius: 1.0,
+        depth: 2.0,
+    }
+    .build()
+    .unwrap();
+    let all: Vec<VertexId> = c.vertices().collect();
+    let v0 = c.volume();
+    mirror_vertices(&mut c, &all, MirrorAxis::Y).unwrap();
+    c.validate().unwrap();
+    assert!(
+        (c.volume() - v0).abs() < 1e-9,
+        "still outward: {} vs {v0}",
+        c.volume()
+    );
+    let apex = c.vertices().find(|&v| c.vertex_valence(v) == 6).unwrap();
+    assert!(c.position(apex).y < 0.0, "the apex now points down");
+}

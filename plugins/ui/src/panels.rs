@@ -1266,6 +1266,37 @@ fn mesh_menu(ui: &mut egui::Ui, node: NodeId, mode: &EditMode, events: &mut Vec<
         }
     });
     ui.separator();
+    ui.label(egui::RichText::new("Symmetry").weak());
+    for axis in [
+        hedra_geom::modeling::MirrorAxis::X,
+        hedra_geom::modeling::MirrorAxis::Y,
+        hedra_geom::modeling::MirrorAxis::Z,
+    ] {
+        let set = selection_vertices(sel);
+        item(ui, &format!("Mirror {axis:?}"), set.is_some(), &|| {
+            Command::MirrorVertices {
+                node: n.clone(),
+                vertices: set.clone().unwrap_or(VertexSet::All),
+                axis,
+            }
+        });
+    }
+    for axis in [
+        hedra_geom::modeling::MirrorAxis::X,
+        hedra_geom::modeling::MirrorAxis::Y,
+        hedra_geom::modeling::MirrorAxis::Z,
+    ] {
+        item(
+            ui,
+            &format!("Symmetrize +{axis:?} to -{axis:?}"),
+            true,
+            &|| Command::Symmetrize {
+                node: n.clone(),
+                axis,
+            },
+        );
+    }
+    ui.separator();
     ui.label(egui::RichText::new("Normals").weak());
     item(ui, "Flip\tAlt+N", true, &|| Command::FlipNormals {
         node: n.clone(),
@@ -1273,4 +1304,22 @@ fn mesh_menu(ui: &mut egui::Ui, node: NodeId, mode: &EditMode, events: &mut Vec<
     item(ui, "Recalculate Outside\tShift+N", true, &|| {
         Command::RecalculateNormals { node: n.clone() }
     });
+}
+
+/// The vertices a selection touches, of any element kind, as a command's set.
+fn selection_vertices(sel: &hedra_edit::ElementSelection) -> Option<hedra_doc::VertexSet> {
+    use hedra_doc::{EdgeSet, FaceSet, VertexSet};
+    if !sel.faces.is_empty() {
+        Some(VertexSet::OfFaces(Box::new(FaceSet::Ids(
+            sel.faces.iter().map(|f| f.0).collect(),
+        ))))
+    } else if !sel.edges.is_empty() {
+        Some(VertexSet::OfEdges(Box::new(EdgeSet::Ids(
+            sel.edges.iter().map(|e| e.0).collect(),
+        ))))
+    } else if !sel.vertices.is_empty() {
+        Some(VertexSet::Ids(sel.vertices.iter().map(|v| v.0).collect()))
+    } else {
+        None
+    }
 }
