@@ -487,13 +487,13 @@ impl Default for InputGate {
 #[derive(Component, Debug, Default)]
 pub struct ViewportCamera;
 
-/// Modifier keys, counted as held when pressed this frame too (a quick
-/// Ctrl+S can press and release Ctrl within one frame).
+/// Modifier keys, counted as held when pressed or released this frame too
+/// (a quick Ctrl+S can press and release Ctrl within one or two frames).
 pub mod modifiers {
     use bevy::prelude::*;
 
     fn held(keys: &ButtonInput<KeyCode>, pair: [KeyCode; 2]) -> bool {
-        keys.any_pressed(pair) || keys.any_just_pressed(pair)
+        keys.any_pressed(pair) || keys.any_just_pressed(pair) || keys.any_just_released(pair)
     }
     /// Ctrl (or the Super/Command key).
     pub fn ctrl(keys: &ButtonInput<KeyCode>) -> bool {
