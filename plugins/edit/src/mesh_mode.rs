@@ -28,7 +28,7 @@ pub enum ElementKind {
 }
 
 /// Selected elements of the edited mesh (ids).
-#[derive(Clone, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Debug, Default, PartialEq, Eq, Hash)]
 pub struct ElementSelection {
     pub vertices: BTreeSet<VertexId>,
     pub edges: BTreeSet<EdgeId>,

@@ -88,6 +88,7 @@ impl Plugin for ViewportPlugin {
                     update_edge_overlays,
                     focus_gizmo_on_active,
                     commit_gizmo_drag,
+                    update_edit_edges,
                     draw_edit_overlay,
                 )
                     .after(EditSystems),
@@ -450,8 +451,127 @@ fn commit_gizmo_drag(
     }
 }
 
-/// Edit mode: the edited mesh's edges, vertices (in vertex mode) and the
-/// selection, drawn every frame from the preview or the document.
+/// The edited mesh's edges as one retained line gizmo, rebuilt only when the
+/// mesh (or a tool's preview), the selection or the element kind changes:
+/// a dense mesh costs nothing per frame while nothing changes.
+#[derive(Component)]
+pub struct EditEdges;
+
+#[allow(clippy::type_complexity)]
+fn update_edit_edges(
+    mut commands: Commands,
+    mode: Res<EditMode>,
+    state: Res<DocState>,
+    mut assets: ResMut<Assets<GizmoAsset>>,
+    mut overlay: Local<Option<(Entity, Handle<GizmoAsset>)>>,
+    mut built: Local<Option<u64>>,
+    mut transforms: Query<&mut Transform, With<EditEdges>>,
+) {
+    use std::hash::{Hash, Hasher};
+    let mesh = mode.node.and(
+        mode.preview
+            .clone()
+            .or_else(|| hedra_edit::mesh_mode::edited_mesh(&state, &mode)),
+    );
+    let key = mesh.as_ref().map(|m| {
+        let mut h = std::collections::hash_map::DefaultHasher::new();
+        (
+            mode.node,
+            std::sync::Arc::as_ptr(m) as usize,
+            &mode.selection,
+            mode.kind as u8,
+            state.revision,
+        )
+            .hash(&mut h);
+        h.finish()
+    });
+    if *built == key {
+        return;
+    }
+    *built = key;
+    let (entity, handle) = overlay.get_or_insert_with(|| {
+        let handle = assets.add(GizmoAsset::new());
+        let line_config = GizmoLineConfig {
+            width: 1.5,
+            ..default()
+        };
+        let e = commands
+            .spawn((
+                EditEdges,
+                Gizmo {
+                    handle: handle.clone(),
+                    line_config,
+                    depth_bias: -0.001,
+                },
+                Transform::IDENTITY,
+            ))
+            .id();
+        (e, handle)
+    });
+    let mut asset = GizmoAsset::new();
+    if let (Some(node), Some(mesh)) = (mode.node, mesh) {
+        let world = state.session.doc.world_matrix(node);
+        if let Ok(mut t) = transforms.get_mut(*entity) {
+            *t = Transform::from_matrix(world.as_mat4());
+        }
+        draw_edit_edges(&mut asset, &mesh, &mode);
+    }
+    if let Some(mut a) = assets.get_mut(handle.id()) {
+        *a = asset;
+    }
+}
+
+/// Edges in mesh space: selected ones orange, the inspector's related ones cyan.
+fn draw_edit_edges(asset: &mut GizmoAsset, mesh: &hedra_geom::HalfEdgeMesh, mode: &EditMode) {
+    let sel = &mode.selection;
+    let selected_vertices = sel.all_vertices(mesh);
+    let orange = Color::srgb(1.0, 0.55, 0.1);
+    let cyan = Color::srgb(0.2, 0.85, 0.95);
+    let single = sel.vertices.len() + sel.edges.len() + sel.faces.len() == 1;
+    let mut related_faces = std::collections::BTreeSet::new();
+    let mut related_edges = std::collections::BTreeSet::new();
+    if single {
+        if let Some(&v) = sel.vertices.iter().next().filter(|v| mesh.is_vertex(**v)) {
+            related_faces.extend(mesh.vertex_faces(v));
+        } else if let Some(&e) = sel.edges.iter().next().filter(|e| mesh.is_edge(**e)) {
+            let w = hedra_geom::topology::winged_edge_row(mesh, e);
+            related_edges.extend([
+                w.left_predecessor,
+                w.left_successor,
+                w.right_predecessor,
+                w.right_successor,
+            ]);
+        } else if let Some(&f) = sel.faces.iter().next().filter(|f| mesh.is_face(**f)) {
+            related_faces.extend(mesh.face_neighbors(f));
+        }
+    }
+    for e in mesh.edges() {
+        let [a, b] = mesh.edge_vertices(e);
+        let faces = mesh.edge_faces(e);
+        let hot = sel.edges.contains(&e)
+            || (mode.kind == ElementKind::Vertex
+                && selected_vertices.contains(&a)
+                && selected_vertices.contains(&b))
+            || faces.iter().flatten().any(|f| sel.faces.contains(f));
+        let related =
+            related_edges.contains(&e) || faces.iter().flatten().any(|f| related_faces.contains(f));
+        let color = if hot {
+            orange
+        } else if related {
+            cyan
+        } else {
+            Color::srgb(0.08, 0.08, 0.1)
+        };
+        asset.line(
+            mesh.position(a).as_vec3(),
+            mesh.position(b).as_vec3(),
+            color,
+        );
+    }
+}
+
+/// Edit mode's vertex or face-centre dots; they face the camera, so they are
+/// drawn every frame (only the selected ones on dense meshes).
 fn draw_edit_overlay(
     mode: Res<EditMode>,
     state: Res<DocState>,
@@ -467,89 +587,37 @@ fn draw_edit_overlay(
         return;
     };
     let world = state.session.doc.world_matrix(node);
-    let at = |v: hedra_geom::VertexId| world.transform_point3(mesh.position(v)).as_vec3();
     let sel = &mode.selection;
-    let selected_vertices = sel.all_vertices(&mesh);
     let orange = Color::srgb(1.0, 0.55, 0.1);
-    let cyan = Color::srgb(0.2, 0.85, 0.95);
-    // The topology inspector's related elements, for a single selected element.
-    let single = sel.vertices.len() + sel.edges.len() + sel.faces.len() == 1;
-    let mut related_faces = std::collections::BTreeSet::new();
-    let mut related_edges = std::collections::BTreeSet::new();
-    if single {
-        if let Some(&v) = sel.vertices.iter().next().filter(|v| mesh.is_vertex(**v)) {
-            related_faces.extend(mesh.vertex_faces(v));
-        } else if let Some(&e) = sel.edges.iter().next().filter(|e| mesh.is_edge(**e)) {
-            let w = hedra_geom::topology::winged_edge_row(&mesh, e);
-            related_edges.extend([
-                w.left_predecessor,
-                w.left_successor,
-                w.right_predecessor,
-                w.right_successor,
-            ]);
-        } else if let Some(&f) = sel.faces.iter().next().filter(|f| mesh.is_face(**f)) {
-            related_faces.extend(mesh.face_neighbors(f));
-        }
-    }
-    for e in mesh.edges() {
-        let [a, b] = mesh.edge_vertices(e);
-        let hot = sel.edges.contains(&e)
-            || (mode.kind == ElementKind::Vertex
-                && selected_vertices.contains(&a)
-                && selected_vertices.contains(&b))
-            || mesh
-                .edge_faces(e)
-                .iter()
-                .flatten()
-                .any(|f| sel.faces.contains(f));
-        let related = related_edges.contains(&e)
-            || mesh
-                .edge_faces(e)
-                .iter()
-                .flatten()
-                .any(|f| related_faces.contains(f));
-        let color = if hot {
-            orange
-        } else if related {
-            cyan
-        } else {
-            Color::srgb(0.08, 0.08, 0.1)
-        };
-        gizmos.line(at(a), at(b), color);
-    }
     let cam = *camera;
     let rotation = cam.rotation();
-    // Dense meshes: dots only for the selection, so the view stays fluid.
     let dense = mesh.vertex_count() > 20_000;
-    if mode.kind == ElementKind::Vertex {
-        for v in mesh
-            .vertices()
-            .filter(|v| !dense || sel.vertices.contains(v))
-        {
-            let p = at(v);
-            let r = cam.translation().distance(p) * 0.004;
-            let c = if sel.vertices.contains(&v) {
-                orange
-            } else {
-                Color::srgb(0.05, 0.05, 0.05)
-            };
-            gizmos
-                .circle(Isometry3d::new(p, rotation), r, c)
-                .resolution(8);
+    let mut dot = |p: DVec3, selected: bool, size: f32| {
+        let p = world.transform_point3(p).as_vec3();
+        let r = cam.translation().distance(p) * size;
+        let c = if selected {
+            orange
+        } else {
+            Color::srgb(0.05, 0.05, 0.05)
+        };
+        gizmos
+            .circle(Isometry3d::new(p, rotation), r, c)
+            .resolution(8);
+    };
+    match mode.kind {
+        ElementKind::Vertex => {
+            for v in mesh
+                .vertices()
+                .filter(|v| !dense || sel.vertices.contains(v))
+            {
+                dot(mesh.position(v), sel.vertices.contains(&v), 0.004);
+            }
         }
-    }
-    if mode.kind == ElementKind::Face {
-        for f in mesh.faces().filter(|f| !dense || sel.faces.contains(f)) {
-            let p = world.transform_point3(mesh.face_centroid(f)).as_vec3();
-            let r = cam.translation().distance(p) * 0.003;
-            let c = if sel.faces.contains(&f) {
-                orange
-            } else {
-                Color::srgb(0.1, 0.1, 0.1)
-            };
-            gizmos
-                .circle(Isometry3d::new(p, rotation), r, c)
-                .resolution(8);
+        ElementKind::Face => {
+            for f in mesh.faces().filter(|f| !dense || sel.faces.contains(f)) {
+                dot(mesh.face_centroid(f), sel.faces.contains(&f), 0.003);
+            }
         }
+        ElementKind::Edge => {}
     }
 }
