@@ -9,7 +9,9 @@ use crate::history::{NodeChange, Transaction};
 use crate::scene::{Document, MeshContent, Node, NodeContent, NodeId, Shading, Transform};
 use glam::{DQuat, DVec3};
 use hedra_geom::modeling::{self, MirrorAxis};
-use hedra_geom::{BuildError, EdgeId, HalfEdgeMesh, Primitive, PrimitiveError, VertexId};
+use hedra_geom::{
+    BuildError, EdgeId, FaceId, HalfEdgeMesh, ModelingError, Primitive, PrimitiveError, VertexId,
+};
 use serde::{Deserialize, Serialize};
 use std::fmt;
 use std::sync::Arc;
@@ -592,6 +594,45 @@ impl Plan<'_> {
         Ok(())
     }
 
+    /// Runs a kernel operation on the faces a set names.
+    fn on_faces(
+        &mut self,
+        r: &NodeRef,
+        set: &FaceSet,
+        op: impl FnOnce(&mut HalfEdgeMesh, &[FaceId]) -> Result<(), ModelingError>,
+    ) -> Result<(), CommandError> {
+        self.model(r, |m| {
+            let fs = set.resolve(m).map_err(|e| e.0)?;
+            Ok(op(m, &fs))
+        })
+    }
+
+    /// Runs a kernel operation on the edges a set names.
+    fn on_edges(
+        &mut self,
+        r: &NodeRef,
+        set: &EdgeSet,
+        op: impl FnOnce(&mut HalfEdgeMesh, &[EdgeId]) -> Result<(), ModelingError>,
+    ) -> Result<(), CommandError> {
+        self.model(r, |m| {
+            let es = set.resolve(m).map_err(|e| e.0)?;
+            Ok(op(m, &es))
+        })
+    }
+
+    /// Runs a kernel operation on the vertices a set names.
+    fn on_vertices(
+        &mut self,
+        r: &NodeRef,
+        set: &VertexSet,
+        op: impl FnOnce(&mut HalfEdgeMesh, &[VertexId]) -> Result<(), ModelingError>,
+    ) -> Result<(), CommandError> {
+        self.model(r, |m| {
+            let vs = set.resolve(m).map_err(|e| e.0)?;
+            Ok(op(m, &vs))
+        })
+    }
+
     fn run(&mut self, cmd: &Command) -> Result<(), CommandError> {
         match cmd {
             Command::AddPrimitive {
@@ -797,193 +838,135 @@ impl Plan<'_> {
                 node,
                 faces,
                 distance,
-            } => {
-                self.model(node, |m| {
-                    let fs = faces.resolve(m).map_err(|e| e.0)?;
-                    let normal = fs
-                        .iter()
-                        .map(|&f| m.face_area_vector(f))
-                        .sum::<DVec3>()
-                        .normalize_or_zero();
-                    if normal == DVec3::ZERO {
-                        return Err("the faces' normals cancel out: no direction to extrude".into());
-                    }
-                    Ok(modeling::extrude_region(m, &fs, normal * *distance).map(|_| ()))
-                })?;
-            }
+            } => self.on_faces(node, faces, |m, fs| {
+                let normal = fs
+                    .iter()
+                    .map(|&f| m.face_area_vector(f))
+                    .sum::<DVec3>()
+                    .normalize_or_zero();
+                if normal == DVec3::ZERO {
+                    return Err(ModelingError::Parameter {
+                        what: "faces",
+                        allowed: "facing some common direction",
+                        value: "normals that cancel out".into(),
+                    });
+                }
+                modeling::extrude_region(m, fs, normal * *distance).map(drop)
+            })?,
             Command::ExtrudeFaces {
                 node,
                 faces,
                 distance,
-            } => {
-                self.model(node, |m| {
-                    let fs = faces.resolve(m).map_err(|e| e.0)?;
-                    Ok(modeling::extrude_faces_individual(m, &fs, *distance).map(|_| ()))
-                })?;
-            }
+            } => self.on_faces(node, faces, |m, fs| {
+                modeling::extrude_faces_individual(m, fs, *distance).map(drop)
+            })?,
             Command::InsetFaces {
                 node,
                 faces,
                 thickness,
                 depth,
-            } => {
-                self.model(node, |m| {
-                    let fs = faces.resolve(m).map_err(|e| e.0)?;
-                    Ok(modeling::inset_faces_individual(m, &fs, *thickness, *depth).map(|_| ()))
-                })?;
-            }
+            } => self.on_faces(node, faces, |m, fs| {
+                modeling::inset_faces_individual(m, fs, *thickness, *depth).map(drop)
+            })?,
             Command::InsetRegion {
                 node,
                 faces,
                 thickness,
                 depth,
-            } => {
-                self.model(node, |m| {
-                    let fs = faces.resolve(m).map_err(|e| e.0)?;
-                    Ok(modeling::inset_region(m, &fs, *thickness, *depth).map(|_| ()))
-                })?;
-            }
-            Command::LoopCut { node, edge, cuts } => {
-                self.model(node, |m| {
-                    let es = edge.resolve(m).map_err(|e| e.0)?;
-                    let [e] = es[..] else {
-                        return Err(format!(
-                            "a loop cut needs exactly one edge, {edge:?} names {}",
-                            es.len()
-                        ));
-                    };
-                    Ok(modeling::loop_cut(m, e, *cuts).map(|_| ()))
-                })?;
-            }
+            } => self.on_faces(node, faces, |m, fs| {
+                modeling::inset_region(m, fs, *thickness, *depth).map(drop)
+            })?,
+            Command::LoopCut { node, edge, cuts } => self.model(node, |m| {
+                let es = edge.resolve(m).map_err(|e| e.0)?;
+                let [e] = es[..] else {
+                    return Err(format!(
+                        "a loop cut needs exactly one edge, {edge:?} names {}",
+                        es.len()
+                    ));
+                };
+                Ok(modeling::loop_cut(m, e, *cuts).map(drop))
+            })?,
             Command::SubdivideEdges { node, edges, cuts } => {
-                self.model(node, |m| {
-                    let es = edges.resolve(m).map_err(|e| e.0)?;
-                    Ok(modeling::subdivide_edges(m, &es, *cuts).map(|_| ()))
-                })?;
+                self.on_edges(node, edges, |m, es| {
+                    modeling::subdivide_edges(m, es, *cuts).map(drop)
+                })?
             }
-            Command::ConnectVertices { node, vertices } => {
-                self.model(node, |m| {
-                    let vs = vertices.resolve(m).map_err(|e| e.0)?;
-                    let [a, b] = vs[..] else {
-                        return Err(format!(
-                            "connecting needs exactly two vertices, {vertices:?} names {}",
-                            vs.len()
-                        ));
-                    };
-                    Ok(modeling::connect_vertices(m, a, b).map(|_| ()))
-                })?;
-            }
+            Command::ConnectVertices { node, vertices } => self.model(node, |m| {
+                let vs = vertices.resolve(m).map_err(|e| e.0)?;
+                let [a, b] = vs[..] else {
+                    return Err(format!(
+                        "connecting needs exactly two vertices, {vertices:?} names {}",
+                        vs.len()
+                    ));
+                };
+                Ok(modeling::connect_vertices(m, a, b).map(drop))
+            })?,
             Command::DissolveEdges { node, edges } => {
-                self.model(node, |m| {
-                    let es: Vec<EdgeId> = edges.resolve(m).map_err(|e| e.0)?;
-                    Ok(modeling::dissolve_edges(m, &es))
-                })?;
+                self.on_edges(node, edges, modeling::dissolve_edges)?
             }
             Command::DissolveVertices { node, vertices } => {
-                self.model(node, |m| {
-                    let vs = vertices.resolve(m).map_err(|e| e.0)?;
-                    Ok(modeling::dissolve_vertices(m, &vs))
-                })?;
+                self.on_vertices(node, vertices, modeling::dissolve_vertices)?
             }
-            Command::RecalculateNormals { node } => {
-                self.model(node, |m| {
-                    if !modeling::recalculate_normals_outward(m) {
-                        return Err("the mesh already faces outwards (or is open)".into());
-                    }
-                    Ok(Ok(()))
-                })?;
-            }
+            Command::DissolveFaces { node, faces } => self.on_faces(node, faces, |m, fs| {
+                modeling::dissolve_faces(m, fs).map(drop)
+            })?,
+            Command::RecalculateNormals { node } => self.model(node, |m| {
+                if !modeling::recalculate_normals_outward(m) {
+                    return Err("the mesh already faces outwards (or is open)".into());
+                }
+                Ok(Ok(()))
+            })?,
+            Command::FlipNormals { node } => self.model(node, |m| {
+                modeling::flip_normals(m);
+                Ok(Ok(()))
+            })?,
             Command::MakeHoles { node, faces } => {
-                self.model(node, |m| {
-                    let fs = faces.resolve(m).map_err(|e| e.0)?;
-                    Ok(modeling::make_holes(m, &fs))
-                })?;
+                self.on_faces(node, faces, modeling::make_holes)?
             }
             Command::FillHoles { node, edges } => {
-                self.model(node, |m| {
-                    let es = edges.resolve(m).map_err(|e| e.0)?;
-                    Ok(modeling::fill_holes(m, &es).map(|_| ()))
-                })?;
+                self.on_edges(node, edges, |m, es| modeling::fill_holes(m, es).map(drop))?
             }
             Command::ExtrudeEdges {
                 node,
                 edges,
                 offset,
-            } => {
-                self.model(node, |m| {
-                    let es = edges.resolve(m).map_err(|e| e.0)?;
-                    Ok(modeling::extrude_boundary_edges(m, &es, *offset).map(|_| ()))
-                })?;
-            }
+            } => self.on_edges(node, edges, |m, es| {
+                modeling::extrude_boundary_edges(m, es, *offset).map(drop)
+            })?,
             Command::MirrorVertices {
                 node,
                 vertices,
                 axis,
-            } => {
-                self.model(node, |m| {
-                    let vs = vertices.resolve(m).map_err(|e| e.0)?;
-                    Ok(modeling::mirror_vertices(m, &vs, *axis))
-                })?;
-            }
+            } => self.on_vertices(node, vertices, |m, vs| {
+                modeling::mirror_vertices(m, vs, *axis)
+            })?,
             Command::Symmetrize { node, axis } => {
-                self.model(node, |m| Ok(modeling::symmetrize(m, *axis)))?;
-            }
-            Command::DissolveFaces { node, faces } => {
-                self.model(node, |m| {
-                    let fs = faces.resolve(m).map_err(|e| e.0)?;
-                    Ok(modeling::dissolve_faces(m, &fs).map(|_| ()))
-                })?;
+                self.model(node, |m| Ok(modeling::symmetrize(m, *axis)))?
             }
             Command::DeleteFaces { node, faces } => {
-                self.model(node, |m| {
-                    let fs = faces.resolve(m).map_err(|e| e.0)?;
-                    Ok(modeling::delete_faces(m, &fs))
-                })?;
+                self.on_faces(node, faces, modeling::delete_faces)?
             }
-            Command::DeleteEdges { node, edges } => {
-                self.model(node, |m| {
-                    let es = edges.resolve(m).map_err(|e| e.0)?;
-                    let fs = modeling::faces_around_edges(m, &es);
-                    if fs.is_empty() {
-                        return Err("the edges have no faces to delete".into());
-                    }
-                    Ok(modeling::delete_faces(m, &fs))
-                })?;
-            }
+            Command::DeleteEdges { node, edges } => self.on_edges(node, edges, |m, es| {
+                let fs = modeling::faces_around_edges(m, es);
+                modeling::delete_faces(m, &fs)
+            })?,
             Command::DeleteVertices { node, vertices } => {
-                self.model(node, |m| {
-                    let vs = vertices.resolve(m).map_err(|e| e.0)?;
-                    let fs = modeling::faces_around_vertices(m, &vs);
-                    if fs.is_empty() {
-                        return Err("the vertices have no faces to delete".into());
-                    }
-                    Ok(modeling::delete_faces(m, &fs))
-                })?;
+                self.on_vertices(node, vertices, |m, vs| {
+                    let fs = modeling::faces_around_vertices(m, vs);
+                    modeling::delete_faces(m, &fs)
+                })?
             }
             Command::MergeVertices { node, vertices } => {
-                self.model(node, |m| {
-                    let vs = vertices.resolve(m).map_err(|e| e.0)?;
-                    Ok(modeling::merge_at_center(m, &vs).map(|_| ()))
-                })?;
+                self.on_vertices(node, vertices, |m, vs| {
+                    modeling::merge_at_center(m, vs).map(drop)
+                })?
             }
             Command::BridgeLoops { node, edges } => {
-                self.model(node, |m| {
-                    let es = edges.resolve(m).map_err(|e| e.0)?;
-                    Ok(modeling::bridge_loops(m, &es).map(|_| ()))
-                })?;
+                self.on_edges(node, edges, |m, es| modeling::bridge_loops(m, es).map(drop))?
             }
-            Command::CollapseEdges { node, edges } => {
-                self.model(node, |m| {
-                    let es = edges.resolve(m).map_err(|e| e.0)?;
-                    Ok(modeling::collapse_edges(m, &es).map(|_| ()))
-                })?;
-            }
-            Command::FlipNormals { node } => {
-                self.model(node, |m| {
-                    modeling::flip_normals(m);
-                    Ok(Ok(()))
-                })?;
-            }
+            Command::CollapseEdges { node, edges } => self.on_edges(node, edges, |m, es| {
+                modeling::collapse_edges(m, es).map(drop)
+            })?,
             Command::Duplicate { nodes } => {
                 for r in nodes {
                     let root = self.resolve(r)?;
