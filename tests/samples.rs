@@ -55,47 +55,13 @@ fn every_sample_loads_validates_and_can_undo() {
 
 #[test]
 fn gui_smoke_test_renders_the_scene_under_xvfb() {
-    let sample = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/samples/table.hedra.ron");
-    let dir = tempfile::tempdir().unwrap();
-    let shot = dir.path().join("shot.png");
-    let status = std::process::Command::new("xvfb-run")
-        .args([
-            "-a",
-            "-s",
-            "-screen 0 1280x800x24",
-            env!("CARGO_BIN_EXE_hedra"),
-        ])
-        .arg(&sample)
-        .arg("--screenshot")
-        .arg(&shot)
-        .args(["--frames", "30"])
-        .env("WGPU_BACKEND", "vulkan")
-        .env("HEDRA_CONFIG_DIR", dir.path())
-        .output()
-        .expect("xvfb-run is installed (scripts/setup installs it)");
-    let log = String::from_utf8_lossy(&status.stderr);
-    assert!(
-        status.status.success(),
-        "the app exited with {}: {}",
-        status.status,
-        &log[log.len().saturating_sub(3000)..]
-    );
-    let decoder = png::Decoder::new(std::io::BufReader::new(
-        std::fs::File::open(&shot).expect("screenshot written"),
-    ));
-    let mut reader = decoder.read_info().unwrap();
-    let mut buf = vec![0; reader.output_buffer_size().unwrap()];
-    let info = reader.next_frame(&mut buf).unwrap();
-    assert_eq!((info.width, info.height), (1280, 800));
-    let px = info.color_type.samples();
-    let pixel = |x: u32, y: u32| -> [u8; 3] {
-        let i = ((y * info.width + x) as usize) * px;
-        [buf[i], buf[i + 1], buf[i + 2]]
-    };
+    let (pixels, w, h) = screenshot("table.hedra.ron", &[]);
+    assert_eq!((w, h), (1280, 800));
+    let pixel = |x: u32, y: u32| pixels[(y * w + x) as usize];
     // Many distinct colours: panels, text, shaded meshes, grid, not a blank frame.
     let mut colours = std::collections::HashSet::new();
-    for y in (0..info.height).step_by(4) {
-        for x in (0..info.width).step_by(4) {
+    for y in (0..h).step_by(4) {
+        for x in (0..w).step_by(4) {
             colours.insert(pixel(x, y));
         }
     }
