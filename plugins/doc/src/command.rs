@@ -239,6 +239,13 @@ pub enum Command {
         node: NodeRef,
         axis: MirrorAxis,
     },
+    /// Slides edge chains along the edges beside them; `factor` in [-1, 1]
+    /// picks the side by its sign.
+    SlideEdges {
+        node: NodeRef,
+        edges: EdgeSet,
+        factor: f64,
+    },
     /// Merges faces into one by removing the edges between them.
     DissolveFaces {
         node: NodeRef,
@@ -363,6 +370,7 @@ impl Command {
             Command::BridgeLoops { .. } => "Bridge Edge Loops".to_string(),
             Command::MergeVertices { .. } => "Merge at Center".to_string(),
             Command::DissolveFaces { .. } => "Dissolve Faces".to_string(),
+            Command::SlideEdges { .. } => "Edge Slide".to_string(),
             Command::MirrorVertices { axis, .. } => format!("Mirror {axis:?}"),
             Command::Symmetrize { axis, .. } => format!("Symmetrize {axis:?}"),
             Command::DeleteFaces { .. } => "Delete Faces".to_string(),
@@ -923,6 +931,11 @@ impl Plan<'_> {
             Command::MakeHoles { node, faces } => {
                 self.on_faces(node, faces, modeling::make_holes)?
             }
+            Command::SlideEdges {
+                node,
+                edges,
+                factor,
+            } => self.on_edges(node, edges, |m, es| modeling::slide_edges(m, es, *factor))?,
             Command::FillHoles { node, edges } => {
                 self.on_edges(node, edges, |m, es| modeling::fill_holes(m, es).map(drop))?
             }

@@ -98,6 +98,8 @@ pub enum MeshToolKind {
     ExtrudeIndividual,
     /// Extrude the selected boundary edges (E in edge mode), moved like G.
     ExtrudeEdges,
+    /// Slide the selected edges along their neighbours (G G in edge mode).
+    SlideEdges,
     /// Inset the selected faces each on its own (Alt+I).
     InsetIndividual,
     Rotate,
@@ -819,6 +821,20 @@ fn tool_command(
                 offset,
             }
         }
+        MeshToolKind::SlideEdges => {
+            // 300 pixels to the right slide all the way to one side, to the left the other.
+            let factor = tool
+                .typed
+                .value()
+                .unwrap_or(((cursor - tool.start_cursor).x / 300.0) as f64)
+                .clamp(-1.0, 1.0);
+            tool.readout = format!("Edge slide {factor:.3}");
+            Command::SlideEdges {
+                node,
+                edges: EdgeSet::Ids(selection.edges.iter().map(|e| e.0).collect()),
+                factor,
+            }
+        }
         MeshToolKind::Rotate | MeshToolKind::Scale => {
             let xf: DMat4 = if tool.kind == MeshToolKind::Rotate {
                 let degrees = tool.typed.value().unwrap_or_else(|| {
@@ -948,6 +964,14 @@ pub fn drive_mesh_tool(
                 Some(axis)
             };
         }
+    }
+    // G again while moving edges: slide them instead (Blender's G G).
+    if tool.kind == MeshToolKind::Move
+        && mode.kind == ElementKind::Edge
+        && keys.just_pressed(KeyCode::KeyG)
+    {
+        tool.kind = MeshToolKind::SlideEdges;
+        tool.typed = Default::default();
     }
     let loop_cut = tool.kind == MeshToolKind::LoopCut;
     // Loop cut: minus, plus and the wheel change the number of cuts.

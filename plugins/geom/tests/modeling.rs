@@ -641,3 +641,79 @@ fn mirroring_a_whole_part_keeps_it_facing_outwards() {
     let apex = c.vertices().find(|&v| c.vertex_valence(v) == 6).unwrap();
     assert!(c.position(apex).y < 0.0, "the apex now points down");
 }
+
+#[test]
+fn sliding_a_loop_cut_moves_it_along_its_rails() {
+    use hedra_geom::modeling::{loop_cut, slide_edges};
+    let mut c = cube();
+    let e = c
+        .edges()
+        .find(|&e| {
+            let [a, b] = c.edge_vertices(e);
+            (c.position(a) - c.position(b)).y.abs() > 1.0
+        })
+        .unwrap();
+    let ring = loop_cut(&mut c, e, 1).unwrap();
+    // The loop lies at y = 0; sliding by ±0.5 moves it to y = ±0.5 (halfway to either end).
+    let mut up = c.clone();
+    slide_edges(&mut up, &ring, 0.5).unwrap();
+    up.validate().unwrap();
+    let ys: Vec<f64> = ring
+        .iter()
+        .flat_map(|&e| up.edge_vertices(e))
+        .map(|v| up.position(v).y)
+        .collect();
+    assert!(ys.iter().all(|&y| (y.abs() - 0.5).abs() < 1e-12), "{ys:?}");
+    let first = ys[0];
+    assert!(
+        ys.iter().all(|&y| (y - first).abs() < 1e-12),
+        "all on one side: {ys:?}"
+    );
+    let mut down = c.clone();
+    slide_edges(&mut down, &ring, -0.5).unwrap();
+    let y_down = down.position(down.edge_vertices(ring[0])[0]).y;
+    assert!(
+        (y_down + first).abs() < 1e-12,
+        "the other side: {y_down} vs {first}"
+    );
+    assert!(slide_edges(&mut c, &ring, 1.5).is_err());
+}
+
+#[test]
+fn sliding_an_open_chain_keeps_one_side() {
+    use hedra_geom::modeling::{loop_cut, slide_edges};
+    let mut g = Primitive::Grid {
+        x_segments: 2,
+        z_segments: 3,
+        size: 2.0,
+    }
+    .build()
+    .unwrap();
+    let e = g
+        .edges()
+        .find(|&e| {
+            let [a, b] = g.edge_vertices(e);
+            (g.position(a) - g.position(b)).z.abs() > 1e-9 && !g.is_boundary_edge(e)
+        })
+        .unwrap();
+    let cut = loop_cut(&mut g, e, 1).unwrap();
+    let zs = |m: &HalfEdgeMesh| -> Vec<f64> {
+        cut.iter()
+            .flat_map(|&e| m.edge_vertices(e))
+            .map(|v| m.position(v).z)
+            .collect()
+    };
+    let before = zs(&g);
+    slide_edges(&mut g, &cut, 0.5).unwrap();
+    g.validate().unwrap();
+    let after = zs(&g);
+    let moved: Vec<f64> = before.iter().zip(&after).map(|(a, b)| b - a).collect();
+    assert!(
+        moved.iter().all(|d| d.abs() > 1e-9),
+        "every vertex of the chain moved, the ends too: {moved:?}"
+    );
+    assert!(
+        moved.iter().all(|d| d.signum() == moved[0].signum()),
+        "to the same side: {moved:?}"
+    );
+}
