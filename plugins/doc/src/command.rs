@@ -246,6 +246,12 @@ pub enum Command {
         edges: EdgeSet,
         factor: f64,
     },
+    /// Bevels (chamfers) edges `width` wide with one segment.
+    BevelEdges {
+        node: NodeRef,
+        edges: EdgeSet,
+        width: f64,
+    },
     /// Merges faces into one by removing the edges between them.
     DissolveFaces {
         node: NodeRef,
@@ -370,6 +376,7 @@ impl Command {
             Command::BridgeLoops { .. } => "Bridge Edge Loops".to_string(),
             Command::MergeVertices { .. } => "Merge at Center".to_string(),
             Command::DissolveFaces { .. } => "Dissolve Faces".to_string(),
+            Command::BevelEdges { .. } => "Bevel".to_string(),
             Command::SlideEdges { .. } => "Edge Slide".to_string(),
             Command::MirrorVertices { axis, .. } => format!("Mirror {axis:?}"),
             Command::Symmetrize { axis, .. } => format!("Symmetrize {axis:?}"),
@@ -931,6 +938,9 @@ impl Plan<'_> {
             Command::MakeHoles { node, faces } => {
                 self.on_faces(node, faces, modeling::make_holes)?
             }
+            Command::BevelEdges { node, edges, width } => self.on_edges(node, edges, |m, es| {
+                modeling::bevel_edges(m, es, *width).map(drop)
+            })?,
             Command::SlideEdges {
                 node,
                 edges,

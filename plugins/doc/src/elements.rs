@@ -29,6 +29,8 @@ pub enum EdgeSet {
     Ids(Vec<u32>),
     /// The edge whose midpoint is nearest to a point.
     Nearest(DVec3),
+    /// For each point, the edge whose midpoint is nearest to it.
+    NearestEach(Vec<DVec3>),
     /// The edges around the faces of a face set.
     OfFaces(Box<FaceSet>),
 }
@@ -128,6 +130,14 @@ impl EdgeSet {
             EdgeSet::Nearest(p) => nearest(m.edges(), |e| m.edge_midpoint(e).distance_squared(*p))
                 .into_iter()
                 .collect(),
+            EdgeSet::NearestEach(points) => {
+                let mut v: Vec<EdgeId> = points
+                    .iter()
+                    .filter_map(|p| nearest(m.edges(), |e| m.edge_midpoint(e).distance_squared(*p)))
+                    .collect();
+                v.dedup();
+                v
+            }
             EdgeSet::OfFaces(faces) => {
                 let mut v: Vec<EdgeId> = faces
                     .resolve(m)?

@@ -41,7 +41,7 @@ fn every_command_example_in_the_docs_runs() {
         .collect();
     kinds.sort();
     kinds.dedup();
-    assert_eq!(kinds.len(), 40, "{kinds:?}");
+    assert_eq!(kinds.len(), 41, "{kinds:?}");
     let mut session = hedra_doc::Session::new();
     hedra_doc::script::run(&mut session, &commands, Path::new("docs/commands.md"))
         .unwrap_or_else(|e| panic!("{e}"));
@@ -77,6 +77,17 @@ fn every_command_example_in_the_docs_runs() {
         crate_.face_count(),
         0,
         "a corner, an opposite edge's faces and the last face: all six gone"
+    );
+    let chamfered = doc
+        .find_by_name("Chamfered")
+        .unwrap()
+        .content
+        .mesh()
+        .unwrap();
+    assert_eq!(
+        (chamfered.vertex_count(), chamfered.face_count()),
+        (12, 8),
+        "two chamfers"
     );
     let tray = doc.find_by_name("Tray").unwrap().content.mesh().unwrap();
     assert_eq!(

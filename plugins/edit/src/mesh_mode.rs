@@ -100,6 +100,8 @@ pub enum MeshToolKind {
     ExtrudeEdges,
     /// Slide the selected edges along their neighbours (G G in edge mode).
     SlideEdges,
+    /// Bevel the selected edges (Ctrl+B).
+    Bevel,
     /// Inset the selected faces each on its own (Alt+I).
     InsetIndividual,
     Rotate,
@@ -596,6 +598,14 @@ pub fn edit_shortcuts(
         }
         return;
     }
+    if c && keys.just_pressed(KeyCode::KeyB) {
+        if mode.selection.edges.is_empty() {
+            status.error("Bevel: select edges first (press 2 for edge mode)");
+        } else {
+            mode.tool = Some(start(MeshToolKind::Bevel));
+        }
+        return;
+    }
     if c && keys.just_pressed(KeyCode::KeyX) {
         match delete_or_dissolve(node.clone(), mode.kind, &mode.selection, true) {
             Some(cmd) => {
@@ -819,6 +829,15 @@ fn tool_command(
                 node,
                 vertices: VertexSet::Ids(vertices),
                 offset,
+            }
+        }
+        MeshToolKind::Bevel => {
+            let width = tool.typed.value().unwrap_or(drag.abs());
+            tool.readout = format!("Bevel width {width:.4}");
+            Command::BevelEdges {
+                node,
+                edges: EdgeSet::Ids(selection.edges.iter().map(|e| e.0).collect()),
+                width,
             }
         }
         MeshToolKind::SlideEdges => {

@@ -1219,3 +1219,123 @@ pub fn slide_edges(
     }
     Ok(())
 }
+
+/// Bevels (chamfers) edges with one segment (Blender's Ctrl+B): each edge
+/// becomes a new quad `width` wide, its ends moved along the neighbouring
+/// edges of its two faces. Built from the Euler operators: split the four
+/// neighbouring edges (MVE), cut both faces (MEF), join them across the edge
+/// (KEF), and remove the old corners (KVE). Each edge's ends must have
+/// valence 3 (the corners of box-like shapes) and beveled edges must not
+/// share a vertex. Returns the new faces.
+///
+/// # Errors
+/// [`ModelingError::Parameter`] for a width that is not positive or too
+/// large for the neighbouring edges, an end of another valence, or edges
+/// sharing a vertex; [`ModelingError::NotBoundary`]-like misuse on a border
+/// edge is refused as [`ModelingError::Parameter`] too. The mesh is
+/// unchanged on error.
+pub fn bevel_edges(
+    mesh: &mut HalfEdgeMesh,
+    edges: &[EdgeId],
+    width: f64,
+) -> Result<Vec<FaceId>, ModelingError> {
+    if edges.is_empty() {
+        return Err(ModelingError::Empty("no edges"));
+    }
+    if !(width.is_finite() && width > 0.0) {
+        return Err(ModelingError::Parameter {
+            what: "width",
+            allowed: "a finite width > 0",
+            value: width.to_string(),
+        });
+    }
+    let mut ends = std::collections::HashSet::new();
+    for &e in edges {
+        if !mesh.is_edge(e) {
+            return Err(ModelingError::Missing(e.to_string()));
+        }
+        for v in mesh.edge_vertices(e) {
+            if !ends.insert(v) {
+                return Err(ModelingError::Parameter {
+                    what: "edges",
+                    allowed: "edges that share no vertex",
+                    value: format!("{v} is an end of two"),
+                });
+            }
+        }
+    }
+    let mut work = mesh.clone();
+    let mut out = Vec::with_capacity(edges.len());
+    for &e in edges {
+        out.push(bevel_one(&mut work, e, width)?);
+    }
+    work.validate()
+        .map_err(|e| ModelingError::Invalid(e.to_string()))?;
+    *mesh = work;
+    Ok(out)
+}
+
+fn bevel_one(m: &mut HalfEdgeMesh, e: EdgeId, width: f64) -> Result<FaceId, ModelingError> {
+    let h = e.halfedge(0);
+    let t = h.twin();
+    let (a, b) = (m.origin(h), m.target(h));
+    if m.face(h).is_none() || m.face(t).is_none() {
+        return Err(ModelingError::Parameter {
+            what: "edge",
+            allowed: "an edge between two faces",
+            value: format!("{e} is on a boundary"),
+        });
+    }
+    for v in [a, b] {
+        if m.vertex_valence(v) != 3 || m.is_boundary_vertex(v) {
+            return Err(ModelingError::Parameter {
+                what: "edge ends",
+                allowed: "vertices of valence 3",
+                value: format!("{v} has valence {}", m.vertex_valence(v)),
+            });
+        }
+    }
+    // The four neighbouring edges, each with the end the bevel starts from.
+    let sides = [
+        (m.prev(h), a),
+        (m.next(t), a),
+        (m.next(h), b),
+        (m.prev(t), b),
+    ];
+    let mut new_vertices = Vec::with_capacity(4);
+    for (x, corner) in sides {
+        let far = if m.origin(x) == corner {
+            m.target(x)
+        } else {
+            m.origin(x)
+        };
+        let (pc, pf) = (m.position(corner), m.position(far));
+        let len = pc.distance(pf);
+        if width >= len {
+            return Err(ModelingError::Parameter {
+                what: "width",
+                allowed: "less than the neighbouring edges",
+                value: format!("{width} >= {len:.4}"),
+            });
+        }
+        let at = pc + (pf - pc) * (width / len);
+        new_vertices.push(m.split_edge(x.edge(), at)?);
+    }
+    let [a1, a2, b1, b2] = [
+        new_vertices[0],
+        new_vertices[1],
+        new_vertices[2],
+        new_vertices[3],
+    ];
+    connect_vertices(m, a1, b1)?;
+    connect_vertices(m, a2, b2)?;
+    m.kill_edge_face(e)?;
+    m.join_edges(a)?;
+    m.join_edges(b)?;
+    m.faces()
+        .find(|&f| {
+            let vs: Vec<VertexId> = m.face_vertices(f).collect();
+            vs.len() == 4 && [a1, a2, b1, b2].iter().all(|v| vs.contains(v))
+        })
+        .ok_or_else(|| ModelingError::Invalid("the chamfer face was not formed".into()))
+}

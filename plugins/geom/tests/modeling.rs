@@ -717,3 +717,45 @@ fn sliding_an_open_chain_keeps_one_side() {
         "to the same side: {moved:?}"
     );
 }
+
+#[test]
+fn beveling_a_cube_edge_makes_a_chamfer() {
+    use hedra_geom::modeling::bevel_edges;
+    let mut c = cube();
+    let e = hedra_geom::EdgeId(0);
+    let [a, b] = c.edge_vertices(e);
+    let (pa, pb) = (c.position(a), c.position(b));
+    let faces = bevel_edges(&mut c, &[e], 0.25).unwrap();
+    c.validate().unwrap();
+    assert_eq!(
+        counts(&c),
+        (10, 15, 7),
+        "one edge becomes a face: +2 V, +3 E, +1 F"
+    );
+    assert!(c.stats().closed);
+    let f = faces[0];
+    assert_eq!(c.face_degree(f), 4);
+    // The chamfer's corners are 0.25 from the old corners along the faces' edges.
+    for v in c.face_vertices(f) {
+        let p = c.position(v);
+        let d = p.distance(pa).min(p.distance(pb));
+        assert!((d - 0.25).abs() < 1e-12, "{p:?}");
+    }
+    // The cut-off prism's volume: 2 * (0.25 * 0.25 / 2) * edge length 2.
+    assert!((c.volume() - (8.0 - 0.0625)).abs() < 1e-9, "{}", c.volume());
+    // Too wide, shared ends, border edges: refused, unchanged.
+    let mut c = cube();
+    let before = c.clone();
+    assert!(bevel_edges(&mut c, &[EdgeId(0)], 2.5).is_err());
+    let shared = c
+        .edges()
+        .find(|&x| {
+            x != EdgeId(0)
+                && c.edge_vertices(x)
+                    .iter()
+                    .any(|v| c.edge_vertices(EdgeId(0)).contains(v))
+        })
+        .unwrap();
+    assert!(bevel_edges(&mut c, &[EdgeId(0), shared], 0.1).is_err());
+    assert_eq!(c, before);
+}

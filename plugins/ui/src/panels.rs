@@ -783,6 +783,8 @@ fn adjust_last_window(
             | Command::InsetRegion { .. }
             | Command::LoopCut { .. }
             | Command::SubdivideEdges { .. }
+            | Command::BevelEdges { .. }
+            | Command::SlideEdges { .. }
     );
     if !editable {
         return;
@@ -796,6 +798,12 @@ fn adjust_last_window(
         .show(ctx, |ui| {
             let changed = match &mut edited {
                 Command::AddPrimitive { primitive, .. } => primitive_editor(ui, primitive),
+                Command::BevelEdges { width, .. } => {
+                    number_row(ui, "Width", width, 0.005, 0.0001..=1e6)
+                }
+                Command::SlideEdges { factor, .. } => {
+                    number_row(ui, "Factor", factor, 0.01, -1.0..=1.0)
+                }
                 Command::ExtrudeFaces { distance, .. }
                 | Command::ExtrudeRegion { distance, .. } => {
                     number_row(ui, "Distance", distance, 0.01, -1e6..=1e6)
