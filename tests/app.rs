@@ -235,3 +235,48 @@ fn new_selection_follows_created_nodes() {
         "the undone copy left the selection"
     );
 }
+
+#[test]
+fn patching_positions_gives_the_same_render_mesh_as_rebuilding() {
+    use bevy::mesh::VertexAttributeValues;
+    use hedra_doc::Shading;
+    use hedra_scene::{render_mesh, update_render_positions};
+    let attr = |m: &Mesh, a| match m.attribute(a) {
+        Some(VertexAttributeValues::Float32x3(v)) => v.clone(),
+        _ => panic!("missing attribute"),
+    };
+    for shading in [Shading::Flat, Shading::Smooth] {
+        let old = Primitive::UvSphere {
+            segments: 12,
+            rings: 6,
+            radius: 1.0,
+        }
+        .build()
+        .unwrap();
+        let mut new = old.clone();
+        for v in new.vertices().filter(|v| v.0 % 3 == 0).collect::<Vec<_>>() {
+            new.set_position(
+                v,
+                new.position(v) * 1.2 + hedra_geom::DVec3::new(0.1, 0.0, 0.0),
+            );
+        }
+        let mut patched = render_mesh(&old, shading);
+        assert!(update_render_positions(&mut patched, &old, &new, shading));
+        let rebuilt = render_mesh(&new, shading);
+        for a in [Mesh::ATTRIBUTE_POSITION, Mesh::ATTRIBUTE_NORMAL] {
+            let (p, r) = (attr(&patched, a.clone()), attr(&rebuilt, a));
+            assert_eq!(p.len(), r.len());
+            for (x, y) in p.iter().zip(&r) {
+                assert!(
+                    (0..3).all(|k| (x[k] - y[k]).abs() < 1e-6),
+                    "{shading:?}: {x:?} vs {y:?}"
+                );
+            }
+        }
+        // A change of connectivity is refused: the caller rebuilds.
+        let mut cut = old.clone();
+        hedra_geom::modeling::subdivide_edges(&mut cut, &[hedra_geom::EdgeId(0)], 1).unwrap();
+        let mut m = render_mesh(&old, shading);
+        assert!(!update_render_positions(&mut m, &old, &cut, shading));
+    }
+}

@@ -1087,43 +1087,64 @@ pub fn drive_mesh_tool(
 }
 
 /// While a tool runs, the edited node shows the preview mesh; afterwards the
-/// document's mesh again.
+/// document's mesh again. When a preview only moves vertices, the render
+/// mesh is patched in place instead of rebuilt (dense meshes stay fluid).
 pub fn show_preview(
     mode: Res<EditMode>,
     state: Res<DocState>,
     entities: Res<NodeEntities>,
-    mut shown: Local<Option<(NodeId, usize)>>,
+    mut shown: Local<Option<(NodeId, Arc<HalfEdgeMesh>)>>,
     mesh3d: Query<&Mesh3d>,
     mut meshes: ResMut<Assets<Mesh>>,
 ) {
+    let doc_mesh = |n: NodeId| -> Option<(Arc<HalfEdgeMesh>, hedra_doc::Shading)> {
+        match &state.session.doc.node(n)?.content {
+            NodeContent::Mesh(c) => Some((c.mesh.clone(), c.shading)),
+            NodeContent::Empty => None,
+        }
+    };
     let want: Option<(NodeId, Arc<HalfEdgeMesh>)> = match (mode.node, &mode.preview) {
         (Some(n), Some(p)) => Some((n, p.clone())),
         _ => None,
     };
-    let key = want.as_ref().map(|(n, p)| (*n, Arc::as_ptr(p) as usize));
-    if key == *shown {
+    let same = |a: &Option<(NodeId, Arc<HalfEdgeMesh>)>,
+                b: &Option<(NodeId, Arc<HalfEdgeMesh>)>| match (a, b) {
+        (Some((n1, m1)), Some((n2, m2))) => n1 == n2 && Arc::ptr_eq(m1, m2),
+        (None, None) => true,
+        _ => false,
+    };
+    if same(&want, &shown) {
         return;
     }
-    // Restore the previously previewed node from the document.
-    if let Some((prev, _)) = shown.take() {
-        if let (Some(node), Some(e)) = (state.session.doc.node(prev), entities.0.get(&prev)) {
-            if let (NodeContent::Mesh(c), Ok(h)) = (&node.content, mesh3d.get(*e)) {
-                if let Some(mut m) = meshes.get_mut(&h.0) {
-                    *m = hedra_scene::render_mesh(&c.mesh, c.shading);
-                }
+    let mut show = |n: NodeId, from: &HalfEdgeMesh, to: &HalfEdgeMesh| {
+        let Some((_, shading)) = doc_mesh(n) else {
+            return;
+        };
+        let Some(h) = entities.0.get(&n).and_then(|e| mesh3d.get(*e).ok()) else {
+            return;
+        };
+        if let Some(mut m) = meshes.get_mut(&h.0) {
+            if !hedra_scene::update_render_positions(&mut m, from, to, shading) {
+                *m = hedra_scene::render_mesh(to, shading);
             }
+        }
+    };
+    // Back to the document's mesh for the node previewed before.
+    if let Some((prev, prev_mesh)) = shown.take() {
+        if want.as_ref().is_none_or(|(n, _)| *n != prev) {
+            if let Some((doc, _)) = doc_mesh(prev) {
+                show(prev, &prev_mesh, &doc);
+            }
+        } else if let Some((n, p)) = &want {
+            show(*n, &prev_mesh, p);
+            *shown = want.clone();
+            return;
         }
     }
-    if let Some((n, p)) = want {
-        let shading = match state.session.doc.node(n).map(|x| &x.content) {
-            Some(NodeContent::Mesh(c)) => c.shading,
-            _ => hedra_doc::Shading::Flat,
-        };
-        if let Some(h) = entities.0.get(&n).and_then(|e| mesh3d.get(*e).ok()) {
-            if let Some(mut m) = meshes.get_mut(&h.0) {
-                *m = hedra_scene::render_mesh(&p, shading);
-            }
+    if let Some((n, p)) = &want {
+        if let Some((doc, _)) = doc_mesh(*n) {
+            show(*n, &doc, p);
         }
-        *shown = key;
+        *shown = want.clone();
     }
 }

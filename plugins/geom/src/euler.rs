@@ -811,6 +811,16 @@ impl HalfEdgeMesh {
         Ok(sides)
     }
 
+    /// True when both meshes have the same elements and links (positions may
+    /// differ): what a tool that only moves vertices leaves unchanged.
+    pub fn same_connectivity(&self, other: &HalfEdgeMesh) -> bool {
+        self.halfedges == other.halfedges
+            && self.face_halfedge == other.face_halfedge
+            && self.vertex_dead == other.vertex_dead
+            && self.edge_dead == other.edge_dead
+            && self.face_dead == other.face_dead
+    }
+
     /// Structural equality: the same live vertices at the same positions, the
     /// same live edges with the same half-edge links and faces, the same live
     /// faces. Ignores free choices (which half-edge a vertex or face stores)

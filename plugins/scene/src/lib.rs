@@ -507,3 +507,88 @@ pub mod modifiers {
         held(keys, [KeyCode::AltLeft, KeyCode::AltRight])
     }
 }
+
+/// Updates a render mesh built by [`render_mesh`] from `old` so that it shows
+/// `new`, rewriting only the positions and normals that changed, when the two
+/// meshes differ only in vertex positions (what a move, rotate or scale of
+/// elements does while the mouse drags). Returns false, changing nothing,
+/// when the connectivity differs: rebuild with [`render_mesh`] then.
+///
+/// Complexity: O(V + F) simple passes plus work proportional to the moved
+/// vertices' neighbourhoods; no triangulation, no allocation per face.
+pub fn update_render_positions(
+    render: &mut Mesh,
+    old: &HalfEdgeMesh,
+    new: &HalfEdgeMesh,
+    shading: Shading,
+) -> bool {
+    use bevy::mesh::VertexAttributeValues;
+    if !old.same_connectivity(new) {
+        return false;
+    }
+    let moved: Vec<hedra_geom::VertexId> = new
+        .vertices()
+        .filter(|&v| old.position(v) != new.position(v))
+        .collect();
+    if moved.is_empty() {
+        return true;
+    }
+    let mut positions = match render.attribute(Mesh::ATTRIBUTE_POSITION) {
+        Some(VertexAttributeValues::Float32x3(p)) => p.clone(),
+        _ => return false,
+    };
+    let mut normals = match render.attribute(Mesh::ATTRIBUTE_NORMAL) {
+        Some(VertexAttributeValues::Float32x3(n)) => n.clone(),
+        _ => return false,
+    };
+    match shading {
+        Shading::Flat => {
+            // Render corners are laid out face after face in id order.
+            let mut start = vec![u32::MAX; new.face_capacity()];
+            let mut at = 0u32;
+            for f in new.faces() {
+                start[f.index()] = at;
+                at += new.face_degree(f) as u32;
+            }
+            if at as usize != positions.len() {
+                return false;
+            }
+            let mut faces: Vec<hedra_geom::FaceId> =
+                moved.iter().flat_map(|&v| new.vertex_faces(v)).collect();
+            faces.sort();
+            faces.dedup();
+            for f in faces {
+                let n = new.face_normal(f).as_vec3().to_array();
+                for (k, v) in new.face_vertices(f).enumerate() {
+                    let i = start[f.index()] as usize + k;
+                    positions[i] = new.position(v).as_vec3().to_array();
+                    normals[i] = n;
+                }
+            }
+        }
+        Shading::Smooth => {
+            let mut rank = vec![u32::MAX; new.vertex_capacity()];
+            for (i, v) in new.vertices().enumerate() {
+                rank[v.index()] = i as u32;
+            }
+            if new.vertex_count() != positions.len() {
+                return false;
+            }
+            let mut touched: Vec<hedra_geom::VertexId> = moved
+                .iter()
+                .flat_map(|&v| std::iter::once(v).chain(new.vertex_neighbors(v)))
+                .collect();
+            touched.sort();
+            touched.dedup();
+            for &v in &moved {
+                positions[rank[v.index()] as usize] = new.position(v).as_vec3().to_array();
+            }
+            for v in touched {
+                normals[rank[v.index()] as usize] = new.vertex_normal(v).as_vec3().to_array();
+            }
+        }
+    }
+    render.insert_attribute(Mesh::ATTRIBUTE_POSITION, positions);
+    render.insert_attribute(Mesh::ATTRIBUTE_NORMAL, normals);
+    true
+}
