@@ -246,11 +246,13 @@ pub enum Command {
         edges: EdgeSet,
         factor: f64,
     },
-    /// Bevels (chamfers) edges `width` wide with one segment.
+    /// Bevels edges `width` wide; more than one segment rounds the bevel.
     BevelEdges {
         node: NodeRef,
         edges: EdgeSet,
         width: f64,
+        #[serde(default = "one")]
+        segments: u32,
     },
     /// Merges faces into one by removing the edges between them.
     DissolveFaces {
@@ -938,8 +940,13 @@ impl Plan<'_> {
             Command::MakeHoles { node, faces } => {
                 self.on_faces(node, faces, modeling::make_holes)?
             }
-            Command::BevelEdges { node, edges, width } => self.on_edges(node, edges, |m, es| {
-                modeling::bevel_edges(m, es, *width).map(drop)
+            Command::BevelEdges {
+                node,
+                edges,
+                width,
+                segments,
+            } => self.on_edges(node, edges, |m, es| {
+                modeling::bevel_edges(m, es, *width, *segments).map(drop)
             })?,
             Command::SlideEdges {
                 node,

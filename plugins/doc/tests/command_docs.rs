@@ -86,8 +86,8 @@ fn every_command_example_in_the_docs_runs() {
         .unwrap();
     assert_eq!(
         (chamfered.vertex_count(), chamfered.face_count()),
-        (12, 8),
-        "two chamfers"
+        (12 + 8, 8 + 4),
+        "two chamfers of three segments"
     );
     let tray = doc.find_by_name("Tray").unwrap().content.mesh().unwrap();
     assert_eq!(

@@ -833,11 +833,13 @@ fn tool_command(
         }
         MeshToolKind::Bevel => {
             let width = tool.typed.value().unwrap_or(drag.abs());
-            tool.readout = format!("Bevel width {width:.4}");
+            let segments = tool.cuts;
+            tool.readout = format!("Bevel width {width:.4}, {segments} segment(s) (wheel or +/-)");
             Command::BevelEdges {
                 node,
                 edges: EdgeSet::Ids(selection.edges.iter().map(|e| e.0).collect()),
                 width,
+                segments,
             }
         }
         MeshToolKind::SlideEdges => {
@@ -992,8 +994,8 @@ pub fn drive_mesh_tool(
         tool.kind = MeshToolKind::SlideEdges;
         tool.typed = Default::default();
     }
-    let loop_cut = tool.kind == MeshToolKind::LoopCut;
-    // Loop cut: minus, plus and the wheel change the number of cuts.
+    // Loop cut and bevel: minus, plus and the wheel change the count of cuts or segments.
+    let loop_cut = matches!(tool.kind, MeshToolKind::LoopCut | MeshToolKind::Bevel);
     tool.typed.read(&keys, !loop_cut);
     if loop_cut {
         let less = keys.any_just_pressed([KeyCode::Minus, KeyCode::NumpadSubtract])

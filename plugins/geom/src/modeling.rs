@@ -1238,9 +1238,17 @@ pub fn bevel_edges(
     mesh: &mut HalfEdgeMesh,
     edges: &[EdgeId],
     width: f64,
+    segments: u32,
 ) -> Result<Vec<FaceId>, ModelingError> {
     if edges.is_empty() {
         return Err(ModelingError::Empty("no edges"));
+    }
+    if !(1..=32).contains(&segments) {
+        return Err(ModelingError::Parameter {
+            what: "segments",
+            allowed: "1 to 32",
+            value: segments.to_string(),
+        });
     }
     if !(width.is_finite() && width > 0.0) {
         return Err(ModelingError::Parameter {
@@ -1267,7 +1275,14 @@ pub fn bevel_edges(
     let mut work = mesh.clone();
     let mut out = Vec::with_capacity(edges.len());
     for &e in edges {
-        out.push(bevel_one(&mut work, e, width)?);
+        let [a, b] = work.edge_vertices(e);
+        let (pa, pb) = (work.position(a), work.position(b));
+        let f = bevel_one(&mut work, e, width)?;
+        if segments == 1 {
+            out.push(f);
+        } else {
+            out.extend(round_chamfer(&mut work, f, pa, pb, segments)?);
+        }
     }
     work.validate()
         .map_err(|e| ModelingError::Invalid(e.to_string()))?;
@@ -1338,4 +1353,51 @@ fn bevel_one(m: &mut HalfEdgeMesh, e: EdgeId, width: f64) -> Result<FaceId, Mode
             vs.len() == 4 && [a1, a2, b1, b2].iter().all(|v| vs.contains(v))
         })
         .ok_or_else(|| ModelingError::Invalid("the chamfer face was not formed".into()))
+}
+
+/// Splits a chamfer quad into `segments` strips and bends them round: the
+/// new vertices of each end lie on the quadratic Bézier arc from one side
+/// of the chamfer to the other with the old corner as control point.
+fn round_chamfer(
+    m: &mut HalfEdgeMesh,
+    f: FaceId,
+    pa: DVec3,
+    pb: DVec3,
+    segments: u32,
+) -> Result<Vec<FaceId>, ModelingError> {
+    // The chamfer's short edges run across the old edge, at its two ends.
+    let corners: Vec<VertexId> = m.face_vertices(f).collect();
+    let near_a = |p: DVec3| p.distance_squared(pa) < p.distance_squared(pb);
+    let short = m
+        .face_halfedges(f)
+        .find(|&h| near_a(m.position(m.origin(h))) && near_a(m.position(m.target(h))))
+        .ok_or_else(|| ModelingError::Invalid("the chamfer has no end edge".into()))?;
+    let ends = |m: &HalfEdgeMesh, near: bool| -> (DVec3, DVec3) {
+        let side: Vec<DVec3> = corners
+            .iter()
+            .filter(|&&v| near_a(m.position(v)) == near)
+            .map(|&v| m.position(v))
+            .collect();
+        (side[0], side[1])
+    };
+    let (a1, a2) = ends(m, true);
+    let (b1, b2) = ends(m, false);
+    let new_edges = loop_cut(m, short.edge(), segments - 1)?;
+    let mut faces: Vec<FaceId> = Vec::new();
+    for &e in &new_edges {
+        faces.extend(m.edge_faces(e).into_iter().flatten());
+        for v in m.edge_vertices(e) {
+            let (s1, s2, corner) = if near_a(m.position(v)) {
+                (a1, a2, pa)
+            } else {
+                (b1, b2, pb)
+            };
+            let t = (m.position(v).distance(s1) / s1.distance(s2)).clamp(0.0, 1.0);
+            let p = s1 * (1.0 - t) * (1.0 - t) + corner * 2.0 * t * (1.0 - t) + s2 * t * t;
+            m.set_position(v, p);
+        }
+    }
+    faces.sort();
+    faces.dedup();
+    Ok(faces)
 }

@@ -725,7 +725,7 @@ fn beveling_a_cube_edge_makes_a_chamfer() {
     let e = hedra_geom::EdgeId(0);
     let [a, b] = c.edge_vertices(e);
     let (pa, pb) = (c.position(a), c.position(b));
-    let faces = bevel_edges(&mut c, &[e], 0.25).unwrap();
+    let faces = bevel_edges(&mut c, &[e], 0.25, 1).unwrap();
     c.validate().unwrap();
     assert_eq!(
         counts(&c),
@@ -746,7 +746,7 @@ fn beveling_a_cube_edge_makes_a_chamfer() {
     // Too wide, shared ends, border edges: refused, unchanged.
     let mut c = cube();
     let before = c.clone();
-    assert!(bevel_edges(&mut c, &[EdgeId(0)], 2.5).is_err());
+    assert!(bevel_edges(&mut c, &[EdgeId(0)], 2.5, 1).is_err());
     let shared = c
         .edges()
         .find(|&x| {
@@ -756,6 +756,37 @@ fn beveling_a_cube_edge_makes_a_chamfer() {
                     .any(|v| c.edge_vertices(EdgeId(0)).contains(v))
         })
         .unwrap();
-    assert!(bevel_edges(&mut c, &[EdgeId(0), shared], 0.1).is_err());
+    assert!(bevel_edges(&mut c, &[EdgeId(0), shared], 0.1, 1).is_err());
     assert_eq!(c, before);
+}
+
+#[test]
+fn a_rounded_bevel_bends_its_segments_towards_the_old_corner() {
+    use hedra_geom::modeling::bevel_edges;
+    let mut c = cube();
+    let e = hedra_geom::EdgeId(0);
+    let [a, _] = c.edge_vertices(e);
+    let pa = c.position(a);
+    let strips = bevel_edges(&mut c, &[e], 0.5, 4).unwrap();
+    c.validate().unwrap();
+    assert_eq!(strips.len(), 4, "four strips");
+    assert_eq!(counts(&c), (10 + 6, 15 + 9, 7 + 3));
+    assert!(c.stats().closed);
+    // The middle of the arc at the first end: Bézier(0.5) = a1/4 + corner/2 + a2/4,
+    // 0.25 of the width nearer the corner than the flat chamfer's midpoint.
+    let mid = c
+        .vertices()
+        .map(|v| c.position(v))
+        .min_by(|p, q| p.distance(pa).total_cmp(&q.distance(pa)))
+        .unwrap();
+    let flat_mid_distance = (0.5f64 * 0.5 + 0.5 * 0.5).sqrt() / 2.0;
+    assert!(
+        mid.distance(pa) < flat_mid_distance,
+        "rounded outwards: {} vs {flat_mid_distance}",
+        mid.distance(pa)
+    );
+    // Rounding adds volume back compared with a flat chamfer.
+    let mut flat = cube();
+    bevel_edges(&mut flat, &[e], 0.5, 1).unwrap();
+    assert!(c.volume() > flat.volume());
 }

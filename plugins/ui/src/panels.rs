@@ -798,8 +798,16 @@ fn adjust_last_window(
         .show(ctx, |ui| {
             let changed = match &mut edited {
                 Command::AddPrimitive { primitive, .. } => primitive_editor(ui, primitive),
-                Command::BevelEdges { width, .. } => {
-                    number_row(ui, "Width", width, 0.005, 0.0001..=1e6)
+                Command::BevelEdges {
+                    width, segments, ..
+                } => {
+                    let w = number_row(ui, "Width", width, 0.005, 0.0001..=1e6);
+                    let s = ui.horizontal(|ui| {
+                        ui.label("Segments");
+                        ui.add(egui::DragValue::new(segments).speed(0.1).range(1..=32))
+                            .changed()
+                    });
+                    w | s.inner
                 }
                 Command::SlideEdges { factor, .. } => {
                     number_row(ui, "Factor", factor, 0.01, -1.0..=1.0)
