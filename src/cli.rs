@@ -155,17 +155,7 @@ pub fn run(sub: Sub) -> Result<(), CliError> {
                 output.display()
             );
         }
-        Sub::Undo {
-            file,
-            steps,
-            output,
-        }
-        | Sub::Redo {
-            file,
-            steps,
-            output,
-        } if steps == 0 => {
-            let _ = (file, output);
+        Sub::Undo { steps: 0, .. } | Sub::Redo { steps: 0, .. } => {
             return Err(CliError("--steps must be at least 1".into()));
         }
         Sub::Undo {

@@ -211,7 +211,6 @@ fn handle_file_actions(
     state: Res<DocState>,
     mut requests: MessageWriter<DocRequest>,
     mut exit: MessageWriter<AppExit>,
-    mut status: ResMut<StatusMessage>,
 ) {
     for action in actions.read() {
         let dirty = state.session.is_dirty();
@@ -251,7 +250,7 @@ fn handle_file_actions(
             }
         };
         if let Some(p) = now {
-            run_pending(p, &mut ui, &state, &mut requests, &mut exit, &mut status);
+            run_pending(p, &mut ui, &state, &mut requests, &mut exit);
         }
     }
 }
@@ -263,7 +262,6 @@ pub fn run_pending(
     state: &DocState,
     requests: &mut MessageWriter<DocRequest>,
     exit: &mut MessageWriter<AppExit>,
-    _status: &mut StatusMessage,
 ) {
     match p {
         Pending::New => {
@@ -403,7 +401,6 @@ fn remember_recent(
     mut ui: ResMut<UiState>,
     mut requests: MessageWriter<DocRequest>,
     mut exit: MessageWriter<AppExit>,
-    mut status: ResMut<StatusMessage>,
 ) {
     if state.path != *last_path {
         *last_path = state.path.clone();
@@ -416,7 +413,7 @@ fn remember_recent(
     }
     if !state.session.is_dirty() {
         if let Some(p) = ui.after_save.take() {
-            run_pending(p, &mut ui, &state, &mut requests, &mut exit, &mut status);
+            run_pending(p, &mut ui, &state, &mut requests, &mut exit);
         }
     }
 }

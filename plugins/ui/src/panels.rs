@@ -989,7 +989,6 @@ fn dialogs(ctx: &egui::Context, state: &mut UiState, model: &mut Model, writers:
                             &model.state,
                             &mut writers.requests,
                             &mut writers.exit,
-                            &mut model.status,
                         );
                     }
                     if ui.button("Cancel").clicked() {
