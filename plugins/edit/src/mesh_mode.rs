@@ -248,26 +248,43 @@ pub fn element_under_cursor(
             .world_to_viewport(camera_transform, world.transform_point3(p).as_vec3())
             .ok()
     };
+    // Vertices and edges hidden behind the surface are not candidates.
+    let inv = world.inverse();
+    let eye = inv.transform_point3(camera_transform.translation().as_dvec3());
+    let visible = |p: DVec3| hedra_geom::query::is_visible_from(mesh, eye, p);
+    // Nearest on screen first; the first unhidden candidate wins.
+    let nearest_visible = |mut candidates: Vec<(ElementHit, f32, Vec<DVec3>)>| {
+        candidates.sort_by(|a, b| a.1.total_cmp(&b.1));
+        candidates
+            .into_iter()
+            .find(|(_, _, probes)| probes.iter().any(|&p| visible(p)))
+            .map(|(hit, _, _)| hit)
+    };
     match kind {
-        ElementKind::Vertex => mesh
-            .vertices()
-            .filter_map(|v| screen(mesh.position(v)).map(|s| (v, s.distance(cursor))))
-            .filter(|(_, d)| *d <= PICK_RADIUS)
-            .min_by(|a, b| a.1.total_cmp(&b.1))
-            .map(|(v, _)| ElementHit::Vertex(v)),
-        ElementKind::Edge => mesh
-            .edges()
-            .filter_map(|e| {
-                let [a, b] = mesh.edge_vertices(e);
-                let (sa, sb) = (screen(mesh.position(a))?, screen(mesh.position(b))?);
-                Some((e, point_segment_distance(cursor, sa, sb)))
-            })
-            .filter(|(_, d)| *d <= PICK_RADIUS)
-            .min_by(|a, b| a.1.total_cmp(&b.1))
-            .map(|(e, _)| ElementHit::Edge(e)),
+        ElementKind::Vertex => nearest_visible(
+            mesh.vertices()
+                .filter_map(|v| {
+                    let d = screen(mesh.position(v))?.distance(cursor);
+                    (d <= PICK_RADIUS).then(|| (ElementHit::Vertex(v), d, vec![mesh.position(v)]))
+                })
+                .collect(),
+        ),
+        ElementKind::Edge => nearest_visible(
+            mesh.edges()
+                .filter_map(|e| {
+                    let [a, b] = mesh.edge_vertices(e);
+                    let (sa, sb) = (screen(mesh.position(a))?, screen(mesh.position(b))?);
+                    let d = point_segment_distance(cursor, sa, sb);
+                    (d <= PICK_RADIUS).then(|| {
+                        let (pa, pb) = (mesh.position(a), mesh.position(b));
+                        let probes = [0.25, 0.5, 0.75].map(|s| pa.lerp(pb, s)).to_vec();
+                        (ElementHit::Edge(e), d, probes)
+                    })
+                })
+                .collect(),
+        ),
         ElementKind::Face => {
             let (o, d) = cursor_ray(window, camera, camera_transform)?;
-            let inv = world.inverse();
             hedra_geom::query::ray_cast(mesh, inv.transform_point3(o), inv.transform_vector3(d))
                 .map(|(f, _)| ElementHit::Face(f))
         }

@@ -130,6 +130,14 @@ pub fn ray_triangle(origin: DVec3, dir: DVec3, a: DVec3, b: DVec3, c: DVec3) -> 
     (t > 1e-12).then_some(t)
 }
 
+/// Whether `point` can be seen from `eye`: no face crosses the segment
+/// between them before the point itself (faces through the point hit at its
+/// end, within a small relative tolerance). Used to keep hidden vertices and
+/// edges out of viewport picking.
+pub fn is_visible_from(mesh: &HalfEdgeMesh, eye: DVec3, point: DVec3) -> bool {
+    ray_cast(mesh, eye, point - eye).is_none_or(|(_, t)| t >= 1.0 - 1e-4)
+}
+
 /// The nearest face hit by a ray (in the mesh's own space) and its `t`.
 ///
 /// Complexity: O(corners); fine for picking one ray per click.

@@ -1,6 +1,6 @@
 //! Triangulation and ray casting.
 
-use hedra_geom::query::{ray_cast, triangulate_face};
+use hedra_geom::query::{is_visible_from, ray_cast, triangulate_face};
 use hedra_geom::{DVec3, FaceId, HalfEdgeMesh, Primitive};
 
 fn area(m: &HalfEdgeMesh, tris: &[[hedra_geom::VertexId; 3]]) -> DVec3 {
@@ -70,4 +70,30 @@ fn ray_cast_hits_the_nearest_face() {
         ray_cast(&m, DVec3::new(0.0, 0.0, 10.0), DVec3::new(0.0, 0.0, 1.0)).is_none(),
         "behind the origin"
     );
+}
+
+#[test]
+fn corners_behind_the_cube_are_hidden_from_the_eye() {
+    let m = Primitive::Cube { size: 2.0 }.build().unwrap();
+    let eye = DVec3::new(0.3, 0.2, 5.0);
+    assert!(
+        is_visible_from(&m, eye, DVec3::new(1.0, 1.0, 1.0)),
+        "front corner"
+    );
+    assert!(
+        is_visible_from(&m, eye, DVec3::new(0.0, 0.0, 1.0)),
+        "front face centre"
+    );
+    assert!(
+        !is_visible_from(&m, eye, DVec3::new(1.0, 1.0, -1.0)),
+        "back corner"
+    );
+    assert!(
+        !is_visible_from(&m, eye, DVec3::new(0.0, -1.0, 0.0)),
+        "bottom face centre"
+    );
+    // Seen from above and to the side, a top back corner is in view.
+    let eye = DVec3::new(0.0, 6.0, 0.5);
+    assert!(is_visible_from(&m, eye, DVec3::new(1.0, 1.0, -1.0)));
+    assert!(!is_visible_from(&m, eye, DVec3::new(1.0, -1.0, -1.0)));
 }
