@@ -1075,25 +1075,29 @@ fn topology_inspector(
         }
     };
     let he_grid = |ui: &mut egui::Ui, hs: &[hedra_geom::HalfEdgeId], salt: &str| {
-        egui::Grid::new(salt).striped(true).show(ui, |ui| {
-            for t in ["half-edge", "vertex", "twin", "next", "prev", "face"] {
-                ui.label(egui::RichText::new(t).strong());
-            }
-            ui.end_row();
-            for &h in hs {
-                let r = halfedge_record(m, h);
-                for t in [
-                    r.halfedge.to_string(),
-                    r.origin.to_string(),
-                    r.twin.to_string(),
-                    r.next.to_string(),
-                    r.prev.to_string(),
-                    opt(r.face),
-                ] {
-                    ui.label(t);
+        // Its own horizontal scroll keeps the wide table from pushing the
+        // panel (and with it the viewport) wider when something is picked.
+        egui::ScrollArea::horizontal().id_salt(salt).show(ui, |ui| {
+            egui::Grid::new(salt).striped(true).show(ui, |ui| {
+                for t in ["half-edge", "vertex", "twin", "next", "prev", "face"] {
+                    ui.label(egui::RichText::new(t).strong());
                 }
                 ui.end_row();
-            }
+                for &h in hs {
+                    let r = halfedge_record(m, h);
+                    for t in [
+                        r.halfedge.to_string(),
+                        r.origin.to_string(),
+                        r.twin.to_string(),
+                        r.next.to_string(),
+                        r.prev.to_string(),
+                        opt(r.face),
+                    ] {
+                        ui.label(t);
+                    }
+                    ui.end_row();
+                }
+            });
         });
     };
     // The selection can briefly name elements of the next mesh (a tool that
