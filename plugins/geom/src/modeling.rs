@@ -26,6 +26,10 @@ pub enum ModelingError {
         allowed: &'static str,
         value: String,
     },
+    #[error(
+        "the faces around {face} close a whole shell: dissolving them would leave no surface (select fewer faces)"
+    )]
+    ClosedShell { face: FaceId },
     #[error("the result would not be a valid mesh: {0}")]
     Invalid(String),
     #[error(transparent)]
@@ -816,19 +820,56 @@ pub fn extrude_boundary_edges(
     Ok(out)
 }
 
+/// A face of `region` whose edge-connected part of the region has no edge
+/// on its outline (every neighbour across every edge is in the region):
+/// that part is a whole closed shell.
+fn closed_shell_in(
+    mesh: &HalfEdgeMesh,
+    region: &std::collections::BTreeSet<FaceId>,
+) -> Option<FaceId> {
+    let mut seen = std::collections::BTreeSet::new();
+    for &start in region {
+        if !seen.insert(start) {
+            continue;
+        }
+        let (mut stack, mut closed) = (vec![start], true);
+        while let Some(f) = stack.pop() {
+            for h in mesh.face_halfedges(f) {
+                match mesh.face(h.twin()) {
+                    Some(g) if region.contains(&g) => {
+                        if seen.insert(g) {
+                            stack.push(g);
+                        }
+                    }
+                    _ => closed = false,
+                }
+            }
+        }
+        if closed {
+            return Some(start);
+        }
+    }
+    None
+}
+
 /// Merges adjacent faces into one by removing the edges between them, and
 /// then the edges left dangling inside (Blender's dissolve faces). Returns
 /// the faces left of the region.
 ///
 /// # Errors
-/// [`ModelingError::Missing`], [`ModelingError::Invalid`] if the result
-/// would not be valid; the mesh is unchanged on error.
+/// [`ModelingError::Missing`], [`ModelingError::ClosedShell`] when the
+/// selection covers a whole closed shell (there is no outline left to make a
+/// face of), [`ModelingError::Invalid`] if the result would not be valid; the
+/// mesh is unchanged on error.
 pub fn dissolve_faces(
     mesh: &mut HalfEdgeMesh,
     faces: &[FaceId],
 ) -> Result<Vec<FaceId>, ModelingError> {
     check_faces(mesh, faces)?;
     let mut region: std::collections::BTreeSet<FaceId> = faces.iter().copied().collect();
+    if let Some(face) = closed_shell_in(mesh, &region) {
+        return Err(ModelingError::ClosedShell { face });
+    }
     let mut work = mesh.clone();
     // Grow one face over its region neighbours, one neighbour at a time, so
     // the growing face never closes a ring: the edges it shares with the

@@ -561,6 +561,24 @@ fn dissolving_a_block_of_faces_leaves_one_face() {
 }
 
 #[test]
+fn dissolving_every_face_of_a_closed_shell_is_refused_and_changes_nothing() {
+    use hedra_geom::modeling::dissolve_faces;
+    let mut c = cube();
+    let before = c.clone();
+    let all: Vec<FaceId> = c.faces().collect();
+    let err = dissolve_faces(&mut c, &all).unwrap_err();
+    assert!(matches!(err, ModelingError::ClosedShell { .. }), "{err}");
+    assert!(err.to_string().contains("whole shell"), "{err}");
+    assert!(c.same_as(&before));
+    // Five of six faces have an outline (the sixth face's), so they dissolve.
+    let five: Vec<FaceId> = all[..5].to_vec();
+    let left = dissolve_faces(&mut c, &five).unwrap();
+    c.validate().unwrap();
+    assert!(left.len() < 5, "{} faces left", left.len());
+    assert_eq!(c.face_count(), left.len() + 1);
+}
+
+#[test]
 fn deleting_faces_edges_and_vertices_cleans_up_loose_geometry() {
     use hedra_geom::modeling::{delete_faces, faces_around_vertices};
     let mut c = cube();
