@@ -599,29 +599,40 @@ pub fn edit_shortcuts(
         }
         return;
     }
-    if a && keys.just_pressed(KeyCode::KeyI) {
-        if mode.selection.faces.is_empty() {
-            status.error("Inset: select faces first (press 3 for face mode)");
-        } else {
-            mode.tool = Some(start(MeshToolKind::InsetIndividual));
+    // Tools that start only on a selection of one element kind.
+    let faces_selected = !mode.selection.faces.is_empty();
+    let edges_selected = !mode.selection.edges.is_empty();
+    for (held, key, selected, tool, refusal) in [
+        (
+            a,
+            KeyCode::KeyI,
+            faces_selected,
+            MeshToolKind::InsetIndividual,
+            "Inset: select faces first (press 3 for face mode)",
+        ),
+        (
+            a,
+            KeyCode::KeyE,
+            faces_selected,
+            MeshToolKind::ExtrudeIndividual,
+            "Extrude: select faces first (press 3 for face mode)",
+        ),
+        (
+            c,
+            KeyCode::KeyB,
+            edges_selected,
+            MeshToolKind::Bevel,
+            "Bevel: select edges first (press 2 for edge mode)",
+        ),
+    ] {
+        if held && keys.just_pressed(key) {
+            if selected {
+                mode.tool = Some(start(tool));
+            } else {
+                status.error(refusal);
+            }
+            return;
         }
-        return;
-    }
-    if a && keys.just_pressed(KeyCode::KeyE) {
-        if mode.selection.faces.is_empty() {
-            status.error("Extrude: select faces first (press 3 for face mode)");
-        } else {
-            mode.tool = Some(start(MeshToolKind::ExtrudeIndividual));
-        }
-        return;
-    }
-    if c && keys.just_pressed(KeyCode::KeyB) {
-        if mode.selection.edges.is_empty() {
-            status.error("Bevel: select edges first (press 2 for edge mode)");
-        } else {
-            mode.tool = Some(start(MeshToolKind::Bevel));
-        }
-        return;
     }
     if c && keys.just_pressed(KeyCode::KeyX) {
         match delete_or_dissolve(node.clone(), mode.kind, &mode.selection, true) {
