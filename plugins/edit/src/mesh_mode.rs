@@ -229,6 +229,24 @@ pub fn follow_changes(
     }
 }
 
+/// The parameter `t` of the point `origin + direction * t` of a line nearest
+/// to a ray (closest points of two lines: Ericson, *Real-Time Collision
+/// Detection*, 5.1.8). `None` when they are within about 6° of parallel,
+/// where the nearest point runs off too fast to follow.
+fn line_parameter_nearest_ray(
+    (origin, direction): (DVec3, DVec3),
+    (ray_origin, ray_direction): (DVec3, DVec3),
+) -> Option<f64> {
+    let w = origin - ray_origin;
+    let (a, b, c) = (
+        direction.dot(direction),
+        direction.dot(ray_direction),
+        ray_direction.dot(ray_direction),
+    );
+    let denom = a * c - b * b;
+    (denom > 1e-2 * a * c).then(|| (b * ray_direction.dot(w) - c * direction.dot(w)) / denom)
+}
+
 /// Screen distance (logical pixels) within which a vertex or edge is picked.
 const PICK_RADIUS: f32 = 12.0;
 
@@ -920,7 +938,24 @@ fn tool_command(
             Command::SetVertexPositions { node, positions }
         }
         MeshToolKind::Extrude | MeshToolKind::ExtrudeIndividual => {
-            let distance = tool.typed.value().unwrap_or(drag);
+            // The faces follow the cursor along their normal, as in Blender;
+            // sideways drag only when the normal points at the viewer.
+            let distance = tool.typed.value().unwrap_or_else(|| {
+                let normal = selection
+                    .faces
+                    .iter()
+                    .map(|&f| mesh.face_normal(f))
+                    .sum::<DVec3>();
+                let line = (
+                    tool.pivot,
+                    world.transform_vector3(normal.normalize_or_zero()),
+                );
+                let along = |p: Vec2| line_parameter_nearest_ray(line, ray_at(p)?);
+                match (along(tool.start_cursor), along(cursor)) {
+                    (Some(a), Some(b)) => b - a,
+                    _ => drag,
+                }
+            });
             tool.readout = format!("Extrude {distance:.4}");
             if tool.kind == MeshToolKind::Extrude {
                 Command::ExtrudeRegion {
@@ -1176,5 +1211,23 @@ pub fn show_preview(
             show(*n, &doc, p);
         }
         *shown = want.clone();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::line_parameter_nearest_ray;
+    use bevy::math::DVec3;
+
+    #[test]
+    fn nearest_point_on_a_line_to_a_ray() {
+        // The Y axis scaled by 2 (t counts half units) and a ray along -X at height 3.
+        let line = (DVec3::ZERO, DVec3::new(0.0, 2.0, 0.0));
+        let ray = (DVec3::new(5.0, 3.0, 1.0), DVec3::new(-1.0, 0.0, 0.0));
+        let t = line_parameter_nearest_ray(line, ray).unwrap();
+        assert!((t - 1.5).abs() < 1e-12, "{t}");
+        // Looking straight down the line gives nothing to follow.
+        let along = (DVec3::new(0.0, 9.0, 0.0), DVec3::new(0.01, -1.0, 0.0));
+        assert_eq!(line_parameter_nearest_ray(line, along), None);
     }
 }
