@@ -905,49 +905,56 @@ fn history_window(
 }
 
 fn status_bar(ui: &mut egui::Ui, model: &Model) {
-    ui.horizontal(|ui| {
-        let doc = &model.state.session.doc;
-        let edit = &model.mode;
-        if let Some(node) = edit.node.and_then(|n| doc.node(n)) {
-            let kind = match edit.kind {
-                ElementKind::Vertex => "Vertex",
-                ElementKind::Edge => "Edge",
-                ElementKind::Face => "Face",
-            };
-            ui.label(egui::RichText::new(format!("Edit Mode · {kind}")).strong().color(egui::Color32::from_rgb(255, 170, 80)));
-            ui.separator();
-            let s = &edit.selection;
-            ui.label(format!("{}: {} vertices, {} edges, {} faces selected", node.name, s.vertices.len(), s.edges.len(), s.faces.len()));
-            ui.separator();
-            if let Some(t) = &edit.tool {
-                ui.label(egui::RichText::new(&t.readout).color(egui::Color32::from_rgb(255, 200, 80)));
-                ui.label("move the mouse · type a value · Enter/click confirm · Esc/right-click cancel");
-            } else {
-                ui.label("1/2/3 kind · G move · E extrude · I inset · Ctrl+R loop cut · J connect · X dissolve · Tab exit");
-            }
+    // The message is laid out first, from the right, so the key hints give
+    // way (truncated) instead of being drawn under a long error.
+    ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
+        let s = &model.status;
+        let text = if s.is_error {
+            egui::RichText::new(&s.text).color(egui::Color32::from_rgb(255, 110, 100))
         } else {
-            ui.label(egui::RichText::new("Object Mode").strong());
-            ui.separator();
-            let sel = &model.selection.nodes;
-            match (sel.len(), model.selection.active().and_then(|a| doc.node(a))) {
-                (0, _) | (_, None) => ui.label("Nothing selected"),
-                (1, Some(n)) => ui.label(format!("Selected: {}", n.name)),
-                (k, Some(n)) => ui.label(format!("{k} selected, active: {}", n.name)),
-            };
-            ui.separator();
-            if let Some(m) = &model.tool.active {
-                ui.label(egui::RichText::new(&m.readout).color(egui::Color32::from_rgb(255, 200, 80)));
-                ui.label("X/Y/Z constrain · type a value · Enter/click confirm · Esc/right-click cancel");
+            egui::RichText::new(&s.text)
+        };
+        let most = ui.available_width() * 0.6;
+        ui.scope(|ui| {
+            ui.set_max_width(most);
+            ui.add(egui::Label::new(text).truncate()).on_hover_text(&s.text);
+        });
+        ui.with_layout(egui::Layout::left_to_right(egui::Align::Center), |ui| {
+            let doc = &model.state.session.doc;
+            let edit = &model.mode;
+            if let Some(node) = edit.node.and_then(|n| doc.node(n)) {
+                let kind = match edit.kind {
+                    ElementKind::Vertex => "Vertex",
+                    ElementKind::Edge => "Edge",
+                    ElementKind::Face => "Face",
+                };
+                ui.label(egui::RichText::new(format!("Edit Mode · {kind}")).strong().color(egui::Color32::from_rgb(255, 170, 80)));
+                ui.separator();
+                let s = &edit.selection;
+                ui.label(format!("{}: {} vertices, {} edges, {} faces selected", node.name, s.vertices.len(), s.edges.len(), s.faces.len()));
+                ui.separator();
+                if let Some(t) = &edit.tool {
+                    ui.label(egui::RichText::new(&t.readout).color(egui::Color32::from_rgb(255, 200, 80)));
+                    ui.add(egui::Label::new("move the mouse · type a value · Enter/click confirm · Esc/right-click cancel").truncate());
+                } else {
+                    ui.add(egui::Label::new("1/2/3 kind · G move · E extrude · I inset · Ctrl+R loop cut · J connect · X dissolve · Tab exit").truncate());
+                }
             } else {
-                ui.label("G move · R rotate · S scale · X delete · Shift+D duplicate · Shift+A add · Tab edit mesh · Ctrl+Z undo · MMB orbit");
-            }
-        }
-        ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
-            let s = &model.status;
-            if s.is_error {
-                ui.colored_label(egui::Color32::from_rgb(255, 110, 100), &s.text);
-            } else {
-                ui.label(&s.text);
+                ui.label(egui::RichText::new("Object Mode").strong());
+                ui.separator();
+                let sel = &model.selection.nodes;
+                match (sel.len(), model.selection.active().and_then(|a| doc.node(a))) {
+                    (0, _) | (_, None) => ui.label("Nothing selected"),
+                    (1, Some(n)) => ui.label(format!("Selected: {}", n.name)),
+                    (k, Some(n)) => ui.label(format!("{k} selected, active: {}", n.name)),
+                };
+                ui.separator();
+                if let Some(m) = &model.tool.active {
+                    ui.label(egui::RichText::new(&m.readout).color(egui::Color32::from_rgb(255, 200, 80)));
+                    ui.add(egui::Label::new("X/Y/Z constrain · type a value · Enter/click confirm · Esc/right-click cancel").truncate());
+                } else {
+                    ui.add(egui::Label::new("G move · R rotate · S scale · X delete · Shift+D duplicate · Shift+A add · Tab edit mesh · Ctrl+Z undo · MMB orbit").truncate());
+                }
             }
         });
     });
