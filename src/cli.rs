@@ -221,21 +221,8 @@ pub fn run(sub: Sub) -> Result<(), CliError> {
         }
         Sub::Export { file, output } => {
             let session = load(&file)?;
-            let ext = output
-                .extension()
-                .and_then(|e| e.to_str())
-                .unwrap_or("")
-                .to_ascii_lowercase();
-            let text = match ext.as_str() {
-                "obj" => hedra_doc::export::to_obj(&session.doc),
-                other => {
-                    return Err(CliError(format!(
-                        "{}: unsupported export format '.{other}' (supported: .obj)",
-                        output.display()
-                    )));
-                }
-            };
-            file::write_atomic(&output, &text)?;
+            let bytes = hedra_doc::export::export_bytes(&session.doc, &output).map_err(CliError)?;
+            file::write_atomic_bytes(&output, &bytes)?;
         }
     }
     Ok(())

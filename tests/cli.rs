@@ -256,6 +256,50 @@ fn export_writes_world_space_obj_with_ngons() {
     assert_eq!(f.iter().filter(|&&n| n == 4).count(), 6);
 }
 
+#[test]
+fn export_writes_binary_stl_that_an_stl_reader_loads() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("c.hedra.ron");
+    let s = dir.path().join("s.ron");
+    std::fs::write(&s, "[AddPrimitive(primitive: Cylinder(segments: 6, radius: 1.0, depth: 2.0), transform: (translation: (10.0, 0.0, 0.0)))]").unwrap();
+    assert!(
+        hedra(&["run", s.to_str().unwrap(), "-o", file.to_str().unwrap()])
+            .status
+            .success()
+    );
+    let stl = dir.path().join("c.stl");
+    let o = hedra(&[
+        "export",
+        file.to_str().unwrap(),
+        "-o",
+        stl.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let mesh = stl_io::read_stl(&mut std::fs::File::open(&stl).unwrap()).unwrap();
+    // Two hexagon caps of 4 triangles each and 6 side quads of 2.
+    assert_eq!(mesh.faces.len(), 2 * 4 + 6 * 2);
+    assert_eq!(mesh.vertices.len(), 12, "the reader welds shared corners");
+    mesh.validate()
+        .expect("closed, consistently oriented, no zero-area faces");
+    for v in &mesh.vertices {
+        assert!((v[0] - 10.0).abs() <= 1.0 + 1e-5, "world space: {v:?}");
+    }
+    for t in &mesh.faces {
+        let c = t.vertices.iter().fold([0.0f32; 3], |acc, &i| {
+            let p = mesh.vertices[i];
+            [
+                acc[0] + p[0] / 3.0,
+                acc[1] + p[1] / 3.0,
+                acc[2] + p[2] / 3.0,
+            ]
+        });
+        let n = t.normal;
+        let length = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+        let outward = n[0] * (c[0] - 10.0) + n[1] * c[1] + n[2] * c[2];
+        assert!((length - 1.0).abs() < 1e-5 && outward > 0.0, "{t:?}");
+    }
+}
+
 /// Runs a failing command and checks the one-line message, the exit code and
 /// that no output file appeared.
 fn fails(args: &[&str], output: &Path, expected: &str) {

@@ -1,8 +1,69 @@
 //! Writing meshes to other formats. OBJ keeps polygons as they are (n-gons
-//! included) and writes world-space positions.
+//! included); binary STL gets the faces triangulated. Both write world-space
+//! positions of the visible meshes.
 
 use crate::scene::{Document, NodeContent};
 use std::fmt::Write;
+use std::path::Path;
+
+/// The formats [`export_bytes`] writes, by file extension.
+pub const EXPORT_FORMATS: &[(&str, &str)] = &[("obj", "Wavefront OBJ"), ("stl", "binary STL")];
+
+/// The document in the format that `path`'s extension names.
+///
+/// # Errors
+/// A message naming the file when the extension is not an export format.
+pub fn export_bytes(doc: &Document, path: &Path) -> Result<Vec<u8>, String> {
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .unwrap_or("")
+        .to_ascii_lowercase();
+    match ext.as_str() {
+        "obj" => Ok(to_obj(doc).into_bytes()),
+        "stl" => Ok(to_stl(doc)),
+        other => Err(format!(
+            "{}: unsupported export format '.{other}' (supported: {})",
+            path.display(),
+            EXPORT_FORMATS
+                .iter()
+                .map(|(e, _)| format!(".{e}"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        )),
+    }
+}
+
+/// The visible meshes as binary STL (written by `stl_io`): every face
+/// triangulated, positions in world space, each triangle's normal from its
+/// corners (counter-clockwise is the outside).
+pub fn to_stl(doc: &Document) -> Vec<u8> {
+    let mut triangles = Vec::new();
+    for node in doc.nodes() {
+        let NodeContent::Mesh(content) = &node.content else {
+            continue;
+        };
+        if !is_visible(doc, node.id) {
+            continue;
+        }
+        let m = &content.mesh;
+        let world = doc.world_matrix(node.id);
+        for f in m.faces() {
+            for corners in hedra_geom::query::triangulate_face(m, f) {
+                let [a, b, c] = corners.map(|v| world.transform_point3(m.position(v)));
+                let n = (b - a).cross(c - a).normalize_or_zero();
+                let vertex = |p: glam::DVec3| stl_io::Vertex::new(p.as_vec3().to_array());
+                triangles.push(stl_io::Triangle {
+                    normal: stl_io::Normal::new(n.as_vec3().to_array()),
+                    vertices: [vertex(a), vertex(b), vertex(c)],
+                });
+            }
+        }
+    }
+    let mut out = Vec::new();
+    stl_io::write_stl(&mut out, triangles.iter()).expect("writing to memory cannot fail");
+    out
+}
 
 /// The scene's visible meshes as Wavefront OBJ text, one `o` object per mesh
 /// node, positions in world space, faces 1-based and counter-clockwise.

@@ -267,6 +267,14 @@ fn io(path: &Path) -> impl FnOnce(std::io::Error) -> FileError + '_ {
 /// # Errors
 /// [`FileError::Io`] naming the path.
 pub fn write_atomic(path: &Path, text: &str) -> Result<(), FileError> {
+    write_atomic_bytes(path, text.as_bytes())
+}
+
+/// [`write_atomic`] for binary contents (binary STL).
+///
+/// # Errors
+/// [`FileError::Io`] naming the path.
+pub fn write_atomic_bytes(path: &Path, bytes: &[u8]) -> Result<(), FileError> {
     let dir = match path.parent() {
         Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
         _ => PathBuf::from("."),
@@ -282,7 +290,7 @@ pub fn write_atomic(path: &Path, text: &str) -> Result<(), FileError> {
     ));
     let result = (|| {
         let mut f = std::fs::File::create(&tmp).map_err(io(&tmp))?;
-        f.write_all(text.as_bytes()).map_err(io(&tmp))?;
+        f.write_all(bytes).map_err(io(&tmp))?;
         f.sync_all().map_err(io(&tmp))?;
         drop(f);
         if path.exists() {

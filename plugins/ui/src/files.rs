@@ -13,6 +13,7 @@ pub enum FilePurpose {
     SaveAs,
     ImportObj,
     ExportObj,
+    ExportStl,
 }
 
 impl FilePurpose {
@@ -22,12 +23,14 @@ impl FilePurpose {
             FilePurpose::SaveAs => "Save Scene As",
             FilePurpose::ImportObj => "Import OBJ",
             FilePurpose::ExportObj => "Export OBJ",
+            FilePurpose::ExportStl => "Export STL",
         }
     }
     fn filter(self) -> (&'static str, &'static [&'static str]) {
         match self {
             FilePurpose::Open | FilePurpose::SaveAs => ("Hedra scene", &["ron"]),
             FilePurpose::ImportObj | FilePurpose::ExportObj => ("Wavefront OBJ", &["obj"]),
+            FilePurpose::ExportStl => ("STL", &["stl"]),
         }
     }
 }
@@ -75,6 +78,7 @@ pub fn spawn_dialog(purpose: FilePurpose, start_dir: Option<PathBuf>) -> DialogT
             FilePurpose::Open | FilePurpose::ImportObj => d.pick_file(),
             FilePurpose::SaveAs => d.set_file_name("untitled.hedra.ron").save_file(),
             FilePurpose::ExportObj => d.set_file_name("export.obj").save_file(),
+            FilePurpose::ExportStl => d.set_file_name("export.stl").save_file(),
         }
     });
     DialogTask { purpose, task }

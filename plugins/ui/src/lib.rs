@@ -90,6 +90,7 @@ pub enum FileAction {
     SaveAs,
     ImportObj,
     ExportObj,
+    ExportStl,
     Quit,
 }
 
@@ -240,8 +241,13 @@ fn handle_file_actions(
                 begin_path(&mut ui, FilePurpose::SaveAs, &state);
                 None
             }
-            FileAction::ExportObj => {
-                begin_path(&mut ui, FilePurpose::ExportObj, &state);
+            FileAction::ExportObj | FileAction::ExportStl => {
+                let purpose = if matches!(action, FileAction::ExportStl) {
+                    FilePurpose::ExportStl
+                } else {
+                    FilePurpose::ExportObj
+                };
+                begin_path(&mut ui, purpose, &state);
                 None
             }
             FileAction::ImportObj => {
@@ -298,7 +304,7 @@ pub fn begin_path(ui: &mut UiState, purpose: FilePurpose, state: &DocState) {
                     .display()
                     .to_string()
             }),
-        FilePurpose::ExportObj => start_dir
+        FilePurpose::ExportObj | FilePurpose::ExportStl => start_dir
             .clone()
             .unwrap_or_default()
             .join("export.obj")
@@ -329,9 +335,22 @@ pub fn use_path(
         FilePurpose::ImportObj => {
             requests.write(DocRequest::Import(path));
         }
-        FilePurpose::ExportObj => {
-            let text = hedra_doc::export::to_obj(&state.session.doc);
-            match hedra_doc::file::write_atomic(&path, &text) {
+        FilePurpose::ExportObj | FilePurpose::ExportStl => {
+            // No extension given: the one of the format chosen.
+            let path = if path.extension().is_none() {
+                path.with_extension(if purpose == FilePurpose::ExportStl {
+                    "stl"
+                } else {
+                    "obj"
+                })
+            } else {
+                path
+            };
+            let written =
+                hedra_doc::export::export_bytes(&state.session.doc, &path).and_then(|b| {
+                    hedra_doc::file::write_atomic_bytes(&path, &b).map_err(|e| e.to_string())
+                });
+            match written {
                 Ok(()) => status.info(format!("Exported {}", path.display())),
                 Err(e) => status.error(format!("Export failed: {e}")),
             }

@@ -216,6 +216,9 @@ fn menu_bar(ui: &mut egui::Ui, state: &mut UiState, model: &Model, events: &mut 
                 if ui.button("Wavefront OBJ (.obj)…").clicked() {
                     events.push(UiEvent::File(FileAction::ExportObj));
                 }
+                if ui.button("STL, triangulated (.stl)…").clicked() {
+                    events.push(UiEvent::File(FileAction::ExportStl));
+                }
             });
             ui.separator();
             if ui.button("Quit\tCtrl+Q").clicked() {
@@ -1020,7 +1023,7 @@ fn dialogs(ctx: &egui::Context, state: &mut UiState, model: &mut Model, writers:
                 let verb = match prompt.purpose {
                     FilePurpose::Open => "Open",
                     FilePurpose::ImportObj => "Import",
-                    FilePurpose::ExportObj => "Export",
+                    FilePurpose::ExportObj | FilePurpose::ExportStl => "Export",
                     FilePurpose::SaveAs => "Save",
                 };
                 let ok = ui.button(verb).clicked() || enter;
