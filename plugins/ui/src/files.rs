@@ -26,6 +26,14 @@ impl FilePurpose {
             FilePurpose::ExportStl => "Export STL",
         }
     }
+    /// The file name offered for an export.
+    pub fn export_file_name(self) -> &'static str {
+        if self == FilePurpose::ExportStl {
+            "export.stl"
+        } else {
+            "export.obj"
+        }
+    }
     fn filter(self) -> (&'static str, &'static [&'static str]) {
         match self {
             FilePurpose::Open | FilePurpose::SaveAs => ("Hedra scene", &["ron"]),
@@ -77,8 +85,9 @@ pub fn spawn_dialog(purpose: FilePurpose, start_dir: Option<PathBuf>) -> DialogT
         match purpose {
             FilePurpose::Open | FilePurpose::ImportObj => d.pick_file(),
             FilePurpose::SaveAs => d.set_file_name("untitled.hedra.ron").save_file(),
-            FilePurpose::ExportObj => d.set_file_name("export.obj").save_file(),
-            FilePurpose::ExportStl => d.set_file_name("export.stl").save_file(),
+            FilePurpose::ExportObj | FilePurpose::ExportStl => {
+                d.set_file_name(purpose.export_file_name()).save_file()
+            }
         }
     });
     DialogTask { purpose, task }

@@ -307,7 +307,7 @@ pub fn begin_path(ui: &mut UiState, purpose: FilePurpose, state: &DocState) {
         FilePurpose::ExportObj | FilePurpose::ExportStl => start_dir
             .clone()
             .unwrap_or_default()
-            .join("export.obj")
+            .join(purpose.export_file_name())
             .display()
             .to_string(),
     };
