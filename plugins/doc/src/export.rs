@@ -39,15 +39,7 @@ pub fn export_bytes(doc: &Document, path: &Path) -> Result<Vec<u8>, String> {
 /// corners (counter-clockwise is the outside).
 pub fn to_stl(doc: &Document) -> Vec<u8> {
     let mut triangles = Vec::new();
-    for node in doc.nodes() {
-        let NodeContent::Mesh(content) = &node.content else {
-            continue;
-        };
-        if !is_visible(doc, node.id) {
-            continue;
-        }
-        let m = &content.mesh;
-        let world = doc.world_matrix(node.id);
+    for (_, m, world) in visible_meshes(doc) {
         for f in m.faces() {
             for corners in hedra_geom::query::triangulate_face(m, f) {
                 let [a, b, c] = corners.map(|v| world.transform_point3(m.position(v)));
@@ -70,15 +62,7 @@ pub fn to_stl(doc: &Document) -> Vec<u8> {
 pub fn to_obj(doc: &Document) -> String {
     let mut out = String::from("# Hedra OBJ export\n");
     let mut base = 1usize;
-    for node in doc.nodes() {
-        let NodeContent::Mesh(content) = &node.content else {
-            continue;
-        };
-        if !is_visible(doc, node.id) {
-            continue;
-        }
-        let m = &content.mesh;
-        let world = doc.world_matrix(node.id);
+    for (node, m, world) in visible_meshes(doc) {
         let mut index = vec![0usize; m.vertex_capacity()];
         let _ = writeln!(out, "o {}", node.name.replace(char::is_whitespace, "_"));
         for (i, v) in m.vertices().enumerate() {
@@ -96,6 +80,19 @@ pub fn to_obj(doc: &Document) -> String {
         base += m.vertex_count();
     }
     out
+}
+
+/// The mesh nodes an export writes (visible ones), with their meshes and
+/// world matrices.
+fn visible_meshes(
+    doc: &Document,
+) -> impl Iterator<Item = (&crate::scene::Node, &hedra_geom::HalfEdgeMesh, glam::DMat4)> {
+    doc.nodes().filter_map(|node| match &node.content {
+        NodeContent::Mesh(content) if is_visible(doc, node.id) => {
+            Some((node, &*content.mesh, doc.world_matrix(node.id)))
+        }
+        _ => None,
+    })
 }
 
 /// True when the node and all its parents are visible.
