@@ -213,25 +213,31 @@ fn run_on_an_input_scene_appends_to_its_history() {
     );
 }
 
-#[test]
-fn export_writes_world_space_obj_with_ngons() {
-    let dir = tempfile::tempdir().unwrap();
-    let file = dir.path().join("c.hedra.ron");
-    let s = dir.path().join("s.ron");
+/// A hexagonal cylinder (radius 1, depth 2) at x = 10 exported to `c.<ext>`.
+fn exported_cylinder(dir: &std::path::Path, ext: &str) -> std::path::PathBuf {
+    let file = dir.join("c.hedra.ron");
+    let s = dir.join("s.ron");
     std::fs::write(&s, "[AddPrimitive(primitive: Cylinder(segments: 6, radius: 1.0, depth: 2.0), transform: (translation: (10.0, 0.0, 0.0)))]").unwrap();
     assert!(
         hedra(&["run", s.to_str().unwrap(), "-o", file.to_str().unwrap()])
             .status
             .success()
     );
-    let obj = dir.path().join("c.obj");
+    let out = dir.join(format!("c.{ext}"));
     let o = hedra(&[
         "export",
         file.to_str().unwrap(),
         "-o",
-        obj.to_str().unwrap(),
+        out.to_str().unwrap(),
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
+    out
+}
+
+#[test]
+fn export_writes_world_space_obj_with_ngons() {
+    let dir = tempfile::tempdir().unwrap();
+    let obj = exported_cylinder(dir.path(), "obj");
     let text = std::fs::read_to_string(&obj).unwrap();
     let v: Vec<Vec<f64>> = text
         .lines()
@@ -259,22 +265,7 @@ fn export_writes_world_space_obj_with_ngons() {
 #[test]
 fn export_writes_binary_stl_that_an_stl_reader_loads() {
     let dir = tempfile::tempdir().unwrap();
-    let file = dir.path().join("c.hedra.ron");
-    let s = dir.path().join("s.ron");
-    std::fs::write(&s, "[AddPrimitive(primitive: Cylinder(segments: 6, radius: 1.0, depth: 2.0), transform: (translation: (10.0, 0.0, 0.0)))]").unwrap();
-    assert!(
-        hedra(&["run", s.to_str().unwrap(), "-o", file.to_str().unwrap()])
-            .status
-            .success()
-    );
-    let stl = dir.path().join("c.stl");
-    let o = hedra(&[
-        "export",
-        file.to_str().unwrap(),
-        "-o",
-        stl.to_str().unwrap(),
-    ]);
-    assert!(o.status.success(), "{}", stderr(&o));
+    let stl = exported_cylinder(dir.path(), "stl");
     let mesh = stl_io::read_stl(&mut std::fs::File::open(&stl).unwrap()).unwrap();
     // Two hexagon caps of 4 triangles each and 6 side quads of 2.
     assert_eq!(mesh.faces.len(), 2 * 4 + 6 * 2);
