@@ -12,6 +12,7 @@ pub mod modeling;
 pub mod patch;
 pub mod primitives;
 pub mod query;
+pub mod subdivision;
 pub mod topology;
 pub mod validate;
 

@@ -1,0 +1,591 @@
+//! Subdivision surfaces: Catmull-Clark (n-gons, boundaries, semi-sharp and
+//! sharp creases, corner sharpness), Loop, Doo-Sabin and linear splitting.
+//!
+//! Subdivision is a linear operator (libigl's `newV = S·V`): for a fixed
+//! cage topology and fixed creases, a [`Refiner`] builds every level's
+//! connectivity once; [`Refiner::refine`] then maps cage positions to the
+//! refined positions through the masks, and [`StencilTable`] records the same
+//! weights so a cage drag re-applies them without touching topology.
+//!
+//! ```
+//! use hedra_geom::primitives::Primitive;
+//! use hedra_geom::subdivision::{Options, Refiner, Creases};
+//! let cube = Primitive::Cube { size: 2.0 }.build().unwrap();
+//! let refiner = Refiner::new(&cube, &Creases::default(), Options::default(), 2).unwrap();
+//! assert_eq!(refiner.face_count(), 6 * 16);
+//! let positions = refiner.refine(&refiner.cage_positions(&cube));
+//! assert_eq!(positions.len(), refiner.vertex_count());
+//! ```
+
+mod level;
+mod limit;
+mod refine;
+mod rules;
+mod stencil;
+
+use std::collections::BTreeMap;
+
+use glam::DVec3;
+use serde::{Deserialize, Serialize};
+
+use crate::{EdgeId, FaceId, HalfEdgeMesh, VertexId};
+use level::{CageMap, Level};
+use refine::{Split, doo_sabin_weight, refine_topology};
+use rules::{Masks, Sink};
+
+pub use stencil::StencilTable;
+
+/// Sharpness at or above this is infinitely sharp (OpenSubdiv's
+/// `SHARPNESS_INFINITE`).
+pub const INFINITE_SHARPNESS: f32 = 10.0;
+
+/// Refinement levels above this are refused.
+pub const MAX_LEVEL: u32 = 10;
+
+/// Refined meshes above this many faces are refused.
+pub const MAX_FACES: usize = 20_000_000;
+
+/// Which subdivision scheme.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum Scheme {
+    /// Quads from any polygons; smooth (bicubic B-spline away from
+    /// extraordinary vertices).
+    #[default]
+    CatmullClark,
+    /// Triangles only; smooth (quartic box spline).
+    Loop,
+    /// The dual (corner-cutting) scheme; smooth (biquadratic B-spline).
+    DooSabin,
+    /// Splits like Catmull-Clark (or 1-to-4 on an all-triangle mesh) without
+    /// moving anything: more resolution, same shape.
+    Linear,
+}
+
+impl Scheme {
+    pub const ALL: [Scheme; 4] = [
+        Scheme::CatmullClark,
+        Scheme::Loop,
+        Scheme::DooSabin,
+        Scheme::Linear,
+    ];
+
+    pub fn label(self) -> &'static str {
+        match self {
+            Scheme::CatmullClark => "Catmull-Clark",
+            Scheme::Loop => "Loop",
+            Scheme::DooSabin => "Doo-Sabin",
+            Scheme::Linear => "Linear",
+        }
+    }
+}
+
+/// How boundary edges and corners are treated (OpenSubdiv's
+/// `VtxBoundaryInterpolation`).
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum BoundaryInterpolation {
+    /// Boundary faces are left out of the result: the surface stops short of
+    /// the cage's boundary.
+    None,
+    /// Boundary edges are sharp creases; corners are rounded.
+    #[default]
+    EdgesOnly,
+    /// Boundary edges are sharp and corners (a single face) stay put.
+    EdgesAndCorners,
+}
+
+impl BoundaryInterpolation {
+    pub const ALL: [BoundaryInterpolation; 3] = [
+        BoundaryInterpolation::None,
+        BoundaryInterpolation::EdgesOnly,
+        BoundaryInterpolation::EdgesAndCorners,
+    ];
+    pub fn label(self) -> &'static str {
+        match self {
+            BoundaryInterpolation::None => "None",
+            BoundaryInterpolation::EdgesOnly => "Edges only",
+            BoundaryInterpolation::EdgesAndCorners => "Edges and corners",
+        }
+    }
+}
+
+/// How semi-sharp crease values fall from level to level.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum CreaseMethod {
+    /// Sharpness − 1 per level.
+    #[default]
+    Uniform,
+    /// Chaikin's rule: blends with the neighbouring crease edges first, so
+    /// creases of varying sharpness fade smoothly.
+    Chaikin,
+}
+
+impl CreaseMethod {
+    pub const ALL: [CreaseMethod; 2] = [CreaseMethod::Uniform, CreaseMethod::Chaikin];
+    pub fn label(self) -> &'static str {
+        match self {
+            CreaseMethod::Uniform => "Uniform",
+            CreaseMethod::Chaikin => "Chaikin",
+        }
+    }
+}
+
+/// Scheme and rules of a refinement.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub struct Options {
+    #[serde(default)]
+    pub scheme: Scheme,
+    #[serde(default)]
+    pub boundary: BoundaryInterpolation,
+    #[serde(default)]
+    pub crease_method: CreaseMethod,
+}
+
+/// Crease sharpness of edges and corner sharpness of vertices, by the cage's
+/// ids; missing entries are 0 (smooth). Values at or above
+/// [`INFINITE_SHARPNESS`] are infinitely sharp. Entries of elements that no
+/// longer exist are ignored.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Creases {
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub edges: BTreeMap<EdgeId, f64>,
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub vertices: BTreeMap<VertexId, f64>,
+}
+
+impl Creases {
+    pub fn is_empty(&self) -> bool {
+        self.edges.is_empty() && self.vertices.is_empty()
+    }
+    /// Sharpness of edge `e` (0 when unset).
+    pub fn edge(&self, e: EdgeId) -> f64 {
+        self.edges.get(&e).copied().unwrap_or(0.0)
+    }
+    /// Corner sharpness of vertex `v` (0 when unset).
+    pub fn vertex(&self, v: VertexId) -> f64 {
+        self.vertices.get(&v).copied().unwrap_or(0.0)
+    }
+    /// Sets (or with 0, clears) the sharpness of edge `e`.
+    pub fn set_edge(&mut self, e: EdgeId, sharpness: f64) {
+        if sharpness > 0.0 {
+            self.edges.insert(e, sharpness);
+        } else {
+            self.edges.remove(&e);
+        }
+    }
+    /// Sets (or with 0, clears) the corner sharpness of vertex `v`.
+    pub fn set_vertex(&mut self, v: VertexId, sharpness: f64) {
+        if sharpness > 0.0 {
+            self.vertices.insert(v, sharpness);
+        } else {
+            self.vertices.remove(&v);
+        }
+    }
+    /// The creases whose elements are still alive in `mesh`.
+    pub fn retain_live(&mut self, mesh: &HalfEdgeMesh) {
+        self.edges.retain(|e, _| mesh.is_edge(*e));
+        self.vertices.retain(|v, _| mesh.is_vertex(*v));
+    }
+}
+
+/// Why a refinement cannot be made.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum SubdivisionError {
+    #[error(
+        "Loop subdivision needs triangles, but face {face} has {sides} sides (triangulate first)"
+    )]
+    NotTriangles { face: FaceId, sides: usize },
+    #[error("level {level} is above the maximum of {MAX_LEVEL}")]
+    LevelTooHigh { level: u32 },
+    #[error("{} has no limit surface evaluation here (Catmull-Clark needs an all-quad level, Loop triangles)", scheme.label())]
+    NoLimit { scheme: Scheme },
+    #[error("level {level} would make {faces} faces, more than the limit of {MAX_FACES}")]
+    TooManyFaces { level: u32, faces: usize },
+}
+
+/// The refinement of one cage topology to a number of levels: every level's
+/// connectivity, built once. Positions are mapped with [`refine`](Self::refine)
+/// (or a [`StencilTable`]) as often as the cage moves.
+#[derive(Clone, Debug)]
+pub struct Refiner {
+    options: Options,
+    pub(crate) levels: Vec<Level>,
+    cage: CageMap,
+    /// Per cage face (dense): left out of the result (boundary `None`).
+    hidden_cage_faces: Vec<bool>,
+}
+
+impl Refiner {
+    /// Builds the connectivity of `levels` refinement steps of `mesh` with
+    /// `creases`. Complexity: O(result size).
+    ///
+    /// # Errors
+    /// [`SubdivisionError::NotTriangles`] for Loop on a mesh with other
+    /// faces; [`SubdivisionError::LevelTooHigh`] / `TooManyFaces` when the
+    /// result would be too large (nothing is allocated first).
+    pub fn new(
+        mesh: &HalfEdgeMesh,
+        creases: &Creases,
+        options: Options,
+        levels: u32,
+    ) -> Result<Self, SubdivisionError> {
+        if levels > MAX_LEVEL {
+            return Err(SubdivisionError::LevelTooHigh { level: levels });
+        }
+        if options.scheme == Scheme::Loop
+            && let Some(f) = mesh.faces().find(|&f| mesh.face_degree(f) != 3)
+        {
+            return Err(SubdivisionError::NotTriangles {
+                face: f,
+                sides: mesh.face_degree(f),
+            });
+        }
+        let (cage_level, cage) = Level::from_mesh(mesh, creases, options.boundary);
+        let split = split_for(options.scheme, &cage_level);
+        let mut faces = cage_level.face_count();
+        for level in 1..=levels {
+            faces = match split {
+                Split::Quads if level == 1 => cage_level.face_vertices.len(),
+                Split::Quads | Split::Triangles => faces.saturating_mul(4),
+                Split::Dual if level == 1 => {
+                    cage_level.face_count() + cage_level.edge_count() + cage_level.vertex_count
+                }
+                Split::Dual => faces.saturating_mul(4),
+            };
+            if faces > MAX_FACES {
+                return Err(SubdivisionError::TooManyFaces { level, faces });
+            }
+        }
+        let hidden_cage_faces = hidden_faces(&cage_level, options.boundary);
+        let mut all = vec![cage_level];
+        for _ in 0..levels {
+            let child = refine_topology(
+                all.last().expect("cage level"),
+                split,
+                options.crease_method,
+            );
+            all.push(child);
+        }
+        Ok(Refiner {
+            options,
+            levels: all,
+            cage,
+            hidden_cage_faces,
+        })
+    }
+
+    pub fn options(&self) -> Options {
+        self.options
+    }
+    /// Number of refinement steps.
+    pub fn level_count(&self) -> u32 {
+        self.levels.len() as u32 - 1
+    }
+    fn last(&self) -> &Level {
+        self.levels.last().expect("at least the cage level")
+    }
+    /// Vertices of the refined mesh.
+    pub fn vertex_count(&self) -> usize {
+        self.last().vertex_count
+    }
+    /// Faces of the refined mesh (including those hidden by boundary `None`).
+    pub fn face_count(&self) -> usize {
+        self.last().face_count()
+    }
+    /// The refined faces as vertex index lists, without the faces that
+    /// boundary interpolation `None` leaves out.
+    pub fn faces(&self) -> impl Iterator<Item = &[u32]> + '_ {
+        let last = self.last();
+        (0..last.face_count())
+            .filter(|&f| !self.hidden_cage_faces[last.face_origin[f] as usize])
+            .map(move |f| &last.face_vertices[last.face_corners(f as u32)])
+    }
+    /// The cage face each shown refined face comes from, in [`faces`](Self::faces) order.
+    pub fn face_origins(&self) -> impl Iterator<Item = FaceId> + '_ {
+        let last = self.last();
+        last.face_origin
+            .iter()
+            .filter(|&&o| !self.hidden_cage_faces[o as usize])
+            .map(|&o| self.cage.faces[o as usize])
+    }
+    /// The refined edges (vertex index pairs) with their remaining sharpness.
+    pub fn edges(&self) -> impl Iterator<Item = ([u32; 2], f32)> + '_ {
+        let last = self.last();
+        last.edge_vertices
+            .iter()
+            .copied()
+            .zip(last.edge_sharpness.iter().copied())
+    }
+    /// The cage's positions in the order [`refine`](Self::refine) expects.
+    pub fn cage_positions(&self, mesh: &HalfEdgeMesh) -> Vec<DVec3> {
+        self.cage
+            .vertices
+            .iter()
+            .map(|&v| mesh.position(v))
+            .collect()
+    }
+    /// Cage vertex ids in refine order.
+    pub fn cage_vertices(&self) -> &[VertexId] {
+        &self.cage.vertices
+    }
+
+    /// Refined positions from cage positions (in
+    /// [`cage_positions`](Self::cage_positions) order), level by level
+    /// through the masks. Complexity: O(result size).
+    pub fn refine(&self, cage: &[DVec3]) -> Vec<DVec3> {
+        self.refine_with(cage, false)
+    }
+
+    /// [`refine`](Self::refine) with each level's points computed on all
+    /// cores (rayon).
+    pub fn refine_parallel(&self, cage: &[DVec3]) -> Vec<DVec3> {
+        self.refine_with(cage, true)
+    }
+
+    fn refine_with(&self, cage: &[DVec3], parallel: bool) -> Vec<DVec3> {
+        assert_eq!(
+            cage.len(),
+            self.levels[0].vertex_count,
+            "one position per cage vertex"
+        );
+        let mut points = cage.to_vec();
+        for parent in &self.levels[..self.levels.len() - 1] {
+            points = interpolate(parent, self.split(), self.options, &points, parallel);
+        }
+        points
+    }
+
+    pub(crate) fn split(&self) -> Split {
+        split_for(self.options.scheme, &self.levels[0])
+    }
+
+    /// The weights of every level, for re-applying after cage moves.
+    pub fn stencils(&self) -> StencilTable {
+        StencilTable::new(self)
+    }
+
+    /// The refined mesh as a half-edge mesh with the creases that remain
+    /// after the refinement (for "apply").
+    ///
+    /// # Errors
+    /// A build error when the refined faces do not form a manifold mesh,
+    /// which only a non-manifold cage can cause.
+    pub fn to_mesh(
+        &self,
+        positions: &[DVec3],
+    ) -> Result<(HalfEdgeMesh, Creases), crate::BuildError> {
+        let last = self.last();
+        let mut used = vec![u32::MAX; last.vertex_count];
+        let mut kept_positions = Vec::new();
+        let faces: Vec<Vec<u32>> = self
+            .faces()
+            .map(|f| {
+                f.iter()
+                    .map(|&v| {
+                        if used[v as usize] == u32::MAX {
+                            used[v as usize] = kept_positions.len() as u32;
+                            kept_positions.push(positions[v as usize]);
+                        }
+                        used[v as usize]
+                    })
+                    .collect()
+            })
+            .collect();
+        let mesh = HalfEdgeMesh::from_polygons(&kept_positions, &faces)?;
+        let mut creases = Creases::default();
+        for ([a, b], s) in self.edges() {
+            let (a, b) = (used[a as usize], used[b as usize]);
+            if s > 0.0
+                && a != u32::MAX
+                && b != u32::MAX
+                && let Some(e) = mesh.find_edge(VertexId(a), VertexId(b))
+                && !mesh.is_boundary_edge(e)
+            {
+                creases.set_edge(e, s as f64);
+            }
+        }
+        for (v, &s) in last.vertex_sharpness.iter().enumerate() {
+            let boundary_corner = self.options.boundary == BoundaryInterpolation::EdgesAndCorners
+                && rules::is_infinite(s);
+            if s > 0.0 && used[v] != u32::MAX && !boundary_corner {
+                creases.set_vertex(VertexId(used[v]), s as f64);
+            }
+        }
+        Ok((mesh, creases))
+    }
+
+    /// Refines `mesh` and builds the result in one call.
+    ///
+    /// # Errors
+    /// As [`Refiner::new`]. (Refining a valid half-edge mesh always gives a
+    /// valid one, so the build cannot fail.)
+    pub fn subdivide(
+        mesh: &HalfEdgeMesh,
+        creases: &Creases,
+        options: Options,
+        levels: u32,
+    ) -> Result<(HalfEdgeMesh, Creases), SubdivisionError> {
+        let refiner = Refiner::new(mesh, creases, options, levels)?;
+        let positions = refiner.refine(&refiner.cage_positions(mesh));
+        Ok(refiner
+            .to_mesh(&positions)
+            .expect("refining a valid half-edge mesh gives a valid mesh"))
+    }
+}
+
+pub use limit::{limit_normals, limit_positions, snap_to_limit};
+
+/// Faces left out with boundary `None`: those with a vertex on the boundary.
+fn hidden_faces(level: &Level, boundary: BoundaryInterpolation) -> Vec<bool> {
+    let mut hidden = vec![false; level.face_count()];
+    if boundary != BoundaryInterpolation::None {
+        return hidden;
+    }
+    for e in 0..level.edge_count() as u32 {
+        if level.is_boundary_edge(e) {
+            for v in level.edge_vertices[e as usize] {
+                for &c in level.vertex_corners(v) {
+                    hidden[level.face_origin[level.corner_face[c as usize] as usize] as usize] =
+                        true;
+                }
+            }
+        }
+    }
+    hidden
+}
+
+fn split_for(scheme: Scheme, cage: &Level) -> Split {
+    match scheme {
+        Scheme::CatmullClark => Split::Quads,
+        Scheme::Loop => Split::Triangles,
+        Scheme::DooSabin => Split::Dual,
+        Scheme::Linear if cage.face_count() > 0 && cage.all_faces_have(3) => Split::Triangles,
+        Scheme::Linear => Split::Quads,
+    }
+}
+
+fn masks_for(scheme: Scheme) -> Masks {
+    match scheme {
+        Scheme::CatmullClark => Masks::CatmullClark,
+        Scheme::Loop => Masks::Loop,
+        Scheme::DooSabin | Scheme::Linear => Masks::Linear,
+    }
+}
+
+/// Accumulates a point from parent positions and face points.
+struct PointSink<'a> {
+    points: &'a [DVec3],
+    face_points: &'a [DVec3],
+    sum: DVec3,
+}
+
+impl Sink for PointSink<'_> {
+    #[inline]
+    fn vertex(&mut self, v: u32, w: f64) {
+        self.sum += w * self.points[v as usize];
+    }
+    #[inline]
+    fn face(&mut self, f: u32, w: f64) {
+        self.sum += w * self.face_points[f as usize];
+    }
+}
+
+/// What child point `i` of a step is.
+#[derive(Copy, Clone)]
+pub(crate) enum ChildPoint {
+    Face(u32),
+    Edge(u32),
+    Vertex(u32),
+    /// Doo-Sabin: the new point of a parent corner.
+    Corner(u32),
+}
+
+/// Child point `i` of `parent` under `split`.
+pub(crate) fn child_point(parent: &Level, split: Split, i: usize) -> ChildPoint {
+    if split == Split::Dual {
+        return ChildPoint::Corner(i as u32);
+    }
+    let nf = split.face_points(parent);
+    let ne = parent.edge_count();
+    if i < nf {
+        ChildPoint::Face(i as u32)
+    } else if i < nf + ne {
+        ChildPoint::Edge((i - nf) as u32)
+    } else {
+        ChildPoint::Vertex((i - nf - ne) as u32)
+    }
+}
+
+/// Emits the mask of child point `point` into `sink`.
+pub(crate) fn point_mask(
+    parent: &Level,
+    options: Options,
+    point: ChildPoint,
+    sink: &mut impl Sink,
+) {
+    let masks = masks_for(options.scheme);
+    match point {
+        ChildPoint::Face(f) => rules::face_mask(parent, f, sink),
+        ChildPoint::Edge(e) => rules::edge_mask(parent, e, masks, sink),
+        ChildPoint::Vertex(v) => rules::vertex_mask(parent, v, masks, options.crease_method, sink),
+        ChildPoint::Corner(c) => {
+            let r = parent.face_corners(parent.corner_face[c as usize]);
+            let (n, i) = (r.len(), c as usize - r.start);
+            for (j, k) in r.enumerate() {
+                sink.vertex(parent.face_vertices[k], doo_sabin_weight(n, i, j));
+            }
+        }
+    }
+}
+
+/// Number of child points of `parent` under `split`.
+pub(crate) fn child_count(parent: &Level, split: Split) -> usize {
+    match split {
+        Split::Quads => parent.face_count() + parent.edge_count() + parent.vertex_count,
+        Split::Triangles => parent.edge_count() + parent.vertex_count,
+        Split::Dual => parent.face_vertices.len(),
+    }
+}
+
+/// One level's child positions: face points first (edge and vertex masks
+/// read them), then the rest.
+fn interpolate(
+    parent: &Level,
+    split: Split,
+    options: Options,
+    points: &[DVec3],
+    parallel: bool,
+) -> Vec<DVec3> {
+    let child_count = child_count(parent, split);
+    let nf = split.face_points(parent);
+    let mut out = vec![DVec3::ZERO; child_count];
+    let compute = |face_points: &[DVec3], i: usize| {
+        let mut sink = PointSink {
+            points,
+            face_points,
+            sum: DVec3::ZERO,
+        };
+        point_mask(parent, options, child_point(parent, split, i), &mut sink);
+        sink.sum
+    };
+    let (faces, rest) = out.split_at_mut(nf);
+    if parallel {
+        use rayon::prelude::*;
+        faces
+            .par_iter_mut()
+            .enumerate()
+            .for_each(|(i, p)| *p = compute(&[], i));
+        let faces: &[DVec3] = faces;
+        rest.par_iter_mut()
+            .enumerate()
+            .for_each(|(i, p)| *p = compute(faces, nf + i));
+    } else {
+        for (i, p) in faces.iter_mut().enumerate() {
+            *p = compute(&[], i);
+        }
+        let faces: &[DVec3] = faces;
+        for (i, p) in rest.iter_mut().enumerate() {
+            *p = compute(faces, nf + i);
+        }
+    }
+    out
+}

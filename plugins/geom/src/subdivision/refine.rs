@@ -1,0 +1,250 @@
+//! Topology of the child level: which child points exist and how they form
+//! faces and edges. Positions come from [`super::rules`]; this file only
+//! numbers things.
+//!
+//! Child points are numbered face points first, then edge points, then vertex
+//! points (OpenSubdiv's default order), so child vertex `F + E + v` is the
+//! vertex point of parent vertex `v`.
+
+use std::f64::consts::TAU;
+
+use super::CreaseMethod;
+use super::level::{Level, NONE};
+use super::rules::{child_edge_sharpness, decrement};
+
+/// How faces are split.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub(crate) enum Split {
+    /// Every n-gon becomes n quads around a face point (Catmull-Clark).
+    Quads,
+    /// Every triangle becomes four (Loop); needs an all-triangle level.
+    Triangles,
+    /// One face per face, edge and vertex, around new corner points (Doo-Sabin).
+    Dual,
+}
+
+impl Split {
+    /// Number of face points at the start of the child's vertex list.
+    pub fn face_points(self, parent: &Level) -> usize {
+        match self {
+            Split::Quads => parent.face_count(),
+            Split::Triangles | Split::Dual => 0,
+        }
+    }
+}
+
+/// The child level of `parent`.
+pub(crate) fn refine_topology(parent: &Level, split: Split, method: CreaseMethod) -> Level {
+    match split {
+        Split::Quads => split_quads(parent, method),
+        Split::Triangles => split_triangles(parent, method),
+        Split::Dual => doo_sabin_topology(parent),
+    }
+}
+
+/// Child edges `2e` and `2e + 1` are the halves of parent edge `e` (at its
+/// first and second end), with their sharpness.
+fn split_edges(
+    parent: &Level,
+    first_edge_point: u32,
+    first_vertex_point: u32,
+    method: CreaseMethod,
+    child: &mut Level,
+) {
+    let ne = parent.edge_count();
+    child.edge_vertices.reserve(2 * ne);
+    child.edge_sharpness.reserve(2 * ne);
+    for (e, &[a, b]) in parent.edge_vertices.iter().enumerate() {
+        let ep = first_edge_point + e as u32;
+        child.edge_vertices.push([first_vertex_point + a, ep]);
+        child.edge_vertices.push([ep, first_vertex_point + b]);
+        child
+            .edge_sharpness
+            .push(child_edge_sharpness(parent, e as u32, a, method));
+        child
+            .edge_sharpness
+            .push(child_edge_sharpness(parent, e as u32, b, method));
+    }
+    child.vertex_sharpness = vec![0.0; first_vertex_point as usize];
+    child
+        .vertex_sharpness
+        .extend(parent.vertex_sharpness.iter().map(|&s| decrement(s)));
+}
+
+/// The child half of parent edge `e` that touches parent vertex `v`.
+fn half(parent: &Level, e: u32, v: u32) -> u32 {
+    2 * e + u32::from(parent.edge_vertices[e as usize][0] != v)
+}
+
+fn split_quads(parent: &Level, method: CreaseMethod) -> Level {
+    let (nf, ne, nv) = (
+        parent.face_count() as u32,
+        parent.edge_count() as u32,
+        parent.vertex_count as u32,
+    );
+    let corners = parent.face_vertices.len();
+    let mut child = Level {
+        vertex_count: (nf + ne + nv) as usize,
+        ..Level::default()
+    };
+    split_edges(parent, nf, nf + ne, method, &mut child);
+    // Edge 2E + c joins the edge point of corner c's edge to the face point.
+    for c in 0..corners {
+        child
+            .edge_vertices
+            .push([nf + parent.face_edges[c], parent.corner_face[c]]);
+        child.edge_sharpness.push(0.0);
+    }
+    child.face_offsets = (0..=corners as u32).map(|i| 4 * i).collect();
+    child.face_vertices.reserve(4 * corners);
+    child.face_edges.reserve(4 * corners);
+    child.face_origin.reserve(corners);
+    for c in 0..corners {
+        let p = parent.prev_corner(c);
+        let f = parent.corner_face[c];
+        let (v, e, ep) = (
+            parent.face_vertices[c],
+            parent.face_edges[c],
+            parent.face_edges[p],
+        );
+        child
+            .face_vertices
+            .extend_from_slice(&[nf + ne + v, nf + e, f, nf + ep]);
+        child.face_edges.extend_from_slice(&[
+            half(parent, e, v),
+            2 * ne + c as u32,
+            2 * ne + p as u32,
+            half(parent, ep, v),
+        ]);
+        child.face_origin.push(parent.face_origin[f as usize]);
+    }
+    child.finish();
+    child
+}
+
+fn split_triangles(parent: &Level, method: CreaseMethod) -> Level {
+    let (nf, ne, nv) = (
+        parent.face_count() as u32,
+        parent.edge_count() as u32,
+        parent.vertex_count as u32,
+    );
+    let mut child = Level {
+        vertex_count: (ne + nv) as usize,
+        ..Level::default()
+    };
+    split_edges(parent, 0, ne, method, &mut child);
+    // Edge 2E + 3f + i cuts off corner i: it joins the edge points of the
+    // edges before and after that corner.
+    for f in 0..nf as usize {
+        let fe = &parent.face_edges[3 * f..3 * f + 3];
+        for i in 0..3 {
+            child.edge_vertices.push([fe[i], fe[(i + 2) % 3]]);
+            child.edge_sharpness.push(0.0);
+        }
+    }
+    child.face_offsets = (0..=4 * nf).map(|i| 3 * i).collect();
+    child.face_vertices.reserve(12 * nf as usize);
+    child.face_edges.reserve(12 * nf as usize);
+    for f in 0..nf as usize {
+        let fv = &parent.face_vertices[3 * f..3 * f + 3];
+        let fe = &parent.face_edges[3 * f..3 * f + 3];
+        let inner = |i: usize| 2 * ne + 3 * f as u32 + i as u32;
+        for i in 0..3 {
+            let before = fe[(i + 2) % 3];
+            child
+                .face_vertices
+                .extend_from_slice(&[ne + fv[i], fe[i], before]);
+            child.face_edges.extend_from_slice(&[
+                half(parent, fe[i], fv[i]),
+                inner(i),
+                half(parent, before, fv[i]),
+            ]);
+        }
+        child.face_vertices.extend_from_slice(fe);
+        child
+            .face_edges
+            .extend_from_slice(&[inner(1), inner(2), inner(0)]);
+        let origin = parent.face_origin[f];
+        child.face_origin.extend_from_slice(&[origin; 4]);
+    }
+    child.finish();
+    child
+}
+
+/// Doo-Sabin's child faces (seed 001, slides 116–118): one per face (its new
+/// corner points), one per interior edge (the four corner points at its
+/// ends) and one per interior vertex (the corner points around it). Child
+/// point `c` is the new point of parent corner `c`.
+fn doo_sabin_topology(parent: &Level) -> Level {
+    let mut faces: Vec<Vec<u32>> = Vec::new();
+    let mut origin = Vec::new();
+    for f in 0..parent.face_count() as u32 {
+        faces.push(parent.face_corners(f).map(|c| c as u32).collect());
+        origin.push(parent.face_origin[f as usize]);
+    }
+    for e in 0..parent.edge_count() as u32 {
+        let [f0, f1] = parent.edge_faces[e as usize];
+        if f1 == NONE {
+            continue;
+        }
+        let corner_of = |f: u32| {
+            parent
+                .face_corners(f)
+                .find(|&c| parent.face_edges[c] == e)
+                .expect("edge belongs to its face")
+        };
+        let (c0, c1) = (corner_of(f0), corner_of(f1));
+        faces.push(vec![
+            parent.next_corner(c0) as u32,
+            c0 as u32,
+            parent.next_corner(c1) as u32,
+            c1 as u32,
+        ]);
+        origin.push(parent.face_origin[f0 as usize]);
+    }
+    for v in 0..parent.vertex_count as u32 {
+        let interior = parent
+            .vertex_edges(v)
+            .iter()
+            .all(|&e| !parent.is_boundary_edge(e));
+        let Some(&start) = parent.vertex_corners(v).first() else {
+            continue;
+        };
+        if !interior || parent.vertex_corners(v).len() < 3 {
+            continue;
+        }
+        // Walk the faces around v: across the edge that ends at v.
+        let mut ring = vec![start];
+        let mut c = start as usize;
+        loop {
+            let e = parent.face_edges[parent.prev_corner(c)];
+            let [f0, f1] = parent.edge_faces[e as usize];
+            let g = if f0 == parent.corner_face[c] { f1 } else { f0 };
+            c = parent
+                .face_corners(g)
+                .find(|&k| parent.face_vertices[k] == v)
+                .expect("neighbour face contains the vertex");
+            if c as u32 == start || ring.len() > parent.vertex_corners(v).len() {
+                break;
+            }
+            ring.push(c as u32);
+        }
+        origin.push(parent.face_origin[parent.corner_face[start as usize] as usize]);
+        faces.push(ring);
+    }
+    Level::from_polygons(parent.face_vertices.len(), &faces, origin)
+}
+
+/// Doo-Sabin weight of vertex j for the new point of corner i in an n-gon:
+/// `(n + 5) / 4n` for j = i, `(3 + 2 cos(2π(i − j)/n)) / 4n` otherwise
+/// (Doo & Sabin, "Behaviour of recursive division surfaces near
+/// extraordinary points", 1978).
+pub(crate) fn doo_sabin_weight(n: usize, i: usize, j: usize) -> f64 {
+    let n_f = n as f64;
+    if i == j {
+        (n_f + 5.0) / (4.0 * n_f)
+    } else {
+        let k = (i as f64 - j as f64) / n_f;
+        (3.0 + 2.0 * (TAU * k).cos()) / (4.0 * n_f)
+    }
+}

@@ -1,0 +1,556 @@
+//! Subdivision against values worked out by hand from the masks (seed 003)
+//! and exact fractions from an independent dictionary-based implementation;
+//! creases, boundaries, schemes, limit evaluation and stencils.
+
+use hedra_geom::subdivision::{
+    BoundaryInterpolation, CreaseMethod, Creases, INFINITE_SHARPNESS, Options, Refiner, Scheme,
+    SubdivisionError, limit_normals, limit_positions, snap_to_limit,
+};
+use hedra_geom::{DVec3, HalfEdgeMesh, Primitive, VertexId};
+use proptest::prelude::*;
+
+fn cube() -> HalfEdgeMesh {
+    Primitive::Cube { size: 2.0 }.build().unwrap()
+}
+
+fn icosahedron() -> HalfEdgeMesh {
+    Primitive::IcoSphere {
+        subdivisions: 0,
+        radius: 1.0,
+    }
+    .build()
+    .unwrap()
+}
+
+fn options(scheme: Scheme) -> Options {
+    Options {
+        scheme,
+        ..Options::default()
+    }
+}
+
+fn refine(
+    mesh: &HalfEdgeMesh,
+    creases: &Creases,
+    opts: Options,
+    levels: u32,
+) -> (Refiner, Vec<DVec3>) {
+    let r = Refiner::new(mesh, creases, opts, levels).unwrap();
+    let p = r.refine(&r.cage_positions(mesh));
+    (r, p)
+}
+
+/// The point that maximises `score`.
+fn extreme(points: &[DVec3], score: impl Fn(DVec3) -> f64) -> DVec3 {
+    *points
+        .iter()
+        .max_by(|a, b| score(**a).total_cmp(&score(**b)))
+        .unwrap()
+}
+
+fn corner(p: &[DVec3]) -> DVec3 {
+    extreme(p, |q| q.x + q.y + q.z)
+}
+fn face_centre(p: &[DVec3]) -> DVec3 {
+    extreme(p, |q| q.x - q.y.abs() - q.z.abs())
+}
+fn edge_middle(p: &[DVec3]) -> DVec3 {
+    extreme(p, |q| q.x + q.y - q.z.abs())
+}
+
+fn close(a: DVec3, b: DVec3, tol: f64) -> bool {
+    (a - b).length() < tol
+}
+
+#[test]
+fn catmull_clark_cube_matches_the_masks_at_levels_1_2_3() {
+    // (corner, face centre on +X, middle of the +X+Y edge): exact fractions.
+    let expected = [
+        (5.0 / 9.0, 1.0, 3.0 / 4.0),
+        (55.0 / 108.0, 253.0 / 288.0, 247.0 / 384.0),
+        (325.0 / 648.0, 3913.0 / 4608.0, 11389.0 / 18432.0),
+    ];
+    for (level, (c, f, e)) in (1..=3).zip(expected) {
+        let (r, p) = refine(&cube(), &Creases::default(), Options::default(), level);
+        assert_eq!(
+            r.face_count(),
+            6 * 4usize.pow(level),
+            "F·4^k faces at level {level}"
+        );
+        assert_eq!(p.len(), r.vertex_count());
+        assert!(
+            close(corner(&p), DVec3::splat(c), 1e-12),
+            "corner at level {level}: {}",
+            corner(&p)
+        );
+        assert!(
+            close(face_centre(&p), DVec3::new(f, 0.0, 0.0), 1e-12),
+            "face point at level {level}"
+        );
+        assert!(
+            close(edge_middle(&p), DVec3::new(e, e, 0.0), 1e-12),
+            "edge point at level {level}"
+        );
+    }
+}
+
+#[test]
+fn level_1_points_follow_the_face_edge_and_vertex_masks_by_hand() {
+    let (_, p) = refine(&cube(), &Creases::default(), Options::default(), 1);
+    // Face point: centroid of (1,±1,±1) = (1,0,0).
+    assert!(
+        p.iter()
+            .any(|q| close(*q, DVec3::new(1.0, 0.0, 0.0), 1e-15))
+    );
+    // Edge point: (v0 + v1 + f0 + f1)/4 = ((1,1,1) + (1,1,-1) + (1,0,0) + (0,1,0))/4.
+    assert!(
+        p.iter()
+            .any(|q| close(*q, DVec3::new(0.75, 0.75, 0.0), 1e-15))
+    );
+    // Vertex point, n = 3: v/3 + Σe/9 + Σf/9 = (5/9, 5/9, 5/9).
+    assert!(p.iter().any(|q| close(*q, DVec3::splat(5.0 / 9.0), 1e-15)));
+}
+
+fn all_edges(mesh: &HalfEdgeMesh, sharpness: f64) -> Creases {
+    let mut c = Creases::default();
+    for e in mesh.edges() {
+        c.set_edge(e, sharpness);
+    }
+    c
+}
+
+#[test]
+fn a_cube_with_all_edges_infinitely_sharp_stays_a_cube() {
+    let mesh = cube();
+    let creases = all_edges(&mesh, INFINITE_SHARPNESS as f64);
+    let (r, p) = refine(&mesh, &creases, Options::default(), 3);
+    assert_eq!(r.face_count(), 384);
+    for q in &p {
+        let m = q.abs().max_element();
+        assert!((m - 1.0).abs() < 1e-12, "{q} is off the cube");
+    }
+    assert!(close(corner(&p), DVec3::ONE, 1e-12));
+    assert!(close(edge_middle(&p), DVec3::new(1.0, 1.0, 0.0), 1e-12));
+}
+
+#[test]
+fn sharpness_one_on_one_edge_lies_between_smooth_and_sharp() {
+    let mesh = cube();
+    let e = mesh
+        .find_edge(VertexId(0), VertexId(1))
+        .or_else(|| mesh.edges().next())
+        .unwrap();
+    let [a, b] = mesh.edge_vertices(e);
+    let mid = (mesh.position(a) + mesh.position(b)) / 2.0;
+    let dir = mid.normalize();
+    let at_edge = |creases: &Creases| {
+        let (_, p) = refine(&mesh, creases, Options::default(), 3);
+        extreme(&p, |q| q.dot(dir)).dot(dir)
+    };
+    let smooth = at_edge(&Creases::default());
+    let mut one = Creases::default();
+    one.set_edge(e, 1.0);
+    let mut sharp = Creases::default();
+    sharp.set_edge(e, INFINITE_SHARPNESS as f64);
+    let (s1, sinf) = (at_edge(&one), at_edge(&sharp));
+    assert!(smooth < s1 && s1 < sinf, "{smooth} < {s1} < {sinf}");
+    // Even infinitely sharp, the crease is a curve between ends that are
+    // smoothed (a dart vertex follows the smooth rule): inside the cage.
+    assert!(sinf < mid.length());
+}
+
+#[test]
+fn semi_sharp_half_blends_the_edge_point_halfway() {
+    let mesh = cube();
+    let e = mesh.edges().next().unwrap();
+    let [a, b] = mesh.edge_vertices(e);
+    let (pa, pb) = (mesh.position(a), mesh.position(b));
+    let faces = mesh.edge_faces(e).map(|f| mesh.face_centroid(f.unwrap()));
+    let smooth = (pa + pb + faces[0] + faces[1]) / 4.0;
+    let sharp = (pa + pb) / 2.0;
+    let mut creases = Creases::default();
+    creases.set_edge(e, 0.5);
+    let (_, p) = refine(&mesh, &creases, Options::default(), 1);
+    let want = 0.5 * smooth + 0.5 * sharp;
+    assert!(
+        p.iter().any(|q| close(*q, want, 1e-14)),
+        "no point at {want}"
+    );
+}
+
+#[test]
+fn a_corner_vertex_stays_put_and_fractional_corners_move_partly() {
+    let mesh = cube();
+    let v = mesh.vertices().next().unwrap();
+    let pv = mesh.position(v);
+    let mut creases = Creases::default();
+    creases.set_vertex(v, INFINITE_SHARPNESS as f64);
+    let (_, p) = refine(&mesh, &creases, Options::default(), 3);
+    assert!(p.iter().any(|q| close(*q, pv, 1e-14)), "sharp corner moved");
+    let mut half = Creases::default();
+    half.set_vertex(v, 0.5);
+    let (_, p) = refine(&mesh, &half, Options::default(), 1);
+    // Level 1: ½ corner rule (v) + ½ smooth rule (5/9 of v).
+    let want = pv * (0.5 + 0.5 * 5.0 / 9.0);
+    assert!(
+        p.iter().any(|q| close(*q, want, 1e-14)),
+        "no point at {want}"
+    );
+}
+
+#[test]
+fn chaikin_creases_fade_differently_from_uniform_ones() {
+    let mesh = cube();
+    let mut creases = Creases::default();
+    let mut edges = mesh.edges();
+    let (e0, e1) = (edges.next().unwrap(), edges.next().unwrap());
+    creases.set_edge(e0, 3.0);
+    creases.set_edge(e1, 1.0);
+    let uniform = refine(&mesh, &creases, Options::default(), 3).1;
+    let chaikin_opts = Options {
+        crease_method: CreaseMethod::Chaikin,
+        ..Options::default()
+    };
+    let chaikin = refine(&mesh, &creases, chaikin_opts, 3).1;
+    let moved = uniform
+        .iter()
+        .zip(&chaikin)
+        .filter(|(a, b)| !close(**a, **b, 1e-12))
+        .count();
+    assert!(moved > 0, "Chaikin changed nothing");
+}
+
+#[test]
+fn loop_icosahedron_matches_the_masks() {
+    let mesh = icosahedron();
+    let r0 = mesh.position(VertexId(0)).length();
+    let (r, p) = refine(&mesh, &Creases::default(), options(Scheme::Loop), 1);
+    assert_eq!(r.face_count(), 80);
+    assert_eq!(p.len(), 12 + 30);
+    // Vertex point, valence 5: (1 − 5β) v + β Σ neighbours, and the five
+    // neighbours sum to √5·r·v̂ (adjacent vertices are at cos θ = 1/√5).
+    let beta = (0.625 - (0.375 + 0.25 * (std::f64::consts::TAU / 5.0).cos()).powi(2)) / 5.0;
+    let vertex_radius = r0 * ((1.0 - 5.0 * beta) + beta * 5f64.sqrt());
+    let radii: Vec<f64> = p.iter().map(|q| q.length()).collect();
+    assert_eq!(
+        radii
+            .iter()
+            .filter(|&&x| (x - vertex_radius).abs() < 1e-12)
+            .count(),
+        12
+    );
+    // Edge point: 3/8 (a + b) + 1/8 (c + d).
+    let e = mesh.edges().next().unwrap();
+    let [a, b] = mesh.edge_vertices(e);
+    let opposite: Vec<DVec3> = mesh
+        .edge_faces(e)
+        .iter()
+        .map(|f| {
+            let f = f.unwrap();
+            let v = mesh.face_vertices(f).find(|v| *v != a && *v != b).unwrap();
+            mesh.position(v)
+        })
+        .collect();
+    let want = 0.375 * (mesh.position(a) + mesh.position(b)) + 0.125 * (opposite[0] + opposite[1]);
+    assert!(p.iter().any(|q| close(*q, want, 1e-14)));
+    for level in 2..=3 {
+        let (r, _) = refine(&mesh, &Creases::default(), options(Scheme::Loop), level);
+        assert_eq!(r.face_count(), 20 * 4usize.pow(level));
+    }
+}
+
+#[test]
+fn loop_refuses_a_quad_mesh_naming_the_face() {
+    let err = Refiner::new(&cube(), &Creases::default(), options(Scheme::Loop), 1).unwrap_err();
+    assert!(matches!(
+        err,
+        SubdivisionError::NotTriangles { sides: 4, .. }
+    ));
+    assert!(err.to_string().contains("has 4 sides"), "{err}");
+}
+
+#[test]
+fn doo_sabin_cube_has_face_edge_and_vertex_faces() {
+    let mesh = cube();
+    let (mesh1, _) =
+        Refiner::subdivide(&mesh, &Creases::default(), options(Scheme::DooSabin), 1).unwrap();
+    mesh1.validate().unwrap();
+    assert_eq!((mesh1.vertex_count(), mesh1.face_count()), (24, 6 + 12 + 8));
+    assert!(mesh1.stats().closed);
+    // Corner point of a quad: 9/16 v + 3/16 (two neighbours) + 1/16 opposite.
+    let p: Vec<DVec3> = mesh1.vertices().map(|v| mesh1.position(v)).collect();
+    assert!(
+        p.iter()
+            .any(|q| close(*q, DVec3::new(1.0, 0.5, 0.5), 1e-15))
+    );
+    let (mesh2, _) =
+        Refiner::subdivide(&mesh, &Creases::default(), options(Scheme::DooSabin), 2).unwrap();
+    mesh2.validate().unwrap();
+    assert_eq!(mesh2.face_count(), 26 + 48 + 24);
+}
+
+#[test]
+fn linear_splits_without_moving_the_surface() {
+    let (mesh, _) =
+        Refiner::subdivide(&cube(), &Creases::default(), options(Scheme::Linear), 2).unwrap();
+    mesh.validate().unwrap();
+    assert_eq!(mesh.face_count(), 96);
+    assert!(
+        mesh.vertices()
+            .all(|v| (mesh.position(v).abs().max_element() - 1.0).abs() < 1e-15)
+    );
+    let (tris, _) = Refiner::subdivide(
+        &icosahedron(),
+        &Creases::default(),
+        options(Scheme::Linear),
+        1,
+    )
+    .unwrap();
+    assert_eq!(tris.face_count(), 80);
+    assert!(tris.faces().all(|f| tris.face_degree(f) == 3));
+}
+
+fn square() -> HalfEdgeMesh {
+    Primitive::Plane { size: 2.0 }.build().unwrap()
+}
+
+#[test]
+fn boundary_modes_round_keep_or_drop_the_corners() {
+    let mesh = square();
+    let corner_kept = |b: BoundaryInterpolation| {
+        let opts = Options {
+            boundary: b,
+            ..Options::default()
+        };
+        let (r, p) = refine(&mesh, &Creases::default(), opts, 2);
+        let shown = r.faces().count();
+        let kept = mesh
+            .vertices()
+            .all(|v| p.iter().any(|q| close(*q, mesh.position(v), 1e-14)));
+        (shown, kept)
+    };
+    assert_eq!(
+        corner_kept(BoundaryInterpolation::EdgesAndCorners),
+        (16, true)
+    );
+    assert_eq!(corner_kept(BoundaryInterpolation::EdgesOnly), (16, false));
+    // Every face of a single quad touches the boundary: nothing is left.
+    assert_eq!(corner_kept(BoundaryInterpolation::None).0, 0);
+    // Edges only: the corner follows the crease rule (a + 6v + b)/8 at level 1.
+    let (_, p) = refine(&mesh, &Creases::default(), Options::default(), 1);
+    let v = mesh.vertices().next().unwrap();
+    let n: Vec<DVec3> = mesh.vertex_neighbors(v).map(|u| mesh.position(u)).collect();
+    let want = (n[0] + 6.0 * mesh.position(v) + n[1]) / 8.0;
+    assert!(p.iter().any(|q| close(*q, want, 1e-14)));
+}
+
+#[test]
+fn boundary_none_hides_only_faces_at_the_boundary() {
+    let grid = Primitive::Grid {
+        x_segments: 4,
+        z_segments: 4,
+        size: 2.0,
+    }
+    .build()
+    .unwrap();
+    let opts = Options {
+        boundary: BoundaryInterpolation::None,
+        ..Options::default()
+    };
+    let (r, _) = refine(&grid, &Creases::default(), opts, 1);
+    // The 2×2 inner cage faces survive, four quads each.
+    assert_eq!(r.faces().count(), 16);
+    let (mesh, _) = Refiner::subdivide(&grid, &Creases::default(), opts, 1).unwrap();
+    mesh.validate().unwrap();
+    assert_eq!(mesh.face_count(), 16);
+}
+
+#[test]
+fn limit_positions_do_not_depend_on_the_level() {
+    for (mesh, scheme) in [
+        (cube(), Scheme::CatmullClark),
+        (icosahedron(), Scheme::Loop),
+    ] {
+        let (r1, p1) = refine(&mesh, &Creases::default(), options(scheme), 1);
+        let (r3, p3) = refine(&mesh, &Creases::default(), options(scheme), 3);
+        let l1 = limit_positions(&r1, &p1).unwrap();
+        let l3 = limit_positions(&r3, &p3).unwrap();
+        // Every limit point of level 1 is again a limit point at level 3.
+        for q in &l1 {
+            assert!(
+                l3.iter().any(|x| close(*x, *q, 1e-12)),
+                "{scheme:?}: {q} not at level 3"
+            );
+        }
+    }
+}
+
+#[test]
+fn cube_limit_normals_are_symmetric() {
+    let (r, p) = refine(&cube(), &Creases::default(), Options::default(), 2);
+    let l = limit_positions(&r, &p).unwrap();
+    let n = limit_normals(&r, &p).unwrap();
+    for (q, normal) in l.iter().zip(&n) {
+        assert!((normal.length() - 1.0).abs() < 1e-12);
+        assert!(normal.dot(*q) > 0.0, "normal at {q} points inward");
+        // On a symmetry axis the normal is the axis itself.
+        if q.y.abs() < 1e-12 && q.z.abs() < 1e-12 {
+            assert!(close(*normal, DVec3::X * q.x.signum(), 1e-12), "{normal}");
+        }
+        if (q.x - q.y).abs() < 1e-12 && (q.y - q.z).abs() < 1e-12 {
+            assert!(
+                close(*normal, DVec3::ONE.normalize() * q.x.signum(), 1e-12),
+                "{normal}"
+            );
+        }
+    }
+}
+
+#[test]
+fn limit_evaluation_is_refused_where_it_is_not_defined() {
+    let (r, p) = refine(
+        &Primitive::Cylinder {
+            segments: 5,
+            radius: 1.0,
+            depth: 2.0,
+        }
+        .build()
+        .unwrap(),
+        &Creases::default(),
+        Options::default(),
+        0,
+    );
+    assert!(matches!(
+        limit_positions(&r, &p),
+        Err(SubdivisionError::NoLimit { .. })
+    ));
+    let (r, p) = refine(&cube(), &Creases::default(), options(Scheme::DooSabin), 1);
+    assert!(matches!(
+        limit_normals(&r, &p),
+        Err(SubdivisionError::NoLimit { .. })
+    ));
+}
+
+#[test]
+fn snapping_the_cube_cage_puts_corners_on_the_limit() {
+    let snapped = snap_to_limit(&cube(), &Creases::default(), Options::default()).unwrap();
+    assert_eq!(snapped.len(), 8);
+    // Cube corner limit, from the quad mask (n = 3): (9v + 4Σe + Σd)/24 with
+    // Σe = (1,1,1) and Σd = (−1,−1,−1) at v = (1,1,1): 12/24 = 1/2 per axis
+    // (the level 1–3 corners 5/9, 55/108, 325/648 approach it).
+    for (_, q) in snapped {
+        assert!(close(q.abs(), DVec3::splat(0.5), 1e-12), "{q}");
+    }
+}
+
+#[test]
+fn applied_results_are_valid_and_keep_the_remaining_creases() {
+    let mesh = cube();
+    let mut creases = all_edges(&mesh, 2.0);
+    let v = mesh.vertices().next().unwrap();
+    creases.set_vertex(v, INFINITE_SHARPNESS as f64);
+    let (out, left) = Refiner::subdivide(&mesh, &creases, Options::default(), 1).unwrap();
+    out.validate().unwrap();
+    assert_eq!(out.face_count(), 24);
+    // Every cage edge became two child edges of sharpness 1.
+    assert_eq!(left.edges.len(), 24);
+    assert!(left.edges.values().all(|&s| (s - 1.0).abs() < 1e-6));
+    assert_eq!(left.vertices.len(), 1);
+    // Applying once more with what is left equals refining twice.
+    let (twice, _) = Refiner::subdivide(&out, &left, Options::default(), 1).unwrap();
+    let (direct, p) = refine(&mesh, &creases, Options::default(), 2);
+    assert_eq!(twice.vertex_count(), direct.vertex_count());
+    for v in twice.vertices() {
+        assert!(p.iter().any(|q| close(*q, twice.position(v), 1e-12)));
+    }
+}
+
+#[test]
+fn levels_that_are_too_large_are_refused_before_allocating() {
+    let err = Refiner::new(&cube(), &Creases::default(), Options::default(), 11).unwrap_err();
+    assert_eq!(err, SubdivisionError::LevelTooHigh { level: 11 });
+    // 6 · 4^9 = 1.6 million faces at level 9 is allowed; a torus of 576
+    // faces reaches the 20 million limit at level 8.
+    let torus = Primitive::Torus {
+        major_segments: 24,
+        minor_segments: 24,
+        major_radius: 1.0,
+        minor_radius: 0.3,
+    }
+    .build()
+    .unwrap();
+    let err = Refiner::new(&torus, &Creases::default(), Options::default(), 8).unwrap_err();
+    assert!(
+        matches!(err, SubdivisionError::TooManyFaces { level: 8, .. }),
+        "{err}"
+    );
+    assert!(err.to_string().contains("more than the limit"), "{err}");
+}
+
+fn cages() -> Vec<HalfEdgeMesh> {
+    vec![
+        cube(),
+        Primitive::Cylinder {
+            segments: 5,
+            radius: 1.0,
+            depth: 2.0,
+        }
+        .build()
+        .unwrap(),
+        Primitive::Grid {
+            x_segments: 3,
+            z_segments: 2,
+            size: 2.0,
+        }
+        .build()
+        .unwrap(),
+        icosahedron(),
+    ]
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(48))]
+
+    /// The stencil table (weights recorded once) gives what the direct
+    /// masks give, for every scheme, boundary rule and random creases; and
+    /// every applied result validates.
+    #[test]
+    fn stencils_equal_direct_refinement(
+        cage in 0usize..4,
+        scheme in 0usize..4,
+        boundary in 0usize..3,
+        chaikin in any::<bool>(),
+        levels in 0u32..3,
+        sharp in proptest::collection::vec(0.0f64..4.0, 40),
+        wiggle in proptest::collection::vec(-0.2f64..0.2, 60),
+    ) {
+        let mut mesh = cages().swap_remove(cage);
+        let scheme = Scheme::ALL[scheme];
+        prop_assume!(scheme != Scheme::Loop || cage == 3);
+        for (i, v) in mesh.vertices().collect::<Vec<_>>().into_iter().enumerate() {
+            let p = mesh.position(v) + DVec3::splat(wiggle[i % wiggle.len()]);
+            mesh.set_position(v, p);
+        }
+        let mut creases = Creases::default();
+        for (e, s) in mesh.edges().zip(&sharp) {
+            if *s > 2.0 { creases.set_edge(e, s - 2.0); }
+        }
+        let opts = Options {
+            scheme,
+            boundary: BoundaryInterpolation::ALL[boundary],
+            crease_method: if chaikin { CreaseMethod::Chaikin } else { CreaseMethod::Uniform },
+        };
+        let r = Refiner::new(&mesh, &creases, opts, levels).unwrap();
+        let cage_points = r.cage_positions(&mesh);
+        let direct = r.refine(&cage_points);
+        let stencil = r.stencils().apply(&cage_points);
+        let parallel = r.refine_parallel(&cage_points);
+        prop_assert_eq!(direct.len(), stencil.len());
+        for ((a, b), c) in direct.iter().zip(&stencil).zip(&parallel) {
+            prop_assert!(close(*a, *b, 1e-12), "{} vs {}", a, b);
+            prop_assert_eq!(a, c);
+        }
+        let (out, _) = r.to_mesh(&direct).unwrap();
+        prop_assert!(out.validate().is_ok());
+    }
+}
