@@ -4,6 +4,7 @@
 //! file is written unless the whole command succeeded.
 
 use clap::{Parser, Subcommand};
+use hedra_doc::export::ExportShape;
 use hedra_doc::file::{self, FileError};
 use hedra_doc::report::SceneReport;
 use hedra_doc::{Session, script};
@@ -78,11 +79,19 @@ pub enum Sub {
         #[arg(short, long)]
         output: PathBuf,
     },
-    /// Write the scene's meshes in world space (OBJ, n-gons kept).
+    /// Write the scene's visible meshes in world space (.obj keeps n-gons,
+    /// .stl is triangulated). Meshes with a subdivision modifier are written
+    /// smooth, at the modifier's export level.
     Export {
         file: PathBuf,
         #[arg(short, long)]
         output: PathBuf,
+        /// Subdivide every mesh this many levels (0–10) instead.
+        #[arg(long, conflicts_with = "cage")]
+        subdivide: Option<u32>,
+        /// Write the editable cages, ignoring subdivision modifiers.
+        #[arg(long)]
+        cage: bool,
     },
 }
 
@@ -219,9 +228,20 @@ pub fn run(sub: Sub) -> Result<(), CliError> {
                 output.display()
             );
         }
-        Sub::Export { file, output } => {
+        Sub::Export {
+            file,
+            output,
+            subdivide,
+            cage,
+        } => {
             let session = load(&file)?;
-            let bytes = hedra_doc::export::export_bytes(&session.doc, &output).map_err(CliError)?;
+            let shape = match (subdivide, cage) {
+                (Some(level), _) => ExportShape::Subdivided(level),
+                (None, true) => ExportShape::Cage,
+                (None, false) => ExportShape::Evaluated,
+            };
+            let bytes =
+                hedra_doc::export::export_bytes(&session.doc, &output, shape).map_err(CliError)?;
             file::write_atomic_bytes(&output, &bytes)?;
         }
     }

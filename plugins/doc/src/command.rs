@@ -6,9 +6,12 @@
 
 use crate::elements::{EdgeSet, FaceSet, VertexSet};
 use crate::history::{NodeChange, Transaction};
-use crate::scene::{Document, MeshContent, Node, NodeContent, NodeId, Shading, Transform};
+use crate::scene::{
+    Document, MeshContent, Node, NodeContent, NodeId, Shading, SubdivisionModifier, Transform,
+};
 use glam::{DQuat, DVec3};
 use hedra_geom::modeling::{self, MirrorAxis};
+use hedra_geom::subdivision::{self, Creases, INFINITE_SHARPNESS, Refiner};
 use hedra_geom::{
     BuildError, EdgeId, FaceId, HalfEdgeMesh, ModelingError, Primitive, PrimitiveError, VertexId,
 };
@@ -117,6 +120,20 @@ pub enum Command {
         nodes: Vec<NodeRef>,
         shading: Shading,
     },
+    /// Adds, changes or (with `None`) removes the subdivision modifier of
+    /// mesh nodes.
+    SetSubdivision {
+        nodes: Vec<NodeRef>,
+        modifier: Option<SubdivisionModifier>,
+    },
+    /// Replaces the cage by its subdivision (at `levels`, or the modifier's
+    /// viewport level) and removes the modifier; creases that are left after
+    /// the refinement stay on the new edges.
+    ApplySubdivision {
+        node: NodeRef,
+        #[serde(default)]
+        levels: Option<u32>,
+    },
     /// Deletes nodes with their descendants.
     Delete {
         nodes: Vec<NodeRef>,
@@ -187,6 +204,24 @@ pub enum Command {
     ConnectVertices {
         node: NodeRef,
         vertices: VertexSet,
+    },
+    /// Sets the subdivision crease sharpness of edges: 0 is smooth, 10
+    /// infinitely sharp, values between fade out after that many levels.
+    SetEdgeCrease {
+        node: NodeRef,
+        edges: EdgeSet,
+        sharpness: f64,
+    },
+    /// Sets the subdivision corner sharpness of vertices (0 … 10).
+    SetVertexCrease {
+        node: NodeRef,
+        vertices: VertexSet,
+        sharpness: f64,
+    },
+    /// Moves every cage vertex onto the limit surface of its subdivision
+    /// (the node's modifier options, or Catmull-Clark).
+    SnapToLimit {
+        node: NodeRef,
     },
     /// Removes edges, merging the faces on their two sides.
     DissolveEdges {
@@ -332,6 +367,32 @@ pub enum CommandError {
         node: String,
         error: hedra_geom::ModelingError,
     },
+    #[error("{node}: {error}")]
+    Subdivision {
+        node: String,
+        error: subdivision::SubdivisionError,
+    },
+    #[error("sharpness must be between 0 and {INFINITE_SHARPNESS} (infinitely sharp), not {0}")]
+    Sharpness(f64),
+    #[error("subdivision level {0} is above the maximum of {max}", max = subdivision::MAX_LEVEL)]
+    Level(u32),
+}
+
+/// A crease value as stored: finite, in 0 ..= [`INFINITE_SHARPNESS`].
+fn check_sharpness(s: f64) -> Result<f64, CommandError> {
+    if s.is_finite() && (0.0..=INFINITE_SHARPNESS as f64).contains(&s) {
+        Ok(s)
+    } else {
+        Err(CommandError::Sharpness(s))
+    }
+}
+
+fn check_levels(level: u32) -> Result<(), CommandError> {
+    if level > subdivision::MAX_LEVEL {
+        Err(CommandError::Level(level))
+    } else {
+        Ok(())
+    }
 }
 
 impl Command {
@@ -357,6 +418,14 @@ impl Command {
             }
             Command::SetShading { shading, .. } => format!("Shade {shading:?}"),
             Command::Delete { nodes } => format!("Delete {}", plural(nodes.len(), "node")),
+            Command::SetSubdivision { modifier: None, .. } => "Remove Subdivision".to_string(),
+            Command::SetSubdivision {
+                modifier: Some(m), ..
+            } => format!("Subdivision Level {}", m.viewport_level),
+            Command::ApplySubdivision { .. } => "Apply Subdivision".to_string(),
+            Command::SetEdgeCrease { sharpness, .. } => format!("Edge Crease {sharpness:.2}"),
+            Command::SetVertexCrease { sharpness, .. } => format!("Vertex Crease {sharpness:.2}"),
+            Command::SnapToLimit { .. } => "Snap to Limit Surface".to_string(),
             Command::Duplicate { nodes } => format!("Duplicate {}", plural(nodes.len(), "node")),
             Command::MoveVertices { .. } | Command::SetVertexPositions { .. } => {
                 "Move Vertices".to_string()
@@ -579,6 +648,25 @@ impl Plan<'_> {
         self.model(r, |m| edit(m).map(Ok))
     }
 
+    /// Changes the creases of a mesh node (the mesh itself stays shared).
+    fn edit_creases(
+        &mut self,
+        r: &NodeRef,
+        edit: impl FnOnce(&HalfEdgeMesh, &mut Creases) -> Result<(), String>,
+    ) -> Result<(), CommandError> {
+        let mut n = self.node(r)?;
+        let label = self.doc.label_of(n.id);
+        let NodeContent::Mesh(content) = &mut n.content else {
+            return Err(CommandError::NotAMesh { node: label });
+        };
+        edit(&content.mesh, &mut content.creases).map_err(|message| CommandError::Element {
+            node: label,
+            message,
+        })?;
+        self.set(n);
+        Ok(())
+    }
+
     /// Like [`edit_mesh`](Self::edit_mesh) for kernel operations that can refuse.
     fn model(
         &mut self,
@@ -605,6 +693,7 @@ impl Plan<'_> {
             mesh.validate().is_ok(),
             "a modeling operation broke the mesh"
         );
+        content.creases.retain_live(&mesh);
         content.mesh = Arc::new(mesh);
         content.primitive = None;
         self.set(n);
@@ -663,9 +752,9 @@ impl Plan<'_> {
                     .clone()
                     .unwrap_or_else(|| primitive.display_name().to_string());
                 let content = NodeContent::Mesh(MeshContent {
-                    mesh: Arc::new(mesh),
                     primitive: Some(primitive.clone()),
                     shading: primitive_shading(primitive),
+                    ..MeshContent::new(Arc::new(mesh))
                 });
                 self.add_node(&name, parent, *transform, content)?;
             }
@@ -677,11 +766,7 @@ impl Plan<'_> {
                 transform,
             } => {
                 let mesh = HalfEdgeMesh::from_polygons(positions, polygons)?;
-                let content = NodeContent::Mesh(MeshContent {
-                    mesh: Arc::new(mesh),
-                    primitive: None,
-                    shading: Shading::Flat,
-                });
+                let content = NodeContent::Mesh(MeshContent::new(Arc::new(mesh)));
                 self.add_node(name, parent, *transform, content)?;
             }
             Command::AddEmpty {
@@ -710,7 +795,8 @@ impl Plan<'_> {
                 n.content = NodeContent::Mesh(MeshContent {
                     mesh: Arc::new(mesh),
                     primitive: Some(primitive.clone()),
-                    shading: content.shading,
+                    creases: Creases::default(),
+                    ..content.clone()
                 });
                 self.set(n);
             }
@@ -810,6 +896,90 @@ impl Plan<'_> {
                     content.shading = *shading;
                     self.set(n);
                 }
+            }
+            Command::SetSubdivision { nodes, modifier } => {
+                if let Some(m) = modifier {
+                    check_levels(m.viewport_level.max(m.export_level))?;
+                }
+                for r in nodes {
+                    let mut n = self.node(r)?;
+                    let label = self.doc.label_of(n.id);
+                    let NodeContent::Mesh(content) = &mut n.content else {
+                        return Err(CommandError::NotAMesh { node: label });
+                    };
+                    content.subdivision = *modifier;
+                    self.set(n);
+                }
+            }
+            Command::ApplySubdivision { node, levels } => {
+                let mut n = self.node(node)?;
+                let label = self.doc.label_of(n.id);
+                let NodeContent::Mesh(content) = &mut n.content else {
+                    return Err(CommandError::NotAMesh { node: label });
+                };
+                let (options, level) = match (content.subdivision, levels) {
+                    (_, Some(l)) => (content.subdivision.unwrap_or_default().options, *l),
+                    (Some(m), None) => (m.options, m.viewport_level),
+                    (None, None) => {
+                        return Err(CommandError::Element {
+                            node: label,
+                            message:
+                                "has no subdivision modifier (give `levels` to subdivide anyway)"
+                                    .into(),
+                        });
+                    }
+                };
+                check_levels(level)?;
+                let (mesh, creases) =
+                    Refiner::subdivide(&content.mesh, &content.creases, options, level)
+                        .map_err(|error| CommandError::Subdivision { node: label, error })?;
+                content.mesh = Arc::new(mesh);
+                content.creases = creases;
+                content.subdivision = None;
+                content.primitive = None;
+                self.set(n);
+            }
+            Command::SetEdgeCrease {
+                node,
+                edges,
+                sharpness,
+            } => {
+                let s = check_sharpness(*sharpness)?;
+                self.edit_creases(node, |m, c| {
+                    for e in edges.resolve(m).map_err(|e| e.0)? {
+                        c.set_edge(e, s);
+                    }
+                    Ok(())
+                })?;
+            }
+            Command::SetVertexCrease {
+                node,
+                vertices,
+                sharpness,
+            } => {
+                let s = check_sharpness(*sharpness)?;
+                self.edit_creases(node, |m, c| {
+                    for v in vertices.resolve(m).map_err(|e| e.0)? {
+                        c.set_vertex(v, s);
+                    }
+                    Ok(())
+                })?;
+            }
+            Command::SnapToLimit { node } => {
+                let n = self.node(node)?;
+                let label = self.doc.label_of(n.id);
+                let NodeContent::Mesh(content) = &n.content else {
+                    return Err(CommandError::NotAMesh { node: label });
+                };
+                let options = content.subdivision.unwrap_or_default().options;
+                let snapped = subdivision::snap_to_limit(&content.mesh, &content.creases, options)
+                    .map_err(|error| CommandError::Subdivision { node: label, error })?;
+                self.edit_mesh(node, |m| {
+                    for (v, p) in snapped {
+                        m.set_position(v, p);
+                    }
+                    Ok(())
+                })?;
             }
             Command::Delete { nodes } => {
                 for r in nodes {

@@ -23,8 +23,11 @@
 
 use crate::command::Command;
 use crate::history::{History, NodeChange, Transaction};
-use crate::scene::{Document, MeshContent, Node, NodeContent, NodeId, Shading, Transform};
+use crate::scene::{
+    Document, MeshContent, Node, NodeContent, NodeId, Shading, SubdivisionModifier, Transform,
+};
 use crate::session::Session;
+use hedra_geom::subdivision::Creases;
 use hedra_geom::{HalfEdgeMesh, Primitive};
 use ron::value::RawValue;
 use serde::{Deserialize, Serialize};
@@ -84,6 +87,10 @@ enum StoredContent {
         primitive: Option<Primitive>,
         #[serde(default)]
         shading: Shading,
+        #[serde(default, skip_serializing_if = "Creases::is_empty")]
+        creases: Creases,
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        subdivision: Option<SubdivisionModifier>,
     },
 }
 
@@ -187,6 +194,8 @@ impl<'a> MeshPool<'a> {
                     mesh: self.add(&m.mesh),
                     primitive: m.primitive.clone(),
                     shading: m.shading,
+                    creases: m.creases.clone(),
+                    subdivision: m.subdivision,
                 },
             },
         }
@@ -465,6 +474,8 @@ fn restore_node(sn: StoredNode, pool: &[Arc<HalfEdgeMesh>]) -> Result<Node, Stri
             mesh,
             primitive,
             shading,
+            creases,
+            subdivision,
         } => {
             let m = pool.get(mesh).ok_or_else(|| {
                 format!(
@@ -476,6 +487,8 @@ fn restore_node(sn: StoredNode, pool: &[Arc<HalfEdgeMesh>]) -> Result<Node, Stri
                 mesh: m.clone(),
                 primitive,
                 shading,
+                creases,
+                subdivision,
             })
         }
     };

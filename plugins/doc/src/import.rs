@@ -3,7 +3,7 @@
 //! manifold half-edge mesh are dropped or split off (with a report).
 
 use crate::history::{NodeChange, Transaction};
-use crate::scene::{Document, MeshContent, Node, NodeContent, NodeId, Shading, Transform};
+use crate::scene::{Document, MeshContent, Node, NodeContent, NodeId, Transform};
 use glam::DVec3;
 use hedra_geom::{HalfEdgeMesh, RepairReport};
 use std::path::Path;
@@ -157,11 +157,7 @@ impl Document {
                 parent: None,
                 transform: Transform::IDENTITY,
                 visible: true,
-                content: NodeContent::Mesh(MeshContent {
-                    mesh: Arc::new(m.mesh.clone()),
-                    primitive: None,
-                    shading: Shading::Flat,
-                }),
+                content: NodeContent::Mesh(MeshContent::new(Arc::new(m.mesh.clone()))),
             };
             changes.push(NodeChange {
                 id,

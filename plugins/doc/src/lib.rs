@@ -16,5 +16,7 @@ pub mod session;
 pub use command::{Command, CommandError, NodeRef};
 pub use elements::{EdgeSet, FaceSet, VertexSet};
 pub use history::{History, NodeChange, Transaction};
-pub use scene::{Document, MeshContent, Node, NodeContent, NodeId, Shading, Transform};
+pub use scene::{
+    Document, MeshContent, Node, NodeContent, NodeId, Shading, SubdivisionModifier, Transform,
+};
 pub use session::{Applied, Session};

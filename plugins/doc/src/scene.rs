@@ -4,6 +4,7 @@
 //! transforms, root first.
 
 use glam::{DMat4, DQuat, DVec3};
+use hedra_geom::subdivision::{Creases, Options as SubdivisionOptions};
 use hedra_geom::{HalfEdgeMesh, Primitive};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -88,6 +89,88 @@ pub struct MeshContent {
     pub mesh: Arc<HalfEdgeMesh>,
     pub primitive: Option<Primitive>,
     pub shading: Shading,
+    /// Edge crease and vertex corner sharpness, used by subdivision.
+    pub creases: Creases,
+    /// The non-destructive subdivision modifier, if the node has one.
+    pub subdivision: Option<SubdivisionModifier>,
+}
+
+impl MeshContent {
+    /// A plain mesh: flat shaded, no primitive, creases or modifier.
+    pub fn new(mesh: Arc<HalfEdgeMesh>) -> Self {
+        MeshContent {
+            mesh,
+            primitive: None,
+            shading: Shading::Flat,
+            creases: Creases::default(),
+            subdivision: None,
+        }
+    }
+}
+
+impl MeshContent {
+    /// The mesh subdivided `level` times with the modifier's options
+    /// (Catmull-Clark without a modifier); level 0 is the cage itself.
+    ///
+    /// # Errors
+    /// When the scheme does not fit the mesh or the result is too large.
+    pub fn subdivided(
+        &self,
+        level: u32,
+    ) -> Result<std::borrow::Cow<'_, HalfEdgeMesh>, hedra_geom::subdivision::SubdivisionError> {
+        if level == 0 {
+            return Ok(std::borrow::Cow::Borrowed(&self.mesh));
+        }
+        let options = self.subdivision.unwrap_or_default().options;
+        let (mesh, _) =
+            hedra_geom::subdivision::Refiner::subdivide(&self.mesh, &self.creases, options, level)?;
+        Ok(std::borrow::Cow::Owned(mesh))
+    }
+}
+
+/// A subdivision modifier on a mesh node (Blender's Subdivision Surface
+/// modifier): the cage stays editable, the viewport shows the smooth result.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct SubdivisionModifier {
+    #[serde(default)]
+    pub options: SubdivisionOptions,
+    /// Levels shown in the viewport.
+    #[serde(default = "one")]
+    pub viewport_level: u32,
+    /// Levels written by export.
+    #[serde(default = "two")]
+    pub export_level: u32,
+    /// Draw the cage's edges over the smooth result.
+    #[serde(default = "yes")]
+    pub show_cage: bool,
+}
+
+fn one() -> u32 {
+    1
+}
+fn two() -> u32 {
+    2
+}
+fn yes() -> bool {
+    true
+}
+
+impl Default for SubdivisionModifier {
+    fn default() -> Self {
+        SubdivisionModifier::with_level(1)
+    }
+}
+
+impl SubdivisionModifier {
+    /// Catmull-Clark with `level` in the viewport and at least 2 on export.
+    pub fn with_level(level: u32) -> Self {
+        SubdivisionModifier {
+            options: SubdivisionOptions::default(),
+            viewport_level: level,
+            export_level: level.max(2),
+            show_cage: true,
+        }
+    }
 }
 
 /// How a mesh is shaded: one normal per face (split at every edge, so a cube

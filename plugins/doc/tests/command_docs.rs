@@ -41,7 +41,7 @@ fn every_command_example_in_the_docs_runs() {
         .collect();
     kinds.sort();
     kinds.dedup();
-    assert_eq!(kinds.len(), 41, "{kinds:?}");
+    assert_eq!(kinds.len(), 46, "{kinds:?}");
     let mut session = hedra_doc::Session::new();
     hedra_doc::script::run(&mut session, &commands, Path::new("docs/commands.md"))
         .unwrap_or_else(|e| panic!("{e}"));
@@ -115,4 +115,37 @@ fn every_command_example_in_the_docs_runs() {
         "flipped inside out, then recalculated outwards"
     );
     assert!(s.closed, "the hole was filled again");
+    // Subdivision: the creased cube applied at level 2, the snapped cube at 1.
+    let rounded = doc.find_by_name("Rounded").unwrap();
+    let hedra_doc::NodeContent::Mesh(content) = &rounded.content else {
+        panic!("Rounded is a mesh");
+    };
+    assert!(
+        content.subdivision.is_none(),
+        "applying removes the modifier"
+    );
+    assert_eq!(content.mesh.face_count(), 6 * 16);
+    content.mesh.validate().unwrap();
+    // The top's four infinitely sharp edges became 16 child edges, still sharp.
+    assert_eq!(
+        content
+            .creases
+            .edges
+            .values()
+            .filter(|&&s| s >= 10.0)
+            .count(),
+        16
+    );
+    // The top face stays flat at y = 1 (its edges are infinitely sharp).
+    let (_, hi) = content.mesh.bounds().unwrap();
+    assert!((hi.y - 1.0).abs() < 1e-12, "{hi}");
+    let snapped = doc.find_by_name("Snapped").unwrap().content.mesh().unwrap();
+    assert_eq!(snapped.face_count(), 24);
+    let (lo, hi) = snapped.bounds().unwrap();
+    // Corners snapped to ±1/2 (the cube's limit); one more level keeps the
+    // face points of those faces at ±1/2 and pulls everything else inside.
+    assert!(
+        (hi.x - 0.5).abs() < 1e-12 && (lo.x + 0.5).abs() < 1e-12,
+        "{lo} {hi}"
+    );
 }

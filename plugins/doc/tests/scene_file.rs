@@ -259,3 +259,103 @@ fn atomic_save_keeps_a_backup_and_a_failed_save_loses_nothing() {
     assert!(e.to_string().contains("missing"), "{e}");
     assert!(s.is_dirty());
 }
+
+#[test]
+fn subdivision_modifiers_and_creases_are_saved_and_undone() {
+    use hedra_doc::elements::{EdgeSet, VertexSet};
+    use hedra_doc::{NodeContent, SubdivisionModifier};
+    let mut s = Session::new();
+    let run = |s: &mut Session, c: Command| s.execute(&c).unwrap();
+    run(
+        &mut s,
+        Command::AddPrimitive {
+            primitive: Primitive::Cube { size: 2.0 },
+            name: Some("Box".into()),
+            parent: None,
+            transform: Transform::IDENTITY,
+        },
+    );
+    let node = || NodeRef::Name("Box".into());
+    let mut modifier = SubdivisionModifier::with_level(3);
+    modifier.options.crease_method = hedra_geom::subdivision::CreaseMethod::Chaikin;
+    run(
+        &mut s,
+        Command::SetSubdivision {
+            nodes: vec![node()],
+            modifier: Some(modifier),
+        },
+    );
+    run(
+        &mut s,
+        Command::SetEdgeCrease {
+            node: node(),
+            edges: EdgeSet::Ids(vec![0, 1]),
+            sharpness: 2.5,
+        },
+    );
+    run(
+        &mut s,
+        Command::SetVertexCrease {
+            node: node(),
+            vertices: VertexSet::Ids(vec![3]),
+            sharpness: 10.0,
+        },
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("creased.hedra.ron");
+    file::save(&mut s, &path).unwrap();
+    let text = std::fs::read_to_string(&path).unwrap();
+    assert!(text.contains("crease_method: Chaikin"), "{text}");
+    let mut back = file::load(&path).unwrap().session;
+    assert_eq!(back.doc, s.doc);
+    let content = |s: &Session| match &s.doc.find_by_name("Box").unwrap().content {
+        NodeContent::Mesh(m) => m.clone(),
+        NodeContent::Empty => panic!("Box is a mesh"),
+    };
+    let c = content(&back);
+    assert_eq!(c.subdivision, Some(modifier));
+    assert_eq!(c.creases.edges.len(), 2);
+    assert_eq!(c.creases.vertex(hedra_geom::VertexId(3)), 10.0);
+    // Undo in the reopened file: vertex crease, edge creases, then the modifier.
+    back.undo().unwrap();
+    assert!(content(&back).creases.vertices.is_empty());
+    back.undo().unwrap();
+    assert!(content(&back).creases.is_empty());
+    back.undo().unwrap();
+    assert_eq!(content(&back).subdivision, None);
+    // Bad values are refused by name and change nothing.
+    let before = s.doc.clone();
+    for bad in [-1.0, 10.5, f64::NAN] {
+        let e = s
+            .execute(&Command::SetEdgeCrease {
+                node: node(),
+                edges: EdgeSet::All,
+                sharpness: bad,
+            })
+            .unwrap_err();
+        assert!(
+            e.to_string().contains("sharpness must be between 0 and 10"),
+            "{e}"
+        );
+    }
+    let e = s
+        .execute(&Command::SetSubdivision {
+            nodes: vec![node()],
+            modifier: Some(SubdivisionModifier::with_level(11)),
+        })
+        .unwrap_err();
+    assert!(
+        e.to_string().contains("level 11 is above the maximum"),
+        "{e}"
+    );
+    let e = s
+        .execute(&Command::ApplySubdivision {
+            node: NodeRef::Name("Box".into()),
+            levels: None,
+        })
+        .map(drop);
+    assert!(e.is_ok(), "the modifier's level 3 applies");
+    assert_eq!(content(&s).mesh.face_count(), 6 * 64);
+    s.undo();
+    assert_eq!(s.doc, before);
+}

@@ -346,10 +346,14 @@ pub fn use_path(
             } else {
                 path
             };
-            let written =
-                hedra_doc::export::export_bytes(&state.session.doc, &path).and_then(|b| {
-                    hedra_doc::file::write_atomic_bytes(&path, &b).map_err(|e| e.to_string())
-                });
+            let written = hedra_doc::export::export_bytes(
+                &state.session.doc,
+                &path,
+                hedra_doc::export::ExportShape::Evaluated,
+            )
+            .and_then(|b| {
+                hedra_doc::file::write_atomic_bytes(&path, &b).map_err(|e| e.to_string())
+            });
             match written {
                 Ok(()) => status.info(format!("Exported {}", path.display())),
                 Err(e) => status.error(format!("Export failed: {e}")),
