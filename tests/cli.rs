@@ -491,3 +491,65 @@ fn info_topology_prints_the_half_edge_and_winged_edge_tables() {
     assert!(text.contains("  e0 | v0 | v2 | f0 | "), "{text}");
     assert_eq!(text.lines().filter(|l| l.starts_with("  h")).count(), 12);
 }
+
+/// Counts of `v` and `f` lines in an OBJ file.
+fn obj_counts(path: &Path) -> (usize, usize) {
+    let text = std::fs::read_to_string(path).unwrap();
+    let count = |p: &str| text.lines().filter(|l| l.starts_with(p)).count();
+    (count("v "), count("f "))
+}
+
+#[test]
+fn export_writes_the_subdivided_shape_the_cage_or_a_given_level() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("smooth.hedra.ron");
+    let s = dir.path().join("s.ron");
+    std::fs::write(
+        &s,
+        "[AddPrimitive(primitive: Cube(size: 2.0), name: \"Box\"),
+          SetSubdivision(nodes: [Name(\"Box\")], modifier: Some((viewport_level: 1, export_level: 2))),
+          SetEdgeCrease(node: Name(\"Box\"), edges: All, sharpness: 10.0)]",
+    )
+    .unwrap();
+    let o = hedra(&["run", s.to_str().unwrap(), "-o", file.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let export = |extra: &[&str]| {
+        let out = dir.path().join("out.obj");
+        let mut args = vec![
+            "export",
+            file.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+        ];
+        args.extend_from_slice(extra);
+        let o = hedra(&args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        out
+    };
+    // The modifier's export level 2: 96 quads, 98 vertices, still a cube
+    // because every edge is infinitely sharp.
+    let out = export(&[]);
+    assert_eq!(obj_counts(&out), (98, 96));
+    let text = std::fs::read_to_string(&out).unwrap();
+    for line in text.lines().filter(|l| l.starts_with("v ")) {
+        let max = line[2..]
+            .split(' ')
+            .map(|x| x.parse::<f64>().unwrap().abs())
+            .fold(0.0, f64::max);
+        assert!((max - 1.0).abs() < 1e-9, "{line} is off the cube");
+    }
+    assert_eq!(obj_counts(&export(&["--cage"])), (8, 6));
+    assert_eq!(obj_counts(&export(&["--subdivide", "3"])), (386, 384));
+    fails(
+        &[
+            "export",
+            file.to_str().unwrap(),
+            "-o",
+            dir.path().join("big.obj").to_str().unwrap(),
+            "--subdivide",
+            "11",
+        ],
+        &dir.path().join("big.obj"),
+        "node 'Box': level 11 is above the maximum of 10",
+    );
+}
