@@ -73,6 +73,7 @@ impl Plugin for EditPlugin {
                     modal::drive_transform_tool,
                     mesh_mode::drive_mesh_tool,
                     object_shortcuts,
+                    subdivision_keys,
                     mesh_mode::edit_shortcuts,
                     pick_objects,
                     mesh_mode::select_elements,
@@ -294,6 +295,92 @@ pub fn object_shortcuts(
         let (cam, cam_t) = *camera;
         tool.active =
             ModalTransform::start(kind, doc, &selection.nodes, &entities, &window, cam, cam_t);
+    }
+}
+
+/// Ctrl+0…Ctrl+5 set the subdivision level of the selected meshes (or of
+/// the mesh in edit mode), adding a Catmull-Clark modifier when there is
+/// none, like Blender; Ctrl+0 shows the cage alone. Page Up / Page Down step
+/// the level of meshes that have a modifier.
+pub fn subdivision_keys(
+    keys: Res<ButtonInput<KeyCode>>,
+    gate: Res<InputGate>,
+    tool: Res<TransformTool>,
+    mode: Res<EditMode>,
+    selection: Res<Selection>,
+    state: Res<DocState>,
+    mut requests: MessageWriter<DocRequest>,
+    mut status: ResMut<hedra_scene::StatusMessage>,
+) {
+    if !gate.keyboard_free || tool.active.is_some() || mode.tool.is_some() {
+        return;
+    }
+    const LEVEL_KEYS: [(KeyCode, u32); 6] = [
+        (KeyCode::Digit0, 0),
+        (KeyCode::Digit1, 1),
+        (KeyCode::Digit2, 2),
+        (KeyCode::Digit3, 3),
+        (KeyCode::Digit4, 4),
+        (KeyCode::Digit5, 5),
+    ];
+    let set_level = LEVEL_KEYS
+        .iter()
+        .find(|(k, _)| ctrl(&keys) && keys.just_pressed(*k))
+        .map(|&(_, level)| level);
+    let step: i64 = if keys.just_pressed(KeyCode::PageUp) {
+        1
+    } else if keys.just_pressed(KeyCode::PageDown) {
+        -1
+    } else {
+        0
+    };
+    if set_level.is_none() && step == 0 {
+        return;
+    }
+    let doc = &state.session.doc;
+    let targets: Vec<NodeId> = match mode.node {
+        Some(n) => vec![n],
+        None => selection.nodes.iter().copied().collect(),
+    };
+    let mut changed = Vec::new();
+    for id in targets {
+        let Some(node) = doc.node(id) else { continue };
+        let hedra_doc::NodeContent::Mesh(content) = &node.content else {
+            continue;
+        };
+        let modifier = match (set_level, content.subdivision) {
+            (Some(level), Some(mut m)) => {
+                m.viewport_level = level;
+                m
+            }
+            (Some(level), None) => hedra_doc::SubdivisionModifier::with_level(level),
+            (None, Some(mut m)) => {
+                let level = (m.viewport_level as i64 + step).clamp(0, 6) as u32;
+                if level == m.viewport_level {
+                    continue;
+                }
+                m.viewport_level = level;
+                m
+            }
+            (None, None) => continue,
+        };
+        if content.subdivision != Some(modifier) {
+            changed.push((id, modifier));
+        }
+    }
+    if changed.is_empty() {
+        status.error(if set_level.is_some() {
+            "Subdivision: select a mesh first"
+        } else {
+            "Page Up/Down: no selected mesh has a subdivision modifier (Ctrl+1 adds one)"
+        });
+        return;
+    }
+    for (id, modifier) in changed {
+        requests.write(DocRequest::Execute(Command::SetSubdivision {
+            nodes: vec![id.into()],
+            modifier: Some(modifier),
+        }));
     }
 }
 

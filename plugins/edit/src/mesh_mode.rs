@@ -12,6 +12,7 @@ use bevy::prelude::*;
 use bevy::window::PrimaryWindow;
 use glam::{DMat4, DVec3};
 use hedra_doc::{Command, EdgeSet, FaceSet, NodeContent, NodeId, NodeRef, VertexSet};
+use hedra_geom::subdivision::Creases;
 use hedra_geom::{EdgeId, FaceId, HalfEdgeMesh, VertexId};
 use hedra_scene::modifiers::{alt, ctrl, shift};
 use hedra_scene::{DocChanged, DocRequest, DocState, InputGate, NodeEntities, ViewportCamera};
@@ -104,6 +105,9 @@ pub enum MeshToolKind {
     Bevel,
     /// Inset the selected faces each on its own (Alt+I).
     InsetIndividual,
+    /// Drag the subdivision crease of the selected edges, or the corner
+    /// sharpness of the selected vertices in vertex mode (Shift+E).
+    Crease,
     Rotate,
     Scale,
     Extrude,
@@ -123,6 +127,8 @@ pub struct MeshTool {
     /// Loop cut: the edge under the cursor and the number of cuts.
     edge: Option<EdgeId>,
     cuts: u32,
+    /// Crease: the mean sharpness of the selection when the tool started.
+    start_value: f64,
     pub readout: String,
 }
 
@@ -135,6 +141,8 @@ pub struct EditMode {
     pub tool: Option<MeshTool>,
     /// The mesh as the running tool would leave it (shown instead of the document's).
     pub preview: Option<Arc<HalfEdgeMesh>>,
+    /// The creases as the running tool would leave them.
+    pub preview_creases: Option<Creases>,
     /// Set on the frame a tool ended, so its confirming click selects nothing.
     pub just_finished: bool,
     /// The rectangle being dragged for box selection (window coordinates).
@@ -596,6 +604,7 @@ pub fn edit_shortcuts(
         pivot_screen,
         edge: None,
         cuts: 1,
+        start_value: 0.0,
         readout: String::new(),
     };
     if c && keys.just_pressed(KeyCode::KeyR) {
@@ -651,6 +660,38 @@ pub fn edit_shortcuts(
             }
             return;
         }
+    }
+    if s && keys.just_pressed(KeyCode::KeyE) {
+        let creases = match state
+            .session
+            .doc
+            .node(mode.node.expect("active"))
+            .map(|n| &n.content)
+        {
+            Some(NodeContent::Mesh(m)) => m.creases.clone(),
+            _ => Creases::default(),
+        };
+        let values: Vec<f64> = if mode.kind == ElementKind::Vertex {
+            mode.selection
+                .vertices
+                .iter()
+                .map(|&v| creases.vertex(v))
+                .collect()
+        } else {
+            mode.selection
+                .edges
+                .iter()
+                .map(|&e| creases.edge(e))
+                .collect()
+        };
+        if values.is_empty() {
+            status.error("Crease: select edges (2), or vertices (1) for corner sharpness, first");
+        } else {
+            let mut t = start(MeshToolKind::Crease);
+            t.start_value = values.iter().sum::<f64>() / values.len() as f64;
+            mode.tool = Some(t);
+        }
+        return;
     }
     if c && keys.just_pressed(KeyCode::KeyX) {
         match delete_or_dissolve(node.clone(), mode.kind, &mode.selection, true) {
@@ -888,6 +929,33 @@ fn tool_command(
                 segments,
             }
         }
+        MeshToolKind::Crease => {
+            // 100 pixels to the right add one level of sharpness.
+            let sharpness = tool
+                .typed
+                .value()
+                .unwrap_or(tool.start_value + ((cursor - tool.start_cursor).x / 100.0) as f64)
+                .clamp(0.0, 10.0);
+            let what = if selection.vertices.is_empty() || !selection.edges.is_empty() {
+                "Edge crease"
+            } else {
+                "Vertex corner sharpness"
+            };
+            tool.readout = format!("{what} {sharpness:.2} (0 smooth … 10 sharp)");
+            if what == "Edge crease" {
+                Command::SetEdgeCrease {
+                    node,
+                    edges: EdgeSet::Ids(selection.edges.iter().map(|e| e.0).collect()),
+                    sharpness,
+                }
+            } else {
+                Command::SetVertexCrease {
+                    node,
+                    vertices: VertexSet::Ids(selection.vertices.iter().map(|v| v.0).collect()),
+                    sharpness,
+                }
+            }
+        }
         MeshToolKind::SlideEdges => {
             // 300 pixels to the right slide all the way to one side, to the left the other.
             let factor = tool
@@ -1104,15 +1172,17 @@ pub fn drive_mesh_tool(
     // Decide on a copy: the preview, or the reason it cannot apply.
     match state.session.doc.decide(&cmd, 0) {
         Ok(t) => {
-            mode.preview = t
+            let after = t
                 .changes
                 .iter()
                 .find(|c| c.id == node_id)
                 .and_then(|c| c.after.as_ref())
                 .and_then(|n| match &n.content {
-                    NodeContent::Mesh(m) => Some(m.mesh.clone()),
+                    NodeContent::Mesh(m) => Some(m),
                     NodeContent::Empty => None,
                 });
+            mode.preview = after.map(|m| m.mesh.clone());
+            mode.preview_creases = after.map(|m| m.creases.clone());
         }
         Err(e) => {
             mode.preview = None;
@@ -1151,67 +1221,98 @@ pub fn drive_mesh_tool(
     mode.tool = Some(tool);
 }
 
-/// While a tool runs, the edited node shows the preview mesh; afterwards the
-/// document's mesh again. When a preview only moves vertices, the render
-/// mesh is patched in place instead of rebuilt (dense meshes stay fluid).
+/// While a tool runs, the edited node shows the preview mesh (smoothed when
+/// the node has a subdivision modifier); afterwards the document's mesh
+/// again. When a preview only moves vertices, the render mesh is patched in
+/// place instead of rebuilt (dense meshes and smooth previews stay fluid).
 pub fn show_preview(
     mode: Res<EditMode>,
     state: Res<DocState>,
     entities: Res<NodeEntities>,
-    mut shown: Local<Option<(NodeId, Arc<HalfEdgeMesh>)>>,
+    mut shown: Local<Option<Shown>>,
     mesh3d: Query<&Mesh3d>,
     mut meshes: ResMut<Assets<Mesh>>,
+    mut previews: ResMut<hedra_scene::SmoothPreviews>,
 ) {
-    let doc_mesh = |n: NodeId| -> Option<(Arc<HalfEdgeMesh>, hedra_doc::Shading)> {
+    let content = |n: NodeId| -> Option<hedra_doc::MeshContent> {
         match &state.session.doc.node(n)?.content {
-            NodeContent::Mesh(c) => Some((c.mesh.clone(), c.shading)),
+            NodeContent::Mesh(c) => Some(c.clone()),
             NodeContent::Empty => None,
         }
     };
-    let want: Option<(NodeId, Arc<HalfEdgeMesh>)> = match (mode.node, &mode.preview) {
-        (Some(n), Some(p)) => Some((n, p.clone())),
+    let want: Option<Shown> = match (mode.node, &mode.preview) {
+        (Some(n), Some(p)) => Some(Shown {
+            node: n,
+            mesh: p.clone(),
+            creases: mode.preview_creases.clone(),
+        }),
         _ => None,
     };
-    let same = |a: &Option<(NodeId, Arc<HalfEdgeMesh>)>,
-                b: &Option<(NodeId, Arc<HalfEdgeMesh>)>| match (a, b) {
-        (Some((n1, m1)), Some((n2, m2))) => n1 == n2 && Arc::ptr_eq(m1, m2),
+    let same = |a: &Option<Shown>, b: &Option<Shown>| match (a, b) {
+        (Some(x), Some(y)) => {
+            x.node == y.node && Arc::ptr_eq(&x.mesh, &y.mesh) && x.creases == y.creases
+        }
         (None, None) => true,
         _ => false,
     };
     if same(&want, &shown) {
         return;
     }
-    let mut show = |n: NodeId, from: &HalfEdgeMesh, to: &HalfEdgeMesh| {
-        let Some((_, shading)) = doc_mesh(n) else {
-            return;
-        };
-        let Some(h) = entities.0.get(&n).and_then(|e| mesh3d.get(*e).ok()) else {
-            return;
-        };
-        if let Some(mut m) = meshes.get_mut(&h.0) {
-            if !hedra_scene::update_render_positions(&mut m, from, to, shading) {
-                *m = hedra_scene::render_mesh(to, shading);
+    let mut show =
+        |n: NodeId, from: &HalfEdgeMesh, to: &Arc<HalfEdgeMesh>, creases: Option<&Creases>| {
+            let Some(c) = content(n) else {
+                return;
+            };
+            let Some(h) = entities.0.get(&n).and_then(|e| mesh3d.get(*e).ok()) else {
+                return;
+            };
+            let Some(mut m) = meshes.get_mut(&h.0) else {
+                return;
+            };
+            let creases = creases.unwrap_or(&c.creases);
+            if let Some(modifier) = hedra_scene::active_modifier(&c) {
+                let src = hedra_scene::SmoothSource {
+                    node: n,
+                    cage: to,
+                    creases,
+                    modifier: &modifier,
+                    shading: c.shading,
+                };
+                if !previews.update_positions(&mut m, &src) {
+                    *m = previews
+                        .render_mesh(&src)
+                        .unwrap_or_else(|_| hedra_scene::render_mesh(to, c.shading));
+                }
+            } else if !hedra_scene::update_render_positions(&mut m, from, to, c.shading) {
+                *m = hedra_scene::render_mesh(to, c.shading);
             }
-        }
-    };
+        };
     // Back to the document's mesh for the node previewed before.
-    if let Some((prev, prev_mesh)) = shown.take() {
-        if want.as_ref().is_none_or(|(n, _)| *n != prev) {
-            if let Some((doc, _)) = doc_mesh(prev) {
-                show(prev, &prev_mesh, &doc);
+    if let Some(prev) = shown.take() {
+        if want.as_ref().is_none_or(|w| w.node != prev.node) {
+            if let Some(doc) = content(prev.node) {
+                show(prev.node, &prev.mesh, &doc.mesh, None);
             }
-        } else if let Some((n, p)) = &want {
-            show(*n, &prev_mesh, p);
+        } else if let Some(w) = &want {
+            show(w.node, &prev.mesh, &w.mesh, w.creases.as_ref());
             *shown = want.clone();
             return;
         }
     }
-    if let Some((n, p)) = &want {
-        if let Some((doc, _)) = doc_mesh(*n) {
-            show(*n, &doc, p);
+    if let Some(w) = &want {
+        if let Some(doc) = content(w.node) {
+            show(w.node, &doc.mesh, &w.mesh, w.creases.as_ref());
         }
         *shown = want.clone();
     }
+}
+
+/// What [`show_preview`] last put on screen.
+#[derive(Clone, Debug)]
+pub struct Shown {
+    node: NodeId,
+    mesh: Arc<HalfEdgeMesh>,
+    creases: Option<Creases>,
 }
 
 #[cfg(test)]

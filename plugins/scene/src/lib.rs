@@ -16,6 +16,9 @@ use hedra_geom::query::triangulate_face;
 use std::collections::HashMap;
 use std::path::PathBuf;
 
+mod smooth;
+pub use smooth::{SmoothPreviews, SmoothSource};
+
 /// The open document, where it lives on disk, and a change counter.
 #[derive(Resource, Default)]
 pub struct DocState {
@@ -93,11 +96,32 @@ impl StatusMessage {
 #[derive(Component, Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct NodeEntity(pub NodeId);
 
-/// Which half-edge mesh (by identity) and shading the render mesh was built from.
+/// Which half-edge mesh (by identity), shading and subdivision the render
+/// mesh was built from.
 #[derive(Component, Clone, Copy, Debug, PartialEq, Eq)]
 pub struct ProjectedMesh {
     pub source: usize,
     pub shading: Shading,
+    /// The modifier and a fingerprint of the creases, for smooth previews.
+    pub smooth: Option<(hedra_doc::SubdivisionModifier, u64)>,
+}
+
+/// A fingerprint of crease values, to notice when they change.
+pub fn creases_fingerprint(creases: &hedra_geom::subdivision::Creases) -> u64 {
+    use std::hash::{Hash, Hasher};
+    let mut h = std::collections::hash_map::DefaultHasher::new();
+    for (e, s) in &creases.edges {
+        (e, s.to_bits()).hash(&mut h);
+    }
+    for (v, s) in &creases.vertices {
+        (v, s.to_bits()).hash(&mut h);
+    }
+    h.finish()
+}
+
+/// The subdivision a mesh's content shows in the viewport, if any.
+pub fn active_modifier(content: &hedra_doc::MeshContent) -> Option<hedra_doc::SubdivisionModifier> {
+    content.subdivision.filter(|m| m.viewport_level > 0)
 }
 
 /// Node id → entity, kept by [`sync_entities`].
@@ -125,6 +149,7 @@ impl Plugin for ScenePlugin {
         app.init_resource::<DocState>()
             .init_resource::<StatusMessage>()
             .init_resource::<NodeEntities>()
+            .init_resource::<SmoothPreviews>()
             .init_resource::<InputGate>()
             .add_message::<DocRequest>()
             .add_message::<DocChanged>()
@@ -279,6 +304,8 @@ pub fn sync_entities(
     mut seen_revision: Local<Option<u64>>,
     mut map: ResMut<NodeEntities>,
     mut meshes: ResMut<Assets<Mesh>>,
+    mut previews: ResMut<SmoothPreviews>,
+    mut status: ResMut<StatusMessage>,
     material: Option<Res<MeshMaterial>>,
     mut existing: Query<(
         &mut Transform,
@@ -347,6 +374,8 @@ pub fn sync_entities(
                     projected.copied(),
                     mesh3d,
                     &mut meshes,
+                    &mut previews,
+                    &mut status,
                     material.as_deref(),
                 );
             }
@@ -355,7 +384,16 @@ pub fn sync_entities(
                 if let Some(p) = parent {
                     ec.insert(ChildOf(p));
                 }
-                project_mesh(&mut ec, node, None, None, &mut meshes, material.as_deref());
+                project_mesh(
+                    &mut ec,
+                    node,
+                    None,
+                    None,
+                    &mut meshes,
+                    &mut previews,
+                    &mut status,
+                    material.as_deref(),
+                );
             }
         }
     }
@@ -366,6 +404,12 @@ pub fn sync_entities(
         .filter(|id| doc.node(**id).is_none())
         .copied()
         .collect();
+    previews.retain(|id| {
+        doc.node(id).is_some_and(|n| match &n.content {
+            NodeContent::Mesh(c) => active_modifier(c).is_some(),
+            NodeContent::Empty => false,
+        })
+    });
     for id in gone {
         if let Some(e) = map.0.remove(&id) {
             commands.entity(e).remove::<ChildOf>();
@@ -374,12 +418,15 @@ pub fn sync_entities(
     }
 }
 
+#[allow(clippy::too_many_arguments)]
 fn project_mesh(
     ec: &mut EntityCommands,
     node: &hedra_doc::Node,
     projected: Option<ProjectedMesh>,
     mesh3d: Option<&Mesh3d>,
     meshes: &mut Assets<Mesh>,
+    previews: &mut SmoothPreviews,
+    status: &mut StatusMessage,
     material: Option<&MeshMaterial>,
 ) {
     let NodeContent::Mesh(content) = &node.content else {
@@ -388,14 +435,20 @@ fn project_mesh(
         }
         return;
     };
+    let modifier = active_modifier(content);
     let wanted = ProjectedMesh {
         source: std::sync::Arc::as_ptr(&content.mesh) as usize,
         shading: content.shading,
+        smooth: modifier.map(|m| (m, creases_fingerprint(&content.creases))),
     };
     if projected == Some(wanted) {
         return;
     }
-    let render = render_mesh(&content.mesh, content.shading);
+    let render = content_render_mesh(node.id, content, &content.mesh, &content.creases, previews)
+        .unwrap_or_else(|(message, cage)| {
+            status.error(format!("'{}': subdivision not shown: {message}", node.name));
+            cage
+        });
     match mesh3d.filter(|m| meshes.contains(&m.0)) {
         Some(m) => {
             if let Some(mut existing) = meshes.get_mut(&m.0) {
@@ -410,6 +463,34 @@ fn project_mesh(
         ec.insert(MeshMaterial3d(m.0.clone()));
     }
     ec.insert(wanted);
+}
+
+/// The render mesh of a mesh node showing `cage` (the document's mesh or a
+/// tool's preview of it) with `creases`: smooth when the node has a
+/// subdivision modifier, else the cage itself.
+///
+/// # Errors
+/// The subdivision's message together with the cage's render mesh, to show
+/// instead.
+pub fn content_render_mesh(
+    node: NodeId,
+    content: &hedra_doc::MeshContent,
+    cage: &std::sync::Arc<HalfEdgeMesh>,
+    creases: &hedra_geom::subdivision::Creases,
+    previews: &mut SmoothPreviews,
+) -> Result<Mesh, (String, Mesh)> {
+    let Some(modifier) = active_modifier(content) else {
+        return Ok(render_mesh(cage, content.shading));
+    };
+    previews
+        .render_mesh(&SmoothSource {
+            node,
+            cage,
+            creases,
+            modifier: &modifier,
+            shading: content.shading,
+        })
+        .map_err(|message| (message, render_mesh(cage, content.shading)))
 }
 
 /// A triangle render mesh of a half-edge mesh. Flat shading gives each face

@@ -36,6 +36,8 @@ pub struct UiState {
     pub rename: Option<Rename>,
     /// Transform fields being dragged in the properties panel (committed on release).
     pub transform_edit: Option<(NodeId, DocTransform)>,
+    /// Crease field being dragged (committed on release).
+    pub crease_edit: Option<f64>,
     /// The 3D area left by the panels, in logical pixels.
     pub viewport_rect: Option<egui::Rect>,
     pub last_title: String,
@@ -55,6 +57,7 @@ impl Default for UiState {
             dialog_backend: files::dialog_backend_available(),
             rename: None,
             transform_edit: None,
+            crease_edit: None,
             viewport_rect: None,
             last_title: String::new(),
         }

@@ -616,6 +616,13 @@ fn properties(ui: &mut egui::Ui, model: &Model, state: &mut UiState, events: &mu
             }
         });
 
+    if let NodeContent::Mesh(content) = &node.content {
+        egui::CollapsingHeader::new("Subdivision")
+            .default_open(true)
+            .show(ui, |ui| {
+                subdivision_panel(ui, id, content, model, state, events)
+            });
+    }
     if let (NodeContent::Mesh(content), Some(true)) =
         (&node.content, model.mode.node.map(|n| n == id))
     {
@@ -678,6 +685,184 @@ fn properties(ui: &mut egui::Ui, model: &Model, state: &mut UiState, events: &mu
                 });
         }
     }
+}
+
+/// The subdivision modifier of a mesh node and, in edit mode, the crease of
+/// the selected edges or vertices.
+fn subdivision_panel(
+    ui: &mut egui::Ui,
+    id: NodeId,
+    content: &hedra_doc::MeshContent,
+    model: &Model,
+    state: &mut UiState,
+    events: &mut Vec<UiEvent>,
+) {
+    use hedra_geom::subdivision::{BoundaryInterpolation, CreaseMethod, MAX_LEVEL, Scheme};
+    let set = |events: &mut Vec<UiEvent>, m: Option<hedra_doc::SubdivisionModifier>| {
+        exec(
+            events,
+            Command::SetSubdivision {
+                nodes: vec![id.into()],
+                modifier: m,
+            },
+        )
+    };
+    match content.subdivision {
+        None => {
+            ui.label("No subdivision modifier.");
+            if ui
+                .button("Add Subdivision Surface")
+                .on_hover_text("Ctrl+1…Ctrl+5 add it with that level")
+                .clicked()
+            {
+                set(events, Some(hedra_doc::SubdivisionModifier::with_level(1)));
+            }
+        }
+        Some(m) => {
+            let mut e = m;
+            egui::Grid::new("subdivision-grid")
+                .num_columns(2)
+                .show(ui, |ui| {
+                    ui.label("Scheme");
+                    egui::ComboBox::from_id_salt("scheme")
+                        .selected_text(e.options.scheme.label())
+                        .show_ui(ui, |ui| {
+                            for s in Scheme::ALL {
+                                ui.selectable_value(&mut e.options.scheme, s, s.label());
+                            }
+                        });
+                    ui.end_row();
+                    ui.label("Viewport level");
+                    ui.add(egui::DragValue::new(&mut e.viewport_level).range(0..=6))
+                        .on_hover_text("Ctrl+0…Ctrl+5, Page Up / Page Down");
+                    ui.end_row();
+                    ui.label("Export level");
+                    ui.add(egui::DragValue::new(&mut e.export_level).range(0..=MAX_LEVEL));
+                    ui.end_row();
+                    ui.label("Boundary");
+                    egui::ComboBox::from_id_salt("boundary")
+                        .selected_text(e.options.boundary.label())
+                        .show_ui(ui, |ui| {
+                            for b in BoundaryInterpolation::ALL {
+                                ui.selectable_value(&mut e.options.boundary, b, b.label());
+                            }
+                        });
+                    ui.end_row();
+                    ui.label("Creases");
+                    egui::ComboBox::from_id_salt("crease-method")
+                        .selected_text(e.options.crease_method.label())
+                        .show_ui(ui, |ui| {
+                            for c in CreaseMethod::ALL {
+                                ui.selectable_value(&mut e.options.crease_method, c, c.label());
+                            }
+                        });
+                    ui.end_row();
+                });
+            ui.checkbox(&mut e.show_cage, "Show cage");
+            if e != m {
+                set(events, Some(e));
+            }
+            if e.options.scheme == Scheme::Loop
+                && let Some(f) = content
+                    .mesh
+                    .faces()
+                    .find(|&f| content.mesh.face_degree(f) != 3)
+            {
+                ui.colored_label(
+                    egui::Color32::LIGHT_RED,
+                    format!(
+                        "Loop needs triangles: face {f} has {} sides",
+                        content.mesh.face_degree(f)
+                    ),
+                );
+            }
+            ui.horizontal(|ui| {
+                if ui
+                    .button("Apply")
+                    .on_hover_text("Make the smooth shape the editable mesh")
+                    .clicked()
+                {
+                    exec(
+                        events,
+                        Command::ApplySubdivision {
+                            node: id.into(),
+                            levels: None,
+                        },
+                    );
+                }
+                if ui
+                    .button("Snap cage to limit")
+                    .on_hover_text("Move the cage's vertices onto the smooth surface")
+                    .clicked()
+                {
+                    exec(events, Command::SnapToLimit { node: id.into() });
+                }
+                if ui.button("Remove").clicked() {
+                    set(events, None);
+                }
+            });
+        }
+    }
+    // Crease of the selection, in edit mode.
+    if model.mode.node != Some(id) {
+        return;
+    }
+    let sel = &model.mode.selection;
+    let vertex_mode = model.mode.kind == ElementKind::Vertex;
+    let values: Vec<f64> = if vertex_mode {
+        sel.vertices
+            .iter()
+            .map(|&v| content.creases.vertex(v))
+            .collect()
+    } else {
+        sel.edges.iter().map(|&e| content.creases.edge(e)).collect()
+    };
+    let label = if vertex_mode {
+        "Corner sharpness"
+    } else {
+        "Edge crease"
+    };
+    if values.is_empty() {
+        ui.label(format!(
+            "{label}: select {} (Shift+E drags it)",
+            if vertex_mode { "vertices" } else { "edges" }
+        ));
+        return;
+    }
+    let mean = values.iter().sum::<f64>() / values.len() as f64;
+    let mut v = state.crease_edit.unwrap_or(mean);
+    ui.horizontal(|ui| {
+        ui.label(label);
+        let r = ui
+            .add(egui::Slider::new(&mut v, 0.0..=10.0).max_decimals(2))
+            .on_hover_text("0 smooth … 10 infinitely sharp; Shift+E drags it in the viewport");
+        if r.changed() {
+            state.crease_edit = Some(v);
+        }
+        let busy = r.dragged() || r.has_focus();
+        if !busy && let Some(value) = state.crease_edit.take() {
+            exec(
+                events,
+                if vertex_mode {
+                    Command::SetVertexCrease {
+                        node: id.into(),
+                        vertices: hedra_doc::elements::VertexSet::Ids(
+                            sel.vertices.iter().map(|v| v.0).collect(),
+                        ),
+                        sharpness: value,
+                    }
+                } else {
+                    Command::SetEdgeCrease {
+                        node: id.into(),
+                        edges: hedra_doc::elements::EdgeSet::Ids(
+                            sel.edges.iter().map(|e| e.0).collect(),
+                        ),
+                        sharpness: value,
+                    }
+                },
+            );
+        }
+    });
 }
 
 /// Fields for a primitive's parameters; true when one changed.

@@ -338,8 +338,14 @@ fn update_edge_overlays(
             (true, false) => Color::srgb(0.95, 0.45, 0.1),
             _ => Color::srgba(0.05, 0.05, 0.07, 0.8),
         };
+        // A smooth preview shows its cage as light lines, or none.
+        let smooth = hedra_scene::active_modifier(content);
+        let color = match smooth {
+            Some(_) if !selected => Color::srgba(0.75, 0.78, 0.85, 0.55),
+            _ => color,
+        };
         let mut asset = GizmoAsset::new();
-        if shown {
+        if shown && smooth.is_none_or(|m| m.show_cage) {
             let m = &content.mesh;
             for e in m.edges() {
                 let [a, b] = m.edge_vertices(e);
@@ -481,6 +487,9 @@ fn update_edit_edges(
             &mode.selection,
             mode.kind as u8,
             state.revision,
+            mode.preview_creases
+                .as_ref()
+                .map(hedra_scene::creases_fingerprint),
         )
             .hash(&mut h);
         h.finish()
@@ -514,15 +523,27 @@ fn update_edit_edges(
         if let Ok(mut t) = transforms.get_mut(*entity) {
             *t = Transform::from_matrix(world.as_mat4());
         }
-        draw_edit_edges(&mut asset, &mesh, &mode);
+        let creases = mode.preview_creases.clone().or_else(|| {
+            match state.session.doc.node(node).map(|n| &n.content) {
+                Some(NodeContent::Mesh(c)) => Some(c.creases.clone()),
+                _ => None,
+            }
+        });
+        draw_edit_edges(&mut asset, &mesh, &mode, &creases.unwrap_or_default());
     }
     if let Some(mut a) = assets.get_mut(handle.id()) {
         *a = asset;
     }
 }
 
-/// Edges in mesh space: selected ones orange, the inspector's related ones cyan.
-fn draw_edit_edges(asset: &mut GizmoAsset, mesh: &hedra_geom::HalfEdgeMesh, mode: &EditMode) {
+/// Edges in mesh space: selected ones orange, the inspector's related ones
+/// cyan, creased ones magenta (brighter the sharper).
+fn draw_edit_edges(
+    asset: &mut GizmoAsset,
+    mesh: &hedra_geom::HalfEdgeMesh,
+    mode: &EditMode,
+    creases: &hedra_geom::subdivision::Creases,
+) {
     let sel = &mode.selection;
     let selected_vertices = sel.all_vertices(mesh);
     let orange = Color::srgb(1.0, 0.55, 0.1);
@@ -555,10 +576,14 @@ fn draw_edit_edges(asset: &mut GizmoAsset, mesh: &hedra_geom::HalfEdgeMesh, mode
             || faces.iter().flatten().any(|f| sel.faces.contains(f));
         let related =
             related_edges.contains(&e) || faces.iter().flatten().any(|f| related_faces.contains(f));
+        let crease = creases.edge(e);
         let color = if hot {
             orange
         } else if related {
             cyan
+        } else if crease > 0.0 {
+            let k = 0.35 + 0.65 * (crease.min(10.0) / 10.0) as f32;
+            Color::srgb(0.95 * k, 0.1 * k, 0.8 * k)
         } else {
             Color::srgb(0.08, 0.08, 0.1)
         };

@@ -1,0 +1,216 @@
+//! The smooth preview of meshes with a subdivision modifier. The refinement
+//! of each node's cage is kept (libigl's "build S once"): while only cage
+//! positions change, as during a drag, the preview re-applies the stored
+//! stencils and rewrites positions and normals, without rebuilding
+//! connectivity or triangles.
+
+use std::collections::HashMap;
+use std::sync::Arc;
+
+use bevy::asset::RenderAssetUsages;
+use bevy::mesh::{Indices, PrimitiveTopology};
+use bevy::prelude::*;
+use hedra_doc::{NodeId, Shading, SubdivisionModifier};
+use hedra_geom::subdivision::{Creases, Refiner, StencilTable, limit_normals};
+use hedra_geom::{DVec3, HalfEdgeMesh};
+
+/// The refinement of one node's cage.
+struct Refinement {
+    cage: Arc<HalfEdgeMesh>,
+    creases: Creases,
+    modifier: SubdivisionModifier,
+    refiner: Refiner,
+    stencils: StencilTable,
+}
+
+impl Refinement {
+    /// True when `cage` differs from the refined cage at most in positions.
+    fn fits(&self, cage: &HalfEdgeMesh, creases: &Creases, modifier: &SubdivisionModifier) -> bool {
+        self.modifier.options == modifier.options
+            && self.modifier.viewport_level == modifier.viewport_level
+            && self.creases == *creases
+            && (std::ptr::eq(&*self.cage, cage) || self.cage.same_connectivity(cage))
+    }
+}
+
+/// Refinements by node, reused while the cage's connectivity stays.
+#[derive(Resource, Default)]
+pub struct SmoothPreviews(HashMap<NodeId, Refinement>);
+
+/// What a smooth preview is made from.
+pub struct SmoothSource<'a> {
+    pub node: NodeId,
+    pub cage: &'a Arc<HalfEdgeMesh>,
+    pub creases: &'a Creases,
+    pub modifier: &'a SubdivisionModifier,
+    pub shading: Shading,
+}
+
+impl SmoothPreviews {
+    /// Forgets nodes that no longer have a smooth preview.
+    pub fn retain(&mut self, keep: impl Fn(NodeId) -> bool) {
+        self.0.retain(|n, _| keep(*n));
+    }
+
+    /// The refined positions for `src`, refining anew only when the
+    /// connectivity, creases or options changed. Returns whether the
+    /// refinement was reused.
+    ///
+    /// # Errors
+    /// The subdivision's message (Loop on quads, too many faces).
+    fn points(&mut self, src: &SmoothSource) -> Result<(Vec<DVec3>, bool), String> {
+        let reuse = self
+            .0
+            .get(&src.node)
+            .is_some_and(|r| r.fits(src.cage, src.creases, src.modifier));
+        if !reuse {
+            let refiner = Refiner::new(
+                src.cage,
+                src.creases,
+                src.modifier.options,
+                src.modifier.viewport_level,
+            )
+            .map_err(|e| e.to_string())?;
+            let stencils = refiner.stencils();
+            self.0.insert(
+                src.node,
+                Refinement {
+                    cage: src.cage.clone(),
+                    creases: src.creases.clone(),
+                    modifier: *src.modifier,
+                    refiner,
+                    stencils,
+                },
+            );
+        }
+        let r = self.0.get_mut(&src.node).expect("inserted above");
+        r.cage = src.cage.clone();
+        let cage_points = r.refiner.cage_positions(src.cage);
+        let points = if reuse {
+            r.stencils.apply(&cage_points)
+        } else {
+            r.refiner.refine(&cage_points)
+        };
+        Ok((points, reuse))
+    }
+
+    /// A triangle render mesh of the smooth shape.
+    ///
+    /// # Errors
+    /// The subdivision's message; show the cage then.
+    pub fn render_mesh(&mut self, src: &SmoothSource) -> Result<Mesh, String> {
+        let (points, _) = self.points(src)?;
+        let r = &self.0[&src.node];
+        Ok(build(&r.refiner, &points, src.shading))
+    }
+
+    /// Rewrites positions and normals of a render mesh made by
+    /// [`render_mesh`](Self::render_mesh) when only cage positions changed
+    /// (stencils re-applied, no triangles rebuilt). Returns false, changing
+    /// nothing, when it has to be rebuilt.
+    pub fn update_positions(&mut self, render: &mut Mesh, src: &SmoothSource) -> bool {
+        let fits = self
+            .0
+            .get(&src.node)
+            .is_some_and(|r| r.fits(src.cage, src.creases, src.modifier));
+        if !fits {
+            return false;
+        }
+        let Ok((points, _)) = self.points(src) else {
+            return false;
+        };
+        let r = &self.0[&src.node];
+        let (positions, normals) = attributes(&r.refiner, &points, src.shading);
+        let count = render
+            .attribute(Mesh::ATTRIBUTE_POSITION)
+            .map_or(0, |a| a.len());
+        if count != positions.len() {
+            return false;
+        }
+        render.insert_attribute(Mesh::ATTRIBUTE_POSITION, positions);
+        render.insert_attribute(Mesh::ATTRIBUTE_NORMAL, normals);
+        true
+    }
+}
+
+/// Render positions and normals: shared vertices with limit normals when
+/// smooth (area-weighted normals for schemes without a limit evaluation),
+/// face corners with the face normal when flat.
+fn attributes(
+    refiner: &Refiner,
+    points: &[DVec3],
+    shading: Shading,
+) -> (Vec<[f32; 3]>, Vec<[f32; 3]>) {
+    let f32s = |p: &DVec3| p.as_vec3().to_array();
+    match shading {
+        Shading::Smooth => {
+            let normals =
+                limit_normals(refiner, points).unwrap_or_else(|_| area_normals(refiner, points));
+            (
+                points.iter().map(f32s).collect(),
+                normals.iter().map(f32s).collect(),
+            )
+        }
+        Shading::Flat => {
+            let mut positions = Vec::new();
+            let mut normals = Vec::new();
+            for face in refiner.faces() {
+                let n = newell_normal(face, points).as_vec3().to_array();
+                for &v in face {
+                    positions.push(f32s(&points[v as usize]));
+                    normals.push(n);
+                }
+            }
+            (positions, normals)
+        }
+    }
+}
+
+/// Newell's normal of a polygon (unit, or zero when degenerate).
+fn newell_normal(face: &[u32], points: &[DVec3]) -> DVec3 {
+    let mut n = DVec3::ZERO;
+    for (i, &a) in face.iter().enumerate() {
+        let b = face[(i + 1) % face.len()];
+        n += points[a as usize].cross(points[b as usize]);
+    }
+    n.normalize_or_zero()
+}
+
+fn area_normals(refiner: &Refiner, points: &[DVec3]) -> Vec<DVec3> {
+    let mut normals = vec![DVec3::ZERO; points.len()];
+    for face in refiner.faces() {
+        let mut n = DVec3::ZERO;
+        for (i, &a) in face.iter().enumerate() {
+            let b = face[(i + 1) % face.len()];
+            n += points[a as usize].cross(points[b as usize]);
+        }
+        for &v in face {
+            normals[v as usize] += n;
+        }
+    }
+    normals.iter().map(|n| n.normalize_or_zero()).collect()
+}
+
+fn build(refiner: &Refiner, points: &[DVec3], shading: Shading) -> Mesh {
+    let (positions, normals) = attributes(refiner, points, shading);
+    let mut indices = Vec::new();
+    let mut corner = 0u32;
+    for face in refiner.faces() {
+        // Refined faces are small and convex: a fan.
+        for i in 1..face.len().saturating_sub(1) {
+            let tri = [0, i, i + 1];
+            match shading {
+                Shading::Smooth => indices.extend(tri.map(|k| face[k])),
+                Shading::Flat => indices.extend(tri.map(|k| corner + k as u32)),
+            }
+        }
+        corner += face.len() as u32;
+    }
+    Mesh::new(
+        PrimitiveTopology::TriangleList,
+        RenderAssetUsages::MAIN_WORLD | RenderAssetUsages::RENDER_WORLD,
+    )
+    .with_inserted_attribute(Mesh::ATTRIBUTE_POSITION, positions)
+    .with_inserted_attribute(Mesh::ATTRIBUTE_NORMAL, normals)
+    .with_inserted_indices(Indices::U32(indices))
+}
