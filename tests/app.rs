@@ -280,3 +280,89 @@ fn patching_positions_gives_the_same_render_mesh_as_rebuilding() {
         assert!(!update_render_positions(&mut m, &old, &cut, shading));
     }
 }
+
+#[test]
+fn a_subdivision_modifier_renders_the_refined_mesh_and_drags_keep_its_layout() {
+    let mut app = hedra::headless_app();
+    app.update();
+    send(
+        &mut app,
+        DocRequest::Execute(Command::AddPrimitive {
+            primitive: Primitive::Cube { size: 2.0 },
+            name: Some("Box".into()),
+            parent: None,
+            transform: DocTransform::IDENTITY,
+        }),
+    );
+    send(
+        &mut app,
+        DocRequest::Execute(Command::SetShading {
+            nodes: vec![NodeRef::Name("Box".into())],
+            shading: hedra_doc::Shading::Smooth,
+        }),
+    );
+    let count = |app: &mut App| {
+        let e = node_entities(app)[0].0;
+        let h = app.world().get::<Mesh3d>(e).unwrap().0.clone();
+        let m = app.world().resource::<Assets<Mesh>>().get(&h).unwrap();
+        (m.count_vertices(), m.indices().unwrap().len() / 3)
+    };
+    assert_eq!(
+        count(&mut app),
+        (8, 12),
+        "the cage: 8 shared corners, 12 triangles"
+    );
+    send(
+        &mut app,
+        DocRequest::Execute(Command::SetSubdivision {
+            nodes: vec![NodeRef::Name("Box".into())],
+            modifier: Some(hedra_doc::SubdivisionModifier::with_level(2)),
+        }),
+    );
+    // Level 2: 96 quads (192 triangles) on 98 shared vertices.
+    assert_eq!(count(&mut app), (98, 192));
+    let e = node_entities(&mut app)[0].0;
+    assert!(
+        app.world()
+            .get::<ProjectedMesh>(e)
+            .unwrap()
+            .smooth
+            .is_some()
+    );
+    // Moving a cage vertex keeps the refined layout; the preview follows.
+    send(
+        &mut app,
+        DocRequest::Execute(Command::MoveVertices {
+            node: NodeRef::Name("Box".into()),
+            vertices: hedra_doc::elements::VertexSet::Ids(vec![0]),
+            offset: hedra_geom::DVec3::new(0.0, -1.0, 0.0),
+        }),
+    );
+    assert_eq!(count(&mut app), (98, 192));
+    // Creases change the shape, not the layout; Ctrl+0's level 0 shows the cage.
+    send(
+        &mut app,
+        DocRequest::Execute(Command::SetSubdivision {
+            nodes: vec![NodeRef::Name("Box".into())],
+            modifier: Some(hedra_doc::SubdivisionModifier::with_level(0)),
+        }),
+    );
+    assert_eq!(count(&mut app), (8, 12));
+    // A scheme that does not fit shows the cage and says why.
+    let mut loop_modifier = hedra_doc::SubdivisionModifier::with_level(1);
+    loop_modifier.options.scheme = hedra_geom::subdivision::Scheme::Loop;
+    send(
+        &mut app,
+        DocRequest::Execute(Command::SetSubdivision {
+            nodes: vec![NodeRef::Name("Box".into())],
+            modifier: Some(loop_modifier),
+        }),
+    );
+    assert_eq!(count(&mut app), (8, 12));
+    let status = app.world().resource::<StatusMessage>();
+    assert!(
+        status.is_error && status.text.contains("Loop subdivision needs triangles"),
+        "{}",
+        status.text
+    );
+}

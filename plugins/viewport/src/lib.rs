@@ -494,11 +494,21 @@ fn update_edit_edges(
             .hash(&mut h);
         h.finish()
     });
+    // The overlay follows the node's world transform every frame (the
+    // entity spawned on the first frame has no Transform to set yet).
+    if let (Some((entity, _)), Some(node)) = (overlay.as_ref(), mode.node) {
+        if let Ok(mut t) = transforms.get_mut(*entity) {
+            let want = Transform::from_matrix(state.session.doc.world_matrix(node).as_mat4());
+            if *t != want {
+                *t = want;
+            }
+        }
+    }
     if *built == key {
         return;
     }
     *built = key;
-    let (entity, handle) = overlay.get_or_insert_with(|| {
+    let (_, handle) = overlay.get_or_insert_with(|| {
         let handle = assets.add(GizmoAsset::new());
         let line_config = GizmoLineConfig {
             width: 1.5,
@@ -519,10 +529,6 @@ fn update_edit_edges(
     });
     let mut asset = GizmoAsset::new();
     if let (Some(node), Some(mesh)) = (mode.node, mesh) {
-        let world = state.session.doc.world_matrix(node);
-        if let Ok(mut t) = transforms.get_mut(*entity) {
-            *t = Transform::from_matrix(world.as_mat4());
-        }
         let creases = mode.preview_creases.clone().or_else(|| {
             match state.session.doc.node(node).map(|n| &n.content) {
                 Some(NodeContent::Mesh(c)) => Some(c.creases.clone()),
