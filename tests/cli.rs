@@ -526,6 +526,11 @@ fn export_writes_the_subdivided_shape_the_cage_or_a_given_level() {
         assert!(o.status.success(), "{}", stderr(&o));
         out
     };
+    let j = info_json(&file);
+    let mesh = &j["nodes"][0]["mesh"];
+    assert_eq!(mesh["subdivision"]["scheme"], "Catmull-Clark");
+    assert_eq!(mesh["subdivision"]["export_level"], 2);
+    assert_eq!(mesh["creased_edges"], 12);
     // The modifier's export level 2: 96 quads, 98 vertices, still a cube
     // because every edge is infinitely sharp.
     let out = export(&[]);

@@ -49,6 +49,19 @@ pub struct MeshReport {
     pub valid: bool,
     pub validation_error: Option<String>,
     pub primitive: Option<String>,
+    /// Edges and vertices with a subdivision crease.
+    pub creased_edges: usize,
+    pub creased_vertices: usize,
+    pub subdivision: Option<SubdivisionReport>,
+}
+
+#[derive(Serialize)]
+pub struct SubdivisionReport {
+    pub scheme: &'static str,
+    pub viewport_level: u32,
+    pub export_level: u32,
+    pub boundary: &'static str,
+    pub crease_method: &'static str,
 }
 
 #[derive(Serialize)]
@@ -68,8 +81,25 @@ fn transform(t: &crate::scene::Transform) -> TransformReport {
     }
 }
 
-fn mesh_report(s: MeshStats, primitive: Option<String>) -> MeshReport {
+fn mesh_report(content: &crate::scene::MeshContent) -> MeshReport {
+    let s: MeshStats = content.mesh.stats();
+    let live = |e: &hedra_geom::EdgeId| content.mesh.is_edge(*e);
     MeshReport {
+        creased_edges: content.creases.edges.keys().filter(|e| live(e)).count(),
+        creased_vertices: content
+            .creases
+            .vertices
+            .keys()
+            .filter(|v| content.mesh.is_vertex(**v))
+            .count(),
+        subdivision: content.subdivision.map(|m| SubdivisionReport {
+            scheme: m.options.scheme.label(),
+            viewport_level: m.viewport_level,
+            export_level: m.export_level,
+            boundary: m.options.boundary.label(),
+            crease_method: m.options.crease_method.label(),
+        }),
+        primitive: content.primitive.as_ref().map(|p| p.kind().to_string()),
         vertices: s.vertices,
         edges: s.edges,
         faces: s.faces,
@@ -81,7 +111,6 @@ fn mesh_report(s: MeshStats, primitive: Option<String>) -> MeshReport {
         manifold: s.manifold,
         valid: s.validation.is_ok(),
         validation_error: s.validation.err(),
-        primitive,
     }
 }
 
@@ -99,10 +128,7 @@ impl SceneReport {
                 local: transform(&n.transform),
                 world: transform(&doc.world_transform(n.id)),
                 mesh: match &n.content {
-                    NodeContent::Mesh(m) => Some(mesh_report(
-                        m.mesh.stats(),
-                        m.primitive.as_ref().map(|p| p.kind().to_string()),
-                    )),
+                    NodeContent::Mesh(m) => Some(mesh_report(m)),
                     NodeContent::Empty => None,
                 },
             })
@@ -169,6 +195,24 @@ impl SceneReport {
                     "    validate: {}",
                     m.validation_error.as_deref().unwrap_or("ok")
                 );
+                if let Some(sd) = &m.subdivision {
+                    let _ = writeln!(
+                        out,
+                        "    subdivision: {}, level {} in the viewport, {} on export, boundary {}, creases {}",
+                        sd.scheme,
+                        sd.viewport_level,
+                        sd.export_level,
+                        sd.boundary,
+                        sd.crease_method
+                    );
+                }
+                if m.creased_edges + m.creased_vertices > 0 {
+                    let _ = writeln!(
+                        out,
+                        "    creases: {} edge(s), {} vertex corner(s)",
+                        m.creased_edges, m.creased_vertices
+                    );
+                }
             }
         }
         let _ = writeln!(
