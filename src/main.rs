@@ -4,6 +4,12 @@ use clap::Parser;
 use hedra::cli::{Cli, run};
 use std::process::ExitCode;
 
+/// mimalloc keeps freed memory for reuse where glibc's malloc hands large
+/// blocks back to the kernel: refining a mesh to level 7 again (a slider
+/// drag, a level change) then costs half as long, without page faults.
+#[global_allocator]
+static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     match cli.command {

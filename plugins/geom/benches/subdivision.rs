@@ -7,6 +7,10 @@
 //! the recorded weights (what a cage drag costs).
 
 use criterion::{Criterion, criterion_group, criterion_main};
+
+/// The allocator the app uses (see `src/main.rs`).
+#[global_allocator]
+static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 use hedra_geom::subdivision::{Creases, Options, Refiner};
 use hedra_geom::{HalfEdgeMesh, Primitive};
 use std::hint::black_box;
@@ -54,6 +58,17 @@ fn bench_mesh(c: &mut Criterion, name: &str, mesh: &HalfEdgeMesh, levels: &[u32]
         });
         g.bench_function(format!("level{level}/stencil_parallel"), |b| {
             b.iter(|| stencils.apply_parallel(black_box(&cage)))
+        });
+        // A drag: one cage vertex moves; only the points it influences are
+        // recomputed.
+        let mut eval = stencils.evaluate(&cage);
+        let mut step = 0.0;
+        g.bench_function(format!("level{level}/drag_one_vertex"), |b| {
+            b.iter(|| {
+                step += 1e-3;
+                stencils.update(&mut eval, &[(0, cage[0] + hedra_geom::DVec3::splat(step))]);
+                black_box(eval.points().len())
+            })
         });
     }
     g.finish();

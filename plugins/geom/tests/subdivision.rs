@@ -552,5 +552,23 @@ proptest! {
         }
         let (out, _) = r.to_mesh(&direct).unwrap();
         prop_assert!(out.validate().is_ok());
+
+        // A drag: move some cage vertices and update incrementally; the
+        // result equals refining the moved cage from scratch.
+        let table = r.stencils();
+        let mut eval = table.evaluate(&cage_points);
+        let mut moved_cage = cage_points.clone();
+        let moved: Vec<(u32, DVec3)> = (0..cage_points.len())
+            .step_by(3)
+            .map(|i| (i as u32, cage_points[i] + DVec3::new(0.3, -0.1, wiggle[i % wiggle.len()])))
+            .collect();
+        for &(i, p) in &moved {
+            moved_cage[i as usize] = p;
+        }
+        table.update(&mut eval, &moved);
+        let fresh = r.refine(&moved_cage);
+        for (a, b) in eval.points().iter().zip(&fresh) {
+            prop_assert!(close(*a, *b, 1e-12), "incremental {} vs fresh {}", a, b);
+        }
     }
 }

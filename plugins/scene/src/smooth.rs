@@ -11,8 +11,13 @@ use bevy::asset::RenderAssetUsages;
 use bevy::mesh::{Indices, PrimitiveTopology};
 use bevy::prelude::*;
 use hedra_doc::{NodeId, Shading, SubdivisionModifier};
-use hedra_geom::subdivision::{Creases, Refiner, StencilTable, limit_normals};
+use hedra_geom::subdivision::{Creases, Refiner, StencilEvaluation, StencilTable, limit_normals};
 use hedra_geom::{DVec3, HalfEdgeMesh};
+
+/// Above this many refined faces a drag refines positions through the
+/// masks each frame instead of keeping stencils (whose weights would take
+/// hundreds of megabytes).
+const STENCIL_FACE_LIMIT: usize = 1_000_000;
 
 /// The refinement of one node's cage.
 struct Refinement {
@@ -20,7 +25,9 @@ struct Refinement {
     creases: Creases,
     modifier: SubdivisionModifier,
     refiner: Refiner,
-    stencils: StencilTable,
+    /// Made on the first drag: the weights and every level's points, so a
+    /// drag recomputes only what the moved vertices influence.
+    stencils: Option<(StencilTable, StencilEvaluation)>,
 }
 
 impl Refinement {
@@ -71,7 +78,6 @@ impl SmoothPreviews {
                 src.modifier.viewport_level,
             )
             .map_err(|e| e.to_string())?;
-            let stencils = refiner.stencils();
             self.0.insert(
                 src.node,
                 Refinement {
@@ -79,19 +85,32 @@ impl SmoothPreviews {
                     creases: src.creases.clone(),
                     modifier: *src.modifier,
                     refiner,
-                    stencils,
+                    stencils: None,
                 },
             );
         }
         let r = self.0.get_mut(&src.node).expect("inserted above");
         r.cage = src.cage.clone();
         let cage_points = r.refiner.cage_positions(src.cage);
-        let points = if reuse {
-            r.stencils.apply(&cage_points)
-        } else {
-            r.refiner.refine(&cage_points)
-        };
-        Ok((points, reuse))
+        if !reuse || r.refiner.face_count() > STENCIL_FACE_LIMIT {
+            return Ok((r.refiner.refine(&cage_points), reuse));
+        }
+        let (table, eval) = r.stencils.get_or_insert_with(|| {
+            let table = r.refiner.stencils();
+            let eval = table.evaluate(&cage_points);
+            (table, eval)
+        });
+        let moved: Vec<(u32, DVec3)> = cage_points
+            .iter()
+            .zip(eval.cage())
+            .enumerate()
+            .filter(|(_, (new, old))| new != old)
+            .map(|(i, (new, _))| (i as u32, *new))
+            .collect();
+        if !moved.is_empty() {
+            table.update(eval, &moved);
+        }
+        Ok((eval.points().to_vec(), reuse))
     }
 
     /// A triangle render mesh of the smooth shape.

@@ -4,6 +4,7 @@
 //! level of a hundred thousand faces refines in milliseconds.
 
 use std::collections::HashMap;
+use std::sync::OnceLock;
 
 use super::{BoundaryInterpolation, Creases, INFINITE_SHARPNESS};
 use crate::{EdgeId, FaceId, HalfEdgeMesh, VertexId};
@@ -21,21 +22,29 @@ pub(crate) struct Level {
     pub face_offsets: Vec<u32>,
     pub face_vertices: Vec<u32>,
     pub face_edges: Vec<u32>,
-    pub corner_face: Vec<u32>,
     pub edge_vertices: Vec<[u32; 2]>,
-    /// The one or two faces of each edge; the second is [`NONE`] on a boundary.
-    pub edge_faces: Vec<[u32; 2]>,
     /// Crease sharpness per edge (boundary edges are infinitely sharp).
     pub edge_sharpness: Vec<f32>,
     /// Corner sharpness per vertex.
     pub vertex_sharpness: Vec<f32>,
-    pub vertex_edge_offsets: Vec<u32>,
-    pub vertex_edges: Vec<u32>,
-    pub vertex_corner_offsets: Vec<u32>,
-    /// Face corners at each vertex (a corner names its face through `corner_face`).
-    pub vertex_corners: Vec<u32>,
     /// For every face, the cage face (dense index) it descends from.
     pub face_origin: Vec<u32>,
+    /// Derived on first use: the last level of a refinement often never
+    /// needs it, and it is a third of the cost of a level.
+    pub(crate) adjacency: OnceLock<Adjacency>,
+}
+
+/// Tables derived from the face and edge lists.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Adjacency {
+    corner_face: Vec<u32>,
+    /// The one or two faces of each edge; the second is [`NONE`] on a boundary.
+    edge_faces: Vec<[u32; 2]>,
+    vertex_edge_offsets: Vec<u32>,
+    vertex_edges: Vec<u32>,
+    vertex_corner_offsets: Vec<u32>,
+    /// Face corners at each vertex (a corner names its face through `corner_face`).
+    vertex_corners: Vec<u32>,
 }
 
 /// Dense numbering of a half-edge mesh's live elements, so that results can
@@ -57,15 +66,29 @@ impl Level {
     pub fn face_corners(&self, f: u32) -> std::ops::Range<usize> {
         self.face_offsets[f as usize] as usize..self.face_offsets[f as usize + 1] as usize
     }
-    pub fn vertex_edges(&self, v: u32) -> &[u32] {
-        let r = self.vertex_edge_offsets[v as usize] as usize
-            ..self.vertex_edge_offsets[v as usize + 1] as usize;
-        &self.vertex_edges[r]
+    fn adjacency(&self) -> &Adjacency {
+        self.adjacency.get_or_init(|| Adjacency::new(self))
     }
+    /// The face of corner `c`.
+    pub fn corner_face(&self, c: usize) -> u32 {
+        self.adjacency().corner_face[c]
+    }
+    /// The one or two faces of edge `e`; the second is [`NONE`] on a boundary.
+    pub fn edge_faces(&self, e: u32) -> [u32; 2] {
+        self.adjacency().edge_faces[e as usize]
+    }
+    pub fn vertex_edges(&self, v: u32) -> &[u32] {
+        let a = self.adjacency();
+        let r = a.vertex_edge_offsets[v as usize] as usize
+            ..a.vertex_edge_offsets[v as usize + 1] as usize;
+        &a.vertex_edges[r]
+    }
+    /// Face corners at vertex `v`.
     pub fn vertex_corners(&self, v: u32) -> &[u32] {
-        let r = self.vertex_corner_offsets[v as usize] as usize
-            ..self.vertex_corner_offsets[v as usize + 1] as usize;
-        &self.vertex_corners[r]
+        let a = self.adjacency();
+        let r = a.vertex_corner_offsets[v as usize] as usize
+            ..a.vertex_corner_offsets[v as usize + 1] as usize;
+        &a.vertex_corners[r]
     }
     /// The other end of edge `e` seen from `v`.
     pub fn other_end(&self, e: u32, v: u32) -> u32 {
@@ -73,17 +96,17 @@ impl Level {
         if a == v { b } else { a }
     }
     pub fn is_boundary_edge(&self, e: u32) -> bool {
-        self.edge_faces[e as usize][1] == NONE
+        self.edge_faces(e)[1] == NONE
     }
     /// Corner before `c` in its face.
     pub fn prev_corner(&self, c: usize) -> usize {
-        let f = self.corner_face[c];
+        let f = self.corner_face(c);
         let r = self.face_corners(f);
         if c == r.start { r.end - 1 } else { c - 1 }
     }
     /// Corner after `c` in its face.
     pub fn next_corner(&self, c: usize) -> usize {
-        let f = self.corner_face[c];
+        let f = self.corner_face(c);
         let r = self.face_corners(f);
         if c + 1 == r.end { r.start } else { c + 1 }
     }
@@ -140,7 +163,6 @@ impl Level {
             .iter()
             .map(|v| clamp_sharpness(creases.vertices.get(v).copied().unwrap_or(0.0)))
             .collect();
-        level.finish();
         for e in 0..level.edge_count() {
             if level.is_boundary_edge(e as u32) {
                 level.edge_sharpness[e] = INFINITE_SHARPNESS;
@@ -187,7 +209,6 @@ impl Level {
         }
         level.edge_sharpness = vec![0.0; level.edge_vertices.len()];
         level.vertex_sharpness = vec![0.0; vertex_count];
-        level.finish();
         for e in 0..level.edge_count() {
             if level.is_boundary_edge(e as u32) {
                 level.edge_sharpness[e] = INFINITE_SHARPNESS;
@@ -195,47 +216,71 @@ impl Level {
         }
         level
     }
+}
 
-    /// Fills the derived tables (corner faces, edge faces, vertex adjacency)
-    /// from the face and edge lists.
-    pub fn finish(&mut self) {
-        let nf = self.face_count();
-        self.corner_face = Vec::with_capacity(self.face_vertices.len());
+impl Adjacency {
+    /// Corner faces, edge faces and vertex adjacency from the face and edge lists.
+    fn new(level: &Level) -> Adjacency {
+        let nf = level.face_count();
+        let mut corner_face = Vec::with_capacity(level.face_vertices.len());
         for f in 0..nf {
-            let n = (self.face_offsets[f + 1] - self.face_offsets[f]) as usize;
-            self.corner_face.extend(std::iter::repeat_n(f as u32, n));
+            let n = (level.face_offsets[f + 1] - level.face_offsets[f]) as usize;
+            corner_face.extend(std::iter::repeat_n(f as u32, n));
         }
-        self.edge_faces = vec![[NONE, NONE]; self.edge_vertices.len()];
-        for (c, &e) in self.face_edges.iter().enumerate() {
-            let slot = &mut self.edge_faces[e as usize];
-            let f = self.corner_face[c];
+        let mut edge_faces = vec![[NONE, NONE]; level.edge_vertices.len()];
+        for (c, &e) in level.face_edges.iter().enumerate() {
+            let slot = &mut edge_faces[e as usize];
+            let f = corner_face[c];
             if slot[0] == NONE {
                 slot[0] = f;
             } else {
                 slot[1] = f;
             }
         }
-        let nv = self.vertex_count;
-        let (offsets, edges) = group_by_vertex(
-            nv,
-            self.edge_vertices
-                .iter()
-                .enumerate()
-                .flat_map(|(e, [a, b])| [(*a, e as u32), (*b, e as u32)]),
-            2 * self.edge_vertices.len(),
-        );
-        self.vertex_edge_offsets = offsets;
-        self.vertex_edges = edges;
-        let (offsets, corners) = group_by_vertex(
-            nv,
-            self.face_vertices
-                .iter()
-                .enumerate()
-                .map(|(c, &v)| (v, c as u32)),
-            self.face_vertices.len(),
-        );
-        self.vertex_corner_offsets = offsets;
-        self.vertex_corners = corners;
+        let nv = level.vertex_count;
+        // Vertex → edges, by counting sort.
+        let mut vertex_edge_offsets = vec![0u32; nv + 1];
+        for &[a, b] in &level.edge_vertices {
+            vertex_edge_offsets[a as usize + 1] += 1;
+            vertex_edge_offsets[b as usize + 1] += 1;
+        }
+        prefix_sum(&mut vertex_edge_offsets);
+        let mut fill = vertex_edge_offsets.clone();
+        let mut vertex_edges = vec![0u32; 2 * level.edge_vertices.len()];
+        for (e, &[a, b]) in level.edge_vertices.iter().enumerate() {
+            for v in [a, b] {
+                let slot = &mut fill[v as usize];
+                vertex_edges[*slot as usize] = e as u32;
+                *slot += 1;
+            }
+        }
+        // Vertex → corners.
+        let mut vertex_corner_offsets = vec![0u32; nv + 1];
+        for &v in &level.face_vertices {
+            vertex_corner_offsets[v as usize + 1] += 1;
+        }
+        prefix_sum(&mut vertex_corner_offsets);
+        let mut fill = vertex_corner_offsets.clone();
+        let mut vertex_corners = vec![0u32; level.face_vertices.len()];
+        for (c, &v) in level.face_vertices.iter().enumerate() {
+            let slot = &mut fill[v as usize];
+            vertex_corners[*slot as usize] = c as u32;
+            *slot += 1;
+        }
+        Adjacency {
+            corner_face,
+            edge_faces,
+            vertex_edge_offsets,
+            vertex_edges,
+            vertex_corner_offsets,
+            vertex_corners,
+        }
+    }
+}
+
+fn prefix_sum(offsets: &mut [u32]) {
+    for i in 1..offsets.len() {
+        offsets[i] += offsets[i - 1];
     }
 }
 
@@ -247,27 +292,4 @@ fn clamp_sharpness(s: f64) -> f32 {
     } else {
         (s as f32).min(INFINITE_SHARPNESS)
     }
-}
-
-/// Counting sort of `(vertex, item)` pairs into a compressed row table.
-fn group_by_vertex(
-    vertex_count: usize,
-    pairs: impl Iterator<Item = (u32, u32)> + Clone,
-    total: usize,
-) -> (Vec<u32>, Vec<u32>) {
-    let mut offsets = vec![0u32; vertex_count + 1];
-    for (v, _) in pairs.clone() {
-        offsets[v as usize + 1] += 1;
-    }
-    for i in 0..vertex_count {
-        offsets[i + 1] += offsets[i];
-    }
-    let mut fill = offsets.clone();
-    let mut items = vec![0u32; total];
-    for (v, item) in pairs {
-        let slot = &mut fill[v as usize];
-        items[*slot as usize] = item;
-        *slot += 1;
-    }
-    (offsets, items)
 }

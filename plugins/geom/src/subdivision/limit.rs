@@ -71,8 +71,8 @@ fn ring(level: &Level, v: u32) -> Option<Vec<(u32, u32)>> {
             level.face_vertices[level.next_corner(next)],
         ));
         let e = level.face_edges[level.prev_corner(c)];
-        let [f0, f1] = level.edge_faces[e as usize];
-        let g = if f0 == level.corner_face[c] { f1 } else { f0 };
+        let [f0, f1] = level.edge_faces(e);
+        let g = if f0 == level.corner_face(c) { f1 } else { f0 };
         if g == super::level::NONE {
             return None;
         }

@@ -33,7 +33,7 @@ use level::{CageMap, Level};
 use refine::{Split, doo_sabin_weight, refine_topology};
 use rules::{Masks, Sink};
 
-pub use stencil::StencilTable;
+pub use stencil::{StencilEvaluation, StencilTable};
 
 /// Sharpness at or above this is infinitely sharp (OpenSubdiv's
 /// `SHARPNESS_INFINITE`).
@@ -444,7 +444,7 @@ fn hidden_faces(level: &Level, boundary: BoundaryInterpolation) -> Vec<bool> {
         if level.is_boundary_edge(e) {
             for v in level.edge_vertices[e as usize] {
                 for &c in level.vertex_corners(v) {
-                    hidden[level.face_origin[level.corner_face[c as usize] as usize] as usize] =
+                    hidden[level.face_origin[level.corner_face(c as usize) as usize] as usize] =
                         true;
                 }
             }
@@ -528,7 +528,7 @@ pub(crate) fn point_mask(
         ChildPoint::Edge(e) => rules::edge_mask(parent, e, masks, sink),
         ChildPoint::Vertex(v) => rules::vertex_mask(parent, v, masks, options.crease_method, sink),
         ChildPoint::Corner(c) => {
-            let r = parent.face_corners(parent.corner_face[c as usize]);
+            let r = parent.face_corners(parent.corner_face(c as usize));
             let (n, i) = (r.len(), c as usize - r.start);
             for (j, k) in r.enumerate() {
                 sink.vertex(parent.face_vertices[k], doo_sabin_weight(n, i, j));

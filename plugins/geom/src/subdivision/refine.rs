@@ -89,36 +89,38 @@ fn split_quads(parent: &Level, method: CreaseMethod) -> Level {
     };
     split_edges(parent, nf, nf + ne, method, &mut child);
     // Edge 2E + c joins the edge point of corner c's edge to the face point.
-    for c in 0..corners {
-        child
-            .edge_vertices
-            .push([nf + parent.face_edges[c], parent.corner_face[c]]);
-        child.edge_sharpness.push(0.0);
+    for f in 0..nf {
+        for c in parent.face_corners(f) {
+            child.edge_vertices.push([nf + parent.face_edges[c], f]);
+        }
     }
+    child.edge_sharpness.resize(child.edge_vertices.len(), 0.0);
     child.face_offsets = (0..=corners as u32).map(|i| 4 * i).collect();
     child.face_vertices.reserve(4 * corners);
     child.face_edges.reserve(4 * corners);
     child.face_origin.reserve(corners);
-    for c in 0..corners {
-        let p = parent.prev_corner(c);
-        let f = parent.corner_face[c];
-        let (v, e, ep) = (
-            parent.face_vertices[c],
-            parent.face_edges[c],
-            parent.face_edges[p],
-        );
-        child
-            .face_vertices
-            .extend_from_slice(&[nf + ne + v, nf + e, f, nf + ep]);
-        child.face_edges.extend_from_slice(&[
-            half(parent, e, v),
-            2 * ne + c as u32,
-            2 * ne + p as u32,
-            half(parent, ep, v),
-        ]);
-        child.face_origin.push(parent.face_origin[f as usize]);
+    for f in 0..parent.face_count() {
+        let r = parent.face_corners(f as u32);
+        let origin = parent.face_origin[f];
+        for c in r.clone() {
+            let p = if c == r.start { r.end - 1 } else { c - 1 };
+            let (v, e, ep) = (
+                parent.face_vertices[c],
+                parent.face_edges[c],
+                parent.face_edges[p],
+            );
+            child
+                .face_vertices
+                .extend_from_slice(&[nf + ne + v, nf + e, f as u32, nf + ep]);
+            child.face_edges.extend_from_slice(&[
+                half(parent, e, v),
+                2 * ne + c as u32,
+                2 * ne + p as u32,
+                half(parent, ep, v),
+            ]);
+            child.face_origin.push(origin);
+        }
     }
-    child.finish();
     child
 }
 
@@ -167,7 +169,6 @@ fn split_triangles(parent: &Level, method: CreaseMethod) -> Level {
         let origin = parent.face_origin[f];
         child.face_origin.extend_from_slice(&[origin; 4]);
     }
-    child.finish();
     child
 }
 
@@ -183,7 +184,7 @@ fn doo_sabin_topology(parent: &Level) -> Level {
         origin.push(parent.face_origin[f as usize]);
     }
     for e in 0..parent.edge_count() as u32 {
-        let [f0, f1] = parent.edge_faces[e as usize];
+        let [f0, f1] = parent.edge_faces(e);
         if f1 == NONE {
             continue;
         }
@@ -218,8 +219,8 @@ fn doo_sabin_topology(parent: &Level) -> Level {
         let mut c = start as usize;
         loop {
             let e = parent.face_edges[parent.prev_corner(c)];
-            let [f0, f1] = parent.edge_faces[e as usize];
-            let g = if f0 == parent.corner_face[c] { f1 } else { f0 };
+            let [f0, f1] = parent.edge_faces(e);
+            let g = if f0 == parent.corner_face(c) { f1 } else { f0 };
             c = parent
                 .face_corners(g)
                 .find(|&k| parent.face_vertices[k] == v)
@@ -229,7 +230,7 @@ fn doo_sabin_topology(parent: &Level) -> Level {
             }
             ring.push(c as u32);
         }
-        origin.push(parent.face_origin[parent.corner_face[start as usize] as usize]);
+        origin.push(parent.face_origin[parent.corner_face(start as usize) as usize]);
         faces.push(ring);
     }
     Level::from_polygons(parent.face_vertices.len(), &faces, origin)

@@ -117,7 +117,7 @@ pub(crate) fn edge_mask(level: &Level, e: u32, masks: Masks, sink: &mut impl Sin
     if smooth <= 0.0 {
         return;
     }
-    let [f0, f1] = level.edge_faces[e as usize];
+    let [f0, f1] = level.edge_faces(e);
     match masks {
         Masks::CatmullClark => {
             sink.vertex(a, 0.25 * smooth);
@@ -245,7 +245,7 @@ fn smooth_vertex_mask(level: &Level, v: u32, masks: Masks, weight: f64, sink: &m
             }
             let w_face = weight / (n * corners.len() as f64);
             for &c in corners {
-                sink.face(level.corner_face[c as usize], w_face);
+                sink.face(level.corner_face(c as usize), w_face);
             }
         }
         Masks::Loop => {

@@ -21,7 +21,32 @@ struct Rows {
 #[derive(Clone, Debug, Default)]
 pub struct StencilTable {
     steps: Vec<Rows>,
+    /// Per level, the transpose of `steps` without weights: which child
+    /// points each parent point feeds (for incremental updates).
+    feeds: Vec<(Vec<u32>, Vec<u32>)>,
     cage_vertices: usize,
+}
+
+/// The points of every level from the last evaluation of a
+/// [`StencilTable`], kept so that moving a few cage vertices recomputes only
+/// the points they influence.
+#[derive(Clone, Debug, Default)]
+pub struct StencilEvaluation {
+    levels: Vec<Vec<DVec3>>,
+    /// Per level, the update serial that last marked each point dirty.
+    marks: Vec<Vec<u32>>,
+    serial: u32,
+}
+
+impl StencilEvaluation {
+    /// The cage positions this evaluation was made from.
+    pub fn cage(&self) -> &[DVec3] {
+        self.levels.first().map_or(&[], |v| v)
+    }
+    /// The refined points (the last level).
+    pub fn points(&self) -> &[DVec3] {
+        self.levels.last().map_or(&[], |v| v)
+    }
 }
 
 /// Collects a mask as (parent vertex, weight) pairs.
@@ -78,9 +103,78 @@ impl StencilTable {
             }
             steps.push(rows);
         }
+        let mut parent_counts = vec![levels[0].vertex_count];
+        parent_counts.extend(steps.iter().map(|r| r.offsets.len() - 1));
+        let feeds = steps
+            .iter()
+            .zip(&parent_counts)
+            .map(|(rows, &parents)| transpose(rows, parents))
+            .collect();
         StencilTable {
             steps,
+            feeds,
             cage_vertices: levels[0].vertex_count,
+        }
+    }
+
+    /// Every level's points from cage positions, kept for
+    /// [`update`](Self::update).
+    pub fn evaluate(&self, cage: &[DVec3]) -> StencilEvaluation {
+        assert_eq!(
+            cage.len(),
+            self.cage_vertices,
+            "one position per cage vertex"
+        );
+        let mut levels = vec![cage.to_vec()];
+        for rows in &self.steps {
+            let parent = levels.last().expect("cage level");
+            let next = (0..rows.offsets.len() - 1)
+                .map(|i| row(rows, parent, i))
+                .collect();
+            levels.push(next);
+        }
+        let marks = levels.iter().map(|l| vec![0; l.len()]).collect();
+        StencilEvaluation {
+            levels,
+            marks,
+            serial: 0,
+        }
+    }
+
+    /// Moves cage vertices (by [`Refiner::cage_positions`] index) and
+    /// recomputes only the points they influence, level by level (what a
+    /// drag needs). Complexity: O(weights of the influenced rows).
+    pub fn update(&self, eval: &mut StencilEvaluation, moved: &[(u32, DVec3)]) {
+        eval.serial = eval.serial.wrapping_add(1);
+        if eval.serial == 0 {
+            eval.marks.iter_mut().for_each(|m| m.fill(0));
+            eval.serial = 1;
+        }
+        let serial = eval.serial;
+        let mut dirty: Vec<u32> = Vec::with_capacity(moved.len());
+        for &(v, p) in moved {
+            eval.levels[0][v as usize] = p;
+            dirty.push(v);
+        }
+        for (k, rows) in self.steps.iter().enumerate() {
+            let (offsets, children) = &self.feeds[k];
+            let mut next = Vec::new();
+            for &d in &dirty {
+                for &c in &children[offsets[d as usize] as usize..offsets[d as usize + 1] as usize]
+                {
+                    let mark = &mut eval.marks[k + 1][c as usize];
+                    if *mark != serial {
+                        *mark = serial;
+                        next.push(c);
+                    }
+                }
+            }
+            let (parents, rest) = eval.levels.split_at_mut(k + 1);
+            let (parent, child) = (&parents[k], &mut rest[0]);
+            for &c in &next {
+                child[c as usize] = row(rows, parent, c as usize);
+            }
+            dirty = next;
         }
     }
 
@@ -131,4 +225,35 @@ impl StencilTable {
         }
         points
     }
+}
+
+/// Child point `i` of one level: its weighted parent points.
+#[inline]
+fn row(rows: &Rows, points: &[DVec3], i: usize) -> DVec3 {
+    let r = rows.offsets[i] as usize..rows.offsets[i + 1] as usize;
+    rows.columns[r.clone()]
+        .iter()
+        .zip(&rows.weights[r])
+        .fold(DVec3::ZERO, |sum, (&c, &w)| sum + w * points[c as usize])
+}
+
+/// For each parent point, the child rows that read it (a compressed table).
+fn transpose(rows: &Rows, parents: usize) -> (Vec<u32>, Vec<u32>) {
+    let mut offsets = vec![0u32; parents + 1];
+    for &c in &rows.columns {
+        offsets[c as usize + 1] += 1;
+    }
+    for i in 1..offsets.len() {
+        offsets[i] += offsets[i - 1];
+    }
+    let mut fill = offsets.clone();
+    let mut children = vec![0u32; rows.columns.len()];
+    for i in 0..rows.offsets.len() - 1 {
+        for &c in &rows.columns[rows.offsets[i] as usize..rows.offsets[i + 1] as usize] {
+            let slot = &mut fill[c as usize];
+            children[*slot as usize] = i as u32;
+            *slot += 1;
+        }
+    }
+    (offsets, children)
 }
