@@ -366,3 +366,99 @@ fn a_subdivision_modifier_renders_the_refined_mesh_and_drags_keep_its_layout() {
         status.text
     );
 }
+
+/// Updates the app until no background subdivision runs (at most ~60 s).
+fn wait_for_background(app: &mut App) {
+    for _ in 0..6000 {
+        app.update();
+        if app
+            .world()
+            .resource::<hedra_scene::SmoothPreviews>()
+            .progress()
+            .is_empty()
+        {
+            return;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(10));
+    }
+    panic!("the background subdivision never finished");
+}
+
+#[test]
+fn large_subdivision_levels_refine_in_the_background_and_can_be_cancelled() {
+    let mut app = hedra::headless_app();
+    app.update();
+    send(
+        &mut app,
+        DocRequest::Execute(Command::AddPrimitive {
+            primitive: Primitive::Torus {
+                major_segments: 100,
+                minor_segments: 100,
+                major_radius: 2.0,
+                minor_radius: 0.5,
+            },
+            name: Some("Ring".into()),
+            parent: None,
+            transform: DocTransform::IDENTITY,
+        }),
+    );
+    let vertices = |app: &mut App| {
+        let e = node_entities(app)[0].0;
+        let h = app.world().get::<Mesh3d>(e).unwrap().0.clone();
+        app.world()
+            .resource::<Assets<Mesh>>()
+            .get(&h)
+            .unwrap()
+            .count_vertices()
+    };
+    let cage = vertices(&mut app);
+    // Level 2 of 10,000 quads is 160,000 faces: above the background limit.
+    send(
+        &mut app,
+        DocRequest::Execute(Command::SetSubdivision {
+            nodes: vec![NodeRef::Name("Ring".into())],
+            modifier: Some(hedra_doc::SubdivisionModifier::with_level(2)),
+        }),
+    );
+    let progress = app
+        .world()
+        .resource::<hedra_scene::SmoothPreviews>()
+        .progress();
+    assert_eq!(progress.len(), 1, "one job runs");
+    assert!(
+        progress[0].0.contains("Subdividing 'Ring' to level 2"),
+        "{progress:?}"
+    );
+    assert_eq!(vertices(&mut app), cage, "the cage shows meanwhile");
+    wait_for_background(&mut app);
+    app.update();
+    assert_eq!(
+        vertices(&mut app),
+        160_000,
+        "the smooth torus replaced the cage"
+    );
+
+    // Level 3, cancelled at once: the cage shows, the user is told, and the
+    // job is not started again until something changes.
+    send(
+        &mut app,
+        DocRequest::Execute(Command::SetSubdivision {
+            nodes: vec![NodeRef::Name("Ring".into())],
+            modifier: Some(hedra_doc::SubdivisionModifier::with_level(3)),
+        }),
+    );
+    app.world_mut()
+        .resource_mut::<hedra_scene::SmoothPreviews>()
+        .cancel_all();
+    wait_for_background(&mut app);
+    let status = app.world().resource::<StatusMessage>();
+    assert!(status.text.contains("cancelled"), "{}", status.text);
+    app.update();
+    assert!(
+        app.world()
+            .resource::<hedra_scene::SmoothPreviews>()
+            .progress()
+            .is_empty()
+    );
+    assert_eq!(vertices(&mut app), cage);
+}

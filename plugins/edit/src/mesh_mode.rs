@@ -1279,9 +1279,15 @@ pub fn show_preview(
                     shading: c.shading,
                 };
                 if !previews.update_positions(&mut m, &src) {
-                    *m = previews
-                        .render_mesh(&src)
-                        .unwrap_or_else(|_| hedra_scene::render_mesh(to, c.shading));
+                    // A large preview is not refined every frame of a tool:
+                    // the cage shows until the result is committed.
+                    *m = if previews.needs_background(&src) {
+                        hedra_scene::render_mesh(to, c.shading)
+                    } else {
+                        previews
+                            .render_mesh(&src)
+                            .unwrap_or_else(|_| hedra_scene::render_mesh(to, c.shading))
+                    };
                 }
             } else if !hedra_scene::update_render_positions(&mut m, from, to, c.shading) {
                 *m = hedra_scene::render_mesh(to, c.shading);

@@ -156,7 +156,12 @@ impl Plugin for ScenePlugin {
             .configure_sets(Update, (SceneSystems::Apply, SceneSystems::Sync).chain())
             .add_systems(Startup, setup_material)
             .add_systems(Update, apply_requests.in_set(SceneSystems::Apply))
-            .add_systems(Update, sync_entities.in_set(SceneSystems::Sync));
+            .add_systems(
+                Update,
+                (sync_entities, show_finished_smooth_previews)
+                    .chain()
+                    .in_set(SceneSystems::Sync),
+            );
     }
 }
 
@@ -418,6 +423,41 @@ pub fn sync_entities(
     }
 }
 
+/// Puts smooth previews finished in the background on their nodes; Esc
+/// cancels the ones still running.
+pub fn show_finished_smooth_previews(
+    mut previews: ResMut<SmoothPreviews>,
+    keys: Option<Res<ButtonInput<KeyCode>>>,
+    map: Res<NodeEntities>,
+    state: Res<DocState>,
+    mesh3d: Query<&Mesh3d>,
+    mut meshes: ResMut<Assets<Mesh>>,
+    mut status: ResMut<StatusMessage>,
+) {
+    if keys.is_some_and(|k| k.just_pressed(KeyCode::Escape)) && !previews.progress().is_empty() {
+        previews.cancel_all();
+    }
+    for job in previews.finished() {
+        let name = state
+            .session
+            .doc
+            .node(job.node)
+            .map_or_else(|| job.node.to_string(), |n| n.name.clone());
+        match job.result {
+            Ok(mesh) => {
+                let handle = map.0.get(&job.node).and_then(|e| mesh3d.get(*e).ok());
+                if let Some(mut m) = handle.and_then(|h| meshes.get_mut(&h.0)) {
+                    *m = mesh;
+                }
+            }
+            Err(e) if e == "cancelled" => status.info(format!(
+                "Subdivision of '{name}' cancelled: showing its cage (Ctrl+1…Ctrl+5 pick a lower level)"
+            )),
+            Err(e) => status.error(format!("'{name}': subdivision not shown: {e}")),
+        }
+    }
+}
+
 #[allow(clippy::too_many_arguments)]
 fn project_mesh(
     ec: &mut EntityCommands,
@@ -444,11 +484,31 @@ fn project_mesh(
     if projected == Some(wanted) {
         return;
     }
-    let render = content_render_mesh(node.id, content, &content.mesh, &content.creases, previews)
-        .unwrap_or_else(|(message, cage)| {
-            status.error(format!("'{}': subdivision not shown: {message}", node.name));
-            cage
-        });
+    let smooth_source = modifier.map(|m| (m, content.shading));
+    let background = smooth_source.is_some_and(|(m, shading)| {
+        let src = SmoothSource {
+            node: node.id,
+            cage: &content.mesh,
+            creases: &content.creases,
+            modifier: &m,
+            shading,
+        };
+        let big = previews.needs_background(&src);
+        if big {
+            previews.start_background(&src, &node.name);
+        }
+        big
+    });
+    // While a large preview is made in the background, the cage shows.
+    let render = if background {
+        render_mesh(&content.mesh, content.shading)
+    } else {
+        content_render_mesh(node.id, content, &content.mesh, &content.creases, previews)
+            .unwrap_or_else(|(message, cage)| {
+                status.error(format!("'{}': subdivision not shown: {message}", node.name));
+                cage
+            })
+    };
     match mesh3d.filter(|m| meshes.contains(&m.0)) {
         Some(m) => {
             if let Some(mut existing) = meshes.get_mut(&m.0) {

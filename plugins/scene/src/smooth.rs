@@ -6,6 +6,8 @@
 
 use std::collections::HashMap;
 use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, AtomicU32, Ordering};
+use std::thread::JoinHandle;
 
 use bevy::asset::RenderAssetUsages;
 use bevy::mesh::{Indices, PrimitiveTopology};
@@ -17,7 +19,7 @@ use hedra_geom::{DVec3, HalfEdgeMesh};
 /// Above this many refined faces a drag refines positions through the
 /// masks each frame instead of keeping stencils (whose weights would take
 /// hundreds of megabytes).
-const STENCIL_FACE_LIMIT: usize = 1_000_000;
+const STENCIL_FACE_LIMIT: usize = 400_000;
 
 /// The refinement of one node's cage.
 struct Refinement {
@@ -40,9 +42,57 @@ impl Refinement {
     }
 }
 
-/// Refinements by node, reused while the cage's connectivity stays.
+/// Smooth previews of more faces than this are refined on a worker thread,
+/// with a progress bar, so the window never freezes.
+pub const BACKGROUND_FACES: usize = 150_000;
+
+/// A smooth preview being refined on a worker thread.
+struct Job {
+    /// What it was started for; a finished job whose source changed since is dropped.
+    key: JobKey,
+    label: String,
+    steps_done: Arc<AtomicU32>,
+    steps: u32,
+    cancel: Arc<AtomicBool>,
+    handle: JoinHandle<Result<(Refinement, Mesh), String>>,
+}
+
+/// Identity of a smooth preview's source.
+#[derive(Clone, Debug, PartialEq)]
+struct JobKey {
+    cage: usize,
+    creases: Creases,
+    modifier: SubdivisionModifier,
+    shading: Shading,
+}
+
+impl JobKey {
+    fn of(src: &SmoothSource) -> JobKey {
+        JobKey {
+            cage: Arc::as_ptr(src.cage) as usize,
+            creases: src.creases.clone(),
+            modifier: *src.modifier,
+            shading: src.shading,
+        }
+    }
+}
+
+/// A finished background refinement, ready to show.
+pub struct FinishedJob {
+    pub node: NodeId,
+    /// The render mesh, or why there is none (cancelled, too large).
+    pub result: Result<Mesh, String>,
+}
+
+/// Refinements by node, reused while the cage's connectivity stays, and
+/// the ones still being made on worker threads.
 #[derive(Resource, Default)]
-pub struct SmoothPreviews(HashMap<NodeId, Refinement>);
+pub struct SmoothPreviews {
+    done: HashMap<NodeId, Refinement>,
+    jobs: HashMap<NodeId, Job>,
+    /// Sources the user cancelled: not started again until they change.
+    cancelled: HashMap<NodeId, JobKey>,
+}
 
 /// What a smooth preview is made from.
 pub struct SmoothSource<'a> {
@@ -56,7 +106,130 @@ pub struct SmoothSource<'a> {
 impl SmoothPreviews {
     /// Forgets nodes that no longer have a smooth preview.
     pub fn retain(&mut self, keep: impl Fn(NodeId) -> bool) {
-        self.0.retain(|n, _| keep(*n));
+        self.done.retain(|n, _| keep(*n));
+        self.cancelled.retain(|n, _| keep(*n));
+        for (_, job) in self.jobs.extract_if(|n, _| !keep(*n)) {
+            job.cancel.store(true, Ordering::Relaxed);
+        }
+    }
+
+    /// The background refinements running: a label and the fraction done.
+    pub fn progress(&self) -> Vec<(String, f32)> {
+        self.jobs
+            .values()
+            .map(|j| {
+                let done = j.steps_done.load(Ordering::Relaxed) as f32;
+                (j.label.clone(), (done / j.steps.max(1) as f32).min(1.0))
+            })
+            .collect()
+    }
+
+    /// Asks every background refinement to stop.
+    pub fn cancel_all(&mut self) {
+        for job in self.jobs.values() {
+            job.cancel.store(true, Ordering::Relaxed);
+        }
+    }
+
+    /// True when `src` should be refined on a worker thread: it is large
+    /// and no kept refinement fits it.
+    pub fn needs_background(&self, src: &SmoothSource) -> bool {
+        let fits = self
+            .done
+            .get(&src.node)
+            .is_some_and(|r| r.fits(src.cage, src.creases, src.modifier));
+        !fits
+            && hedra_geom::subdivision::face_count_after(
+                src.cage,
+                src.modifier.options.scheme,
+                src.modifier.viewport_level,
+            ) > BACKGROUND_FACES
+    }
+
+    /// Starts refining `src` on a worker thread, unless the same job runs
+    /// already or the user cancelled it. `name` labels the progress bar.
+    pub fn start_background(&mut self, src: &SmoothSource, name: &str) {
+        let key = JobKey::of(src);
+        if self.jobs.get(&src.node).is_some_and(|j| j.key == key)
+            || self.cancelled.get(&src.node) == Some(&key)
+        {
+            return;
+        }
+        if let Some(old) = self.jobs.remove(&src.node) {
+            old.cancel.store(true, Ordering::Relaxed);
+        }
+        let levels = src.modifier.viewport_level;
+        let steps_done = Arc::new(AtomicU32::new(0));
+        let cancel = Arc::new(AtomicBool::new(false));
+        let (cage, creases, modifier, shading) = (
+            src.cage.clone(),
+            src.creases.clone(),
+            *src.modifier,
+            src.shading,
+        );
+        let (done, stop) = (steps_done.clone(), cancel.clone());
+        let handle = std::thread::spawn(move || {
+            let mut go_on = |_| {
+                done.fetch_add(1, Ordering::Relaxed);
+                !stop.load(Ordering::Relaxed)
+            };
+            let refiner =
+                Refiner::new_cancellable(&cage, &creases, modifier.options, levels, &mut go_on)
+                    .map_err(|e| e.to_string())?;
+            let points = refiner
+                .refine_cancellable(&refiner.cage_positions(&cage), true, &mut go_on)
+                .ok_or_else(|| "cancelled".to_string())?;
+            let mesh = build(&refiner, &points, shading);
+            Ok((
+                Refinement {
+                    cage,
+                    creases,
+                    modifier,
+                    refiner,
+                    stencils: None,
+                },
+                mesh,
+            ))
+        });
+        self.jobs.insert(
+            src.node,
+            Job {
+                key,
+                label: format!("Subdividing '{name}' to level {levels}"),
+                steps_done,
+                steps: 2 * levels,
+                cancel,
+                handle,
+            },
+        );
+    }
+
+    /// Collects the background refinements that finished since the last call.
+    pub fn finished(&mut self) -> Vec<FinishedJob> {
+        let ready: Vec<NodeId> = self
+            .jobs
+            .iter()
+            .filter(|(_, j)| j.handle.is_finished())
+            .map(|(n, _)| *n)
+            .collect();
+        let mut out = Vec::new();
+        for node in ready {
+            let job = self.jobs.remove(&node).expect("listed above");
+            let cancelled = job.cancel.load(Ordering::Relaxed);
+            let result = match job.handle.join() {
+                Ok(Ok((refinement, mesh))) => {
+                    self.done.insert(node, refinement);
+                    Ok(mesh)
+                }
+                Ok(Err(e)) => Err(e),
+                Err(_) => Err("the subdivision worker failed".to_string()),
+            };
+            if cancelled {
+                self.cancelled.insert(node, job.key);
+            }
+            out.push(FinishedJob { node, result });
+        }
+        out
     }
 
     /// The refined positions for `src`, refining anew only when the
@@ -67,7 +240,7 @@ impl SmoothPreviews {
     /// The subdivision's message (Loop on quads, too many faces).
     fn points(&mut self, src: &SmoothSource) -> Result<(Vec<DVec3>, bool), String> {
         let reuse = self
-            .0
+            .done
             .get(&src.node)
             .is_some_and(|r| r.fits(src.cage, src.creases, src.modifier));
         if !reuse {
@@ -78,7 +251,7 @@ impl SmoothPreviews {
                 src.modifier.viewport_level,
             )
             .map_err(|e| e.to_string())?;
-            self.0.insert(
+            self.done.insert(
                 src.node,
                 Refinement {
                     cage: src.cage.clone(),
@@ -89,7 +262,7 @@ impl SmoothPreviews {
                 },
             );
         }
-        let r = self.0.get_mut(&src.node).expect("inserted above");
+        let r = self.done.get_mut(&src.node).expect("inserted above");
         r.cage = src.cage.clone();
         let cage_points = r.refiner.cage_positions(src.cage);
         if !reuse || r.refiner.face_count() > STENCIL_FACE_LIMIT {
@@ -119,7 +292,7 @@ impl SmoothPreviews {
     /// The subdivision's message; show the cage then.
     pub fn render_mesh(&mut self, src: &SmoothSource) -> Result<Mesh, String> {
         let (points, _) = self.points(src)?;
-        let r = &self.0[&src.node];
+        let r = &self.done[&src.node];
         Ok(build(&r.refiner, &points, src.shading))
     }
 
@@ -129,7 +302,7 @@ impl SmoothPreviews {
     /// nothing, when it has to be rebuilt.
     pub fn update_positions(&mut self, render: &mut Mesh, src: &SmoothSource) -> bool {
         let fits = self
-            .0
+            .done
             .get(&src.node)
             .is_some_and(|r| r.fits(src.cage, src.creases, src.modifier));
         if !fits {
@@ -138,7 +311,7 @@ impl SmoothPreviews {
         let Ok((points, _)) = self.points(src) else {
             return false;
         };
-        let r = &self.0[&src.node];
+        let r = &self.done[&src.node];
         let (positions, normals) = attributes(&r.refiner, &points, src.shading);
         let count = render
             .attribute(Mesh::ATTRIBUTE_POSITION)

@@ -40,6 +40,7 @@ pub struct Model<'w> {
     samples: Option<Res<'w, SamplesDir>>,
     entities: Res<'w, NodeEntities>,
     mode: Res<'w, EditMode>,
+    previews: Res<'w, hedra_scene::SmoothPreviews>,
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -1103,10 +1104,24 @@ fn status_bar(ui: &mut egui::Ui, model: &Model) {
             egui::RichText::new(&s.text)
         };
         let most = ui.available_width() * 0.6;
-        ui.scope(|ui| {
-            ui.set_max_width(most);
-            ui.add(egui::Label::new(text).truncate()).on_hover_text(&s.text);
-        });
+        let progress = model.previews.progress();
+        if progress.is_empty() {
+            ui.scope(|ui| {
+                ui.set_max_width(most);
+                ui.add(egui::Label::new(text).truncate()).on_hover_text(&s.text);
+            });
+        } else {
+            // Background subdivision: a bar per job, Esc cancels.
+            for (label, fraction) in progress {
+                ui.add(
+                    egui::ProgressBar::new(fraction)
+                        .desired_width(160.0)
+                        .show_percentage(),
+                );
+                ui.label(format!("{label}… Esc cancels"));
+            }
+            ui.ctx().request_repaint();
+        }
         ui.with_layout(egui::Layout::left_to_right(egui::Align::Center), |ui| {
             let doc = &model.state.session.doc;
             let edit = &model.mode;

@@ -198,6 +198,8 @@ pub enum SubdivisionError {
     LevelTooHigh { level: u32 },
     #[error("{} has no limit surface evaluation here (Catmull-Clark needs an all-quad level, Loop triangles)", scheme.label())]
     NoLimit { scheme: Scheme },
+    #[error("cancelled")]
+    Cancelled,
     #[error("level {level} would make {faces} faces, more than the limit of {MAX_FACES}")]
     TooManyFaces { level: u32, faces: usize },
 }
@@ -228,6 +230,22 @@ impl Refiner {
         options: Options,
         levels: u32,
     ) -> Result<Self, SubdivisionError> {
+        Self::new_cancellable(mesh, creases, options, levels, &mut |_| true)
+    }
+
+    /// [`new`](Self::new) that calls `go_on(level)` after building each
+    /// level and stops with [`SubdivisionError::Cancelled`] when it returns
+    /// false (for background work the user can cancel).
+    ///
+    /// # Errors
+    /// As [`new`](Self::new), and `Cancelled`.
+    pub fn new_cancellable(
+        mesh: &HalfEdgeMesh,
+        creases: &Creases,
+        options: Options,
+        levels: u32,
+        go_on: &mut dyn FnMut(u32) -> bool,
+    ) -> Result<Self, SubdivisionError> {
         if levels > MAX_LEVEL {
             return Err(SubdivisionError::LevelTooHigh { level: levels });
         }
@@ -241,29 +259,24 @@ impl Refiner {
         }
         let (cage_level, cage) = Level::from_mesh(mesh, creases, options.boundary);
         let split = split_for(options.scheme, &cage_level);
-        let mut faces = cage_level.face_count();
         for level in 1..=levels {
-            faces = match split {
-                Split::Quads if level == 1 => cage_level.face_vertices.len(),
-                Split::Quads | Split::Triangles => faces.saturating_mul(4),
-                Split::Dual if level == 1 => {
-                    cage_level.face_count() + cage_level.edge_count() + cage_level.vertex_count
-                }
-                Split::Dual => faces.saturating_mul(4),
-            };
+            let faces = faces_after(&cage_level, split, level);
             if faces > MAX_FACES {
                 return Err(SubdivisionError::TooManyFaces { level, faces });
             }
         }
         let hidden_cage_faces = hidden_faces(&cage_level, options.boundary);
         let mut all = vec![cage_level];
-        for _ in 0..levels {
+        for level in 1..=levels {
             let child = refine_topology(
                 all.last().expect("cage level"),
                 split,
                 options.crease_method,
             );
             all.push(child);
+            if !go_on(level) {
+                return Err(SubdivisionError::Cancelled);
+            }
         }
         Ok(Refiner {
             options,
@@ -342,16 +355,31 @@ impl Refiner {
     }
 
     fn refine_with(&self, cage: &[DVec3], parallel: bool) -> Vec<DVec3> {
+        self.refine_cancellable(cage, parallel, &mut |_| true)
+            .expect("never cancelled")
+    }
+
+    /// [`refine`](Self::refine) (or its parallel form) that calls
+    /// `go_on(level)` after each level and returns `None` when it says stop.
+    pub fn refine_cancellable(
+        &self,
+        cage: &[DVec3],
+        parallel: bool,
+        go_on: &mut dyn FnMut(u32) -> bool,
+    ) -> Option<Vec<DVec3>> {
         assert_eq!(
             cage.len(),
             self.levels[0].vertex_count,
             "one position per cage vertex"
         );
         let mut points = cage.to_vec();
-        for parent in &self.levels[..self.levels.len() - 1] {
+        for (i, parent) in self.levels[..self.levels.len() - 1].iter().enumerate() {
             points = interpolate(parent, self.split(), self.options, &points, parallel);
+            if !go_on(i as u32 + 1) {
+                return None;
+            }
         }
-        points
+        Some(points)
     }
 
     pub(crate) fn split(&self) -> Split {
@@ -433,6 +461,27 @@ impl Refiner {
 }
 
 pub use limit::{limit_normals, limit_positions, snap_to_limit};
+
+/// Faces after `levels` steps (exact for Catmull-Clark, Loop and linear;
+/// an estimate for Doo-Sabin past level 1). Saturates instead of overflowing.
+fn faces_after(cage: &Level, split: Split, levels: u32) -> usize {
+    let mut faces = cage.face_count();
+    for level in 1..=levels {
+        faces = match split {
+            Split::Quads if level == 1 => cage.face_vertices.len(),
+            Split::Dual if level == 1 => cage.face_count() + cage.edge_count() + cage.vertex_count,
+            _ => faces.saturating_mul(4),
+        };
+    }
+    faces
+}
+
+/// How many faces `levels` steps of `scheme` make from `mesh`, without
+/// refining (to decide whether to refine in the background).
+pub fn face_count_after(mesh: &HalfEdgeMesh, scheme: Scheme, levels: u32) -> usize {
+    let (cage, _) = Level::from_mesh(mesh, &Creases::default(), BoundaryInterpolation::EdgesOnly);
+    faces_after(&cage, split_for(scheme, &cage), levels)
+}
 
 /// Faces left out with boundary `None`: those with a vertex on the boundary.
 fn hidden_faces(level: &Level, boundary: BoundaryInterpolation) -> Vec<bool> {
