@@ -572,3 +572,46 @@ proptest! {
         }
     }
 }
+
+#[test]
+fn loop_boundary_and_crease_rules_follow_the_cubic_b_spline_masks() {
+    // A fan of four triangles around a centre vertex, open at the rim.
+    let positions = [
+        DVec3::ZERO,
+        DVec3::new(1.0, 0.0, 0.0),
+        DVec3::new(0.0, 0.0, -1.0),
+        DVec3::new(-1.0, 0.0, 0.0),
+        DVec3::new(0.0, 0.0, 1.0),
+    ];
+    let polys = [[0u32, 1, 2], [0, 2, 3], [0, 3, 4], [0, 4, 1]];
+    let mesh = HalfEdgeMesh::from_polygons(&positions, &polys).unwrap();
+    let opts = options(Scheme::Loop);
+    let (_, p) = refine(&mesh, &Creases::default(), opts, 1);
+    // Boundary edge (1,2): its midpoint.
+    assert!(
+        p.iter()
+            .any(|q| close(*q, DVec3::new(0.5, 0.0, -0.5), 1e-15))
+    );
+    // Boundary vertex 1, neighbours 2 and 4 on the rim: (a + 6v + b) / 8.
+    let want = (positions[2] + 6.0 * positions[1] + positions[4]) / 8.0;
+    assert!(p.iter().any(|q| close(*q, want, 1e-15)));
+    // Interior edge (0,1) creased: its midpoint instead of 3/8, 3/8, 1/8, 1/8.
+    let mut creases = Creases::default();
+    creases.set_edge(
+        mesh.find_edge(VertexId(0), VertexId(1)).unwrap(),
+        INFINITE_SHARPNESS as f64,
+    );
+    let (_, p) = refine(&mesh, &creases, opts, 1);
+    assert!(
+        p.iter()
+            .any(|q| close(*q, DVec3::new(0.5, 0.0, 0.0), 1e-15))
+    );
+    // Edges and corners: the rim vertices stay put.
+    let corners = Options {
+        boundary: BoundaryInterpolation::EdgesAndCorners,
+        ..opts
+    };
+    let (_, p) = refine(&mesh, &Creases::default(), corners, 2);
+    // (Every rim vertex touches two faces, so none is a corner here.)
+    assert!(!p.iter().any(|q| close(*q, positions[1], 1e-15)));
+}
