@@ -201,7 +201,7 @@ fn main() {
         let pos = time(runs, || {
             black_box(interpolate(&r, black_box(&mesh.positions), level));
         });
-        let f = |(m, n): (f64, f64)| format!("{m:.2} / {n:.2}");
+        let f = |(m, n): (f64, f64)| format!("{m:.3} / {n:.3}");
         println!(
             "| {} level {level} | {faces} | {verts} | {runs} | {} | {} | {} | {} | {hedra} |",
             mesh.name,

@@ -5,6 +5,7 @@
 //! All math is in `f64` ([`glam::DVec3`]); render code converts to `f32`.
 
 pub mod build;
+pub mod curves;
 pub mod euler;
 pub mod ids;
 pub mod mesh;

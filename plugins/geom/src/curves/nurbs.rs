@@ -1,0 +1,504 @@
+//! Non-uniform rational B-spline curves (seed 004: B-spline basis, NUBS,
+//! NURBS weights; seed 001: de Boor). Evaluation, derivatives, knot
+//! insertion and degree elevation follow Piegl & Tiller, *The NURBS Book*
+//! (2nd ed.): A2.1 `FindSpan`, A2.3 `DersBasisFuns`, eq. 4.8 for rational
+//! derivatives, A5.1 (Boehm's knot insertion), and degree elevation by
+//! decomposition into Bézier segments (§5.6), elevating each (eq. 5.36).
+
+use glam::{DVec3, DVec4};
+
+use super::{Curve, CurveError, check_points};
+
+/// A NURBS curve: control points with weights, a degree and a knot vector
+/// of `points + degree + 1` non-decreasing values. Its domain is
+/// `[knots[degree], knots[points]]`; clamped, unclamped and periodic knot
+/// vectors are all allowed. All weights 1 is a (non-rational) B-spline.
+#[derive(Clone, Debug, PartialEq)]
+pub struct NurbsCurve {
+    degree: usize,
+    knots: Vec<f64>,
+    points: Vec<DVec3>,
+    weights: Vec<f64>,
+}
+
+fn homogeneous(p: DVec3, w: f64) -> DVec4 {
+    (p * w).extend(w)
+}
+
+fn from_homogeneous(h: DVec4) -> (DVec3, f64) {
+    (h.truncate() / h.w, h.w)
+}
+
+impl NurbsCurve {
+    /// A curve from explicit data.
+    ///
+    /// # Errors
+    /// A [`CurveError`] naming what is wrong: degree 0, too few points, the
+    /// wrong number of knots, decreasing knots, an empty domain, a weight
+    /// that is not positive, a non-finite number.
+    pub fn new(
+        degree: usize,
+        knots: Vec<f64>,
+        points: Vec<DVec3>,
+        weights: Vec<f64>,
+    ) -> Result<Self, CurveError> {
+        if degree == 0 {
+            return Err(CurveError::ZeroDegree);
+        }
+        if points.len() < degree + 1 {
+            return Err(CurveError::TooFewPoints {
+                degree,
+                needed: degree + 1,
+                got: points.len(),
+            });
+        }
+        check_points(&points)?;
+        if weights.len() != points.len() {
+            return Err(CurveError::WeightCount {
+                points: points.len(),
+                weights: weights.len(),
+            });
+        }
+        if let Some((index, &value)) = weights
+            .iter()
+            .enumerate()
+            .find(|(_, w)| !(**w > 0.0) || !w.is_finite())
+        {
+            return Err(CurveError::BadWeight { index, value });
+        }
+        let needed = points.len() + degree + 1;
+        if knots.len() != needed {
+            return Err(CurveError::KnotCount {
+                points: points.len(),
+                degree,
+                needed,
+                got: knots.len(),
+            });
+        }
+        if let Some(index) = knots.iter().position(|k| !k.is_finite()) {
+            return Err(CurveError::NotFinite {
+                what: "knot",
+                index,
+            });
+        }
+        if let Some(index) = (1..knots.len()).find(|&i| knots[i] < knots[i - 1]) {
+            return Err(CurveError::DecreasingKnots {
+                index,
+                value: knots[index],
+            });
+        }
+        if knots[degree] >= knots[points.len()] {
+            return Err(CurveError::EmptyDomain);
+        }
+        Ok(NurbsCurve {
+            degree,
+            knots,
+            points,
+            weights,
+        })
+    }
+
+    /// A B-spline (all weights 1) with a clamped uniform knot vector on
+    /// [0, 1]: it starts and ends at its end control points.
+    ///
+    /// # Errors
+    /// As [`new`](Self::new).
+    pub fn clamped(degree: usize, points: Vec<DVec3>) -> Result<Self, CurveError> {
+        let weights = vec![1.0; points.len()];
+        let knots = clamped_uniform_knots(degree, points.len());
+        Self::new(degree, knots, points, weights)
+    }
+
+    /// A closed (periodic) B-spline through no point in particular: the
+    /// first `degree` control points are repeated at the end and the knots
+    /// are uniform, so the curve closes with full continuity.
+    ///
+    /// # Errors
+    /// As [`new`](Self::new) (the points before wrapping must be at least `degree + 1`).
+    pub fn periodic(
+        degree: usize,
+        points: Vec<DVec3>,
+        weights: Vec<f64>,
+    ) -> Result<Self, CurveError> {
+        if points.len() < degree + 1 {
+            return Err(CurveError::TooFewPoints {
+                degree,
+                needed: degree + 1,
+                got: points.len(),
+            });
+        }
+        if weights.len() != points.len() {
+            return Err(CurveError::WeightCount {
+                points: points.len(),
+                weights: weights.len(),
+            });
+        }
+        let mut p = points.clone();
+        p.extend_from_slice(&points[..degree]);
+        let mut w = weights.clone();
+        w.extend_from_slice(&weights[..degree]);
+        let knots = (0..p.len() + degree + 1).map(|i| i as f64).collect();
+        Self::new(degree, knots, p, w)
+    }
+
+    /// The exact unit-speed-free circle: degree 2, nine control points on a
+    /// square around `center` in the XZ plane, weights 1 and √2/2
+    /// alternating, knots at quarter turns (The NURBS Book, §7.5).
+    pub fn circle(center: DVec3, radius: f64) -> Self {
+        let s = std::f64::consts::FRAC_1_SQRT_2;
+        let corners = [
+            (1.0, 0.0),
+            (1.0, 1.0),
+            (0.0, 1.0),
+            (-1.0, 1.0),
+            (-1.0, 0.0),
+            (-1.0, -1.0),
+            (0.0, -1.0),
+            (1.0, -1.0),
+            (1.0, 0.0),
+        ];
+        let points = corners
+            .iter()
+            .map(|&(x, z)| center + radius * DVec3::new(x, 0.0, z))
+            .collect();
+        let weights = (0..9).map(|i| if i % 2 == 0 { 1.0 } else { s }).collect();
+        let knots = vec![
+            0.0, 0.0, 0.0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1.0, 1.0, 1.0,
+        ];
+        Self::new(2, knots, points, weights).expect("the circle's data is valid")
+    }
+
+    pub fn degree(&self) -> usize {
+        self.degree
+    }
+    pub fn knots(&self) -> &[f64] {
+        &self.knots
+    }
+    pub fn points(&self) -> &[DVec3] {
+        &self.points
+    }
+    pub fn weights(&self) -> &[f64] {
+        &self.weights
+    }
+    /// True when every weight is 1 (a polynomial B-spline).
+    pub fn is_polynomial(&self) -> bool {
+        self.weights.iter().all(|&w| w == 1.0)
+    }
+
+    /// Moves control point `i`.
+    ///
+    /// # Errors
+    /// No such point, or a non-finite position.
+    pub fn set_point(&mut self, i: usize, p: DVec3) -> Result<(), CurveError> {
+        self.check_index(i)?;
+        check_points(&[p]).map_err(|_| CurveError::NotFinite {
+            what: "control point",
+            index: i,
+        })?;
+        self.points[i] = p;
+        Ok(())
+    }
+
+    /// Changes the weight of control point `i` (pulls the curve towards
+    /// the point when larger).
+    ///
+    /// # Errors
+    /// No such point, or a weight that is not positive and finite (the
+    /// curve would leave the convex hull or divide by zero).
+    pub fn set_weight(&mut self, i: usize, w: f64) -> Result<(), CurveError> {
+        self.check_index(i)?;
+        if !(w > 0.0) || !w.is_finite() {
+            return Err(CurveError::BadWeight { index: i, value: w });
+        }
+        self.weights[i] = w;
+        Ok(())
+    }
+
+    fn check_index(&self, i: usize) -> Result<(), CurveError> {
+        if i < self.points.len() {
+            Ok(())
+        } else {
+            Err(CurveError::NoSuchPoint {
+                index: i,
+                count: self.points.len(),
+            })
+        }
+    }
+
+    /// The knot span `i` with `knots[i] ≤ u < knots[i + 1]` (the last span
+    /// for `u` at the end of the domain). A2.1.
+    fn span(&self, u: f64) -> usize {
+        let n = self.points.len() - 1;
+        let p = self.degree;
+        if u >= self.knots[n + 1] {
+            // The last non-empty span.
+            let mut i = n;
+            while i > p && self.knots[i] >= self.knots[n + 1] {
+                i -= 1;
+            }
+            return i;
+        }
+        if u <= self.knots[p] {
+            let mut i = p;
+            while self.knots[i + 1] <= u {
+                i += 1;
+            }
+            return i;
+        }
+        let (mut low, mut high) = (p, n + 1);
+        let mut mid = (low + high) / 2;
+        while u < self.knots[mid] || u >= self.knots[mid + 1] {
+            if u < self.knots[mid] {
+                high = mid;
+            } else {
+                low = mid;
+            }
+            mid = (low + high) / 2;
+        }
+        mid
+    }
+
+    /// Homogeneous position and derivatives up to `order` (≤ 2) at `u`.
+    fn homogeneous_derivatives(&self, u: f64, order: usize) -> [DVec4; 3] {
+        let p = self.degree;
+        let span = self.span(u);
+        let ders = basis_derivatives(&self.knots, span, u, p, order);
+        let mut out = [DVec4::ZERO; 3];
+        for (k, row) in ders.iter().enumerate().take(order + 1) {
+            for (j, &b) in row.iter().enumerate() {
+                let i = span - p + j;
+                out[k] += b * homogeneous(self.points[i], self.weights[i]);
+            }
+        }
+        out
+    }
+
+    /// Inserts the knot `u` once without changing the curve (Boehm, A5.1).
+    ///
+    /// # Errors
+    /// `u` outside the open domain, or already of multiplicity `degree`.
+    pub fn insert_knot(&self, u: f64) -> Result<NurbsCurve, CurveError> {
+        let (start, end) = self.domain();
+        if !(u > start && u < end) {
+            return Err(CurveError::OutsideDomain {
+                value: u,
+                start,
+                end,
+            });
+        }
+        let p = self.degree;
+        let k = self.span(u);
+        let s = self.knots.iter().filter(|&&x| x == u).count();
+        if s >= p {
+            return Err(CurveError::FullMultiplicity {
+                value: u,
+                multiplicity: s,
+            });
+        }
+        let pw: Vec<DVec4> = self
+            .points
+            .iter()
+            .zip(&self.weights)
+            .map(|(&q, &w)| homogeneous(q, w))
+            .collect();
+        let mut qw = Vec::with_capacity(pw.len() + 1);
+        for i in 0..=pw.len() {
+            let q = if i + p <= k {
+                pw[i]
+            } else if i > k - s {
+                pw[i - 1]
+            } else {
+                let alpha = (u - self.knots[i]) / (self.knots[i + p] - self.knots[i]);
+                alpha * pw[i] + (1.0 - alpha) * pw[i - 1]
+            };
+            qw.push(q);
+        }
+        let mut knots = self.knots.clone();
+        knots.insert(k + 1, u);
+        let (points, weights) = qw.into_iter().map(from_homogeneous).unzip();
+        Ok(NurbsCurve {
+            degree: p,
+            knots,
+            points,
+            weights,
+        })
+    }
+
+    /// True when both ends have `degree + 1` equal knots (the curve starts
+    /// and ends at its end control points).
+    pub fn is_clamped(&self) -> bool {
+        let p = self.degree;
+        let m = self.knots.len();
+        self.knots[..=p].iter().all(|&k| k == self.knots[0])
+            && self.knots[m - p - 1..]
+                .iter()
+                .all(|&k| k == self.knots[m - 1])
+    }
+
+    /// The rational Bézier segments between distinct knots, each as
+    /// (parameter interval, homogeneous control points): the curve with
+    /// every interior knot inserted up to multiplicity `degree`.
+    ///
+    /// # Errors
+    /// An unclamped curve (its ends are not control points).
+    pub fn bezier_segments(&self) -> Result<Vec<((f64, f64), Vec<DVec4>)>, CurveError> {
+        if !self.is_clamped() {
+            return Err(CurveError::Parameter(
+                "Bézier segments (and degree elevation) need a clamped knot vector".into(),
+            ));
+        }
+        let p = self.degree;
+        let mut c = self.clone();
+        let (start, end) = self.domain();
+        let mut breaks: Vec<f64> = self.knots.clone();
+        breaks.dedup();
+        breaks.retain(|&k| k > start && k < end);
+        for &u in &breaks {
+            while c.knots.iter().filter(|&&x| x == u).count() < p {
+                c = c.insert_knot(u)?;
+            }
+        }
+        let pw: Vec<DVec4> = c
+            .points
+            .iter()
+            .zip(&c.weights)
+            .map(|(&q, &w)| homogeneous(q, w))
+            .collect();
+        let mut bounds = vec![start];
+        bounds.extend(&breaks);
+        bounds.push(end);
+        Ok(bounds
+            .windows(2)
+            .enumerate()
+            .map(|(j, w)| ((w[0], w[1]), pw[j * p..=j * p + p].to_vec()))
+            .collect())
+    }
+
+    /// The same curve with degree one higher: each Bézier segment is
+    /// elevated in homogeneous coordinates and the segments are joined
+    /// again (interior knots get multiplicity `degree + 1`).
+    ///
+    /// # Errors
+    /// An unclamped curve.
+    pub fn elevate_degree(&self) -> Result<NurbsCurve, CurveError> {
+        let segments = self.bezier_segments()?;
+        let p = self.degree;
+        let q = p + 1;
+        let mut knots = vec![segments[0].0.0; q + 1];
+        let mut pw: Vec<DVec4> = Vec::new();
+        for (j, ((_, b), seg)) in segments.iter().enumerate() {
+            let mut elevated = Vec::with_capacity(q + 1);
+            elevated.push(seg[0]);
+            for i in 1..=p {
+                let a = i as f64 / q as f64;
+                elevated.push(a * seg[i - 1] + (1.0 - a) * seg[i]);
+            }
+            elevated.push(seg[p]);
+            let skip = usize::from(j > 0);
+            pw.extend_from_slice(&elevated[skip..]);
+            let copies = if j + 1 == segments.len() { q + 1 } else { q };
+            knots.extend(std::iter::repeat_n(*b, copies));
+        }
+        let (points, weights) = pw.into_iter().map(from_homogeneous).unzip();
+        NurbsCurve::new(q, knots, points, weights)
+    }
+}
+
+impl Curve for NurbsCurve {
+    fn domain(&self) -> (f64, f64) {
+        (self.knots[self.degree], self.knots[self.points.len()])
+    }
+
+    /// Position, first and second derivative by the rational quotient rule
+    /// (eq. 4.8): `C = A/w`, `C' = (A' − w'C)/w`, `C'' = (A'' − 2w'C' − w''C)/w`.
+    fn derivatives(&self, t: f64) -> [DVec3; 3] {
+        let (start, end) = self.domain();
+        let u = t.clamp(start, end);
+        let [a0, a1, a2] = self.homogeneous_derivatives(u, 2);
+        let c0 = a0.truncate() / a0.w;
+        let c1 = (a1.truncate() - a1.w * c0) / a0.w;
+        let c2 = (a2.truncate() - 2.0 * a1.w * c1 - a2.w * c0) / a0.w;
+        [c0, c1, c2]
+    }
+}
+
+/// Knots `[0; p+1], 1/(n−p), 2/(n−p), …, [1; p+1]` for `n` points.
+pub fn clamped_uniform_knots(degree: usize, points: usize) -> Vec<f64> {
+    let spans = points.saturating_sub(degree).max(1);
+    let mut knots = vec![0.0; degree + 1];
+    knots.extend((1..spans).map(|i| i as f64 / spans as f64));
+    knots.extend(std::iter::repeat_n(1.0, degree + 1));
+    knots
+}
+
+/// The non-zero basis functions `N_{span−p+j, p}` at `u` and their
+/// derivatives up to `order`: `out[k][j]` (The NURBS Book, A2.3).
+pub fn basis_derivatives(
+    knots: &[f64],
+    span: usize,
+    u: f64,
+    p: usize,
+    order: usize,
+) -> Vec<Vec<f64>> {
+    let mut ndu = vec![vec![0.0; p + 1]; p + 1];
+    let mut left = vec![0.0; p + 1];
+    let mut right = vec![0.0; p + 1];
+    ndu[0][0] = 1.0;
+    for j in 1..=p {
+        left[j] = u - knots[span + 1 - j];
+        right[j] = knots[span + j] - u;
+        let mut saved = 0.0;
+        for r in 0..j {
+            ndu[j][r] = right[r + 1] + left[j - r];
+            let temp = ndu[r][j - 1] / ndu[j][r];
+            ndu[r][j] = saved + right[r + 1] * temp;
+            saved = left[j - r] * temp;
+        }
+        ndu[j][j] = saved;
+    }
+    let n = order.min(p);
+    let mut ders = vec![vec![0.0; p + 1]; order + 1];
+    for j in 0..=p {
+        ders[0][j] = ndu[j][p];
+    }
+    let mut a = [vec![0.0; p + 1], vec![0.0; p + 1]];
+    for r in 0..=p {
+        let (mut s1, mut s2) = (0, 1);
+        a[0][0] = 1.0;
+        for k in 1..=n {
+            let mut d = 0.0;
+            let rk = r as isize - k as isize;
+            let pk = p - k;
+            if r >= k {
+                let rk = rk as usize;
+                a[s2][0] = a[s1][0] / ndu[pk + 1][rk];
+                d = a[s2][0] * ndu[rk][pk];
+            }
+            let j1 = if rk >= -1 { 1 } else { (-rk) as usize };
+            let j2 = if r as isize - 1 <= pk as isize {
+                k - 1
+            } else {
+                p - r
+            };
+            for j in j1..=j2 {
+                let idx = (rk + j as isize) as usize;
+                a[s2][j] = (a[s1][j] - a[s1][j - 1]) / ndu[pk + 1][idx];
+                d += a[s2][j] * ndu[idx][pk];
+            }
+            if r <= pk {
+                a[s2][k] = -a[s1][k - 1] / ndu[pk + 1][r];
+                d += a[s2][k] * ndu[r][pk];
+            }
+            ders[k][r] = d;
+            std::mem::swap(&mut s1, &mut s2);
+        }
+    }
+    let mut factor = p as f64;
+    for k in 1..=n {
+        for j in 0..=p {
+            ders[k][j] *= factor;
+        }
+        factor *= (p - k) as f64;
+    }
+    ders
+}
