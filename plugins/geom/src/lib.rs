@@ -14,6 +14,7 @@ pub mod patch;
 pub mod primitives;
 pub mod query;
 pub mod subdivision;
+pub mod surfaces;
 pub mod topology;
 pub mod validate;
 

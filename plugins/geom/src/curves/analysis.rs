@@ -160,3 +160,45 @@ pub fn equal_arc_length_parameters(curve: &dyn Curve, count: usize) -> Vec<f64> 
     out.push(b);
     out
 }
+
+/// How smoothly a curve that ends where another starts joins it.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+pub struct Continuity {
+    /// Positions meet.
+    pub c0: bool,
+    /// First derivatives are equal.
+    pub c1: bool,
+    /// Second derivatives are equal too.
+    pub c2: bool,
+    /// Tangent directions agree (seed 000: `m_i = α m_{i+1}`, α > 0).
+    pub g1: bool,
+    /// Tangent directions and curvature vectors agree.
+    pub g2: bool,
+}
+
+/// The continuity of the joint between the end of `first` and the start of
+/// `second`, each test within `tolerance` (relative for derivatives).
+pub fn continuity(first: &dyn Curve, second: &dyn Curve, tolerance: f64) -> Continuity {
+    let [p0, a1, a2] = first.derivatives(first.domain().1);
+    let [q0, b1, b2] = second.derivatives(second.domain().0);
+    let same =
+        |x: DVec3, y: DVec3| (x - y).length() <= tolerance * (1.0 + x.length().max(y.length()));
+    let c0 = (p0 - q0).length() <= tolerance;
+    let g1 = c0
+        && match (a1.try_normalize(), b1.try_normalize()) {
+            (Some(ta), Some(tb)) => same(ta, tb),
+            _ => false,
+        };
+    // Curvature vector κ n = (p' × p'') × p' / |p'|⁴.
+    let curvature_vector =
+        |d1: DVec3, d2: DVec3| d1.cross(d2).cross(d1) / d1.length_squared().powi(2);
+    let g2 = g1 && same(curvature_vector(a1, a2), curvature_vector(b1, b2));
+    let c1 = c0 && same(a1, b1);
+    Continuity {
+        c0,
+        c1,
+        c2: c1 && same(a2, b2),
+        g1,
+        g2,
+    }
+}

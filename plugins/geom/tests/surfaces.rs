@@ -1,0 +1,330 @@
+//! Surfaces against known values: the exact NURBS sphere and cylinder,
+//! Bézier surfaces as NURBS, derivatives against finite differences, knot
+//! insertion, Bézier triangles (partition of unity, elevation, split,
+//! directional derivatives), ray picking, tessellation tolerance, and the
+//! continuity of curve joints.
+
+use hedra_geom::DVec3;
+use hedra_geom::curves::analysis::continuity;
+use hedra_geom::curves::{Bezier, NurbsCurve};
+use hedra_geom::surfaces::intersect::ray_surface;
+use hedra_geom::surfaces::tessellate::{curve_parameters, tessellate};
+use hedra_geom::surfaces::{BezierSurface, BezierTriangle, BilinearPatch, NurbsSurface, Surface};
+
+fn close(a: DVec3, b: DVec3, tol: f64) -> bool {
+    (a - b).length() <= tol
+}
+
+fn grid(surface: &dyn Surface, n: usize) -> Vec<(f64, f64)> {
+    let ((u0, u1), (v0, v1)) = surface.domain();
+    (0..=n)
+        .flat_map(|i| {
+            (0..=n).map(move |j| {
+                (
+                    u0 + (u1 - u0) * i as f64 / n as f64,
+                    v0 + (v1 - v0) * j as f64 / n as f64,
+                )
+            })
+        })
+        .collect()
+}
+
+#[test]
+fn the_nurbs_sphere_and_cylinder_are_exact() {
+    let c = DVec3::new(1.0, -2.0, 0.5);
+    let s = NurbsSurface::sphere(c, 2.0);
+    for (u, v) in grid(&s, 40) {
+        let e = s.evaluate(u, v);
+        assert!(
+            ((e.p - c).length() - 2.0).abs() < 1e-12,
+            "radius at ({u}, {v})"
+        );
+        let n = e.normal();
+        if n != DVec3::ZERO {
+            // Away from the poles the normal is radial (outward or inward, consistently).
+            assert!(n.cross(e.p - c).length() < 1e-9);
+        }
+    }
+    let cyl = NurbsSurface::cylinder(0.5, 3.0);
+    for (u, v) in grid(&cyl, 20) {
+        let p = cyl.point(u, v);
+        assert!((p.x.hypot(p.z) - 0.5).abs() < 1e-12 && (-1e-12..=3.0 + 1e-12).contains(&p.y));
+    }
+}
+
+fn bezier_net() -> BezierSurface {
+    let mut pts = Vec::new();
+    for i in 0..4 {
+        for j in 0..3 {
+            pts.push(DVec3::new(
+                i as f64,
+                ((i * j) as f64).sin(),
+                j as f64 + 0.3 * i as f64,
+            ));
+        }
+    }
+    BezierSurface::new(4, 3, pts).unwrap()
+}
+
+#[test]
+fn a_bezier_surface_is_a_nurbs_surface_with_clamped_knots() {
+    let b = bezier_net();
+    let n = NurbsSurface::from_bezier(4, 3, b.points.clone()).unwrap();
+    for (u, v) in grid(&b, 12) {
+        let (x, y) = (b.evaluate(u, v), n.evaluate(u, v));
+        for (p, q) in [
+            (x.p, y.p),
+            (x.du, y.du),
+            (x.dv, y.dv),
+            (x.duu, y.duu),
+            (x.duv, y.duv),
+            (x.dvv, y.dvv),
+        ] {
+            assert!(close(p, q, 1e-12), "({u}, {v}): {p} vs {q}");
+        }
+    }
+    // Its boundary is the Bézier curve of the boundary points.
+    let edge = b.boundary_u0();
+    for k in 0..=10 {
+        let t = k as f64 / 10.0;
+        assert!(close(b.point(0.0, t), edge.de_casteljau(t), 1e-14));
+    }
+}
+
+/// Partial derivatives against central differences.
+fn check_partials(s: &dyn Surface) {
+    let h = 1e-5;
+    let ((u0, u1), (v0, v1)) = s.domain();
+    for (u, v) in grid(s, 9) {
+        let (u, v) = (
+            u.clamp(u0 + 2.0 * h, u1 - 2.0 * h),
+            v.clamp(v0 + 2.0 * h, v1 - 2.0 * h),
+        );
+        let e = s.evaluate(u, v);
+        let fu = (s.point(u + h, v) - s.point(u - h, v)) / (2.0 * h);
+        let fv = (s.point(u, v + h) - s.point(u, v - h)) / (2.0 * h);
+        let fuv = (s.point(u + h, v + h) - s.point(u + h, v - h) - s.point(u - h, v + h)
+            + s.point(u - h, v - h))
+            / (4.0 * h * h);
+        let fuu = (s.point(u + h, v) - 2.0 * e.p + s.point(u - h, v)) / (h * h);
+        assert!(
+            close(e.du, fu, 1e-6 * (1.0 + fu.length())),
+            "S_u at ({u}, {v}): {} vs {fu}",
+            e.du
+        );
+        assert!(
+            close(e.dv, fv, 1e-6 * (1.0 + fv.length())),
+            "S_v at ({u}, {v})"
+        );
+        assert!(
+            close(e.duv, fuv, 1e-3 * (1.0 + fuv.length())),
+            "S_uv at ({u}, {v}): {} vs {fuv}",
+            e.duv
+        );
+        assert!(
+            close(e.duu, fuu, 1e-3 * (1.0 + fuu.length())),
+            "S_uu at ({u}, {v}): {} vs {fuu}",
+            e.duu
+        );
+    }
+}
+
+#[test]
+fn partial_derivatives_match_finite_differences() {
+    check_partials(&bezier_net());
+    check_partials(&NurbsSurface::sphere(DVec3::ZERO, 1.0));
+    let mut wavy = NurbsSurface::from_bezier(4, 3, bezier_net().points).unwrap();
+    wavy.set_weight(1, 1, 3.0).unwrap();
+    wavy.set_weight(2, 0, 0.4).unwrap();
+    check_partials(&wavy);
+    check_partials(&BilinearPatch {
+        corners: [DVec3::ZERO, DVec3::X, DVec3::Z, DVec3::new(1.0, 1.0, 1.0)],
+    });
+}
+
+#[test]
+fn surface_knot_insertion_and_weights() {
+    let s = NurbsSurface::sphere(DVec3::ZERO, 1.0);
+    let r = s
+        .insert_knot_u(0.1)
+        .unwrap()
+        .insert_knot_v(0.3)
+        .unwrap()
+        .insert_knot_u(0.6)
+        .unwrap();
+    assert_eq!(r.size(), (s.size().0 + 2, s.size().1 + 1));
+    for (u, v) in grid(&s, 25) {
+        assert!(
+            close(s.point(u, v), r.point(u, v), 1e-12),
+            "({u}, {v}) moved"
+        );
+    }
+    let mut w = s.clone();
+    assert!(w.set_weight(0, 0, -1.0).is_err());
+    assert!(w.set_weight(99, 0, 1.0).is_err());
+    assert_eq!(w, s, "refused edits change nothing");
+}
+
+fn triangle() -> BezierTriangle {
+    // Degree 3: 10 points with some height.
+    let n = 3;
+    let mut pts = Vec::new();
+    for i in 0..=n {
+        for j in 0..=n - i {
+            let (x, z) = (i as f64, j as f64);
+            pts.push(DVec3::new(x + 0.5 * z, (x * z) * 0.3 - 0.2 * x, z));
+        }
+    }
+    BezierTriangle::new(3, pts).unwrap()
+}
+
+fn bary(n: usize) -> Vec<DVec3> {
+    let mut out = Vec::new();
+    for i in 0..=n {
+        for j in 0..=n - i {
+            let (u, v) = (i as f64 / n as f64, j as f64 / n as f64);
+            out.push(DVec3::new(u, v, 1.0 - u - v));
+        }
+    }
+    out
+}
+
+#[test]
+fn bezier_triangles_de_casteljau_bernstein_elevation_and_split_agree() {
+    let t = triangle();
+    let up = t.elevate();
+    assert_eq!(up.points.len(), 15);
+    for b in bary(8) {
+        let p = t.evaluate(b);
+        assert!(close(p, t.bernstein_point(b), 1e-12));
+        assert!(close(p, up.evaluate(b), 1e-12), "elevation moved {b}");
+    }
+    // Corners interpolate b_n00, b_0n0, b_00n.
+    assert!(close(t.evaluate(DVec3::X), t.point(3, 0), 1e-15));
+    assert!(close(t.evaluate(DVec3::Z), t.point(0, 0), 1e-15));
+    // Split at an interior point: each part traces its share of the surface.
+    let at = DVec3::new(0.2, 0.5, 0.3);
+    let parts = t.split(at);
+    let corners = [
+        [DVec3::Y, DVec3::Z],
+        [DVec3::Z, DVec3::X],
+        [DVec3::X, DVec3::Y],
+    ];
+    for (part, [e1, e2]) in parts.iter().zip(corners) {
+        for local in bary(6) {
+            let global = local.x * at + local.y * e1 + local.z * e2;
+            assert!(
+                close(part.evaluate(local), t.evaluate(global), 1e-12),
+                "split part at {local}"
+            );
+        }
+    }
+}
+
+#[test]
+fn bezier_triangle_directional_derivative_matches_differences() {
+    let t = triangle();
+    let d = DVec3::new(1.0, -0.5, -0.5);
+    let h = 1e-6;
+    for b in bary(5).into_iter().filter(|b| b.min_element() > 0.1) {
+        let fd = (t.evaluate(b + h * d) - t.evaluate(b - h * d)) / (2.0 * h);
+        let exact = t.directional_derivative(b, d);
+        assert!(
+            close(exact, fd, 1e-6 * (1.0 + fd.length())),
+            "{exact} vs {fd}"
+        );
+    }
+    // The partition of unity: a triangle whose points are all equal is that point.
+    let flat = BezierTriangle::new(2, vec![DVec3::ONE; 6]).unwrap();
+    assert!(close(
+        flat.evaluate(DVec3::new(0.3, 0.3, 0.4)),
+        DVec3::ONE,
+        1e-15
+    ));
+}
+
+#[test]
+fn a_ray_picks_the_exact_surface_point() {
+    let s = NurbsSurface::sphere(DVec3::ZERO, 1.0);
+    let origin = DVec3::new(0.3, 5.0, -0.2);
+    let hit = ray_surface(&s, origin, DVec3::NEG_Y).unwrap();
+    let want_y = (1.0f64 - 0.09 - 0.04).sqrt();
+    assert!(
+        close(hit.point, DVec3::new(0.3, want_y, -0.2), 1e-10),
+        "{:?}",
+        hit
+    );
+    assert!((hit.t - (5.0 - want_y)).abs() < 1e-10);
+    assert!(
+        ray_surface(&s, DVec3::new(3.0, 5.0, 0.0), DVec3::NEG_Y).is_none(),
+        "a miss is None"
+    );
+}
+
+#[test]
+fn tessellation_stays_within_its_tolerance() {
+    let s = NurbsSurface::sphere(DVec3::ZERO, 1.0);
+    for tol in [1e-2, 1e-3] {
+        let m = tessellate(&s, tol);
+        // Every triangle's centroid is within the tolerance of the sphere.
+        let worst = m
+            .triangles
+            .iter()
+            .map(|t| {
+                let c = t.iter().map(|&i| m.positions[i as usize]).sum::<DVec3>() / 3.0;
+                1.0 - c.length()
+            })
+            .fold(0.0, f64::max);
+        assert!(worst < 2.0 * tol, "tolerance {tol}: {worst}");
+    }
+    let circle = NurbsCurve::circle(DVec3::ZERO, 1.0);
+    let ts = curve_parameters(&circle, 1e-4);
+    for w in ts.windows(2) {
+        use hedra_geom::curves::Curve;
+        let mid = (circle.point(w[0]) + circle.point(w[1])) / 2.0;
+        assert!(
+            1.0 - mid.length() < 2e-4,
+            "chord error {}",
+            1.0 - mid.length()
+        );
+    }
+}
+
+#[test]
+fn continuity_of_joined_bezier_segments() {
+    let a = Bezier::new(vec![
+        DVec3::ZERO,
+        DVec3::X,
+        DVec3::new(2.0, 1.0, 0.0),
+        DVec3::new(3.0, 1.0, 0.0),
+    ])
+    .unwrap();
+    // C1 continuation: b1 − b0 mirrors a3 − a2.
+    let c1 = Bezier::new(vec![
+        DVec3::new(3.0, 1.0, 0.0),
+        DVec3::new(4.0, 1.0, 0.0),
+        DVec3::new(5.0, 2.0, 0.0),
+        DVec3::new(6.0, 2.0, 0.0),
+    ])
+    .unwrap();
+    let k = continuity(&a, &c1, 1e-9);
+    assert!(k.c0 && k.c1 && k.g1 && !k.c2, "{k:?}");
+    // G1 only: same direction, twice the speed.
+    let g1 = Bezier::new(vec![
+        DVec3::new(3.0, 1.0, 0.0),
+        DVec3::new(5.0, 1.0, 0.0),
+        DVec3::new(6.0, 0.0, 0.0),
+        DVec3::new(7.0, 0.0, 0.0),
+    ])
+    .unwrap();
+    let k = continuity(&a, &g1, 1e-9);
+    assert!(k.c0 && k.g1 && !k.c1, "{k:?}");
+    // A corner.
+    let corner = Bezier::new(vec![DVec3::new(3.0, 1.0, 0.0), DVec3::new(3.0, 2.0, 0.0)]).unwrap();
+    let k = continuity(&a, &corner, 1e-9);
+    assert!(k.c0 && !k.g1, "{k:?}");
+    // The same curve split in two is C2 at the split.
+    let (l, r) = a.split(0.4);
+    let k = continuity(&l, &r, 1e-9);
+    assert!(k.c2 && k.g2, "{k:?}");
+}
