@@ -46,6 +46,18 @@ pub enum Sub {
         #[arg(long)]
         topology: bool,
     },
+    /// Print the exact point, derivatives, normal and curvature of a curve
+    /// or surface node at a parameter (local space).
+    Eval {
+        file: PathBuf,
+        /// The node's name (or `#ID`).
+        node: String,
+        /// `U` for a curve, `U,V` for a surface.
+        #[arg(long, allow_hyphen_values = true)]
+        at: String,
+        #[arg(long)]
+        json: bool,
+    },
     /// Apply a RON script of commands (docs/commands.md) and save the result with its history.
     Run {
         script: PathBuf,
@@ -123,6 +135,36 @@ fn save(session: &mut Session, path: &Path) -> Result<(), FileError> {
 /// [`CliError`] with a one-line message.
 pub fn run(sub: Sub) -> Result<(), CliError> {
     match sub {
+        Sub::Eval {
+            file,
+            node,
+            at,
+            json,
+        } => {
+            let session = load(&file)?;
+            let params = at
+                .split(',')
+                .map(|x| {
+                    x.trim()
+                        .parse::<f64>()
+                        .map_err(|_| CliError(format!("--at {at}: '{x}' is not a number")))
+                })
+                .collect::<Result<Vec<f64>, _>>()?;
+            let reference = match node.strip_prefix('#').and_then(|i| i.parse().ok()) {
+                Some(id) => hedra_doc::NodeRef::Id(id),
+                None => hedra_doc::NodeRef::Name(node.clone()),
+            };
+            let e = hedra_doc::eval::evaluate(&session.doc, &reference, &params)
+                .map_err(|m| CliError(format!("{}: {m}", file.display())))?;
+            if json {
+                println!(
+                    "{}",
+                    serde_json::to_string_pretty(&e).expect("evaluations serialise")
+                );
+            } else {
+                print!("{}", e.to_text());
+            }
+        }
         Sub::Info {
             file,
             json,

@@ -558,3 +558,93 @@ fn export_writes_the_subdivided_shape_the_cage_or_a_given_level() {
         "node 'Box': level 11 is above the maximum of 10",
     );
 }
+
+#[test]
+fn eval_prints_exact_geometry_and_export_tessellates_curves_and_surfaces() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("shapes.hedra.ron");
+    let s = dir.path().join("s.ron");
+    std::fs::write(
+        &s,
+        "[AddCurve(name: \"Ring\", curve: Circle(radius: 2.0)),
+          AddSurface(name: \"Ball\", surface: Sphere(radius: 1.0), transform: (translation: (5.0, 0.0, 0.0)))]",
+    )
+    .unwrap();
+    let o = hedra(&["run", s.to_str().unwrap(), "-o", file.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let f = file.to_str().unwrap();
+    // The circle at a quarter turn: radius 2, curvature 1/2.
+    let o = hedra(&["eval", f, "Ring", "--at", "0.25", "--json"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let j: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert!(close(&j["point"], [0.0, 0.0, 2.0]), "{j}");
+    assert!((j["curvature"][0].as_f64().unwrap() - 0.5).abs() < 1e-9);
+    // The unit sphere: Gaussian curvature 1 everywhere (local space).
+    let o = hedra(&["eval", f, "Ball", "--at", "0.3,0.6", "--json"]);
+    let j: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let p: Vec<f64> = (0..3).map(|i| j["point"][i].as_f64().unwrap()).collect();
+    assert!(((p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt() - 1.0).abs() < 1e-12);
+    assert!((j["curvature"][0].as_f64().unwrap() - 1.0).abs() < 1e-9);
+    // Text output names the node.
+    let o = hedra(&["eval", f, "Ring", "--at", "0"]);
+    assert!(String::from_utf8_lossy(&o.stdout).contains("Ring [curve] at [0.0]"));
+    // Errors: a parameter outside the domain, the wrong count, not a number, not a shape.
+    let out = dir.path().join("none");
+    fails(
+        &["eval", f, "Ring", "--at", "1.5"],
+        &out,
+        "'Ring': t = 1.5 is outside the domain [0, 1]",
+    );
+    fails(
+        &["eval", f, "Ball", "--at", "0.5"],
+        &out,
+        "'Ball' is a surface: give 2 parameter value(s), got 1",
+    );
+    fails(
+        &["eval", f, "Ring", "--at", "x"],
+        &out,
+        "--at x: 'x' is not a number",
+    );
+    fails(
+        &["eval", f, "Nope", "--at", "0"],
+        &out,
+        "node 'Nope' does not exist",
+    );
+    // Export: the circle as an OBJ polyline, the sphere as triangles within the tolerance.
+    let obj = dir.path().join("shapes.obj");
+    let o = hedra(&["export", f, "-o", obj.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = std::fs::read_to_string(&obj).unwrap();
+    let mut v: Vec<[f64; 3]> = Vec::new();
+    let mut lines = 0;
+    let mut faces = 0;
+    for l in text.lines() {
+        if let Some(rest) = l.strip_prefix("v ") {
+            let c: Vec<f64> = rest.split(' ').map(|x| x.parse().unwrap()).collect();
+            v.push([c[0], c[1], c[2]]);
+        } else if l.starts_with("l ") {
+            lines += 1;
+            let idx: Vec<usize> = l[2..].split(' ').map(|x| x.parse().unwrap()).collect();
+            assert!(
+                idx.len() > 50,
+                "the circle is finely tessellated: {}",
+                idx.len()
+            );
+            for i in idx {
+                let [x, y, z] = v[i - 1];
+                assert!(
+                    ((x * x + y * y + z * z).sqrt() - 2.0).abs() < 1e-12,
+                    "polyline points lie on the circle"
+                );
+            }
+        } else if l.starts_with("f ") {
+            faces += 1;
+        }
+    }
+    assert_eq!(lines, 1);
+    assert!(faces > 1000, "{faces} sphere triangles");
+    assert!(
+        v.iter().skip(1).any(|p| (p[0] - 5.0).abs() < 1.0),
+        "the sphere is exported in world space"
+    );
+}

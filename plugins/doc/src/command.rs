@@ -6,18 +6,144 @@
 
 use crate::elements::{EdgeSet, FaceSet, VertexSet};
 use crate::history::{NodeChange, Transaction};
+use crate::scene::SurfaceShape;
 use crate::scene::{
     Document, MeshContent, Node, NodeContent, NodeId, Shading, SubdivisionModifier, Transform,
 };
 use glam::{DQuat, DVec3};
+use hedra_geom::curves::nurbs::clamped_uniform_knots;
+use hedra_geom::curves::{CurveError, NurbsCurve};
 use hedra_geom::modeling::{self, MirrorAxis};
 use hedra_geom::subdivision::{self, Creases, INFINITE_SHARPNESS, Refiner};
+use hedra_geom::surfaces::{BezierTriangle, NurbsSurface};
 use hedra_geom::{
     BuildError, EdgeId, FaceId, HalfEdgeMesh, ModelingError, Primitive, PrimitiveError, VertexId,
 };
 use serde::{Deserialize, Serialize};
 use std::fmt;
 use std::sync::Arc;
+
+/// Which parameter of a surface.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub enum ParameterDirection {
+    #[default]
+    U,
+    V,
+}
+
+/// A curve to add.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub enum CurveSpec {
+    /// A NURBS curve; knots default to clamped uniform on [0, 1], weights to 1.
+    Nurbs {
+        degree: usize,
+        points: Vec<DVec3>,
+        #[serde(default)]
+        weights: Option<Vec<f64>>,
+        #[serde(default)]
+        knots: Option<Vec<f64>>,
+    },
+    /// A Bézier curve of degree `points − 1`.
+    Bezier { points: Vec<DVec3> },
+    /// The exact NURBS circle in the XZ plane.
+    Circle { radius: f64 },
+    /// A closed periodic B-spline around the points.
+    Closed {
+        degree: usize,
+        points: Vec<DVec3>,
+        #[serde(default)]
+        weights: Option<Vec<f64>>,
+    },
+}
+
+/// A surface to add.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub enum SurfaceSpec {
+    /// A NURBS surface of `nu × nv` points (`i * nv + j`); knots default to
+    /// clamped uniform, weights to 1.
+    Nurbs {
+        degree_u: usize,
+        degree_v: usize,
+        nu: usize,
+        nv: usize,
+        points: Vec<DVec3>,
+        #[serde(default)]
+        weights: Option<Vec<f64>>,
+        #[serde(default)]
+        knots_u: Option<Vec<f64>>,
+        #[serde(default)]
+        knots_v: Option<Vec<f64>>,
+    },
+    /// A tensor-product Bézier patch of `nu × nv` points.
+    Bezier {
+        nu: usize,
+        nv: usize,
+        points: Vec<DVec3>,
+    },
+    /// A Bézier triangle: (n+1)(n+2)/2 points, rows of equal i.
+    Triangle {
+        degree: usize,
+        points: Vec<DVec3>,
+    },
+    Plane {
+        size: f64,
+    },
+    Sphere {
+        radius: f64,
+    },
+    Cylinder {
+        radius: f64,
+        height: f64,
+    },
+    /// The curve of another node revolved around the Y axis.
+    Revolve {
+        profile: NodeRef,
+    },
+    /// The curve of another node swept along a direction.
+    Extrude {
+        profile: NodeRef,
+        direction: DVec3,
+    },
+}
+
+fn curve_from_spec(spec: &CurveSpec) -> Result<NurbsCurve, CurveError> {
+    match spec {
+        CurveSpec::Nurbs {
+            degree,
+            points,
+            weights,
+            knots,
+        } => NurbsCurve::new(
+            *degree,
+            knots
+                .clone()
+                .unwrap_or_else(|| clamped_uniform_knots(*degree, points.len())),
+            points.clone(),
+            weights.clone().unwrap_or_else(|| vec![1.0; points.len()]),
+        ),
+        CurveSpec::Bezier { points } => {
+            let degree = points.len().saturating_sub(1).max(1);
+            NurbsCurve::clamped(degree, points.clone())
+        }
+        CurveSpec::Circle { radius } => {
+            if !(radius.is_finite() && *radius > 0.0) {
+                return Err(CurveError::Parameter(format!(
+                    "a circle's radius must be positive, not {radius}"
+                )));
+            }
+            Ok(NurbsCurve::circle(DVec3::ZERO, *radius))
+        }
+        CurveSpec::Closed {
+            degree,
+            points,
+            weights,
+        } => NurbsCurve::periodic(
+            *degree,
+            points.clone(),
+            weights.clone().unwrap_or_else(|| vec![1.0; points.len()]),
+        ),
+    }
+}
 
 /// A node named by id or by (unique) name, so scripts need not know ids.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -141,6 +267,48 @@ pub enum Command {
     /// Copies nodes with their descendants; copies get new ids and names.
     Duplicate {
         nodes: Vec<NodeRef>,
+    },
+
+    // ----- curves and surfaces (control points in the node's local space) -----
+    /// Adds a curve node.
+    AddCurve {
+        name: String,
+        curve: CurveSpec,
+        #[serde(default)]
+        parent: Option<NodeRef>,
+        #[serde(default)]
+        transform: Transform,
+    },
+    /// Adds a surface node.
+    AddSurface {
+        name: String,
+        surface: SurfaceSpec,
+        #[serde(default)]
+        parent: Option<NodeRef>,
+        #[serde(default)]
+        transform: Transform,
+    },
+    /// Moves control points of a curve or surface (by index, as `hedra
+    /// info --json` counts them; NURBS surfaces: `i * nv + j`).
+    SetControlPoints {
+        node: NodeRef,
+        points: Vec<(u32, DVec3)>,
+    },
+    /// Sets the weights of control points (each must be positive).
+    SetWeights {
+        node: NodeRef,
+        weights: Vec<(u32, f64)>,
+    },
+    /// Inserts a knot without changing the shape (surfaces: in `direction`).
+    InsertKnot {
+        node: NodeRef,
+        at: f64,
+        #[serde(default)]
+        direction: ParameterDirection,
+    },
+    /// Raises a curve's degree by one without changing its shape.
+    ElevateDegree {
+        node: NodeRef,
     },
 
     // ----- mesh editing (element positions in the node's local space) -----
@@ -368,6 +536,10 @@ pub enum CommandError {
         error: hedra_geom::ModelingError,
     },
     #[error("{node}: {error}")]
+    Curve { node: String, error: CurveError },
+    #[error("{node} is not a curve or surface")]
+    NotAShape { node: String },
+    #[error("{node}: {error}")]
     Subdivision {
         node: String,
         error: subdivision::SubdivisionError,
@@ -376,6 +548,16 @@ pub enum CommandError {
     Sharpness(f64),
     #[error("subdivision level {0} is above the maximum of {max}", max = subdivision::MAX_LEVEL)]
     Level(u32),
+}
+
+fn positive(what: &str, x: f64) -> Result<(), CurveError> {
+    if x.is_finite() && x > 0.0 {
+        Ok(())
+    } else {
+        Err(CurveError::Parameter(format!(
+            "{what} must be positive, not {x}"
+        )))
+    }
 }
 
 /// A crease value as stored: finite, in 0 ..= [`INFINITE_SHARPNESS`].
@@ -426,6 +608,14 @@ impl Command {
             Command::SetEdgeCrease { sharpness, .. } => format!("Edge Crease {sharpness:.2}"),
             Command::SetVertexCrease { sharpness, .. } => format!("Vertex Crease {sharpness:.2}"),
             Command::SnapToLimit { .. } => "Snap to Limit Surface".to_string(),
+            Command::AddCurve { name, .. } => format!("Add Curve '{name}'"),
+            Command::AddSurface { name, .. } => format!("Add Surface '{name}'"),
+            Command::SetControlPoints { points, .. } => {
+                format!("Move {}", plural(points.len(), "control point"))
+            }
+            Command::SetWeights { .. } => "Set Weights".to_string(),
+            Command::InsertKnot { at, .. } => format!("Insert Knot {at}"),
+            Command::ElevateDegree { .. } => "Elevate Degree".to_string(),
             Command::Duplicate { nodes } => format!("Duplicate {}", plural(nodes.len(), "node")),
             Command::MoveVertices { .. } | Command::SetVertexPositions { .. } => {
                 "Move Vertices".to_string()
@@ -646,6 +836,89 @@ impl Plan<'_> {
         edit: impl FnOnce(&mut HalfEdgeMesh) -> Result<(), String>,
     ) -> Result<(), CommandError> {
         self.model(r, |m| edit(m).map(Ok))
+    }
+
+    /// Edits a curve or surface node; a refused edit changes nothing.
+    fn edit_shape(
+        &mut self,
+        r: &NodeRef,
+        curve: impl FnOnce(&mut NurbsCurve) -> Result<(), CurveError>,
+        surface: impl FnOnce(&mut SurfaceShape) -> Result<(), CurveError>,
+    ) -> Result<(), CommandError> {
+        let mut n = self.node(r)?;
+        let label = self.doc.label_of(n.id);
+        let result = match &mut n.content {
+            NodeContent::Curve(c) => curve(Arc::make_mut(c)),
+            NodeContent::Surface(s) => surface(Arc::make_mut(s)),
+            _ => return Err(CommandError::NotAShape { node: label }),
+        };
+        result.map_err(|error| CommandError::Curve { node: label, error })?;
+        self.set(n);
+        Ok(())
+    }
+
+    /// The surface a spec describes (Revolve and Extrude read another node's curve).
+    fn surface_from_spec(&self, spec: &SurfaceSpec) -> Result<SurfaceShape, CurveError> {
+        let profile = |r: &NodeRef| -> Result<NurbsCurve, CurveError> {
+            let id = self
+                .resolve(r)
+                .map_err(|e| CurveError::Parameter(e.to_string()))?;
+            match self.current(id).map(|n| &n.content) {
+                Some(NodeContent::Curve(c)) => Ok((**c).clone()),
+                _ => Err(CurveError::Parameter(format!("{r} is not a curve"))),
+            }
+        };
+        Ok(match spec {
+            SurfaceSpec::Nurbs {
+                degree_u,
+                degree_v,
+                nu,
+                nv,
+                points,
+                weights,
+                knots_u,
+                knots_v,
+            } => SurfaceShape::Nurbs(NurbsSurface::new(
+                *degree_u,
+                *degree_v,
+                knots_u
+                    .clone()
+                    .unwrap_or_else(|| clamped_uniform_knots(*degree_u, *nu)),
+                knots_v
+                    .clone()
+                    .unwrap_or_else(|| clamped_uniform_knots(*degree_v, *nv)),
+                *nu,
+                *nv,
+                points.clone(),
+                weights.clone().unwrap_or_else(|| vec![1.0; points.len()]),
+            )?),
+            SurfaceSpec::Bezier { nu, nv, points } => {
+                SurfaceShape::Nurbs(NurbsSurface::from_bezier(*nu, *nv, points.clone())?)
+            }
+            SurfaceSpec::Triangle { degree, points } => {
+                SurfaceShape::Triangle(BezierTriangle::new(*degree, points.clone())?)
+            }
+            SurfaceSpec::Plane { size } => {
+                positive("size", *size)?;
+                SurfaceShape::Nurbs(NurbsSurface::plane(*size))
+            }
+            SurfaceSpec::Sphere { radius } => {
+                positive("radius", *radius)?;
+                SurfaceShape::Nurbs(NurbsSurface::sphere(DVec3::ZERO, *radius))
+            }
+            SurfaceSpec::Cylinder { radius, height } => {
+                positive("radius", *radius)?;
+                positive("height", *height)?;
+                SurfaceShape::Nurbs(NurbsSurface::cylinder(*radius, *height))
+            }
+            SurfaceSpec::Revolve { profile: r } => {
+                SurfaceShape::Nurbs(NurbsSurface::revolve(&profile(r)?)?)
+            }
+            SurfaceSpec::Extrude {
+                profile: r,
+                direction,
+            } => SurfaceShape::Nurbs(NurbsSurface::extrude(&profile(r)?, *direction)?),
+        })
     }
 
     /// Changes the creases of a mesh node (the mesh itself stays shared).
@@ -897,6 +1170,124 @@ impl Plan<'_> {
                     self.set(n);
                 }
             }
+            Command::AddCurve {
+                name,
+                curve,
+                parent,
+                transform,
+            } => {
+                let c = curve_from_spec(curve).map_err(|error| CommandError::Curve {
+                    node: format!("curve '{name}'"),
+                    error,
+                })?;
+                self.add_node(name, parent, *transform, NodeContent::Curve(Arc::new(c)))?;
+            }
+            Command::AddSurface {
+                name,
+                surface,
+                parent,
+                transform,
+            } => {
+                let shape = self.surface_from_spec(surface).map_err(|error| CommandError::Curve {
+                    node: format!("surface '{name}'"),
+                    error,
+                })?;
+                self.add_node(name, parent, *transform, NodeContent::Surface(Arc::new(shape)))?;
+            }
+            Command::SetControlPoints { node, points } => self.edit_shape(
+                node,
+                |c| {
+                    for &(i, p) in points {
+                        c.set_point(i as usize, p)?;
+                    }
+                    Ok(())
+                },
+                |s| {
+                    for &(i, p) in points {
+                        match s {
+                            SurfaceShape::Nurbs(n) => {
+                                let nv = n.size().1;
+                                n.set_point(i as usize / nv, i as usize % nv, p)?;
+                            }
+                            SurfaceShape::Triangle(t) => {
+                                let count = t.points.len();
+                                let slot = t.points.get_mut(i as usize).ok_or(CurveError::NoSuchPoint {
+                                    index: i as usize,
+                                    count,
+                                })?;
+                                if !p.is_finite() {
+                                    return Err(CurveError::NotFinite {
+                                        what: "control point",
+                                        index: i as usize,
+                                    });
+                                }
+                                *slot = p;
+                            }
+                        }
+                    }
+                    Ok(())
+                },
+            )?,
+            Command::SetWeights { node, weights } => self.edit_shape(
+                node,
+                |c| {
+                    for &(i, w) in weights {
+                        c.set_weight(i as usize, w)?;
+                    }
+                    Ok(())
+                },
+                |s| match s {
+                    SurfaceShape::Nurbs(n) => {
+                        let nv = n.size().1;
+                        for &(i, w) in weights {
+                            n.set_weight(i as usize / nv, i as usize % nv, w)?;
+                        }
+                        Ok(())
+                    }
+                    SurfaceShape::Triangle(_) => Err(CurveError::Parameter(
+                        "Bézier triangles are polynomial: they have no weights".into(),
+                    )),
+                },
+            )?,
+            Command::InsertKnot {
+                node,
+                at,
+                direction,
+            } => self.edit_shape(
+                node,
+                |c| {
+                    *c = c.insert_knot(*at)?;
+                    Ok(())
+                },
+                |s| match s {
+                    SurfaceShape::Nurbs(n) => {
+                        *n = match direction {
+                            ParameterDirection::U => n.insert_knot_u(*at)?,
+                            ParameterDirection::V => n.insert_knot_v(*at)?,
+                        };
+                        Ok(())
+                    }
+                    SurfaceShape::Triangle(_) => Err(CurveError::Parameter(
+                        "Bézier triangles have no knots (elevate or split them instead)".into(),
+                    )),
+                },
+            )?,
+            Command::ElevateDegree { node } => self.edit_shape(
+                node,
+                |c| {
+                    *c = c.elevate_degree()?;
+                    Ok(())
+                },
+                |s| match s {
+                    SurfaceShape::Triangle(t) => {
+                        *t = t.elevate();
+                        Ok(())
+                    }
+                    SurfaceShape::Nurbs(_) => Err(CurveError::Parameter(
+                        "degree elevation of NURBS surfaces is not available yet; insert knots instead".into(),
+                    )),
+                },
+            )?,
             Command::SetSubdivision { nodes, modifier } => {
                 if let Some(m) = modifier {
                     check_levels(m.viewport_level.max(m.export_level))?;

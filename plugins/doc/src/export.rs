@@ -4,6 +4,7 @@
 //! them unless the cage is asked for.
 
 use crate::scene::{Document, Node, NodeContent};
+use glam::DVec3;
 use hedra_geom::HalfEdgeMesh;
 use std::borrow::Cow;
 use std::fmt::Write;
@@ -53,20 +54,33 @@ pub fn export_bytes(doc: &Document, path: &Path, shape: ExportShape) -> Result<V
 /// The visible meshes as binary STL (written by `stl_io`): every face
 /// triangulated, positions in world space, each triangle's normal from its
 /// corners (counter-clockwise is the outside).
-fn to_stl(meshes: &[ExportMesh]) -> Vec<u8> {
+fn to_stl(items: &[ExportItem]) -> Vec<u8> {
     let mut triangles = Vec::new();
-    for (_, m, world) in meshes {
-        let (m, world) = (&**m, *world);
-        for f in m.faces() {
-            for corners in hedra_geom::query::triangulate_face(m, f) {
-                let [a, b, c] = corners.map(|v| world.transform_point3(m.position(v)));
-                let n = (b - a).cross(c - a).normalize_or_zero();
-                let vertex = |p: glam::DVec3| stl_io::Vertex::new(p.as_vec3().to_array());
-                triangles.push(stl_io::Triangle {
-                    normal: stl_io::Normal::new(n.as_vec3().to_array()),
-                    vertices: [vertex(a), vertex(b), vertex(c)],
-                });
+    let mut push = |[a, b, c]: [DVec3; 3]| {
+        let n = (b - a).cross(c - a).normalize_or_zero();
+        let vertex = |p: DVec3| stl_io::Vertex::new(p.as_vec3().to_array());
+        triangles.push(stl_io::Triangle {
+            normal: stl_io::Normal::new(n.as_vec3().to_array()),
+            vertices: [vertex(a), vertex(b), vertex(c)],
+        });
+    };
+    for item in items {
+        let world = item.world;
+        match &item.geometry {
+            Geometry::Mesh(m) => {
+                for f in m.faces() {
+                    for corners in hedra_geom::query::triangulate_face(m, f) {
+                        push(corners.map(|v| world.transform_point3(m.position(v))));
+                    }
+                }
             }
+            Geometry::Triangles(positions, tris) => {
+                for t in tris {
+                    push(t.map(|i| world.transform_point3(positions[i as usize])));
+                }
+            }
+            // STL holds only triangles: curves are left out.
+            Geometry::Polyline(_) => {}
         }
     }
     let mut out = Vec::new();
@@ -74,60 +88,146 @@ fn to_stl(meshes: &[ExportMesh]) -> Vec<u8> {
     out
 }
 
-/// The scene's visible meshes as Wavefront OBJ text, one `o` object per mesh
-/// node, positions in world space, faces 1-based and counter-clockwise.
-fn to_obj(meshes: &[ExportMesh]) -> String {
+/// The scene's visible meshes as Wavefront OBJ text, one `o` object per
+/// node, positions in world space, faces 1-based and counter-clockwise;
+/// surfaces as triangles, curves as `l` polylines.
+fn to_obj(items: &[ExportItem]) -> String {
     let mut out = String::from("# Hedra OBJ export\n");
     let mut base = 1usize;
-    for (node, m, world) in meshes {
-        let (m, world) = (&**m, *world);
-        let mut index = vec![0usize; m.vertex_capacity()];
-        let _ = writeln!(out, "o {}", node.name.replace(char::is_whitespace, "_"));
-        for (i, v) in m.vertices().enumerate() {
-            let p = world.transform_point3(m.position(v));
-            index[v.index()] = base + i;
+    for item in items {
+        let world = item.world;
+        let _ = writeln!(
+            out,
+            "o {}",
+            item.node.name.replace(char::is_whitespace, "_")
+        );
+        let vertex = |out: &mut String, p: DVec3| {
+            let p = world.transform_point3(p);
             let _ = writeln!(out, "v {} {} {}", p.x, p.y, p.z);
-        }
-        for f in m.faces() {
-            out.push('f');
-            for v in m.face_vertices(f) {
-                let _ = write!(out, " {}", index[v.index()]);
+        };
+        match &item.geometry {
+            Geometry::Mesh(m) => {
+                let mut index = vec![0usize; m.vertex_capacity()];
+                for (i, v) in m.vertices().enumerate() {
+                    index[v.index()] = base + i;
+                    vertex(&mut out, m.position(v));
+                }
+                for f in m.faces() {
+                    out.push('f');
+                    for v in m.face_vertices(f) {
+                        let _ = write!(out, " {}", index[v.index()]);
+                    }
+                    out.push('\n');
+                }
+                base += m.vertex_count();
             }
-            out.push('\n');
+            Geometry::Triangles(positions, tris) => {
+                for &p in positions {
+                    vertex(&mut out, p);
+                }
+                for t in tris {
+                    let _ = writeln!(
+                        out,
+                        "f {} {} {}",
+                        base + t[0] as usize,
+                        base + t[1] as usize,
+                        base + t[2] as usize
+                    );
+                }
+                base += positions.len();
+            }
+            Geometry::Polyline(points) => {
+                for &p in points {
+                    vertex(&mut out, p);
+                }
+                out.push('l');
+                for i in 0..points.len() {
+                    let _ = write!(out, " {}", base + i);
+                }
+                out.push('\n');
+                base += points.len();
+            }
         }
-        base += m.vertex_count();
     }
     out
 }
 
-/// A node, the mesh to write for it and its world matrix.
-type ExportMesh<'a> = (&'a Node, Cow<'a, HalfEdgeMesh>, glam::DMat4);
+/// What is written for one node.
+enum Geometry<'a> {
+    Mesh(Cow<'a, HalfEdgeMesh>),
+    /// A tessellated surface: positions and triangles.
+    Triangles(Vec<DVec3>, Vec<[u32; 3]>),
+    /// A tessellated curve.
+    Polyline(Vec<DVec3>),
+}
 
-/// The visible meshes in the requested shape.
+/// A node, what to write for it and its world matrix.
+struct ExportItem<'a> {
+    node: &'a Node,
+    geometry: Geometry<'a>,
+    world: glam::DMat4,
+}
+
+/// Curves and surfaces are tessellated to this fraction of their size.
+const EXPORT_TOLERANCE: f64 = 1e-4;
+
+/// The visible meshes, curves and surfaces in the requested shape.
 ///
 /// # Errors
 /// A message naming the node when its subdivision cannot be made (Loop on
 /// a mesh with quads, a level too large).
-fn export_meshes(doc: &Document, shape: ExportShape) -> Result<Vec<ExportMesh<'_>>, String> {
+fn export_meshes(doc: &Document, shape: ExportShape) -> Result<Vec<ExportItem<'_>>, String> {
+    use hedra_geom::curves::Curve;
     let mut out = Vec::new();
     for node in doc.nodes() {
-        let NodeContent::Mesh(content) = &node.content else {
-            continue;
-        };
         if !is_visible(doc, node.id) {
             continue;
         }
-        let level = match shape {
-            ExportShape::Cage => 0,
-            ExportShape::Evaluated => content.subdivision.map_or(0, |m| m.export_level),
-            ExportShape::Subdivided(level) => level,
+        let geometry = match &node.content {
+            NodeContent::Empty => continue,
+            NodeContent::Mesh(content) => {
+                let level = match shape {
+                    ExportShape::Cage => 0,
+                    ExportShape::Evaluated => content.subdivision.map_or(0, |m| m.export_level),
+                    ExportShape::Subdivided(level) => level,
+                };
+                Geometry::Mesh(
+                    content
+                        .subdivided(level)
+                        .map_err(|e| format!("node '{}': {e}", node.name))?,
+                )
+            }
+            NodeContent::Curve(c) => {
+                let size = extent(c.points());
+                let params = hedra_geom::surfaces::tessellate::curve_parameters(
+                    &**c,
+                    EXPORT_TOLERANCE * size,
+                );
+                Geometry::Polyline(params.iter().map(|&t| c.point(t)).collect())
+            }
+            NodeContent::Surface(sf) => {
+                let size = extent(sf.control_points());
+                let (positions, _, tris) = sf.tessellate(EXPORT_TOLERANCE * size);
+                Geometry::Triangles(positions, tris)
+            }
         };
-        let mesh = content
-            .subdivided(level)
-            .map_err(|e| format!("node '{}': {e}", node.name))?;
-        out.push((node, mesh, doc.world_matrix(node.id)));
+        out.push(ExportItem {
+            node,
+            geometry,
+            world: doc.world_matrix(node.id),
+        });
     }
     Ok(out)
+}
+
+/// The diagonal of the points' bounding box (at least 1e-9).
+fn extent(points: &[DVec3]) -> f64 {
+    let (lo, hi) = points
+        .iter()
+        .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), p| {
+            (lo.min(*p), hi.max(*p))
+        });
+    (hi - lo).length().max(1e-9)
 }
 
 pub fn is_visible(doc: &Document, id: crate::scene::NodeId) -> bool {

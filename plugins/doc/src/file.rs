@@ -92,6 +92,8 @@ enum StoredContent {
         #[serde(default, skip_serializing_if = "Option::is_none")]
         subdivision: Option<SubdivisionModifier>,
     },
+    Curve(hedra_geom::curves::NurbsCurve),
+    Surface(crate::scene::SurfaceShape),
 }
 
 #[derive(Serialize, Deserialize)]
@@ -190,6 +192,8 @@ impl<'a> MeshPool<'a> {
             visible: n.visible,
             content: match &n.content {
                 NodeContent::Empty => StoredContent::Empty,
+                NodeContent::Curve(c) => StoredContent::Curve((**c).clone()),
+                NodeContent::Surface(sf) => StoredContent::Surface((**sf).clone()),
                 NodeContent::Mesh(m) => StoredContent::Mesh {
                     mesh: self.add(&m.mesh),
                     primitive: m.primitive.clone(),
@@ -470,6 +474,8 @@ fn read_v1(text: &str, path: &Path) -> Result<Loaded, FileError> {
 fn restore_node(sn: StoredNode, pool: &[Arc<HalfEdgeMesh>]) -> Result<Node, String> {
     let content = match sn.content {
         StoredContent::Empty => NodeContent::Empty,
+        StoredContent::Curve(c) => NodeContent::Curve(Arc::new(c)),
+        StoredContent::Surface(sf) => NodeContent::Surface(Arc::new(sf)),
         StoredContent::Mesh {
             mesh,
             primitive,

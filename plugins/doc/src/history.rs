@@ -92,7 +92,7 @@ impl Transaction {
 fn mesh_arc(n: &Node) -> Option<&Arc<hedra_geom::HalfEdgeMesh>> {
     match &n.content {
         NodeContent::Mesh(m) => Some(&m.mesh),
-        NodeContent::Empty => None,
+        _ => None,
     }
 }
 

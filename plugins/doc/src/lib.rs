@@ -4,6 +4,7 @@
 
 pub mod command;
 pub mod elements;
+pub mod eval;
 pub mod export;
 pub mod file;
 pub mod history;
@@ -17,6 +18,7 @@ pub use command::{Command, CommandError, NodeRef};
 pub use elements::{EdgeSet, FaceSet, VertexSet};
 pub use history::{History, NodeChange, Transaction};
 pub use scene::{
-    Document, MeshContent, Node, NodeContent, NodeId, Shading, SubdivisionModifier, Transform,
+    Document, MeshContent, Node, NodeContent, NodeId, Shading, SubdivisionModifier, SurfaceShape,
+    Transform,
 };
 pub use session::{Applied, Session};

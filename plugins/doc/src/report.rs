@@ -25,6 +25,8 @@ pub struct NodeReport {
     pub local: TransformReport,
     pub world: TransformReport,
     pub mesh: Option<MeshReport>,
+    /// Curves and surfaces: degrees, control points, domain.
+    pub shape: Option<ShapeReport>,
 }
 
 #[derive(Serialize)]
@@ -62,6 +64,57 @@ pub struct SubdivisionReport {
     pub export_level: u32,
     pub boundary: &'static str,
     pub crease_method: &'static str,
+}
+
+#[derive(Serialize)]
+pub struct ShapeReport {
+    /// "nurbs curve", "nurbs surface", "bezier triangle".
+    pub kind: &'static str,
+    /// One degree for curves and triangles, (u, v) for surfaces.
+    pub degrees: Vec<usize>,
+    pub control_points: usize,
+    /// Curves: [start, end]; surfaces: [u0, u1, v0, v1]; triangles: none.
+    pub domain: Vec<f64>,
+    /// True when every weight is 1.
+    pub polynomial: bool,
+}
+
+fn shape_report(content: &NodeContent) -> Option<ShapeReport> {
+    use hedra_geom::curves::Curve;
+    use hedra_geom::surfaces::Surface;
+    match content {
+        NodeContent::Curve(c) => {
+            let (a, b) = c.domain();
+            Some(ShapeReport {
+                kind: "nurbs curve",
+                degrees: vec![c.degree()],
+                control_points: c.points().len(),
+                domain: vec![a, b],
+                polynomial: c.is_polynomial(),
+            })
+        }
+        NodeContent::Surface(s) => Some(match &**s {
+            crate::scene::SurfaceShape::Nurbs(n) => {
+                let ((u0, u1), (v0, v1)) = n.domain();
+                let (du, dv) = n.degrees();
+                ShapeReport {
+                    kind: "nurbs surface",
+                    degrees: vec![du, dv],
+                    control_points: n.points().len(),
+                    domain: vec![u0, u1, v0, v1],
+                    polynomial: n.weights().iter().all(|&w| w == 1.0),
+                }
+            }
+            crate::scene::SurfaceShape::Triangle(t) => ShapeReport {
+                kind: "bezier triangle",
+                degrees: vec![t.degree],
+                control_points: t.points.len(),
+                domain: vec![],
+                polynomial: true,
+            },
+        }),
+        _ => None,
+    }
 }
 
 #[derive(Serialize)]
@@ -129,8 +182,9 @@ impl SceneReport {
                 world: transform(&doc.world_transform(n.id)),
                 mesh: match &n.content {
                     NodeContent::Mesh(m) => Some(mesh_report(m)),
-                    NodeContent::Empty => None,
+                    _ => None,
                 },
+                shape: shape_report(&n.content),
             })
             .collect();
         let h = &session.history;
@@ -172,6 +226,18 @@ impl SceneReport {
                 v3(n.world.scale),
                 n.world.rotation
             );
+            if let Some(sh) = &n.shape {
+                let degrees: Vec<String> = sh.degrees.iter().map(|d| d.to_string()).collect();
+                let _ = writeln!(
+                    out,
+                    "    {}: degree {}, {} control points, domain {:?}{}",
+                    sh.kind,
+                    degrees.join(" × "),
+                    sh.control_points,
+                    sh.domain,
+                    if sh.polynomial { "" } else { ", rational" }
+                );
+            }
             if let Some(m) = &n.mesh {
                 let _ = writeln!(
                     out,

@@ -4,7 +4,9 @@
 //! transforms, root first.
 
 use glam::{DMat4, DQuat, DVec3};
+use hedra_geom::curves::NurbsCurve;
 use hedra_geom::subdivision::{Creases, Options as SubdivisionOptions};
+use hedra_geom::surfaces::{BezierTriangle, NurbsSurface};
 use hedra_geom::{HalfEdgeMesh, Primitive};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -188,20 +190,74 @@ pub enum NodeContent {
     /// A transform-only node for grouping.
     Empty,
     Mesh(MeshContent),
+    /// A free-form curve (NURBS; Bézier curves are clamped NURBS).
+    Curve(Arc<NurbsCurve>),
+    /// A free-form surface.
+    Surface(Arc<SurfaceShape>),
 }
 
 impl NodeContent {
-    /// A short kind name for listings ("empty", "mesh").
+    /// A short kind name for listings ("empty", "mesh", "curve", "surface").
     pub fn kind(&self) -> &'static str {
         match self {
             NodeContent::Empty => "empty",
             NodeContent::Mesh(_) => "mesh",
+            NodeContent::Curve(_) => "curve",
+            NodeContent::Surface(_) => "surface",
         }
     }
     pub fn mesh(&self) -> Option<&HalfEdgeMesh> {
         match self {
             NodeContent::Mesh(m) => Some(&m.mesh),
-            NodeContent::Empty => None,
+            _ => None,
+        }
+    }
+}
+
+/// A surface node's shape: a NURBS surface (Bézier patches are clamped
+/// NURBS) or a Bézier triangle.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub enum SurfaceShape {
+    Nurbs(NurbsSurface),
+    Triangle(BezierTriangle),
+}
+
+impl SurfaceShape {
+    /// The control points (NURBS: `i * nv + j`; triangle: rows of equal i).
+    pub fn control_points(&self) -> &[DVec3] {
+        match self {
+            SurfaceShape::Nurbs(s) => s.points(),
+            SurfaceShape::Triangle(t) => &t.points,
+        }
+    }
+
+    /// Positions, normals and triangles within about `tolerance` of the surface.
+    pub fn tessellate(&self, tolerance: f64) -> (Vec<DVec3>, Vec<DVec3>, Vec<[u32; 3]>) {
+        match self {
+            SurfaceShape::Nurbs(s) => {
+                let m = hedra_geom::surfaces::tessellate::tessellate(s, tolerance);
+                (m.positions, m.normals, m.triangles)
+            }
+            SurfaceShape::Triangle(t) => {
+                // The chord error of a degree-n patch falls with the square of the step.
+                let size = t
+                    .points
+                    .iter()
+                    .map(|p| (*p - t.points[0]).length())
+                    .fold(0.0, f64::max);
+                let steps = ((t.degree as f64 * size / tolerance.max(1e-9)).sqrt().ceil() as usize)
+                    .clamp(4, 256);
+                let (positions, barys, triangles) = t.tessellate(steps);
+                let normals = barys
+                    .iter()
+                    .map(|&b| {
+                        let du = t.directional_derivative(b, DVec3::new(1.0, 0.0, -1.0));
+                        let dv = t.directional_derivative(b, DVec3::new(0.0, 1.0, -1.0));
+                        du.cross(dv).normalize_or_zero()
+                    })
+                    .collect();
+                (positions, normals, triangles)
+            }
         }
     }
 }

@@ -41,7 +41,7 @@ fn every_command_example_in_the_docs_runs() {
         .collect();
     kinds.sort();
     kinds.dedup();
-    assert_eq!(kinds.len(), 46, "{kinds:?}");
+    assert_eq!(kinds.len(), 52, "{kinds:?}");
     let mut session = hedra_doc::Session::new();
     hedra_doc::script::run(&mut session, &commands, Path::new("docs/commands.md"))
         .unwrap_or_else(|e| panic!("{e}"));
@@ -148,4 +148,26 @@ fn every_command_example_in_the_docs_runs() {
         (hi.x - 0.5).abs() < 1e-12 && (lo.x + 0.5).abs() < 1e-12,
         "{lo} {hi}"
     );
+    // Curves and surfaces: edits keep their shapes where they promise to.
+    use hedra_geom::curves::Curve;
+    let curve = |name: &str| match &doc.find_by_name(name).unwrap().content {
+        hedra_doc::NodeContent::Curve(c) => c.clone(),
+        _ => panic!("{name} is a curve"),
+    };
+    let wave = curve("Wave");
+    assert_eq!(
+        (wave.degree(), wave.points().len()),
+        (3, 6),
+        "one knot inserted"
+    );
+    let profile = curve("Profile");
+    assert_eq!(profile.degree(), 4, "elevated once");
+    // The Bézier point at ½ is (P0 + 3 P1 + 3 P2 + P3) / 8, elevated or not.
+    assert!((profile.point(0.5) - hedra_geom::DVec3::new(0.7375, 0.8125, 0.0)).length() < 1e-12);
+    let ring = curve("Ring");
+    assert_eq!(ring.weights()[1], 3.0);
+    match &doc.find_by_name("Ball").unwrap().content {
+        hedra_doc::NodeContent::Surface(s) => assert_eq!(s.control_points().len(), 9 * 6),
+        _ => panic!("Ball is a surface"),
+    }
 }

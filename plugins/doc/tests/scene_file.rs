@@ -310,7 +310,7 @@ fn subdivision_modifiers_and_creases_are_saved_and_undone() {
     assert_eq!(back.doc, s.doc);
     let content = |s: &Session| match &s.doc.find_by_name("Box").unwrap().content {
         NodeContent::Mesh(m) => m.clone(),
-        NodeContent::Empty => panic!("Box is a mesh"),
+        _ => panic!("Box is a mesh"),
     };
     let c = content(&back);
     assert_eq!(c.subdivision, Some(modifier));
@@ -358,4 +358,85 @@ fn subdivision_modifiers_and_creases_are_saved_and_undone() {
     assert_eq!(content(&s).mesh.face_count(), 6 * 64);
     s.undo();
     assert_eq!(s.doc, before);
+}
+
+#[test]
+fn curves_and_surfaces_round_trip_through_the_file_and_bad_data_is_refused() {
+    use hedra_doc::command::{CurveSpec, SurfaceSpec};
+    let mut s = Session::new();
+    s.execute(&Command::AddCurve {
+        name: "Ring".into(),
+        curve: CurveSpec::Circle { radius: 2.0 },
+        parent: None,
+        transform: Transform::IDENTITY,
+    })
+    .unwrap();
+    s.execute(&Command::AddSurface {
+        name: "Ball".into(),
+        surface: SurfaceSpec::Sphere { radius: 1.0 },
+        parent: None,
+        transform: Transform::IDENTITY,
+    })
+    .unwrap();
+    s.execute(&Command::SetWeights {
+        node: NodeRef::Name("Ring".into()),
+        weights: vec![(3, 2.5)],
+    })
+    .unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("shapes.hedra.ron");
+    file::save(&mut s, &path).unwrap();
+    let mut back = file::load(&path).unwrap().session;
+    assert_eq!(back.doc, s.doc);
+    back.undo().unwrap();
+    let before = back.doc.clone();
+    // A weight of zero, a knot outside the domain and a point that does not exist are refused by name.
+    for (cmd, expected) in [
+        (
+            Command::SetWeights {
+                node: NodeRef::Name("Ring".into()),
+                weights: vec![(1, 0.0)],
+            },
+            "weight 1 is 0: weights must be positive",
+        ),
+        (
+            Command::InsertKnot {
+                node: NodeRef::Name("Ring".into()),
+                at: 2.0,
+                direction: Default::default(),
+            },
+            "parameter 2 is outside the domain [0, 1]",
+        ),
+        (
+            Command::SetControlPoints {
+                node: NodeRef::Name("Ball".into()),
+                points: vec![(999, DVec3::ZERO)],
+            },
+            "control point 999 does not exist (there are 45)",
+        ),
+        (
+            Command::AddCurve {
+                name: "Bad".into(),
+                curve: CurveSpec::Nurbs {
+                    degree: 2,
+                    points: vec![DVec3::ZERO, DVec3::X, DVec3::Y],
+                    weights: None,
+                    knots: Some(vec![0.0, 0.0, 1.0, 0.5, 1.0, 1.0]),
+                },
+                parent: None,
+                transform: Transform::IDENTITY,
+            },
+            "knot 3 (0.5) is smaller than the one before it",
+        ),
+    ] {
+        let e = back.execute(&cmd).unwrap_err().to_string();
+        assert!(e.contains(expected), "{e}");
+        assert_eq!(back.doc, before, "a refused edit changes nothing");
+    }
+    // A damaged curve in a file is an error naming the problem, not a panic.
+    let text = std::fs::read_to_string(&path)
+        .unwrap()
+        .replacen("degree: 2,", "degree: 0,", 1);
+    let e = file::from_str(&text, Path::new("shapes.hedra.ron")).unwrap_err();
+    assert!(e.to_string().contains("degree must be at least 1"), "{e}");
 }

@@ -160,7 +160,7 @@ pub fn edited_mesh(state: &DocState, mode: &EditMode) -> Option<Arc<HalfEdgeMesh
     let node = state.session.doc.node(mode.node?)?;
     match &node.content {
         NodeContent::Mesh(m) => Some(m.mesh.clone()),
-        NodeContent::Empty => None,
+        _ => None,
     }
 }
 
@@ -1179,7 +1179,7 @@ pub fn drive_mesh_tool(
                 .and_then(|c| c.after.as_ref())
                 .and_then(|n| match &n.content {
                     NodeContent::Mesh(m) => Some(m),
-                    NodeContent::Empty => None,
+                    _ => None,
                 });
             mode.preview = after.map(|m| m.mesh.clone());
             mode.preview_creases = after.map(|m| m.creases.clone());
@@ -1237,7 +1237,7 @@ pub fn show_preview(
     let content = |n: NodeId| -> Option<hedra_doc::MeshContent> {
         match &state.session.doc.node(n)?.content {
             NodeContent::Mesh(c) => Some(c.clone()),
-            NodeContent::Empty => None,
+            _ => None,
         }
     };
     let want: Option<Shown> = match (mode.node, &mode.preview) {

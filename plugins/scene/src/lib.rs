@@ -412,7 +412,7 @@ pub fn sync_entities(
     previews.retain(|id| {
         doc.node(id).is_some_and(|n| match &n.content {
             NodeContent::Mesh(c) => active_modifier(c).is_some(),
-            NodeContent::Empty => false,
+            _ => false,
         })
     });
     for id in gone {
@@ -469,11 +469,40 @@ fn project_mesh(
     status: &mut StatusMessage,
     material: Option<&MeshMaterial>,
 ) {
-    let NodeContent::Mesh(content) = &node.content else {
-        if projected.is_some() {
-            ec.remove::<(Mesh3d, MeshMaterial3d<StandardMaterial>, ProjectedMesh)>();
+    let content = match &node.content {
+        NodeContent::Mesh(content) => content,
+        NodeContent::Surface(surface) => {
+            let wanted = ProjectedMesh {
+                source: std::sync::Arc::as_ptr(surface) as *const u8 as usize,
+                shading: Shading::Smooth,
+                smooth: None,
+            };
+            if projected != Some(wanted) {
+                set_render_mesh(ec, mesh3d, meshes, surface_render_mesh(surface), material);
+                ec.insert(wanted);
+            }
+            return;
         }
-        return;
+        NodeContent::Curve(curve) => {
+            // Curves have no surface; the projection only tells the
+            // overlays what to draw.
+            let wanted = ProjectedMesh {
+                source: std::sync::Arc::as_ptr(curve) as *const u8 as usize,
+                shading: Shading::Flat,
+                smooth: None,
+            };
+            if projected != Some(wanted) {
+                ec.remove::<(Mesh3d, MeshMaterial3d<StandardMaterial>)>();
+                ec.insert(wanted);
+            }
+            return;
+        }
+        NodeContent::Empty => {
+            if projected.is_some() {
+                ec.remove::<(Mesh3d, MeshMaterial3d<StandardMaterial>, ProjectedMesh)>();
+            }
+            return;
+        }
     };
     let modifier = active_modifier(content);
     let wanted = ProjectedMesh {
@@ -523,6 +552,63 @@ fn project_mesh(
         ec.insert(MeshMaterial3d(m.0.clone()));
     }
     ec.insert(wanted);
+}
+
+/// Puts `render` on the entity's mesh asset (or a new one) with the material.
+fn set_render_mesh(
+    ec: &mut EntityCommands,
+    mesh3d: Option<&Mesh3d>,
+    meshes: &mut Assets<Mesh>,
+    render: Mesh,
+    material: Option<&MeshMaterial>,
+) {
+    match mesh3d.filter(|m| meshes.contains(&m.0)) {
+        Some(m) => {
+            if let Some(mut existing) = meshes.get_mut(&m.0) {
+                *existing = render;
+            }
+        }
+        None => {
+            ec.insert(Mesh3d(meshes.add(render)));
+        }
+    }
+    if let Some(m) = material {
+        ec.insert(MeshMaterial3d(m.0.clone()));
+    }
+}
+
+/// Viewport tessellation of curves and surfaces, as a fraction of their size.
+pub const VIEW_TOLERANCE: f64 = 5e-4;
+
+/// The diagonal of the points' bounding box (at least 1e-9).
+pub fn extent(points: &[hedra_geom::DVec3]) -> f64 {
+    let (lo, hi) = points.iter().fold(
+        (hedra_geom::DVec3::INFINITY, hedra_geom::DVec3::NEG_INFINITY),
+        |(lo, hi), p| (lo.min(*p), hi.max(*p)),
+    );
+    (hi - lo).length().max(1e-9)
+}
+
+/// A smooth-shaded triangle mesh of a surface node, tessellated to
+/// [`VIEW_TOLERANCE`] of its size; both sides face the viewer (a patch is
+/// open, its back is seen too).
+pub fn surface_render_mesh(surface: &hedra_doc::SurfaceShape) -> Mesh {
+    let tol = VIEW_TOLERANCE * extent(surface.control_points());
+    let (positions, normals, triangles) = surface.tessellate(tol);
+    let f32s = |v: &hedra_geom::DVec3| v.as_vec3().to_array();
+    Mesh::new(
+        PrimitiveTopology::TriangleList,
+        RenderAssetUsages::MAIN_WORLD | RenderAssetUsages::RENDER_WORLD,
+    )
+    .with_inserted_attribute(
+        Mesh::ATTRIBUTE_POSITION,
+        positions.iter().map(f32s).collect::<Vec<_>>(),
+    )
+    .with_inserted_attribute(
+        Mesh::ATTRIBUTE_NORMAL,
+        normals.iter().map(f32s).collect::<Vec<_>>(),
+    )
+    .with_inserted_indices(Indices::U32(triangles.into_iter().flatten().collect()))
 }
 
 /// The render mesh of a mesh node showing `cage` (the document's mesh or a

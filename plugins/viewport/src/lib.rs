@@ -330,7 +330,7 @@ fn update_edge_overlays(
                 continue;
             }
         }
-        let Some(NodeContent::Mesh(content)) = doc.node(node.0).map(|n| &n.content) else {
+        let Some(content) = doc.node(node.0).map(|n| &n.content) else {
             continue;
         };
         let color = match (selected, active) {
@@ -338,19 +338,30 @@ fn update_edge_overlays(
             (true, false) => Color::srgb(0.95, 0.45, 0.1),
             _ => Color::srgba(0.05, 0.05, 0.07, 0.8),
         };
-        // A smooth preview shows its cage as light lines, or none.
-        let smooth = hedra_scene::active_modifier(content);
-        let color = match smooth {
-            Some(_) if !selected => Color::srgba(0.75, 0.78, 0.85, 0.55),
-            _ => color,
-        };
         let mut asset = GizmoAsset::new();
-        if shown && smooth.is_none_or(|m| m.show_cage) {
-            let m = &content.mesh;
-            for e in m.edges() {
-                let [a, b] = m.edge_vertices(e);
-                asset.line(m.position(a).as_vec3(), m.position(b).as_vec3(), color);
+        match content {
+            NodeContent::Mesh(content) if shown => {
+                // A smooth preview shows its cage as light lines, or none.
+                let smooth = hedra_scene::active_modifier(content);
+                let color = match smooth {
+                    Some(_) if !selected => Color::srgba(0.75, 0.78, 0.85, 0.55),
+                    _ => color,
+                };
+                if smooth.is_none_or(|m| m.show_cage) {
+                    let m = &content.mesh;
+                    for e in m.edges() {
+                        let [a, b] = m.edge_vertices(e);
+                        asset.line(m.position(a).as_vec3(), m.position(b).as_vec3(), color);
+                    }
+                }
             }
+            NodeContent::Curve(curve) if shown => {
+                draw_curve(&mut asset, curve, selected, color);
+            }
+            NodeContent::Surface(surface) if shown && selected => {
+                draw_control_net(&mut asset, surface, Color::srgba(0.85, 0.85, 0.9, 0.7));
+            }
+            _ => {}
         }
         let line_config = GizmoLineConfig {
             width: if selected { 2.5 } else { 1.0 },
@@ -382,6 +393,67 @@ fn update_edge_overlays(
                     Transform::IDENTITY,
                     ChildOf(entity),
                 ));
+            }
+        }
+    }
+}
+
+/// A curve as a polyline (light, or the selection colour) and its control
+/// polygon (dim; brighter when selected).
+fn draw_curve(
+    asset: &mut GizmoAsset,
+    curve: &hedra_geom::curves::NurbsCurve,
+    selected: bool,
+    selection_color: Color,
+) {
+    use hedra_geom::curves::Curve;
+    let tol = hedra_scene::VIEW_TOLERANCE * hedra_scene::extent(curve.points());
+    let params = hedra_geom::surfaces::tessellate::curve_parameters(curve, tol);
+    let color = if selected {
+        selection_color
+    } else {
+        Color::srgb(0.92, 0.92, 0.95)
+    };
+    let points: Vec<Vec3> = params.iter().map(|&t| curve.point(t).as_vec3()).collect();
+    asset.linestrip(points, color);
+    let polygon = if selected {
+        Color::srgba(0.9, 0.9, 0.95, 0.8)
+    } else {
+        Color::srgba(0.6, 0.6, 0.65, 0.45)
+    };
+    asset.linestrip(curve.points().iter().map(|p| p.as_vec3()), polygon);
+}
+
+/// The control net of a surface: rows and columns of a NURBS net, the
+/// rows of a Bézier triangle's net in all three directions.
+fn draw_control_net(asset: &mut GizmoAsset, surface: &hedra_doc::SurfaceShape, color: Color) {
+    match surface {
+        hedra_doc::SurfaceShape::Nurbs(s) => {
+            let (nu, nv) = s.size();
+            let p = s.points();
+            for i in 0..nu {
+                asset.linestrip((0..nv).map(|j| p[i * nv + j].as_vec3()), color);
+            }
+            for j in 0..nv {
+                asset.linestrip((0..nu).map(|i| p[i * nv + j].as_vec3()), color);
+            }
+        }
+        hedra_doc::SurfaceShape::Triangle(t) => {
+            use hedra_geom::surfaces::BezierTriangle;
+            let n = t.degree;
+            let at = |i: usize, j: usize| t.points[BezierTriangle::index(n, i, j)].as_vec3();
+            for i in 0..=n {
+                for j in 0..=n - i {
+                    if j + 1 <= n - i {
+                        asset.line(at(i, j), at(i, j + 1), color);
+                    }
+                    if i + 1 <= n - j {
+                        asset.line(at(i, j), at(i + 1, j), color);
+                    }
+                    if i + 1 <= n - j && j >= 1 {
+                        asset.line(at(i, j), at(i + 1, j - 1), color);
+                    }
+                }
             }
         }
     }

@@ -62,7 +62,7 @@ pub enum CurveError {
         "knot {value} already has multiplicity {multiplicity} (the degree): no more can be inserted"
     )]
     FullMultiplicity { value: f64, multiplicity: usize },
-    #[error("control point {index} does not exist (the curve has {count})")]
+    #[error("control point {index} does not exist (there are {count})")]
     NoSuchPoint { index: usize, count: usize },
     #[error("{0}")]
     Parameter(String),

@@ -13,12 +13,40 @@ use super::{Curve, CurveError, check_points};
 /// of `points + degree + 1` non-decreasing values. Its domain is
 /// `[knots[degree], knots[points]]`; clamped, unclamped and periodic knot
 /// vectors are all allowed. All weights 1 is a (non-rational) B-spline.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(try_from = "NurbsCurveData", into = "NurbsCurveData")]
 pub struct NurbsCurve {
     degree: usize,
     knots: Vec<f64>,
     points: Vec<DVec3>,
     weights: Vec<f64>,
+}
+
+/// The stored form of a [`NurbsCurve`], validated on load.
+#[derive(serde::Serialize, serde::Deserialize)]
+pub struct NurbsCurveData {
+    pub degree: usize,
+    pub knots: Vec<f64>,
+    pub points: Vec<DVec3>,
+    pub weights: Vec<f64>,
+}
+
+impl TryFrom<NurbsCurveData> for NurbsCurve {
+    type Error = CurveError;
+    fn try_from(d: NurbsCurveData) -> Result<Self, CurveError> {
+        NurbsCurve::new(d.degree, d.knots, d.points, d.weights)
+    }
+}
+
+impl From<NurbsCurve> for NurbsCurveData {
+    fn from(c: NurbsCurve) -> Self {
+        NurbsCurveData {
+            degree: c.degree,
+            knots: c.knots,
+            points: c.points,
+            weights: c.weights,
+        }
+    }
 }
 
 fn homogeneous(p: DVec3, w: f64) -> DVec4 {

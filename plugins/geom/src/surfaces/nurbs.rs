@@ -12,7 +12,8 @@ use crate::curves::{CurveError, NurbsCurve, check_points};
 
 /// A NURBS surface: `nu × nv` control points `points[i * nv + j]` (i along
 /// u) with weights, degrees and knot vectors in u and v.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(try_from = "NurbsSurfaceData", into = "NurbsSurfaceData")]
 pub struct NurbsSurface {
     degree_u: usize,
     degree_v: usize,
@@ -22,6 +23,43 @@ pub struct NurbsSurface {
     nv: usize,
     points: Vec<DVec3>,
     weights: Vec<f64>,
+}
+
+/// The stored form of a [`NurbsSurface`], validated on load.
+#[derive(serde::Serialize, serde::Deserialize)]
+pub struct NurbsSurfaceData {
+    pub degree_u: usize,
+    pub degree_v: usize,
+    pub knots_u: Vec<f64>,
+    pub knots_v: Vec<f64>,
+    pub nu: usize,
+    pub nv: usize,
+    pub points: Vec<DVec3>,
+    pub weights: Vec<f64>,
+}
+
+impl TryFrom<NurbsSurfaceData> for NurbsSurface {
+    type Error = CurveError;
+    fn try_from(d: NurbsSurfaceData) -> Result<Self, CurveError> {
+        NurbsSurface::new(
+            d.degree_u, d.degree_v, d.knots_u, d.knots_v, d.nu, d.nv, d.points, d.weights,
+        )
+    }
+}
+
+impl From<NurbsSurface> for NurbsSurfaceData {
+    fn from(s: NurbsSurface) -> Self {
+        NurbsSurfaceData {
+            degree_u: s.degree_u,
+            degree_v: s.degree_v,
+            knots_u: s.knots_u,
+            knots_v: s.knots_v,
+            nu: s.nu,
+            nv: s.nv,
+            points: s.points,
+            weights: s.weights,
+        }
+    }
 }
 
 impl NurbsSurface {
@@ -156,7 +194,9 @@ impl NurbsSurface {
     }
 
     /// The curve `profile` (in the XY plane, x ≥ 0) revolved once around
-    /// the Y axis: u goes around (the exact NURBS circle), v along the profile.
+    /// the Y axis: u goes around (the exact NURBS circle, clockwise seen
+    /// from +Y), v along the profile, so a profile running upwards gets
+    /// normals `S_u × S_v` pointing away from the axis.
     ///
     /// # Errors
     /// Never for a valid profile; kept for symmetry with the other makers.
@@ -168,7 +208,7 @@ impl NurbsSurface {
         for (c, &cw) in circle.points().iter().zip(circle.weights()) {
             for (p, &pw) in profile.points().iter().zip(profile.weights()) {
                 let r = p.x.hypot(p.z);
-                points.push(DVec3::new(r * c.x, p.y, r * c.z));
+                points.push(DVec3::new(r * c.x, p.y, -r * c.z));
                 weights.push(cw * pw);
             }
         }

@@ -8,10 +8,34 @@ use crate::curves::{CurveError, binomial, check_points};
 
 /// A Bézier triangle of degree n: control points `b_ijk`, `i + j + k = n`,
 /// stored in the order of [`BezierTriangle::index`].
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(try_from = "BezierTriangleData", into = "BezierTriangleData")]
 pub struct BezierTriangle {
     pub degree: usize,
     pub points: Vec<DVec3>,
+}
+
+/// The stored form of a [`BezierTriangle`], validated on load.
+#[derive(serde::Serialize, serde::Deserialize)]
+pub struct BezierTriangleData {
+    pub degree: usize,
+    pub points: Vec<DVec3>,
+}
+
+impl TryFrom<BezierTriangleData> for BezierTriangle {
+    type Error = CurveError;
+    fn try_from(d: BezierTriangleData) -> Result<Self, CurveError> {
+        BezierTriangle::new(d.degree, d.points)
+    }
+}
+
+impl From<BezierTriangle> for BezierTriangleData {
+    fn from(t: BezierTriangle) -> Self {
+        BezierTriangleData {
+            degree: t.degree,
+            points: t.points,
+        }
+    }
 }
 
 /// Number of control points of a degree-n triangle: (n+1)(n+2)/2.
@@ -136,6 +160,37 @@ impl BezierTriangle {
             }
         }
         BezierTriangle { degree: m, points }
+    }
+
+    /// A triangle mesh of the patch: `steps` segments along each edge,
+    /// vertices with their barycentric coordinates, counter-clockwise in
+    /// (u, v, w) order.
+    pub fn tessellate(&self, steps: usize) -> (Vec<DVec3>, Vec<DVec3>, Vec<[u32; 3]>) {
+        let n = steps.max(1);
+        let mut positions = Vec::new();
+        let mut barys = Vec::new();
+        for i in 0..=n {
+            for j in 0..=n - i {
+                let b = DVec3::new(
+                    i as f64 / n as f64,
+                    j as f64 / n as f64,
+                    (n - i - j) as f64 / n as f64,
+                );
+                positions.push(self.evaluate(b));
+                barys.push(b);
+            }
+        }
+        let id = |i: usize, j: usize| Self::index(n, i, j) as u32;
+        let mut triangles = Vec::new();
+        for i in 0..n {
+            for j in 0..n - i {
+                triangles.push([id(i, j), id(i + 1, j), id(i, j + 1)]);
+                if j + 1 < n - i {
+                    triangles.push([id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)]);
+                }
+            }
+        }
+        (positions, barys, triangles)
     }
 
     /// Splits at the interior point `bary` into three triangles, each with
