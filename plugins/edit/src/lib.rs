@@ -15,10 +15,12 @@ use hedra_scene::{
 
 pub mod mesh_mode;
 pub mod modal;
+pub mod shape_mode;
 pub mod typing;
 
 pub use mesh_mode::{EditMode, ElementKind, ElementSelection, MeshTool, MeshToolKind};
 pub use modal::{Axis, ModalTransform, TransformKind, TransformTool};
+pub use shape_mode::ShapeEdit;
 
 /// Selected nodes, in the order they were selected; the last one is active.
 #[derive(Resource, Default, Debug, Clone, PartialEq)]
@@ -62,6 +64,7 @@ impl Plugin for EditPlugin {
         app.init_resource::<Selection>()
             .init_resource::<TransformTool>()
             .init_resource::<EditMode>()
+            .init_resource::<ShapeEdit>()
             .configure_sets(Update, EditSystems.after(SceneSystems::Sync))
             .add_systems(
                 Update,
@@ -80,6 +83,19 @@ impl Plugin for EditPlugin {
                     mesh_mode::show_preview,
                 )
                     .chain()
+                    .in_set(EditSystems),
+            )
+            .add_systems(
+                Update,
+                (
+                    shape_mode::shape_follow_changes,
+                    shape_mode::shape_mode_keys,
+                    shape_mode::drive_shape_tool,
+                    shape_mode::shape_select_and_shortcuts,
+                    shape_mode::show_shape_preview,
+                )
+                    .chain()
+                    .after(mesh_mode::show_preview)
                     .in_set(EditSystems),
             );
     }
@@ -167,8 +183,10 @@ fn pick_objects(
     mut selection: ResMut<Selection>,
     gizmo: Option<Res<TransformGizmoState>>,
     mode: Res<EditMode>,
+    shape_edit: Res<ShapeEdit>,
 ) {
     if mode.active()
+        || shape_edit.active()
         || !buttons.just_pressed(MouseButton::Left)
         || !gate.pointer_free
         || tool.active.is_some()
@@ -232,8 +250,9 @@ pub fn object_shortcuts(
     camera: Single<(&Camera, &GlobalTransform), With<ViewportCamera>>,
     entities: Res<NodeEntities>,
     mode: Res<EditMode>,
+    shape_edit: Res<ShapeEdit>,
 ) {
-    if !gate.keyboard_free || tool.active.is_some() || mode.active() {
+    if !gate.keyboard_free || tool.active.is_some() || mode.active() || shape_edit.active() {
         return;
     }
     let doc = &state.session.doc;

@@ -187,8 +187,11 @@ pub fn mode_keys(
                     mode.node = Some(n.id);
                     mode.selection = ElementSelection::default();
                 }
+                // Curves and surfaces have their own edit mode (shape_mode).
+                Some(n) if matches!(n.content, NodeContent::Curve(_) | NodeContent::Surface(_)) => {
+                }
                 Some(n) => status.error(format!(
-                    "'{}' is not a mesh: only meshes have an edit mode",
+                    "'{}' is an empty: meshes, curves and surfaces have an edit mode",
                     n.name
                 )),
                 None => status.error("Select a mesh to edit (click it), then press Tab"),

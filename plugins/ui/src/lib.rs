@@ -38,6 +38,10 @@ pub struct UiState {
     pub transform_edit: Option<(NodeId, DocTransform)>,
     /// Crease field being dragged (committed on release).
     pub crease_edit: Option<f64>,
+    /// Weight field being dragged (committed on release).
+    pub weight_edit: Option<f64>,
+    /// Where "Insert knot" inserts.
+    pub knot_at: f64,
     /// The 3D area left by the panels, in logical pixels.
     pub viewport_rect: Option<egui::Rect>,
     pub last_title: String,
@@ -58,6 +62,8 @@ impl Default for UiState {
             rename: None,
             transform_edit: None,
             crease_edit: None,
+            weight_edit: None,
+            knot_at: 0.5,
             viewport_rect: None,
             last_title: String::new(),
         }

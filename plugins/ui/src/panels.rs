@@ -41,6 +41,7 @@ pub struct Model<'w> {
     entities: Res<'w, NodeEntities>,
     mode: Res<'w, EditMode>,
     previews: Res<'w, hedra_scene::SmoothPreviews>,
+    shape_edit: Res<'w, hedra_edit::ShapeEdit>,
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -52,6 +53,7 @@ pub fn draw_ui(
     mut gate: ResMut<InputGate>,
     mut transforms: Query<&mut Transform>,
     window: Single<&Window, With<bevy::window::PrimaryWindow>>,
+    camera: Query<(&Camera, &GlobalTransform), With<hedra_scene::ViewportCamera>>,
 ) -> Result {
     let ctx = contexts.ctx_mut()?.clone();
     let mut events: Vec<UiEvent> = Vec::new();
@@ -91,6 +93,9 @@ pub fn draw_ui(
     }
     let free = root.available_rect_before_wrap();
     ui_state.viewport_rect = Some(free);
+    if let Ok((cam, cam_t)) = camera.single() {
+        weight_labels(&root.painter_at(free), &model, cam, cam_t);
+    }
     if let Some((a, b)) = model.mode.box_select {
         let rect = egui::Rect::from_two_pos(egui::pos2(a.x, a.y), egui::pos2(b.x, b.y));
         let painter = root.painter_at(free);
@@ -805,6 +810,20 @@ fn properties(ui: &mut egui::Ui, model: &Model, state: &mut UiState, events: &mu
             }
         });
 
+    if matches!(
+        node.content,
+        NodeContent::Curve(_) | NodeContent::Surface(_)
+    ) {
+        egui::CollapsingHeader::new(if matches!(node.content, NodeContent::Curve(_)) {
+            "Curve"
+        } else {
+            "Surface"
+        })
+        .default_open(true)
+        .show(ui, |ui| {
+            shape_panel(ui, id, &node.content, model, state, events)
+        });
+    }
     if let NodeContent::Mesh(content) = &node.content {
         egui::CollapsingHeader::new("Subdivision")
             .default_open(true)
@@ -874,6 +893,136 @@ fn properties(ui: &mut egui::Ui, model: &Model, state: &mut UiState, events: &mu
                 });
         }
     }
+}
+
+/// A curve's or surface's degree, knots and control points; in edit mode
+/// (Tab) the weight of the selected points; knot insertion and degree
+/// elevation.
+fn shape_panel(
+    ui: &mut egui::Ui,
+    id: NodeId,
+    content: &NodeContent,
+    model: &Model,
+    state: &mut UiState,
+    events: &mut Vec<UiEvent>,
+) {
+    use hedra_doc::command::ParameterDirection;
+    use hedra_edit::shape_mode::control_weights;
+    let knots_text = |k: &[f64]| {
+        let text: Vec<String> = k.iter().map(|x| format!("{x:.3}")).collect();
+        text.join(" ")
+    };
+    let mut directions: Vec<(ParameterDirection, &str)> = Vec::new();
+    match content {
+        NodeContent::Curve(c) => {
+            ui.label(format!(
+                "NURBS, degree {}, {} control points{}",
+                c.degree(),
+                c.points().len(),
+                if c.is_polynomial() { "" } else { ", rational" }
+            ));
+            ui.add(egui::Label::new(format!("knots {}", knots_text(c.knots()))).wrap());
+            directions.push((ParameterDirection::U, "Insert knot at"));
+        }
+        NodeContent::Surface(s) => match &**s {
+            hedra_doc::SurfaceShape::Nurbs(n) => {
+                let ((du, dv), (nu, nv)) = (n.degrees(), n.size());
+                ui.label(format!(
+                    "NURBS, degree {du} × {dv}, {nu} × {nv} control points"
+                ));
+                let (ku, kv) = n.knots();
+                ui.add(egui::Label::new(format!("knots u {}", knots_text(ku))).wrap());
+                ui.add(egui::Label::new(format!("knots v {}", knots_text(kv))).wrap());
+                directions.push((ParameterDirection::U, "Insert knot in u at"));
+                directions.push((ParameterDirection::V, "Insert knot in v at"));
+            }
+            hedra_doc::SurfaceShape::Triangle(t) => {
+                ui.label(format!(
+                    "Bézier triangle, degree {}, {} control points",
+                    t.degree,
+                    t.points.len()
+                ));
+            }
+        },
+        _ => return,
+    }
+    ui.horizontal(|ui| {
+        ui.add(
+            egui::DragValue::new(&mut state.knot_at)
+                .speed(0.01)
+                .range(0.0..=1.0)
+                .max_decimals(4),
+        );
+        for (direction, label) in &directions {
+            if ui
+                .button(*label)
+                .on_hover_text("Adds a control point; the shape does not move")
+                .clicked()
+            {
+                exec(
+                    events,
+                    Command::InsertKnot {
+                        node: id.into(),
+                        at: state.knot_at,
+                        direction: *direction,
+                    },
+                );
+            }
+        }
+    });
+    let elevatable = matches!(content, NodeContent::Curve(_))
+        || matches!(content, NodeContent::Surface(s) if matches!(**s, hedra_doc::SurfaceShape::Triangle(_)));
+    if elevatable && ui.button("Elevate degree").clicked() {
+        exec(events, Command::ElevateDegree { node: id.into() });
+    }
+    if model.shape_edit.node != Some(id) {
+        ui.label("Tab edits the control points (G moves them, W drags their weight).");
+        return;
+    }
+    let selected: Vec<u32> = model.shape_edit.selected.iter().copied().collect();
+    let Some(weights) = control_weights(content) else {
+        ui.label(format!("{} control point(s) selected", selected.len()));
+        return;
+    };
+    if selected.is_empty() {
+        ui.label("Select control points to edit their weight.");
+        return;
+    }
+    let mean = selected.iter().map(|&i| weights[i as usize]).sum::<f64>() / selected.len() as f64;
+    let mut w = state.weight_edit.unwrap_or(mean);
+    ui.horizontal(|ui| {
+        ui.label(if selected.len() == 1 {
+            format!("Weight of point {}", selected[0])
+        } else {
+            format!("Weight of {} points", selected.len())
+        });
+        // A drag value, not a logarithmic slider: the slider rounds the
+        // shown value and reported that as a change, which set every
+        // selected weight to their mean.
+        let r = ui
+            .add(
+                egui::DragValue::new(&mut w)
+                    .speed(0.01)
+                    .range(0.001..=1000.0)
+                    .max_decimals(4),
+            )
+            .on_hover_text("Larger pulls the shape towards the point; W drags it in the viewport");
+        let touched = r.dragged() || r.has_focus() || r.clicked() || r.drag_stopped();
+        if r.changed() && touched && (w - mean).abs() > 1e-12 {
+            state.weight_edit = Some(w);
+        }
+        if !(r.dragged() || r.has_focus())
+            && let Some(value) = state.weight_edit.take()
+        {
+            exec(
+                events,
+                Command::SetWeights {
+                    node: id.into(),
+                    weights: selected.iter().map(|&i| (i, value)).collect(),
+                },
+            );
+        }
+    });
 }
 
 /// The subdivision modifier of a mesh node and, in edit mode, the crease of
@@ -1025,7 +1174,9 @@ fn subdivision_panel(
         let r = ui
             .add(egui::Slider::new(&mut v, 0.0..=10.0).max_decimals(2))
             .on_hover_text("0 smooth … 10 infinitely sharp; Shift+E drags it in the viewport");
-        if r.changed() {
+        // Only a change the user made (a widget may round what it shows).
+        let touched = r.dragged() || r.has_focus() || r.clicked() || r.drag_stopped();
+        if r.changed() && touched {
             state.crease_edit = Some(v);
         }
         let busy = r.dragged() || r.has_focus();
@@ -1281,6 +1432,48 @@ fn history_window(
         });
 }
 
+/// In shape edit mode, each control point's weight next to it (selected
+/// points in orange); only for nets of up to 400 points.
+fn weight_labels(painter: &egui::Painter, model: &Model, cam: &Camera, cam_t: &GlobalTransform) {
+    use hedra_edit::shape_mode::{control_points, control_weights};
+    let edit = &model.shape_edit;
+    let Some(id) = edit.node else { return };
+    let doc = &model.state.session.doc;
+    let Some(content) = edit
+        .preview
+        .clone()
+        .or_else(|| doc.node(id).map(|n| n.content.clone()))
+    else {
+        return;
+    };
+    let Some(weights) = control_weights(&content) else {
+        return;
+    };
+    let points = control_points(&content);
+    if points.len() > 400 {
+        return;
+    }
+    let world = doc.world_matrix(id);
+    for (i, (p, w)) in points.iter().zip(&weights).enumerate() {
+        let Ok(s) = cam.world_to_viewport(cam_t, world.transform_point3(*p).as_vec3()) else {
+            continue;
+        };
+        let selected = edit.selected.contains(&(i as u32));
+        let color = if selected {
+            egui::Color32::from_rgb(255, 170, 80)
+        } else {
+            egui::Color32::from_gray(200)
+        };
+        painter.text(
+            egui::pos2(s.x + 8.0, s.y - 8.0),
+            egui::Align2::LEFT_BOTTOM,
+            format!("{w:.2}"),
+            egui::FontId::proportional(if selected { 14.0 } else { 11.0 }),
+            color,
+        );
+    }
+}
+
 fn status_bar(ui: &mut egui::Ui, model: &Model) {
     // The message is laid out first, from the right, so the key hints give
     // way (truncated) instead of being drawn under a long error.
@@ -1313,7 +1506,19 @@ fn status_bar(ui: &mut egui::Ui, model: &Model) {
         ui.with_layout(egui::Layout::left_to_right(egui::Align::Center), |ui| {
             let doc = &model.state.session.doc;
             let edit = &model.mode;
-            if let Some(node) = edit.node.and_then(|n| doc.node(n)) {
+            if let Some(node) = model.shape_edit.node.and_then(|n| doc.node(n)) {
+                let se = &model.shape_edit;
+                ui.label(egui::RichText::new("Edit Mode · Control Points").strong().color(egui::Color32::from_rgb(255, 170, 80)));
+                ui.separator();
+                ui.label(format!("{}: {} selected", node.name, se.selected.len()));
+                ui.separator();
+                if let Some(t) = &se.tool {
+                    ui.label(egui::RichText::new(&t.readout).color(egui::Color32::from_rgb(255, 200, 80)));
+                    ui.add(egui::Label::new("move the mouse · type a value · Enter/click confirm · Esc/right-click cancel").truncate());
+                } else {
+                    ui.add(egui::Label::new("click select · A all · G move · W weight · Tab exit").truncate());
+                }
+            } else if let Some(node) = edit.node.and_then(|n| doc.node(n)) {
                 let kind = match edit.kind {
                     ElementKind::Vertex => "Vertex",
                     ElementKind::Edge => "Edge",

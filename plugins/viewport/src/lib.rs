@@ -90,6 +90,7 @@ impl Plugin for ViewportPlugin {
                     commit_gizmo_drag,
                     update_edit_edges,
                     draw_edit_overlay,
+                    draw_shape_edit,
                 )
                     .after(EditSystems),
             );
@@ -309,6 +310,7 @@ fn update_edge_overlays(
     state: Res<DocState>,
     selection: Res<Selection>,
     mode: Res<EditMode>,
+    shape_edit: Res<hedra_edit::ShapeEdit>,
     nodes: Query<(Entity, &NodeEntity, &ProjectedMesh, Option<&Children>)>,
     mut overlays: Query<(&mut EdgeOverlay, &Gizmo)>,
     mut assets: ResMut<Assets<GizmoAsset>>,
@@ -317,7 +319,9 @@ fn update_edge_overlays(
     for (entity, node, projected, children) in &nodes {
         let selected = selection.contains(node.0);
         let active = selection.active() == Some(node.0);
-        let shown = hedra_edit::visible(doc, node.0) && mode.node != Some(node.0);
+        let shown = hedra_edit::visible(doc, node.0)
+            && mode.node != Some(node.0)
+            && shape_edit.node != Some(node.0);
         let wanted = EdgeOverlay {
             source: *projected,
             selected,
@@ -467,12 +471,13 @@ fn focus_gizmo_on_active(
     focused: Query<Entity, With<TransformGizmoFocus>>,
     gizmo_state: Res<TransformGizmoState>,
     mode: Res<EditMode>,
+    shape_edit: Res<hedra_edit::ShapeEdit>,
 ) {
     if gizmo_state.active {
         return;
     }
     // No object gizmo in edit mode.
-    let wanted = if mode.active() {
+    let wanted = if mode.active() || shape_edit.active() {
         None
     } else {
         selection
@@ -675,6 +680,83 @@ fn draw_edit_edges(
 
 /// Edit mode's vertex or face-centre dots; they face the camera, so they are
 /// drawn every frame (only the selected ones on dense meshes).
+/// Shape edit mode: the curve (or surface's control net) as the running
+/// tool would leave it, with its control points (selected ones orange,
+/// larger the heavier their weight).
+fn draw_shape_edit(
+    edit: Res<hedra_edit::ShapeEdit>,
+    state: Res<DocState>,
+    camera: Single<&GlobalTransform, With<ViewportCamera>>,
+    mut gizmos: Gizmos<AxisGizmos>,
+) {
+    use hedra_edit::shape_mode::{control_points, control_weights};
+    let Some(node) = edit.node else { return };
+    let Some(content) = edit
+        .preview
+        .clone()
+        .or_else(|| state.session.doc.node(node).map(|n| n.content.clone()))
+    else {
+        return;
+    };
+    let world = state.session.doc.world_matrix(node);
+    let to_world = |p: DVec3| world.transform_point3(p).as_vec3();
+    let net = Color::srgba(0.9, 0.9, 0.95, 0.85);
+    match &content {
+        NodeContent::Curve(c) => {
+            use hedra_geom::curves::Curve;
+            let tol = hedra_scene::VIEW_TOLERANCE * hedra_scene::extent(c.points());
+            let params = hedra_geom::surfaces::tessellate::curve_parameters(&**c, tol);
+            gizmos.linestrip(
+                params.iter().map(|&t| to_world(c.point(t))),
+                Color::srgb(1.0, 0.78, 0.25),
+            );
+            gizmos.linestrip(c.points().iter().map(|p| to_world(*p)), net);
+        }
+        NodeContent::Surface(s) => match &**s {
+            hedra_doc::SurfaceShape::Nurbs(n) => {
+                let (nu, nv) = n.size();
+                let p = n.points();
+                for i in 0..nu {
+                    gizmos.linestrip((0..nv).map(|j| to_world(p[i * nv + j])), net);
+                }
+                for j in 0..nv {
+                    gizmos.linestrip((0..nu).map(|i| to_world(p[i * nv + j])), net);
+                }
+            }
+            hedra_doc::SurfaceShape::Triangle(t) => {
+                use hedra_geom::surfaces::BezierTriangle;
+                let n = t.degree;
+                let at = |i: usize, j: usize| to_world(t.points[BezierTriangle::index(n, i, j)]);
+                for i in 0..=n {
+                    for j in 0..=n - i {
+                        if i + j < n {
+                            gizmos.line(at(i, j), at(i, j + 1), net);
+                            gizmos.line(at(i, j), at(i + 1, j), net);
+                            gizmos.line(at(i + 1, j), at(i, j + 1), net);
+                        }
+                    }
+                }
+            }
+        },
+        _ => return,
+    }
+    let cam = *camera;
+    let weights = control_weights(&content);
+    for (i, p) in control_points(&content).into_iter().enumerate() {
+        let p = to_world(p);
+        let w = weights.as_ref().map_or(1.0, |w| w[i]) as f32;
+        let r = cam.translation().distance(p) * 0.005 * w.clamp(0.25, 4.0).sqrt();
+        let c = if edit.selected.contains(&(i as u32)) {
+            Color::srgb(1.0, 0.55, 0.1)
+        } else {
+            Color::srgb(0.05, 0.05, 0.05)
+        };
+        gizmos
+            .circle(Isometry3d::new(p, cam.rotation()), r, c)
+            .resolution(12);
+    }
+}
+
 fn draw_edit_overlay(
     mode: Res<EditMode>,
     state: Res<DocState>,

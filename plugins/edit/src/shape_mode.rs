@@ -1,0 +1,411 @@
+//! Edit mode for curves and surfaces: Tab on the active curve or surface
+//! shows its control points; click / Shift-click / A / Alt+A select them;
+//! G moves them (X/Y/Z constrain, typed numbers are exact); W drags their
+//! weight (right = heavier, typed numbers set it; 0 and below are refused).
+//! Like the mesh tools, a tool decides its command on a copy every frame
+//! and shows the result; Enter or a click confirms it as one undo step.
+
+use std::collections::BTreeSet;
+use std::sync::Arc;
+
+use bevy::prelude::*;
+use bevy::window::PrimaryWindow;
+use glam::DVec3;
+use hedra_doc::{Command, NodeContent, NodeId, NodeRef, SurfaceShape};
+use hedra_scene::modifiers::{alt, ctrl, shift};
+use hedra_scene::{DocRequest, DocState, InputGate, NodeEntities, StatusMessage, ViewportCamera};
+
+use crate::modal::Axis;
+use crate::typing::TypedNumber;
+
+/// What a shape tool changes.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub enum ShapeToolKind {
+    Move,
+    Weight,
+}
+
+/// A running shape tool.
+#[derive(Clone, Debug)]
+pub struct ShapeTool {
+    pub kind: ShapeToolKind,
+    pub axis: Option<Axis>,
+    pub typed: TypedNumber,
+    start_cursor: Vec2,
+    /// World-space centre of the selected points (the drag plane goes through it).
+    pivot: DVec3,
+    pub readout: String,
+}
+
+/// Edit-mode state of a curve or surface node.
+#[derive(Resource, Default, Debug)]
+pub struct ShapeEdit {
+    pub node: Option<NodeId>,
+    /// Selected control points (indices as commands count them).
+    pub selected: BTreeSet<u32>,
+    pub tool: Option<ShapeTool>,
+    /// The node's content as the running tool would leave it.
+    pub preview: Option<NodeContent>,
+    /// Set on the frame a tool ended, so its confirming click selects nothing.
+    pub just_finished: bool,
+}
+
+impl ShapeEdit {
+    pub fn active(&self) -> bool {
+        self.node.is_some()
+    }
+}
+
+/// Control points of a curve or surface node (local space).
+pub fn control_points(content: &NodeContent) -> Vec<DVec3> {
+    match content {
+        NodeContent::Curve(c) => c.points().to_vec(),
+        NodeContent::Surface(s) => s.control_points().to_vec(),
+        _ => Vec::new(),
+    }
+}
+
+/// Weights of the control points, `None` for shapes without weights.
+pub fn control_weights(content: &NodeContent) -> Option<Vec<f64>> {
+    match content {
+        NodeContent::Curve(c) => Some(c.weights().to_vec()),
+        NodeContent::Surface(s) => match &**s {
+            SurfaceShape::Nurbs(n) => Some(n.weights().to_vec()),
+            SurfaceShape::Triangle(_) => None,
+        },
+        _ => None,
+    }
+}
+
+fn is_shape(content: &NodeContent) -> bool {
+    matches!(content, NodeContent::Curve(_) | NodeContent::Surface(_))
+}
+
+/// Tab enters and leaves shape edit mode on the active curve or surface.
+pub fn shape_mode_keys(
+    keys: Res<ButtonInput<KeyCode>>,
+    gate: Res<InputGate>,
+    mut edit: ResMut<ShapeEdit>,
+    selection: Res<crate::Selection>,
+    state: Res<DocState>,
+    mesh_mode: Res<crate::EditMode>,
+) {
+    if !gate.keyboard_free
+        || edit.tool.is_some()
+        || mesh_mode.active()
+        || !keys.just_pressed(KeyCode::Tab)
+    {
+        return;
+    }
+    if edit.active() {
+        *edit = ShapeEdit::default();
+        return;
+    }
+    if let Some(id) = selection.active().filter(|&id| {
+        state
+            .session
+            .doc
+            .node(id)
+            .is_some_and(|n| is_shape(&n.content))
+    }) {
+        edit.node = Some(id);
+        edit.selected.clear();
+    }
+}
+
+/// Leaves shape edit mode when its node disappears; drops stale indices.
+pub fn shape_follow_changes(mut edit: ResMut<ShapeEdit>, state: Res<DocState>) {
+    let Some(id) = edit.node else { return };
+    match state.session.doc.node(id) {
+        Some(n) if is_shape(&n.content) => {
+            let count = control_points(&n.content).len() as u32;
+            edit.selected.retain(|&i| i < count);
+        }
+        _ => *edit = ShapeEdit::default(),
+    }
+}
+
+/// The control point nearest to the cursor on screen, within 14 pixels.
+fn point_under_cursor(
+    points: &[DVec3],
+    world: glam::DMat4,
+    cursor: Vec2,
+    cam: &Camera,
+    cam_t: &GlobalTransform,
+) -> Option<u32> {
+    points
+        .iter()
+        .enumerate()
+        .filter_map(|(i, p)| {
+            let s = cam
+                .world_to_viewport(cam_t, world.transform_point3(*p).as_vec3())
+                .ok()?;
+            let d = s.distance(cursor);
+            (d <= 14.0).then_some((i as u32, d))
+        })
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+        .map(|(i, _)| i)
+}
+
+/// Click selects the control point under the cursor (Shift toggles, a click
+/// on nothing clears); A selects all, Alt+A none; G and W start tools.
+#[allow(clippy::too_many_arguments)]
+pub fn shape_select_and_shortcuts(
+    keys: Res<ButtonInput<KeyCode>>,
+    buttons: Res<ButtonInput<MouseButton>>,
+    gate: Res<InputGate>,
+    mut edit: ResMut<ShapeEdit>,
+    state: Res<DocState>,
+    window: Single<&Window, With<PrimaryWindow>>,
+    camera: Single<(&Camera, &GlobalTransform), With<ViewportCamera>>,
+    mut status: ResMut<StatusMessage>,
+) {
+    let Some(id) = edit.node else { return };
+    if edit.tool.is_some() {
+        return;
+    }
+    if edit.just_finished {
+        edit.just_finished = false;
+        return;
+    }
+    let Some(node) = state.session.doc.node(id) else {
+        return;
+    };
+    let points = control_points(&node.content);
+    let world = state.session.doc.world_matrix(id);
+    let (cam, cam_t) = *camera;
+    if gate.pointer_free && buttons.just_pressed(MouseButton::Left) && !alt(&keys) {
+        if let Some(cursor) = window.cursor_position() {
+            let hit = point_under_cursor(&points, world, cursor, cam, cam_t);
+            match (hit, shift(&keys)) {
+                (Some(i), true) => {
+                    if !edit.selected.remove(&i) {
+                        edit.selected.insert(i);
+                    }
+                }
+                (Some(i), false) => edit.selected = BTreeSet::from([i]),
+                (None, false) => edit.selected.clear(),
+                (None, true) => {}
+            }
+        }
+    }
+    if !gate.keyboard_free || ctrl(&keys) {
+        return;
+    }
+    if keys.just_pressed(KeyCode::KeyA) {
+        edit.selected = if alt(&keys) {
+            BTreeSet::new()
+        } else {
+            (0..points.len() as u32).collect()
+        };
+    }
+    let kind = if keys.just_pressed(KeyCode::KeyG) {
+        Some(ShapeToolKind::Move)
+    } else if keys.just_pressed(KeyCode::KeyW) {
+        Some(ShapeToolKind::Weight)
+    } else {
+        None
+    };
+    let Some(kind) = kind else { return };
+    if edit.selected.is_empty() {
+        status.error("Select control points first (click them, or A for all)");
+        return;
+    }
+    if kind == ShapeToolKind::Weight && control_weights(&node.content).is_none() {
+        status.error("Bézier triangles are polynomial: their points have no weights");
+        return;
+    }
+    let centre = edit
+        .selected
+        .iter()
+        .map(|&i| points[i as usize])
+        .sum::<DVec3>()
+        / edit.selected.len() as f64;
+    edit.tool = Some(ShapeTool {
+        kind,
+        axis: None,
+        typed: TypedNumber::default(),
+        start_cursor: window.cursor_position().unwrap_or_default(),
+        pivot: world.transform_point3(centre),
+        readout: String::new(),
+    });
+}
+
+/// Runs the shape tool: preview each frame, confirm or cancel.
+#[allow(clippy::too_many_arguments)]
+pub fn drive_shape_tool(
+    keys: Res<ButtonInput<KeyCode>>,
+    buttons: Res<ButtonInput<MouseButton>>,
+    mut edit: ResMut<ShapeEdit>,
+    state: Res<DocState>,
+    window: Single<&Window, With<PrimaryWindow>>,
+    camera: Single<(&Camera, &GlobalTransform), With<ViewportCamera>>,
+    mut requests: MessageWriter<DocRequest>,
+    mut status: ResMut<StatusMessage>,
+) {
+    let (Some(id), Some(mut tool)) = (edit.node, edit.tool.take()) else {
+        return;
+    };
+    let Some(node) = state.session.doc.node(id) else {
+        return;
+    };
+    if keys.just_pressed(KeyCode::Escape) || buttons.just_pressed(MouseButton::Right) {
+        edit.preview = None;
+        edit.just_finished = true;
+        return;
+    }
+    for (key, axis) in [
+        (KeyCode::KeyX, Axis::X),
+        (KeyCode::KeyY, Axis::Y),
+        (KeyCode::KeyZ, Axis::Z),
+    ] {
+        if keys.just_pressed(key) && tool.kind == ShapeToolKind::Move {
+            tool.axis = if tool.axis == Some(axis) {
+                None
+            } else {
+                Some(axis)
+            };
+        }
+    }
+    tool.typed.read(&keys, true);
+    let cursor = window.cursor_position().unwrap_or(tool.start_cursor);
+    let world = state.session.doc.world_matrix(id);
+    let (cam, cam_t) = *camera;
+    let points = control_points(&node.content);
+    let reference = NodeRef::from(id);
+    let cmd = match tool.kind {
+        ShapeToolKind::Move => {
+            let view_dir = (cam_t.rotation() * Vec3::NEG_Z).as_dvec3();
+            let plane_hit = |p: Vec2| -> Option<DVec3> {
+                let r = cam.viewport_to_world(cam_t, p).ok()?;
+                let (o, d) = (r.origin.as_dvec3(), Vec3::from(r.direction).as_dvec3());
+                let denom = d.dot(view_dir);
+                (denom.abs() > 1e-12).then(|| o + d * ((tool.pivot - o).dot(view_dir) / denom))
+            };
+            let world_delta = match tool.typed.value() {
+                Some(v) => tool.axis.unwrap_or(Axis::X).vector() * v,
+                None => match (plane_hit(tool.start_cursor), plane_hit(cursor)) {
+                    (Some(a), Some(b)) => {
+                        let d = b - a;
+                        tool.axis.map_or(d, |ax| ax.vector() * d.dot(ax.vector()))
+                    }
+                    _ => DVec3::ZERO,
+                },
+            };
+            tool.readout = format!(
+                "Move control points ({:.4}, {:.4}, {:.4})",
+                world_delta.x, world_delta.y, world_delta.z
+            );
+            let local = world.inverse().transform_vector3(world_delta);
+            Command::SetControlPoints {
+                node: reference,
+                points: edit
+                    .selected
+                    .iter()
+                    .map(|&i| (i, points[i as usize] + local))
+                    .collect(),
+            }
+        }
+        ShapeToolKind::Weight => {
+            let weights = control_weights(&node.content).unwrap_or_default();
+            // 150 pixels to the right multiply the weights by e; left divides.
+            let factor = (((cursor - tool.start_cursor).x) as f64 / 150.0).exp();
+            let new: Vec<(u32, f64)> = edit
+                .selected
+                .iter()
+                .map(|&i| {
+                    (
+                        i,
+                        tool.typed.value().unwrap_or(weights[i as usize] * factor),
+                    )
+                })
+                .collect();
+            tool.readout = match new.as_slice() {
+                [(i, w)] => format!("Weight of point {i}: {w:.4}"),
+                _ => format!("Weights × {factor:.4}"),
+            };
+            Command::SetWeights {
+                node: reference,
+                weights: new,
+            }
+        }
+    };
+    if !tool.typed.is_empty() {
+        tool.readout = format!("{} [{}]", tool.readout, tool.typed.as_str());
+    }
+    let decided = state.session.doc.decide(&cmd, 0);
+    match &decided {
+        Ok(t) => {
+            edit.preview = t
+                .changes
+                .iter()
+                .find(|c| c.id == id)
+                .and_then(|c| c.after.as_ref())
+                .map(|n| n.content.clone());
+        }
+        Err(e) => {
+            edit.preview = None;
+            tool.readout = format!("{} — {e}", tool.readout);
+        }
+    }
+    let confirm = keys.any_just_pressed([KeyCode::Enter, KeyCode::NumpadEnter, KeyCode::Space])
+        || buttons.just_pressed(MouseButton::Left);
+    if confirm {
+        match decided {
+            Ok(_) => {
+                requests.write(DocRequest::Execute(cmd));
+                edit.preview = None;
+                edit.just_finished = true;
+                return;
+            }
+            Err(e) => status.error(format!("{e}")),
+        }
+    }
+    edit.tool = Some(tool);
+}
+
+/// Shows a surface tool's preview on the node's render mesh, and the
+/// document's shape again when the tool ends.
+pub fn show_shape_preview(
+    edit: Res<ShapeEdit>,
+    state: Res<DocState>,
+    entities: Res<NodeEntities>,
+    mesh3d: Query<&Mesh3d>,
+    mut meshes: ResMut<Assets<Mesh>>,
+    mut shown: Local<Option<(NodeId, usize)>>,
+) {
+    let surface_of = |c: &NodeContent| match c {
+        NodeContent::Surface(s) => Some(s.clone()),
+        _ => None,
+    };
+    let want: Option<(NodeId, Arc<SurfaceShape>)> =
+        edit.node.zip(edit.preview.as_ref().and_then(surface_of));
+    let key = want.as_ref().map(|(n, s)| (*n, Arc::as_ptr(s) as usize));
+    if key == *shown {
+        return;
+    }
+    let mut put = |n: NodeId, s: &SurfaceShape| {
+        if let Some(mut m) = entities
+            .0
+            .get(&n)
+            .and_then(|e| mesh3d.get(*e).ok())
+            .and_then(|h| meshes.get_mut(&h.0))
+        {
+            *m = hedra_scene::surface_render_mesh(s);
+        }
+    };
+    if let Some((prev, _)) = shown.take()
+        && want.as_ref().is_none_or(|(n, _)| *n != prev)
+        && let Some(s) = state
+            .session
+            .doc
+            .node(prev)
+            .and_then(|n| surface_of(&n.content))
+    {
+        put(prev, &s);
+    }
+    if let Some((n, s)) = &want {
+        put(*n, s);
+    }
+    *shown = key;
+}
