@@ -462,3 +462,81 @@ fn large_subdivision_levels_refine_in_the_background_and_can_be_cancelled() {
     );
     assert_eq!(vertices(&mut app), cage);
 }
+
+#[test]
+fn curves_and_surfaces_get_render_meshes_and_can_be_picked() {
+    use hedra_doc::command::{CurveSpec, SurfaceSpec};
+    let mut app = hedra::headless_app();
+    app.update();
+    send(
+        &mut app,
+        DocRequest::Execute(Command::AddSurface {
+            name: "Ball".into(),
+            surface: SurfaceSpec::Sphere { radius: 1.0 },
+            parent: None,
+            transform: DocTransform::IDENTITY,
+        }),
+    );
+    send(
+        &mut app,
+        DocRequest::Execute(Command::AddCurve {
+            name: "Ring".into(),
+            curve: CurveSpec::Circle { radius: 3.0 },
+            parent: None,
+            transform: DocTransform::IDENTITY,
+        }),
+    );
+    let ents = node_entities(&mut app);
+    let (ball, ring) = (ents[0].0, ents[1].0);
+    let positions = |app: &mut App| {
+        let h = app.world().get::<Mesh3d>(ball).unwrap().0.clone();
+        let m = app.world().resource::<Assets<Mesh>>().get(&h).unwrap();
+        match m.attribute(Mesh::ATTRIBUTE_POSITION) {
+            Some(bevy::mesh::VertexAttributeValues::Float32x3(p)) => p.clone(),
+            _ => panic!("positions"),
+        }
+    };
+    let before = positions(&mut app);
+    assert!(
+        before.len() > 100,
+        "the sphere is tessellated: {}",
+        before.len()
+    );
+    assert!(
+        before
+            .iter()
+            .all(|p| (Vec3::from(*p).length() - 1.0).abs() < 1e-3),
+        "on the sphere"
+    );
+    assert!(
+        app.world().get::<Mesh3d>(ring).is_none(),
+        "a curve has no surface"
+    );
+    assert!(
+        app.world().get::<ProjectedMesh>(ring).is_some(),
+        "but the overlays know it"
+    );
+    // Moving a control point changes the render mesh.
+    send(
+        &mut app,
+        DocRequest::Execute(Command::SetControlPoints {
+            node: NodeRef::Name("Ball".into()),
+            points: vec![(22, hedra_geom::DVec3::new(3.0, 0.0, 0.0))],
+        }),
+    );
+    let after = positions(&mut app);
+    assert!(
+        after.iter().any(|p| Vec3::from(*p).length() > 1.2),
+        "the pulled point bulges the surface"
+    );
+    // Picking: a ray down the Z axis hits the (still unit near the pole) sphere at about z = 1.
+    let doc = &app.world().resource::<DocState>().session.doc;
+    let (id, dist) = hedra_edit::pick_node(
+        doc,
+        hedra_geom::DVec3::new(0.0, 0.0, 5.0),
+        hedra_geom::DVec3::NEG_Z,
+    )
+    .unwrap();
+    assert_eq!(doc.node(id).unwrap().name, "Ball");
+    assert!((dist - 4.0).abs() < 0.05, "{dist}");
+}

@@ -131,13 +131,11 @@ pub fn visible(doc: &Document, id: NodeId) -> bool {
     hedra_doc::export::is_visible(doc, id)
 }
 
-/// The nearest visible mesh node under a world-space ray, with the hit distance.
+/// The nearest visible mesh or surface node under a world-space ray, with
+/// the hit distance. (Curves are picked on screen: [`curve_near_cursor`].)
 pub fn pick_node(doc: &Document, origin: DVec3, dir: DVec3) -> Option<(NodeId, f64)> {
     let mut best: Option<(NodeId, f64)> = None;
     for node in doc.nodes() {
-        let NodeContent::Mesh(content) = &node.content else {
-            continue;
-        };
         if !visible(doc, node.id) {
             continue;
         }
@@ -148,8 +146,15 @@ pub fn pick_node(doc: &Document, origin: DVec3, dir: DVec3) -> Option<(NodeId, f
         }
         let lo = inv.transform_point3(origin);
         let ld = inv.transform_vector3(dir);
-        if let Some((_, t)) = hedra_geom::query::ray_cast(&content.mesh, lo, ld) {
-            // `t` is the same parameter along the world ray (affine map).
+        // `t` is the same parameter along the world ray (affine map).
+        let t = match &node.content {
+            NodeContent::Mesh(content) => {
+                hedra_geom::query::ray_cast(&content.mesh, lo, ld).map(|(_, t)| t)
+            }
+            NodeContent::Surface(surface) => ray_surface_shape(surface, lo, ld),
+            _ => None,
+        };
+        if let Some(t) = t {
             let dist = t * dir.length();
             if best.is_none_or(|(_, d)| dist < d) {
                 best = Some((node.id, dist));
@@ -157,6 +162,64 @@ pub fn pick_node(doc: &Document, origin: DVec3, dir: DVec3) -> Option<(NodeId, f
         }
     }
     best
+}
+
+/// Ray parameter of the nearest hit on a surface node's shape.
+fn ray_surface_shape(surface: &hedra_doc::SurfaceShape, origin: DVec3, dir: DVec3) -> Option<f64> {
+    match surface {
+        hedra_doc::SurfaceShape::Nurbs(s) => {
+            hedra_geom::surfaces::intersect::ray_surface(s, origin, dir).map(|h| h.t)
+        }
+        hedra_doc::SurfaceShape::Triangle(t) => {
+            let (positions, _, triangles) = t.tessellate(24);
+            triangles
+                .iter()
+                .filter_map(|tri| {
+                    let [a, b, c] = tri.map(|i| positions[i as usize]);
+                    hedra_geom::query::ray_triangle(origin, dir, a, b, c)
+                })
+                .min_by(f64::total_cmp)
+        }
+    }
+}
+
+/// The visible curve node drawn within 8 pixels of the cursor, if any.
+pub fn curve_near_cursor(
+    doc: &Document,
+    cursor: Vec2,
+    camera: &Camera,
+    camera_transform: &GlobalTransform,
+) -> Option<NodeId> {
+    use hedra_geom::curves::Curve;
+    let mut best: Option<(NodeId, f32)> = None;
+    for node in doc.nodes() {
+        let NodeContent::Curve(c) = &node.content else {
+            continue;
+        };
+        if !visible(doc, node.id) {
+            continue;
+        }
+        let world = doc.world_matrix(node.id);
+        let (a, b) = c.domain();
+        let screen: Vec<Option<Vec2>> = (0..=200)
+            .map(|i| {
+                let p = world.transform_point3(c.point(a + (b - a) * i as f64 / 200.0));
+                camera.world_to_viewport(camera_transform, p.as_vec3()).ok()
+            })
+            .collect();
+        for w in screen.windows(2) {
+            let (Some(p), Some(q)) = (w[0], w[1]) else {
+                continue;
+            };
+            let seg = q - p;
+            let t = ((cursor - p).dot(seg) / seg.length_squared().max(1e-12)).clamp(0.0, 1.0);
+            let d = cursor.distance(p + t * seg);
+            if d <= 8.0 && best.is_none_or(|(_, bd)| d < bd) {
+                best = Some((node.id, d));
+            }
+        }
+    }
+    best.map(|(id, _)| id)
 }
 
 /// The world-space ray under the cursor, in `f64`.
@@ -204,7 +267,11 @@ fn pick_objects(
     let Some((origin, dir)) = cursor_ray(&window, cam, cam_t) else {
         return;
     };
-    let hit = pick_node(&state.session.doc, origin, dir).map(|(id, _)| id);
+    // A curve under the cursor wins: it is thin and drawn over surfaces.
+    let hit = window
+        .cursor_position()
+        .and_then(|c| curve_near_cursor(&state.session.doc, c, cam, cam_t))
+        .or_else(|| pick_node(&state.session.doc, origin, dir).map(|(id, _)| id));
     let shift = shift(&keys);
     match (hit, shift) {
         (Some(id), true) => selection.toggle(id),
