@@ -235,7 +235,7 @@ impl SurfaceShape {
     pub fn tessellate(&self, tolerance: f64) -> (Vec<DVec3>, Vec<DVec3>, Vec<[u32; 3]>) {
         match self {
             SurfaceShape::Nurbs(s) => {
-                let m = hedra_geom::surfaces::tessellate::tessellate(s, tolerance);
+                let m = hedra_geom::surfaces::tessellate::tessellate_nurbs(s, tolerance);
                 (m.positions, m.normals, m.triangles)
             }
             SurfaceShape::Triangle(t) => {

@@ -332,3 +332,50 @@ fn continuity_of_joined_bezier_segments() {
     let k = continuity(&l, &r, 1e-9);
     assert!(k.g2 && !k.c1, "{k:?}");
 }
+
+mod fast_paths {
+    use super::*;
+    use hedra_geom::curves::Curve;
+    use proptest::prelude::*;
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(32))]
+
+        /// The batch evaluators give what the general ones give.
+        #[test]
+        fn batch_evaluation_equals_the_general_evaluator(
+            coords in proptest::collection::vec(-3.0f64..3.0, 3 * 30),
+            weights in proptest::collection::vec(0.2f64..4.0, 30),
+            pu in 1usize..5,
+            pv in 1usize..4,
+            ts in proptest::collection::vec(0.0f64..=1.0, 12),
+        ) {
+            let pts: Vec<DVec3> = coords.chunks(3).map(|c| DVec3::new(c[0], c[1], c[2])).collect();
+            // A curve on 8 points and a 6 × 5 surface from the same data.
+            let knots = hedra_geom::curves::nurbs::clamped_uniform_knots(pu, 8);
+            let c = NurbsCurve::new(pu, knots, pts[..8].to_vec(), weights[..8].to_vec()).unwrap();
+            let fast = c.points_at(&ts);
+            for (t, p) in ts.iter().zip(&fast) {
+                prop_assert!(close(*p, c.point(*t), 1e-12), "curve at {}", t);
+            }
+            let s = NurbsSurface::new(
+                pu, pv,
+                hedra_geom::curves::nurbs::clamped_uniform_knots(pu, 6),
+                hedra_geom::curves::nurbs::clamped_uniform_knots(pv, 5),
+                6, 5, pts[..30].to_vec(), weights.clone(),
+            ).unwrap();
+            let (us, vs) = (&ts[..6], &ts[6..]);
+            let (grid, normals) = s.grid(us, vs, true);
+            for (a, &u) in us.iter().enumerate() {
+                for (b, &v) in vs.iter().enumerate() {
+                    let e = s.evaluate(u, v);
+                    prop_assert!(close(grid[a * vs.len() + b], e.p, 1e-12), "surface at ({}, {})", u, v);
+                    let n = e.normal();
+                    if n.length() > 0.5 {
+                        prop_assert!(close(normals[a * vs.len() + b], n, 1e-8), "normal at ({}, {})", u, v);
+                    }
+                }
+            }
+        }
+    }
+}

@@ -8,6 +8,7 @@
 
 pub mod analysis;
 pub mod bezier;
+pub mod fast;
 pub mod interpolating;
 pub mod nurbs;
 

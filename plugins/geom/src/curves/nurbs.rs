@@ -352,6 +352,24 @@ impl NurbsCurve {
         })
     }
 
+    /// Positions at many parameters at once (clamped to the domain), much
+    /// faster than one [`Curve::point`] call each; increasing parameters are
+    /// fastest. See [`super::fast`].
+    pub fn points_at(&self, params: &[f64]) -> Vec<DVec3> {
+        let (a, b) = self.domain();
+        if self.degree > super::fast::MAX_FAST_DEGREE {
+            return params.iter().map(|&t| self.point(t)).collect();
+        }
+        let basis = super::fast::Basis::new(self.degree, &self.knots, self.points.len());
+        let pw = super::fast::homogeneous_points(&self.points, &self.weights);
+        if params.iter().all(|t| (a..=b).contains(t)) {
+            super::fast::curve_points(&basis, &pw, params)
+        } else {
+            let clamped: Vec<f64> = params.iter().map(|t| t.clamp(a, b)).collect();
+            super::fast::curve_points(&basis, &pw, &clamped)
+        }
+    }
+
     /// True when both ends have `degree + 1` equal knots (the curve starts
     /// and ends at its end control points).
     pub fn is_clamped(&self) -> bool {

@@ -325,6 +325,35 @@ impl NurbsSurface {
         .expect("rows of a valid surface are valid")
     }
 
+    /// Points (and, with `normals`, unit normals) on the grid of parameters
+    /// `us × vs`, row-major by u; each u-row of control points is combined
+    /// once, then every point costs `q + 1` terms. Parameters are clamped
+    /// to the domain. See [`crate::curves::fast`].
+    pub fn grid(&self, us: &[f64], vs: &[f64], normals: bool) -> (Vec<DVec3>, Vec<DVec3>) {
+        use crate::curves::fast::{Basis, MAX_FAST_DEGREE, homogeneous_points, surface_grid};
+        let ((u0, u1), (v0, v1)) = self.domain();
+        let us: Vec<f64> = us.iter().map(|u| u.clamp(u0, u1)).collect();
+        let vs: Vec<f64> = vs.iter().map(|v| v.clamp(v0, v1)).collect();
+        if self.degree_u > MAX_FAST_DEGREE || self.degree_v > MAX_FAST_DEGREE {
+            let mut points = Vec::with_capacity(us.len() * vs.len());
+            let mut norms = Vec::new();
+            for &u in &us {
+                for &v in &vs {
+                    let e = self.evaluate(u, v);
+                    points.push(e.p);
+                    if normals {
+                        norms.push(e.normal());
+                    }
+                }
+            }
+            return (points, norms);
+        }
+        let bu = Basis::new(self.degree_u, &self.knots_u, self.nu);
+        let bv = Basis::new(self.degree_v, &self.knots_v, self.nv);
+        let pw = homogeneous_points(&self.points, &self.weights);
+        surface_grid(&bu, &bv, self.nv, &pw, &us, &vs, normals)
+    }
+
     /// Inserts a knot in u (every column gets it; the surface does not move).
     ///
     /// # Errors

@@ -33,13 +33,7 @@ pub fn grid(surface: &dyn Surface, cu: usize, cv: usize) -> SurfaceMesh {
             m.params.push((u, v));
         }
     }
-    let id = |i: usize, j: usize| (i * (cv + 1) + j) as u32;
-    for i in 0..cu {
-        for j in 0..cv {
-            m.triangles.push([id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
-            m.triangles.push([id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
-        }
-    }
+    m.triangles = grid_triangles(cu, cv);
     m
 }
 
@@ -70,6 +64,42 @@ pub fn cells_for_tolerance(surface: &dyn Surface, tolerance: f64) -> (usize, usi
 pub fn tessellate(surface: &dyn Surface, tolerance: f64) -> SurfaceMesh {
     let (cu, cv) = cells_for_tolerance(surface, tolerance);
     grid(surface, cu, cv)
+}
+
+/// [`tessellate`] for a NURBS surface through its fast grid evaluator.
+pub fn tessellate_nurbs(surface: &super::NurbsSurface, tolerance: f64) -> SurfaceMesh {
+    let (cu, cv) = cells_for_tolerance(surface, tolerance);
+    let ((u0, u1), (v0, v1)) = surface.domain();
+    let us: Vec<f64> = (0..=cu)
+        .map(|i| u0 + (u1 - u0) * i as f64 / cu as f64)
+        .collect();
+    let vs: Vec<f64> = (0..=cv)
+        .map(|j| v0 + (v1 - v0) * j as f64 / cv as f64)
+        .collect();
+    let (positions, normals) = surface.grid(&us, &vs, true);
+    let params = us
+        .iter()
+        .flat_map(|&u| vs.iter().map(move |&v| (u, v)))
+        .collect();
+    SurfaceMesh {
+        positions,
+        normals,
+        params,
+        triangles: grid_triangles(cu, cv),
+    }
+}
+
+/// Two counter-clockwise triangles per cell of a `(cu + 1) × (cv + 1)` grid.
+fn grid_triangles(cu: usize, cv: usize) -> Vec<[u32; 3]> {
+    let id = |i: usize, j: usize| (i * (cv + 1) + j) as u32;
+    let mut t = Vec::with_capacity(2 * cu * cv);
+    for i in 0..cu {
+        for j in 0..cv {
+            t.push([id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
+            t.push([id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
+        }
+    }
+    t
 }
 
 /// Parameters along a curve so that each chord stays within about

@@ -1,0 +1,287 @@
+//! Fast batch evaluation of NURBS curves and surfaces, for tessellation and
+//! benchmarks. The B-spline basis at `u` (The NURBS Book, A2.2) divides by
+//! knot differences that depend only on the span, so their reciprocals are
+//! computed once per span; sorted parameters find their span without a
+//! search; a surface grid combines each u-row of control points once and
+//! then needs only `q + 1` terms per point (the tensor-product trick).
+
+use glam::{DVec3, DVec4};
+
+/// Degrees above this use the general evaluator.
+pub const MAX_FAST_DEGREE: usize = 15;
+
+/// One direction's basis: knots, degree and the reciprocal denominators of
+/// A2.2 per span.
+#[derive(Clone, Debug)]
+pub struct Basis {
+    degree: usize,
+    knots: Vec<f64>,
+    /// First span index with a non-empty interval and the last.
+    first: usize,
+    last: usize,
+    /// Per span `i` (from `first`), `p(p+1)/2` reciprocals of
+    /// `U[i+r+1] − U[i+1−j+r]` for j = 1..=p, r = 0..j (0 where the difference is 0).
+    inv: Vec<f64>,
+}
+
+impl Basis {
+    /// The basis of `count` control points of degree `degree` on `knots`
+    /// (already validated by the curve or surface).
+    pub fn new(degree: usize, knots: &[f64], count: usize) -> Basis {
+        let p = degree;
+        let (first, last) = (p, count - 1);
+        let per = p * (p + 1) / 2;
+        let mut inv = Vec::with_capacity((last + 1 - first) * per);
+        for i in first..=last {
+            for j in 1..=p {
+                for r in 0..j {
+                    let d = knots[i + r + 1] - knots[i + 1 - j + r];
+                    inv.push(if d != 0.0 { 1.0 / d } else { 0.0 });
+                }
+            }
+        }
+        Basis {
+            degree,
+            knots: knots.to_vec(),
+            first,
+            last,
+            inv,
+        }
+    }
+
+    pub fn degree(&self) -> usize {
+        self.degree
+    }
+
+    /// The span of `u`, starting the search at `hint` (the previous span).
+    #[inline]
+    pub fn span(&self, u: f64, hint: usize) -> usize {
+        let k = &self.knots;
+        let hint = hint.clamp(self.first, self.last);
+        if u >= k[hint] && (u < k[hint + 1] || hint == self.last) {
+            // Skip empty spans at the end of the domain.
+            return hint;
+        }
+        if u >= k[self.last + 1] {
+            let mut i = self.last;
+            while i > self.first && k[i] >= k[self.last + 1] {
+                i -= 1;
+            }
+            return i;
+        }
+        if u <= k[self.first] {
+            let mut i = self.first;
+            while k[i + 1] <= u {
+                i += 1;
+            }
+            return i;
+        }
+        let (mut lo, mut hi) = (self.first, self.last + 1);
+        let mut mid = (lo + hi) / 2;
+        while u < k[mid] || u >= k[mid + 1] {
+            if u < k[mid] {
+                hi = mid;
+            } else {
+                lo = mid;
+            }
+            mid = (lo + hi) / 2;
+        }
+        mid
+    }
+
+    /// The `p + 1` non-zero basis functions at `u` in span `i` (A2.2 with
+    /// the stored reciprocals).
+    #[inline]
+    pub fn functions(&self, i: usize, u: f64, n: &mut [f64; MAX_FAST_DEGREE + 1]) {
+        let p = self.degree;
+        let k = &self.knots;
+        let inv = &self.inv[(i - self.first) * (p * (p + 1) / 2)..];
+        let mut left = [0.0; MAX_FAST_DEGREE + 1];
+        let mut right = [0.0; MAX_FAST_DEGREE + 1];
+        n[0] = 1.0;
+        let mut at = 0;
+        for j in 1..=p {
+            left[j] = u - k[i + 1 - j];
+            right[j] = k[i + j] - u;
+            let mut saved = 0.0;
+            for r in 0..j {
+                let temp = n[r] * inv[at];
+                at += 1;
+                n[r] = saved + right[r + 1] * temp;
+                saved = left[j - r] * temp;
+            }
+            n[j] = saved;
+        }
+    }
+
+    /// The basis functions and their first derivatives at `u` in span `i`:
+    /// `N'_{a,p} = p (N_{a,p−1} / (U_{a+p} − U_a) − N_{a+1,p−1} / (U_{a+p+1} − U_{a+1}))`.
+    #[inline]
+    pub fn functions_and_derivatives(
+        &self,
+        i: usize,
+        u: f64,
+        n: &mut [f64; MAX_FAST_DEGREE + 1],
+        d: &mut [f64; MAX_FAST_DEGREE + 1],
+    ) {
+        let p = self.degree;
+        let k = &self.knots;
+        if p == 0 {
+            n[0] = 1.0;
+            d[0] = 0.0;
+            return;
+        }
+        // The same triangle as `functions`, keeping degree p − 1 on the way.
+        let mut m = [0.0; MAX_FAST_DEGREE + 1];
+        {
+            let inv = &self.inv[(i - self.first) * (p * (p + 1) / 2)..];
+            let mut left = [0.0; MAX_FAST_DEGREE + 1];
+            let mut right = [0.0; MAX_FAST_DEGREE + 1];
+            m[0] = 1.0;
+            let mut at = 0;
+            for j in 1..=p {
+                left[j] = u - k[i + 1 - j];
+                right[j] = k[i + j] - u;
+                if j == p {
+                    n[..p].copy_from_slice(&m[..p]);
+                }
+                let mut saved = 0.0;
+                for r in 0..j {
+                    let temp = m[r] * inv[at];
+                    at += 1;
+                    m[r] = saved + right[r + 1] * temp;
+                    saved = left[j - r] * temp;
+                }
+                m[j] = saved;
+            }
+        }
+        // Now `n[..p]` holds degree p − 1 (functions i−p+1 ..= i), `m` degree p.
+        let pf = p as f64;
+        for r in 0..=p {
+            let a = i - p + r;
+            let mut v = 0.0;
+            if r >= 1 {
+                let den = k[a + p] - k[a];
+                if den != 0.0 {
+                    v += n[r - 1] / den;
+                }
+            }
+            if r < p {
+                let den = k[a + p + 1] - k[a + 1];
+                if den != 0.0 {
+                    v -= n[r] / den;
+                }
+            }
+            d[r] = pf * v;
+        }
+        n[..=p].copy_from_slice(&m[..=p]);
+    }
+}
+
+/// Homogeneous control points `(w P, w)`.
+pub fn homogeneous_points(points: &[DVec3], weights: &[f64]) -> Vec<DVec4> {
+    points
+        .iter()
+        .zip(weights)
+        .map(|(p, &w)| (*p * w).extend(w))
+        .collect()
+}
+
+/// Points of a NURBS curve at many parameters (any order; increasing ones
+/// are fastest).
+pub fn curve_points(basis: &Basis, pw: &[DVec4], params: &[f64]) -> Vec<DVec3> {
+    let p = basis.degree;
+    let mut out = Vec::with_capacity(params.len());
+    let mut n = [0.0; MAX_FAST_DEGREE + 1];
+    let mut span = basis.first;
+    for &u in params {
+        span = basis.span(u, span);
+        basis.functions(span, u, &mut n);
+        let base = span - p;
+        let mut h = DVec4::ZERO;
+        for r in 0..=p {
+            h += n[r] * pw[base + r];
+        }
+        out.push(h.truncate() / h.w);
+    }
+    out
+}
+
+/// A surface grid: points and unit normals at every `(us[a], vs[b])`,
+/// row-major (`a * vs.len() + b`). `pw` is `nu × nv` row-major (i along u).
+pub fn surface_grid(
+    bu: &Basis,
+    bv: &Basis,
+    nv: usize,
+    pw: &[DVec4],
+    us: &[f64],
+    vs: &[f64],
+    normals: bool,
+) -> (Vec<DVec3>, Vec<DVec3>) {
+    let (p, q) = (bu.degree, bv.degree);
+    // The v-basis of every column, once.
+    let mut v_span = Vec::with_capacity(vs.len());
+    let mut v_n = Vec::with_capacity(vs.len());
+    let mut v_d = Vec::with_capacity(vs.len());
+    let mut s = bv.first;
+    for &v in vs {
+        s = bv.span(v, s);
+        let (mut n, mut d) = ([0.0; MAX_FAST_DEGREE + 1], [0.0; MAX_FAST_DEGREE + 1]);
+        if normals {
+            bv.functions_and_derivatives(s, v, &mut n, &mut d);
+        } else {
+            bv.functions(s, v, &mut n);
+        }
+        v_span.push(s);
+        v_n.push(n);
+        v_d.push(d);
+    }
+    let mut points = Vec::with_capacity(us.len() * vs.len());
+    let mut norms = Vec::with_capacity(if normals { us.len() * vs.len() } else { 0 });
+    let mut row0 = vec![DVec4::ZERO; nv];
+    let mut row1 = vec![DVec4::ZERO; nv];
+    let (mut n, mut d) = ([0.0; MAX_FAST_DEGREE + 1], [0.0; MAX_FAST_DEGREE + 1]);
+    let mut su = bu.first;
+    for &u in us {
+        su = bu.span(u, su);
+        if normals {
+            bu.functions_and_derivatives(su, u, &mut n, &mut d);
+        } else {
+            bu.functions(su, u, &mut n);
+        }
+        // Combine the p + 1 rows of control points under this u once.
+        for j in 0..nv {
+            let (mut a, mut b) = (DVec4::ZERO, DVec4::ZERO);
+            for r in 0..=p {
+                let c = pw[(su - p + r) * nv + j];
+                a += n[r] * c;
+                if normals {
+                    b += d[r] * c;
+                }
+            }
+            row0[j] = a;
+            row1[j] = b;
+        }
+        for (k, &sv) in v_span.iter().enumerate() {
+            let (nvk, dvk) = (&v_n[k], &v_d[k]);
+            let base = sv - q;
+            let mut h = DVec4::ZERO;
+            for r in 0..=q {
+                h += nvk[r] * row0[base + r];
+            }
+            let s = h.truncate() / h.w;
+            points.push(s);
+            if normals {
+                let (mut hu, mut hv) = (DVec4::ZERO, DVec4::ZERO);
+                for r in 0..=q {
+                    hu += nvk[r] * row1[base + r];
+                    hv += dvk[r] * row0[base + r];
+                }
+                let su_ = (hu.truncate() - hu.w * s) / h.w;
+                let sv_ = (hv.truncate() - hv.w * s) / h.w;
+                norms.push(su_.cross(sv_).normalize_or_zero());
+            }
+        }
+    }
+    (points, norms)
+}
