@@ -28,6 +28,7 @@ pub struct Writers<'w> {
     requests: MessageWriter<'w, DocRequest>,
     files: MessageWriter<'w, FileAction>,
     exit: MessageWriter<'w, AppExit>,
+    analysis: ResMut<'w, hedra_viewport::CurveAnalysis>,
 }
 
 #[derive(SystemParam)]
@@ -87,8 +88,13 @@ pub fn draw_ui(
             .resizable(true)
             .default_size(270.0)
             .show(&mut root, |ui| {
-                egui::ScrollArea::vertical()
-                    .show(ui, |ui| properties(ui, &model, &mut ui_state, &mut events));
+                egui::ScrollArea::vertical().show(ui, |ui| {
+                    let mut analysis = writers.analysis.clone();
+                    properties(ui, &model, &mut ui_state, &mut events, &mut analysis);
+                    if analysis != *writers.analysis {
+                        *writers.analysis = analysis;
+                    }
+                });
             });
     }
     let free = root.available_rect_before_wrap();
@@ -740,7 +746,13 @@ fn vec3_row(ui: &mut egui::Ui, label: &str, v: &mut DVec3, speed: f64) -> egui::
     .inner
 }
 
-fn properties(ui: &mut egui::Ui, model: &Model, state: &mut UiState, events: &mut Vec<UiEvent>) {
+fn properties(
+    ui: &mut egui::Ui,
+    model: &Model,
+    state: &mut UiState,
+    events: &mut Vec<UiEvent>,
+    analysis: &mut hedra_viewport::CurveAnalysis,
+) {
     ui.heading("Properties");
     ui.separator();
     let doc = &model.state.session.doc;
@@ -821,7 +833,7 @@ fn properties(ui: &mut egui::Ui, model: &Model, state: &mut UiState, events: &mu
         })
         .default_open(true)
         .show(ui, |ui| {
-            shape_panel(ui, id, &node.content, model, state, events)
+            shape_panel(ui, id, &node.content, model, state, events, analysis)
         });
     }
     if let NodeContent::Mesh(content) = &node.content {
@@ -905,6 +917,7 @@ fn shape_panel(
     model: &Model,
     state: &mut UiState,
     events: &mut Vec<UiEvent>,
+    analysis: &mut hedra_viewport::CurveAnalysis,
 ) {
     use hedra_doc::command::ParameterDirection;
     use hedra_edit::shape_mode::control_weights;
@@ -974,6 +987,25 @@ fn shape_panel(
         || matches!(content, NodeContent::Surface(s) if matches!(**s, hedra_doc::SurfaceShape::Triangle(_)));
     if elevatable && ui.button("Elevate degree").clicked() {
         exec(events, Command::ElevateDegree { node: id.into() });
+    }
+    if matches!(content, NodeContent::Curve(_)) {
+        ui.separator();
+        ui.label(egui::RichText::new("Analysis").weak());
+        ui.horizontal(|ui| {
+            ui.checkbox(&mut analysis.comb, "Curvature comb");
+            ui.add_enabled(
+                analysis.comb,
+                egui::DragValue::new(&mut analysis.comb_scale)
+                    .speed(0.01)
+                    .range(0.001..=100.0)
+                    .prefix("× "),
+            );
+        });
+        ui.checkbox(&mut analysis.colour_by_curvature, "Colour by curvature");
+        ui.checkbox(&mut analysis.frame, "Frenet frame and osculating circle");
+        if analysis.frame {
+            ui.add(egui::Slider::new(&mut analysis.at, 0.0..=1.0).text("at"));
+        }
     }
     if model.shape_edit.node != Some(id) {
         ui.label("Tab edits the control points (G moves them, W drags their weight).");

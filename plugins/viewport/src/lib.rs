@@ -57,6 +57,7 @@ pub struct ViewportPlugin;
 
 impl Plugin for ViewportPlugin {
     fn build(&self, app: &mut App) {
+        app.init_resource::<CurveAnalysis>();
         app.insert_resource(ClearColor(Color::srgb(0.23, 0.23, 0.25)))
             .insert_resource(GlobalAmbientLight {
                 brightness: 400.0,
@@ -91,6 +92,7 @@ impl Plugin for ViewportPlugin {
                     update_edit_edges,
                     draw_edit_overlay,
                     draw_shape_edit,
+                    draw_curve_analysis,
                 )
                     .after(EditSystems),
             );
@@ -680,6 +682,120 @@ fn draw_edit_edges(
 
 /// Edit mode's vertex or face-centre dots; they face the camera, so they are
 /// drawn every frame (only the selected ones on dense meshes).
+/// The analysis overlays of the active curve (seed 001's exercises), set
+/// from the properties panel.
+#[derive(Resource, Debug, Clone, PartialEq)]
+pub struct CurveAnalysis {
+    /// Curvature comb: normals scaled by curvature along the curve.
+    pub comb: bool,
+    /// Length of the comb's teeth per unit of curvature.
+    pub comb_scale: f64,
+    /// Colour the curve by curvature (blue flat … red bent).
+    pub colour_by_curvature: bool,
+    /// A moving point with its Frenet frame and osculating circle.
+    pub frame: bool,
+    /// Where that point is, as a fraction of the domain.
+    pub at: f64,
+}
+
+impl Default for CurveAnalysis {
+    fn default() -> Self {
+        CurveAnalysis {
+            comb: false,
+            comb_scale: 0.3,
+            colour_by_curvature: false,
+            frame: false,
+            at: 0.5,
+        }
+    }
+}
+
+/// Draws the active curve's analysis overlays: curvature comb, colour by
+/// curvature, and the Frenet frame (tangent red, normal green, binormal
+/// blue) with the osculating circle at a moving point.
+fn draw_curve_analysis(
+    analysis: Res<CurveAnalysis>,
+    selection: Res<Selection>,
+    state: Res<DocState>,
+    edit: Res<hedra_edit::ShapeEdit>,
+    mut gizmos: Gizmos<AxisGizmos>,
+) {
+    use hedra_geom::curves::Curve;
+    use hedra_geom::curves::analysis::{curvature, frenet_frame, osculating_circle};
+    if !(analysis.comb || analysis.frame || analysis.colour_by_curvature) {
+        return;
+    }
+    let Some(id) = selection.active() else { return };
+    let doc = &state.session.doc;
+    let preview = edit.preview.as_ref().filter(|_| edit.node == Some(id));
+    let Some(NodeContent::Curve(c)) = preview.or_else(|| doc.node(id).map(|n| &n.content)) else {
+        return;
+    };
+    let world = doc.world_matrix(id);
+    let to_world = |p: DVec3| world.transform_point3(p).as_vec3();
+    let (a, b) = c.domain();
+    let samples = 300;
+    let ts: Vec<f64> = (0..=samples)
+        .map(|i| a + (b - a) * i as f64 / samples as f64)
+        .collect();
+    let ks: Vec<f64> = ts.iter().map(|&t| curvature(&**c, t)).collect();
+    let k_max = ks.iter().copied().fold(1e-12, f64::max);
+    if analysis.colour_by_curvature {
+        for (w, k) in ts.windows(2).zip(&ks) {
+            let x = (k / k_max) as f32;
+            let colour = Color::srgb(x, 0.2, 1.0 - x);
+            gizmos.line(to_world(c.point(w[0])), to_world(c.point(w[1])), colour);
+        }
+    }
+    if analysis.comb {
+        let mut tips = Vec::with_capacity(ts.len());
+        for (&t, &k) in ts.iter().zip(&ks) {
+            let p = c.point(t);
+            // The comb points away from the centre of curvature.
+            let tip = match frenet_frame(&**c, t) {
+                Some([_, normal, _]) => p - normal * k * analysis.comb_scale,
+                None => p,
+            };
+            if tips.len() % 3 == 0 {
+                gizmos.line(to_world(p), to_world(tip), Color::srgba(0.4, 0.9, 1.0, 0.6));
+            }
+            tips.push(to_world(tip));
+        }
+        gizmos.linestrip(tips, Color::srgb(0.4, 0.9, 1.0));
+    }
+    if analysis.frame {
+        let t = a + (b - a) * analysis.at.clamp(0.0, 1.0);
+        let p = c.point(t);
+        let size = hedra_scene::extent(c.points()) * 0.15;
+        gizmos.sphere(
+            Isometry3d::from_translation(to_world(p)),
+            (size * 0.08) as f32,
+            Color::WHITE,
+        );
+        if let Some([tangent, normal, binormal]) = frenet_frame(&**c, t) {
+            for (v, colour) in [
+                (tangent, Color::srgb(1.0, 0.25, 0.25)),
+                (normal, Color::srgb(0.3, 1.0, 0.3)),
+                (binormal, Color::srgb(0.35, 0.5, 1.0)),
+            ] {
+                gizmos.arrow(to_world(p), to_world(p + v * size), colour);
+            }
+        }
+        if let Some((centre, radius)) = osculating_circle(&**c, t)
+            && radius < 1e4 * hedra_scene::extent(c.points())
+            && let Some([tangent, normal, _]) = frenet_frame(&**c, t)
+        {
+            let circle: Vec<Vec3> = (0..=96)
+                .map(|i| {
+                    let angle = std::f64::consts::TAU * i as f64 / 96.0;
+                    to_world(centre + radius * (angle.cos() * tangent + angle.sin() * normal))
+                })
+                .collect();
+            gizmos.linestrip(circle, Color::srgba(1.0, 0.85, 0.3, 0.8));
+        }
+    }
+}
+
 /// Shape edit mode: the curve (or surface's control net) as the running
 /// tool would leave it, with its control points (selected ones orange,
 /// larger the heavier their weight).
