@@ -430,3 +430,36 @@ proptest! {
         }
     }
 }
+
+#[test]
+fn splitting_a_nurbs_curve_keeps_both_halves_on_it() {
+    let c = wavy_nurbs();
+    for u in [0.2, 0.3, 0.5, 0.81] {
+        let (l, r) = c.split(u).unwrap();
+        assert!(l.is_clamped() && r.is_clamped());
+        assert_eq!((l.domain(), r.domain()), ((0.0, u), (u, 1.0)));
+        for k in 0..=40 {
+            let t = k as f64 / 40.0;
+            let p = c.point(t);
+            let q = if t <= u { l.point(t) } else { r.point(t) };
+            assert!(close(p, q, 1e-12), "split at {u}, t = {t}");
+        }
+    }
+    assert!(matches!(c.split(1.0), Err(CurveError::OutsideDomain { .. })));
+}
+
+#[test]
+fn quintic_hermite_meets_its_end_conditions() {
+    use hedra_geom::curves::interpolating::QuinticHermite;
+    let q = QuinticHermite {
+        points: [DVec3::ZERO, DVec3::new(3.0, 1.0, 0.0)],
+        velocities: [DVec3::new(1.0, 2.0, 0.0), DVec3::new(0.0, -1.0, 1.0)],
+        accelerations: [DVec3::new(0.0, 0.0, 4.0), DVec3::new(-2.0, 0.0, 0.0)],
+    };
+    let [p0, v0, a0] = q.derivatives(0.0);
+    let [p1, v1, a1] = q.derivatives(1.0);
+    for (got, want) in [(p0, q.points[0]), (v0, q.velocities[0]), (a0, q.accelerations[0]), (p1, q.points[1]), (v1, q.velocities[1]), (a1, q.accelerations[1])] {
+        assert!(close(got, want, 1e-12), "{got} vs {want}");
+    }
+    check_derivatives(&q, 1e-6);
+}

@@ -203,6 +203,66 @@ impl HermiteSpline {
     }
 }
 
+/// A quintic Hermite segment on [0, 1] (seed 002): position, first and
+/// second derivative given at both ends; C2 where segments share them.
+#[derive(Clone, Debug, PartialEq)]
+pub struct QuinticHermite {
+    /// `[p0, p1]`, `[v0, v1]` (first derivatives), `[a0, a1]` (second).
+    pub points: [DVec3; 2],
+    pub velocities: [DVec3; 2],
+    pub accelerations: [DVec3; 2],
+}
+
+/// The six quintic Hermite basis functions and their first and second
+/// derivatives, in the order p0, v0, a0, a1, v1, p1.
+fn quintic_basis(t: f64) -> [[f64; 6]; 3] {
+    let (t2, t3, t4, t5) = (t * t, t.powi(3), t.powi(4), t.powi(5));
+    [
+        [
+            1.0 - 10.0 * t3 + 15.0 * t4 - 6.0 * t5,
+            t - 6.0 * t3 + 8.0 * t4 - 3.0 * t5,
+            0.5 * t2 - 1.5 * t3 + 1.5 * t4 - 0.5 * t5,
+            0.5 * t3 - t4 + 0.5 * t5,
+            -4.0 * t3 + 7.0 * t4 - 3.0 * t5,
+            10.0 * t3 - 15.0 * t4 + 6.0 * t5,
+        ],
+        [
+            -30.0 * t2 + 60.0 * t3 - 30.0 * t4,
+            1.0 - 18.0 * t2 + 32.0 * t3 - 15.0 * t4,
+            t - 4.5 * t2 + 6.0 * t3 - 2.5 * t4,
+            1.5 * t2 - 4.0 * t3 + 2.5 * t4,
+            -12.0 * t2 + 28.0 * t3 - 15.0 * t4,
+            30.0 * t2 - 60.0 * t3 + 30.0 * t4,
+        ],
+        [
+            -60.0 * t + 180.0 * t2 - 120.0 * t3,
+            -36.0 * t + 96.0 * t2 - 60.0 * t3,
+            1.0 - 9.0 * t + 18.0 * t2 - 10.0 * t3,
+            3.0 * t - 12.0 * t2 + 10.0 * t3,
+            -24.0 * t + 84.0 * t2 - 60.0 * t3,
+            60.0 * t - 180.0 * t2 + 120.0 * t3,
+        ],
+    ]
+}
+
+impl Curve for QuinticHermite {
+    fn domain(&self) -> (f64, f64) {
+        (0.0, 1.0)
+    }
+    fn derivatives(&self, t: f64) -> [DVec3; 3] {
+        let t = t.clamp(0.0, 1.0);
+        let data = [
+            self.points[0],
+            self.velocities[0],
+            self.accelerations[0],
+            self.accelerations[1],
+            self.velocities[1],
+            self.points[1],
+        ];
+        quintic_basis(t).map(|b| b.iter().zip(&data).map(|(w, p)| *w * *p).sum())
+    }
+}
+
 /// Tension, bias and continuity of one Kochanek-Bartels key, each in [−1, 1].
 #[derive(Copy, Clone, Debug, Default, PartialEq)]
 pub struct Tbc {

@@ -370,6 +370,50 @@ impl NurbsCurve {
         }
     }
 
+    /// The two pieces on either side of `u`, each a clamped curve tracing
+    /// its part exactly: `u` is inserted until it has multiplicity
+    /// `degree`, where the curve passes through a control point.
+    ///
+    /// # Errors
+    /// `u` outside the open domain, or an unclamped curve.
+    pub fn split(&self, u: f64) -> Result<(NurbsCurve, NurbsCurve), CurveError> {
+        let (start, end) = self.domain();
+        if !(u > start && u < end) {
+            return Err(CurveError::OutsideDomain { value: u, start, end });
+        }
+        if !self.is_clamped() {
+            return Err(CurveError::Parameter("splitting needs a clamped knot vector".into()));
+        }
+        let p = self.degree;
+        let mut c = self.clone();
+        while c.knots.iter().filter(|&&k| k == u).count() < p {
+            c = c.insert_knot(u)?;
+        }
+        // The knots up to u (with one more copy to clamp) and the points before.
+        let last_u = c.knots.iter().rposition(|&k| k == u).expect("inserted");
+        let first_u = last_u + 1 - p;
+        let mut left_knots = c.knots[..=last_u].to_vec();
+        left_knots.push(u);
+        let left_count = left_knots.len() - p - 1;
+        let mut right_knots = vec![u];
+        right_knots.extend_from_slice(&c.knots[first_u..]);
+        let right_count = right_knots.len() - p - 1;
+        let n = c.points.len();
+        let left = NurbsCurve::new(
+            p,
+            left_knots,
+            c.points[..left_count].to_vec(),
+            c.weights[..left_count].to_vec(),
+        )?;
+        let right = NurbsCurve::new(
+            p,
+            right_knots,
+            c.points[n - right_count..].to_vec(),
+            c.weights[n - right_count..].to_vec(),
+        )?;
+        Ok((left, right))
+    }
+
     /// True when both ends have `degree + 1` equal knots (the curve starts
     /// and ends at its end control points).
     pub fn is_clamped(&self) -> bool {
