@@ -379,3 +379,48 @@ mod fast_paths {
         }
     }
 }
+
+#[test]
+fn a_bezier_triangle_and_a_quad_patch_join_with_g1_when_their_nets_line_up() {
+    use hedra_geom::surfaces::joins::{Boundary, join, surface_boundary, triangle_boundary};
+    // A quad patch in the plane y = 0 for x ∈ [0, 1], z ∈ [0, 1], bilinear
+    // as a degree-2 Bézier net, whose edge x = 1 is shared with a triangle.
+    let mut quad = Vec::new();
+    for i in 0..3 {
+        for j in 0..3 {
+            quad.push(DVec3::new(i as f64 / 2.0, 0.0, j as f64 / 2.0));
+        }
+    }
+    let quad = BezierSurface::new(3, 3, quad).unwrap();
+    // The triangle's edge u = 0 (from w-corner to v-corner) is x = 1, z ∈ [0, 1].
+    let flat_triangle = |lift: f64| {
+        // b_ijk for degree 2: rows i = 0 (on the shared edge), 1, 2.
+        BezierTriangle::new(
+            2,
+            vec![
+                DVec3::new(1.0, 0.0, 0.0),  // b002 (w corner)
+                DVec3::new(1.0, 0.0, 0.5),  // b011
+                DVec3::new(1.0, 0.0, 1.0),  // b020 (v corner)
+                DVec3::new(1.5, lift, 0.25), // b101: the row next to the edge
+                DVec3::new(1.5, lift, 0.75), // b110
+                DVec3::new(2.0, 0.0, 0.5),  // b200 (u corner)
+            ],
+        )
+        .unwrap()
+    };
+    let check = |tri: &BezierTriangle| {
+        join(
+            |t| surface_boundary(&quad, Boundary::U1, false, t),
+            |t| triangle_boundary(tri, Boundary::TriangleU0, false, t),
+            16,
+            1e-12,
+            1e-9,
+        )
+    };
+    // Next row coplanar with the quad's last row (the G1 condition of seed 002): G1.
+    let j = check(&flat_triangle(0.0));
+    assert!(j.c0 && j.g1, "{j:?}");
+    // Lift that row out of the plane: still C0, no longer G1.
+    let j = check(&flat_triangle(0.3));
+    assert!(j.c0 && !j.g1, "{j:?}");
+}

@@ -9,6 +9,7 @@
 
 pub mod bezier;
 pub mod intersect;
+pub mod joins;
 pub mod nurbs;
 pub mod tessellate;
 pub mod triangle;
