@@ -445,7 +445,10 @@ fn splitting_a_nurbs_curve_keeps_both_halves_on_it() {
             assert!(close(p, q, 1e-12), "split at {u}, t = {t}");
         }
     }
-    assert!(matches!(c.split(1.0), Err(CurveError::OutsideDomain { .. })));
+    assert!(matches!(
+        c.split(1.0),
+        Err(CurveError::OutsideDomain { .. })
+    ));
 }
 
 #[test]
@@ -458,7 +461,14 @@ fn quintic_hermite_meets_its_end_conditions() {
     };
     let [p0, v0, a0] = q.derivatives(0.0);
     let [p1, v1, a1] = q.derivatives(1.0);
-    for (got, want) in [(p0, q.points[0]), (v0, q.velocities[0]), (a0, q.accelerations[0]), (p1, q.points[1]), (v1, q.velocities[1]), (a1, q.accelerations[1])] {
+    for (got, want) in [
+        (p0, q.points[0]),
+        (v0, q.velocities[0]),
+        (a0, q.accelerations[0]),
+        (p1, q.points[1]),
+        (v1, q.velocities[1]),
+        (a1, q.accelerations[1]),
+    ] {
         assert!(close(got, want, 1e-12), "{got} vs {want}");
     }
     check_derivatives(&q, 1e-6);

@@ -398,12 +398,12 @@ fn a_bezier_triangle_and_a_quad_patch_join_with_g1_when_their_nets_line_up() {
         BezierTriangle::new(
             2,
             vec![
-                DVec3::new(1.0, 0.0, 0.0),  // b002 (w corner)
-                DVec3::new(1.0, 0.0, 0.5),  // b011
-                DVec3::new(1.0, 0.0, 1.0),  // b020 (v corner)
+                DVec3::new(1.0, 0.0, 0.0),   // b002 (w corner)
+                DVec3::new(1.0, 0.0, 0.5),   // b011
+                DVec3::new(1.0, 0.0, 1.0),   // b020 (v corner)
                 DVec3::new(1.5, lift, 0.25), // b101: the row next to the edge
                 DVec3::new(1.5, lift, 0.75), // b110
-                DVec3::new(2.0, 0.0, 0.5),  // b200 (u corner)
+                DVec3::new(2.0, 0.0, 0.5),   // b200 (u corner)
             ],
         )
         .unwrap()
@@ -423,4 +423,19 @@ fn a_bezier_triangle_and_a_quad_patch_join_with_g1_when_their_nets_line_up() {
     // Lift that row out of the plane: still C0, no longer G1.
     let j = check(&flat_triangle(0.3));
     assert!(j.c0 && !j.g1, "{j:?}");
+}
+
+#[test]
+fn a_plane_cuts_the_sphere_in_a_circle() {
+    use hedra_geom::surfaces::tessellate::{plane_section, tessellate_nurbs};
+    let s = NurbsSurface::sphere(DVec3::ZERO, 1.0);
+    let mesh = tessellate_nurbs(&s, 1e-4);
+    let cut = plane_section(&mesh, DVec3::new(0.0, 0.6, 0.0), DVec3::Y);
+    assert!(cut.len() > 50);
+    for [p, q] in cut {
+        for x in [p, q] {
+            assert!((x.y - 0.6).abs() < 1e-12);
+            assert!((x.length() - 1.0).abs() < 2e-4, "{}", x.length());
+        }
+    }
 }

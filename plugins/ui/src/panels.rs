@@ -29,6 +29,7 @@ pub struct Writers<'w> {
     files: MessageWriter<'w, FileAction>,
     exit: MessageWriter<'w, AppExit>,
     analysis: ResMut<'w, hedra_viewport::CurveAnalysis>,
+    surface_analysis: ResMut<'w, hedra_viewport::SurfaceAnalysis>,
 }
 
 #[derive(SystemParam)]
@@ -89,10 +90,13 @@ pub fn draw_ui(
             .default_size(270.0)
             .show(&mut root, |ui| {
                 egui::ScrollArea::vertical().show(ui, |ui| {
-                    let mut analysis = writers.analysis.clone();
+                    let mut analysis = (writers.analysis.clone(), writers.surface_analysis.clone());
                     properties(ui, &model, &mut ui_state, &mut events, &mut analysis);
-                    if analysis != *writers.analysis {
-                        *writers.analysis = analysis;
+                    if analysis.0 != *writers.analysis {
+                        *writers.analysis = analysis.0;
+                    }
+                    if analysis.1 != *writers.surface_analysis {
+                        *writers.surface_analysis = analysis.1;
                     }
                 });
             });
@@ -751,7 +755,10 @@ fn properties(
     model: &Model,
     state: &mut UiState,
     events: &mut Vec<UiEvent>,
-    analysis: &mut hedra_viewport::CurveAnalysis,
+    analysis: &mut (
+        hedra_viewport::CurveAnalysis,
+        hedra_viewport::SurfaceAnalysis,
+    ),
 ) {
     ui.heading("Properties");
     ui.separator();
@@ -917,9 +924,13 @@ fn shape_panel(
     model: &Model,
     state: &mut UiState,
     events: &mut Vec<UiEvent>,
-    analysis: &mut hedra_viewport::CurveAnalysis,
+    analysis: &mut (
+        hedra_viewport::CurveAnalysis,
+        hedra_viewport::SurfaceAnalysis,
+    ),
 ) {
     use hedra_doc::command::ParameterDirection;
+    let (analysis, surface_analysis) = (&mut analysis.0, &mut analysis.1);
     use hedra_edit::shape_mode::control_weights;
     let knots_text = |k: &[f64]| {
         let text: Vec<String> = k.iter().map(|x| format!("{x:.3}")).collect();
@@ -1005,6 +1016,26 @@ fn shape_panel(
         ui.checkbox(&mut analysis.frame, "Frenet frame and osculating circle");
         if analysis.frame {
             ui.add(egui::Slider::new(&mut analysis.at, 0.0..=1.0).text("at"));
+        }
+    }
+    if matches!(content, NodeContent::Surface(s) if matches!(**s, hedra_doc::SurfaceShape::Nurbs(_)))
+    {
+        ui.separator();
+        ui.label(egui::RichText::new("Analysis").weak());
+        let a = surface_analysis;
+        ui.horizontal(|ui| {
+            ui.checkbox(&mut a.section, "Planar section");
+            for (axis, name) in ["X", "Y", "Z"].iter().enumerate() {
+                ui.selectable_value(&mut a.section_axis, axis, *name);
+            }
+        });
+        if a.section {
+            ui.add(egui::Slider::new(&mut a.section_at, 0.0..=1.0).text("plane at"));
+        }
+        ui.checkbox(&mut a.domain_point, "Moving domain point");
+        if a.domain_point {
+            ui.add(egui::Slider::new(&mut a.u, 0.0..=1.0).text("u"));
+            ui.add(egui::Slider::new(&mut a.v, 0.0..=1.0).text("v"));
         }
     }
     if model.shape_edit.node != Some(id) {

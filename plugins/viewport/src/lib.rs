@@ -58,6 +58,7 @@ pub struct ViewportPlugin;
 impl Plugin for ViewportPlugin {
     fn build(&self, app: &mut App) {
         app.init_resource::<CurveAnalysis>();
+        app.init_resource::<SurfaceAnalysis>();
         app.insert_resource(ClearColor(Color::srgb(0.23, 0.23, 0.25)))
             .insert_resource(GlobalAmbientLight {
                 brightness: 400.0,
@@ -93,6 +94,7 @@ impl Plugin for ViewportPlugin {
                     draw_edit_overlay,
                     draw_shape_edit,
                     draw_curve_analysis,
+                    draw_surface_analysis,
                 )
                     .after(EditSystems),
             );
@@ -793,6 +795,116 @@ fn draw_curve_analysis(
                 .collect();
             gizmos.linestrip(circle, Color::srgba(1.0, 0.85, 0.3, 0.8));
         }
+    }
+}
+
+/// The analysis overlays of the active surface (seed 002's exercise): a
+/// planar section and a moving domain point.
+#[derive(Resource, Debug, Clone, PartialEq)]
+pub struct SurfaceAnalysis {
+    pub section: bool,
+    /// The section plane's normal axis (0 = X, 1 = Y, 2 = Z, local space).
+    pub section_axis: usize,
+    /// Where the plane is, as a fraction of the control net's extent.
+    pub section_at: f64,
+    pub domain_point: bool,
+    /// The moving point's parameters, as fractions of the domain.
+    pub u: f64,
+    pub v: f64,
+}
+
+impl Default for SurfaceAnalysis {
+    fn default() -> Self {
+        SurfaceAnalysis {
+            section: false,
+            section_axis: 1,
+            section_at: 0.5,
+            domain_point: false,
+            u: 0.5,
+            v: 0.5,
+        }
+    }
+}
+
+/// Draws the active NURBS surface's planar section (the plane's outline
+/// and the cut) and the moving domain point with its iso-parameter curves.
+fn draw_surface_analysis(
+    analysis: Res<SurfaceAnalysis>,
+    selection: Res<Selection>,
+    state: Res<DocState>,
+    mut gizmos: Gizmos<AxisGizmos>,
+) {
+    use hedra_geom::surfaces::Surface;
+    if !(analysis.section || analysis.domain_point) {
+        return;
+    }
+    let Some(id) = selection.active() else { return };
+    let doc = &state.session.doc;
+    let Some(NodeContent::Surface(shape)) = doc.node(id).map(|n| &n.content) else {
+        return;
+    };
+    let hedra_doc::SurfaceShape::Nurbs(s) = &**shape else {
+        return;
+    };
+    let world = doc.world_matrix(id);
+    let to_world = |p: DVec3| world.transform_point3(p).as_vec3();
+    if analysis.section {
+        let (lo, hi) = s
+            .points()
+            .iter()
+            .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), p| {
+                (lo.min(*p), hi.max(*p))
+            });
+        let axis = analysis.section_axis.min(2);
+        let normal = [DVec3::X, DVec3::Y, DVec3::Z][axis];
+        let origin = lo.lerp(hi, analysis.section_at.clamp(0.0, 1.0)) * normal
+            + (lo + hi) / 2.0 * (DVec3::ONE - normal);
+        // The plane: a square a little larger than the net.
+        let half = (hi - lo).max_element() * 0.6;
+        let (a, b) = match axis {
+            0 => (DVec3::Y, DVec3::Z),
+            1 => (DVec3::X, DVec3::Z),
+            _ => (DVec3::X, DVec3::Y),
+        };
+        let corners = [
+            (-1.0, -1.0),
+            (1.0, -1.0),
+            (1.0, 1.0),
+            (-1.0, 1.0),
+            (-1.0, -1.0),
+        ]
+        .map(|(x, y)| to_world(origin + half * (x * a + y * b)));
+        gizmos.linestrip(corners, Color::srgba(0.6, 0.8, 1.0, 0.6));
+        let tol = hedra_scene::VIEW_TOLERANCE * hedra_scene::extent(s.points());
+        let mesh = hedra_geom::surfaces::tessellate::tessellate_nurbs(s, tol);
+        for [p, q] in hedra_geom::surfaces::tessellate::plane_section(&mesh, origin, normal) {
+            gizmos.line(to_world(p), to_world(q), Color::srgb(1.0, 0.3, 0.9));
+        }
+    }
+    if analysis.domain_point {
+        let ((u0, u1), (v0, v1)) = s.domain();
+        let u = u0 + (u1 - u0) * analysis.u.clamp(0.0, 1.0);
+        let v = v0 + (v1 - v0) * analysis.v.clamp(0.0, 1.0);
+        let iso_u: Vec<Vec3> = (0..=100)
+            .map(|k| to_world(s.point(u, v0 + (v1 - v0) * k as f64 / 100.0)))
+            .collect();
+        let iso_v: Vec<Vec3> = (0..=100)
+            .map(|k| to_world(s.point(u0 + (u1 - u0) * k as f64 / 100.0, v)))
+            .collect();
+        gizmos.linestrip(iso_u, Color::srgb(1.0, 0.85, 0.3));
+        gizmos.linestrip(iso_v, Color::srgb(0.4, 1.0, 0.5));
+        let e = s.evaluate(u, v);
+        let size = hedra_scene::extent(s.points()) * 0.12;
+        gizmos.sphere(
+            Isometry3d::from_translation(to_world(e.p)),
+            (size * 0.1) as f32,
+            Color::WHITE,
+        );
+        gizmos.arrow(
+            to_world(e.p),
+            to_world(e.p + e.normal() * size),
+            Color::srgb(0.35, 0.5, 1.0),
+        );
     }
 }
 

@@ -379,10 +379,16 @@ impl NurbsCurve {
     pub fn split(&self, u: f64) -> Result<(NurbsCurve, NurbsCurve), CurveError> {
         let (start, end) = self.domain();
         if !(u > start && u < end) {
-            return Err(CurveError::OutsideDomain { value: u, start, end });
+            return Err(CurveError::OutsideDomain {
+                value: u,
+                start,
+                end,
+            });
         }
         if !self.is_clamped() {
-            return Err(CurveError::Parameter("splitting needs a clamped knot vector".into()));
+            return Err(CurveError::Parameter(
+                "splitting needs a clamped knot vector".into(),
+            ));
         }
         let p = self.degree;
         let mut c = self.clone();

@@ -38,7 +38,12 @@ pub fn surface_boundary(s: &dyn Surface, b: Boundary, reversed: bool, t: f64) ->
 }
 
 /// Point and unit normal of a Bézier triangle along an edge.
-pub fn triangle_boundary(tri: &BezierTriangle, b: Boundary, reversed: bool, t: f64) -> (DVec3, DVec3) {
+pub fn triangle_boundary(
+    tri: &BezierTriangle,
+    b: Boundary,
+    reversed: bool,
+    t: f64,
+) -> (DVec3, DVec3) {
     let t = if reversed { 1.0 - t } else { t };
     let bary = match b {
         Boundary::TriangleU0 => DVec3::new(0.0, t, 1.0 - t),

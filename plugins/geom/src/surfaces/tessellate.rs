@@ -126,3 +126,30 @@ pub fn curve_parameters(curve: &dyn Curve, tolerance: f64) -> Vec<f64> {
     }
     out
 }
+
+/// Where the plane through `origin` with normal `normal` cuts a
+/// tessellated surface: one segment per triangle it crosses (the planar
+/// section of seed 002's exercise, within the tessellation's tolerance).
+pub fn plane_section(mesh: &SurfaceMesh, origin: DVec3, normal: DVec3) -> Vec<[DVec3; 2]> {
+    let d: Vec<f64> = mesh
+        .positions
+        .iter()
+        .map(|p| (*p - origin).dot(normal))
+        .collect();
+    let mut out = Vec::new();
+    for t in &mesh.triangles {
+        let mut crossing = Vec::with_capacity(2);
+        for k in 0..3 {
+            let (a, b) = (t[k] as usize, t[(k + 1) % 3] as usize);
+            let (da, db) = (d[a], d[b]);
+            if (da < 0.0) != (db < 0.0) {
+                let s = da / (da - db);
+                crossing.push(mesh.positions[a].lerp(mesh.positions[b], s));
+            }
+        }
+        if let [p, q] = crossing[..] {
+            out.push([p, q]);
+        }
+    }
+    out
+}
