@@ -248,3 +248,38 @@ fn smooth_preview_screenshot_shows_the_subdivided_jar_inside_its_cage() {
         "the surface fills {fill:.2} of the cage's box"
     );
 }
+
+#[test]
+fn curves_and_surfaces_screenshot_shows_curves_and_shaded_surfaces() {
+    let (pixels, w, h) = screenshot("shapes.hedra.ron", &[]);
+    assert_eq!((w, h), (1280, 800));
+    let in_viewport = |i: usize| {
+        let (x, y) = ((i as u32) % w, (i as u32) / w);
+        (230..1000).contains(&x) && (30..770).contains(&y)
+    };
+    // Curves are drawn in near-white lines (0.92, 0.92, 0.95); the same
+    // scene without its curves has none of these pixels (measured: 0 vs 279).
+    let curve = pixels
+        .iter()
+        .enumerate()
+        .filter(|(i, [r, g, b])| in_viewport(*i) && *r > 215 && *g > 215 && *b > 220)
+        .count();
+    assert!(curve > 150, "only {curve} curve pixels");
+    // Surfaces are lit grey with many shades (sphere, vase, patch).
+    let mut greys: Vec<u8> = pixels
+        .iter()
+        .enumerate()
+        .filter(|(i, [r, g, b])| {
+            in_viewport(*i) && r.abs_diff(*g) < 6 && g.abs_diff(*b) < 12 && (100..215).contains(r)
+        })
+        .map(|(_, [r, _, _])| *r)
+        .collect();
+    let surface = greys.len();
+    greys.sort();
+    greys.dedup();
+    assert!(
+        surface > 20_000 && greys.len() > 40,
+        "{surface} surface pixels, {} shades",
+        greys.len()
+    );
+}
