@@ -1,7 +1,8 @@
 //! Edit mode for curves and surfaces: Tab on the active curve or surface
 //! shows its control points; click / Shift-click / A / Alt+A select them;
 //! G moves them (X/Y/Z constrain, typed numbers are exact); W drags their
-//! weight (right = heavier, typed numbers set it; 0 and below are refused).
+//! weight (right = heavier, typed numbers set it; 0 and below are refused);
+//! K inserts a knot where the cursor points (Shift+K: in v on a surface).
 //! Like the mesh tools, a tool decides its command on a copy every frame
 //! and shows the result; Enter or a click confirms it as one undo step.
 
@@ -159,6 +160,7 @@ pub fn shape_select_and_shortcuts(
     window: Single<&Window, With<PrimaryWindow>>,
     camera: Single<(&Camera, &GlobalTransform), With<ViewportCamera>>,
     mut status: ResMut<StatusMessage>,
+    mut requests: MessageWriter<DocRequest>,
 ) {
     let Some(id) = edit.node else { return };
     if edit.tool.is_some() {
@@ -199,6 +201,18 @@ pub fn shape_select_and_shortcuts(
             (0..points.len() as u32).collect()
         };
     }
+    if keys.just_pressed(KeyCode::KeyK) {
+        let Some(cursor) = window.cursor_position() else {
+            return;
+        };
+        match knot_under_cursor(id, &node.content, world, cursor, (cam, cam_t), shift(&keys)) {
+            Some(cmd) => {
+                requests.write(DocRequest::Execute(cmd));
+            }
+            None => status.error("Insert knot: point at the curve (or surface) where the knot goes, then press K (Shift+K: in v)"),
+        }
+        return;
+    }
     let kind = if keys.just_pressed(KeyCode::KeyG) {
         Some(ShapeToolKind::Move)
     } else if keys.just_pressed(KeyCode::KeyW) {
@@ -229,6 +243,61 @@ pub fn shape_select_and_shortcuts(
         pivot: world.transform_point3(centre),
         readout: String::new(),
     });
+}
+
+/// The knot insertion for the point of the shape under the cursor: for a
+/// curve, the parameter of the nearest of 400 samples on screen (within 12
+/// pixels); for a NURBS surface, the parameter the cursor's ray hits (`in_v`
+/// picks the direction).
+fn knot_under_cursor(
+    id: NodeId,
+    content: &NodeContent,
+    world: glam::DMat4,
+    cursor: Vec2,
+    (cam, cam_t): (&Camera, &GlobalTransform),
+    in_v: bool,
+) -> Option<Command> {
+    use hedra_doc::command::ParameterDirection;
+    match content {
+        NodeContent::Curve(c) => {
+            use hedra_geom::curves::Curve;
+            let (a, b) = c.domain();
+            let (t, d) = (1..400)
+                .filter_map(|k| {
+                    let t = a + (b - a) * k as f64 / 400.0;
+                    let s = cam
+                        .world_to_viewport(cam_t, world.transform_point3(c.point(t)).as_vec3())
+                        .ok()?;
+                    Some((t, s.distance(cursor)))
+                })
+                .min_by(|x, y| x.1.total_cmp(&y.1))?;
+            (d <= 12.0).then_some(Command::InsertKnot {
+                node: NodeRef::from(id),
+                at: t,
+                direction: ParameterDirection::U,
+            })
+        }
+        NodeContent::Surface(s) => {
+            let SurfaceShape::Nurbs(n) = &**s else {
+                return None;
+            };
+            let ray = cam.viewport_to_world(cam_t, cursor).ok()?;
+            let inv = world.inverse();
+            let origin = inv.transform_point3(ray.origin.as_dvec3());
+            let dir = inv.transform_vector3(Vec3::from(ray.direction).as_dvec3());
+            let hit = hedra_geom::surfaces::intersect::ray_surface(n, origin, dir)?;
+            Some(Command::InsertKnot {
+                node: NodeRef::from(id),
+                at: if in_v { hit.v } else { hit.u },
+                direction: if in_v {
+                    ParameterDirection::V
+                } else {
+                    ParameterDirection::U
+                },
+            })
+        }
+        _ => None,
+    }
 }
 
 /// Runs the shape tool: preview each frame, confirm or cancel.

@@ -1579,7 +1579,7 @@ fn status_bar(ui: &mut egui::Ui, model: &Model) {
                     ui.label(egui::RichText::new(&t.readout).color(egui::Color32::from_rgb(255, 200, 80)));
                     ui.add(egui::Label::new("move the mouse · type a value · Enter/click confirm · Esc/right-click cancel").truncate());
                 } else {
-                    ui.add(egui::Label::new("click select · A all · G move · W weight · Tab exit").truncate());
+                    ui.add(egui::Label::new("click select · A all · G move · W weight · K insert knot · Tab exit").truncate());
                 }
             } else if let Some(node) = edit.node.and_then(|n| doc.node(n)) {
                 let kind = match edit.kind {
