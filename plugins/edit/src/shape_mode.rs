@@ -49,6 +49,8 @@ pub struct ShapeEdit {
     pub preview: Option<NodeContent>,
     /// Set on the frame a tool ended, so its confirming click selects nothing.
     pub just_finished: bool,
+    /// The rectangle being dragged for box selection (window coordinates).
+    pub box_select: Option<(Vec2, Vec2)>,
 }
 
 impl ShapeEdit {
@@ -176,18 +178,40 @@ pub fn shape_select_and_shortcuts(
     let points = control_points(&node.content);
     let world = state.session.doc.world_matrix(id);
     let (cam, cam_t) = *camera;
+    let cursor = window.cursor_position();
+    // A press on a point selects it; a press elsewhere starts a box, and a
+    // release without dragging clears the selection (Shift keeps it).
     if gate.pointer_free && buttons.just_pressed(MouseButton::Left) && !alt(&keys) {
-        if let Some(cursor) = window.cursor_position() {
-            let hit = point_under_cursor(&points, world, cursor, cam, cam_t);
-            match (hit, shift(&keys)) {
-                (Some(i), true) => {
+        if let Some(cursor) = cursor {
+            match point_under_cursor(&points, world, cursor, cam, cam_t) {
+                Some(i) if shift(&keys) => {
                     if !edit.selected.remove(&i) {
                         edit.selected.insert(i);
                     }
                 }
-                (Some(i), false) => edit.selected = BTreeSet::from([i]),
-                (None, false) => edit.selected.clear(),
-                (None, true) => {}
+                Some(i) => edit.selected = BTreeSet::from([i]),
+                None => edit.box_select = Some((cursor, cursor)),
+            }
+        }
+    }
+    if let (Some((start, _)), Some(cursor)) = (edit.box_select, cursor) {
+        edit.box_select = Some((start, cursor));
+    }
+    if buttons.just_released(MouseButton::Left)
+        && let Some((a, b)) = edit.box_select.take()
+    {
+        if !shift(&keys) {
+            edit.selected.clear();
+        }
+        if a.distance(b) > 4.0 {
+            let (lo, hi) = (a.min(b), a.max(b));
+            for (i, p) in points.iter().enumerate() {
+                if let Ok(s) = cam.world_to_viewport(cam_t, world.transform_point3(*p).as_vec3())
+                    && s.cmpge(lo).all()
+                    && s.cmple(hi).all()
+                {
+                    edit.selected.insert(i as u32);
+                }
             }
         }
     }

@@ -106,7 +106,7 @@ pub fn draw_ui(
     if let Ok((cam, cam_t)) = camera.single() {
         weight_labels(&root.painter_at(free), &model, cam, cam_t);
     }
-    if let Some((a, b)) = model.mode.box_select {
+    if let Some((a, b)) = model.mode.box_select.or(model.shape_edit.box_select) {
         let rect = egui::Rect::from_two_pos(egui::pos2(a.x, a.y), egui::pos2(b.x, b.y));
         let painter = root.painter_at(free);
         painter.rect_filled(
@@ -1053,16 +1053,16 @@ fn shape_panel(
     }
     let mean = selected.iter().map(|&i| weights[i as usize]).sum::<f64>() / selected.len() as f64;
     let mut w = state.weight_edit.unwrap_or(mean);
+    ui.label(if selected.len() == 1 {
+        format!("Weight of point {}", selected[0])
+    } else {
+        format!("Weight of {} points", selected.len())
+    });
     ui.horizontal(|ui| {
-        ui.label(if selected.len() == 1 {
-            format!("Weight of point {}", selected[0])
-        } else {
-            format!("Weight of {} points", selected.len())
-        });
-        // A drag value, not a logarithmic slider: the slider rounds the
-        // shown value and reported that as a change, which set every
-        // selected weight to their mean.
-        let r = ui
+        // Only changes the user made count: a logarithmic slider once
+        // reported its own rounding as a change and set every selected
+        // weight to their mean.
+        let field = ui
             .add(
                 egui::DragValue::new(&mut w)
                     .speed(0.01)
@@ -1070,13 +1070,15 @@ fn shape_panel(
                     .max_decimals(4),
             )
             .on_hover_text("Larger pulls the shape towards the point; W drags it in the viewport");
-        let touched = r.dragged() || r.has_focus() || r.clicked() || r.drag_stopped();
-        if r.changed() && touched && (w - mean).abs() > 1e-12 {
+        let slider = ui.add(egui::Slider::new(&mut w, 0.01..=10.0).show_value(false));
+        let touched =
+            |r: &egui::Response| r.dragged() || r.has_focus() || r.clicked() || r.drag_stopped();
+        let edited = (field.changed() && touched(&field)) || (slider.changed() && touched(&slider));
+        if edited && (w - mean).abs() > 1e-12 {
             state.weight_edit = Some(w);
         }
-        if !(r.dragged() || r.has_focus())
-            && let Some(value) = state.weight_edit.take()
-        {
+        let busy = field.dragged() || field.has_focus() || slider.dragged();
+        if !busy && let Some(value) = state.weight_edit.take() {
             exec(
                 events,
                 Command::SetWeights {
