@@ -538,19 +538,7 @@ fn project_mesh(
                 cage
             })
     };
-    match mesh3d.filter(|m| meshes.contains(&m.0)) {
-        Some(m) => {
-            if let Some(mut existing) = meshes.get_mut(&m.0) {
-                *existing = render;
-            }
-        }
-        None => {
-            ec.insert(Mesh3d(meshes.add(render)));
-        }
-    }
-    if let Some(m) = material {
-        ec.insert(MeshMaterial3d(m.0.clone()));
-    }
+    set_render_mesh(ec, mesh3d, meshes, render, material);
     ec.insert(wanted);
 }
 

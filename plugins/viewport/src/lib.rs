@@ -435,36 +435,45 @@ fn draw_curve(
 /// The control net of a surface: rows and columns of a NURBS net, the
 /// rows of a Bézier triangle's net in all three directions.
 fn draw_control_net(asset: &mut GizmoAsset, surface: &hedra_doc::SurfaceShape, color: Color) {
+    for [a, b] in control_net_segments(surface) {
+        asset.line(a.as_vec3(), b.as_vec3(), color);
+    }
+}
+
+/// The segments of a surface's control net (local space): rows and
+/// columns of a NURBS net; the three edge directions of a Bézier
+/// triangle's net.
+fn control_net_segments(surface: &hedra_doc::SurfaceShape) -> Vec<[DVec3; 2]> {
+    let mut out = Vec::new();
     match surface {
         hedra_doc::SurfaceShape::Nurbs(s) => {
             let (nu, nv) = s.size();
             let p = s.points();
             for i in 0..nu {
-                asset.linestrip((0..nv).map(|j| p[i * nv + j].as_vec3()), color);
-            }
-            for j in 0..nv {
-                asset.linestrip((0..nu).map(|i| p[i * nv + j].as_vec3()), color);
+                for j in 0..nv {
+                    if j + 1 < nv {
+                        out.push([p[i * nv + j], p[i * nv + j + 1]]);
+                    }
+                    if i + 1 < nu {
+                        out.push([p[i * nv + j], p[(i + 1) * nv + j]]);
+                    }
+                }
             }
         }
         hedra_doc::SurfaceShape::Triangle(t) => {
             use hedra_geom::surfaces::BezierTriangle;
             let n = t.degree;
-            let at = |i: usize, j: usize| t.points[BezierTriangle::index(n, i, j)].as_vec3();
-            for i in 0..=n {
-                for j in 0..=n - i {
-                    if j + 1 <= n - i {
-                        asset.line(at(i, j), at(i, j + 1), color);
-                    }
-                    if i + 1 <= n - j {
-                        asset.line(at(i, j), at(i + 1, j), color);
-                    }
-                    if i + 1 <= n - j && j >= 1 {
-                        asset.line(at(i, j), at(i + 1, j - 1), color);
-                    }
+            let at = |i: usize, j: usize| t.points[BezierTriangle::index(n, i, j)];
+            for i in 0..n {
+                for j in 0..n - i {
+                    out.push([at(i, j), at(i, j + 1)]);
+                    out.push([at(i, j), at(i + 1, j)]);
+                    out.push([at(i + 1, j), at(i, j + 1)]);
                 }
             }
         }
     }
+    out
 }
 
 /// The transform gizmo follows the active object.
@@ -940,32 +949,11 @@ fn draw_shape_edit(
             );
             gizmos.linestrip(c.points().iter().map(|p| to_world(*p)), net);
         }
-        NodeContent::Surface(s) => match &**s {
-            hedra_doc::SurfaceShape::Nurbs(n) => {
-                let (nu, nv) = n.size();
-                let p = n.points();
-                for i in 0..nu {
-                    gizmos.linestrip((0..nv).map(|j| to_world(p[i * nv + j])), net);
-                }
-                for j in 0..nv {
-                    gizmos.linestrip((0..nu).map(|i| to_world(p[i * nv + j])), net);
-                }
+        NodeContent::Surface(s) => {
+            for [a, b] in control_net_segments(s) {
+                gizmos.line(to_world(a), to_world(b), net);
             }
-            hedra_doc::SurfaceShape::Triangle(t) => {
-                use hedra_geom::surfaces::BezierTriangle;
-                let n = t.degree;
-                let at = |i: usize, j: usize| to_world(t.points[BezierTriangle::index(n, i, j)]);
-                for i in 0..=n {
-                    for j in 0..=n - i {
-                        if i + j < n {
-                            gizmos.line(at(i, j), at(i, j + 1), net);
-                            gizmos.line(at(i, j), at(i + 1, j), net);
-                            gizmos.line(at(i + 1, j), at(i, j + 1), net);
-                        }
-                    }
-                }
-            }
-        },
+        }
         _ => return,
     }
     let cam = *camera;
