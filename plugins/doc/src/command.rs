@@ -306,9 +306,12 @@ pub enum Command {
         #[serde(default)]
         direction: ParameterDirection,
     },
-    /// Raises a curve's degree by one without changing its shape.
+    /// Raises the degree by one without changing the shape (surfaces: in
+    /// `direction`).
     ElevateDegree {
         node: NodeRef,
+        #[serde(default)]
+        direction: ParameterDirection,
     },
 
     // ----- mesh editing (element positions in the node's local space) -----
@@ -1188,11 +1191,18 @@ impl Plan<'_> {
                 parent,
                 transform,
             } => {
-                let shape = self.surface_from_spec(surface).map_err(|error| CommandError::Curve {
-                    node: format!("surface '{name}'"),
-                    error,
-                })?;
-                self.add_node(name, parent, *transform, NodeContent::Surface(Arc::new(shape)))?;
+                let shape =
+                    self.surface_from_spec(surface)
+                        .map_err(|error| CommandError::Curve {
+                            node: format!("surface '{name}'"),
+                            error,
+                        })?;
+                self.add_node(
+                    name,
+                    parent,
+                    *transform,
+                    NodeContent::Surface(Arc::new(shape)),
+                )?;
             }
             Command::SetControlPoints { node, points } => self.edit_shape(
                 node,
@@ -1211,10 +1221,12 @@ impl Plan<'_> {
                             }
                             SurfaceShape::Triangle(t) => {
                                 let count = t.points.len();
-                                let slot = t.points.get_mut(i as usize).ok_or(CurveError::NoSuchPoint {
-                                    index: i as usize,
-                                    count,
-                                })?;
+                                let slot = t.points.get_mut(i as usize).ok_or(
+                                    CurveError::NoSuchPoint {
+                                        index: i as usize,
+                                        count,
+                                    },
+                                )?;
                                 if !p.is_finite() {
                                     return Err(CurveError::NotFinite {
                                         what: "control point",
@@ -1272,7 +1284,7 @@ impl Plan<'_> {
                     )),
                 },
             )?,
-            Command::ElevateDegree { node } => self.edit_shape(
+            Command::ElevateDegree { node, direction } => self.edit_shape(
                 node,
                 |c| {
                     *c = c.elevate_degree()?;
@@ -1283,9 +1295,13 @@ impl Plan<'_> {
                         *t = t.elevate();
                         Ok(())
                     }
-                    SurfaceShape::Nurbs(_) => Err(CurveError::Parameter(
-                        "degree elevation of NURBS surfaces is not available yet; insert knots instead".into(),
-                    )),
+                    SurfaceShape::Nurbs(n) => {
+                        *n = match direction {
+                            ParameterDirection::U => n.elevate_u()?,
+                            ParameterDirection::V => n.elevate_v()?,
+                        };
+                        Ok(())
+                    }
                 },
             )?,
             Command::SetSubdivision { nodes, modifier } => {

@@ -167,7 +167,9 @@ fn every_command_example_in_the_docs_runs() {
     let ring = curve("Ring");
     assert_eq!(ring.weights()[1], 3.0);
     match &doc.find_by_name("Ball").unwrap().content {
-        hedra_doc::NodeContent::Surface(s) => assert_eq!(s.control_points().len(), 9 * 6),
+        // 9 × 5 points, a knot in v (× 6), the circle direction elevated
+        // from degree 2 (four quarter arcs of 3 new points each: 13).
+        hedra_doc::NodeContent::Surface(s) => assert_eq!(s.control_points().len(), 13 * 6),
         _ => panic!("Ball is a surface"),
     }
 }

@@ -439,3 +439,18 @@ fn a_plane_cuts_the_sphere_in_a_circle() {
         }
     }
 }
+
+#[test]
+fn surface_degree_elevation_keeps_the_surface() {
+    let s = NurbsSurface::sphere(DVec3::ZERO, 1.0);
+    let u = s.elevate_u().unwrap();
+    let uv = u.elevate_v().unwrap();
+    assert_eq!(u.degrees(), (3, 2));
+    assert_eq!(uv.degrees(), (3, 3));
+    for (a, b) in grid(&s, 20) {
+        assert!(
+            close(s.point(a, b), uv.point(a, b), 1e-12),
+            "({a}, {b}) moved"
+        );
+    }
+}

@@ -994,11 +994,26 @@ fn shape_panel(
             }
         }
     });
-    let elevatable = matches!(content, NodeContent::Curve(_))
-        || matches!(content, NodeContent::Surface(s) if matches!(**s, hedra_doc::SurfaceShape::Triangle(_)));
-    if elevatable && ui.button("Elevate degree").clicked() {
-        exec(events, Command::ElevateDegree { node: id.into() });
-    }
+    let elevations: &[(ParameterDirection, &str)] = match content {
+        NodeContent::Surface(s) if matches!(**s, hedra_doc::SurfaceShape::Nurbs(_)) => &[
+            (ParameterDirection::U, "Elevate degree in u"),
+            (ParameterDirection::V, "Elevate degree in v"),
+        ],
+        _ => &[(ParameterDirection::U, "Elevate degree")],
+    };
+    ui.horizontal(|ui| {
+        for (direction, label) in elevations {
+            if ui.button(*label).clicked() {
+                exec(
+                    events,
+                    Command::ElevateDegree {
+                        node: id.into(),
+                        direction: *direction,
+                    },
+                );
+            }
+        }
+    });
     if matches!(content, NodeContent::Curve(_)) {
         ui.separator();
         ui.label(egui::RichText::new("Analysis").weak());

@@ -380,6 +380,52 @@ impl NurbsSurface {
         })
     }
 
+    /// Raises the degree in u by one (every column is elevated the same
+    /// way; the surface does not move).
+    ///
+    /// # Errors
+    /// An unclamped knot vector in u.
+    pub fn elevate_u(&self) -> Result<NurbsSurface, CurveError> {
+        let columns: Vec<NurbsCurve> = (0..self.nv)
+            .map(|j| self.column(j).elevate_degree())
+            .collect::<Result<_, _>>()?;
+        let nu = columns[0].points().len();
+        let mut points = vec![DVec3::ZERO; nu * self.nv];
+        let mut weights = vec![0.0; nu * self.nv];
+        for (j, c) in columns.iter().enumerate() {
+            for i in 0..nu {
+                points[i * self.nv + j] = c.points()[i];
+                weights[i * self.nv + j] = c.weights()[i];
+            }
+        }
+        Ok(NurbsSurface {
+            degree_u: self.degree_u + 1,
+            knots_u: columns[0].knots().to_vec(),
+            nu,
+            points,
+            weights,
+            ..self.clone()
+        })
+    }
+
+    /// Raises the degree in v by one (every row is elevated the same way).
+    ///
+    /// # Errors
+    /// An unclamped knot vector in v.
+    pub fn elevate_v(&self) -> Result<NurbsSurface, CurveError> {
+        let rows: Vec<NurbsCurve> = (0..self.nu)
+            .map(|i| self.row(i).elevate_degree())
+            .collect::<Result<_, _>>()?;
+        Ok(NurbsSurface {
+            degree_v: self.degree_v + 1,
+            knots_v: rows[0].knots().to_vec(),
+            nv: rows[0].points().len(),
+            points: rows.iter().flat_map(|r| r.points().to_vec()).collect(),
+            weights: rows.iter().flat_map(|r| r.weights().to_vec()).collect(),
+            ..self.clone()
+        })
+    }
+
     /// Inserts a knot in v (every row gets it; the surface does not move).
     ///
     /// # Errors
