@@ -1629,7 +1629,7 @@ fn status_bar(ui: &mut egui::Ui, model: &Model) {
                     ui.label(egui::RichText::new(&m.readout).color(egui::Color32::from_rgb(255, 200, 80)));
                     ui.add(egui::Label::new("X/Y/Z constrain · type a value · Enter/click confirm · Esc/right-click cancel").truncate());
                 } else {
-                    ui.add(egui::Label::new("G move · R rotate · S scale · X delete · Shift+D duplicate · Shift+A add · Tab edit mesh · Ctrl+Z undo · MMB orbit").truncate());
+                    ui.add(egui::Label::new("G move · R rotate · S scale · X delete · Shift+D duplicate · Shift+A add · Tab edit · Ctrl+Z undo · MMB orbit").truncate());
                 }
             }
         });
