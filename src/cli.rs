@@ -83,7 +83,7 @@ pub enum Sub {
         #[arg(short, long)]
         output: PathBuf,
     },
-    /// Import meshes (OBJ) as new nodes of a new scene (or of --input) and save it.
+    /// Import meshes (OBJ, binary or ASCII STL) as new nodes of a new scene (or of --input) and save it.
     Import {
         file: PathBuf,
         #[arg(long)]
@@ -104,6 +104,9 @@ pub enum Sub {
         /// Write the editable cages, ignoring subdivision modifiers.
         #[arg(long)]
         cage: bool,
+        /// Write STL as text (ASCII) instead of binary.
+        #[arg(long)]
+        ascii: bool,
     },
 }
 
@@ -275,6 +278,7 @@ pub fn run(sub: Sub) -> Result<(), CliError> {
             output,
             subdivide,
             cage,
+            ascii,
         } => {
             let session = load(&file)?;
             let shape = match (subdivide, cage) {
@@ -282,8 +286,12 @@ pub fn run(sub: Sub) -> Result<(), CliError> {
                 (None, true) => ExportShape::Cage,
                 (None, false) => ExportShape::Evaluated,
             };
-            let bytes =
-                hedra_doc::export::export_bytes(&session.doc, &output, shape).map_err(CliError)?;
+            let options = hedra_doc::export::ExportOptions {
+                shape,
+                ascii_stl: ascii,
+            };
+            let bytes = hedra_doc::export::export_bytes(&session.doc, &output, options)
+                .map_err(CliError)?;
             file::write_atomic_bytes(&output, &bytes)?;
         }
     }

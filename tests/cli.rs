@@ -648,3 +648,68 @@ fn eval_prints_exact_geometry_and_export_tessellates_curves_and_surfaces() {
         "the sphere is exported in world space"
     );
 }
+
+#[test]
+fn stl_round_trips_binary_and_ascii_and_bad_stl_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let binary = exported_cylinder(dir.path(), "stl");
+    let scene = dir.path().join("c.hedra.ron");
+    // ASCII export of the same scene.
+    let ascii = dir.path().join("c_ascii.stl");
+    let o = hedra(&[
+        "export",
+        scene.to_str().unwrap(),
+        "-o",
+        ascii.to_str().unwrap(),
+        "--ascii",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = std::fs::read_to_string(&ascii).unwrap();
+    assert!(text.starts_with("solid hedra\n") && text.trim_end().ends_with("endsolid hedra"));
+    assert_eq!(text.matches("facet normal").count(), 20);
+    let read = stl_io::read_stl(&mut std::fs::File::open(&ascii).unwrap()).unwrap();
+    assert_eq!((read.faces.len(), read.vertices.len()), (20, 12));
+    // Both import back as one closed mesh with the corners welded.
+    for (file, name) in [(&binary, "c"), (&ascii, "c_ascii")] {
+        let out = dir.path().join(format!("{name}.hedra.ron"));
+        let o = hedra(&[
+            "import",
+            file.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let j = info_json(&out);
+        let mesh = &j["nodes"][0]["mesh"];
+        assert_eq!(j["nodes"][0]["name"], name);
+        assert_eq!(
+            (mesh["vertices"].as_u64(), mesh["faces"].as_u64()),
+            (Some(12), Some(20))
+        );
+        assert_eq!(mesh["closed"], true);
+    }
+    // A truncated binary file and a hostile triangle count are refused by name.
+    let bytes = std::fs::read(&binary).unwrap();
+    let cut = dir.path().join("cut.stl");
+    std::fs::write(&cut, &bytes[..bytes.len() - 7]).unwrap();
+    let out = dir.path().join("never.hedra.ron");
+    fails(
+        &["import", cut.to_str().unwrap(), "-o", out.to_str().unwrap()],
+        &out,
+        "not an STL file",
+    );
+    let mut huge = bytes[..84].to_vec();
+    huge[80..84].copy_from_slice(&u32::MAX.to_le_bytes());
+    let hostile = dir.path().join("hostile.stl");
+    std::fs::write(&hostile, &huge).unwrap();
+    fails(
+        &[
+            "import",
+            hostile.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+        ],
+        &out,
+        "where a binary STL of its triangle count has",
+    );
+}

@@ -23,8 +23,17 @@ fn main() {
         tri.len(),
         dt.as_secs_f64() * 1e3
     );
-    for &depth in &[8usize, 10, 12] {
-        for &nt in &[2.5e-2, 1e-2, 5e-3, 3e-3, 2e-3, 1e-3] {
+    if std::env::var("HEDRA_ONLY").is_ok() {
+        return;
+    }
+    let depths: Vec<usize> = std::env::var("DEPTHS")
+        .map(|s| s.split(',').map(|x| x.parse().unwrap()).collect())
+        .unwrap_or(vec![8, 10]);
+    let tols: Vec<f64> = std::env::var("TOLS")
+        .map(|s| s.split(',').map(|x| x.parse().unwrap()).collect())
+        .unwrap_or(vec![2.5e-2, 1e-2, 5e-3, 2e-3]);
+    for &depth in &depths {
+        for &nt in &tols {
             for &grid in &[false, true] {
                 let opts = AdaptiveTessellationOptions::<f64>::default()
                     .with_norm_tolerance(nt)

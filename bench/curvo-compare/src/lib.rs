@@ -88,20 +88,26 @@ pub struct SurfaceData {
     pub weights: Vec<f64>,
 }
 
-/// A bicubic 20 × 20 surface over the square [0, 19]² (x along u, y along v)
-/// with heights `1.5 sin(0.6 i) cos(0.45 j)` plus seeded noise in ±0.3, and
-/// weights uniform in [0.5, 2]; clamped uniform knots on [0, 1] both ways.
+/// A bicubic 20 × 20 surface over the square [0, 19]² (x along u, y along v):
+/// heights `1.5 sin(0.6 i) cos(0.45 j)` plus seeded noise in ±0.1, weights
+/// `1.25 + 0.6 sin(0.5 i + 0.3) cos(0.4 j)` plus seeded noise in ±0.15 (so in
+/// [0.5, 2]); clamped uniform knots on [0, 1] both ways. The weights vary
+/// smoothly: independent random weights in [0.5, 2] on neighbouring points
+/// make the parameterisation so uneven that Hedra's uniform grid hits its cap
+/// of 2048 cells per direction at tolerance 0.001.
 pub fn surface_data() -> SurfaceData {
     let mut rng = SplitMix::new(0x5EED_0F_5A4F);
     let n = SURFACE_POINTS;
     let mut points = Vec::with_capacity(n * n);
+    let mut weights = Vec::with_capacity(n * n);
     for i in 0..n {
         for j in 0..n {
-            let h = 1.5 * (0.6 * i as f64).sin() * (0.45 * j as f64).cos() + rng.range(-0.3, 0.3);
-            points.push(DVec3::new(i as f64, j as f64, h));
+            let (x, y) = (i as f64, j as f64);
+            let h = 1.5 * (0.6 * x).sin() * (0.45 * y).cos() + rng.range(-0.1, 0.1);
+            points.push(DVec3::new(x, y, h));
+            weights.push(1.25 + 0.6 * (0.5 * x + 0.3).sin() * (0.4 * y).cos() + rng.range(-0.15, 0.15));
         }
     }
-    let weights = (0..n * n).map(|_| rng.range(0.5, 2.0)).collect();
     SurfaceData {
         degree_u: DEGREE,
         degree_v: DEGREE,

@@ -24,13 +24,26 @@ pub enum ExportShape {
 }
 
 /// The formats [`export_bytes`] writes, by file extension.
-pub const EXPORT_FORMATS: &[(&str, &str)] = &[("obj", "Wavefront OBJ"), ("stl", "binary STL")];
+pub const EXPORT_FORMATS: &[(&str, &str)] = &[("obj", "Wavefront OBJ"), ("stl", "STL")];
+
+/// How to export.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+pub struct ExportOptions {
+    pub shape: ExportShape,
+    /// Write STL as text instead of binary.
+    pub ascii_stl: bool,
+}
 
 /// The document in the format that `path`'s extension names.
 ///
 /// # Errors
 /// A message naming the file when the extension is not an export format.
-pub fn export_bytes(doc: &Document, path: &Path, shape: ExportShape) -> Result<Vec<u8>, String> {
+pub fn export_bytes(
+    doc: &Document,
+    path: &Path,
+    options: ExportOptions,
+) -> Result<Vec<u8>, String> {
+    let shape = options.shape;
     let ext = path
         .extension()
         .and_then(|e| e.to_str())
@@ -38,6 +51,7 @@ pub fn export_bytes(doc: &Document, path: &Path, shape: ExportShape) -> Result<V
         .to_ascii_lowercase();
     match ext.as_str() {
         "obj" => Ok(to_obj(&export_meshes(doc, shape)?).into_bytes()),
+        "stl" if options.ascii_stl => Ok(to_ascii_stl(&export_meshes(doc, shape)?).into_bytes()),
         "stl" => Ok(to_stl(&export_meshes(doc, shape)?)),
         other => Err(format!(
             "{}: unsupported export format '.{other}' (supported: {})",
@@ -55,6 +69,33 @@ pub fn export_bytes(doc: &Document, path: &Path, shape: ExportShape) -> Result<V
 /// triangulated, positions in world space, each triangle's normal from its
 /// corners (counter-clockwise is the outside).
 fn to_stl(items: &[ExportItem]) -> Vec<u8> {
+    let triangles = stl_triangles(items);
+    let mut out = Vec::new();
+    stl_io::write_stl(&mut out, triangles.iter()).expect("writing to memory cannot fail");
+    out
+}
+
+/// ASCII STL: the same triangles as text (`solid … facet normal … endsolid`).
+fn to_ascii_stl(items: &[ExportItem]) -> String {
+    let mut out = String::from("solid hedra\n");
+    for t in stl_triangles(items) {
+        let n = t.normal;
+        let _ = writeln!(
+            out,
+            "  facet normal {} {} {}\n    outer loop",
+            n[0], n[1], n[2]
+        );
+        for v in t.vertices {
+            let _ = writeln!(out, "      vertex {} {} {}", v[0], v[1], v[2]);
+        }
+        out.push_str("    endloop\n  endfacet\n");
+    }
+    out.push_str("endsolid hedra\n");
+    out
+}
+
+/// Every visible surface as world-space triangles with their normals.
+fn stl_triangles(items: &[ExportItem]) -> Vec<stl_io::Triangle> {
     let mut triangles = Vec::new();
     let mut push = |[a, b, c]: [DVec3; 3]| {
         let n = (b - a).cross(c - a).normalize_or_zero();
@@ -83,9 +124,7 @@ fn to_stl(items: &[ExportItem]) -> Vec<u8> {
             Geometry::Polyline(_) => {}
         }
     }
-    let mut out = Vec::new();
-    stl_io::write_stl(&mut out, triangles.iter()).expect("writing to memory cannot fail");
-    out
+    triangles
 }
 
 /// The scene's visible meshes as Wavefront OBJ text, one `o` object per

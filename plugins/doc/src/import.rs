@@ -1,6 +1,8 @@
 //! Reading meshes from other formats into the scene. OBJ: every object or
-//! group becomes a mesh node, polygons are kept, and faces that cannot join a
-//! manifold half-edge mesh are dropped or split off (with a report).
+//! group becomes a mesh node, polygons are kept; STL (binary or ASCII, read
+//! by `stl_io`): one node, triangles with equal corners welded. Faces that
+//! cannot join a manifold half-edge mesh are dropped or split off (with a
+//! report).
 
 use crate::history::{NodeChange, Transaction};
 use crate::scene::{Document, MeshContent, Node, NodeContent, NodeId, Transform};
@@ -22,7 +24,7 @@ pub struct ImportedMesh {
 pub enum ImportError {
     #[error("{path}: {message}")]
     Read { path: String, message: String },
-    #[error("{path}: unsupported format '.{ext}' (supported: .obj)")]
+    #[error("{path}: unsupported format '.{ext}' (supported: .obj, .stl)")]
     Unsupported { path: String, ext: String },
     #[error("{path}: contains no faces")]
     Empty { path: String },
@@ -99,6 +101,60 @@ pub fn obj_from_str(text: &str, path: &str) -> Result<Vec<ImportedMesh>, ImportE
     Ok(out)
 }
 
+/// Parses a binary or ASCII STL file. A binary file must be exactly as long
+/// as its triangle count says (so a damaged header cannot ask for
+/// gigabytes); `name` names the node, `path` the file in messages.
+///
+/// # Errors
+/// [`ImportError::Read`] naming the problem, [`ImportError::Empty`] when no
+/// triangle remains.
+pub fn stl_from_bytes(
+    bytes: &[u8],
+    name: &str,
+    path: &str,
+) -> Result<Vec<ImportedMesh>, ImportError> {
+    let read_error = |message: String| ImportError::Read {
+        path: path.to_string(),
+        message,
+    };
+    let binary_size = bytes
+        .get(80..84)
+        .map(|c| 84 + 50 * u32::from_le_bytes([c[0], c[1], c[2], c[3]]) as u64);
+    let is_binary = binary_size == Some(bytes.len() as u64);
+    let is_ascii = bytes.trim_ascii_start().starts_with(b"solid") && !is_binary;
+    if !is_binary && !is_ascii {
+        return Err(read_error(format!(
+            "not an STL file: not ASCII (no 'solid'), and {} bytes where a binary STL of its triangle count has {}",
+            bytes.len(),
+            binary_size.map_or("at least 84".to_string(), |n| n.to_string())
+        )));
+    }
+    let indexed = stl_io::read_stl(&mut std::io::Cursor::new(bytes))
+        .map_err(|e| read_error(format!("not a readable STL file ({e})")))?;
+    let positions: Vec<DVec3> = indexed
+        .vertices
+        .iter()
+        .map(|v| DVec3::new(v[0] as f64, v[1] as f64, v[2] as f64))
+        .collect();
+    let polygons: Vec<Vec<u32>> = indexed
+        .faces
+        .iter()
+        .map(|f| f.vertices.iter().map(|&i| i as u32).collect())
+        .collect();
+    let (mesh, report) = HalfEdgeMesh::from_polygons_repaired(&positions, &polygons)
+        .map_err(|e| read_error(e.to_string()))?;
+    if mesh.face_count() == 0 {
+        return Err(ImportError::Empty {
+            path: path.to_string(),
+        });
+    }
+    Ok(vec![ImportedMesh {
+        name: name.to_string(),
+        mesh: mesh.compacted_if_needed(),
+        report,
+    }])
+}
+
 /// Reads a file by its extension.
 ///
 /// # Errors
@@ -117,6 +173,16 @@ pub fn import_file(path: &Path) -> Result<Vec<ImportedMesh>, ImportError> {
                 message: e.to_string(),
             })?;
             obj_from_str(&String::from_utf8_lossy(&bytes), &shown)
+        }
+        "stl" => {
+            let bytes = std::fs::read(path).map_err(|e| ImportError::Read {
+                path: shown.clone(),
+                message: e.to_string(),
+            })?;
+            let name = path
+                .file_stem()
+                .map_or_else(|| "STL".to_string(), |s| s.to_string_lossy().into_owned());
+            stl_from_bytes(&bytes, &name, &shown)
         }
         other => Err(ImportError::Unsupported {
             path: shown,

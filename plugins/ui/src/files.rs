@@ -21,7 +21,7 @@ impl FilePurpose {
         match self {
             FilePurpose::Open => "Open Scene",
             FilePurpose::SaveAs => "Save Scene As",
-            FilePurpose::ImportObj => "Import OBJ",
+            FilePurpose::ImportObj => "Import OBJ or STL",
             FilePurpose::ExportObj => "Export OBJ",
             FilePurpose::ExportStl => "Export STL",
         }
@@ -37,7 +37,8 @@ impl FilePurpose {
     fn filter(self) -> (&'static str, &'static [&'static str]) {
         match self {
             FilePurpose::Open | FilePurpose::SaveAs => ("Hedra scene", &["ron"]),
-            FilePurpose::ImportObj | FilePurpose::ExportObj => ("Wavefront OBJ", &["obj"]),
+            FilePurpose::ImportObj => ("OBJ or STL mesh", &["obj", "stl"]),
+            FilePurpose::ExportObj => ("Wavefront OBJ", &["obj"]),
             FilePurpose::ExportStl => ("STL", &["stl"]),
         }
     }

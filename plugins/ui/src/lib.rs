@@ -358,7 +358,7 @@ pub fn use_path(
             let written = hedra_doc::export::export_bytes(
                 &state.session.doc,
                 &path,
-                hedra_doc::export::ExportShape::Evaluated,
+                hedra_doc::export::ExportOptions::default(),
             )
             .and_then(|b| {
                 hedra_doc::file::write_atomic_bytes(&path, &b).map_err(|e| e.to_string())
@@ -412,11 +412,11 @@ fn on_file_dropped(
             let name = path_buf.to_string_lossy().to_ascii_lowercase();
             if name.ends_with(".ron") {
                 actions.write(FileAction::OpenPath(path_buf.clone()));
-            } else if name.ends_with(".obj") {
+            } else if name.ends_with(".obj") || name.ends_with(".stl") {
                 requests.write(DocRequest::Import(path_buf.clone()));
             } else {
                 status.error(format!(
-                    "{}: Hedra opens .hedra.ron scenes and imports .obj files",
+                    "{}: Hedra opens .hedra.ron scenes and imports .obj and .stl files",
                     path_buf.display()
                 ));
             }

@@ -225,7 +225,7 @@ fn menu_bar(ui: &mut egui::Ui, state: &mut UiState, model: &Model, events: &mut 
             }
             ui.separator();
             ui.menu_button("Import", |ui| {
-                if ui.button("Wavefront OBJ (.obj)…").clicked() {
+                if ui.button("Wavefront OBJ or STL (.obj, .stl)…").clicked() {
                     events.push(UiEvent::File(FileAction::ImportObj));
                 }
             });
