@@ -24,7 +24,12 @@ pub enum ExportShape {
 }
 
 /// The formats [`export_bytes`] writes, by file extension.
-pub const EXPORT_FORMATS: &[(&str, &str)] = &[("obj", "Wavefront OBJ"), ("stl", "STL")];
+pub const EXPORT_FORMATS: &[(&str, &str)] = &[
+    ("obj", "Wavefront OBJ"),
+    ("stl", "STL"),
+    ("gltf", "glTF 2.0"),
+    ("glb", "binary glTF 2.0"),
+];
 
 /// How to export.
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
@@ -53,6 +58,8 @@ pub fn export_bytes(
         "obj" => Ok(to_obj(&export_meshes(doc, shape)?).into_bytes()),
         "stl" if options.ascii_stl => Ok(to_ascii_stl(&export_meshes(doc, shape)?).into_bytes()),
         "stl" => Ok(to_stl(&export_meshes(doc, shape)?)),
+        "gltf" => crate::gltf::to_gltf(doc, shape, false),
+        "glb" => crate::gltf::to_gltf(doc, shape, true),
         other => Err(format!(
             "{}: unsupported export format '.{other}' (supported: {})",
             path.display(),
@@ -192,7 +199,7 @@ fn to_obj(items: &[ExportItem]) -> String {
 }
 
 /// What is written for one node.
-enum Geometry<'a> {
+pub(crate) enum Geometry<'a> {
     Mesh(Cow<'a, HalfEdgeMesh>),
     /// A tessellated surface: positions and triangles.
     Triangles(Vec<DVec3>, Vec<[u32; 3]>),
@@ -216,47 +223,59 @@ const EXPORT_TOLERANCE: f64 = 1e-4;
 /// A message naming the node when its subdivision cannot be made (Loop on
 /// a mesh with quads, a level too large).
 fn export_meshes(doc: &Document, shape: ExportShape) -> Result<Vec<ExportItem<'_>>, String> {
-    use hedra_geom::curves::Curve;
     let mut out = Vec::new();
     for node in doc.nodes() {
         if !is_visible(doc, node.id) {
             continue;
         }
-        let geometry = match &node.content {
-            NodeContent::Empty => continue,
-            NodeContent::Mesh(content) => {
-                let level = match shape {
-                    ExportShape::Cage => 0,
-                    ExportShape::Evaluated => content.subdivision.map_or(0, |m| m.export_level),
-                    ExportShape::Subdivided(level) => level,
-                };
-                Geometry::Mesh(
-                    content
-                        .subdivided(level)
-                        .map_err(|e| format!("node '{}': {e}", node.name))?,
-                )
-            }
-            NodeContent::Curve(c) => {
-                let size = extent(c.points());
-                let params = hedra_geom::surfaces::tessellate::curve_parameters(
-                    &**c,
-                    EXPORT_TOLERANCE * size,
-                );
-                Geometry::Polyline(params.iter().map(|&t| c.point(t)).collect())
-            }
-            NodeContent::Surface(sf) => {
-                let size = extent(sf.control_points());
-                let (positions, _, tris) = sf.tessellate(EXPORT_TOLERANCE * size);
-                Geometry::Triangles(positions, tris)
-            }
-        };
-        out.push(ExportItem {
-            node,
-            geometry,
-            world: doc.world_matrix(node.id),
-        });
+        if let Some(geometry) = node_geometry(node, shape)? {
+            out.push(ExportItem {
+                node,
+                geometry,
+                world: doc.world_matrix(node.id),
+            });
+        }
     }
     Ok(out)
+}
+
+/// What a node exports as, in its own (local) space: its mesh in the
+/// requested shape, its surface tessellated, its curve as a polyline;
+/// `None` for empties.
+///
+/// # Errors
+/// A message naming the node when its subdivision cannot be made.
+pub(crate) fn node_geometry(
+    node: &Node,
+    shape: ExportShape,
+) -> Result<Option<Geometry<'_>>, String> {
+    use hedra_geom::curves::Curve;
+    Ok(Some(match &node.content {
+        NodeContent::Empty => return Ok(None),
+        NodeContent::Mesh(content) => {
+            let level = match shape {
+                ExportShape::Cage => 0,
+                ExportShape::Evaluated => content.subdivision.map_or(0, |m| m.export_level),
+                ExportShape::Subdivided(level) => level,
+            };
+            Geometry::Mesh(
+                content
+                    .subdivided(level)
+                    .map_err(|e| format!("node '{}': {e}", node.name))?,
+            )
+        }
+        NodeContent::Curve(c) => {
+            let size = extent(c.points());
+            let params =
+                hedra_geom::surfaces::tessellate::curve_parameters(&**c, EXPORT_TOLERANCE * size);
+            Geometry::Polyline(params.iter().map(|&t| c.point(t)).collect())
+        }
+        NodeContent::Surface(sf) => {
+            let size = extent(sf.control_points());
+            let (positions, _, tris) = sf.tessellate(EXPORT_TOLERANCE * size);
+            Geometry::Triangles(positions, tris)
+        }
+    }))
 }
 
 /// The diagonal of the points' bounding box (at least 1e-9).

@@ -11,12 +11,32 @@ use hedra_geom::{HalfEdgeMesh, RepairReport};
 use std::path::Path;
 use std::sync::Arc;
 
-/// A mesh read from a file, with what had to be repaired.
+/// A node read from a file: its mesh (none for a grouping node) with what
+/// had to be repaired, its parent among the imported nodes, its transform.
 #[derive(Debug)]
 pub struct ImportedMesh {
     pub name: String,
-    pub mesh: HalfEdgeMesh,
+    pub mesh: Option<HalfEdgeMesh>,
     pub report: RepairReport,
+    /// Index of the parent in the same import list.
+    pub parent: Option<usize>,
+    pub transform: Transform,
+    /// Primitives that are not triangles (points, lines) and were left out.
+    pub skipped_primitives: usize,
+}
+
+impl ImportedMesh {
+    /// A top-level mesh node.
+    fn mesh(name: String, mesh: HalfEdgeMesh, report: RepairReport) -> Self {
+        ImportedMesh {
+            name,
+            mesh: Some(mesh),
+            report,
+            parent: None,
+            transform: Transform::IDENTITY,
+            skipped_primitives: 0,
+        }
+    }
 }
 
 /// Why a file could not be imported.
@@ -24,7 +44,7 @@ pub struct ImportedMesh {
 pub enum ImportError {
     #[error("{path}: {message}")]
     Read { path: String, message: String },
-    #[error("{path}: unsupported format '.{ext}' (supported: .obj, .stl)")]
+    #[error("{path}: unsupported format '.{ext}' (supported: .obj, .stl, .gltf, .glb)")]
     Unsupported { path: String, ext: String },
     #[error("{path}: contains no faces")]
     Empty { path: String },
@@ -87,11 +107,7 @@ pub fn obj_from_str(text: &str, path: &str) -> Result<Vec<ImportedMesh>, ImportE
         } else {
             model.name
         };
-        out.push(ImportedMesh {
-            name,
-            mesh: mesh.compacted_if_needed(),
-            report,
-        });
+        out.push(ImportedMesh::mesh(name, mesh.compacted_if_needed(), report));
     }
     if out.is_empty() {
         return Err(ImportError::Empty {
@@ -148,11 +164,11 @@ pub fn stl_from_bytes(
             path: path.to_string(),
         });
     }
-    Ok(vec![ImportedMesh {
-        name: name.to_string(),
-        mesh: mesh.compacted_if_needed(),
+    Ok(vec![ImportedMesh::mesh(
+        name.to_string(),
+        mesh.compacted_if_needed(),
         report,
-    }])
+    )])
 }
 
 /// Reads a file by its extension.
@@ -184,6 +200,13 @@ pub fn import_file(path: &Path) -> Result<Vec<ImportedMesh>, ImportError> {
                 .map_or_else(|| "STL".to_string(), |s| s.to_string_lossy().into_owned());
             stl_from_bytes(&bytes, &name, &shown)
         }
+        "gltf" | "glb" => {
+            let bytes = std::fs::read(path).map_err(|e| ImportError::Read {
+                path: shown.clone(),
+                message: e.to_string(),
+            })?;
+            crate::gltf::gltf_from_bytes(&bytes, path.parent(), &shown)
+        }
         other => Err(ImportError::Unsupported {
             path: shown,
             ext: other.to_string(),
@@ -193,15 +216,23 @@ pub fn import_file(path: &Path) -> Result<Vec<ImportedMesh>, ImportError> {
 
 /// One line per repaired object, for the user.
 pub fn describe_repairs(meshes: &[ImportedMesh]) -> Vec<String> {
-    meshes
+    let mut out: Vec<String> = meshes
         .iter()
         .filter(|m| !m.report.is_clean())
         .map(|m| format!("{}: {}", m.name, m.report))
-        .collect()
+        .collect();
+    out.extend(meshes.iter().filter(|m| m.skipped_primitives > 0).map(|m| {
+        format!(
+            "{}: {} primitive(s) that are not triangles left out",
+            m.name, m.skipped_primitives
+        )
+    }));
+    out
 }
 
 impl Document {
-    /// The transaction that adds imported meshes as new top-level nodes.
+    /// The transaction that adds imported nodes (with their hierarchy and
+    /// transforms) to the scene.
     pub fn decide_import(&self, meshes: &[ImportedMesh], label: &str, serial: u64) -> Transaction {
         let mut next = self.next_node_id;
         let mut changes = Vec::new();
@@ -217,13 +248,20 @@ impl Document {
             names.push(name.clone());
             let id = NodeId(next);
             next += 1;
+            let parent = m
+                .parent
+                .and_then(|p| changes.get(p))
+                .map(|c: &NodeChange| c.id);
             let node = Node {
                 id,
                 name,
-                parent: None,
-                transform: Transform::IDENTITY,
+                parent,
+                transform: m.transform,
                 visible: true,
-                content: NodeContent::Mesh(MeshContent::new(Arc::new(m.mesh.clone()))),
+                content: match &m.mesh {
+                    Some(mesh) => NodeContent::Mesh(MeshContent::new(Arc::new(mesh.clone()))),
+                    None => NodeContent::Empty,
+                },
             };
             changes.push(NodeChange {
                 id,

@@ -25,10 +25,24 @@ fn objects_become_named_meshes_with_their_polygons() {
     assert_eq!(meshes.len(), 2);
     assert_eq!(meshes[0].name, "Quad");
     assert_eq!(meshes[1].name, "Pentagon");
-    assert_eq!(meshes[0].mesh.face_count(), 1);
-    assert_eq!(meshes[0].mesh.face_degree(hedra_geom::FaceId(0)), 4);
-    assert_eq!(meshes[1].mesh.vertex_count(), 5);
-    assert_eq!(meshes[1].mesh.face_degree(hedra_geom::FaceId(0)), 5);
+    assert_eq!(meshes[0].mesh.as_ref().unwrap().face_count(), 1);
+    assert_eq!(
+        meshes[0]
+            .mesh
+            .as_ref()
+            .unwrap()
+            .face_degree(hedra_geom::FaceId(0)),
+        4
+    );
+    assert_eq!(meshes[1].mesh.as_ref().unwrap().vertex_count(), 5);
+    assert_eq!(
+        meshes[1]
+            .mesh
+            .as_ref()
+            .unwrap()
+            .face_degree(hedra_geom::FaceId(0)),
+        5
+    );
     assert!(describe_repairs(&meshes).is_empty());
 
     let mut s = Session::new();
@@ -44,8 +58,8 @@ fn non_manifold_input_is_repaired_and_reported() {
     // Three triangles on one edge: the third is dropped and named.
     let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 2 1 5\n";
     let meshes = obj_from_str(text, "fan.obj").unwrap();
-    assert_eq!(meshes[0].mesh.face_count(), 2);
-    meshes[0].mesh.validate().unwrap();
+    assert_eq!(meshes[0].mesh.as_ref().unwrap().face_count(), 2);
+    meshes[0].mesh.as_ref().unwrap().validate().unwrap();
     let notes = describe_repairs(&meshes);
     assert_eq!(notes.len(), 1);
     assert!(

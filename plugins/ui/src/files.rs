@@ -14,6 +14,7 @@ pub enum FilePurpose {
     ImportObj,
     ExportObj,
     ExportStl,
+    ExportGlb,
 }
 
 impl FilePurpose {
@@ -21,25 +22,27 @@ impl FilePurpose {
         match self {
             FilePurpose::Open => "Open Scene",
             FilePurpose::SaveAs => "Save Scene As",
-            FilePurpose::ImportObj => "Import OBJ or STL",
+            FilePurpose::ImportObj => "Import OBJ, STL or glTF",
             FilePurpose::ExportObj => "Export OBJ",
             FilePurpose::ExportStl => "Export STL",
+            FilePurpose::ExportGlb => "Export glTF",
         }
     }
     /// The file name offered for an export.
     pub fn export_file_name(self) -> &'static str {
-        if self == FilePurpose::ExportStl {
-            "export.stl"
-        } else {
-            "export.obj"
+        match self {
+            FilePurpose::ExportStl => "export.stl",
+            FilePurpose::ExportGlb => "export.glb",
+            _ => "export.obj",
         }
     }
     fn filter(self) -> (&'static str, &'static [&'static str]) {
         match self {
             FilePurpose::Open | FilePurpose::SaveAs => ("Hedra scene", &["ron"]),
-            FilePurpose::ImportObj => ("OBJ or STL mesh", &["obj", "stl"]),
+            FilePurpose::ImportObj => ("OBJ, STL or glTF", &["obj", "stl", "gltf", "glb"]),
             FilePurpose::ExportObj => ("Wavefront OBJ", &["obj"]),
             FilePurpose::ExportStl => ("STL", &["stl"]),
+            FilePurpose::ExportGlb => ("glTF 2.0", &["glb", "gltf"]),
         }
     }
 }
@@ -86,7 +89,7 @@ pub fn spawn_dialog(purpose: FilePurpose, start_dir: Option<PathBuf>) -> DialogT
         match purpose {
             FilePurpose::Open | FilePurpose::ImportObj => d.pick_file(),
             FilePurpose::SaveAs => d.set_file_name("untitled.hedra.ron").save_file(),
-            FilePurpose::ExportObj | FilePurpose::ExportStl => {
+            FilePurpose::ExportObj | FilePurpose::ExportStl | FilePurpose::ExportGlb => {
                 d.set_file_name(purpose.export_file_name()).save_file()
             }
         }

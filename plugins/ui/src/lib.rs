@@ -100,6 +100,7 @@ pub enum FileAction {
     ImportObj,
     ExportObj,
     ExportStl,
+    ExportGlb,
     Quit,
 }
 
@@ -250,11 +251,11 @@ fn handle_file_actions(
                 begin_path(&mut ui, FilePurpose::SaveAs, &state);
                 None
             }
-            FileAction::ExportObj | FileAction::ExportStl => {
-                let purpose = if matches!(action, FileAction::ExportStl) {
-                    FilePurpose::ExportStl
-                } else {
-                    FilePurpose::ExportObj
+            FileAction::ExportObj | FileAction::ExportStl | FileAction::ExportGlb => {
+                let purpose = match action {
+                    FileAction::ExportStl => FilePurpose::ExportStl,
+                    FileAction::ExportGlb => FilePurpose::ExportGlb,
+                    _ => FilePurpose::ExportObj,
                 };
                 begin_path(&mut ui, purpose, &state);
                 None
@@ -313,7 +314,7 @@ pub fn begin_path(ui: &mut UiState, purpose: FilePurpose, state: &DocState) {
                     .display()
                     .to_string()
             }),
-        FilePurpose::ExportObj | FilePurpose::ExportStl => start_dir
+        FilePurpose::ExportObj | FilePurpose::ExportStl | FilePurpose::ExportGlb => start_dir
             .clone()
             .unwrap_or_default()
             .join(purpose.export_file_name())
@@ -344,14 +345,14 @@ pub fn use_path(
         FilePurpose::ImportObj => {
             requests.write(DocRequest::Import(path));
         }
-        FilePurpose::ExportObj | FilePurpose::ExportStl => {
+        FilePurpose::ExportObj | FilePurpose::ExportStl | FilePurpose::ExportGlb => {
             // No extension given: the one of the format chosen.
             let path = if path.extension().is_none() {
-                path.with_extension(if purpose == FilePurpose::ExportStl {
-                    "stl"
-                } else {
-                    "obj"
-                })
+                path.with_extension(
+                    std::path::Path::new(purpose.export_file_name())
+                        .extension()
+                        .expect("export names have extensions"),
+                )
             } else {
                 path
             };
@@ -412,11 +413,14 @@ fn on_file_dropped(
             let name = path_buf.to_string_lossy().to_ascii_lowercase();
             if name.ends_with(".ron") {
                 actions.write(FileAction::OpenPath(path_buf.clone()));
-            } else if name.ends_with(".obj") || name.ends_with(".stl") {
+            } else if [".obj", ".stl", ".gltf", ".glb"]
+                .iter()
+                .any(|e| name.ends_with(e))
+            {
                 requests.write(DocRequest::Import(path_buf.clone()));
             } else {
                 status.error(format!(
-                    "{}: Hedra opens .hedra.ron scenes and imports .obj and .stl files",
+                    "{}: Hedra opens .hedra.ron scenes and imports .obj, .stl, .gltf and .glb files",
                     path_buf.display()
                 ));
             }

@@ -225,7 +225,10 @@ fn menu_bar(ui: &mut egui::Ui, state: &mut UiState, model: &Model, events: &mut 
             }
             ui.separator();
             ui.menu_button("Import", |ui| {
-                if ui.button("Wavefront OBJ or STL (.obj, .stl)…").clicked() {
+                if ui
+                    .button("OBJ, STL or glTF (.obj, .stl, .gltf, .glb)…")
+                    .clicked()
+                {
                     events.push(UiEvent::File(FileAction::ImportObj));
                 }
             });
@@ -235,6 +238,12 @@ fn menu_bar(ui: &mut egui::Ui, state: &mut UiState, model: &Model, events: &mut 
                 }
                 if ui.button("STL, triangulated (.stl)…").clicked() {
                     events.push(UiEvent::File(FileAction::ExportStl));
+                }
+                if ui
+                    .button("glTF 2.0 binary, with the hierarchy (.glb)…")
+                    .clicked()
+                {
+                    events.push(UiEvent::File(FileAction::ExportGlb));
                 }
             });
             ui.separator();
@@ -1696,7 +1705,9 @@ fn dialogs(ctx: &egui::Context, state: &mut UiState, model: &mut Model, writers:
                 let verb = match prompt.purpose {
                     FilePurpose::Open => "Open",
                     FilePurpose::ImportObj => "Import",
-                    FilePurpose::ExportObj | FilePurpose::ExportStl => "Export",
+                    FilePurpose::ExportObj | FilePurpose::ExportStl | FilePurpose::ExportGlb => {
+                        "Export"
+                    }
                     FilePurpose::SaveAs => "Save",
                 };
                 let ok = ui.button(verb).clicked() || enter;

@@ -1,0 +1,493 @@
+//! glTF 2.0 in and out (written with `gltf-json`, read with `gltf`): the
+//! node hierarchy with local translation, rotation and scale; meshes as
+//! triangles with normals (split at faces for flat shading, shared for
+//! smooth); surfaces as triangles, curves as line strips. `.glb` holds the
+//! JSON and one binary chunk; `.gltf` embeds the buffer as a data URI.
+
+use std::collections::{BTreeMap, HashMap};
+use std::path::Path;
+
+use base64::Engine;
+use glam::{DQuat, DVec3};
+use gltf_json as json;
+use hedra_geom::HalfEdgeMesh;
+use json::validation::Checked::Valid;
+use json::validation::USize64;
+
+use crate::export::{ExportShape, Geometry, is_visible, node_geometry};
+use crate::import::{ImportError, ImportedMesh};
+use crate::scene::{Document, NodeContent, NodeId, Shading, Transform};
+
+/// Appends `data` to the buffer (4-byte aligned) and returns its view.
+fn push_view(
+    root: &mut json::Root,
+    bin: &mut Vec<u8>,
+    data: &[u8],
+    target: json::buffer::Target,
+) -> json::Index<json::buffer::View> {
+    while bin.len() % 4 != 0 {
+        bin.push(0);
+    }
+    let offset = bin.len();
+    bin.extend_from_slice(data);
+    root.push(json::buffer::View {
+        buffer: json::Index::new(0),
+        byte_length: USize64(data.len() as u64),
+        byte_offset: Some(USize64(offset as u64)),
+        byte_stride: None,
+        name: None,
+        target: Some(Valid(target)),
+        extensions: None,
+        extras: Default::default(),
+    })
+}
+
+/// An accessor of `count` elements over a view.
+fn push_accessor(
+    root: &mut json::Root,
+    view: json::Index<json::buffer::View>,
+    count: usize,
+    component: json::accessor::ComponentType,
+    type_: json::accessor::Type,
+    bounds: Option<([f32; 3], [f32; 3])>,
+) -> json::Index<json::Accessor> {
+    root.push(json::Accessor {
+        buffer_view: Some(view),
+        byte_offset: Some(USize64(0)),
+        count: USize64(count as u64),
+        component_type: Valid(json::accessor::GenericComponentType(component)),
+        extensions: None,
+        extras: Default::default(),
+        type_: Valid(type_),
+        min: bounds.map(|(lo, _)| json::Value::from(lo.to_vec())),
+        max: bounds.map(|(_, hi)| json::Value::from(hi.to_vec())),
+        name: None,
+        normalized: false,
+        sparse: None,
+    })
+}
+
+fn f32_bytes(v: &[[f32; 3]]) -> Vec<u8> {
+    v.iter()
+        .flat_map(|p| p.iter().flat_map(|x| x.to_le_bytes()))
+        .collect()
+}
+
+fn bounds(v: &[[f32; 3]]) -> ([f32; 3], [f32; 3]) {
+    let mut lo = [f32::INFINITY; 3];
+    let mut hi = [f32::NEG_INFINITY; 3];
+    for p in v {
+        for k in 0..3 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    (lo, hi)
+}
+
+/// Triangles of a half-edge mesh with normals: each face's own corners and
+/// normal when flat, shared vertices with area-weighted normals when smooth.
+fn mesh_triangles(m: &HalfEdgeMesh, shading: Shading) -> (Vec<[f32; 3]>, Vec<[f32; 3]>, Vec<u32>) {
+    let (mut positions, mut normals, mut indices) = (Vec::new(), Vec::new(), Vec::new());
+    let a = |p: DVec3| p.as_vec3().to_array();
+    match shading {
+        Shading::Flat => {
+            for f in m.faces() {
+                let n = a(m.face_normal(f));
+                for tri in hedra_geom::query::triangulate_face(m, f) {
+                    for v in tri {
+                        indices.push(positions.len() as u32);
+                        positions.push(a(m.position(v)));
+                        normals.push(n);
+                    }
+                }
+            }
+        }
+        Shading::Smooth => {
+            let mut index = vec![u32::MAX; m.vertex_capacity()];
+            for v in m.vertices() {
+                index[v.index()] = positions.len() as u32;
+                positions.push(a(m.position(v)));
+                normals.push(a(m.vertex_normal(v)));
+            }
+            for f in m.faces() {
+                for tri in hedra_geom::query::triangulate_face(m, f) {
+                    indices.extend(tri.map(|v| index[v.index()]));
+                }
+            }
+        }
+    }
+    (positions, normals, indices)
+}
+
+/// The document's visible nodes as glTF (`binary`: a `.glb` file).
+///
+/// # Errors
+/// A message naming a node whose shape cannot be evaluated.
+pub fn to_gltf(doc: &Document, shape: ExportShape, binary: bool) -> Result<Vec<u8>, String> {
+    let mut root = json::Root {
+        asset: json::Asset {
+            version: "2.0".into(),
+            generator: Some("Hedra".into()),
+            copyright: None,
+            min_version: None,
+            extensions: None,
+            extras: Default::default(),
+        },
+        ..Default::default()
+    };
+    let mut bin: Vec<u8> = Vec::new();
+    let mut index_of: HashMap<NodeId, json::Index<json::Node>> = HashMap::new();
+    let visible: Vec<&crate::scene::Node> = doc.nodes().filter(|n| is_visible(doc, n.id)).collect();
+    for node in &visible {
+        let mesh = match node_geometry(node, shape)? {
+            None => None,
+            Some(geometry) => {
+                let shading = match &node.content {
+                    NodeContent::Mesh(c) => c.shading,
+                    _ => Shading::Smooth,
+                };
+                let (positions, normals, indices, mode) = match &geometry {
+                    Geometry::Mesh(m) => {
+                        let (p, n, i) = mesh_triangles(m, shading);
+                        (p, n, i, json::mesh::Mode::Triangles)
+                    }
+                    Geometry::Triangles(p, tris) => {
+                        let positions: Vec<[f32; 3]> =
+                            p.iter().map(|x| x.as_vec3().to_array()).collect();
+                        // Area-weighted normals of the tessellation.
+                        let mut n = vec![DVec3::ZERO; p.len()];
+                        for t in tris {
+                            let [a, b, c] = t.map(|i| p[i as usize]);
+                            let face = (b - a).cross(c - a);
+                            for i in t {
+                                n[*i as usize] += face;
+                            }
+                        }
+                        let normals = n
+                            .iter()
+                            .map(|x| x.normalize_or_zero().as_vec3().to_array())
+                            .collect();
+                        (
+                            positions,
+                            normals,
+                            tris.iter().flatten().copied().collect(),
+                            json::mesh::Mode::Triangles,
+                        )
+                    }
+                    Geometry::Polyline(p) => (
+                        p.iter().map(|x| x.as_vec3().to_array()).collect(),
+                        Vec::new(),
+                        Vec::new(),
+                        json::mesh::Mode::LineStrip,
+                    ),
+                };
+                let view = push_view(
+                    &mut root,
+                    &mut bin,
+                    &f32_bytes(&positions),
+                    json::buffer::Target::ArrayBuffer,
+                );
+                let pos = push_accessor(
+                    &mut root,
+                    view,
+                    positions.len(),
+                    json::accessor::ComponentType::F32,
+                    json::accessor::Type::Vec3,
+                    Some(bounds(&positions)),
+                );
+                let mut attributes = BTreeMap::new();
+                attributes.insert(Valid(json::mesh::Semantic::Positions), pos);
+                if !normals.is_empty() {
+                    let view = push_view(
+                        &mut root,
+                        &mut bin,
+                        &f32_bytes(&normals),
+                        json::buffer::Target::ArrayBuffer,
+                    );
+                    let nrm = push_accessor(
+                        &mut root,
+                        view,
+                        normals.len(),
+                        json::accessor::ComponentType::F32,
+                        json::accessor::Type::Vec3,
+                        None,
+                    );
+                    attributes.insert(Valid(json::mesh::Semantic::Normals), nrm);
+                }
+                let indices = (!indices.is_empty()).then(|| {
+                    let bytes: Vec<u8> = indices.iter().flat_map(|i| i.to_le_bytes()).collect();
+                    let view = push_view(
+                        &mut root,
+                        &mut bin,
+                        &bytes,
+                        json::buffer::Target::ElementArrayBuffer,
+                    );
+                    push_accessor(
+                        &mut root,
+                        view,
+                        indices.len(),
+                        json::accessor::ComponentType::U32,
+                        json::accessor::Type::Scalar,
+                        None,
+                    )
+                });
+                Some(root.push(json::Mesh {
+                    extensions: None,
+                    extras: Default::default(),
+                    name: Some(node.name.clone()),
+                    primitives: vec![json::mesh::Primitive {
+                        attributes,
+                        extensions: None,
+                        extras: Default::default(),
+                        indices,
+                        material: None,
+                        mode: Valid(mode),
+                        targets: None,
+                    }],
+                    weights: None,
+                }))
+            }
+        };
+        let t = node.transform;
+        let index = root.push(json::Node {
+            mesh,
+            name: Some(node.name.clone()),
+            translation: Some(t.translation.as_vec3().to_array()),
+            rotation: Some(json::scene::UnitQuaternion(t.rotation.as_quat().to_array())),
+            scale: Some(t.scale.as_vec3().to_array()),
+            ..Default::default()
+        });
+        index_of.insert(node.id, index);
+    }
+    // Children (in document order), and the roots of the scene.
+    let mut roots = Vec::new();
+    for node in &visible {
+        let me = index_of[&node.id];
+        match node.parent.and_then(|p| index_of.get(&p)) {
+            Some(parent) => {
+                let parent = &mut root.nodes[parent.value()];
+                parent.children.get_or_insert_with(Vec::new).push(me);
+            }
+            None => roots.push(me),
+        }
+    }
+    let scene = root.push(json::Scene {
+        extensions: None,
+        extras: Default::default(),
+        name: None,
+        nodes: roots,
+    });
+    root.scene = Some(scene);
+    while bin.len() % 4 != 0 {
+        bin.push(0);
+    }
+    let uri = (!binary).then(|| {
+        format!(
+            "data:application/octet-stream;base64,{}",
+            base64::engine::general_purpose::STANDARD.encode(&bin)
+        )
+    });
+    if !bin.is_empty() {
+        root.push(json::Buffer {
+            byte_length: USize64(bin.len() as u64),
+            name: None,
+            uri,
+            extensions: None,
+            extras: Default::default(),
+        });
+    }
+    let text = root
+        .to_string()
+        .map_err(|e| format!("cannot write glTF: {e}"))?;
+    if !binary {
+        return Ok(text.into_bytes());
+    }
+    let mut json_bytes = text.into_bytes();
+    while json_bytes.len() % 4 != 0 {
+        json_bytes.push(b' ');
+    }
+    let length = 12 + 8 + json_bytes.len() + if bin.is_empty() { 0 } else { 8 + bin.len() };
+    let glb = gltf::binary::Glb {
+        header: gltf::binary::Header {
+            magic: *b"glTF",
+            version: 2,
+            length: length as u32,
+        },
+        json: json_bytes.into(),
+        bin: (!bin.is_empty()).then(|| bin.into()),
+    };
+    glb.to_vec().map_err(|e| format!("cannot write GLB: {e}"))
+}
+
+/// Reads a `.gltf` or `.glb` file's scene: every node becomes a node with
+/// its parent, name and local transform; triangle primitives become one
+/// half-edge mesh per node with equal positions welded (other primitive
+/// modes are skipped and reported). `base` resolves external buffer files.
+///
+/// # Errors
+/// [`ImportError::Read`] naming the problem (not glTF, a missing buffer,
+/// bad indices), [`ImportError::Empty`] when there are no nodes.
+pub fn gltf_from_bytes(
+    bytes: &[u8],
+    base: Option<&Path>,
+    path: &str,
+) -> Result<Vec<ImportedMesh>, ImportError> {
+    let err = |message: String| ImportError::Read {
+        path: path.to_string(),
+        message,
+    };
+    let gltf = gltf::Gltf::from_slice(bytes)
+        .map_err(|e| err(format!("not a readable glTF file ({e})")))?;
+    let mut buffers: Vec<Vec<u8>> = Vec::new();
+    for buffer in gltf.document.buffers() {
+        let data = match buffer.source() {
+            gltf::buffer::Source::Bin => gltf
+                .blob
+                .clone()
+                .ok_or_else(|| err("the GLB has no binary chunk".into()))?,
+            gltf::buffer::Source::Uri(uri) => {
+                if let Some(encoded) = uri.split_once(";base64,").map(|(_, d)| d) {
+                    base64::engine::general_purpose::STANDARD
+                        .decode(encoded)
+                        .map_err(|e| err(format!("buffer {}: bad base64 ({e})", buffer.index())))?
+                } else {
+                    let file = base.map(|b| b.join(uri)).ok_or_else(|| {
+                        err(format!(
+                            "buffer {} refers to '{uri}', which cannot be found",
+                            buffer.index()
+                        ))
+                    })?;
+                    std::fs::read(&file).map_err(|e| {
+                        err(format!(
+                            "buffer {} ({}): {e}",
+                            buffer.index(),
+                            file.display()
+                        ))
+                    })?
+                }
+            }
+        };
+        if data.len() < buffer.length() {
+            return Err(err(format!(
+                "buffer {} has {} bytes, the file says {}",
+                buffer.index(),
+                data.len(),
+                buffer.length()
+            )));
+        }
+        buffers.push(data);
+    }
+    let scene = gltf
+        .document
+        .default_scene()
+        .or_else(|| gltf.document.scenes().next())
+        .ok_or_else(|| ImportError::Empty {
+            path: path.to_string(),
+        })?;
+    let mut out: Vec<ImportedMesh> = Vec::new();
+    let mut stack: Vec<(gltf::Node, Option<usize>)> = scene
+        .nodes()
+        .collect::<Vec<_>>()
+        .into_iter()
+        .rev()
+        .map(|n| (n, None))
+        .collect();
+    let mut seen = 0usize;
+    while let Some((node, parent)) = stack.pop() {
+        seen += 1;
+        if seen > 1_000_000 {
+            return Err(err("more than a million nodes (a cycle?)".into()));
+        }
+        let (t, r, s) = node.transform().decomposed();
+        let transform = Transform {
+            translation: DVec3::from_array(t.map(f64::from)),
+            rotation: DQuat::from_array(r.map(f64::from)).normalize(),
+            scale: DVec3::from_array(s.map(f64::from)),
+        };
+        let mut positions: Vec<DVec3> = Vec::new();
+        let mut polygons: Vec<Vec<u32>> = Vec::new();
+        let mut skipped = 0usize;
+        if let Some(mesh) = node.mesh() {
+            for primitive in mesh.primitives() {
+                if primitive.mode() != gltf::mesh::Mode::Triangles {
+                    skipped += 1;
+                    continue;
+                }
+                let reader = primitive.reader(|b| buffers.get(b.index()).map(|d| d.as_slice()));
+                let Some(points) = reader.read_positions() else {
+                    skipped += 1;
+                    continue;
+                };
+                let base_index = positions.len() as u32;
+                positions.extend(points.map(|p| DVec3::from_array(p.map(f64::from))));
+                let count = positions.len() as u32 - base_index;
+                let indices: Vec<u32> = match reader.read_indices() {
+                    Some(i) => i.into_u32().collect(),
+                    None => (0..count).collect(),
+                };
+                if let Some(bad) = indices.iter().find(|&&i| i >= count) {
+                    return Err(err(format!(
+                        "mesh '{}': index {bad} is past its {count} positions",
+                        mesh.name().unwrap_or("?")
+                    )));
+                }
+                polygons.extend(
+                    indices
+                        .chunks_exact(3)
+                        .map(|t| t.iter().map(|i| i + base_index).collect()),
+                );
+            }
+        }
+        let name = node
+            .name()
+            .map_or_else(|| format!("Node {}", node.index()), str::to_string);
+        let mesh = if polygons.is_empty() {
+            None
+        } else {
+            let (welded, polys) = weld(&positions, &polygons);
+            let (mesh, report) = HalfEdgeMesh::from_polygons_repaired(&welded, &polys)
+                .map_err(|e| err(format!("node '{name}': {e}")))?;
+            Some((mesh.compacted_if_needed(), report))
+        };
+        let me = out.len();
+        out.push(ImportedMesh {
+            name,
+            mesh: mesh.as_ref().map(|(m, _)| m.clone()),
+            report: mesh.map(|(_, r)| r).unwrap_or_default(),
+            parent,
+            transform,
+            skipped_primitives: skipped,
+        });
+        for child in node.children().collect::<Vec<_>>().into_iter().rev() {
+            stack.push((child, Some(me)));
+        }
+    }
+    if out.is_empty() {
+        return Err(ImportError::Empty {
+            path: path.to_string(),
+        });
+    }
+    Ok(out)
+}
+
+/// Merges exactly equal positions (glTF splits vertices at normal seams).
+fn weld(positions: &[DVec3], polygons: &[Vec<u32>]) -> (Vec<DVec3>, Vec<Vec<u32>>) {
+    let mut map: HashMap<[u64; 3], u32> = HashMap::new();
+    let mut out = Vec::new();
+    let remap: Vec<u32> = positions
+        .iter()
+        .map(|p| {
+            let key = p.to_array().map(f64::to_bits);
+            *map.entry(key).or_insert_with(|| {
+                out.push(*p);
+                out.len() as u32 - 1
+            })
+        })
+        .collect();
+    let polys = polygons
+        .iter()
+        .map(|f| f.iter().map(|&i| remap[i as usize]).collect())
+        .collect();
+    (out, polys)
+}

@@ -1,0 +1,150 @@
+//! glTF and GLB: what Hedra writes is read back with its hierarchy,
+//! transforms and meshes (by the `gltf` crate, which validates it), and bad
+//! files are refused by name.
+
+use glam::{DQuat, DVec3};
+use hedra_doc::command::{CurveSpec, SurfaceSpec};
+use hedra_doc::export::{ExportOptions, export_bytes};
+use hedra_doc::import::import_file;
+use hedra_doc::{Command, NodeRef, Session, Transform};
+use hedra_geom::Primitive;
+
+fn scene() -> Session {
+    let mut s = Session::new();
+    let run = |s: &mut Session, c: Command| {
+        s.execute(&c).unwrap();
+    };
+    run(
+        &mut s,
+        Command::AddEmpty {
+            name: "Rig".into(),
+            parent: None,
+            transform: Transform {
+                translation: DVec3::new(1.0, 2.0, 3.0),
+                rotation: DQuat::from_rotation_y(0.5),
+                scale: DVec3::splat(2.0),
+            },
+        },
+    );
+    run(
+        &mut s,
+        Command::AddPrimitive {
+            primitive: Primitive::Cube { size: 2.0 },
+            name: Some("Box".into()),
+            parent: Some(NodeRef::Name("Rig".into())),
+            transform: Transform {
+                translation: DVec3::new(0.0, 1.0, 0.0),
+                ..Transform::IDENTITY
+            },
+        },
+    );
+    run(
+        &mut s,
+        Command::AddPrimitive {
+            primitive: Primitive::UvSphere {
+                segments: 8,
+                rings: 4,
+                radius: 1.0,
+            },
+            name: Some("Ball".into()),
+            parent: None,
+            transform: Transform::IDENTITY,
+        },
+    );
+    // (A UV sphere is shaded smooth from the start: shared vertex normals.)
+    run(
+        &mut s,
+        Command::AddCurve {
+            name: "Ring".into(),
+            curve: CurveSpec::Circle { radius: 1.0 },
+            parent: None,
+            transform: Transform::IDENTITY,
+        },
+    );
+    run(
+        &mut s,
+        Command::AddSurface {
+            name: "Dome".into(),
+            surface: SurfaceSpec::Sphere { radius: 0.5 },
+            parent: None,
+            transform: Transform::IDENTITY,
+        },
+    );
+    s
+}
+
+#[test]
+fn gltf_and_glb_round_trip_hierarchy_transforms_and_meshes() {
+    let s = scene();
+    let dir = tempfile::tempdir().unwrap();
+    for ext in ["glb", "gltf"] {
+        let path = dir.path().join(format!("scene.{ext}"));
+        let bytes = export_bytes(&s.doc, &path, ExportOptions::default()).unwrap();
+        if ext == "glb" {
+            assert_eq!(&bytes[..4], b"glTF");
+        } else {
+            assert!(String::from_utf8_lossy(&bytes).contains("\"version\":\"2.0\""));
+        }
+        std::fs::write(&path, &bytes).unwrap();
+        let nodes = import_file(&path).unwrap();
+        let names: Vec<&str> = nodes.iter().map(|n| n.name.as_str()).collect();
+        assert_eq!(names, ["Rig", "Box", "Ball", "Ring", "Dome"], "{ext}");
+        let rig = &nodes[0];
+        assert!(rig.mesh.is_none());
+        assert!((rig.transform.translation - DVec3::new(1.0, 2.0, 3.0)).length() < 1e-6);
+        assert!(
+            rig.transform
+                .rotation
+                .angle_between(DQuat::from_rotation_y(0.5))
+                < 1e-6
+        );
+        assert!((rig.transform.scale - DVec3::splat(2.0)).length() < 1e-6);
+        let cube = &nodes[1];
+        assert_eq!(cube.parent, Some(0), "the box stays under the rig");
+        let m = cube.mesh.as_ref().unwrap();
+        // glTF carries triangles: the cube's quads come back as 12 triangles
+        // on 8 welded corners, closed.
+        assert_eq!((m.vertex_count(), m.face_count()), (8, 12));
+        assert!(m.stats().closed);
+        let ball = nodes[2].mesh.as_ref().unwrap();
+        assert!(ball.stats().closed && ball.face_count() > 40);
+        // The curve is a line strip: kept as a node, its lines reported.
+        assert!(nodes[3].mesh.is_none() && nodes[3].skipped_primitives == 1);
+        let dome = nodes[4].mesh.as_ref().unwrap();
+        assert!(
+            dome.vertices()
+                .all(|v| (dome.position(v).length() - 0.5).abs() < 1e-3)
+        );
+        // Imported into a session: the hierarchy and world positions hold.
+        let mut back = Session::new();
+        back.import(&nodes, "Import");
+        let box_world = back
+            .doc
+            .world_matrix(back.doc.find_by_name("Box").unwrap().id);
+        let original = s.doc.world_matrix(s.doc.find_by_name("Box").unwrap().id);
+        assert!(
+            box_world.abs_diff_eq(original, 1e-5),
+            "{ext}: world transforms differ"
+        );
+    }
+}
+
+#[test]
+fn bad_gltf_files_are_refused_by_name() {
+    let dir = tempfile::tempdir().unwrap();
+    let cases: [(&str, &[u8], &str); 3] = [
+        ("junk.glb", b"glTF\x02\x00\x00\x00garbage", "not a readable glTF file"),
+        ("junk.gltf", b"{ \"asset\": 5 }", "not a readable glTF file"),
+        (
+            "missing.gltf",
+            br#"{"asset":{"version":"2.0"},"buffers":[{"byteLength":12,"uri":"nowhere.bin"}],"scenes":[{"nodes":[]}],"scene":0}"#,
+            "buffer 0 (",
+        ),
+    ];
+    for (name, bytes, expected) in cases {
+        let path = dir.path().join(name);
+        std::fs::write(&path, bytes).unwrap();
+        let e = import_file(&path).unwrap_err().to_string();
+        assert!(e.contains(name) && e.contains(expected), "{e}");
+    }
+}
