@@ -463,12 +463,12 @@ fn import_turns_obj_objects_into_nodes_and_reports_repairs() {
     fails(
         &[
             "import",
-            dir.path().join("x.stl").to_str().unwrap(),
+            dir.path().join("x.fbx").to_str().unwrap(),
             "-o",
             dir.path().join("n.hedra.ron").to_str().unwrap(),
         ],
         &dir.path().join("n.hedra.ron"),
-        "unsupported format '.stl'",
+        "unsupported format '.fbx' (supported: .obj, .stl, .gltf, .glb)",
     );
 }
 
