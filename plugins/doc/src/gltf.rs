@@ -92,14 +92,24 @@ fn mesh_triangles(m: &HalfEdgeMesh, shading: Shading) -> (Vec<[f32; 3]>, Vec<[f3
     let a = |p: DVec3| p.as_vec3().to_array();
     match shading {
         Shading::Flat => {
+            // Each face its own corners (a cube: 24 vertices, seed 000's
+            // "cube problem"), triangulated by index.
             for f in m.faces() {
                 let n = a(m.face_normal(f));
+                let base = positions.len() as u32;
+                let corners: Vec<hedra_geom::VertexId> = m.face_vertices(f).collect();
+                for &v in &corners {
+                    positions.push(a(m.position(v)));
+                    normals.push(n);
+                }
                 for tri in hedra_geom::query::triangulate_face(m, f) {
-                    for v in tri {
-                        indices.push(positions.len() as u32);
-                        positions.push(a(m.position(v)));
-                        normals.push(n);
-                    }
+                    indices.extend(tri.map(|v| {
+                        base + corners
+                            .iter()
+                            .position(|c| *c == v)
+                            .expect("a triangle corner is a face corner")
+                            as u32
+                    }));
                 }
             }
         }
