@@ -96,7 +96,7 @@ pub struct SurfaceData {
 /// make the parameterisation so uneven that Hedra's uniform grid hits its cap
 /// of 2048 cells per direction at tolerance 0.001.
 pub fn surface_data() -> SurfaceData {
-    let mut rng = SplitMix::new(0x5EED_0F_5A4F);
+    let mut rng = SplitMix::new(0x005E_ED0F_5A4F);
     let n = SURFACE_POINTS;
     let mut points = Vec::with_capacity(n * n);
     let mut weights = Vec::with_capacity(n * n);
@@ -105,7 +105,9 @@ pub fn surface_data() -> SurfaceData {
             let (x, y) = (i as f64, j as f64);
             let h = 1.5 * (0.6 * x).sin() * (0.45 * y).cos() + rng.range(-0.1, 0.1);
             points.push(DVec3::new(x, y, h));
-            weights.push(1.25 + 0.6 * (0.5 * x + 0.3).sin() * (0.4 * y).cos() + rng.range(-0.15, 0.15));
+            weights.push(
+                1.25 + 0.6 * (0.5 * x + 0.3).sin() * (0.4 * y).cos() + rng.range(-0.15, 0.15),
+            );
         }
     }
     SurfaceData {
@@ -126,8 +128,13 @@ fn homogeneous(p: DVec3, w: f64) -> Point4<f64> {
 }
 
 pub fn hedra_curve(d: &CurveData) -> NurbsCurve {
-    NurbsCurve::new(d.degree, d.knots.clone(), d.points.clone(), d.weights.clone())
-        .expect("valid curve")
+    NurbsCurve::new(
+        d.degree,
+        d.knots.clone(),
+        d.points.clone(),
+        d.weights.clone(),
+    )
+    .expect("valid curve")
 }
 
 pub fn curvo_curve(d: &CurveData) -> NurbsCurve3D<f64> {
@@ -218,10 +225,11 @@ pub fn chord_error(
     (max, sum / triangles.len().max(1) as f64)
 }
 
+/// Positions, parameters (u, v) and triangles of a mesh.
+pub type PlainMesh = (Vec<DVec3>, Vec<(f64, f64)>, Vec<[usize; 3]>);
+
 /// A curvo tessellation in plain form: positions, uvs, triangles.
-pub fn curvo_mesh(
-    t: &curvo::prelude::SurfaceTessellation3D<f64>,
-) -> (Vec<DVec3>, Vec<(f64, f64)>, Vec<[usize; 3]>) {
+pub fn curvo_mesh(t: &curvo::prelude::SurfaceTessellation3D<f64>) -> PlainMesh {
     (
         t.points().iter().map(to_dvec3).collect(),
         t.uvs().iter().map(|uv| (uv.x, uv.y)).collect(),
@@ -230,15 +238,10 @@ pub fn curvo_mesh(
 }
 
 /// A Hedra tessellation in the same plain form.
-pub fn hedra_mesh(
-    m: &hedra_geom::surfaces::tessellate::SurfaceMesh,
-) -> (Vec<DVec3>, Vec<(f64, f64)>, Vec<[usize; 3]>) {
+pub fn hedra_mesh(m: &hedra_geom::surfaces::tessellate::SurfaceMesh) -> PlainMesh {
     (
         m.positions.clone(),
         m.params.clone(),
-        m.triangles
-            .iter()
-            .map(|t| t.map(|k| k as usize))
-            .collect(),
+        m.triangles.iter().map(|t| t.map(|k| k as usize)).collect(),
     )
 }

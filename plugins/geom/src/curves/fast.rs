@@ -188,21 +188,45 @@ pub fn homogeneous_points(points: &[DVec3], weights: &[f64]) -> Vec<DVec4> {
 }
 
 /// Points of a NURBS curve at many parameters (any order; increasing ones
-/// are fastest).
+/// are fastest). Each knot span's homogeneous polynomial is turned into
+/// power-basis coefficients around the span's start once (its Taylor
+/// coefficients, from the basis derivatives), so a point costs one span
+/// check and `p` fused steps of Horner's rule.
 pub fn curve_points(basis: &Basis, pw: &[DVec4], params: &[f64]) -> Vec<DVec3> {
     let p = basis.degree;
+    let spans = basis.last + 1 - basis.first;
+    // Taylor coefficients A^(k)(u_i) / k! of every span.
+    let mut coefficients = vec![DVec4::ZERO; spans * (p + 1)];
+    for (s, chunk) in coefficients.chunks_mut(p + 1).enumerate() {
+        let i = basis.first + s;
+        let start = basis.knots[i];
+        if basis.knots[i + 1] <= start {
+            continue; // an empty span is never evaluated
+        }
+        let ders = crate::curves::nurbs::basis_derivatives(&basis.knots, i, start, p, p);
+        let mut factorial = 1.0;
+        for (k, row) in ders.iter().enumerate() {
+            if k > 0 {
+                factorial *= k as f64;
+            }
+            let mut c = DVec4::ZERO;
+            for (r, &b) in row.iter().enumerate() {
+                c += b * pw[i - p + r];
+            }
+            chunk[k] = c / factorial;
+        }
+    }
     let mut out = Vec::with_capacity(params.len());
-    let mut n = [0.0; MAX_FAST_DEGREE + 1];
     let mut span = basis.first;
     for &u in params {
         span = basis.span(u, span);
-        basis.functions(span, u, &mut n);
-        let base = span - p;
-        let mut h = DVec4::ZERO;
-        for r in 0..=p {
-            h += n[r] * pw[base + r];
+        let c = &coefficients[(span - basis.first) * (p + 1)..][..p + 1];
+        let h = u - basis.knots[span];
+        let mut a = c[p];
+        for k in (0..p).rev() {
+            a = a * h + c[k];
         }
-        out.push(h.truncate() / h.w);
+        out.push(a.truncate() / a.w);
     }
     out
 }
