@@ -93,6 +93,19 @@ impl Basis {
     /// the stored reciprocals).
     #[inline]
     pub fn functions(&self, i: usize, u: f64, n: &mut [f64; MAX_FAST_DEGREE + 1]) {
+        self.triangle(i, u, n, None);
+    }
+
+    /// A2.2's triangle of basis values; with `lower`, also the degree
+    /// `p − 1` values (functions `i − p + 1 ..= i`) met on the way.
+    #[inline]
+    fn triangle(
+        &self,
+        i: usize,
+        u: f64,
+        n: &mut [f64; MAX_FAST_DEGREE + 1],
+        mut lower: Option<&mut [f64; MAX_FAST_DEGREE + 1]>,
+    ) {
         let p = self.degree;
         let k = &self.knots;
         let inv = &self.inv[(i - self.first) * (p * (p + 1) / 2)..];
@@ -103,6 +116,11 @@ impl Basis {
         for j in 1..=p {
             left[j] = u - k[i + 1 - j];
             right[j] = k[i + j] - u;
+            if j == p
+                && let Some(lower) = lower.as_deref_mut()
+            {
+                lower[..p].copy_from_slice(&n[..p]);
+            }
             let mut saved = 0.0;
             for r in 0..j {
                 let temp = n[r] * inv[at];
@@ -131,31 +149,9 @@ impl Basis {
             d[0] = 0.0;
             return;
         }
-        // The same triangle as `functions`, keeping degree p − 1 on the way.
         let mut m = [0.0; MAX_FAST_DEGREE + 1];
-        {
-            let inv = &self.inv[(i - self.first) * (p * (p + 1) / 2)..];
-            let mut left = [0.0; MAX_FAST_DEGREE + 1];
-            let mut right = [0.0; MAX_FAST_DEGREE + 1];
-            m[0] = 1.0;
-            let mut at = 0;
-            for j in 1..=p {
-                left[j] = u - k[i + 1 - j];
-                right[j] = k[i + j] - u;
-                if j == p {
-                    n[..p].copy_from_slice(&m[..p]);
-                }
-                let mut saved = 0.0;
-                for r in 0..j {
-                    let temp = m[r] * inv[at];
-                    at += 1;
-                    m[r] = saved + right[r + 1] * temp;
-                    saved = left[j - r] * temp;
-                }
-                m[j] = saved;
-            }
-        }
-        // Now `n[..p]` holds degree p − 1 (functions i−p+1 ..= i), `m` degree p.
+        self.triangle(i, u, n, Some(&mut m));
+        // `m[..p]` holds degree p − 1 (functions i−p+1 ..= i).
         let pf = p as f64;
         for r in 0..=p {
             let a = i - p + r;
@@ -163,18 +159,17 @@ impl Basis {
             if r >= 1 {
                 let den = k[a + p] - k[a];
                 if den != 0.0 {
-                    v += n[r - 1] / den;
+                    v += m[r - 1] / den;
                 }
             }
             if r < p {
                 let den = k[a + p + 1] - k[a + 1];
                 if den != 0.0 {
-                    v -= n[r] / den;
+                    v -= m[r] / den;
                 }
             }
             d[r] = pf * v;
         }
-        n[..=p].copy_from_slice(&m[..=p]);
     }
 }
 

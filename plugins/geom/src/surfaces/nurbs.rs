@@ -359,35 +359,17 @@ impl NurbsSurface {
     /// # Errors
     /// As [`NurbsCurve::insert_knot`].
     pub fn insert_knot_u(&self, u: f64) -> Result<NurbsSurface, CurveError> {
-        let columns: Vec<NurbsCurve> = (0..self.nv)
-            .map(|j| self.column(j).insert_knot(u))
-            .collect::<Result<_, _>>()?;
-        let nu = self.nu + 1;
-        let mut points = vec![DVec3::ZERO; nu * self.nv];
-        let mut weights = vec![0.0; nu * self.nv];
-        for (j, c) in columns.iter().enumerate() {
-            for i in 0..nu {
-                points[i * self.nv + j] = c.points()[i];
-                weights[i * self.nv + j] = c.weights()[i];
-            }
-        }
-        Ok(NurbsSurface {
-            knots_u: columns[0].knots().to_vec(),
-            nu,
-            points,
-            weights,
-            ..self.clone()
-        })
+        self.map_columns(|c| c.insert_knot(u))
     }
 
-    /// Raises the degree in u by one (every column is elevated the same
-    /// way; the surface does not move).
-    ///
-    /// # Errors
-    /// An unclamped knot vector in u.
-    pub fn elevate_u(&self) -> Result<NurbsSurface, CurveError> {
+    /// The surface whose columns (curves in u) are `f` of this one's; `f`
+    /// must treat every column alike (same knots and degree out).
+    fn map_columns(
+        &self,
+        f: impl Fn(&NurbsCurve) -> Result<NurbsCurve, CurveError>,
+    ) -> Result<NurbsSurface, CurveError> {
         let columns: Vec<NurbsCurve> = (0..self.nv)
-            .map(|j| self.column(j).elevate_degree())
+            .map(|j| f(&self.column(j)))
             .collect::<Result<_, _>>()?;
         let nu = columns[0].points().len();
         let mut points = vec![DVec3::ZERO; nu * self.nv];
@@ -399,7 +381,7 @@ impl NurbsSurface {
             }
         }
         Ok(NurbsSurface {
-            degree_u: self.degree_u + 1,
+            degree_u: columns[0].degree(),
             knots_u: columns[0].knots().to_vec(),
             nu,
             points,
@@ -408,16 +390,16 @@ impl NurbsSurface {
         })
     }
 
-    /// Raises the degree in v by one (every row is elevated the same way).
-    ///
-    /// # Errors
-    /// An unclamped knot vector in v.
-    pub fn elevate_v(&self) -> Result<NurbsSurface, CurveError> {
+    /// The surface whose rows (curves in v) are `f` of this one's.
+    fn map_rows(
+        &self,
+        f: impl Fn(&NurbsCurve) -> Result<NurbsCurve, CurveError>,
+    ) -> Result<NurbsSurface, CurveError> {
         let rows: Vec<NurbsCurve> = (0..self.nu)
-            .map(|i| self.row(i).elevate_degree())
+            .map(|i| f(&self.row(i)))
             .collect::<Result<_, _>>()?;
         Ok(NurbsSurface {
-            degree_v: self.degree_v + 1,
+            degree_v: rows[0].degree(),
             knots_v: rows[0].knots().to_vec(),
             nv: rows[0].points().len(),
             points: rows.iter().flat_map(|r| r.points().to_vec()).collect(),
@@ -426,24 +408,29 @@ impl NurbsSurface {
         })
     }
 
+    /// Raises the degree in u by one (every column is elevated the same
+    /// way; the surface does not move).
+    ///
+    /// # Errors
+    /// An unclamped knot vector in u.
+    pub fn elevate_u(&self) -> Result<NurbsSurface, CurveError> {
+        self.map_columns(NurbsCurve::elevate_degree)
+    }
+
+    /// Raises the degree in v by one (every row is elevated the same way).
+    ///
+    /// # Errors
+    /// An unclamped knot vector in v.
+    pub fn elevate_v(&self) -> Result<NurbsSurface, CurveError> {
+        self.map_rows(NurbsCurve::elevate_degree)
+    }
+
     /// Inserts a knot in v (every row gets it; the surface does not move).
     ///
     /// # Errors
     /// As [`NurbsCurve::insert_knot`].
     pub fn insert_knot_v(&self, v: f64) -> Result<NurbsSurface, CurveError> {
-        let rows: Vec<NurbsCurve> = (0..self.nu)
-            .map(|i| self.row(i).insert_knot(v))
-            .collect::<Result<_, _>>()?;
-        let nv = self.nv + 1;
-        let points = rows.iter().flat_map(|r| r.points().to_vec()).collect();
-        let weights = rows.iter().flat_map(|r| r.weights().to_vec()).collect();
-        Ok(NurbsSurface {
-            knots_v: rows[0].knots().to_vec(),
-            nv,
-            points,
-            weights,
-            ..self.clone()
-        })
+        self.map_rows(|r| r.insert_knot(v))
     }
 
     fn span(knots: &[f64], degree: usize, count: usize, u: f64) -> usize {
