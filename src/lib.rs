@@ -68,7 +68,7 @@ pub fn gui_app(options: GuiOptions) -> App {
     if let Some((node, faces)) = options.edit {
         app.add_systems(
             Update,
-            start_in_edit_mode(node, faces).after(hedra_scene::SceneSystems::Sync),
+            start_in_edit_mode(node, faces).after(hedra_edit::EditSystems),
         );
     }
     if let Some(path) = options.screenshot {
@@ -85,7 +85,8 @@ pub fn gui_app(options: GuiOptions) -> App {
 }
 
 /// `--edit NODE [--select FACES]`: once the node exists, select it, enter
-/// edit mode in face mode and select the faces.
+/// edit mode in face mode and select the faces. On a curve or surface:
+/// its control-point edit mode with every point selected.
 fn start_in_edit_mode(
     node: String,
     faces: Option<hedra_doc::FaceSet>,
@@ -93,11 +94,12 @@ fn start_in_edit_mode(
     Res<hedra_scene::DocState>,
     ResMut<hedra_edit::Selection>,
     ResMut<hedra_edit::EditMode>,
+    ResMut<hedra_edit::ShapeEdit>,
     ResMut<hedra_scene::StatusMessage>,
 ) {
     let mut done = false;
     let mut frames = 0;
-    move |state, mut selection, mut mode, mut status| {
+    move |state, mut selection, mut mode, mut shape_edit, mut status| {
         if done {
             return;
         }
@@ -110,8 +112,15 @@ fn start_in_edit_mode(
             return;
         };
         done = true;
+        let points = hedra_edit::shape_mode::control_points(&n.content).len() as u32;
+        if points > 0 {
+            selection.set([n.id]);
+            shape_edit.node = Some(n.id);
+            shape_edit.selected = (0..points).collect();
+            return;
+        }
         let Some(mesh) = n.content.mesh() else {
-            status.error(format!("--edit: '{node}' is not a mesh"));
+            status.error(format!("--edit: '{node}' is an empty: it has no edit mode"));
             return;
         };
         selection.set([n.id]);

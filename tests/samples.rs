@@ -283,3 +283,33 @@ fn curves_and_surfaces_screenshot_shows_curves_and_shaded_surfaces() {
         greys.len()
     );
 }
+
+#[test]
+fn surface_edit_screenshot_shows_its_control_net_and_weights() {
+    // The sphere's 45 rational control points, all selected: orange dots
+    // with their weights (1.00 / 0.71) written in orange next to them.
+    let (pixels, w, h) = screenshot("shapes.hedra.ron", &["--edit", "Ball"]);
+    assert_eq!((w, h), (1280, 800));
+    let orange = pixels
+        .iter()
+        .enumerate()
+        .filter(|(i, _)| {
+            let (x, y) = ((*i as u32) % w, (*i as u32) / w);
+            (230..1000).contains(&x) && (30..770).contains(&y)
+        })
+        .filter(|(_, [r, g, b])| *r > 200 && (90..200).contains(g) && *b < 110)
+        .count();
+    assert!(
+        orange > 400,
+        "only {orange} orange pixels of selected points and weights"
+    );
+    // The status bar says which mode this is.
+    let bar = pixels[(785 * w) as usize..(795 * w) as usize]
+        .iter()
+        .filter(|[r, g, b]| *r > 200 && (120..200).contains(g) && *b < 110)
+        .count();
+    assert!(
+        bar > 20,
+        "the status bar shows 'Edit Mode · Control Points' in orange"
+    );
+}
