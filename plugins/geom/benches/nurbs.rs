@@ -71,6 +71,18 @@ fn nurbs(c: &mut Criterion) {
     g.bench_function("surface_tessellate_0.001", |b| {
         b.iter(|| tessellate_nurbs(black_box(&s), 0.001))
     });
+    // What a weight drag re-tessellates every frame: the viewport's
+    // tolerance, 5e-4 of the control net's size (hedra_scene::VIEW_TOLERANCE).
+    let (lo, hi) = s
+        .points()
+        .iter()
+        .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), p| {
+            (lo.min(*p), hi.max(*p))
+        });
+    let size = (hi - lo).length();
+    g.bench_function("surface_tessellate_viewport", |b| {
+        b.iter(|| tessellate_nurbs(black_box(&s), 5e-4 * size))
+    });
     g.finish();
 }
 
