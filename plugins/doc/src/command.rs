@@ -492,9 +492,7 @@ pub enum Command {
     },
 }
 
-fn one() -> u32 {
-    1
-}
+use crate::scene::{one, yes};
 
 /// Round primitives start smooth, boxy ones flat, as in most modelers.
 fn primitive_shading(p: &Primitive) -> Shading {
@@ -504,10 +502,6 @@ fn primitive_shading(p: &Primitive) -> Shading {
         }
         _ => Shading::Flat,
     }
-}
-
-fn yes() -> bool {
-    true
 }
 
 /// Why a command was refused. The document is unchanged.

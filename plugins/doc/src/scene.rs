@@ -147,13 +147,14 @@ pub struct SubdivisionModifier {
     pub show_cage: bool,
 }
 
-fn one() -> u32 {
+/// Serde defaults shared by the document's stored types.
+pub(crate) fn one() -> u32 {
     1
 }
 fn two() -> u32 {
     2
 }
-fn yes() -> bool {
+pub(crate) fn yes() -> bool {
     true
 }
 
