@@ -473,3 +473,15 @@ fn quintic_hermite_meets_its_end_conditions() {
     }
     check_derivatives(&q, 1e-6);
 }
+
+#[test]
+fn knot_refinement_inserts_many_knots_and_keeps_the_curve() {
+    let c = wavy_nurbs();
+    let r = c.refine(&[0.1, 0.2, 0.3, 0.6, 0.9]).unwrap();
+    assert_eq!(r.points().len(), c.points().len() + 5);
+    for k in 0..=50 {
+        let t = k as f64 / 50.0;
+        assert!(close(c.point(t), r.point(t), 1e-12));
+    }
+    assert!(matches!(c.refine(&[0.5, 1.5]), Err(CurveError::OutsideDomain { .. })));
+}

@@ -454,3 +454,11 @@ fn surface_degree_elevation_keeps_the_surface() {
         );
     }
 }
+
+#[test]
+fn bezier_surface_bernstein_form_equals_de_casteljau() {
+    let b = bezier_net();
+    for (u, v) in grid(&b, 10) {
+        assert!(close(b.bernstein_point(u, v), b.point(u, v), 1e-13));
+    }
+}

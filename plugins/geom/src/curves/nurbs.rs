@@ -420,6 +420,15 @@ impl NurbsCurve {
         Ok((left, right))
     }
 
+    /// Knot refinement: inserts every knot of `knots` (one at a time, by
+    /// Boehm's rule); the curve does not move.
+    ///
+    /// # Errors
+    /// As [`insert_knot`](Self::insert_knot), naming the first knot refused.
+    pub fn refine(&self, knots: &[f64]) -> Result<NurbsCurve, CurveError> {
+        knots.iter().try_fold(self.clone(), |c, &u| c.insert_knot(u))
+    }
+
     /// True when both ends have `degree + 1` equal knots (the curve starts
     /// and ends at its end control points).
     pub fn is_clamped(&self) -> bool {

@@ -70,6 +70,21 @@ impl BezierSurface {
         }
     }
 
+    /// The point at `(u, v)` as `Σ_i Σ_j B_i(u) B_j(v) b_ij` (the Bernstein
+    /// form, seed 002).
+    pub fn bernstein_point(&self, u: f64, v: f64) -> DVec3 {
+        use crate::curves::bezier::bernstein;
+        let (n, m) = (self.nu - 1, self.nv - 1);
+        let mut sum = DVec3::ZERO;
+        for i in 0..=n {
+            let bu = bernstein(n, i, u);
+            for j in 0..=m {
+                sum += bu * bernstein(m, j, v) * self.points[i * self.nv + j];
+            }
+        }
+        sum
+    }
+
     /// The boundary curve at `u = 0` (its first row) — a Bézier surface's
     /// edges are the Bézier curves of its boundary control points (seed 002).
     pub fn boundary_u0(&self) -> Bezier {
