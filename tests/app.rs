@@ -540,3 +540,63 @@ fn curves_and_surfaces_get_render_meshes_and_can_be_picked() {
     assert_eq!(doc.node(id).unwrap().name, "Ball");
     assert!((dist - 4.0).abs() < 0.05, "{dist}");
 }
+
+#[test]
+fn a_weight_change_re_evaluates_only_the_surface_it_can_reach() {
+    use bevy::mesh::VertexAttributeValues;
+    use hedra_geom::surfaces::NurbsSurface;
+    let mut points = Vec::new();
+    for i in 0..8 {
+        for j in 0..8 {
+            points.push(hedra_geom::DVec3::new(
+                i as f64,
+                ((i + j) as f64 * 0.7).sin(),
+                j as f64,
+            ));
+        }
+    }
+    let knots = hedra_geom::curves::nurbs::clamped_uniform_knots(3, 8);
+    let old = NurbsSurface::new(3, 3, knots.clone(), knots, 8, 8, points, vec![1.0; 64]).unwrap();
+    let mut new = old.clone();
+    new.set_weight(1, 1, 4.0).unwrap();
+    let grid = hedra_scene::surface_grid(&old);
+    let mut render = hedra_scene::surface_render_mesh(&hedra_doc::SurfaceShape::Nurbs(old.clone()));
+    let before = match render.attribute(Mesh::ATTRIBUTE_POSITION) {
+        Some(VertexAttributeValues::Float32x3(p)) => p.clone(),
+        _ => panic!("positions"),
+    };
+    assert!(hedra_scene::update_surface_render_mesh(
+        &mut render,
+        &grid,
+        &old,
+        &new
+    ));
+    let Some(VertexAttributeValues::Float32x3(after)) = render.attribute(Mesh::ATTRIBUTE_POSITION)
+    else {
+        panic!("positions");
+    };
+    // Every grid point equals the new surface evaluated there…
+    let (exact, _) = new.grid(&grid.us, &grid.vs, false);
+    for (got, want) in after.iter().zip(&exact) {
+        assert!((Vec3::from(*got) - want.as_vec3()).length() < 1e-5);
+    }
+    // …and the points beyond the changed point's knot spans were not touched.
+    let moved = before
+        .iter()
+        .zip(after.iter())
+        .filter(|(a, b)| a != b)
+        .count();
+    assert!(
+        moved > 0 && moved < before.len() / 2,
+        "{moved} of {} moved",
+        before.len()
+    );
+    // A change of knots is not a drag: rebuild.
+    let refined = new.insert_knot_u(0.5).unwrap();
+    assert!(!hedra_scene::update_surface_render_mesh(
+        &mut render,
+        &grid,
+        &new,
+        &refined
+    ));
+}

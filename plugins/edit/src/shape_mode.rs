@@ -466,6 +466,7 @@ pub fn show_shape_preview(
     mesh3d: Query<&Mesh3d>,
     mut meshes: ResMut<Assets<Mesh>>,
     mut shown: Local<Option<(NodeId, usize)>>,
+    mut screen: Local<Option<OnScreen>>,
 ) {
     let surface_of = |c: &NodeContent| match c {
         NodeContent::Surface(s) => Some(s.clone()),
@@ -477,23 +478,45 @@ pub fn show_shape_preview(
     if key == *shown {
         return;
     }
-    let mut put = |n: NodeId, s: &SurfaceShape| {
-        if let Some(mut m) = entities
+    let doc_shape = |n: NodeId| {
+        state
+            .session
+            .doc
+            .node(n)
+            .and_then(|node| surface_of(&node.content))
+    };
+    let mut put = |n: NodeId, s: &Arc<SurfaceShape>| {
+        let Some(mut m) = entities
             .0
             .get(&n)
             .and_then(|e| mesh3d.get(*e).ok())
             .and_then(|h| meshes.get_mut(&h.0))
+        else {
+            return;
+        };
+        let Some(doc) = doc_shape(n) else { return };
+        let doc_key = Arc::as_ptr(&doc) as usize;
+        // The mesh on screen was built from the document's shape unless this
+        // system has changed it since.
+        if screen
+            .as_ref()
+            .is_none_or(|o| o.node != n || o.doc != doc_key)
         {
-            *m = hedra_scene::surface_render_mesh(s);
+            *screen = OnScreen::of(n, doc_key, &doc);
         }
+        if let Some(o) = screen.as_mut()
+            && let (SurfaceShape::Nurbs(old), SurfaceShape::Nurbs(new)) = (&*o.shape, &**s)
+            && hedra_scene::update_surface_render_mesh(&mut m, &o.grid, old, new)
+        {
+            o.shape = s.clone();
+            return;
+        }
+        *m = hedra_scene::surface_render_mesh(s);
+        *screen = OnScreen::of(n, doc_key, s);
     };
     if let Some((prev, _)) = shown.take()
         && want.as_ref().is_none_or(|(n, _)| *n != prev)
-        && let Some(s) = state
-            .session
-            .doc
-            .node(prev)
-            .and_then(|n| surface_of(&n.content))
+        && let Some(s) = doc_shape(prev)
     {
         put(prev, &s);
     }
@@ -501,4 +524,27 @@ pub fn show_shape_preview(
         put(*n, s);
     }
     *shown = key;
+}
+
+/// The surface a node's render mesh shows and the grid it was built on.
+pub struct OnScreen {
+    node: NodeId,
+    /// The document shape (by identity) the cache belongs to.
+    doc: usize,
+    grid: hedra_scene::SurfaceGrid,
+    shape: Arc<SurfaceShape>,
+}
+
+impl OnScreen {
+    fn of(node: NodeId, doc: usize, shape: &Arc<SurfaceShape>) -> Option<OnScreen> {
+        match &**shape {
+            SurfaceShape::Nurbs(n) => Some(OnScreen {
+                node,
+                doc,
+                grid: hedra_scene::surface_grid(n),
+                shape: shape.clone(),
+            }),
+            SurfaceShape::Triangle(_) => None,
+        }
+    }
 }

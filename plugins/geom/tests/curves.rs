@@ -483,5 +483,8 @@ fn knot_refinement_inserts_many_knots_and_keeps_the_curve() {
         let t = k as f64 / 50.0;
         assert!(close(c.point(t), r.point(t), 1e-12));
     }
-    assert!(matches!(c.refine(&[0.5, 1.5]), Err(CurveError::OutsideDomain { .. })));
+    assert!(matches!(
+        c.refine(&[0.5, 1.5]),
+        Err(CurveError::OutsideDomain { .. })
+    ));
 }

@@ -599,6 +599,103 @@ pub fn surface_render_mesh(surface: &hedra_doc::SurfaceShape) -> Mesh {
     .with_inserted_indices(Indices::U32(triangles.into_iter().flatten().collect()))
 }
 
+/// The parameters of a NURBS surface's render grid (row-major by u), kept
+/// so a drag re-evaluates only the part of the grid its change can reach.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SurfaceGrid {
+    pub us: Vec<f64>,
+    pub vs: Vec<f64>,
+}
+
+/// The grid [`surface_render_mesh`] uses for a NURBS surface.
+pub fn surface_grid(surface: &hedra_geom::surfaces::NurbsSurface) -> SurfaceGrid {
+    use hedra_geom::surfaces::Surface;
+    let tol = VIEW_TOLERANCE * extent(surface.points());
+    let (cu, cv) = hedra_geom::surfaces::tessellate::cells_for_tolerance(surface, tol);
+    let ((u0, u1), (v0, v1)) = surface.domain();
+    SurfaceGrid {
+        us: (0..=cu)
+            .map(|i| u0 + (u1 - u0) * i as f64 / cu as f64)
+            .collect(),
+        vs: (0..=cv)
+            .map(|j| v0 + (v1 - v0) * j as f64 / cv as f64)
+            .collect(),
+    }
+}
+
+/// Rewrites the positions and normals of `render` (built on `grid` from
+/// `old`) to show `new`, re-evaluating only the grid points inside the
+/// knot spans of the control points that changed: a control point (i, j)
+/// moves the surface only on `[U_i, U_{i+p+1}] × [V_j, V_{j+q+1}]`.
+/// Returns false, changing nothing, when the two surfaces differ in more
+/// than points and weights (rebuild then).
+pub fn update_surface_render_mesh(
+    render: &mut Mesh,
+    grid: &SurfaceGrid,
+    old: &hedra_geom::surfaces::NurbsSurface,
+    new: &hedra_geom::surfaces::NurbsSurface,
+) -> bool {
+    use bevy::mesh::VertexAttributeValues;
+    if old.size() != new.size() || old.degrees() != new.degrees() || old.knots() != new.knots() {
+        return false;
+    }
+    let (nu, nv) = new.size();
+    let changed: Vec<usize> = (0..nu * nv)
+        .filter(|&k| old.points()[k] != new.points()[k] || old.weights()[k] != new.weights()[k])
+        .collect();
+    if changed.is_empty() {
+        return true;
+    }
+    let ((p, q), (ku, kv)) = (new.degrees(), new.knots());
+    let (mut u_lo, mut u_hi, mut v_lo, mut v_hi) = (
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+    );
+    for k in changed {
+        let (i, j) = (k / nv, k % nv);
+        u_lo = u_lo.min(ku[i]);
+        u_hi = u_hi.max(ku[i + p + 1]);
+        v_lo = v_lo.min(kv[j]);
+        v_hi = v_hi.max(kv[j + q + 1]);
+    }
+    let rows: Vec<usize> = (0..grid.us.len())
+        .filter(|&a| (u_lo..=u_hi).contains(&grid.us[a]))
+        .collect();
+    let cols: Vec<usize> = (0..grid.vs.len())
+        .filter(|&b| (v_lo..=v_hi).contains(&grid.vs[b]))
+        .collect();
+    let count = grid.us.len() * grid.vs.len();
+    let (
+        Some(VertexAttributeValues::Float32x3(positions)),
+        Some(VertexAttributeValues::Float32x3(normals)),
+    ) = (
+        render.attribute(Mesh::ATTRIBUTE_POSITION).cloned(),
+        render.attribute(Mesh::ATTRIBUTE_NORMAL).cloned(),
+    )
+    else {
+        return false;
+    };
+    if positions.len() != count || normals.len() != count {
+        return false;
+    }
+    let (mut positions, mut normals) = (positions, normals);
+    let us: Vec<f64> = rows.iter().map(|&a| grid.us[a]).collect();
+    let vs: Vec<f64> = cols.iter().map(|&b| grid.vs[b]).collect();
+    let (points, norms) = new.grid(&us, &vs, true);
+    for (r, &a) in rows.iter().enumerate() {
+        for (c, &b) in cols.iter().enumerate() {
+            let k = a * grid.vs.len() + b;
+            positions[k] = points[r * vs.len() + c].as_vec3().to_array();
+            normals[k] = norms[r * vs.len() + c].as_vec3().to_array();
+        }
+    }
+    render.insert_attribute(Mesh::ATTRIBUTE_POSITION, positions);
+    render.insert_attribute(Mesh::ATTRIBUTE_NORMAL, normals);
+    true
+}
+
 /// The render mesh of a mesh node showing `cage` (the document's mesh or a
 /// tool's preview of it) with `creases`: smooth when the node has a
 /// subdivision modifier, else the cage itself.

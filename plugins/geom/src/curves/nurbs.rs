@@ -426,7 +426,9 @@ impl NurbsCurve {
     /// # Errors
     /// As [`insert_knot`](Self::insert_knot), naming the first knot refused.
     pub fn refine(&self, knots: &[f64]) -> Result<NurbsCurve, CurveError> {
-        knots.iter().try_fold(self.clone(), |c, &u| c.insert_knot(u))
+        knots
+            .iter()
+            .try_fold(self.clone(), |c, &u| c.insert_knot(u))
     }
 
     /// True when both ends have `degree + 1` equal knots (the curve starts
