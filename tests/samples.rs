@@ -86,6 +86,18 @@ fn gui_smoke_test_renders_the_scene_under_xvfb() {
     );
 }
 
+/// How many pixels of the 3D viewport (between the panels) satisfy `keep`.
+fn count_in_viewport(pixels: &[[u8; 3]], w: u32, keep: impl Fn([u8; 3]) -> bool) -> usize {
+    pixels
+        .iter()
+        .enumerate()
+        .filter(|(i, p)| {
+            let (x, y) = ((*i as u32) % w, (*i as u32) / w);
+            (230..1000).contains(&x) && (30..770).contains(&y) && keep(**p)
+        })
+        .count()
+}
+
 /// Runs the app on a sample and returns the screenshot's pixels (RGB) and size.
 fn screenshot(sample: &str, extra: &[&str]) -> (Vec<[u8; 3]>, u32, u32) {
     let sample = Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -144,15 +156,9 @@ fn edit_mode_screenshot_shows_the_edited_chair_with_its_selection() {
     );
     assert_eq!((w, h), (1280, 800));
     // Selected faces are outlined in orange (1.0, 0.55, 0.1): count orange pixels in the viewport.
-    let orange = pixels
-        .iter()
-        .enumerate()
-        .filter(|(i, _)| {
-            let (x, y) = ((*i as u32) % w, (*i as u32) / w);
-            (230..1000).contains(&x) && (30..770).contains(&y)
-        })
-        .filter(|(_, [r, g, b])| *r > 200 && (90..190).contains(g) && *b < 90)
-        .count();
+    let orange = count_in_viewport(&pixels, w, |[r, g, b]| {
+        r > 200 && (90..190).contains(&g) && b < 90
+    });
     assert!(
         orange > 300,
         "only {orange} orange pixels: the face selection is not highlighted"
@@ -259,11 +265,7 @@ fn curves_and_surfaces_screenshot_shows_curves_and_shaded_surfaces() {
     };
     // Curves are drawn in near-white lines (0.92, 0.92, 0.95); the same
     // scene without its curves has none of these pixels (measured: 0 vs 279).
-    let curve = pixels
-        .iter()
-        .enumerate()
-        .filter(|(i, [r, g, b])| in_viewport(*i) && *r > 215 && *g > 215 && *b > 220)
-        .count();
+    let curve = count_in_viewport(&pixels, w, |[r, g, b]| r > 215 && g > 215 && b > 220);
     assert!(curve > 150, "only {curve} curve pixels");
     // Surfaces are lit grey with many shades (sphere, vase, patch).
     let mut greys: Vec<u8> = pixels
@@ -290,15 +292,9 @@ fn surface_edit_screenshot_shows_its_control_net_and_weights() {
     // with their weights (1.00 / 0.71) written in orange next to them.
     let (pixels, w, h) = screenshot("shapes.hedra.ron", &["--edit", "Ball"]);
     assert_eq!((w, h), (1280, 800));
-    let orange = pixels
-        .iter()
-        .enumerate()
-        .filter(|(i, _)| {
-            let (x, y) = ((*i as u32) % w, (*i as u32) / w);
-            (230..1000).contains(&x) && (30..770).contains(&y)
-        })
-        .filter(|(_, [r, g, b])| *r > 200 && (90..200).contains(g) && *b < 110)
-        .count();
+    let orange = count_in_viewport(&pixels, w, |[r, g, b]| {
+        r > 200 && (90..200).contains(&g) && b < 110
+    });
     assert!(
         orange > 400,
         "only {orange} orange pixels of selected points and weights"

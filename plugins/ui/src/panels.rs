@@ -1114,6 +1114,23 @@ fn shape_panel(
     });
 }
 
+/// A drop-down choosing one of `options` by its label.
+fn choice<T: Copy + PartialEq>(
+    ui: &mut egui::Ui,
+    id: &str,
+    value: &mut T,
+    options: &[T],
+    label: fn(T) -> &'static str,
+) {
+    egui::ComboBox::from_id_salt(id)
+        .selected_text(label(*value))
+        .show_ui(ui, |ui| {
+            for &o in options {
+                ui.selectable_value(value, o, label(o));
+            }
+        });
+}
+
 /// The subdivision modifier of a mesh node and, in edit mode, the crease of
 /// the selected edges or vertices.
 fn subdivision_panel(
@@ -1151,13 +1168,13 @@ fn subdivision_panel(
                 .num_columns(2)
                 .show(ui, |ui| {
                     ui.label("Scheme");
-                    egui::ComboBox::from_id_salt("scheme")
-                        .selected_text(e.options.scheme.label())
-                        .show_ui(ui, |ui| {
-                            for s in Scheme::ALL {
-                                ui.selectable_value(&mut e.options.scheme, s, s.label());
-                            }
-                        });
+                    choice(
+                        ui,
+                        "scheme",
+                        &mut e.options.scheme,
+                        &Scheme::ALL,
+                        Scheme::label,
+                    );
                     ui.end_row();
                     ui.label("Viewport level");
                     ui.add(egui::DragValue::new(&mut e.viewport_level).range(0..=6))
@@ -1167,22 +1184,22 @@ fn subdivision_panel(
                     ui.add(egui::DragValue::new(&mut e.export_level).range(0..=MAX_LEVEL));
                     ui.end_row();
                     ui.label("Boundary");
-                    egui::ComboBox::from_id_salt("boundary")
-                        .selected_text(e.options.boundary.label())
-                        .show_ui(ui, |ui| {
-                            for b in BoundaryInterpolation::ALL {
-                                ui.selectable_value(&mut e.options.boundary, b, b.label());
-                            }
-                        });
+                    choice(
+                        ui,
+                        "boundary",
+                        &mut e.options.boundary,
+                        &BoundaryInterpolation::ALL,
+                        BoundaryInterpolation::label,
+                    );
                     ui.end_row();
                     ui.label("Creases");
-                    egui::ComboBox::from_id_salt("crease-method")
-                        .selected_text(e.options.crease_method.label())
-                        .show_ui(ui, |ui| {
-                            for c in CreaseMethod::ALL {
-                                ui.selectable_value(&mut e.options.crease_method, c, c.label());
-                            }
-                        });
+                    choice(
+                        ui,
+                        "crease-method",
+                        &mut e.options.crease_method,
+                        &CreaseMethod::ALL,
+                        CreaseMethod::label,
+                    );
                     ui.end_row();
                 });
             ui.checkbox(&mut e.show_cage, "Show cage");
