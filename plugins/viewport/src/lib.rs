@@ -842,6 +842,12 @@ fn draw_surface_analysis(
     selection: Res<Selection>,
     state: Res<DocState>,
     mut gizmos: Gizmos<AxisGizmos>,
+    mut tessellated: Local<
+        Option<(
+            std::sync::Arc<hedra_doc::SurfaceShape>,
+            hedra_geom::surfaces::tessellate::SurfaceMesh,
+        )>,
+    >,
 ) {
     use hedra_geom::surfaces::Surface;
     if !(analysis.section || analysis.domain_point) {
@@ -884,9 +890,18 @@ fn draw_surface_analysis(
         ]
         .map(|(x, y)| to_world(origin + half * (x * a + y * b)));
         gizmos.linestrip(corners, Color::srgba(0.6, 0.8, 1.0, 0.6));
-        let tol = hedra_scene::VIEW_TOLERANCE * hedra_scene::extent(s.points());
-        let mesh = hedra_geom::surfaces::tessellate::tessellate_nurbs(s, tol);
-        for [p, q] in hedra_geom::surfaces::tessellate::plane_section(&mesh, origin, normal) {
+        // Tessellated once per shape, not every frame the section is drawn
+        // (the cache holds the shape, so its identity cannot be reused).
+        if tessellated
+            .as_ref()
+            .is_none_or(|(k, _)| !std::sync::Arc::ptr_eq(k, shape))
+        {
+            let tol = hedra_scene::VIEW_TOLERANCE * hedra_scene::extent(s.points());
+            let mesh = hedra_geom::surfaces::tessellate::tessellate_nurbs(s, tol);
+            *tessellated = Some((shape.clone(), mesh));
+        }
+        let (_, mesh) = tessellated.as_ref().expect("filled above");
+        for [p, q] in hedra_geom::surfaces::tessellate::plane_section(mesh, origin, normal) {
             gizmos.line(to_world(p), to_world(q), Color::srgb(1.0, 0.3, 0.9));
         }
     }
