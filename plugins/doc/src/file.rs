@@ -288,6 +288,18 @@ pub fn write_atomic(path: &Path, text: &str) -> Result<(), FileError> {
 /// # Errors
 /// [`FileError::Io`] naming the path.
 pub fn write_atomic_bytes(path: &Path, bytes: &[u8]) -> Result<(), FileError> {
+    write_atomic_impl(path, bytes, true)
+}
+
+/// [`write_atomic_bytes`] without the `.bak` copy (recovery files, preferences).
+///
+/// # Errors
+/// [`FileError::Io`] naming the path.
+pub fn write_atomic_without_backup(path: &Path, bytes: &[u8]) -> Result<(), FileError> {
+    write_atomic_impl(path, bytes, false)
+}
+
+fn write_atomic_impl(path: &Path, bytes: &[u8], keep_backup: bool) -> Result<(), FileError> {
     let dir = match path.parent() {
         Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
         _ => PathBuf::from("."),
@@ -306,7 +318,7 @@ pub fn write_atomic_bytes(path: &Path, bytes: &[u8]) -> Result<(), FileError> {
         f.write_all(bytes).map_err(io(&tmp))?;
         f.sync_all().map_err(io(&tmp))?;
         drop(f);
-        if path.exists() {
+        if keep_backup && path.exists() {
             let mut bak = path.as_os_str().to_owned();
             bak.push(".bak");
             let bak = PathBuf::from(bak);
@@ -319,12 +331,32 @@ pub fn write_atomic_bytes(path: &Path, bytes: &[u8]) -> Result<(), FileError> {
         if let Ok(d) = std::fs::File::open(&dir) {
             let _ = d.sync_all();
         }
+        remove_abandoned_temporaries(&dir, &name.to_string_lossy());
         Ok(())
     })();
     if result.is_err() {
         let _ = std::fs::remove_file(&tmp);
     }
     result
+}
+
+/// Removes temporary files of `name` left by saves whose process was killed
+/// (Linux: their pid is gone from `/proc`).
+fn remove_abandoned_temporaries(dir: &Path, name: &str) {
+    let prefix = format!(".{name}.tmp-");
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return;
+    };
+    for entry in entries.flatten() {
+        let file_name = entry.file_name();
+        let Some(pid) = file_name.to_str().and_then(|n| n.strip_prefix(&prefix)) else {
+            continue;
+        };
+        let alive = Path::new("/proc").join(pid).exists() || !Path::new("/proc/self").exists();
+        if !alive {
+            let _ = std::fs::remove_file(entry.path());
+        }
+    }
 }
 
 /// Saves a session to `path` atomically and marks it saved.

@@ -10,6 +10,7 @@ pub mod file;
 pub mod gltf;
 pub mod history;
 pub mod import;
+pub mod recovery;
 pub mod report;
 pub mod scene;
 pub mod script;
