@@ -8,7 +8,8 @@ use crate::elements::{EdgeSet, FaceSet, VertexSet};
 use crate::history::{NodeChange, Transaction};
 use crate::scene::SurfaceShape;
 use crate::scene::{
-    Document, MeshContent, Node, NodeContent, NodeId, Shading, SubdivisionModifier, Transform,
+    CornerAttributes, Document, MeshContent, Node, NodeContent, NodeId, Shading,
+    SubdivisionModifier, Transform,
 };
 use glam::{DQuat, DVec3};
 use hedra_geom::curves::nurbs::clamped_uniform_knots;
@@ -964,6 +965,9 @@ impl Plan<'_> {
             "a modeling operation broke the mesh"
         );
         content.creases.retain_live(&mesh);
+        // Every mesh edit passes here: UVs follow their corners, imported
+        // normals no longer describe the edited shape and are dropped.
+        content.corners = content.corners.follow_edit(&content.mesh, &mesh);
         content.mesh = Arc::new(mesh);
         content.primitive = None;
         self.set(n);
@@ -1066,6 +1070,7 @@ impl Plan<'_> {
                     mesh: Arc::new(mesh),
                     primitive: Some(primitive.clone()),
                     creases: Creases::default(),
+                    corners: CornerAttributes::default(),
                     ..content.clone()
                 });
                 self.set(n);
@@ -1336,6 +1341,8 @@ impl Plan<'_> {
                         .map_err(|error| CommandError::Subdivision { node: label, error })?;
                 content.mesh = Arc::new(mesh);
                 content.creases = creases;
+                // The refined mesh has new ids: no corner attribute carries over.
+                content.corners = CornerAttributes::default();
                 content.subdivision = None;
                 content.primitive = None;
                 self.set(n);

@@ -24,7 +24,8 @@
 use crate::command::Command;
 use crate::history::{History, NodeChange, Transaction};
 use crate::scene::{
-    Document, MeshContent, Node, NodeContent, NodeId, Shading, SubdivisionModifier, Transform,
+    CornerAttributes, Document, MeshContent, Node, NodeContent, NodeId, Shading,
+    SubdivisionModifier, Transform,
 };
 use crate::session::Session;
 use hedra_geom::subdivision::Creases;
@@ -91,6 +92,9 @@ enum StoredContent {
         creases: Creases,
         #[serde(default, skip_serializing_if = "Option::is_none")]
         subdivision: Option<SubdivisionModifier>,
+        /// UVs and normals of face corners, by half-edge id.
+        #[serde(default, skip_serializing_if = "CornerAttributes::is_empty")]
+        corners: CornerAttributes,
     },
     Curve(hedra_geom::curves::NurbsCurve),
     Surface(crate::scene::SurfaceShape),
@@ -200,6 +204,7 @@ impl<'a> MeshPool<'a> {
                     shading: m.shading,
                     creases: m.creases.clone(),
                     subdivision: m.subdivision,
+                    corners: m.corners.clone(),
                 },
             },
         }
@@ -514,6 +519,7 @@ fn restore_node(sn: StoredNode, pool: &[Arc<HalfEdgeMesh>]) -> Result<Node, Stri
             shading,
             creases,
             subdivision,
+            mut corners,
         } => {
             let m = pool.get(mesh).ok_or_else(|| {
                 format!(
@@ -521,12 +527,15 @@ fn restore_node(sn: StoredNode, pool: &[Arc<HalfEdgeMesh>]) -> Result<Node, Stri
                     sn.id, sn.name
                 )
             })?;
+            // Attributes of corners the mesh does not have are dropped.
+            corners.retain_valid(m);
             NodeContent::Mesh(MeshContent {
                 mesh: m.clone(),
                 primitive,
                 shading,
                 creases,
                 subdivision,
+                corners,
             })
         }
     };

@@ -20,7 +20,7 @@ pub use command::{Command, CommandError, NodeRef};
 pub use elements::{EdgeSet, FaceSet, VertexSet};
 pub use history::{History, NodeChange, Transaction};
 pub use scene::{
-    Document, MeshContent, Node, NodeContent, NodeId, Shading, SubdivisionModifier, SurfaceShape,
-    Transform,
+    CornerAttributes, Document, MeshContent, Node, NodeContent, NodeId, Shading,
+    SubdivisionModifier, SurfaceShape, Transform,
 };
 pub use session::{Applied, Session};

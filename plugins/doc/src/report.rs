@@ -55,6 +55,10 @@ pub struct MeshReport {
     pub creased_edges: usize,
     pub creased_vertices: usize,
     pub subdivision: Option<SubdivisionReport>,
+    /// Face corners, and how many of them have a UV or a custom normal.
+    pub corners: usize,
+    pub uv_corners: usize,
+    pub normal_corners: usize,
 }
 
 #[derive(Serialize)]
@@ -137,7 +141,12 @@ fn transform(t: &crate::scene::Transform) -> TransformReport {
 fn mesh_report(content: &crate::scene::MeshContent) -> MeshReport {
     let s: MeshStats = content.mesh.stats();
     let live = |e: &hedra_geom::EdgeId| content.mesh.is_edge(*e);
+    let m = &content.mesh;
+    let corner = |h: &&hedra_geom::HalfEdgeId| m.is_halfedge(**h) && m.face(**h).is_some();
     MeshReport {
+        corners: crate::scene::CornerAttributes::corner_count(m),
+        uv_corners: content.corners.uvs.keys().filter(corner).count(),
+        normal_corners: content.corners.normals.keys().filter(corner).count(),
         creased_edges: content.creases.edges.keys().filter(|e| live(e)).count(),
         creased_vertices: content
             .creases
@@ -270,6 +279,13 @@ impl SceneReport {
                         sd.export_level,
                         sd.boundary,
                         sd.crease_method
+                    );
+                }
+                if m.uv_corners + m.normal_corners > 0 {
+                    let _ = writeln!(
+                        out,
+                        "    attributes: UVs on {} of {} corners, custom normals on {} corners",
+                        m.uv_corners, m.corners, m.normal_corners
                     );
                 }
                 if m.creased_edges + m.creased_vertices > 0 {

@@ -3,11 +3,11 @@
 //! transforms"). World transforms are derived by composing the parents' local
 //! transforms, root first.
 
-use glam::{DMat4, DQuat, DVec3};
+use glam::{DMat4, DQuat, DVec2, DVec3};
 use hedra_geom::curves::NurbsCurve;
 use hedra_geom::subdivision::{Creases, Options as SubdivisionOptions};
 use hedra_geom::surfaces::{BezierTriangle, NurbsSurface};
-use hedra_geom::{HalfEdgeMesh, Primitive};
+use hedra_geom::{HalfEdgeId, HalfEdgeMesh, Primitive};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::fmt;
@@ -95,10 +95,12 @@ pub struct MeshContent {
     pub creases: Creases,
     /// The non-destructive subdivision modifier, if the node has one.
     pub subdivision: Option<SubdivisionModifier>,
+    /// Imported UVs and normals of face corners (none for meshes made in Hedra).
+    pub corners: CornerAttributes,
 }
 
 impl MeshContent {
-    /// A plain mesh: flat shaded, no primitive, creases or modifier.
+    /// A plain mesh: flat shaded, no primitive, creases, modifier or corner attributes.
     pub fn new(mesh: Arc<HalfEdgeMesh>) -> Self {
         MeshContent {
             mesh,
@@ -106,6 +108,82 @@ impl MeshContent {
             shading: Shading::Flat,
             creases: Creases::default(),
             subdivision: None,
+            corners: CornerAttributes::default(),
+        }
+    }
+}
+
+/// Per-corner attributes of a mesh: UVs and custom normals of face corners.
+///
+/// A corner (face `f`, vertex `v`) is keyed by the half-edge of `f` that
+/// leaves `v` (its origin is `v`, its face is `f`). Half-edge ids are never
+/// reused, so the attributes of corners that survive an edit stay valid;
+/// corners an edit creates have none. Any corner may lack either attribute.
+///
+/// * `uvs`: texture coordinates with v pointing up (OBJ's and Blender's
+///   convention; glTF's v = 1 − v). They follow the mesh through edits.
+/// * `normals`: unit normals in the node's local space, as the imported file
+///   gave them. They describe the imported geometry, so an edit that moves
+///   vertices or changes the topology drops them all (see
+///   [`follow_edit`](Self::follow_edit)).
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct CornerAttributes {
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub uvs: BTreeMap<HalfEdgeId, DVec2>,
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub normals: BTreeMap<HalfEdgeId, DVec3>,
+}
+
+impl CornerAttributes {
+    /// True when no corner has a UV or a normal.
+    pub fn is_empty(&self) -> bool {
+        self.uvs.is_empty() && self.normals.is_empty()
+    }
+
+    /// Face corners of `mesh` (live half-edges with a face).
+    pub fn corner_count(mesh: &HalfEdgeMesh) -> usize {
+        mesh.faces().map(|f| mesh.face_degree(f)).sum()
+    }
+
+    /// Keeps only finite values on live corners of `mesh` (after loading a
+    /// file that might not match its mesh).
+    pub fn retain_valid(&mut self, mesh: &HalfEdgeMesh) {
+        let corner = |h: &HalfEdgeId| mesh.is_halfedge(*h) && mesh.face(*h).is_some();
+        self.uvs.retain(|h, uv| corner(h) && uv.is_finite());
+        self.normals
+            .retain(|h, n| corner(h) && n.is_finite() && n.length_squared() > 0.0);
+    }
+
+    /// The attributes after `before` was edited into `after`: normals are
+    /// dropped when the mesh changed at all; each UV stays with its corner,
+    /// found as the half-edge of the same face that leaves the same vertex
+    /// (usually the same id; after a flip it is a neighbouring half-edge).
+    /// UVs of corners that no longer exist are dropped.
+    pub fn follow_edit(&self, before: &HalfEdgeMesh, after: &HalfEdgeMesh) -> CornerAttributes {
+        if before == after {
+            return self.clone();
+        }
+        let mut uvs = BTreeMap::new();
+        let mut moved = Vec::new();
+        for (&h, &uv) in &self.uvs {
+            if !before.is_halfedge(h) || !after.is_halfedge(h) {
+                continue;
+            }
+            let v = before.origin(h);
+            let Some(f) = after.face(h) else { continue };
+            if after.origin(h) == v {
+                uvs.insert(h, uv);
+            } else if let Some(c) = after.face_halfedges(f).find(|&x| after.origin(x) == v) {
+                moved.push((c, uv));
+            }
+        }
+        // A corner that kept its half-edge wins over a UV moved onto it.
+        for (c, uv) in moved {
+            uvs.entry(c).or_insert(uv);
+        }
+        CornerAttributes {
+            uvs,
+            normals: BTreeMap::new(),
         }
     }
 }
