@@ -2,11 +2,18 @@
 //! included); binary STL gets the faces triangulated. Both write world-space
 //! positions of the visible meshes, as their subdivision modifiers shape
 //! them unless the cage is asked for.
+//!
+//! A mesh written as its cage (no subdivision applied) carries its corner
+//! attributes into OBJ: deduplicated `vt` and `vn` lines (normals turned to
+//! world space) and `f v/vt/vn` corners. A face gets `vt` only when all its
+//! corners have a UV, `vn` only when all have a normal; other faces are
+//! plain `f v`. A subdivided shape is written without attributes.
 
-use crate::scene::{Document, Node, NodeContent};
+use crate::scene::{CornerAttributes, Document, Node, NodeContent};
 use glam::DVec3;
 use hedra_geom::HalfEdgeMesh;
 use std::borrow::Cow;
+use std::collections::HashMap;
 use std::fmt::Write;
 use std::path::Path;
 
@@ -140,6 +147,8 @@ fn stl_triangles(items: &[ExportItem]) -> Vec<stl_io::Triangle> {
 fn to_obj(items: &[ExportItem]) -> String {
     let mut out = String::from("# Hedra OBJ export\n");
     let mut base = 1usize;
+    // Next 1-based `vt` and `vn` numbers.
+    let (mut next_vt, mut next_vn) = (1usize, 1usize);
     for item in items {
         let world = item.world;
         let _ = writeln!(
@@ -158,13 +167,60 @@ fn to_obj(items: &[ExportItem]) -> String {
                     index[v.index()] = base + i;
                     vertex(&mut out, m.position(v));
                 }
-                for f in m.faces() {
-                    out.push('f');
-                    for v in m.face_vertices(f) {
-                        let _ = write!(out, " {}", index[v.index()]);
+                let Some(c) = item.corners else {
+                    for f in m.faces() {
+                        out.push('f');
+                        for v in m.face_vertices(f) {
+                            let _ = write!(out, " {}", index[v.index()]);
+                        }
+                        out.push('\n');
                     }
-                    out.push('\n');
+                    base += m.vertex_count();
+                    continue;
+                };
+                // Normals go to world space with the inverse transpose.
+                let normal_matrix = glam::DMat3::from_mat4(world).inverse().transpose();
+                let (mut vts, mut vns, mut faces) = (String::new(), String::new(), String::new());
+                let mut vt_of: HashMap<[u64; 2], usize> = HashMap::new();
+                let mut vn_of: HashMap<[u64; 3], usize> = HashMap::new();
+                for f in m.faces() {
+                    let hs: Vec<hedra_geom::HalfEdgeId> = m.face_halfedges(f).collect();
+                    let with_uv = hs.iter().all(|h| c.uvs.contains_key(h));
+                    let with_normal = hs.iter().all(|h| c.normals.contains_key(h));
+                    faces.push('f');
+                    for h in hs {
+                        let _ = write!(faces, " {}", index[m.origin(h).index()]);
+                        if with_uv {
+                            let uv = c.uvs[&h];
+                            let vt = *vt_of.entry(uv.to_array().map(f64::to_bits)).or_insert_with(
+                                || {
+                                    let _ = writeln!(vts, "vt {} {}", uv.x, uv.y);
+                                    next_vt += 1;
+                                    next_vt - 1
+                                },
+                            );
+                            let _ = write!(faces, "/{vt}");
+                        } else if with_normal {
+                            faces.push('/');
+                        }
+                        if with_normal {
+                            let n = (normal_matrix * c.normals[&h]).normalize_or_zero();
+                            let vn =
+                                *vn_of
+                                    .entry(n.to_array().map(f64::to_bits))
+                                    .or_insert_with(|| {
+                                        let _ = writeln!(vns, "vn {} {} {}", n.x, n.y, n.z);
+                                        next_vn += 1;
+                                        next_vn - 1
+                                    });
+                            let _ = write!(faces, "/{vn}");
+                        }
+                    }
+                    faces.push('\n');
                 }
+                out.push_str(&vts);
+                out.push_str(&vns);
+                out.push_str(&faces);
                 base += m.vertex_count();
             }
             Geometry::Triangles(positions, tris) => {
@@ -212,6 +268,8 @@ struct ExportItem<'a> {
     node: &'a Node,
     geometry: Geometry<'a>,
     world: glam::DMat4,
+    /// UVs and normals, for a mesh written as its cage that has some.
+    corners: Option<&'a CornerAttributes>,
 }
 
 /// Curves and surfaces are tessellated to this fraction of their size.
@@ -229,10 +287,19 @@ fn export_meshes(doc: &Document, shape: ExportShape) -> Result<Vec<ExportItem<'_
             continue;
         }
         if let Some(geometry) = node_geometry(node, shape)? {
+            let corners = match (&node.content, &geometry) {
+                (NodeContent::Mesh(c), Geometry::Mesh(Cow::Borrowed(_)))
+                    if !c.corners.is_empty() =>
+                {
+                    Some(&c.corners)
+                }
+                _ => None,
+            };
             out.push(ExportItem {
                 node,
                 geometry,
                 world: doc.world_matrix(node.id),
+                corners,
             });
         }
     }

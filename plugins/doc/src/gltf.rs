@@ -3,20 +3,28 @@
 //! triangles with normals (split at faces for flat shading, shared for
 //! smooth); surfaces as triangles, curves as line strips. `.glb` holds the
 //! JSON and one binary chunk; `.gltf` embeds the buffer as a data URI.
+//!
+//! Corner attributes: a mesh written as its cage with UVs or custom normals
+//! gets one glTF vertex per distinct (position, normal, UV) of its face
+//! corners. Custom normals are used where a corner has one, the computed
+//! (flat or smooth) normal elsewhere. `TEXCOORD_0` is written when any
+//! corner has a UV; corners without one get (0, 0). glTF's v runs down, so
+//! v is flipped both ways (v' = 1 − v). Import reads `NORMAL` and
+//! `TEXCOORD_0` into corner attributes.
 
 use std::collections::{BTreeMap, HashMap};
 use std::path::Path;
 
 use base64::Engine;
-use glam::{DQuat, DVec3};
+use glam::{DQuat, DVec2, DVec3};
 use gltf_json as json;
 use hedra_geom::HalfEdgeMesh;
 use json::validation::Checked::Valid;
 use json::validation::USize64;
 
 use crate::export::{ExportShape, Geometry, is_visible, node_geometry};
-use crate::import::{ImportError, ImportedMesh};
-use crate::scene::{Document, NodeContent, NodeId, Shading, Transform};
+use crate::import::{ImportError, ImportedMesh, corner_attributes};
+use crate::scene::{CornerAttributes, Document, NodeContent, NodeId, Shading, Transform};
 
 /// Appends `data` to the buffer (4-byte aligned) and returns its view.
 fn push_view(
@@ -130,6 +138,55 @@ fn mesh_triangles(m: &HalfEdgeMesh, shading: Shading) -> (Vec<[f32; 3]>, Vec<[f3
     (positions, normals, indices)
 }
 
+/// Positions, normals, UVs (empty when no corner has one) and triangle
+/// indices of a mesh with corner attributes: one vertex per distinct
+/// corner, custom normals where given, computed ones elsewhere.
+type CornerTriangles = (Vec<[f32; 3]>, Vec<[f32; 3]>, Vec<[f32; 2]>, Vec<u32>);
+
+fn corner_triangles(m: &HalfEdgeMesh, shading: Shading, c: &CornerAttributes) -> CornerTriangles {
+    let (mut positions, mut normals, mut uvs, mut indices) =
+        (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    let with_uvs = !c.uvs.is_empty();
+    let mut seen: HashMap<[u32; 8], u32> = HashMap::new();
+    for f in m.faces() {
+        let face_normal = m.face_normal(f);
+        let mut corners: Vec<(hedra_geom::VertexId, u32)> = Vec::new();
+        for h in m.face_halfedges(f) {
+            let v = m.origin(h);
+            let p = m.position(v).as_vec3().to_array();
+            let n = c.normals.get(&h).copied().unwrap_or_else(|| match shading {
+                Shading::Flat => face_normal,
+                Shading::Smooth => m.vertex_normal(v),
+            });
+            let n = n.as_vec3().to_array();
+            let uv = c
+                .uvs
+                .get(&h)
+                .map_or([0.0, 0.0], |uv| [uv.x as f32, (1.0 - uv.y) as f32]);
+            let key = [p[0], p[1], p[2], n[0], n[1], n[2], uv[0], uv[1]].map(f32::to_bits);
+            let index = *seen.entry(key).or_insert_with(|| {
+                positions.push(p);
+                normals.push(n);
+                if with_uvs {
+                    uvs.push(uv);
+                }
+                positions.len() as u32 - 1
+            });
+            corners.push((v, index));
+        }
+        for tri in hedra_geom::query::triangulate_face(m, f) {
+            indices.extend(tri.map(|v| {
+                corners
+                    .iter()
+                    .find(|(c, _)| *c == v)
+                    .expect("a triangle corner is a face corner")
+                    .1
+            }));
+        }
+    }
+    (positions, normals, uvs, indices)
+}
+
 /// The document's visible nodes as glTF (`binary`: a `.glb` file).
 ///
 /// # Errors
@@ -153,11 +210,21 @@ pub fn to_gltf(doc: &Document, shape: ExportShape, binary: bool) -> Result<Vec<u
         let mesh = match node_geometry(node, shape)? {
             None => None,
             Some(geometry) => {
-                let shading = match &node.content {
-                    NodeContent::Mesh(c) => c.shading,
-                    _ => Shading::Smooth,
+                let (shading, corners) = match &node.content {
+                    NodeContent::Mesh(c) => (c.shading, Some(&c.corners)),
+                    _ => (Shading::Smooth, None),
                 };
+                let mut uvs: Vec<[f32; 2]> = Vec::new();
                 let (positions, normals, indices, mode) = match &geometry {
+                    // The cage carries the corner attributes; a subdivided shape does not.
+                    Geometry::Mesh(std::borrow::Cow::Borrowed(m))
+                        if corners.is_some_and(|c| !c.is_empty()) =>
+                    {
+                        let (p, n, t, i) =
+                            corner_triangles(m, shading, corners.expect("checked above"));
+                        uvs = t;
+                        (p, n, i, json::mesh::Mode::Triangles)
+                    }
                     Geometry::Mesh(m) => {
                         let (p, n, i) = mesh_triangles(m, shading);
                         (p, n, i, json::mesh::Mode::Triangles)
@@ -224,6 +291,27 @@ pub fn to_gltf(doc: &Document, shape: ExportShape, binary: bool) -> Result<Vec<u
                         None,
                     );
                     attributes.insert(Valid(json::mesh::Semantic::Normals), nrm);
+                }
+                if !uvs.is_empty() {
+                    let bytes: Vec<u8> = uvs
+                        .iter()
+                        .flat_map(|t| t.iter().flat_map(|x| x.to_le_bytes()))
+                        .collect();
+                    let view = push_view(
+                        &mut root,
+                        &mut bin,
+                        &bytes,
+                        json::buffer::Target::ArrayBuffer,
+                    );
+                    let tex = push_accessor(
+                        &mut root,
+                        view,
+                        uvs.len(),
+                        json::accessor::ComponentType::F32,
+                        json::accessor::Type::Vec2,
+                        None,
+                    );
+                    attributes.insert(Valid(json::mesh::Semantic::TexCoords(0)), tex);
                 }
                 let indices = (!indices.is_empty()).then(|| {
                     let bytes: Vec<u8> = indices.iter().flat_map(|i| i.to_le_bytes()).collect();
@@ -417,6 +505,9 @@ pub fn gltf_from_bytes(
         };
         let mut positions: Vec<DVec3> = Vec::new();
         let mut polygons: Vec<Vec<u32>> = Vec::new();
+        // Per corner of `polygons`, in order (None where the file has none).
+        let mut corner_uvs: Vec<Option<DVec2>> = Vec::new();
+        let mut corner_normals: Vec<Option<DVec3>> = Vec::new();
         let mut skipped = 0usize;
         if let Some(mesh) = node.mesh() {
             for primitive in mesh.primitives() {
@@ -442,11 +533,25 @@ pub fn gltf_from_bytes(
                         mesh.name().unwrap_or("?")
                     )));
                 }
-                polygons.extend(
-                    indices
-                        .chunks_exact(3)
-                        .map(|t| t.iter().map(|i| i + base_index).collect()),
-                );
+                let vertex_normals: Vec<DVec3> = reader
+                    .read_normals()
+                    .map(|n| n.map(|x| DVec3::from_array(x.map(f64::from))).collect())
+                    .unwrap_or_default();
+                // glTF's v runs down; Hedra stores v up like OBJ.
+                let vertex_uvs: Vec<DVec2> = reader
+                    .read_tex_coords(0)
+                    .map(|t| {
+                        t.into_f32()
+                            .map(|[u, v]| DVec2::new(f64::from(u), 1.0 - f64::from(v)))
+                            .collect()
+                    })
+                    .unwrap_or_default();
+                let triangles = indices.chunks_exact(3);
+                for &i in indices.iter().take(triangles.len() * 3) {
+                    corner_uvs.push(vertex_uvs.get(i as usize).copied());
+                    corner_normals.push(vertex_normals.get(i as usize).copied());
+                }
+                polygons.extend(triangles.map(|t| t.iter().map(|i| i + base_index).collect()));
             }
         }
         let name = node
@@ -458,13 +563,17 @@ pub fn gltf_from_bytes(
             let (welded, polys) = weld(&positions, &polygons);
             let (mesh, report) = HalfEdgeMesh::from_polygons_repaired(&welded, &polys)
                 .map_err(|e| err(format!("node '{name}': {e}")))?;
-            Some((mesh.compacted_if_needed(), report))
+            let mesh = mesh.compacted_if_needed();
+            let arities = vec![3; polys.len()];
+            let corners = corner_attributes(&mesh, &report, &arities, &corner_uvs, &corner_normals);
+            Some((mesh, report, corners))
         };
         let me = out.len();
         out.push(ImportedMesh {
             name,
-            mesh: mesh.as_ref().map(|(m, _)| m.clone()),
-            report: mesh.map(|(_, r)| r).unwrap_or_default(),
+            mesh: mesh.as_ref().map(|(m, _, _)| m.clone()),
+            corners: mesh.as_ref().map(|(_, _, c)| c.clone()).unwrap_or_default(),
+            report: mesh.map(|(_, r, _)| r).unwrap_or_default(),
             parent,
             transform,
             skipped_primitives: skipped,

@@ -1,13 +1,22 @@
 //! Reading meshes from other formats into the scene. OBJ: every object or
-//! group becomes a mesh node, polygons are kept; STL (binary or ASCII, read
-//! by `stl_io`): one node, triangles with equal corners welded. Faces that
-//! cannot join a manifold half-edge mesh are dropped or split off (with a
-//! report).
+//! group becomes a mesh node, polygons are kept, `vt` UVs and `vn` normals
+//! become corner attributes; STL (binary or ASCII, read by `stl_io`): one
+//! node, triangles with equal corners welded. Faces that cannot join a
+//! manifold half-edge mesh are dropped or split off (with a report); the
+//! corners of the faces that are kept keep their attributes.
+//!
+//! OBJ objects and groups: `o` and `g` both start a new node (tobj reads
+//! them alike; a pre-pass over the text tells them apart). A file with only
+//! `o` or only `g` gives one top-level mesh node per object or group. When
+//! an object holds groups, the object becomes a parent node (an empty, or a
+//! mesh of its faces outside any group) and each group a child mesh node.
+//! A group name that appears again later gives another node.
 
 use crate::history::{NodeChange, Transaction};
-use crate::scene::{Document, MeshContent, Node, NodeContent, NodeId, Transform};
-use glam::DVec3;
+use crate::scene::{CornerAttributes, Document, MeshContent, Node, NodeContent, NodeId, Transform};
+use glam::{DVec2, DVec3};
 use hedra_geom::{HalfEdgeMesh, RepairReport};
+use std::collections::HashMap;
 use std::path::Path;
 use std::sync::Arc;
 
@@ -23,6 +32,8 @@ pub struct ImportedMesh {
     pub transform: Transform,
     /// Primitives that are not triangles (points, lines) and were left out.
     pub skipped_primitives: usize,
+    /// UVs and normals of the mesh's face corners that the file gave.
+    pub corners: CornerAttributes,
 }
 
 impl ImportedMesh {
@@ -35,8 +46,136 @@ impl ImportedMesh {
             parent: None,
             transform: Transform::IDENTITY,
             skipped_primitives: 0,
+            corners: CornerAttributes::default(),
         }
     }
+
+    /// A top-level grouping node without a mesh.
+    fn empty(name: String) -> Self {
+        ImportedMesh {
+            name,
+            mesh: None,
+            report: RepairReport::default(),
+            parent: None,
+            transform: Transform::IDENTITY,
+            skipped_primitives: 0,
+            corners: CornerAttributes::default(),
+        }
+    }
+}
+
+/// The corner attributes of a mesh built by
+/// [`HalfEdgeMesh::from_polygons_repaired`] (and maybe compacted): `uvs`
+/// and `normals` hold one entry per input corner, polygon after polygon
+/// (`arities` gives the polygon sizes), `None` where the file gave none;
+/// either may be empty. Kept face `k` came from input polygon
+/// `report.face_origin[k]`, and its loop starts at that polygon's first
+/// corner. Non-finite values and zero normals are left out; normals are
+/// stored normalised.
+pub(crate) fn corner_attributes(
+    mesh: &HalfEdgeMesh,
+    report: &RepairReport,
+    arities: &[usize],
+    uvs: &[Option<DVec2>],
+    normals: &[Option<DVec3>],
+) -> CornerAttributes {
+    let mut out = CornerAttributes::default();
+    if uvs.is_empty() && normals.is_empty() {
+        return out;
+    }
+    let starts: Vec<usize> = arities
+        .iter()
+        .scan(0usize, |acc, &a| {
+            let s = *acc;
+            *acc += a;
+            Some(s)
+        })
+        .collect();
+    for (k, f) in mesh.faces().enumerate() {
+        let Some(&origin) = report.face_origin.get(k) else {
+            break;
+        };
+        let (Some(&start), Some(&arity)) = (starts.get(origin), arities.get(origin)) else {
+            continue;
+        };
+        if mesh.face_degree(f) != arity {
+            continue;
+        }
+        for (i, h) in mesh.face_halfedges(f).enumerate() {
+            if let Some(Some(uv)) = uvs.get(start + i)
+                && uv.is_finite()
+            {
+                out.uvs.insert(h, *uv);
+            }
+            if let Some(Some(n)) = normals.get(start + i)
+                && let Some(n) = n.try_normalize()
+            {
+                out.normals.insert(h, n);
+            }
+        }
+    }
+    out
+}
+
+/// The faces of one model as tobj returns it, seen in the OBJ text: the
+/// object (`o`, counted from 1 so that repeated names stay apart) and group
+/// (`g`) it lies in, and for each corner whether it names a `vt` and a `vn`
+/// (tobj makes up missing ones from a neighbour).
+struct ObjSegment {
+    object: Option<(usize, String)>,
+    group: Option<String>,
+    corners: Vec<(bool, bool)>,
+}
+
+/// Splits OBJ text the way tobj splits it into models: a new model at each
+/// `o` or `g` line after some faces, and always one at the end.
+fn scan_obj(text: &str) -> Vec<ObjSegment> {
+    let mut out = Vec::new();
+    let mut objects = 0usize;
+    let mut current = ObjSegment {
+        object: None,
+        group: None,
+        corners: Vec::new(),
+    };
+    let mut has_faces = false;
+    for line in text.lines() {
+        let mut words = line.split_whitespace();
+        match words.next() {
+            Some(key @ ("o" | "g")) => {
+                if has_faces {
+                    let next = ObjSegment {
+                        object: current.object.clone(),
+                        group: current.group.clone(),
+                        corners: Vec::new(),
+                    };
+                    out.push(std::mem::replace(&mut current, next));
+                    has_faces = false;
+                }
+                // The keyword is one ASCII letter.
+                let name = line.trim_start()[1..].trim();
+                let name = (!name.is_empty()).then(|| name.to_string());
+                if key == "o" {
+                    objects += 1;
+                    current.object = name.map(|n| (objects, n));
+                    current.group = None;
+                } else {
+                    current.group = name;
+                }
+            }
+            Some("f" | "l") => {
+                has_faces = true;
+                current.corners.extend(words.map(|w| {
+                    let mut parts = w.split('/').skip(1);
+                    let vt = parts.next().is_some_and(|x| !x.is_empty());
+                    let vn = parts.next().is_some_and(|x| !x.is_empty());
+                    (vt, vn)
+                }));
+            }
+            _ => {}
+        }
+    }
+    out.push(current);
+    out
 }
 
 /// Why a file could not be imported.
@@ -69,9 +208,20 @@ pub fn obj_from_str(text: &str, path: &str) -> Result<Vec<ImportedMesh>, ImportE
         path: path.to_string(),
         message: format!("not a readable OBJ file ({e})"),
     })?;
-    let mut out = Vec::new();
+    // The o/g structure and which corners really name a vt or vn, when the
+    // pre-pass saw the same models and corners as tobj (else tobj's names).
+    let segments = scan_obj(text);
+    let aligned = segments.len() == models.len()
+        && segments
+            .iter()
+            .zip(&models)
+            .all(|(s, m)| s.corners.len() == m.mesh.indices.len());
+    let mut out: Vec<ImportedMesh> = Vec::new();
+    // Object number -> index of its node in `out`.
+    let mut object_nodes: HashMap<usize, usize> = HashMap::new();
     for (i, model) in models.into_iter().enumerate() {
         let m = model.mesh;
+        let segment = segments.get(i).filter(|_| aligned);
         let positions: Vec<DVec3> = m
             .positions
             .chunks_exact(3)
@@ -102,12 +252,86 @@ pub fn obj_from_str(text: &str, path: &str) -> Result<Vec<ImportedMesh>, ImportE
         if mesh.face_count() == 0 {
             continue;
         }
-        let name = if model.name.trim().is_empty() || model.name == "unnamed_object" {
-            format!("Object {}", i + 1)
-        } else {
-            model.name
+        let mesh = mesh.compacted_if_needed();
+        // Per input corner: tobj's vt/vn, unless the text shows the corner has none.
+        let present = |c: usize, which: fn(&(bool, bool)) -> bool| {
+            segment.is_none_or(|s| s.corners.get(c).is_some_and(which))
         };
-        out.push(ImportedMesh::mesh(name, mesh.compacted_if_needed(), report));
+        let uvs: Vec<Option<DVec2>> = (0..m.texcoord_indices.len())
+            .map(|c| {
+                let t = m.texcoord_indices[c] as usize;
+                let uv = DVec2::new(*m.texcoords.get(2 * t)?, *m.texcoords.get(2 * t + 1)?);
+                present(c, |p| p.0).then_some(uv)
+            })
+            .collect();
+        let normals: Vec<Option<DVec3>> = (0..m.normal_indices.len())
+            .map(|c| {
+                let n = m.normal_indices[c] as usize;
+                let v = m.normals.get(3 * n..3 * n + 3)?;
+                present(c, |p| p.1).then(|| DVec3::new(v[0], v[1], v[2]))
+            })
+            .collect();
+        let arities: Vec<usize> = polygons.iter().map(Vec::len).collect();
+        let corners = corner_attributes(&mesh, &report, &arities, &uvs, &normals);
+        let fallback = || {
+            if model.name.trim().is_empty() || model.name == "unnamed_object" {
+                format!("Object {}", i + 1)
+            } else {
+                model.name.clone()
+            }
+        };
+        let mut imported = ImportedMesh {
+            corners,
+            ..ImportedMesh::mesh(String::new(), mesh, report)
+        };
+        match segment {
+            // A group inside an object: a child of the object's node.
+            Some(ObjSegment {
+                object: Some((number, object)),
+                group: Some(group),
+                ..
+            }) if group != object => {
+                let parent = *object_nodes.entry(*number).or_insert_with(|| {
+                    out.push(ImportedMesh::empty(object.clone()));
+                    out.len() - 1
+                });
+                imported.name = group.clone();
+                imported.parent = Some(parent);
+                out.push(imported);
+            }
+            // An object's own faces (outside any group).
+            Some(ObjSegment {
+                object: Some((number, object)),
+                ..
+            }) => match object_nodes.get(number) {
+                // Its node is still an empty made for its groups: fill it.
+                Some(&node) if out[node].mesh.is_none() => {
+                    imported.name = object.clone();
+                    imported.parent = None;
+                    out[node] = imported;
+                }
+                Some(&node) => {
+                    imported.name = object.clone();
+                    imported.parent = Some(node);
+                    out.push(imported);
+                }
+                None => {
+                    imported.name = object.clone();
+                    object_nodes.insert(*number, out.len());
+                    out.push(imported);
+                }
+            },
+            Some(ObjSegment {
+                group: Some(group), ..
+            }) => {
+                imported.name = group.clone();
+                out.push(imported);
+            }
+            _ => {
+                imported.name = fallback();
+                out.push(imported);
+            }
+        }
     }
     if out.is_empty() {
         return Err(ImportError::Empty {
@@ -259,7 +483,10 @@ impl Document {
                 transform: m.transform,
                 visible: true,
                 content: match &m.mesh {
-                    Some(mesh) => NodeContent::Mesh(MeshContent::new(Arc::new(mesh.clone()))),
+                    Some(mesh) => NodeContent::Mesh(MeshContent {
+                        corners: m.corners.clone(),
+                        ..MeshContent::new(Arc::new(mesh.clone()))
+                    }),
                     None => NodeContent::Empty,
                 },
             };
