@@ -32,6 +32,10 @@ pub struct Cli {
     /// e.g. "Facing(direction: (0.0, 1.0, 0.0), degrees: 10.0)".
     #[arg(long, value_name = "FACES", requires = "edit")]
     pub select: Option<String>,
+    /// Apply the commands of this script (as `hedra run` reads them) after
+    /// opening, each one an undo step of the session.
+    #[arg(long, value_name = "SCRIPT")]
+    pub run: Option<PathBuf>,
 }
 
 #[derive(Subcommand, Debug)]

@@ -40,6 +40,8 @@ pub struct GuiOptions {
     pub frames: u32,
     /// Start in edit mode on this node, with these faces selected.
     pub edit: Option<(String, Option<hedra_doc::FaceSet>)>,
+    /// Commands applied after opening (`--run SCRIPT`), one undo step each.
+    pub run: Vec<hedra_doc::Command>,
 }
 
 /// The windowed modeling app.
@@ -57,14 +59,26 @@ pub fn gui_app(options: GuiOptions) -> App {
     }))
     .add_plugins(HedraPlugins)
     .insert_resource(hedra_ui::SamplesDir(assets_dir().join("samples")));
-    if let Some(path) = options.file {
-        app.add_systems(
-            Startup,
-            move |mut requests: MessageWriter<hedra_scene::DocRequest>| {
+    // Open the file, then run `--run`'s commands on it, in this order.
+    let (file, commands) = (options.file, options.run);
+    app.add_systems(
+        Startup,
+        move |mut requests: MessageWriter<hedra_scene::DocRequest>| {
+            if let Some(path) = &file {
                 requests.write(hedra_scene::DocRequest::Open(path.clone()));
-            },
-        );
-    }
+            }
+            for c in &commands {
+                requests.write(hedra_scene::DocRequest::Execute(c.clone()));
+            }
+        },
+    );
+    // A panic or render error saves the last committed document first.
+    let snapshot = app
+        .world()
+        .resource::<hedra_ui::recovery::Recovery>()
+        .snapshot
+        .clone();
+    hedra_doc::recovery::install_emergency_save(snapshot);
     if let Some((node, faces)) = options.edit {
         app.add_systems(
             Update,

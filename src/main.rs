@@ -39,12 +39,25 @@ fn main() -> ExitCode {
                     return ExitCode::FAILURE;
                 }
             };
+            let run = match cli.run.as_deref().map(|p| {
+                std::fs::read_to_string(p)
+                    .map_err(|e| format!("{}: {e}", p.display()))
+                    .and_then(|t| hedra::doc::script::parse(&t, p).map_err(|e| e.to_string()))
+            }) {
+                None => Vec::new(),
+                Some(Ok(commands)) => commands,
+                Some(Err(e)) => {
+                    eprintln!("hedra: error: --run: {e}");
+                    return ExitCode::FAILURE;
+                }
+            };
             let edit = cli.edit.map(|n| (n, faces));
             let options = hedra::GuiOptions {
                 file: cli.file,
                 screenshot: cli.screenshot,
                 frames: cli.frames,
                 edit,
+                run,
             };
             match hedra::gui_app(options).run() {
                 bevy::app::AppExit::Success => ExitCode::SUCCESS,

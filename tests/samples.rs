@@ -309,3 +309,110 @@ fn surface_edit_screenshot_shows_its_control_net_and_weights() {
         "the status bar shows 'Edit Mode · Control Points' in orange"
     );
 }
+
+/// Never lose work: a session killed after an autosave is offered back on
+/// the next start, with its undo history.
+#[test]
+fn a_killed_session_is_offered_back_on_the_next_start() {
+    use std::os::unix::process::CommandExt;
+    let dir = tempfile::tempdir().unwrap();
+    let config = dir.path().join("config");
+    std::fs::create_dir_all(&config).unwrap();
+    std::fs::write(config.join("preferences.ron"), "(autosave_seconds: 1)").unwrap();
+    let work = dir.path().join("work.hedra.ron");
+    std::fs::copy(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/samples/table.hedra.ron"),
+        &work,
+    )
+    .unwrap();
+    let original = std::fs::read_to_string(&work).unwrap();
+    let script = dir.path().join("lift.ron");
+    std::fs::write(
+        &script,
+        "[AddPrimitive(primitive: Cube(size: 0.5), name: \"Unsaved\")]",
+    )
+    .unwrap();
+    let app = |args: &[&std::ffi::OsStr]| {
+        let mut c = std::process::Command::new("xvfb-run");
+        c.args([
+            "-a",
+            "-s",
+            "-screen 0 1280x800x24",
+            env!("CARGO_BIN_EXE_hedra"),
+        ])
+        .arg(&work)
+        .args(args)
+        .env("WGPU_BACKEND", "vulkan")
+        .env("HEDRA_CONFIG_DIR", &config)
+        .process_group(0);
+        c
+    };
+
+    let mut first = app(&["--run".as_ref(), script.as_os_str()])
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    let recovery_dir = config.join("recovery");
+    let start = std::time::Instant::now();
+    let autosaved = loop {
+        let metas = std::fs::read_dir(&recovery_dir).map_or(0, |d| {
+            d.filter(|e| {
+                e.as_ref().is_ok_and(|e| {
+                    e.file_name()
+                        .to_string_lossy()
+                        .ends_with(".autosave.meta.ron")
+                })
+            })
+            .count()
+        });
+        if metas > 0 || start.elapsed().as_secs() > 120 {
+            break metas > 0;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(200));
+    };
+    // Kill the whole group (xvfb-run, Xvfb, hedra) without warning.
+    let group = i32::try_from(first.id()).unwrap();
+    assert!(group > 1);
+    // SAFETY: killpg only sends a signal; the group is the child's own (process_group(0)).
+    unsafe { libc::killpg(group, libc::SIGKILL) };
+    let _ = first.wait();
+    assert!(autosaved, "no autosave appeared within 120 s");
+    assert_eq!(
+        std::fs::read_to_string(&work).unwrap(),
+        original,
+        "the file itself is untouched"
+    );
+
+    // The next start offers it (and leaves it in place until the user decides).
+    let shot = dir.path().join("shot.png");
+    let out = app(&[
+        "--screenshot".as_ref(),
+        shot.as_os_str(),
+        "--frames".as_ref(),
+        "20".as_ref(),
+    ])
+    .output()
+    .unwrap();
+    let log = format!(
+        "{}{}",
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(
+        out.status.success(),
+        "{}",
+        &log[log.len().saturating_sub(3000)..]
+    );
+    assert!(
+        log.contains("recovery offered:") && log.contains("work-"),
+        "{}",
+        &log[log.len().saturating_sub(3000)..]
+    );
+    let offered = hedra::doc::recovery::pending(&recovery_dir);
+    assert_eq!(offered.len(), 1);
+    let mut recovered = hedra::doc::recovery::recover(&offered[0]).unwrap().session;
+    assert!(recovered.doc.find_by_name("Unsaved").is_some());
+    assert_eq!(recovered.undo().as_deref(), Some("Add Cube"));
+    assert!(recovered.doc.find_by_name("Unsaved").is_none());
+}

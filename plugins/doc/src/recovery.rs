@@ -268,7 +268,12 @@ pub fn hedra_is_running(pid: u32) -> bool {
     if pid == std::process::id() {
         return true;
     }
-    std::fs::read_to_string(format!("/proc/{pid}/comm")).is_ok_and(|c| c.contains("hedra"))
+    // `/proc/PID/stat` is "PID (COMM) STATE …"; a killed process may linger
+    // as a zombie (state Z) until it is reaped.
+    std::fs::read_to_string(format!("/proc/{pid}/stat")).is_ok_and(|stat| {
+        let (comm, rest) = stat.rsplit_once(')').unwrap_or((&stat, ""));
+        comm.contains("hedra") && !rest.trim_start().starts_with(['Z', 'X'])
+    })
 }
 
 /// Deletes a recovery point.
@@ -291,10 +296,12 @@ pub fn recover(entry: &RecoveryEntry) -> Result<Loaded, FileError> {
 
 /// Makes a recovered point this session's own: it becomes the autosave of
 /// `point`, so nothing is lost until the next autosave or save replaces it.
-pub fn adopt(entry: &RecoveryEntry, point: &RecoveryPoint) {
+///
+/// Returns the entry as it is now (the same one if it could not be moved).
+pub fn adopt(entry: &RecoveryEntry, point: &RecoveryPoint) -> RecoveryEntry {
     let (scene, meta_path) = point.paths(RecoveryKind::Autosave);
     if entry.scene != scene && std::fs::rename(&entry.scene, &scene).is_err() {
-        return;
+        return entry.clone();
     }
     let meta = RecoveryMeta {
         original: point.original.clone(),
@@ -308,6 +315,11 @@ pub fn adopt(entry: &RecoveryEntry, point: &RecoveryPoint) {
         && entry.meta_path != meta_path
     {
         let _ = std::fs::remove_file(&entry.meta_path);
+    }
+    RecoveryEntry {
+        scene,
+        meta_path,
+        meta,
     }
 }
 

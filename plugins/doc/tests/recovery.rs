@@ -122,9 +122,10 @@ fn adopting_an_emergency_point_makes_it_this_sessions_autosave() {
 
     let now = RecoveryPoint::new(dir.path(), entry.meta.original.as_deref());
     assert_eq!(now, crashed, "the same document gets the same point");
-    recovery::adopt(&entry, &now);
+    let adopted = recovery::adopt(&entry, &now);
     let (scene, meta) = now.paths(RecoveryKind::Autosave);
     assert!(scene.is_file() && meta.is_file());
+    assert_eq!((adopted.scene, adopted.meta_path), (scene, meta));
     assert!(!entry.scene.exists() && !entry.meta_path.exists());
     // Now owned by this (running) process: not offered to it again.
     assert!(recovery::pending(dir.path()).is_empty());

@@ -58,6 +58,14 @@ pub enum DocRequest {
     Save(PathBuf),
     /// Add the meshes of an OBJ file as new nodes (one step).
     Import(PathBuf),
+    /// Replace the document with a recovery point (autosave or emergency
+    /// save); it belongs to its original file and is unsaved.
+    Recover(hedra_doc::recovery::RecoveryEntry),
+    /// Undo history limits from the preferences (steps, approximate bytes).
+    HistoryLimits {
+        steps: usize,
+        bytes: usize,
+    },
 }
 
 /// Sent after a request changed the document.
@@ -258,6 +266,35 @@ pub fn apply_requests(
                     }
                     Err(e) => Err(e.to_string()),
                 },
+                DocRequest::Recover(entry) => match hedra_doc::recovery::recover(entry) {
+                    Ok(loaded) => {
+                        state.session = loaded.session;
+                        state.path = entry.meta.original.clone();
+                        state.opened_serial = state.session.history.current_serial();
+                        status.info(format!(
+                            "Recovered {} — save to keep it",
+                            state.display_name()
+                        ));
+                        status.warnings.extend(loaded.warnings);
+                        Ok(Some(DocChanged {
+                            created: vec![],
+                            replaced: true,
+                        }))
+                    }
+                    Err(e) => Err(format!("Recovery failed, the file was kept: {e}")),
+                },
+                DocRequest::HistoryLimits { steps, bytes } => {
+                    let history = &mut state.session.history;
+                    history.max_steps = (*steps).max(1);
+                    history.max_bytes = *bytes;
+                    let before = history.done().len();
+                    history.enforce_limits();
+                    if history.done().len() < before {
+                        Ok(Some(DocChanged::default()))
+                    } else {
+                        Ok(None)
+                    }
+                }
                 DocRequest::Import(path) => match hedra_doc::import::import_file(path) {
                     Ok(meshes) => {
                         let name = path.file_name().map_or_else(

@@ -112,24 +112,37 @@ pub fn with_scene_extension(path: PathBuf) -> PathBuf {
     }
 }
 
-/// Preferences kept between runs: recent files.
-#[derive(Resource, Debug, Default, Clone, Serialize, Deserialize)]
+/// Preferences kept between runs (`preferences.ron` in the configuration
+/// folder); fields missing from an older file take their defaults.
+#[derive(Resource, Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
 pub struct Preferences {
     pub recent: Vec<PathBuf>,
+    /// Seconds between autosaves of unsaved changes (0: never).
+    pub autosave_seconds: u32,
+    /// Undo steps kept; older ones are dropped.
+    pub undo_steps: usize,
+    /// Memory the undo history may hold, in MiB; older steps are dropped.
+    pub undo_memory_mib: usize,
+}
+
+impl Default for Preferences {
+    fn default() -> Self {
+        Preferences {
+            recent: Vec::new(),
+            autosave_seconds: 120,
+            undo_steps: 500,
+            undo_memory_mib: 512,
+        }
+    }
 }
 
 impl Preferences {
     const MAX_RECENT: usize = 10;
 
-    /// `$HEDRA_CONFIG_DIR`, else `$XDG_CONFIG_HOME/hedra`, else `~/.config/hedra`.
+    /// The configuration folder (see [`hedra_doc::recovery::config_dir`]).
     pub fn dir() -> Option<PathBuf> {
-        if let Some(d) = std::env::var_os("HEDRA_CONFIG_DIR") {
-            return Some(PathBuf::from(d));
-        }
-        if let Some(d) = std::env::var_os("XDG_CONFIG_HOME") {
-            return Some(PathBuf::from(d).join("hedra"));
-        }
-        std::env::var_os("HOME").map(|h| PathBuf::from(h).join(".config/hedra"))
+        hedra_doc::recovery::config_dir()
     }
 
     /// Reads the preferences; a missing or unreadable file gives defaults.
@@ -140,13 +153,13 @@ impl Preferences {
             .unwrap_or_default()
     }
 
-    /// Writes the preferences (atomically); failures only cost the recent list.
+    /// Writes the preferences (atomically); failures only cost the preferences.
     pub fn save(&self) -> Result<(), String> {
         let dir = Self::dir().ok_or("no configuration folder (HOME is not set)")?;
         std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
         let text = ron::ser::to_string_pretty(self, ron::ser::PrettyConfig::default())
             .map_err(|e| e.to_string())?;
-        hedra_doc::file::write_atomic(&dir.join("preferences.ron"), &text)
+        hedra_doc::file::write_atomic_without_backup(&dir.join("preferences.ron"), text.as_bytes())
             .map_err(|e| e.to_string())
     }
 

@@ -14,6 +14,7 @@ use hedra_scene::{DocRequest, DocState, InputGate, StatusMessage, ViewportCamera
 
 pub mod files;
 mod panels;
+pub mod recovery;
 
 pub use files::{FilePurpose, Pending, Preferences, SamplesDir};
 
@@ -23,6 +24,7 @@ pub struct UiState {
     pub show_outliner: bool,
     pub show_properties: bool,
     pub show_history: bool,
+    pub show_preferences: bool,
     /// Shift+A menu position, while open.
     pub add_menu_at: Option<egui::Pos2>,
     /// Waiting for the user to decide about unsaved changes.
@@ -53,6 +55,7 @@ impl Default for UiState {
             show_outliner: true,
             show_properties: true,
             show_history: false,
+            show_preferences: false,
             add_menu_at: None,
             confirm: None,
             after_save: None,
@@ -108,7 +111,7 @@ pub struct UiPlugin;
 
 impl Plugin for UiPlugin {
     fn build(&self, app: &mut App) {
-        app.add_plugins(EguiPlugin::default())
+        app.add_plugins((EguiPlugin::default(), recovery::RecoveryPlugin))
             .init_resource::<UiState>()
             .insert_resource(Preferences::load())
             .add_message::<FileAction>()

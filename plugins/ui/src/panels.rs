@@ -267,6 +267,10 @@ fn menu_bar(ui: &mut egui::Ui, state: &mut UiState, model: &Model, events: &mut 
             }
             ui.separator();
             ui.checkbox(&mut state.show_history, "Undo History");
+            ui.separator();
+            if ui.button("Preferences…").clicked() {
+                state.show_preferences = true;
+            }
         });
         let curve = active_curve(&model.state.session.doc, model.selection.active());
         ui.menu_button("Add", |ui| {
@@ -1507,8 +1511,11 @@ fn history_window(
         .default_width(240.0)
         .show(ctx, |ui| {
             ui.label(format!(
-                "{} step(s) kept{}",
+                "{} step(s) kept (limit {}, about {:.1} of {} MiB){}",
                 h.done().len() + h.undone().len(),
+                h.max_steps,
+                h.approx_bytes() as f64 / (1024.0 * 1024.0),
+                h.max_bytes / (1024 * 1024),
                 if h.dropped > 0 {
                     format!(", {} oldest dropped", h.dropped)
                 } else {
