@@ -600,3 +600,108 @@ fn a_weight_change_re_evaluates_only_the_surface_it_can_reach() {
         &refined
     ));
 }
+
+/// Autosave in the app: only after a change, never while a tool runs, gone
+/// after a save; the panic hook's snapshot follows; undo limits apply.
+#[test]
+fn autosave_waits_for_tools_writes_changes_and_is_removed_by_a_save() {
+    use hedra_doc::recovery::{self, RecoveryKind};
+    use hedra_ui::recovery::{Recovery, RecoveryPlugin};
+    let dir = tempfile::tempdir().unwrap();
+    let recovery_dir = dir.path().join("recovery");
+    let mut app = hedra::headless_app();
+    app.add_plugins(RecoveryPlugin)
+        .insert_resource(hedra_ui::UiState::default())
+        .insert_resource(hedra_ui::Preferences {
+            autosave_seconds: 1,
+            ..Default::default()
+        })
+        .insert_resource(Recovery::new(Some(recovery_dir.clone())));
+    app.update();
+    let paths = |app: &mut App| {
+        app.world()
+            .resource::<Recovery>()
+            .point()
+            .expect("the untitled document has a recovery point")
+            .paths(RecoveryKind::Autosave)
+    };
+    let (scene, meta) = paths(&mut app);
+    let cube = |name: &str| {
+        DocRequest::Execute(Command::AddPrimitive {
+            primitive: Primitive::Cube { size: 1.0 },
+            name: Some(name.into()),
+            parent: None,
+            transform: DocTransform::IDENTITY,
+        })
+    };
+    send(&mut app, cube("A"));
+    let snapshot = app.world().resource::<Recovery>().snapshot.clone();
+    assert!(
+        snapshot.lock().unwrap().is_some(),
+        "unsaved work is in the snapshot"
+    );
+
+    // A tool is running (a transform field being dragged): no autosave.
+    let node = app
+        .world()
+        .resource::<DocState>()
+        .session
+        .doc
+        .find_by_name("A")
+        .unwrap()
+        .id;
+    app.world_mut()
+        .resource_mut::<hedra_ui::UiState>()
+        .transform_edit = Some((node, DocTransform::IDENTITY));
+    std::thread::sleep(std::time::Duration::from_millis(1100));
+    for _ in 0..3 {
+        app.update();
+    }
+    assert!(!app.world().resource::<Recovery>().is_writing());
+    assert!(!scene.exists(), "no autosave in the middle of a tool");
+
+    // The tool ends: the autosave is written (on a worker thread).
+    app.world_mut()
+        .resource_mut::<hedra_ui::UiState>()
+        .transform_edit = None;
+    let start = std::time::Instant::now();
+    while !(meta.exists() && !app.world().resource::<Recovery>().is_writing()) {
+        assert!(start.elapsed().as_secs() < 10, "autosave not written");
+        app.update();
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    let offered = recovery::pending_with(&recovery_dir, &|_| false);
+    assert_eq!(offered.len(), 1);
+    assert_eq!(offered[0].meta.steps, 1);
+    let saved = recovery::recover(&offered[0]).unwrap().session;
+    assert!(saved.doc.find_by_name("A").is_some());
+
+    // Nothing changed since: no second autosave even after the interval.
+    std::thread::sleep(std::time::Duration::from_millis(1100));
+    app.update();
+    assert!(!app.world().resource::<Recovery>().is_writing());
+    assert_eq!(app.world().resource::<Recovery>().autosaves, 1);
+
+    // Saving removes the recovery point and empties the snapshot.
+    let file = dir.path().join("saved.hedra.ron");
+    send(&mut app, DocRequest::Save(file.clone()));
+    app.update();
+    assert!(
+        !scene.exists() && !meta.exists(),
+        "saved: the autosave is gone"
+    );
+    assert!(snapshot.lock().unwrap().is_none());
+
+    // Undo limits from the preferences reach the history.
+    send(&mut app, cube("B"));
+    send(&mut app, cube("C"));
+    app.world_mut()
+        .resource_mut::<hedra_ui::Preferences>()
+        .undo_steps = 1;
+    app.update();
+    app.update();
+    let history = &app.world().resource::<DocState>().session.history;
+    assert_eq!(history.done().len(), 1);
+    assert_eq!(history.max_steps, 1);
+    assert_eq!(history.dropped, 2);
+}
