@@ -87,7 +87,7 @@ pub enum Sub {
         #[arg(short, long)]
         output: PathBuf,
     },
-    /// Import meshes (OBJ, binary or ASCII STL) as new nodes of a new scene (or of --input) and save it.
+    /// Import meshes (OBJ with UVs and normals, binary or ASCII STL, glTF/GLB) as new nodes of a new scene (or of --input) and save it.
     Import {
         file: PathBuf,
         #[arg(long)]

@@ -90,3 +90,48 @@ fn trimesh_reads_obj_stl_gltf_and_glb_exports_with_the_right_counts_and_bounds()
         }
     }
 }
+
+/// UVs survive OBJ import → scene → OBJ export, as trimesh reads them.
+#[test]
+fn trimesh_reads_the_uvs_of_an_exported_obj() {
+    if !trimesh_available() {
+        assert!(std::env::var_os("CI").is_none(), "CI must have trimesh");
+        eprintln!("skipped: python3 with trimesh is not installed");
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let scene = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("plugins/doc/tests/corpus/scenes/v1-uv-panel.hedra.ron");
+    let obj = dir.path().join("panel.obj");
+    let out = hedra(&[
+        "export",
+        scene.to_str().unwrap(),
+        "-o",
+        obj.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    // Two quads side by side, u from 0 to 1 along x: trimesh splits vertices
+    // by UV and keeps one UV per vertex.
+    let script = "import sys, trimesh\n\
+        m = trimesh.load(sys.argv[1], force='mesh', process=False)\n\
+        uv = m.visual.uv\n\
+        ok = all(abs(u - v[0] / 2.0) < 1e-9 and abs(w - v[1]) < 1e-9 for (u, w), v in zip(uv, m.vertices))\n\
+        print(len(uv), len(m.vertices), int(ok), uv[:, 0].min(), uv[:, 0].max())";
+    let o = Command::new("python3")
+        .args(["-c", script, obj.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let v: Vec<f64> = String::from_utf8_lossy(&o.stdout)
+        .split_whitespace()
+        .map(|x| x.parse().unwrap())
+        .collect();
+    assert_eq!(v[0], v[1], "one UV per vertex");
+    assert_eq!(v[0], 6.0, "six distinct (position, uv) corners");
+    assert_eq!(v[2], 1.0, "every UV is (x / 2, y) of its vertex");
+    assert_eq!((v[3], v[4]), (0.0, 1.0));
+}
