@@ -15,7 +15,9 @@ use hedra_doc::{Command, EdgeSet, FaceSet, NodeContent, NodeId, NodeRef, VertexS
 use hedra_geom::subdivision::Creases;
 use hedra_geom::{EdgeId, FaceId, HalfEdgeMesh, VertexId};
 use hedra_scene::modifiers::{alt, ctrl, shift};
-use hedra_scene::{DocChanged, DocRequest, DocState, InputGate, NodeEntities, ViewportCamera};
+use hedra_scene::{
+    DocChanged, DocRequest, DocState, InputGate, NodeEntities, StatusMessage, ViewportCamera,
+};
 use std::collections::BTreeSet;
 use std::sync::Arc;
 
@@ -139,6 +141,8 @@ pub struct EditMode {
     pub kind: ElementKind,
     pub selection: ElementSelection,
     pub tool: Option<MeshTool>,
+    /// X-ray (Alt+Z): box selection also takes elements hidden behind the surface.
+    pub x_ray: bool,
     /// The mesh as the running tool would leave it (shown instead of the document's).
     pub preview: Option<Arc<HalfEdgeMesh>>,
     /// The creases as the running tool would leave them.
@@ -368,6 +372,7 @@ pub fn select_elements(
     window: Single<&Window, With<PrimaryWindow>>,
     camera: Single<(&Camera, &GlobalTransform), With<ViewportCamera>>,
     mut press: Local<Option<Press>>,
+    mut status: ResMut<StatusMessage>,
 ) {
     if !mode.active() || mode.tool.is_some() {
         *press = None;
@@ -394,6 +399,15 @@ pub fn select_elements(
             });
         }
     }
+    if gate.keyboard_free && alt(&keys) && keys.just_pressed(KeyCode::KeyZ) {
+        mode.x_ray = !mode.x_ray;
+        status.info(if mode.x_ray {
+            "X-ray on: box select also takes hidden elements"
+        } else {
+            "X-ray off: box select takes only what is in sight"
+        });
+    }
+    let x_ray = mode.x_ray;
     let Some(p) = *press else { return };
     let moved = cursor.is_some_and(|c| c.distance(p.start) > 4.0);
     if buttons.pressed(MouseButton::Left) {
@@ -408,6 +422,22 @@ pub fn select_elements(
     let sel = &mut mode.selection;
     if let Some((a, b)) = boxed {
         let (lo, hi) = (a.min(b), a.max(b));
+        // Without X-ray only what the surface leaves in sight is taken: a
+        // software depth buffer of the mesh at the viewport's size.
+        let depth = (!x_ray).then(|| {
+            let size = cam
+                .logical_viewport_size()
+                .unwrap_or(Vec2::new(1280.0, 800.0));
+            let model_to_clip =
+                cam.clip_from_view().as_dmat4() * cam_t.to_matrix().as_dmat4().inverse() * world;
+            hedra_geom::query::DepthBuffer::render(
+                &mesh,
+                model_to_clip,
+                size.x.ceil() as usize,
+                size.y.ceil() as usize,
+            )
+        });
+        let seen = |q: DVec3| depth.as_ref().is_none_or(|d| d.is_visible(q));
         let inside = |q: DVec3| {
             camera_point(cam, cam_t, world, q)
                 .is_some_and(|s| s.x >= lo.x && s.y >= lo.y && s.x <= hi.x && s.y <= hi.y)
@@ -416,17 +446,18 @@ pub fn select_elements(
             *sel = ElementSelection::default();
         }
         match kind {
-            ElementKind::Vertex => sel
-                .vertices
-                .extend(mesh.vertices().filter(|&v| inside(mesh.position(v)))),
-            ElementKind::Edge => sel.edges.extend(mesh.edges().filter(|&e| {
-                mesh.edge_vertices(e)
-                    .iter()
-                    .all(|&v| inside(mesh.position(v)))
+            ElementKind::Vertex => sel.vertices.extend(mesh.vertices().filter(|&v| {
+                let p = mesh.position(v);
+                inside(p) && seen(p)
             })),
-            ElementKind::Face => sel
-                .faces
-                .extend(mesh.faces().filter(|&f| inside(mesh.face_centroid(f)))),
+            ElementKind::Edge => sel.edges.extend(mesh.edges().filter(|&e| {
+                let [a, b] = mesh.edge_vertices(e).map(|v| mesh.position(v));
+                inside(a) && inside(b) && seen(a.lerp(b, 0.5))
+            })),
+            ElementKind::Face => sel.faces.extend(mesh.faces().filter(|&f| {
+                let c = mesh.face_centroid(f);
+                inside(c) && seen(c)
+            })),
         }
         return;
     }

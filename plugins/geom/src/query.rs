@@ -160,3 +160,213 @@ pub fn ray_cast(mesh: &HalfEdgeMesh, origin: DVec3, dir: DVec3) -> Option<(FaceI
     }
     best
 }
+
+/// A software depth buffer of a mesh seen through a projection, to tell many
+/// points at once whether the surface hides them (box selection of
+/// vertices, edges and faces on dense meshes). This is the CPU form of the
+/// depth test a GPU does (Foley & van Dam, §15.4 "The z-buffer algorithm"):
+/// every face's triangles are scan-converted into a `width × height` grid
+/// keeping the nearest normalised-device depth per cell.
+///
+/// Complexity: O(corners + covered cells) to build, O(1) per query.
+#[derive(Clone, Debug)]
+pub struct DepthBuffer {
+    width: usize,
+    height: usize,
+    /// Nearest depth per cell (NDC z, made "larger = nearer").
+    depth: Vec<f32>,
+    /// Depth change per cell of the triangle that wrote the cell: the
+    /// tolerance for points lying on that triangle.
+    slope: Vec<f32>,
+    model_to_clip: glam::DMat4,
+    /// +1 when NDC z grows towards the eye (reverse-Z, Bevy), else −1.
+    nearer: f64,
+}
+
+impl DepthBuffer {
+    /// Renders `mesh` through `model_to_clip` (projection · view · model)
+    /// into a `width × height` grid. Triangles crossing the eye plane are
+    /// left out (they cannot hide what the camera looks at in front).
+    pub fn render(
+        mesh: &HalfEdgeMesh,
+        model_to_clip: glam::DMat4,
+        width: usize,
+        height: usize,
+    ) -> Self {
+        let (width, height) = (width.max(1), height.max(1));
+        // Which way NDC z runs: of two points on the view axis, the one with
+        // the smaller clip w is nearer (perspective). An orthographic
+        // projection has w = 1 everywhere; it is taken as reverse-Z (near
+        // plane at z = 1), Bevy's convention.
+        let inv = model_to_clip.inverse();
+        let w_at =
+            |z: f64| (model_to_clip * inv.project_point3(DVec3::new(0.0, 0.0, z)).extend(1.0)).w;
+        let (w_low, w_high) = (w_at(0.25), w_at(0.75));
+        let nearer = if (w_low - w_high).abs() > 1e-9 * (w_low.abs() + w_high.abs()) {
+            if w_high < w_low { 1.0 } else { -1.0 }
+        } else {
+            1.0
+        };
+        let mut buffer = DepthBuffer {
+            width,
+            height,
+            depth: vec![f32::NEG_INFINITY; width * height],
+            slope: vec![0.0; width * height],
+            model_to_clip,
+            nearer,
+        };
+        for f in mesh.faces() {
+            for tri in triangulate_face(mesh, f) {
+                let p = tri.map(|v| buffer.to_cell(mesh.position(v)));
+                if let [Some(a), Some(b), Some(c)] = p {
+                    buffer.fill(a, b, c);
+                }
+            }
+        }
+        buffer
+    }
+
+    /// A point's cell coordinates (x right, y down) and its depth (larger =
+    /// nearer); `None` behind the eye.
+    fn to_cell(&self, p: DVec3) -> Option<DVec3> {
+        let clip = self.model_to_clip * p.extend(1.0);
+        if clip.w <= 1e-9 {
+            return None;
+        }
+        let ndc = clip.truncate() / clip.w;
+        Some(DVec3::new(
+            (ndc.x + 1.0) * 0.5 * self.width as f64,
+            (1.0 - ndc.y) * 0.5 * self.height as f64,
+            ndc.z * self.nearer,
+        ))
+    }
+
+    /// Scan-converts one triangle (cell centres inside it, either winding).
+    fn fill(&mut self, a: DVec3, b: DVec3, c: DVec3) {
+        let area = (b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y);
+        if area.abs() < 1e-12 {
+            return;
+        }
+        // Depth as an affine function of the cell position: z = z0 + gx·x + gy·y.
+        let gx = ((b.z - a.z) * (c.y - a.y) - (c.z - a.z) * (b.y - a.y)) / area;
+        let gy = ((c.z - a.z) * (b.x - a.x) - (b.z - a.z) * (c.x - a.x)) / area;
+        let slope = (gx.abs() + gy.abs()) as f32;
+        let x0 = a.x.min(b.x).min(c.x).floor().max(0.0) as usize;
+        let y0 = a.y.min(b.y).min(c.y).floor().max(0.0) as usize;
+        let x1 = (a.x.max(b.x).max(c.x).ceil() as usize).min(self.width);
+        let y1 = (a.y.max(b.y).max(c.y).ceil() as usize).min(self.height);
+        let edge =
+            |p: DVec3, q: DVec3, x: f64, y: f64| (q.x - p.x) * (y - p.y) - (x - p.x) * (q.y - p.y);
+        let s = area.signum();
+        for y in y0..y1 {
+            let cy = y as f64 + 0.5;
+            for x in x0..x1 {
+                let cx = x as f64 + 0.5;
+                if edge(a, b, cx, cy) * s < 0.0
+                    || edge(b, c, cx, cy) * s < 0.0
+                    || edge(c, a, cx, cy) * s < 0.0
+                {
+                    continue;
+                }
+                let z = (a.z + gx * (cx - a.x) + gy * (cy - a.y)) as f32;
+                let i = y * self.width + x;
+                if z > self.depth[i] {
+                    self.depth[i] = z;
+                    self.slope[i] = slope;
+                }
+            }
+        }
+    }
+
+    /// Whether the surface leaves `p` (mesh space) in sight: nothing in its
+    /// cell is nearer than `p` beyond the depth change across one cell of
+    /// the triangle drawn there (so points on that triangle pass).
+    /// Points outside the grid or behind the eye are not visible.
+    pub fn is_visible(&self, p: DVec3) -> bool {
+        let Some(q) = self.to_cell(p) else {
+            return false;
+        };
+        if q.x < 0.0 || q.y < 0.0 || q.x >= self.width as f64 || q.y >= self.height as f64 {
+            return false;
+        }
+        let i = q.y as usize * self.width + q.x as usize;
+        let z = q.z as f32;
+        z + self.slope[i] + 1e-6 * z.abs() + 1e-7 >= self.depth[i]
+    }
+}
+
+#[cfg(test)]
+mod depth_buffer_tests {
+    use super::*;
+    use crate::primitives::Primitive;
+    use glam::DMat4;
+
+    /// A camera at (3, 2, 4) looking at the origin, with Bevy's reverse-Z
+    /// infinite perspective or a classic OpenGL one.
+    fn view_projection(reverse_z: bool) -> DMat4 {
+        let view = DMat4::look_at_rh(DVec3::new(3.0, 2.0, 4.0), DVec3::ZERO, DVec3::Y);
+        let projection = if reverse_z {
+            DMat4::perspective_infinite_reverse_rh(0.8, 1.5, 0.1)
+        } else {
+            DMat4::perspective_rh_gl(0.8, 1.5, 0.1, 100.0)
+        };
+        projection * view
+    }
+
+    #[test]
+    fn the_depth_buffer_hides_exactly_the_back_corner_of_a_cube() {
+        let cube = Primitive::Cube { size: 2.0 }.build().unwrap();
+        let eye = DVec3::new(3.0, 2.0, 4.0);
+        for reverse_z in [true, false] {
+            let buffer = DepthBuffer::render(&cube, view_projection(reverse_z), 600, 400);
+            for v in cube.vertices() {
+                let p = cube.position(v);
+                // From (3, 2, 4) every corner but (−1, −1, −1) is in sight;
+                // the ray test used for click picking agrees.
+                let expected = p != DVec3::splat(-1.0);
+                assert_eq!(is_visible_from(&cube, eye, p), expected, "{p}");
+                assert_eq!(buffer.is_visible(p), expected, "{p} reverse_z {reverse_z}");
+            }
+            // Face centres: the three facing +X, +Y, +Z are seen.
+            for f in cube.faces() {
+                let n = cube.face_normal(f);
+                let seen = n.x > 0.5 || n.y > 0.5 || n.z > 0.5;
+                assert_eq!(buffer.is_visible(cube.face_centroid(f)), seen, "face {n}");
+            }
+            // A point far behind the cube, and one behind the eye.
+            assert!(!buffer.is_visible(DVec3::new(-3.0, -2.0, -4.0)));
+            assert!(!buffer.is_visible(DVec3::new(6.0, 4.0, 8.0)));
+        }
+    }
+
+    #[test]
+    fn dense_meshes_keep_their_front_vertices_visible() {
+        // A 64-segment UV sphere: every vertex on the near hemisphere (seen
+        // at more than 5° from the silhouette) is visible, every one on the
+        // far side more than 12° past it is not (closer to the silhouette
+        // the front surface is too steep for a one-cell tolerance).
+        let sphere = Primitive::UvSphere {
+            segments: 64,
+            rings: 32,
+            radius: 1.0,
+        }
+        .build()
+        .unwrap();
+        let eye = DVec3::new(3.0, 2.0, 4.0);
+        let buffer = DepthBuffer::render(&sphere, view_projection(true), 1280, 800);
+        let (mut front, mut back) = (0, 0);
+        for v in sphere.vertices() {
+            let p = sphere.position(v);
+            // Cosine of the angle between the normal and the direction to the eye.
+            let facing = p.normalize().dot((eye - p).normalize());
+            if facing > 0.09 {
+                assert!(buffer.is_visible(p), "front vertex {p} hidden");
+                front += 1;
+            } else if facing < -0.2 {
+                assert!(!buffer.is_visible(p), "back vertex {p} seen");
+                back += 1;
+            }
+        }
+        assert!(front > 500 && back > 500, "{front} {back}");
+    }
+}
