@@ -481,10 +481,21 @@ pub enum Command {
         node: NodeRef,
         vertices: VertexSet,
     },
-    /// Merges vertices joined by edges into one at their centre.
+    /// Merges vertices into one at their centre, the first or the last
+    /// given; vertices not joined by edges are welded.
     MergeVertices {
         node: NodeRef,
         vertices: VertexSet,
+        #[serde(default, skip_serializing_if = "is_default")]
+        at: hedra_geom::modeling::MergePoint,
+    },
+    /// Welds vertices closer than `distance` to each other (all of the
+    /// mesh's unless `vertices` is given).
+    MergeByDistance {
+        node: NodeRef,
+        #[serde(default = "all_vertices")]
+        vertices: VertexSet,
+        distance: f64,
     },
     /// Joins two boundary loops (named by some of their edges) with quads.
     BridgeLoops {
@@ -494,6 +505,14 @@ pub enum Command {
 }
 
 use crate::scene::{one, yes};
+
+fn all_vertices() -> VertexSet {
+    VertexSet::All
+}
+
+fn is_default<T: Default + PartialEq>(value: &T) -> bool {
+    *value == T::default()
+}
 
 /// Round primitives start smooth, boxy ones flat, as in most modelers.
 fn primitive_shading(p: &Primitive) -> Shading {
@@ -633,7 +652,13 @@ impl Command {
             Command::FillHoles { .. } => "Fill".to_string(),
             Command::CollapseEdges { .. } => "Collapse Edges".to_string(),
             Command::BridgeLoops { .. } => "Bridge Edge Loops".to_string(),
-            Command::MergeVertices { .. } => "Merge at Center".to_string(),
+            Command::MergeVertices { at, .. } => match at {
+                hedra_geom::modeling::MergePoint::Center => "Merge at Center",
+                hedra_geom::modeling::MergePoint::First => "Merge at First",
+                hedra_geom::modeling::MergePoint::Last => "Merge at Last",
+            }
+            .to_string(),
+            Command::MergeByDistance { .. } => "Merge by Distance".to_string(),
             Command::DissolveFaces { .. } => "Dissolve Faces".to_string(),
             Command::BevelEdges { .. } => "Bevel".to_string(),
             Command::SlideEdges { .. } => "Edge Slide".to_string(),
@@ -1564,11 +1589,18 @@ impl Plan<'_> {
                     modeling::delete_faces(m, &fs)
                 })?
             }
-            Command::MergeVertices { node, vertices } => {
+            Command::MergeVertices { node, vertices, at } => {
                 self.on_vertices(node, vertices, |m, vs| {
-                    modeling::merge_at_center(m, vs).map(drop)
+                    modeling::merge_vertices(m, vs, *at).map(drop)
                 })?
             }
+            Command::MergeByDistance {
+                node,
+                vertices,
+                distance,
+            } => self.on_vertices(node, vertices, |m, vs| {
+                modeling::merge_by_distance(m, vs, *distance).map(drop)
+            })?,
             Command::BridgeLoops { node, edges } => {
                 self.on_edges(node, edges, |m, es| modeling::bridge_loops(m, es).map(drop))?
             }

@@ -41,7 +41,7 @@ fn every_command_example_in_the_docs_runs() {
         .collect();
     kinds.sort();
     kinds.dedup();
-    assert_eq!(kinds.len(), 52, "{kinds:?}");
+    assert_eq!(kinds.len(), 53, "{kinds:?}");
     let mut session = hedra_doc::Session::new();
     hedra_doc::script::run(&mut session, &commands, Path::new("docs/commands.md"))
         .unwrap_or_else(|e| panic!("{e}"));
@@ -71,6 +71,13 @@ fn every_command_example_in_the_docs_runs() {
         (1, 12),
         "the grid dissolved into its outline"
     );
+    let halves = doc.find_by_name("Halves").unwrap().content.mesh().unwrap();
+    let s = halves.stats();
+    assert_eq!(
+        (s.vertices, s.faces, s.shells, s.boundary_loops),
+        (6, 2, 1, 1),
+        "the seam at x = 0 is welded"
+    );
     let crate_ = doc.find_by_name("Crate").unwrap().content.mesh().unwrap();
     crate_.validate().unwrap();
     assert_eq!(
@@ -98,9 +105,19 @@ fn every_command_example_in_the_docs_runs() {
     let patch = doc.find_by_name("Patch").unwrap().content.mesh().unwrap();
     assert_eq!(
         (patch.vertex_count(), patch.face_count()),
-        (13, 8),
-        "four inner vertices merged into one"
+        (12, 8),
+        "four inner vertices merged into one, then a corner and its neighbour"
     );
+    let at = |p: glam::DVec3| {
+        patch
+            .vertices()
+            .any(|v| patch.position(v).distance(p) < 1e-12)
+    };
+    assert!(
+        at(glam::DVec3::new(1.5, 0.0, 1.5)),
+        "merged at the first vertex"
+    );
+    assert!(!at(glam::DVec3::new(1.5, 0.0, 0.5)));
     let bridge = doc.find_by_name("Bridge").unwrap().content.mesh().unwrap();
     assert!(bridge.stats().closed, "the two squares became a closed box");
     let block = doc.find_by_name("Block").unwrap().content.mesh().unwrap();

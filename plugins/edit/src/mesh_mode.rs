@@ -36,9 +36,30 @@ pub struct ElementSelection {
     pub vertices: BTreeSet<VertexId>,
     pub edges: BTreeSet<EdgeId>,
     pub faces: BTreeSet<FaceId>,
+    /// Vertices in the order they were clicked (for Merge at First / Last).
+    pub clicked: Vec<VertexId>,
 }
 
 impl ElementSelection {
+    /// The selected vertices, those clicked first in click order, then the
+    /// rest by id.
+    pub fn ordered_vertices(&self) -> Vec<VertexId> {
+        let mut out: Vec<VertexId> = self
+            .clicked
+            .iter()
+            .copied()
+            .filter(|v| self.vertices.contains(v))
+            .collect();
+        let rest: Vec<VertexId> = self
+            .vertices
+            .iter()
+            .copied()
+            .filter(|v| !out.contains(v))
+            .collect();
+        out.extend(rest);
+        out
+    }
+
     /// The elements of `kind` whose vertices all lie in `verts` (how Blender
     /// converts a selection between vertex, edge and face mode).
     pub fn from_vertices(
@@ -143,6 +164,8 @@ pub struct EditMode {
     pub tool: Option<MeshTool>,
     /// X-ray (Alt+Z): box selection also takes elements hidden behind the surface.
     pub x_ray: bool,
+    /// M in vertex mode: the merge menu is open at this window position.
+    pub merge_menu_at: Option<Vec2>,
     /// The mesh as the running tool would leave it (shown instead of the document's).
     pub preview: Option<Arc<HalfEdgeMesh>>,
     /// The creases as the running tool would leave them.
@@ -499,7 +522,13 @@ pub fn select_elements(
         *sel = ElementSelection::default();
     }
     match hit {
-        Some(ElementHit::Vertex(v)) => toggle(&mut sel.vertices, v),
+        Some(ElementHit::Vertex(v)) => {
+            toggle(&mut sel.vertices, v);
+            sel.clicked.retain(|&c| c != v);
+            if sel.vertices.contains(&v) {
+                sel.clicked.push(v);
+            }
+        }
         Some(ElementHit::Edge(e)) => toggle(&mut sel.edges, e),
         Some(ElementHit::Face(f)) => toggle(&mut sel.faces, f),
         None => {}
@@ -812,12 +841,9 @@ pub fn edit_shortcuts(
     }
     if keys.just_pressed(KeyCode::KeyM) && mode.kind == ElementKind::Vertex {
         if mode.selection.vertices.len() < 2 {
-            status.error("Merge: select two or more vertices joined by edges");
+            status.error("Merge: select two or more vertices");
         } else {
-            requests.write(DocRequest::Execute(Command::MergeVertices {
-                node: node.clone(),
-                vertices: VertexSet::Ids(mode.selection.vertices.iter().map(|v| v.0).collect()),
-            }));
+            mode.merge_menu_at = window.cursor_position();
         }
     } else if keys.just_pressed(KeyCode::KeyM) {
         if mode.selection.edges.is_empty() {

@@ -41,7 +41,7 @@ pub struct Model<'w> {
     prefs: Res<'w, Preferences>,
     samples: Option<Res<'w, SamplesDir>>,
     entities: Res<'w, NodeEntities>,
-    mode: Res<'w, EditMode>,
+    mode: ResMut<'w, EditMode>,
     previews: Res<'w, hedra_scene::SmoothPreviews>,
     shape_edit: Res<'w, hedra_edit::ShapeEdit>,
 }
@@ -128,6 +128,7 @@ pub fn draw_ui(
     adjust_last_window(&ctx, free, &model, &mut events);
     let curve = active_curve(&model.state.session.doc, model.selection.active());
     add_menu(&ctx, &mut ui_state, &mut events, curve);
+    merge_menu(&ctx, &mut model, &mut events);
     dialogs(&ctx, &mut ui_state, &mut model, &mut writers);
 
     // Viewport input is free when the pointer is over the 3D area and egui is not busy.
@@ -576,6 +577,80 @@ fn add_menu(
         ctx.input(|i| i.pointer.any_pressed()) && !area.response.contains_pointer();
     if close || clicked_outside || ctx.input(|i| i.key_pressed(egui::Key::Escape)) {
         state.add_menu_at = None;
+    }
+}
+
+/// M in vertex edit mode: Blender's merge menu at the cursor.
+fn merge_menu(ctx: &egui::Context, model: &mut Model, events: &mut Vec<UiEvent>) {
+    let Some(pos) = model.mode.merge_menu_at else {
+        return;
+    };
+    let Some(node) = model.mode.node else {
+        model.mode.merge_menu_at = None;
+        return;
+    };
+    let mut close = false;
+    let area = egui::Area::new("merge-menu".into())
+        .fixed_pos(egui::pos2(pos.x, pos.y))
+        .order(egui::Order::Foreground)
+        .show(ctx, |ui| {
+            egui::Frame::menu(ui.style()).show(ui, |ui| {
+                ui.label(egui::RichText::new("Merge").strong());
+                ui.separator();
+                let before = events.len();
+                merge_buttons(ui, node, &model.mode.selection, events);
+                close = events.len() > before;
+            });
+        });
+    let clicked_outside =
+        ctx.input(|i| i.pointer.any_pressed()) && !area.response.contains_pointer();
+    if close || clicked_outside || ctx.input(|i| i.key_pressed(egui::Key::Escape)) {
+        model.mode.merge_menu_at = None;
+    }
+}
+
+/// At Center / At First / At Last / By Distance on the selected vertices
+/// (First and Last: in the order they were clicked).
+fn merge_buttons(
+    ui: &mut egui::Ui,
+    node: NodeId,
+    sel: &hedra_edit::ElementSelection,
+    events: &mut Vec<UiEvent>,
+) {
+    use hedra_geom::modeling::MergePoint;
+    let ordered = || hedra_doc::VertexSet::Ids(sel.ordered_vertices().iter().map(|v| v.0).collect());
+    let enabled = sel.vertices.len() >= 2;
+    for (label, at) in [
+        ("At Center", MergePoint::Center),
+        ("At First", MergePoint::First),
+        ("At Last", MergePoint::Last),
+    ] {
+        if ui.add_enabled(enabled, egui::Button::new(label)).clicked() {
+            exec(
+                events,
+                Command::MergeVertices {
+                    node: NodeRef::from(node),
+                    vertices: ordered(),
+                    at,
+                },
+            );
+            ui.close();
+        }
+    }
+    if ui
+        .add_enabled(enabled, egui::Button::new("By Distance"))
+        .on_hover_text("Weld selected vertices closer than 0.0001 (change it in Adjust Last)")
+        .clicked()
+    {
+        exec(
+            events,
+            Command::MergeByDistance {
+                node: NodeRef::from(node),
+                vertices: ordered(),
+                distance: 0.0001,
+            },
+        );
+        ui.close();
     }
 }
 
@@ -1423,6 +1498,7 @@ fn adjust_last_window(
             | Command::SubdivideEdges { .. }
             | Command::BevelEdges { .. }
             | Command::SlideEdges { .. }
+            | Command::MergeByDistance { .. }
     );
     if !editable {
         return;
@@ -1449,6 +1525,9 @@ fn adjust_last_window(
                 }
                 Command::SlideEdges { factor, .. } => {
                     number_row(ui, "Factor", factor, 0.01, -1.0..=1.0)
+                }
+                Command::MergeByDistance { distance, .. } => {
+                    number_row(ui, "Distance", distance, 0.001, 0.0..=1e6)
                 }
                 Command::ExtrudeFaces { distance, .. }
                 | Command::ExtrudeRegion { distance, .. } => {
@@ -1914,6 +1993,7 @@ fn mesh_menu(ui: &mut egui::Ui, node: NodeId, mode: &EditMode, events: &mut Vec<
         !sel.edges.is_empty(),
         !sel.vertices.is_empty(),
     );
+    let mut merge_events = Vec::new();
     let mut item = |ui: &mut egui::Ui, label: &str, enabled: bool, cmd: &dyn Fn() -> Command| {
         if ui.add_enabled(enabled, egui::Button::new(label)).clicked() {
             exec(events, cmd());
@@ -1991,12 +2071,7 @@ fn mesh_menu(ui: &mut egui::Ui, node: NodeId, mode: &EditMode, events: &mut Vec<
             vertices: vertices(),
         }
     });
-    item(ui, "Merge at Center\tM", sel.vertices.len() >= 2, &|| {
-        Command::MergeVertices {
-            node: n.clone(),
-            vertices: vertices(),
-        }
-    });
+    ui.menu_button("Merge\tM", |ui| merge_buttons(ui, node, sel, &mut merge_events));
     item(ui, "Dissolve Vertices\tX", has_v, &|| {
         Command::DissolveVertices {
             node: n.clone(),
@@ -2042,6 +2117,7 @@ fn mesh_menu(ui: &mut egui::Ui, node: NodeId, mode: &EditMode, events: &mut Vec<
     item(ui, "Recalculate Outside\tShift+N", true, &|| {
         Command::RecalculateNormals { node: n.clone() }
     });
+    events.extend(merge_events);
 }
 
 /// The vertices a selection touches, of any element kind, as a command's set.
