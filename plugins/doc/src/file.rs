@@ -609,10 +609,11 @@ fn restore_history(
             ));
         }
         t.apply(&mut probe_doc, false);
+        // Every state undo reaches must be sound, not only the first one.
+        probe_doc
+            .check()
+            .map_err(|e| format!("undoing step '{}' gives a broken scene: {e}", t.label))?;
     }
-    probe_doc
-        .check()
-        .map_err(|e| format!("undoing every step gives a broken scene: {e}"))?;
     for t in &history.done {
         t.apply(&mut probe_doc, true);
     }
@@ -628,6 +629,9 @@ fn restore_history(
             ));
         }
         t.apply(&mut redo_doc, true);
+        redo_doc
+            .check()
+            .map_err(|e| format!("redoing step '{}' gives a broken scene: {e}", t.label))?;
     }
     let serials: Vec<u64> = history
         .done

@@ -435,6 +435,7 @@ pub fn gltf_from_bytes(
         path: path.to_string(),
         message,
     };
+    check_before_validation(bytes).map_err(|m| err(format!("not a readable glTF file ({m})")))?;
     let gltf = gltf::Gltf::from_slice(bytes)
         .map_err(|e| err(format!("not a readable glTF file ({e})")))?;
     let mut buffers: Vec<Vec<u8>> = Vec::new();
@@ -491,11 +492,15 @@ pub fn gltf_from_bytes(
         .rev()
         .map(|n| (n, None))
         .collect();
-    let mut seen = 0usize;
+    // glTF nodes form disjoint trees: a node reached twice (a cycle, or two
+    // parents) would be imported again and again.
+    let mut reached = vec![false; gltf.document.nodes().len()];
     while let Some((node, parent)) = stack.pop() {
-        seen += 1;
-        if seen > 1_000_000 {
-            return Err(err("more than a million nodes (a cycle?)".into()));
+        if std::mem::replace(&mut reached[node.index()], true) {
+            return Err(err(format!(
+                "node {} is reached twice (a cycle, or a node with two parents); glTF nodes must form trees",
+                node.index()
+            )));
         }
         let (t, r, s) = node.transform().decomposed();
         let transform = Transform {
@@ -503,6 +508,16 @@ pub fn gltf_from_bytes(
             rotation: DQuat::from_array(r.map(f64::from)).normalize(),
             scale: DVec3::from_array(s.map(f64::from)),
         };
+        // A zero quaternion, a degenerate matrix, a huge value.
+        if !(transform.translation.is_finite()
+            && transform.rotation.is_finite()
+            && transform.scale.is_finite())
+        {
+            return Err(err(format!(
+                "node {}: its transform is not finite (translation {t:?}, rotation {r:?}, scale {s:?})",
+                node.index()
+            )));
+        }
         let mut positions: Vec<DVec3> = Vec::new();
         let mut polygons: Vec<Vec<u32>> = Vec::new();
         // Per corner of `polygons`, in order (None where the file has none).
@@ -515,6 +530,8 @@ pub fn gltf_from_bytes(
                     skipped += 1;
                     continue;
                 }
+                check_accessors(&primitive, &buffers)
+                    .map_err(|m| err(format!("mesh '{}': {m}", mesh.name().unwrap_or("?"))))?;
                 let reader = primitive.reader(|b| buffers.get(b.index()).map(|d| d.as_slice()));
                 let Some(points) = reader.read_positions() else {
                     skipped += 1;
@@ -571,7 +588,12 @@ pub fn gltf_from_bytes(
         let me = out.len();
         out.push(ImportedMesh {
             name,
-            mesh: mesh.as_ref().map(|(m, _, _)| m.clone()),
+            // All triangles dropped (degenerate, say): an empty node, the
+            // report says why.
+            mesh: mesh
+                .as_ref()
+                .map(|(m, _, _)| m.clone())
+                .filter(|m| m.face_count() > 0),
             corners: mesh.as_ref().map(|(_, _, c)| c.clone()).unwrap_or_default(),
             report: mesh.map(|(_, r, _)| r).unwrap_or_default(),
             parent,
@@ -588,6 +610,134 @@ pub fn gltf_from_bytes(
         });
     }
     Ok(out)
+}
+
+/// What `gltf` reads or validates without checking: a GLB length shorter
+/// than its header, and (gltf-json 1.4 panics) a primitive's `POSITION`
+/// naming an accessor past the list.
+/// Files that do not even parse are left to `gltf` to report.
+fn check_before_validation(bytes: &[u8]) -> Result<(), String> {
+    // `gltf` subtracts the 12-byte header from the stated length unchecked.
+    if let Some(&[a, b, c, d]) = bytes.strip_prefix(b"glTF").and_then(|h| h.get(4..8)) {
+        let length = u32::from_le_bytes([a, b, c, d]);
+        if length < 12 {
+            return Err(format!(
+                "the GLB header gives a length of {length} bytes, less than the header itself"
+            ));
+        }
+    }
+    let text: std::borrow::Cow<[u8]> = if bytes.starts_with(b"glTF") {
+        match gltf::binary::Glb::from_slice(bytes) {
+            Ok(glb) => glb.json,
+            Err(_) => return Ok(()),
+        }
+    } else {
+        bytes.into()
+    };
+    let Ok(root) = json::Root::from_slice(&text) else {
+        return Ok(());
+    };
+    for (m, mesh) in root.meshes.iter().enumerate() {
+        for (p, primitive) in mesh.primitives.iter().enumerate() {
+            for accessor in primitive.attributes.values() {
+                if accessor.value() >= root.accessors.len() {
+                    return Err(format!(
+                        "mesh {m}, primitive {p}: an attribute uses accessor {}, but the file has {}",
+                        accessor.value(),
+                        root.accessors.len()
+                    ));
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Every accessor of a primitive lies inside its buffer view and every view
+/// inside its buffer (the `gltf` reader silently gives nothing otherwise,
+/// and a count larger than the data must not be trusted).
+fn check_accessors(primitive: &gltf::Primitive, buffers: &[Vec<u8>]) -> Result<(), String> {
+    use gltf::accessor::{DataType, Dimensions};
+    use gltf::mesh::Semantic;
+    // The attributes Hedra reads, with the layouts the `gltf` reader
+    // assumes (it only debug-asserts them).
+    let read = primitive
+        .attributes()
+        .filter_map(|(semantic, a)| {
+            let layouts: &[(Dimensions, DataType)] = match semantic {
+                Semantic::Positions | Semantic::Normals => &[(Dimensions::Vec3, DataType::F32)],
+                Semantic::TexCoords(0) => &[
+                    (Dimensions::Vec2, DataType::F32),
+                    (Dimensions::Vec2, DataType::U8),
+                    (Dimensions::Vec2, DataType::U16),
+                ],
+                _ => return None,
+            };
+            Some((a, layouts))
+        })
+        .chain(primitive.indices().map(|a| {
+            let layouts: &[(Dimensions, DataType)] = &[
+                (Dimensions::Scalar, DataType::U8),
+                (Dimensions::Scalar, DataType::U16),
+                (Dimensions::Scalar, DataType::U32),
+            ];
+            (a, layouts)
+        }));
+    for (a, layouts) in read {
+        if !layouts.contains(&(a.dimensions(), a.data_type())) {
+            return Err(format!(
+                "accessor {} has {:?} {:?} elements, which this attribute cannot have",
+                a.index(),
+                a.dimensions(),
+                a.data_type()
+            ));
+        }
+        if a.sparse().is_some() {
+            return Err(format!(
+                "accessor {} is sparse, which is not supported",
+                a.index()
+            ));
+        }
+        if a.count() == 0 {
+            return Err(format!("accessor {} has no elements", a.index()));
+        }
+        let Some(view) = a.view() else {
+            return Err(format!("accessor {} has no buffer view", a.index()));
+        };
+        let (count, size) = (a.count() as u128, a.size() as u128);
+        let stride = view.stride().map_or(size, |s| s as u128);
+        if stride < size {
+            return Err(format!(
+                "buffer view {} has a stride of {stride} bytes, less than accessor {}'s {size}-byte elements",
+                view.index(),
+                a.index()
+            ));
+        }
+        let needed = if count == 0 {
+            0
+        } else {
+            a.offset() as u128 + stride * (count - 1) + size
+        };
+        if needed > view.length() as u128 {
+            return Err(format!(
+                "accessor {} ({count} elements of {size} bytes) needs {needed} bytes, but buffer view {} has {}",
+                a.index(),
+                view.index(),
+                view.length()
+            ));
+        }
+        let buffer = view.buffer().index();
+        let have = buffers.get(buffer).map_or(0, Vec::len);
+        if view.offset() as u128 + view.length() as u128 > have as u128 {
+            return Err(format!(
+                "buffer view {} (bytes {}..{}) lies outside buffer {buffer} of {have} bytes",
+                view.index(),
+                view.offset(),
+                view.offset() as u128 + view.length() as u128
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// Merges exactly equal positions (glTF splits vertices at normal seams).

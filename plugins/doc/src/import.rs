@@ -189,12 +189,104 @@ pub enum ImportError {
     Empty { path: String },
 }
 
+/// Checks what tobj does not report by line: a vertex coordinate that is
+/// not a finite number (`nan`, `inf`, `1e999`, or made infinite by its `w`),
+/// and a face or line index (`v`, `vt` or `vn`) outside the elements the
+/// file has. Positive indices count over the whole file, negative ones back
+/// from the line. Messages name the line.
+fn check_obj_text(text: &str) -> Result<(), String> {
+    const KINDS: [(&str, &str); 3] = [
+        ("vertex", "vertices"),
+        ("texture coordinate", "texture coordinates"),
+        ("normal", "normals"),
+    ];
+    let mut totals = [0usize; 3];
+    for line in text.lines() {
+        match line.split_whitespace().next() {
+            Some("v") => totals[0] += 1,
+            Some("vt") => totals[1] += 1,
+            Some("vn") => totals[2] += 1,
+            _ => {}
+        }
+    }
+    let mut seen = [0usize; 3];
+    for (number, line) in text.lines().enumerate() {
+        let number = number + 1;
+        let mut words = line.split_whitespace();
+        match words.next() {
+            Some("v") => {
+                seen[0] += 1;
+                let values: Vec<&str> = words.collect();
+                let parsed: Vec<Option<f64>> = values.iter().map(|w| w.parse().ok()).collect();
+                if parsed.len() < 3 || parsed[..3].contains(&None) {
+                    // tobj refuses the line itself.
+                    return Ok(());
+                }
+                if let Some(bad) =
+                    (0..values.len().min(3)).find(|&k| parsed[k].is_some_and(|x| !x.is_finite()))
+                {
+                    return Err(format!(
+                        "line {number}: vertex coordinate '{}' is not a finite number",
+                        values[bad]
+                    ));
+                }
+                if let [Some(x), Some(y), Some(z), Some(w)] = parsed[..]
+                    && w != 0.0
+                    && [x, y, z].iter().any(|c| !(c / w).is_finite())
+                {
+                    return Err(format!(
+                        "line {number}: vertex ({x}, {y}, {z}) divided by w = {w} is not a finite number"
+                    ));
+                }
+            }
+            Some("vt") => seen[1] += 1,
+            Some("vn") => seen[2] += 1,
+            Some("f" | "l") => {
+                for word in words {
+                    for (k, part) in word.split('/').take(3).enumerate() {
+                        let Ok(i) = part.parse::<i64>() else {
+                            continue;
+                        };
+                        let fits = if i < 0 {
+                            i.unsigned_abs() <= seen[k] as u64
+                        } else {
+                            i >= 1 && i as u64 <= totals[k] as u64
+                        };
+                        if !fits {
+                            let (one, many) = KINDS[k];
+                            return Err(if i < 0 {
+                                format!(
+                                    "line {number}: face refers to {one} {i}, but only {} {many} come before it",
+                                    seen[k]
+                                )
+                            } else if i == 0 {
+                                format!("line {number}: face refers to {one} 0 (OBJ counts from 1)")
+                            } else {
+                                format!(
+                                    "line {number}: face refers to {one} {i}, but the file has {} {many}",
+                                    totals[k]
+                                )
+                            });
+                        }
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+    Ok(())
+}
+
 /// Parses OBJ text. `path` only names the file in messages.
 ///
 /// # Errors
 /// [`ImportError::Read`] when the OBJ is malformed, [`ImportError::Empty`]
 /// when nothing usable remains.
 pub fn obj_from_str(text: &str, path: &str) -> Result<Vec<ImportedMesh>, ImportError> {
+    check_obj_text(text).map_err(|message| ImportError::Read {
+        path: path.to_string(),
+        message,
+    })?;
     let options = tobj::LoadOptions {
         single_index: false,
         triangulate: false,
@@ -341,6 +433,32 @@ pub fn obj_from_str(text: &str, path: &str) -> Result<Vec<ImportedMesh>, ImportE
     Ok(out)
 }
 
+/// Refuses, by line and triangle, an ASCII STL vertex coordinate that is not
+/// a finite `f32` (`nan`, `inf`, `1e99`); stl_io's own message names neither.
+fn check_ascii_stl(bytes: &[u8]) -> Result<(), String> {
+    let mut triangle = 0usize;
+    for (number, line) in bytes.split(|&b| b == b'\n').enumerate() {
+        let line = String::from_utf8_lossy(line);
+        let mut words = line.split_whitespace();
+        match words.next() {
+            Some("facet") => triangle += 1,
+            Some("vertex") => {
+                if let Some(bad) = words
+                    .take(3)
+                    .find(|w| w.parse::<f32>().is_ok_and(|x| !x.is_finite()))
+                {
+                    return Err(format!(
+                        "line {}, triangle {triangle}: vertex coordinate '{bad}' is not finite",
+                        number + 1
+                    ));
+                }
+            }
+            _ => {}
+        }
+    }
+    Ok(())
+}
+
 /// Parses a binary or ASCII STL file. A binary file must be exactly as long
 /// as its triangle count says (so a damaged header cannot ask for
 /// gigabytes); `name` names the node, `path` the file in messages.
@@ -369,6 +487,9 @@ pub fn stl_from_bytes(
             binary_size.map_or("at least 84".to_string(), |n| n.to_string())
         )));
     }
+    if is_ascii {
+        check_ascii_stl(bytes).map_err(read_error)?;
+    }
     let indexed = stl_io::read_stl(&mut std::io::Cursor::new(bytes))
         .map_err(|e| read_error(format!("not a readable STL file ({e})")))?;
     let positions: Vec<DVec3> = indexed
@@ -376,6 +497,23 @@ pub fn stl_from_bytes(
         .iter()
         .map(|v| DVec3::new(v[0] as f64, v[1] as f64, v[2] as f64))
         .collect();
+    // stl_io reads any f32 (binary) or any number (ASCII, `nan`, `1e99`).
+    let non_finite = indexed.faces.iter().enumerate().find_map(|(t, f)| {
+        f.vertices
+            .iter()
+            .filter_map(|&i| positions.get(i))
+            .find(|p| !p.is_finite())
+            .map(|p| (t, p))
+    });
+    if let Some((t, p)) = non_finite {
+        return Err(read_error(format!(
+            "triangle {} has a corner that is not finite: ({}, {}, {})",
+            t + 1,
+            p.x,
+            p.y,
+            p.z
+        )));
+    }
     let polygons: Vec<Vec<u32>> = indexed
         .faces
         .iter()
