@@ -7,6 +7,7 @@ pub mod elements;
 pub mod eval;
 pub mod export;
 pub mod file;
+pub mod fuzz;
 pub mod gltf;
 pub mod history;
 pub mod import;
