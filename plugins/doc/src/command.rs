@@ -461,6 +461,13 @@ pub enum Command {
         #[serde(default = "one")]
         segments: u32,
     },
+    /// Cuts vertices off with a face through the points `width` along
+    /// their edges (vertex bevel).
+    BevelVertices {
+        node: NodeRef,
+        vertices: VertexSet,
+        width: f64,
+    },
     /// Merges faces into one by removing the edges between them.
     DissolveFaces {
         node: NodeRef,
@@ -661,6 +668,7 @@ impl Command {
             Command::MergeByDistance { .. } => "Merge by Distance".to_string(),
             Command::DissolveFaces { .. } => "Dissolve Faces".to_string(),
             Command::BevelEdges { .. } => "Bevel".to_string(),
+            Command::BevelVertices { .. } => "Vertex Bevel".to_string(),
             Command::SlideEdges { .. } => "Edge Slide".to_string(),
             Command::MirrorVertices { axis, .. } => format!("Mirror {axis:?}"),
             Command::Symmetrize { axis, .. } => format!("Symmetrize {axis:?}"),
@@ -1550,6 +1558,13 @@ impl Plan<'_> {
                 segments,
             } => self.on_edges(node, edges, |m, es| {
                 modeling::bevel_edges(m, es, *width, *segments).map(drop)
+            })?,
+            Command::BevelVertices {
+                node,
+                vertices,
+                width,
+            } => self.on_vertices(node, vertices, |m, vs| {
+                modeling::bevel_vertices(m, vs, *width).map(drop)
             })?,
             Command::SlideEdges {
                 node,

@@ -41,7 +41,7 @@ fn every_command_example_in_the_docs_runs() {
         .collect();
     kinds.sort();
     kinds.dedup();
-    assert_eq!(kinds.len(), 53, "{kinds:?}");
+    assert_eq!(kinds.len(), 54, "{kinds:?}");
     let mut session = hedra_doc::Session::new();
     hedra_doc::script::run(&mut session, &commands, Path::new("docs/commands.md"))
         .unwrap_or_else(|e| panic!("{e}"));
@@ -70,6 +70,12 @@ fn every_command_example_in_the_docs_runs() {
         (floor.face_count(), floor.vertex_count()),
         (1, 12),
         "the grid dissolved into its outline"
+    );
+    let cut = doc.find_by_name("Cut").unwrap().content.mesh().unwrap();
+    assert_eq!(
+        (cut.vertex_count(), cut.face_count()),
+        (10, 7),
+        "a corner cut off by a triangle"
     );
     let halves = doc.find_by_name("Halves").unwrap().content.mesh().unwrap();
     let s = halves.stats();

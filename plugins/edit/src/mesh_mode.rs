@@ -126,6 +126,8 @@ pub enum MeshToolKind {
     SlideEdges,
     /// Bevel the selected edges (Ctrl+B).
     Bevel,
+    /// Bevel the selected vertices (Ctrl+Shift+B).
+    BevelVertices,
     /// Inset the selected faces each on its own (Alt+I).
     InsetIndividual,
     /// Drag the subdivision crease of the selected edges, or the corner
@@ -692,7 +694,15 @@ pub fn edit_shortcuts(
     // Tools that start only on a selection of one element kind.
     let faces_selected = !mode.selection.faces.is_empty();
     let edges_selected = !mode.selection.edges.is_empty();
+    let vertices_selected = !mode.selection.vertices.is_empty();
     for (held, key, selected, tool, refusal) in [
+        (
+            c && s,
+            KeyCode::KeyB,
+            vertices_selected,
+            MeshToolKind::BevelVertices,
+            "Vertex bevel: select vertices first (press 1 for vertex mode)",
+        ),
         (
             a,
             KeyCode::KeyI,
@@ -708,7 +718,7 @@ pub fn edit_shortcuts(
             "Extrude: select faces first (press 3 for face mode)",
         ),
         (
-            c,
+            c && !s,
             KeyCode::KeyB,
             edges_selected,
             MeshToolKind::Bevel,
@@ -987,6 +997,15 @@ fn tool_command(
                 edges: EdgeSet::Ids(selection.edges.iter().map(|e| e.0).collect()),
                 width,
                 segments,
+            }
+        }
+        MeshToolKind::BevelVertices => {
+            let width = tool.typed.value().unwrap_or(drag.abs());
+            tool.readout = format!("Vertex bevel width {width:.4}");
+            Command::BevelVertices {
+                node,
+                vertices: VertexSet::Ids(selection.vertices.iter().map(|v| v.0).collect()),
+                width,
             }
         }
         MeshToolKind::Crease => {

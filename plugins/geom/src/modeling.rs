@@ -769,31 +769,173 @@ pub fn weld_vertices(
     for (cluster, point) in clusters {
         work.set_position(cluster[0], *point);
     }
-    // pmp's add_face relinks boundary fans; a face that cannot attach yet may
-    // attach once its neighbours are in, so retry until nothing changes.
-    let mut pending = polygons;
+    add_faces_in_any_order(&mut work, polygons, "welding")?;
+    work.validate()
+        .map_err(|e| ModelingError::Invalid(e.to_string()))?;
+    *mesh = work;
+    Ok(gone.len())
+}
+
+/// Adds polygons with pmp's `add_face`, which relinks boundary fans: a face
+/// that cannot attach yet may attach once its neighbours are in, so the
+/// failed ones are retried until a pass adds nothing. Returns the new faces
+/// in the order the polygons were given.
+fn add_faces_in_any_order(
+    work: &mut HalfEdgeMesh,
+    polygons: Vec<Vec<VertexId>>,
+    what: &str,
+) -> Result<Vec<FaceId>, ModelingError> {
+    let mut added = vec![None; polygons.len()];
+    let mut pending: Vec<usize> = (0..polygons.len()).collect();
     while !pending.is_empty() {
         let before = pending.len();
         let mut failed = Vec::new();
         let mut last_error = None;
-        for corners in pending {
-            if let Err(e) = work.add_face(&corners) {
-                last_error = Some(e);
-                failed.push(corners);
+        for i in pending {
+            match work.add_face(&polygons[i]) {
+                Ok(f) => added[i] = Some(f),
+                Err(e) => {
+                    last_error = Some(e);
+                    failed.push(i);
+                }
             }
         }
         if failed.len() == before {
             return Err(ModelingError::Invalid(format!(
-                "welding would make the surface non-manifold ({})",
+                "{what} would make the surface non-manifold ({})",
                 last_error.map_or_else(String::new, |e| e.to_string())
             )));
         }
         pending = failed;
     }
+    Ok(added.into_iter().flatten().collect())
+}
+
+/// Bevels vertices (Blender's Ctrl+Shift+B, one segment): each vertex is
+/// cut off by a new face through the points `width` along each of its
+/// edges, so a cube corner becomes a triangle and a valence-5 vertex a
+/// pentagon. Works at any valence and on borders (a border vertex with two
+/// edges gets no cap: its corner is simply cut); neighbouring vertices may
+/// both be beveled when `width` is under half their edge. The faces around
+/// the vertices are taken out and added back with their new corners (pmp
+/// `delete_face` / `add_face`); other elements keep their ids. Returns the
+/// new cap faces.
+///
+/// # Errors
+/// [`ModelingError::Empty`], [`ModelingError::Missing`],
+/// [`ModelingError::Parameter`] for a width that is not positive or does
+/// not fit an edge (naming it) or an isolated vertex; the mesh is unchanged
+/// on error.
+pub fn bevel_vertices(
+    mesh: &mut HalfEdgeMesh,
+    vertices: &[VertexId],
+    width: f64,
+) -> Result<Vec<FaceId>, ModelingError> {
+    if vertices.is_empty() {
+        return Err(ModelingError::Empty("no vertices"));
+    }
+    if !(width.is_finite() && width > 0.0) {
+        return Err(ModelingError::Parameter {
+            what: "width",
+            allowed: "a finite width > 0",
+            value: width.to_string(),
+        });
+    }
+    let mut set: Vec<VertexId> = vertices.to_vec();
+    set.sort();
+    set.dedup();
+    for &v in &set {
+        if !mesh.is_vertex(v) {
+            return Err(ModelingError::Missing(v.to_string()));
+        }
+        if mesh.is_isolated_vertex(v) {
+            return Err(ModelingError::Parameter {
+                what: "vertices",
+                allowed: "vertices with edges",
+                value: format!("{v} has none"),
+            });
+        }
+        for h in mesh.vertex_outgoing(v) {
+            let u = mesh.target(h);
+            let share = if set.binary_search(&u).is_ok() {
+                0.5
+            } else {
+                1.0
+            };
+            let length = mesh.position(u).distance(mesh.position(v));
+            if width >= share * length {
+                return Err(ModelingError::Parameter {
+                    what: "width",
+                    allowed: "less than the edges it cuts (half of those between beveled vertices)",
+                    value: format!("{width} on {}, {length:.6} long", h.edge()),
+                });
+            }
+        }
+    }
+    let mut work = mesh.clone();
+    // The new point on each edge at each beveled vertex.
+    let mut point: std::collections::HashMap<(VertexId, EdgeId), VertexId> = Default::default();
+    for &v in &set {
+        let p = work.position(v);
+        let outgoing: Vec<HalfEdgeId> = work.vertex_outgoing(v).collect();
+        for h in outgoing {
+            let q = work.position(work.target(h));
+            let id = work.add_vertex(p + (q - p).normalize() * width)?;
+            point.insert((v, h.edge()), id);
+        }
+    }
+    let faces = faces_around_vertices(&work, &set);
+    let beveled = |v: VertexId| set.binary_search(&v).is_ok();
+    let mut polygons = Vec::with_capacity(faces.len() + set.len());
+    // Cap edges run against the faces' new edges: p_out(f) → p_in(f).
+    let mut cap_next: std::collections::HashMap<VertexId, VertexId> = Default::default();
+    for &f in &faces {
+        let mut corners = Vec::new();
+        for h in work.face_halfedges(f).collect::<Vec<_>>() {
+            let v = work.origin(h);
+            if beveled(v) {
+                let p_in = point[&(v, work.prev(h).edge())];
+                let p_out = point[&(v, h.edge())];
+                corners.extend([p_in, p_out]);
+                cap_next.insert(p_out, p_in);
+            } else {
+                corners.push(v);
+            }
+        }
+        polygons.push(corners);
+    }
+    let face_count = polygons.len();
+    for &v in &set {
+        let mine: Vec<VertexId> = work
+            .vertex_outgoing(v)
+            .map(|h| point[&(v, h.edge())])
+            .collect();
+        // Start where the chain starts (a border vertex's chain is open).
+        let start = mine
+            .iter()
+            .copied()
+            .find(|p| !cap_next.values().any(|q| q == p))
+            .unwrap_or(mine[0]);
+        let mut cap = vec![start];
+        while let Some(&next) = cap_next.get(cap.last().expect("not empty")) {
+            if next == start || cap.len() > mine.len() {
+                break;
+            }
+            cap.push(next);
+        }
+        if cap.len() >= 3 {
+            polygons.push(cap);
+        }
+    }
+    work.delete_faces(&faces, true);
+    for &v in &set {
+        work.free_vertex(v);
+    }
+    let added = add_faces_in_any_order(&mut work, polygons, "the bevel")?;
     work.validate()
         .map_err(|e| ModelingError::Invalid(e.to_string()))?;
     *mesh = work;
-    Ok(gone.len())
+    Ok(added[face_count.min(added.len())..].to_vec())
 }
 
 /// Merges vertices closer than `distance` to each other (Blender's Merge by

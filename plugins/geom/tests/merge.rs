@@ -144,3 +144,117 @@ fn merging_unjoined_vertices_welds_them_or_refuses_a_face_meeting_itself() {
     assert!(e.to_string().contains("meet itself"), "{e}");
     assert!(m.same_as(&cube));
 }
+
+// ----- vertex bevel ---------------------------------------------------------
+
+use hedra_geom::modeling::bevel_vertices;
+
+#[test]
+fn beveling_a_cube_corner_cuts_it_off_with_an_outward_triangle() {
+    let cube = Primitive::Cube { size: 2.0 }.build().unwrap();
+    let corner = cube
+        .vertices()
+        .find(|&v| cube.position(v) == DVec3::splat(1.0))
+        .unwrap();
+    let mut m = cube.clone();
+    let caps = bevel_vertices(&mut m, &[corner], 0.25).unwrap();
+    m.validate().unwrap();
+    let s = m.stats();
+    assert_eq!((s.vertices, s.edges, s.faces), (10, 15, 7));
+    assert!(s.closed);
+    assert_eq!(caps.len(), 1);
+    let cap: Vec<DVec3> = m.face_vertices(caps[0]).map(|v| m.position(v)).collect();
+    let mut got = cap.clone();
+    got.sort_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
+    assert_eq!(
+        got,
+        vec![
+            DVec3::new(0.75, 1.0, 1.0),
+            DVec3::new(1.0, 0.75, 1.0),
+            DVec3::new(1.0, 1.0, 0.75)
+        ]
+    );
+    assert!(
+        m.face_normal(caps[0]).dot(DVec3::ONE) > 0.99 * 3f64.sqrt(),
+        "faces outwards"
+    );
+    assert!(!m.is_vertex(corner));
+    assert!(
+        m.volume() < cube.volume()
+            && (cube.volume() - m.volume() - 0.25f64.powi(3) / 6.0).abs() < 1e-12
+    );
+}
+
+#[test]
+fn beveling_both_ends_of_an_edge_and_a_valence_four_vertex() {
+    let cube = Primitive::Cube { size: 2.0 }.build().unwrap();
+    let e = cube.edges().next().unwrap();
+    let [a, b] = cube.edge_vertices(e);
+    let mut m = cube.clone();
+    assert_eq!(bevel_vertices(&mut m, &[a, b], 0.5).unwrap().len(), 2);
+    m.validate().unwrap();
+    let s = m.stats();
+    assert_eq!((s.vertices, s.edges, s.faces), (12, 18, 8));
+    // Wider than half the shared edge: refused, naming the edge, unchanged.
+    let mut m = cube.clone();
+    let err = bevel_vertices(&mut m, &[a, b], 1.0).unwrap_err();
+    assert!(
+        matches!(err, ModelingError::Parameter { .. }) && err.to_string().contains("long"),
+        "{err}"
+    );
+    assert!(m.same_as(&cube));
+
+    // The middle vertex of a 2 × 2 grid (valence 4) becomes a square; a
+    // border corner (two edges) is just cut.
+    let grid = Primitive::Grid {
+        x_segments: 2,
+        z_segments: 2,
+        size: 2.0,
+    }
+    .build()
+    .unwrap();
+    let middle = grid
+        .vertices()
+        .find(|&v| grid.position(v) == DVec3::ZERO)
+        .unwrap();
+    let corner = grid
+        .vertices()
+        .find(|&v| grid.position(v) == DVec3::new(1.0, 0.0, 1.0))
+        .unwrap();
+    let mut g = grid.clone();
+    let caps = bevel_vertices(&mut g, &[middle, corner], 0.5).unwrap();
+    g.validate().unwrap();
+    assert_eq!(caps.len(), 1, "the border corner gets no cap");
+    assert_eq!(g.face_vertices(caps[0]).count(), 4);
+    assert!(
+        g.face_normal(caps[0]).y > 0.999,
+        "the cap faces like the grid"
+    );
+    let s = g.stats();
+    // 9 − 2 + 4 + 2 vertices; 4 + 1 faces; one border loop.
+    assert_eq!((s.vertices, s.faces, s.boundary_loops), (13, 5, 1));
+}
+
+#[test]
+fn vertex_bevel_refuses_bad_input_and_leaves_the_mesh() {
+    let cube = Primitive::Cube { size: 2.0 }.build().unwrap();
+    let v = cube.vertices().next().unwrap();
+    let mut m = cube.clone();
+    assert!(matches!(
+        bevel_vertices(&mut m, &[], 0.1),
+        Err(ModelingError::Empty(_))
+    ));
+    assert!(matches!(
+        bevel_vertices(&mut m, &[v], 0.0),
+        Err(ModelingError::Parameter { .. })
+    ));
+    assert!(matches!(
+        bevel_vertices(&mut m, &[v], f64::NAN),
+        Err(ModelingError::Parameter { .. })
+    ));
+    assert!(matches!(
+        bevel_vertices(&mut m, &[VertexId(99)], 0.1),
+        Err(ModelingError::Missing(_))
+    ));
+    assert!(m.same_as(&cube));
+}

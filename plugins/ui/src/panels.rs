@@ -1499,6 +1499,7 @@ fn adjust_last_window(
             | Command::BevelEdges { .. }
             | Command::SlideEdges { .. }
             | Command::MergeByDistance { .. }
+            | Command::BevelVertices { .. }
     );
     if !editable {
         return;
@@ -1525,6 +1526,9 @@ fn adjust_last_window(
                 }
                 Command::SlideEdges { factor, .. } => {
                     number_row(ui, "Factor", factor, 0.01, -1.0..=1.0)
+                }
+                Command::BevelVertices { width, .. } => {
+                    number_row(ui, "Width", width, 0.005, 0.0001..=1e6)
                 }
                 Command::MergeByDistance { distance, .. } => {
                     number_row(ui, "Distance", distance, 0.001, 0.0..=1e6)
@@ -2072,6 +2076,13 @@ fn mesh_menu(ui: &mut egui::Ui, node: NodeId, mode: &EditMode, events: &mut Vec<
         }
     });
     ui.menu_button("Merge\tM", |ui| merge_buttons(ui, node, sel, &mut merge_events));
+    item(ui, "Bevel Vertices\tCtrl+Shift+B", has_v, &|| {
+        Command::BevelVertices {
+            node: n.clone(),
+            vertices: vertices(),
+            width: 0.1,
+        }
+    });
     item(ui, "Dissolve Vertices\tX", has_v, &|| {
         Command::DissolveVertices {
             node: n.clone(),
