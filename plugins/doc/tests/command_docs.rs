@@ -71,6 +71,12 @@ fn every_command_example_in_the_docs_runs() {
         (1, 12),
         "the grid dissolved into its outline"
     );
+    let dice = doc.find_by_name("Dice").unwrap().content.mesh().unwrap();
+    assert_eq!(
+        (dice.vertex_count(), dice.face_count()),
+        (24, 26),
+        "every edge chamfered: 6 squares, 12 strips, 8 corner triangles"
+    );
     let cut = doc.find_by_name("Cut").unwrap().content.mesh().unwrap();
     assert_eq!(
         (cut.vertex_count(), cut.face_count()),

@@ -1640,19 +1640,20 @@ pub fn slide_edges(
     Ok(())
 }
 
-/// Bevels (chamfers) edges with one segment (Blender's Ctrl+B): each edge
-/// becomes a new quad `width` wide, its ends moved along the neighbouring
-/// edges of its two faces. Built from the Euler operators: split the four
-/// neighbouring edges (MVE), cut both faces (MEF), join them across the edge
-/// (KEF), and remove the old corners (KVE). Each edge's ends must have
-/// valence 3 (the corners of box-like shapes) and beveled edges must not
-/// share a vertex. Returns the new faces.
+/// Bevels edges (Blender's Ctrl+B). With one segment any set of edges
+/// inside the surface, at any valence, including edges that meet (see
+/// [`chamfer_edges`]: a fully beveled box corner gets a triangle). With more
+/// segments the bevel is rounded on an arc: each edge becomes a quad
+/// `width` wide, its ends moved along the neighbouring edges of its two
+/// faces, built from the Euler operators (split the four neighbouring edges
+/// (MVE), cut both faces (MEF), join them across the edge (KEF), remove the
+/// old corners (KVE)), then split into strips; this needs valence-3 ends
+/// and edges that share no vertex. Returns the new faces.
 ///
 /// # Errors
 /// [`ModelingError::Parameter`] for a width that is not positive or too
-/// large for the neighbouring edges, an end of another valence, or edges
-/// sharing a vertex; [`ModelingError::NotBoundary`]-like misuse on a border
-/// edge is refused as [`ModelingError::Parameter`] too. The mesh is
+/// large for the neighbouring edges, a border edge or end, and for rounded
+/// bevels an end of another valence or edges sharing a vertex. The mesh is
 /// unchanged on error.
 pub fn bevel_edges(
     mesh: &mut HalfEdgeMesh,
@@ -1677,16 +1678,19 @@ pub fn bevel_edges(
             value: width.to_string(),
         });
     }
+    if let Some(e) = edges.iter().find(|e| !mesh.is_edge(**e)) {
+        return Err(ModelingError::Missing(e.to_string()));
+    }
+    if segments == 1 {
+        return chamfer_edges(mesh, edges, width);
+    }
     let mut ends = std::collections::HashSet::new();
     for &e in edges {
-        if !mesh.is_edge(e) {
-            return Err(ModelingError::Missing(e.to_string()));
-        }
         for v in mesh.edge_vertices(e) {
             if !ends.insert(v) {
                 return Err(ModelingError::Parameter {
                     what: "edges",
-                    allowed: "edges that share no vertex",
+                    allowed: "edges that share no vertex (for a rounded bevel)",
                     value: format!("{v} is an end of two"),
                 });
             }
@@ -1708,6 +1712,206 @@ pub fn bevel_edges(
         .map_err(|e| ModelingError::Invalid(e.to_string()))?;
     *mesh = work;
     Ok(out)
+}
+
+/// One-segment bevel of any set of edges (Blender's Ctrl+B with one
+/// segment, "offset" width): every face corner at an end of a beveled edge
+/// moves into its face so that it lies `width` from the beveled edges of
+/// that corner (the intersection of the offset lines when both edges of the
+/// corner are beveled, a point slid along the other edge when one is); each
+/// beveled edge becomes a quad between its two faces' new corners, and
+/// where three or more new points surround an old vertex a patch face
+/// closes the gap (a fully beveled box corner gets a triangle). The old end
+/// vertices go; the faces around them are taken out and added back (pmp
+/// `delete_face` / `add_face`); other elements keep their ids. Returns the
+/// bevel quads, then the patches.
+fn chamfer_edges(
+    mesh: &mut HalfEdgeMesh,
+    edges: &[EdgeId],
+    width: f64,
+) -> Result<Vec<FaceId>, ModelingError> {
+    use std::collections::{BTreeSet, HashMap};
+    let beveled: BTreeSet<EdgeId> = edges.iter().copied().collect();
+    let mut ends: BTreeSet<VertexId> = BTreeSet::new();
+    for &e in &beveled {
+        let h = e.halfedge(0);
+        if mesh.face(h).is_none() || mesh.face(h.twin()).is_none() {
+            return Err(ModelingError::Parameter {
+                what: "edge",
+                allowed: "an edge between two faces",
+                value: format!("{e} is on a boundary"),
+            });
+        }
+        ends.extend(mesh.edge_vertices(e));
+    }
+    if let Some(v) = ends.iter().find(|v| mesh.is_boundary_vertex(**v)) {
+        return Err(ModelingError::Parameter {
+            what: "edge ends",
+            allowed: "vertices inside the surface",
+            value: format!("{v} is on a boundary"),
+        });
+    }
+    let dir = |m: &HalfEdgeMesh, from: VertexId, to: VertexId| {
+        (m.position(to) - m.position(from)).normalize()
+    };
+    let sin_between = |a: DVec3, b: DVec3| a.cross(b).length();
+    // Distance along each unbeveled edge at an end where faces slide their
+    // corner (w / sin θ to the beveled edge of that face; the mean when both
+    // faces of the edge ask).
+    let mut slide: HashMap<(VertexId, EdgeId), (f64, u32)> = HashMap::new();
+    for &v in &ends {
+        for h in mesh.vertex_outgoing(v).collect::<Vec<_>>() {
+            // In face(h) the corner at v is between prev(h) (in) and h (out).
+            let (e_in, e_out) = (mesh.prev(h).edge(), h.edge());
+            let (u_in, u_out) = (dir(mesh, v, mesh.origin(mesh.prev(h))), dir(mesh, v, mesh.target(h)));
+            let sin = sin_between(u_in, u_out);
+            let (b_in, b_out) = (beveled.contains(&e_in), beveled.contains(&e_out));
+            let slid = match (b_in, b_out) {
+                (false, true) => Some(e_in),
+                (true, false) => Some(e_out),
+                _ => None,
+            };
+            if let Some(e) = slid {
+                if sin < 1e-9 {
+                    return Err(ModelingError::Parameter {
+                        what: "edges",
+                        allowed: "edges at an angle to their neighbours",
+                        value: format!("{e_in} and {e_out} are in line at {v}"),
+                    });
+                }
+                let entry = slide.entry((v, e)).or_insert((0.0, 0));
+                entry.0 += width / sin;
+                entry.1 += 1;
+            }
+        }
+    }
+    let mut work = mesh.clone();
+    let mut point_on: HashMap<(VertexId, EdgeId), VertexId> = HashMap::new();
+    let mut used_length: HashMap<EdgeId, f64> = HashMap::new();
+    for &v in &ends {
+        for h in mesh.vertex_outgoing(v) {
+            let e = h.edge();
+            if beveled.contains(&e) {
+                continue;
+            }
+            let t = slide.get(&(v, e)).map_or(width, |(sum, n)| sum / f64::from(*n));
+            *used_length.entry(e).or_default() += t;
+            let p = mesh.position(v) + dir(mesh, v, mesh.target(h)) * t;
+            point_on.insert((v, e), work.add_vertex(p)?);
+        }
+    }
+    for (&e, &used) in &used_length {
+        let [a, b] = mesh.edge_vertices(e);
+        let length = mesh.position(a).distance(mesh.position(b));
+        if used >= length * (1.0 - 1e-9) {
+            return Err(ModelingError::Parameter {
+                what: "width",
+                allowed: "small enough for the neighbouring edges",
+                value: format!("{width} needs {used:.6} of {e}, {length:.6} long"),
+            });
+        }
+    }
+    // New corners of every face around the ends; `corner_of[(f, v)]` is the
+    // point a corner at v became (for the quads).
+    let faces = faces_around_vertices(mesh, &ends.iter().copied().collect::<Vec<_>>());
+    let mut corner_of: HashMap<(FaceId, VertexId), VertexId> = HashMap::new();
+    let mut polygons = Vec::new();
+    for &f in &faces {
+        let mut corners = Vec::new();
+        for h in mesh.face_halfedges(f).collect::<Vec<_>>() {
+            let v = mesh.origin(h);
+            if !ends.contains(&v) {
+                corners.push(v);
+                continue;
+            }
+            let hin = mesh.prev(h);
+            let (e_in, e_out) = (hin.edge(), h.edge());
+            match (beveled.contains(&e_in), beveled.contains(&e_out)) {
+                (true, true) => {
+                    let (u_in, u_out) = (dir(mesh, v, mesh.origin(hin)), dir(mesh, v, mesh.target(h)));
+                    let sin = sin_between(u_in, u_out);
+                    if sin < 1e-9 {
+                        return Err(ModelingError::Parameter {
+                            what: "edges",
+                            allowed: "beveled edges at an angle",
+                            value: format!("{e_in} and {e_out} are in line at {v}"),
+                        });
+                    }
+                    let q = mesh.position(v) + (u_in + u_out) * (width / sin);
+                    let id = work.add_vertex(q)?;
+                    corner_of.insert((f, v), id);
+                    corners.push(id);
+                }
+                (false, true) => {
+                    let id = point_on[&(v, e_in)];
+                    corner_of.insert((f, v), id);
+                    corners.push(id);
+                }
+                (true, false) => {
+                    let id = point_on[&(v, e_out)];
+                    corner_of.insert((f, v), id);
+                    corners.push(id);
+                }
+                (false, false) => {
+                    corners.push(point_on[&(v, e_in)]);
+                    corners.push(point_on[&(v, e_out)]);
+                }
+            }
+        }
+        polygons.push(corners);
+    }
+    let mut quads = Vec::new();
+    for &e in &beveled {
+        let h = e.halfedge(0);
+        let t = h.twin();
+        let (a, b) = (mesh.origin(h), mesh.target(h));
+        let (fh, ft) = (mesh.face(h).expect("checked"), mesh.face(t).expect("checked"));
+        quads.push(vec![
+            corner_of[&(fh, a)],
+            corner_of[&(ft, a)],
+            corner_of[&(ft, b)],
+            corner_of[&(fh, b)],
+        ]);
+    }
+    // Patches: the new points around each end in fan order, when three or
+    // more distinct ones leave a gap. The fan turns from a face to the one
+    // across its incoming edge, so listing each face's out point before its
+    // in point runs every edge of the gap against its face.
+    let mut patches = Vec::new();
+    for &v in &ends {
+        let mut ring: Vec<VertexId> = Vec::new();
+        for h in mesh.vertex_outgoing(v) {
+            let f = mesh.face(h).expect("inside the surface");
+            let e_in = mesh.prev(h).edge();
+            let pts: Vec<VertexId> = match corner_of.get(&(f, v)) {
+                Some(&p) => vec![p],
+                None => vec![point_on[&(v, h.edge())], point_on[&(v, e_in)]],
+            };
+            for p in pts {
+                if ring.last() != Some(&p) {
+                    ring.push(p);
+                }
+            }
+        }
+        while ring.len() > 1 && ring.first() == ring.last() {
+            ring.pop();
+        }
+        if ring.len() >= 3 {
+            patches.push(ring);
+        }
+    }
+    let n_faces = polygons.len();
+    polygons.extend(quads);
+    polygons.extend(patches);
+    work.delete_faces(&faces, true);
+    for &v in &ends {
+        work.free_vertex(v);
+    }
+    let added = add_faces_in_any_order(&mut work, polygons, "the bevel")?;
+    work.validate()
+        .map_err(|e| ModelingError::Invalid(e.to_string()))?;
+    *mesh = work;
+    Ok(added[n_faces.min(added.len())..].to_vec())
 }
 
 fn bevel_one(m: &mut HalfEdgeMesh, e: EdgeId, width: f64) -> Result<FaceId, ModelingError> {

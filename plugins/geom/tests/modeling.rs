@@ -774,8 +774,106 @@ fn beveling_a_cube_edge_makes_a_chamfer() {
                     .any(|v| c.edge_vertices(EdgeId(0)).contains(v))
         })
         .unwrap();
-    assert!(bevel_edges(&mut c, &[EdgeId(0), shared], 0.1, 1).is_err());
+    // Rounded bevels still need edges that share no vertex.
+    assert!(bevel_edges(&mut c, &[EdgeId(0), shared], 0.1, 2).is_err());
     assert_eq!(c, before);
+}
+
+#[test]
+fn chamfering_every_edge_of_a_cube_gives_the_classic_chamfered_cube() {
+    use hedra_geom::modeling::bevel_edges;
+    let mut c = cube();
+    let all: Vec<EdgeId> = c.edges().collect();
+    let faces = bevel_edges(&mut c, &all, 0.25, 1).unwrap();
+    c.validate().unwrap();
+    assert_eq!(
+        counts(&c),
+        (24, 48, 26),
+        "6 octagons... no: 6 squares, 12 hexagon strips, 8 triangles"
+    );
+    assert_eq!(
+        faces.len(),
+        12 + 8,
+        "a quad per edge, a triangle per corner"
+    );
+    assert_eq!(faces.iter().filter(|&&f| c.face_degree(f) == 3).count(), 8);
+    assert!(c.stats().closed);
+    // Every new point sits on a cube face, 0.25 in from both edges of its corner.
+    for v in c.vertices() {
+        let p = c.position(v).abs();
+        let mut coords = [p.x, p.y, p.z];
+        coords.sort_by(f64::total_cmp);
+        assert!(
+            (coords[2] - 1.0).abs() < 1e-12
+                && (coords[0] - 0.75).abs() < 1e-12
+                && (coords[1] - 0.75).abs() < 1e-12,
+            "{p:?}"
+        );
+    }
+    assert!(c.volume() > 0.0 && c.volume() < 8.0);
+}
+
+#[test]
+fn chamfering_at_valence_four_vertices_patches_the_ends() {
+    use hedra_geom::modeling::bevel_edges;
+    let sphere = hedra_geom::Primitive::UvSphere {
+        segments: 8,
+        rings: 6,
+        radius: 1.0,
+    }
+    .build()
+    .unwrap();
+    // A meridian edge between two valence-4 vertices off the poles.
+    let e = sphere
+        .edges()
+        .find(|&e| {
+            let [a, b] = sphere.edge_vertices(e);
+            sphere.vertex_valence(a) == 4
+                && sphere.vertex_valence(b) == 4
+                && (sphere.position(a).y - sphere.position(b).y).abs() > 0.1
+        })
+        .unwrap();
+    let (v0, e0, f0) = counts(&sphere);
+    let mut m = sphere.clone();
+    let faces = bevel_edges(&mut m, &[e], 0.05, 1).unwrap();
+    m.validate().unwrap();
+    // Each end: the vertex goes, three points come (one per other edge).
+    assert_eq!(counts(&m).0, v0 - 2 + 6);
+    assert_eq!(
+        counts(&m).2,
+        f0 + 1 + 2,
+        "the bevel quad and a triangle at each end"
+    );
+    assert_eq!(faces.len(), 3);
+    assert!(m.stats().closed);
+    let _ = e0;
+
+    // Two edges in line through a valence-4 vertex (part of a ring): no
+    // patch where they meet, only at the two far ends.
+    let [a, b] = sphere.edge_vertices(e);
+    let along = (sphere.position(b) - sphere.position(a)).normalize();
+    let next = sphere
+        .edges()
+        .find(|&x| {
+            let [p, q] = sphere.edge_vertices(x);
+            let other = match (p == b, q == b) {
+                (true, _) => q,
+                (_, true) => p,
+                _ => return false,
+            };
+            other != a
+                && sphere.vertex_valence(other) == 4
+                && (sphere.position(other) - sphere.position(b))
+                    .normalize()
+                    .dot(along)
+                    > 0.5
+        })
+        .unwrap();
+    let mut m = sphere.clone();
+    let faces = bevel_edges(&mut m, &[e, next], 0.05, 1).unwrap();
+    m.validate().unwrap();
+    assert_eq!(faces.len(), 2 + 2, "two quads, a patch at each far end");
+    assert!(m.stats().closed);
 }
 
 #[test]
