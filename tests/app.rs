@@ -705,3 +705,55 @@ fn autosave_waits_for_tools_writes_changes_and_is_removed_by_a_save() {
     assert_eq!(history.max_steps, 1);
     assert_eq!(history.dropped, 2);
 }
+
+/// An error exit (what Bevy does on a render error) saves the unsaved
+/// document as an emergency recovery point; a normal exit removes the
+/// session's recovery files.
+#[test]
+fn an_error_exit_saves_the_work_and_a_normal_exit_cleans_up() {
+    use hedra_doc::recovery::{self, RecoveryKind};
+    use hedra_ui::recovery::{Recovery, RecoveryPlugin};
+    for error in [true, false] {
+        let dir = tempfile::tempdir().unwrap();
+        let mut app = hedra::headless_app();
+        app.add_plugins(RecoveryPlugin)
+            .insert_resource(hedra_ui::UiState::default())
+            .insert_resource(hedra_ui::Preferences {
+                autosave_seconds: 0,
+                ..Default::default()
+            })
+            .insert_resource(Recovery::new(Some(dir.path().to_path_buf())));
+        app.update();
+        send(
+            &mut app,
+            DocRequest::Execute(Command::AddPrimitive {
+                primitive: Primitive::Cube { size: 1.0 },
+                name: Some("Unsaved".into()),
+                parent: None,
+                transform: DocTransform::IDENTITY,
+            }),
+        );
+        let (emergency, _) = app
+            .world()
+            .resource::<Recovery>()
+            .point()
+            .unwrap()
+            .paths(RecoveryKind::Emergency);
+        app.world_mut().write_message(if error {
+            AppExit::error()
+        } else {
+            AppExit::Success
+        });
+        app.update();
+        let offered = recovery::pending_with(dir.path(), &|_| false);
+        if error {
+            assert!(emergency.is_file(), "emergency save written");
+            assert_eq!(offered.len(), 1);
+            assert_eq!(offered[0].meta.kind, RecoveryKind::Emergency);
+            let s = recovery::recover(&offered[0]).unwrap().session;
+            assert!(s.doc.find_by_name("Unsaved").is_some());
+        } else {
+            assert!(offered.is_empty() && !emergency.exists());
+        }
+    }
+}

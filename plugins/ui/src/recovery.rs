@@ -98,7 +98,7 @@ impl Plugin for RecoveryPlugin {
                     .chain()
                     .after(hedra_scene::SceneSystems::Apply),
             )
-            .add_systems(Last, forget_on_exit)
+            .add_systems(Last, on_exit)
             .add_systems(
                 bevy_egui::EguiPrimaryContextPass,
                 (recovery_window, preferences_window),
@@ -247,18 +247,32 @@ fn apply_history_limits(
     }
 }
 
-/// A normal quit: the user saved or chose to discard, so this session's
-/// recovery files go, and a panic while shutting down saves nothing.
-fn forget_on_exit(mut exits: MessageReader<AppExit>, mut rec: ResMut<Recovery>) {
-    if exits.read().next().is_some() {
-        if let Some(job) = rec.writing.take() {
-            let _ = job.join();
-            rec.wrote_files = true;
+/// The app is going down. A normal quit (the user saved or chose to
+/// discard) removes this session's recovery files, and a panic while
+/// shutting down saves nothing. An error exit (Bevy quits this way on a
+/// render error) writes the last committed document as an emergency
+/// recovery point instead, offered on the next start.
+fn on_exit(mut exits: MessageReader<AppExit>, mut rec: ResMut<Recovery>) {
+    let Some(error) = exits.read().map(AppExit::is_error).reduce(|a, b| a || b) else {
+        return;
+    };
+    if let Some(job) = rec.writing.take() {
+        let _ = job.join();
+        rec.wrote_files = true;
+    }
+    let snapshot = rec.snapshot.lock().ok().and_then(|mut g| g.take());
+    if error {
+        if let Some((session, point)) = snapshot {
+            match point.write(&session, RecoveryKind::Emergency) {
+                Ok(path) => error!(
+                    "Hedra is quitting on an error; your work was saved to {} and is offered on the next start",
+                    path.display()
+                ),
+                Err(e) => error!("emergency save failed: {e}"),
+            }
         }
+    } else {
         rec.forget_own_files();
-        if let Ok(mut guard) = rec.snapshot.lock() {
-            *guard = None;
-        }
     }
 }
 
