@@ -4,8 +4,8 @@
 //! Twins are found with a compressed per-vertex list of outgoing corners
 //! instead of a hash map, so building is linear in the number of corners.
 
-use crate::ids::{NONE, VertexId};
-use crate::mesh::{HalfEdgeMesh, HalfEdgeRecord};
+use crate::ids::{FaceId, HalfEdgeId, NONE, VertexId};
+use crate::mesh::{HalfEdgeMesh, HalfEdgeRecord, LoopStart};
 use glam::DVec3;
 use std::collections::HashMap;
 
@@ -294,6 +294,7 @@ impl HalfEdgeMesh {
             live_vertices: nv,
             live_edges: ne,
             live_faces: polygons.len(),
+            ..Default::default()
         };
         // Closed fans touching at a vertex (two cones tip to tip) pass the
         // boundary test above; the fan walk finds them.
@@ -459,7 +460,14 @@ impl HalfEdgeMesh {
 
     /// A copy with dead slots (and vertices no face uses) removed and ids renumbered densely, in the old
     /// order. Returns the new mesh.
+    ///
+    /// Faces with inner rings or without edges cannot be rebuilt from
+    /// polygons; a mesh with such faces is renumbered record by record (its
+    /// lone vertices are kept).
     pub fn compacted(&self) -> HalfEdgeMesh {
+        if self.first_non_polygon_face().is_some() {
+            return self.compacted_records();
+        }
         let mut vmap = vec![NONE; self.positions.len()];
         let mut positions = Vec::with_capacity(self.vertex_count());
         for v in self.vertices().filter(|&v| !self.is_isolated_vertex(v)) {
@@ -472,5 +480,94 @@ impl HalfEdgeMesh {
             .collect();
         HalfEdgeMesh::from_polygons(&positions, &polys)
             .expect("a valid mesh stays valid when renumbered")
+    }
+
+    /// [`compacted`](Self::compacted) for meshes with rings: the same
+    /// records with dense ids, in the old order.
+    fn compacted_records(&self) -> HalfEdgeMesh {
+        let lone: Vec<VertexId> = self
+            .face_lone_vertex
+            .values()
+            .copied()
+            .chain(self.face_rings.values().flatten().filter_map(|l| match l {
+                LoopStart::Vertex(v) => Some(*v),
+                LoopStart::HalfEdge(_) => None,
+            }))
+            .collect();
+        let mut vmap = vec![NONE; self.positions.len()];
+        let mut positions = Vec::new();
+        for v in self
+            .vertices()
+            .filter(|&v| !self.is_isolated_vertex(v) || lone.contains(&v))
+        {
+            vmap[v.index()] = positions.len() as u32;
+            positions.push(self.position(v));
+        }
+        let mut emap = vec![NONE; self.edge_dead.len()];
+        for (i, e) in self.edges().enumerate() {
+            emap[e.index()] = i as u32;
+        }
+        let hmap = |h: u32| -> u32 {
+            if h == NONE {
+                NONE
+            } else {
+                (emap[h as usize / 2] << 1) | (h & 1)
+            }
+        };
+        let mut fmap = vec![NONE; self.face_halfedge.len()];
+        for (i, f) in self.faces().enumerate() {
+            fmap[f.index()] = i as u32;
+        }
+        let halfedges = self
+            .halfedges()
+            .map(|h| {
+                let r = &self.halfedges[h.index()];
+                HalfEdgeRecord {
+                    origin: vmap[r.origin as usize],
+                    next: hmap(r.next),
+                    prev: hmap(r.prev),
+                    face: if r.face == NONE {
+                        NONE
+                    } else {
+                        fmap[r.face as usize]
+                    },
+                }
+            })
+            .collect();
+        let map_loop = |l: &LoopStart| match *l {
+            LoopStart::HalfEdge(h) => LoopStart::HalfEdge(HalfEdgeId(hmap(h.0))),
+            LoopStart::Vertex(v) => LoopStart::Vertex(VertexId(vmap[v.index()])),
+        };
+        let nv = positions.len();
+        let (ne, nf) = (self.edge_count(), self.face_count());
+        HalfEdgeMesh {
+            vertex_out: self
+                .vertices()
+                .filter(|v| vmap[v.index()] != NONE)
+                .map(|v| hmap(self.vertex_out[v.index()]))
+                .collect(),
+            positions,
+            halfedges,
+            face_halfedge: self
+                .faces()
+                .map(|f| hmap(self.face_halfedge[f.index()]))
+                .collect(),
+            vertex_dead: vec![false; nv],
+            edge_dead: vec![false; ne],
+            face_dead: vec![false; nf],
+            live_vertices: nv,
+            live_edges: ne,
+            live_faces: nf,
+            face_rings: self
+                .face_rings
+                .iter()
+                .map(|(f, r)| (FaceId(fmap[f.index()]), r.iter().map(map_loop).collect()))
+                .collect(),
+            face_lone_vertex: self
+                .face_lone_vertex
+                .iter()
+                .map(|(f, v)| (FaceId(fmap[f.index()]), VertexId(vmap[v.index()])))
+                .collect(),
+        }
     }
 }

@@ -7,8 +7,13 @@
 //! MEF, edge split, face extrude with its V/E/F bookkeeping) and CGAL's
 //! `Euler_operations.h` inverse pairs.
 //!
-//! All of them keep V − E + F unchanged, so the Euler–Poincaré formula
-//! V − E + F − (L − F) = 2(S − H) holds after every step.
+//! The classical operators of Mäntylä's GWB ("An Introduction to Solid
+//! Modeling") that need faces of several loops are here too: MVFS/KVFS,
+//! KEMR/MEKR and KFMRH/MFKRH (see [`LoopStart`] for how rings and lone
+//! vertices are stored). Each documents its change of V, E, F, rings
+//! (L − F), shells S and holes H; all of them keep the Euler–Poincaré
+//! formula V − E + F − (L − F) = 2(S − H), with each boundary loop counted
+//! as a face of one loop.
 //!
 //! Elements are allocated at the end of the id space and freed by marking
 //! them dead, so an id is never handed out twice (until an explicit
@@ -16,8 +21,9 @@
 //! links, leaving the freed slots dead at the end.
 
 use crate::ids::{EdgeId, FaceId, HalfEdgeId, NONE, VertexId};
-use crate::mesh::{HalfEdgeMesh, HalfEdgeRecord};
+use crate::mesh::{HalfEdgeMesh, HalfEdgeRecord, LoopStart};
 use glam::DVec3;
+use std::collections::BTreeSet;
 
 /// Why an Euler operator refused; the mesh is unchanged.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
@@ -54,6 +60,35 @@ pub enum EulerError {
     SharedNeighbours { a: VertexId, b: VertexId },
     #[error("the half-edges do not delimit a part of {vertex}'s fan")]
     NotInFan { vertex: VertexId },
+    #[error("{face} has inner rings or no edges; the operator needs a plain polygon")]
+    HasRings { face: FaceId },
+    #[error("{vertex} is not the lone vertex of a loop")]
+    NotLoneVertex { vertex: VertexId },
+    #[error(
+        "{face} is not a shell of one vertex and one face (KVFS needs a face whose only loop is a lone vertex)"
+    )]
+    NotVertexFaceShell { face: FaceId },
+    #[error("the corners lie on different faces ({a} and {b})")]
+    DifferentFaces { a: FaceId, b: FaceId },
+    #[error("the corners lie on the same loop of {face}; join them with make_edge_face")]
+    SameLoop { face: FaceId },
+    #[error("the loop is the outer loop of {face}, not one of its rings")]
+    NotARing { face: FaceId },
+    #[error("{face} cannot become a ring of itself")]
+    FaceWithItself { face: FaceId },
+    #[error("faces {a} and {b} share {vertex}; a ring must not touch the face's other loops")]
+    FacesTouch {
+        a: FaceId,
+        b: FaceId,
+        vertex: VertexId,
+    },
+}
+
+/// Which loop of its face something lies on.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+enum Role {
+    Outer,
+    Ring(usize),
 }
 
 /// What [`HalfEdgeMesh::collapse_edge`] needs to be undone by
@@ -168,6 +203,102 @@ impl HalfEdgeMesh {
         }
     }
 
+    // ----- loops of faces (rings and lone vertices) ------------------------------
+
+    /// Which loop of `f` the loop through `l` is (`l` must lie on `f`).
+    /// O(1) for a face without rings, else O(loop length · log).
+    fn loop_role(&self, f: FaceId, l: LoopStart) -> Role {
+        let Some(rings) = self.face_rings.get(&f) else {
+            return Role::Outer;
+        };
+        match l {
+            LoopStart::Vertex(v) => rings
+                .iter()
+                .position(|&r| r == LoopStart::Vertex(v))
+                .map_or(Role::Outer, Role::Ring),
+            LoopStart::HalfEdge(h) => {
+                let on: BTreeSet<HalfEdgeId> = self.loop_from(h).collect();
+                rings
+                    .iter()
+                    .position(|r| matches!(r, LoopStart::HalfEdge(x) if on.contains(x)))
+                    .map_or(Role::Outer, Role::Ring)
+            }
+        }
+    }
+
+    /// Makes `l` the start of loop `role` of `f`.
+    fn set_loop(&mut self, f: FaceId, role: Role, l: LoopStart) {
+        match (role, l) {
+            (Role::Outer, LoopStart::HalfEdge(h)) => {
+                self.face_halfedge[f.index()] = h.0;
+                self.face_lone_vertex.remove(&f);
+            }
+            (Role::Outer, LoopStart::Vertex(v)) => {
+                self.face_halfedge[f.index()] = NONE;
+                self.face_lone_vertex.insert(f, v);
+            }
+            (Role::Ring(i), _) => {
+                self.face_rings.get_mut(&f).expect("a face with rings")[i] = l;
+            }
+        }
+    }
+
+    fn push_ring(&mut self, f: FaceId, l: LoopStart) {
+        self.face_rings.entry(f).or_default().push(l);
+    }
+
+    fn remove_ring(&mut self, f: FaceId, i: usize) -> LoopStart {
+        let rings = self.face_rings.get_mut(&f).expect("a face with rings");
+        let r = rings.remove(i);
+        if rings.is_empty() {
+            self.face_rings.remove(&f);
+        }
+        r
+    }
+
+    /// After the half-edges `old` left a loop of `f`, any loop start on them
+    /// moves to `new` (which lies on the same loop, or is its lone vertex).
+    fn replace_loop_start(&mut self, f: Option<FaceId>, old: &[HalfEdgeId], new: LoopStart) {
+        let Some(f) = f else { return };
+        let fh = self.face_halfedge[f.index()];
+        if fh != NONE && old.contains(&HalfEdgeId(fh)) {
+            self.set_loop(f, Role::Outer, new);
+        }
+        if let Some(rings) = self.face_rings.get_mut(&f) {
+            for r in rings.iter_mut() {
+                if matches!(r, LoopStart::HalfEdge(x) if old.contains(x)) {
+                    *r = new;
+                }
+            }
+        }
+    }
+
+    /// The face of a corner: a live half-edge on a face, or a lone vertex.
+    fn corner_face(&self, c: LoopStart) -> Result<FaceId, EulerError> {
+        match c {
+            LoopStart::HalfEdge(h) => {
+                self.check_halfedge(h)?;
+                self.face(h).ok_or(EulerError::NoFace { halfedge: h })
+            }
+            LoopStart::Vertex(v) => {
+                if !self.is_vertex(v) {
+                    return Err(EulerError::Missing(v.to_string()));
+                }
+                self.lone_vertex_loop(v)
+                    .ok_or(EulerError::NotLoneVertex { vertex: v })
+            }
+        }
+    }
+
+    /// Refuses faces with rings or without edges.
+    fn check_polygon_face(&self, f: FaceId) -> Result<(), EulerError> {
+        if self.face_rings.contains_key(&f) || self.face_lone_vertex.contains_key(&f) {
+            Err(EulerError::HasRings { face: f })
+        } else {
+            Ok(())
+        }
+    }
+
     // ----- MEV / KEV ----------------------------------------------------------
 
     /// MEV, make edge and vertex: a new vertex at `p` joined by a new edge to
@@ -208,13 +339,17 @@ impl HalfEdgeMesh {
     }
 
     /// KEV, kill edge and vertex: removes a dangling edge and its end vertex
-    /// of valence 1. ΔV = −1, ΔE = −1.
+    /// of valence 1. ΔV = −1, ΔE = −1. An edge with both ends of valence 1
+    /// (the wire of a face made by MVFS) leaves the origin of its half-edge 0
+    /// as the lone vertex of its loop.
     ///
-    /// Inverse: [`make_edge_vertex`](Self::make_edge_vertex).
+    /// Inverse: [`make_edge_vertex`](Self::make_edge_vertex), or
+    /// [`make_edge_vertex_lone`](Self::make_edge_vertex_lone) for a wire.
     ///
     /// # Errors
-    /// [`EulerError::Missing`], [`EulerError::NotDangling`],
-    /// [`EulerError::Degenerate`] when the face would keep fewer than 3 sides.
+    /// [`EulerError::Missing`], [`EulerError::NotDangling`] (also for an
+    /// isolated edge without a face), [`EulerError::Degenerate`] when the
+    /// face would keep fewer than 3 sides (and not be a wire).
     pub fn kill_edge_vertex(&mut self, e: EdgeId) -> Result<VertexId, EulerError> {
         self.check_edge(e)?;
         // `out` runs from the kept vertex to the one of valence 1.
@@ -225,21 +360,28 @@ impl HalfEdgeMesh {
             .ok_or(EulerError::NotDangling { edge: e })?;
         let back = out.twin();
         let v = self.origin(out);
+        let face = self.face(out);
         if self.vertex_valence(v) == 1 {
-            return Err(EulerError::NotDangling { edge: e }); // an isolated edge
-        }
-        if self.loop_from(out).count() < 5 {
-            return Err(EulerError::Degenerate); // the face would keep fewer than 3 sides
+            // An isolated edge: in a face it is a wire, which shrinks to v.
+            if face.is_none() {
+                return Err(EulerError::NotDangling { edge: e });
+            }
+            self.replace_loop_start(face, &[out, back], LoopStart::Vertex(v));
+            self.free_edge(e);
+            self.free_vertex(w);
+            self.vertex_out[v.index()] = NONE;
+            return Ok(w);
         }
         let h_in = self.prev(out);
         let n = self.next(back);
-        let face = self.face(out);
-        self.link(h_in, n);
-        if let Some(f) = face {
-            if self.face_halfedge[f.index()] == out.0 || self.face_halfedge[f.index()] == back.0 {
-                self.face_halfedge[f.index()] = h_in.0;
-            }
+        let len = self.loop_from(out).count();
+        // The face would keep fewer than 3 sides, unless what is left is the
+        // single edge of a wire.
+        if len < 5 && !(len == 4 && face.is_some() && n == h_in.twin()) {
+            return Err(EulerError::Degenerate);
         }
+        self.link(h_in, n);
+        self.replace_loop_start(face, &[out, back], LoopStart::HalfEdge(h_in));
         self.free_edge(e);
         self.free_vertex(w);
         self.fix_vertex_halfedge(v, n);
@@ -252,7 +394,9 @@ impl HalfEdgeMesh {
     /// `target(h_b)`, two corners of one face loop, with a new edge. The loop
     /// part after `h_a` keeps the face; the part after `h_b` becomes a new
     /// face. Half-edge 0 of the new edge runs from `target(h_a)` and lies on
-    /// the kept face. ΔE = +1, ΔF = +1.
+    /// the kept face. ΔE = +1, ΔF = +1. On a ring the kept part stays a
+    /// ring and the other part becomes the new face's outer loop (ΔL = +1);
+    /// other rings stay with the kept face.
     ///
     /// Inverse: [`kill_edge_face`](Self::kill_edge_face).
     ///
@@ -280,6 +424,7 @@ impl HalfEdgeMesh {
         if v == u {
             return Err(EulerError::SelfLoop { vertex: v });
         }
+        let role = self.loop_role(f, LoopStart::HalfEdge(h_a));
         let na = self.next(h_a);
         let nb = self.next(h_b);
         let n = self.alloc_edge(v, u);
@@ -289,7 +434,8 @@ impl HalfEdgeMesh {
         self.link(h_b, t);
         self.link(t, na);
         self.set_face(n, Some(f));
-        self.face_halfedge[f.index()] = n.0;
+        // The kept part keeps the loop's place (outer loop or ring).
+        self.set_loop(f, role, LoopStart::HalfEdge(n));
         let g = self.alloc_face(t);
         let mut h = t;
         loop {
@@ -306,6 +452,11 @@ impl HalfEdgeMesh {
     /// different faces; the face of half-edge 0 absorbs the face of half-edge
     /// 1. ΔE = −1, ΔF = −1.
     ///
+    /// The two loops become one (ΔL = −1), which is the outer loop when both
+    /// were outer loops, else a ring; the absorbed face's other loops become
+    /// rings (its outer loop the outer one when the kept face's loop was a
+    /// ring inside it).
+    ///
     /// Inverse: [`make_edge_face`](Self::make_edge_face).
     ///
     /// # Errors
@@ -321,21 +472,55 @@ impl HalfEdgeMesh {
             return Err(EulerError::SameFace { edge: e });
         }
         if self
-            .face_halfedges(f0)
+            .face_all_halfedges(f0)
             .any(|h| h != h0 && self.face(h.twin()) == Some(f1))
         {
             return Err(EulerError::SharedEdges { a: f0, b: f1 });
         }
         let (a, b) = (self.origin(h0), self.origin(h1));
         let (p0, n0, p1, n1) = (self.prev(h0), self.next(h0), self.prev(h1), self.next(h1));
+        let rings = self.face_rings.contains_key(&f0) || self.face_rings.contains_key(&f1);
+        let (role0, role1) = (
+            self.loop_role(f0, LoopStart::HalfEdge(h0)),
+            self.loop_role(f1, LoopStart::HalfEdge(h1)),
+        );
+        let outer1 = self.outer_loop(f1);
         let mut h = n1;
         while h != h1 {
             self.set_face(h, Some(f0));
             h = self.next(h);
         }
+        if rings {
+            let others: Vec<HalfEdgeId> = self
+                .face_all_halfedges(f1)
+                .filter(|&x| self.face(x) == Some(f1) && x != h1)
+                .collect();
+            for x in others {
+                self.set_face(x, Some(f0));
+            }
+        }
         self.link(p0, n1);
         self.link(p1, n0);
-        self.face_halfedge[f0.index()] = p0.0;
+        let merged = LoopStart::HalfEdge(p0);
+        let mut rings1 = self.face_rings.remove(&f1).unwrap_or_default();
+        self.face_lone_vertex.remove(&f1);
+        match (role0, role1) {
+            (Role::Outer, Role::Outer) => self.face_halfedge[f0.index()] = p0.0,
+            (Role::Ring(i), Role::Outer) => self.set_loop(f0, Role::Ring(i), merged),
+            (Role::Outer, Role::Ring(j)) => {
+                rings1.remove(j);
+                self.set_loop(f0, Role::Outer, outer1);
+                self.push_ring(f0, merged);
+            }
+            (Role::Ring(i), Role::Ring(j)) => {
+                rings1.remove(j);
+                self.set_loop(f0, Role::Ring(i), merged);
+                self.push_ring(f0, outer1);
+            }
+        }
+        for r in rings1 {
+            self.push_ring(f0, r);
+        }
         self.free_edge(e);
         self.free_face(f1);
         self.fix_vertex_halfedge(a, n1);
@@ -432,14 +617,8 @@ impl HalfEdgeMesh {
         }
         let (tk, tx) = (hk.twin(), hx.twin());
         let (nx, ptx) = (self.next(hx), self.prev(tx));
-        for f in [self.face(hx), self.face(tx)].into_iter().flatten() {
-            let fh = self.face_halfedge[f.index()];
-            if fh == hx.0 {
-                self.face_halfedge[f.index()] = hk.0;
-            } else if fh == tx.0 {
-                self.face_halfedge[f.index()] = tk.0;
-            }
-        }
+        self.replace_loop_start(self.face(hx), &[hx], LoopStart::HalfEdge(hk));
+        self.replace_loop_start(self.face(tx), &[tx], LoopStart::HalfEdge(tk));
         self.set_origin(tk, y);
         if nx == tx {
             // y had valence 1: the joined edge dangles.
@@ -531,7 +710,9 @@ impl HalfEdgeMesh {
             return Err(EulerError::Degenerate);
         }
         for x in [h, t] {
-            if apex(x).is_some() {
+            if let Some(f) = self.face(x).filter(|_| apex(x).is_some()) {
+                // The triangle's face disappears: it must have no other loop.
+                self.check_polygon_face(f)?;
                 let (x1, x2) = (self.next(x), self.next(self.next(x)));
                 if self.is_boundary_halfedge(x1.twin()) && self.is_boundary_halfedge(x2.twin()) {
                     return Err(EulerError::Degenerate);
@@ -583,11 +764,7 @@ impl HalfEdgeMesh {
         self.link(ph, nh);
         self.link(pt, nt);
         for (x, replacement) in [(h, nh), (t, nt)] {
-            if let Some(f) = self.face(x) {
-                if self.face_halfedge[f.index()] == x.0 {
-                    self.face_halfedge[f.index()] = replacement.0;
-                }
-            }
+            self.replace_loop_start(self.face(x), &[x], LoopStart::HalfEdge(replacement));
         }
         self.free_edge(h.edge());
         self.free_vertex(b);
@@ -605,11 +782,7 @@ impl HalfEdgeMesh {
             self.link(h1, on);
             self.link(op, h1);
             self.set_face(h1, self.face(o0));
-            if let Some(fo) = self.face(o0) {
-                if self.face_halfedge[fo.index()] == o0.0 {
-                    self.face_halfedge[fo.index()] = h1.0;
-                }
-            }
+            self.replace_loop_start(self.face(o0), &[o0], LoopStart::HalfEdge(h1));
             // h1 runs from the triangle's apex to `a`; `a` is fixed below.
             let apex_vertex = self.origin(h1);
             self.free_edge(h0.edge());
@@ -700,12 +873,18 @@ impl HalfEdgeMesh {
     ///
     /// # Errors
     /// [`EulerError::Missing`], [`EulerError::BoundaryEdge`] when the face
-    /// touches a boundary (at an edge or a vertex).
+    /// touches a boundary (at an edge or a vertex), [`EulerError::HasRings`]
+    /// for a face with rings or without edges, [`EulerError::Degenerate`] for
+    /// a wire (a loop of fewer than three edges).
     pub fn make_hole(&mut self, f: FaceId) -> Result<HalfEdgeId, EulerError> {
         if !self.is_face(f) {
             return Err(EulerError::Missing(f.to_string()));
         }
+        self.check_polygon_face(f)?;
         let loop_: Vec<HalfEdgeId> = self.face_halfedges(f).collect();
+        if loop_.len() < 3 {
+            return Err(EulerError::Degenerate);
+        }
         if let Some(&h) = loop_.iter().find(|&&h| {
             self.is_boundary_vertex(self.origin(h)) || self.is_boundary_halfedge(h.twin())
         }) {
@@ -761,6 +940,312 @@ impl HalfEdgeMesh {
         Ok(f)
     }
 
+    // ----- MVFS / KVFS -----------------------------------------------------------
+
+    /// MVFS, make vertex, face and shell: a new shell of one vertex at `p`
+    /// and one face whose only loop is that lone vertex (no edges; the face's
+    /// [`face_halfedge`](Self::face_halfedge) is invalid and
+    /// [`outer_loop`](Self::outer_loop) is [`LoopStart::Vertex`]). Grow it
+    /// with [`make_edge_vertex_lone`](Self::make_edge_vertex_lone).
+    /// ΔV = +1, ΔF = +1, ΔL = +1, ΔS = +1.
+    ///
+    /// Inverse: [`kill_vertex_face_shell`](Self::kill_vertex_face_shell).
+    ///
+    /// # Errors
+    /// [`EulerError::NonFinite`].
+    pub fn make_vertex_face_shell(&mut self, p: DVec3) -> Result<(VertexId, FaceId), EulerError> {
+        if !p.is_finite() {
+            return Err(EulerError::NonFinite);
+        }
+        let v = self.alloc_vertex(p);
+        let f = self.alloc_face(HalfEdgeId(NONE));
+        self.face_lone_vertex.insert(f, v);
+        Ok((v, f))
+    }
+
+    /// KVFS, kill vertex, face and shell: removes a face whose only loop is a
+    /// lone vertex, and that vertex. ΔV = −1, ΔF = −1, ΔL = −1, ΔS = −1.
+    ///
+    /// Inverse: [`make_vertex_face_shell`](Self::make_vertex_face_shell).
+    ///
+    /// # Errors
+    /// [`EulerError::Missing`], [`EulerError::NotVertexFaceShell`] when the
+    /// face has edges or rings.
+    pub fn kill_vertex_face_shell(&mut self, f: FaceId) -> Result<VertexId, EulerError> {
+        if !self.is_face(f) {
+            return Err(EulerError::Missing(f.to_string()));
+        }
+        let Some(v) = self.lone_vertex_face(f) else {
+            return Err(EulerError::NotVertexFaceShell { face: f });
+        };
+        if self.face_rings.contains_key(&f) {
+            return Err(EulerError::NotVertexFaceShell { face: f });
+        }
+        self.face_lone_vertex.remove(&f);
+        self.free_face(f);
+        self.free_vertex(v);
+        Ok(v)
+    }
+
+    /// MEV at a lone vertex: a new vertex at `p` joined to the lone vertex
+    /// `v` of a loop (made by MVFS or left by KEMR); the loop becomes the
+    /// wire `v → w → v`. Half-edge 0 of the new edge runs from `v`.
+    /// ΔV = +1, ΔE = +1.
+    ///
+    /// Inverse: [`kill_edge_vertex`](Self::kill_edge_vertex).
+    ///
+    /// # Errors
+    /// [`EulerError::Missing`], [`EulerError::NotLoneVertex`],
+    /// [`EulerError::NonFinite`].
+    pub fn make_edge_vertex_lone(
+        &mut self,
+        v: VertexId,
+        p: DVec3,
+    ) -> Result<(EdgeId, VertexId), EulerError> {
+        let f = self.corner_face(LoopStart::Vertex(v))?;
+        if !p.is_finite() {
+            return Err(EulerError::NonFinite);
+        }
+        let role = self.loop_role(f, LoopStart::Vertex(v));
+        let w = self.alloc_vertex(p);
+        let h = self.alloc_edge(v, w);
+        let t = h.twin();
+        self.set_face(h, Some(f));
+        self.set_face(t, Some(f));
+        self.link(h, t);
+        self.link(t, h);
+        self.vertex_out[v.index()] = h.0;
+        self.vertex_out[w.index()] = t.0;
+        self.set_loop(f, role, LoopStart::HalfEdge(h));
+        Ok((h.edge(), w))
+    }
+
+    // ----- KEMR / MEKR -----------------------------------------------------------
+
+    /// KEMR, kill edge, make ring: removes the edge of `h` when both its
+    /// half-edges lie on the same loop of one face. That loop falls apart in
+    /// two: the part after `twin(h)` (through `origin(h)`) keeps the loop's
+    /// place (outer loop or ring), the part after `h` (through `target(h)`)
+    /// becomes a new ring of the face. A part without edges is a lone
+    /// vertex. ΔE = −1, ΔL = +1 (rings +1).
+    ///
+    /// Returns the corners `(kept, ring)` that
+    /// [`make_edge_kill_ring`](Self::make_edge_kill_ring) takes to undo it.
+    ///
+    /// # Errors
+    /// [`EulerError::Missing`], [`EulerError::NoFace`] on a boundary loop,
+    /// [`EulerError::NotSameLoop`] when the half-edges lie on different loops,
+    /// [`EulerError::Degenerate`] when a part would be a loop of two
+    /// different edges.
+    pub fn kill_edge_make_ring(
+        &mut self,
+        h: HalfEdgeId,
+    ) -> Result<(LoopStart, LoopStart), EulerError> {
+        self.check_halfedge(h)?;
+        let f = self.face(h).ok_or(EulerError::NoFace { halfedge: h })?;
+        let t = h.twin();
+        if !self.loop_from(h).any(|x| x == t) {
+            return Err(EulerError::NotSameLoop { a: h, b: t });
+        }
+        let role = self.loop_role(f, LoopStart::HalfEdge(h));
+        let (a, b) = (self.origin(h), self.target(h));
+        let (ph, nh, pt, nt) = (self.prev(h), self.next(h), self.prev(t), self.next(t));
+        // Each part must be a polygon, a wire of one edge, or empty.
+        for (first, stop) in [(nh, t), (nt, h)] {
+            let len = self.loop_from(first).take_while(|&x| x != stop).count();
+            if len == 1 || (len == 2 && self.next(first) != first.twin()) {
+                return Err(EulerError::Degenerate);
+            }
+        }
+        let ring = if nh == t {
+            LoopStart::Vertex(b)
+        } else {
+            self.link(pt, nh);
+            LoopStart::HalfEdge(nh)
+        };
+        let kept = if nt == h {
+            LoopStart::Vertex(a)
+        } else {
+            self.link(ph, nt);
+            LoopStart::HalfEdge(nt)
+        };
+        self.free_edge(h.edge());
+        for (v, l) in [(a, kept), (b, ring)] {
+            match l {
+                LoopStart::HalfEdge(x) => self.fix_vertex_halfedge(v, x),
+                LoopStart::Vertex(_) => self.vertex_out[v.index()] = NONE,
+            }
+        }
+        self.set_loop(f, role, kept);
+        self.push_ring(f, ring);
+        Ok((kept, ring))
+    }
+
+    /// MEKR, make edge, kill ring: joins corner `a` of one loop of a face to
+    /// corner `b` of one of its rings with a new edge (half-edge 0 from `a`'s
+    /// vertex to `b`'s), inserted before each corner's half-edge (a lone
+    /// vertex is the whole loop). The ring merges into `a`'s loop, which
+    /// keeps its place. ΔE = +1, ΔL = −1 (rings −1).
+    ///
+    /// Inverse: [`kill_edge_make_ring`](Self::kill_edge_make_ring) on
+    /// half-edge 0 of the returned edge.
+    ///
+    /// # Errors
+    /// [`EulerError::Missing`], [`EulerError::NoFace`],
+    /// [`EulerError::NotLoneVertex`] for a vertex that is not a loop's lone
+    /// vertex, [`EulerError::DifferentFaces`], [`EulerError::SameLoop`],
+    /// [`EulerError::NotARing`] when `b` is on the outer loop,
+    /// [`EulerError::SelfLoop`] when the loops share the corner's vertex.
+    pub fn make_edge_kill_ring(
+        &mut self,
+        a: LoopStart,
+        b: LoopStart,
+    ) -> Result<EdgeId, EulerError> {
+        let f = self.corner_face(a)?;
+        let fb = self.corner_face(b)?;
+        if f != fb {
+            return Err(EulerError::DifferentFaces { a: f, b: fb });
+        }
+        let (role_a, role_b) = (self.loop_role(f, a), self.loop_role(f, b));
+        if role_a == role_b {
+            return Err(EulerError::SameLoop { face: f });
+        }
+        let Role::Ring(j) = role_b else {
+            return Err(EulerError::NotARing { face: f });
+        };
+        let (va, vb) = (a.vertex(self), b.vertex(self));
+        if va == vb {
+            return Err(EulerError::SelfLoop { vertex: va });
+        }
+        let n = self.alloc_edge(va, vb);
+        let t = n.twin();
+        self.set_face(n, Some(f));
+        self.set_face(t, Some(f));
+        match b {
+            LoopStart::HalfEdge(hb) => {
+                let pb = self.prev(hb);
+                self.link(n, hb);
+                self.link(pb, t);
+            }
+            LoopStart::Vertex(_) => {
+                self.link(n, t);
+                self.vertex_out[vb.index()] = t.0;
+            }
+        }
+        match a {
+            LoopStart::HalfEdge(ha) => {
+                let pa = self.prev(ha);
+                self.link(pa, n);
+                self.link(t, ha);
+            }
+            LoopStart::Vertex(_) => {
+                self.link(t, n);
+                self.vertex_out[va.index()] = n.0;
+            }
+        }
+        self.set_loop(f, role_a, LoopStart::HalfEdge(n));
+        self.remove_ring(f, j);
+        Ok(n.edge())
+    }
+
+    // ----- KFMRH / MFKRH ---------------------------------------------------------
+
+    /// KFMRH, kill face, make ring and hole: face `kill` disappears and its
+    /// loop becomes an inner ring of face `keep` (Mäntylä's way to make a
+    /// through hole: `kill` lies inside `keep`, facing the other way, as the
+    /// bottom of a hole swept through a solid; the geometry is the caller's).
+    /// ΔF = −1, ΔL = 0 (rings +1), and ΔH = +1 when both faces are in one
+    /// shell, ΔS = −1 when the operator glues two shells.
+    ///
+    /// Returns the new ring.
+    ///
+    /// Inverse: [`make_face_kill_ring_hole`](Self::make_face_kill_ring_hole).
+    ///
+    /// # Errors
+    /// [`EulerError::Missing`], [`EulerError::FaceWithItself`],
+    /// [`EulerError::HasRings`] when `kill` has rings,
+    /// [`EulerError::FacesTouch`] when the faces share a vertex.
+    pub fn kill_face_make_ring_hole(
+        &mut self,
+        keep: FaceId,
+        kill: FaceId,
+    ) -> Result<LoopStart, EulerError> {
+        for f in [keep, kill] {
+            if !self.is_face(f) {
+                return Err(EulerError::Missing(f.to_string()));
+            }
+        }
+        if keep == kill {
+            return Err(EulerError::FaceWithItself { face: keep });
+        }
+        if self.face_rings.contains_key(&kill) {
+            return Err(EulerError::HasRings { face: kill });
+        }
+        let ring = self.outer_loop(kill);
+        let mut mine: BTreeSet<VertexId> = self
+            .face_all_halfedges(keep)
+            .map(|h| self.origin(h))
+            .collect();
+        mine.extend(self.face_loops(keep).filter_map(|l| match l {
+            LoopStart::Vertex(v) => Some(v),
+            LoopStart::HalfEdge(_) => None,
+        }));
+        let theirs: Vec<VertexId> = match ring {
+            LoopStart::Vertex(v) => vec![v],
+            LoopStart::HalfEdge(h) => self.loop_from(h).map(|x| self.origin(x)).collect(),
+        };
+        if let Some(&vertex) = theirs.iter().find(|v| mine.contains(v)) {
+            return Err(EulerError::FacesTouch {
+                a: keep,
+                b: kill,
+                vertex,
+            });
+        }
+        let hs: Vec<HalfEdgeId> = self.loop_halfedges(ring).collect();
+        for h in hs {
+            self.set_face(h, Some(keep));
+        }
+        self.face_lone_vertex.remove(&kill);
+        self.free_face(kill);
+        self.push_ring(keep, ring);
+        Ok(ring)
+    }
+
+    /// MFKRH, make face, kill ring and hole: the ring through `ring` (any
+    /// corner of it, or its lone vertex) leaves its face and becomes the
+    /// outer loop of a new face. ΔF = +1, ΔL = 0 (rings −1), and ΔH = −1 or
+    /// ΔS = +1 (when the ring was all that held another shell).
+    ///
+    /// Inverse: [`kill_face_make_ring_hole`](Self::kill_face_make_ring_hole).
+    ///
+    /// # Errors
+    /// [`EulerError::Missing`], [`EulerError::NoFace`],
+    /// [`EulerError::NotLoneVertex`], [`EulerError::NotARing`] when the loop
+    /// is its face's outer loop.
+    pub fn make_face_kill_ring_hole(&mut self, ring: LoopStart) -> Result<FaceId, EulerError> {
+        let f = self.corner_face(ring)?;
+        let Role::Ring(j) = self.loop_role(f, ring) else {
+            return Err(EulerError::NotARing { face: f });
+        };
+        let start = self.remove_ring(f, j);
+        let g = match start {
+            LoopStart::HalfEdge(h) => {
+                let g = self.alloc_face(h);
+                let hs: Vec<HalfEdgeId> = self.loop_from(h).collect();
+                for x in hs {
+                    self.set_face(x, Some(g));
+                }
+                g
+            }
+            LoopStart::Vertex(v) => {
+                let g = self.alloc_face(HalfEdgeId(NONE));
+                self.face_lone_vertex.insert(g, v);
+                g
+            }
+        };
+        Ok(g)
+    }
+
     // ----- composite ------------------------------------------------------------
 
     /// Extrudes one face along `offset` (seed 004's face extrude): each corner
@@ -773,9 +1258,13 @@ impl HalfEdgeMesh {
     /// [`kill_edge_vertex`](Self::kill_edge_vertex) on each corner edge.
     ///
     /// # Errors
-    /// [`EulerError::Missing`], [`EulerError::NonFinite`].
+    /// [`EulerError::Missing`], [`EulerError::NonFinite`],
+    /// [`EulerError::HasRings`] for a face with rings or without edges,
+    /// [`EulerError::Degenerate`] for a wire of one edge, or a loop that
+    /// passes a vertex twice where the side faces cannot be made.
     ///
-    /// Complexity: O(n²) for an n-gon (loop walks in MEF).
+    /// Complexity: O(n²) for an n-gon (loop walks in MEF); a loop that passes
+    /// a vertex twice is extruded on a copy first.
     pub fn extrude_face(&mut self, f: FaceId, offset: DVec3) -> Result<Vec<FaceId>, EulerError> {
         if !self.is_face(f) {
             return Err(EulerError::Missing(f.to_string()));
@@ -783,6 +1272,26 @@ impl HalfEdgeMesh {
         if !offset.is_finite() {
             return Err(EulerError::NonFinite);
         }
+        self.check_polygon_face(f)?;
+        let mut corners: Vec<VertexId> = self.face_vertices(f).collect();
+        if corners.len() < 3 {
+            return Err(EulerError::Degenerate); // the single edge of a wire
+        }
+        corners.sort_unstable();
+        if corners.windows(2).any(|w| w[0] == w[1]) {
+            let mut trial = self.clone();
+            let sides = trial.extrude_face_unchecked(f, offset)?;
+            *self = trial;
+            return Ok(sides);
+        }
+        self.extrude_face_unchecked(f, offset)
+    }
+
+    fn extrude_face_unchecked(
+        &mut self,
+        f: FaceId,
+        offset: DVec3,
+    ) -> Result<Vec<FaceId>, EulerError> {
         let loop_: Vec<HalfEdgeId> = self.face_halfedges(f).collect();
         // Spikes out of every corner: after each original half-edge h (ending at target(h)).
         let mut spikes = Vec::with_capacity(loop_.len());
@@ -802,9 +1311,9 @@ impl HalfEdgeMesh {
         let mut h_a = spikes[0];
         for k in 1..=spikes.len() {
             let h_b = spikes[k % spikes.len()];
-            let (e, g) = self
-                .make_edge_face(h_a, h_b)
-                .expect("corners of an extrusion loop are far enough apart");
+            // Corners of a simple loop are always far enough apart; a wire's
+            // may not be (its copy is dropped then).
+            let (e, g) = self.make_edge_face(h_a, h_b)?;
             sides.push(g);
             h_a = e.halfedge(0);
         }
@@ -819,12 +1328,15 @@ impl HalfEdgeMesh {
             && self.vertex_dead == other.vertex_dead
             && self.edge_dead == other.edge_dead
             && self.face_dead == other.face_dead
+            && self.face_rings == other.face_rings
+            && self.face_lone_vertex == other.face_lone_vertex
     }
 
     /// Structural equality: the same live vertices at the same positions, the
     /// same live edges with the same half-edge links and faces, the same live
-    /// faces. Ignores free choices (which half-edge a vertex or face stores)
-    /// and trailing dead slots: what "restores the mesh exactly" means.
+    /// faces with the same outer loops and rings. Ignores free choices (which
+    /// half-edge a vertex or loop starts at, the order of rings) and trailing
+    /// dead slots: what "restores the mesh exactly" means.
     pub fn same_as(&self, other: &HalfEdgeMesh) -> bool {
         let live = |m: &HalfEdgeMesh| {
             (
@@ -836,10 +1348,32 @@ impl HalfEdgeMesh {
         if live(self) != live(other) {
             return false;
         }
+        let loops_of: BTreeSet<FaceId> = [self, other]
+            .iter()
+            .flat_map(|m| m.face_rings.keys().chain(m.face_lone_vertex.keys()))
+            .copied()
+            .collect();
         self.vertices()
             .all(|v| self.position(v) == other.position(v))
             && self
                 .halfedges()
                 .all(|h| self.halfedges[h.index()] == other.halfedges[h.index()])
+            && loops_of
+                .into_iter()
+                .all(|f| self.canonical_loops(f) == other.canonical_loops(f))
+    }
+
+    /// A face's loops named by their smallest half-edge (or lone vertex):
+    /// the outer loop, then the sorted rings.
+    fn canonical_loops(&self, f: FaceId) -> (LoopStart, Vec<LoopStart>) {
+        let canon = |l: LoopStart| match l {
+            LoopStart::HalfEdge(h) => {
+                LoopStart::HalfEdge(self.loop_from(h).min().expect("a loop has a half-edge"))
+            }
+            v => v,
+        };
+        let mut rings: Vec<LoopStart> = self.face_rings(f).iter().map(|&r| canon(r)).collect();
+        rings.sort();
+        (canon(self.outer_loop(f)), rings)
     }
 }

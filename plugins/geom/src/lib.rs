@@ -22,7 +22,7 @@ pub use build::{BuildError, RepairReport};
 pub use euler::EulerError;
 pub use glam::{DMat4, DQuat, DVec2, DVec3};
 pub use ids::{EdgeId, ElementId, FaceId, HalfEdgeId, VertexId};
-pub use mesh::{HalfEdgeMesh, MeshData, MeshStats};
+pub use mesh::{HalfEdgeMesh, LoopStart, MeshData, MeshStats};
 pub use modeling::ModelingError;
 pub use primitives::{Primitive, PrimitiveError};
 pub use validate::{ValidationError, Violation};

@@ -13,6 +13,7 @@
 use crate::ids::{EdgeId, FaceId, HalfEdgeId, NONE, VertexId};
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
 
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 pub(crate) struct HalfEdgeRecord {
@@ -22,11 +23,49 @@ pub(crate) struct HalfEdgeRecord {
     pub face: u32,
 }
 
+/// One loop of a face (Mäntylä's Loop), entered at a corner: the half-edge
+/// leaving that corner, or, for a loop without edges (the one vertex of a
+/// shell made by [`make_vertex_face_shell`](HalfEdgeMesh::make_vertex_face_shell)),
+/// its lone vertex. As an operator argument it names the corner at the
+/// half-edge's origin, between `prev(h)` and `h`.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
+pub enum LoopStart {
+    HalfEdge(HalfEdgeId),
+    Vertex(VertexId),
+}
+
+impl LoopStart {
+    /// The vertex at this corner.
+    pub fn vertex(self, mesh: &HalfEdgeMesh) -> VertexId {
+        match self {
+            LoopStart::HalfEdge(h) => mesh.origin(h),
+            LoopStart::Vertex(v) => v,
+        }
+    }
+}
+
+impl std::fmt::Display for LoopStart {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            LoopStart::HalfEdge(h) => write!(f, "{h}"),
+            LoopStart::Vertex(v) => write!(f, "lone {v}"),
+        }
+    }
+}
+
 /// A polygon mesh in half-edge form with `f64` positions.
 ///
 /// Dead (removed) elements keep their slots so ids stay stable; iterate live
 /// elements with [`vertices`](Self::vertices), [`edges`](Self::edges),
 /// [`faces`](Self::faces).
+///
+/// A face has one outer loop and, rarely, inner rings (Mäntylä's GWB faces
+/// with several loops, made by [`kill_edge_make_ring`](Self::kill_edge_make_ring)
+/// and [`kill_face_make_ring_hole`](Self::kill_face_make_ring_hole)). The
+/// outer loop starts at `face_halfedge`; the rings live in a side table that
+/// is empty for ordinary meshes. A face whose outer loop has no edge (made by
+/// MVFS) stores `NONE` as its half-edge and its lone vertex in a second side
+/// table. Every half-edge of a face lies on exactly one of its loops.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(try_from = "MeshData", into = "MeshData")]
 pub struct HalfEdgeMesh {
@@ -40,6 +79,12 @@ pub struct HalfEdgeMesh {
     pub(crate) live_vertices: usize,
     pub(crate) live_edges: usize,
     pub(crate) live_faces: usize,
+    /// Inner rings by face; no entry (never an empty list) for a face without
+    /// rings, so meshes without rings pay nothing.
+    pub(crate) face_rings: BTreeMap<FaceId, Vec<LoopStart>>,
+    /// Faces whose outer loop is a lone vertex (no edges); their
+    /// `face_halfedge` is `NONE`.
+    pub(crate) face_lone_vertex: BTreeMap<FaceId, VertexId>,
 }
 
 /// Counts and topological invariants of a mesh, as `hedra info` prints them.
@@ -49,16 +94,26 @@ pub struct MeshStats {
     pub edges: usize,
     pub faces: usize,
     pub boundary_loops: usize,
-    /// Connected components (shells), isolated vertices included.
+    /// Inner rings of faces (loops L − F); zero for ordinary meshes.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub rings: usize,
+    /// Connected components (shells), isolated vertices included; the loops
+    /// of one face belong to one shell.
     pub shells: usize,
     /// V − E + F.
     pub euler_characteristic: i64,
-    /// From χ = 2S − 2g − b, over components; `None` when the mesh is invalid.
+    /// Handles H from the Euler–Poincaré formula V − E + F − (L − F) =
+    /// 2(S − H), each boundary loop counted as a face of one loop (so
+    /// χ = 2S − 2g − b without rings); `None` when the mesh is invalid.
     pub genus: Option<i64>,
     pub closed: bool,
     pub manifold: bool,
     /// `None` when [`HalfEdgeMesh::validate`] passed, else its first problems.
     pub validation: Result<(), String>,
+}
+
+fn is_zero(x: &usize) -> bool {
+    *x == 0
 }
 
 impl HalfEdgeMesh {
@@ -185,7 +240,10 @@ impl HalfEdgeMesh {
     pub fn is_isolated_vertex(&self, v: VertexId) -> bool {
         self.vertex_out[v.index()] == NONE
     }
-    /// One half-edge of the face's loop.
+    /// One half-edge of the face's outer loop. For a face without edges
+    /// (see [`lone_vertex_face`](Self::lone_vertex_face)) this is an invalid
+    /// id (`u32::MAX`); use [`outer_loop`](Self::outer_loop) where such faces
+    /// may occur.
     #[inline]
     pub fn face_halfedge(&self, f: FaceId) -> HalfEdgeId {
         HalfEdgeId(self.face_halfedge[f.index()])
@@ -200,9 +258,99 @@ impl HalfEdgeMesh {
         [self.face(e.halfedge(0)), self.face(e.halfedge(1))]
     }
 
-    /// Half-edges of a face loop, starting at [`face_halfedge`](Self::face_halfedge).
+    /// Half-edges of a face's outer loop, starting at
+    /// [`face_halfedge`](Self::face_halfedge); none for a face without edges.
+    /// Inner rings are not included: see [`face_loops`](Self::face_loops).
     pub fn face_halfedges(&self, f: FaceId) -> LoopIter<'_> {
+        if self.face_halfedge[f.index()] == NONE {
+            return LoopIter {
+                mesh: self,
+                start: HalfEdgeId(NONE),
+                current: None,
+                guard: 0,
+            };
+        }
         self.loop_from(self.face_halfedge(f))
+    }
+
+    // ----- loops and rings ---------------------------------------------------
+
+    /// True when some face has an inner ring.
+    pub fn has_rings(&self) -> bool {
+        !self.face_rings.is_empty()
+    }
+    /// True when some face has no edges (its outer loop is a lone vertex).
+    pub fn has_edgeless_faces(&self) -> bool {
+        !self.face_lone_vertex.is_empty()
+    }
+    /// The first face that is not a plain polygon (one loop of half-edges):
+    /// a face with rings or without edges. Code that triangulates, refines
+    /// or exports faces as polygons refuses a mesh where this is `Some`.
+    pub fn first_non_polygon_face(&self) -> Option<FaceId> {
+        let a = self.face_rings.keys().next().copied();
+        let b = self.face_lone_vertex.keys().next().copied();
+        match (a, b) {
+            (Some(a), Some(b)) => Some(a.min(b)),
+            (a, b) => a.or(b),
+        }
+    }
+    /// True when the face is a plain polygon: its only loop has edges.
+    pub fn is_polygon_face(&self, f: FaceId) -> bool {
+        self.face_halfedge[f.index()] != NONE && !self.face_rings.contains_key(&f)
+    }
+    /// The inner rings of a face (empty for almost every face).
+    pub fn face_rings(&self, f: FaceId) -> &[LoopStart] {
+        self.face_rings.get(&f).map_or(&[], Vec::as_slice)
+    }
+    /// Number of inner rings over all faces (L − F).
+    pub fn ring_count(&self) -> usize {
+        self.face_rings.values().map(Vec::len).sum()
+    }
+    /// Number of loops L: one outer loop per face plus the rings.
+    pub fn loop_count(&self) -> usize {
+        self.live_faces + self.ring_count()
+    }
+    /// The lone vertex of a face without edges (made by MVFS), else `None`.
+    pub fn lone_vertex_face(&self, f: FaceId) -> Option<VertexId> {
+        self.face_lone_vertex.get(&f).copied()
+    }
+    /// The outer loop of a face.
+    pub fn outer_loop(&self, f: FaceId) -> LoopStart {
+        match self.face_lone_vertex.get(&f) {
+            Some(&v) => LoopStart::Vertex(v),
+            None => LoopStart::HalfEdge(self.face_halfedge(f)),
+        }
+    }
+    /// Every loop of a face: the outer loop first, then the rings.
+    pub fn face_loops(&self, f: FaceId) -> impl Iterator<Item = LoopStart> + '_ {
+        std::iter::once(self.outer_loop(f)).chain(self.face_rings(f).iter().copied())
+    }
+    /// Half-edges of one loop (none for a lone vertex).
+    pub fn loop_halfedges(&self, l: LoopStart) -> LoopIter<'_> {
+        match l {
+            LoopStart::HalfEdge(h) => self.loop_from(h),
+            LoopStart::Vertex(_) => LoopIter {
+                mesh: self,
+                start: HalfEdgeId(NONE),
+                current: None,
+                guard: 0,
+            },
+        }
+    }
+    /// Half-edges of every loop of a face (outer loop first).
+    pub fn face_all_halfedges(&self, f: FaceId) -> impl Iterator<Item = HalfEdgeId> + '_ {
+        self.face_loops(f).flat_map(|l| self.loop_halfedges(l))
+    }
+    /// The face and loop a lone vertex belongs to (`None` for a vertex with
+    /// edges or a free isolated vertex). O(number of edge-less loops).
+    pub fn lone_vertex_loop(&self, v: VertexId) -> Option<FaceId> {
+        if let Some((&f, _)) = self.face_lone_vertex.iter().find(|(_, x)| **x == v) {
+            return Some(f);
+        }
+        self.face_rings
+            .iter()
+            .find(|(_, rings)| rings.contains(&LoopStart::Vertex(v)))
+            .map(|(&f, _)| f)
     }
     /// Half-edges of the loop that contains `h` (a face or a boundary loop).
     pub fn loop_from(&self, h: HalfEdgeId) -> LoopIter<'_> {
@@ -295,6 +443,7 @@ impl HalfEdgeMesh {
 
     /// Area-weighted face normal (not normalised) by Newell's method, which is
     /// exact for planar polygons and robust for non-planar ones.
+    /// Inner rings, oriented the other way round, subtract their area.
     pub fn face_area_vector(&self, f: FaceId) -> DVec3 {
         let mut n = DVec3::ZERO;
         for h in self.face_halfedges(f) {
@@ -302,14 +451,25 @@ impl HalfEdgeMesh {
             let b = self.position(self.target(h));
             n += a.cross(b);
         }
+        for &r in self.face_rings(f) {
+            for h in self.loop_halfedges(r) {
+                n += self
+                    .position(self.origin(h))
+                    .cross(self.position(self.target(h)));
+            }
+        }
         n * 0.5
     }
     /// Unit face normal; zero for a degenerate face.
     pub fn face_normal(&self, f: FaceId) -> DVec3 {
         self.face_area_vector(f).normalize_or_zero()
     }
-    /// Average of the face's vertices.
+    /// Average of the face's vertices (of its outer loop; a face without
+    /// edges is at its lone vertex).
     pub fn face_centroid(&self, f: FaceId) -> DVec3 {
+        if let Some(v) = self.lone_vertex_face(f) {
+            return self.position(v);
+        }
         let mut sum = DVec3::ZERO;
         let mut n = 0.0;
         for v in self.face_vertices(f) {
@@ -378,7 +538,38 @@ impl HalfEdgeMesh {
             }
             count += 1;
         }
-        (comp, count)
+        if self.face_rings.is_empty() {
+            return (comp, count);
+        }
+        // The loops of one face belong to one shell (a ring may be a loop of
+        // another component glued in by KFMRH): merge their components.
+        let mut parent: Vec<usize> = (0..count).collect();
+        fn root(parent: &mut [usize], mut x: usize) -> usize {
+            while parent[x] != x {
+                parent[x] = parent[parent[x]];
+                x = parent[x];
+            }
+            x
+        }
+        for (&f, rings) in &self.face_rings {
+            let a = comp[self.outer_loop(f).vertex(self).index()];
+            for r in rings {
+                let b = comp[r.vertex(self).index()];
+                let (ra, rb) = (root(&mut parent, a), root(&mut parent, b));
+                parent[ra.max(rb)] = ra.min(rb);
+            }
+        }
+        let mut label = vec![usize::MAX; count];
+        let mut merged = 0;
+        for c in comp.iter_mut().filter(|c| **c != usize::MAX) {
+            let r = root(&mut parent, *c);
+            if label[r] == usize::MAX {
+                label[r] = merged;
+                merged += 1;
+            }
+            *c = label[r];
+        }
+        (comp, merged)
     }
 
     /// Counts and invariants for reports (`hedra info`).
@@ -390,15 +581,17 @@ impl HalfEdgeMesh {
             0
         };
         let shells = self.shell_count();
+        let rings = self.ring_count();
         let euler =
             self.vertex_count() as i64 - self.edge_count() as i64 + self.face_count() as i64;
-        let two_g = 2 * shells as i64 - boundary_loops as i64 - euler;
+        let two_g = 2 * shells as i64 - boundary_loops as i64 - euler + rings as i64;
         let genus = (validation.is_ok() && two_g >= 0 && two_g % 2 == 0).then_some(two_g / 2);
         MeshStats {
             vertices: self.vertex_count(),
             edges: self.edge_count(),
             faces: self.face_count(),
             boundary_loops,
+            rings,
             shells,
             euler_characteristic: euler,
             genus,
@@ -466,7 +659,8 @@ pub struct MeshData {
     pub vertex_halfedge: Vec<i64>,
     /// Per half-edge id: `(origin, next, prev, face)`, face `-1` on a boundary.
     pub halfedges: Vec<(u32, u32, u32, i64)>,
-    /// One half-edge per face id.
+    /// One half-edge per face id (of its outer loop); `u32::MAX` for a face
+    /// without edges (listed in `lone_vertex_faces`).
     pub face_halfedge: Vec<u32>,
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub dead_vertices: Vec<u32>,
@@ -474,6 +668,13 @@ pub struct MeshData {
     pub dead_edges: Vec<u32>,
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub dead_faces: Vec<u32>,
+    /// Inner rings as `(face id, loop starts)`; absent (and the file
+    /// unchanged) when no face has a ring.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub face_rings: Vec<(u32, Vec<LoopStart>)>,
+    /// Faces without edges as `(face id, lone vertex id)`; absent when none.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub lone_vertex_faces: Vec<(u32, u32)>,
 }
 
 fn opt_to_i64(x: u32) -> i64 {
@@ -500,6 +701,8 @@ impl From<HalfEdgeMesh> for MeshData {
             dead_vertices: dead(&m.vertex_dead),
             dead_edges: dead(&m.edge_dead),
             dead_faces: dead(&m.face_dead),
+            face_rings: m.face_rings.iter().map(|(f, r)| (f.0, r.clone())).collect(),
+            lone_vertex_faces: m.face_lone_vertex.iter().map(|(f, v)| (f.0, v.0)).collect(),
             positions: m.positions,
         }
     }
@@ -566,6 +769,16 @@ impl TryFrom<MeshData> for HalfEdgeMesh {
         m.live_vertices = m.vertex_dead.iter().filter(|d| !**d).count();
         m.live_edges = m.edge_dead.iter().filter(|d| !**d).count();
         m.live_faces = m.face_dead.iter().filter(|d| !**d).count();
+        for (f, rings) in d.face_rings {
+            if m.face_rings.insert(FaceId(f), rings).is_some() {
+                return Err(format!("face {f} has two ring lists"));
+            }
+        }
+        for (f, v) in d.lone_vertex_faces {
+            if m.face_lone_vertex.insert(FaceId(f), VertexId(v)).is_some() {
+                return Err(format!("face {f} has two lone vertices"));
+            }
+        }
         m.validate().map_err(|e| e.to_string())?;
         Ok(m)
     }

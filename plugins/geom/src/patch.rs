@@ -5,7 +5,7 @@
 
 use crate::euler::EulerError;
 use crate::ids::{FaceId, HalfEdgeId, NONE, VertexId};
-use crate::mesh::HalfEdgeMesh;
+use crate::mesh::{HalfEdgeMesh, LoopStart};
 
 impl HalfEdgeMesh {
     /// Adds an isolated vertex (no edges yet). ΔV = +1.
@@ -44,6 +44,9 @@ impl HalfEdgeMesh {
             }
             if !(self.is_isolated_vertex(v) || self.is_boundary_vertex(v)) {
                 return Err(EulerError::NotInFan { vertex: v });
+            }
+            if let Some(face) = self.lone_vertex_loop(v) {
+                return Err(EulerError::HasRings { face });
             }
         }
         let mut hs: Vec<Option<HalfEdgeId>> = Vec::with_capacity(n);
@@ -160,14 +163,24 @@ impl HalfEdgeMesh {
     /// are vertices left without edges unless `keep_vertices` (pmp-library's
     /// `delete_face`, for a set). The caller checks the result with
     /// `validate()`: deleting a face that touches a hole only at a vertex
-    /// leaves that vertex non-manifold.
+    /// leaves that vertex non-manifold. A face's rings go with it; its lone
+    /// vertices are left like vertices without edges.
     pub fn delete_faces(&mut self, faces: &[FaceId], keep_vertices: bool) {
         for &f in faces {
             if !self.is_face(f) {
                 continue;
             }
-            let loop_: Vec<HalfEdgeId> = self.face_halfedges(f).collect();
-            let corners: Vec<VertexId> = loop_.iter().map(|&h| self.origin(h)).collect();
+            let loop_: Vec<HalfEdgeId> = self.face_all_halfedges(f).collect();
+            let mut corners: Vec<VertexId> = loop_.iter().map(|&h| self.origin(h)).collect();
+            corners.extend(self.face_loops(f).filter_map(|l| match l {
+                LoopStart::Vertex(v) => Some(v),
+                LoopStart::HalfEdge(_) => None,
+            }));
+            // A loop passing a vertex twice (a wire) must not free it twice.
+            corners.sort_unstable();
+            corners.dedup();
+            self.face_rings.remove(&f);
+            self.face_lone_vertex.remove(&f);
             for &h in &loop_ {
                 self.halfedges[h.index()].face = NONE;
             }

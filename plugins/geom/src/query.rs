@@ -11,6 +11,9 @@ use glam::{DVec2, DVec3};
 ///
 /// Complexity: O(n²) for an n-gon; O(1) for triangles and quads.
 pub fn triangulate_face(mesh: &HalfEdgeMesh, f: FaceId) -> Vec<[VertexId; 3]> {
+    if !mesh.is_polygon_face(f) || mesh.face_degree(f) < 3 {
+        return Vec::new(); // rings, no edges or a wire: nothing to fill (issue 3)
+    }
     let verts: Vec<VertexId> = mesh.face_vertices(f).collect();
     let n = verts.len();
     if n == 3 {

@@ -93,12 +93,18 @@ pub fn tables(m: &HalfEdgeMesh) -> String {
     }
     let _ = writeln!(out, "faces: face | half-edge | vertices | neighbours");
     for f in m.faces() {
+        let rings = m.face_rings(f);
         let _ = writeln!(
             out,
-            "  {f} | {} | {} | {}",
-            m.face_halfedge(f),
+            "  {f} | {} | {} | {}{}",
+            m.outer_loop(f),
             list(m.face_vertices(f)),
-            list(m.face_neighbors(f))
+            list(m.face_neighbors(f)),
+            if rings.is_empty() {
+                String::new()
+            } else {
+                format!(" | rings {}", list(rings.iter()))
+            }
         );
     }
     let _ = writeln!(

@@ -3,7 +3,7 @@
 //! every mesh read from a file. It never panics, even on corrupted records.
 
 use crate::ids::{FaceId, HalfEdgeId, NONE, VertexId};
-use crate::mesh::HalfEdgeMesh;
+use crate::mesh::{HalfEdgeMesh, LoopStart};
 use std::fmt;
 
 /// One broken invariant, naming the elements involved.
@@ -27,6 +27,13 @@ pub enum Violation {
     BadFaceLoop { face: FaceId, len: usize },
     /// A face's half-edge count differs from the half-edges that name it.
     StrayFaceHalfEdge { face: FaceId },
+    /// A loop's lone vertex is dead, has edges, is used by another loop, or
+    /// the face's outer half-edge and lone vertex disagree.
+    BadLoneVertex { face: FaceId, vertex: VertexId },
+    /// A ring of a face starts on the outer loop or on another ring.
+    RingOverlap { face: FaceId, halfedge: HalfEdgeId },
+    /// A ring list for a dead face, or an empty one.
+    BadRingTable { face: FaceId },
     /// `origin(vertex_halfedge(v)) != v`.
     WrongVertexHalfEdge { vertex: VertexId },
     /// The fan around a vertex misses some of its outgoing half-edges.
@@ -74,7 +81,20 @@ impl fmt::Display for Violation {
                 )
             }
             Violation::StrayFaceHalfEdge { face } => {
-                write!(f, "{face}: half-edges name this face outside its loop")
+                write!(f, "{face}: half-edges name this face outside its loops")
+            }
+            Violation::BadLoneVertex { face, vertex } => write!(
+                f,
+                "{face}: lone vertex {vertex} of a loop is dead, has edges or is used twice"
+            ),
+            Violation::RingOverlap { face, halfedge } => {
+                write!(
+                    f,
+                    "{face}: ring at {halfedge} lies on another loop of the face"
+                )
+            }
+            Violation::BadRingTable { face } => {
+                write!(f, "{face}: ring list of a dead face, or an empty one")
             }
             Violation::WrongVertexHalfEdge { vertex } => {
                 write!(f, "{vertex}: its half-edge does not start at it")
@@ -131,7 +151,10 @@ impl fmt::Display for ValidationError {
 
 impl HalfEdgeMesh {
     /// Checks every connectivity invariant: references in range and live,
-    /// twin/next/prev consistency, closed face loops of at least three sides,
+    /// twin/next/prev consistency, closed face loops of at least three sides
+    /// (or two: the single edge of a wire in a face made by MVFS), every
+    /// half-edge of a face on its outer loop or exactly one of its rings,
+    /// lone-vertex loops on live vertices without edges,
     /// manifold vertex fans with the boundary half-edge first, finite positions
     /// and the cached counts.
     ///
@@ -228,8 +251,40 @@ impl HalfEdgeMesh {
         }
         for f in self.faces() {
             let h = self.face_halfedge[f.index()];
-            if !live_he(h) {
+            let lone = self.face_lone_vertex.get(&f);
+            if let Some(&v) = lone.filter(|_| h != NONE) {
+                out.push(Violation::BadLoneVertex { face: f, vertex: v });
+            } else if lone.is_none() && !live_he(h) {
                 push(out, f.to_string(), "half-edge", h);
+            }
+        }
+        // Rings and lone vertices (side tables, empty for ordinary meshes).
+        let mut lone_seen = std::collections::BTreeSet::new();
+        let mut check_lone = |out: &mut Vec<Violation>, f: FaceId, v: VertexId| {
+            if !live_vertex(v.0) || self.vertex_out[v.index()] != NONE || !lone_seen.insert(v) {
+                out.push(Violation::BadLoneVertex { face: f, vertex: v });
+            }
+        };
+        for (&f, &v) in &self.face_lone_vertex {
+            if !live_face(f.0) {
+                out.push(Violation::BadRingTable { face: f });
+            } else {
+                check_lone(out, f, v);
+            }
+        }
+        for (&f, rings) in &self.face_rings {
+            if !live_face(f.0) || rings.is_empty() {
+                out.push(Violation::BadRingTable { face: f });
+                continue;
+            }
+            for &r in rings {
+                match r {
+                    LoopStart::HalfEdge(h) if !live_he(h.0) => {
+                        push(out, f.to_string(), "ring half-edge", h.0);
+                    }
+                    LoopStart::HalfEdge(_) => {}
+                    LoopStart::Vertex(v) => check_lone(out, f, v),
+                }
             }
         }
     }
@@ -264,28 +319,53 @@ impl HalfEdgeMesh {
                 named[f.index()] += 1;
             }
         }
-        for f in self.faces() {
+        // Half-edges already walked, to find rings lying on another loop.
+        let mut seen = if self.face_rings.is_empty() {
+            Vec::new()
+        } else {
+            vec![false; self.halfedges.len()]
+        };
+        'faces: for f in self.faces() {
             if full(out) {
                 return;
             }
-            let start = self.face_halfedge(f);
-            let mut len = 0;
-            let mut h = start;
-            let mut closed = false;
-            while len <= self.halfedges.len() {
-                if self.face(h) != Some(f) {
-                    break;
+            let mut total = 0;
+            for l in self.face_loops(f) {
+                let LoopStart::HalfEdge(start) = l else {
+                    continue;
+                };
+                if seen.get(start.index()) == Some(&true) {
+                    out.push(Violation::RingOverlap {
+                        face: f,
+                        halfedge: start,
+                    });
+                    continue 'faces;
                 }
-                len += 1;
-                h = self.next(h);
-                if h == start {
-                    closed = true;
-                    break;
+                let mut len = 0;
+                let mut h = start;
+                let mut closed = false;
+                while len <= self.halfedges.len() {
+                    if self.face(h) != Some(f) {
+                        break;
+                    }
+                    if let Some(s) = seen.get_mut(h.index()) {
+                        *s = true;
+                    }
+                    len += 1;
+                    h = self.next(h);
+                    if h == start {
+                        closed = true;
+                        break;
+                    }
                 }
+                let wire = len == 2 && self.next(start) == start.twin();
+                if !closed || (len < 3 && !wire) {
+                    out.push(Violation::BadFaceLoop { face: f, len });
+                    continue 'faces;
+                }
+                total += len;
             }
-            if !closed || len < 3 {
-                out.push(Violation::BadFaceLoop { face: f, len });
-            } else if named[f.index()] != len {
+            if named[f.index()] != total {
                 out.push(Violation::StrayFaceHalfEdge { face: f });
             }
         }

@@ -3,7 +3,7 @@
 //! V − E + F − (L − F) = 2(S − H).
 
 use hedra_geom::{
-    DVec3, EdgeId, EulerError, FaceId, HalfEdgeId, HalfEdgeMesh, Primitive, VertexId,
+    DVec3, EdgeId, EulerError, FaceId, HalfEdgeId, HalfEdgeMesh, LoopStart, Primitive, VertexId,
 };
 use proptest::prelude::*;
 
@@ -62,7 +62,7 @@ fn euler_poincare_holds(
         m.edge_count() as i64,
         m.face_count() as i64,
     );
-    let loops = f; // no face has an inner ring
+    let loops = m.loop_count() as i64; // outer loops and inner rings
     // Boundary loops are holes of the surface: count them as faces of the closed-up surface.
     let b = boundary_loops as i64;
     v - e + (f + b) - (loops - f) == 2 * (shells as i64 - genus)
@@ -252,6 +252,14 @@ enum Op {
     Collapse(usize),
     CollapseAny(usize),
     SplitVertex(usize, usize, usize),
+    Mvfs(f64),
+    Kvfs(usize),
+    MevLone(usize, f64),
+    Kemr(usize),
+    Mekr(usize, usize, usize, usize),
+    Kfmrh(usize, usize),
+    Mfkrh(usize, usize),
+    MefRing(usize, usize, usize),
 }
 
 fn arb_op() -> impl Strategy<Value = Op> {
@@ -269,6 +277,20 @@ fn arb_op() -> impl Strategy<Value = Op> {
         any::<usize>().prop_map(Op::CollapseAny),
         (any::<usize>(), any::<usize>(), any::<usize>())
             .prop_map(|(a, b, c)| Op::SplitVertex(a, b, c)),
+        (-2.0..2.0f64).prop_map(Op::Mvfs),
+        any::<usize>().prop_map(Op::Kvfs),
+        (any::<usize>(), -1.0..1.0f64).prop_map(|(a, t)| Op::MevLone(a, t)),
+        any::<usize>().prop_map(Op::Kemr),
+        (
+            any::<usize>(),
+            any::<usize>(),
+            any::<usize>(),
+            any::<usize>()
+        )
+            .prop_map(|(a, b, c, d)| Op::Mekr(a, b, c, d)),
+        (any::<usize>(), any::<usize>()).prop_map(|(a, b)| Op::Kfmrh(a, b)),
+        (any::<usize>(), any::<usize>()).prop_map(|(a, b)| Op::Mfkrh(a, b)),
+        (any::<usize>(), any::<usize>(), any::<usize>()).prop_map(|(a, b, c)| Op::MefRing(a, b, c)),
     ]
 }
 
@@ -278,25 +300,41 @@ fn pick<T: Copy>(items: &[T], i: usize) -> Option<T> {
 
 fn apply(m: &mut HalfEdgeMesh, op: &Op) -> Result<(), EulerError> {
     let faces: Vec<FaceId> = m.faces().collect();
+    if faces.is_empty() && !matches!(op, Op::Mvfs(_)) {
+        return Err(EulerError::Degenerate);
+    }
     let edges: Vec<EdgeId> = m.edges().collect();
     let verts: Vec<VertexId> = m.vertices().collect();
     let inner: Vec<HalfEdgeId> = m.halfedges().filter(|&h| m.face(h).is_some()).collect();
     match *op {
         Op::Mev(a, t) => {
-            let h = pick(&inner, a).unwrap();
+            let Some(h) = pick(&inner, a) else {
+                return Err(EulerError::Degenerate);
+            };
             let p = m.position(m.target(h)) + DVec3::splat(t * 0.1);
             m.make_edge_vertex(h, p).map(|_| ())
         }
-        Op::Kev(a) => m.kill_edge_vertex(pick(&edges, a).unwrap()).map(|_| ()),
+        Op::Kev(a) => match pick(&edges, a) {
+            Some(e) => m.kill_edge_vertex(e).map(|_| ()),
+            None => Err(EulerError::Degenerate),
+        },
         Op::Mef(a, b, c) => {
             let f = pick(&faces, a).unwrap();
             let hs: Vec<HalfEdgeId> = m.face_halfedges(f).collect();
+            if hs.is_empty() {
+                return Err(EulerError::Degenerate); // a face without edges
+            }
             m.make_edge_face(hs[b % hs.len()], hs[c % hs.len()])
                 .map(|_| ())
         }
-        Op::Kef(a) => m.kill_edge_face(pick(&edges, a).unwrap()).map(|_| ()),
+        Op::Kef(a) => match pick(&edges, a) {
+            Some(e) => m.kill_edge_face(e).map(|_| ()),
+            None => Err(EulerError::Degenerate),
+        },
         Op::Mve(a, t) => {
-            let e = pick(&edges, a).unwrap();
+            let Some(e) = pick(&edges, a) else {
+                return Err(EulerError::Degenerate);
+            };
             let [x, y] = m.edge_vertices(e);
             let p = m.position(x).lerp(m.position(y), t);
             m.split_edge(e, p).map(|_| ())
@@ -309,12 +347,16 @@ fn apply(m: &mut HalfEdgeMesh, op: &Op) -> Result<(), EulerError> {
         }
         Op::Hole(a) => m.make_hole(pick(&faces, a).unwrap()).map(|_| ()),
         Op::Collapse(a) => {
-            let h = pick(&m.halfedges().collect::<Vec<_>>(), a).unwrap();
+            let Some(h) = pick(&m.halfedges().collect::<Vec<_>>(), a) else {
+                return Err(EulerError::Degenerate);
+            };
             let p = m.edge_midpoint(h.edge());
             m.collapse_edge(h, p).map(|_| ())
         }
         Op::CollapseAny(a) => {
-            let h = pick(&m.halfedges().collect::<Vec<_>>(), a).unwrap();
+            let Some(h) = pick(&m.halfedges().collect::<Vec<_>>(), a) else {
+                return Err(EulerError::Degenerate);
+            };
             let p = m.edge_midpoint(h.edge());
             m.collapse_edge_removing_triangles(h, p).map(|_| ())
         }
@@ -325,6 +367,91 @@ fn apply(m: &mut HalfEdgeMesh, op: &Op) -> Result<(), EulerError> {
                 (Some(x), Some(y)) => m
                     .split_vertex(v, x, y, m.position(v) + DVec3::splat(0.01))
                     .map(|_| ()),
+                _ => Err(EulerError::Degenerate),
+            }
+        }
+        Op::Mvfs(t) => m.make_vertex_face_shell(DVec3::splat(t)).map(|_| ()),
+        Op::Kvfs(a) => m
+            .kill_vertex_face_shell(pick(&faces, a).unwrap())
+            .map(|_| ()),
+        Op::MevLone(a, t) => {
+            let lone: Vec<VertexId> = verts
+                .iter()
+                .copied()
+                .filter(|&v| m.lone_vertex_loop(v).is_some())
+                .collect();
+            match pick(&lone, a) {
+                Some(v) => m
+                    .make_edge_vertex_lone(v, m.position(v) + DVec3::splat(t))
+                    .map(|_| ()),
+                None => Err(EulerError::Degenerate),
+            }
+        }
+        Op::Kemr(a) => {
+            // Mostly edges with the same face on both sides (dangling edges,
+            // wires), where KEMR may apply.
+            let same: Vec<HalfEdgeId> = inner
+                .iter()
+                .copied()
+                .filter(|&h| m.face(h) == m.face(h.twin()))
+                .collect();
+            let h = pick(&same, a).or_else(|| pick(&inner, a));
+            match h {
+                Some(h) => m.kill_edge_make_ring(h).map(|_| ()),
+                None => Err(EulerError::Degenerate),
+            }
+        }
+        Op::Mekr(a, b, c, d) => {
+            let ringed: Vec<FaceId> = faces
+                .iter()
+                .copied()
+                .filter(|&f| !m.face_rings(f).is_empty())
+                .collect();
+            let Some(f) = pick(&ringed, a) else {
+                return Err(EulerError::Degenerate);
+            };
+            let loops: Vec<LoopStart> = m.face_loops(f).collect();
+            let corner = |l: LoopStart, i: usize| match l {
+                LoopStart::HalfEdge(h) => {
+                    let hs: Vec<HalfEdgeId> = m.loop_from(h).collect();
+                    LoopStart::HalfEdge(hs[i % hs.len()])
+                }
+                v => v,
+            };
+            let (la, lb) = (loops[b % loops.len()], loops[1 + c % (loops.len() - 1)]);
+            m.make_edge_kill_ring(corner(la, d), corner(lb, d / 7))
+                .map(|_| ())
+        }
+        Op::Kfmrh(a, b) => {
+            let (keep, kill) = (pick(&faces, a).unwrap(), pick(&faces, b).unwrap());
+            m.kill_face_make_ring_hole(keep, kill).map(|_| ())
+        }
+        Op::Mfkrh(a, b) => {
+            let rings: Vec<LoopStart> = faces
+                .iter()
+                .flat_map(|&f| m.face_rings(f).to_vec())
+                .collect();
+            match pick(&rings, a) {
+                Some(LoopStart::HalfEdge(h)) => {
+                    let hs: Vec<HalfEdgeId> = m.loop_from(h).collect();
+                    m.make_face_kill_ring_hole(LoopStart::HalfEdge(hs[b % hs.len()]))
+                        .map(|_| ())
+                }
+                Some(v) => m.make_face_kill_ring_hole(v).map(|_| ()),
+                None => Err(EulerError::Degenerate),
+            }
+        }
+        Op::MefRing(a, b, c) => {
+            let rings: Vec<LoopStart> = faces
+                .iter()
+                .flat_map(|&f| m.face_rings(f).to_vec())
+                .collect();
+            match pick(&rings, a) {
+                Some(LoopStart::HalfEdge(h)) => {
+                    let hs: Vec<HalfEdgeId> = m.loop_from(h).collect();
+                    m.make_edge_face(hs[b % hs.len()], hs[c % hs.len()])
+                        .map(|_| ())
+                }
                 _ => Err(EulerError::Degenerate),
             }
         }
@@ -342,24 +469,49 @@ fn apply(m: &mut HalfEdgeMesh, op: &Op) -> Result<(), EulerError> {
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(200))]
     #[test]
-    fn random_operator_sequences_keep_the_mesh_valid(start in 0usize..5, ops in prop::collection::vec(arb_op(), 1..40)) {
-        let mut m = meshes()[start].clone();
+    fn random_operator_sequences_keep_the_mesh_valid(start in 0usize..6, ops in prop::collection::vec(arb_op(), 1..40)) {
+        let mut m = meshes().get(start).cloned().unwrap_or_default();
         let s0 = m.stats();
-        let (shells, genus, chi0) = (s0.shells, s0.genus.unwrap(), chi(&m));
-        let b0 = s0.boundary_loops as i64;
+        // S and H are tracked from each operator's documented change; S is
+        // also counted from the connectivity after every step.
+        let (mut shells, mut genus) = (s0.shells, s0.genus.unwrap());
         for op in &ops {
             let before = m.clone();
+            let same_shell = match *op {
+                Op::Kfmrh(a, b) if before.faces().next().is_some() => {
+                    let faces: Vec<FaceId> = before.faces().collect();
+                    let (comp, _) = before.components();
+                    let at = |f: FaceId| comp[before.outer_loop(f).vertex(&before).index()];
+                    at(pick(&faces, a).unwrap()) == at(pick(&faces, b).unwrap())
+                }
+                _ => false,
+            };
             match apply(&mut m, op) {
                 Ok(()) => {
                     let v = m.validate();
                     prop_assert!(v.is_ok(), "{:?} broke the mesh: {}", op, v.unwrap_err());
+                    let counted = m.shell_count();
+                    match op {
+                        Op::Mvfs(_) => shells += 1,
+                        Op::Kvfs(_) => shells -= 1,
+                        Op::Kfmrh(..) if same_shell => genus += 1,
+                        Op::Kfmrh(..) => shells -= 1,
+                        // The ring was all that held a shell to its face, or a handle closes.
+                        Op::Mfkrh(..) if counted == shells + 1 => shells += 1,
+                        Op::Mfkrh(..) => genus -= 1,
+                        _ => {}
+                    }
+                    prop_assert_eq!(counted, shells, "{:?} changed the shells", op);
                 }
                 Err(_) => prop_assert_eq!(&m, &before, "a refused {:?} changed the mesh", op),
             }
             let b = m.boundary_loops().len();
-            prop_assert_eq!(chi(&m) + b as i64, chi0 + b0, "{:?} changed V - E + F + holes", op);
-            prop_assert!(euler_poincare_holds(&m, shells, genus, b));
-            prop_assert_eq!(m.shell_count(), shells);
+            prop_assert!(euler_poincare_holds(&m, shells, genus, b), "{:?}: V - E + F - (L - F) != 2(S - H)", op);
+            let s = m.stats();
+            prop_assert_eq!(s.rings, m.ring_count());
+            if genus >= 0 {
+                prop_assert_eq!(s.genus, Some(genus));
+            }
         }
     }
 }

@@ -200,6 +200,8 @@ pub enum SubdivisionError {
     NoLimit { scheme: Scheme },
     #[error("cancelled")]
     Cancelled,
+    #[error("face {face} has inner rings or no edges; subdivision needs plain polygons")]
+    FaceWithRings { face: FaceId },
     #[error("level {level} would make {faces} faces, more than the limit of {MAX_FACES}")]
     TooManyFaces { level: u32, faces: usize },
 }
@@ -222,8 +224,10 @@ impl Refiner {
     ///
     /// # Errors
     /// [`SubdivisionError::NotTriangles`] for Loop on a mesh with other
-    /// faces; [`SubdivisionError::LevelTooHigh`] / `TooManyFaces` when the
-    /// result would be too large (nothing is allocated first).
+    /// faces; [`SubdivisionError::FaceWithRings`] for a face with inner
+    /// rings or without edges; [`SubdivisionError::LevelTooHigh`] /
+    /// `TooManyFaces` when the result would be too large (nothing is
+    /// allocated first).
     pub fn new(
         mesh: &HalfEdgeMesh,
         creases: &Creases,
@@ -248,6 +252,9 @@ impl Refiner {
     ) -> Result<Self, SubdivisionError> {
         if levels > MAX_LEVEL {
             return Err(SubdivisionError::LevelTooHigh { level: levels });
+        }
+        if let Some(face) = mesh.first_non_polygon_face() {
+            return Err(SubdivisionError::FaceWithRings { face });
         }
         if options.scheme == Scheme::Loop
             && let Some(f) = mesh.faces().find(|&f| mesh.face_degree(f) != 3)
