@@ -12,7 +12,6 @@ use bevy::prelude::*;
 use hedra_doc::file;
 use hedra_doc::{Command, NodeContent, NodeId, Session, Shading};
 use hedra_geom::HalfEdgeMesh;
-use hedra_geom::query::triangulate_face;
 use std::collections::HashMap;
 use std::path::PathBuf;
 
@@ -761,58 +760,18 @@ pub fn content_render_mesh(
         .map_err(|message| (message, render_mesh(cage, content.shading)))
 }
 
-/// A triangle render mesh of a half-edge mesh. Flat shading gives each face
-/// its own corners with the face normal (a cube gets 24 vertices: seed 000's
-/// "cube problem"); smooth shading shares corners with area-weighted vertex
-/// normals.
+/// A triangle render mesh of a half-edge mesh (the buffers of
+/// [`hedra_doc::render::render_buffers`]: flat shading gives each face its
+/// own corners, smooth shading shares them).
 pub fn render_mesh(mesh: &HalfEdgeMesh, shading: Shading) -> Mesh {
-    let mut positions: Vec<[f32; 3]> = Vec::new();
-    let mut normals: Vec<[f32; 3]> = Vec::new();
-    let mut indices: Vec<u32> = Vec::new();
-    match shading {
-        Shading::Flat => {
-            for f in mesh.faces() {
-                let n = mesh.face_normal(f).as_vec3().to_array();
-                let base = positions.len() as u32;
-                let corners: Vec<hedra_geom::VertexId> = mesh.face_vertices(f).collect();
-                for &v in &corners {
-                    positions.push(mesh.position(v).as_vec3().to_array());
-                    normals.push(n);
-                }
-                // Faces are small: find each triangle corner by a linear search.
-                let corner = |v: &hedra_geom::VertexId| {
-                    base + corners
-                        .iter()
-                        .position(|c| c == v)
-                        .expect("a triangle corner is a face corner")
-                        as u32
-                };
-                for tri in triangulate_face(mesh, f) {
-                    indices.extend(tri.iter().map(corner));
-                }
-            }
-        }
-        Shading::Smooth => {
-            let mut index = vec![u32::MAX; mesh.vertex_capacity()];
-            for v in mesh.vertices() {
-                index[v.index()] = positions.len() as u32;
-                positions.push(mesh.position(v).as_vec3().to_array());
-                normals.push(mesh.vertex_normal(v).as_vec3().to_array());
-            }
-            for f in mesh.faces() {
-                for tri in triangulate_face(mesh, f) {
-                    indices.extend(tri.iter().map(|v| index[v.index()]));
-                }
-            }
-        }
-    }
+    let b = hedra_doc::render::render_buffers(mesh, shading);
     Mesh::new(
         PrimitiveTopology::TriangleList,
         RenderAssetUsages::MAIN_WORLD | RenderAssetUsages::RENDER_WORLD,
     )
-    .with_inserted_attribute(Mesh::ATTRIBUTE_POSITION, positions)
-    .with_inserted_attribute(Mesh::ATTRIBUTE_NORMAL, normals)
-    .with_inserted_indices(Indices::U32(indices))
+    .with_inserted_attribute(Mesh::ATTRIBUTE_POSITION, b.positions)
+    .with_inserted_attribute(Mesh::ATTRIBUTE_NORMAL, b.normals)
+    .with_inserted_indices(Indices::U32(b.indices))
 }
 
 /// Whether viewport tools may use the pointer and keyboard this frame; the
@@ -858,86 +817,30 @@ pub mod modifiers {
 }
 
 /// Updates a render mesh built by [`render_mesh`] from `old` so that it shows
-/// `new`, rewriting only the positions and normals that changed, when the two
-/// meshes differ only in vertex positions (what a move, rotate or scale of
-/// elements does while the mouse drags). Returns false, changing nothing,
-/// when the connectivity differs: rebuild with [`render_mesh`] then.
-///
-/// Complexity: O(V + F) simple passes plus work proportional to the moved
-/// vertices' neighbourhoods; no triangulation, no allocation per face.
+/// `new` when only vertex positions differ, rewriting only what changed
+/// ([`hedra_doc::render::patch_positions`]); the attribute arrays are taken
+/// out and put back, not copied. Returns false, changing nothing, when the
+/// connectivity differs: rebuild with [`render_mesh`] then.
 pub fn update_render_positions(
     render: &mut Mesh,
     old: &HalfEdgeMesh,
     new: &HalfEdgeMesh,
     shading: Shading,
 ) -> bool {
-    use bevy::mesh::VertexAttributeValues;
-    if !old.same_connectivity(new) {
+    use bevy::mesh::VertexAttributeValues::Float32x3;
+    let is_f32x3 = |id| matches!(render.attribute(id), Some(Float32x3(_)));
+    if !(is_f32x3(Mesh::ATTRIBUTE_POSITION) && is_f32x3(Mesh::ATTRIBUTE_NORMAL)) {
         return false;
     }
-    let moved: Vec<hedra_geom::VertexId> = new
-        .vertices()
-        .filter(|&v| old.position(v) != new.position(v))
-        .collect();
-    if moved.is_empty() {
-        return true;
-    }
-    let mut positions = match render.attribute(Mesh::ATTRIBUTE_POSITION) {
-        Some(VertexAttributeValues::Float32x3(p)) => p.clone(),
-        _ => return false,
+    let (Some(Float32x3(mut positions)), Some(Float32x3(mut normals))) = (
+        render.remove_attribute(Mesh::ATTRIBUTE_POSITION),
+        render.remove_attribute(Mesh::ATTRIBUTE_NORMAL),
+    ) else {
+        unreachable!("both attributes were just checked");
     };
-    let mut normals = match render.attribute(Mesh::ATTRIBUTE_NORMAL) {
-        Some(VertexAttributeValues::Float32x3(n)) => n.clone(),
-        _ => return false,
-    };
-    match shading {
-        Shading::Flat => {
-            // Render corners are laid out face after face in id order.
-            let mut start = vec![u32::MAX; new.face_capacity()];
-            let mut at = 0u32;
-            for f in new.faces() {
-                start[f.index()] = at;
-                at += new.face_degree(f) as u32;
-            }
-            if at as usize != positions.len() {
-                return false;
-            }
-            let mut faces: Vec<hedra_geom::FaceId> =
-                moved.iter().flat_map(|&v| new.vertex_faces(v)).collect();
-            faces.sort();
-            faces.dedup();
-            for f in faces {
-                let n = new.face_normal(f).as_vec3().to_array();
-                for (k, v) in new.face_vertices(f).enumerate() {
-                    let i = start[f.index()] as usize + k;
-                    positions[i] = new.position(v).as_vec3().to_array();
-                    normals[i] = n;
-                }
-            }
-        }
-        Shading::Smooth => {
-            let mut rank = vec![u32::MAX; new.vertex_capacity()];
-            for (i, v) in new.vertices().enumerate() {
-                rank[v.index()] = i as u32;
-            }
-            if new.vertex_count() != positions.len() {
-                return false;
-            }
-            let mut touched: Vec<hedra_geom::VertexId> = moved
-                .iter()
-                .flat_map(|&v| std::iter::once(v).chain(new.vertex_neighbors(v)))
-                .collect();
-            touched.sort();
-            touched.dedup();
-            for &v in &moved {
-                positions[rank[v.index()] as usize] = new.position(v).as_vec3().to_array();
-            }
-            for v in touched {
-                normals[rank[v.index()] as usize] = new.vertex_normal(v).as_vec3().to_array();
-            }
-        }
-    }
+    let patched =
+        hedra_doc::render::patch_positions(&mut positions, &mut normals, old, new, shading);
     render.insert_attribute(Mesh::ATTRIBUTE_POSITION, positions);
     render.insert_attribute(Mesh::ATTRIBUTE_NORMAL, normals);
-    true
+    patched
 }

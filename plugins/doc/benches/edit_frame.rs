@@ -1,0 +1,85 @@
+//! One frame of dragging vertices on a 100,000-face mesh (issue 3): what the
+//! edit tool does every frame — decide the move on a copy of the document
+//! (`Document::decide`, as `hedra_edit` does for its preview) and patch the
+//! render buffers in place (`render::patch_positions`, as `hedra_scene`
+//! does) — against rebuilding the render buffers, which the patch avoids.
+//! The GPU upload of the changed attribute and the edge overlay are not in
+//! here (no GPU on the benchmark machine).
+
+use criterion::{BatchSize, Criterion, criterion_group, criterion_main};
+use glam::DVec3;
+use hedra_doc::render::{patch_positions, render_buffers};
+use hedra_doc::{Command, NodeContent, NodeRef, Session, Shading, Transform, VertexSet};
+use hedra_geom::Primitive;
+use std::hint::black_box;
+
+/// The allocator the app uses (see `src/main.rs`).
+#[global_allocator]
+static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
+fn bench(c: &mut Criterion) {
+    let mut session = Session::new();
+    session
+        .execute(&Command::AddPrimitive {
+            primitive: Primitive::Grid {
+                x_segments: 317,
+                z_segments: 317,
+                size: 10.0,
+            },
+            name: Some("Dense".into()),
+            parent: None,
+            transform: Transform::IDENTITY,
+        })
+        .unwrap();
+    let doc = &session.doc;
+    let node = doc.find_by_name("Dense").unwrap();
+    let NodeContent::Mesh(content) = &node.content else {
+        unreachable!()
+    };
+    let mesh = content.mesh.clone();
+    assert!(mesh.face_count() >= 100_000, "{}", mesh.face_count());
+    // A brush-sized selection: the 100 vertices nearest the middle.
+    let mut by_distance: Vec<_> = mesh.vertices().collect();
+    by_distance.sort_by(|a, b| {
+        mesh.position(*a)
+            .length()
+            .total_cmp(&mesh.position(*b).length())
+    });
+    let selected: Vec<u32> = by_distance[..100].iter().map(|v| v.0).collect();
+    let drag = |dy: f64| Command::MoveVertices {
+        node: NodeRef::Name("Dense".into()),
+        vertices: VertexSet::Ids(selected.clone()),
+        offset: DVec3::new(0.0, dy, 0.0),
+    };
+    let moved = {
+        let t = doc.decide(&drag(0.25), 0).unwrap();
+        match &t.changes[0].after.as_ref().unwrap().content {
+            NodeContent::Mesh(m) => m.mesh.clone(),
+            _ => unreachable!(),
+        }
+    };
+
+    let mut g = c.benchmark_group("edit_frame_100k_faces");
+    g.sample_size(30);
+    g.bench_function("decide_move_100_vertices", |b| {
+        b.iter(|| black_box(doc.decide(black_box(&drag(0.25)), 0).unwrap()))
+    });
+    for shading in [Shading::Flat, Shading::Smooth] {
+        let name = format!("{shading:?}").to_lowercase();
+        let base = render_buffers(&mesh, shading);
+        g.bench_function(format!("patch_render_{name}"), |b| {
+            b.iter_batched_ref(
+                || (base.positions.clone(), base.normals.clone()),
+                |(p, n)| assert!(patch_positions(p, n, &mesh, &moved, shading)),
+                BatchSize::LargeInput,
+            )
+        });
+        g.bench_function(format!("rebuild_render_{name}"), |b| {
+            b.iter(|| black_box(render_buffers(black_box(&moved), shading)))
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);

@@ -1,0 +1,192 @@
+//! The triangle buffers the viewport draws a half-edge mesh with, and their
+//! in-place update while a tool drags vertices. Free of Bevy so that they are
+//! tested and benchmarked without a renderer; `hedra_scene` wraps them in a
+//! Bevy `Mesh`.
+
+use crate::scene::Shading;
+use hedra_geom::query::triangulate_face;
+use hedra_geom::{FaceId, HalfEdgeMesh, VertexId};
+
+/// Positions, normals and triangle indices for the GPU (f32, as rendered).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct RenderBuffers {
+    pub positions: Vec<[f32; 3]>,
+    pub normals: Vec<[f32; 3]>,
+    pub indices: Vec<u32>,
+}
+
+/// Triangle buffers of a half-edge mesh. Flat shading gives each face its
+/// own corners with the face normal, laid out face after face in id order
+/// (a cube gets 24 vertices: seed 000's "cube problem"); smooth shading
+/// shares one corner per vertex, in id order, with area-weighted vertex
+/// normals.
+///
+/// Complexity: O(corners), O(n²) only inside concave n-gons (ear clipping).
+pub fn render_buffers(mesh: &HalfEdgeMesh, shading: Shading) -> RenderBuffers {
+    let mut b = RenderBuffers::default();
+    match shading {
+        Shading::Flat => {
+            for f in mesh.faces() {
+                let n = mesh.face_normal(f).as_vec3().to_array();
+                let base = b.positions.len() as u32;
+                let corners: Vec<VertexId> = mesh.face_vertices(f).collect();
+                for &v in &corners {
+                    b.positions.push(mesh.position(v).as_vec3().to_array());
+                    b.normals.push(n);
+                }
+                // Faces are small: find each triangle corner by a linear search.
+                let corner = |v: &VertexId| {
+                    base + corners
+                        .iter()
+                        .position(|c| c == v)
+                        .expect("a triangle corner is a face corner")
+                        as u32
+                };
+                for tri in triangulate_face(mesh, f) {
+                    b.indices.extend(tri.iter().map(corner));
+                }
+            }
+        }
+        Shading::Smooth => {
+            let mut index = vec![u32::MAX; mesh.vertex_capacity()];
+            for v in mesh.vertices() {
+                index[v.index()] = b.positions.len() as u32;
+                b.positions.push(mesh.position(v).as_vec3().to_array());
+                b.normals.push(mesh.vertex_normal(v).as_vec3().to_array());
+            }
+            for f in mesh.faces() {
+                for tri in triangulate_face(mesh, f) {
+                    b.indices.extend(tri.iter().map(|v| index[v.index()]));
+                }
+            }
+        }
+    }
+    b
+}
+
+/// Rewrites, in buffers made by [`render_buffers`] from `old`, only the
+/// positions and normals that differ in `new`, when the two meshes differ
+/// only in vertex positions (a move, rotate or scale of elements while the
+/// mouse drags). Returns false, changing nothing, when the connectivity or
+/// the buffer layout differs: rebuild with [`render_buffers`] then.
+///
+/// Complexity: O(V + F) comparisons plus work proportional to the moved
+/// vertices' neighbourhoods; no triangulation, no allocation per face.
+pub fn patch_positions(
+    positions: &mut [[f32; 3]],
+    normals: &mut [[f32; 3]],
+    old: &HalfEdgeMesh,
+    new: &HalfEdgeMesh,
+    shading: Shading,
+) -> bool {
+    if !old.same_connectivity(new) || positions.len() != normals.len() {
+        return false;
+    }
+    let moved: Vec<VertexId> = new
+        .vertices()
+        .filter(|&v| old.position(v) != new.position(v))
+        .collect();
+    if moved.is_empty() {
+        return true;
+    }
+    match shading {
+        Shading::Flat => {
+            // Render corners are laid out face after face in id order.
+            let mut start = vec![u32::MAX; new.face_capacity()];
+            let mut at = 0u32;
+            for f in new.faces() {
+                start[f.index()] = at;
+                at += new.face_degree(f) as u32;
+            }
+            if at as usize != positions.len() {
+                return false;
+            }
+            let mut faces: Vec<FaceId> = moved.iter().flat_map(|&v| new.vertex_faces(v)).collect();
+            faces.sort();
+            faces.dedup();
+            for f in faces {
+                let n = new.face_normal(f).as_vec3().to_array();
+                for (k, v) in new.face_vertices(f).enumerate() {
+                    let i = start[f.index()] as usize + k;
+                    positions[i] = new.position(v).as_vec3().to_array();
+                    normals[i] = n;
+                }
+            }
+        }
+        Shading::Smooth => {
+            if new.vertex_count() != positions.len() {
+                return false;
+            }
+            let mut rank = vec![u32::MAX; new.vertex_capacity()];
+            for (i, v) in new.vertices().enumerate() {
+                rank[v.index()] = i as u32;
+            }
+            let mut touched: Vec<VertexId> = moved
+                .iter()
+                .flat_map(|&v| std::iter::once(v).chain(new.vertex_neighbors(v)))
+                .collect();
+            touched.sort();
+            touched.dedup();
+            for &v in &moved {
+                positions[rank[v.index()] as usize] = new.position(v).as_vec3().to_array();
+            }
+            for v in touched {
+                normals[rank[v.index()] as usize] = new.vertex_normal(v).as_vec3().to_array();
+            }
+        }
+    }
+    true
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use hedra_geom::Primitive;
+
+    #[test]
+    fn patching_moved_vertices_equals_rebuilding_and_refuses_other_topology() {
+        let grid = Primitive::Grid {
+            x_segments: 6,
+            z_segments: 5,
+            size: 2.0,
+        }
+        .build()
+        .unwrap();
+        let mut moved = grid.clone();
+        for v in moved.vertices().take(7).collect::<Vec<_>>() {
+            let p = moved.position(v);
+            moved.set_position(v, p + glam::DVec3::new(0.1, 0.3, -0.2));
+        }
+        for shading in [Shading::Flat, Shading::Smooth] {
+            let mut b = render_buffers(&grid, shading);
+            assert!(patch_positions(
+                &mut b.positions,
+                &mut b.normals,
+                &grid,
+                &moved,
+                shading
+            ));
+            let rebuilt = render_buffers(&moved, shading);
+            assert_eq!(b.positions, rebuilt.positions, "{shading:?}");
+            for (n, m) in b.normals.iter().zip(&rebuilt.normals) {
+                assert!((glam::Vec3::from(*n) - glam::Vec3::from(*m)).length() < 1e-6);
+            }
+            // Different connectivity: refused, buffers untouched.
+            let cube = Primitive::Cube { size: 1.0 }.build().unwrap();
+            let before = b.clone();
+            assert!(!patch_positions(
+                &mut b.positions,
+                &mut b.normals,
+                &grid,
+                &cube,
+                shading
+            ));
+            assert_eq!(b, before);
+        }
+        assert_eq!(render_buffers(&grid, Shading::Flat).positions.len(), 30 * 4);
+        assert_eq!(
+            render_buffers(&grid, Shading::Smooth).positions.len(),
+            7 * 6
+        );
+    }
+}
