@@ -646,3 +646,42 @@ fn restore_history(
     }
     Ok(history)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A mesh with an edge-less face (the kernel's MVFS) is refused when a
+    /// file is read, naming the node and the face.
+    #[test]
+    fn a_scene_with_a_non_polygon_face_is_refused_by_name() {
+        let mut session = Session::new();
+        session
+            .execute(&Command::AddPrimitive {
+                primitive: Primitive::Cube { size: 1.0 },
+                name: Some("Shell".into()),
+                parent: None,
+                transform: Transform::IDENTITY,
+            })
+            .unwrap();
+        let id = session.doc.find_by_name("Shell").unwrap().id;
+        let mut mesh = HalfEdgeMesh::default();
+        let (_, face) = mesh.make_vertex_face_shell(glam::DVec3::ZERO).unwrap();
+        if let Some(node) = session.doc.nodes.get_mut(&id) {
+            node.content = NodeContent::Mesh(MeshContent::new(Arc::new(mesh)));
+        }
+        let err = session.doc.check().unwrap_err();
+        assert!(
+            err.contains("'Shell'") && err.contains(&face.to_string()),
+            "{err}"
+        );
+        let text = to_string(&session);
+        let err = from_str(&text, Path::new("ring.hedra.ron"))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains("ring.hedra.ron") && err.contains("polygon meshes only"),
+            "{err}"
+        );
+    }
+}

@@ -484,6 +484,17 @@ impl Document {
             {
                 return Err(format!("node {id} '{}' has a non-finite transform", n.name));
             }
+            // Faces with inner rings or without edges exist in the kernel
+            // (Mäntylä's Euler operators); the editor's tools, rendering and
+            // exports work on polygons, so a document holds polygon meshes.
+            if let NodeContent::Mesh(m) = &n.content {
+                if let Some(f) = m.mesh.first_non_polygon_face() {
+                    return Err(format!(
+                        "node {id} '{}': {f} has an inner ring or no edges; Hedra edits polygon meshes only",
+                        n.name
+                    ));
+                }
+            }
         }
         Ok(())
     }
