@@ -1640,21 +1640,14 @@ pub fn slide_edges(
     Ok(())
 }
 
-/// Bevels edges (Blender's Ctrl+B). With one segment any set of edges
-/// inside the surface, at any valence, including edges that meet (see
-/// [`chamfer_edges`]: a fully beveled box corner gets a triangle). With more
-/// segments the bevel is rounded on an arc: each edge becomes a quad
-/// `width` wide, its ends moved along the neighbouring edges of its two
-/// faces, built from the Euler operators (split the four neighbouring edges
-/// (MVE), cut both faces (MEF), join them across the edge (KEF), remove the
-/// old corners (KVE)), then split into strips; this needs valence-3 ends
-/// and edges that share no vertex. Returns the new faces.
+/// Bevels edges (Blender's Ctrl+B) `width` wide, flat or rounded with
+/// `segments`, at any valence and where beveled edges meet (see
+/// [`chamfer_edges`]). Returns the new faces: the strips, then the patches.
 ///
 /// # Errors
 /// [`ModelingError::Parameter`] for a width that is not positive or too
-/// large for the neighbouring edges, a border edge or end, and for rounded
-/// bevels an end of another valence or edges sharing a vertex. The mesh is
-/// unchanged on error.
+/// large for the neighbouring edges, segments outside 1–32, a border edge
+/// or end, or edges in line at a corner. The mesh is unchanged on error.
 pub fn bevel_edges(
     mesh: &mut HalfEdgeMesh,
     edges: &[EdgeId],
@@ -1681,54 +1674,26 @@ pub fn bevel_edges(
     if let Some(e) = edges.iter().find(|e| !mesh.is_edge(**e)) {
         return Err(ModelingError::Missing(e.to_string()));
     }
-    if segments == 1 {
-        return chamfer_edges(mesh, edges, width);
-    }
-    let mut ends = std::collections::HashSet::new();
-    for &e in edges {
-        for v in mesh.edge_vertices(e) {
-            if !ends.insert(v) {
-                return Err(ModelingError::Parameter {
-                    what: "edges",
-                    allowed: "edges that share no vertex (for a rounded bevel)",
-                    value: format!("{v} is an end of two"),
-                });
-            }
-        }
-    }
-    let mut work = mesh.clone();
-    let mut out = Vec::with_capacity(edges.len());
-    for &e in edges {
-        let [a, b] = work.edge_vertices(e);
-        let (pa, pb) = (work.position(a), work.position(b));
-        let f = bevel_one(&mut work, e, width)?;
-        if segments == 1 {
-            out.push(f);
-        } else {
-            out.extend(round_chamfer(&mut work, f, pa, pb, segments)?);
-        }
-    }
-    work.validate()
-        .map_err(|e| ModelingError::Invalid(e.to_string()))?;
-    *mesh = work;
-    Ok(out)
+    chamfer_edges(mesh, edges, width, segments)
 }
 
-/// One-segment bevel of any set of edges (Blender's Ctrl+B with one
-/// segment, "offset" width): every face corner at an end of a beveled edge
-/// moves into its face so that it lies `width` from the beveled edges of
-/// that corner (the intersection of the offset lines when both edges of the
-/// corner are beveled, a point slid along the other edge when one is); each
-/// beveled edge becomes a quad between its two faces' new corners, and
-/// where three or more new points surround an old vertex a patch face
-/// closes the gap (a fully beveled box corner gets a triangle). The old end
-/// vertices go; the faces around them are taken out and added back (pmp
-/// `delete_face` / `add_face`); other elements keep their ids. Returns the
-/// bevel quads, then the patches.
+/// Bevel of any set of edges (Blender's Ctrl+B, "offset" width): every
+/// face corner at an end of a beveled edge moves into its face so that it
+/// lies `width` from the beveled edges of that corner (the intersection of
+/// the offset lines when both edges of the corner are beveled, a point slid
+/// `width / sin θ` along the other edge when one is); each beveled edge
+/// becomes `segments` strips between its two faces' new corners, bent at
+/// each end on a quadratic Bézier arc whose control point is the old
+/// vertex; where three or more new points surround an old vertex a patch
+/// face closes the gap (a fully beveled box corner gets a triangle, or an
+/// n-gon through the arcs when rounded). The old end vertices go; the faces
+/// around them are taken out and added back (pmp `delete_face` /
+/// `add_face`); other elements keep their ids.
 fn chamfer_edges(
     mesh: &mut HalfEdgeMesh,
     edges: &[EdgeId],
     width: f64,
+    segments: u32,
 ) -> Result<Vec<FaceId>, ModelingError> {
     use std::collections::{BTreeSet, HashMap};
     let beveled: BTreeSet<EdgeId> = edges.iter().copied().collect();
@@ -1763,7 +1728,10 @@ fn chamfer_edges(
         for h in mesh.vertex_outgoing(v).collect::<Vec<_>>() {
             // In face(h) the corner at v is between prev(h) (in) and h (out).
             let (e_in, e_out) = (mesh.prev(h).edge(), h.edge());
-            let (u_in, u_out) = (dir(mesh, v, mesh.origin(mesh.prev(h))), dir(mesh, v, mesh.target(h)));
+            let (u_in, u_out) = (
+                dir(mesh, v, mesh.origin(mesh.prev(h))),
+                dir(mesh, v, mesh.target(h)),
+            );
             let sin = sin_between(u_in, u_out);
             let (b_in, b_out) = (beveled.contains(&e_in), beveled.contains(&e_out));
             let slid = match (b_in, b_out) {
@@ -1794,7 +1762,9 @@ fn chamfer_edges(
             if beveled.contains(&e) {
                 continue;
             }
-            let t = slide.get(&(v, e)).map_or(width, |(sum, n)| sum / f64::from(*n));
+            let t = slide
+                .get(&(v, e))
+                .map_or(width, |(sum, n)| sum / f64::from(*n));
             *used_length.entry(e).or_default() += t;
             let p = mesh.position(v) + dir(mesh, v, mesh.target(h)) * t;
             point_on.insert((v, e), work.add_vertex(p)?);
@@ -1828,7 +1798,8 @@ fn chamfer_edges(
             let (e_in, e_out) = (hin.edge(), h.edge());
             match (beveled.contains(&e_in), beveled.contains(&e_out)) {
                 (true, true) => {
-                    let (u_in, u_out) = (dir(mesh, v, mesh.origin(hin)), dir(mesh, v, mesh.target(h)));
+                    let (u_in, u_out) =
+                        (dir(mesh, v, mesh.origin(hin)), dir(mesh, v, mesh.target(h)));
                     let sin = sin_between(u_in, u_out);
                     if sin < 1e-9 {
                         return Err(ModelingError::Parameter {
@@ -1860,33 +1831,88 @@ fn chamfer_edges(
         }
         polygons.push(corners);
     }
-    let mut quads = Vec::new();
+    // Rounded bevels: at each end the cap edge between the two new corners
+    // bends into a quadratic Bézier arc with the old vertex as control
+    // point (B(½) = c₁/4 + v/2 + c₂/4). Edges in line share their corners
+    // at a vertex, so the arc is keyed by the corner pair and shared too.
+    let mut arcs: HashMap<(VertexId, VertexId, VertexId), Vec<VertexId>> = HashMap::new();
+    let mut arc = |work: &mut HalfEdgeMesh, v: VertexId, from: VertexId, to: VertexId| {
+        let key = (v, from.min(to), from.max(to));
+        if !arcs.contains_key(&key) {
+            let (c1, c2) = (work.position(key.1), work.position(key.2));
+            let control = mesh.position(v);
+            let inner: Vec<VertexId> = (1..segments)
+                .map(|k| {
+                    let t = f64::from(k) / f64::from(segments);
+                    let p =
+                        c1 * (1.0 - t) * (1.0 - t) + control * (2.0 * t * (1.0 - t)) + c2 * t * t;
+                    work.add_vertex(p).expect("finite")
+                })
+                .collect();
+            arcs.insert(key, inner);
+        }
+        let mut inner = arcs[&key].clone();
+        if from > to {
+            inner.reverse();
+        }
+        inner
+    };
+    let mut strips = Vec::new();
     for &e in &beveled {
         let h = e.halfedge(0);
         let t = h.twin();
         let (a, b) = (mesh.origin(h), mesh.target(h));
-        let (fh, ft) = (mesh.face(h).expect("checked"), mesh.face(t).expect("checked"));
-        quads.push(vec![
-            corner_of[&(fh, a)],
-            corner_of[&(ft, a)],
-            corner_of[&(ft, b)],
-            corner_of[&(fh, b)],
-        ]);
+        let (fh, ft) = (
+            mesh.face(h).expect("checked"),
+            mesh.face(t).expect("checked"),
+        );
+        let side = |work: &mut HalfEdgeMesh,
+                    arc: &mut dyn FnMut(
+            &mut HalfEdgeMesh,
+            VertexId,
+            VertexId,
+            VertexId,
+        ) -> Vec<VertexId>,
+                    v: VertexId| {
+            let (from, to) = (corner_of[&(fh, v)], corner_of[&(ft, v)]);
+            let mut points = vec![from];
+            points.extend(arc(work, v, from, to));
+            points.push(to);
+            points
+        };
+        let along_a = side(&mut work, &mut arc, a);
+        let along_b = side(&mut work, &mut arc, b);
+        for k in 0..segments as usize {
+            strips.push(vec![along_a[k], along_a[k + 1], along_b[k + 1], along_b[k]]);
+        }
     }
     // Patches: the new points around each end in fan order, when three or
     // more distinct ones leave a gap. The fan turns from a face to the one
     // across its incoming edge, so listing each face's out point before its
-    // in point runs every edge of the gap against its face.
+    // in point runs every edge of the gap against its face; crossing a
+    // beveled edge, the gap follows that edge's arc. With only two points
+    // the arcs meet each other, or the one face cut between them (a box
+    // end) takes the arc as its new side.
     let mut patches = Vec::new();
     for &v in &ends {
+        let fan: Vec<HalfEdgeId> = mesh.vertex_outgoing(v).collect();
         let mut ring: Vec<VertexId> = Vec::new();
-        for h in mesh.vertex_outgoing(v) {
+        let mut distinct = BTreeSet::new();
+        for (i, &h) in fan.iter().enumerate() {
             let f = mesh.face(h).expect("inside the surface");
             let e_in = mesh.prev(h).edge();
-            let pts: Vec<VertexId> = match corner_of.get(&(f, v)) {
+            let mut pts: Vec<VertexId> = match corner_of.get(&(f, v)) {
                 Some(&p) => vec![p],
                 None => vec![point_on[&(v, h.edge())], point_on[&(v, e_in)]],
             };
+            distinct.extend(pts.iter().copied());
+            if beveled.contains(&e_in) {
+                let g = mesh
+                    .face(fan[(i + 1) % fan.len()])
+                    .expect("inside the surface");
+                let (from, to) = (corner_of[&(f, v)], corner_of[&(g, v)]);
+                pts.extend(arc(&mut work, v, from, to));
+            }
             for p in pts {
                 if ring.last() != Some(&p) {
                     ring.push(p);
@@ -1896,12 +1922,33 @@ fn chamfer_edges(
         while ring.len() > 1 && ring.first() == ring.last() {
             ring.pop();
         }
-        if ring.len() >= 3 {
+        if distinct.len() >= 3 {
             patches.push(ring);
+        } else if segments > 1 {
+            for (i, &f) in faces.iter().enumerate() {
+                if corner_of.contains_key(&(f, v)) || !mesh.face_vertices(f).any(|x| x == v) {
+                    continue;
+                }
+                let h = mesh
+                    .face_halfedges(f)
+                    .find(|&h| mesh.origin(h) == v)
+                    .expect("a corner at v");
+                let (p_in, p_out) = (
+                    point_on[&(v, mesh.prev(h).edge())],
+                    point_on[&(v, h.edge())],
+                );
+                let inner = arc(&mut work, v, p_in, p_out);
+                let poly = &mut polygons[i];
+                let at = poly
+                    .iter()
+                    .position(|&x| x == p_in)
+                    .expect("the cut is in the face");
+                poly.splice(at + 1..at + 1, inner);
+            }
         }
     }
     let n_faces = polygons.len();
-    polygons.extend(quads);
+    polygons.extend(strips);
     polygons.extend(patches);
     work.delete_faces(&faces, true);
     for &v in &ends {
@@ -1912,116 +1959,4 @@ fn chamfer_edges(
         .map_err(|e| ModelingError::Invalid(e.to_string()))?;
     *mesh = work;
     Ok(added[n_faces.min(added.len())..].to_vec())
-}
-
-fn bevel_one(m: &mut HalfEdgeMesh, e: EdgeId, width: f64) -> Result<FaceId, ModelingError> {
-    let h = e.halfedge(0);
-    let t = h.twin();
-    let (a, b) = (m.origin(h), m.target(h));
-    if m.face(h).is_none() || m.face(t).is_none() {
-        return Err(ModelingError::Parameter {
-            what: "edge",
-            allowed: "an edge between two faces",
-            value: format!("{e} is on a boundary"),
-        });
-    }
-    for v in [a, b] {
-        if m.vertex_valence(v) != 3 || m.is_boundary_vertex(v) {
-            return Err(ModelingError::Parameter {
-                what: "edge ends",
-                allowed: "vertices of valence 3",
-                value: format!("{v} has valence {}", m.vertex_valence(v)),
-            });
-        }
-    }
-    // The four neighbouring edges, each with the end the bevel starts from.
-    let sides = [
-        (m.prev(h), a),
-        (m.next(t), a),
-        (m.next(h), b),
-        (m.prev(t), b),
-    ];
-    let mut new_vertices = Vec::with_capacity(4);
-    for (x, corner) in sides {
-        let far = if m.origin(x) == corner {
-            m.target(x)
-        } else {
-            m.origin(x)
-        };
-        let (pc, pf) = (m.position(corner), m.position(far));
-        let len = pc.distance(pf);
-        if width >= len {
-            return Err(ModelingError::Parameter {
-                what: "width",
-                allowed: "less than the neighbouring edges",
-                value: format!("{width} >= {len:.4}"),
-            });
-        }
-        let at = pc + (pf - pc) * (width / len);
-        new_vertices.push(m.split_edge(x.edge(), at)?);
-    }
-    let [a1, a2, b1, b2] = [
-        new_vertices[0],
-        new_vertices[1],
-        new_vertices[2],
-        new_vertices[3],
-    ];
-    connect_vertices(m, a1, b1)?;
-    connect_vertices(m, a2, b2)?;
-    m.kill_edge_face(e)?;
-    m.join_edges(a)?;
-    m.join_edges(b)?;
-    m.faces()
-        .find(|&f| {
-            let vs: Vec<VertexId> = m.face_vertices(f).collect();
-            vs.len() == 4 && [a1, a2, b1, b2].iter().all(|v| vs.contains(v))
-        })
-        .ok_or_else(|| ModelingError::Invalid("the chamfer face was not formed".into()))
-}
-
-/// Splits a chamfer quad into `segments` strips and bends them round: the
-/// new vertices of each end lie on the quadratic Bézier arc from one side
-/// of the chamfer to the other with the old corner as control point.
-fn round_chamfer(
-    m: &mut HalfEdgeMesh,
-    f: FaceId,
-    pa: DVec3,
-    pb: DVec3,
-    segments: u32,
-) -> Result<Vec<FaceId>, ModelingError> {
-    // The chamfer's short edges run across the old edge, at its two ends.
-    let corners: Vec<VertexId> = m.face_vertices(f).collect();
-    let near_a = |p: DVec3| p.distance_squared(pa) < p.distance_squared(pb);
-    let short = m
-        .face_halfedges(f)
-        .find(|&h| near_a(m.position(m.origin(h))) && near_a(m.position(m.target(h))))
-        .ok_or_else(|| ModelingError::Invalid("the chamfer has no end edge".into()))?;
-    let ends = |m: &HalfEdgeMesh, near: bool| -> (DVec3, DVec3) {
-        let side: Vec<DVec3> = corners
-            .iter()
-            .filter(|&&v| near_a(m.position(v)) == near)
-            .map(|&v| m.position(v))
-            .collect();
-        (side[0], side[1])
-    };
-    let (a1, a2) = ends(m, true);
-    let (b1, b2) = ends(m, false);
-    let new_edges = loop_cut(m, short.edge(), segments - 1)?;
-    let mut faces: Vec<FaceId> = Vec::new();
-    for &e in &new_edges {
-        faces.extend(m.edge_faces(e).into_iter().flatten());
-        for v in m.edge_vertices(e) {
-            let (s1, s2, corner) = if near_a(m.position(v)) {
-                (a1, a2, pa)
-            } else {
-                (b1, b2, pb)
-            };
-            let t = (m.position(v).distance(s1) / s1.distance(s2)).clamp(0.0, 1.0);
-            let p = s1 * (1.0 - t) * (1.0 - t) + corner * 2.0 * t * (1.0 - t) + s2 * t * t;
-            m.set_position(v, p);
-        }
-    }
-    faces.sort();
-    faces.dedup();
-    Ok(faces)
 }

@@ -774,9 +774,33 @@ fn beveling_a_cube_edge_makes_a_chamfer() {
                     .any(|v| c.edge_vertices(EdgeId(0)).contains(v))
         })
         .unwrap();
-    // Rounded bevels still need edges that share no vertex.
-    assert!(bevel_edges(&mut c, &[EdgeId(0), shared], 0.1, 2).is_err());
     assert_eq!(c, before);
+    // Edges that meet can be beveled together, flat or rounded.
+    for segments in [1, 2] {
+        let mut m = cube();
+        bevel_edges(&mut m, &[EdgeId(0), shared], 0.1, segments).unwrap();
+        m.validate().unwrap();
+        assert!(m.stats().closed);
+    }
+}
+
+#[test]
+fn rounding_every_edge_of_a_cube_keeps_it_closed_with_arc_patches() {
+    use hedra_geom::modeling::bevel_edges;
+    let mut c = cube();
+    let all: Vec<EdgeId> = c.edges().collect();
+    let faces = bevel_edges(&mut c, &all, 0.3, 3).unwrap();
+    c.validate().unwrap();
+    // Per corner 3 corner points and 3 arcs of 2 inner points; faces: the 6
+    // squares, 3 strips per edge, an enneagon patch per corner.
+    assert_eq!(counts(&c), (72, 120, 50));
+    assert_eq!(faces.len(), 36 + 8);
+    assert_eq!(faces.iter().filter(|&&f| c.face_degree(f) == 9).count(), 8);
+    assert!(c.stats().closed);
+    // Rounded removes less than flat.
+    let mut flat = cube();
+    bevel_edges(&mut flat, &all, 0.3, 1).unwrap();
+    assert!(c.volume() > flat.volume() && c.volume() < 8.0);
 }
 
 #[test]
