@@ -1685,8 +1685,8 @@ pub fn bevel_edges(
 /// becomes `segments` strips between its two faces' new corners, bent at
 /// each end on a quadratic Bézier arc whose control point is the old
 /// vertex; where three or more new points surround an old vertex a patch
-/// face closes the gap (a fully beveled box corner gets a triangle, or an
-/// n-gon through the arcs when rounded). The old end vertices go; the faces
+/// closes the gap (a fully beveled box corner gets a triangle; rounded, a
+/// fan of triangles through the arcs to a raised centre). The old end vertices go; the faces
 /// around them are taken out and added back (pmp `delete_face` /
 /// `add_face`); other elements keep their ids.
 fn chamfer_edges(
@@ -1922,8 +1922,18 @@ fn chamfer_edges(
         while ring.len() > 1 && ring.first() == ring.last() {
             ring.pop();
         }
-        if distinct.len() >= 3 {
+        if distinct.len() >= 3 && segments == 1 {
             patches.push(ring);
+        } else if distinct.len() >= 3 {
+            // Rounded: a fan of triangles to a centre raised towards the old
+            // vertex as the arcs are (half-way from the corners' centroid),
+            // instead of one flat n-gon.
+            let centroid =
+                distinct.iter().map(|&p| work.position(p)).sum::<DVec3>() / distinct.len() as f64;
+            let centre = work.add_vertex(centroid + (mesh.position(v) - centroid) * 0.5)?;
+            for i in 0..ring.len() {
+                patches.push(vec![ring[i], ring[(i + 1) % ring.len()], centre]);
+            }
         } else if segments > 1 {
             for (i, &f) in faces.iter().enumerate() {
                 if corner_of.contains_key(&(f, v)) || !mesh.face_vertices(f).any(|x| x == v) {

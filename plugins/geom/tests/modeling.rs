@@ -791,11 +791,18 @@ fn rounding_every_edge_of_a_cube_keeps_it_closed_with_arc_patches() {
     let all: Vec<EdgeId> = c.edges().collect();
     let faces = bevel_edges(&mut c, &all, 0.3, 3).unwrap();
     c.validate().unwrap();
-    // Per corner 3 corner points and 3 arcs of 2 inner points; faces: the 6
-    // squares, 3 strips per edge, an enneagon patch per corner.
-    assert_eq!(counts(&c), (72, 120, 50));
-    assert_eq!(faces.len(), 36 + 8);
-    assert_eq!(faces.iter().filter(|&&f| c.face_degree(f) == 9).count(), 8);
+    // Per corner 3 corner points, 3 arcs of 2 inner points and a centre;
+    // faces: the 6 squares, 3 strips per edge, 9 triangles per corner.
+    assert_eq!(counts(&c), (80, 192, 114));
+    assert_eq!(faces.len(), 36 + 72);
+    assert_eq!(faces.iter().filter(|&&f| c.face_degree(f) == 3).count(), 72);
+    // Each corner's centre lies half-way from its corner points' centroid
+    // to the old corner: at (1, 1, 1) the corner points are (1, 0.7, 0.7)
+    // and its turns, centroid (0.8, 0.8, 0.8), so the centre is 0.9.
+    assert!(
+        c.vertices()
+            .any(|v| (c.position(v) - glam::DVec3::splat(0.9)).length() < 1e-12)
+    );
     assert!(c.stats().closed);
     // Rounded removes less than flat.
     let mut flat = cube();
