@@ -618,7 +618,8 @@ fn merge_buttons(
     events: &mut Vec<UiEvent>,
 ) {
     use hedra_geom::modeling::MergePoint;
-    let ordered = || hedra_doc::VertexSet::Ids(sel.ordered_vertices().iter().map(|v| v.0).collect());
+    let ordered =
+        || hedra_doc::VertexSet::Ids(sel.ordered_vertices().iter().map(|v| v.0).collect());
     let enabled = sel.vertices.len() >= 2;
     for (label, at) in [
         ("At Center", MergePoint::Center),
@@ -2075,7 +2076,9 @@ fn mesh_menu(ui: &mut egui::Ui, node: NodeId, mode: &EditMode, events: &mut Vec<
             vertices: vertices(),
         }
     });
-    ui.menu_button("Merge\tM", |ui| merge_buttons(ui, node, sel, &mut merge_events));
+    ui.menu_button("Merge\tM", |ui| {
+        merge_buttons(ui, node, sel, &mut merge_events)
+    });
     item(ui, "Bevel Vertices\tCtrl+Shift+B", has_v, &|| {
         Command::BevelVertices {
             node: n.clone(),
