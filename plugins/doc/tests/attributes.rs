@@ -158,6 +158,19 @@ fn content<'a>(s: &'a Session, name: &str) -> &'a MeshContent {
     }
 }
 
+/// A session with one unit cube (no attributes).
+fn cube_session() -> Session {
+    let mut s = Session::new();
+    s.execute(&Command::AddPrimitive {
+        primitive: hedra_geom::Primitive::Cube { size: 1.0 },
+        name: None,
+        parent: None,
+        transform: Default::default(),
+    })
+    .unwrap();
+    s
+}
+
 #[test]
 fn obj_uvs_and_normals_land_on_the_right_corners() {
     let meshes = obj_from_str(BOX_AND_ROOF, "box.obj").unwrap();
@@ -233,14 +246,7 @@ fn a_subdivided_export_has_no_attributes_and_plain_meshes_stay_plain() {
         String::from_utf8(export_bytes(&s.doc, Path::new("o.obj"), options).unwrap()).unwrap();
     assert!(!text.contains("vt ") && !text.contains("vn ") && !text.contains('/'));
 
-    let mut s = Session::new();
-    s.execute(&Command::AddPrimitive {
-        primitive: hedra_geom::Primitive::Cube { size: 1.0 },
-        name: None,
-        parent: None,
-        transform: Default::default(),
-    })
-    .unwrap();
+    let s = cube_session();
     let text = String::from_utf8(
         export_bytes(&s.doc, Path::new("o.obj"), ExportOptions::default()).unwrap(),
     )
@@ -460,14 +466,7 @@ fn gltf_and_glb_round_trip_uvs_and_normals() {
 
 #[test]
 fn gltf_without_uvs_writes_no_texcoords() {
-    let mut s = Session::new();
-    s.execute(&Command::AddPrimitive {
-        primitive: hedra_geom::Primitive::Cube { size: 1.0 },
-        name: None,
-        parent: None,
-        transform: Default::default(),
-    })
-    .unwrap();
+    let s = cube_session();
     let bytes = export_bytes(&s.doc, Path::new("c.gltf"), ExportOptions::default()).unwrap();
     assert!(!String::from_utf8(bytes).unwrap().contains("TEXCOORD_0"));
 }
