@@ -105,12 +105,12 @@ pub(crate) fn corner_attributes(
             if let Some(Some(uv)) = uvs.get(start + i)
                 && uv.is_finite()
             {
-                out.uvs.insert(h, *uv);
+                Arc::make_mut(&mut out.uvs).insert(h, *uv);
             }
             if let Some(Some(n)) = normals.get(start + i)
                 && let Some(n) = n.try_normalize()
             {
-                out.normals.insert(h, n);
+                Arc::make_mut(&mut out.normals).insert(h, n);
             }
         }
     }

@@ -126,12 +126,49 @@ impl MeshContent {
 ///   gave them. They describe the imported geometry, so an edit that moves
 ///   vertices or changes the topology drops them all (see
 ///   [`follow_edit`](Self::follow_edit)).
+///
+/// The maps are shared (`Arc`): every undo step and the autosave copy hold
+/// a node's attributes without copying them; an edit makes its own map.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct CornerAttributes {
-    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
-    pub uvs: BTreeMap<HalfEdgeId, DVec2>,
-    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
-    pub normals: BTreeMap<HalfEdgeId, DVec3>,
+    #[serde(
+        default,
+        skip_serializing_if = "shared_map::is_empty",
+        with = "shared_map"
+    )]
+    pub uvs: Arc<BTreeMap<HalfEdgeId, DVec2>>,
+    #[serde(
+        default,
+        skip_serializing_if = "shared_map::is_empty",
+        with = "shared_map"
+    )]
+    pub normals: Arc<BTreeMap<HalfEdgeId, DVec3>>,
+}
+
+/// Serde for a shared map, written as the map itself (serde's `rc` feature
+/// would do the same, but turning it on would rebuild Bevy).
+mod shared_map {
+    use serde::{Deserialize, Deserializer, Serialize, Serializer};
+    use std::collections::BTreeMap;
+    use std::sync::Arc;
+
+    pub fn is_empty<K, V>(map: &Arc<BTreeMap<K, V>>) -> bool {
+        map.is_empty()
+    }
+    pub fn serialize<K: Serialize, V: Serialize, S: Serializer>(
+        map: &Arc<BTreeMap<K, V>>,
+        s: S,
+    ) -> Result<S::Ok, S::Error> {
+        map.as_ref().serialize(s)
+    }
+    pub fn deserialize<'de, K, V, D>(d: D) -> Result<Arc<BTreeMap<K, V>>, D::Error>
+    where
+        K: Deserialize<'de> + Ord,
+        V: Deserialize<'de>,
+        D: Deserializer<'de>,
+    {
+        BTreeMap::deserialize(d).map(Arc::new)
+    }
 }
 
 impl CornerAttributes {
@@ -149,8 +186,8 @@ impl CornerAttributes {
     /// file that might not match its mesh).
     pub fn retain_valid(&mut self, mesh: &HalfEdgeMesh) {
         let corner = |h: &HalfEdgeId| mesh.is_halfedge(*h) && mesh.face(*h).is_some();
-        self.uvs.retain(|h, uv| corner(h) && uv.is_finite());
-        self.normals
+        Arc::make_mut(&mut self.uvs).retain(|h, uv| corner(h) && uv.is_finite());
+        Arc::make_mut(&mut self.normals)
             .retain(|h, n| corner(h) && n.is_finite() && n.length_squared() > 0.0);
     }
 
@@ -165,7 +202,7 @@ impl CornerAttributes {
         }
         let mut uvs = BTreeMap::new();
         let mut moved = Vec::new();
-        for (&h, &uv) in &self.uvs {
+        for (&h, &uv) in self.uvs.iter() {
             if !before.is_halfedge(h) || !after.is_halfedge(h) {
                 continue;
             }
@@ -182,8 +219,8 @@ impl CornerAttributes {
             uvs.entry(c).or_insert(uv);
         }
         CornerAttributes {
-            uvs,
-            normals: BTreeMap::new(),
+            uvs: Arc::new(uvs),
+            normals: Arc::default(),
         }
     }
 }

@@ -411,7 +411,7 @@ f 1/1 2/2 5/5
     let mesh = m.mesh.as_ref().unwrap();
     assert_eq!(mesh.face_count(), 2);
     assert_eq!(m.corners.uvs.len(), 6);
-    for (h, uv) in &m.corners.uvs {
+    for (h, uv) in m.corners.uvs.iter() {
         // vt k was put on the vertex at x = ..., so check by position.
         let p = mesh.position(mesh.origin(*h));
         let expected = match (p.x, p.y) {
@@ -502,7 +502,7 @@ fn edits_keep_uvs_of_surviving_corners_and_drop_normals() {
     assert!(after.corners.normals.is_empty());
     assert!(after.mesh.face_count() > before.mesh.face_count());
     let mut kept = 0;
-    for (h, uv) in &after.corners.uvs {
+    for (h, uv) in after.corners.uvs.iter() {
         assert_eq!(before.corners.uvs.get(h), Some(uv), "{h} kept its UV");
         assert_eq!(after.mesh.origin(*h), before.mesh.origin(*h));
         kept += 1;
@@ -568,4 +568,33 @@ fn info_reports_corner_attributes() {
     assert!(text.contains("attributes: UVs on 0 of 8 corners, custom normals on 5 corners"));
     let json = report.to_json();
     assert!(json.contains("\"uv_corners\": 24"));
+}
+
+/// Undo steps share a node's attribute maps instead of copying them: moving
+/// a node keeps the very same UV map on both sides of the step.
+#[test]
+fn undo_steps_share_the_attribute_maps() {
+    let meshes = obj_from_str(BOX_AND_ROOF, "box.obj").unwrap();
+    let mut s = session_with(&meshes);
+    let before = content(&s, "Box").corners.uvs.clone();
+    assert!(!before.is_empty());
+    s.execute(&Command::Translate {
+        nodes: vec![hedra_doc::NodeRef::Name("Box".into())],
+        offset: DVec3::X,
+    })
+    .unwrap();
+    let step = s.history.done().last().unwrap();
+    let sides: Vec<&MeshContent> = [&step.changes[0].before, &step.changes[0].after]
+        .into_iter()
+        .map(|n| match &n.as_ref().unwrap().content {
+            NodeContent::Mesh(m) => m,
+            _ => unreachable!(),
+        })
+        .collect();
+    assert!(std::sync::Arc::ptr_eq(&sides[0].corners.uvs, &before));
+    assert!(std::sync::Arc::ptr_eq(&sides[1].corners.uvs, &before));
+    assert!(std::sync::Arc::ptr_eq(
+        &content(&s, "Box").corners.uvs,
+        &before
+    ));
 }
