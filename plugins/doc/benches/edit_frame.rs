@@ -2,13 +2,14 @@
 //! edit tool does every frame — decide the move on a copy of the document
 //! (`Document::decide`, as `hedra_edit` does for its preview) and patch the
 //! render buffers in place (`render::patch_positions`, as `hedra_scene`
-//! does) — against rebuilding the render buffers, which the patch avoids.
-//! The GPU upload of the changed attribute and the edge overlay are not in
-//! here (no GPU on the benchmark machine).
+//! does) — against rebuilding the render buffers, which the patch avoids;
+//! and the edit-mode edge overlay's lines (`render::edge_overlay`), rebuilt
+//! on every preview frame. The GPU upload is not in here (no GPU on the
+//! benchmark machine).
 
 use criterion::{BatchSize, Criterion, criterion_group, criterion_main};
 use glam::DVec3;
-use hedra_doc::render::{patch_positions, render_buffers};
+use hedra_doc::render::{OverlaySelection, edge_overlay, patch_positions, render_buffers};
 use hedra_doc::{Command, NodeContent, NodeRef, Session, Shading, Transform, VertexSet};
 use hedra_geom::Primitive;
 use std::hint::black_box;
@@ -78,6 +79,20 @@ fn bench(c: &mut Criterion) {
             b.iter(|| black_box(render_buffers(black_box(&moved), shading)))
         });
     }
+    // The edit-mode edge overlay is rebuilt on every preview frame.
+    let ids: std::collections::BTreeSet<_> = by_distance[..100].iter().copied().collect();
+    let none = std::collections::BTreeSet::new();
+    let no_faces = std::collections::BTreeSet::new();
+    let sel = OverlaySelection {
+        vertices: Some(&ids),
+        edges: &none,
+        faces: &no_faces,
+        related_edges: &none,
+        related_faces: &no_faces,
+    };
+    g.bench_function("edge_overlay", |b| {
+        b.iter(|| black_box(edge_overlay(&moved, &sel, &content.creases)))
+    });
     g.finish();
 }
 

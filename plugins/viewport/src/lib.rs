@@ -662,32 +662,25 @@ fn draw_edit_edges(
             related_faces.extend(mesh.face_neighbors(f));
         }
     }
-    for e in mesh.edges() {
-        let [a, b] = mesh.edge_vertices(e);
-        let faces = mesh.edge_faces(e);
-        let hot = sel.edges.contains(&e)
-            || (mode.kind == ElementKind::Vertex
-                && selected_vertices.contains(&a)
-                && selected_vertices.contains(&b))
-            || faces.iter().flatten().any(|f| sel.faces.contains(f));
-        let related =
-            related_edges.contains(&e) || faces.iter().flatten().any(|f| related_faces.contains(f));
-        let crease = creases.edge(e);
-        let color = if hot {
-            orange
-        } else if related {
-            cyan
-        } else if crease > 0.0 {
-            let k = 0.35 + 0.65 * (crease.min(10.0) / 10.0) as f32;
-            Color::srgb(0.95 * k, 0.1 * k, 0.8 * k)
-        } else {
-            Color::srgb(0.08, 0.08, 0.1)
+    let overlay = hedra_doc::render::OverlaySelection {
+        vertices: (mode.kind == ElementKind::Vertex).then_some(&selected_vertices),
+        edges: &sel.edges,
+        faces: &sel.faces,
+        related_edges: &related_edges,
+        related_faces: &related_faces,
+    };
+    for (a, b, look) in hedra_doc::render::edge_overlay(mesh, &overlay, creases) {
+        use hedra_doc::render::EdgeLook;
+        let color = match look {
+            EdgeLook::Selected => orange,
+            EdgeLook::Related => cyan,
+            EdgeLook::Crease(c) => {
+                let k = 0.35 + 0.65 * (c.min(10.0) / 10.0) as f32;
+                Color::srgb(0.95 * k, 0.1 * k, 0.8 * k)
+            }
+            EdgeLook::Plain => Color::srgb(0.08, 0.08, 0.1),
         };
-        asset.line(
-            mesh.position(a).as_vec3(),
-            mesh.position(b).as_vec3(),
-            color,
-        );
+        asset.line(Vec3::from(a), Vec3::from(b), color);
     }
 }
 
