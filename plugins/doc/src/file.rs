@@ -527,6 +527,33 @@ fn restore_node(sn: StoredNode, pool: &[Arc<HalfEdgeMesh>]) -> Result<Node, Stri
                     sn.id, sn.name
                 )
             })?;
+            // Parameters a command would have refused are refused here too
+            // (found by fuzzing: a NaN cube size loaded and broke the round trip).
+            let here = |what: String| format!("node {} '{}': {what}", sn.id, sn.name);
+            if let Some(p) = &primitive {
+                p.check().map_err(|e| here(e.to_string()))?;
+            }
+            if let Some(m) = &subdivision {
+                let level = m.viewport_level.max(m.export_level);
+                if level > hedra_geom::subdivision::MAX_LEVEL {
+                    return Err(here(format!(
+                        "subdivision level {level} is above the maximum {}",
+                        hedra_geom::subdivision::MAX_LEVEL
+                    )));
+                }
+            }
+            let bad_sharpness = creases
+                .edges
+                .values()
+                .chain(creases.vertices.values())
+                .find(|s| !(s.is_finite() && **s >= 0.0));
+            if let Some(s) = bad_sharpness {
+                return Err(here(format!(
+                    "crease sharpness {s} is not a finite value ≥ 0"
+                )));
+            }
+            let mut creases = creases;
+            creases.retain_live(m);
             // Attributes of corners the mesh does not have are dropped.
             corners.retain_valid(m);
             NodeContent::Mesh(MeshContent {

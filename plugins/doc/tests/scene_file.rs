@@ -440,3 +440,40 @@ fn curves_and_surfaces_round_trip_through_the_file_and_bad_data_is_refused() {
     let e = file::from_str(&text, Path::new("shapes.hedra.ron")).unwrap_err();
     assert!(e.to_string().contains("degree must be at least 1"), "{e}");
 }
+
+/// Values a command would refuse are refused on load too, naming the node:
+/// a NaN primitive size (found by fuzzing), a subdivision level above the
+/// maximum (it would allocate without bound), a negative crease.
+#[test]
+fn out_of_range_parameters_in_a_file_are_refused_by_node() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/corpus/scenes/v1-jar.hedra.ron");
+    let text = std::fs::read_to_string(&path).unwrap();
+    assert!(file::from_str(&text, &path).is_ok());
+    // The fuzzer's input: a node's cube primitive with size NaN.
+    let nan = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("fuzz/regressions/scene/nan-cube-size-in-primitive.hedra.ron");
+    let err = file::load(&nan).unwrap_err().to_string();
+    assert!(
+        err.contains("node #2 'Box'") && err.contains("size") && err.contains("NaN"),
+        "{err}"
+    );
+    // The first occurrences are in the scene part (it precedes the history).
+    for (from, to, expect) in [
+        (
+            "viewport_level: 3",
+            "viewport_level: 99",
+            "subdivision level 99",
+        ),
+        ("{13: 10.0,", "{13: -1.0,", "crease sharpness -1"),
+    ] {
+        assert!(text.contains(from), "{from}");
+        let bad = text.replacen(from, to, 1);
+        let err = file::from_str(&bad, Path::new("bad.hedra.ron"))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains("bad.hedra.ron") && err.contains("node") && err.contains(expect),
+            "{err}"
+        );
+    }
+}
