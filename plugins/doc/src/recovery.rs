@@ -258,7 +258,7 @@ pub fn pending_with(dir: &Path, is_running: &dyn Fn(u32) -> bool) -> Vec<Recover
             out.push(entry);
         }
     }
-    out.sort_by(|a, b| b.meta.saved_unix_ms.cmp(&a.meta.saved_unix_ms));
+    out.sort_by_key(|e| std::cmp::Reverse(e.meta.saved_unix_ms));
     out
 }
 

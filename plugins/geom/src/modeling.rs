@@ -1838,20 +1838,22 @@ fn chamfer_edges(
     let mut arcs: HashMap<(VertexId, VertexId, VertexId), Vec<VertexId>> = HashMap::new();
     let mut arc = |work: &mut HalfEdgeMesh, v: VertexId, from: VertexId, to: VertexId| {
         let key = (v, from.min(to), from.max(to));
-        if !arcs.contains_key(&key) {
-            let (c1, c2) = (work.position(key.1), work.position(key.2));
-            let control = mesh.position(v);
-            let inner: Vec<VertexId> = (1..segments)
-                .map(|k| {
-                    let t = f64::from(k) / f64::from(segments);
-                    let p =
-                        c1 * (1.0 - t) * (1.0 - t) + control * (2.0 * t * (1.0 - t)) + c2 * t * t;
-                    work.add_vertex(p).expect("finite")
-                })
-                .collect();
-            arcs.insert(key, inner);
-        }
-        let mut inner = arcs[&key].clone();
+        let mut inner = arcs
+            .entry(key)
+            .or_insert_with(|| {
+                let (c1, c2) = (work.position(key.1), work.position(key.2));
+                let control = mesh.position(v);
+                (1..segments)
+                    .map(|k| {
+                        let t = f64::from(k) / f64::from(segments);
+                        let p = c1 * (1.0 - t) * (1.0 - t)
+                            + control * (2.0 * t * (1.0 - t))
+                            + c2 * t * t;
+                        work.add_vertex(p).expect("finite")
+                    })
+                    .collect()
+            })
+            .clone();
         if from > to {
             inner.reverse();
         }

@@ -122,17 +122,17 @@ fn follow_document(mut rec: ResMut<Recovery>, state: Res<DocState>) {
     let Some(dir) = rec.dir.clone() else {
         return;
     };
-    if let Some(adopted) = rec.adopted.take() {
-        if adopted.original() == state.path.as_deref().map(absolute).as_deref() {
-            if rec.point().is_some_and(|p| *p != adopted) {
-                rec.forget_own_files();
-            }
-            rec.point = Some((adopted, state.path.clone()));
-            rec.wrote_files = true;
-            rec.last_serial = Some(state.session.history.current_serial());
-            rec.since = Instant::now();
-            return;
+    if let Some(adopted) = rec.adopted.take()
+        && adopted.original() == state.path.as_deref().map(absolute).as_deref()
+    {
+        if rec.point().is_some_and(|p| *p != adopted) {
+            rec.forget_own_files();
         }
+        rec.point = Some((adopted, state.path.clone()));
+        rec.wrote_files = true;
+        rec.last_serial = Some(state.session.history.current_serial());
+        rec.since = Instant::now();
+        return;
     }
     if rec
         .point
