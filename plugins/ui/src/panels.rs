@@ -1594,18 +1594,7 @@ fn history_window(
         .open(&mut state.show_history)
         .default_width(240.0)
         .show(ctx, |ui| {
-            ui.label(format!(
-                "{} step(s) kept (limit {}, about {:.1} of {} MiB){}",
-                h.done().len() + h.undone().len(),
-                h.max_steps,
-                h.approx_bytes() as f64 / (1024.0 * 1024.0),
-                h.max_bytes / (1024 * 1024),
-                if h.dropped > 0 {
-                    format!(", {} oldest dropped", h.dropped)
-                } else {
-                    String::new()
-                }
-            ));
+            ui.label(crate::recovery::history_summary(h));
             ui.separator();
             egui::ScrollArea::vertical()
                 .max_height(360.0)

@@ -379,17 +379,7 @@ fn preferences_window(
                 );
                 ui.end_row();
             });
-            let h = &state.session.history;
-            ui.label(format!(
-                "Now: {} undo steps kept, about {:.1} MiB{}",
-                h.done().len() + h.undone().len(),
-                h.approx_bytes() as f64 / (1024.0 * 1024.0),
-                if h.dropped > 0 {
-                    format!(", {} oldest dropped", h.dropped)
-                } else {
-                    String::new()
-                }
-            ));
+            ui.label(format!("Now: {}", history_summary(&state.session.history)));
             match &rec.dir {
                 Some(d) => ui.label(format!("Recovery folder: {}", d.display())),
                 None => ui.colored_label(
@@ -406,4 +396,26 @@ fn preferences_window(
         }
     }
     Ok(())
+}
+
+/// "7 undo steps kept (limit 500), about 36 KiB of 512 MiB, 2 oldest
+/// dropped" — what the history window and the preferences show.
+pub(crate) fn history_summary(h: &hedra_doc::History) -> String {
+    let bytes = |n: usize| match n {
+        0..1024 => format!("{n} bytes"),
+        1024..1_048_576 => format!("{} KiB", n / 1024),
+        _ => format!("{:.1} MiB", n as f64 / 1_048_576.0),
+    };
+    format!(
+        "{} undo steps kept (limit {}), about {} of {}{}",
+        h.done().len() + h.undone().len(),
+        h.max_steps,
+        bytes(h.approx_bytes()),
+        bytes(h.max_bytes),
+        if h.dropped > 0 {
+            format!(", {} oldest dropped", h.dropped)
+        } else {
+            String::new()
+        }
+    )
 }
