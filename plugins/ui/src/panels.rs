@@ -1500,6 +1500,7 @@ fn adjust_last_window(
             | Command::BevelEdges { .. }
             | Command::SlideEdges { .. }
             | Command::MergeByDistance { .. }
+            | Command::MergeVertices { .. }
             | Command::BevelVertices { .. }
     );
     if !editable {
@@ -1527,6 +1528,25 @@ fn adjust_last_window(
                 }
                 Command::SlideEdges { factor, .. } => {
                     number_row(ui, "Factor", factor, 0.01, -1.0..=1.0)
+                }
+                Command::MergeVertices { at, .. } => {
+                    use hedra_geom::modeling::MergePoint;
+                    let before = *at;
+                    ui.horizontal(|ui| {
+                        ui.label("Merge at");
+                        choice(
+                            ui,
+                            "adjust-merge-at",
+                            at,
+                            &[MergePoint::Center, MergePoint::First, MergePoint::Last],
+                            |p| match p {
+                                MergePoint::Center => "Center",
+                                MergePoint::First => "First",
+                                MergePoint::Last => "Last",
+                            },
+                        )
+                    });
+                    *at != before
                 }
                 Command::BevelVertices { width, .. } => {
                     number_row(ui, "Width", width, 0.005, 0.0001..=1e6)
