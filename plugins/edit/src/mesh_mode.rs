@@ -397,10 +397,12 @@ pub fn select_elements(
     window: Single<&Window, With<PrimaryWindow>>,
     camera: Single<(&Camera, &GlobalTransform), With<ViewportCamera>>,
     mut press: Local<Option<Press>>,
+    mut b_box: Local<Option<Vec2>>,
     mut status: ResMut<StatusMessage>,
 ) {
     if !mode.active() || mode.tool.is_some() {
         *press = None;
+        *b_box = None;
         mode.box_select = None;
         return;
     }
@@ -413,6 +415,37 @@ pub fn select_elements(
     let cursor = window.cursor_position();
     if gate.keyboard_free {
         keyboard_selection(&keys, &mut mode, &mesh, kind, world, &window, cam, cam_t);
+    }
+    // B (Blender): a box from the cursor follows the mouse; a click closes
+    // it and adds what it holds; Esc or a right click cancels.
+    if gate.keyboard_free
+        && keys.just_pressed(KeyCode::KeyB)
+        && !(ctrl(&keys) || shift(&keys) || alt(&keys))
+    {
+        *b_box = cursor;
+        status.info("Box select: move to the opposite corner and click (Esc cancels)");
+    }
+    if let Some(start) = *b_box {
+        if keys.just_pressed(KeyCode::Escape) || buttons.just_pressed(MouseButton::Right) {
+            *b_box = None;
+            mode.box_select = None;
+            return;
+        }
+        if let Some(c) = cursor {
+            mode.box_select = Some((start, c));
+        }
+        if !(buttons.just_pressed(MouseButton::Left) && gate.pointer_free) {
+            return;
+        }
+        *b_box = None;
+        status.info("Box select");
+        *press = Some(Press {
+            start,
+            alt: false,
+            ctrl: false,
+            shift: true,
+        });
+        return;
     }
     if buttons.just_pressed(MouseButton::Left) && gate.pointer_free && !mode.just_finished {
         if let Some(c) = cursor {
