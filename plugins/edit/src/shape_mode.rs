@@ -128,6 +128,25 @@ pub fn shape_follow_changes(mut edit: ResMut<ShapeEdit>, state: Res<DocState>) {
     }
 }
 
+/// Adds the control points whose screen position lies in the box `a`–`b`.
+fn select_in_box(
+    selected: &mut BTreeSet<u32>,
+    points: &[DVec3],
+    world: glam::DMat4,
+    (a, b): (Vec2, Vec2),
+    (cam, cam_t): (&Camera, &GlobalTransform),
+) {
+    let (lo, hi) = (a.min(b), a.max(b));
+    for (i, p) in points.iter().enumerate() {
+        if let Ok(s) = cam.world_to_viewport(cam_t, world.transform_point3(*p).as_vec3())
+            && s.cmpge(lo).all()
+            && s.cmple(hi).all()
+        {
+            selected.insert(i as u32);
+        }
+    }
+}
+
 /// The control point nearest to the cursor on screen, within 14 pixels.
 fn point_under_cursor(
     points: &[DVec3],
@@ -163,8 +182,12 @@ pub fn shape_select_and_shortcuts(
     camera: Single<(&Camera, &GlobalTransform), With<ViewportCamera>>,
     mut status: ResMut<StatusMessage>,
     mut requests: MessageWriter<DocRequest>,
+    mut b_box: Local<bool>,
 ) {
-    let Some(id) = edit.node else { return };
+    let Some(id) = edit.node else {
+        *b_box = false;
+        return;
+    };
     if edit.tool.is_some() {
         return;
     }
@@ -179,6 +202,32 @@ pub fn shape_select_and_shortcuts(
     let world = state.session.doc.world_matrix(id);
     let (cam, cam_t) = *camera;
     let cursor = window.cursor_position();
+    // B (Blender): a box from the cursor follows the mouse; a click adds
+    // the points it holds; Esc or a right click cancels.
+    if gate.keyboard_free
+        && keys.just_pressed(KeyCode::KeyB)
+        && !(ctrl(&keys) || shift(&keys) || alt(&keys))
+        && let Some(c) = cursor
+    {
+        edit.box_select = Some((c, c));
+        *b_box = true;
+        status.info("Box select: move to the opposite corner and click (Esc cancels)");
+    }
+    if *b_box {
+        if keys.just_pressed(KeyCode::Escape) || buttons.just_pressed(MouseButton::Right) {
+            *b_box = false;
+            edit.box_select = None;
+        } else if let (Some((start, _)), Some(c)) = (edit.box_select, cursor) {
+            edit.box_select = Some((start, c));
+            if gate.pointer_free && buttons.just_pressed(MouseButton::Left) {
+                *b_box = false;
+                edit.box_select = None;
+                select_in_box(&mut edit.selected, &points, world, (start, c), (cam, cam_t));
+                status.info("Box select");
+            }
+        }
+        return;
+    }
     // A press on a point selects it; a press elsewhere starts a box, and a
     // release without dragging clears the selection (Shift keeps it).
     if gate.pointer_free && buttons.just_pressed(MouseButton::Left) && !alt(&keys) {
@@ -204,15 +253,7 @@ pub fn shape_select_and_shortcuts(
             edit.selected.clear();
         }
         if a.distance(b) > 4.0 {
-            let (lo, hi) = (a.min(b), a.max(b));
-            for (i, p) in points.iter().enumerate() {
-                if let Ok(s) = cam.world_to_viewport(cam_t, world.transform_point3(*p).as_vec3())
-                    && s.cmpge(lo).all()
-                    && s.cmple(hi).all()
-                {
-                    edit.selected.insert(i as u32);
-                }
-            }
+            select_in_box(&mut edit.selected, &points, world, (a, b), (cam, cam_t));
         }
     }
     if !gate.keyboard_free || ctrl(&keys) {
