@@ -72,6 +72,29 @@ pub fn gui_app(options: GuiOptions) -> App {
             }
         },
     );
+    // SIGTERM / SIGHUP / SIGINT (a logout, `kill`, Ctrl+C in the terminal)
+    // end the app through an error exit, which writes the unsaved document
+    // as an emergency recovery point first; a second signal ends it at once.
+    let stop = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false));
+    for signal in [
+        signal_hook::consts::SIGTERM,
+        signal_hook::consts::SIGHUP,
+        signal_hook::consts::SIGINT,
+    ] {
+        // The second signal terminates (the flag is already set).
+        let _ = signal_hook::flag::register_conditional_shutdown(signal, 1, stop.clone());
+        let _ = signal_hook::flag::register(signal, stop.clone());
+    }
+    app.add_systems(
+        Update,
+        move |mut exit: MessageWriter<AppExit>, mut sent: Local<bool>| {
+            if !*sent && stop.load(std::sync::atomic::Ordering::Relaxed) {
+                *sent = true;
+                warn!("Hedra was asked to stop by a signal; saving unsaved work for recovery");
+                exit.write(AppExit::error());
+            }
+        },
+    );
     // A panic or render error saves the last committed document first.
     let snapshot = app
         .world()

@@ -416,3 +416,74 @@ fn a_killed_session_is_offered_back_on_the_next_start() {
     assert_eq!(recovered.undo().as_deref(), Some("Add Cube"));
     assert!(recovered.doc.find_by_name("Unsaved").is_none());
 }
+
+/// SIGTERM (a logout, `kill`) ends the app through an error exit that writes
+/// the unsaved document as an emergency recovery point first.
+#[test]
+fn a_terminated_session_writes_an_emergency_save() {
+    let dir = tempfile::tempdir().unwrap();
+    let config = dir.path().join("config");
+    std::fs::create_dir_all(&config).unwrap();
+    std::fs::write(config.join("preferences.ron"), "(autosave_seconds: 1)").unwrap();
+    let work = dir.path().join("work.hedra.ron");
+    std::fs::copy(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/samples/table.hedra.ron"),
+        &work,
+    )
+    .unwrap();
+    let script = dir.path().join("add.ron");
+    std::fs::write(
+        &script,
+        "[AddPrimitive(primitive: Cube(size: 0.5), name: \"Unsaved\")]",
+    )
+    .unwrap();
+    let pidfile = dir.path().join("pid");
+    // The shell starts Hedra in the background and records its pid, so the
+    // signal reaches Hedra itself, not xvfb-run.
+    let mut runner = std::process::Command::new("xvfb-run")
+        .args(["-a", "-s", "-screen 0 1280x800x24", "sh", "-c"])
+        .arg(format!(
+            "\"$0\" \"$@\" & echo $! > '{}'; wait $!",
+            pidfile.display()
+        ))
+        .arg(env!("CARGO_BIN_EXE_hedra"))
+        .arg(&work)
+        .arg("--run")
+        .arg(&script)
+        .env("WGPU_BACKEND", "vulkan")
+        .env("HEDRA_CONFIG_DIR", &config)
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    let recovery_dir = config.join("recovery");
+    let has = |suffix: &str| {
+        std::fs::read_dir(&recovery_dir).is_ok_and(|d| {
+            d.flatten()
+                .any(|e| e.file_name().to_string_lossy().ends_with(suffix))
+        })
+    };
+    // Running with unsaved work once it has autosaved.
+    let start = std::time::Instant::now();
+    while !has(".autosave.meta.ron") {
+        assert!(start.elapsed().as_secs() < 120, "no autosave within 120 s");
+        std::thread::sleep(std::time::Duration::from_millis(200));
+    }
+    let pid: i32 = std::fs::read_to_string(&pidfile)
+        .unwrap()
+        .trim()
+        .parse()
+        .unwrap();
+    // SAFETY: kill only sends a signal to the recorded child.
+    unsafe { libc::kill(pid, libc::SIGTERM) };
+    let status = runner.wait().unwrap();
+    assert!(!status.success(), "an error exit");
+    assert!(has(".emergency.meta.ron"), "emergency save written");
+    let offered = hedra::doc::recovery::pending(&recovery_dir);
+    let emergency = offered
+        .iter()
+        .find(|e| e.meta.kind == hedra::doc::recovery::RecoveryKind::Emergency)
+        .expect("the emergency point is offered");
+    let s = hedra::doc::recovery::recover(emergency).unwrap().session;
+    assert!(s.doc.find_by_name("Unsaved").is_some());
+}
