@@ -310,28 +310,74 @@ fn surface_edit_screenshot_shows_its_control_net_and_weights() {
     );
 }
 
+/// A copy of the table sample, a configuration folder autosaving every
+/// second, and a script that adds a cube named "Unsaved".
+struct UnsavedScene {
+    dir: tempfile::TempDir,
+    config: std::path::PathBuf,
+    work: std::path::PathBuf,
+    script: std::path::PathBuf,
+}
+
+impl UnsavedScene {
+    fn new() -> Self {
+        let dir = tempfile::tempdir().unwrap();
+        let config = dir.path().join("config");
+        std::fs::create_dir_all(&config).unwrap();
+        std::fs::write(config.join("preferences.ron"), "(autosave_seconds: 1)").unwrap();
+        let work = dir.path().join("work.hedra.ron");
+        std::fs::copy(
+            Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/samples/table.hedra.ron"),
+            &work,
+        )
+        .unwrap();
+        let script = dir.path().join("add.ron");
+        std::fs::write(
+            &script,
+            "[AddPrimitive(primitive: Cube(size: 0.5), name: \"Unsaved\")]",
+        )
+        .unwrap();
+        UnsavedScene {
+            dir,
+            config,
+            work,
+            script,
+        }
+    }
+
+    fn recovery_dir(&self) -> std::path::PathBuf {
+        self.config.join("recovery")
+    }
+
+    /// Whether the recovery folder holds a file ending in `suffix`.
+    fn has(&self, suffix: &str) -> bool {
+        std::fs::read_dir(self.recovery_dir()).is_ok_and(|d| {
+            d.flatten()
+                .any(|e| e.file_name().to_string_lossy().ends_with(suffix))
+        })
+    }
+
+    /// Waits up to 120 s for the running app's first autosave.
+    fn wait_for_autosave(&self) -> bool {
+        let start = std::time::Instant::now();
+        while !self.has(".autosave.meta.ron") {
+            if start.elapsed().as_secs() > 120 {
+                return false;
+            }
+            std::thread::sleep(std::time::Duration::from_millis(200));
+        }
+        true
+    }
+}
+
 /// Never lose work: a session killed after an autosave is offered back on
 /// the next start, with its undo history.
 #[test]
 fn a_killed_session_is_offered_back_on_the_next_start() {
     use std::os::unix::process::CommandExt;
-    let dir = tempfile::tempdir().unwrap();
-    let config = dir.path().join("config");
-    std::fs::create_dir_all(&config).unwrap();
-    std::fs::write(config.join("preferences.ron"), "(autosave_seconds: 1)").unwrap();
-    let work = dir.path().join("work.hedra.ron");
-    std::fs::copy(
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/samples/table.hedra.ron"),
-        &work,
-    )
-    .unwrap();
-    let original = std::fs::read_to_string(&work).unwrap();
-    let script = dir.path().join("lift.ron");
-    std::fs::write(
-        &script,
-        "[AddPrimitive(primitive: Cube(size: 0.5), name: \"Unsaved\")]",
-    )
-    .unwrap();
+    let scene = UnsavedScene::new();
+    let (config, work, script) = (&scene.config, &scene.work, &scene.script);
+    let original = std::fs::read_to_string(work).unwrap();
     let app = |args: &[&std::ffi::OsStr]| {
         let mut c = std::process::Command::new("xvfb-run");
         c.args([
@@ -340,10 +386,10 @@ fn a_killed_session_is_offered_back_on_the_next_start() {
             "-screen 0 1280x800x24",
             env!("CARGO_BIN_EXE_hedra"),
         ])
-        .arg(&work)
+        .arg(work)
         .args(args)
         .env("WGPU_BACKEND", "vulkan")
-        .env("HEDRA_CONFIG_DIR", &config)
+        .env("HEDRA_CONFIG_DIR", config)
         .process_group(0);
         c
     };
@@ -353,24 +399,8 @@ fn a_killed_session_is_offered_back_on_the_next_start() {
         .stderr(std::process::Stdio::null())
         .spawn()
         .unwrap();
-    let recovery_dir = config.join("recovery");
-    let start = std::time::Instant::now();
-    let autosaved = loop {
-        let metas = std::fs::read_dir(&recovery_dir).map_or(0, |d| {
-            d.filter(|e| {
-                e.as_ref().is_ok_and(|e| {
-                    e.file_name()
-                        .to_string_lossy()
-                        .ends_with(".autosave.meta.ron")
-                })
-            })
-            .count()
-        });
-        if metas > 0 || start.elapsed().as_secs() > 120 {
-            break metas > 0;
-        }
-        std::thread::sleep(std::time::Duration::from_millis(200));
-    };
+    let recovery_dir = scene.recovery_dir();
+    let autosaved = scene.wait_for_autosave();
     // Kill the whole group (xvfb-run, Xvfb, hedra) without warning.
     let group = i32::try_from(first.id()).unwrap();
     assert!(group > 1);
@@ -379,13 +409,13 @@ fn a_killed_session_is_offered_back_on_the_next_start() {
     let _ = first.wait();
     assert!(autosaved, "no autosave appeared within 120 s");
     assert_eq!(
-        std::fs::read_to_string(&work).unwrap(),
+        std::fs::read_to_string(work).unwrap(),
         original,
         "the file itself is untouched"
     );
 
     // The next start offers it (and leaves it in place until the user decides).
-    let shot = dir.path().join("shot.png");
+    let shot = scene.dir.path().join("shot.png");
     let out = app(&[
         "--screenshot".as_ref(),
         shot.as_os_str(),
@@ -421,23 +451,9 @@ fn a_killed_session_is_offered_back_on_the_next_start() {
 /// the unsaved document as an emergency recovery point first.
 #[test]
 fn a_terminated_session_writes_an_emergency_save() {
-    let dir = tempfile::tempdir().unwrap();
-    let config = dir.path().join("config");
-    std::fs::create_dir_all(&config).unwrap();
-    std::fs::write(config.join("preferences.ron"), "(autosave_seconds: 1)").unwrap();
-    let work = dir.path().join("work.hedra.ron");
-    std::fs::copy(
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/samples/table.hedra.ron"),
-        &work,
-    )
-    .unwrap();
-    let script = dir.path().join("add.ron");
-    std::fs::write(
-        &script,
-        "[AddPrimitive(primitive: Cube(size: 0.5), name: \"Unsaved\")]",
-    )
-    .unwrap();
-    let pidfile = dir.path().join("pid");
+    let scene = UnsavedScene::new();
+    let (config, work, script) = (&scene.config, &scene.work, &scene.script);
+    let pidfile = scene.dir.path().join("pid");
     // The shell starts Hedra in the background and records its pid, so the
     // signal reaches Hedra itself, not xvfb-run.
     let mut runner = std::process::Command::new("xvfb-run")
@@ -447,28 +463,18 @@ fn a_terminated_session_writes_an_emergency_save() {
             pidfile.display()
         ))
         .arg(env!("CARGO_BIN_EXE_hedra"))
-        .arg(&work)
+        .arg(work)
         .arg("--run")
-        .arg(&script)
+        .arg(script)
         .env("WGPU_BACKEND", "vulkan")
-        .env("HEDRA_CONFIG_DIR", &config)
+        .env("HEDRA_CONFIG_DIR", config)
         .stdout(std::process::Stdio::null())
         .stderr(std::process::Stdio::null())
         .spawn()
         .unwrap();
-    let recovery_dir = config.join("recovery");
-    let has = |suffix: &str| {
-        std::fs::read_dir(&recovery_dir).is_ok_and(|d| {
-            d.flatten()
-                .any(|e| e.file_name().to_string_lossy().ends_with(suffix))
-        })
-    };
+    let recovery_dir = scene.recovery_dir();
     // Running with unsaved work once it has autosaved.
-    let start = std::time::Instant::now();
-    while !has(".autosave.meta.ron") {
-        assert!(start.elapsed().as_secs() < 120, "no autosave within 120 s");
-        std::thread::sleep(std::time::Duration::from_millis(200));
-    }
+    assert!(scene.wait_for_autosave(), "no autosave within 120 s");
     let pid: i32 = std::fs::read_to_string(&pidfile)
         .unwrap()
         .trim()
@@ -478,7 +484,7 @@ fn a_terminated_session_writes_an_emergency_save() {
     unsafe { libc::kill(pid, libc::SIGTERM) };
     let status = runner.wait().unwrap();
     assert!(!status.success(), "an error exit");
-    assert!(has(".emergency.meta.ron"), "emergency save written");
+    assert!(scene.has(".emergency.meta.ron"), "emergency save written");
     let offered = hedra::doc::recovery::pending(&recovery_dir);
     let emergency = offered
         .iter()
