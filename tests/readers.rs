@@ -1,6 +1,6 @@
-//! Hedra's exports opened by an independent reader: Python's trimesh
-//! (installed by `scripts/setup`). Under CI the reader must be there; on a
-//! machine without it the test says so and passes.
+//! Hedra's exports opened by an independent reader: Python's trimesh, with
+//! numpy and Pillow, installed by `scripts/setup` from the pinned list in
+//! `scripts/requirements.txt`. Without them the tests fail, naming the module.
 
 use std::path::Path;
 use std::process::Command;
@@ -12,11 +12,18 @@ fn hedra(args: &[&str]) -> std::process::Output {
         .expect("the hedra binary runs")
 }
 
-fn trimesh_available() -> bool {
-    Command::new("python3")
-        .args(["-c", "import trimesh"])
-        .output()
-        .is_ok_and(|o| o.status.success())
+/// Fails, naming the module, when python3 cannot import what these tests use.
+fn require_python_readers() {
+    for module in ["trimesh", "numpy", "PIL"] {
+        let imported = Command::new("python3")
+            .args(["-c", &format!("import {module}")])
+            .output()
+            .is_ok_and(|o| o.status.success());
+        assert!(
+            imported,
+            "python3 cannot import '{module}': run scripts/setup (it installs scripts/requirements.txt)"
+        );
+    }
 }
 
 /// Loads `file` with trimesh and prints `vertices faces xmin xmax ymin ymax zmin zmax`.
@@ -43,14 +50,7 @@ fn trimesh_summary(file: &Path) -> Vec<f64> {
 
 #[test]
 fn trimesh_reads_obj_stl_gltf_and_glb_exports_with_the_right_counts_and_bounds() {
-    if !trimesh_available() {
-        assert!(
-            std::env::var_os("CI").is_none(),
-            "CI must have trimesh (scripts/setup installs it)"
-        );
-        eprintln!("skipped: python3 with trimesh is not installed (scripts/setup installs it)");
-        return;
-    }
+    require_python_readers();
     let dir = tempfile::tempdir().unwrap();
     let script = dir.path().join("s.ron");
     // A cube (side 2) moved to x = 10 under a parent rotated a quarter turn
@@ -94,11 +94,7 @@ fn trimesh_reads_obj_stl_gltf_and_glb_exports_with_the_right_counts_and_bounds()
 /// UVs survive OBJ import → scene → OBJ export, as trimesh reads them.
 #[test]
 fn trimesh_reads_the_uvs_of_an_exported_obj() {
-    if !trimesh_available() {
-        assert!(std::env::var_os("CI").is_none(), "CI must have trimesh");
-        eprintln!("skipped: python3 with trimesh is not installed");
-        return;
-    }
+    require_python_readers();
     let dir = tempfile::tempdir().unwrap();
     let scene = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("plugins/doc/tests/corpus/scenes/v1-uv-panel.hedra.ron");
