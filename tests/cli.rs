@@ -713,3 +713,32 @@ fn stl_round_trips_binary_and_ascii_and_bad_stl_is_refused() {
         "where a binary STL of its triangle count has",
     );
 }
+
+/// A `.gltf` whose buffer points at a file outside its folder (issue 11):
+/// `hedra import` refuses it, naming file, buffer and reference, exits
+/// non-zero and writes nothing.
+#[test]
+fn import_refuses_a_gltf_buffer_outside_the_files_folder() {
+    let dir = tempfile::tempdir().unwrap();
+    let gltf = dir.path().join("scene.gltf");
+    std::fs::write(
+        &gltf,
+        r#"{"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],
+            "nodes":[{"mesh":0}],"meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],
+            "accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,1]}],
+            "bufferViews":[{"buffer":0,"byteLength":36}],
+            "buffers":[{"byteLength":36,"uri":"/etc/passwd"}]}"#,
+    )
+    .unwrap();
+    let out = dir.path().join("out.hedra.ron");
+    let o = hedra(&["import", gltf.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+    assert!(!o.status.success());
+    assert_eq!(
+        stderr(&o).trim(),
+        format!(
+            "hedra: error: {}: buffer 0 refers to '/etc/passwd', outside the file's folder; refused",
+            gltf.display()
+        )
+    );
+    assert!(!out.exists());
+}

@@ -163,11 +163,71 @@ pub fn stl(data: &[u8]) {
     check_imported(crate::import::stl_from_bytes(data, "fuzz", FUZZ_PATH));
 }
 
-/// glTF JSON or GLB bytes, with no folder for external buffers (a URI that
-/// is not a data URI must give an error, never a file read).
+/// glTF JSON or GLB bytes, imported as a file of [`reference_sandbox`]'s
+/// `inside` folder: external buffers inside it are read; a buffer that
+/// leaves it (`../outside.bin`, a link, an absolute path, …) must be
+/// refused, which is checked by the marker coordinate of `outside.bin`.
 ///
 /// # Panics
-/// When an imported mesh is not sane or an error does not name the file.
+/// When an imported mesh is not sane, an error does not name the file, or
+/// the import read `outside.bin`.
 pub fn gltf(data: &[u8]) {
-    check_imported(crate::gltf::gltf_from_bytes(data, None, FUZZ_PATH));
+    let result = crate::gltf::gltf_from_bytes(data, Some(&reference_sandbox()), FUZZ_PATH);
+    if let Ok(meshes) = &result {
+        for m in meshes.iter().filter_map(|m| m.mesh.as_ref()) {
+            assert!(
+                m.positions().iter().all(|p| p.x != OUTSIDE_MARKER as f64),
+                "the import read a file outside the glTF file's folder"
+            );
+        }
+    }
+    check_imported(result);
+}
+
+/// The x coordinate of every point of the sandbox's `outside.bin`.
+pub const OUTSIDE_MARKER: f32 = 777.0;
+
+/// A folder for the glTF body's external buffers, made once per process
+/// under the temporary directory (the same path every time):
+///
+/// ```text
+/// hedra-fuzz-references/
+///   outside.bin                 triangle at x = 777 (must never be read)
+///   inside/                     the glTF file's folder
+///     buffer.bin                triangle (0,0,0) (1,0,0) (0,1,0), 36 bytes
+///     sub/my mesh.bin           the same triangle
+///     link_out.bin -> ../outside.bin   (Unix)
+/// ```
+///
+/// # Panics
+/// When the temporary directory cannot be written.
+pub fn reference_sandbox() -> std::path::PathBuf {
+    static SANDBOX: std::sync::OnceLock<std::path::PathBuf> = std::sync::OnceLock::new();
+    SANDBOX
+        .get_or_init(|| {
+            let root = std::env::temp_dir().join("hedra-fuzz-references");
+            let inside = root.join("inside");
+            std::fs::create_dir_all(inside.join("sub")).expect("the fuzz sandbox can be made");
+            let triangle = |x0: f32| -> Vec<u8> {
+                [[x0, 0.0, 0.0], [x0 + 1.0, 0.0, 0.0], [x0, 1.0, 0.0]]
+                    .iter()
+                    .flatten()
+                    .flat_map(|c| c.to_le_bytes())
+                    .collect()
+            };
+            let write = |path: &Path, bytes: &[u8]| {
+                if std::fs::read(path).ok().as_deref() != Some(bytes) {
+                    std::fs::write(path, bytes).expect("the fuzz sandbox can be written");
+                }
+            };
+            write(&root.join("outside.bin"), &triangle(OUTSIDE_MARKER));
+            write(&inside.join("buffer.bin"), &triangle(0.0));
+            write(&inside.join("sub/my mesh.bin"), &triangle(0.0));
+            #[cfg(unix)]
+            {
+                let _ = std::os::unix::fs::symlink("../outside.bin", inside.join("link_out.bin"));
+            }
+            inside
+        })
+        .clone()
 }

@@ -421,7 +421,8 @@ pub fn to_gltf(doc: &Document, shape: ExportShape, binary: bool) -> Result<Vec<u
 /// Reads a `.gltf` or `.glb` file's scene: every node becomes a node with
 /// its parent, name and local transform; triangle primitives become one
 /// half-edge mesh per node with equal positions welded (other primitive
-/// modes are skipped and reported). `base` resolves external buffer files.
+/// modes are skipped and reported). `base` is the file's folder: external
+/// buffer files are read only from inside it ([`crate::reference`]).
 ///
 /// # Errors
 /// [`ImportError::Read`] naming the problem (not glTF, a missing buffer,
@@ -445,26 +446,24 @@ pub fn gltf_from_bytes(
                 .blob
                 .clone()
                 .ok_or_else(|| err("the GLB has no binary chunk".into()))?,
+            gltf::buffer::Source::Uri(uri) if uri.starts_with("data:") => {
+                let encoded = uri.split_once(";base64,").map(|(_, d)| d).ok_or_else(|| {
+                    err(format!("buffer {}: a data URI that is not base64", buffer.index()))
+                })?;
+                base64::engine::general_purpose::STANDARD
+                    .decode(encoded)
+                    .map_err(|e| err(format!("buffer {}: bad base64 ({e})", buffer.index())))?
+            }
+            // Another file: only inside this file's folder (crate::reference).
             gltf::buffer::Source::Uri(uri) => {
-                if let Some(encoded) = uri.split_once(";base64,").map(|(_, d)| d) {
-                    base64::engine::general_purpose::STANDARD
-                        .decode(encoded)
-                        .map_err(|e| err(format!("buffer {}: bad base64 ({e})", buffer.index())))?
-                } else {
-                    let file = base.map(|b| b.join(uri)).ok_or_else(|| {
-                        err(format!(
-                            "buffer {} refers to '{uri}', which cannot be found",
-                            buffer.index()
-                        ))
-                    })?;
-                    std::fs::read(&file).map_err(|e| {
-                        err(format!(
-                            "buffer {} ({}): {e}",
-                            buffer.index(),
-                            file.display()
-                        ))
-                    })?
-                }
+                let folder = base.ok_or_else(|| {
+                    err(format!(
+                        "buffer {} refers to '{uri}', which cannot be found",
+                        buffer.index()
+                    ))
+                })?;
+                crate::reference::read_inside(folder, uri, buffer.length() as u64)
+                    .map_err(|e| err(format!("buffer {} {e}", buffer.index())))?
             }
         };
         if data.len() < buffer.length() {

@@ -12,6 +12,7 @@ pub mod gltf;
 pub mod history;
 pub mod import;
 pub mod recovery;
+pub mod reference;
 pub mod render;
 pub mod report;
 pub mod scene;
