@@ -44,21 +44,58 @@ pub struct GuiOptions {
     pub run: Vec<hedra_doc::Command>,
 }
 
-/// The windowed modeling app.
-pub fn gui_app(options: GuiOptions) -> App {
-    let mut app = App::new();
-    app.add_plugins(DefaultPlugins.set(WindowPlugin {
+/// The main window: 1280×800; closing asks about unsaved changes first
+/// (hedra_ui handles the request).
+fn main_window() -> WindowPlugin {
+    WindowPlugin {
         primary_window: Some(Window {
             title: "Hedra".into(),
             resolution: WindowResolution::new(1280, 800),
             ..default()
         }),
-        // Closing asks about unsaved changes first (hedra_ui handles the request).
         close_when_requested: false,
         ..default()
-    }))
+    }
+}
+
+/// The whole modeling app (every plugin, egui included) with its window
+/// entity but no window system and no GPU, for tests that use it as a
+/// person does: they call `App::update` frame by frame and feed keys,
+/// buttons, cursor and wheel as Bevy's own input messages (`tests/input`).
+/// Nothing is drawn; cameras, egui layout, picking and the document run as
+/// in the window. Preferences are the defaults and recovery points go to
+/// `recovery_dir`, so a test touches nothing of the user's.
+pub fn windowless_gui_app(recovery_dir: PathBuf) -> App {
+    let mut app = App::new();
+    app.add_plugins(
+        DefaultPlugins
+            .set(main_window())
+            .set(bevy::render::RenderPlugin {
+                render_creation: bevy::render::settings::WgpuSettings {
+                    backends: None,
+                    ..default()
+                }
+                .into(),
+                ..default()
+            })
+            .disable::<bevy::winit::WinitPlugin>()
+            .disable::<bevy::log::LogPlugin>(),
+    )
     .add_plugins(HedraPlugins)
-    .insert_resource(hedra_ui::SamplesDir(assets_dir().join("samples")));
+    .insert_resource(hedra_ui::SamplesDir(assets_dir().join("samples")))
+    .insert_resource(hedra_ui::Preferences::default())
+    .insert_resource(hedra_ui::recovery::Recovery::new(Some(recovery_dir)));
+    app.finish();
+    app.cleanup();
+    app
+}
+
+/// The windowed modeling app.
+pub fn gui_app(options: GuiOptions) -> App {
+    let mut app = App::new();
+    app.add_plugins(DefaultPlugins.set(main_window()))
+        .add_plugins(HedraPlugins)
+        .insert_resource(hedra_ui::SamplesDir(assets_dir().join("samples")));
     // Open the file, then run `--run`'s commands on it, in this order.
     let (file, commands) = (options.file, options.run);
     app.add_systems(

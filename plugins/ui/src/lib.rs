@@ -14,6 +14,7 @@ use hedra_scene::{DocRequest, DocState, InputGate, StatusMessage, ViewportCamera
 
 pub mod files;
 mod panels;
+pub use panels::{ADD_MENU, MERGE_MENU};
 pub mod recovery;
 
 pub use files::{FilePurpose, Pending, Preferences, SamplesDir};

@@ -557,28 +557,23 @@ fn add_menu(
     curve: Option<NodeId>,
 ) {
     let Some(pos) = state.add_menu_at else { return };
-    let mut close = false;
-    let area = egui::Area::new("add-menu".into())
-        .fixed_pos(pos)
-        .order(egui::Order::Foreground)
-        .show(ctx, |ui| {
-            egui::Frame::menu(ui.style()).show(ui, |ui| {
-                ui.label(egui::RichText::new("Add").strong());
-                ui.separator();
-                let before = events.len();
-                add_primitive_buttons(ui, events);
-                add_shape_buttons(ui, events, curve);
-                if events.len() > before {
-                    close = true;
-                }
-            });
-        });
-    let clicked_outside =
-        ctx.input(|i| i.pointer.any_pressed()) && !area.response.contains_pointer();
-    if close || clicked_outside || ctx.input(|i| i.key_pressed(egui::Key::Escape)) {
+    let close = cursor_menu(ctx, ADD_MENU, pos, |ui| {
+        ui.label(egui::RichText::new("Add").strong());
+        ui.separator();
+        let before = events.len();
+        add_primitive_buttons(ui, events);
+        add_shape_buttons(ui, events, curve);
+        events.len() > before
+    });
+    if close {
         state.add_menu_at = None;
     }
 }
+
+/// The egui id of the Shift+A menu.
+pub const ADD_MENU: &str = "add-menu";
+/// The egui id of the M merge menu.
+pub const MERGE_MENU: &str = "merge-menu";
 
 /// M in vertex edit mode: Blender's merge menu at the cursor.
 fn merge_menu(ctx: &egui::Context, model: &mut Model, events: &mut Vec<UiEvent>) {
@@ -589,24 +584,60 @@ fn merge_menu(ctx: &egui::Context, model: &mut Model, events: &mut Vec<UiEvent>)
         model.mode.merge_menu_at = None;
         return;
     };
-    let mut close = false;
-    let area = egui::Area::new("merge-menu".into())
-        .fixed_pos(egui::pos2(pos.x, pos.y))
-        .order(egui::Order::Foreground)
-        .show(ctx, |ui| {
-            egui::Frame::menu(ui.style()).show(ui, |ui| {
-                ui.label(egui::RichText::new("Merge").strong());
-                ui.separator();
-                let before = events.len();
-                merge_buttons(ui, node, &model.mode.selection, events);
-                close = events.len() > before;
-            });
-        });
-    let clicked_outside =
-        ctx.input(|i| i.pointer.any_pressed()) && !area.response.contains_pointer();
-    if close || clicked_outside || ctx.input(|i| i.key_pressed(egui::Key::Escape)) {
+    let selection = &model.mode.selection;
+    let close = cursor_menu(ctx, MERGE_MENU, egui::pos2(pos.x, pos.y), |ui| {
+        ui.label(egui::RichText::new("Merge").strong());
+        ui.separator();
+        let before = events.len();
+        merge_buttons(ui, node, selection, events);
+        events.len() > before
+    });
+    if close {
         model.mode.merge_menu_at = None;
     }
+}
+
+/// A menu at the cursor (Shift+A, M), moved up and left as far as it must
+/// to fit the window. `items` draws the items and says whether one was
+/// chosen. Returns whether the menu closes: an item was chosen, a press
+/// began outside the menu, or Esc.
+///
+/// The menu is placed where it fits before egui shows it, and "outside" is
+/// tested against the rect egui laid it out in: when egui itself moves an
+/// area to fit, the area's response keeps the unmoved rect, so a press on
+/// an item of a menu opened near the bottom counted as outside and closed
+/// the menu before the release could click the item (issue 11).
+fn cursor_menu(
+    ctx: &egui::Context,
+    id: &str,
+    at: egui::Pos2,
+    items: impl FnOnce(&mut egui::Ui) -> bool,
+) -> bool {
+    let id = egui::Id::new(id);
+    let screen = ctx.content_rect();
+    let size = ctx
+        .memory(|m| m.area_rect(id))
+        .map_or(egui::Vec2::ZERO, |r| r.size());
+    let fitted = egui::pos2(
+        at.x.min(screen.right() - size.x).max(screen.left()),
+        at.y.min(screen.bottom() - size.y).max(screen.top()),
+    );
+    let mut chosen = false;
+    egui::Area::new(id)
+        .fixed_pos(fitted)
+        .order(egui::Order::Foreground)
+        .show(ctx, |ui| {
+            egui::Frame::menu(ui.style()).show(ui, |ui| chosen = items(ui));
+        });
+    let shown = ctx.memory(|m| m.area_rect(id));
+    let pressed_outside = ctx.input(|i| {
+        i.pointer.any_pressed()
+            && i
+                .pointer
+                .press_origin()
+                .is_some_and(|p| !shown.is_some_and(|r| r.contains(p)))
+    });
+    chosen || pressed_outside || ctx.input(|i| i.key_pressed(egui::Key::Escape))
 }
 
 /// At Center / At First / At Last / By Distance on the selected vertices

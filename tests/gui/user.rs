@@ -1,0 +1,337 @@
+//! A scripted person at the keyboard and mouse of the whole app.
+//!
+//! [`User`] owns [`hedra::windowless_gui_app`] (every plugin, egui
+//! included, no window system) and advances it one frame per `App::update`.
+//! Input goes in as Bevy's own messages, exactly as `bevy_winit` writes them:
+//! the specific message (`KeyboardInput`, `MouseButtonInput`, `CursorMoved`,
+//! `MouseWheel`), which drives `ButtonInput`, and the same one wrapped in a
+//! `WindowEvent`, which `bevy_egui` reads; the window's cursor position is set
+//! as winit sets it. A click holds the button for [`HOLD`] frames, as a
+//! person's click spans several frames of the software renderer.
+
+use bevy::input::ButtonState;
+use bevy::input::keyboard::{Key, KeyboardInput};
+use bevy::input::mouse::{MouseButtonInput, MouseScrollUnit, MouseWheel};
+use bevy::input::touch::TouchPhase;
+use bevy::prelude::*;
+use bevy::window::{CursorMoved, PrimaryWindow, WindowEvent};
+use hedra_doc::Document;
+use hedra_scene::{DocState, StatusMessage};
+
+/// Frames a key or button stays down in a tap or click.
+pub const HOLD: usize = 5;
+
+pub struct User {
+    pub app: App,
+    window: Entity,
+    _config: tempfile::TempDir,
+}
+
+impl User {
+    /// The app after its first frames, cursor in the middle of the viewport.
+    pub fn new() -> User {
+        let config = tempfile::tempdir().unwrap();
+        let mut app = hedra::windowless_gui_app(config.path().join("recovery"));
+        let window = app
+            .world_mut()
+            .query_filtered::<Entity, With<PrimaryWindow>>()
+            .single(app.world())
+            .expect("the app has its primary window");
+        let mut user = User {
+            app,
+            window,
+            _config: config,
+        };
+        user.frames(3);
+        user.move_to(user.viewport_center());
+        user
+    }
+
+    pub fn frame(&mut self) {
+        self.app.update();
+    }
+
+    pub fn frames(&mut self, n: usize) {
+        for _ in 0..n {
+            self.frame();
+        }
+    }
+
+    fn write<M: Message + Clone>(&mut self, message: M, wrapped: impl FnOnce(M) -> WindowEvent) {
+        let world = self.app.world_mut();
+        world.write_message(message.clone());
+        world.write_message(wrapped(message));
+    }
+
+    /// The centre of the 3D area between the panels, in logical pixels.
+    pub fn viewport_center(&self) -> Vec2 {
+        let rect = self
+            .app
+            .world()
+            .resource::<hedra_ui::UiState>()
+            .viewport_rect
+            .expect("the panels have left a viewport");
+        Vec2::new(rect.center().x, rect.center().y)
+    }
+
+    pub fn cursor(&self) -> Vec2 {
+        self.app
+            .world()
+            .get::<Window>(self.window)
+            .unwrap()
+            .cursor_position()
+            .unwrap_or_default()
+    }
+
+    /// Moves the pointer to `to` (logical pixels) in one frame.
+    pub fn move_to(&mut self, to: Vec2) {
+        let from = self.cursor();
+        let mut window = self.app.world_mut().get_mut::<Window>(self.window).unwrap();
+        let scale = window.resolution.scale_factor();
+        window.set_physical_cursor_position(Some((to * scale).as_dvec2()));
+        let window = self.window;
+        self.write(
+            CursorMoved {
+                window,
+                position: to,
+                delta: Some(to - from),
+            },
+            WindowEvent::CursorMoved,
+        );
+        self.frame();
+    }
+
+    /// Moves the pointer to `to` in `steps` frames, as a hand does.
+    pub fn glide_to(&mut self, to: Vec2, steps: usize) {
+        let from = self.cursor();
+        for i in 1..=steps {
+            self.move_to(from.lerp(to, i as f32 / steps as f32));
+        }
+    }
+
+    fn key(&mut self, key_code: KeyCode, state: ButtonState) {
+        let (logical_key, text) = logical(key_code);
+        let window = self.window;
+        self.write(
+            KeyboardInput {
+                key_code,
+                logical_key,
+                state,
+                text: text.filter(|_| state.is_pressed()).map(Into::into),
+                repeat: false,
+                window,
+            },
+            WindowEvent::KeyboardInput,
+        );
+        self.frame();
+    }
+
+    pub fn key_down(&mut self, key: KeyCode) {
+        self.key(key, ButtonState::Pressed);
+    }
+
+    pub fn key_up(&mut self, key: KeyCode) {
+        self.key(key, ButtonState::Released);
+    }
+
+    /// Presses `key` while `modifiers` are held, and lets go of all.
+    pub fn shortcut(&mut self, modifiers: &[KeyCode], key: KeyCode) {
+        for &m in modifiers {
+            self.key_down(m);
+        }
+        self.key_down(key);
+        self.frames(HOLD);
+        self.key_up(key);
+        for &m in modifiers.iter().rev() {
+            self.key_up(m);
+        }
+        self.frames(2);
+    }
+
+    pub fn tap(&mut self, key: KeyCode) {
+        self.shortcut(&[], key);
+    }
+
+    /// Types digits, '.', '-' (typed values of the modal tools).
+    pub fn type_text(&mut self, text: &str) {
+        for c in text.chars() {
+            let key = match c {
+                '0'..='9' => DIGITS[c as usize - '0' as usize],
+                '.' => KeyCode::Period,
+                '-' => KeyCode::Minus,
+                other => panic!("type_text: no key for '{other}'"),
+            };
+            self.tap(key);
+        }
+    }
+
+    fn button(&mut self, button: MouseButton, state: ButtonState) {
+        let window = self.window;
+        self.write(
+            MouseButtonInput {
+                button,
+                state,
+                window,
+            },
+            WindowEvent::MouseButtonInput,
+        );
+        self.frame();
+    }
+
+    pub fn button_down(&mut self, button: MouseButton) {
+        self.button(button, ButtonState::Pressed);
+    }
+
+    pub fn button_up(&mut self, button: MouseButton) {
+        self.button(button, ButtonState::Released);
+    }
+
+    /// Moves to `at`, presses the left button, holds it `hold` frames and
+    /// lets go.
+    pub fn click_held(&mut self, at: Vec2, hold: usize) {
+        self.move_to(at);
+        self.button_down(MouseButton::Left);
+        self.frames(hold);
+        self.button_up(MouseButton::Left);
+        self.frames(2);
+    }
+
+    /// A synthetic click: press and release within one frame.
+    pub fn click_instant(&mut self, at: Vec2) {
+        self.move_to(at);
+        let window = self.window;
+        for state in [ButtonState::Pressed, ButtonState::Released] {
+            self.write(
+                MouseButtonInput {
+                    button: MouseButton::Left,
+                    state,
+                    window,
+                },
+                WindowEvent::MouseButtonInput,
+            );
+        }
+        self.frames(3);
+    }
+
+    /// A person's click: the button down for [`HOLD`] frames.
+    pub fn click(&mut self, at: Vec2) {
+        self.click_held(at, HOLD);
+    }
+
+    /// Left-drags from `from` to `to` over `steps` frames.
+    pub fn drag(&mut self, from: Vec2, to: Vec2, steps: usize) {
+        self.move_to(from);
+        self.button_down(MouseButton::Left);
+        self.glide_to(to, steps);
+        self.button_up(MouseButton::Left);
+        self.frames(2);
+    }
+
+    /// Turns the wheel by `lines` notches (positive: away from the user).
+    pub fn wheel(&mut self, lines: f32) {
+        let window = self.window;
+        self.write(
+            MouseWheel {
+                unit: MouseScrollUnit::Line,
+                x: 0.0,
+                y: lines,
+                window,
+                phase: TouchPhase::Moved,
+            },
+            WindowEvent::MouseWheel,
+        );
+        self.frame();
+    }
+
+    pub fn doc(&self) -> &Document {
+        &self.app.world().resource::<DocState>().session.doc
+    }
+
+    pub fn undo_steps(&self) -> usize {
+        self.app.world().resource::<DocState>().session.history.done().len()
+    }
+
+    pub fn status(&self) -> String {
+        format!("{:?}", self.app.world().resource::<StatusMessage>())
+    }
+
+    /// The names of the document's nodes, in id order.
+    pub fn node_names(&self) -> Vec<String> {
+        self.doc().nodes().map(|n| n.name.clone()).collect()
+    }
+}
+
+const DIGITS: [KeyCode; 10] = [
+    KeyCode::Digit0,
+    KeyCode::Digit1,
+    KeyCode::Digit2,
+    KeyCode::Digit3,
+    KeyCode::Digit4,
+    KeyCode::Digit5,
+    KeyCode::Digit6,
+    KeyCode::Digit7,
+    KeyCode::Digit8,
+    KeyCode::Digit9,
+];
+
+/// The logical key and text a US keyboard gives for `code`.
+fn logical(code: KeyCode) -> (Key, Option<&'static str>) {
+    let character = |c: &'static str| (Key::Character(c.into()), Some(c));
+    const LETTERS: &str = "abcdefghijklmnopqrstuvwxyz";
+    const NUMBERS: &str = "0123456789";
+    let letter_codes = [
+        KeyCode::KeyA,
+        KeyCode::KeyB,
+        KeyCode::KeyC,
+        KeyCode::KeyD,
+        KeyCode::KeyE,
+        KeyCode::KeyF,
+        KeyCode::KeyG,
+        KeyCode::KeyH,
+        KeyCode::KeyI,
+        KeyCode::KeyJ,
+        KeyCode::KeyK,
+        KeyCode::KeyL,
+        KeyCode::KeyM,
+        KeyCode::KeyN,
+        KeyCode::KeyO,
+        KeyCode::KeyP,
+        KeyCode::KeyQ,
+        KeyCode::KeyR,
+        KeyCode::KeyS,
+        KeyCode::KeyT,
+        KeyCode::KeyU,
+        KeyCode::KeyV,
+        KeyCode::KeyW,
+        KeyCode::KeyX,
+        KeyCode::KeyY,
+        KeyCode::KeyZ,
+    ];
+    if let Some(i) = letter_codes.iter().position(|&k| k == code) {
+        return character(&LETTERS[i..=i]);
+    }
+    if let Some(i) = DIGITS.iter().position(|&k| k == code) {
+        return character(&NUMBERS[i..=i]);
+    }
+    match code {
+        KeyCode::Period | KeyCode::NumpadDecimal => character("."),
+        KeyCode::Minus | KeyCode::NumpadSubtract => character("-"),
+        KeyCode::NumpadAdd => character("+"),
+        KeyCode::Enter | KeyCode::NumpadEnter => (Key::Enter, None),
+        KeyCode::Escape => (Key::Escape, None),
+        KeyCode::Tab => (Key::Tab, None),
+        KeyCode::Space => (Key::Space, Some(" ")),
+        KeyCode::Delete => (Key::Delete, None),
+        KeyCode::Backspace => (Key::Backspace, None),
+        KeyCode::ShiftLeft | KeyCode::ShiftRight => (Key::Shift, None),
+        KeyCode::ControlLeft | KeyCode::ControlRight => (Key::Control, None),
+        KeyCode::AltLeft | KeyCode::AltRight => (Key::Alt, None),
+        KeyCode::Numpad1 => character("1"),
+        KeyCode::Numpad3 => character("3"),
+        KeyCode::Numpad7 => character("7"),
+        _ => (
+            Key::Unidentified(bevy::input::keyboard::NativeKey::Unidentified),
+            None,
+        ),
+    }
+}
