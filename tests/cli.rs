@@ -731,7 +731,12 @@ fn import_refuses_a_gltf_buffer_outside_the_files_folder() {
     )
     .unwrap();
     let out = dir.path().join("out.hedra.ron");
-    let o = hedra(&["import", gltf.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+    let o = hedra(&[
+        "import",
+        gltf.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ]);
     assert!(!o.status.success());
     assert_eq!(
         stderr(&o).trim(),

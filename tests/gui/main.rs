@@ -3,96 +3,183 @@
 //! `user.rs`), and the document, the selection, the status line and the
 //! render meshes are checked after.
 
+#[allow(dead_code)] // the harness offers more than every scenario uses
 mod user;
 
 use bevy::prelude::*;
-use bevy_egui::{EguiContext, PrimaryEguiContext, egui};
 use user::{HOLD, User};
 
-/// egui's context of the main window.
-fn egui_context(user: &mut User) -> egui::Context {
-    let world = user.app.world_mut();
-    let mut q = world.query_filtered::<&mut EguiContext, With<PrimaryEguiContext>>();
-    q.single_mut(world).unwrap().get_mut().clone()
-}
-
-/// The clickable items of the egui area or window `id`, top to bottom, found
-/// as a person finds them: by moving the pointer down its left side, where
-/// every item begins, and seeing what lights up (the area's own background
-/// is left out).
-fn items_of(user: &mut User, id: &str) -> Vec<egui::Rect> {
-    let area = area_rect(user, id);
-    let mut found: Vec<(egui::Id, egui::Rect)> = Vec::new();
-    let mut y = area.top() + 1.0;
-    while y < area.bottom() {
-        user.move_to(Vec2::new(area.left() + 12.0, y));
-        let ctx = egui_context(user);
-        let hovered: Vec<egui::Id> =
-            ctx.interaction_snapshot(|i| i.hovered.iter().copied().collect());
-        for id in hovered {
-            if let Some(r) = ctx.read_response(id)
-                && r.sense.senses_click()
-                && !r.sense.senses_drag() // selectable labels drag to select text
-                && r.rect.height() < area.height() - 2.0
-                && !found.iter().any(|(f, _)| *f == id)
-            {
-                found.push((id, r.rect));
-            }
-        }
-        y += 2.0;
-    }
-    found.into_iter().map(|(_, r)| r).collect()
-}
-
-/// The rect of an egui area or window by its id, as last laid out.
-fn area_rect(user: &mut User, id: &str) -> egui::Rect {
-    egui_context(user)
-        .memory(|m| m.area_rect(egui::Id::new(id)))
-        .unwrap_or_else(|| panic!("no egui area '{id}' is shown"))
-}
-
-fn center(r: egui::Rect) -> Vec2 {
-    Vec2::new(r.center().x, r.center().y)
-}
-
-/// The items of the Shift+A menu, opened at the viewport's centre.
-fn open_add_menu(user: &mut User) -> Vec<egui::Rect> {
+/// Opens the Shift+A menu at the viewport's centre.
+fn open_add_menu(user: &mut User) {
     let at = user.viewport_center();
+    open_add_menu_at(user, at);
+}
+
+fn open_add_menu_at(user: &mut User, at: Vec2) {
     user.move_to(at);
     user.shortcut(&[KeyCode::ShiftLeft], KeyCode::KeyA);
-    items_of(user, hedra_ui::ADD_MENU)
+    assert!(user.shows("Cube"), "Shift+A shows the Add menu");
 }
-
-/// Index of Cube among the Shift+A menu's clickable rows (after Plane).
-const ADD_MENU_CUBE: usize = 1;
 
 #[test]
 fn shift_a_cube_takes_a_click_of_any_length() {
     // None: pressed and released within one frame.
     for hold in [None, Some(0), Some(1), Some(HOLD), Some(12), Some(30)] {
         let mut user = User::new();
-        let items = open_add_menu(&mut user);
-        assert!(items.len() > 8, "the Add menu lists primitives and shapes: {items:?}");
-        let cube = center(items[ADD_MENU_CUBE]);
-        match hold {
-            None => user.click_instant(cube),
-            Some(frames) => user.click_held(cube, frames),
-        }
-        assert_eq!(
-            user.node_names(),
-            ["Cube"],
-            "a click held {hold:?} frames on Add ▸ Cube adds one cube"
-        );
-        let cube = user.doc().nodes().next().unwrap();
-        let mesh = cube.content.mesh().unwrap();
-        assert_eq!(
-            (mesh.vertex_count(), mesh.edge_count(), mesh.face_count()),
-            (8, 12, 6)
-        );
-        assert_eq!(user.undo_steps(), 1);
-        assert!(
-            user.app.world().resource::<hedra_ui::UiState>().add_menu_at.is_none(),
-            "the menu closes after the click"
-        );
+        open_add_menu(&mut user);
+        check_cube_added_by_a_click(&mut user, hold);
     }
+    // Opened near each corner of the viewport (the menu moves to fit).
+    for (sx, sy) in [(-1.0, -1.0), (1.0, -1.0), (-1.0, 1.0), (1.0, 1.0)] {
+        let mut user = User::new();
+        let inner = user.viewport().shrink(20.0);
+        let corner = Vec2::new(inner.center().x, inner.center().y)
+            + Vec2::new(sx * inner.width(), sy * inner.height()) / 2.0;
+        open_add_menu_at(&mut user, corner);
+        check_cube_added_by_a_click(&mut user, Some(HOLD));
+    }
+}
+
+/// Clicks Cube in the open Add menu, holding the button `hold` frames
+/// (`None`: pressed and released in one frame), and checks the cube.
+fn check_cube_added_by_a_click(user: &mut User, hold: Option<usize>) {
+    let cube = user.find("Cube");
+    match hold {
+        None => user.click_instant(cube),
+        Some(frames) => user.click_held(cube, frames),
+    }
+    assert_eq!(
+        user.node_names(),
+        ["Cube"],
+        "a click held {hold:?} frames on Add ▸ Cube adds one cube"
+    );
+    let cube = user.doc().nodes().next().unwrap();
+    let mesh = cube.content.mesh().unwrap();
+    assert_eq!(
+        (mesh.vertex_count(), mesh.edge_count(), mesh.face_count()),
+        (8, 12, 6)
+    );
+    assert_eq!(user.undo_steps(), 1);
+    assert!(
+        user.app
+            .world()
+            .resource::<hedra_ui::UiState>()
+            .add_menu_at
+            .is_none(),
+        "the menu closes after the click"
+    );
+}
+
+/// Adds a cube through the Shift+A menu, as a person does.
+fn add_cube(user: &mut User) {
+    open_add_menu(user);
+    user.click_on("Cube");
+    assert_eq!(user.node_names(), ["Cube"]);
+}
+
+fn vertex_count(user: &User) -> usize {
+    let node = user.doc().nodes().next().unwrap();
+    node.content.mesh().unwrap().vertex_count()
+}
+
+#[test]
+fn the_menu_bar_add_menu_takes_held_clicks() {
+    let mut user = User::new();
+    user.click_on("Add");
+    user.click_on("Cube");
+    assert_eq!(user.node_names(), ["Cube"]);
+    assert!(!user.shows("Torus"), "the menu closed");
+}
+
+/// M in vertex mode: the merge menu at the cursor; a held click on At
+/// Center merges the two clicked corners of the cube's top face. Then the
+/// Adjust Last window's Merge at choice, a combo box, switches to First.
+#[test]
+fn the_merge_menu_and_adjust_last_take_held_clicks() {
+    let mut user = User::new();
+    add_cube(&mut user);
+    user.tap(KeyCode::Tab);
+    user.tap(KeyCode::Digit1);
+    let a = user.screen_of(Vec3::new(1.0, 1.0, 1.0));
+    let b = user.screen_of(Vec3::new(-1.0, 1.0, 1.0));
+    user.click(a);
+    user.key_down(KeyCode::ShiftLeft);
+    user.click(b);
+    user.key_up(KeyCode::ShiftLeft);
+    // Near the bottom right corner the menu must move to fit the window.
+    let corner = user.viewport().shrink(20.0).right_bottom();
+    let corner = Vec2::new(corner.x, corner.y);
+    user.move_to(corner);
+    user.tap(KeyCode::KeyM);
+    assert!(user.shows("At Center"), "M shows the merge menu");
+    user.click_on("At Center");
+    assert_eq!(vertex_count(&user), 7, "{}", user.status());
+    assert!(!user.shows("At Center"), "the menu closed");
+    let merged = user.doc().nodes().next().unwrap().content.mesh().unwrap();
+    merged.validate().unwrap();
+    let steps = user.undo_steps();
+
+    // Adjust Last: open the combo box (it says "Center"), pick "First".
+    user.click_on("Center");
+    user.click_on("First");
+    let mesh = user.doc().nodes().next().unwrap().content.mesh().unwrap();
+    assert_eq!(mesh.vertex_count(), 7);
+    assert!(
+        mesh.positions()
+            .iter()
+            .any(|p| (p.x - 1.0).abs() < 1e-12 && p.y == 1.0 && p.z == 1.0),
+        "merged at the first clicked corner (1, 1, 1)"
+    );
+    assert_eq!(user.undo_steps(), steps, "Adjust Last replaces the step");
+}
+
+/// Right click on a node in the outliner, then a held click on Delete.
+#[test]
+fn the_outliner_context_menu_takes_a_held_click() {
+    let mut user = User::new();
+    add_cube(&mut user);
+    let row = user.find("▣ Cube");
+    user.move_to(row);
+    user.button_down(MouseButton::Right);
+    user.frames(HOLD);
+    user.button_up(MouseButton::Right);
+    user.frames(2);
+    user.click_on("Delete");
+    assert!(user.node_names().is_empty(), "{}", user.status());
+    assert_eq!(user.undo_steps(), 2);
+}
+
+/// Ctrl+N with unsaved changes asks first; a held click on Don't Save
+/// starts the new scene.
+#[test]
+fn the_unsaved_changes_dialog_takes_a_held_click() {
+    let mut user = User::new();
+    add_cube(&mut user);
+    user.shortcut(&[KeyCode::ControlLeft], KeyCode::KeyN);
+    assert!(
+        user.shows("Don't Save"),
+        "Ctrl+N asks about the unsaved cube"
+    );
+    assert_eq!(user.node_names(), ["Cube"], "nothing is lost while it asks");
+    user.click_on("Don't Save");
+    assert!(user.node_names().is_empty());
+    assert!(!user.shows("Don't Save"));
+}
+
+/// A held click on a step of Edit ▸ Undo History goes back to it.
+#[test]
+fn the_undo_history_takes_a_held_click() {
+    let mut user = User::new();
+    add_cube(&mut user);
+    add_cube_again(&mut user);
+    user.click_on("Edit");
+    user.click_on("Undo History");
+    user.click_on("Original");
+    assert!(user.node_names().is_empty(), "back to the original scene");
+}
+
+fn add_cube_again(user: &mut User) {
+    open_add_menu(user);
+    user.click_on("Cube");
+    assert_eq!(user.node_names().len(), 2);
 }

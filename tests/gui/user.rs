@@ -8,6 +8,10 @@
 //! `WindowEvent`, which `bevy_egui` reads; the window's cursor position is set
 //! as winit sets it. A click holds the button for [`HOLD`] frames, as a
 //! person's click spans several frames of the software renderer.
+//!
+//! Widgets are found by what they say, as a person finds them: egui's
+//! AccessKit tree (what a screen reader reads) is captured every frame, so
+//! `click_on("Cube")` clicks the middle of the widget labelled "Cube".
 
 use bevy::input::ButtonState;
 use bevy::input::keyboard::{Key, KeyboardInput};
@@ -15,6 +19,8 @@ use bevy::input::mouse::{MouseButtonInput, MouseScrollUnit, MouseWheel};
 use bevy::input::touch::TouchPhase;
 use bevy::prelude::*;
 use bevy::window::{CursorMoved, PrimaryWindow, WindowEvent};
+use bevy_egui::{EguiContext, EguiFullOutput, EguiPostUpdateSet, PrimaryEguiContext, egui};
+use egui::accesskit;
 use hedra_doc::Document;
 use hedra_scene::{DocState, StatusMessage};
 
@@ -37,12 +43,20 @@ impl User {
             .query_filtered::<Entity, With<PrimaryWindow>>()
             .single(app.world())
             .expect("the app has its primary window");
+        app.init_resource::<Widgets>().add_systems(
+            PostUpdate,
+            capture_widgets
+                .after(EguiPostUpdateSet::EndPass)
+                .before(EguiPostUpdateSet::ProcessOutput),
+        );
         let mut user = User {
             app,
             window,
             _config: config,
         };
-        user.frames(3);
+        user.frames(2);
+        user.egui().enable_accesskit();
+        user.frames(1);
         user.move_to(user.viewport_center());
         user
     }
@@ -63,15 +77,18 @@ impl User {
         world.write_message(wrapped(message));
     }
 
-    /// The centre of the 3D area between the panels, in logical pixels.
-    pub fn viewport_center(&self) -> Vec2 {
-        let rect = self
-            .app
+    /// The 3D area between the panels, in logical pixels.
+    pub fn viewport(&self) -> egui::Rect {
+        self.app
             .world()
             .resource::<hedra_ui::UiState>()
             .viewport_rect
-            .expect("the panels have left a viewport");
-        Vec2::new(rect.center().x, rect.center().y)
+            .expect("the panels have left a viewport")
+    }
+
+    pub fn viewport_center(&self) -> Vec2 {
+        let c = self.viewport().center();
+        Vec2::new(c.x, c.y)
     }
 
     pub fn cursor(&self) -> Vec2 {
@@ -243,12 +260,98 @@ impl User {
         self.frame();
     }
 
+    /// egui's context of the main window.
+    pub fn egui(&mut self) -> egui::Context {
+        let world = self.app.world_mut();
+        let mut q = world.query_filtered::<&mut EguiContext, With<PrimaryEguiContext>>();
+        q.single_mut(world).unwrap().get_mut().clone()
+    }
+
+    /// The widgets shown in the last frame.
+    pub fn widgets(&self) -> &[Widget] {
+        &self.app.world().resource::<Widgets>().0
+    }
+
+    /// The rects of the shown widgets that say `text`.
+    pub fn find_all(&self, text: &str) -> Vec<egui::Rect> {
+        self.widgets()
+            .iter()
+            .filter(|w| w.text == text)
+            .map(|w| w.rect)
+            .collect()
+    }
+
+    /// The middle of the one shown widget that says `text`; when several
+    /// say it (a button and a text field holding the same name), the one
+    /// that can be clicked (a button, a menu item, a combo box entry).
+    ///
+    /// # Panics
+    /// When none or several say it (the message lists what is shown).
+    pub fn find(&self, text: &str) -> Vec2 {
+        let saying: Vec<&Widget> = self.widgets().iter().filter(|w| w.text == text).collect();
+        let clickable: Vec<&Widget> = saying
+            .iter()
+            .copied()
+            .filter(|w| {
+                !matches!(
+                    w.role,
+                    accesskit::Role::TextInput | accesskit::Role::Label | accesskit::Role::TextRun
+                )
+            })
+            .collect();
+        match (saying.as_slice(), clickable.as_slice()) {
+            ([one], _) | (_, [one]) => Vec2::new(one.rect.center().x, one.rect.center().y),
+            _ => {
+                let mut shown: Vec<&str> = self.widgets().iter().map(|w| w.text.as_str()).collect();
+                shown.sort();
+                shown.dedup();
+                panic!(
+                    "{} widgets say '{text}' ({saying:?}); shown: {shown:?}",
+                    saying.len()
+                )
+            }
+        }
+    }
+
+    pub fn shows(&self, text: &str) -> bool {
+        !self.find_all(text).is_empty()
+    }
+
+    /// A person's click on the widget that says `text`.
+    pub fn click_on(&mut self, text: &str) {
+        let at = self.find(text);
+        self.click(at);
+    }
+
+    /// Where the world point `p` is seen in the window, in logical pixels.
+    pub fn screen_of(&mut self, p: Vec3) -> Vec2 {
+        let world = self.app.world_mut();
+        let mut q = world
+            .query_filtered::<(&Camera, &GlobalTransform), With<hedra_scene::ViewportCamera>>();
+        let (camera, transform) = q.single(world).unwrap();
+        camera
+            .world_to_viewport(transform, p)
+            .unwrap_or_else(|e| panic!("{p} is not in view: {e:?}"))
+    }
+
+    /// Sends a request as the panels and keys do (test set-up only).
+    pub fn request(&mut self, request: hedra_scene::DocRequest) {
+        self.app.world_mut().write_message(request);
+        self.frames(2);
+    }
+
     pub fn doc(&self) -> &Document {
         &self.app.world().resource::<DocState>().session.doc
     }
 
     pub fn undo_steps(&self) -> usize {
-        self.app.world().resource::<DocState>().session.history.done().len()
+        self.app
+            .world()
+            .resource::<DocState>()
+            .session
+            .history
+            .done()
+            .len()
     }
 
     pub fn status(&self) -> String {
@@ -259,6 +362,47 @@ impl User {
     pub fn node_names(&self) -> Vec<String> {
         self.doc().nodes().map(|n| n.name.clone()).collect()
     }
+}
+
+/// A widget as a screen reader sees it: its text (label or value), its
+/// role and where it is, in logical pixels.
+#[derive(Debug, Clone)]
+pub struct Widget {
+    pub text: String,
+    pub role: accesskit::Role,
+    pub rect: egui::Rect,
+}
+
+#[derive(Resource, Default)]
+struct Widgets(Vec<Widget>);
+
+/// Keeps the widgets of the AccessKit tree egui wrote this frame.
+fn capture_widgets(
+    outputs: Query<&EguiFullOutput, With<PrimaryEguiContext>>,
+    mut widgets: ResMut<Widgets>,
+) {
+    let Some(update) = outputs
+        .iter()
+        .find_map(|o| o.0.as_ref()?.platform_output.accesskit_update.as_ref())
+    else {
+        return;
+    };
+    widgets.0 = update
+        .nodes
+        .iter()
+        .filter_map(|(_, node)| {
+            let text = node.label().or(node.value())?.to_string();
+            let b = node.bounds()?;
+            Some(Widget {
+                text,
+                role: node.role(),
+                rect: egui::Rect::from_min_max(
+                    egui::pos2(b.x0 as f32, b.y0 as f32),
+                    egui::pos2(b.x1 as f32, b.y1 as f32),
+                ),
+            })
+        })
+        .collect();
 }
 
 const DIGITS: [KeyCode; 10] = [

@@ -448,7 +448,10 @@ pub fn gltf_from_bytes(
                 .ok_or_else(|| err("the GLB has no binary chunk".into()))?,
             gltf::buffer::Source::Uri(uri) if uri.starts_with("data:") => {
                 let encoded = uri.split_once(";base64,").map(|(_, d)| d).ok_or_else(|| {
-                    err(format!("buffer {}: a data URI that is not base64", buffer.index()))
+                    err(format!(
+                        "buffer {}: a data URI that is not base64",
+                        buffer.index()
+                    ))
                 })?;
                 base64::engine::general_purpose::STANDARD
                     .decode(encoded)

@@ -116,7 +116,11 @@ pub fn resolve_inside(folder: &Path, reference: &str) -> Result<PathBuf, Referen
 /// # Errors
 /// As [`resolve_inside`], plus [`ReferenceError::TooLarge`] and
 /// [`ReferenceError::Unreadable`].
-pub fn read_inside(folder: &Path, reference: &str, declared: u64) -> Result<Vec<u8>, ReferenceError> {
+pub fn read_inside(
+    folder: &Path,
+    reference: &str,
+    declared: u64,
+) -> Result<Vec<u8>, ReferenceError> {
     let file = resolve_inside(folder, reference)?;
     let unreadable = |e: std::io::Error| ReferenceError::Unreadable {
         reference: reference.to_string(),

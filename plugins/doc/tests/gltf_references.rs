@@ -172,7 +172,10 @@ fn a_link_out_of_the_folder_is_refused_and_one_inside_is_followed() {
         assert_eq!(result.is_err(), refused, "{uri}");
         if refused {
             assert!(
-                result.unwrap_err().to_string().contains("outside the file's folder; refused"),
+                result
+                    .unwrap_err()
+                    .to_string()
+                    .contains("outside the file's folder; refused"),
                 "{uri}"
             );
         }

@@ -632,8 +632,7 @@ fn cursor_menu(
     let shown = ctx.memory(|m| m.area_rect(id));
     let pressed_outside = ctx.input(|i| {
         i.pointer.any_pressed()
-            && i
-                .pointer
+            && i.pointer
                 .press_origin()
                 .is_some_and(|p| !shown.is_some_and(|r| r.contains(p)))
     });
