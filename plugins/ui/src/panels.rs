@@ -627,7 +627,13 @@ fn cursor_menu(
         .fixed_pos(fitted)
         .order(egui::Order::Foreground)
         .show(ctx, |ui| {
-            egui::Frame::menu(ui.style()).show(ui, |ui| chosen = items(ui));
+            // Looks like the menu bar's menus: full-width items without frames.
+            egui::containers::menu::menu_style(ui.style_mut());
+            egui::Frame::menu(ui.style()).show(ui, |ui| {
+                ui.with_layout(egui::Layout::top_down_justified(egui::Align::Min), |ui| {
+                    chosen = items(ui);
+                });
+            });
         });
     let shown = ctx.memory(|m| m.area_rect(id));
     let pressed_outside = ctx.input(|i| {
