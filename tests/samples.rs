@@ -509,7 +509,12 @@ fn shift_a_cube_with_a_held_click_in_the_real_window() {
         &work,
     )
     .unwrap();
-    let before = hedra::doc::file::load(&work).unwrap().session.doc.nodes().count();
+    let before = hedra::doc::file::load(&work)
+        .unwrap()
+        .session
+        .doc
+        .nodes()
+        .count();
     // The Add menu opened at y = 700 moves up to fit the 800 px window: its
     // top lands at y = 330 and Cube, its second item, at y ≈ 394.
     let script = r#"
@@ -557,5 +562,8 @@ fn shift_a_cube_with_a_held_click_in_the_real_window() {
         &app_log[app_log.len().saturating_sub(2000)..]
     );
     assert!(names.contains(&"Cube"), "{names:?}");
-    assert_eq!(saved.history.done().last().map(|t| t.label.as_str()), Some("Add Cube"));
+    assert_eq!(
+        saved.history.done().last().map(|t| t.label.as_str()),
+        Some("Add Cube")
+    );
 }

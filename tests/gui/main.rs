@@ -3,6 +3,7 @@
 //! `user.rs`), and the document, the selection, the status line and the
 //! render meshes are checked after.
 
+mod modeling;
 #[allow(dead_code)] // the harness offers more than every scenario uses
 mod user;
 
@@ -12,13 +13,7 @@ use user::{HOLD, User};
 /// Opens the Shift+A menu at the viewport's centre.
 fn open_add_menu(user: &mut User) {
     let at = user.viewport_center();
-    open_add_menu_at(user, at);
-}
-
-fn open_add_menu_at(user: &mut User, at: Vec2) {
-    user.move_to(at);
-    user.shortcut(&[KeyCode::ShiftLeft], KeyCode::KeyA);
-    assert!(user.shows("Cube"), "Shift+A shows the Add menu");
+    user.open_add_menu_at(at);
 }
 
 #[test]
@@ -35,7 +30,7 @@ fn shift_a_cube_takes_a_click_of_any_length() {
         let inner = user.viewport().shrink(20.0);
         let corner = Vec2::new(inner.center().x, inner.center().y)
             + Vec2::new(sx * inner.width(), sy * inner.height()) / 2.0;
-        open_add_menu_at(&mut user, corner);
+        user.open_add_menu_at(corner);
         check_cube_added_by_a_click(&mut user, Some(HOLD));
     }
 }

@@ -340,6 +340,44 @@ impl User {
         self.frames(2);
     }
 
+    /// Shift+A with the pointer at `at`: the Add menu opens there.
+    pub fn open_add_menu_at(&mut self, at: Vec2) {
+        self.move_to(at);
+        self.shortcut(&[KeyCode::ShiftLeft], KeyCode::KeyA);
+        assert!(self.shows("Cube"), "Shift+A shows the Add menu");
+    }
+
+    /// Shift+A over the viewport's centre and a click on `item`.
+    pub fn add(&mut self, item: &str) {
+        let before = self.doc().nodes().count();
+        let at = self.viewport_center();
+        self.open_add_menu_at(at);
+        self.click_on(item);
+        assert_eq!(
+            self.doc().nodes().count(),
+            before + 1,
+            "Add ▸ {item}: {}",
+            self.status()
+        );
+    }
+
+    /// The (vertices, edges, faces) of the first mesh node.
+    pub fn mesh_counts(&self) -> (usize, usize, usize) {
+        let m = self.first_mesh();
+        (m.vertex_count(), m.edge_count(), m.face_count())
+    }
+
+    pub fn first_mesh(&self) -> &hedra_geom::HalfEdgeMesh {
+        self.doc()
+            .nodes()
+            .find_map(|n| n.content.mesh())
+            .expect("the scene has a mesh")
+    }
+
+    pub fn edit_mode(&self) -> &hedra_edit::EditMode {
+        self.app.world().resource::<hedra_edit::EditMode>()
+    }
+
     pub fn doc(&self) -> &Document {
         &self.app.world().resource::<DocState>().session.doc
     }

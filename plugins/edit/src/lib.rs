@@ -52,7 +52,11 @@ impl Selection {
     }
 }
 
-/// Edit systems run after the document is applied and mirrored.
+/// Tools, selection and shortcuts: they read this frame's input and write
+/// requests, which [`SceneSystems::Apply`] applies in the same frame, so the
+/// frame that confirms a tool already shows its result. Order of a frame:
+/// input → `EditSystems` → `SceneSystems::Apply` → `SceneSystems::Sync` →
+/// viewport overlays.
 #[derive(SystemSet, Debug, Clone, PartialEq, Eq, Hash)]
 pub struct EditSystems;
 
@@ -65,7 +69,7 @@ impl Plugin for EditPlugin {
             .init_resource::<TransformTool>()
             .init_resource::<EditMode>()
             .init_resource::<ShapeEdit>()
-            .configure_sets(Update, EditSystems.after(SceneSystems::Sync))
+            .configure_sets(Update, EditSystems.before(SceneSystems::Apply))
             .add_systems(
                 Update,
                 (
@@ -462,9 +466,18 @@ pub fn subdivision_keys(
         });
         return;
     }
+    // One command (one undo step) per distinct modifier: Ctrl+2 on meshes
+    // with no modifier, or with the same one, is a single step.
+    let mut groups: Vec<(hedra_doc::SubdivisionModifier, Vec<hedra_doc::NodeRef>)> = Vec::new();
     for (id, modifier) in changed {
+        match groups.iter_mut().find(|(m, _)| *m == modifier) {
+            Some((_, nodes)) => nodes.push(id.into()),
+            None => groups.push((modifier, vec![id.into()])),
+        }
+    }
+    for (modifier, nodes) in groups {
         requests.write(DocRequest::Execute(Command::SetSubdivision {
-            nodes: vec![id.into()],
+            nodes,
             modifier: Some(modifier),
         }));
     }

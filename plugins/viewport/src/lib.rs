@@ -6,10 +6,11 @@ use bevy::input::mouse::{AccumulatedMouseMotion, AccumulatedMouseScroll, MouseSc
 use bevy::prelude::*;
 use glam::DVec3;
 use hedra_doc::{NodeContent, NodeRef, Transform as DocTransform};
-use hedra_edit::{EditMode, EditSystems, ElementKind, Selection, TransformTool};
+use hedra_edit::{EditMode, ElementKind, Selection, TransformTool};
 use hedra_scene::modifiers;
 use hedra_scene::{
-    DocRequest, DocState, InputGate, NodeEntities, NodeEntity, ProjectedMesh, ViewportCamera,
+    DocRequest, DocState, InputGate, NodeEntities, NodeEntity, ProjectedMesh, SceneSystems,
+    ViewportCamera,
 };
 use std::f32::consts::FRAC_PI_2;
 
@@ -82,7 +83,7 @@ impl Plugin for ViewportPlugin {
                 Update,
                 (camera_controls, frame_selection, draw_grid)
                     .chain()
-                    .after(EditSystems),
+                    .after(SceneSystems::Sync),
             )
             .add_systems(
                 Update,
@@ -96,7 +97,7 @@ impl Plugin for ViewportPlugin {
                     draw_curve_analysis,
                     draw_surface_analysis,
                 )
-                    .after(EditSystems),
+                    .after(SceneSystems::Sync),
             );
     }
 }

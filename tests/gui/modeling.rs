@@ -1,0 +1,485 @@
+//! Modeling as a person does it (issue 12, part 1): every edit mode and the
+//! modal tools, driven by keys, clicks, drags and the wheel, then checked
+//! on the document, the selection, the undo history and the render mesh.
+//! These pin today's behaviour before the app side is reshaped.
+
+use crate::user::User;
+use bevy::prelude::*;
+use hedra_doc::NodeContent;
+use hedra_geom::DVec3;
+
+/// A cube (size 2, corners at ±1) in edit mode, in `mode` (1, 2 or 3).
+fn cube_in_edit_mode(mode: KeyCode) -> User {
+    let mut user = User::new();
+    user.add("Cube");
+    user.tap(KeyCode::Tab);
+    assert!(user.edit_mode().node.is_some(), "Tab enters edit mode");
+    user.tap(mode);
+    user
+}
+
+fn screen(user: &mut User, x: f32, y: f32, z: f32) -> Vec2 {
+    user.screen_of(Vec3::new(x, y, z))
+}
+
+fn selected_faces(user: &User) -> usize {
+    user.edit_mode().selection.faces.len()
+}
+
+/// Tab, 3, click the top face, E, move up, click: one region extrude, one
+/// undo step, the cap stays selected; Ctrl+Z gives the cube back.
+#[test]
+fn extrude_the_top_face_and_undo() {
+    let mut user = cube_in_edit_mode(KeyCode::Digit3);
+    let top = screen(&mut user, 0.0, 1.0, 0.0);
+    user.click(top);
+    assert_eq!(selected_faces(&user), 1, "the click selects the top face");
+    let steps = user.undo_steps();
+    user.tap(KeyCode::KeyE);
+    user.glide_to(top - Vec2::new(0.0, 60.0), 6);
+    user.click(top - Vec2::new(0.0, 60.0));
+    assert_eq!(user.mesh_counts(), (12, 20, 10), "{}", user.status());
+    user.first_mesh().validate().unwrap();
+    assert_eq!(user.undo_steps(), steps + 1, "one undo step");
+    assert_eq!(selected_faces(&user), 1, "the new cap stays selected");
+    let top_y = user
+        .first_mesh()
+        .positions()
+        .iter()
+        .map(|p| p.y)
+        .fold(f64::MIN, f64::max);
+    assert!(top_y > 1.05, "moving up raised the cap to y = {top_y}");
+    user.shortcut(&[KeyCode::ControlLeft], KeyCode::KeyZ);
+    assert_eq!(user.mesh_counts(), (8, 12, 6));
+}
+
+/// Esc in the middle of a tool leaves the document as it was.
+#[test]
+fn escape_cancels_every_mesh_tool() {
+    for (key, modifiers, kind) in [
+        (KeyCode::KeyE, &[][..], KeyCode::Digit3),
+        (KeyCode::KeyI, &[][..], KeyCode::Digit3),
+        (KeyCode::KeyG, &[][..], KeyCode::Digit3),
+        (KeyCode::KeyR, &[][..], KeyCode::Digit3),
+        (KeyCode::KeyS, &[][..], KeyCode::Digit3),
+        (KeyCode::KeyB, &[KeyCode::ControlLeft][..], KeyCode::Digit2),
+    ] {
+        let mut user = cube_in_edit_mode(kind);
+        let target = if kind == KeyCode::Digit3 {
+            screen(&mut user, 0.0, 1.0, 0.0)
+        } else {
+            screen(&mut user, 0.0, 1.0, 1.0)
+        };
+        user.click(target);
+        let before = user.doc().clone();
+        let steps = user.undo_steps();
+        user.shortcut(modifiers, key);
+        user.glide_to(target + Vec2::new(40.0, -50.0), 5);
+        user.tap(KeyCode::Escape);
+        assert_eq!(
+            user.doc()
+                .nodes()
+                .map(|n| n.content.mesh().unwrap().positions().to_vec())
+                .collect::<Vec<_>>(),
+            before
+                .nodes()
+                .map(|n| n.content.mesh().unwrap().positions().to_vec())
+                .collect::<Vec<_>>(),
+            "{key:?} then Esc changes nothing"
+        );
+        assert_eq!(user.mesh_counts(), (8, 12, 6), "{key:?}");
+        assert_eq!(user.undo_steps(), steps, "{key:?}: no undo step");
+    }
+}
+
+/// I on the top face, move, click: an inset ring of four quads.
+#[test]
+fn inset_the_top_face() {
+    let mut user = cube_in_edit_mode(KeyCode::Digit3);
+    let top = screen(&mut user, 0.0, 1.0, 0.0);
+    user.click(top);
+    user.tap(KeyCode::KeyI);
+    user.glide_to(top + Vec2::new(-30.0, 0.0), 5);
+    user.click(top + Vec2::new(-30.0, 0.0));
+    assert_eq!(user.mesh_counts(), (12, 20, 10), "{}", user.status());
+    user.first_mesh().validate().unwrap();
+}
+
+/// Ctrl+R over a vertical edge, the wheel up once for two cuts, click: two
+/// loops of four vertices around the sides.
+#[test]
+fn loop_cut_with_two_cuts_from_the_wheel() {
+    let mut user = cube_in_edit_mode(KeyCode::Digit2);
+    let side_edge = screen(&mut user, 1.0, 0.0, 1.0);
+    user.move_to(side_edge);
+    user.shortcut(&[KeyCode::ControlLeft], KeyCode::KeyR);
+    user.wheel(1.0);
+    user.frames(2);
+    user.click(side_edge);
+    assert_eq!(user.mesh_counts(), (16, 28, 14), "{}", user.status());
+    user.first_mesh().validate().unwrap();
+}
+
+/// Ctrl+B on the top front edge, width from the mouse, the wheel for a
+/// second segment, click.
+#[test]
+fn bevel_an_edge_with_the_mouse_and_the_wheel() {
+    let mut user = cube_in_edit_mode(KeyCode::Digit2);
+    let edge = screen(&mut user, 0.0, 1.0, 1.0);
+    user.click(edge);
+    assert_eq!(user.edit_mode().selection.edges.len(), 1);
+    user.shortcut(&[KeyCode::ControlLeft], KeyCode::KeyB);
+    // The width follows the mouse to the right.
+    user.glide_to(edge + Vec2::new(40.0, 0.0), 5);
+    let (v1, _, f1) = user_preview_counts(&user);
+    user.wheel(1.0);
+    user.frames(2);
+    let (v2, _, f2) = user_preview_counts(&user);
+    assert!(
+        v2 > v1 && f2 > f1,
+        "the wheel adds a segment: {v1}/{f1} -> {v2}/{f2}"
+    );
+    user.click(edge + Vec2::new(40.0, 0.0));
+    let (v, _, f) = user.mesh_counts();
+    assert_eq!(
+        (v, f),
+        (v2, f2),
+        "the click applies what the preview showed"
+    );
+    user.first_mesh().validate().unwrap();
+}
+
+fn user_preview_counts(user: &User) -> (usize, usize, usize) {
+    let m = user
+        .edit_mode()
+        .preview
+        .as_ref()
+        .expect("the tool shows a preview");
+    (m.vertex_count(), m.edge_count(), m.face_count())
+}
+
+/// A box over the whole cube in vertex mode takes the seven corners in
+/// sight; with X-ray (Alt+Z) all eight.
+#[test]
+fn box_select_takes_what_is_in_sight_and_x_ray_takes_all() {
+    for (x_ray, expected) in [(false, 7), (true, 8)] {
+        let mut user = cube_in_edit_mode(KeyCode::Digit1);
+        if x_ray {
+            user.shortcut(&[KeyCode::AltLeft], KeyCode::KeyZ);
+        }
+        user.shortcut(&[KeyCode::AltLeft], KeyCode::KeyA);
+        assert!(user.edit_mode().selection.vertices.is_empty());
+        let corners: Vec<Vec2> = [-1.0, 1.0]
+            .iter()
+            .flat_map(|&x| [-1.0, 1.0].map(move |y| (x, y)))
+            .flat_map(|(x, y)| [-1.0, 1.0].map(move |z| Vec3::new(x, y, z)))
+            .map(|p| user.screen_of(p))
+            .collect();
+        let lo = corners.iter().fold(Vec2::MAX, |a, &b| a.min(b)) - Vec2::splat(30.0);
+        let hi = corners.iter().fold(Vec2::MIN, |a, &b| a.max(b)) + Vec2::splat(30.0);
+        user.drag(lo, hi, 8);
+        assert_eq!(
+            user.edit_mode().selection.vertices.len(),
+            expected,
+            "X-ray {x_ray}"
+        );
+    }
+}
+
+/// Click a corner, G Z 1 Enter: the corner moves up by exactly 1.
+#[test]
+fn move_a_vertex_by_a_typed_value() {
+    let mut user = cube_in_edit_mode(KeyCode::Digit1);
+    let corner = screen(&mut user, 1.0, 1.0, 1.0);
+    user.click(corner);
+    assert_eq!(user.edit_mode().selection.vertices.len(), 1);
+    let steps = user.undo_steps();
+    user.tap(KeyCode::KeyG);
+    user.glide_to(corner + Vec2::new(25.0, 10.0), 3);
+    user.tap(KeyCode::KeyZ);
+    user.type_text("1");
+    user.tap(KeyCode::Enter);
+    assert!(
+        user.first_mesh()
+            .positions()
+            .contains(&DVec3::new(1.0, 1.0, 2.0)),
+        "the corner is at (1, 1, 2) exactly: {:?}",
+        user.first_mesh().positions()
+    );
+    assert_eq!(user.undo_steps(), steps + 1);
+}
+
+/// Shift+E on a selected edge, drag, click: the edge gets a crease.
+#[test]
+fn crease_an_edge_with_shift_e() {
+    let mut user = cube_in_edit_mode(KeyCode::Digit2);
+    let edge = screen(&mut user, 0.0, 1.0, 1.0);
+    user.click(edge);
+    user.shortcut(&[KeyCode::ShiftLeft], KeyCode::KeyE);
+    user.glide_to(edge + Vec2::new(150.0, 0.0), 6);
+    user.click(edge + Vec2::new(150.0, 0.0));
+    let node = user.doc().nodes().next().unwrap();
+    let NodeContent::Mesh(m) = &node.content else {
+        panic!("a mesh")
+    };
+    assert_eq!(m.creases.edges.len(), 1, "{}", user.status());
+    let crease = *m.creases.edges.values().next().unwrap();
+    assert!(crease > 0.0, "crease {crease}");
+}
+
+/// Three cubes selected with A, Ctrl+2: each gets a level-2 subdivision
+/// modifier in one undo step, and one Ctrl+Z takes all three off.
+#[test]
+fn ctrl_2_on_three_meshes_is_one_undo_step() {
+    let mut user = User::new();
+    for _ in 0..3 {
+        user.add("Cube");
+    }
+    user.move_to(user.viewport_center() + Vec2::new(0.0, 150.0));
+    user.tap(KeyCode::KeyA);
+    let steps = user.undo_steps();
+    user.shortcut(&[KeyCode::ControlLeft], KeyCode::Digit2);
+    let levels: Vec<Option<u32>> = user
+        .doc()
+        .nodes()
+        .map(|n| match &n.content {
+            NodeContent::Mesh(m) => m.subdivision.as_ref().map(|s| s.viewport_level),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(levels, [Some(2), Some(2), Some(2)]);
+    assert_eq!(user.undo_steps(), steps + 1);
+    user.shortcut(&[KeyCode::ControlLeft], KeyCode::KeyZ);
+    assert!(user.doc().nodes().all(|n| match &n.content {
+        NodeContent::Mesh(m) => m.subdivision.is_none(),
+        _ => false,
+    }));
+}
+
+/// Object mode: G X 2 Enter moves the cube by exactly 2 in f64, R Z 90
+/// Enter turns it a quarter, each one undo step.
+#[test]
+fn move_and_rotate_an_object_by_typed_values() {
+    let mut user = User::new();
+    user.add("Cube");
+    let steps = user.undo_steps();
+    user.tap(KeyCode::KeyG);
+    user.glide_to(user.viewport_center() + Vec2::new(37.0, 11.0), 3);
+    user.tap(KeyCode::KeyX);
+    user.type_text("2");
+    user.tap(KeyCode::Enter);
+    let t = user.doc().nodes().next().unwrap().transform;
+    assert_eq!(t.translation, DVec3::new(2.0, 0.0, 0.0), "exact in f64");
+    assert_eq!(user.undo_steps(), steps + 1);
+    user.tap(KeyCode::KeyR);
+    user.tap(KeyCode::KeyZ);
+    user.type_text("90");
+    user.tap(KeyCode::Enter);
+    let t = user.doc().nodes().next().unwrap().transform;
+    let x_axis = t.rotation * DVec3::X;
+    assert!(
+        (x_axis - DVec3::Y).length() < 1e-12,
+        "x turned onto y: {x_axis}"
+    );
+    assert_eq!(user.undo_steps(), steps + 2);
+}
+
+/// Shift+D duplicates and moves; a click places the copy.
+#[test]
+fn duplicate_and_place_with_shift_d() {
+    let mut user = User::new();
+    user.add("Cube");
+    user.shortcut(&[KeyCode::ShiftLeft], KeyCode::KeyD);
+    user.tap(KeyCode::KeyX);
+    user.type_text("3");
+    user.tap(KeyCode::Enter);
+    let xs: Vec<f64> = user
+        .doc()
+        .nodes()
+        .map(|n| n.transform.translation.x)
+        .collect();
+    assert_eq!(xs, [0.0, 3.0], "{}", user.status());
+}
+
+/// X deletes the selected object, Ctrl+Z brings it back, Ctrl+Shift+Z
+/// deletes it again.
+#[test]
+fn delete_undo_and_redo_with_keys() {
+    let mut user = User::new();
+    user.add("Cube");
+    user.tap(KeyCode::KeyX);
+    assert!(user.doc().nodes().next().is_none(), "{}", user.status());
+    user.shortcut(&[KeyCode::ControlLeft], KeyCode::KeyZ);
+    assert_eq!(user.node_names(), ["Cube"]);
+    user.shortcut(&[KeyCode::ControlLeft, KeyCode::ShiftLeft], KeyCode::KeyZ);
+    assert!(user.doc().nodes().next().is_none());
+}
+
+/// H hides the selected object, Alt+H shows it again.
+#[test]
+fn hide_and_unhide() {
+    let mut user = User::new();
+    user.add("Cube");
+    user.tap(KeyCode::KeyH);
+    assert!(!user.doc().nodes().next().unwrap().visible);
+    user.shortcut(&[KeyCode::AltLeft], KeyCode::KeyH);
+    assert!(user.doc().nodes().next().unwrap().visible);
+}
+
+/// Face mode: X deletes the clicked face, leaving an open box.
+#[test]
+fn delete_a_face_in_face_mode() {
+    let mut user = cube_in_edit_mode(KeyCode::Digit3);
+    let top = screen(&mut user, 0.0, 1.0, 0.0);
+    user.click(top);
+    user.tap(KeyCode::KeyX);
+    assert_eq!(user.mesh_counts(), (8, 12, 5), "{}", user.status());
+    user.first_mesh().validate().unwrap();
+}
+
+/// Alt+click on an edge of a loop-cut cube selects the loop: the four new
+/// edges around the middle (a loop stops at the cube's valence-3 corners).
+#[test]
+fn alt_click_selects_an_edge_loop() {
+    let mut user = cube_in_edit_mode(KeyCode::Digit2);
+    let side_edge = screen(&mut user, 1.0, 0.0, 1.0);
+    user.move_to(side_edge);
+    user.shortcut(&[KeyCode::ControlLeft], KeyCode::KeyR);
+    user.click(side_edge);
+    assert_eq!(user.mesh_counts(), (12, 20, 10));
+    user.shortcut(&[KeyCode::AltLeft], KeyCode::KeyA);
+    let edge = screen(&mut user, 1.0, 0.0, 0.0);
+    user.key_down(KeyCode::AltLeft);
+    user.click(edge);
+    user.key_up(KeyCode::AltLeft);
+    assert_eq!(user.edit_mode().selection.edges.len(), 4);
+}
+
+/// A and Alt+A in face mode, and 1/2/3 switch what a click selects.
+#[test]
+fn select_all_none_and_element_modes() {
+    let mut user = cube_in_edit_mode(KeyCode::Digit3);
+    user.tap(KeyCode::KeyA);
+    assert_eq!(selected_faces(&user), 6);
+    user.shortcut(&[KeyCode::AltLeft], KeyCode::KeyA);
+    assert_eq!(selected_faces(&user), 0);
+    user.tap(KeyCode::Digit1);
+    let corner = screen(&mut user, 1.0, 1.0, 1.0);
+    user.click(corner);
+    assert_eq!(user.edit_mode().selection.vertices.len(), 1);
+    user.tap(KeyCode::Tab);
+    assert!(user.edit_mode().node.is_none(), "Tab leaves edit mode");
+}
+
+/// A NURBS surface: Tab, click a control point, W, drag right, click: its
+/// weight grows and the surface moves toward it.
+#[test]
+fn a_weight_drag_pulls_a_nurbs_surface_toward_its_point() {
+    let mut user = User::new();
+    user.add("NURBS Surface");
+    user.tap(KeyCode::Tab);
+    let (points, weights) = shape_points(&user);
+    // An inner point near the middle of the net.
+    let target = (0..points.len())
+        .min_by(|&a, &b| points[a].length().total_cmp(&points[b].length()))
+        .unwrap();
+    let at = user.screen_of(points[target].as_vec3());
+    user.click(at);
+    let selected = user
+        .app
+        .world()
+        .resource::<hedra_edit::ShapeEdit>()
+        .selected
+        .clone();
+    assert_eq!(selected.into_iter().collect::<Vec<_>>(), [target as u32]);
+    let before = surface_point_near(&user, points[target]);
+    user.tap(KeyCode::KeyW);
+    user.glide_to(at + Vec2::new(120.0, 0.0), 6);
+    user.click(at + Vec2::new(120.0, 0.0));
+    let (_, after_weights) = shape_points(&user);
+    assert!(
+        after_weights[target] > weights[target],
+        "weight {} -> {}",
+        weights[target],
+        after_weights[target]
+    );
+    let after = surface_point_near(&user, points[target]);
+    assert!(
+        after.distance(points[target]) < before.distance(points[target]),
+        "the surface came closer to its point: {before} -> {after}"
+    );
+}
+
+fn shape_points(user: &User) -> (Vec<DVec3>, Vec<f64>) {
+    let node = user.doc().nodes().next().unwrap();
+    (
+        hedra_edit::shape_mode::control_points(&node.content),
+        hedra_edit::shape_mode::control_weights(&node.content).unwrap(),
+    )
+}
+
+/// The point of the surface's render mesh nearest to `p`.
+fn surface_point_near(user: &User, p: DVec3) -> DVec3 {
+    let world = user.app.world();
+    let entity = world
+        .resource::<hedra_scene::NodeEntities>()
+        .0
+        .values()
+        .next()
+        .copied()
+        .unwrap();
+    let mesh = world
+        .get::<Mesh3d>(entity)
+        .expect("the surface has a render mesh");
+    let render = world.resource::<Assets<Mesh>>().get(&mesh.0).unwrap();
+    let Some(bevy::mesh::VertexAttributeValues::Float32x3(positions)) =
+        render.attribute(Mesh::ATTRIBUTE_POSITION)
+    else {
+        panic!("positions")
+    };
+    positions
+        .iter()
+        .map(|q| Vec3::from(*q).as_dvec3())
+        .min_by(|a, b| a.distance(p).total_cmp(&b.distance(p)))
+        .unwrap()
+}
+
+/// The frame that confirms a tool already shows the result: the render
+/// mesh of that very frame has the extruded vertices.
+#[test]
+fn the_confirming_frame_shows_the_result() {
+    let mut user = cube_in_edit_mode(KeyCode::Digit3);
+    let top = screen(&mut user, 0.0, 1.0, 0.0);
+    user.click(top);
+    user.tap(KeyCode::KeyE);
+    user.glide_to(top - Vec2::new(0.0, 60.0), 6);
+    user.move_to(top - Vec2::new(0.0, 60.0));
+    // The release frame after the press confirms; look at each frame.
+    user.button_down(MouseButton::Left);
+    assert_eq!(user.mesh_counts(), (12, 20, 10), "the press confirms");
+    let positions = render_positions(&user);
+    let top_y = positions.iter().map(|p| p.y).fold(f32::MIN, f32::max);
+    assert!(
+        top_y > 1.05,
+        "the render mesh of the confirming frame shows the raised cap (top y = {top_y})"
+    );
+}
+
+fn render_positions(user: &User) -> Vec<Vec3> {
+    let world = user.app.world();
+    let entity = world
+        .resource::<hedra_scene::NodeEntities>()
+        .0
+        .values()
+        .next()
+        .copied()
+        .unwrap();
+    let mesh = world.get::<Mesh3d>(entity).expect("a render mesh");
+    let render = world.resource::<Assets<Mesh>>().get(&mesh.0).unwrap();
+    match render.attribute(Mesh::ATTRIBUTE_POSITION) {
+        Some(bevy::mesh::VertexAttributeValues::Float32x3(p)) => {
+            p.iter().map(|q| Vec3::from(*q)).collect()
+        }
+        _ => panic!("positions"),
+    }
+}
