@@ -483,3 +483,27 @@ fn render_positions(user: &User) -> Vec<Vec3> {
         _ => panic!("positions"),
     }
 }
+
+/// Ctrl+5 then Page Up twice stops at the viewport's highest level; Page
+/// Down steps back.
+#[test]
+fn page_up_stops_at_the_highest_viewport_level() {
+    let mut user = User::new();
+    user.add("Cube");
+    user.shortcut(&[KeyCode::ControlLeft], KeyCode::Digit5);
+    user.tap(KeyCode::PageUp);
+    user.tap(KeyCode::PageUp);
+    let level = |user: &User| match &user.doc().nodes().next().unwrap().content {
+        NodeContent::Mesh(m) => m.subdivision.map(|s| s.viewport_level),
+        _ => None,
+    };
+    assert_eq!(
+        level(&user),
+        Some(hedra_geom::subdivision::MAX_VIEWPORT_LEVEL)
+    );
+    user.tap(KeyCode::PageDown);
+    assert_eq!(
+        level(&user),
+        Some(hedra_geom::subdivision::MAX_VIEWPORT_LEVEL - 1)
+    );
+}

@@ -445,7 +445,9 @@ pub fn subdivision_keys(
             }
             (Some(level), None) => hedra_doc::SubdivisionModifier::with_level(level),
             (None, Some(mut m)) => {
-                let level = (m.viewport_level as i64 + step).clamp(0, 6) as u32;
+                let level = (m.viewport_level as i64 + step)
+                    .clamp(0, hedra_geom::subdivision::MAX_VIEWPORT_LEVEL as i64)
+                    as u32;
                 if level == m.viewport_level {
                     continue;
                 }

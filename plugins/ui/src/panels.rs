@@ -1257,7 +1257,9 @@ fn subdivision_panel(
     state: &mut UiState,
     events: &mut Vec<UiEvent>,
 ) {
-    use hedra_geom::subdivision::{BoundaryInterpolation, CreaseMethod, MAX_LEVEL, Scheme};
+    use hedra_geom::subdivision::{
+        BoundaryInterpolation, CreaseMethod, MAX_LEVEL, MAX_VIEWPORT_LEVEL, Scheme,
+    };
     let set = |events: &mut Vec<UiEvent>, m: Option<hedra_doc::SubdivisionModifier>| {
         exec(
             events,
@@ -1293,8 +1295,10 @@ fn subdivision_panel(
                     );
                     ui.end_row();
                     ui.label("Viewport level");
-                    ui.add(egui::DragValue::new(&mut e.viewport_level).range(0..=6))
-                        .on_hover_text("Ctrl+0…Ctrl+5, Page Up / Page Down");
+                    ui.add(
+                        egui::DragValue::new(&mut e.viewport_level).range(0..=MAX_VIEWPORT_LEVEL),
+                    )
+                    .on_hover_text("Ctrl+0…Ctrl+5, Page Up / Page Down");
                     ui.end_row();
                     ui.label("Export level");
                     ui.add(egui::DragValue::new(&mut e.export_level).range(0..=MAX_LEVEL));

@@ -42,6 +42,11 @@ pub const INFINITE_SHARPNESS: f32 = 10.0;
 /// Refinement levels above this are refused.
 pub const MAX_LEVEL: u32 = 10;
 
+/// The highest level the viewport preview offers (Ctrl+1…5 and Page Up, the
+/// Properties panel): level 6 turns each cage quad into 4,096 faces (a cube
+/// into 24,576); higher levels are for export and apply, up to [`MAX_LEVEL`].
+pub const MAX_VIEWPORT_LEVEL: u32 = 6;
+
 /// Refined meshes above this many faces are refused.
 pub const MAX_FACES: usize = 20_000_000;
 
