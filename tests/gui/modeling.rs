@@ -42,6 +42,12 @@ fn extrude_the_top_face_and_undo() {
     user.first_mesh().validate().unwrap();
     assert_eq!(user.undo_steps(), steps + 1, "one undo step");
     assert_eq!(selected_faces(&user), 1, "the new cap stays selected");
+    let cap = *user.edit_mode().selection.faces.iter().next().unwrap();
+    let normal = user.first_mesh().face_normal(cap);
+    assert!(
+        normal.dot(DVec3::Y) > 0.999 && user.first_mesh().face_centroid(cap).y > 1.05,
+        "the selected face is the raised cap"
+    );
     let top_y = user
         .first_mesh()
         .positions()

@@ -717,24 +717,47 @@ impl Document {
     /// # Errors
     /// A [`CommandError`] naming the node or value at fault.
     pub fn decide(&self, cmd: &Command, serial: u64) -> Result<Transaction, CommandError> {
+        self.decide_with_result(cmd, serial).map(|d| d.transaction)
+    }
+
+    /// As [`Document::decide`], with the mesh elements the command makes,
+    /// so that a tool selects exactly those.
+    ///
+    /// # Errors
+    /// As [`Document::decide`].
+    pub fn decide_with_result(&self, cmd: &Command, serial: u64) -> Result<Decision, CommandError> {
         let mut plan = Plan {
             doc: self,
             next_id: self.next_node_id,
             changes: Vec::new(),
+            created_faces: Vec::new(),
         };
         plan.run(cmd)?;
         if plan.changes.is_empty() {
             return Err(CommandError::Nothing("the command changes nothing"));
         }
-        Ok(Transaction {
-            serial,
-            label: cmd.label(),
-            command: Some(cmd.clone()),
-            changes: plan.changes,
-            next_id_before: self.next_node_id,
-            next_id_after: plan.next_id,
+        Ok(Decision {
+            transaction: Transaction {
+                serial,
+                label: cmd.label(),
+                command: Some(cmd.clone()),
+                changes: plan.changes,
+                next_id_before: self.next_node_id,
+                next_id_after: plan.next_id,
+            },
+            created_faces: plan.created_faces,
         })
     }
+}
+
+/// A decided command and the mesh elements it makes.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Decision {
+    pub transaction: Transaction,
+    /// The faces a region extrude makes (its caps) or a region inset makes
+    /// (the inner faces), in the order of the command's faces; empty for
+    /// other commands. Not part of the history: only tools use it.
+    pub created_faces: Vec<FaceId>,
 }
 
 /// Collects the node changes of one command.
@@ -742,6 +765,8 @@ struct Plan<'a> {
     doc: &'a Document,
     next_id: u64,
     changes: Vec<NodeChange>,
+    /// See [`Decision::created_faces`].
+    created_faces: Vec<FaceId>,
 }
 
 impl Plan<'_> {
@@ -1466,21 +1491,25 @@ impl Plan<'_> {
                 node,
                 faces,
                 distance,
-            } => self.on_faces(node, faces, |m, fs| {
-                let normal = fs
-                    .iter()
-                    .map(|&f| m.face_area_vector(f))
-                    .sum::<DVec3>()
-                    .normalize_or_zero();
-                if normal == DVec3::ZERO {
-                    return Err(ModelingError::Parameter {
-                        what: "faces",
-                        allowed: "facing some common direction",
-                        value: "normals that cancel out".into(),
-                    });
-                }
-                modeling::extrude_region(m, fs, normal * *distance).map(drop)
-            })?,
+            } => {
+                let mut caps = Vec::new();
+                self.on_faces(node, faces, |m, fs| {
+                    let normal = fs
+                        .iter()
+                        .map(|&f| m.face_area_vector(f))
+                        .sum::<DVec3>()
+                        .normalize_or_zero();
+                    if normal == DVec3::ZERO {
+                        return Err(ModelingError::Parameter {
+                            what: "faces",
+                            allowed: "facing some common direction",
+                            value: "normals that cancel out".into(),
+                        });
+                    }
+                    modeling::extrude_region(m, fs, normal * *distance).map(|c| caps = c)
+                })?;
+                self.created_faces = caps;
+            }
             Command::ExtrudeFaces {
                 node,
                 faces,
@@ -1501,9 +1530,13 @@ impl Plan<'_> {
                 faces,
                 thickness,
                 depth,
-            } => self.on_faces(node, faces, |m, fs| {
-                modeling::inset_region(m, fs, *thickness, *depth).map(drop)
-            })?,
+            } => {
+                let mut inner = Vec::new();
+                self.on_faces(node, faces, |m, fs| {
+                    modeling::inset_region(m, fs, *thickness, *depth).map(|c| inner = c)
+                })?;
+                self.created_faces = inner;
+            }
             Command::LoopCut { node, edge, cuts } => self.model(node, |m| {
                 let es = edge.resolve(m).map_err(|e| e.0)?;
                 let [e] = es[..] else {

@@ -534,3 +534,57 @@ fn mesh_commands_edit_the_mesh_undo_exactly_and_name_bad_elements() {
         .unwrap_err();
     assert!(matches!(e, CommandError::NotAMesh { .. }));
 }
+
+/// A region extrude or inset reports the faces it made (issue 12: tools
+/// select exactly those instead of guessing from face ids).
+#[test]
+fn region_extrude_and_inset_report_the_faces_they_make() {
+    let mut s = Session::new();
+    s.execute(&add(cube(), "Box")).unwrap();
+    let top = hedra_doc::FaceSet::Facing {
+        direction: DVec3::Y,
+        degrees: 1.0,
+    };
+    for (cmd, centre_y) in [
+        (
+            Command::ExtrudeRegion {
+                node: name("Box"),
+                faces: top.clone(),
+                distance: 0.5,
+            },
+            1.5,
+        ),
+        (
+            Command::InsetRegion {
+                node: name("Box"),
+                faces: top.clone(),
+                thickness: 0.25,
+                depth: 0.0,
+            },
+            1.0,
+        ),
+    ] {
+        let decision = s.doc.decide_with_result(&cmd, 1).unwrap();
+        assert_eq!(decision.created_faces.len(), 1, "{cmd:?}");
+        let node = decision.transaction.changes[0].after.as_ref().unwrap();
+        let mesh = node.content.mesh().unwrap();
+        let f = decision.created_faces[0];
+        assert!(mesh.is_face(f));
+        assert!(
+            (mesh.face_centroid(f).y - centre_y).abs() < 1e-12,
+            "{cmd:?}"
+        );
+        assert!(mesh.face_normal(f).dot(DVec3::Y) > 0.999, "{cmd:?}");
+    }
+    let move_cmd = Command::Translate {
+        nodes: vec![name("Box")],
+        offset: DVec3::X,
+    };
+    assert!(
+        s.doc
+            .decide_with_result(&move_cmd, 1)
+            .unwrap()
+            .created_faces
+            .is_empty()
+    );
+}

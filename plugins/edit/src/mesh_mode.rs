@@ -154,6 +154,9 @@ pub struct MeshTool {
     cuts: u32,
     /// Crease: the mean sharpness of the selection when the tool started.
     start_value: f64,
+    /// Faces the previewed command makes (extrude caps, inset inner faces),
+    /// selected when the tool is confirmed.
+    created_faces: Vec<FaceId>,
     pub readout: String,
 }
 
@@ -703,6 +706,7 @@ pub fn edit_shortcuts(
         edge: None,
         cuts: 1,
         start_value: 0.0,
+        created_faces: Vec::new(),
         readout: String::new(),
     };
     if c && keys.just_pressed(KeyCode::KeyR) {
@@ -1282,9 +1286,11 @@ pub fn drive_mesh_tool(
         tool.readout = format!("{} [{}]", tool.readout, tool.typed.as_str());
     }
     // Decide on a copy: the preview, or the reason it cannot apply.
-    match state.session.doc.decide(&cmd, 0) {
-        Ok(t) => {
-            let after = t
+    match state.session.doc.decide_with_result(&cmd, 0) {
+        Ok(decision) => {
+            tool.created_faces = decision.created_faces;
+            let after = decision
+                .transaction
                 .changes
                 .iter()
                 .find(|c| c.id == node_id)
@@ -1304,20 +1310,13 @@ pub fn drive_mesh_tool(
     let confirm = keys.any_just_pressed([KeyCode::Enter, KeyCode::NumpadEnter, KeyCode::Space])
         || buttons.just_pressed(MouseButton::Left);
     if confirm {
-        // A region extrude makes new cap faces, allocated last: select them,
-        // as Blender keeps the extruded faces selected.
-        if matches!(tool.kind, MeshToolKind::Extrude | MeshToolKind::Inset) {
-            if let Some(p) = &mode.preview {
-                let n = mode.selection.faces.len();
-                let caps: BTreeSet<FaceId> = p
-                    .faces()
-                    .collect::<Vec<_>>()
-                    .into_iter()
-                    .rev()
-                    .take(n)
-                    .collect();
-                mode.selection.faces = caps;
-            }
+        // A region extrude or inset selects the faces it made (the caps, the
+        // inner faces), as Blender keeps them selected.
+        if matches!(tool.kind, MeshToolKind::Extrude | MeshToolKind::Inset)
+            && mode.preview.is_some()
+            && !tool.created_faces.is_empty()
+        {
+            mode.selection.faces = tool.created_faces.iter().copied().collect();
         }
         mode.preview = None;
         mode.just_finished = true;
