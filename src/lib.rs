@@ -61,7 +61,7 @@ fn main_window() -> WindowPlugin {
 /// The whole modeling app (every plugin, egui included) with its window
 /// entity but no window system and no GPU, for tests that use it as a
 /// person does: they call `App::update` frame by frame and feed keys,
-/// buttons, cursor and wheel as Bevy's own input messages (`tests/input`).
+/// buttons, cursor and wheel as Bevy's own input messages (`tests/gui/user.rs`).
 /// Nothing is drawn; cameras, egui layout, picking and the document run as
 /// in the window. Preferences are the defaults and recovery points go to
 /// `recovery_dir`, so a test touches nothing of the user's.
