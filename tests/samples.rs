@@ -521,15 +521,21 @@ fn shift_a_cube_with_a_held_click_in_the_real_window() {
         set -u
         "$HEDRA" "$WORK" > "$LOG" 2>&1 &
         app=$!
-        win=$(xdotool search --sync --onlyvisible --name Hedra | head -1)
-        sleep 6
+        # The title names the file once the app runs with it open, gets a
+        # '*' when the scene changes and loses it when it is saved.
+        waitfor() { timeout 60 xdotool search --sync --onlyvisible --name "$1" | head -1; }
+        win=$(waitfor 'work[.]hedra[.]ron$')
+        [ -n "$win" ] || { echo "the window never showed the file" >&2; exit 3; }
+        sleep 2
         xdotool windowfocus --sync "$win"; sleep 0.5
         press() { xdotool keydown "$1"; sleep 0.3; xdotool keyup "$1"; }
         xdotool mousemove 640 700; sleep 1.5
         xdotool keydown shift; sleep 0.2; press a; sleep 0.2; xdotool keyup shift; sleep 2
         xdotool mousemove 670 394; sleep 1.5
-        xdotool mousedown 1; sleep 0.3; xdotool mouseup 1; sleep 2
-        xdotool keydown ctrl; sleep 0.2; press s; sleep 0.2; xdotool keyup ctrl; sleep 3
+        xdotool mousedown 1; sleep 0.3; xdotool mouseup 1
+        [ -n "$(waitfor 'work[.]hedra[.]ron [*]$')" ] || echo "the click changed nothing" >&2
+        xdotool keydown ctrl; sleep 0.2; press s; sleep 0.2; xdotool keyup ctrl
+        [ -n "$(waitfor 'work[.]hedra[.]ron$')" ] || echo "Ctrl+S did not save" >&2
         (sleep 60; kill "$app") >/dev/null 2>&1 &
         watchdog=$!
         xdotool keydown ctrl; sleep 0.2; press q; sleep 0.2; xdotool keyup ctrl
