@@ -1,0 +1,203 @@
+//! The egui layout, drawn by one system ([`draw_ui`]) that collects what the
+//! user decided as [`UiEvent`]s and applies them after drawing. One file per
+//! part: `menus` (menu bar, Mesh menu, Shift+A and M at the cursor),
+//! `outliner`, `properties`, `windows` (Adjust Last, undo history),
+//! `dialogs`, `status_bar`, `inspector` (topology tables) and
+//! `weight_labels`.
+
+use crate::files::{self, FilePurpose, Pending, Preferences, SamplesDir};
+use crate::{FileAction, UiState, begin_path, run_pending, use_path};
+use bevy::ecs::system::SystemParam;
+use bevy::prelude::*;
+use bevy_egui::{EguiContexts, egui};
+use glam::{DQuat, DVec3, EulerRot};
+use hedra_doc::{
+    Command, Document, NodeContent, NodeId, NodeRef, Shading, Transform as DocTransform,
+};
+use hedra_edit::{EditMode, ElementKind, Selection, TransformTool};
+use hedra_geom::Primitive;
+use hedra_scene::{DocRequest, DocState, InputGate, NodeEntities, StatusMessage};
+
+mod dialogs;
+mod inspector;
+mod menus;
+mod outliner;
+mod properties;
+mod status_bar;
+mod weight_labels;
+mod windows;
+
+use dialogs::*;
+use inspector::*;
+use menus::*;
+pub use menus::{ADD_MENU, MERGE_MENU};
+use outliner::*;
+use properties::*;
+use status_bar::*;
+use weight_labels::*;
+use windows::*;
+
+/// What the panels decided this frame; applied after drawing.
+enum UiEvent {
+    Select(NodeId, bool),
+    Request(DocRequest),
+    File(FileAction),
+    Preview(NodeId, DocTransform),
+    Error(String),
+}
+
+#[derive(SystemParam)]
+pub struct Writers<'w> {
+    requests: MessageWriter<'w, DocRequest>,
+    files: MessageWriter<'w, FileAction>,
+    exit: MessageWriter<'w, AppExit>,
+    analysis: ResMut<'w, hedra_viewport::CurveAnalysis>,
+    surface_analysis: ResMut<'w, hedra_viewport::SurfaceAnalysis>,
+}
+
+#[derive(SystemParam)]
+pub struct Model<'w> {
+    state: Res<'w, DocState>,
+    selection: ResMut<'w, Selection>,
+    tool: Res<'w, TransformTool>,
+    status: ResMut<'w, StatusMessage>,
+    prefs: Res<'w, Preferences>,
+    samples: Option<Res<'w, SamplesDir>>,
+    entities: Res<'w, NodeEntities>,
+    mode: ResMut<'w, EditMode>,
+    previews: Res<'w, hedra_scene::SmoothPreviews>,
+    shape_edit: Res<'w, hedra_edit::ShapeEdit>,
+}
+
+#[allow(clippy::too_many_arguments)]
+pub fn draw_ui(
+    mut contexts: EguiContexts,
+    mut ui_state: ResMut<UiState>,
+    mut model: Model,
+    mut writers: Writers,
+    mut gate: ResMut<InputGate>,
+    mut transforms: Query<&mut Transform>,
+    window: Single<&Window, With<bevy::window::PrimaryWindow>>,
+    camera: Query<(&Camera, &GlobalTransform), With<hedra_scene::ViewportCamera>>,
+) -> Result {
+    let ctx = contexts.ctx_mut()?.clone();
+    let mut events: Vec<UiEvent> = Vec::new();
+    // Tab belongs to the viewport (edit mode) unless a field is being edited.
+    let focus_before = ctx.memory(|m| m.focused());
+    let mut root = egui::Ui::new(
+        ctx.clone(),
+        "hedra-root".into(),
+        egui::UiBuilder::new()
+            .layer_id(egui::LayerId::background())
+            .max_rect(ctx.viewport_rect()),
+    );
+    let doc = &model.state.session.doc;
+
+    egui::Panel::top("menu").show(&mut root, |ui| {
+        menu_bar(ui, &mut ui_state, &model, &mut events)
+    });
+    egui::Panel::bottom("status").show(&mut root, |ui| status_bar(ui, &model));
+    if ui_state.show_outliner {
+        egui::Panel::left("outliner")
+            .resizable(true)
+            .default_size(220.0)
+            .show(&mut root, |ui| {
+                ui.heading("Outliner");
+                ui.separator();
+                outliner(ui, doc, &model.selection, &mut ui_state, &mut events);
+            });
+    }
+    if ui_state.show_properties {
+        egui::Panel::right("properties")
+            .resizable(true)
+            .default_size(270.0)
+            .show(&mut root, |ui| {
+                egui::ScrollArea::vertical().show(ui, |ui| {
+                    let mut analysis = (writers.analysis.clone(), writers.surface_analysis.clone());
+                    properties(ui, &model, &mut ui_state, &mut events, &mut analysis);
+                    if analysis.0 != *writers.analysis {
+                        *writers.analysis = analysis.0;
+                    }
+                    if analysis.1 != *writers.surface_analysis {
+                        *writers.surface_analysis = analysis.1;
+                    }
+                });
+            });
+    }
+    let free = root.available_rect_before_wrap();
+    ui_state.viewport_rect = Some(free);
+    if let Ok((cam, cam_t)) = camera.single() {
+        weight_labels(&root.painter_at(free), &model, cam, cam_t);
+    }
+    if let Some((a, b)) = model.mode.box_select.or(model.shape_edit.box_select) {
+        let rect = egui::Rect::from_two_pos(egui::pos2(a.x, a.y), egui::pos2(b.x, b.y));
+        let painter = root.painter_at(free);
+        painter.rect_filled(
+            rect,
+            0.0,
+            egui::Color32::from_rgba_unmultiplied(255, 160, 60, 24),
+        );
+        painter.rect_stroke(
+            rect,
+            0.0,
+            egui::Stroke::new(1.0, egui::Color32::from_rgb(255, 170, 80)),
+            egui::StrokeKind::Inside,
+        );
+    }
+
+    if ui_state.show_history {
+        history_window(&ctx, &model, &mut ui_state, &mut events);
+    }
+    adjust_last_window(&ctx, free, &model, &mut events);
+    let curve = active_curve(&model.state.session.doc, model.selection.active());
+    add_menu(&ctx, &mut ui_state, &mut events, curve);
+    merge_menu(&ctx, &mut model, &mut events);
+    dialogs(&ctx, &mut ui_state, &mut model, &mut writers);
+
+    // Viewport input is free when the pointer is over the 3D area and egui is not busy.
+    let cursor = window.cursor_position().map(|c| egui::pos2(c.x, c.y));
+    gate.pointer_free = cursor.is_some_and(|c| free.contains(c))
+        && !ctx.egui_is_using_pointer()
+        && !ctx.is_pointer_over_egui();
+    if focus_before.is_none() && ctx.input(|i| i.key_pressed(egui::Key::Tab)) {
+        if let Some(id) = ctx.memory(|m| m.focused()) {
+            ctx.memory_mut(|m| m.surrender_focus(id));
+        }
+    }
+    gate.keyboard_free = !ctx.egui_wants_keyboard_input();
+
+    // Apply what the panels decided.
+    for e in events {
+        match e {
+            UiEvent::Select(id, additive) => {
+                if additive {
+                    model.selection.toggle(id);
+                } else {
+                    model.selection.set([id]);
+                }
+            }
+            UiEvent::Request(r) => {
+                writers.requests.write(r);
+            }
+            UiEvent::File(f) => {
+                writers.files.write(f);
+            }
+            UiEvent::Error(e) => model.status.error(e),
+            UiEvent::Preview(id, t) => {
+                if let Some(mut et) = model
+                    .entities
+                    .0
+                    .get(&id)
+                    .and_then(|e| transforms.get_mut(*e).ok())
+                {
+                    *et = hedra_edit::modal::to_bevy(&t);
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+fn exec(events: &mut Vec<UiEvent>, cmd: Command) {
+    events.push(UiEvent::Request(DocRequest::Execute(cmd)));
+}

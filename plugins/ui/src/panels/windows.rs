@@ -1,0 +1,169 @@
+//! Floating windows: Adjust Last and the undo history.
+
+use super::*;
+
+/// Blender's "adjust last operation": the parameters of the last step, when
+/// it added a primitive, editable in place.
+pub(super) fn adjust_last_window(
+    ctx: &egui::Context,
+    viewport: egui::Rect,
+    model: &Model,
+    events: &mut Vec<UiEvent>,
+) {
+    let Some(last) = model.state.session.history.done().last() else {
+        return;
+    };
+    if last.serial <= model.state.opened_serial {
+        return;
+    }
+    let Some(command) = &last.command else { return };
+    let mut edited = command.clone();
+    let editable = matches!(
+        command,
+        Command::AddPrimitive { .. }
+            | Command::ExtrudeFaces { .. }
+            | Command::ExtrudeRegion { .. }
+            | Command::InsetFaces { .. }
+            | Command::InsetRegion { .. }
+            | Command::LoopCut { .. }
+            | Command::SubdivideEdges { .. }
+            | Command::BevelEdges { .. }
+            | Command::SlideEdges { .. }
+            | Command::MergeByDistance { .. }
+            | Command::MergeVertices { .. }
+            | Command::BevelVertices { .. }
+    );
+    if !editable {
+        return;
+    }
+    egui::Window::new(format!("Adjust Last: {}", last.label))
+        .id("adjust-last".into())
+        .collapsible(true)
+        .resizable(false)
+        .pivot(egui::Align2::LEFT_BOTTOM)
+        .fixed_pos(viewport.left_bottom() + egui::vec2(8.0, -8.0))
+        .show(ctx, |ui| {
+            let changed = match &mut edited {
+                Command::AddPrimitive { primitive, .. } => primitive_editor(ui, primitive),
+                Command::BevelEdges {
+                    width, segments, ..
+                } => {
+                    let w = number_row(ui, "Width", width, 0.005, 0.0001..=1e6);
+                    let s = ui.horizontal(|ui| {
+                        ui.label("Segments");
+                        ui.add(egui::DragValue::new(segments).speed(0.1).range(1..=32))
+                            .changed()
+                    });
+                    w | s.inner
+                }
+                Command::SlideEdges { factor, .. } => {
+                    number_row(ui, "Factor", factor, 0.01, -1.0..=1.0)
+                }
+                Command::MergeVertices { at, .. } => {
+                    use hedra_geom::modeling::MergePoint;
+                    let before = *at;
+                    ui.horizontal(|ui| {
+                        ui.label("Merge at");
+                        choice(
+                            ui,
+                            "adjust-merge-at",
+                            at,
+                            &[MergePoint::Center, MergePoint::First, MergePoint::Last],
+                            |p| match p {
+                                MergePoint::Center => "Center",
+                                MergePoint::First => "First",
+                                MergePoint::Last => "Last",
+                            },
+                        )
+                    });
+                    *at != before
+                }
+                Command::BevelVertices { width, .. } => {
+                    number_row(ui, "Width", width, 0.005, 0.0001..=1e6)
+                }
+                Command::MergeByDistance { distance, .. } => {
+                    number_row(ui, "Distance", distance, 0.001, 0.0..=1e6)
+                }
+                Command::ExtrudeFaces { distance, .. }
+                | Command::ExtrudeRegion { distance, .. } => {
+                    number_row(ui, "Distance", distance, 0.01, -1e6..=1e6)
+                }
+                Command::InsetFaces {
+                    thickness, depth, ..
+                }
+                | Command::InsetRegion {
+                    thickness, depth, ..
+                } => {
+                    number_row(ui, "Thickness", thickness, 0.005, 0.0..=1e6)
+                        | number_row(ui, "Depth", depth, 0.005, -1e6..=1e6)
+                }
+                Command::LoopCut { cuts, .. } | Command::SubdivideEdges { cuts, .. } => {
+                    ui.horizontal(|ui| {
+                        ui.label("Cuts");
+                        ui.add(egui::DragValue::new(cuts).speed(0.1).range(1..=64))
+                            .changed()
+                    })
+                    .inner
+                }
+                _ => false,
+            };
+            if changed {
+                events.push(UiEvent::Request(DocRequest::AdjustLast(edited.clone())));
+            }
+        });
+}
+
+pub(super) fn number_row(
+    ui: &mut egui::Ui,
+    label: &str,
+    v: &mut f64,
+    speed: f64,
+    range: std::ops::RangeInclusive<f64>,
+) -> bool {
+    ui.horizontal(|ui| {
+        ui.label(label);
+        ui.add(
+            egui::DragValue::new(v)
+                .speed(speed)
+                .range(range)
+                .max_decimals(4),
+        )
+        .changed()
+    })
+    .inner
+}
+
+pub(super) fn history_window(
+    ctx: &egui::Context,
+    model: &Model,
+    state: &mut UiState,
+    events: &mut Vec<UiEvent>,
+) {
+    let h = &model.state.session.history;
+    egui::Window::new("Undo History")
+        .open(&mut state.show_history)
+        .default_width(240.0)
+        .show(ctx, |ui| {
+            ui.label(crate::recovery::history_summary(h));
+            ui.separator();
+            egui::ScrollArea::vertical()
+                .max_height(360.0)
+                .show(ui, |ui| {
+                    let done = h.done().len();
+                    if ui.selectable_label(done == 0, "Original").clicked() {
+                        events.push(UiEvent::Request(DocRequest::JumpTo(0)));
+                    }
+                    for (i, t) in h.done().iter().enumerate() {
+                        if ui.selectable_label(i + 1 == done, &t.label).clicked() {
+                            events.push(UiEvent::Request(DocRequest::JumpTo(i + 1)));
+                        }
+                    }
+                    for (k, t) in h.undone().iter().rev().enumerate() {
+                        let text = egui::RichText::new(&t.label).weak();
+                        if ui.selectable_label(false, text).clicked() {
+                            events.push(UiEvent::Request(DocRequest::JumpTo(done + k + 1)));
+                        }
+                    }
+                });
+        });
+}
