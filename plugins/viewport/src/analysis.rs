@@ -1,0 +1,244 @@
+//! Curve and surface analysis drawn in the viewport (curvature comb, Frenet frame, sections).
+
+use crate::*;
+
+/// Edit mode's vertex or face-centre dots; they face the camera, so they are
+/// drawn every frame (only the selected ones on dense meshes).
+/// The analysis overlays of the active curve (seed 001's exercises), set
+/// from the properties panel.
+#[derive(Resource, Debug, Clone, PartialEq)]
+pub struct CurveAnalysis {
+    /// Curvature comb: normals scaled by curvature along the curve.
+    pub comb: bool,
+    /// Length of the comb's teeth per unit of curvature.
+    pub comb_scale: f64,
+    /// Colour the curve by curvature (blue flat … red bent).
+    pub colour_by_curvature: bool,
+    /// A moving point with its Frenet frame and osculating circle.
+    pub frame: bool,
+    /// Where that point is, as a fraction of the domain.
+    pub at: f64,
+}
+
+impl Default for CurveAnalysis {
+    fn default() -> Self {
+        CurveAnalysis {
+            comb: false,
+            comb_scale: 0.3,
+            colour_by_curvature: false,
+            frame: false,
+            at: 0.5,
+        }
+    }
+}
+
+/// Draws the active curve's analysis overlays: curvature comb, colour by
+/// curvature, and the Frenet frame (tangent red, normal green, binormal
+/// blue) with the osculating circle at a moving point.
+pub(crate) fn draw_curve_analysis(
+    analysis: Res<CurveAnalysis>,
+    selection: Res<Selection>,
+    state: Res<DocState>,
+    edit: Res<hedra_edit::ShapeEdit>,
+    mut gizmos: Gizmos<AxisGizmos>,
+) {
+    use hedra_geom::curves::Curve;
+    use hedra_geom::curves::analysis::{curvature, frenet_frame, osculating_circle};
+    if !(analysis.comb || analysis.frame || analysis.colour_by_curvature) {
+        return;
+    }
+    let Some(id) = selection.active() else { return };
+    let doc = &state.session.doc;
+    let preview = edit.preview.as_ref().filter(|_| edit.node == Some(id));
+    let Some(NodeContent::Curve(c)) = preview.or_else(|| doc.node(id).map(|n| &n.content)) else {
+        return;
+    };
+    let world = doc.world_matrix(id);
+    let to_world = |p: DVec3| world.transform_point3(p).as_vec3();
+    let (a, b) = c.domain();
+    let samples = 300;
+    let ts: Vec<f64> = (0..=samples)
+        .map(|i| a + (b - a) * i as f64 / samples as f64)
+        .collect();
+    let ks: Vec<f64> = ts.iter().map(|&t| curvature(&**c, t)).collect();
+    let k_max = ks.iter().copied().fold(1e-12, f64::max);
+    if analysis.colour_by_curvature {
+        for (w, k) in ts.windows(2).zip(&ks) {
+            let x = (k / k_max) as f32;
+            let colour = Color::srgb(x, 0.2, 1.0 - x);
+            gizmos.line(to_world(c.point(w[0])), to_world(c.point(w[1])), colour);
+        }
+    }
+    if analysis.comb {
+        let mut tips = Vec::with_capacity(ts.len());
+        for (&t, &k) in ts.iter().zip(&ks) {
+            let p = c.point(t);
+            // The comb points away from the centre of curvature.
+            let tip = match frenet_frame(&**c, t) {
+                Some([_, normal, _]) => p - normal * k * analysis.comb_scale,
+                None => p,
+            };
+            if tips.len() % 3 == 0 {
+                gizmos.line(to_world(p), to_world(tip), Color::srgba(0.4, 0.9, 1.0, 0.6));
+            }
+            tips.push(to_world(tip));
+        }
+        gizmos.linestrip(tips, Color::srgb(0.4, 0.9, 1.0));
+    }
+    if analysis.frame {
+        let t = a + (b - a) * analysis.at.clamp(0.0, 1.0);
+        let p = c.point(t);
+        let size = hedra_scene::extent(c.points()) * 0.15;
+        gizmos.sphere(
+            Isometry3d::from_translation(to_world(p)),
+            (size * 0.08) as f32,
+            Color::WHITE,
+        );
+        if let Some([tangent, normal, binormal]) = frenet_frame(&**c, t) {
+            for (v, colour) in [
+                (tangent, Color::srgb(1.0, 0.25, 0.25)),
+                (normal, Color::srgb(0.3, 1.0, 0.3)),
+                (binormal, Color::srgb(0.35, 0.5, 1.0)),
+            ] {
+                gizmos.arrow(to_world(p), to_world(p + v * size), colour);
+            }
+        }
+        if let Some((centre, radius)) = osculating_circle(&**c, t)
+            && radius < 1e4 * hedra_scene::extent(c.points())
+            && let Some([tangent, normal, _]) = frenet_frame(&**c, t)
+        {
+            let circle: Vec<Vec3> = (0..=96)
+                .map(|i| {
+                    let angle = std::f64::consts::TAU * i as f64 / 96.0;
+                    to_world(centre + radius * (angle.cos() * tangent + angle.sin() * normal))
+                })
+                .collect();
+            gizmos.linestrip(circle, Color::srgba(1.0, 0.85, 0.3, 0.8));
+        }
+    }
+}
+
+/// The analysis overlays of the active surface (seed 002's exercise): a
+/// planar section and a moving domain point.
+#[derive(Resource, Debug, Clone, PartialEq)]
+pub struct SurfaceAnalysis {
+    pub section: bool,
+    /// The section plane's normal axis (0 = X, 1 = Y, 2 = Z, local space).
+    pub section_axis: usize,
+    /// Where the plane is, as a fraction of the control net's extent.
+    pub section_at: f64,
+    pub domain_point: bool,
+    /// The moving point's parameters, as fractions of the domain.
+    pub u: f64,
+    pub v: f64,
+}
+
+impl Default for SurfaceAnalysis {
+    fn default() -> Self {
+        SurfaceAnalysis {
+            section: false,
+            section_axis: 1,
+            section_at: 0.5,
+            domain_point: false,
+            u: 0.5,
+            v: 0.5,
+        }
+    }
+}
+
+/// Draws the active NURBS surface's planar section (the plane's outline
+/// and the cut) and the moving domain point with its iso-parameter curves.
+pub(crate) fn draw_surface_analysis(
+    analysis: Res<SurfaceAnalysis>,
+    selection: Res<Selection>,
+    state: Res<DocState>,
+    mut gizmos: Gizmos<AxisGizmos>,
+    mut tessellated: Local<
+        Option<(
+            std::sync::Arc<hedra_doc::SurfaceShape>,
+            hedra_geom::surfaces::tessellate::SurfaceMesh,
+        )>,
+    >,
+) {
+    use hedra_geom::surfaces::Surface;
+    if !(analysis.section || analysis.domain_point) {
+        return;
+    }
+    let Some(id) = selection.active() else { return };
+    let doc = &state.session.doc;
+    let Some(NodeContent::Surface(shape)) = doc.node(id).map(|n| &n.content) else {
+        return;
+    };
+    let hedra_doc::SurfaceShape::Nurbs(s) = &**shape else {
+        return;
+    };
+    let world = doc.world_matrix(id);
+    let to_world = |p: DVec3| world.transform_point3(p).as_vec3();
+    if analysis.section {
+        let (lo, hi) = s
+            .points()
+            .iter()
+            .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), p| {
+                (lo.min(*p), hi.max(*p))
+            });
+        let axis = analysis.section_axis.min(2);
+        let normal = [DVec3::X, DVec3::Y, DVec3::Z][axis];
+        let origin = lo.lerp(hi, analysis.section_at.clamp(0.0, 1.0)) * normal
+            + (lo + hi) / 2.0 * (DVec3::ONE - normal);
+        // The plane: a square a little larger than the net.
+        let half = (hi - lo).max_element() * 0.6;
+        let (a, b) = match axis {
+            0 => (DVec3::Y, DVec3::Z),
+            1 => (DVec3::X, DVec3::Z),
+            _ => (DVec3::X, DVec3::Y),
+        };
+        let corners = [
+            (-1.0, -1.0),
+            (1.0, -1.0),
+            (1.0, 1.0),
+            (-1.0, 1.0),
+            (-1.0, -1.0),
+        ]
+        .map(|(x, y)| to_world(origin + half * (x * a + y * b)));
+        gizmos.linestrip(corners, Color::srgba(0.6, 0.8, 1.0, 0.6));
+        // Tessellated once per shape, not every frame the section is drawn
+        // (the cache holds the shape, so its identity cannot be reused).
+        if tessellated
+            .as_ref()
+            .is_none_or(|(k, _)| !std::sync::Arc::ptr_eq(k, shape))
+        {
+            let tol = hedra_scene::VIEW_TOLERANCE * hedra_scene::extent(s.points());
+            let mesh = hedra_geom::surfaces::tessellate::tessellate_nurbs(s, tol);
+            *tessellated = Some((shape.clone(), mesh));
+        }
+        let (_, mesh) = tessellated.as_ref().expect("filled above");
+        for [p, q] in hedra_geom::surfaces::tessellate::plane_section(mesh, origin, normal) {
+            gizmos.line(to_world(p), to_world(q), Color::srgb(1.0, 0.3, 0.9));
+        }
+    }
+    if analysis.domain_point {
+        let ((u0, u1), (v0, v1)) = s.domain();
+        let u = u0 + (u1 - u0) * analysis.u.clamp(0.0, 1.0);
+        let v = v0 + (v1 - v0) * analysis.v.clamp(0.0, 1.0);
+        let iso_u: Vec<Vec3> = (0..=100)
+            .map(|k| to_world(s.point(u, v0 + (v1 - v0) * k as f64 / 100.0)))
+            .collect();
+        let iso_v: Vec<Vec3> = (0..=100)
+            .map(|k| to_world(s.point(u0 + (u1 - u0) * k as f64 / 100.0, v)))
+            .collect();
+        gizmos.linestrip(iso_u, Color::srgb(1.0, 0.85, 0.3));
+        gizmos.linestrip(iso_v, Color::srgb(0.4, 1.0, 0.5));
+        let e = s.evaluate(u, v);
+        let size = hedra_scene::extent(s.points()) * 0.12;
+        gizmos.sphere(
+            Isometry3d::from_translation(to_world(e.p)),
+            (size * 0.1) as f32,
+            Color::WHITE,
+        );
+        gizmos.arrow(
+            to_world(e.p),
+            to_world(e.p + e.normal() * size),
+            Color::srgb(0.35, 0.5, 1.0),
+        );
+    }
+}

@@ -1,0 +1,208 @@
+//! The orbit camera (Blender-style turntable), framing the selection or everything.
+
+use crate::*;
+
+/// Orbit camera state (Blender-style: turntable around a focus point).
+#[derive(Component, Debug, Clone, Copy, PartialEq)]
+pub struct OrbitCamera {
+    pub focus: Vec3,
+    pub yaw: f32,
+    pub pitch: f32,
+    pub distance: f32,
+}
+
+impl Default for OrbitCamera {
+    fn default() -> Self {
+        OrbitCamera {
+            focus: Vec3::ZERO,
+            yaw: 0.75,
+            pitch: -0.5,
+            distance: 12.0,
+        }
+    }
+}
+
+impl OrbitCamera {
+    pub fn transform(&self) -> Transform {
+        let rotation = Quat::from_euler(EulerRot::YXZ, self.yaw, self.pitch, 0.0);
+        Transform {
+            translation: self.focus + rotation * Vec3::Z * self.distance,
+            rotation,
+            scale: Vec3::ONE,
+        }
+    }
+}
+
+pub(crate) fn spawn_camera(mut commands: Commands) {
+    let orbit = OrbitCamera::default();
+    commands.spawn((
+        Camera3d::default(),
+        ViewportCamera,
+        TransformGizmoCamera,
+        orbit,
+        orbit.transform(),
+        Tonemapping::TonyMcMapface,
+        Msaa::Sample4,
+        children![(
+            // A headlight slightly above and left of the eye, like a studio key light.
+            DirectionalLight {
+                illuminance: 6_000.0,
+                ..default()
+            },
+            Transform::from_xyz(-2.0, 3.0, 4.0).looking_at(Vec3::ZERO, Vec3::Y),
+        )],
+    ));
+}
+
+/// Bevy's transform gizmo renders through a second 3D camera; it must draw
+/// over the viewport, not clear it.
+pub(crate) fn overlay_cameras_keep_the_picture(
+    mut cameras: Query<&mut Camera, (With<Camera3d>, Without<ViewportCamera>)>,
+) {
+    for mut c in &mut cameras {
+        c.clear_color = ClearColorConfig::None;
+    }
+}
+
+/// Middle mouse orbits, Shift+middle pans, Ctrl+middle or the wheel zooms,
+/// Alt+left orbits (trackpads); numpad 1/3/7 give front/right/top views.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn camera_controls(
+    buttons: Res<ButtonInput<MouseButton>>,
+    keys: Res<ButtonInput<KeyCode>>,
+    motion: Res<AccumulatedMouseMotion>,
+    scroll: Res<AccumulatedMouseScroll>,
+    gate: Res<InputGate>,
+    tool: Res<TransformTool>,
+    mut dragging: Local<bool>,
+    mut camera: Single<(&mut OrbitCamera, &mut Transform), With<ViewportCamera>>,
+) {
+    let (orbit, transform) = &mut *camera;
+    let alt = modifiers::alt(&keys);
+    let shift = modifiers::shift(&keys);
+    let ctrl = modifiers::ctrl(&keys);
+    let drag_button =
+        buttons.pressed(MouseButton::Middle) || (alt && buttons.pressed(MouseButton::Left));
+    let drag_start = buttons.just_pressed(MouseButton::Middle)
+        || (alt && buttons.just_pressed(MouseButton::Left));
+    if drag_start && gate.pointer_free && tool.active.is_none() {
+        *dragging = true;
+    }
+    if !drag_button {
+        *dragging = false;
+    }
+    let delta = motion.delta;
+    if *dragging && delta != Vec2::ZERO {
+        if shift {
+            let scale = orbit.distance * 0.0015;
+            let right = transform.rotation * Vec3::X;
+            let up = transform.rotation * Vec3::Y;
+            orbit.focus += (-right * delta.x + up * delta.y) * scale;
+        } else if ctrl {
+            orbit.distance = (orbit.distance * (1.0 + delta.y * 0.01)).clamp(0.01, 1e5);
+        } else {
+            orbit.yaw -= delta.x * 0.008;
+            orbit.pitch =
+                (orbit.pitch - delta.y * 0.008).clamp(-FRAC_PI_2 + 0.001, FRAC_PI_2 - 0.001);
+        }
+    }
+    if gate.pointer_free && scroll.delta.y != 0.0 {
+        let lines = match scroll.unit {
+            MouseScrollUnit::Line => scroll.delta.y,
+            MouseScrollUnit::Pixel => scroll.delta.y / 40.0,
+        };
+        orbit.distance = (orbit.distance * 0.88f32.powf(lines)).clamp(0.01, 1e5);
+    }
+    if gate.keyboard_free && tool.active.is_none() {
+        let flip = if ctrl { std::f32::consts::PI } else { 0.0 };
+        if keys.just_pressed(KeyCode::Numpad1) {
+            (orbit.yaw, orbit.pitch) = (flip, 0.0);
+        }
+        if keys.just_pressed(KeyCode::Numpad3) {
+            (orbit.yaw, orbit.pitch) = (FRAC_PI_2 + flip, 0.0);
+        }
+        if keys.just_pressed(KeyCode::Numpad7) {
+            (orbit.yaw, orbit.pitch) = (
+                0.0,
+                if ctrl {
+                    FRAC_PI_2 - 0.001
+                } else {
+                    -FRAC_PI_2 + 0.001
+                },
+            );
+        }
+    }
+    let wanted = orbit.transform();
+    if **transform != wanted {
+        **transform = wanted;
+    }
+}
+
+/// World-space bounds of the given nodes' meshes (or positions for empties).
+pub fn world_bounds(
+    state: &DocState,
+    ids: impl IntoIterator<Item = hedra_doc::NodeId>,
+) -> Option<(DVec3, DVec3)> {
+    let doc = &state.session.doc;
+    let mut acc: Option<(DVec3, DVec3)> = None;
+    let mut add = |p: DVec3| {
+        acc = Some(acc.map_or((p, p), |(lo, hi)| (lo.min(p), hi.max(p))));
+    };
+    for id in ids {
+        let world = doc.world_matrix(id);
+        match doc.node(id).map(|n| &n.content) {
+            Some(NodeContent::Mesh(m)) => {
+                if let Some((lo, hi)) = m.mesh.bounds() {
+                    for i in 0..8 {
+                        let c = DVec3::new(
+                            if i & 1 == 0 { lo.x } else { hi.x },
+                            if i & 2 == 0 { lo.y } else { hi.y },
+                            if i & 4 == 0 { lo.z } else { hi.z },
+                        );
+                        add(world.transform_point3(c));
+                    }
+                }
+            }
+            Some(_) => add(world.w_axis.truncate()),
+            None => {}
+        }
+    }
+    acc
+}
+
+/// F or Numpad . frames the selection, Home frames everything.
+pub(crate) fn frame_selection(
+    keys: Res<ButtonInput<KeyCode>>,
+    gate: Res<InputGate>,
+    tool: Res<TransformTool>,
+    selection: Res<Selection>,
+    state: Res<DocState>,
+    mut camera: Single<&mut OrbitCamera, With<ViewportCamera>>,
+    mode: Res<EditMode>,
+) {
+    if !gate.keyboard_free || tool.active.is_some() {
+        return;
+    }
+    // In edit mode F fills holes; Numpad . still frames.
+    let f_frames = !mode.active();
+    let ctrl = modifiers::ctrl(&keys);
+    let bounds = if !ctrl
+        && ((f_frames && keys.just_pressed(KeyCode::KeyF))
+            || keys.just_pressed(KeyCode::NumpadDecimal))
+    {
+        if selection.nodes.is_empty() {
+            world_bounds(&state, state.session.doc.nodes().map(|n| n.id))
+        } else {
+            world_bounds(&state, selection.nodes.iter().copied())
+        }
+    } else if keys.just_pressed(KeyCode::Home) {
+        world_bounds(&state, state.session.doc.nodes().map(|n| n.id))
+    } else {
+        return;
+    };
+    if let Some((lo, hi)) = bounds {
+        camera.focus = ((lo + hi) * 0.5).as_vec3();
+        let radius = ((hi - lo).length() * 0.5).max(0.1) as f32;
+        camera.distance = radius / (22.5f32.to_radians()).sin() * 1.1;
+    }
+}

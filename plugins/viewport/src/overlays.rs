@@ -1,0 +1,432 @@
+//! Edge overlays of meshes (selection highlighted), curves, control nets and the edit-mode overlay.
+
+use crate::*;
+
+/// Overlay child entity showing a mesh node's edges, and what it was built for.
+#[derive(Component, Debug, Clone, Copy, PartialEq, Eq)]
+pub struct EdgeOverlay {
+    pub source: ProjectedMesh,
+    pub selected: bool,
+    pub active: bool,
+    pub shown: bool,
+}
+
+/// Keeps one retained line gizmo per mesh node with its edges: dark for
+/// unselected meshes, orange for selected ones (yellow for the active one),
+/// empty for hidden nodes and for the mesh in edit mode (drawn live there).
+/// Retained gizmos ignore `Visibility`, so hiding means an empty asset.
+/// Rebuilt only when the mesh, its selection state or its visibility changes.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn update_edge_overlays(
+    mut commands: Commands,
+    state: Res<DocState>,
+    selection: Res<Selection>,
+    mode: Res<EditMode>,
+    shape_edit: Res<hedra_edit::ShapeEdit>,
+    nodes: Query<(Entity, &NodeEntity, &ProjectedMesh, Option<&Children>)>,
+    mut overlays: Query<(&mut EdgeOverlay, &Gizmo)>,
+    mut assets: ResMut<Assets<GizmoAsset>>,
+) {
+    let doc = &state.session.doc;
+    for (entity, node, projected, children) in &nodes {
+        let selected = selection.contains(node.0);
+        let active = selection.active() == Some(node.0);
+        let shown = hedra_edit::visible(doc, node.0)
+            && mode.node != Some(node.0)
+            && shape_edit.node != Some(node.0);
+        let wanted = EdgeOverlay {
+            source: *projected,
+            selected,
+            active,
+            shown,
+        };
+        let existing = children.and_then(|c| c.iter().find(|c| overlays.contains(*c)));
+        if let Some(child) = existing {
+            if overlays.get(child).is_ok_and(|(o, _)| *o == wanted) {
+                continue;
+            }
+        }
+        let Some(content) = doc.node(node.0).map(|n| &n.content) else {
+            continue;
+        };
+        let color = match (selected, active) {
+            (true, true) => Color::srgb(1.0, 0.78, 0.25),
+            (true, false) => Color::srgb(0.95, 0.45, 0.1),
+            _ => Color::srgba(0.05, 0.05, 0.07, 0.8),
+        };
+        let mut asset = GizmoAsset::new();
+        match content {
+            NodeContent::Mesh(content) if shown => {
+                // A smooth preview shows its cage as light lines, or none.
+                let smooth = hedra_scene::active_modifier(content);
+                let color = match smooth {
+                    Some(_) if !selected => Color::srgba(0.75, 0.78, 0.85, 0.55),
+                    _ => color,
+                };
+                if smooth.is_none_or(|m| m.show_cage) {
+                    let m = &content.mesh;
+                    for e in m.edges() {
+                        let [a, b] = m.edge_vertices(e);
+                        asset.line(m.position(a).as_vec3(), m.position(b).as_vec3(), color);
+                    }
+                }
+            }
+            NodeContent::Curve(curve) if shown => {
+                draw_curve(&mut asset, curve, selected, color);
+            }
+            NodeContent::Surface(surface) if shown && selected => {
+                draw_control_net(&mut asset, surface, Color::srgba(0.85, 0.85, 0.9, 0.7));
+            }
+            _ => {}
+        }
+        let line_config = GizmoLineConfig {
+            width: if selected { 2.5 } else { 1.0 },
+            ..default()
+        };
+        match existing {
+            Some(child) => {
+                if let Ok((mut overlay, gizmo)) = overlays.get_mut(child) {
+                    if let Some(mut a) = assets.get_mut(&gizmo.handle) {
+                        *a = asset;
+                    }
+                    *overlay = wanted;
+                    commands.entity(child).insert(Gizmo {
+                        handle: gizmo.handle.clone(),
+                        line_config,
+                        depth_bias: -0.0005,
+                    });
+                }
+            }
+            None => {
+                let handle = assets.add(asset);
+                commands.spawn((
+                    wanted,
+                    Gizmo {
+                        handle,
+                        line_config,
+                        depth_bias: -0.0005,
+                    },
+                    Transform::IDENTITY,
+                    ChildOf(entity),
+                ));
+            }
+        }
+    }
+}
+
+/// A curve as a polyline (light, or the selection colour) and its control
+/// polygon (dim; brighter when selected).
+pub(crate) fn draw_curve(
+    asset: &mut GizmoAsset,
+    curve: &hedra_geom::curves::NurbsCurve,
+    selected: bool,
+    selection_color: Color,
+) {
+    use hedra_geom::curves::Curve;
+    let tol = hedra_scene::VIEW_TOLERANCE * hedra_scene::extent(curve.points());
+    let params = hedra_geom::surfaces::tessellate::curve_parameters(curve, tol);
+    let color = if selected {
+        selection_color
+    } else {
+        Color::srgb(0.92, 0.92, 0.95)
+    };
+    let points: Vec<Vec3> = params.iter().map(|&t| curve.point(t).as_vec3()).collect();
+    asset.linestrip(points, color);
+    let polygon = if selected {
+        Color::srgba(0.9, 0.9, 0.95, 0.8)
+    } else {
+        Color::srgba(0.6, 0.6, 0.65, 0.45)
+    };
+    asset.linestrip(curve.points().iter().map(|p| p.as_vec3()), polygon);
+}
+
+/// The control net of a surface: rows and columns of a NURBS net, the
+/// rows of a Bézier triangle's net in all three directions.
+pub(crate) fn draw_control_net(
+    asset: &mut GizmoAsset,
+    surface: &hedra_doc::SurfaceShape,
+    color: Color,
+) {
+    for [a, b] in control_net_segments(surface) {
+        asset.line(a.as_vec3(), b.as_vec3(), color);
+    }
+}
+
+/// The segments of a surface's control net (local space): rows and
+/// columns of a NURBS net; the three edge directions of a Bézier
+/// triangle's net.
+pub(crate) fn control_net_segments(surface: &hedra_doc::SurfaceShape) -> Vec<[DVec3; 2]> {
+    let mut out = Vec::new();
+    match surface {
+        hedra_doc::SurfaceShape::Nurbs(s) => {
+            let (nu, nv) = s.size();
+            let p = s.points();
+            for i in 0..nu {
+                for j in 0..nv {
+                    if j + 1 < nv {
+                        out.push([p[i * nv + j], p[i * nv + j + 1]]);
+                    }
+                    if i + 1 < nu {
+                        out.push([p[i * nv + j], p[(i + 1) * nv + j]]);
+                    }
+                }
+            }
+        }
+        hedra_doc::SurfaceShape::Triangle(t) => {
+            use hedra_geom::surfaces::BezierTriangle;
+            let n = t.degree;
+            let at = |i: usize, j: usize| t.points[BezierTriangle::index(n, i, j)];
+            for i in 0..n {
+                for j in 0..n - i {
+                    out.push([at(i, j), at(i, j + 1)]);
+                    out.push([at(i, j), at(i + 1, j)]);
+                    out.push([at(i + 1, j), at(i, j + 1)]);
+                }
+            }
+        }
+    }
+    out
+}
+
+/// The edited mesh's edges as one retained line gizmo, rebuilt only when the
+/// mesh (or a tool's preview), the selection or the element kind changes:
+/// a dense mesh costs nothing per frame while nothing changes.
+#[derive(Component)]
+pub struct EditEdges;
+
+#[allow(clippy::type_complexity)]
+pub(crate) fn update_edit_edges(
+    mut commands: Commands,
+    mode: Res<EditMode>,
+    state: Res<DocState>,
+    mut assets: ResMut<Assets<GizmoAsset>>,
+    mut overlay: Local<Option<(Entity, Handle<GizmoAsset>)>>,
+    mut built: Local<Option<u64>>,
+    mut transforms: Query<&mut Transform, With<EditEdges>>,
+) {
+    use std::hash::{Hash, Hasher};
+    let mesh = mode.node.and(
+        mode.preview
+            .clone()
+            .or_else(|| hedra_edit::mesh_mode::edited_mesh(&state, &mode)),
+    );
+    let key = mesh.as_ref().map(|m| {
+        let mut h = std::collections::hash_map::DefaultHasher::new();
+        (
+            mode.node,
+            std::sync::Arc::as_ptr(m) as usize,
+            &mode.selection,
+            mode.kind as u8,
+            state.revision,
+            mode.preview_creases
+                .as_ref()
+                .map(hedra_scene::creases_fingerprint),
+        )
+            .hash(&mut h);
+        h.finish()
+    });
+    // The overlay follows the node's world transform every frame (the
+    // entity spawned on the first frame has no Transform to set yet).
+    if let (Some((entity, _)), Some(node)) = (overlay.as_ref(), mode.node) {
+        if let Ok(mut t) = transforms.get_mut(*entity) {
+            let want = Transform::from_matrix(state.session.doc.world_matrix(node).as_mat4());
+            if *t != want {
+                *t = want;
+            }
+        }
+    }
+    if *built == key {
+        return;
+    }
+    *built = key;
+    let (_, handle) = overlay.get_or_insert_with(|| {
+        let handle = assets.add(GizmoAsset::new());
+        let line_config = GizmoLineConfig {
+            width: 1.5,
+            ..default()
+        };
+        let e = commands
+            .spawn((
+                EditEdges,
+                Gizmo {
+                    handle: handle.clone(),
+                    line_config,
+                    depth_bias: -0.001,
+                },
+                Transform::IDENTITY,
+            ))
+            .id();
+        (e, handle)
+    });
+    let mut asset = GizmoAsset::new();
+    if let (Some(node), Some(mesh)) = (mode.node, mesh) {
+        let creases = mode.preview_creases.clone().or_else(|| {
+            match state.session.doc.node(node).map(|n| &n.content) {
+                Some(NodeContent::Mesh(c)) => Some(c.creases.clone()),
+                _ => None,
+            }
+        });
+        draw_edit_edges(&mut asset, &mesh, &mode, &creases.unwrap_or_default());
+    }
+    if let Some(mut a) = assets.get_mut(handle.id()) {
+        *a = asset;
+    }
+}
+
+/// Edges in mesh space: selected ones orange, the inspector's related ones
+/// cyan, creased ones magenta (brighter the sharper).
+pub(crate) fn draw_edit_edges(
+    asset: &mut GizmoAsset,
+    mesh: &hedra_geom::HalfEdgeMesh,
+    mode: &EditMode,
+    creases: &hedra_geom::subdivision::Creases,
+) {
+    let sel = &mode.selection;
+    let selected_vertices = sel.all_vertices(mesh);
+    let orange = Color::srgb(1.0, 0.55, 0.1);
+    let cyan = Color::srgb(0.2, 0.85, 0.95);
+    let single = sel.vertices.len() + sel.edges.len() + sel.faces.len() == 1;
+    let mut related_faces = std::collections::BTreeSet::new();
+    let mut related_edges = std::collections::BTreeSet::new();
+    if single {
+        if let Some(&v) = sel.vertices.iter().next().filter(|v| mesh.is_vertex(**v)) {
+            related_faces.extend(mesh.vertex_faces(v));
+        } else if let Some(&e) = sel.edges.iter().next().filter(|e| mesh.is_edge(**e)) {
+            let w = hedra_geom::topology::winged_edge_row(mesh, e);
+            related_edges.extend([
+                w.left_predecessor,
+                w.left_successor,
+                w.right_predecessor,
+                w.right_successor,
+            ]);
+        } else if let Some(&f) = sel.faces.iter().next().filter(|f| mesh.is_face(**f)) {
+            related_faces.extend(mesh.face_neighbors(f));
+        }
+    }
+    let overlay = hedra_doc::render::OverlaySelection {
+        vertices: (mode.kind == ElementKind::Vertex).then_some(&selected_vertices),
+        edges: &sel.edges,
+        faces: &sel.faces,
+        related_edges: &related_edges,
+        related_faces: &related_faces,
+    };
+    for (a, b, look) in hedra_doc::render::edge_overlay(mesh, &overlay, creases) {
+        use hedra_doc::render::EdgeLook;
+        let color = match look {
+            EdgeLook::Selected => orange,
+            EdgeLook::Related => cyan,
+            EdgeLook::Crease(c) => {
+                let k = 0.35 + 0.65 * (c.min(10.0) / 10.0) as f32;
+                Color::srgb(0.95 * k, 0.1 * k, 0.8 * k)
+            }
+            EdgeLook::Plain => Color::srgb(0.08, 0.08, 0.1),
+        };
+        asset.line(Vec3::from(a), Vec3::from(b), color);
+    }
+}
+
+/// Shape edit mode: the curve (or surface's control net) as the running
+/// tool would leave it, with its control points (selected ones orange,
+/// larger the heavier their weight).
+pub(crate) fn draw_shape_edit(
+    edit: Res<hedra_edit::ShapeEdit>,
+    state: Res<DocState>,
+    camera: Single<&GlobalTransform, With<ViewportCamera>>,
+    mut gizmos: Gizmos<AxisGizmos>,
+) {
+    use hedra_edit::shape_mode::{control_points, control_weights};
+    let Some(node) = edit.node else { return };
+    let Some(content) = edit
+        .preview
+        .clone()
+        .or_else(|| state.session.doc.node(node).map(|n| n.content.clone()))
+    else {
+        return;
+    };
+    let world = state.session.doc.world_matrix(node);
+    let to_world = |p: DVec3| world.transform_point3(p).as_vec3();
+    let net = Color::srgba(0.9, 0.9, 0.95, 0.85);
+    match &content {
+        NodeContent::Curve(c) => {
+            use hedra_geom::curves::Curve;
+            let tol = hedra_scene::VIEW_TOLERANCE * hedra_scene::extent(c.points());
+            let params = hedra_geom::surfaces::tessellate::curve_parameters(&**c, tol);
+            gizmos.linestrip(
+                params.iter().map(|&t| to_world(c.point(t))),
+                Color::srgb(1.0, 0.78, 0.25),
+            );
+            gizmos.linestrip(c.points().iter().map(|p| to_world(*p)), net);
+        }
+        NodeContent::Surface(s) => {
+            for [a, b] in control_net_segments(s) {
+                gizmos.line(to_world(a), to_world(b), net);
+            }
+        }
+        _ => return,
+    }
+    let cam = *camera;
+    let weights = control_weights(&content);
+    for (i, p) in control_points(&content).into_iter().enumerate() {
+        let p = to_world(p);
+        let w = weights.as_ref().map_or(1.0, |w| w[i]) as f32;
+        let r = cam.translation().distance(p) * 0.005 * w.clamp(0.25, 4.0).sqrt();
+        let c = if edit.selected.contains(&(i as u32)) {
+            Color::srgb(1.0, 0.55, 0.1)
+        } else {
+            Color::srgb(0.05, 0.05, 0.05)
+        };
+        gizmos
+            .circle(Isometry3d::new(p, cam.rotation()), r, c)
+            .resolution(12);
+    }
+}
+
+pub(crate) fn draw_edit_overlay(
+    mode: Res<EditMode>,
+    state: Res<DocState>,
+    camera: Single<&GlobalTransform, With<ViewportCamera>>,
+    mut gizmos: Gizmos<AxisGizmos>,
+) {
+    let Some(node) = mode.node else { return };
+    let Some(mesh) = mode
+        .preview
+        .clone()
+        .or_else(|| hedra_edit::mesh_mode::edited_mesh(&state, &mode))
+    else {
+        return;
+    };
+    let world = state.session.doc.world_matrix(node);
+    let sel = &mode.selection;
+    let orange = Color::srgb(1.0, 0.55, 0.1);
+    let cam = *camera;
+    let rotation = cam.rotation();
+    let dense = mesh.vertex_count() > 20_000;
+    let mut dot = |p: DVec3, selected: bool, size: f32| {
+        let p = world.transform_point3(p).as_vec3();
+        let r = cam.translation().distance(p) * size;
+        let c = if selected {
+            orange
+        } else {
+            Color::srgb(0.05, 0.05, 0.05)
+        };
+        gizmos
+            .circle(Isometry3d::new(p, rotation), r, c)
+            .resolution(8);
+    };
+    match mode.kind {
+        ElementKind::Vertex => {
+            for v in mesh
+                .vertices()
+                .filter(|v| !dense || sel.vertices.contains(v))
+            {
+                dot(mesh.position(v), sel.vertices.contains(&v), 0.004);
+            }
+        }
+        ElementKind::Face => {
+            for f in mesh.faces().filter(|f| !dense || sel.faces.contains(f)) {
+                dot(mesh.face_centroid(f), sel.faces.contains(&f), 0.003);
+            }
+        }
+        ElementKind::Edge => {}
+    }
+}
