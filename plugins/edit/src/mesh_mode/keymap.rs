@@ -1,0 +1,306 @@
+//! The edit-mode keys that start a tool or run a command at once (E, I, Ctrl+R, Ctrl+B, J, M, X, F, …).
+
+use super::*;
+
+/// Starts tools and runs instant ones (J, X).
+#[allow(clippy::too_many_arguments)]
+pub fn edit_shortcuts(
+    keys: Res<ButtonInput<KeyCode>>,
+    gate: Res<InputGate>,
+    mut mode: ResMut<EditMode>,
+    state: Res<DocState>,
+    window: Single<&Window, With<PrimaryWindow>>,
+    camera: Single<(&Camera, &GlobalTransform), With<ViewportCamera>>,
+    mut requests: MessageWriter<DocRequest>,
+    mut status: ResMut<hedra_scene::StatusMessage>,
+) {
+    if !mode.active() || mode.tool.is_some() || !gate.keyboard_free {
+        return;
+    }
+    let Some(mesh) = edited_mesh(&state, &mode) else {
+        return;
+    };
+    let node = NodeRef::from(mode.node.expect("active"));
+    let world = state.session.doc.world_matrix(mode.node.expect("active"));
+    let (c, s, a) = (ctrl(&keys), shift(&keys), alt(&keys));
+    let Some(cursor) = window.cursor_position() else {
+        return;
+    };
+    let verts = mode.selection.all_vertices(&mesh);
+    let pivot_local = if verts.is_empty() {
+        DVec3::ZERO
+    } else {
+        verts.iter().map(|&v| mesh.position(v)).sum::<DVec3>() / verts.len() as f64
+    };
+    let pivot = world.transform_point3(pivot_local);
+    let pivot_screen = camera
+        .0
+        .world_to_viewport(camera.1, pivot.as_vec3())
+        .unwrap_or(cursor);
+    let start = |kind: MeshToolKind| MeshTool {
+        kind,
+        axis: None,
+        typed: Default::default(),
+        start_cursor: cursor,
+        pivot,
+        pivot_screen,
+        edge: None,
+        cuts: 1,
+        start_value: 0.0,
+        created_faces: Vec::new(),
+        readout: String::new(),
+    };
+    if c && keys.just_pressed(KeyCode::KeyR) {
+        let (cam, cam_t) = *camera;
+        let edge = match element_under_cursor(ElementKind::Edge, &mesh, world, &window, cam, cam_t)
+        {
+            Some(ElementHit::Edge(e)) => Some(e),
+            _ => mode.selection.edges.iter().next().copied(),
+        };
+        match edge {
+            Some(e) => {
+                let mut t = start(MeshToolKind::LoopCut);
+                t.edge = Some(e);
+                mode.tool = Some(t);
+            }
+            None => status.error(
+                "Loop cut: point at an edge of a quad strip (or select one), then press Ctrl+R",
+            ),
+        }
+        return;
+    }
+    // Tools that start only on a selection of one element kind.
+    let faces_selected = !mode.selection.faces.is_empty();
+    let edges_selected = !mode.selection.edges.is_empty();
+    let vertices_selected = !mode.selection.vertices.is_empty();
+    for (held, key, selected, tool, refusal) in [
+        (
+            c && s,
+            KeyCode::KeyB,
+            vertices_selected,
+            MeshToolKind::BevelVertices,
+            "Vertex bevel: select vertices first (press 1 for vertex mode)",
+        ),
+        (
+            a,
+            KeyCode::KeyI,
+            faces_selected,
+            MeshToolKind::InsetIndividual,
+            "Inset: select faces first (press 3 for face mode)",
+        ),
+        (
+            a,
+            KeyCode::KeyE,
+            faces_selected,
+            MeshToolKind::ExtrudeIndividual,
+            "Extrude: select faces first (press 3 for face mode)",
+        ),
+        (
+            c && !s,
+            KeyCode::KeyB,
+            edges_selected,
+            MeshToolKind::Bevel,
+            "Bevel: select edges first (press 2 for edge mode)",
+        ),
+    ] {
+        if held && keys.just_pressed(key) {
+            if selected {
+                mode.tool = Some(start(tool));
+            } else {
+                status.error(refusal);
+            }
+            return;
+        }
+    }
+    if s && keys.just_pressed(KeyCode::KeyE) {
+        let creases = match state
+            .session
+            .doc
+            .node(mode.node.expect("active"))
+            .map(|n| &n.content)
+        {
+            Some(NodeContent::Mesh(m)) => m.creases.clone(),
+            _ => Creases::default(),
+        };
+        let values: Vec<f64> = if mode.kind == ElementKind::Vertex {
+            mode.selection
+                .vertices
+                .iter()
+                .map(|&v| creases.vertex(v))
+                .collect()
+        } else {
+            mode.selection
+                .edges
+                .iter()
+                .map(|&e| creases.edge(e))
+                .collect()
+        };
+        if values.is_empty() {
+            status.error("Crease: select edges (2), or vertices (1) for corner sharpness, first");
+        } else {
+            let mut t = start(MeshToolKind::Crease);
+            t.start_value = values.iter().sum::<f64>() / values.len() as f64;
+            mode.tool = Some(t);
+        }
+        return;
+    }
+    if c && keys.just_pressed(KeyCode::KeyX) {
+        match delete_or_dissolve(node.clone(), mode.kind, &mode.selection, true) {
+            Some(cmd) => {
+                requests.write(DocRequest::Execute(cmd));
+            }
+            None => status.error("Ctrl+X: select what to dissolve"),
+        }
+        return;
+    }
+    if keys.just_pressed(KeyCode::KeyN) && (a || s) {
+        let cmd = if a {
+            Command::FlipNormals { node: node.clone() }
+        } else {
+            Command::RecalculateNormals { node: node.clone() }
+        };
+        requests.write(DocRequest::Execute(cmd));
+        return;
+    }
+    if c || a {
+        return;
+    }
+    if keys.just_pressed(KeyCode::KeyF) {
+        let edges: Vec<u32> = mode
+            .selection
+            .edges
+            .iter()
+            .map(|e| e.0)
+            .chain(
+                // In vertex mode: the boundary edges between selected vertices.
+                mesh.edges()
+                    .filter(|&e| {
+                        mesh.is_boundary_edge(e)
+                            && mesh
+                                .edge_vertices(e)
+                                .iter()
+                                .all(|v| mode.selection.vertices.contains(v))
+                    })
+                    .map(|e| e.0),
+            )
+            .collect();
+        if edges.is_empty() {
+            status.error("Fill: select edges (or vertices) around a hole");
+        } else {
+            requests.write(DocRequest::Execute(Command::FillHoles {
+                node: node.clone(),
+                edges: EdgeSet::Ids(edges),
+            }));
+        }
+        return;
+    }
+    for (key, kind) in [
+        (KeyCode::KeyG, MeshToolKind::Move),
+        (KeyCode::KeyR, MeshToolKind::Rotate),
+        (KeyCode::KeyS, MeshToolKind::Scale),
+    ] {
+        if keys.just_pressed(key) {
+            if verts.is_empty() {
+                status.error("Nothing selected to transform");
+            } else {
+                mode.tool = Some(start(kind));
+            }
+        }
+    }
+    if keys.just_pressed(KeyCode::KeyE) && !s && mode.kind == ElementKind::Edge {
+        if mode.selection.edges.is_empty() {
+            status.error("Extrude: select boundary edges first");
+        } else {
+            mode.tool = Some(start(MeshToolKind::ExtrudeEdges));
+        }
+    } else if keys.just_pressed(KeyCode::KeyE) && !s {
+        if mode.selection.faces.is_empty() {
+            status.error("Extrude: select faces first (press 3 for face mode)");
+        } else {
+            mode.tool = Some(start(MeshToolKind::Extrude));
+        }
+    }
+    if keys.just_pressed(KeyCode::KeyI) {
+        if mode.selection.faces.is_empty() {
+            status.error("Inset: select faces first (press 3 for face mode)");
+        } else {
+            mode.tool = Some(start(MeshToolKind::Inset));
+        }
+    }
+    if keys.just_pressed(KeyCode::KeyM) && mode.kind == ElementKind::Vertex {
+        if mode.selection.vertices.len() < 2 {
+            status.error("Merge: select two or more vertices");
+        } else {
+            mode.merge_menu_at = window.cursor_position();
+        }
+    } else if keys.just_pressed(KeyCode::KeyM) {
+        if mode.selection.edges.is_empty() {
+            status.error("Collapse: select edges (press 2 for edge mode)");
+        } else {
+            requests.write(DocRequest::Execute(Command::CollapseEdges {
+                node: node.clone(),
+                edges: EdgeSet::Ids(mode.selection.edges.iter().map(|e| e.0).collect()),
+            }));
+        }
+    }
+    if keys.just_pressed(KeyCode::KeyJ) {
+        let vs: Vec<u32> = mode.selection.vertices.iter().map(|v| v.0).collect();
+        if vs.len() == 2 {
+            requests.write(DocRequest::Execute(Command::ConnectVertices {
+                node,
+                vertices: VertexSet::Ids(vs),
+            }));
+        } else {
+            status.error("Connect: select exactly two vertices of one face");
+        }
+    } else if keys.just_pressed(KeyCode::KeyX) || keys.just_pressed(KeyCode::Delete) {
+        match delete_or_dissolve(node, mode.kind, &mode.selection, false) {
+            Some(c) => {
+                requests.write(DocRequest::Execute(c));
+            }
+            None => status.error("X: select what to delete (Ctrl+X dissolves)"),
+        }
+    }
+}
+
+/// X deletes the selected elements of the current kind with what only they
+/// use; Ctrl+X dissolves them (merging what is around).
+pub(super) fn delete_or_dissolve(
+    node: NodeRef,
+    kind: ElementKind,
+    sel: &ElementSelection,
+    dissolve: bool,
+) -> Option<Command> {
+    let vertices = || VertexSet::Ids(sel.vertices.iter().map(|v| v.0).collect());
+    let edges = || EdgeSet::Ids(sel.edges.iter().map(|e| e.0).collect());
+    let faces = || FaceSet::Ids(sel.faces.iter().map(|f| f.0).collect());
+    match (kind, dissolve) {
+        (ElementKind::Vertex, _) if sel.vertices.is_empty() => None,
+        (ElementKind::Edge, _) if sel.edges.is_empty() => None,
+        (ElementKind::Face, _) if sel.faces.is_empty() => None,
+        (ElementKind::Vertex, false) => Some(Command::DeleteVertices {
+            node,
+            vertices: vertices(),
+        }),
+        (ElementKind::Edge, false) => Some(Command::DeleteEdges {
+            node,
+            edges: edges(),
+        }),
+        (ElementKind::Face, false) => Some(Command::DeleteFaces {
+            node,
+            faces: faces(),
+        }),
+        (ElementKind::Vertex, true) => Some(Command::DissolveVertices {
+            node,
+            vertices: vertices(),
+        }),
+        (ElementKind::Edge, true) => Some(Command::DissolveEdges {
+            node,
+            edges: edges(),
+        }),
+        (ElementKind::Face, true) => Some(Command::DissolveFaces {
+            node,
+            faces: faces(),
+        }),
+    }
+}

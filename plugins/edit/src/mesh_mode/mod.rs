@@ -1,0 +1,285 @@
+//! Edit mode: Tab enters it on the active mesh; 1/2/3 pick vertices, edges
+//! or faces; click / Shift-click / A / Alt+A / Ctrl+I select; G moves,
+//! E extrudes, I insets, Ctrl+R loop-cuts, J connects two vertices,
+//! X dissolves. Every tool is modal like Blender's: the mouse drives the
+//! amount, typed numbers are exact, Enter or a click confirms as one undo
+//! step, Esc or a right click restores. While a tool runs the command is
+//! decided on a copy each frame and shown as a preview.
+
+use crate::modal::Axis;
+use crate::{Selection, TransformTool, cursor_ray};
+use bevy::prelude::*;
+use bevy::window::PrimaryWindow;
+use glam::{DMat4, DVec3};
+use hedra_doc::{Command, EdgeSet, FaceSet, NodeContent, NodeId, NodeRef, VertexSet};
+use hedra_geom::subdivision::Creases;
+use hedra_geom::{EdgeId, FaceId, HalfEdgeMesh, VertexId};
+use hedra_scene::modifiers::{alt, ctrl, shift};
+use hedra_scene::{
+    DocChanged, DocRequest, DocState, InputGate, NodeEntities, StatusMessage, ViewportCamera,
+};
+use std::collections::BTreeSet;
+use std::sync::Arc;
+
+mod keymap;
+mod picking;
+mod preview;
+mod selection;
+mod tools;
+
+pub use keymap::*;
+pub use picking::*;
+pub use preview::*;
+pub use selection::*;
+pub use tools::*;
+
+/// Which elements clicks select.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+pub enum ElementKind {
+    #[default]
+    Vertex,
+    Edge,
+    Face,
+}
+
+/// Selected elements of the edited mesh (ids).
+#[derive(Clone, Debug, Default, PartialEq, Eq, Hash)]
+pub struct ElementSelection {
+    pub vertices: BTreeSet<VertexId>,
+    pub edges: BTreeSet<EdgeId>,
+    pub faces: BTreeSet<FaceId>,
+    /// Vertices in the order they were clicked (for Merge at First / Last).
+    pub clicked: Vec<VertexId>,
+}
+
+impl ElementSelection {
+    /// The selected vertices, those clicked first in click order, then the
+    /// rest by id.
+    pub fn ordered_vertices(&self) -> Vec<VertexId> {
+        let mut out: Vec<VertexId> = self
+            .clicked
+            .iter()
+            .copied()
+            .filter(|v| self.vertices.contains(v))
+            .collect();
+        let rest: Vec<VertexId> = self
+            .vertices
+            .iter()
+            .copied()
+            .filter(|v| !out.contains(v))
+            .collect();
+        out.extend(rest);
+        out
+    }
+
+    /// The elements of `kind` whose vertices all lie in `verts` (how Blender
+    /// converts a selection between vertex, edge and face mode).
+    pub fn from_vertices(
+        kind: ElementKind,
+        mesh: &HalfEdgeMesh,
+        verts: &BTreeSet<VertexId>,
+    ) -> Self {
+        let mut sel = ElementSelection::default();
+        match kind {
+            ElementKind::Vertex => sel.vertices = verts.clone(),
+            ElementKind::Edge => {
+                sel.edges = mesh
+                    .edges()
+                    .filter(|&e| mesh.edge_vertices(e).iter().all(|v| verts.contains(v)))
+                    .collect()
+            }
+            ElementKind::Face => {
+                sel.faces = mesh
+                    .faces()
+                    .filter(|&f| mesh.face_vertices(f).all(|v| verts.contains(&v)))
+                    .collect()
+            }
+        }
+        sel
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.vertices.is_empty() && self.edges.is_empty() && self.faces.is_empty()
+    }
+    /// Every vertex touched by the selection (elements the mesh does not
+    /// have are skipped).
+    pub fn all_vertices(&self, m: &HalfEdgeMesh) -> BTreeSet<VertexId> {
+        let mut out: BTreeSet<VertexId> = self
+            .vertices
+            .iter()
+            .copied()
+            .filter(|v| m.is_vertex(*v))
+            .collect();
+        for &e in self.edges.iter().filter(|e| m.is_edge(**e)) {
+            out.extend(m.edge_vertices(e));
+        }
+        for &f in self.faces.iter().filter(|f| m.is_face(**f)) {
+            out.extend(m.face_vertices(f));
+        }
+        out
+    }
+    /// Drops ids the mesh no longer has.
+    pub fn retain_live(&mut self, m: &HalfEdgeMesh) {
+        self.vertices.retain(|v| m.is_vertex(*v));
+        self.edges.retain(|e| m.is_edge(*e));
+        self.faces.retain(|f| m.is_face(*f));
+    }
+}
+
+/// The modal mesh tools.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub enum MeshToolKind {
+    Move,
+    /// Extrude the selected faces each on its own (Alt+E).
+    ExtrudeIndividual,
+    /// Extrude the selected boundary edges (E in edge mode), moved like G.
+    ExtrudeEdges,
+    /// Slide the selected edges along their neighbours (G G in edge mode).
+    SlideEdges,
+    /// Bevel the selected edges (Ctrl+B).
+    Bevel,
+    /// Bevel the selected vertices (Ctrl+Shift+B).
+    BevelVertices,
+    /// Inset the selected faces each on its own (Alt+I).
+    InsetIndividual,
+    /// Drag the subdivision crease of the selected edges, or the corner
+    /// sharpness of the selected vertices in vertex mode (Shift+E).
+    Crease,
+    Rotate,
+    Scale,
+    Extrude,
+    Inset,
+    LoopCut,
+}
+
+/// A running mesh tool.
+#[derive(Clone, Debug)]
+pub struct MeshTool {
+    pub kind: MeshToolKind,
+    pub axis: Option<Axis>,
+    pub typed: crate::typing::TypedNumber,
+    start_cursor: Vec2,
+    pivot: DVec3,
+    pivot_screen: Vec2,
+    /// Loop cut: the edge under the cursor and the number of cuts.
+    edge: Option<EdgeId>,
+    cuts: u32,
+    /// Crease: the mean sharpness of the selection when the tool started.
+    start_value: f64,
+    /// Faces the previewed command makes (extrude caps, inset inner faces),
+    /// selected when the tool is confirmed.
+    created_faces: Vec<FaceId>,
+    pub readout: String,
+}
+
+/// Edit-mode state: the edited node, element mode, selection, running tool.
+#[derive(Resource, Default, Debug)]
+pub struct EditMode {
+    pub node: Option<NodeId>,
+    pub kind: ElementKind,
+    pub selection: ElementSelection,
+    pub tool: Option<MeshTool>,
+    /// X-ray (Alt+Z): box selection also takes elements hidden behind the surface.
+    pub x_ray: bool,
+    /// M in vertex mode: the merge menu is open at this window position.
+    pub merge_menu_at: Option<Vec2>,
+    /// The mesh as the running tool would leave it (shown instead of the document's).
+    pub preview: Option<Arc<HalfEdgeMesh>>,
+    /// The creases as the running tool would leave them.
+    pub preview_creases: Option<Creases>,
+    /// Set on the frame a tool ended, so its confirming click selects nothing.
+    pub just_finished: bool,
+    /// The rectangle being dragged for box selection (window coordinates).
+    pub box_select: Option<(Vec2, Vec2)>,
+}
+
+impl EditMode {
+    pub fn active(&self) -> bool {
+        self.node.is_some()
+    }
+}
+
+/// The mesh being edited, as the document has it.
+pub fn edited_mesh(state: &DocState, mode: &EditMode) -> Option<Arc<HalfEdgeMesh>> {
+    let node = state.session.doc.node(mode.node?)?;
+    match &node.content {
+        NodeContent::Mesh(m) => Some(m.mesh.clone()),
+        _ => None,
+    }
+}
+
+/// Tab toggles edit mode on the active mesh; 1/2/3 choose the element kind.
+pub fn mode_keys(
+    keys: Res<ButtonInput<KeyCode>>,
+    gate: Res<InputGate>,
+    mut mode: ResMut<EditMode>,
+    selection: Res<Selection>,
+    state: Res<DocState>,
+    tool: Res<TransformTool>,
+    mut status: ResMut<hedra_scene::StatusMessage>,
+) {
+    if !gate.keyboard_free || tool.active.is_some() || mode.tool.is_some() {
+        return;
+    }
+    if keys.just_pressed(KeyCode::Tab) {
+        if mode.active() {
+            mode.node = None;
+            mode.selection = ElementSelection::default();
+        } else {
+            match selection.active().and_then(|id| state.session.doc.node(id)) {
+                Some(n) if matches!(n.content, NodeContent::Mesh(_)) => {
+                    mode.node = Some(n.id);
+                    mode.selection = ElementSelection::default();
+                }
+                // Curves and surfaces have their own edit mode (shape_mode).
+                Some(n) if matches!(n.content, NodeContent::Curve(_) | NodeContent::Surface(_)) => {
+                }
+                Some(n) => status.error(format!(
+                    "'{}' is an empty: meshes, curves and surfaces have an edit mode",
+                    n.name
+                )),
+                None => status.error("Select a mesh to edit (click it), then press Tab"),
+            }
+        }
+    }
+    if !mode.active() || ctrl(&keys) {
+        return;
+    }
+    let new_kind = if keys.just_pressed(KeyCode::Digit1) {
+        Some(ElementKind::Vertex)
+    } else if keys.just_pressed(KeyCode::Digit2) {
+        Some(ElementKind::Edge)
+    } else if keys.just_pressed(KeyCode::Digit3) {
+        Some(ElementKind::Face)
+    } else {
+        None
+    };
+    if let (Some(k), Some(mesh)) = (new_kind, edited_mesh(&state, &mode)) {
+        if k != mode.kind {
+            // Convert the selection like Blender: keep what the new kind can express.
+            mode.selection =
+                ElementSelection::from_vertices(k, &mesh, &mode.selection.all_vertices(&mesh));
+            mode.kind = k;
+        }
+    }
+}
+
+/// Leaves edit mode when its node disappears; keeps the selection to live ids.
+pub fn follow_changes(
+    mut changes: MessageReader<DocChanged>,
+    mut mode: ResMut<EditMode>,
+    state: Res<DocState>,
+) {
+    if changes.read().count() == 0 {
+        return;
+    }
+    match edited_mesh(&state, &mode) {
+        Some(m) => mode.selection.retain_live(&m),
+        None => {
+            mode.node = None;
+            mode.selection = ElementSelection::default();
+            mode.tool = None;
+            mode.preview = None;
+        }
+    }
+}

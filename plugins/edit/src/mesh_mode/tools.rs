@@ -1,0 +1,371 @@
+//! The running mesh tool: the command the mouse and typed value ask for, decided on a copy each frame as a preview, confirmed or cancelled.
+
+use super::*;
+
+/// The command a tool would run for the cursor position.
+pub(super) fn tool_command(
+    tool: &mut MeshTool,
+    node: NodeRef,
+    mesh: &HalfEdgeMesh,
+    selection: &ElementSelection,
+    world: DMat4,
+    cursor: Vec2,
+    ray_at: &dyn Fn(Vec2) -> Option<(DVec3, DVec3)>,
+    view_dir: DVec3,
+    pixel_size: f64,
+) -> Command {
+    let drag = (cursor - tool.start_cursor).x as f64 * pixel_size;
+    let faces = || FaceSet::Ids(selection.faces.iter().map(|f| f.0).collect());
+    match tool.kind {
+        MeshToolKind::Move | MeshToolKind::ExtrudeEdges => {
+            let world_delta = if let Some(v) = tool.typed.value() {
+                tool.axis.unwrap_or(Axis::X).vector() * v
+            } else {
+                let plane_hit = |p: Vec2| -> Option<DVec3> {
+                    let (o, d) = ray_at(p)?;
+                    let denom = d.dot(view_dir);
+                    (denom.abs() > 1e-12).then(|| o + d * ((tool.pivot - o).dot(view_dir) / denom))
+                };
+                match (plane_hit(tool.start_cursor), plane_hit(cursor)) {
+                    (Some(a), Some(b)) => {
+                        let d = b - a;
+                        tool.axis.map_or(d, |ax| ax.vector() * d.dot(ax.vector()))
+                    }
+                    _ => DVec3::ZERO,
+                }
+            };
+            let verb = if tool.kind == MeshToolKind::Move {
+                "Move"
+            } else {
+                "Extrude edges"
+            };
+            tool.readout = format!(
+                "{verb} ({:.4}, {:.4}, {:.4})",
+                world_delta.x, world_delta.y, world_delta.z
+            );
+            let offset = world.inverse().transform_vector3(world_delta);
+            if tool.kind == MeshToolKind::ExtrudeEdges {
+                let edges = EdgeSet::Ids(selection.edges.iter().map(|e| e.0).collect());
+                return Command::ExtrudeEdges {
+                    node,
+                    edges,
+                    offset,
+                };
+            }
+            let vertices = selection
+                .all_vertices(mesh)
+                .into_iter()
+                .map(|v| v.0)
+                .collect();
+            Command::MoveVertices {
+                node,
+                vertices: VertexSet::Ids(vertices),
+                offset,
+            }
+        }
+        MeshToolKind::Bevel => {
+            let width = tool.typed.value().unwrap_or(drag.abs());
+            let segments = tool.cuts;
+            tool.readout = format!("Bevel width {width:.4}, {segments} segment(s) (wheel or +/-)");
+            Command::BevelEdges {
+                node,
+                edges: EdgeSet::Ids(selection.edges.iter().map(|e| e.0).collect()),
+                width,
+                segments,
+            }
+        }
+        MeshToolKind::BevelVertices => {
+            let width = tool.typed.value().unwrap_or(drag.abs());
+            tool.readout = format!("Vertex bevel width {width:.4}");
+            Command::BevelVertices {
+                node,
+                vertices: VertexSet::Ids(selection.vertices.iter().map(|v| v.0).collect()),
+                width,
+            }
+        }
+        MeshToolKind::Crease => {
+            // 100 pixels to the right add one level of sharpness.
+            let sharpness = tool
+                .typed
+                .value()
+                .unwrap_or(tool.start_value + ((cursor - tool.start_cursor).x / 100.0) as f64)
+                .clamp(0.0, 10.0);
+            let what = if selection.vertices.is_empty() || !selection.edges.is_empty() {
+                "Edge crease"
+            } else {
+                "Vertex corner sharpness"
+            };
+            tool.readout = format!("{what} {sharpness:.2} (0 smooth … 10 sharp)");
+            if what == "Edge crease" {
+                Command::SetEdgeCrease {
+                    node,
+                    edges: EdgeSet::Ids(selection.edges.iter().map(|e| e.0).collect()),
+                    sharpness,
+                }
+            } else {
+                Command::SetVertexCrease {
+                    node,
+                    vertices: VertexSet::Ids(selection.vertices.iter().map(|v| v.0).collect()),
+                    sharpness,
+                }
+            }
+        }
+        MeshToolKind::SlideEdges => {
+            // 300 pixels to the right slide all the way to one side, to the left the other.
+            let factor = tool
+                .typed
+                .value()
+                .unwrap_or(((cursor - tool.start_cursor).x / 300.0) as f64)
+                .clamp(-1.0, 1.0);
+            tool.readout = format!("Edge slide {factor:.3}");
+            Command::SlideEdges {
+                node,
+                edges: EdgeSet::Ids(selection.edges.iter().map(|e| e.0).collect()),
+                factor,
+            }
+        }
+        MeshToolKind::Rotate | MeshToolKind::Scale => {
+            let xf: DMat4 = if tool.kind == MeshToolKind::Rotate {
+                let degrees = tool.typed.value().unwrap_or_else(|| {
+                    let a = (tool.start_cursor - tool.pivot_screen).to_angle();
+                    let b = (cursor - tool.pivot_screen).to_angle();
+                    -((b - a) as f64).to_degrees()
+                });
+                tool.readout = format!("Rotate {degrees:.2}°");
+                let axis = tool.axis.map_or(-view_dir, Axis::vector);
+                crate::rotation_about(
+                    tool.pivot,
+                    glam::DQuat::from_axis_angle(axis.normalize(), degrees.to_radians()),
+                )
+            } else {
+                let factor = tool.typed.value().unwrap_or_else(|| {
+                    let d0 = (tool.start_cursor - tool.pivot_screen).length().max(1.0);
+                    ((cursor - tool.pivot_screen).length() / d0) as f64
+                });
+                tool.readout = format!("Scale {factor:.4}");
+                let f = tool.axis.map_or(DVec3::splat(factor), |a| {
+                    DVec3::ONE + a.vector() * (factor - 1.0)
+                });
+                DMat4::from_translation(tool.pivot)
+                    * DMat4::from_scale(f)
+                    * DMat4::from_translation(-tool.pivot)
+            };
+            // The world-space transform, applied to mesh-space positions.
+            let local = world.inverse() * xf * world;
+            let positions = selection
+                .all_vertices(mesh)
+                .into_iter()
+                .map(|v| (v.0, local.transform_point3(mesh.position(v))))
+                .collect();
+            Command::SetVertexPositions { node, positions }
+        }
+        MeshToolKind::Extrude | MeshToolKind::ExtrudeIndividual => {
+            // The faces follow the cursor along their normal, as in Blender;
+            // sideways drag only when the normal points at the viewer.
+            let distance = tool.typed.value().unwrap_or_else(|| {
+                let normal = selection
+                    .faces
+                    .iter()
+                    .map(|&f| mesh.face_normal(f))
+                    .sum::<DVec3>();
+                let line = (
+                    tool.pivot,
+                    world.transform_vector3(normal.normalize_or_zero()),
+                );
+                let along = |p: Vec2| line_parameter_nearest_ray(line, ray_at(p)?);
+                match (along(tool.start_cursor), along(cursor)) {
+                    (Some(a), Some(b)) => b - a,
+                    _ => drag,
+                }
+            });
+            tool.readout = format!("Extrude {distance:.4}");
+            if tool.kind == MeshToolKind::Extrude {
+                Command::ExtrudeRegion {
+                    node,
+                    faces: faces(),
+                    distance,
+                }
+            } else {
+                Command::ExtrudeFaces {
+                    node,
+                    faces: faces(),
+                    distance,
+                }
+            }
+        }
+        MeshToolKind::Inset | MeshToolKind::InsetIndividual => {
+            let thickness = tool.typed.value().unwrap_or(drag.abs());
+            tool.readout = format!("Inset thickness {thickness:.4}");
+            if tool.kind == MeshToolKind::Inset {
+                Command::InsetRegion {
+                    node,
+                    faces: faces(),
+                    thickness,
+                    depth: 0.0,
+                }
+            } else {
+                Command::InsetFaces {
+                    node,
+                    faces: faces(),
+                    thickness,
+                    depth: 0.0,
+                }
+            }
+        }
+        MeshToolKind::LoopCut => {
+            let cuts = tool
+                .typed
+                .value()
+                .map_or(tool.cuts, |v| v.round().clamp(1.0, 64.0) as u32);
+            tool.readout = format!("Loop cut: {cuts} cut(s) (wheel or +/- to change)");
+            Command::LoopCut {
+                node,
+                edge: EdgeSet::Ids(vec![tool.edge.expect("loop cut has an edge").0]),
+                cuts,
+            }
+        }
+    }
+}
+
+/// Runs the active mesh tool: preview each frame, confirm or cancel.
+#[allow(clippy::too_many_arguments)]
+pub fn drive_mesh_tool(
+    mut mode: ResMut<EditMode>,
+    keys: Res<ButtonInput<KeyCode>>,
+    buttons: Res<ButtonInput<MouseButton>>,
+    scroll: Res<bevy::input::mouse::AccumulatedMouseScroll>,
+    window: Single<&Window, With<PrimaryWindow>>,
+    camera: Single<(&Camera, &GlobalTransform), With<ViewportCamera>>,
+    state: Res<DocState>,
+    mut requests: MessageWriter<DocRequest>,
+    mut status: ResMut<hedra_scene::StatusMessage>,
+) {
+    mode.just_finished = false;
+    let Some(mut tool) = mode.tool.take() else {
+        return;
+    };
+    let (Some(node_id), Some(mesh)) = (mode.node, edited_mesh(&state, &mode)) else {
+        mode.preview = None;
+        return;
+    };
+    if keys.just_pressed(KeyCode::Escape) || buttons.just_pressed(MouseButton::Right) {
+        mode.preview = None;
+        mode.just_finished = true;
+        return;
+    }
+    for (key, axis) in [
+        (KeyCode::KeyX, Axis::X),
+        (KeyCode::KeyY, Axis::Y),
+        (KeyCode::KeyZ, Axis::Z),
+    ] {
+        if keys.just_pressed(key)
+            && matches!(
+                tool.kind,
+                MeshToolKind::Move | MeshToolKind::Rotate | MeshToolKind::Scale
+            )
+        {
+            tool.axis = if tool.axis == Some(axis) {
+                None
+            } else {
+                Some(axis)
+            };
+        }
+    }
+    // G again while moving edges: slide them instead (Blender's G G).
+    if tool.kind == MeshToolKind::Move
+        && mode.kind == ElementKind::Edge
+        && keys.just_pressed(KeyCode::KeyG)
+    {
+        tool.kind = MeshToolKind::SlideEdges;
+        tool.typed = Default::default();
+    }
+    // Loop cut and bevel: minus, plus and the wheel change the count of cuts or segments.
+    let loop_cut = matches!(tool.kind, MeshToolKind::LoopCut | MeshToolKind::Bevel);
+    tool.typed.read(&keys, !loop_cut);
+    if loop_cut {
+        let less = keys.any_just_pressed([KeyCode::Minus, KeyCode::NumpadSubtract])
+            || scroll.delta.y < 0.0;
+        let more =
+            keys.any_just_pressed([KeyCode::NumpadAdd, KeyCode::Equal]) || scroll.delta.y > 0.0;
+        if less {
+            tool.cuts = tool.cuts.saturating_sub(1).max(1);
+        } else if more {
+            tool.cuts = (tool.cuts + 1).min(64);
+        }
+    }
+    let (cam, cam_t) = *camera;
+    let cursor = window.cursor_position().unwrap_or(tool.start_cursor);
+    let world = state.session.doc.world_matrix(node_id);
+    let view_dir = (cam_t.rotation() * Vec3::NEG_Z).as_dvec3();
+    // World size of one pixel at the pivot, so drags feel the same at any zoom.
+    let dist = cam_t
+        .translation()
+        .as_dvec3()
+        .distance(tool.pivot)
+        .max(1e-6);
+    let pixel_size = dist * 0.0008;
+    let ray_at = |p: Vec2| {
+        cam.viewport_to_world(cam_t, p)
+            .ok()
+            .map(|r| (r.origin.as_dvec3(), Vec3::from(r.direction).as_dvec3()))
+    };
+    let cmd = tool_command(
+        &mut tool,
+        NodeRef::from(node_id),
+        &mesh,
+        &mode.selection,
+        world,
+        cursor,
+        &ray_at,
+        view_dir,
+        pixel_size,
+    );
+    if !tool.typed.is_empty() {
+        tool.readout = format!("{} [{}]", tool.readout, tool.typed.as_str());
+    }
+    // Decide on a copy: the preview, or the reason it cannot apply.
+    match state.session.doc.decide_with_result(&cmd, 0) {
+        Ok(decision) => {
+            tool.created_faces = decision.created_faces;
+            let after = decision
+                .transaction
+                .changes
+                .iter()
+                .find(|c| c.id == node_id)
+                .and_then(|c| c.after.as_ref())
+                .and_then(|n| match &n.content {
+                    NodeContent::Mesh(m) => Some(m),
+                    _ => None,
+                });
+            mode.preview = after.map(|m| m.mesh.clone());
+            mode.preview_creases = after.map(|m| m.creases.clone());
+        }
+        Err(e) => {
+            mode.preview = None;
+            tool.readout = format!("{} — {e}", tool.readout);
+        }
+    }
+    let confirm = keys.any_just_pressed([KeyCode::Enter, KeyCode::NumpadEnter, KeyCode::Space])
+        || buttons.just_pressed(MouseButton::Left);
+    if confirm {
+        // A region extrude or inset selects the faces it made (the caps, the
+        // inner faces), as Blender keeps them selected.
+        if matches!(tool.kind, MeshToolKind::Extrude | MeshToolKind::Inset)
+            && mode.preview.is_some()
+            && !tool.created_faces.is_empty()
+        {
+            mode.selection.faces = tool.created_faces.iter().copied().collect();
+        }
+        mode.preview = None;
+        mode.just_finished = true;
+        let nothing =
+            matches!(&cmd, Command::MoveVertices { offset, .. } if *offset == DVec3::ZERO);
+        if !nothing {
+            requests.write(DocRequest::Execute(cmd));
+        } else {
+            status.info("Move cancelled (no movement)");
+        }
+        return;
+    }
+    mode.tool = Some(tool);
+}
