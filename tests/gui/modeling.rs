@@ -513,3 +513,36 @@ fn page_up_stops_at_the_highest_viewport_level() {
         Some(hedra_geom::subdivision::MAX_VIEWPORT_LEVEL - 1)
     );
 }
+
+/// Control-point mode shares the modal keys: G Z 1 Enter moves the clicked
+/// point by exactly 1 along z; G then Esc leaves it where it was.
+#[test]
+fn move_a_control_point_by_a_typed_value_and_cancel() {
+    let mut user = User::new();
+    user.add("NURBS Surface");
+    user.tap(KeyCode::Tab);
+    let (points, _) = shape_points(&user);
+    let target = (0..points.len())
+        .min_by(|&a, &b| points[a].length().total_cmp(&points[b].length()))
+        .unwrap();
+    let at = user.screen_of(points[target].as_vec3());
+    user.click(at);
+    user.tap(KeyCode::KeyG);
+    user.glide_to(at + Vec2::new(30.0, 5.0), 3);
+    user.tap(KeyCode::KeyZ);
+    user.type_text("1");
+    user.tap(KeyCode::Enter);
+    let (moved, _) = shape_points(&user);
+    assert_eq!(
+        moved[target],
+        points[target] + DVec3::Z,
+        "{}",
+        user.status()
+    );
+    let steps = user.undo_steps();
+    user.tap(KeyCode::KeyG);
+    user.glide_to(at + Vec2::new(60.0, 40.0), 4);
+    user.tap(KeyCode::Escape);
+    assert_eq!(shape_points(&user).0, moved, "Esc leaves the points");
+    assert_eq!(user.undo_steps(), steps);
+}

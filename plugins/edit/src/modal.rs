@@ -275,24 +275,16 @@ pub fn drive_transform_tool(
         return;
     };
 
-    if keys.just_pressed(KeyCode::Escape) || buttons.just_pressed(MouseButton::Right) {
+    let modal_keys = ModalKeys {
+        keys: &keys,
+        buttons: &buttons,
+    };
+    if modal_keys.cancel() {
         modal.restore(&mut transforms);
         tool.just_finished = true;
         return;
     }
-    for (key, axis) in [
-        (KeyCode::KeyX, Axis::X),
-        (KeyCode::KeyY, Axis::Y),
-        (KeyCode::KeyZ, Axis::Z),
-    ] {
-        if keys.just_pressed(key) {
-            modal.axis = if modal.axis == Some(axis) {
-                None
-            } else {
-                Some(axis)
-            };
-        }
-    }
+    modal_keys.toggle_axis(&mut modal.axis);
     modal.typed.read(&keys, true);
     let cursor = window.cursor_position().unwrap_or(modal.start_cursor);
     let view_dir = (cam_t.rotation() * Vec3::NEG_Z).as_dvec3();
@@ -316,9 +308,7 @@ pub fn drive_transform_tool(
             *et = to_bevy(t);
         }
     }
-    let confirm = keys.any_just_pressed([KeyCode::Enter, KeyCode::NumpadEnter, KeyCode::Space])
-        || buttons.just_pressed(MouseButton::Left);
-    if confirm {
+    if modal_keys.confirm() {
         let changed: Vec<(NodeRef, DocTransform)> = result
             .into_iter()
             .filter(|(id, t)| {
@@ -341,4 +331,39 @@ pub fn drive_transform_tool(
         return;
     }
     tool.active = Some(modal);
+}
+
+/// The keys every modal tool shares, as in Blender: Esc or a right click
+/// cancels, X / Y / Z lock the tool to an axis (the same key again frees
+/// it), Enter, Space or a left click confirms. The object transform tool,
+/// the mesh tools and the control-point tools all read them here.
+pub struct ModalKeys<'a> {
+    pub keys: &'a ButtonInput<KeyCode>,
+    pub buttons: &'a ButtonInput<MouseButton>,
+}
+
+impl ModalKeys<'_> {
+    pub fn cancel(&self) -> bool {
+        self.keys.just_pressed(KeyCode::Escape) || self.buttons.just_pressed(MouseButton::Right)
+    }
+
+    pub fn confirm(&self) -> bool {
+        self.keys
+            .any_just_pressed([KeyCode::Enter, KeyCode::NumpadEnter, KeyCode::Space])
+            || self.buttons.just_pressed(MouseButton::Left)
+    }
+
+    /// Locks `axis` to the axis whose key was pressed, or frees it when it
+    /// was already locked there.
+    pub fn toggle_axis(&self, axis: &mut Option<Axis>) {
+        for (key, a) in [
+            (KeyCode::KeyX, Axis::X),
+            (KeyCode::KeyY, Axis::Y),
+            (KeyCode::KeyZ, Axis::Z),
+        ] {
+            if self.keys.just_pressed(key) {
+                *axis = if *axis == Some(a) { None } else { Some(a) };
+            }
+        }
+    }
 }

@@ -383,23 +383,17 @@ pub fn drive_shape_tool(
     let Some(node) = state.session.doc.node(id) else {
         return;
     };
-    if keys.just_pressed(KeyCode::Escape) || buttons.just_pressed(MouseButton::Right) {
+    let modal_keys = crate::modal::ModalKeys {
+        keys: &keys,
+        buttons: &buttons,
+    };
+    if modal_keys.cancel() {
         edit.preview = None;
         edit.just_finished = true;
         return;
     }
-    for (key, axis) in [
-        (KeyCode::KeyX, Axis::X),
-        (KeyCode::KeyY, Axis::Y),
-        (KeyCode::KeyZ, Axis::Z),
-    ] {
-        if keys.just_pressed(key) && tool.kind == ShapeToolKind::Move {
-            tool.axis = if tool.axis == Some(axis) {
-                None
-            } else {
-                Some(axis)
-            };
-        }
+    if tool.kind == ShapeToolKind::Move {
+        modal_keys.toggle_axis(&mut tool.axis);
     }
     tool.typed.read(&keys, true);
     let cursor = window.cursor_position().unwrap_or(tool.start_cursor);
@@ -482,9 +476,7 @@ pub fn drive_shape_tool(
             tool.readout = format!("{} — {e}", tool.readout);
         }
     }
-    let confirm = keys.any_just_pressed([KeyCode::Enter, KeyCode::NumpadEnter, KeyCode::Space])
-        || buttons.just_pressed(MouseButton::Left);
-    if confirm {
+    if modal_keys.confirm() {
         match decided {
             Ok(_) => {
                 requests.write(DocRequest::Execute(cmd));

@@ -248,28 +248,20 @@ pub fn drive_mesh_tool(
         mode.preview = None;
         return;
     };
-    if keys.just_pressed(KeyCode::Escape) || buttons.just_pressed(MouseButton::Right) {
+    let modal_keys = crate::modal::ModalKeys {
+        keys: &keys,
+        buttons: &buttons,
+    };
+    if modal_keys.cancel() {
         mode.preview = None;
         mode.just_finished = true;
         return;
     }
-    for (key, axis) in [
-        (KeyCode::KeyX, Axis::X),
-        (KeyCode::KeyY, Axis::Y),
-        (KeyCode::KeyZ, Axis::Z),
-    ] {
-        if keys.just_pressed(key)
-            && matches!(
-                tool.kind,
-                MeshToolKind::Move | MeshToolKind::Rotate | MeshToolKind::Scale
-            )
-        {
-            tool.axis = if tool.axis == Some(axis) {
-                None
-            } else {
-                Some(axis)
-            };
-        }
+    if matches!(
+        tool.kind,
+        MeshToolKind::Move | MeshToolKind::Rotate | MeshToolKind::Scale
+    ) {
+        modal_keys.toggle_axis(&mut tool.axis);
     }
     // G again while moving edges: slide them instead (Blender's G G).
     if tool.kind == MeshToolKind::Move
@@ -345,9 +337,7 @@ pub fn drive_mesh_tool(
             tool.readout = format!("{} — {e}", tool.readout);
         }
     }
-    let confirm = keys.any_just_pressed([KeyCode::Enter, KeyCode::NumpadEnter, KeyCode::Space])
-        || buttons.just_pressed(MouseButton::Left);
-    if confirm {
+    if modal_keys.confirm() {
         // A region extrude or inset selects the faces it made (the caps, the
         // inner faces), as Blender keeps them selected.
         if matches!(tool.kind, MeshToolKind::Extrude | MeshToolKind::Inset)
