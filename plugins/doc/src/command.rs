@@ -1494,11 +1494,7 @@ impl Plan<'_> {
             } => {
                 let mut caps = Vec::new();
                 self.on_faces(node, faces, |m, fs| {
-                    let normal = fs
-                        .iter()
-                        .map(|&f| m.face_area_vector(f))
-                        .sum::<DVec3>()
-                        .normalize_or_zero();
+                    let normal = m.region_normal(fs);
                     if normal == DVec3::ZERO {
                         return Err(ModelingError::Parameter {
                             what: "faces",

@@ -464,6 +464,17 @@ impl HalfEdgeMesh {
     pub fn face_normal(&self, f: FaceId) -> DVec3 {
         self.face_area_vector(f).normalize_or_zero()
     }
+    /// Unit normal of a region of faces: the sum of their area vectors
+    /// (Newell), normalised, so a large face counts more than a small one.
+    /// The one definition that region extrude and inset move along and the
+    /// extrude tool's drag follows. Zero when the normals cancel out.
+    pub fn region_normal(&self, faces: &[FaceId]) -> DVec3 {
+        faces
+            .iter()
+            .map(|&f| self.face_area_vector(f))
+            .sum::<DVec3>()
+            .normalize_or_zero()
+    }
     /// Average of the face's vertices (of its outer loop; a face without
     /// edges is at its lone vertex).
     pub fn face_centroid(&self, f: FaceId) -> DVec3 {

@@ -125,11 +125,7 @@ pub fn inset_region(
             value: format!("{thickness}, {depth}"),
         });
     }
-    let normal = faces
-        .iter()
-        .map(|&f| mesh.face_area_vector(f))
-        .sum::<DVec3>()
-        .normalize_or_zero();
+    let normal = mesh.region_normal(faces);
     let in_region = |f: Option<FaceId>| f.is_some_and(|f| faces.contains(&f));
     // Inward normals (in the region's plane) of the outline edges at each corner.
     let mut inward: std::collections::HashMap<VertexId, Vec<DVec3>> =

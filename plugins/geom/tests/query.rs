@@ -97,3 +97,31 @@ fn corners_behind_the_cube_are_hidden_from_the_eye() {
     assert!(is_visible_from(&m, eye, DVec3::new(1.0, 1.0, -1.0)));
     assert!(!is_visible_from(&m, eye, DVec3::new(1.0, -1.0, -1.0)));
 }
+
+/// The region normal weighs faces by area (Newell): on a box 6 wide, 2 tall
+/// and 2/3 deep, the top (area 4) and the +z side (area 12) give
+/// (0, 1, 3)/√10, not the (0, 1, 1)/√2 of unit normals; normals that cancel
+/// give zero.
+#[test]
+fn region_normal_weighs_faces_by_area() {
+    let mut m = hedra_geom::Primitive::Cube { size: 2.0 }.build().unwrap();
+    for p in m.positions_mut() {
+        p.x *= 3.0;
+        p.z *= 1.0 / 3.0;
+    }
+    let facing = |d: hedra_geom::DVec3| {
+        m.faces()
+            .find(|&f| m.face_normal(f).dot(d) > 0.999)
+            .unwrap()
+    };
+    let (top, front, bottom) = (
+        facing(hedra_geom::DVec3::Y),
+        facing(hedra_geom::DVec3::Z),
+        facing(-hedra_geom::DVec3::Y),
+    );
+    let n = m.region_normal(&[top, front]);
+    let expected = hedra_geom::DVec3::new(0.0, 4.0, 12.0).normalize();
+    assert!((n - expected).length() < 1e-12, "{n}");
+    assert_eq!(m.region_normal(&[top, bottom]), hedra_geom::DVec3::ZERO);
+    assert_eq!(m.region_normal(&[top]), hedra_geom::DVec3::Y);
+}

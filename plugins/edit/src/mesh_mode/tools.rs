@@ -163,14 +163,12 @@ pub(super) fn tool_command(
             // The faces follow the cursor along their normal, as in Blender;
             // sideways drag only when the normal points at the viewer.
             let distance = tool.typed.value().unwrap_or_else(|| {
-                let normal = selection
-                    .faces
-                    .iter()
-                    .map(|&f| mesh.face_normal(f))
-                    .sum::<DVec3>();
+                let faces: Vec<FaceId> = selection.faces.iter().copied().collect();
+                // The local unit normal carried into the world: the line's
+                // parameter then counts the local distance the command takes.
                 let line = (
                     tool.pivot,
-                    world.transform_vector3(normal.normalize_or_zero()),
+                    world.transform_vector3(mesh.region_normal(&faces)),
                 );
                 let along = |p: Vec2| line_parameter_nearest_ray(line, ray_at(p)?);
                 match (along(tool.start_cursor), along(cursor)) {
