@@ -178,3 +178,16 @@ fn add_cube_again(user: &mut User) {
     user.click_on("Cube");
     assert_eq!(user.node_names().len(), 2);
 }
+
+/// The Properties panel shows a fresh cube's rotation as 0, not "-0.0".
+#[test]
+fn properties_show_zero_angles_without_a_minus_sign() {
+    let mut user = User::new();
+    add_cube(&mut user);
+    let texts: Vec<String> = user.widgets().iter().map(|w| w.text.clone()).collect();
+    assert!(
+        !texts.iter().any(|t| t.contains("-0.0")),
+        "no negative zero shown: {texts:?}"
+    );
+    assert!(texts.iter().any(|t| t == "Z 0.0"), "{texts:?}");
+}

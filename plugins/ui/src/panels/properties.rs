@@ -8,6 +8,8 @@ pub(super) fn vec3_row(
     v: &mut DVec3,
     speed: f64,
 ) -> egui::Response {
+    // Shown as 0, not "-0.0" (a quaternion's Euler angles give negative zeros).
+    *v = v.map(|c| if c == 0.0 { 0.0 } else { c });
     ui.horizontal(|ui| {
         ui.label(label);
         let mut r = ui.add(
