@@ -332,27 +332,17 @@ pub(crate) fn node_geometry(
             )
         }
         NodeContent::Curve(c) => {
-            let size = extent(c.points());
+            let size = crate::render::extent(c.points());
             let params =
                 hedra_geom::surfaces::tessellate::curve_parameters(&**c, EXPORT_TOLERANCE * size);
             Geometry::Polyline(params.iter().map(|&t| c.point(t)).collect())
         }
         NodeContent::Surface(sf) => {
-            let size = extent(sf.control_points());
+            let size = crate::render::extent(sf.control_points());
             let (positions, _, tris) = sf.tessellate(EXPORT_TOLERANCE * size);
             Geometry::Triangles(positions, tris)
         }
     }))
-}
-
-/// The diagonal of the points' bounding box (at least 1e-9).
-fn extent(points: &[DVec3]) -> f64 {
-    let (lo, hi) = points
-        .iter()
-        .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), p| {
-            (lo.min(*p), hi.max(*p))
-        });
-    (hi - lo).length().max(1e-9)
 }
 
 pub fn is_visible(doc: &Document, id: crate::scene::NodeId) -> bool {

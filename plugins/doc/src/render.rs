@@ -226,6 +226,50 @@ pub fn edge_overlay(
         .collect()
 }
 
+/// Viewport tessellation of curves and surfaces, as a fraction of their size
+/// ([`extent`]); export uses its own, finer tolerance.
+pub const VIEW_TOLERANCE: f64 = 5e-4;
+
+/// The diagonal of the points' bounding box (at least 1e-9, also for no
+/// points): the size that tessellation tolerances and analysis drawings
+/// scale with.
+pub fn extent(points: &[hedra_geom::DVec3]) -> f64 {
+    if points.is_empty() {
+        return 1e-9;
+    }
+    let (lo, hi) = points.iter().fold(
+        (hedra_geom::DVec3::INFINITY, hedra_geom::DVec3::NEG_INFINITY),
+        |(lo, hi), p| (lo.min(*p), hi.max(*p)),
+    );
+    (hi - lo).length().max(1e-9)
+}
+
+/// The parameters of a NURBS surface's render grid (row-major by u), kept
+/// so a drag re-evaluates only the part of the grid its change can reach.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SurfaceGrid {
+    pub us: Vec<f64>,
+    pub vs: Vec<f64>,
+}
+
+/// The grid the viewport tessellates a NURBS surface on: cells from
+/// [`hedra_geom::surfaces::tessellate::cells_for_tolerance`] at
+/// [`VIEW_TOLERANCE`] of the surface's size, evenly spaced over its domain.
+pub fn surface_grid(surface: &hedra_geom::surfaces::NurbsSurface) -> SurfaceGrid {
+    use hedra_geom::surfaces::Surface;
+    let tol = VIEW_TOLERANCE * extent(surface.points());
+    let (cu, cv) = hedra_geom::surfaces::tessellate::cells_for_tolerance(surface, tol);
+    let ((u0, u1), (v0, v1)) = surface.domain();
+    SurfaceGrid {
+        us: (0..=cu)
+            .map(|i| u0 + (u1 - u0) * i as f64 / cu as f64)
+            .collect(),
+        vs: (0..=cv)
+            .map(|j| v0 + (v1 - v0) * j as f64 / cv as f64)
+            .collect(),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -313,6 +357,43 @@ mod tests {
         assert_eq!(
             render_buffers(&grid, Shading::Smooth).positions.len(),
             7 * 6
+        );
+    }
+
+    #[test]
+    fn extent_is_the_bounding_box_diagonal_and_never_zero() {
+        use hedra_geom::DVec3;
+        let points = [DVec3::new(1.0, 2.0, 3.0), DVec3::new(4.0, 6.0, 3.0)];
+        assert_eq!(extent(&points), 5.0);
+        assert_eq!(extent(&[DVec3::ONE]), 1e-9);
+        assert_eq!(extent(&[]), 1e-9);
+    }
+
+    #[test]
+    fn the_surface_grid_spans_the_domain_and_refines_with_curvature() {
+        use hedra_geom::surfaces::{NurbsSurface, Surface};
+        // A plane is flat: one cell each way is exact.
+        let plane = NurbsSurface::plane(2.0);
+        let grid = surface_grid(&plane);
+        let ((u0, u1), (v0, v1)) = plane.domain();
+        assert_eq!((grid.us.first(), grid.us.last()), (Some(&u0), Some(&u1)));
+        assert_eq!((grid.vs.first(), grid.vs.last()), (Some(&v0), Some(&v1)));
+        assert!(grid.us.windows(2).all(|w| w[0] < w[1]));
+        // A sphere bends: many more cells, evenly spaced.
+        let sphere = NurbsSurface::sphere(hedra_geom::DVec3::ZERO, 1.0);
+        let round = surface_grid(&sphere);
+        assert!(
+            round.us.len() > 8 && round.vs.len() > 8,
+            "{} × {}",
+            round.us.len(),
+            round.vs.len()
+        );
+        let step = round.us[1] - round.us[0];
+        assert!(
+            round
+                .us
+                .windows(2)
+                .all(|w| ((w[1] - w[0]) - step).abs() < 1e-12)
         );
     }
 }

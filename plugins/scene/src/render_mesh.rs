@@ -2,20 +2,10 @@
 
 use crate::*;
 
-/// Viewport tessellation of curves and surfaces, as a fraction of their size.
-pub const VIEW_TOLERANCE: f64 = 5e-4;
-
-/// The diagonal of the points' bounding box (at least 1e-9).
-pub fn extent(points: &[hedra_geom::DVec3]) -> f64 {
-    let (lo, hi) = points.iter().fold(
-        (hedra_geom::DVec3::INFINITY, hedra_geom::DVec3::NEG_INFINITY),
-        |(lo, hi), p| (lo.min(*p), hi.max(*p)),
-    );
-    (hi - lo).length().max(1e-9)
-}
+pub use hedra_doc::render::{SurfaceGrid, VIEW_TOLERANCE, extent, surface_grid};
 
 /// A smooth-shaded triangle mesh of a surface node, tessellated to
-/// [`VIEW_TOLERANCE`] of its size; both sides face the viewer (a patch is
+/// `VIEW_TOLERANCE` of its size; both sides face the viewer (a patch is
 /// open, its back is seen too).
 pub fn surface_render_mesh(surface: &hedra_doc::SurfaceShape) -> Mesh {
     let tol = VIEW_TOLERANCE * extent(surface.control_points());
@@ -34,30 +24,6 @@ pub fn surface_render_mesh(surface: &hedra_doc::SurfaceShape) -> Mesh {
         normals.iter().map(f32s).collect::<Vec<_>>(),
     )
     .with_inserted_indices(Indices::U32(triangles.into_iter().flatten().collect()))
-}
-
-/// The parameters of a NURBS surface's render grid (row-major by u), kept
-/// so a drag re-evaluates only the part of the grid its change can reach.
-#[derive(Clone, Debug, PartialEq)]
-pub struct SurfaceGrid {
-    pub us: Vec<f64>,
-    pub vs: Vec<f64>,
-}
-
-/// The grid [`surface_render_mesh`] uses for a NURBS surface.
-pub fn surface_grid(surface: &hedra_geom::surfaces::NurbsSurface) -> SurfaceGrid {
-    use hedra_geom::surfaces::Surface;
-    let tol = VIEW_TOLERANCE * extent(surface.points());
-    let (cu, cv) = hedra_geom::surfaces::tessellate::cells_for_tolerance(surface, tol);
-    let ((u0, u1), (v0, v1)) = surface.domain();
-    SurfaceGrid {
-        us: (0..=cu)
-            .map(|i| u0 + (u1 - u0) * i as f64 / cu as f64)
-            .collect(),
-        vs: (0..=cv)
-            .map(|j| v0 + (v1 - v0) * j as f64 / cv as f64)
-            .collect(),
-    }
 }
 
 /// Rewrites the positions and normals of `render` (built on `grid` from
