@@ -4,7 +4,6 @@
 //! render meshes are checked after.
 
 mod modeling;
-#[allow(dead_code)] // the harness offers more than every scenario uses
 mod user;
 
 use bevy::prelude::*;

@@ -381,16 +381,8 @@ fn select_all_none_and_element_modes() {
 /// weight grows and the surface moves toward it.
 #[test]
 fn a_weight_drag_pulls_a_nurbs_surface_toward_its_point() {
-    let mut user = User::new();
-    user.add("NURBS Surface");
-    user.tap(KeyCode::Tab);
+    let (mut user, target, at) = surface_with_its_middle_point_clicked();
     let (points, weights) = shape_points(&user);
-    // An inner point near the middle of the net.
-    let target = (0..points.len())
-        .min_by(|&a, &b| points[a].length().total_cmp(&points[b].length()))
-        .unwrap();
-    let at = user.screen_of(points[target].as_vec3());
-    user.click(at);
     let selected = user
         .app
         .world()
@@ -416,6 +408,22 @@ fn a_weight_drag_pulls_a_nurbs_surface_toward_its_point() {
     );
 }
 
+/// Add ▸ NURBS Surface, Tab into control-point mode and a click on the
+/// control point nearest the origin (an inner point of the net). Returns
+/// the user, the point's index and where it was clicked.
+fn surface_with_its_middle_point_clicked() -> (User, usize, Vec2) {
+    let mut user = User::new();
+    user.add("NURBS Surface");
+    user.tap(KeyCode::Tab);
+    let (points, _) = shape_points(&user);
+    let target = (0..points.len())
+        .min_by(|&a, &b| points[a].length().total_cmp(&points[b].length()))
+        .unwrap();
+    let at = user.screen_of(points[target].as_vec3());
+    user.click(at);
+    (user, target, at)
+}
+
 fn shape_points(user: &User) -> (Vec<DVec3>, Vec<f64>) {
     let node = user.doc().nodes().next().unwrap();
     (
@@ -426,26 +434,9 @@ fn shape_points(user: &User) -> (Vec<DVec3>, Vec<f64>) {
 
 /// The point of the surface's render mesh nearest to `p`.
 fn surface_point_near(user: &User, p: DVec3) -> DVec3 {
-    let world = user.app.world();
-    let entity = world
-        .resource::<hedra_scene::NodeEntities>()
-        .0
-        .values()
-        .next()
-        .copied()
-        .unwrap();
-    let mesh = world
-        .get::<Mesh3d>(entity)
-        .expect("the surface has a render mesh");
-    let render = world.resource::<Assets<Mesh>>().get(&mesh.0).unwrap();
-    let Some(bevy::mesh::VertexAttributeValues::Float32x3(positions)) =
-        render.attribute(Mesh::ATTRIBUTE_POSITION)
-    else {
-        panic!("positions")
-    };
-    positions
-        .iter()
-        .map(|q| Vec3::from(*q).as_dvec3())
+    render_positions(user)
+        .into_iter()
+        .map(Vec3::as_dvec3)
         .min_by(|a, b| a.distance(p).total_cmp(&b.distance(p)))
         .unwrap()
 }
@@ -471,6 +462,7 @@ fn the_confirming_frame_shows_the_result() {
     );
 }
 
+/// The positions of the first node's render mesh.
 fn render_positions(user: &User) -> Vec<Vec3> {
     let world = user.app.world();
     let entity = world
@@ -518,15 +510,8 @@ fn page_up_stops_at_the_highest_viewport_level() {
 /// point by exactly 1 along z; G then Esc leaves it where it was.
 #[test]
 fn move_a_control_point_by_a_typed_value_and_cancel() {
-    let mut user = User::new();
-    user.add("NURBS Surface");
-    user.tap(KeyCode::Tab);
+    let (mut user, target, at) = surface_with_its_middle_point_clicked();
     let (points, _) = shape_points(&user);
-    let target = (0..points.len())
-        .min_by(|&a, &b| points[a].length().total_cmp(&points[b].length()))
-        .unwrap();
-    let at = user.screen_of(points[target].as_vec3());
-    user.click(at);
     user.tap(KeyCode::KeyG);
     user.glide_to(at + Vec2::new(30.0, 5.0), 3);
     user.tap(KeyCode::KeyZ);

@@ -334,12 +334,6 @@ impl User {
             .unwrap_or_else(|e| panic!("{p} is not in view: {e:?}"))
     }
 
-    /// Sends a request as the panels and keys do (test set-up only).
-    pub fn request(&mut self, request: hedra_scene::DocRequest) {
-        self.app.world_mut().write_message(request);
-        self.frames(2);
-    }
-
     /// Shift+A with the pointer at `at`: the Add menu opens there.
     pub fn open_add_menu_at(&mut self, at: Vec2) {
         self.move_to(at);
