@@ -10,7 +10,7 @@ use glam::{DMat4, DQuat, DVec3};
 use hedra_doc::{Command, Document, NodeContent, NodeId, NodeRef, Transform as DocTransform};
 use hedra_scene::modifiers::{alt, ctrl, shift};
 use hedra_scene::{
-    DocChanged, DocRequest, DocState, InputGate, NodeEntities, SceneSystems, ViewportCamera,
+    DocChanged, DocRequest, DocState, InputGate, SceneSystems, ViewportCamera,
 };
 
 pub mod mesh_mode;
@@ -84,7 +84,7 @@ impl Plugin for EditPlugin {
                     mesh_mode::edit_shortcuts,
                     pick_objects,
                     mesh_mode::select_elements,
-                    mesh_mode::show_preview,
+                    mesh_mode::publish_mesh_preview,
                 )
                     .chain()
                     .in_set(EditSystems),
@@ -96,10 +96,10 @@ impl Plugin for EditPlugin {
                     shape_mode::shape_mode_keys,
                     shape_mode::drive_shape_tool,
                     shape_mode::shape_select_and_shortcuts,
-                    shape_mode::show_shape_preview,
+                    shape_mode::publish_shape_preview,
                 )
                     .chain()
-                    .after(mesh_mode::show_preview)
+                    .after(mesh_mode::publish_mesh_preview)
                     .in_set(EditSystems),
             );
     }
@@ -261,7 +261,7 @@ fn pick_objects(
     {
         return;
     }
-    if gizmo.is_some_and(|g| g.hovered_axis.is_some() || g.active) {
+    if gizmo_has_pointer(gizmo.as_deref()) {
         return; // the click grabs a gizmo handle
     }
     if alt(&keys) {
@@ -319,7 +319,6 @@ pub fn object_shortcuts(
     mut requests: MessageWriter<DocRequest>,
     window: Single<&Window, With<PrimaryWindow>>,
     camera: Single<(&Camera, &GlobalTransform), With<ViewportCamera>>,
-    entities: Res<NodeEntities>,
     mode: Res<EditMode>,
     shape_edit: Res<ShapeEdit>,
 ) {
@@ -384,7 +383,7 @@ pub fn object_shortcuts(
     if let Some(kind) = kind {
         let (cam, cam_t) = *camera;
         tool.active =
-            ModalTransform::start(kind, doc, &selection.nodes, &entities, &window, cam, cam_t);
+            ModalTransform::start(kind, doc, &selection.nodes, &window, cam, cam_t);
     }
 }
 
@@ -488,6 +487,12 @@ pub fn subdivision_keys(
 /// Local transform that puts a node at `world` under a parent at `parent_world`.
 pub fn local_from_world(parent_world: DMat4, world: DMat4) -> DocTransform {
     DocTransform::from_matrix(parent_world.inverse() * world)
+}
+
+/// True while the pointer is on a transform gizmo handle or drags one: a
+/// click there belongs to the gizmo, not to selection.
+pub fn gizmo_has_pointer(gizmo: Option<&TransformGizmoState>) -> bool {
+    gizmo.is_some_and(|g| g.hovered_axis.is_some() || g.active)
 }
 
 /// Rotation about a pivot as a matrix.

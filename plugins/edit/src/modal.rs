@@ -8,7 +8,7 @@ use bevy::prelude::*;
 use bevy::window::PrimaryWindow;
 use glam::{DMat4, DQuat, DVec3};
 use hedra_doc::{Command, Document, NodeId, NodeRef, Transform as DocTransform};
-use hedra_scene::{DocRequest, DocState, NodeEntities, ViewportCamera};
+use hedra_scene::{DocRequest, DocState, PreviewSource, Previews, ToolPreview, ViewportCamera};
 
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 pub enum TransformKind {
@@ -47,7 +47,6 @@ pub struct TransformTool {
 #[derive(Clone, Debug)]
 struct Item {
     id: NodeId,
-    entity: Option<Entity>,
     local: DocTransform,
     world: DMat4,
     parent_world: DMat4,
@@ -74,7 +73,6 @@ impl ModalTransform {
         kind: TransformKind,
         doc: &Document,
         selection: &[NodeId],
-        entities: &NodeEntities,
         window: &Window,
         camera: &Camera,
         camera_transform: &GlobalTransform,
@@ -99,7 +97,6 @@ impl ModalTransform {
                 let node = doc.node(id).expect("filtered above");
                 Item {
                     id,
-                    entity: entities.0.get(&id).copied(),
                     local: node.transform,
                     world: doc.world_matrix(id),
                     parent_world: node.parent.map_or(DMat4::IDENTITY, |p| doc.world_matrix(p)),
@@ -216,34 +213,9 @@ impl ModalTransform {
             }
         }
     }
-
-    /// Puts the original transforms back on the previewed entities.
-    fn restore(&self, transforms: &mut Query<&mut Transform>) {
-        for i in &self.items {
-            if let Some(mut t) = i.entity.and_then(|e| transforms.get_mut(e).ok()) {
-                *t = to_bevy(&i.local);
-            }
-        }
-    }
-
-    fn entity_of(&self, id: NodeId) -> Option<Entity> {
-        self.items
-            .iter()
-            .find(|i| i.id == id)
-            .and_then(|i| i.entity)
-    }
 }
 
-/// A document transform as a Bevy one.
-pub fn to_bevy(t: &DocTransform) -> Transform {
-    Transform {
-        translation: t.translation.as_vec3(),
-        rotation: t.rotation.as_quat(),
-        scale: t.scale.as_vec3(),
-    }
-}
-
-/// Runs the active tool: keys, preview on entities, confirm or cancel.
+/// Runs the active tool: keys, preview as data, confirm or cancel.
 #[allow(clippy::too_many_arguments)]
 pub fn drive_transform_tool(
     mut tool: ResMut<TransformTool>,
@@ -253,8 +225,7 @@ pub fn drive_transform_tool(
     camera: Single<(&Camera, &GlobalTransform), With<ViewportCamera>>,
     state: Res<DocState>,
     selection: Res<crate::Selection>,
-    entities: Res<NodeEntities>,
-    mut transforms: Query<&mut Transform>,
+    mut previews: ResMut<Previews>,
     mut requests: MessageWriter<DocRequest>,
 ) {
     tool.just_finished = false;
@@ -265,13 +236,13 @@ pub fn drive_transform_tool(
             TransformKind::Grab,
             &state.session.doc,
             &selection.nodes,
-            &entities,
             &window,
             cam,
             cam_t,
         );
     }
     let Some(mut modal) = tool.active.take() else {
+        Previews::clear(&mut previews, PreviewSource::TransformTool);
         return;
     };
 
@@ -280,7 +251,7 @@ pub fn drive_transform_tool(
         buttons: &buttons,
     };
     if modal_keys.cancel() {
-        modal.restore(&mut transforms);
+        Previews::clear(&mut previews, PreviewSource::TransformTool);
         tool.just_finished = true;
         return;
     }
@@ -300,14 +271,6 @@ pub fn drive_transform_tool(
     if !modal.typed.is_empty() {
         modal.readout = format!("{} [{}]", modal.readout, modal.typed.as_str());
     }
-    for (id, t) in &result {
-        if let Some(mut et) = modal
-            .entity_of(*id)
-            .and_then(|e| transforms.get_mut(e).ok())
-        {
-            *et = to_bevy(t);
-        }
-    }
     if modal_keys.confirm() {
         let changed: Vec<(NodeRef, DocTransform)> = result
             .into_iter()
@@ -320,9 +283,10 @@ pub fn drive_transform_tool(
             })
             .map(|(id, t)| (NodeRef::from(id), t))
             .collect();
-        if changed.is_empty() {
-            modal.restore(&mut transforms);
-        } else {
+        // The command is applied this frame: the projection goes from the
+        // preview straight to the result.
+        Previews::clear(&mut previews, PreviewSource::TransformTool);
+        if !changed.is_empty() {
             requests.write(DocRequest::Execute(Command::SetTransforms {
                 nodes: changed,
             }));
@@ -330,6 +294,14 @@ pub fn drive_transform_tool(
         tool.just_finished = true;
         return;
     }
+    Previews::show(
+        &mut previews,
+        PreviewSource::TransformTool,
+        ToolPreview {
+            transforms: result.into_iter().collect(),
+            ..default()
+        },
+    );
     tool.active = Some(modal);
 }
 

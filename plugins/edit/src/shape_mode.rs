@@ -7,14 +7,14 @@
 //! and shows the result; Enter or a click confirms it as one undo step.
 
 use std::collections::BTreeSet;
-use std::sync::Arc;
 
 use bevy::prelude::*;
+use bevy::gizmos::transform_gizmo::TransformGizmoState;
 use bevy::window::PrimaryWindow;
 use glam::DVec3;
 use hedra_doc::{Command, NodeContent, NodeId, NodeRef, SurfaceShape};
 use hedra_scene::modifiers::{alt, ctrl, shift};
-use hedra_scene::{DocRequest, DocState, InputGate, NodeEntities, StatusMessage, ViewportCamera};
+use hedra_scene::{DocRequest, DocState, InputGate, StatusMessage, ViewportCamera};
 
 use crate::modal::Axis;
 use crate::typing::TypedNumber;
@@ -183,6 +183,7 @@ pub fn shape_select_and_shortcuts(
     mut status: ResMut<StatusMessage>,
     mut requests: MessageWriter<DocRequest>,
     mut b_box: Local<bool>,
+    gizmo: Option<Res<TransformGizmoState>>,
 ) {
     let Some(id) = edit.node else {
         *b_box = false;
@@ -230,7 +231,11 @@ pub fn shape_select_and_shortcuts(
     }
     // A press on a point selects it; a press elsewhere starts a box, and a
     // release without dragging clears the selection (Shift keeps it).
-    if gate.pointer_free && buttons.just_pressed(MouseButton::Left) && !alt(&keys) {
+    if gate.pointer_free
+        && buttons.just_pressed(MouseButton::Left)
+        && !alt(&keys)
+        && !crate::gizmo_has_pointer(gizmo.as_deref())
+    {
         if let Some(cursor) = cursor {
             match point_under_cursor(&points, world, cursor, cam, cam_t) {
                 Some(i) if shift(&keys) => {
@@ -490,94 +495,32 @@ pub fn drive_shape_tool(
     edit.tool = Some(tool);
 }
 
-/// Shows a surface tool's preview on the node's render mesh, and the
-/// document's shape again when the tool ends.
-pub fn show_shape_preview(
+/// Puts the running control-point tool's result (`ShapeEdit::preview`)
+/// into its [`Previews`](hedra_scene::Previews) slot, and clears the slot
+/// when the tool ends; the projection re-tessellates only the knot spans
+/// whose control points changed.
+pub fn publish_shape_preview(
     edit: Res<ShapeEdit>,
-    state: Res<DocState>,
-    entities: Res<NodeEntities>,
-    mesh3d: Query<&Mesh3d>,
-    mut meshes: ResMut<Assets<Mesh>>,
-    mut shown: Local<Option<(NodeId, usize)>>,
-    mut screen: Local<Option<OnScreen>>,
+    mut previews: ResMut<hedra_scene::Previews>,
 ) {
-    let surface_of = |c: &NodeContent| match c {
-        NodeContent::Surface(s) => Some(s.clone()),
-        _ => None,
-    };
-    let want: Option<(NodeId, Arc<SurfaceShape>)> =
-        edit.node.zip(edit.preview.as_ref().and_then(surface_of));
-    let key = want.as_ref().map(|(n, s)| (*n, Arc::as_ptr(s) as usize));
-    if key == *shown {
+    use hedra_scene::{PreviewContent, PreviewSource, Previews, ToolPreview};
+    if !edit.is_changed() {
         return;
     }
-    let doc_shape = |n: NodeId| {
-        state
-            .session
-            .doc
-            .node(n)
-            .and_then(|node| surface_of(&node.content))
-    };
-    let mut put = |n: NodeId, s: &Arc<SurfaceShape>| {
-        let Some(mut m) = entities
-            .0
-            .get(&n)
-            .and_then(|e| mesh3d.get(*e).ok())
-            .and_then(|h| meshes.get_mut(&h.0))
-        else {
-            return;
-        };
-        let Some(doc) = doc_shape(n) else { return };
-        let doc_key = Arc::as_ptr(&doc) as usize;
-        // The mesh on screen was built from the document's shape unless this
-        // system has changed it since.
-        if screen
-            .as_ref()
-            .is_none_or(|o| o.node != n || o.doc != doc_key)
-        {
-            *screen = OnScreen::of(n, doc_key, &doc);
-        }
-        if let Some(o) = screen.as_mut()
-            && let (SurfaceShape::Nurbs(old), SurfaceShape::Nurbs(new)) = (&*o.shape, &**s)
-            && hedra_scene::update_surface_render_mesh(&mut m, &o.grid, old, new)
-        {
-            o.shape = s.clone();
-            return;
-        }
-        *m = hedra_scene::surface_render_mesh(s);
-        *screen = OnScreen::of(n, doc_key, s);
-    };
-    if let Some((prev, _)) = shown.take()
-        && want.as_ref().is_none_or(|(n, _)| *n != prev)
-        && let Some(s) = doc_shape(prev)
-    {
-        put(prev, &s);
-    }
-    if let Some((n, s)) = &want {
-        put(*n, s);
-    }
-    *shown = key;
-}
-
-/// The surface a node's render mesh shows and the grid it was built on.
-pub struct OnScreen {
-    node: NodeId,
-    /// The document shape (by identity) the cache belongs to.
-    doc: usize,
-    grid: hedra_scene::SurfaceGrid,
-    shape: Arc<SurfaceShape>,
-}
-
-impl OnScreen {
-    fn of(node: NodeId, doc: usize, shape: &Arc<SurfaceShape>) -> Option<OnScreen> {
-        match &**shape {
-            SurfaceShape::Nurbs(n) => Some(OnScreen {
-                node,
-                doc,
-                grid: hedra_scene::surface_grid(n),
-                shape: shape.clone(),
-            }),
-            SurfaceShape::Triangle(_) => None,
-        }
+    let content = edit
+        .preview
+        .as_ref()
+        .and_then(PreviewContent::of_shape)
+        .zip(edit.node);
+    match content {
+        Some((content, node)) => Previews::show(
+            &mut previews,
+            PreviewSource::ShapeTool,
+            ToolPreview {
+                contents: [(node, content)].into(),
+                ..default()
+            },
+        ),
+        None => Previews::clear(&mut previews, PreviewSource::ShapeTool),
     }
 }

@@ -2,12 +2,14 @@
 //!
 //! [`DocState`] holds the one [`Session`]; [`DocRequest`] messages are the
 //! only way to change it, and [`apply_requests`] is the only system that
-//! applies them. After every change [`sync_entities`] mirrors the document:
-//! one entity per node with `Transform`, `ChildOf`, `Visibility` and, for
-//! meshes, a render mesh built from the half-edge mesh. One file each:
-//! `apply` (the one writer of the document), `projection` (entities and
-//! their render meshes), `render_mesh` (building meshes from content),
-//! `smooth` (subdivision previews refined in the background).
+//! applies them. The projection mirrors the document, with the previews of
+//! running tools ([`Previews`]) over it: [`sync_entities`] keeps one entity
+//! per node (`Name`, `Visibility`, `ChildOf`), [`project_transforms`] is the
+//! one writer of their `Transform`, [`project_render_meshes`] of their render
+//! meshes. One file each: `apply` (the one writer of the document),
+//! `preview` (what tools show, as data), `projection` (entities and their
+//! render meshes), `render_mesh` (building meshes from content), `smooth`
+//! (subdivision previews refined in the background).
 
 use bevy::asset::RenderAssetUsages;
 use bevy::mesh::{Indices, PrimitiveTopology};
@@ -19,11 +21,13 @@ use std::collections::HashMap;
 use std::path::PathBuf;
 
 mod apply;
+mod preview;
 mod projection;
 mod render_mesh;
 mod smooth;
 
 pub use apply::*;
+pub use preview::*;
 pub use projection::*;
 pub use render_mesh::*;
 pub use smooth::{SmoothPreviews, SmoothSource};
@@ -118,7 +122,7 @@ pub struct MeshMaterial(pub Handle<StandardMaterial>);
 pub enum SceneSystems {
     /// Applies [`DocRequest`]s.
     Apply,
-    /// Mirrors the document into entities.
+    /// Mirrors the document and the tools' previews into entities.
     Sync,
 }
 
@@ -131,6 +135,7 @@ impl Plugin for ScenePlugin {
             .init_resource::<StatusMessage>()
             .init_resource::<NodeEntities>()
             .init_resource::<SmoothPreviews>()
+            .init_resource::<Previews>()
             .init_resource::<InputGate>()
             .add_message::<DocRequest>()
             .add_message::<DocChanged>()
@@ -139,7 +144,7 @@ impl Plugin for ScenePlugin {
             .add_systems(Update, apply_requests.in_set(SceneSystems::Apply))
             .add_systems(
                 Update,
-                (sync_entities, show_finished_smooth_previews)
+                (sync_entities, project_transforms, project_render_meshes)
                     .chain()
                     .in_set(SceneSystems::Sync),
             );

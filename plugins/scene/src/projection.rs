@@ -1,13 +1,16 @@
 //! The document mirrored as entities: one per node, with its transform, hierarchy, visibility and render mesh.
 
 use crate::*;
+use hedra_doc::SurfaceShape;
+use std::sync::Arc;
 
 /// The document node an entity mirrors.
 #[derive(Component, Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct NodeEntity(pub NodeId);
 
-/// Which half-edge mesh (by identity), shading and subdivision the render
-/// mesh was built from.
+/// Which document content (by identity), shading and subdivision a node
+/// shows when no tool previews it; the overlays key on it. Written only by
+/// [`project_render_meshes`].
 #[derive(Component, Clone, Copy, Debug, PartialEq, Eq)]
 pub struct ProjectedMesh {
     pub source: usize,
@@ -38,104 +41,81 @@ pub fn active_modifier(content: &hedra_doc::MeshContent) -> Option<hedra_doc::Su
 #[derive(Resource, Default, Debug)]
 pub struct NodeEntities(pub HashMap<NodeId, Entity>);
 
-/// Mirrors the document into entities whenever its revision changes.
+/// A document transform as a Bevy one (f32).
+pub fn bevy_transform(t: &hedra_doc::Transform) -> Transform {
+    Transform {
+        translation: t.translation.as_vec3(),
+        rotation: t.rotation.as_quat(),
+        scale: t.scale.as_vec3(),
+    }
+}
+
+/// Mirrors the document's nodes into entities whenever its revision
+/// changes: spawns and despawns them, keeps `Name`, `Visibility` and
+/// `ChildOf`. A new entity starts at its document transform;
+/// [`project_transforms`] writes it after that, [`project_render_meshes`]
+/// its render mesh.
 pub fn sync_entities(
     mut commands: Commands,
     state: Res<DocState>,
     mut seen_revision: Local<Option<u64>>,
     mut map: ResMut<NodeEntities>,
-    mut meshes: ResMut<Assets<Mesh>>,
-    mut previews: ResMut<SmoothPreviews>,
-    mut status: ResMut<StatusMessage>,
-    material: Option<Res<MeshMaterial>>,
-    mut existing: Query<(
-        &mut Transform,
-        &mut Visibility,
-        Option<&ChildOf>,
-        Option<&ProjectedMesh>,
-        Option<&Mesh3d>,
-    )>,
+    mut existing: Query<(&mut Name, &mut Visibility, Option<&ChildOf>)>,
 ) {
     if *seen_revision == Some(state.revision) {
         return;
     }
     *seen_revision = Some(state.revision);
     let doc = &state.session.doc;
+    let visibility = |node: &hedra_doc::Node| {
+        if node.visible {
+            Visibility::Inherited
+        } else {
+            Visibility::Hidden
+        }
+    };
 
     // Spawn missing entities first so parents exist for ChildOf.
+    let mut spawned = Vec::new();
     for node in doc.nodes() {
         if !map.0.get(&node.id).is_some_and(|e| existing.contains(*e)) {
             let e = commands
                 .spawn((
                     NodeEntity(node.id),
                     Name::new(node.name.clone()),
-                    Transform::default(),
-                    Visibility::default(),
+                    bevy_transform(&node.transform),
+                    visibility(node),
                 ))
                 .id();
             map.0.insert(node.id, e);
+            spawned.push(e);
         }
     }
     for node in doc.nodes() {
         let e = map.0[&node.id];
-        let transform = Transform {
-            translation: node.transform.translation.as_vec3(),
-            rotation: node.transform.rotation.as_quat(),
-            scale: node.transform.scale.as_vec3(),
-        };
-        let visibility = if node.visible {
-            Visibility::Inherited
-        } else {
-            Visibility::Hidden
-        };
         let parent = node.parent.and_then(|p| map.0.get(&p).copied());
-        let mut ec = commands.entity(e);
-        ec.insert(Name::new(node.name.clone()));
-        match existing.get_mut(e) {
-            Ok((mut t, mut v, child_of, projected, mesh3d)) => {
-                if *t != transform {
-                    *t = transform;
+        let old_parent = match existing.get_mut(e) {
+            Ok((mut name, mut v, child_of)) => {
+                if name.as_str() != node.name {
+                    name.set(node.name.clone());
                 }
-                if *v != visibility {
-                    *v = visibility;
+                let wanted = visibility(node);
+                if *v != wanted {
+                    *v = wanted;
                 }
-                match (parent, child_of.map(|c| c.parent())) {
-                    (Some(p), Some(old)) if p == old => {}
-                    (Some(p), _) => {
-                        ec.insert(ChildOf(p));
-                    }
-                    (None, Some(_)) => {
-                        ec.remove::<ChildOf>();
-                    }
-                    (None, None) => {}
-                }
-                project_mesh(
-                    &mut ec,
-                    node,
-                    projected.copied(),
-                    mesh3d,
-                    &mut meshes,
-                    &mut previews,
-                    &mut status,
-                    material.as_deref(),
-                );
+                child_of.map(|c| c.parent())
             }
-            Err(_) => {
-                ec.insert((transform, visibility));
-                if let Some(p) = parent {
-                    ec.insert(ChildOf(p));
-                }
-                project_mesh(
-                    &mut ec,
-                    node,
-                    None,
-                    None,
-                    &mut meshes,
-                    &mut previews,
-                    &mut status,
-                    material.as_deref(),
-                );
+            Err(_) => None,
+        };
+        match (parent, old_parent) {
+            (Some(p), Some(old)) if p == old => {}
+            (Some(p), _) => {
+                commands.entity(e).insert(ChildOf(p));
             }
+            (None, Some(_)) => {
+                commands.entity(e).remove::<ChildOf>();
+            }
+            (None, None) => {}
         }
     }
     // Despawn entities of deleted nodes (after reparenting, so survivors are detached first).
@@ -145,12 +125,6 @@ pub fn sync_entities(
         .filter(|id| doc.node(**id).is_none())
         .copied()
         .collect();
-    previews.retain(|id| {
-        doc.node(id).is_some_and(|n| match &n.content {
-            NodeContent::Mesh(c) => active_modifier(c).is_some(),
-            _ => false,
-        })
-    });
     for id in gone {
         if let Some(e) = map.0.remove(&id) {
             commands.entity(e).remove::<ChildOf>();
@@ -159,30 +133,97 @@ pub fn sync_entities(
     }
 }
 
-/// Puts smooth previews finished in the background on their nodes; Esc
-/// cancels the ones still running.
-pub fn show_finished_smooth_previews(
-    mut previews: ResMut<SmoothPreviews>,
-    keys: Option<Res<ButtonInput<KeyCode>>>,
-    map: Res<NodeEntities>,
+/// The one writer of node `Transform`s: the document's transform, or the
+/// one a running tool previews ([`Previews::transform`]). Runs when the
+/// document, the previews or the set of node entities changed.
+pub fn project_transforms(
     state: Res<DocState>,
-    mesh3d: Query<&Mesh3d>,
+    previews: Res<Previews>,
+    mut seen_revision: Local<Option<u64>>,
+    added: Query<(), Added<NodeEntity>>,
+    mut nodes: Query<(&NodeEntity, &mut Transform)>,
+) {
+    if *seen_revision == Some(state.revision) && !previews.is_changed() && added.is_empty() {
+        return;
+    }
+    *seen_revision = Some(state.revision);
+    for (node, mut transform) in &mut nodes {
+        let Some(doc_node) = state.session.doc.node(node.0) else {
+            continue;
+        };
+        let wanted = bevy_transform(previews.transform(node.0).unwrap_or(&doc_node.transform));
+        if *transform != wanted {
+            *transform = wanted;
+        }
+    }
+}
+
+/// What a node's render mesh shows now: the shape (by identity, kept alive
+/// here so its address cannot be reused), how it is shaded and smoothed.
+/// Written only by [`project_render_meshes`].
+#[derive(Component, Clone, Debug)]
+pub struct OnScreen {
+    shape: ShownShape,
+    shading: Shading,
+    smooth: Option<(hedra_doc::SubdivisionModifier, u64)>,
+}
+
+#[derive(Clone, Debug)]
+enum ShownShape {
+    Mesh(Arc<HalfEdgeMesh>),
+    /// A surface and, for NURBS, the grid its render mesh was built on.
+    Surface(Arc<SurfaceShape>, Option<SurfaceGrid>),
+}
+
+impl OnScreen {
+    fn shows_mesh(&self, mesh: &Arc<HalfEdgeMesh>) -> bool {
+        matches!(&self.shape, ShownShape::Mesh(m) if Arc::ptr_eq(m, mesh))
+    }
+}
+
+/// The one writer of node render meshes (the `Assets<Mesh>` entries behind
+/// their `Mesh3d`) and of [`SmoothPreviews`]. Draws each node's document
+/// content or the content a running tool previews ([`Previews::content`]):
+/// patches positions in place when only positions changed (cage, smooth
+/// stencils, NURBS knot spans), rebuilds otherwise; starts large smooth
+/// previews in the background and puts them on screen when they finish
+/// (Esc cancels them).
+#[allow(clippy::too_many_arguments)]
+pub fn project_render_meshes(
+    mut commands: Commands,
+    state: Res<DocState>,
+    previews: Res<Previews>,
+    keys: Option<Res<ButtonInput<KeyCode>>>,
+    mut seen_revision: Local<Option<u64>>,
+    mut smooth: ResMut<SmoothPreviews>,
     mut meshes: ResMut<Assets<Mesh>>,
     mut status: ResMut<StatusMessage>,
+    material: Option<Res<MeshMaterial>>,
+    map: Res<NodeEntities>,
+    added: Query<(), Added<NodeEntity>>,
+    mut nodes: Query<(
+        Entity,
+        &NodeEntity,
+        Option<&ProjectedMesh>,
+        Option<&Mesh3d>,
+        Option<&OnScreen>,
+    )>,
 ) {
-    if keys.is_some_and(|k| k.just_pressed(KeyCode::Escape)) && !previews.progress().is_empty() {
-        previews.cancel_all();
+    let doc = &state.session.doc;
+    if keys.is_some_and(|k| k.just_pressed(KeyCode::Escape)) && !smooth.progress().is_empty() {
+        smooth.cancel_all();
     }
-    for job in previews.finished() {
-        let name = state
-            .session
-            .doc
+    for job in smooth.finished() {
+        let name = doc
             .node(job.node)
             .map_or_else(|| job.node.to_string(), |n| n.name.clone());
         match job.result {
             Ok(mesh) => {
-                let handle = map.0.get(&job.node).and_then(|e| mesh3d.get(*e).ok());
-                if let Some(mut m) = handle.and_then(|h| meshes.get_mut(&h.0)) {
+                let handle = map.0.get(&job.node).and_then(|e| nodes.get(*e).ok());
+                if let Some(mut m) = handle
+                    .and_then(|(_, _, _, m, _)| m)
+                    .and_then(|h| meshes.get_mut(&h.0))
+                {
                     *m = mesh;
                 }
             }
@@ -192,90 +233,217 @@ pub fn show_finished_smooth_previews(
             Err(e) => status.error(format!("'{name}': subdivision not shown: {e}")),
         }
     }
-}
-
-#[allow(clippy::too_many_arguments)]
-pub(crate) fn project_mesh(
-    ec: &mut EntityCommands,
-    node: &hedra_doc::Node,
-    projected: Option<ProjectedMesh>,
-    mesh3d: Option<&Mesh3d>,
-    meshes: &mut Assets<Mesh>,
-    previews: &mut SmoothPreviews,
-    status: &mut StatusMessage,
-    material: Option<&MeshMaterial>,
-) {
-    let content = match &node.content {
-        NodeContent::Mesh(content) => content,
-        NodeContent::Surface(surface) => {
-            let wanted = ProjectedMesh {
-                source: std::sync::Arc::as_ptr(surface) as *const u8 as usize,
-                shading: Shading::Smooth,
-                smooth: None,
-            };
-            if projected != Some(wanted) {
-                set_render_mesh(ec, mesh3d, meshes, surface_render_mesh(surface), material);
-                ec.insert(wanted);
-            }
-            return;
-        }
-        NodeContent::Curve(curve) => {
-            // Curves have no surface; the projection only tells the
-            // overlays what to draw.
-            let wanted = ProjectedMesh {
-                source: std::sync::Arc::as_ptr(curve) as *const u8 as usize,
-                shading: Shading::Flat,
-                smooth: None,
-            };
-            if projected != Some(wanted) {
-                ec.remove::<(Mesh3d, MeshMaterial3d<StandardMaterial>)>();
-                ec.insert(wanted);
-            }
-            return;
-        }
-        NodeContent::Empty => {
-            if projected.is_some() {
-                ec.remove::<(Mesh3d, MeshMaterial3d<StandardMaterial>, ProjectedMesh)>();
-            }
-            return;
-        }
-    };
-    let modifier = active_modifier(content);
-    let wanted = ProjectedMesh {
-        source: std::sync::Arc::as_ptr(&content.mesh) as usize,
-        shading: content.shading,
-        smooth: modifier.map(|m| (m, creases_fingerprint(&content.creases))),
-    };
-    if projected == Some(wanted) {
+    if *seen_revision == Some(state.revision) && !previews.is_changed() && added.is_empty() {
         return;
     }
-    let smooth_source = modifier.map(|m| (m, content.shading));
-    let background = smooth_source.is_some_and(|(m, shading)| {
-        let src = SmoothSource {
-            node: node.id,
-            cage: &content.mesh,
-            creases: &content.creases,
-            modifier: &m,
-            shading,
-        };
-        let big = previews.needs_background(&src);
-        if big {
-            previews.start_background(&src, &node.name);
-        }
-        big
+    *seen_revision = Some(state.revision);
+    smooth.retain(|id| {
+        doc.node(id).is_some_and(|n| match &n.content {
+            NodeContent::Mesh(c) => active_modifier(c).is_some(),
+            _ => false,
+        })
     });
-    // While a large preview is made in the background, the cage shows.
-    let render = if background {
-        render_mesh(&content.mesh, content.shading)
-    } else {
-        content_render_mesh(node.id, content, &content.mesh, &content.creases, previews)
-            .unwrap_or_else(|(message, cage)| {
-                status.error(format!("'{}': subdivision not shown: {message}", node.name));
-                cage
-            })
+    let mut projector = Projector {
+        meshes: &mut meshes,
+        smooth: &mut smooth,
+        status: &mut status,
+        material: material.as_deref(),
     };
-    set_render_mesh(ec, mesh3d, meshes, render, material);
-    ec.insert(wanted);
+    for (entity, node_entity, projected, mesh3d, on_screen) in &mut nodes {
+        let Some(node) = doc.node(node_entity.0) else {
+            continue;
+        };
+        let mut ec = commands.entity(entity);
+        let wanted = ProjectedMesh::of(&node.content);
+        if projected.copied() != wanted {
+            match wanted {
+                Some(w) => ec.insert(w),
+                None => ec.remove::<ProjectedMesh>(),
+            };
+        }
+        let preview = previews.content(node.id);
+        match &node.content {
+            NodeContent::Mesh(content) => {
+                projector.mesh(&mut ec, node, content, preview, mesh3d, on_screen)
+            }
+            NodeContent::Surface(surface) => {
+                let shape = match preview {
+                    Some(PreviewContent::Surface(s)) => s,
+                    _ => surface,
+                };
+                projector.surface(&mut ec, shape, mesh3d, on_screen)
+            }
+            NodeContent::Curve(_) | NodeContent::Empty => {
+                if mesh3d.is_some() || on_screen.is_some() {
+                    ec.remove::<(Mesh3d, MeshMaterial3d<StandardMaterial>, OnScreen)>();
+                }
+            }
+        }
+    }
+}
+
+/// What [`project_render_meshes`] writes with.
+struct Projector<'a> {
+    meshes: &'a mut Assets<Mesh>,
+    smooth: &'a mut SmoothPreviews,
+    status: &'a mut StatusMessage,
+    material: Option<&'a MeshMaterial>,
+}
+
+impl Projector<'_> {
+    /// A mesh node: its cage, or its smooth preview when it has a
+    /// subdivision modifier, of the document's mesh or a tool's preview.
+    fn mesh(
+        &mut self,
+        ec: &mut EntityCommands,
+        node: &hedra_doc::Node,
+        content: &hedra_doc::MeshContent,
+        preview: Option<&PreviewContent>,
+        mesh3d: Option<&Mesh3d>,
+        on_screen: Option<&OnScreen>,
+    ) {
+        let (cage, creases, is_preview) = match preview {
+            Some(PreviewContent::Mesh { mesh, creases }) => {
+                (mesh, creases.as_ref().unwrap_or(&content.creases), true)
+            }
+            _ => (&content.mesh, &content.creases, false),
+        };
+        let modifier = active_modifier(content);
+        let wanted = OnScreen {
+            shape: ShownShape::Mesh(cage.clone()),
+            shading: content.shading,
+            smooth: modifier.map(|m| (m, creases_fingerprint(creases))),
+        };
+        let same_look = on_screen
+            .is_some_and(|o| o.shading == wanted.shading && o.smooth.map(|s| s.0) == modifier);
+        if same_look
+            && on_screen.is_some_and(|o| o.shows_mesh(cage) && o.smooth == wanted.smooth)
+        {
+            return;
+        }
+        let mut render = mesh3d.and_then(|h| self.meshes.get_mut(&h.0));
+        let patched = match (&modifier, render.as_deref_mut()) {
+            (Some(m), Some(r)) if same_look => self.smooth.update_positions(
+                r,
+                &SmoothSource {
+                    node: node.id,
+                    cage,
+                    creases,
+                    modifier: m,
+                    shading: content.shading,
+                },
+            ),
+            (None, Some(r)) if same_look => match on_screen.map(|o| &o.shape) {
+                Some(ShownShape::Mesh(old)) => {
+                    update_render_positions(r, old, cage, content.shading)
+                }
+                _ => false,
+            },
+            _ => false,
+        };
+        drop(render);
+        if !patched {
+            let built = match &modifier {
+                None => render_mesh(cage, content.shading),
+                Some(m) => {
+                    let src = SmoothSource {
+                        node: node.id,
+                        cage,
+                        creases,
+                        modifier: m,
+                        shading: content.shading,
+                    };
+                    if self.smooth.needs_background(&src) {
+                        // While a large preview is made in the background
+                        // the cage shows; a tool's preview is not refined
+                        // every frame (the result is, once committed).
+                        if !is_preview {
+                            self.smooth.start_background(&src, &node.name);
+                        }
+                        render_mesh(cage, content.shading)
+                    } else {
+                        self.smooth.render_mesh(&src).unwrap_or_else(|message| {
+                            self.status.error(format!(
+                                "'{}': subdivision not shown: {message}",
+                                node.name
+                            ));
+                            render_mesh(cage, content.shading)
+                        })
+                    }
+                }
+            };
+            set_render_mesh(ec, mesh3d, self.meshes, built, self.material);
+        }
+        ec.insert(wanted);
+    }
+
+    /// A surface node: its tessellation, patched over the knot spans of
+    /// the control points that changed when it can be.
+    fn surface(
+        &mut self,
+        ec: &mut EntityCommands,
+        shape: &Arc<SurfaceShape>,
+        mesh3d: Option<&Mesh3d>,
+        on_screen: Option<&OnScreen>,
+    ) {
+        let old = on_screen.and_then(|o| match &o.shape {
+            ShownShape::Surface(s, grid) => Some((s, grid)),
+            ShownShape::Mesh(_) => None,
+        });
+        if old.is_some_and(|(s, _)| Arc::ptr_eq(s, shape)) {
+            return;
+        }
+        let render = mesh3d.and_then(|h| self.meshes.get_mut(&h.0));
+        let patched = match (old, render, &**shape) {
+            (Some((old, Some(grid))), Some(mut r), SurfaceShape::Nurbs(new)) => match &**old {
+                SurfaceShape::Nurbs(old) => update_surface_render_mesh(&mut r, grid, old, new),
+                SurfaceShape::Triangle(_) => false,
+            },
+            _ => false,
+        };
+        let grid = if patched {
+            old.and_then(|(_, g)| g.clone())
+        } else {
+            set_render_mesh(ec, mesh3d, self.meshes, surface_render_mesh(shape), self.material);
+            match &**shape {
+                SurfaceShape::Nurbs(n) => Some(surface_grid(n)),
+                SurfaceShape::Triangle(_) => None,
+            }
+        };
+        ec.insert(OnScreen {
+            shape: ShownShape::Surface(shape.clone(), grid),
+            shading: Shading::Smooth,
+            smooth: None,
+        });
+    }
+}
+
+impl ProjectedMesh {
+    /// What the document content's render mesh and overlays are built
+    /// from; `None` for empties.
+    pub fn of(content: &NodeContent) -> Option<ProjectedMesh> {
+        match content {
+            NodeContent::Mesh(c) => {
+                let modifier = active_modifier(c);
+                Some(ProjectedMesh {
+                    source: Arc::as_ptr(&c.mesh) as usize,
+                    shading: c.shading,
+                    smooth: modifier.map(|m| (m, creases_fingerprint(&c.creases))),
+                })
+            }
+            NodeContent::Surface(s) => Some(ProjectedMesh {
+                source: Arc::as_ptr(s) as *const u8 as usize,
+                shading: Shading::Smooth,
+                smooth: None,
+            }),
+            NodeContent::Curve(c) => Some(ProjectedMesh {
+                source: Arc::as_ptr(c) as *const u8 as usize,
+                shading: Shading::Flat,
+                smooth: None,
+            }),
+            NodeContent::Empty => None,
+        }
+    }
 }
 
 /// Puts `render` on the entity's mesh asset (or a new one) with the material.

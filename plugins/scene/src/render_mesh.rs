@@ -99,34 +99,6 @@ pub fn update_surface_render_mesh(
     true
 }
 
-/// The render mesh of a mesh node showing `cage` (the document's mesh or a
-/// tool's preview of it) with `creases`: smooth when the node has a
-/// subdivision modifier, else the cage itself.
-///
-/// # Errors
-/// The subdivision's message together with the cage's render mesh, to show
-/// instead.
-pub fn content_render_mesh(
-    node: NodeId,
-    content: &hedra_doc::MeshContent,
-    cage: &std::sync::Arc<HalfEdgeMesh>,
-    creases: &hedra_geom::subdivision::Creases,
-    previews: &mut SmoothPreviews,
-) -> Result<Mesh, (String, Mesh)> {
-    let Some(modifier) = active_modifier(content) else {
-        return Ok(render_mesh(cage, content.shading));
-    };
-    previews
-        .render_mesh(&SmoothSource {
-            node,
-            cage,
-            creases,
-            modifier: &modifier,
-            shading: content.shading,
-        })
-        .map_err(|message| (message, render_mesh(cage, content.shading)))
-}
-
 /// A triangle render mesh of a half-edge mesh (the buffers of
 /// [`hedra_doc::render::render_buffers`]: flat shading gives each face its
 /// own corners, smooth shading shares them).

@@ -39,7 +39,7 @@ pub(crate) fn draw_curve_analysis(
     analysis: Res<CurveAnalysis>,
     selection: Res<Selection>,
     state: Res<DocState>,
-    edit: Res<hedra_edit::ShapeEdit>,
+    previews: Res<hedra_scene::Previews>,
     mut gizmos: Gizmos<AxisGizmos>,
 ) {
     use hedra_geom::curves::Curve;
@@ -49,8 +49,7 @@ pub(crate) fn draw_curve_analysis(
     }
     let Some(id) = selection.active() else { return };
     let doc = &state.session.doc;
-    let preview = edit.preview.as_ref().filter(|_| edit.node == Some(id));
-    let Some(NodeContent::Curve(c)) = preview.or_else(|| doc.node(id).map(|n| &n.content)) else {
+    let Some(NodeContent::Curve(c)) = &crate::overlays::shown_shape(&previews, doc, id) else {
         return;
     };
     let world = doc.world_matrix(id);

@@ -1,67 +1,295 @@
-//! The transform gizmo on the active object and the command its drag becomes.
+//! The transform gizmo: on the active object in object mode, on the
+//! selected mesh elements in edit mode and on the selected control points
+//! in control-point mode (Blender shows it in all three).
+//!
+//! Bevy's gizmo drives a proxy entity ([`GizmoProxy`]), never a node:
+//! [`place_gizmo_proxy`] puts the proxy on what the gizmo acts on while no
+//! drag runs, Bevy's `transform_gizmo_drag` moves it during a drag, and
+//! [`drive_gizmo_drag`] turns the proxy's change into a preview
+//! ([`PreviewSource::Gizmo`]) and, when the button is let go, into one
+//! command applied to the exact f64 values. Esc or a right click during a
+//! drag puts everything back.
 
 use crate::*;
+use glam::DMat4;
+use hedra_doc::{Command, NodeId};
+use hedra_edit::ShapeEdit;
+use hedra_scene::{PreviewContent, PreviewSource, Previews, ToolPreview};
 
-/// The transform gizmo follows the active object.
-pub(crate) fn focus_gizmo_on_active(
-    mut commands: Commands,
-    selection: Res<Selection>,
-    entities: Res<NodeEntities>,
-    focused: Query<Entity, With<TransformGizmoFocus>>,
-    gizmo_state: Res<TransformGizmoState>,
-    mode: Res<EditMode>,
-    shape_edit: Res<hedra_edit::ShapeEdit>,
-) {
-    if gizmo_state.active {
-        return;
+/// The entity the transform gizmo moves: a stand-in for the active object
+/// or the selected elements.
+#[derive(Component, Debug, Default)]
+pub struct GizmoProxy;
+
+/// What a gizmo drag acts on, as it was when the drag started.
+#[derive(Clone, Debug, PartialEq)]
+pub enum GizmoTarget {
+    /// An object: its exact world transform and its parent's world matrix.
+    Object {
+        node: NodeId,
+        world: DocTransform,
+        parent_world: DMat4,
+    },
+    /// Selected mesh vertices (`mesh: true`) or control points, by index,
+    /// at their local positions, and the node's world matrix.
+    Points {
+        node: NodeId,
+        mesh: bool,
+        world: DMat4,
+        points: Vec<(u32, DVec3)>,
+    },
+}
+
+impl GizmoTarget {
+    /// What the gizmo acts on now: the selected mesh elements in edit mode,
+    /// the selected control points in control-point mode, else the active
+    /// object; `None` when nothing is selected.
+    pub fn of_selection(
+        doc: &hedra_doc::Document,
+        selection: &Selection,
+        mode: &EditMode,
+        shape_edit: &ShapeEdit,
+    ) -> Option<GizmoTarget> {
+        if let Some(node) = mode.node {
+            let mesh = hedra_edit::mesh_mode::edited_mesh_of(doc, node)?;
+            let points: Vec<(u32, DVec3)> = mode
+                .selection
+                .all_vertices(&mesh)
+                .into_iter()
+                .map(|v| (v.0, mesh.position(v)))
+                .collect();
+            return (!points.is_empty()).then(|| GizmoTarget::Points {
+                node,
+                mesh: true,
+                world: doc.world_matrix(node),
+                points,
+            });
+        }
+        if let Some(node) = shape_edit.node {
+            let all = hedra_edit::shape_mode::control_points(&doc.node(node)?.content);
+            let points: Vec<(u32, DVec3)> = shape_edit
+                .selected
+                .iter()
+                .filter_map(|&i| all.get(i as usize).map(|p| (i, *p)))
+                .collect();
+            return (!points.is_empty()).then(|| GizmoTarget::Points {
+                node,
+                mesh: false,
+                world: doc.world_matrix(node),
+                points,
+            });
+        }
+        let node = doc.node(selection.active()?)?;
+        let parent_world = node.parent.map_or(DMat4::IDENTITY, |p| doc.world_matrix(p));
+        let world = if node.parent.is_some() {
+            DocTransform::from_matrix(parent_world * node.transform.to_matrix())
+        } else {
+            node.transform
+        };
+        Some(GizmoTarget::Object {
+            node: node.id,
+            world,
+            parent_world,
+        })
     }
-    // No object gizmo in edit mode.
-    let wanted = if mode.active() || shape_edit.active() {
-        None
-    } else {
-        selection
-            .active()
-            .and_then(|id| entities.0.get(&id).copied())
-    };
-    for e in &focused {
-        if Some(e) != wanted {
-            commands.entity(e).remove::<TransformGizmoFocus>();
+
+    /// Where the proxy sits: the object's world transform, or the centre of
+    /// the points with the world's axes.
+    pub fn proxy_transform(&self) -> Transform {
+        match self {
+            GizmoTarget::Object { world, .. } => hedra_scene::bevy_transform(world),
+            GizmoTarget::Points { world, points, .. } => {
+                let centre = points
+                    .iter()
+                    .map(|(_, p)| world.transform_point3(*p))
+                    .sum::<DVec3>()
+                    / points.len() as f64;
+                Transform::from_translation(centre.as_vec3())
+            }
         }
     }
-    if let Some(e) = wanted {
-        if !focused.contains(e) {
-            commands.entity(e).try_insert(TransformGizmoFocus);
+
+    /// The command that leaves the target where the proxy moved from
+    /// `start` to `now`; `None` when the drag changed nothing.
+    pub fn command(&self, start: &Transform, now: &Transform) -> Option<Command> {
+        if start == now {
+            return None;
+        }
+        match self {
+            GizmoTarget::Object {
+                node,
+                world,
+                parent_world,
+            } => {
+                let new_world = dragged_transform(world, now);
+                let local = if *parent_world == DMat4::IDENTITY {
+                    new_world
+                } else {
+                    DocTransform::from_matrix(parent_world.inverse() * new_world.to_matrix())
+                };
+                Some(Command::SetTransforms {
+                    nodes: vec![((*node).into(), local)],
+                })
+            }
+            GizmoTarget::Points {
+                node,
+                mesh,
+                world,
+                points,
+            } => {
+                // The proxy's change as a world-space matrix, carried into
+                // the node's local space.
+                let affine = |t: &Transform| t.to_matrix().as_dmat4();
+                let change = affine(now) * affine(start).inverse();
+                let local = world.inverse() * change * *world;
+                let moved: Vec<(u32, DVec3)> = points
+                    .iter()
+                    .map(|(i, p)| (*i, local.transform_point3(*p)))
+                    .collect();
+                let node = (*node).into();
+                Some(if *mesh {
+                    Command::SetVertexPositions {
+                        node,
+                        positions: moved,
+                    }
+                } else {
+                    Command::SetControlPoints {
+                        node,
+                        points: moved,
+                    }
+                })
+            }
+        }
+    }
+
+    fn node(&self) -> NodeId {
+        match self {
+            GizmoTarget::Object { node, .. } | GizmoTarget::Points { node, .. } => *node,
         }
     }
 }
 
-/// When a gizmo drag ends, the entity's new transform becomes one document step.
-pub(crate) fn commit_gizmo_drag(
+pub(crate) fn spawn_gizmo_proxy(mut commands: Commands) {
+    commands.spawn((GizmoProxy, Name::new("Gizmo proxy"), Transform::default()));
+}
+
+/// Puts the proxy (and the gizmo with it) on what the gizmo acts on, or
+/// takes the gizmo away when nothing is selected or a modal tool runs.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn place_gizmo_proxy(
+    mut commands: Commands,
     gizmo_state: Res<TransformGizmoState>,
-    mut was_active: Local<Option<Entity>>,
-    nodes: Query<(&NodeEntity, &Transform)>,
     state: Res<DocState>,
-    mut requests: MessageWriter<DocRequest>,
+    selection: Res<Selection>,
+    mode: Res<EditMode>,
+    shape_edit: Res<ShapeEdit>,
+    tool: Res<TransformTool>,
+    mut proxy: Single<(Entity, &mut Transform, Has<TransformGizmoFocus>), With<GizmoProxy>>,
 ) {
     if gizmo_state.active {
-        *was_active = gizmo_state.entity;
         return;
     }
-    let Some(entity) = was_active.take() else {
-        return;
-    };
-    let Ok((node, t)) = nodes.get(entity) else {
-        return;
-    };
-    let Some(doc_node) = state.session.doc.node(node.0) else {
-        return;
-    };
-    let new = dragged_transform(&doc_node.transform, t);
-    if new != doc_node.transform {
-        requests.write(DocRequest::Execute(hedra_doc::Command::SetTransforms {
-            nodes: vec![(NodeRef::from(node.0), new)],
-        }));
+    let modal_running = tool.active.is_some() || mode.tool.is_some() || shape_edit.tool.is_some();
+    let target = (!modal_running)
+        .then(|| GizmoTarget::of_selection(&state.session.doc, &selection, &mode, &shape_edit))
+        .flatten();
+    let (entity, transform, focused) = &mut *proxy;
+    match target {
+        Some(t) => {
+            let wanted = t.proxy_transform();
+            if **transform != wanted {
+                **transform = wanted;
+            }
+            if !*focused {
+                commands.entity(*entity).insert(TransformGizmoFocus);
+            }
+        }
+        None if *focused => {
+            commands.entity(*entity).remove::<TransformGizmoFocus>();
+        }
+        None => {}
     }
+}
+
+/// A running gizmo drag: what it acts on and where the proxy started.
+#[derive(Debug, Default)]
+pub(crate) struct GizmoDrag {
+    target: Option<GizmoTarget>,
+    start: Transform,
+    cancelled: bool,
+}
+
+/// During a gizmo drag, shows the change as a preview; when the button is
+/// let go, sends it as one command (one undo step). Esc or a right click
+/// drops the drag's change. Runs before the document is applied, so the
+/// release frame already shows the result.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn drive_gizmo_drag(
+    gizmo_state: Res<TransformGizmoState>,
+    keys: Res<ButtonInput<KeyCode>>,
+    buttons: Res<ButtonInput<MouseButton>>,
+    state: Res<DocState>,
+    selection: Res<Selection>,
+    mode: Res<EditMode>,
+    shape_edit: Res<ShapeEdit>,
+    proxy: Single<&Transform, With<GizmoProxy>>,
+    mut drag: Local<GizmoDrag>,
+    mut previews: ResMut<Previews>,
+    mut requests: MessageWriter<DocRequest>,
+    mut status: ResMut<hedra_scene::StatusMessage>,
+) {
+    let doc = &state.session.doc;
+    if gizmo_state.active {
+        if drag.target.is_none() && !drag.cancelled {
+            drag.target = GizmoTarget::of_selection(doc, &selection, &mode, &shape_edit);
+            drag.start = gizmo_state.start_transform;
+        }
+        let modal_keys = hedra_edit::modal::ModalKeys {
+            keys: &keys,
+            buttons: &buttons,
+        };
+        if modal_keys.cancel() && drag.target.is_some() {
+            drag.target = None;
+            drag.cancelled = true;
+            status.info("Gizmo drag cancelled");
+        }
+        let preview = drag
+            .target
+            .as_ref()
+            .and_then(|t| Some((t, t.command(&drag.start, &proxy)?)))
+            .and_then(|(t, cmd)| preview_of(doc, t.node(), &cmd));
+        match preview {
+            Some(p) => Previews::show(&mut previews, PreviewSource::Gizmo, p),
+            None => Previews::clear(&mut previews, PreviewSource::Gizmo),
+        }
+        return;
+    }
+    drag.cancelled = false;
+    Previews::clear(&mut previews, PreviewSource::Gizmo);
+    let Some(target) = drag.target.take() else {
+        return;
+    };
+    if let Some(cmd) = target.command(&drag.start, &proxy) {
+        requests.write(DocRequest::Execute(cmd));
+    }
+}
+
+/// What a gizmo command would show: the node's new transform or content.
+fn preview_of(doc: &hedra_doc::Document, node: NodeId, cmd: &Command) -> Option<ToolPreview> {
+    let after = doc.decide(cmd, 0).ok()?;
+    let after = after.changes.iter().find(|c| c.id == node)?.after.clone()?;
+    let mut preview = ToolPreview::default();
+    match cmd {
+        Command::SetTransforms { .. } => {
+            preview.transforms.insert(node, after.transform);
+        }
+        _ => {
+            preview
+                .contents
+                .insert(node, PreviewContent::of_shape(&after.content)?);
+        }
+    }
+    Some(preview)
 }
 
 /// The document transform after a gizmo drag left the entity at `dragged`

@@ -1,6 +1,7 @@
 //! The 3D viewport: orbit camera (`camera`), ground grid and axes (`grid`),
 //! edge overlays with the selection highlighted and the edit-mode overlay
-//! (`overlays`), the transform gizmo on the active object (`gizmo`), and
+//! (`overlays`), the transform gizmo on the active object, the selected
+//! mesh elements or control points (`gizmo`), and
 //! curve and surface analysis (`analysis`). The systems here draw what the
 //! document and the tools left; they run after `SceneSystems::Sync`.
 
@@ -8,11 +9,11 @@ use bevy::core_pipeline::tonemapping::Tonemapping;
 use bevy::input::mouse::{AccumulatedMouseMotion, AccumulatedMouseScroll, MouseScrollUnit};
 use bevy::prelude::*;
 use glam::DVec3;
-use hedra_doc::{NodeContent, NodeRef, Transform as DocTransform};
+use hedra_doc::{NodeContent, Transform as DocTransform};
 use hedra_edit::{EditMode, ElementKind, Selection, TransformTool};
 use hedra_scene::modifiers;
 use hedra_scene::{
-    DocRequest, DocState, InputGate, NodeEntities, NodeEntity, ProjectedMesh, SceneSystems,
+    DocRequest, DocState, InputGate, NodeEntity, ProjectedMesh, SceneSystems,
     ViewportCamera,
 };
 use std::f32::consts::FRAC_PI_2;
@@ -53,7 +54,14 @@ impl Plugin for ViewportPlugin {
                     ..default()
                 },
             )
-            .add_systems(Startup, spawn_camera)
+            .add_systems(Startup, (spawn_camera, spawn_gizmo_proxy))
+            // The gizmo's drag is a tool: its command is applied this frame.
+            .add_systems(
+                Update,
+                drive_gizmo_drag
+                    .after(hedra_edit::EditSystems)
+                    .before(SceneSystems::Apply),
+            )
             .add_systems(PostStartup, overlay_cameras_keep_the_picture)
             .add_systems(
                 Update,
@@ -65,8 +73,7 @@ impl Plugin for ViewportPlugin {
                 Update,
                 (
                     update_edge_overlays,
-                    focus_gizmo_on_active,
-                    commit_gizmo_drag,
+                    place_gizmo_proxy,
                     update_edit_edges,
                     draw_edit_overlay,
                     draw_shape_edit,

@@ -1,6 +1,39 @@
 //! Edge overlays of meshes (selection highlighted), curves, control nets and the edit-mode overlay.
 
 use crate::*;
+use hedra_doc::{Document, NodeId};
+use hedra_geom::HalfEdgeMesh;
+use hedra_geom::subdivision::Creases;
+use hedra_scene::{PreviewContent, Previews};
+use std::sync::Arc;
+
+/// A mesh node's mesh and creases as the screen shows them: a running
+/// tool's or the gizmo's preview, else the document's.
+pub(crate) fn shown_mesh<'a>(
+    previews: &'a Previews,
+    doc: &'a Document,
+    node: NodeId,
+) -> Option<(&'a Arc<HalfEdgeMesh>, &'a Creases)> {
+    let NodeContent::Mesh(c) = &doc.node(node)?.content else {
+        return None;
+    };
+    Some(match previews.content(node) {
+        Some(PreviewContent::Mesh { mesh, creases }) => {
+            (mesh, creases.as_ref().unwrap_or(&c.creases))
+        }
+        _ => (&c.mesh, &c.creases),
+    })
+}
+
+/// A curve or surface node's content as the screen shows it (a preview, or
+/// the document's).
+pub(crate) fn shown_shape(previews: &Previews, doc: &Document, node: NodeId) -> Option<NodeContent> {
+    match previews.content(node) {
+        Some(PreviewContent::Curve(c)) => Some(NodeContent::Curve(c.clone())),
+        Some(PreviewContent::Surface(s)) => Some(NodeContent::Surface(s.clone())),
+        _ => doc.node(node).map(|n| n.content.clone()),
+    }
+}
 
 /// Overlay child entity showing a mesh node's edges, and what it was built for.
 #[derive(Component, Debug, Clone, Copy, PartialEq, Eq)]
@@ -199,18 +232,17 @@ pub(crate) fn update_edit_edges(
     mut commands: Commands,
     mode: Res<EditMode>,
     state: Res<DocState>,
+    previews: Res<Previews>,
     mut assets: ResMut<Assets<GizmoAsset>>,
     mut overlay: Local<Option<(Entity, Handle<GizmoAsset>)>>,
     mut built: Local<Option<u64>>,
     mut transforms: Query<&mut Transform, With<EditEdges>>,
 ) {
     use std::hash::{Hash, Hasher};
-    let mesh = mode.node.and(
-        mode.preview
-            .clone()
-            .or_else(|| hedra_edit::mesh_mode::edited_mesh(&state, &mode)),
-    );
-    let key = mesh.as_ref().map(|m| {
+    let shown = mode
+        .node
+        .and_then(|n| shown_mesh(&previews, &state.session.doc, n));
+    let key = shown.map(|(m, creases)| {
         let mut h = std::collections::hash_map::DefaultHasher::new();
         (
             mode.node,
@@ -218,9 +250,7 @@ pub(crate) fn update_edit_edges(
             &mode.selection,
             mode.kind as u8,
             state.revision,
-            mode.preview_creases
-                .as_ref()
-                .map(hedra_scene::creases_fingerprint),
+            hedra_scene::creases_fingerprint(creases),
         )
             .hash(&mut h);
         h.finish()
@@ -259,14 +289,8 @@ pub(crate) fn update_edit_edges(
         (e, handle)
     });
     let mut asset = GizmoAsset::new();
-    if let (Some(node), Some(mesh)) = (mode.node, mesh) {
-        let creases = mode.preview_creases.clone().or_else(|| {
-            match state.session.doc.node(node).map(|n| &n.content) {
-                Some(NodeContent::Mesh(c)) => Some(c.creases.clone()),
-                _ => None,
-            }
-        });
-        draw_edit_edges(&mut asset, &mesh, &mode, &creases.unwrap_or_default());
+    if let Some((mesh, creases)) = shown {
+        draw_edit_edges(&mut asset, mesh, &mode, creases);
     }
     if let Some(mut a) = assets.get_mut(handle.id()) {
         *a = asset;
@@ -331,16 +355,13 @@ pub(crate) fn draw_edit_edges(
 pub(crate) fn draw_shape_edit(
     edit: Res<hedra_edit::ShapeEdit>,
     state: Res<DocState>,
+    previews: Res<Previews>,
     camera: Single<&GlobalTransform, With<ViewportCamera>>,
     mut gizmos: Gizmos<AxisGizmos>,
 ) {
     use hedra_edit::shape_mode::{control_points, control_weights};
     let Some(node) = edit.node else { return };
-    let Some(content) = edit
-        .preview
-        .clone()
-        .or_else(|| state.session.doc.node(node).map(|n| n.content.clone()))
-    else {
+    let Some(content) = shown_shape(&previews, &state.session.doc, node) else {
         return;
     };
     let world = state.session.doc.world_matrix(node);
@@ -384,15 +405,12 @@ pub(crate) fn draw_shape_edit(
 pub(crate) fn draw_edit_overlay(
     mode: Res<EditMode>,
     state: Res<DocState>,
+    previews: Res<Previews>,
     camera: Single<&GlobalTransform, With<ViewportCamera>>,
     mut gizmos: Gizmos<AxisGizmos>,
 ) {
     let Some(node) = mode.node else { return };
-    let Some(mesh) = mode
-        .preview
-        .clone()
-        .or_else(|| hedra_edit::mesh_mode::edited_mesh(&state, &mode))
-    else {
+    let Some((mesh, _)) = shown_mesh(&previews, &state.session.doc, node) else {
         return;
     };
     let world = state.session.doc.world_matrix(node);

@@ -9,6 +9,7 @@
 use crate::modal::Axis;
 use crate::{Selection, TransformTool, cursor_ray};
 use bevy::prelude::*;
+use bevy::gizmos::transform_gizmo::TransformGizmoState;
 use bevy::window::PrimaryWindow;
 use glam::{DMat4, DVec3};
 use hedra_doc::{Command, EdgeSet, FaceSet, NodeContent, NodeId, NodeRef, VertexSet};
@@ -16,7 +17,7 @@ use hedra_geom::subdivision::Creases;
 use hedra_geom::{EdgeId, FaceId, HalfEdgeMesh, VertexId};
 use hedra_scene::modifiers::{alt, ctrl, shift};
 use hedra_scene::{
-    DocChanged, DocRequest, DocState, InputGate, NodeEntities, StatusMessage, ViewportCamera,
+    DocChanged, DocRequest, DocState, InputGate, StatusMessage, ViewportCamera,
 };
 use std::collections::BTreeSet;
 use std::sync::Arc;
@@ -201,8 +202,12 @@ impl EditMode {
 
 /// The mesh being edited, as the document has it.
 pub fn edited_mesh(state: &DocState, mode: &EditMode) -> Option<Arc<HalfEdgeMesh>> {
-    let node = state.session.doc.node(mode.node?)?;
-    match &node.content {
+    edited_mesh_of(&state.session.doc, mode.node?)
+}
+
+/// The half-edge mesh of a mesh node (shared, not copied).
+pub fn edited_mesh_of(doc: &hedra_doc::Document, node: NodeId) -> Option<Arc<HalfEdgeMesh>> {
+    match &doc.node(node)?.content {
         NodeContent::Mesh(m) => Some(m.mesh.clone()),
         _ => None,
     }

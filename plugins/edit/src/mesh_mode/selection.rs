@@ -34,6 +34,7 @@ pub fn select_elements(
     mut press: Local<Option<Press>>,
     mut b_box: Local<Option<Vec2>>,
     mut status: ResMut<StatusMessage>,
+    gizmo: Option<Res<TransformGizmoState>>,
 ) {
     if !mode.active() || mode.tool.is_some() {
         *press = None;
@@ -82,7 +83,11 @@ pub fn select_elements(
         });
         return;
     }
-    if buttons.just_pressed(MouseButton::Left) && gate.pointer_free && !mode.just_finished {
+    if buttons.just_pressed(MouseButton::Left)
+        && gate.pointer_free
+        && !mode.just_finished
+        && !crate::gizmo_has_pointer(gizmo.as_deref())
+    {
         if let Some(c) = cursor {
             *press = Some(Press {
                 start: c,

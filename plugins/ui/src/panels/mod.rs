@@ -16,7 +16,7 @@ use hedra_doc::{
 };
 use hedra_edit::{EditMode, ElementKind, Selection, TransformTool};
 use hedra_geom::Primitive;
-use hedra_scene::{DocRequest, DocState, InputGate, NodeEntities, StatusMessage};
+use hedra_scene::{DocRequest, DocState, InputGate, StatusMessage};
 
 mod dialogs;
 mod inspector;
@@ -63,7 +63,6 @@ pub struct Model<'w> {
     status: ResMut<'w, StatusMessage>,
     prefs: Res<'w, Preferences>,
     samples: Option<Res<'w, SamplesDir>>,
-    entities: Res<'w, NodeEntities>,
     mode: ResMut<'w, EditMode>,
     previews: Res<'w, hedra_scene::SmoothPreviews>,
     shape_edit: Res<'w, hedra_edit::ShapeEdit>,
@@ -76,7 +75,7 @@ pub fn draw_ui(
     mut model: Model,
     mut writers: Writers,
     mut gate: ResMut<InputGate>,
-    mut transforms: Query<&mut Transform>,
+    mut tool_previews: ResMut<hedra_scene::Previews>,
     window: Single<&Window, With<bevy::window::PrimaryWindow>>,
     camera: Query<(&Camera, &GlobalTransform), With<hedra_scene::ViewportCamera>>,
 ) -> Result {
@@ -183,17 +182,19 @@ pub fn draw_ui(
                 writers.files.write(f);
             }
             UiEvent::Error(e) => model.status.error(e),
-            UiEvent::Preview(id, t) => {
-                if let Some(mut et) = model
-                    .entities
-                    .0
-                    .get(&id)
-                    .and_then(|e| transforms.get_mut(*e).ok())
-                {
-                    *et = hedra_edit::modal::to_bevy(&t);
-                }
-            }
+            UiEvent::Preview(id, t) => hedra_scene::Previews::show(
+                &mut tool_previews,
+                hedra_scene::PreviewSource::Properties,
+                hedra_scene::ToolPreview {
+                    transforms: [(id, t)].into(),
+                    ..default()
+                },
+            ),
         }
+    }
+    // A field let go: its command (sent above) replaces the preview.
+    if ui_state.transform_edit.is_none() {
+        hedra_scene::Previews::clear(&mut tool_previews, hedra_scene::PreviewSource::Properties);
     }
     Ok(())
 }

@@ -1,0 +1,151 @@
+//! What running tools show in place of the document, as data.
+//!
+//! A tool does not write node transforms or render meshes: it puts what it
+//! would change into its own [`PreviewSource`] slot of [`Previews`], and the
+//! projection ([`crate::project_transforms`], [`crate::project_render_meshes`])
+//! draws the document with the previews over it. When the tool ends it
+//! clears its slot; a confirmed tool's command reaches the document in the
+//! same frame, so the projection goes from the preview straight to the
+//! result.
+
+use crate::*;
+use hedra_doc::Transform as DocTransform;
+use hedra_doc::SurfaceShape;
+use hedra_geom::curves::NurbsCurve;
+use hedra_geom::subdivision::Creases;
+use std::collections::BTreeMap;
+use std::sync::Arc;
+
+/// The tools that show previews, one slot each.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum PreviewSource {
+    /// G / R / S on objects.
+    TransformTool,
+    /// A mesh tool in edit mode (move, extrude, bevel, …).
+    MeshTool,
+    /// A control-point tool on a curve or surface (move, weight).
+    ShapeTool,
+    /// A transform field being dragged in the Properties panel.
+    Properties,
+    /// The transform gizmo being dragged.
+    Gizmo,
+}
+
+/// A node's shape as a tool would leave it. Shared with the tool (`Arc`),
+/// never copied, and compared by identity.
+#[derive(Clone, Debug)]
+pub enum PreviewContent {
+    /// A mesh tool's result; `creases` replace the document's when given.
+    Mesh {
+        mesh: Arc<HalfEdgeMesh>,
+        creases: Option<Creases>,
+    },
+    Curve(Arc<NurbsCurve>),
+    Surface(Arc<SurfaceShape>),
+}
+
+impl PreviewContent {
+    /// The curve or surface of a control-point tool's preview content.
+    pub fn of_shape(content: &NodeContent) -> Option<PreviewContent> {
+        match content {
+            NodeContent::Curve(c) => Some(PreviewContent::Curve(c.clone())),
+            NodeContent::Surface(s) => Some(PreviewContent::Surface(s.clone())),
+            NodeContent::Mesh(m) => Some(PreviewContent::Mesh {
+                mesh: m.mesh.clone(),
+                creases: Some(m.creases.clone()),
+            }),
+            NodeContent::Empty => None,
+        }
+    }
+
+    fn same(&self, other: &PreviewContent) -> bool {
+        match (self, other) {
+            (
+                PreviewContent::Mesh { mesh, creases },
+                PreviewContent::Mesh {
+                    mesh: m2,
+                    creases: c2,
+                },
+            ) => Arc::ptr_eq(mesh, m2) && creases == c2,
+            (PreviewContent::Curve(a), PreviewContent::Curve(b)) => Arc::ptr_eq(a, b),
+            (PreviewContent::Surface(a), PreviewContent::Surface(b)) => Arc::ptr_eq(a, b),
+            _ => false,
+        }
+    }
+}
+
+/// What one tool shows: node transforms and node contents that replace the
+/// document's on screen.
+#[derive(Clone, Debug, Default)]
+pub struct ToolPreview {
+    pub transforms: HashMap<NodeId, DocTransform>,
+    pub contents: HashMap<NodeId, PreviewContent>,
+}
+
+impl ToolPreview {
+    pub fn is_empty(&self) -> bool {
+        self.transforms.is_empty() && self.contents.is_empty()
+    }
+
+    /// The same transforms and the same contents (by identity).
+    fn same(&self, other: &ToolPreview) -> bool {
+        self.transforms == other.transforms
+            && self.contents.len() == other.contents.len()
+            && self
+                .contents
+                .iter()
+                .all(|(id, c)| other.contents.get(id).is_some_and(|o| o.same(c)))
+    }
+}
+
+/// The previews of the running tools, by tool. Written by the tools (each
+/// its own slot), read by the projection.
+#[derive(Resource, Debug, Default)]
+pub struct Previews {
+    slots: BTreeMap<PreviewSource, ToolPreview>,
+}
+
+impl Previews {
+    /// What `source` shows now.
+    pub fn slot(&self, source: PreviewSource) -> Option<&ToolPreview> {
+        self.slots.get(&source)
+    }
+
+    /// The transform shown for `node` instead of the document's, if a tool
+    /// previews one (the later slot wins; only one tool runs at a time).
+    pub fn transform(&self, node: NodeId) -> Option<&DocTransform> {
+        self.slots.values().rev().find_map(|s| s.transforms.get(&node))
+    }
+
+    /// The content shown for `node` instead of the document's.
+    pub fn content(&self, node: NodeId) -> Option<&PreviewContent> {
+        self.slots.values().rev().find_map(|s| s.contents.get(&node))
+    }
+
+    /// Shows `preview` for `source`. Marks the resource changed only when
+    /// the preview differs, so the projection does nothing while a tool
+    /// holds still.
+    pub fn show(this: &mut ResMut<Self>, source: PreviewSource, preview: ToolPreview) {
+        if preview.is_empty() {
+            return Self::clear(this, source);
+        }
+        if !this.slots.get(&source).is_some_and(|s| s.same(&preview)) {
+            this.slots.insert(source, preview);
+        }
+    }
+
+    /// Ends the preview of `source` (changing nothing when it shows none).
+    pub fn clear(this: &mut ResMut<Self>, source: PreviewSource) {
+        if this.slots.contains_key(&source) {
+            this.slots.remove(&source);
+        }
+    }
+
+    /// Nodes that any tool previews, transform or content.
+    pub fn nodes(&self) -> impl Iterator<Item = NodeId> + '_ {
+        self.slots
+            .values()
+            .flat_map(|s| s.transforms.keys().chain(s.contents.keys()))
+            .copied()
+    }
+}
