@@ -6,6 +6,7 @@
 mod gizmo;
 mod modeling;
 mod user;
+mod writers;
 
 use bevy::prelude::*;
 use user::{HOLD, User};
