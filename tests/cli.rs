@@ -12,7 +12,7 @@ fn hedra(args: &[&str]) -> Output {
 }
 
 fn script(name: &str) -> String {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
+    std::path::PathBuf::from(std::env::var_os("CARGO_MANIFEST_DIR").expect("set by cargo test"))
         .join("tests/scripts")
         .join(name)
         .display()

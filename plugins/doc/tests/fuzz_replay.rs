@@ -15,7 +15,7 @@ use hedra_geom::Primitive;
 use std::path::{Path, PathBuf};
 
 fn fuzz_dir() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("fuzz")
+    std::path::PathBuf::from(std::env::var_os("CARGO_MANIFEST_DIR").expect("set by cargo test")).join("fuzz")
 }
 
 /// Runs `body` over every file of `corpus/<target>` and

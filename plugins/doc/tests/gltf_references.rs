@@ -6,10 +6,10 @@
 use hedra_doc::fuzz::reference_sandbox;
 use hedra_doc::gltf::gltf_from_bytes;
 use hedra_doc::import::import_file;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 fn corpus() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("fuzz/corpus/gltf")
+    std::path::PathBuf::from(std::env::var_os("CARGO_MANIFEST_DIR").expect("set by cargo test")).join("fuzz/corpus/gltf")
 }
 
 /// The `uri` of buffer 0 of a glTF JSON file.

@@ -6,7 +6,7 @@ use std::path::Path;
 
 fn sample_text() -> String {
     std::fs::read_to_string(
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets/samples/table.hedra.ron"),
+        std::path::PathBuf::from(std::env::var_os("CARGO_MANIFEST_DIR").expect("set by cargo test")).join("../../assets/samples/table.hedra.ron"),
     )
     .unwrap()
 }
