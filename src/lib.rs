@@ -170,11 +170,13 @@ fn start_in_edit_mode(
     ResMut<hedra_edit::EditMode>,
     ResMut<hedra_edit::ShapeEdit>,
     ResMut<hedra_scene::StatusMessage>,
+    Res<hedra_scene::FileJobs>,
 ) {
     let mut done = false;
     let mut frames = 0;
-    move |state, mut selection, mut mode, mut shape_edit, mut status| {
-        if done {
+    move |state, mut selection, mut mode, mut shape_edit, mut status, jobs| {
+        // The file opens on a worker thread: wait for it.
+        if done || jobs.busy() {
             return;
         }
         frames += 1;
@@ -223,7 +225,12 @@ fn take_screenshot(
     mut commands: Commands,
     mut plan: ResMut<ScreenshotPlan>,
     mut exit: MessageWriter<AppExit>,
+    jobs: Res<hedra_scene::FileJobs>,
 ) {
+    // Frames count once the file has opened (on a worker thread).
+    if jobs.busy() && !plan.requested {
+        return;
+    }
     plan.frame += 1;
     if plan.done {
         exit.write(AppExit::Success);

@@ -9,7 +9,20 @@ use hedra_scene::{DocRequest, DocState, NodeEntities, NodeEntity, ProjectedMesh,
 fn send(app: &mut App, r: DocRequest) {
     app.world_mut().write_message(r);
     app.update();
+    wait_for_files(app);
     app.update(); // commands from the sync system are applied
+}
+
+/// Frames go on while a file is opened or saved on its worker thread.
+fn wait_for_files(app: &mut App) {
+    for _ in 0..5000 {
+        if !app.world().resource::<hedra_scene::FileJobs>().busy() {
+            return;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(1));
+        app.update();
+    }
+    panic!("the file job did not finish");
 }
 
 fn node_entities(app: &mut App) -> Vec<(Entity, String)> {
@@ -489,13 +502,26 @@ fn curves_and_surfaces_get_render_meshes_and_can_be_picked() {
     let ents = node_entities(&mut app);
     let (ball, ring) = (ents[0].0, ents[1].0);
     let positions = |app: &mut App| {
-        let h = app.world().get::<Mesh3d>(ball).unwrap().0.clone();
-        let m = app.world().resource::<Assets<Mesh>>().get(&h).unwrap();
-        match m.attribute(Mesh::ATTRIBUTE_POSITION) {
-            Some(bevy::mesh::VertexAttributeValues::Float32x3(p)) => p.clone(),
-            _ => panic!("positions"),
-        }
+        patch_meshes(app, ball)
+            .into_iter()
+            .flat_map(|(_, p)| p)
+            .collect::<Vec<_>>()
     };
+    assert!(
+        app.world().get::<Mesh3d>(ball).is_none(),
+        "a surface is drawn by its patches"
+    );
+    let points = control_point_entities(&mut app, ball);
+    let doc_points = {
+        let doc = &app.world().resource::<DocState>().session.doc;
+        hedra_scene::control_points(&doc.find_by_name("Ball").unwrap().content)
+    };
+    assert_eq!(
+        points.iter().map(|p| p.position).collect::<Vec<_>>(),
+        doc_points,
+        "one entity per control point, in order"
+    );
+    assert!(points.iter().enumerate().all(|(i, p)| p.index == i as u32));
     let before = positions(&mut app);
     assert!(
         before.len() > 100,
@@ -541,64 +567,265 @@ fn curves_and_surfaces_get_render_meshes_and_can_be_picked() {
     assert!((dist - 4.0).abs() < 0.05, "{dist}");
 }
 
+/// The patch entities of a surface node: each patch's mesh handle and positions.
+fn patch_meshes(app: &mut App, node: Entity) -> Vec<(Handle<Mesh>, Vec<[f32; 3]>)> {
+    let world = app.world();
+    let children: Vec<Entity> = world
+        .get::<Children>(node)
+        .map(|c| c.iter().collect())
+        .unwrap_or_default();
+    children
+        .into_iter()
+        .filter(|c| world.get::<hedra_scene::SurfacePatch>(*c).is_some())
+        .map(|c| {
+            let h = world.get::<Mesh3d>(c).unwrap().0.clone();
+            let m = world.resource::<Assets<Mesh>>().get(&h).unwrap();
+            let p = match m.attribute(Mesh::ATTRIBUTE_POSITION) {
+                Some(bevy::mesh::VertexAttributeValues::Float32x3(p)) => p.clone(),
+                _ => panic!("positions"),
+            };
+            (h, p)
+        })
+        .collect()
+}
+
+/// The input control points of each patch of a surface node.
+fn patch_inputs(app: &mut App, node: Entity) -> Vec<Vec<u32>> {
+    let world = app.world();
+    world
+        .get::<Children>(node)
+        .into_iter()
+        .flatten()
+        .filter_map(|c| world.get::<hedra_scene::SurfacePatch>(*c))
+        .map(|p| {
+            p.tile
+                .as_ref()
+                .map(|t| t.inputs.clone())
+                .unwrap_or_default()
+        })
+        .collect()
+}
+
+/// The control-point entities of a node, by index.
+fn control_point_entities(app: &mut App, node: Entity) -> Vec<hedra_scene::ControlPoint> {
+    let world = app.world();
+    let mut points: Vec<hedra_scene::ControlPoint> = world
+        .get::<Children>(node)
+        .into_iter()
+        .flatten()
+        .filter_map(|c| world.get::<hedra_scene::ControlPoint>(*c).copied())
+        .collect();
+    points.sort_by_key(|p| p.index);
+    points
+}
+
+/// A weight change moves the weight's control-point entity alone, and only
+/// the patches that point shapes are re-tessellated (found by Bevy's change
+/// detection); the surface shown equals the new surface everywhere.
 #[test]
-fn a_weight_change_re_evaluates_only_the_surface_it_can_reach() {
-    use bevy::mesh::VertexAttributeValues;
-    use hedra_geom::surfaces::NurbsSurface;
-    let mut points = Vec::new();
-    for i in 0..8 {
-        for j in 0..8 {
-            points.push(hedra_geom::DVec3::new(
-                i as f64,
-                ((i + j) as f64 * 0.7).sin(),
-                j as f64,
-            ));
+fn a_weight_change_re_tessellates_only_the_patches_it_can_reach() {
+    use bevy::asset::AssetEvent;
+    use hedra_doc::command::SurfaceSpec;
+    let mut app = hedra::headless_app();
+    app.update();
+    send(
+        &mut app,
+        DocRequest::Execute(Command::AddSurface {
+            name: "Sheet".into(),
+            surface: SurfaceSpec::Nurbs {
+                degree_u: 3,
+                degree_v: 3,
+                nu: 8,
+                nv: 8,
+                points: (0..64)
+                    .map(|k| {
+                        let (i, j) = ((k / 8) as f64, (k % 8) as f64);
+                        hedra_geom::DVec3::new(i, ((i + j) * 0.7).sin(), j)
+                    })
+                    .collect(),
+                weights: None,
+                knots_u: None,
+                knots_v: None,
+            },
+            parent: None,
+            transform: DocTransform::IDENTITY,
+        }),
+    );
+    let sheet = node_entities(&mut app)[0].0;
+    let before = patch_meshes(&mut app, sheet);
+    assert_eq!(before.len(), 25, "a 8 × 8 cubic patch has 5 × 5 knot spans");
+    let points_before = control_point_entities(&mut app, sheet);
+    // A weight drag shows its surface as a preview, as the W tool does.
+    let (id, surface) = {
+        let doc = &app.world().resource::<DocState>().session.doc;
+        let node = doc.find_by_name("Sheet").unwrap();
+        let hedra_doc::NodeContent::Surface(s) = &node.content else {
+            panic!("a surface")
+        };
+        let hedra_doc::SurfaceShape::Nurbs(n) = &**s else {
+            panic!("NURBS")
+        };
+        let mut n = n.clone();
+        n.set_weight(0, 0, 4.0).unwrap();
+        (node.id, n)
+    };
+    {
+        let mut previews = app.world_mut().resource_mut::<hedra_scene::Previews>();
+        hedra_scene::Previews::show(
+            &mut previews,
+            hedra_scene::PreviewSource::ShapeTool,
+            hedra_scene::ToolPreview {
+                contents: [(
+                    id,
+                    hedra_scene::PreviewContent::Surface(std::sync::Arc::new(
+                        hedra_doc::SurfaceShape::Nurbs(surface.clone()),
+                    )),
+                )]
+                .into(),
+                ..Default::default()
+            },
+        );
+    }
+    app.update();
+    // The render meshes the frame rewrote.
+    let rewritten: Vec<_> = app
+        .world()
+        .resource::<Messages<AssetEvent<Mesh>>>()
+        .iter_current_update_messages()
+        .filter_map(|e| match e {
+            AssetEvent::Modified { id } => Some(*id),
+            _ => None,
+        })
+        .collect();
+    let after = patch_meshes(&mut app, sheet);
+    assert_eq!(
+        after.iter().map(|(h, _)| h.id()).collect::<Vec<_>>(),
+        before.iter().map(|(h, _)| h.id()).collect::<Vec<_>>(),
+        "the patches stay (only a weight changed)"
+    );
+    // Point 0 (a corner) shapes the corner's knot span: the patches that
+    // list it as an input are rewritten, no others.
+    let reached: Vec<_> = patch_inputs(&mut app, sheet)
+        .into_iter()
+        .zip(&after)
+        .filter(|(inputs, _)| inputs.contains(&0))
+        .map(|(_, (h, _))| h.id())
+        .collect();
+    assert!(!reached.is_empty() && reached.len() <= 4, "{reached:?}");
+    assert_eq!(rewritten, reached);
+    for ((h, a), (_, b)) in before.iter().zip(&after) {
+        if !reached.contains(&h.id()) {
+            assert_eq!(a, b, "untouched patches keep their triangles");
         }
     }
-    let knots = hedra_geom::curves::nurbs::clamped_uniform_knots(3, 8);
-    let old = NurbsSurface::new(3, 3, knots.clone(), knots, 8, 8, points, vec![1.0; 64]).unwrap();
-    let mut new = old.clone();
-    new.set_weight(1, 1, 4.0).unwrap();
-    let grid = hedra_scene::surface_grid(&old);
-    let mut render = hedra_scene::surface_render_mesh(&hedra_doc::SurfaceShape::Nurbs(old.clone()));
-    let before = match render.attribute(Mesh::ATTRIBUTE_POSITION) {
-        Some(VertexAttributeValues::Float32x3(p)) => p.clone(),
-        _ => panic!("positions"),
+    let points_after = control_point_entities(&mut app, sheet);
+    assert_eq!(points_after[0].weight, 4.0);
+    assert_eq!(points_after[1..], points_before[1..]);
+    // Each rewritten patch shows the previewed surface on the layout's
+    // grid (made from the document's surface), as the Bevy-free tile
+    // evaluation gives it.
+    let original = {
+        let doc = &app.world().resource::<DocState>().session.doc;
+        match &doc.find_by_name("Sheet").unwrap().content {
+            hedra_doc::NodeContent::Surface(s) => match &**s {
+                hedra_doc::SurfaceShape::Nurbs(n) => n.clone(),
+                _ => panic!("NURBS"),
+            },
+            _ => panic!("a surface"),
+        }
     };
-    assert!(hedra_scene::update_surface_render_mesh(
-        &mut render,
-        &grid,
-        &old,
-        &new
-    ));
-    let Some(VertexAttributeValues::Float32x3(after)) = render.attribute(Mesh::ATTRIBUTE_POSITION)
-    else {
-        panic!("positions");
-    };
-    // Every grid point equals the new surface evaluated there…
-    let (exact, _) = new.grid(&grid.us, &grid.vs, false);
-    for (got, want) in after.iter().zip(&exact) {
-        assert!((Vec3::from(*got) - want.as_vec3()).length() < 1e-5);
+    let grid = hedra_scene::surface_grid(&original);
+    let tiles = hedra_doc::render::surface_tiles(&original, &grid);
+    for (tile, (h, shown)) in tiles.iter().zip(&after) {
+        if reached.contains(&h.id()) {
+            let want = hedra_doc::render::tile_buffers(&surface, &grid, tile);
+            assert_eq!(shown, &want.positions);
+        }
     }
-    // …and the points beyond the changed point's knot spans were not touched.
-    let moved = before
-        .iter()
-        .zip(after.iter())
-        .filter(|(a, b)| a != b)
-        .count();
+}
+
+fn add_cube(name: &str) -> DocRequest {
+    DocRequest::Execute(Command::AddPrimitive {
+        primitive: Primitive::Cube { size: 1.0 },
+        name: Some(name.into()),
+        parent: None,
+        transform: DocTransform::IDENTITY,
+    })
+}
+
+/// A big file opens and saves on a worker thread: frames go on meanwhile,
+/// requests sent while it opens apply to the opened scene, in order; edits
+/// made while it saves go on, and the file holds the scene as it was when
+/// the save began.
+#[test]
+fn big_files_open_and_save_off_the_frame() {
+    let dir = tempfile::tempdir().unwrap();
+    let big = dir.path().join("big.hedra.ron");
+    let mut session = hedra_doc::Session::new();
+    session
+        .execute(&Command::AddPrimitive {
+            primitive: Primitive::Grid {
+                x_segments: 200,
+                z_segments: 200,
+                size: 10.0,
+            },
+            name: Some("Dense".into()),
+            parent: None,
+            transform: DocTransform::IDENTITY,
+        })
+        .unwrap();
+    hedra_doc::file::save(&mut session, &big).unwrap();
+
+    let mut app = hedra::headless_app();
+    app.update();
+    app.world_mut().write_message(DocRequest::Open(big.clone()));
+    app.world_mut().write_message(add_cube("After"));
+    app.update();
+    let jobs = app.world().resource::<hedra_scene::FileJobs>();
+    assert!(jobs.busy(), "the file is read on a worker thread");
     assert!(
-        moved > 0 && moved < before.len() / 2,
-        "{moved} of {} moved",
-        before.len()
+        jobs.describe().unwrap().starts_with("Opening"),
+        "{:?}",
+        jobs.describe()
     );
-    // A change of knots is not a drag: rebuild.
-    let refined = new.insert_knot_u(0.5).unwrap();
-    assert!(!hedra_scene::update_surface_render_mesh(
-        &mut render,
-        &grid,
-        &new,
-        &refined
-    ));
+    let doc = &app.world().resource::<DocState>().session.doc;
+    assert_eq!(
+        doc.nodes().count(),
+        0,
+        "the cube waits for the opened scene"
+    );
+    wait_for_files(&mut app);
+    app.update();
+    let names = |app: &App| -> Vec<String> {
+        let doc = &app.world().resource::<DocState>().session.doc;
+        doc.nodes().map(|n| n.name.clone()).collect()
+    };
+    assert_eq!(names(&app), ["Dense", "After"]);
+    assert_eq!(
+        app.world().resource::<DocState>().path.as_deref(),
+        Some(big.as_path())
+    );
+
+    // Save, and add a node in the same frame: the node is added at once,
+    // the file gets the scene without it, and the scene stays unsaved.
+    let copy = dir.path().join("copy.hedra.ron");
+    app.world_mut()
+        .write_message(DocRequest::Save(copy.clone()));
+    app.world_mut().write_message(add_cube("During"));
+    app.update();
+    assert!(app.world().resource::<hedra_scene::FileJobs>().busy());
+    assert_eq!(names(&app), ["Dense", "After", "During"], "edits go on");
+    wait_for_files(&mut app);
+    let saved = hedra_doc::file::load(&copy).unwrap().session;
+    let saved_names: Vec<_> = saved.doc.nodes().map(|n| n.name.clone()).collect();
+    assert_eq!(saved_names, ["Dense", "After"]);
+    let state = app.world().resource::<DocState>();
+    assert!(state.session.is_dirty(), "the last edit is not in the file");
+    assert_eq!(state.path.as_deref(), Some(copy.as_path()));
+    // Undo reaches back into the opened file's history.
+    send(&mut app, DocRequest::Undo);
+    send(&mut app, DocRequest::Undo);
+    assert_eq!(names(&app), ["Dense"]);
 }
 
 /// Autosave in the app: only after a change, never while a tool runs, gone

@@ -96,8 +96,10 @@ fn trimesh_reads_obj_stl_gltf_and_glb_exports_with_the_right_counts_and_bounds()
 fn trimesh_reads_the_uvs_of_an_exported_obj() {
     require_python_readers();
     let dir = tempfile::tempdir().unwrap();
-    let scene = std::path::PathBuf::from(std::env::var_os("CARGO_MANIFEST_DIR").expect("set by cargo test"))
-        .join("plugins/doc/tests/corpus/scenes/v1-uv-panel.hedra.ron");
+    let scene = std::path::PathBuf::from(
+        std::env::var_os("CARGO_MANIFEST_DIR").expect("set by cargo test"),
+    )
+    .join("plugins/doc/tests/corpus/scenes/v1-uv-panel.hedra.ron");
     let obj = dir.path().join("panel.obj");
     let out = hedra(&[
         "export",

@@ -4,7 +4,10 @@
 use std::path::{Path, PathBuf};
 
 fn samples() -> Vec<PathBuf> {
-    let dir = std::path::PathBuf::from(std::env::var_os("CARGO_MANIFEST_DIR").expect("set by cargo test")).join("assets/samples");
+    let dir = std::path::PathBuf::from(
+        std::env::var_os("CARGO_MANIFEST_DIR").expect("set by cargo test"),
+    )
+    .join("assets/samples");
     let mut v: Vec<PathBuf> = std::fs::read_dir(&dir)
         .unwrap()
         .map(|e| e.unwrap().path())
@@ -100,9 +103,11 @@ fn count_in_viewport(pixels: &[[u8; 3]], w: u32, keep: impl Fn([u8; 3]) -> bool)
 
 /// Runs the app on a sample and returns the screenshot's pixels (RGB) and size.
 fn screenshot(sample: &str, extra: &[&str]) -> (Vec<[u8; 3]>, u32, u32) {
-    let sample = std::path::PathBuf::from(std::env::var_os("CARGO_MANIFEST_DIR").expect("set by cargo test"))
-        .join("assets/samples")
-        .join(sample);
+    let sample = std::path::PathBuf::from(
+        std::env::var_os("CARGO_MANIFEST_DIR").expect("set by cargo test"),
+    )
+    .join("assets/samples")
+    .join(sample);
     let dir = tempfile::tempdir().unwrap();
     let shot = dir.path().join("shot.png");
     let out = std::process::Command::new("xvfb-run")
@@ -167,7 +172,9 @@ fn edit_mode_screenshot_shows_the_edited_chair_with_its_selection() {
 
 #[test]
 fn the_chair_script_gives_the_same_mesh_through_the_app_as_through_the_cli() {
-    let root = std::path::PathBuf::from(std::env::var_os("CARGO_MANIFEST_DIR").expect("set by cargo test"));
+    let root = std::path::PathBuf::from(
+        std::env::var_os("CARGO_MANIFEST_DIR").expect("set by cargo test"),
+    );
     let script = std::fs::read_to_string(root.join("assets/scripts/chair.ron")).unwrap();
     let commands = hedra_doc::script::parse(&script, Path::new("chair.ron")).unwrap();
     let mut app = hedra::headless_app();
@@ -327,7 +334,10 @@ impl UnsavedScene {
         std::fs::write(config.join("preferences.ron"), "(autosave_seconds: 1)").unwrap();
         let work = dir.path().join("work.hedra.ron");
         std::fs::copy(
-            std::path::PathBuf::from(std::env::var_os("CARGO_MANIFEST_DIR").expect("set by cargo test")).join("assets/samples/table.hedra.ron"),
+            std::path::PathBuf::from(
+                std::env::var_os("CARGO_MANIFEST_DIR").expect("set by cargo test"),
+            )
+            .join("assets/samples/table.hedra.ron"),
             &work,
         )
         .unwrap();
@@ -505,7 +515,10 @@ fn shift_a_cube_with_a_held_click_in_the_real_window() {
     let dir = tempfile::tempdir().unwrap();
     let work = dir.path().join("work.hedra.ron");
     std::fs::copy(
-        std::path::PathBuf::from(std::env::var_os("CARGO_MANIFEST_DIR").expect("set by cargo test")).join("assets/samples/table.hedra.ron"),
+        std::path::PathBuf::from(
+            std::env::var_os("CARGO_MANIFEST_DIR").expect("set by cargo test"),
+        )
+        .join("assets/samples/table.hedra.ron"),
         &work,
     )
     .unwrap();

@@ -151,18 +151,29 @@ fn the_gizmo_moves_a_control_point_and_escape_puts_it_back() {
     let at = user.screen_of(p);
     user.click(at);
     let steps = user.undo_steps();
-    let render_before = render_positions(&user);
+    let render_before = user.render_positions();
 
     // Esc in the middle of a drag: nothing changes.
     drag_x(&mut user, p, 60.0, false);
-    assert_ne!(render_positions(&user), render_before, "the surface previews");
+    assert_ne!(
+        user.render_positions(),
+        render_before,
+        "the surface previews"
+    );
     user.tap(KeyCode::Escape);
     user.button_up(MouseButton::Left);
     user.frames(2);
     assert_eq!(user.undo_steps(), steps, "Esc: no step");
     let node = user.doc().nodes().next().unwrap();
-    assert_eq!(hedra_edit::shape_mode::control_points(&node.content), points);
-    assert_eq!(render_positions(&user), render_before, "the surface is back");
+    assert_eq!(
+        hedra_edit::shape_mode::control_points(&node.content),
+        points
+    );
+    assert_eq!(
+        user.render_positions(),
+        render_before,
+        "the surface is back"
+    );
 
     // A drag to the end: one step, the point moved along X only.
     drag_x(&mut user, p, 60.0, true);
@@ -176,24 +187,9 @@ fn the_gizmo_moves_a_control_point_and_escape_puts_it_back() {
             assert_eq!(a, b, "point {i} stays");
         }
     }
-    assert_ne!(render_positions(&user), render_before, "the surface follows");
-}
-
-/// The positions of the first node's render mesh.
-fn render_positions(user: &User) -> Vec<Vec3> {
-    let world = user.app.world();
-    let entity = *world
-        .resource::<hedra_scene::NodeEntities>()
-        .0
-        .values()
-        .next()
-        .unwrap();
-    let handle = &world.get::<Mesh3d>(entity).unwrap().0;
-    let mesh = world.resource::<Assets<Mesh>>().get(handle).unwrap();
-    match mesh.attribute(Mesh::ATTRIBUTE_POSITION).unwrap() {
-        bevy::mesh::VertexAttributeValues::Float32x3(p) => {
-            p.iter().map(|p| Vec3::from(*p)).collect()
-        }
-        _ => unreachable!(),
-    }
+    assert_ne!(
+        user.render_positions(),
+        render_before,
+        "the surface follows"
+    );
 }

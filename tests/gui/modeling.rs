@@ -434,7 +434,7 @@ fn shape_points(user: &User) -> (Vec<DVec3>, Vec<f64>) {
 
 /// The point of the surface's render mesh nearest to `p`.
 fn surface_point_near(user: &User, p: DVec3) -> DVec3 {
-    render_positions(user)
+    user.render_positions()
         .into_iter()
         .map(Vec3::as_dvec3)
         .min_by(|a, b| a.distance(p).total_cmp(&b.distance(p)))
@@ -454,32 +454,12 @@ fn the_confirming_frame_shows_the_result() {
     // The release frame after the press confirms; look at each frame.
     user.button_down(MouseButton::Left);
     assert_eq!(user.mesh_counts(), (12, 20, 10), "the press confirms");
-    let positions = render_positions(&user);
+    let positions = user.render_positions();
     let top_y = positions.iter().map(|p| p.y).fold(f32::MIN, f32::max);
     assert!(
         top_y > 1.05,
         "the render mesh of the confirming frame shows the raised cap (top y = {top_y})"
     );
-}
-
-/// The positions of the first node's render mesh.
-fn render_positions(user: &User) -> Vec<Vec3> {
-    let world = user.app.world();
-    let entity = world
-        .resource::<hedra_scene::NodeEntities>()
-        .0
-        .values()
-        .next()
-        .copied()
-        .unwrap();
-    let mesh = world.get::<Mesh3d>(entity).expect("a render mesh");
-    let render = world.resource::<Assets<Mesh>>().get(&mesh.0).unwrap();
-    match render.attribute(Mesh::ATTRIBUTE_POSITION) {
-        Some(bevy::mesh::VertexAttributeValues::Float32x3(p)) => {
-            p.iter().map(|q| Vec3::from(*q)).collect()
-        }
-        _ => panic!("positions"),
-    }
 }
 
 /// Ctrl+5 then Page Up twice stops at the viewport's highest level; Page

@@ -390,6 +390,39 @@ impl User {
         format!("{:?}", self.app.world().resource::<StatusMessage>())
     }
 
+    /// The positions of the first node's render mesh: its own, or those of
+    /// its surface patches one after the other.
+    pub fn render_positions(&self) -> Vec<Vec3> {
+        let world = self.app.world();
+        let entity = *world
+            .resource::<hedra_scene::NodeEntities>()
+            .0
+            .values()
+            .next()
+            .expect("a node");
+        let own = world.get::<Mesh3d>(entity).map(|m| m.0.clone());
+        let patches = world
+            .get::<Children>(entity)
+            .into_iter()
+            .flatten()
+            .filter(|c| world.get::<hedra_scene::SurfacePatch>(**c).is_some())
+            .filter_map(|c| world.get::<Mesh3d>(*c).map(|m| m.0.clone()));
+        let handles: Vec<_> = own.into_iter().chain(patches).collect();
+        assert!(!handles.is_empty(), "the node has a render mesh");
+        let meshes = world.resource::<Assets<Mesh>>();
+        handles
+            .iter()
+            .flat_map(
+                |h| match meshes.get(h).unwrap().attribute(Mesh::ATTRIBUTE_POSITION) {
+                    Some(bevy::mesh::VertexAttributeValues::Float32x3(p)) => {
+                        p.iter().map(|q| Vec3::from(*q)).collect::<Vec<_>>()
+                    }
+                    _ => panic!("positions"),
+                },
+            )
+            .collect()
+    }
+
     /// The names of the document's nodes, in id order.
     pub fn node_names(&self) -> Vec<String> {
         self.doc().nodes().map(|n| n.name.clone()).collect()

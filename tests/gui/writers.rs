@@ -1,13 +1,17 @@
 //! One writer per projected component (issue 12): node `Transform`s are
 //! written only by `project_transforms`, render meshes only by
-//! `project_render_meshes`. Checked with Bevy's change ticks while a person
+//! `project_render_meshes` (mesh nodes) and `project_surface_patches`
+//! (surface patches). Checked with Bevy's change ticks while a person
 //! uses every tool: each system run has its own tick, so a value written by
 //! any other system carries a tick outside the projection's runs.
 
 use crate::user::User;
 use bevy::ecs::system::SystemChangeTick;
 use bevy::prelude::*;
-use hedra_scene::{NodeEntity, project_render_meshes, project_transforms, sync_entities};
+use hedra_scene::{
+    NodeEntity, project_control_points, project_render_meshes, project_surface_patches,
+    project_transforms, sync_entities,
+};
 
 /// The ticks between which each projection system ran, and what was
 /// written outside them.
@@ -35,6 +39,15 @@ fn close_meshes(ticks: SystemChangeTick, mut audit: ResMut<Audit>) {
     audit.meshes.push((opened, ticks.this_run().get()));
 }
 
+fn open_patches(ticks: SystemChangeTick, mut audit: ResMut<Audit>) {
+    audit.opened = ticks.this_run().get();
+}
+
+fn close_patches(ticks: SystemChangeTick, mut audit: ResMut<Audit>) {
+    let opened = audit.opened;
+    audit.meshes.push((opened, ticks.this_run().get()));
+}
+
 fn open_update(ticks: SystemChangeTick, mut audit: ResMut<Audit>) {
     audit.update_opened = ticks.this_run().get();
 }
@@ -44,11 +57,37 @@ fn close_update(ticks: SystemChangeTick, mut audit: ResMut<Audit>) {
     audit.updates.push((opened, ticks.this_run().get()));
 }
 
-/// At the end of every frame: was each node `Transform` and the render
-/// mesh store last changed inside a run of its projection system? (Render
-/// meshes share `Assets<Mesh>` with Bevy's gizmo meshes and asset
-/// bookkeeping, which run outside `Update`: that store is checked within
-/// `Update`, where every Hedra system that could write it runs.)
+/// At the end of `Update`: were render meshes last written inside a run of
+/// a projection system? (Render meshes share `Assets<Mesh>` with Bevy's
+/// gizmo meshes, updated after transform propagation, and its asset
+/// bookkeeping outside `Update`; this runs before those.)
+fn check_meshes(world: &mut World) {
+    let inside = |runs: &[(u32, u32)], tick: u32| runs.iter().any(|&(a, b)| a < tick && tick < b);
+    let mut found = Vec::new();
+    let audit = world.resource::<Audit>();
+    if let Some(ticks) = world.get_resource_change_ticks::<Assets<Mesh>>() {
+        let changed = ticks.changed.get();
+        // Bevy's own asset bookkeeping and gizmo meshes write the store
+        // outside `Update`; inside it, only the projection may.
+        if ticks.added.get() != changed
+            && inside(&audit.updates, changed)
+            && !inside(&audit.meshes, changed)
+        {
+            found.push(format!(
+                "render meshes were written outside the projection (tick {changed})"
+            ));
+        }
+    }
+    let mut audit = world.resource_mut::<Audit>();
+    for f in found {
+        if !audit.violations.contains(&f) {
+            audit.violations.push(f);
+        }
+    }
+}
+
+/// At the end of every frame: was each node `Transform` last changed
+/// inside a run of `project_transforms`?
 fn check(world: &mut World) {
     let inside = |runs: &[(u32, u32)], tick: u32| runs.iter().any(|&(a, b)| a < tick && tick < b);
     let mut found = Vec::new();
@@ -65,19 +104,6 @@ fn check(world: &mut World) {
             found.push(format!(
                 "the Transform of node {} was written outside project_transforms (tick {changed})",
                 node.0
-            ));
-        }
-    }
-    if let Some(ticks) = world.get_resource_change_ticks::<Assets<Mesh>>() {
-        let changed = ticks.changed.get();
-        // Bevy's own asset bookkeeping and gizmo meshes write the store
-        // outside `Update`; inside it, only the projection may.
-        if ticks.added.get() != changed
-            && inside(&audit.updates, changed)
-            && !inside(&audit.meshes, changed)
-        {
-            found.push(format!(
-                "render meshes were written outside project_render_meshes (tick {changed})"
             ));
         }
     }
@@ -101,11 +127,24 @@ fn audited() -> User {
                     .after(project_transforms)
                     .before(project_render_meshes),
                 open.after(close_transforms).before(project_render_meshes),
-                close_meshes.after(project_render_meshes),
+                close_meshes
+                    .after(project_render_meshes)
+                    .before(project_control_points),
+                open_patches
+                    .after(project_control_points)
+                    .before(project_surface_patches),
+                close_patches.after(project_surface_patches),
             ),
         )
-        .add_systems(PreUpdate, open_update)
-        .add_systems(PostUpdate, close_update)
+        // Between PreUpdate (Bevy's asset bookkeeping) and Update.
+        .add_systems(RunFixedMainLoop, open_update)
+        // Before Bevy's gizmo meshes are updated (after transform propagation).
+        .add_systems(
+            PostUpdate,
+            (close_update, check_meshes)
+                .chain()
+                .before(bevy::transform::TransformSystems::Propagate),
+        )
         .add_systems(Last, check);
     user
 }
@@ -159,7 +198,11 @@ fn only_the_projection_writes_node_transforms_and_render_meshes() {
     user.tap(KeyCode::Tab);
     user.shortcut(&[KeyCode::ControlLeft], KeyCode::KeyZ);
     user.shortcut(&[KeyCode::ControlLeft, KeyCode::ShiftLeft], KeyCode::KeyZ);
-    assert!(user.undo_steps() >= 7, "the tools did their work: {}", user.status());
+    assert!(
+        user.undo_steps() >= 7,
+        "the tools did their work: {}",
+        user.status()
+    );
     user.tap(KeyCode::KeyX);
     user.frames(3);
     let audit = user.app.world().resource::<Audit>();
@@ -178,16 +221,19 @@ fn a_second_writer_is_found() {
     user.add("Cube");
     user.app.add_systems(
         Update,
-        |mut nodes: Query<&mut Transform, With<NodeEntity>>| {
+        (|mut nodes: Query<&mut Transform, With<NodeEntity>>| {
             for mut t in &mut nodes {
                 t.translation.x += 1.0;
             }
-        },
+        })
+        .after(hedra_scene::SceneSystems::Sync),
     );
     user.frames(2);
     let found = violations(&user);
     assert!(
-        found.iter().any(|v| v.contains("outside project_transforms")),
+        found
+            .iter()
+            .any(|v| v.contains("outside project_transforms")),
         "{found:?}"
     );
 
@@ -204,7 +250,7 @@ fn a_second_writer_is_found() {
     user.frames(2);
     let found = violations(&user);
     assert!(
-        found.iter().any(|v| v.contains("outside project_render_meshes")),
+        found.iter().any(|v| v.contains("outside the projection")),
         "{found:?}"
     );
 }

@@ -60,8 +60,25 @@ fn bench(c: &mut Criterion) {
         }
     };
 
+    // A topology tool's preview frame: extrude the 100 faces nearest the
+    // middle as one region (what E decides on every frame of its drag).
+    let mut faces_by_distance: Vec<_> = mesh.faces().collect();
+    faces_by_distance.sort_by(|a, b| {
+        mesh.face_centroid(*a)
+            .length()
+            .total_cmp(&mesh.face_centroid(*b).length())
+    });
+    let extrude = Command::ExtrudeRegion {
+        node: NodeRef::Name("Dense".into()),
+        faces: hedra_doc::FaceSet::Ids(faces_by_distance[..100].iter().map(|f| f.0).collect()),
+        distance: 0.25,
+    };
+
     let mut g = c.benchmark_group("edit_frame_100k_faces");
     g.sample_size(30);
+    g.bench_function("decide_extrude_100_faces", |b| {
+        b.iter(|| black_box(doc.decide_with_result(black_box(&extrude), 0).unwrap()))
+    });
     g.bench_function("decide_move_100_vertices", |b| {
         b.iter(|| black_box(doc.decide(black_box(&drag(0.25)), 0).unwrap()))
     });

@@ -270,6 +270,99 @@ pub fn surface_grid(surface: &hedra_geom::surfaces::NurbsSurface) -> SurfaceGrid
     }
 }
 
+/// A tile of a NURBS surface's render grid: the grid cells of one knot
+/// span cell, and the control points that shape it. A control point
+/// (i, j) moves the surface only on `[U_i, U_{i+p+1}] × [V_j, V_{j+q+1}]`
+/// (the local support of the B-spline basis, Piegl & Tiller, *The NURBS
+/// Book*, property P2.1), so a tile changes only when one of its `inputs`
+/// does.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SurfaceTile {
+    /// Grid cells along u; the tile's grid rows are `rows.start..=rows.end`.
+    pub rows: std::ops::Range<usize>,
+    /// Grid cells along v; the tile's grid columns are `cols.start..=cols.end`.
+    pub cols: std::ops::Range<usize>,
+    /// Control points (`i * nv + j`) whose support meets the tile.
+    pub inputs: Vec<u32>,
+}
+
+/// The cells of a grid's parameters (`params[c]..params[c + 1]`) grouped by
+/// the knot span holding each cell's middle, in order.
+fn cells_by_span(params: &[f64], knots: &[f64]) -> Vec<std::ops::Range<usize>> {
+    let mut groups: Vec<(usize, std::ops::Range<usize>)> = Vec::new();
+    for c in 0..params.len().saturating_sub(1) {
+        let middle = 0.5 * (params[c] + params[c + 1]);
+        let span = knots.partition_point(|&k| k <= middle);
+        match groups.last_mut() {
+            Some((s, cells)) if *s == span => cells.end = c + 1,
+            _ => groups.push((span, c..c + 1)),
+        }
+    }
+    groups.into_iter().map(|(_, cells)| cells).collect()
+}
+
+/// The tiles of a NURBS surface's render grid, one per knot span cell that
+/// holds grid cells, row by row (u) then column (v). Together they cover
+/// every cell once; neighbours share their boundary grid points.
+pub fn surface_tiles(
+    surface: &hedra_geom::surfaces::NurbsSurface,
+    grid: &SurfaceGrid,
+) -> Vec<SurfaceTile> {
+    let ((p, q), (ku, kv)) = (surface.degrees(), surface.knots());
+    let (nu, nv) = surface.size();
+    // The basis N_i is zero from U_{i+p+1} on (the domain's end aside,
+    // which no tile starts at); at U_i it may not be (repeated knots).
+    let meets = |knots: &[f64], degree: usize, i: usize, lo: f64, hi: f64| {
+        knots[i] <= hi && knots[i + degree + 1] > lo
+    };
+    let row_groups = cells_by_span(&grid.us, ku);
+    let col_groups = cells_by_span(&grid.vs, kv);
+    let mut tiles = Vec::with_capacity(row_groups.len() * col_groups.len());
+    for rows in &row_groups {
+        let (u_lo, u_hi) = (grid.us[rows.start], grid.us[rows.end]);
+        let is: Vec<usize> = (0..nu).filter(|&i| meets(ku, p, i, u_lo, u_hi)).collect();
+        for cols in &col_groups {
+            let (v_lo, v_hi) = (grid.vs[cols.start], grid.vs[cols.end]);
+            let inputs = is
+                .iter()
+                .flat_map(|&i| {
+                    (0..nv)
+                        .filter(move |&j| meets(kv, q, j, v_lo, v_hi))
+                        .map(move |j| (i * nv + j) as u32)
+                })
+                .collect();
+            tiles.push(SurfaceTile {
+                rows: rows.clone(),
+                cols: cols.clone(),
+                inputs,
+            });
+        }
+    }
+    tiles
+}
+
+/// Render buffers of one tile: its grid points evaluated on `surface` with
+/// their normals, two triangles per cell (the winding of
+/// [`hedra_geom::surfaces::tessellate::grid_triangles`]).
+pub fn tile_buffers(
+    surface: &hedra_geom::surfaces::NurbsSurface,
+    grid: &SurfaceGrid,
+    tile: &SurfaceTile,
+) -> RenderBuffers {
+    let us = &grid.us[tile.rows.start..=tile.rows.end];
+    let vs = &grid.vs[tile.cols.start..=tile.cols.end];
+    let (points, normals) = surface.grid(us, vs, true);
+    let f32s = |v: &hedra_geom::DVec3| v.as_vec3().to_array();
+    RenderBuffers {
+        positions: points.iter().map(f32s).collect(),
+        normals: normals.iter().map(f32s).collect(),
+        indices: hedra_geom::surfaces::tessellate::grid_triangles(tile.rows.len(), tile.cols.len())
+            .into_iter()
+            .flatten()
+            .collect(),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -394,6 +487,84 @@ mod tests {
                 .us
                 .windows(2)
                 .all(|w| ((w[1] - w[0]) - step).abs() < 1e-12)
+        );
+    }
+
+    fn wavy_sheet() -> hedra_geom::surfaces::NurbsSurface {
+        let points = (0..64)
+            .map(|k| {
+                let (i, j) = ((k / 8) as f64, (k % 8) as f64);
+                glam::DVec3::new(i, ((i + j) * 0.7).sin(), j)
+            })
+            .collect();
+        let knots = hedra_geom::curves::nurbs::clamped_uniform_knots(3, 8);
+        hedra_geom::surfaces::NurbsSurface::new(
+            3,
+            3,
+            knots.clone(),
+            knots,
+            8,
+            8,
+            points,
+            vec![1.0; 64],
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn tiles_cover_the_grid_once_per_knot_span_and_equal_the_whole_surface() {
+        let sheet = wavy_sheet();
+        let grid = surface_grid(&sheet);
+        let tiles = surface_tiles(&sheet, &grid);
+        assert_eq!(tiles.len(), 25, "5 × 5 knot spans");
+        // Every cell in exactly one tile.
+        let (cu, cv) = (grid.us.len() - 1, grid.vs.len() - 1);
+        let mut covered = vec![0; cu * cv];
+        for t in &tiles {
+            for a in t.rows.clone() {
+                for b in t.cols.clone() {
+                    covered[a * cv + b] += 1;
+                }
+            }
+        }
+        assert!(covered.iter().all(|&n| n == 1));
+        // Each tile's points are the whole surface's at the same parameters.
+        let (whole, _) = sheet.grid(&grid.us, &grid.vs, false);
+        for t in &tiles {
+            let b = tile_buffers(&sheet, &grid, t);
+            let cols = t.cols.len() + 1;
+            for (k, p) in b.positions.iter().enumerate() {
+                let (a, c) = (t.rows.start + k / cols, t.cols.start + k % cols);
+                let want = whole[a * grid.vs.len() + c].as_vec3();
+                assert!((glam::Vec3::from(*p) - want).length() < 1e-5);
+            }
+            assert_eq!(b.indices.len(), 6 * t.rows.len() * t.cols.len());
+        }
+    }
+
+    #[test]
+    fn a_changed_point_reaches_only_the_tiles_listing_it() {
+        let sheet = wavy_sheet();
+        let grid = surface_grid(&sheet);
+        let tiles = surface_tiles(&sheet, &grid);
+        // Corner point 0 shapes the corner span (and a neighbour holding a
+        // grid cell across the span's end); an inner point a 4 × 4 block of
+        // spans.
+        let with = |k: u32| tiles.iter().filter(|t| t.inputs.contains(&k)).count();
+        assert!((1..=4).contains(&with(0)), "{}", with(0));
+        assert!((16..=25).contains(&with(3 * 8 + 3)), "{}", with(3 * 8 + 3));
+        let mut moved = sheet.clone();
+        moved.set_weight(3, 3, 5.0).unwrap();
+        for t in &tiles {
+            let same = tile_buffers(&sheet, &grid, t) == tile_buffers(&moved, &grid, t);
+            if !t.inputs.contains(&(3 * 8 + 3)) {
+                assert!(same, "a tile without the point does not change");
+            }
+        }
+        assert!(
+            tiles
+                .iter()
+                .any(|t| tile_buffers(&sheet, &grid, t) != tile_buffers(&moved, &grid, t))
         );
     }
 }

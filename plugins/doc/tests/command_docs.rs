@@ -5,7 +5,10 @@ use std::path::Path;
 #[test]
 fn every_command_example_in_the_docs_runs() {
     let md = std::fs::read_to_string(
-        std::path::PathBuf::from(std::env::var_os("CARGO_MANIFEST_DIR").expect("set by cargo test")).join("../../docs/commands.md"),
+        std::path::PathBuf::from(
+            std::env::var_os("CARGO_MANIFEST_DIR").expect("set by cargo test"),
+        )
+        .join("../../docs/commands.md"),
     )
     .unwrap();
     let mut blocks = Vec::new();

@@ -15,7 +15,8 @@ use hedra_geom::Primitive;
 use std::path::{Path, PathBuf};
 
 fn fuzz_dir() -> PathBuf {
-    std::path::PathBuf::from(std::env::var_os("CARGO_MANIFEST_DIR").expect("set by cargo test")).join("fuzz")
+    std::path::PathBuf::from(std::env::var_os("CARGO_MANIFEST_DIR").expect("set by cargo test"))
+        .join("fuzz")
 }
 
 /// Runs `body` over every file of `corpus/<target>` and

@@ -9,7 +9,8 @@ use hedra_doc::import::import_file;
 use std::path::PathBuf;
 
 fn corpus() -> PathBuf {
-    std::path::PathBuf::from(std::env::var_os("CARGO_MANIFEST_DIR").expect("set by cargo test")).join("fuzz/corpus/gltf")
+    std::path::PathBuf::from(std::env::var_os("CARGO_MANIFEST_DIR").expect("set by cargo test"))
+        .join("fuzz/corpus/gltf")
 }
 
 /// The `uri` of buffer 0 of a glTF JSON file.

@@ -6,7 +6,10 @@ use std::path::Path;
 
 fn sample_text() -> String {
     std::fs::read_to_string(
-        std::path::PathBuf::from(std::env::var_os("CARGO_MANIFEST_DIR").expect("set by cargo test")).join("../../assets/samples/table.hedra.ron"),
+        std::path::PathBuf::from(
+            std::env::var_os("CARGO_MANIFEST_DIR").expect("set by cargo test"),
+        )
+        .join("../../assets/samples/table.hedra.ron"),
     )
     .unwrap()
 }

@@ -7,7 +7,10 @@ use hedra_doc::file::{self, FORMAT_VERSION};
 use std::path::PathBuf;
 
 fn corpus() -> Vec<PathBuf> {
-    let dir = std::path::PathBuf::from(std::env::var_os("CARGO_MANIFEST_DIR").expect("set by cargo test")).join("tests/corpus/scenes");
+    let dir = std::path::PathBuf::from(
+        std::env::var_os("CARGO_MANIFEST_DIR").expect("set by cargo test"),
+    )
+    .join("tests/corpus/scenes");
     let mut files: Vec<PathBuf> = std::fs::read_dir(&dir)
         .expect("the scene corpus exists")
         .map(|e| e.unwrap().path())

@@ -446,12 +446,17 @@ fn curves_and_surfaces_round_trip_through_the_file_and_bad_data_is_refused() {
 /// maximum (it would allocate without bound), a negative crease.
 #[test]
 fn out_of_range_parameters_in_a_file_are_refused_by_node() {
-    let path = std::path::PathBuf::from(std::env::var_os("CARGO_MANIFEST_DIR").expect("set by cargo test")).join("tests/corpus/scenes/v1-jar.hedra.ron");
+    let path = std::path::PathBuf::from(
+        std::env::var_os("CARGO_MANIFEST_DIR").expect("set by cargo test"),
+    )
+    .join("tests/corpus/scenes/v1-jar.hedra.ron");
     let text = std::fs::read_to_string(&path).unwrap();
     assert!(file::from_str(&text, &path).is_ok());
     // The fuzzer's input: a node's cube primitive with size NaN.
-    let nan = std::path::PathBuf::from(std::env::var_os("CARGO_MANIFEST_DIR").expect("set by cargo test"))
-        .join("fuzz/regressions/scene/nan-cube-size-in-primitive.hedra.ron");
+    let nan = std::path::PathBuf::from(
+        std::env::var_os("CARGO_MANIFEST_DIR").expect("set by cargo test"),
+    )
+    .join("fuzz/regressions/scene/nan-cube-size-in-primitive.hedra.ron");
     let err = file::load(&nan).unwrap_err().to_string();
     assert!(
         err.contains("node #2 'Box'") && err.contains("size") && err.contains("NaN"),

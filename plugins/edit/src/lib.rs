@@ -9,9 +9,7 @@ use bevy::window::PrimaryWindow;
 use glam::{DMat4, DQuat, DVec3};
 use hedra_doc::{Command, Document, NodeContent, NodeId, NodeRef, Transform as DocTransform};
 use hedra_scene::modifiers::{alt, ctrl, shift};
-use hedra_scene::{
-    DocChanged, DocRequest, DocState, InputGate, SceneSystems, ViewportCamera,
-};
+use hedra_scene::{DocChanged, DocRequest, DocState, InputGate, SceneSystems, ViewportCamera};
 
 pub mod mesh_mode;
 pub mod modal;
@@ -382,8 +380,7 @@ pub fn object_shortcuts(
     };
     if let Some(kind) = kind {
         let (cam, cam_t) = *camera;
-        tool.active =
-            ModalTransform::start(kind, doc, &selection.nodes, &window, cam, cam_t);
+        tool.active = ModalTransform::start(kind, doc, &selection.nodes, &window, cam, cam_t);
     }
 }
 

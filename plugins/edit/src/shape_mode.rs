@@ -8,8 +8,8 @@
 
 use std::collections::BTreeSet;
 
-use bevy::prelude::*;
 use bevy::gizmos::transform_gizmo::TransformGizmoState;
+use bevy::prelude::*;
 use bevy::window::PrimaryWindow;
 use glam::DVec3;
 use hedra_doc::{Command, NodeContent, NodeId, NodeRef, SurfaceShape};
@@ -59,26 +59,7 @@ impl ShapeEdit {
     }
 }
 
-/// Control points of a curve or surface node (local space).
-pub fn control_points(content: &NodeContent) -> Vec<DVec3> {
-    match content {
-        NodeContent::Curve(c) => c.points().to_vec(),
-        NodeContent::Surface(s) => s.control_points().to_vec(),
-        _ => Vec::new(),
-    }
-}
-
-/// Weights of the control points, `None` for shapes without weights.
-pub fn control_weights(content: &NodeContent) -> Option<Vec<f64>> {
-    match content {
-        NodeContent::Curve(c) => Some(c.weights().to_vec()),
-        NodeContent::Surface(s) => match &**s {
-            SurfaceShape::Nurbs(n) => Some(n.weights().to_vec()),
-            SurfaceShape::Triangle(_) => None,
-        },
-        _ => None,
-    }
-}
+pub use hedra_scene::{control_points, control_weights};
 
 fn is_shape(content: &NodeContent) -> bool {
     matches!(content, NodeContent::Curve(_) | NodeContent::Surface(_))
@@ -499,10 +480,7 @@ pub fn drive_shape_tool(
 /// into its [`Previews`](hedra_scene::Previews) slot, and clears the slot
 /// when the tool ends; the projection re-tessellates only the knot spans
 /// whose control points changed.
-pub fn publish_shape_preview(
-    edit: Res<ShapeEdit>,
-    mut previews: ResMut<hedra_scene::Previews>,
-) {
+pub fn publish_shape_preview(edit: Res<ShapeEdit>, mut previews: ResMut<hedra_scene::Previews>) {
     use hedra_scene::{PreviewContent, PreviewSource, Previews, ToolPreview};
     if !edit.is_changed() {
         return;

@@ -1,157 +1,210 @@
 //! The one system that changes the document: it applies [`DocRequest`]s through the session.
 
 use crate::*;
+use std::collections::VecDeque;
 
-/// The one system that changes the document.
+/// The one system that changes the document. Opening and saving run on a
+/// worker thread ([`FileJobs`]); their results are applied here when they
+/// arrive, and requests that must follow them wait in order.
 pub fn apply_requests(
     mut requests: MessageReader<DocRequest>,
     mut state: ResMut<DocState>,
+    mut jobs: ResMut<FileJobs>,
     mut status: ResMut<StatusMessage>,
     mut changed: MessageWriter<DocChanged>,
 ) {
-    for request in requests.read() {
-        let state = &mut *state;
-        let result: Result<Option<DocChanged>, String> =
-            match request {
-                DocRequest::Execute(cmd) => state
-                    .session
-                    .execute(cmd)
-                    .map_err(|e| e.to_string())
-                    .map(|a| {
-                        status.info(a.label.clone());
-                        Some(DocChanged {
-                            created: a.created,
-                            replaced: false,
-                        })
-                    }),
-                DocRequest::AdjustLast(cmd) => state
-                    .session
-                    .adjust_last(cmd)
-                    .map_err(|e| e.to_string())
-                    .map(|a| {
-                        status.info(a.label.clone());
-                        Some(DocChanged {
-                            created: a.created,
-                            replaced: false,
-                        })
-                    }),
-                DocRequest::Undo => Ok(match state.session.undo() {
-                    Some(label) => {
-                        status.info(format!("Undo {label}"));
-                        Some(DocChanged::default())
-                    }
-                    None => {
-                        status.info("Nothing to undo");
-                        None
-                    }
-                }),
-                DocRequest::Redo => Ok(match state.session.redo() {
-                    Some(label) => {
-                        status.info(format!("Redo {label}"));
-                        Some(DocChanged::default())
-                    }
-                    None => {
-                        status.info("Nothing to redo");
-                        None
-                    }
-                }),
-                DocRequest::JumpTo(n) => {
-                    state.session.jump_to(*n);
-                    Ok(Some(DocChanged::default()))
-                }
-                DocRequest::New => {
-                    state.session = Session::new();
-                    state.path = None;
-                    state.opened_serial = 0;
-                    status.info("New scene");
-                    Ok(Some(DocChanged {
-                        created: vec![],
-                        replaced: true,
-                    }))
-                }
-                DocRequest::Open(path) => match file::load(path) {
-                    Ok(loaded) => {
-                        state.session = loaded.session;
-                        state.path = Some(path.clone());
-                        state.opened_serial = state.session.history.current_serial();
-                        status.info(format!("Opened {}", path.display()));
-                        status.warnings.extend(loaded.warnings);
-                        Ok(Some(DocChanged {
-                            created: vec![],
-                            replaced: true,
-                        }))
-                    }
-                    Err(e) => Err(e.to_string()),
-                },
-                DocRequest::Recover(entry) => match hedra_doc::recovery::recover(entry) {
-                    Ok(loaded) => {
-                        state.session = loaded.session;
-                        state.path = entry.meta.original.clone();
-                        state.opened_serial = state.session.history.current_serial();
-                        status.info(format!(
-                            "Recovered {} — save to keep it",
-                            state.display_name()
-                        ));
-                        status.warnings.extend(loaded.warnings);
-                        Ok(Some(DocChanged {
-                            created: vec![],
-                            replaced: true,
-                        }))
-                    }
-                    Err(e) => Err(format!("Recovery failed, the file was kept: {e}")),
-                },
-                DocRequest::HistoryLimits { steps, bytes } => {
-                    let history = &mut state.session.history;
-                    history.max_steps = (*steps).max(1);
-                    history.max_bytes = *bytes;
-                    let before = history.done().len();
-                    history.enforce_limits();
-                    if history.done().len() < before {
-                        Ok(Some(DocChanged::default()))
-                    } else {
-                        Ok(None)
-                    }
-                }
-                DocRequest::Import(path) => match hedra_doc::import::import_file(path) {
-                    Ok(meshes) => {
-                        let name = path.file_name().map_or_else(
-                            || path.display().to_string(),
-                            |n| n.to_string_lossy().into_owned(),
-                        );
-                        let a = state.session.import(&meshes, &format!("Import {name}"));
-                        status.info(format!(
-                            "Imported {} object(s) from {name}",
-                            a.created.len()
-                        ));
-                        status.warnings.extend(
-                            hedra_doc::import::describe_repairs(&meshes)
-                                .into_iter()
-                                .map(|n| format!("{name}: {n}")),
-                        );
-                        Ok(Some(DocChanged {
-                            created: a.created,
-                            replaced: false,
-                        }))
-                    }
-                    Err(e) => Err(e.to_string()),
-                },
-                DocRequest::Save(path) => match file::save(&mut state.session, path) {
-                    Ok(()) => {
-                        state.path = Some(path.clone());
-                        status.info(format!("Saved {}", path.display()));
-                        // The document is unchanged, but the title's `*` must go.
-                        Ok(Some(DocChanged::default()))
-                    }
-                    Err(e) => Err(format!("Save failed, nothing was lost: {e}")),
-                },
-            };
-        match result {
-            Ok(Some(c)) => {
-                state.revision += 1;
-                changed.write(c);
+    let state = &mut *state;
+    if let Some(done) = jobs.finished(false) {
+        let result = finish_file_job(state, &mut status, done);
+        report(state, &mut status, &mut changed, result);
+    }
+    // Requests that waited for a file job, then this frame's.
+    let mut queue: VecDeque<DocRequest> = std::mem::take(&mut jobs.waiting);
+    queue.extend(requests.read().cloned());
+    while let Some(request) = queue.pop_front() {
+        if jobs.must_wait(&request) {
+            jobs.waiting.push_back(request);
+            continue;
+        }
+        let result = apply(state, &mut jobs, &mut status, &request);
+        report(state, &mut status, &mut changed, result);
+    }
+}
+
+/// Counts a change and tells the followers, or shows the error.
+fn report(
+    state: &mut DocState,
+    status: &mut StatusMessage,
+    changed: &mut MessageWriter<DocChanged>,
+    result: Result<Option<DocChanged>, String>,
+) {
+    match result {
+        Ok(Some(c)) => {
+            state.revision += 1;
+            changed.write(c);
+        }
+        Ok(None) => {}
+        Err(e) => status.error(e),
+    }
+}
+
+/// Applies the result of a finished open or save.
+fn finish_file_job(
+    state: &mut DocState,
+    status: &mut StatusMessage,
+    done: FinishedFile,
+) -> Result<Option<DocChanged>, String> {
+    match done {
+        FinishedFile::Opened(path, Ok(loaded)) => {
+            state.session = loaded.session;
+            state.path = Some(path.clone());
+            state.opened_serial = state.session.history.current_serial();
+            status.info(format!("Opened {}", path.display()));
+            status.warnings.extend(loaded.warnings);
+            Ok(Some(DocChanged {
+                created: vec![],
+                replaced: true,
+            }))
+        }
+        FinishedFile::Opened(_, Err(e)) => Err(e.to_string()),
+        FinishedFile::Saved(path, serial, Ok(())) => {
+            state.session.saved_serial = Some(serial);
+            state.path = Some(path.clone());
+            status.info(format!("Saved {}", path.display()));
+            // The document is unchanged, but the title's `*` must go.
+            Ok(Some(DocChanged::default()))
+        }
+        FinishedFile::Saved(_, _, Err(e)) => Err(format!("Save failed, nothing was lost: {e}")),
+    }
+}
+
+/// Applies one request.
+fn apply(
+    state: &mut DocState,
+    jobs: &mut FileJobs,
+    status: &mut StatusMessage,
+    request: &DocRequest,
+) -> Result<Option<DocChanged>, String> {
+    match request {
+        DocRequest::Execute(cmd) => {
+            state
+                .session
+                .execute(cmd)
+                .map_err(|e| e.to_string())
+                .map(|a| {
+                    status.info(a.label.clone());
+                    Some(DocChanged {
+                        created: a.created,
+                        replaced: false,
+                    })
+                })
+        }
+        DocRequest::AdjustLast(cmd) => state
+            .session
+            .adjust_last(cmd)
+            .map_err(|e| e.to_string())
+            .map(|a| {
+                status.info(a.label.clone());
+                Some(DocChanged {
+                    created: a.created,
+                    replaced: false,
+                })
+            }),
+        DocRequest::Undo => Ok(match state.session.undo() {
+            Some(label) => {
+                status.info(format!("Undo {label}"));
+                Some(DocChanged::default())
             }
-            Ok(None) => {}
-            Err(e) => status.error(e),
+            None => {
+                status.info("Nothing to undo");
+                None
+            }
+        }),
+        DocRequest::Redo => Ok(match state.session.redo() {
+            Some(label) => {
+                status.info(format!("Redo {label}"));
+                Some(DocChanged::default())
+            }
+            None => {
+                status.info("Nothing to redo");
+                None
+            }
+        }),
+        DocRequest::JumpTo(n) => {
+            state.session.jump_to(*n);
+            Ok(Some(DocChanged::default()))
+        }
+        DocRequest::New => {
+            state.session = Session::new();
+            state.path = None;
+            state.opened_serial = 0;
+            status.info("New scene");
+            Ok(Some(DocChanged {
+                created: vec![],
+                replaced: true,
+            }))
+        }
+        DocRequest::Open(path) => {
+            jobs.start_open(path);
+            status.info(format!("Opening {}…", path.display()));
+            Ok(None)
+        }
+        DocRequest::Recover(entry) => match hedra_doc::recovery::recover(entry) {
+            Ok(loaded) => {
+                state.session = loaded.session;
+                state.path = entry.meta.original.clone();
+                state.opened_serial = state.session.history.current_serial();
+                status.info(format!(
+                    "Recovered {} — save to keep it",
+                    state.display_name()
+                ));
+                status.warnings.extend(loaded.warnings);
+                Ok(Some(DocChanged {
+                    created: vec![],
+                    replaced: true,
+                }))
+            }
+            Err(e) => Err(format!("Recovery failed, the file was kept: {e}")),
+        },
+        DocRequest::HistoryLimits { steps, bytes } => {
+            let history = &mut state.session.history;
+            history.max_steps = (*steps).max(1);
+            history.max_bytes = *bytes;
+            let before = history.done().len();
+            history.enforce_limits();
+            if history.done().len() < before {
+                Ok(Some(DocChanged::default()))
+            } else {
+                Ok(None)
+            }
+        }
+        DocRequest::Import(path) => match hedra_doc::import::import_file(path) {
+            Ok(meshes) => {
+                let name = path.file_name().map_or_else(
+                    || path.display().to_string(),
+                    |n| n.to_string_lossy().into_owned(),
+                );
+                let a = state.session.import(&meshes, &format!("Import {name}"));
+                status.info(format!(
+                    "Imported {} object(s) from {name}",
+                    a.created.len()
+                ));
+                status.warnings.extend(
+                    hedra_doc::import::describe_repairs(&meshes)
+                        .into_iter()
+                        .map(|n| format!("{name}: {n}")),
+                );
+                Ok(Some(DocChanged {
+                    created: a.created,
+                    replaced: false,
+                }))
+            }
+            Err(e) => Err(e.to_string()),
+        },
+        DocRequest::Save(path) => {
+            jobs.start_save(&state.session, path);
+            status.info(format!("Saving {}…", path.display()));
+            Ok(None)
         }
     }
 }

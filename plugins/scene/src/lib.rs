@@ -5,10 +5,13 @@
 //! applies them. The projection mirrors the document, with the previews of
 //! running tools ([`Previews`]) over it: [`sync_entities`] keeps one entity
 //! per node (`Name`, `Visibility`, `ChildOf`), [`project_transforms`] is the
-//! one writer of their `Transform`, [`project_render_meshes`] of their render
-//! meshes. One file each: `apply` (the one writer of the document),
+//! one writer of their `Transform`, [`project_render_meshes`] of mesh nodes'
+//! render meshes, [`project_control_points`] of the control-point child
+//! entities of curves and surfaces, [`project_surface_patches`] of the patch
+//! child entities that draw surfaces. One file each: `apply` (the one writer of the document),
 //! `preview` (what tools show, as data), `projection` (entities and their
-//! render meshes), `render_mesh` (building meshes from content), `smooth`
+//! render meshes), `shape_entities` (control points and surface patches),
+//! `render_mesh` (building meshes from content), `smooth`
 //! (subdivision previews refined in the background).
 
 use bevy::asset::RenderAssetUsages;
@@ -21,15 +24,20 @@ use std::collections::HashMap;
 use std::path::PathBuf;
 
 mod apply;
+mod file_jobs;
 mod preview;
 mod projection;
 mod render_mesh;
+mod shape_entities;
 mod smooth;
 
 pub use apply::*;
+pub use file_jobs::FileJobs;
+use file_jobs::FinishedFile;
 pub use preview::*;
 pub use projection::*;
 pub use render_mesh::*;
+pub use shape_entities::*;
 pub use smooth::{SmoothPreviews, SmoothSource};
 
 /// The open document, where it lives on disk, and a change counter.
@@ -136,15 +144,23 @@ impl Plugin for ScenePlugin {
             .init_resource::<NodeEntities>()
             .init_resource::<SmoothPreviews>()
             .init_resource::<Previews>()
+            .init_resource::<FileJobs>()
             .init_resource::<InputGate>()
             .add_message::<DocRequest>()
             .add_message::<DocChanged>()
             .configure_sets(Update, (SceneSystems::Apply, SceneSystems::Sync).chain())
             .add_systems(Startup, setup_material)
             .add_systems(Update, apply_requests.in_set(SceneSystems::Apply))
+            .add_systems(Last, file_jobs::finish_saves_on_exit)
             .add_systems(
                 Update,
-                (sync_entities, project_transforms, project_render_meshes)
+                (
+                    sync_entities,
+                    project_transforms,
+                    project_render_meshes,
+                    project_control_points,
+                    project_surface_patches,
+                )
                     .chain()
                     .in_set(SceneSystems::Sync),
             );

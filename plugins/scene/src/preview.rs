@@ -9,8 +9,8 @@
 //! result.
 
 use crate::*;
-use hedra_doc::Transform as DocTransform;
 use hedra_doc::SurfaceShape;
+use hedra_doc::Transform as DocTransform;
 use hedra_geom::curves::NurbsCurve;
 use hedra_geom::subdivision::Creases;
 use std::collections::BTreeMap;
@@ -114,18 +114,28 @@ impl Previews {
     /// The transform shown for `node` instead of the document's, if a tool
     /// previews one (the later slot wins; only one tool runs at a time).
     pub fn transform(&self, node: NodeId) -> Option<&DocTransform> {
-        self.slots.values().rev().find_map(|s| s.transforms.get(&node))
+        self.slots
+            .values()
+            .rev()
+            .find_map(|s| s.transforms.get(&node))
     }
 
     /// The content shown for `node` instead of the document's.
     pub fn content(&self, node: NodeId) -> Option<&PreviewContent> {
-        self.slots.values().rev().find_map(|s| s.contents.get(&node))
+        self.slots
+            .values()
+            .rev()
+            .find_map(|s| s.contents.get(&node))
     }
 
     /// Shows `preview` for `source`. Marks the resource changed only when
     /// the preview differs, so the projection does nothing while a tool
     /// holds still.
-    pub fn show(this: &mut ResMut<Self>, source: PreviewSource, preview: ToolPreview) {
+    pub fn show(
+        this: &mut impl std::ops::DerefMut<Target = Self>,
+        source: PreviewSource,
+        preview: ToolPreview,
+    ) {
         if preview.is_empty() {
             return Self::clear(this, source);
         }
@@ -135,9 +145,22 @@ impl Previews {
     }
 
     /// Ends the preview of `source` (changing nothing when it shows none).
-    pub fn clear(this: &mut ResMut<Self>, source: PreviewSource) {
+    pub fn clear(this: &mut impl std::ops::DerefMut<Target = Self>, source: PreviewSource) {
         if this.slots.contains_key(&source) {
             this.slots.remove(&source);
+        }
+    }
+
+    /// A curve or surface node's content as the screen shows it: a
+    /// tool's preview, else the document's (`None` for other nodes).
+    pub fn shown_shape(&self, doc: &hedra_doc::Document, node: NodeId) -> Option<NodeContent> {
+        match self.content(node) {
+            Some(PreviewContent::Curve(c)) => Some(NodeContent::Curve(c.clone())),
+            Some(PreviewContent::Surface(s)) => Some(NodeContent::Surface(s.clone())),
+            _ => match &doc.node(node)?.content {
+                c @ (NodeContent::Curve(_) | NodeContent::Surface(_)) => Some(c.clone()),
+                _ => None,
+            },
         }
     }
 

@@ -1,7 +1,6 @@
 //! The document mirrored as entities: one per node, with its transform, hierarchy, visibility and render mesh.
 
 use crate::*;
-use hedra_doc::SurfaceShape;
 use std::sync::Arc;
 
 /// The document node an entity mirrors.
@@ -158,34 +157,28 @@ pub fn project_transforms(
     }
 }
 
-/// What a node's render mesh shows now: the shape (by identity, kept alive
-/// here so its address cannot be reused), how it is shaded and smoothed.
+/// What a mesh node's render mesh shows now: the cage (by identity, kept
+/// alive here so its address cannot be reused), how it is shaded and
+/// smoothed.
 /// Written only by [`project_render_meshes`].
 #[derive(Component, Clone, Debug)]
 pub struct OnScreen {
-    shape: ShownShape,
+    mesh: Arc<HalfEdgeMesh>,
     shading: Shading,
     smooth: Option<(hedra_doc::SubdivisionModifier, u64)>,
 }
 
-#[derive(Clone, Debug)]
-enum ShownShape {
-    Mesh(Arc<HalfEdgeMesh>),
-    /// A surface and, for NURBS, the grid its render mesh was built on.
-    Surface(Arc<SurfaceShape>, Option<SurfaceGrid>),
-}
-
 impl OnScreen {
     fn shows_mesh(&self, mesh: &Arc<HalfEdgeMesh>) -> bool {
-        matches!(&self.shape, ShownShape::Mesh(m) if Arc::ptr_eq(m, mesh))
+        Arc::ptr_eq(&self.mesh, mesh)
     }
 }
 
-/// The one writer of node render meshes (the `Assets<Mesh>` entries behind
-/// their `Mesh3d`) and of [`SmoothPreviews`]. Draws each node's document
-/// content or the content a running tool previews ([`Previews::content`]):
-/// patches positions in place when only positions changed (cage, smooth
-/// stencils, NURBS knot spans), rebuilds otherwise; starts large smooth
+/// The one writer of mesh nodes' render meshes (the `Assets<Mesh>` entries
+/// behind their `Mesh3d`) and of [`SmoothPreviews`]. Draws each node's
+/// document mesh or the one a running tool previews ([`Previews::content`]):
+/// patches positions in place when only positions changed (cage or smooth
+/// stencils), rebuilds otherwise; starts large smooth
 /// previews in the background and puts them on screen when they finish
 /// (Esc cancels them).
 #[allow(clippy::too_many_arguments)]
@@ -266,14 +259,8 @@ pub fn project_render_meshes(
             NodeContent::Mesh(content) => {
                 projector.mesh(&mut ec, node, content, preview, mesh3d, on_screen)
             }
-            NodeContent::Surface(surface) => {
-                let shape = match preview {
-                    Some(PreviewContent::Surface(s)) => s,
-                    _ => surface,
-                };
-                projector.surface(&mut ec, shape, mesh3d, on_screen)
-            }
-            NodeContent::Curve(_) | NodeContent::Empty => {
+            // Surfaces are drawn by their patch entities.
+            NodeContent::Surface(_) | NodeContent::Curve(_) | NodeContent::Empty => {
                 if mesh3d.is_some() || on_screen.is_some() {
                     ec.remove::<(Mesh3d, MeshMaterial3d<StandardMaterial>, OnScreen)>();
                 }
@@ -310,15 +297,13 @@ impl Projector<'_> {
         };
         let modifier = active_modifier(content);
         let wanted = OnScreen {
-            shape: ShownShape::Mesh(cage.clone()),
+            mesh: cage.clone(),
             shading: content.shading,
             smooth: modifier.map(|m| (m, creases_fingerprint(creases))),
         };
         let same_look = on_screen
             .is_some_and(|o| o.shading == wanted.shading && o.smooth.map(|s| s.0) == modifier);
-        if same_look
-            && on_screen.is_some_and(|o| o.shows_mesh(cage) && o.smooth == wanted.smooth)
-        {
+        if same_look && on_screen.is_some_and(|o| o.shows_mesh(cage) && o.smooth == wanted.smooth) {
             return;
         }
         let mut render = mesh3d.and_then(|h| self.meshes.get_mut(&h.0));
@@ -333,12 +318,8 @@ impl Projector<'_> {
                     shading: content.shading,
                 },
             ),
-            (None, Some(r)) if same_look => match on_screen.map(|o| &o.shape) {
-                Some(ShownShape::Mesh(old)) => {
-                    update_render_positions(r, old, cage, content.shading)
-                }
-                _ => false,
-            },
+            (None, Some(r)) if same_look => on_screen
+                .is_some_and(|o| update_render_positions(r, &o.mesh, cage, content.shading)),
             _ => false,
         };
         drop(render);
@@ -375,46 +356,6 @@ impl Projector<'_> {
             set_render_mesh(ec, mesh3d, self.meshes, built, self.material);
         }
         ec.insert(wanted);
-    }
-
-    /// A surface node: its tessellation, patched over the knot spans of
-    /// the control points that changed when it can be.
-    fn surface(
-        &mut self,
-        ec: &mut EntityCommands,
-        shape: &Arc<SurfaceShape>,
-        mesh3d: Option<&Mesh3d>,
-        on_screen: Option<&OnScreen>,
-    ) {
-        let old = on_screen.and_then(|o| match &o.shape {
-            ShownShape::Surface(s, grid) => Some((s, grid)),
-            ShownShape::Mesh(_) => None,
-        });
-        if old.is_some_and(|(s, _)| Arc::ptr_eq(s, shape)) {
-            return;
-        }
-        let render = mesh3d.and_then(|h| self.meshes.get_mut(&h.0));
-        let patched = match (old, render, &**shape) {
-            (Some((old, Some(grid))), Some(mut r), SurfaceShape::Nurbs(new)) => match &**old {
-                SurfaceShape::Nurbs(old) => update_surface_render_mesh(&mut r, grid, old, new),
-                SurfaceShape::Triangle(_) => false,
-            },
-            _ => false,
-        };
-        let grid = if patched {
-            old.and_then(|(_, g)| g.clone())
-        } else {
-            set_render_mesh(ec, mesh3d, self.meshes, surface_render_mesh(shape), self.material);
-            match &**shape {
-                SurfaceShape::Nurbs(n) => Some(surface_grid(n)),
-                SurfaceShape::Triangle(_) => None,
-            }
-        };
-        ec.insert(OnScreen {
-            shape: ShownShape::Surface(shape.clone(), grid),
-            shading: Shading::Smooth,
-            smooth: None,
-        });
     }
 }
 

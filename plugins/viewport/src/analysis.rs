@@ -49,7 +49,7 @@ pub(crate) fn draw_curve_analysis(
     }
     let Some(id) = selection.active() else { return };
     let doc = &state.session.doc;
-    let Some(NodeContent::Curve(c)) = &crate::overlays::shown_shape(&previews, doc, id) else {
+    let Some(NodeContent::Curve(c)) = &previews.shown_shape(doc, id) else {
         return;
     };
     let world = doc.world_matrix(id);

@@ -13,8 +13,7 @@ use hedra_doc::{NodeContent, Transform as DocTransform};
 use hedra_edit::{EditMode, ElementKind, Selection, TransformTool};
 use hedra_scene::modifiers;
 use hedra_scene::{
-    DocRequest, DocState, InputGate, NodeEntity, ProjectedMesh, SceneSystems,
-    ViewportCamera,
+    DocRequest, DocState, InputGate, NodeEntity, ProjectedMesh, SceneSystems, ViewportCamera,
 };
 use std::f32::consts::FRAC_PI_2;
 

@@ -25,16 +25,6 @@ pub(crate) fn shown_mesh<'a>(
     })
 }
 
-/// A curve or surface node's content as the screen shows it (a preview, or
-/// the document's).
-pub(crate) fn shown_shape(previews: &Previews, doc: &Document, node: NodeId) -> Option<NodeContent> {
-    match previews.content(node) {
-        Some(PreviewContent::Curve(c)) => Some(NodeContent::Curve(c.clone())),
-        Some(PreviewContent::Surface(s)) => Some(NodeContent::Surface(s.clone())),
-        _ => doc.node(node).map(|n| n.content.clone()),
-    }
-}
-
 /// Overlay child entity showing a mesh node's edges, and what it was built for.
 #[derive(Component, Debug, Clone, Copy, PartialEq, Eq)]
 pub struct EdgeOverlay {
@@ -361,7 +351,7 @@ pub(crate) fn draw_shape_edit(
 ) {
     use hedra_edit::shape_mode::{control_points, control_weights};
     let Some(node) = edit.node else { return };
-    let Some(content) = shown_shape(&previews, &state.session.doc, node) else {
+    let Some(content) = previews.shown_shape(&state.session.doc, node) else {
         return;
     };
     let world = state.session.doc.world_matrix(node);

@@ -8,17 +8,15 @@
 
 use crate::modal::Axis;
 use crate::{Selection, TransformTool, cursor_ray};
-use bevy::prelude::*;
 use bevy::gizmos::transform_gizmo::TransformGizmoState;
+use bevy::prelude::*;
 use bevy::window::PrimaryWindow;
 use glam::{DMat4, DVec3};
 use hedra_doc::{Command, EdgeSet, FaceSet, NodeContent, NodeId, NodeRef, VertexSet};
 use hedra_geom::subdivision::Creases;
 use hedra_geom::{EdgeId, FaceId, HalfEdgeMesh, VertexId};
 use hedra_scene::modifiers::{alt, ctrl, shift};
-use hedra_scene::{
-    DocChanged, DocRequest, DocState, InputGate, StatusMessage, ViewportCamera,
-};
+use hedra_scene::{DocChanged, DocRequest, DocState, InputGate, StatusMessage, ViewportCamera};
 use std::collections::BTreeSet;
 use std::sync::Arc;
 

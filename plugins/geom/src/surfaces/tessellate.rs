@@ -90,7 +90,7 @@ pub fn tessellate_nurbs(surface: &super::NurbsSurface, tolerance: f64) -> Surfac
 }
 
 /// Two counter-clockwise triangles per cell of a `(cu + 1) × (cv + 1)` grid.
-fn grid_triangles(cu: usize, cv: usize) -> Vec<[u32; 3]> {
+pub fn grid_triangles(cu: usize, cv: usize) -> Vec<[u32; 3]> {
     let id = |i: usize, j: usize| (i * (cv + 1) + j) as u32;
     let mut t = Vec::with_capacity(2 * cu * cv);
     for i in 0..cu {

@@ -1,0 +1,158 @@
+//! Opening and saving scene files on a worker thread, so a big file does
+//! not stall the window: [`apply_requests`](crate::apply_requests) starts a
+//! job and keeps drawing frames; the job's result is applied in a later
+//! frame. While a file is being opened, every later request waits for it
+//! (they belong to the opened document); while one is being saved, edits go
+//! on (the file gets the document as it was when the save began) and only
+//! other file requests wait.
+
+use crate::*;
+use hedra_doc::file::{FileError, Loaded};
+use std::collections::VecDeque;
+use std::sync::Mutex;
+use std::sync::mpsc::{Receiver, TryRecvError, channel};
+
+/// Waits for or polls a worker's result.
+fn receive<T>(done: &Mutex<Receiver<T>>, block: bool) -> Result<T, TryRecvError> {
+    let done = done.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
+    if block {
+        done.recv().map_err(|_| TryRecvError::Disconnected)
+    } else {
+        done.try_recv()
+    }
+}
+
+/// A file being read or written on a worker thread.
+pub(crate) enum FileJob {
+    Open {
+        path: PathBuf,
+        done: Mutex<Receiver<Result<Loaded, FileError>>>,
+    },
+    Save {
+        path: PathBuf,
+        /// The history serial of the saved state.
+        serial: u64,
+        done: Mutex<Receiver<Result<(), FileError>>>,
+    },
+}
+
+/// The running file job and the requests waiting for it. Written only by
+/// `apply_requests`.
+#[derive(Resource, Default)]
+pub struct FileJobs {
+    pub(crate) running: Option<FileJob>,
+    pub(crate) waiting: VecDeque<DocRequest>,
+}
+
+impl FileJobs {
+    /// True while a file is being opened or saved (or requests wait).
+    pub fn busy(&self) -> bool {
+        self.running.is_some() || !self.waiting.is_empty()
+    }
+
+    /// What the status bar shows while a job runs.
+    pub fn describe(&self) -> Option<String> {
+        match &self.running {
+            Some(FileJob::Open { path, .. }) => Some(format!("Opening {}…", path.display())),
+            Some(FileJob::Save { path, .. }) => Some(format!("Saving {}…", path.display())),
+            None => None,
+        }
+    }
+
+    /// Whether `request` must wait for the running job.
+    pub(crate) fn must_wait(&self, request: &DocRequest) -> bool {
+        match &self.running {
+            None => !self.waiting.is_empty(),
+            Some(FileJob::Open { .. }) => true,
+            Some(FileJob::Save { .. }) => {
+                !self.waiting.is_empty()
+                    || matches!(
+                        request,
+                        DocRequest::Open(_)
+                            | DocRequest::Save(_)
+                            | DocRequest::New
+                            | DocRequest::Recover(_)
+                    )
+            }
+        }
+    }
+
+    /// Reads `path` on a worker thread.
+    pub(crate) fn start_open(&mut self, path: &std::path::Path) {
+        let (send, done) = channel();
+        let owned = path.to_path_buf();
+        std::thread::spawn(move || {
+            let _ = send.send(file::load(&owned));
+        });
+        self.running = Some(FileJob::Open {
+            path: path.to_path_buf(),
+            done: Mutex::new(done),
+        });
+    }
+
+    /// Writes `session` (a copy: edits go on meanwhile) to `path` on a
+    /// worker thread, atomically.
+    pub(crate) fn start_save(&mut self, session: &Session, path: &std::path::Path) {
+        let (send, done) = channel();
+        let snapshot = session.clone();
+        let owned = path.to_path_buf();
+        std::thread::spawn(move || {
+            let _ = send.send(file::write_atomic(&owned, &file::to_string(&snapshot)));
+        });
+        self.running = Some(FileJob::Save {
+            path: path.to_path_buf(),
+            serial: session.history.current_serial(),
+            done: Mutex::new(done),
+        });
+    }
+
+    /// The running job's result, if it has finished (`block`: wait for it).
+    pub(crate) fn finished(&mut self, block: bool) -> Option<FinishedFile> {
+        let result = match self.running.as_ref()? {
+            FileJob::Open { path, done } => {
+                let r = receive(done, block);
+                match r {
+                    Ok(r) => FinishedFile::Opened(path.clone(), r),
+                    Err(TryRecvError::Empty) => return None,
+                    Err(TryRecvError::Disconnected) => {
+                        FinishedFile::Opened(path.clone(), Err(worker_died(path)))
+                    }
+                }
+            }
+            FileJob::Save { path, serial, done } => {
+                let r = receive(done, block);
+                match r {
+                    Ok(r) => FinishedFile::Saved(path.clone(), *serial, r),
+                    Err(TryRecvError::Empty) => return None,
+                    Err(TryRecvError::Disconnected) => {
+                        FinishedFile::Saved(path.clone(), *serial, Err(worker_died(path)))
+                    }
+                }
+            }
+        };
+        self.running = None;
+        Some(result)
+    }
+}
+
+/// A file job's outcome.
+pub(crate) enum FinishedFile {
+    Opened(PathBuf, Result<Loaded, FileError>),
+    Saved(PathBuf, u64, Result<(), FileError>),
+}
+
+fn worker_died(path: &std::path::Path) -> FileError {
+    FileError::Io {
+        path: path.to_path_buf(),
+        source: std::io::Error::other("the worker thread stopped unexpectedly"),
+    }
+}
+
+/// When the app exits, a save still being written is finished first, so
+/// quitting right after Ctrl+S loses nothing (the file is complete on disk;
+/// the app is closing, so nothing else needs to know).
+pub fn finish_saves_on_exit(exits: MessageReader<AppExit>, jobs: Res<FileJobs>) {
+    if let (false, Some(FileJob::Save { done, .. })) = (exits.is_empty(), &jobs.running) {
+        let _ = receive(done, true);
+    }
+}

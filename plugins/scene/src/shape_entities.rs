@@ -1,0 +1,264 @@
+//! Curves and surfaces as entities: each control point is a child entity
+//! of its node with a [`ControlPoint`] (index, position, weight); each
+//! surface is drawn by child entities with a [`SurfacePatch`] and their own
+//! render mesh, one per knot-span tile of its render grid. A weight or point
+//! drag changes a few `ControlPoint`s, and Bevy's change detection tells
+//! [`project_surface_patches`] which patches to re-tessellate: the patches
+//! whose inputs changed, and no others.
+
+use crate::*;
+use hedra_doc::SurfaceShape;
+use hedra_doc::render::{RenderBuffers, SurfaceTile, surface_tiles, tile_buffers};
+use hedra_geom::DVec3;
+
+/// A control point of a curve or surface node, on a child entity of the
+/// node's entity. Written only by [`project_control_points`], from the
+/// document or the running tool's preview.
+#[derive(Component, Clone, Copy, Debug, PartialEq)]
+pub struct ControlPoint {
+    /// The point's index, as commands count them (row-major on surfaces).
+    pub index: u32,
+    /// Local position.
+    pub position: DVec3,
+    /// Rational weight (1 for shapes without weights).
+    pub weight: f64,
+}
+
+/// A piece of a surface node's render mesh, on a child entity with its own
+/// `Mesh3d`: a knot-span tile of a NURBS surface's grid, or the whole
+/// surface (Bézier triangles). Written only by [`project_surface_patches`].
+#[derive(Component, Clone, Debug, PartialEq)]
+pub struct SurfacePatch {
+    /// `None`: the whole surface, shaped by every control point.
+    pub tile: Option<SurfaceTile>,
+}
+
+/// On a surface node: the layout its patches were made for (the surface's
+/// kind, degrees, knots and size, and the render grid), kept while only
+/// points and weights change so that a drag never re-lays the patches.
+#[derive(Component, Clone, Debug, PartialEq)]
+pub struct PatchLayout {
+    key: LayoutKey,
+    grid: Option<SurfaceGrid>,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+enum LayoutKey {
+    Nurbs {
+        degrees: (usize, usize),
+        knots: (Vec<f64>, Vec<f64>),
+        size: (usize, usize),
+    },
+    Triangle {
+        points: usize,
+    },
+}
+
+impl LayoutKey {
+    fn of(surface: &SurfaceShape) -> LayoutKey {
+        match surface {
+            SurfaceShape::Nurbs(n) => {
+                let (ku, kv) = n.knots();
+                LayoutKey::Nurbs {
+                    degrees: n.degrees(),
+                    knots: (ku.to_vec(), kv.to_vec()),
+                    size: n.size(),
+                }
+            }
+            SurfaceShape::Triangle(_) => LayoutKey::Triangle {
+                points: surface.control_points().len(),
+            },
+        }
+    }
+}
+
+/// Control points of a curve or surface (local space); none for meshes and empties.
+pub fn control_points(content: &NodeContent) -> Vec<DVec3> {
+    match content {
+        NodeContent::Curve(c) => c.points().to_vec(),
+        NodeContent::Surface(s) => s.control_points().to_vec(),
+        _ => Vec::new(),
+    }
+}
+
+/// Weights of the control points, `None` for shapes without weights.
+pub fn control_weights(content: &NodeContent) -> Option<Vec<f64>> {
+    match content {
+        NodeContent::Curve(c) => Some(c.weights().to_vec()),
+        NodeContent::Surface(s) => match &**s {
+            SurfaceShape::Nurbs(n) => Some(n.weights().to_vec()),
+            SurfaceShape::Triangle(_) => None,
+        },
+        _ => None,
+    }
+}
+
+/// The one writer of [`ControlPoint`]s: one child entity per control point
+/// of every curve and surface node, with the values the screen shows (a
+/// tool's preview or the document). A value is written only when it
+/// differs, so change detection marks exactly the points that moved.
+#[allow(clippy::type_complexity)]
+pub fn project_control_points(
+    mut commands: Commands,
+    state: Res<DocState>,
+    previews: Res<Previews>,
+    mut seen_revision: Local<Option<u64>>,
+    added: Query<(), Added<NodeEntity>>,
+    nodes: Query<(Entity, &NodeEntity, Option<&Children>)>,
+    mut points: Query<&mut ControlPoint>,
+) {
+    if *seen_revision == Some(state.revision) && !previews.is_changed() && added.is_empty() {
+        return;
+    }
+    *seen_revision = Some(state.revision);
+    let doc = &state.session.doc;
+    for (entity, node, children) in &nodes {
+        let content = previews.shown_shape(doc, node.0);
+        let wanted = content.as_ref().map(control_points).unwrap_or_default();
+        let weights = content.as_ref().and_then(control_weights);
+        let existing: Vec<Entity> = children
+            .into_iter()
+            .flatten()
+            .copied()
+            .filter(|c| points.contains(*c))
+            .collect();
+        let value = |i: usize| ControlPoint {
+            index: i as u32,
+            position: wanted[i],
+            weight: weights.as_ref().map_or(1.0, |w| w[i]),
+        };
+        if existing.len() == wanted.len() {
+            for e in existing {
+                let mut p = points.get_mut(e).expect("filtered above");
+                let new = value(p.index as usize);
+                p.set_if_neq(new);
+            }
+            continue;
+        }
+        for e in existing {
+            commands.entity(e).despawn();
+        }
+        for i in 0..wanted.len() {
+            commands.spawn((value(i), ChildOf(entity)));
+        }
+    }
+}
+
+/// The one writer of surface patches and their render meshes. Lays out a
+/// surface node's patches when it first shows or its kind, degrees, knots
+/// or size change (or, outside a tool, its render grid); otherwise
+/// re-tessellates exactly the patches one of whose input control points
+/// changed since the last frame (Bevy's change detection on
+/// [`ControlPoint`]).
+#[allow(clippy::too_many_arguments, clippy::type_complexity)]
+pub fn project_surface_patches(
+    mut commands: Commands,
+    state: Res<DocState>,
+    previews: Res<Previews>,
+    material: Option<Res<MeshMaterial>>,
+    mut meshes: ResMut<Assets<Mesh>>,
+    nodes: Query<(Entity, &NodeEntity, Option<&PatchLayout>, Option<&Children>)>,
+    points: Query<Ref<ControlPoint>>,
+    patches: Query<(&SurfacePatch, &Mesh3d)>,
+) {
+    let doc = &state.session.doc;
+    for (entity, node, layout, children) in &nodes {
+        let children: Vec<Entity> = children.into_iter().flatten().copied().collect();
+        let old_patches = || children.iter().copied().filter(|c| patches.contains(*c));
+        let surface = match previews.shown_shape(doc, node.0) {
+            Some(NodeContent::Surface(s)) => s,
+            _ => {
+                if layout.is_some() {
+                    old_patches().for_each(|p| commands.entity(p).despawn());
+                    commands.entity(entity).remove::<PatchLayout>();
+                }
+                continue;
+            }
+        };
+        let key = LayoutKey::of(&surface);
+        let previewed = previews.content(node.0).is_some();
+        let grid = |s: &SurfaceShape| match s {
+            SurfaceShape::Nurbs(n) => Some(surface_grid(n)),
+            SurfaceShape::Triangle(_) => None,
+        };
+        let keep = layout.filter(|l| l.key == key && (previewed || l.grid == grid(&surface)));
+        let Some(layout) = keep else {
+            old_patches().for_each(|p| commands.entity(p).despawn());
+            let layout = PatchLayout {
+                key,
+                grid: grid(&surface),
+            };
+            for patch in layout_patches(&surface, layout.grid.as_ref()) {
+                let mesh = meshes.add(buffers_mesh(patch_buffers(
+                    &surface,
+                    layout.grid.as_ref(),
+                    &patch,
+                )));
+                let mut e = commands.spawn((
+                    patch,
+                    Mesh3d(mesh),
+                    Transform::default(),
+                    Visibility::default(),
+                    ChildOf(entity),
+                ));
+                if let Some(m) = &material {
+                    e.insert(MeshMaterial3d(m.0.clone()));
+                }
+            }
+            commands.entity(entity).insert(layout);
+            continue;
+        };
+        // Which control points changed since the last frame.
+        let mut changed = vec![false; surface.control_points().len()];
+        for p in children.iter().filter_map(|c| points.get(*c).ok()) {
+            if let Some(slot) = changed.get_mut(p.index as usize) {
+                *slot = p.is_changed();
+            }
+        }
+        if !changed.contains(&true) {
+            continue;
+        }
+        for (patch, mesh3d) in children.iter().filter_map(|c| patches.get(*c).ok()) {
+            let touched = match &patch.tile {
+                Some(tile) => tile.inputs.iter().any(|&i| changed[i as usize]),
+                None => true,
+            };
+            if touched && let Some(mut m) = meshes.get_mut(&mesh3d.0) {
+                *m = buffers_mesh(patch_buffers(&surface, layout.grid.as_ref(), patch));
+            }
+        }
+    }
+}
+
+/// The patches of a surface: its grid's knot-span tiles, or one patch for
+/// the whole of a Bézier triangle.
+fn layout_patches(surface: &SurfaceShape, grid: Option<&SurfaceGrid>) -> Vec<SurfacePatch> {
+    match (surface, grid) {
+        (SurfaceShape::Nurbs(n), Some(grid)) => surface_tiles(n, grid)
+            .into_iter()
+            .map(|tile| SurfacePatch { tile: Some(tile) })
+            .collect(),
+        _ => vec![SurfacePatch { tile: None }],
+    }
+}
+
+/// Triangles of one patch.
+fn patch_buffers(
+    surface: &SurfaceShape,
+    grid: Option<&SurfaceGrid>,
+    patch: &SurfacePatch,
+) -> RenderBuffers {
+    match (surface, grid, &patch.tile) {
+        (SurfaceShape::Nurbs(n), Some(grid), Some(tile)) => tile_buffers(n, grid, tile),
+        _ => {
+            let tol = VIEW_TOLERANCE * extent(surface.control_points());
+            let (positions, normals, triangles) = surface.tessellate(tol);
+            let f32s = |v: &DVec3| v.as_vec3().to_array();
+            RenderBuffers {
+                positions: positions.iter().map(f32s).collect(),
+                normals: normals.iter().map(f32s).collect(),
+                indices: triangles.into_iter().flatten().collect(),
+            }
+        }
+    }
+}
