@@ -1,4 +1,5 @@
-//! One frame of dragging vertices on a 100,000-face mesh (issue 3): what the
+//! One frame of dragging vertices on a 100,000-face mesh (issue 3), and one
+//! frame of an extrude preview of 100 of its faces (issue 12): what the
 //! edit tool does every frame — decide the move on a copy of the document
 //! (`Document::decide`, as `hedra_edit` does for its preview) and patch the
 //! render buffers in place (`render::patch_positions`, as `hedra_scene`
@@ -78,6 +79,15 @@ fn bench(c: &mut Criterion) {
     g.sample_size(30);
     g.bench_function("decide_extrude_100_faces", |b| {
         b.iter(|| black_box(doc.decide_with_result(black_box(&extrude), 0).unwrap()))
+    });
+    // What the extrude tool does instead (hedra_doc::preview): two decides
+    // when the drag starts, then one copy and the moved positions a frame.
+    g.bench_function("extrude_preview_start_100_faces", |b| {
+        b.iter(|| black_box(doc.linear_preview(black_box(&extrude), node.id).unwrap()))
+    });
+    let linear = doc.linear_preview(&extrude, node.id).unwrap().unwrap();
+    g.bench_function("extrude_preview_frame_100_faces", |b| {
+        b.iter(|| black_box(std::sync::Arc::new(linear.mesh_at(black_box(0.25)))))
     });
     g.bench_function("decide_move_100_vertices", |b| {
         b.iter(|| black_box(doc.decide(black_box(&drag(0.25)), 0).unwrap()))

@@ -11,6 +11,7 @@ pub mod fuzz;
 pub mod gltf;
 pub mod history;
 pub mod import;
+pub mod preview;
 pub mod recovery;
 pub mod reference;
 pub mod render;

@@ -48,6 +48,8 @@ pub fn edit_shortcuts(
         cuts: 1,
         start_value: 0.0,
         created_faces: Vec::new(),
+        linear: None,
+        linear_tried: false,
         readout: String::new(),
     };
     if c && keys.just_pressed(KeyCode::KeyR) {

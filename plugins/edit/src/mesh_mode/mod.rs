@@ -168,6 +168,11 @@ pub struct MeshTool {
     /// Faces the previewed command makes (extrude caps, inset inner faces),
     /// selected when the tool is confirmed.
     created_faces: Vec<FaceId>,
+    /// Extrude and inset: the result as a function of the dragged value,
+    /// decided once when the drag starts (`None` until then, or when the
+    /// command has no such form).
+    linear: Option<hedra_doc::preview::LinearPreview>,
+    linear_tried: bool,
     pub readout: String,
 }
 

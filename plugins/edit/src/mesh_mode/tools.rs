@@ -313,27 +313,31 @@ pub fn drive_mesh_tool(
     if !tool.typed.is_empty() {
         tool.readout = format!("{} [{}]", tool.readout, tool.typed.as_str());
     }
-    // Decide on a copy: the preview, or the reason it cannot apply.
-    match state.session.doc.decide_with_result(&cmd, 0) {
-        Ok(decision) => {
-            tool.created_faces = decision.created_faces;
-            let after = decision
-                .transaction
-                .changes
-                .iter()
-                .find(|c| c.id == node_id)
-                .and_then(|c| c.after.as_ref())
-                .and_then(|n| match &n.content {
-                    NodeContent::Mesh(m) => Some(m),
-                    _ => None,
-                });
-            mode.preview = after.map(|m| m.mesh.clone());
-            mode.preview_creases = after.map(|m| m.creases.clone());
-        }
-        Err(e) => {
-            mode.preview = None;
-            tool.readout = format!("{} — {e}", tool.readout);
-        }
+    // Extrude and inset re-place vertices as the value changes: decided
+    // twice when the drag starts, then one mesh copy a frame
+    // (hedra_doc::preview). The command is decided in full on confirm.
+    let value = cmd.linear_parameter();
+    if value.is_some() && !tool.linear_tried {
+        tool.linear_tried = true;
+        tool.linear = state
+            .session
+            .doc
+            .linear_preview(&cmd, node_id)
+            .ok()
+            .flatten();
+    }
+    let inset = matches!(
+        cmd,
+        Command::InsetRegion { .. } | Command::InsetFaces { .. }
+    );
+    if let (Some(linear), Some(t)) = (&tool.linear, value)
+        && (t >= 0.0 || !inset)
+    {
+        tool.created_faces = linear.created_faces.clone();
+        mode.preview = Some(Arc::new(linear.mesh_at(t)));
+        mode.preview_creases = Some(linear.creases.clone());
+    } else {
+        decide_preview(&mut mode, &mut tool, &state, &cmd, node_id);
     }
     if modal_keys.confirm() {
         // A region extrude or inset selects the faces it made (the caps, the
@@ -356,4 +360,36 @@ pub fn drive_mesh_tool(
         return;
     }
     mode.tool = Some(tool);
+}
+
+/// Decides the tool's command on a copy of the document: the preview mesh,
+/// or the reason it cannot apply (shown in the readout).
+fn decide_preview(
+    mode: &mut EditMode,
+    tool: &mut MeshTool,
+    state: &DocState,
+    cmd: &Command,
+    node_id: NodeId,
+) {
+    match state.session.doc.decide_with_result(cmd, 0) {
+        Ok(decision) => {
+            tool.created_faces = decision.created_faces;
+            let after = decision
+                .transaction
+                .changes
+                .iter()
+                .find(|c| c.id == node_id)
+                .and_then(|c| c.after.as_ref())
+                .and_then(|n| match &n.content {
+                    NodeContent::Mesh(m) => Some(m),
+                    _ => None,
+                });
+            mode.preview = after.map(|m| m.mesh.clone());
+            mode.preview_creases = after.map(|m| m.creases.clone());
+        }
+        Err(e) => {
+            mode.preview = None;
+            tool.readout = format!("{} — {e}", tool.readout);
+        }
+    }
 }
