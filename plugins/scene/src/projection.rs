@@ -9,7 +9,7 @@ pub struct NodeEntity(pub NodeId);
 
 /// Which document content (by identity), shading and subdivision a node
 /// shows when no tool previews it; the overlays key on it. Written only by
-/// [`project_render_meshes`].
+/// [`sync_entities`].
 #[derive(Component, Clone, Copy, Debug, PartialEq, Eq)]
 pub struct ProjectedMesh {
     pub source: usize,
@@ -36,6 +36,51 @@ pub fn active_modifier(content: &hedra_doc::MeshContent) -> Option<hedra_doc::Su
     content.subdivision.filter(|m| m.viewport_level > 0)
 }
 
+/// A mesh node's content, mirrored from the document: the half-edge mesh
+/// (shared with the document, not copied), shading, creases and the
+/// subdivision modifier. Written only by [`sync_entities`], and only when
+/// it differs, so `Changed<NodeMesh>` means the document's mesh changed.
+#[derive(Component, Clone, Debug)]
+pub struct NodeMesh {
+    pub mesh: Arc<HalfEdgeMesh>,
+    pub shading: Shading,
+    pub creases: hedra_geom::subdivision::Creases,
+    pub subdivision: Option<hedra_doc::SubdivisionModifier>,
+}
+
+impl NodeMesh {
+    fn of(c: &hedra_doc::MeshContent) -> NodeMesh {
+        NodeMesh {
+            mesh: c.mesh.clone(),
+            shading: c.shading,
+            creases: c.creases.clone(),
+            subdivision: c.subdivision,
+        }
+    }
+
+    fn same(&self, c: &hedra_doc::MeshContent) -> bool {
+        Arc::ptr_eq(&self.mesh, &c.mesh)
+            && self.shading == c.shading
+            && self.subdivision == c.subdivision
+            && self.creases == c.creases
+    }
+
+    /// The subdivision the viewport shows, if any.
+    pub fn active_modifier(&self) -> Option<hedra_doc::SubdivisionModifier> {
+        self.subdivision.filter(|m| m.viewport_level > 0)
+    }
+}
+
+/// A curve node's curve, mirrored from the document (shared). Written only
+/// by [`sync_entities`], when it differs.
+#[derive(Component, Clone, Debug)]
+pub struct NodeCurve(pub Arc<hedra_geom::curves::NurbsCurve>);
+
+/// A surface node's surface, mirrored from the document (shared). Written
+/// only by [`sync_entities`], when it differs.
+#[derive(Component, Clone, Debug)]
+pub struct NodeSurface(pub Arc<hedra_doc::SurfaceShape>);
+
 /// Node id → entity, kept by [`sync_entities`].
 #[derive(Resource, Default, Debug)]
 pub struct NodeEntities(pub HashMap<NodeId, Entity>);
@@ -50,16 +95,26 @@ pub fn bevy_transform(t: &hedra_doc::Transform) -> Transform {
 }
 
 /// Mirrors the document's nodes into entities whenever its revision
-/// changes: spawns and despawns them, keeps `Name`, `Visibility` and
-/// `ChildOf`. A new entity starts at its document transform;
-/// [`project_transforms`] writes it after that, [`project_render_meshes`]
-/// its render mesh.
+/// changes: spawns and despawns them, keeps `Name`, `Visibility`,
+/// `ChildOf`, the content components ([`NodeMesh`], [`NodeCurve`],
+/// [`NodeSurface`]) and [`ProjectedMesh`], each written only when it
+/// differs. A new entity starts at its document transform;
+/// [`project_transforms`] writes it after that.
+#[allow(clippy::type_complexity)]
 pub fn sync_entities(
     mut commands: Commands,
     state: Res<DocState>,
     mut seen_revision: Local<Option<u64>>,
     mut map: ResMut<NodeEntities>,
-    mut existing: Query<(&mut Name, &mut Visibility, Option<&ChildOf>)>,
+    mut existing: Query<(
+        &mut Name,
+        &mut Visibility,
+        Option<&ChildOf>,
+        Option<&mut NodeMesh>,
+        Option<&mut NodeCurve>,
+        Option<&mut NodeSurface>,
+        Option<&mut ProjectedMesh>,
+    )>,
 ) {
     if *seen_revision == Some(state.revision) {
         return;
@@ -94,7 +149,7 @@ pub fn sync_entities(
         let e = map.0[&node.id];
         let parent = node.parent.and_then(|p| map.0.get(&p).copied());
         let old_parent = match existing.get_mut(e) {
-            Ok((mut name, mut v, child_of)) => {
+            Ok((mut name, mut v, child_of, mesh, curve, surface, projected)) => {
                 if name.as_str() != node.name {
                     name.set(node.name.clone());
                 }
@@ -102,9 +157,30 @@ pub fn sync_entities(
                 if *v != wanted {
                     *v = wanted;
                 }
+                mirror_content(&mut commands.entity(e), &node.content, mesh, curve, surface);
+                let wanted = ProjectedMesh::of(&node.content);
+                match (projected, wanted) {
+                    (Some(mut p), Some(w)) => {
+                        p.set_if_neq(w);
+                    }
+                    (None, Some(w)) => {
+                        commands.entity(e).insert(w);
+                    }
+                    (Some(_), None) => {
+                        commands.entity(e).remove::<ProjectedMesh>();
+                    }
+                    (None, None) => {}
+                }
                 child_of.map(|c| c.parent())
             }
-            Err(_) => None,
+            Err(_) => {
+                // Spawned above: its components go in with the spawn.
+                mirror_content(&mut commands.entity(e), &node.content, None, None, None);
+                if let Some(w) = ProjectedMesh::of(&node.content) {
+                    commands.entity(e).insert(w);
+                }
+                None
+            }
         };
         match (parent, old_parent) {
             (Some(p), Some(old)) if p == old => {}
@@ -129,6 +205,60 @@ pub fn sync_entities(
             commands.entity(e).remove::<ChildOf>();
             commands.entity(e).try_despawn();
         }
+    }
+}
+
+/// Puts a node's content on its entity: updates the component of its kind
+/// when it differs, removes the others.
+fn mirror_content(
+    ec: &mut EntityCommands,
+    content: &NodeContent,
+    mesh: Option<Mut<NodeMesh>>,
+    curve: Option<Mut<NodeCurve>>,
+    surface: Option<Mut<NodeSurface>>,
+) {
+    let (had_mesh, had_curve, had_surface) = (mesh.is_some(), curve.is_some(), surface.is_some());
+    match content {
+        NodeContent::Mesh(c) => match mesh {
+            Some(mut m) => {
+                if !m.same(c) {
+                    *m = NodeMesh::of(c);
+                }
+            }
+            None => {
+                ec.insert(NodeMesh::of(c));
+            }
+        },
+        NodeContent::Curve(c) => match curve {
+            Some(mut old) => {
+                if !Arc::ptr_eq(&old.0, c) {
+                    old.0 = c.clone();
+                }
+            }
+            None => {
+                ec.insert(NodeCurve(c.clone()));
+            }
+        },
+        NodeContent::Surface(s) => match surface {
+            Some(mut old) => {
+                if !Arc::ptr_eq(&old.0, s) {
+                    old.0 = s.clone();
+                }
+            }
+            None => {
+                ec.insert(NodeSurface(s.clone()));
+            }
+        },
+        NodeContent::Empty => {}
+    }
+    if had_mesh && !matches!(content, NodeContent::Mesh(_)) {
+        ec.remove::<NodeMesh>();
+    }
+    if had_curve && !matches!(content, NodeContent::Curve(_)) {
+        ec.remove::<NodeCurve>();
+    }
+    if had_surface && !matches!(content, NodeContent::Surface(_)) {
+        ec.remove::<NodeSurface>();
     }
 }
 
@@ -181,40 +311,35 @@ impl OnScreen {
 /// stencils), rebuilds otherwise; starts large smooth
 /// previews in the background and puts them on screen when they finish
 /// (Esc cancels them).
-#[allow(clippy::too_many_arguments)]
+#[allow(clippy::too_many_arguments, clippy::type_complexity)]
 pub fn project_render_meshes(
     mut commands: Commands,
-    state: Res<DocState>,
     previews: Res<Previews>,
     keys: Option<Res<ButtonInput<KeyCode>>>,
-    mut seen_revision: Local<Option<u64>>,
     mut smooth: ResMut<SmoothPreviews>,
     mut meshes: ResMut<Assets<Mesh>>,
     mut status: ResMut<StatusMessage>,
     material: Option<Res<MeshMaterial>>,
     map: Res<NodeEntities>,
-    added: Query<(), Added<NodeEntity>>,
-    mut nodes: Query<(
+    nodes: Query<(
         Entity,
         &NodeEntity,
-        Option<&ProjectedMesh>,
+        &Name,
+        Option<Ref<NodeMesh>>,
         Option<&Mesh3d>,
         Option<&OnScreen>,
     )>,
 ) {
-    let doc = &state.session.doc;
     if keys.is_some_and(|k| k.just_pressed(KeyCode::Escape)) && !smooth.progress().is_empty() {
         smooth.cancel_all();
     }
     for job in smooth.finished() {
-        let name = doc
-            .node(job.node)
-            .map_or_else(|| job.node.to_string(), |n| n.name.clone());
+        let node = map.0.get(&job.node).and_then(|e| nodes.get(*e).ok());
+        let name = node.map_or_else(|| job.node.to_string(), |(_, _, n, ..)| n.to_string());
         match job.result {
             Ok(mesh) => {
-                let handle = map.0.get(&job.node).and_then(|e| nodes.get(*e).ok());
-                if let Some(mut m) = handle
-                    .and_then(|(_, _, _, m, _)| m)
+                if let Some(mut m) = node
+                    .and_then(|(_, _, _, _, m, _)| m)
                     .and_then(|h| meshes.get_mut(&h.0))
                 {
                     *m = mesh;
@@ -226,65 +351,62 @@ pub fn project_render_meshes(
             Err(e) => status.error(format!("'{name}': subdivision not shown: {e}")),
         }
     }
-    if *seen_revision == Some(state.revision) && !previews.is_changed() && added.is_empty() {
-        return;
-    }
-    *seen_revision = Some(state.revision);
-    smooth.retain(|id| {
-        doc.node(id).is_some_and(|n| match &n.content {
-            NodeContent::Mesh(c) => active_modifier(c).is_some(),
-            _ => false,
-        })
-    });
+    // The store is borrowed mutably only when something is drawn, so its
+    // change ticks tell when render meshes were written.
     let mut projector = Projector {
         meshes: &mut meshes,
         smooth: &mut smooth,
         status: &mut status,
         material: material.as_deref(),
     };
-    for (entity, node_entity, projected, mesh3d, on_screen) in &mut nodes {
-        let Some(node) = doc.node(node_entity.0) else {
+    let mut smoothed = std::collections::HashSet::new();
+    let mut any_changed = false;
+    for (entity, node, name, content, mesh3d, on_screen) in &nodes {
+        let Some(content) = content else {
+            // No longer a mesh: surfaces are drawn by their patch entities,
+            // curves and empties by the overlays.
+            if mesh3d.is_some() || on_screen.is_some() {
+                commands
+                    .entity(entity)
+                    .remove::<(Mesh3d, MeshMaterial3d<StandardMaterial>, OnScreen)>();
+                any_changed = true;
+            }
             continue;
         };
-        let mut ec = commands.entity(entity);
-        let wanted = ProjectedMesh::of(&node.content);
-        if projected.copied() != wanted {
-            match wanted {
-                Some(w) => ec.insert(w),
-                None => ec.remove::<ProjectedMesh>(),
-            };
+        if content.active_modifier().is_some() {
+            smoothed.insert(node.0);
         }
-        let preview = previews.content(node.id);
-        match &node.content {
-            NodeContent::Mesh(content) => {
-                projector.mesh(&mut ec, node, content, preview, mesh3d, on_screen)
-            }
-            // Surfaces are drawn by their patch entities.
-            NodeContent::Surface(_) | NodeContent::Curve(_) | NodeContent::Empty => {
-                if mesh3d.is_some() || on_screen.is_some() {
-                    ec.remove::<(Mesh3d, MeshMaterial3d<StandardMaterial>, OnScreen)>();
-                }
-            }
+        any_changed |= content.is_changed();
+        if content.is_changed() || previews.is_changed() {
+            let preview = previews.content(node.0);
+            let mut ec = commands.entity(entity);
+            projector.mesh(&mut ec, node.0, name, &content, preview, mesh3d, on_screen);
         }
+    }
+    if any_changed {
+        smooth.retain(|id| smoothed.contains(&id));
     }
 }
 
-/// What [`project_render_meshes`] writes with.
-struct Projector<'a> {
-    meshes: &'a mut Assets<Mesh>,
-    smooth: &'a mut SmoothPreviews,
-    status: &'a mut StatusMessage,
+/// What [`project_render_meshes`] writes with (dereferenced mutably only
+/// when used, so unchanged frames leave the change ticks alone).
+struct Projector<'a, 'm, 's, 't> {
+    meshes: &'a mut ResMut<'m, Assets<Mesh>>,
+    smooth: &'a mut ResMut<'s, SmoothPreviews>,
+    status: &'a mut ResMut<'t, StatusMessage>,
     material: Option<&'a MeshMaterial>,
 }
 
-impl Projector<'_> {
+impl Projector<'_, '_, '_, '_> {
     /// A mesh node: its cage, or its smooth preview when it has a
     /// subdivision modifier, of the document's mesh or a tool's preview.
+    #[allow(clippy::too_many_arguments)]
     fn mesh(
         &mut self,
         ec: &mut EntityCommands,
-        node: &hedra_doc::Node,
-        content: &hedra_doc::MeshContent,
+        node: NodeId,
+        name: &str,
+        content: &NodeMesh,
         preview: Option<&PreviewContent>,
         mesh3d: Option<&Mesh3d>,
         on_screen: Option<&OnScreen>,
@@ -295,7 +417,7 @@ impl Projector<'_> {
             }
             _ => (&content.mesh, &content.creases, false),
         };
-        let modifier = active_modifier(content);
+        let modifier = content.active_modifier();
         let wanted = OnScreen {
             mesh: cage.clone(),
             shading: content.shading,
@@ -311,7 +433,7 @@ impl Projector<'_> {
             (Some(m), Some(r)) if same_look => self.smooth.update_positions(
                 r,
                 &SmoothSource {
-                    node: node.id,
+                    node,
                     cage,
                     creases,
                     modifier: m,
@@ -328,7 +450,7 @@ impl Projector<'_> {
                 None => render_mesh(cage, content.shading),
                 Some(m) => {
                     let src = SmoothSource {
-                        node: node.id,
+                        node,
                         cage,
                         creases,
                         modifier: m,
@@ -339,15 +461,13 @@ impl Projector<'_> {
                         // the cage shows; a tool's preview is not refined
                         // every frame (the result is, once committed).
                         if !is_preview {
-                            self.smooth.start_background(&src, &node.name);
+                            self.smooth.start_background(&src, name);
                         }
                         render_mesh(cage, content.shading)
                     } else {
                         self.smooth.render_mesh(&src).unwrap_or_else(|message| {
-                            self.status.error(format!(
-                                "'{}': subdivision not shown: {message}",
-                                node.name
-                            ));
+                            self.status
+                                .error(format!("'{name}': subdivision not shown: {message}"));
                             render_mesh(cage, content.shading)
                         })
                     }

@@ -93,35 +93,55 @@ pub fn control_weights(content: &NodeContent) -> Option<Vec<f64>> {
     }
 }
 
+/// A curve or surface node's shape as the screen shows it: the running
+/// tool's preview, else the document's (mirrored on the entity).
+fn shown_shape(
+    previews: &Previews,
+    node: NodeId,
+    curve: Option<&NodeCurve>,
+    surface: Option<&NodeSurface>,
+) -> Option<NodeContent> {
+    previews.shape_or(node, || {
+        curve
+            .map(|c| NodeContent::Curve(c.0.clone()))
+            .or_else(|| surface.map(|s| NodeContent::Surface(s.0.clone())))
+    })
+}
+
 /// The one writer of [`ControlPoint`]s: one child entity per control point
 /// of every curve and surface node, with the values the screen shows (a
-/// tool's preview or the document). A value is written only when it
-/// differs, so change detection marks exactly the points that moved.
+/// tool's preview or the document). Runs for a node when its curve or
+/// surface component changed or the previews did; a value is written only
+/// when it differs, so change detection marks exactly the points that moved.
 #[allow(clippy::type_complexity)]
 pub fn project_control_points(
     mut commands: Commands,
-    state: Res<DocState>,
     previews: Res<Previews>,
-    mut seen_revision: Local<Option<u64>>,
-    added: Query<(), Added<NodeEntity>>,
-    nodes: Query<(Entity, &NodeEntity, Option<&Children>)>,
+    nodes: Query<(
+        Entity,
+        &NodeEntity,
+        Option<Ref<NodeCurve>>,
+        Option<Ref<NodeSurface>>,
+        Option<&Children>,
+    )>,
     mut points: Query<&mut ControlPoint>,
 ) {
-    if *seen_revision == Some(state.revision) && !previews.is_changed() && added.is_empty() {
-        return;
-    }
-    *seen_revision = Some(state.revision);
-    let doc = &state.session.doc;
-    for (entity, node, children) in &nodes {
-        let content = previews.shown_shape(doc, node.0);
-        let wanted = content.as_ref().map(control_points).unwrap_or_default();
-        let weights = content.as_ref().and_then(control_weights);
+    for (entity, node, curve, surface, children) in &nodes {
+        let changed = previews.is_changed()
+            || curve.as_ref().is_some_and(|c| c.is_changed())
+            || surface.as_ref().is_some_and(|s| s.is_changed());
         let existing: Vec<Entity> = children
             .into_iter()
             .flatten()
             .copied()
             .filter(|c| points.contains(*c))
             .collect();
+        if !changed && (curve.is_some() || surface.is_some() || existing.is_empty()) {
+            continue;
+        }
+        let content = shown_shape(&previews, node.0, curve.as_deref(), surface.as_deref());
+        let wanted = content.as_ref().map(control_points).unwrap_or_default();
+        let weights = content.as_ref().and_then(control_weights);
         let value = |i: usize| ControlPoint {
             index: i as u32,
             position: wanted[i],
@@ -153,19 +173,28 @@ pub fn project_control_points(
 #[allow(clippy::too_many_arguments, clippy::type_complexity)]
 pub fn project_surface_patches(
     mut commands: Commands,
-    state: Res<DocState>,
     previews: Res<Previews>,
     material: Option<Res<MeshMaterial>>,
     mut meshes: ResMut<Assets<Mesh>>,
-    nodes: Query<(Entity, &NodeEntity, Option<&PatchLayout>, Option<&Children>)>,
+    nodes: Query<(
+        Entity,
+        &NodeEntity,
+        Option<Ref<NodeSurface>>,
+        Option<&PatchLayout>,
+        Option<&Children>,
+    )>,
     points: Query<Ref<ControlPoint>>,
     patches: Query<(&SurfacePatch, &Mesh3d)>,
 ) {
-    let doc = &state.session.doc;
-    for (entity, node, layout, children) in &nodes {
+    for (entity, node, surface_component, layout, children) in &nodes {
+        let changed =
+            previews.is_changed() || surface_component.as_ref().is_some_and(|s| s.is_changed());
+        if !changed && (surface_component.is_some() || layout.is_none()) {
+            continue;
+        }
         let children: Vec<Entity> = children.into_iter().flatten().copied().collect();
         let old_patches = || children.iter().copied().filter(|c| patches.contains(*c));
-        let surface = match previews.shown_shape(doc, node.0) {
+        let surface = match shown_shape(&previews, node.0, None, surface_component.as_deref()) {
             Some(NodeContent::Surface(s)) => s,
             _ => {
                 if layout.is_some() {
@@ -209,18 +238,18 @@ pub fn project_surface_patches(
             continue;
         };
         // Which control points changed since the last frame.
-        let mut changed = vec![false; surface.control_points().len()];
+        let mut moved = vec![false; surface.control_points().len()];
         for p in children.iter().filter_map(|c| points.get(*c).ok()) {
-            if let Some(slot) = changed.get_mut(p.index as usize) {
+            if let Some(slot) = moved.get_mut(p.index as usize) {
                 *slot = p.is_changed();
             }
         }
-        if !changed.contains(&true) {
+        if !moved.contains(&true) {
             continue;
         }
         for (patch, mesh3d) in children.iter().filter_map(|c| patches.get(*c).ok()) {
             let touched = match &patch.tile {
-                Some(tile) => tile.inputs.iter().any(|&i| changed[i as usize]),
+                Some(tile) => tile.inputs.iter().any(|&i| moved[i as usize]),
                 None => true,
             };
             if touched && let Some(mut m) = meshes.get_mut(&mesh3d.0) {
