@@ -423,6 +423,25 @@ impl User {
             .collect()
     }
 
+    /// The control-point entities of the first node, by index.
+    pub fn control_point_entities(&mut self) -> Vec<hedra_scene::ControlPoint> {
+        let world = self.app.world_mut();
+        let entity = *world
+            .resource::<hedra_scene::NodeEntities>()
+            .0
+            .values()
+            .next()
+            .expect("a node");
+        let mut q = world.query::<(&hedra_scene::ControlPoint, &ChildOf)>();
+        let mut points: Vec<_> = q
+            .iter(world)
+            .filter(|(_, c)| c.parent() == entity)
+            .map(|(p, _)| *p)
+            .collect();
+        points.sort_by_key(|p| p.index);
+        points
+    }
+
     /// The names of the document's nodes, in id order.
     pub fn node_names(&self) -> Vec<String> {
         self.doc().nodes().map(|n| n.name.clone()).collect()

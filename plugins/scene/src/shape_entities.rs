@@ -72,6 +72,18 @@ impl LayoutKey {
     }
 }
 
+/// The control-point entities' values of the node entity `node`, by index
+/// (what the screen shows: the document or a running tool's preview).
+pub fn control_points_of(node: Entity, points: &Query<(&ControlPoint, &ChildOf)>) -> Vec<ControlPoint> {
+    let mut out: Vec<ControlPoint> = points
+        .iter()
+        .filter(|(_, parent)| parent.parent() == node)
+        .map(|(p, _)| *p)
+        .collect();
+    out.sort_by_key(|p| p.index);
+    out
+}
+
 /// Control points of a curve or surface (local space); none for meshes and empties.
 pub fn control_points(content: &NodeContent) -> Vec<DVec3> {
     match content {

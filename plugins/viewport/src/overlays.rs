@@ -341,15 +341,16 @@ pub(crate) fn draw_edit_edges(
 
 /// Shape edit mode: the curve (or surface's control net) as the running
 /// tool would leave it, with its control points (selected ones orange,
-/// larger the heavier their weight).
+/// larger the heavier their weight), read from the control-point entities.
 pub(crate) fn draw_shape_edit(
     edit: Res<hedra_edit::ShapeEdit>,
     state: Res<DocState>,
     previews: Res<Previews>,
+    entities: Res<hedra_scene::NodeEntities>,
+    points: Query<(&hedra_scene::ControlPoint, &ChildOf)>,
     camera: Single<&GlobalTransform, With<ViewportCamera>>,
     mut gizmos: Gizmos<AxisGizmos>,
 ) {
-    use hedra_edit::shape_mode::{control_points, control_weights};
     let Some(node) = edit.node else { return };
     let Some(content) = previews.shown_shape(&state.session.doc, node) else {
         return;
@@ -376,12 +377,15 @@ pub(crate) fn draw_shape_edit(
         _ => return,
     }
     let cam = *camera;
-    let weights = control_weights(&content);
-    for (i, p) in control_points(&content).into_iter().enumerate() {
-        let p = to_world(p);
-        let w = weights.as_ref().map_or(1.0, |w| w[i]) as f32;
+    let Some(&entity) = entities.0.get(&node) else {
+        return;
+    };
+    // The control-point entities: position and weight as the screen shows them.
+    for point in hedra_scene::control_points_of(entity, &points) {
+        let p = to_world(point.position);
+        let w = point.weight as f32;
         let r = cam.translation().distance(p) * 0.005 * w.clamp(0.25, 4.0).sqrt();
-        let c = if edit.selected.contains(&(i as u32)) {
+        let c = if edit.selected.contains(&point.index) {
             Color::srgb(1.0, 0.55, 0.1)
         } else {
             Color::srgb(0.05, 0.05, 0.05)

@@ -76,6 +76,8 @@ pub fn draw_ui(
     mut writers: Writers,
     mut gate: ResMut<InputGate>,
     mut tool_previews: ResMut<hedra_scene::Previews>,
+    control_points: Query<(&hedra_scene::ControlPoint, &ChildOf)>,
+    entities: Res<hedra_scene::NodeEntities>,
     window: Single<&Window, With<bevy::window::PrimaryWindow>>,
     camera: Query<(&Camera, &GlobalTransform), With<hedra_scene::ViewportCamera>>,
 ) -> Result {
@@ -126,7 +128,13 @@ pub fn draw_ui(
     let free = root.available_rect_before_wrap();
     ui_state.viewport_rect = Some(free);
     if let Ok((cam, cam_t)) = camera.single() {
-        weight_labels(&root.painter_at(free), &model, cam, cam_t);
+        let points = model
+            .shape_edit
+            .node
+            .and_then(|n| entities.0.get(&n))
+            .map(|e| hedra_scene::control_points_of(*e, &control_points))
+            .unwrap_or_default();
+        weight_labels(&root.painter_at(free), &model, &points, cam, cam_t);
     }
     if let Some((a, b)) = model.mode.box_select.or(model.shape_edit.box_select) {
         let rect = egui::Rect::from_two_pos(egui::pos2(a.x, a.y), egui::pos2(b.x, b.y));

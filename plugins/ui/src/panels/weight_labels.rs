@@ -3,37 +3,31 @@
 use super::*;
 
 /// In shape edit mode, each control point's weight next to it (selected
-/// points in orange); only for nets of up to 400 points.
+/// points in orange), read from the control-point entities; only for
+/// rational nets of up to 400 points.
 pub(super) fn weight_labels(
     painter: &egui::Painter,
     model: &Model,
+    points: &[hedra_scene::ControlPoint],
     cam: &Camera,
     cam_t: &GlobalTransform,
 ) {
-    use hedra_edit::shape_mode::{control_points, control_weights};
     let edit = &model.shape_edit;
     let Some(id) = edit.node else { return };
     let doc = &model.state.session.doc;
-    let Some(content) = edit
-        .preview
-        .clone()
-        .or_else(|| doc.node(id).map(|n| n.content.clone()))
-    else {
-        return;
-    };
-    let Some(weights) = control_weights(&content) else {
-        return;
-    };
-    let points = control_points(&content);
-    if points.len() > 400 {
+    let rational = doc
+        .node(id)
+        .is_some_and(|n| hedra_edit::shape_mode::control_weights(&n.content).is_some());
+    if !rational || points.len() > 400 {
         return;
     }
     let world = doc.world_matrix(id);
-    for (i, (p, w)) in points.iter().zip(&weights).enumerate() {
-        let Ok(s) = cam.world_to_viewport(cam_t, world.transform_point3(*p).as_vec3()) else {
+    for p in points {
+        let Ok(s) = cam.world_to_viewport(cam_t, world.transform_point3(p.position).as_vec3())
+        else {
             continue;
         };
-        let selected = edit.selected.contains(&(i as u32));
+        let selected = edit.selected.contains(&p.index);
         let color = if selected {
             egui::Color32::from_rgb(255, 170, 80)
         } else {
@@ -42,7 +36,7 @@ pub(super) fn weight_labels(
         painter.text(
             egui::pos2(s.x + 8.0, s.y - 8.0),
             egui::Align2::LEFT_BOTTOM,
-            format!("{w:.2}"),
+            format!("{:.2}", p.weight),
             egui::FontId::proportional(if selected { 14.0 } else { 11.0 }),
             color,
         );
