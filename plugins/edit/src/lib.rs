@@ -50,11 +50,10 @@ impl Selection {
     }
 }
 
-/// Tools, selection and shortcuts: they read this frame's input and write
-/// requests, which [`SceneSystems::Apply`] applies in the same frame, so the
-/// frame that confirms a tool already shows its result. Order of a frame:
-/// input → `EditSystems` → `SceneSystems::Apply` → `SceneSystems::Sync` →
-/// viewport overlays.
+/// Tools, selection and shortcuts, in [`SceneSystems::Tools`]: they read
+/// this frame's input and write requests, which [`SceneSystems::Apply`]
+/// applies in the same frame, so the frame that confirms a tool already
+/// shows its result.
 #[derive(SystemSet, Debug, Clone, PartialEq, Eq, Hash)]
 pub struct EditSystems;
 
@@ -67,7 +66,7 @@ impl Plugin for EditPlugin {
             .init_resource::<TransformTool>()
             .init_resource::<EditMode>()
             .init_resource::<ShapeEdit>()
-            .configure_sets(Update, EditSystems.before(SceneSystems::Apply))
+            .configure_sets(Update, EditSystems.in_set(SceneSystems::Tools))
             .add_systems(
                 Update,
                 (

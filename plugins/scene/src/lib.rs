@@ -125,13 +125,24 @@ impl StatusMessage {
 #[derive(Resource, Clone)]
 pub struct MeshMaterial(pub Handle<StandardMaterial>);
 
-/// System sets, in order.
+/// The stages of a frame's `Update`, in order (configured by
+/// [`ScenePlugin`]); every plugin puts its systems into one of them, inside
+/// its own set (`EditSystems`, `ViewportSystems`, `UiSystems`, …):
+/// input (Bevy's `PreUpdate`) → `Tools` → `Apply` → `Sync` → `View` →
+/// render (Bevy's `PostUpdate`, egui).
 #[derive(SystemSet, Debug, Clone, PartialEq, Eq, Hash)]
 pub enum SceneSystems {
-    /// Applies [`DocRequest`]s.
+    /// Tools, shortcuts and panels' input handlers read this frame's input,
+    /// show previews ([`Previews`]) and write [`DocRequest`]s.
+    Tools,
+    /// Applies [`DocRequest`]s: the one writer of the document.
     Apply,
-    /// Mirrors the document and the tools' previews into entities.
+    /// The projection: mirrors the document and the tools' previews into
+    /// entities, components and render meshes; smooth previews finish here.
     Sync,
+    /// Systems that follow the projected document: viewport overlays and
+    /// camera, autosave.
+    View,
 }
 
 /// Document state, the apply system and the ECS projection.
@@ -148,7 +159,16 @@ impl Plugin for ScenePlugin {
             .init_resource::<InputGate>()
             .add_message::<DocRequest>()
             .add_message::<DocChanged>()
-            .configure_sets(Update, (SceneSystems::Apply, SceneSystems::Sync).chain())
+            .configure_sets(
+                Update,
+                (
+                    SceneSystems::Tools,
+                    SceneSystems::Apply,
+                    SceneSystems::Sync,
+                    SceneSystems::View,
+                )
+                    .chain(),
+            )
             .add_systems(Startup, setup_material)
             .add_systems(Update, apply_requests.in_set(SceneSystems::Apply))
             .add_systems(Last, file_jobs::finish_saves_on_exit)

@@ -117,6 +117,7 @@ impl Plugin for UiPlugin {
             .insert_resource(Preferences::load())
             .add_message::<FileAction>()
             .add_systems(Startup, spawn_ui_camera)
+            .configure_sets(Update, UiSystems.in_set(hedra_scene::SceneSystems::Tools))
             .add_systems(EguiPrimaryContextPass, panels::draw_ui)
             .add_systems(
                 Update,
@@ -131,10 +132,16 @@ impl Plugin for UiPlugin {
                     apply_viewport_rect,
                 )
                     .chain()
-                    .before(hedra_scene::SceneSystems::Apply),
+                    .in_set(UiSystems),
             );
     }
 }
+
+/// The UI's input handlers (shortcuts, file actions, dropped files), in
+/// `SceneSystems::Tools`; the panels themselves are drawn in egui's pass
+/// (`PostUpdate`) and their requests are applied the next frame.
+#[derive(SystemSet, Debug, Clone, PartialEq, Eq, Hash)]
+pub struct UiSystems;
 
 /// egui draws through its own camera, so the 3D camera can be given just
 /// the area between the panels.

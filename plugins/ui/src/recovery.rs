@@ -96,7 +96,7 @@ impl Plugin for RecoveryPlugin {
                     apply_history_limits,
                 )
                     .chain()
-                    .after(hedra_scene::SceneSystems::Apply),
+                    .in_set(hedra_scene::SceneSystems::View),
             )
             .add_systems(Last, on_exit)
             .add_systems(

@@ -3,7 +3,7 @@
 //! (`overlays`), the transform gizmo on the active object, the selected
 //! mesh elements or control points (`gizmo`), and
 //! curve and surface analysis (`analysis`). The systems here draw what the
-//! document and the tools left; they run after `SceneSystems::Sync`.
+//! document and the tools left; they run in `SceneSystems::View`.
 
 use bevy::core_pipeline::tonemapping::Tonemapping;
 use bevy::input::mouse::{AccumulatedMouseMotion, AccumulatedMouseScroll, MouseScrollUnit};
@@ -29,11 +29,17 @@ use gizmo::*;
 pub use grid::*;
 pub use overlays::*;
 
+/// The camera, grid, overlays, gizmo and analysis drawing, in
+/// `SceneSystems::View` (the gizmo's drag is a tool: `SceneSystems::Tools`).
+#[derive(SystemSet, Debug, Clone, PartialEq, Eq, Hash)]
+pub struct ViewportSystems;
+
 /// The camera, grid, overlays, gizmo and analysis drawing.
 pub struct ViewportPlugin;
 
 impl Plugin for ViewportPlugin {
     fn build(&self, app: &mut App) {
+        app.configure_sets(Update, ViewportSystems.in_set(SceneSystems::View));
         app.init_resource::<CurveAnalysis>();
         app.init_resource::<SurfaceAnalysis>();
         app.insert_resource(ClearColor(Color::srgb(0.23, 0.23, 0.25)))
@@ -59,14 +65,14 @@ impl Plugin for ViewportPlugin {
                 Update,
                 drive_gizmo_drag
                     .after(hedra_edit::EditSystems)
-                    .before(SceneSystems::Apply),
+                    .in_set(SceneSystems::Tools),
             )
             .add_systems(PostStartup, overlay_cameras_keep_the_picture)
             .add_systems(
                 Update,
                 (camera_controls, frame_selection, draw_grid)
                     .chain()
-                    .after(SceneSystems::Sync),
+                    .in_set(ViewportSystems),
             )
             .add_systems(
                 Update,
@@ -79,7 +85,7 @@ impl Plugin for ViewportPlugin {
                     draw_curve_analysis,
                     draw_surface_analysis,
                 )
-                    .after(SceneSystems::Sync),
+                    .in_set(ViewportSystems),
             );
     }
 }
