@@ -396,7 +396,11 @@ fn a_weight_drag_pulls_a_nurbs_surface_toward_its_point() {
     // While dragging, the point's entity carries the previewed weight (the
     // viewport's dot and label read it); the document waits.
     let shown = user.control_point_entities();
-    assert!(shown[target].weight > weights[target], "{:?}", shown[target]);
+    assert!(
+        shown[target].weight > weights[target],
+        "{:?}",
+        shown[target]
+    );
     assert_eq!(shape_points(&user).1[target], weights[target]);
     user.click(at + Vec2::new(120.0, 0.0));
     let (_, after_weights) = shape_points(&user);

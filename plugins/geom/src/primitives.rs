@@ -64,6 +64,21 @@ pub struct PrimitiveError {
 pub const MAX_SEGMENTS: u32 = 4096;
 /// Icosphere subdivisions above this are refused (20·4^9 ≈ 5 million faces).
 pub const MAX_ICO_SUBDIVISIONS: u32 = 9;
+/// Lengths (sizes, radii, depths) must be above zero and below this.
+pub const MAX_LENGTH: f64 = 1e9;
+
+/// The counts a primitive parameter allows, by its name in commands and
+/// files, with the range as the error message says it: the one definition
+/// that [`Primitive::check`] and the editors in the panels share.
+pub fn count_range(parameter: &str) -> (std::ops::RangeInclusive<u32>, &'static str) {
+    match parameter {
+        "x_segments" | "z_segments" => (1..=MAX_SEGMENTS, "1 to 4096"),
+        "segments" | "major_segments" | "minor_segments" => (3..=MAX_SEGMENTS, "3 to 4096"),
+        "rings" => (2..=MAX_SEGMENTS, "2 to 4096"),
+        "subdivisions" => (0..=MAX_ICO_SUBDIVISIONS, "0 to 9"),
+        _ => (0..=u32::MAX, "any count"),
+    }
+}
 
 impl Primitive {
     /// Blender-like defaults for each kind, by name (`"cube"`, `"uv_sphere"`, …).
@@ -152,7 +167,7 @@ impl Primitive {
     pub fn check(&self) -> Result<(), PrimitiveError> {
         let name = self.kind();
         let length = |parameter, value: f64| {
-            if value.is_finite() && value > 0.0 && value < 1e9 {
+            if value.is_finite() && value > 0.0 && value < MAX_LENGTH {
                 Ok(())
             } else {
                 Err(PrimitiveError {
@@ -163,8 +178,9 @@ impl Primitive {
                 })
             }
         };
-        let count = |parameter, value: u32, min: u32, max: u32, allowed| {
-            if (min..=max).contains(&value) {
+        let count = |parameter: &'static str, value: u32| {
+            let (range, allowed) = count_range(parameter);
+            if range.contains(&value) {
                 Ok(())
             } else {
                 Err(PrimitiveError {
@@ -182,8 +198,8 @@ impl Primitive {
                 z_segments,
                 size,
             } => {
-                count("x_segments", x_segments, 1, MAX_SEGMENTS, "1 to 4096")?;
-                count("z_segments", z_segments, 1, MAX_SEGMENTS, "1 to 4096")?;
+                count("x_segments", x_segments)?;
+                count("z_segments", z_segments)?;
                 length("size", size)
             }
             Primitive::UvSphere {
@@ -191,21 +207,15 @@ impl Primitive {
                 rings,
                 radius,
             } => {
-                count("segments", segments, 3, MAX_SEGMENTS, "3 to 4096")?;
-                count("rings", rings, 2, MAX_SEGMENTS, "2 to 4096")?;
+                count("segments", segments)?;
+                count("rings", rings)?;
                 length("radius", radius)
             }
             Primitive::IcoSphere {
                 subdivisions,
                 radius,
             } => {
-                count(
-                    "subdivisions",
-                    subdivisions,
-                    0,
-                    MAX_ICO_SUBDIVISIONS,
-                    "0 to 9",
-                )?;
+                count("subdivisions", subdivisions)?;
                 length("radius", radius)
             }
             Primitive::Cylinder {
@@ -218,7 +228,7 @@ impl Primitive {
                 radius,
                 depth,
             } => {
-                count("segments", segments, 3, MAX_SEGMENTS, "3 to 4096")?;
+                count("segments", segments)?;
                 length("radius", radius)?;
                 length("depth", depth)
             }
@@ -228,20 +238,8 @@ impl Primitive {
                 major_radius,
                 minor_radius,
             } => {
-                count(
-                    "major_segments",
-                    major_segments,
-                    3,
-                    MAX_SEGMENTS,
-                    "3 to 4096",
-                )?;
-                count(
-                    "minor_segments",
-                    minor_segments,
-                    3,
-                    MAX_SEGMENTS,
-                    "3 to 4096",
-                )?;
+                count("major_segments", major_segments)?;
+                count("minor_segments", minor_segments)?;
                 length("major_radius", major_radius)?;
                 length("minor_radius", minor_radius)?;
                 if minor_radius >= major_radius {
@@ -494,4 +492,35 @@ fn ico_sphere(subdivisions: u32, radius: f64) -> Polygons {
         faces = next;
     }
     (positions, faces.into_iter().map(|f| f.to_vec()).collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `check` and the panels' editors take their ranges from `count_range`:
+    /// each end is allowed, one beyond is refused with the range's words.
+    #[test]
+    fn counts_are_checked_against_count_range() {
+        let grid = |x| Primitive::Grid {
+            x_segments: x,
+            z_segments: 4,
+            size: 1.0,
+        };
+        let ico = |s| Primitive::IcoSphere {
+            subdivisions: s,
+            radius: 1.0,
+        };
+        let (range, words) = count_range("x_segments");
+        assert!(grid(*range.start()).check().is_ok());
+        assert!(grid(*range.end()).check().is_ok());
+        let e = grid(range.end() + 1).check().unwrap_err();
+        assert_eq!((e.parameter, e.allowed), ("x_segments", words));
+        assert!(grid(range.start() - 1).check().is_err());
+        let (range, words) = count_range("subdivisions");
+        assert!(ico(*range.end()).check().is_ok());
+        assert_eq!(ico(range.end() + 1).check().unwrap_err().allowed, words);
+        let huge = Primitive::Cube { size: MAX_LENGTH };
+        assert_eq!(huge.check().unwrap_err().parameter, "size");
+    }
 }

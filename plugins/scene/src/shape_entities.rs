@@ -74,7 +74,10 @@ impl LayoutKey {
 
 /// The control-point entities' values of the node entity `node`, by index
 /// (what the screen shows: the document or a running tool's preview).
-pub fn control_points_of(node: Entity, points: &Query<(&ControlPoint, &ChildOf)>) -> Vec<ControlPoint> {
+pub fn control_points_of(
+    node: Entity,
+    points: &Query<(&ControlPoint, &ChildOf)>,
+) -> Vec<ControlPoint> {
     let mut out: Vec<ControlPoint> = points
         .iter()
         .filter(|(_, parent)| parent.parent() == node)

@@ -599,20 +599,23 @@ pub fn primitive_editor(ui: &mut egui::Ui, p: &mut Primitive) -> bool {
             ui.label(label);
             changed |= ui
                 .add(
+                    // Above zero and below the kernel's limit.
                     egui::DragValue::new(v)
                         .speed(0.01)
-                        .range(0.001..=1e6)
+                        .range(f64::EPSILON..=hedra_geom::primitives::MAX_LENGTH)
                         .max_decimals(4),
                 )
                 .changed();
         });
     };
     let mut count_changed = false;
-    let mut count = |ui: &mut egui::Ui, label: &str, v: &mut u32, min: u32, max: u32| {
+    // The kernel's ranges, by parameter name.
+    let mut count = |ui: &mut egui::Ui, label: &str, v: &mut u32, parameter: &str| {
+        let (range, _) = hedra_geom::primitives::count_range(parameter);
         ui.horizontal(|ui| {
             ui.label(label);
             count_changed |= ui
-                .add(egui::DragValue::new(v).speed(0.1).range(min..=max))
+                .add(egui::DragValue::new(v).speed(0.1).range(range))
                 .changed();
         });
     };
@@ -623,8 +626,8 @@ pub fn primitive_editor(ui: &mut egui::Ui, p: &mut Primitive) -> bool {
             z_segments,
             size,
         } => {
-            count(ui, "X subdivisions", x_segments, 1, 1000);
-            count(ui, "Z subdivisions", z_segments, 1, 1000);
+            count(ui, "X subdivisions", x_segments, "x_segments");
+            count(ui, "Z subdivisions", z_segments, "z_segments");
             len(ui, "Size", size);
         }
         Primitive::UvSphere {
@@ -632,15 +635,15 @@ pub fn primitive_editor(ui: &mut egui::Ui, p: &mut Primitive) -> bool {
             rings,
             radius,
         } => {
-            count(ui, "Segments", segments, 3, 1000);
-            count(ui, "Rings", rings, 2, 1000);
+            count(ui, "Segments", segments, "segments");
+            count(ui, "Rings", rings, "rings");
             len(ui, "Radius", radius);
         }
         Primitive::IcoSphere {
             subdivisions,
             radius,
         } => {
-            count(ui, "Subdivisions", subdivisions, 0, 7);
+            count(ui, "Subdivisions", subdivisions, "subdivisions");
             len(ui, "Radius", radius);
         }
         Primitive::Cylinder {
@@ -653,7 +656,7 @@ pub fn primitive_editor(ui: &mut egui::Ui, p: &mut Primitive) -> bool {
             radius,
             depth,
         } => {
-            count(ui, "Vertices", segments, 3, 1000);
+            count(ui, "Vertices", segments, "segments");
             len(ui, "Radius", radius);
             len(ui, "Depth", depth);
         }
@@ -663,8 +666,8 @@ pub fn primitive_editor(ui: &mut egui::Ui, p: &mut Primitive) -> bool {
             major_radius,
             minor_radius,
         } => {
-            count(ui, "Major segments", major_segments, 3, 1000);
-            count(ui, "Minor segments", minor_segments, 3, 1000);
+            count(ui, "Major segments", major_segments, "major_segments");
+            count(ui, "Minor segments", minor_segments, "minor_segments");
             len(ui, "Major radius", major_radius);
             len(ui, "Minor radius", minor_radius);
         }
