@@ -19,6 +19,7 @@ pub mod report;
 pub mod scene;
 pub mod script;
 pub mod session;
+pub mod smooth;
 
 pub use command::{Command, CommandError, NodeRef};
 pub use elements::{EdgeSet, FaceSet, VertexSet};

@@ -1,46 +1,20 @@
-//! The smooth preview of meshes with a subdivision modifier. The refinement
-//! of each node's cage is kept (libigl's "build S once"): while only cage
-//! positions change, as during a drag, the preview re-applies the stored
-//! stencils and rewrites positions and normals, without rebuilding
-//! connectivity or triangles.
+//! The smooth preview of meshes with a subdivision modifier, in the app:
+//! each node's kept refinement ([`hedra_doc::smooth::SmoothRefinement`],
+//! Bevy-free: stencils re-applied while only cage positions change,
+//! normals, triangles), large refinements made on worker threads with a
+//! progress bar, and the render meshes made from them.
 
 use std::collections::HashMap;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, AtomicU32, Ordering};
 use std::thread::JoinHandle;
 
-use bevy::asset::RenderAssetUsages;
-use bevy::mesh::{Indices, PrimitiveTopology};
+use crate::buffers_mesh;
 use bevy::prelude::*;
+use hedra_doc::smooth::SmoothRefinement;
 use hedra_doc::{NodeId, Shading, SubdivisionModifier};
-use hedra_geom::subdivision::{Creases, Refiner, StencilEvaluation, StencilTable, limit_normals};
-use hedra_geom::{DVec3, HalfEdgeMesh};
-
-/// Above this many refined faces a drag refines positions through the
-/// masks each frame instead of keeping stencils (whose weights would take
-/// hundreds of megabytes).
-const STENCIL_FACE_LIMIT: usize = 400_000;
-
-/// The refinement of one node's cage.
-struct Refinement {
-    cage: Arc<HalfEdgeMesh>,
-    creases: Creases,
-    modifier: SubdivisionModifier,
-    refiner: Refiner,
-    /// Made on the first drag: the weights and every level's points, so a
-    /// drag recomputes only what the moved vertices influence.
-    stencils: Option<(StencilTable, StencilEvaluation)>,
-}
-
-impl Refinement {
-    /// True when `cage` differs from the refined cage at most in positions.
-    fn fits(&self, cage: &HalfEdgeMesh, creases: &Creases, modifier: &SubdivisionModifier) -> bool {
-        self.modifier.options == modifier.options
-            && self.modifier.viewport_level == modifier.viewport_level
-            && self.creases == *creases
-            && (std::ptr::eq(&*self.cage, cage) || self.cage.same_connectivity(cage))
-    }
-}
+use hedra_geom::HalfEdgeMesh;
+use hedra_geom::subdivision::{Creases, Refiner};
 
 /// Smooth previews of more faces than this are refined on a worker thread,
 /// with a progress bar, so the window never freezes.
@@ -54,7 +28,7 @@ struct Job {
     steps_done: Arc<AtomicU32>,
     steps: u32,
     cancel: Arc<AtomicBool>,
-    handle: JoinHandle<Result<(Refinement, Mesh), String>>,
+    handle: JoinHandle<Result<(SmoothRefinement, Mesh), String>>,
 }
 
 /// Identity of a smooth preview's source.
@@ -88,7 +62,7 @@ pub struct FinishedJob {
 /// the ones still being made on worker threads.
 #[derive(Resource, Default)]
 pub struct SmoothPreviews {
-    done: HashMap<NodeId, Refinement>,
+    done: HashMap<NodeId, SmoothRefinement>,
     jobs: HashMap<NodeId, Job>,
     /// Sources the user cancelled: not started again until they change.
     cancelled: HashMap<NodeId, JobKey>,
@@ -179,15 +153,11 @@ impl SmoothPreviews {
             let points = refiner
                 .refine_cancellable(&refiner.cage_positions(&cage), true, &mut go_on)
                 .ok_or_else(|| "cancelled".to_string())?;
-            let mesh = build(&refiner, &points, shading);
+            let mesh = buffers_mesh(hedra_doc::smooth::refined_buffers(
+                &refiner, &points, shading,
+            ));
             Ok((
-                Refinement {
-                    cage,
-                    creases,
-                    modifier,
-                    refiner,
-                    stencils: None,
-                },
+                SmoothRefinement::from_refiner(&cage, &creases, &modifier, refiner),
                 mesh,
             ))
         });
@@ -233,57 +203,21 @@ impl SmoothPreviews {
     }
 
     /// The refined positions for `src`, refining anew only when the
-    /// connectivity, creases or options changed. Returns whether the
-    /// refinement was reused.
+    /// connectivity, creases or options changed.
     ///
     /// # Errors
     /// The subdivision's message (Loop on quads, too many faces).
-    fn points(&mut self, src: &SmoothSource) -> Result<(Vec<DVec3>, bool), String> {
+    fn points(&mut self, src: &SmoothSource) -> Result<Vec<hedra_geom::DVec3>, String> {
         let reuse = self
             .done
             .get(&src.node)
             .is_some_and(|r| r.fits(src.cage, src.creases, src.modifier));
         if !reuse {
-            let refiner = Refiner::new(
-                src.cage,
-                src.creases,
-                src.modifier.options,
-                src.modifier.viewport_level,
-            )
-            .map_err(|e| e.to_string())?;
-            self.done.insert(
-                src.node,
-                Refinement {
-                    cage: src.cage.clone(),
-                    creases: src.creases.clone(),
-                    modifier: *src.modifier,
-                    refiner,
-                    stencils: None,
-                },
-            );
+            let r = SmoothRefinement::new(src.cage, src.creases, src.modifier)?;
+            self.done.insert(src.node, r);
         }
         let r = self.done.get_mut(&src.node).expect("inserted above");
-        r.cage = src.cage.clone();
-        let cage_points = r.refiner.cage_positions(src.cage);
-        if !reuse || r.refiner.face_count() > STENCIL_FACE_LIMIT {
-            return Ok((r.refiner.refine(&cage_points), reuse));
-        }
-        let (table, eval) = r.stencils.get_or_insert_with(|| {
-            let table = r.refiner.stencils();
-            let eval = table.evaluate(&cage_points);
-            (table, eval)
-        });
-        let moved: Vec<(u32, DVec3)> = cage_points
-            .iter()
-            .zip(eval.cage())
-            .enumerate()
-            .filter(|(_, (new, old))| new != old)
-            .map(|(i, (new, _))| (i as u32, *new))
-            .collect();
-        if !moved.is_empty() {
-            table.update(eval, &moved);
-        }
-        Ok((eval.points().to_vec(), reuse))
+        Ok(r.points(src.cage))
     }
 
     /// A triangle render mesh of the smooth shape.
@@ -291,9 +225,10 @@ impl SmoothPreviews {
     /// # Errors
     /// The subdivision's message; show the cage then.
     pub fn render_mesh(&mut self, src: &SmoothSource) -> Result<Mesh, String> {
-        let (points, _) = self.points(src)?;
-        let r = &self.done[&src.node];
-        Ok(build(&r.refiner, &points, src.shading))
+        let points = self.points(src)?;
+        Ok(buffers_mesh(
+            self.done[&src.node].buffers(&points, src.shading),
+        ))
     }
 
     /// Rewrites positions and normals of a render mesh made by
@@ -308,11 +243,10 @@ impl SmoothPreviews {
         if !fits {
             return false;
         }
-        let Ok((points, _)) = self.points(src) else {
+        let Ok(points) = self.points(src) else {
             return false;
         };
-        let r = &self.done[&src.node];
-        let (positions, normals) = attributes(&r.refiner, &points, src.shading);
+        let (positions, normals) = self.done[&src.node].attributes(&points, src.shading);
         let count = render
             .attribute(Mesh::ATTRIBUTE_POSITION)
             .map_or(0, |a| a.len());
@@ -323,86 +257,4 @@ impl SmoothPreviews {
         render.insert_attribute(Mesh::ATTRIBUTE_NORMAL, normals);
         true
     }
-}
-
-/// Render positions and normals: shared vertices with limit normals when
-/// smooth (area-weighted normals for schemes without a limit evaluation),
-/// face corners with the face normal when flat.
-fn attributes(
-    refiner: &Refiner,
-    points: &[DVec3],
-    shading: Shading,
-) -> (Vec<[f32; 3]>, Vec<[f32; 3]>) {
-    let f32s = |p: &DVec3| p.as_vec3().to_array();
-    match shading {
-        Shading::Smooth => {
-            let normals =
-                limit_normals(refiner, points).unwrap_or_else(|_| area_normals(refiner, points));
-            (
-                points.iter().map(f32s).collect(),
-                normals.iter().map(f32s).collect(),
-            )
-        }
-        Shading::Flat => {
-            let mut positions = Vec::new();
-            let mut normals = Vec::new();
-            for face in refiner.faces() {
-                let n = newell_normal(face, points).as_vec3().to_array();
-                for &v in face {
-                    positions.push(f32s(&points[v as usize]));
-                    normals.push(n);
-                }
-            }
-            (positions, normals)
-        }
-    }
-}
-
-/// Newell's normal of a polygon (unit, or zero when degenerate).
-fn newell_normal(face: &[u32], points: &[DVec3]) -> DVec3 {
-    let mut n = DVec3::ZERO;
-    for (i, &a) in face.iter().enumerate() {
-        let b = face[(i + 1) % face.len()];
-        n += points[a as usize].cross(points[b as usize]);
-    }
-    n.normalize_or_zero()
-}
-
-fn area_normals(refiner: &Refiner, points: &[DVec3]) -> Vec<DVec3> {
-    let mut normals = vec![DVec3::ZERO; points.len()];
-    for face in refiner.faces() {
-        let mut n = DVec3::ZERO;
-        for (i, &a) in face.iter().enumerate() {
-            let b = face[(i + 1) % face.len()];
-            n += points[a as usize].cross(points[b as usize]);
-        }
-        for &v in face {
-            normals[v as usize] += n;
-        }
-    }
-    normals.iter().map(|n| n.normalize_or_zero()).collect()
-}
-
-fn build(refiner: &Refiner, points: &[DVec3], shading: Shading) -> Mesh {
-    let (positions, normals) = attributes(refiner, points, shading);
-    let mut indices = Vec::new();
-    let mut corner = 0u32;
-    for face in refiner.faces() {
-        // Refined faces are small and convex: a fan.
-        for i in 1..face.len().saturating_sub(1) {
-            let tri = [0, i, i + 1];
-            match shading {
-                Shading::Smooth => indices.extend(tri.map(|k| face[k])),
-                Shading::Flat => indices.extend(tri.map(|k| corner + k as u32)),
-            }
-        }
-        corner += face.len() as u32;
-    }
-    Mesh::new(
-        PrimitiveTopology::TriangleList,
-        RenderAssetUsages::MAIN_WORLD | RenderAssetUsages::RENDER_WORLD,
-    )
-    .with_inserted_attribute(Mesh::ATTRIBUTE_POSITION, positions)
-    .with_inserted_attribute(Mesh::ATTRIBUTE_NORMAL, normals)
-    .with_inserted_indices(Indices::U32(indices))
 }

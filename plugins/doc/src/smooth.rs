@@ -1,0 +1,256 @@
+//! The smooth preview of a mesh with a subdivision modifier, Bevy-free: a
+//! kept refinement of the cage ([`SmoothRefinement`]) whose stencils are
+//! re-applied while only cage positions change (libigl's "build S once":
+//! a drag recomputes only what the moved vertices influence), and the
+//! render buffers of the refined faces (normals, triangles).
+
+use crate::render::RenderBuffers;
+use crate::{Shading, SubdivisionModifier};
+use hedra_geom::subdivision::{Creases, Refiner, StencilEvaluation, StencilTable, limit_normals};
+use hedra_geom::{DVec3, HalfEdgeMesh};
+use std::sync::Arc;
+
+/// Above this many refined faces a drag refines positions through the
+/// masks each frame instead of keeping stencils (whose weights would take
+/// hundreds of megabytes).
+pub const STENCIL_FACE_LIMIT: usize = 400_000;
+
+/// The refinement of one cage, kept while its connectivity, creases and
+/// modifier stay.
+pub struct SmoothRefinement {
+    cage: Arc<HalfEdgeMesh>,
+    creases: Creases,
+    modifier: SubdivisionModifier,
+    refiner: Refiner,
+    /// Made on the first drag: the weights and every level's points.
+    stencils: Option<(StencilTable, StencilEvaluation)>,
+}
+
+impl SmoothRefinement {
+    /// Refines `cage` to the modifier's viewport level.
+    ///
+    /// # Errors
+    /// The subdivision's message (Loop on quads, too many faces).
+    pub fn new(
+        cage: &Arc<HalfEdgeMesh>,
+        creases: &Creases,
+        modifier: &SubdivisionModifier,
+    ) -> Result<SmoothRefinement, String> {
+        let refiner = Refiner::new(cage, creases, modifier.options, modifier.viewport_level)
+            .map_err(|e| e.to_string())?;
+        Ok(Self::from_refiner(cage, creases, modifier, refiner))
+    }
+
+    /// A refinement made elsewhere (a cancellable background job).
+    pub fn from_refiner(
+        cage: &Arc<HalfEdgeMesh>,
+        creases: &Creases,
+        modifier: &SubdivisionModifier,
+        refiner: Refiner,
+    ) -> SmoothRefinement {
+        SmoothRefinement {
+            cage: cage.clone(),
+            creases: creases.clone(),
+            modifier: *modifier,
+            refiner,
+            stencils: None,
+        }
+    }
+
+    /// True when `cage` differs from the refined cage at most in positions.
+    pub fn fits(
+        &self,
+        cage: &HalfEdgeMesh,
+        creases: &Creases,
+        modifier: &SubdivisionModifier,
+    ) -> bool {
+        self.modifier.options == modifier.options
+            && self.modifier.viewport_level == modifier.viewport_level
+            && self.creases == *creases
+            && (std::ptr::eq(&*self.cage, cage) || self.cage.same_connectivity(cage))
+    }
+
+    /// The refined positions of `cage` (which [`fits`](Self::fits)): the
+    /// first call refines through the masks; later calls re-apply the
+    /// stencils to the cage vertices that moved since the last call.
+    pub fn points(&mut self, cage: &Arc<HalfEdgeMesh>) -> Vec<DVec3> {
+        let first = self.stencils.is_none() && Arc::ptr_eq(&self.cage, cage);
+        self.cage = cage.clone();
+        let cage_points = self.refiner.cage_positions(cage);
+        if first || self.refiner.face_count() > STENCIL_FACE_LIMIT {
+            return self.refiner.refine(&cage_points);
+        }
+        let refiner = &self.refiner;
+        let (table, eval) = self.stencils.get_or_insert_with(|| {
+            let table = refiner.stencils();
+            let eval = table.evaluate(&cage_points);
+            (table, eval)
+        });
+        let moved: Vec<(u32, DVec3)> = cage_points
+            .iter()
+            .zip(eval.cage())
+            .enumerate()
+            .filter(|(_, (new, old))| new != old)
+            .map(|(i, (new, _))| (i as u32, *new))
+            .collect();
+        if !moved.is_empty() {
+            table.update(eval, &moved);
+        }
+        eval.points().to_vec()
+    }
+
+    /// Render buffers of the refined faces at `points`.
+    pub fn buffers(&self, points: &[DVec3], shading: Shading) -> RenderBuffers {
+        refined_buffers(&self.refiner, points, shading)
+    }
+
+    /// Positions and normals only (the triangles stay while positions move).
+    pub fn attributes(&self, points: &[DVec3], shading: Shading) -> (Vec<[f32; 3]>, Vec<[f32; 3]>) {
+        refined_attributes(&self.refiner, points, shading)
+    }
+}
+
+/// Render buffers of refined faces: shared vertices with limit normals when
+/// smooth (area-weighted normals for schemes without a limit evaluation),
+/// face corners with the face's Newell normal when flat; each face a fan of
+/// triangles (refined faces are small and convex).
+pub fn refined_buffers(refiner: &Refiner, points: &[DVec3], shading: Shading) -> RenderBuffers {
+    let (positions, normals) = refined_attributes(refiner, points, shading);
+    let mut indices = Vec::new();
+    let mut corner = 0u32;
+    for face in refiner.faces() {
+        for i in 1..face.len().saturating_sub(1) {
+            let tri = [0, i, i + 1];
+            match shading {
+                Shading::Smooth => indices.extend(tri.map(|k| face[k])),
+                Shading::Flat => indices.extend(tri.map(|k| corner + k as u32)),
+            }
+        }
+        corner += face.len() as u32;
+    }
+    RenderBuffers {
+        positions,
+        normals,
+        indices,
+    }
+}
+
+/// The positions and normals of [`refined_buffers`].
+pub fn refined_attributes(
+    refiner: &Refiner,
+    points: &[DVec3],
+    shading: Shading,
+) -> (Vec<[f32; 3]>, Vec<[f32; 3]>) {
+    let f32s = |p: &DVec3| p.as_vec3().to_array();
+    match shading {
+        Shading::Smooth => {
+            let normals =
+                limit_normals(refiner, points).unwrap_or_else(|_| area_normals(refiner, points));
+            (
+                points.iter().map(f32s).collect(),
+                normals.iter().map(f32s).collect(),
+            )
+        }
+        Shading::Flat => {
+            let mut positions = Vec::new();
+            let mut normals = Vec::new();
+            for face in refiner.faces() {
+                let n = newell_normal(face, points).as_vec3().to_array();
+                for &v in face {
+                    positions.push(f32s(&points[v as usize]));
+                    normals.push(n);
+                }
+            }
+            (positions, normals)
+        }
+    }
+}
+
+/// Newell's normal of a polygon (Newell 1972; unit, or zero when degenerate).
+fn newell_normal(face: &[u32], points: &[DVec3]) -> DVec3 {
+    newell_sum(face, points).normalize_or_zero()
+}
+
+fn newell_sum(face: &[u32], points: &[DVec3]) -> DVec3 {
+    let mut n = DVec3::ZERO;
+    for (i, &a) in face.iter().enumerate() {
+        let b = face[(i + 1) % face.len()];
+        n += points[a as usize].cross(points[b as usize]);
+    }
+    n
+}
+
+/// Vertex normals as the sum of the (area-weighted) Newell normals of the
+/// faces around each vertex.
+fn area_normals(refiner: &Refiner, points: &[DVec3]) -> Vec<DVec3> {
+    let mut normals = vec![DVec3::ZERO; points.len()];
+    for face in refiner.faces() {
+        let n = newell_sum(face, points);
+        for &v in face {
+            normals[v as usize] += n;
+        }
+    }
+    normals.iter().map(|n| n.normalize_or_zero()).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use hedra_geom::Primitive;
+
+    fn cube() -> Arc<HalfEdgeMesh> {
+        Arc::new(Primitive::Cube { size: 2.0 }.build().unwrap())
+    }
+
+    #[test]
+    fn a_cube_at_level_one_gives_its_triangles_and_unit_normals() {
+        let cage = cube();
+        let mut r = SmoothRefinement::new(
+            &cage,
+            &Creases::default(),
+            &SubdivisionModifier::with_level(1),
+        )
+        .unwrap();
+        let points = r.points(&cage);
+        assert_eq!(points.len(), 26);
+        let smooth = r.buffers(&points, Shading::Smooth);
+        assert_eq!(smooth.positions.len(), 26);
+        assert_eq!(smooth.indices.len(), 24 * 2 * 3);
+        let flat = r.buffers(&points, Shading::Flat);
+        assert_eq!(flat.positions.len(), 24 * 4, "each quad its own corners");
+        assert_eq!(flat.indices.len(), 24 * 2 * 3);
+        for n in smooth.normals.iter().chain(&flat.normals) {
+            let n = glam::Vec3::from(*n);
+            assert!((n.length() - 1.0).abs() < 1e-5);
+        }
+        // Outward: each smooth normal points away from the centre.
+        for (p, n) in smooth.positions.iter().zip(&smooth.normals) {
+            assert!(glam::Vec3::from(*p).dot(glam::Vec3::from(*n)) > 0.0);
+        }
+    }
+
+    #[test]
+    fn stencils_after_a_move_equal_a_full_refinement() {
+        let cage = cube();
+        let modifier = SubdivisionModifier::with_level(2);
+        let mut r = SmoothRefinement::new(&cage, &Creases::default(), &modifier).unwrap();
+        r.points(&cage);
+        let mut moved = (*cage).clone();
+        let v = moved.vertices().next().unwrap();
+        moved.set_position(v, moved.position(v) + DVec3::new(0.3, -0.2, 0.5));
+        let moved = Arc::new(moved);
+        assert!(r.fits(&moved, &Creases::default(), &modifier));
+        // Twice: the first move builds the stencils, the second updates them.
+        for _ in 0..2 {
+            let fast = r.points(&moved);
+            let exact = SmoothRefinement::new(&moved, &Creases::default(), &modifier)
+                .unwrap()
+                .points(&moved);
+            for (a, b) in fast.iter().zip(&exact) {
+                assert!(a.distance(*b) < 1e-12);
+            }
+        }
+        let other = Arc::new(Primitive::Plane { size: 1.0 }.build().unwrap());
+        assert!(!r.fits(&other, &Creases::default(), &modifier));
+    }
+}
