@@ -121,6 +121,73 @@ fn bench(c: &mut Criterion) {
         b.iter(|| black_box(edge_overlay(&moved, &sel, &content.creases)))
     });
     g.finish();
+
+    // Render preparation for the viewport (hedra_doc::smooth, render):
+    // one frame of dragging a cage vertex of a smooth preview, and one
+    // frame of a weight drag on a NURBS surface (the tiles it reaches).
+    let mut g = c.benchmark_group("render_prep");
+    g.sample_size(30);
+    let cage = std::sync::Arc::new(Primitive::Cube { size: 2.0 }.build().unwrap());
+    let modifier = hedra_doc::SubdivisionModifier::with_level(5);
+    let creases = hedra_geom::subdivision::Creases::default();
+    let mut refinement =
+        hedra_doc::smooth::SmoothRefinement::new(&cage, &creases, &modifier).unwrap();
+    refinement.points(&cage);
+    let v = cage.vertices().next().unwrap();
+    let mut step = 0.0;
+    g.bench_function("smooth_cube_level5_drag_frame", |b| {
+        b.iter(|| {
+            step += 0.001;
+            let mut moved = (*cage).clone();
+            moved.set_position(v, cage.position(v) + DVec3::splat(step));
+            let moved = std::sync::Arc::new(moved);
+            let points = refinement.points(&moved);
+            black_box(refinement.attributes(&points, Shading::Smooth))
+        })
+    });
+    let points: Vec<DVec3> = (0..32 * 32)
+        .map(|k| {
+            let (i, j) = ((k / 32) as f64, (k % 32) as f64);
+            DVec3::new(i, ((i + j) * 0.3).sin(), j)
+        })
+        .collect();
+    let knots = hedra_geom::curves::nurbs::clamped_uniform_knots(3, 32);
+    let sheet = hedra_geom::surfaces::NurbsSurface::new(
+        3,
+        3,
+        knots.clone(),
+        knots,
+        32,
+        32,
+        points,
+        vec![1.0; 32 * 32],
+    )
+    .unwrap();
+    let grid = hedra_doc::render::surface_grid(&sheet);
+    let tiles = hedra_doc::render::surface_tiles(&sheet, &grid);
+    let point = 16 * 32 + 16;
+    g.bench_function("nurbs_32x32_weight_drag_frame", |b| {
+        b.iter(|| {
+            black_box(
+                tiles
+                    .iter()
+                    .filter(|t| t.inputs.contains(&point))
+                    .map(|t| hedra_doc::render::tile_buffers(&sheet, &grid, t))
+                    .collect::<Vec<_>>(),
+            )
+        })
+    });
+    g.bench_function("nurbs_32x32_whole_tessellation", |b| {
+        b.iter(|| {
+            black_box(
+                tiles
+                    .iter()
+                    .map(|t| hedra_doc::render::tile_buffers(&sheet, &grid, t))
+                    .collect::<Vec<_>>(),
+            )
+        })
+    });
+    g.finish();
 }
 
 criterion_group!(benches, bench);
