@@ -193,3 +193,34 @@ fn the_gizmo_moves_a_control_point_and_escape_puts_it_back() {
         "the surface follows"
     );
 }
+
+/// View ▸ Gizmo: scale, then a drag of the X handle in edit mode widens
+/// the selected face along X about its centre, in one step.
+#[test]
+fn the_view_menu_makes_a_scale_gizmo_that_scales_the_selection() {
+    use bevy::gizmos::transform_gizmo::{TransformGizmoMode, TransformGizmoSettings};
+    let mut user = User::new();
+    user.add("Cube");
+    user.tap(KeyCode::Tab);
+    user.tap(KeyCode::Digit3);
+    let top = user.screen_of(Vec3::Y);
+    user.click(top);
+    user.click_on("View");
+    user.click_on("Gizmo: scale");
+    let mode = user.app.world().resource::<TransformGizmoSettings>().mode;
+    assert_eq!(mode, TransformGizmoMode::Scale);
+    let before: Vec<DVec3> = user.first_mesh().positions().to_vec();
+    let steps = user.undo_steps();
+    drag_x(&mut user, Vec3::Y, 60.0, true);
+    assert_eq!(user.undo_steps(), steps + 1, "one undo step");
+    let after = user.first_mesh().positions().to_vec();
+    for (a, b) in before.iter().zip(&after) {
+        if a.y > 0.0 {
+            assert!(b.x.abs() > a.x.abs() + 0.05, "{a} -> {b}: wider along X");
+            assert_eq!(b.x.signum(), a.x.signum(), "about the centre");
+            assert!((b.y - a.y).abs() < 1e-9 && (b.z - a.z).abs() < 1e-9);
+        } else {
+            assert_eq!(a, b, "the bottom stays");
+        }
+    }
+}

@@ -6,6 +6,7 @@ pub(super) fn menu_bar(
     ui: &mut egui::Ui,
     state: &mut UiState,
     model: &Model,
+    gizmo_mode: &mut bevy::gizmos::transform_gizmo::TransformGizmoMode,
     events: &mut Vec<UiEvent>,
 ) {
     egui::MenuBar::new().ui(ui, |ui| {
@@ -97,6 +98,14 @@ pub(super) fn menu_bar(
             ui.separator();
             ui.checkbox(&mut state.show_history, "Undo History");
             ui.separator();
+            // The transform gizmo on objects, mesh elements and control points.
+            {
+                use bevy::gizmos::transform_gizmo::TransformGizmoMode as Mode;
+                ui.radio_value(gizmo_mode, Mode::Translate, "Gizmo: move");
+                ui.radio_value(gizmo_mode, Mode::Rotate, "Gizmo: rotate");
+                ui.radio_value(gizmo_mode, Mode::Scale, "Gizmo: scale");
+            }
+            ui.separator();
             if ui.button("Preferences…").clicked() {
                 state.show_preferences = true;
             }
@@ -178,6 +187,14 @@ pub(super) fn menu_bar(
             ui.checkbox(&mut state.show_outliner, "Outliner");
             ui.checkbox(&mut state.show_properties, "Properties");
             ui.checkbox(&mut state.show_history, "Undo History");
+            ui.separator();
+            // The transform gizmo on objects, mesh elements and control points.
+            {
+                use bevy::gizmos::transform_gizmo::TransformGizmoMode as Mode;
+                ui.radio_value(gizmo_mode, Mode::Translate, "Gizmo: move");
+                ui.radio_value(gizmo_mode, Mode::Rotate, "Gizmo: rotate");
+                ui.radio_value(gizmo_mode, Mode::Scale, "Gizmo: scale");
+            }
             ui.separator();
             ui.label("Frame selected: F or Numpad .");
             ui.label("Frame all: Home");

@@ -53,6 +53,7 @@ pub struct Writers<'w> {
     exit: MessageWriter<'w, AppExit>,
     analysis: ResMut<'w, hedra_viewport::CurveAnalysis>,
     surface_analysis: ResMut<'w, hedra_viewport::SurfaceAnalysis>,
+    gizmo: ResMut<'w, bevy::gizmos::transform_gizmo::TransformGizmoSettings>,
 }
 
 #[derive(SystemParam)]
@@ -94,9 +95,14 @@ pub fn draw_ui(
     );
     let doc = &model.state.session.doc;
 
+    // View ▸ Gizmo chooses what the transform gizmo does.
+    let mut gizmo_mode = writers.gizmo.mode;
     egui::Panel::top("menu").show(&mut root, |ui| {
-        menu_bar(ui, &mut ui_state, &model, &mut events)
+        menu_bar(ui, &mut ui_state, &model, &mut gizmo_mode, &mut events)
     });
+    if writers.gizmo.mode != gizmo_mode {
+        writers.gizmo.mode = gizmo_mode;
+    }
     egui::Panel::bottom("status").show(&mut root, |ui| status_bar(ui, &model));
     if ui_state.show_outliner {
         egui::Panel::left("outliner")
