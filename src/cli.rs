@@ -164,12 +164,12 @@ pub fn run(sub: Sub) -> Result<(), CliError> {
             let e = hedra_doc::eval::evaluate(&session.doc, &reference, &params)
                 .map_err(|m| CliError(format!("{}: {m}", file.display())))?;
             if json {
-                println!(
-                    "{}",
+                emit(&format!(
+                    "{}\n",
                     serde_json::to_string_pretty(&e).expect("evaluations serialise")
-                );
+                ))?;
             } else {
-                print!("{}", e.to_text());
+                emit(&e.to_text())?;
             }
         }
         Sub::Info {
@@ -180,15 +180,15 @@ pub fn run(sub: Sub) -> Result<(), CliError> {
             let session = load(&file)?;
             let report = SceneReport::new(&session);
             if json {
-                println!("{}", report.to_json());
+                emit(&format!("{}\n", report.to_json()))?;
             } else {
-                print!("{}", report.to_text());
+                emit(&report.to_text())?;
             }
             if topology {
                 for node in session.doc.nodes() {
                     if let Some(mesh) = node.content.mesh() {
-                        println!("topology of #{} {}:", node.id.0, node.name);
-                        print!("{}", hedra_geom::topology::tables(mesh));
+                        emit(&format!("topology of #{} {}:\n", node.id.0, node.name))?;
+                        emit(&hedra_geom::topology::tables(mesh))?;
                     }
                 }
             }
@@ -300,4 +300,17 @@ pub fn run(sub: Sub) -> Result<(), CliError> {
         }
     }
     Ok(())
+}
+
+/// Writes a report to standard output. When the reader has gone away (`hedra
+/// info --json | head -1`), the rest of the report is dropped quietly, as
+/// other command-line tools do, instead of failing.
+fn emit(text: &str) -> Result<(), CliError> {
+    use std::io::Write;
+    let mut out = std::io::stdout().lock();
+    match out.write_all(text.as_bytes()).and_then(|()| out.flush()) {
+        Ok(()) => Ok(()),
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
+        Err(e) => Err(CliError(format!("cannot write to standard output: {e}"))),
+    }
 }

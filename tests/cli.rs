@@ -747,3 +747,33 @@ fn import_refuses_a_gltf_buffer_outside_the_files_folder() {
     );
     assert!(!out.exists());
 }
+
+/// `hedra info --json | head -1`: a reader that goes away ends the output
+/// quietly (no panic, no backtrace, success), for info, its topology tables
+/// and eval.
+#[test]
+fn a_reader_that_goes_away_ends_the_output_quietly() {
+    let sample = std::path::PathBuf::from(std::env::var_os("CARGO_MANIFEST_DIR").unwrap())
+        .join("assets/samples/table.hedra.ron")
+        .display()
+        .to_string();
+    let shapes = sample.replace("table", "shapes");
+    for args in [
+        vec!["info", "--json", &sample],
+        vec!["info", "--topology", &sample],
+        vec!["eval", "--json", &shapes, "Wave", "--at", "0.5"],
+    ] {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_hedra"))
+            .args(&args)
+            .stdout(std::process::Stdio::piped())
+            .stderr(std::process::Stdio::piped())
+            .spawn()
+            .unwrap();
+        // Closed before the report is written: every write meets a broken pipe.
+        drop(child.stdout.take());
+        let out = child.wait_with_output().unwrap();
+        let err = stderr(&out);
+        assert!(out.status.success(), "{args:?}: {:?} {err}", out.status);
+        assert!(!err.contains("panicked"), "{args:?}: {err}");
+    }
+}
