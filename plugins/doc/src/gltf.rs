@@ -601,6 +601,7 @@ pub fn gltf_from_bytes(
             parent,
             transform,
             skipped_primitives: skipped,
+            skipped_polylines: 0,
         });
         for child in node.children().collect::<Vec<_>>().into_iter().rev() {
             stack.push((child, Some(me)));

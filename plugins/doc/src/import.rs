@@ -1,7 +1,8 @@
 //! Reading meshes from other formats into the scene. OBJ: every object or
 //! group becomes a mesh node, polygons are kept, `vt` UVs and `vn` normals
-//! become corner attributes; STL (binary or ASCII, read by `stl_io`): one
-//! node, triangles with equal corners welded. Faces that cannot join a
+//! become corner attributes, polylines (`l`) are left out with a note; STL
+//! (binary, or ASCII with any number of `solid` blocks, one node each):
+//! triangles with equal corners welded. Faces that cannot join a
 //! manifold half-edge mesh are dropped or split off (with a report); the
 //! corners of the faces that are kept keep their attributes.
 //!
@@ -32,6 +33,8 @@ pub struct ImportedMesh {
     pub transform: Transform,
     /// Primitives that are not triangles (points, lines) and were left out.
     pub skipped_primitives: usize,
+    /// OBJ polylines (`l`) left out (Hedra imports faces).
+    pub skipped_polylines: usize,
     /// UVs and normals of the mesh's face corners that the file gave.
     pub corners: CornerAttributes,
 }
@@ -46,6 +49,7 @@ impl ImportedMesh {
             parent: None,
             transform: Transform::IDENTITY,
             skipped_primitives: 0,
+            skipped_polylines: 0,
             corners: CornerAttributes::default(),
         }
     }
@@ -59,6 +63,7 @@ impl ImportedMesh {
             parent: None,
             transform: Transform::IDENTITY,
             skipped_primitives: 0,
+            skipped_polylines: 0,
             corners: CornerAttributes::default(),
         }
     }
@@ -162,7 +167,7 @@ fn scan_obj(text: &str) -> Vec<ObjSegment> {
                     current.group = name;
                 }
             }
-            Some("f" | "l") => {
+            Some("f") => {
                 has_faces = true;
                 current.corners.extend(words.map(|w| {
                     let mut parts = w.split('/').skip(1);
@@ -187,6 +192,9 @@ pub enum ImportError {
     Unsupported { path: String, ext: String },
     #[error("{path}: contains no faces")]
     Empty { path: String },
+    /// Every face was dropped: the first object's repair report says why.
+    #[error("{path}: no face could be kept: {reason}")]
+    NothingLeft { path: String, reason: String },
 }
 
 /// Checks what tobj does not report by line: a vertex coordinate that is
@@ -219,8 +227,10 @@ fn check_obj_text(text: &str) -> Result<(), String> {
                 let values: Vec<&str> = words.collect();
                 let parsed: Vec<Option<f64>> = values.iter().map(|w| w.parse().ok()).collect();
                 if parsed.len() < 3 || parsed[..3].contains(&None) {
-                    // tobj refuses the line itself.
-                    return Ok(());
+                    return Err(format!(
+                        "line {number}: a vertex needs three numbers, found '{}'",
+                        values.join(" ")
+                    ));
                 }
                 if let Some(bad) =
                     (0..values.len().min(3)).find(|&k| parsed[k].is_some_and(|x| !x.is_finite()))
@@ -239,8 +249,19 @@ fn check_obj_text(text: &str) -> Result<(), String> {
                     ));
                 }
             }
-            Some("vt") => seen[1] += 1,
-            Some("vn") => seen[2] += 1,
+            Some(key @ ("vt" | "vn")) => {
+                let (k, needs) = if key == "vt" { (1, 1) } else { (2, 3) };
+                seen[k] += 1;
+                let values: Vec<&str> = words.collect();
+                if values.len() < needs || values[..needs].iter().any(|w| w.parse::<f64>().is_err())
+                {
+                    return Err(format!(
+                        "line {number}: a {} needs {needs} number(s), found '{}'",
+                        KINDS[k].0,
+                        values.join(" ")
+                    ));
+                }
+            }
             Some("f" | "l") => {
                 for word in words {
                     for (k, part) in word.split('/').take(3).enumerate() {
@@ -287,6 +308,8 @@ pub fn obj_from_str(text: &str, path: &str) -> Result<Vec<ImportedMesh>, ImportE
         path: path.to_string(),
         message,
     })?;
+    let (cleaned, polylines) = without_polylines(text);
+    let text = cleaned.as_str();
     let options = tobj::LoadOptions {
         single_index: false,
         triangulate: false,
@@ -309,6 +332,7 @@ pub fn obj_from_str(text: &str, path: &str) -> Result<Vec<ImportedMesh>, ImportE
             .zip(&models)
             .all(|(s, m)| s.corners.len() == m.mesh.indices.len());
     let mut out: Vec<ImportedMesh> = Vec::new();
+    let mut nothing_kept: Option<String> = None;
     // Object number -> index of its node in `out`.
     let mut object_nodes: HashMap<usize, usize> = HashMap::new();
     for (i, model) in models.into_iter().enumerate() {
@@ -342,6 +366,12 @@ pub fn obj_from_str(text: &str, path: &str) -> Result<Vec<ImportedMesh>, ImportE
                 }
             })?;
         if mesh.face_count() == 0 {
+            let name = if model.name.is_empty() {
+                "the file"
+            } else {
+                &model.name
+            };
+            nothing_kept.get_or_insert_with(|| format!("{name}: {report}"));
             continue;
         }
         let mesh = mesh.compacted_if_needed();
@@ -426,42 +456,160 @@ pub fn obj_from_str(text: &str, path: &str) -> Result<Vec<ImportedMesh>, ImportE
         }
     }
     if out.is_empty() {
-        return Err(ImportError::Empty {
-            path: path.to_string(),
+        let path = path.to_string();
+        return Err(match (nothing_kept, polylines) {
+            (Some(reason), _) => ImportError::NothingLeft { path, reason },
+            (None, n) if n > 0 => ImportError::NothingLeft {
+                path,
+                reason: format!("it has {n} polyline(s) (`l`) and no faces; Hedra imports faces"),
+            },
+            (None, _) => ImportError::Empty { path },
         });
+    }
+    if let Some(first) = out.iter_mut().find(|m| m.mesh.is_some()) {
+        first.skipped_polylines = polylines;
     }
     Ok(out)
 }
 
-/// Refuses, by line and triangle, an ASCII STL vertex coordinate that is not
-/// a finite `f32` (`nan`, `inf`, `1e99`); stl_io's own message names neither.
-fn check_ascii_stl(bytes: &[u8]) -> Result<(), String> {
-    let mut triangle = 0usize;
-    for (number, line) in bytes.split(|&b| b == b'\n').enumerate() {
-        let line = String::from_utf8_lossy(line);
+/// OBJ text without what tobj would misread, line numbers kept: polylines
+/// (`l`, which tobj returns as faces) and `usemtl` lines with no name (which
+/// tobj refuses; Blender 2.61 writes them) become empty lines. Returns the
+/// text and the number of polylines left out.
+fn without_polylines(text: &str) -> (String, usize) {
+    let mut polylines = 0;
+    let mut out = String::with_capacity(text.len());
+    for line in text.split_inclusive('\n') {
         let mut words = line.split_whitespace();
-        match words.next() {
-            Some("facet") => triangle += 1,
-            Some("vertex") => {
-                if let Some(bad) = words
-                    .take(3)
-                    .find(|w| w.parse::<f32>().is_ok_and(|x| !x.is_finite()))
-                {
+        let drop = match words.next() {
+            Some("l") => {
+                polylines += 1;
+                true
+            }
+            Some("usemtl") => words.next().is_none(),
+            _ => false,
+        };
+        if drop {
+            if line.ends_with('\n') {
+                out.push('\n');
+            }
+        } else {
+            out.push_str(line);
+        }
+    }
+    (out, polylines)
+}
+
+/// One `solid … endsolid` block of an ASCII STL: its name and triangles.
+struct AsciiSolid {
+    name: String,
+    triangles: Vec<[DVec3; 3]>,
+}
+
+/// True when `bytes` start (after white space) with `solid` in any case:
+/// `solid name`, `solid<TAB>name`, `solid` alone, `SOLID`.
+fn starts_like_ascii_stl(bytes: &[u8]) -> bool {
+    bytes
+        .trim_ascii_start()
+        .get(..5)
+        .is_some_and(|w| w.eq_ignore_ascii_case(b"solid"))
+}
+
+/// Reads an ASCII STL: every `solid` block, keywords in any case (`facet`,
+/// `vertex`, `endfacet`, `endsolid`; `normal`, `outer loop` and `endloop`
+/// are not needed). Messages name the line and the triangle.
+fn parse_ascii_stl(text: &str) -> Result<Vec<AsciiSolid>, String> {
+    let mut solids: Vec<AsciiSolid> = Vec::new();
+    let mut corners: Option<Vec<DVec3>> = None;
+    let mut triangle = 0usize;
+    for (number, line) in text.lines().enumerate() {
+        let number = number + 1;
+        let line = line.trim();
+        let mut words = line.split_whitespace();
+        let Some(keyword) = words.next() else {
+            continue;
+        };
+        match keyword.to_ascii_lowercase().as_str() {
+            "solid" => solids.push(AsciiSolid {
+                name: line[keyword.len()..].trim().to_string(),
+                triangles: Vec::new(),
+            }),
+            "facet" => {
+                triangle += 1;
+                corners = Some(Vec::with_capacity(3));
+            }
+            "vertex" => {
+                let values: Vec<&str> = words.collect();
+                let parsed: Vec<f64> = values.iter().filter_map(|w| w.parse().ok()).collect();
+                if values.len() != 3 || parsed.len() != 3 {
                     return Err(format!(
-                        "line {}, triangle {triangle}: vertex coordinate '{bad}' is not finite",
-                        number + 1
+                        "line {number}, triangle {triangle}: a vertex needs three numbers, found '{}'",
+                        values.join(" ")
                     ));
                 }
+                if let Some(k) = (0..3).find(|&k| !(parsed[k] as f32).is_finite()) {
+                    return Err(format!(
+                        "line {number}, triangle {triangle}: vertex coordinate '{}' is not finite",
+                        values[k]
+                    ));
+                }
+                let Some(c) = corners.as_mut() else {
+                    return Err(format!("line {number}: a vertex outside any facet"));
+                };
+                c.push(DVec3::new(parsed[0], parsed[1], parsed[2]));
+            }
+            "endfacet" => {
+                let c = corners.take().unwrap_or_default();
+                let [a, b, c] = c[..] else {
+                    return Err(format!(
+                        "line {number}, triangle {triangle}: a facet needs three vertices, found {}",
+                        c.len()
+                    ));
+                };
+                if solids.is_empty() {
+                    solids.push(AsciiSolid {
+                        name: String::new(),
+                        triangles: Vec::new(),
+                    });
+                }
+                solids
+                    .last_mut()
+                    .expect("pushed above")
+                    .triangles
+                    .push([a, b, c]);
             }
             _ => {}
         }
     }
-    Ok(())
+    Ok(solids)
+}
+
+/// Triangles with equal corners welded: positions and polygons.
+fn weld(triangles: &[[DVec3; 3]]) -> (Vec<DVec3>, Vec<Vec<u32>>) {
+    let mut index: HashMap<[u64; 3], u32> = HashMap::new();
+    let mut positions = Vec::new();
+    let polygons = triangles
+        .iter()
+        .map(|t| {
+            t.iter()
+                .map(|p| {
+                    let key = [p.x.to_bits(), p.y.to_bits(), p.z.to_bits()];
+                    *index.entry(key).or_insert_with(|| {
+                        positions.push(*p);
+                        (positions.len() - 1) as u32
+                    })
+                })
+                .collect()
+        })
+        .collect();
+    (positions, polygons)
 }
 
 /// Parses a binary or ASCII STL file. A binary file must be exactly as long
 /// as its triangle count says (so a damaged header cannot ask for
-/// gigabytes); `name` names the node, `path` the file in messages.
+/// gigabytes); an ASCII file gives one node per `solid` block, named after
+/// it (`name`, the file's stem, when it has none); `path` names the file in
+/// messages.
 ///
 /// # Errors
 /// [`ImportError::Read`] naming the problem, [`ImportError::Empty`] when no
@@ -479,7 +627,7 @@ pub fn stl_from_bytes(
         .get(80..84)
         .map(|c| 84 + 50 * u32::from_le_bytes([c[0], c[1], c[2], c[3]]) as u64);
     let is_binary = binary_size == Some(bytes.len() as u64);
-    let is_ascii = bytes.trim_ascii_start().starts_with(b"solid") && !is_binary;
+    let is_ascii = !is_binary && starts_like_ascii_stl(bytes);
     if !is_binary && !is_ascii {
         return Err(read_error(format!(
             "not an STL file: not ASCII (no 'solid'), and {} bytes where a binary STL of its triangle count has {}",
@@ -487,50 +635,78 @@ pub fn stl_from_bytes(
             binary_size.map_or("at least 84".to_string(), |n| n.to_string())
         )));
     }
-    if is_ascii {
-        check_ascii_stl(bytes).map_err(read_error)?;
+    let solids = if is_ascii {
+        let text = std::str::from_utf8(bytes)
+            .map_err(|e| read_error(format!("an ASCII STL that is not UTF-8 text ({e})")))?;
+        parse_ascii_stl(text).map_err(read_error)?
+    } else {
+        vec![AsciiSolid {
+            name: String::new(),
+            triangles: binary_stl_triangles(bytes).map_err(read_error)?,
+        }]
+    };
+    let mut out = Vec::new();
+    let mut dropped = Vec::new();
+    for solid in &solids {
+        let (positions, polygons) = weld(&solid.triangles);
+        let (mesh, report) = HalfEdgeMesh::from_polygons_repaired(&positions, &polygons)
+            .map_err(|e| read_error(e.to_string()))?;
+        let node_name = if solid.name.is_empty() {
+            name.to_string()
+        } else {
+            solid.name.clone()
+        };
+        if mesh.face_count() == 0 {
+            if !solid.triangles.is_empty() {
+                dropped.push(format!("{node_name}: {report}"));
+            }
+            continue;
+        }
+        out.push(ImportedMesh::mesh(
+            node_name,
+            mesh.compacted_if_needed(),
+            report,
+        ));
     }
-    let indexed = stl_io::read_stl(&mut std::io::Cursor::new(bytes))
-        .map_err(|e| read_error(format!("not a readable STL file ({e})")))?;
-    let positions: Vec<DVec3> = indexed
-        .vertices
-        .iter()
-        .map(|v| DVec3::new(v[0] as f64, v[1] as f64, v[2] as f64))
-        .collect();
-    // stl_io reads any f32 (binary) or any number (ASCII, `nan`, `1e99`).
-    let non_finite = indexed.faces.iter().enumerate().find_map(|(t, f)| {
-        f.vertices
-            .iter()
-            .filter_map(|&i| positions.get(i))
-            .find(|p| !p.is_finite())
-            .map(|p| (t, p))
-    });
-    if let Some((t, p)) = non_finite {
-        return Err(read_error(format!(
-            "triangle {} has a corner that is not finite: ({}, {}, {})",
-            t + 1,
-            p.x,
-            p.y,
-            p.z
-        )));
-    }
-    let polygons: Vec<Vec<u32>> = indexed
-        .faces
-        .iter()
-        .map(|f| f.vertices.iter().map(|&i| i as u32).collect())
-        .collect();
-    let (mesh, report) = HalfEdgeMesh::from_polygons_repaired(&positions, &polygons)
-        .map_err(|e| read_error(e.to_string()))?;
-    if mesh.face_count() == 0 {
-        return Err(ImportError::Empty {
-            path: path.to_string(),
+    if out.is_empty() {
+        return Err(match dropped.first() {
+            Some(reason) => ImportError::NothingLeft {
+                path: path.to_string(),
+                reason: reason.clone(),
+            },
+            None => ImportError::Empty {
+                path: path.to_string(),
+            },
         });
     }
-    Ok(vec![ImportedMesh::mesh(
-        name.to_string(),
-        mesh.compacted_if_needed(),
-        report,
-    )])
+    Ok(out)
+}
+
+/// The triangles of a binary STL (its length already checked), refusing
+/// corners that are not finite.
+fn binary_stl_triangles(bytes: &[u8]) -> Result<Vec<[DVec3; 3]>, String> {
+    let count = u32::from_le_bytes([bytes[80], bytes[81], bytes[82], bytes[83]]) as usize;
+    let mut out = Vec::with_capacity(count);
+    for t in 0..count {
+        let record = &bytes[84 + 50 * t..84 + 50 * (t + 1)];
+        let float = |k: usize| {
+            let at = 12 + 4 * k;
+            f32::from_le_bytes([record[at], record[at + 1], record[at + 2], record[at + 3]]) as f64
+        };
+        let corner = |c: usize| DVec3::new(float(3 * c), float(3 * c + 1), float(3 * c + 2));
+        let tri = [corner(0), corner(1), corner(2)];
+        if let Some(p) = tri.iter().find(|p| !p.is_finite()) {
+            return Err(format!(
+                "triangle {} has a corner that is not finite: ({}, {}, {})",
+                t + 1,
+                p.x,
+                p.y,
+                p.z
+            ));
+        }
+        out.push(tri);
+    }
+    Ok(out)
 }
 
 /// Reads a file by its extension.
@@ -587,6 +763,12 @@ pub fn describe_repairs(meshes: &[ImportedMesh]) -> Vec<String> {
         format!(
             "{}: {} primitive(s) that are not triangles left out",
             m.name, m.skipped_primitives
+        )
+    }));
+    out.extend(meshes.iter().filter(|m| m.skipped_polylines > 0).map(|m| {
+        format!(
+            "{} polyline(s) (`l`) left out: Hedra imports faces",
+            m.skipped_polylines
         )
     }));
     out

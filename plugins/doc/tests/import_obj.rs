@@ -73,11 +73,54 @@ fn garbage_and_empty_files_are_errors_naming_the_file() {
     let e = obj_from_str("v 0 0 0\nv 1 0 0\n", "points.obj").unwrap_err();
     assert_eq!(e.to_string(), "points.obj: contains no faces");
     let e = obj_from_str("v zero one two\nf 1 2 3\n", "bad.obj").unwrap_err();
-    assert!(
-        e.to_string()
-            .starts_with("bad.obj: not a readable OBJ file"),
-        "{e}"
+    assert_eq!(
+        e.to_string(),
+        "bad.obj: line 1: a vertex needs three numbers, found 'zero one two'"
+    );
+    let e = obj_from_str("v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 x 1\nf 1 2 3\n", "n.obj").unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "n.obj: line 4: a normal needs 3 number(s), found '0 x 1'"
     );
     let e = obj_from_str("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 99\n", "range.obj").unwrap_err();
     assert!(e.to_string().contains("range.obj"), "{e}");
+}
+
+/// Polylines (`l`) are not faces: alone they give a clear "no faces" error,
+/// beside faces they are left out with a note and the faces stay.
+#[test]
+fn polylines_are_left_out_and_faces_kept() {
+    let square = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n";
+    let e = obj_from_str(&format!("{square}l 1 2 3 4\n"), "line.obj").unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "line.obj: no face could be kept: it has 1 polyline(s) (`l`) and no faces; Hedra imports faces"
+    );
+    let mixed = format!("{square}v 0 0 1\nl 1 2 3 4\nf 1 2 5\nl 4 5\nf 2 3 5\n");
+    let meshes = obj_from_str(&mixed, "mixed.obj").unwrap();
+    let mesh = meshes[0].mesh.as_ref().unwrap();
+    assert_eq!(mesh.face_count(), 2, "the two real faces");
+    mesh.validate().unwrap();
+    assert_eq!(
+        describe_repairs(&meshes),
+        ["2 polyline(s) (`l`) left out: Hedra imports faces"]
+    );
+}
+
+/// Blender 2.61 writes `usemtl` with no name; it is read as no material.
+#[test]
+fn an_empty_usemtl_line_is_read() {
+    let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl\nf 1 2 3\n";
+    let meshes = obj_from_str(text, "old.obj").unwrap();
+    assert_eq!(meshes[0].mesh.as_ref().unwrap().face_count(), 1);
+}
+
+/// When every face is dropped, the error says why.
+#[test]
+fn dropping_every_face_says_why() {
+    // A face that visits vertex 1 twice.
+    let text = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 1 3\n";
+    let e = obj_from_str(text, "loop.obj").unwrap_err().to_string();
+    assert!(e.starts_with("loop.obj: no face could be kept: "), "{e}");
+    assert!(e.contains("dropped 1 face(s)"), "{e}");
 }
