@@ -111,7 +111,9 @@ fn to_ascii_stl(items: &[ExportItem]) -> String {
 /// Every visible surface as world-space triangles with their normals.
 fn stl_triangles(items: &[ExportItem]) -> Vec<stl_io::Triangle> {
     let mut triangles = Vec::new();
-    let mut push = |[a, b, c]: [DVec3; 3]| {
+    let mut push = |[a, b, c]: [DVec3; 3], mirrored: bool| {
+        // A mirroring transform turns the winding over: turn it back.
+        let [a, b, c] = if mirrored { [a, c, b] } else { [a, b, c] };
         let n = (b - a).cross(c - a).normalize_or_zero();
         let vertex = |p: DVec3| stl_io::Vertex::new(p.as_vec3().to_array());
         triangles.push(stl_io::Triangle {
@@ -125,13 +127,19 @@ fn stl_triangles(items: &[ExportItem]) -> Vec<stl_io::Triangle> {
             Geometry::Mesh(m) => {
                 for f in m.faces() {
                     for corners in hedra_geom::query::triangulate_face(m, f) {
-                        push(corners.map(|v| world.transform_point3(m.position(v))));
+                        push(
+                            corners.map(|v| world.transform_point3(m.position(v))),
+                            item.mirrored,
+                        );
                     }
                 }
             }
             Geometry::Triangles(positions, tris) => {
                 for t in tris {
-                    push(t.map(|i| world.transform_point3(positions[i as usize])));
+                    push(
+                        t.map(|i| world.transform_point3(positions[i as usize])),
+                        item.mirrored,
+                    );
                 }
             }
             // STL holds only triangles: curves are left out.
@@ -170,7 +178,11 @@ fn to_obj(items: &[ExportItem]) -> String {
                 let Some(c) = item.corners else {
                     for f in m.faces() {
                         out.push('f');
-                        for v in m.face_vertices(f) {
+                        let mut vs: Vec<hedra_geom::VertexId> = m.face_vertices(f).collect();
+                        if item.mirrored {
+                            vs.reverse();
+                        }
+                        for v in vs {
                             let _ = write!(out, " {}", index[v.index()]);
                         }
                         out.push('\n');
@@ -184,7 +196,12 @@ fn to_obj(items: &[ExportItem]) -> String {
                 let mut vt_of: HashMap<[u64; 2], usize> = HashMap::new();
                 let mut vn_of: HashMap<[u64; 3], usize> = HashMap::new();
                 for f in m.faces() {
-                    let hs: Vec<hedra_geom::HalfEdgeId> = m.face_halfedges(f).collect();
+                    let mut hs: Vec<hedra_geom::HalfEdgeId> = m.face_halfedges(f).collect();
+                    // Mirrored: the corners in reverse order (each keeps its
+                    // vertex, UV and normal).
+                    if item.mirrored {
+                        hs.reverse();
+                    }
                     let with_uv = hs.iter().all(|h| c.uvs.contains_key(h));
                     let with_normal = hs.iter().all(|h| c.normals.contains_key(h));
                     faces.push('f');
@@ -228,12 +245,17 @@ fn to_obj(items: &[ExportItem]) -> String {
                     vertex(&mut out, p);
                 }
                 for t in tris {
+                    let [a, b, c] = if item.mirrored {
+                        [t[0], t[2], t[1]]
+                    } else {
+                        *t
+                    };
                     let _ = writeln!(
                         out,
                         "f {} {} {}",
-                        base + t[0] as usize,
-                        base + t[1] as usize,
-                        base + t[2] as usize
+                        base + a as usize,
+                        base + b as usize,
+                        base + c as usize
                     );
                 }
                 base += positions.len();
@@ -268,6 +290,9 @@ struct ExportItem<'a> {
     node: &'a Node,
     geometry: Geometry<'a>,
     world: glam::DMat4,
+    /// The world transform mirrors (negative determinant): faces are
+    /// written with their corners reversed, so the outside stays outside.
+    mirrored: bool,
     /// UVs and normals, for a mesh written as its cage that has some.
     corners: Option<&'a CornerAttributes>,
 }
@@ -295,10 +320,12 @@ fn export_meshes(doc: &Document, shape: ExportShape) -> Result<Vec<ExportItem<'_
                 }
                 _ => None,
             };
+            let world = doc.world_matrix(node.id);
             out.push(ExportItem {
                 node,
                 geometry,
-                world: doc.world_matrix(node.id),
+                world,
+                mirrored: world.determinant() < 0.0,
                 corners,
             });
         }

@@ -598,3 +598,89 @@ fn undo_steps_share_the_attribute_maps() {
         &before
     ));
 }
+
+/// A node mirrored by a scale of −1 exports with the outside outside: the
+/// OBJ and STL cube keep volume +8, and every OBJ `vn` agrees with its
+/// face's winding.
+#[test]
+fn mirrored_nodes_export_outside_out() {
+    let meshes = obj_from_str(BOX_AND_ROOF, "box.obj").unwrap();
+    let mut s = session_with(&meshes);
+    s.execute(&Command::SetTransforms {
+        nodes: vec![(
+            NodeRef::Name("Box".into()),
+            hedra_doc::Transform {
+                scale: DVec3::new(-2.0, 2.0, 2.0),
+                ..hedra_doc::Transform::IDENTITY
+            },
+        )],
+    })
+    .unwrap();
+    s.execute(&Command::SetVisible {
+        nodes: vec![NodeRef::Name("Roof".into())],
+        visible: false,
+    })
+    .unwrap();
+    let cage = ExportOptions {
+        shape: ExportShape::Cage,
+        ..Default::default()
+    };
+    // OBJ: signed volume of the faces (fanned) and the normals' sides.
+    let text = String::from_utf8(export_bytes(&s.doc, Path::new("m.obj"), cage).unwrap()).unwrap();
+    let vs: Vec<DVec3> = text
+        .lines()
+        .filter_map(|l| l.strip_prefix("v "))
+        .map(|l| {
+            let c: Vec<f64> = l.split(' ').map(|x| x.parse().unwrap()).collect();
+            DVec3::new(c[0], c[1], c[2])
+        })
+        .collect();
+    let vns: Vec<DVec3> = text
+        .lines()
+        .filter_map(|l| l.strip_prefix("vn "))
+        .map(|l| {
+            let c: Vec<f64> = l.split(' ').map(|x| x.parse().unwrap()).collect();
+            DVec3::new(c[0], c[1], c[2])
+        })
+        .collect();
+    let mut volume = 0.0;
+    for line in text.lines().filter_map(|l| l.strip_prefix("f ")) {
+        let corners: Vec<(usize, Option<usize>)> = line
+            .split(' ')
+            .map(|w| {
+                let mut p = w.split('/');
+                let v = p.next().unwrap().parse::<usize>().unwrap() - 1;
+                let vn = p
+                    .nth(1)
+                    .and_then(|x| x.parse::<usize>().ok())
+                    .map(|i| i - 1);
+                (v, vn)
+            })
+            .collect();
+        let p: Vec<DVec3> = corners.iter().map(|(v, _)| vs[*v]).collect();
+        let mut normal = DVec3::ZERO;
+        for i in 1..p.len() - 1 {
+            volume += p[0].dot(p[i].cross(p[i + 1])) / 6.0;
+            normal += (p[i] - p[0]).cross(p[i + 1] - p[0]);
+        }
+        for (_, vn) in &corners {
+            if let Some(n) = vn {
+                assert!(vns[*n].dot(normal) > 0.0, "vn {n} against its face");
+            }
+        }
+    }
+    assert!((volume - 8.0).abs() < 1e-9, "OBJ volume {volume}");
+    // STL (ASCII and binary): the same volume, normals along the winding.
+    for ascii_stl in [true, false] {
+        let options = ExportOptions { ascii_stl, ..cage };
+        let bytes = export_bytes(&s.doc, Path::new("m.stl"), options).unwrap();
+        let back = hedra_doc::import::stl_from_bytes(&bytes, "m", "m.stl").unwrap();
+        let m = back[0].mesh.as_ref().unwrap();
+        let mut volume = 0.0;
+        for f in m.faces() {
+            let p: Vec<DVec3> = m.face_vertices(f).map(|v| m.position(v)).collect();
+            volume += p[0].dot(p[1].cross(p[2])) / 6.0;
+        }
+        assert!((volume - 8.0).abs() < 1e-4, "STL volume {volume}");
+    }
+}
