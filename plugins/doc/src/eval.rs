@@ -90,7 +90,8 @@ pub fn evaluate(doc: &Document, node: &NodeRef, params: &[f64]) -> Result<Evalua
                     inside(u, du_range, "u")?;
                     inside(v, dv_range, "v")?;
                     let e = sf.evaluate(u, v);
-                    let normal = e.normal();
+                    // At a pole: the limit of the normals around it.
+                    let normal = sf.unit_normal(u, v);
                     // First and second fundamental forms: K = (LN − M²)/(EG − F²),
                     // H = (EN − 2FM + GL) / (2(EG − F²)).
                     let (ee, f, g) = (e.du.dot(e.du), e.du.dot(e.dv), e.dv.dot(e.dv));

@@ -134,7 +134,7 @@ fn stl_triangles(items: &[ExportItem]) -> Vec<stl_io::Triangle> {
                     }
                 }
             }
-            Geometry::Triangles(positions, tris) => {
+            Geometry::Triangles(positions, _, tris) => {
                 for t in tris {
                     push(
                         t.map(|i| world.transform_point3(positions[i as usize])),
@@ -240,7 +240,7 @@ fn to_obj(items: &[ExportItem]) -> String {
                 out.push_str(&faces);
                 base += m.vertex_count();
             }
-            Geometry::Triangles(positions, tris) => {
+            Geometry::Triangles(positions, _, tris) => {
                 for &p in positions {
                     vertex(&mut out, p);
                 }
@@ -279,8 +279,9 @@ fn to_obj(items: &[ExportItem]) -> String {
 /// What is written for one node.
 pub(crate) enum Geometry<'a> {
     Mesh(Cow<'a, HalfEdgeMesh>),
-    /// A tessellated surface: positions and triangles.
-    Triangles(Vec<DVec3>, Vec<[u32; 3]>),
+    /// A tessellated surface: positions, the surface's unit normals there
+    /// (the limit at poles), triangles.
+    Triangles(Vec<DVec3>, Vec<DVec3>, Vec<[u32; 3]>),
     /// A tessellated curve.
     Polyline(Vec<DVec3>),
 }
@@ -366,8 +367,8 @@ pub(crate) fn node_geometry(
         }
         NodeContent::Surface(sf) => {
             let size = crate::render::extent(sf.control_points());
-            let (positions, _, tris) = sf.tessellate(EXPORT_TOLERANCE * size);
-            Geometry::Triangles(positions, tris)
+            let (positions, normals, tris) = sf.tessellate(EXPORT_TOLERANCE * size);
+            Geometry::Triangles(positions, normals, tris)
         }
     }))
 }

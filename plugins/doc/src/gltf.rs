@@ -93,6 +93,24 @@ fn bounds(v: &[[f32; 3]]) -> ([f32; 3], [f32; 3]) {
     (lo, hi)
 }
 
+/// `n` when it is a unit vector; else the direction of `fallback()`, else
+/// +Y: glTF requires unit normals, and a zero-area face (imported, or
+/// subdivided from one) has none of its own.
+fn unit_or_up(n: DVec3, fallback: impl FnOnce() -> DVec3) -> DVec3 {
+    if n.is_normalized() {
+        return n;
+    }
+    fallback().try_normalize().unwrap_or(DVec3::Y)
+}
+
+/// The summed normals of the faces around face `f` (its edge neighbours).
+fn neighbours_normal(m: &HalfEdgeMesh, f: hedra_geom::FaceId) -> DVec3 {
+    m.face_halfedges(f)
+        .filter_map(|h| m.face(h.twin()))
+        .map(|g| m.face_normal(g))
+        .sum()
+}
+
 /// Triangles of a half-edge mesh with normals: each face's own corners and
 /// normal when flat, shared vertices with area-weighted normals when smooth.
 fn mesh_triangles(m: &HalfEdgeMesh, shading: Shading) -> (Vec<[f32; 3]>, Vec<[f32; 3]>, Vec<u32>) {
@@ -103,7 +121,7 @@ fn mesh_triangles(m: &HalfEdgeMesh, shading: Shading) -> (Vec<[f32; 3]>, Vec<[f3
             // Each face its own corners (a cube: 24 vertices, seed 000's
             // "cube problem"), triangulated by index.
             for f in m.faces() {
-                let n = a(m.face_normal(f));
+                let n = a(unit_or_up(m.face_normal(f), || neighbours_normal(m, f)));
                 let base = positions.len() as u32;
                 let corners: Vec<hedra_geom::VertexId> = m.face_vertices(f).collect();
                 for &v in &corners {
@@ -126,7 +144,9 @@ fn mesh_triangles(m: &HalfEdgeMesh, shading: Shading) -> (Vec<[f32; 3]>, Vec<[f3
             for v in m.vertices() {
                 index[v.index()] = positions.len() as u32;
                 positions.push(a(m.position(v)));
-                normals.push(a(m.vertex_normal(v)));
+                normals.push(a(unit_or_up(m.vertex_normal(v), || {
+                    m.vertex_faces(v).map(|f| neighbours_normal(m, f)).sum()
+                })));
             }
             for f in m.faces() {
                 for tri in hedra_geom::query::triangulate_face(m, f) {
@@ -155,8 +175,8 @@ fn corner_triangles(m: &HalfEdgeMesh, shading: Shading, c: &CornerAttributes) ->
             let v = m.origin(h);
             let p = m.position(v).as_vec3().to_array();
             let n = c.normals.get(&h).copied().unwrap_or_else(|| match shading {
-                Shading::Flat => face_normal,
-                Shading::Smooth => m.vertex_normal(v),
+                Shading::Flat => unit_or_up(face_normal, || neighbours_normal(m, f)),
+                Shading::Smooth => unit_or_up(m.vertex_normal(v), || neighbours_normal(m, f)),
             });
             let n = n.as_vec3().to_array();
             let uv = c
@@ -229,21 +249,26 @@ pub fn to_gltf(doc: &Document, shape: ExportShape, binary: bool) -> Result<Vec<u
                         let (p, n, i) = mesh_triangles(m, shading);
                         (p, n, i, json::mesh::Mode::Triangles)
                     }
-                    Geometry::Triangles(p, tris) => {
+                    Geometry::Triangles(p, n, tris) => {
                         let positions: Vec<[f32; 3]> =
                             p.iter().map(|x| x.as_vec3().to_array()).collect();
-                        // Area-weighted normals of the tessellation.
-                        let mut n = vec![DVec3::ZERO; p.len()];
+                        // The surface's own normals; a point where even the
+                        // limit is undefined takes its triangles' normals.
+                        let mut area = vec![DVec3::ZERO; p.len()];
                         for t in tris {
                             let [a, b, c] = t.map(|i| p[i as usize]);
-                            let face = (b - a).cross(c - a);
                             for i in t {
-                                n[*i as usize] += face;
+                                area[*i as usize] += (b - a).cross(c - a);
                             }
                         }
                         let normals = n
                             .iter()
-                            .map(|x| x.normalize_or_zero().as_vec3().to_array())
+                            .zip(&area)
+                            .map(|(n, area)| {
+                                unit_or_up(n.normalize_or_zero(), || *area)
+                                    .as_vec3()
+                                    .to_array()
+                            })
                             .collect();
                         (
                             positions,

@@ -148,3 +148,45 @@ fn bad_gltf_files_are_refused_by_name() {
         assert!(e.contains(name) && e.contains(expected), "{e}");
     }
 }
+
+/// Every normal a glTF export writes is a unit vector (the Khronos
+/// validator's rule): at the poles of the NURBS sphere, and on a zero-area
+/// face of an imported mesh, also subdivided.
+#[test]
+fn exported_normals_are_unit_length_at_poles_and_zero_area_faces() {
+    let mut s = scene();
+    // A flat quad with a zero-area triangle hanging on one edge.
+    let obj = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\nf 1 2 3 4\nf 2 1 5\n";
+    let meshes = hedra_doc::import::obj_from_str(obj, "sliver.obj").unwrap();
+    s.import(&meshes, "Import sliver.obj");
+    for shape in [
+        hedra_doc::export::ExportShape::Cage,
+        hedra_doc::export::ExportShape::Subdivided(1),
+    ] {
+        let options = ExportOptions {
+            shape,
+            ..Default::default()
+        };
+        let bytes = export_bytes(&s.doc, std::path::Path::new("n.glb"), options).unwrap();
+        let gltf = gltf::Gltf::from_slice(&bytes).unwrap();
+        let blob = gltf.blob.clone().unwrap();
+        let mut checked = 0;
+        for mesh in gltf.meshes() {
+            for primitive in mesh.primitives() {
+                let reader = primitive.reader(|_| Some(&blob));
+                if let Some(normals) = reader.read_normals() {
+                    for n in normals {
+                        let len = glam::Vec3::from(n).length();
+                        assert!(
+                            (len - 1.0).abs() < 1e-4,
+                            "{shape:?}: {} has length {len}",
+                            mesh.name().unwrap_or("?")
+                        );
+                        checked += 1;
+                    }
+                }
+            }
+        }
+        assert!(checked > 100, "{checked}");
+    }
+}

@@ -462,3 +462,33 @@ fn bezier_surface_bernstein_form_equals_de_casteljau() {
         assert!(close(b.bernstein_point(u, v), b.point(u, v), 1e-13));
     }
 }
+
+/// At the sphere's poles the partial derivatives are parallel: the normal
+/// is the limit around the pole (its direction from the centre), in the
+/// grid evaluator, the generic tessellation and `unit_normal`.
+#[test]
+fn the_sphere_has_unit_normals_at_its_poles() {
+    use hedra_geom::surfaces::{NurbsSurface, Surface};
+    let centre = glam::DVec3::new(1.0, 2.0, 3.0);
+    let sphere = NurbsSurface::sphere(centre, 2.0);
+    let ((u0, u1), (v0, v1)) = sphere.domain();
+    let us: Vec<f64> = (0..=8).map(|i| u0 + (u1 - u0) * i as f64 / 8.0).collect();
+    let vs: Vec<f64> = (0..=8).map(|j| v0 + (v1 - v0) * j as f64 / 8.0).collect();
+    let (points, normals) = sphere.grid(&us, &vs, true);
+    for (p, n) in points.iter().zip(&normals) {
+        let outward = (*p - centre).normalize();
+        assert!(n.is_normalized(), "a unit normal at {p}");
+        assert!(
+            n.dot(outward).abs() > 1.0 - 1e-6,
+            "{n} along {outward} at {p}"
+        );
+    }
+    let poles = [(u0, v0), (u1, v1), (u0, v1), (u1, v0)];
+    for (u, v) in poles {
+        let n = sphere.unit_normal(u, v);
+        let outward = (sphere.point(u, v) - centre).normalize();
+        assert!(n.dot(outward).abs() > 1.0 - 1e-6, "{n} at ({u}, {v})");
+    }
+    let mesh = hedra_geom::surfaces::tessellate::tessellate(&sphere, 0.01);
+    assert!(mesh.normals.iter().all(|n| n.is_normalized()));
+}

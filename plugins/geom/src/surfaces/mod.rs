@@ -50,4 +50,32 @@ pub trait Surface {
     fn normal(&self, u: f64, v: f64) -> DVec3 {
         self.evaluate(u, v).normal()
     }
+    /// The unit normal at `(u, v)`, also where the partial derivatives are
+    /// parallel or zero (a pole, a collapsed edge): there the limit of the
+    /// normals around it, see [`limit_normal`]. Zero only on a surface that
+    /// is degenerate all around the point.
+    fn unit_normal(&self, u: f64, v: f64) -> DVec3 {
+        let n = self.normal(u, v);
+        if n != DVec3::ZERO {
+            return n;
+        }
+        limit_normal(self, u, v)
+    }
+}
+
+/// The normal of a surface where its partial derivatives are parallel or
+/// zero, as the limit of the normals next to the point: the normals at
+/// steps of 1e-6 of the domain into it, diagonally (the sphere's poles give
+/// the pole's direction, as openNURBS does).
+pub fn limit_normal<S: Surface + ?Sized>(surface: &S, u: f64, v: f64) -> DVec3 {
+    let ((u0, u1), (v0, v1)) = surface.domain();
+    let (du, dv) = ((u1 - u0) * 1e-6, (v1 - v0) * 1e-6);
+    let mut sum = DVec3::ZERO;
+    for (su, sv) in [(1.0, 1.0), (1.0, -1.0), (-1.0, 1.0), (-1.0, -1.0)] {
+        let (a, b) = (u + su * du, v + sv * dv);
+        if (u0..=u1).contains(&a) && (v0..=v1).contains(&b) {
+            sum += surface.normal(a, b);
+        }
+    }
+    sum.normalize_or_zero()
 }

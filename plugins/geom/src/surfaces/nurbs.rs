@@ -328,8 +328,22 @@ impl NurbsSurface {
     /// Points (and, with `normals`, unit normals) on the grid of parameters
     /// `us × vs`, row-major by u; each u-row of control points is combined
     /// once, then every point costs `q + 1` terms. Parameters are clamped
-    /// to the domain. See [`crate::curves::fast`].
+    /// to the domain. See [`crate::curves::fast`]. Where the partial
+    /// derivatives are parallel (a pole) the normal is the limit around it
+    /// ([`super::limit_normal`]).
     pub fn grid(&self, us: &[f64], vs: &[f64], normals: bool) -> (Vec<DVec3>, Vec<DVec3>) {
+        let (points, mut norms) = self.grid_raw(us, vs, normals);
+        for (k, n) in norms.iter_mut().enumerate() {
+            if *n == DVec3::ZERO {
+                let (u, v) = (us[k / vs.len()], vs[k % vs.len()]);
+                let ((u0, u1), (v0, v1)) = self.domain();
+                *n = super::limit_normal(self, u.clamp(u0, u1), v.clamp(v0, v1));
+            }
+        }
+        (points, norms)
+    }
+
+    fn grid_raw(&self, us: &[f64], vs: &[f64], normals: bool) -> (Vec<DVec3>, Vec<DVec3>) {
         use crate::curves::fast::{Basis, MAX_FAST_DEGREE, homogeneous_points, surface_grid};
         let ((u0, u1), (v0, v1)) = self.domain();
         let us: Vec<f64> = us.iter().map(|u| u.clamp(u0, u1)).collect();

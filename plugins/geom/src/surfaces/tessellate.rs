@@ -29,7 +29,12 @@ pub fn grid(surface: &dyn Surface, cu: usize, cv: usize) -> SurfaceMesh {
             let v = v0 + (v1 - v0) * j as f64 / cv as f64;
             let s = surface.evaluate(u, v);
             m.positions.push(s.p);
-            m.normals.push(s.normal());
+            let n = s.normal();
+            m.normals.push(if n == DVec3::ZERO {
+                super::limit_normal(surface, u, v)
+            } else {
+                n
+            });
             m.params.push((u, v));
         }
     }
