@@ -93,6 +93,26 @@ fn bounds(v: &[[f32; 3]]) -> ([f32; 3], [f32; 3]) {
     (lo, hi)
 }
 
+/// The corners of a primitive's triangles as a list, three per triangle:
+/// strips and fans unrolled with the winding the glTF specification gives
+/// (3.7.2.1: strip triangle i is (i, i + 1 + i mod 2, i + 2 − i mod 2), fan
+/// triangle i is (i + 1, i + 2, 0)).
+fn triangle_list(mode: gltf::mesh::Mode, indices: &[u32]) -> Vec<u32> {
+    let n = indices.len();
+    match mode {
+        gltf::mesh::Mode::TriangleStrip => (0..n.saturating_sub(2))
+            .flat_map(|i| {
+                let odd = i % 2;
+                [indices[i], indices[i + 1 + odd], indices[i + 2 - odd]]
+            })
+            .collect(),
+        gltf::mesh::Mode::TriangleFan => (0..n.saturating_sub(2))
+            .flat_map(|i| [indices[i + 1], indices[i + 2], indices[0]])
+            .collect(),
+        _ => indices.to_vec(),
+    }
+}
+
 /// `n` when it is a unit vector; else the direction of `fallback()`, else
 /// +Y: glTF requires unit normals, and a zero-area face (imported, or
 /// subdivided from one) has none of its own.
@@ -446,7 +466,8 @@ pub fn to_gltf(doc: &Document, shape: ExportShape, binary: bool) -> Result<Vec<u
 /// Reads a `.gltf` or `.glb` file's scene: every node becomes a node with
 /// its parent, name and local transform; triangle primitives become one
 /// half-edge mesh per node with equal positions welded (other primitive
-/// modes are skipped and reported). `base` is the file's folder: external
+/// modes (points, lines) are skipped and reported; strips and fans are
+/// triangles). `base` is the file's folder: external
 /// buffer files are read only from inside it ([`crate::reference`]).
 ///
 /// # Errors
@@ -553,7 +574,13 @@ pub fn gltf_from_bytes(
         let mut skipped = 0usize;
         if let Some(mesh) = node.mesh() {
             for primitive in mesh.primitives() {
-                if primitive.mode() != gltf::mesh::Mode::Triangles {
+                let mode = primitive.mode();
+                if !matches!(
+                    mode,
+                    gltf::mesh::Mode::Triangles
+                        | gltf::mesh::Mode::TriangleStrip
+                        | gltf::mesh::Mode::TriangleFan
+                ) {
                     skipped += 1;
                     continue;
                 }
@@ -590,6 +617,7 @@ pub fn gltf_from_bytes(
                             .collect()
                     })
                     .unwrap_or_default();
+                let indices = triangle_list(mode, &indices);
                 let triangles = indices.chunks_exact(3);
                 for &i in indices.iter().take(triangles.len() * 3) {
                     corner_uvs.push(vertex_uvs.get(i as usize).copied());

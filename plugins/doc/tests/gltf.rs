@@ -190,3 +190,62 @@ fn exported_normals_are_unit_length_at_poles_and_zero_area_faces() {
         assert!(checked > 100, "{checked}");
     }
 }
+
+/// A glTF with one square drawn as a triangle strip and one as a fan
+/// (implicit indices, base64 buffer): both are read as two triangles with
+/// the same winding as a triangle list.
+#[test]
+fn triangle_strips_and_fans_are_read() {
+    use base64::Engine;
+    // Square corners for a strip (0 1 2 3 zigzag) and for a fan (around 0).
+    let strip: [[f32; 3]; 4] = [
+        [0.0, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [1.0, 1.0, 0.0],
+    ];
+    let fan: [[f32; 3]; 4] = [
+        [0.0, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [1.0, 1.0, 0.0],
+        [0.0, 1.0, 0.0],
+    ];
+    let bytes: Vec<u8> = strip
+        .iter()
+        .chain(&fan)
+        .flatten()
+        .flat_map(|x| x.to_le_bytes())
+        .collect();
+    let data = base64::engine::general_purpose::STANDARD.encode(&bytes);
+    let accessor = |offset: usize| {
+        format!(
+            r#"{{"bufferView":0,"byteOffset":{offset},"componentType":5126,"count":4,"type":"VEC3","min":[0,0,0],"max":[1,1,0]}}"#
+        )
+    };
+    let text = format!(
+        r#"{{"asset":{{"version":"2.0"}},"scene":0,"scenes":[{{"nodes":[0,1]}}],
+        "nodes":[{{"name":"Strip","mesh":0}},{{"name":"Fan","mesh":1}}],
+        "meshes":[{{"primitives":[{{"attributes":{{"POSITION":0}},"mode":5}}]}},
+                  {{"primitives":[{{"attributes":{{"POSITION":1}},"mode":6}}]}}],
+        "accessors":[{},{}],
+        "bufferViews":[{{"buffer":0,"byteLength":{len}}}],
+        "buffers":[{{"byteLength":{len},"uri":"data:application/octet-stream;base64,{data}"}}]}}"#,
+        accessor(0),
+        accessor(48),
+        len = bytes.len()
+    );
+    let meshes = hedra_doc::gltf::gltf_from_bytes(text.as_bytes(), None, "sq.gltf").unwrap();
+    for name in ["Strip", "Fan"] {
+        let m = meshes.iter().find(|m| m.name == name).unwrap();
+        assert_eq!(m.skipped_primitives, 0, "{name}");
+        let mesh = m.mesh.as_ref().unwrap();
+        assert_eq!((mesh.vertex_count(), mesh.face_count()), (4, 2), "{name}");
+        mesh.validate().unwrap();
+        for f in mesh.faces() {
+            assert!(
+                mesh.face_normal(f).z > 0.99,
+                "{name}: counter-clockwise from +Z"
+            );
+        }
+    }
+}
