@@ -258,8 +258,16 @@ pub fn run(sub: Sub) -> Result<(), CliError> {
             output,
         } => {
             let meshes = hedra_doc::import::import_file(&file)?;
-            for note in hedra_doc::import::describe_repairs(&meshes) {
-                eprintln!("hedra: warning: {}: {note}", file.display());
+            // A summary as the warning, then its details.
+            for (i, note) in hedra_doc::import::describe_repairs(&meshes)
+                .iter()
+                .enumerate()
+            {
+                if i == 0 {
+                    eprintln!("hedra: warning: {}: {note}", file.display());
+                } else {
+                    eprintln!("{note}");
+                }
             }
             let mut session = match input {
                 Some(p) => load(&p)?,

@@ -422,11 +422,17 @@ fn import_turns_obj_objects_into_nodes_and_reports_repairs() {
     let out = dir.path().join("imported.hedra.ron");
     let o = hedra(&["import", obj.to_str().unwrap(), "-o", out.to_str().unwrap()]);
     assert!(o.status.success(), "{}", stderr(&o));
+    // One warning with the summary, the face named by its line in the file.
+    let err = stderr(&o);
     assert!(
-        stderr(&o).contains("Fan: dropped 1 face(s)"),
-        "{}",
-        stderr(&o)
+        err.contains(": 1 of 2 object(s) repaired: 1 face(s) dropped (1 a third face on an edge)"),
+        "{err}"
     );
+    assert!(
+        err.contains("  Fan: line 9 dropped: would be a third face on an edge already shared by line 7, line 8"),
+        "{err}"
+    );
+    assert_eq!(err.matches("hedra: warning").count(), 1, "{err}");
     let j = info_json(&out);
     let nodes = j["nodes"].as_array().unwrap();
     assert_eq!(nodes.len(), 2);
@@ -665,12 +671,18 @@ fn stl_round_trips_binary_and_ascii_and_bad_stl_is_refused() {
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
     let text = std::fs::read_to_string(&ascii).unwrap();
-    assert!(text.starts_with("solid hedra\n") && text.trim_end().ends_with("endsolid hedra"));
+    // One solid per node, named after it.
+    assert!(
+        text.starts_with("solid Cylinder\n") && text.trim_end().ends_with("endsolid Cylinder"),
+        "{text}"
+    );
     assert_eq!(text.matches("facet normal").count(), 20);
     let read = stl_io::read_stl(&mut std::fs::File::open(&ascii).unwrap()).unwrap();
     assert_eq!((read.faces.len(), read.vertices.len()), (20, 12));
     // Both import back as one closed mesh with the corners welded.
-    for (file, name) in [(&binary, "c"), (&ascii, "c_ascii")] {
+    // The binary file's node takes the file's name, the ASCII file's its
+    // solid's (the exported node's) name.
+    for (file, name) in [(&binary, "c"), (&ascii, "Cylinder")] {
         let out = dir.path().join(format!("{name}.hedra.ron"));
         let o = hedra(&[
             "import",

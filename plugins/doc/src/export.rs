@@ -89,22 +89,39 @@ fn to_stl(items: &[ExportItem]) -> Vec<u8> {
     out
 }
 
-/// ASCII STL: the same triangles as text (`solid … facet normal … endsolid`).
+/// ASCII STL: the same triangles as text, one `solid` block per node named
+/// after it (Hedra's STL reader makes each block a node again).
 fn to_ascii_stl(items: &[ExportItem]) -> String {
-    let mut out = String::from("solid hedra\n");
-    for t in stl_triangles(items) {
-        let n = t.normal;
-        let _ = writeln!(
-            out,
-            "  facet normal {} {} {}\n    outer loop",
-            n[0], n[1], n[2]
-        );
-        for v in t.vertices {
-            let _ = writeln!(out, "      vertex {} {} {}", v[0], v[1], v[2]);
+    let mut out = String::new();
+    for item in items {
+        let triangles = stl_triangles(std::slice::from_ref(item));
+        if triangles.is_empty() {
+            continue;
         }
-        out.push_str("    endloop\n  endfacet\n");
+        let name: String = item
+            .node
+            .name
+            .chars()
+            .map(|c| if c.is_control() { '_' } else { c })
+            .collect();
+        let _ = writeln!(out, "solid {name}");
+        for t in triangles {
+            let n = t.normal;
+            let _ = writeln!(
+                out,
+                "  facet normal {} {} {}\n    outer loop",
+                n[0], n[1], n[2]
+            );
+            for v in t.vertices {
+                let _ = writeln!(out, "      vertex {} {} {}", v[0], v[1], v[2]);
+            }
+            out.push_str("    endloop\n  endfacet\n");
+        }
+        let _ = writeln!(out, "endsolid {name}");
     }
-    out.push_str("endsolid hedra\n");
+    if out.is_empty() {
+        out.push_str("solid hedra\nendsolid hedra\n");
+    }
     out
 }
 

@@ -655,6 +655,7 @@ pub fn gltf_from_bytes(
             transform,
             skipped_primitives: skipped,
             skipped_polylines: 0,
+            face_numbers: crate::import::FaceNumbers::InNode,
         });
         for child in node.children().collect::<Vec<_>>().into_iter().rev() {
             stack.push((child, Some(me)));

@@ -35,6 +35,8 @@ pub struct ImportedMesh {
     pub skipped_primitives: usize,
     /// OBJ polylines (`l`) left out (Hedra imports faces).
     pub skipped_polylines: usize,
+    /// How the report's face numbers are shown (as the file counts them).
+    pub face_numbers: FaceNumbers,
     /// UVs and normals of the mesh's face corners that the file gave.
     pub corners: CornerAttributes,
 }
@@ -50,6 +52,7 @@ impl ImportedMesh {
             transform: Transform::IDENTITY,
             skipped_primitives: 0,
             skipped_polylines: 0,
+            face_numbers: FaceNumbers::InNode,
             corners: CornerAttributes::default(),
         }
     }
@@ -64,6 +67,7 @@ impl ImportedMesh {
             transform: Transform::IDENTITY,
             skipped_primitives: 0,
             skipped_polylines: 0,
+            face_numbers: FaceNumbers::InNode,
             corners: CornerAttributes::default(),
         }
     }
@@ -130,6 +134,8 @@ struct ObjSegment {
     object: Option<(usize, String)>,
     group: Option<String>,
     corners: Vec<(bool, bool)>,
+    /// The line of each face (`f`), 1-based.
+    face_lines: Vec<u32>,
 }
 
 /// Splits OBJ text the way tobj splits it into models: a new model at each
@@ -141,9 +147,10 @@ fn scan_obj(text: &str) -> Vec<ObjSegment> {
         object: None,
         group: None,
         corners: Vec::new(),
+        face_lines: Vec::new(),
     };
     let mut has_faces = false;
-    for line in text.lines() {
+    for (number, line) in text.lines().enumerate() {
         let mut words = line.split_whitespace();
         match words.next() {
             Some(key @ ("o" | "g")) => {
@@ -152,6 +159,7 @@ fn scan_obj(text: &str) -> Vec<ObjSegment> {
                         object: current.object.clone(),
                         group: current.group.clone(),
                         corners: Vec::new(),
+                        face_lines: Vec::new(),
                     };
                     out.push(std::mem::replace(&mut current, next));
                     has_faces = false;
@@ -169,6 +177,7 @@ fn scan_obj(text: &str) -> Vec<ObjSegment> {
             }
             Some("f") => {
                 has_faces = true;
+                current.face_lines.push(number as u32 + 1);
                 current.corners.extend(words.map(|w| {
                     let mut parts = w.split('/').skip(1);
                     let vt = parts.next().is_some_and(|x| !x.is_empty());
@@ -402,8 +411,15 @@ pub fn obj_from_str(text: &str, path: &str) -> Result<Vec<ImportedMesh>, ImportE
                 model.name.clone()
             }
         };
+        let face_numbers = match segment {
+            Some(s) if s.face_lines.len() == polygons.len() => {
+                FaceNumbers::Lines(s.face_lines.clone())
+            }
+            _ => FaceNumbers::InNode,
+        };
         let mut imported = ImportedMesh {
             corners,
+            face_numbers,
             ..ImportedMesh::mesh(String::new(), mesh, report)
         };
         match segment {
@@ -647,7 +663,10 @@ pub fn stl_from_bytes(
     };
     let mut out = Vec::new();
     let mut dropped = Vec::new();
+    let mut offset = 0;
     for solid in &solids {
+        let first = offset;
+        offset += solid.triangles.len();
         let (positions, polygons) = weld(&solid.triangles);
         let (mesh, report) = HalfEdgeMesh::from_polygons_repaired(&positions, &polygons)
             .map_err(|e| read_error(e.to_string()))?;
@@ -662,11 +681,10 @@ pub fn stl_from_bytes(
             }
             continue;
         }
-        out.push(ImportedMesh::mesh(
-            node_name,
-            mesh.compacted_if_needed(),
-            report,
-        ));
+        out.push(ImportedMesh {
+            face_numbers: FaceNumbers::Triangles { offset: first },
+            ..ImportedMesh::mesh(node_name, mesh.compacted_if_needed(), report)
+        });
     }
     if out.is_empty() {
         return Err(match dropped.first() {
@@ -752,27 +770,166 @@ pub fn import_file(path: &Path) -> Result<Vec<ImportedMesh>, ImportError> {
     }
 }
 
-/// One line per repaired object, for the user.
+/// How an importer's input face numbers are shown to the user: as the
+/// file counts them.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub enum FaceNumbers {
+    /// "face k" counting from 1 within the node (glTF triangles).
+    #[default]
+    InNode,
+    /// "line n": the OBJ line of each input polygon.
+    Lines(Vec<u32>),
+    /// "triangle n": STL triangles counted over the whole file, this node's
+    /// first being `offset + 1`.
+    Triangles { offset: usize },
+}
+
+impl FaceNumbers {
+    fn name(&self, face: usize) -> String {
+        match self {
+            FaceNumbers::InNode => format!("face {}", face + 1),
+            FaceNumbers::Lines(lines) => match lines.get(face) {
+                Some(line) => format!("line {line}"),
+                None => format!("face {}", face + 1),
+            },
+            FaceNumbers::Triangles { offset } => format!("triangle {}", offset + face + 1),
+        }
+    }
+}
+
+/// Why a face was dropped, in words a user can act on, naming other faces
+/// as the file numbers them.
+fn dropped_reason(
+    why: &hedra_geom::BuildError,
+    numbers: &FaceNumbers,
+    face: usize,
+) -> (&'static str, String) {
+    use hedra_geom::BuildError as E;
+    let others = |faces: &[usize]| {
+        faces
+            .iter()
+            .filter(|&&f| f != face)
+            .map(|&f| numbers.name(f))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    match why {
+        E::TooFewSides { sides, .. } => (
+            "fewer than 3 corners",
+            format!("has {sides} corner(s); a face needs 3"),
+        ),
+        E::RepeatedVertex { .. } => (
+            "a corner used twice",
+            "uses the same corner point twice".into(),
+        ),
+        E::NonManifoldEdge { faces, .. } => (
+            "a third face on an edge",
+            format!(
+                "would be a third face on an edge already shared by {}",
+                others(faces)
+            ),
+        ),
+        E::InconsistentOrientation { faces, .. } => (
+            "winding against a neighbour",
+            format!(
+                "runs an edge the same way as {}: its winding disagrees",
+                others(faces)
+            ),
+        ),
+        E::NonFinitePosition { .. } => (
+            "a corner that is not finite",
+            "has a corner that is not a finite number".into(),
+        ),
+        E::IndexOutOfRange { .. } => (
+            "a corner the file lacks",
+            "refers to a vertex the file does not have".into(),
+        ),
+        E::NonManifoldVertex { .. } | E::TooLarge { .. } => ("other", why.to_string()),
+    }
+}
+
+/// What an import repaired or left out, for the user: an empty list when
+/// nothing was; else a one-line summary (counts by kind) followed by the
+/// details, one per dropped face or split vertex with the file's own
+/// numbers (OBJ lines, STL triangles), at most [`MAX_DETAILS`] of them.
 pub fn describe_repairs(meshes: &[ImportedMesh]) -> Vec<String> {
-    let mut out: Vec<String> = meshes
-        .iter()
-        .filter(|m| !m.report.is_clean())
-        .map(|m| format!("{}: {}", m.name, m.report))
-        .collect();
-    out.extend(meshes.iter().filter(|m| m.skipped_primitives > 0).map(|m| {
+    let mut kinds: std::collections::BTreeMap<&'static str, usize> = Default::default();
+    let mut details = Vec::new();
+    let (mut split, mut repaired) = (0usize, 0usize);
+    for m in meshes {
+        if !m.report.is_clean() {
+            repaired += 1;
+        }
+        for (face, why) in &m.report.dropped_faces {
+            let (kind, text) = dropped_reason(why, &m.face_numbers, *face);
+            *kinds.entry(kind).or_default() += 1;
+            details.push(format!(
+                "{}: {} dropped: {text}",
+                m.name,
+                m.face_numbers.name(*face)
+            ));
+        }
+        for (vertex, copies) in &m.report.split_vertices {
+            split += 1;
+            details.push(format!(
+                "{}: vertex {} joined separate fans of faces; split into {} copies",
+                m.name,
+                vertex + 1,
+                copies + 1
+            ));
+        }
+    }
+    let primitives: usize = meshes.iter().map(|m| m.skipped_primitives).sum();
+    let polylines: usize = meshes.iter().map(|m| m.skipped_polylines).sum();
+    let mut parts = Vec::new();
+    let dropped: usize = kinds.values().sum();
+    if dropped > 0 {
+        let by_kind: Vec<String> = kinds.iter().map(|(k, n)| format!("{n} {k}")).collect();
+        parts.push(format!(
+            "{dropped} face(s) dropped ({})",
+            by_kind.join(", ")
+        ));
+    }
+    if split > 0 {
+        parts.push(format!(
+            "{split} vertex(es) split where separate fans of faces met"
+        ));
+    }
+    if primitives > 0 {
+        parts.push(format!("{primitives} point or line primitive(s) left out"));
+    }
+    if polylines > 0 {
+        parts.push(format!(
+            "{polylines} polyline(s) (`l`) left out: Hedra imports faces"
+        ));
+    }
+    if parts.is_empty() {
+        return Vec::new();
+    }
+    let whom = if repaired > 0 {
         format!(
-            "{}: {} primitive(s) that are not triangles left out",
-            m.name, m.skipped_primitives
+            "{repaired} of {} object(s) repaired: ",
+            meshes.iter().filter(|m| m.mesh.is_some()).count()
         )
-    }));
-    out.extend(meshes.iter().filter(|m| m.skipped_polylines > 0).map(|m| {
-        format!(
-            "{} polyline(s) (`l`) left out: Hedra imports faces",
-            m.skipped_polylines
-        )
-    }));
+    } else {
+        String::new()
+    };
+    let mut out = vec![format!("{whom}{}", parts.join("; "))];
+    let more = details.len().saturating_sub(MAX_DETAILS);
+    out.extend(
+        details
+            .into_iter()
+            .take(MAX_DETAILS)
+            .map(|d| format!("  {d}")),
+    );
+    if more > 0 {
+        out.push(format!("  … and {more} more"));
+    }
     out
 }
+
+/// Detail lines of [`describe_repairs`] at most.
+pub const MAX_DETAILS: usize = 20;
 
 impl Document {
     /// The transaction that adds imported nodes (with their hierarchy and

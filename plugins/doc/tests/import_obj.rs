@@ -60,12 +60,39 @@ fn non_manifold_input_is_repaired_and_reported() {
     let meshes = obj_from_str(text, "fan.obj").unwrap();
     assert_eq!(meshes[0].mesh.as_ref().unwrap().face_count(), 2);
     meshes[0].mesh.as_ref().unwrap().validate().unwrap();
-    let notes = describe_repairs(&meshes);
-    assert_eq!(notes.len(), 1);
-    assert!(
-        notes[0].contains("dropped 1 face(s)") && notes[0].contains("face 2"),
-        "{notes:?}"
+    // A summary, then the face by its line in the file, with the faces it
+    // collides with.
+    assert_eq!(
+        describe_repairs(&meshes),
+        [
+            "1 of 1 object(s) repaired: 1 face(s) dropped (1 a third face on an edge)",
+            "  Object 1: line 8 dropped: would be a third face on an edge already shared by line 6, line 7",
+        ]
     );
+}
+
+/// Many repairs: one summary with counts by kind, then at most
+/// MAX_DETAILS detail lines and how many more there are; STL triangles are
+/// counted over the whole file.
+#[test]
+fn many_repairs_give_one_summary_and_capped_details() {
+    let mut text = String::from("v 0 0 0\nv 1 0 0\nv 0 1 0\n");
+    for _ in 0..30 {
+        text.push_str("f 1 1 2\n");
+    }
+    text.push_str("f 1 2 3\n");
+    let meshes = obj_from_str(&text, "many.obj").unwrap();
+    let notes = describe_repairs(&meshes);
+    assert_eq!(
+        notes[0],
+        "1 of 1 object(s) repaired: 30 face(s) dropped (30 a corner used twice)"
+    );
+    assert_eq!(
+        notes[1],
+        "  Object 1: line 4 dropped: uses the same corner point twice"
+    );
+    assert_eq!(notes.len(), 1 + hedra_doc::import::MAX_DETAILS + 1);
+    assert_eq!(notes.last().unwrap(), "  … and 10 more");
 }
 
 #[test]

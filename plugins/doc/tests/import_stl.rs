@@ -105,3 +105,19 @@ fn binary_files_are_still_read_and_bad_text_is_refused_by_line() {
         "{e}"
     );
 }
+
+/// Report lines name STL triangles as the file counts them, over all solids.
+#[test]
+fn repairs_name_the_triangle_in_the_file() {
+    let bad = "facet normal 0 0 1\nouter loop\nvertex 5 0 0\nvertex 6 0 0\nvertex 5 0 0\nendloop\nendfacet\n";
+    let text = format!("solid a\n{FACETS}endsolid a\nsolid b\n{FACETS}{bad}endsolid b\n");
+    let meshes = stl_from_bytes(text.as_bytes(), "f", "two.stl").unwrap();
+    let notes = hedra_doc::import::describe_repairs(&meshes);
+    assert_eq!(
+        notes,
+        [
+            "1 of 2 object(s) repaired: 1 face(s) dropped (1 a corner used twice)",
+            "  b: triangle 5 dropped: uses the same corner point twice",
+        ]
+    );
+}

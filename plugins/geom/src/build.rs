@@ -61,22 +61,26 @@ impl std::fmt::Display for RepairReport {
         if self.is_clean() {
             return write!(f, "no repairs needed");
         }
-        write!(f, "dropped {} face(s)", self.dropped_faces.len())?;
-        for (i, (face, why)) in self.dropped_faces.iter().take(5).enumerate() {
-            write!(f, "{}face {face}: {why}", if i == 0 { " (" } else { "; " })?;
-        }
-        if self.dropped_faces.len() > 5 {
-            write!(f, "; …")?;
-        }
+        // Only what happened: no "dropped 0 faces".
+        let mut parts = Vec::new();
         if !self.dropped_faces.is_empty() {
-            write!(f, ")")?;
+            let mut text = format!("dropped {} face(s)", self.dropped_faces.len());
+            for (i, (face, why)) in self.dropped_faces.iter().take(5).enumerate() {
+                text += &format!("{}face {face}: {why}", if i == 0 { " (" } else { "; " });
+            }
+            if self.dropped_faces.len() > 5 {
+                text += "; …";
+            }
+            parts.push(text + ")");
         }
-        let copies: usize = self.split_vertices.iter().map(|(_, n)| n).sum();
-        write!(
-            f,
-            ", split {} non-manifold vertex(es) into {copies} extra copies",
-            self.split_vertices.len()
-        )
+        if !self.split_vertices.is_empty() {
+            let copies: usize = self.split_vertices.iter().map(|(_, n)| n).sum();
+            parts.push(format!(
+                "split {} non-manifold vertex(es) into {copies} extra copies",
+                self.split_vertices.len()
+            ));
+        }
+        write!(f, "{}", parts.join(", "))
     }
 }
 
@@ -338,15 +342,19 @@ impl HalfEdgeMesh {
             let conflict = (0..n).find_map(|i| {
                 let (a, b) = (poly[i], poly[(i + 1) % n]);
                 if let Some(&other) = used.get(&(a, b)) {
-                    let faces = vec![report.face_origin[other], fi];
-                    return Some(if used.contains_key(&(b, a)) {
-                        BuildError::NonManifoldEdge {
-                            a: a.min(b),
-                            b: a.max(b),
-                            faces,
+                    let mut faces = vec![report.face_origin[other], fi];
+                    return Some(match used.get(&(b, a)) {
+                        // Both sides taken: every face on the edge.
+                        Some(&twin) => {
+                            faces.push(report.face_origin[twin]);
+                            faces.sort_unstable();
+                            BuildError::NonManifoldEdge {
+                                a: a.min(b),
+                                b: a.max(b),
+                                faces,
+                            }
                         }
-                    } else {
-                        BuildError::InconsistentOrientation { a, b, faces }
+                        None => BuildError::InconsistentOrientation { a, b, faces },
                     });
                 }
                 None

@@ -189,10 +189,12 @@ fn apply(
                     "Imported {} object(s) from {name}",
                     a.created.len()
                 ));
+                // One summary naming the file, then its details.
                 status.warnings.extend(
                     hedra_doc::import::describe_repairs(&meshes)
                         .into_iter()
-                        .map(|n| format!("{name}: {n}")),
+                        .enumerate()
+                        .map(|(i, n)| if i == 0 { format!("{name}: {n}") } else { n }),
                 );
                 Ok(Some(DocChanged {
                     created: a.created,
