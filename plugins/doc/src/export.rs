@@ -61,10 +61,27 @@ pub fn export_bytes(
         .and_then(|e| e.to_str())
         .unwrap_or("")
         .to_ascii_lowercase();
+    // OBJ and STL of nothing would be empty files: say so instead.
+    let items = |stl: bool| -> Result<Vec<ExportItem<'_>>, String> {
+        let items = export_meshes(doc, shape)?;
+        let holds = |i: &ExportItem| !stl || !matches!(i.geometry, Geometry::Polyline(_));
+        if !items.iter().any(holds) {
+            return Err(format!(
+                "{}: nothing to export: the scene has no visible {}",
+                path.display(),
+                if stl {
+                    "meshes or surfaces (STL holds triangles only)"
+                } else {
+                    "meshes, curves or surfaces"
+                }
+            ));
+        }
+        Ok(items)
+    };
     match ext.as_str() {
-        "obj" => Ok(to_obj(&export_meshes(doc, shape)?).into_bytes()),
-        "stl" if options.ascii_stl => Ok(to_ascii_stl(&export_meshes(doc, shape)?).into_bytes()),
-        "stl" => Ok(to_stl(&export_meshes(doc, shape)?)),
+        "obj" => Ok(to_obj(&items(false)?).into_bytes()),
+        "stl" if options.ascii_stl => Ok(to_ascii_stl(&items(true)?).into_bytes()),
+        "stl" => Ok(to_stl(&items(true)?)),
         "gltf" => crate::gltf::to_gltf(doc, shape, false),
         "glb" => crate::gltf::to_gltf(doc, shape, true),
         other => Err(format!(
@@ -385,9 +402,42 @@ pub(crate) fn node_geometry(
         NodeContent::Surface(sf) => {
             let size = crate::render::extent(sf.control_points());
             let (positions, normals, tris) = sf.tessellate(EXPORT_TOLERANCE * size);
+            let (positions, normals, tris) = welded(&positions, &normals, &tris, 1e-9 * size);
             Geometry::Triangles(positions, normals, tris)
         }
     }))
+}
+
+/// A tessellation with coincident points merged (within `tolerance`: a
+/// closed surface's seam, a sphere's pole) and the triangles that collapse
+/// left out, so that other programs see it closed and without zero-area
+/// triangles.
+fn welded(
+    positions: &[DVec3],
+    normals: &[DVec3],
+    triangles: &[[u32; 3]],
+    tolerance: f64,
+) -> (Vec<DVec3>, Vec<DVec3>, Vec<[u32; 3]>) {
+    let cell = |p: DVec3| (p / tolerance).round().as_i64vec3().to_array();
+    let mut index: HashMap<[i64; 3], u32> = HashMap::new();
+    let (mut ps, mut ns) = (Vec::new(), Vec::new());
+    let remap: Vec<u32> = positions
+        .iter()
+        .enumerate()
+        .map(|(i, p)| {
+            *index.entry(cell(*p)).or_insert_with(|| {
+                ps.push(*p);
+                ns.push(normals.get(i).copied().unwrap_or(DVec3::ZERO));
+                (ps.len() - 1) as u32
+            })
+        })
+        .collect();
+    let tris = triangles
+        .iter()
+        .map(|t| t.map(|i| remap[i as usize]))
+        .filter(|[a, b, c]| a != b && b != c && a != c)
+        .collect();
+    (ps, ns, tris)
 }
 
 pub fn is_visible(doc: &Document, id: crate::scene::NodeId) -> bool {

@@ -199,6 +199,10 @@ pub enum ImportError {
     Read { path: String, message: String },
     #[error("{path}: unsupported format '.{ext}' (supported: .obj, .stl, .gltf, .glb)")]
     Unsupported { path: String, ext: String },
+    #[error(
+        "{path}: the file name has no extension to tell its format (supported: .obj, .stl, .gltf, .glb)"
+    )]
+    NoExtension { path: String },
     #[error("{path}: contains no faces")]
     Empty { path: String },
     /// Every face was dropped: the first object's repair report says why.
@@ -727,6 +731,30 @@ fn binary_stl_triangles(bytes: &[u8]) -> Result<Vec<[DVec3; 3]>, String> {
     Ok(out)
 }
 
+/// OBJ text from a file's bytes: UTF-8 (invalid bytes replaced), or UTF-16
+/// when the file starts with a UTF-16 byte-order mark (some Windows tools
+/// write OBJ so).
+fn obj_text(bytes: &[u8]) -> String {
+    let utf16 = |le: bool| {
+        let units: Vec<u16> = bytes[2..]
+            .chunks_exact(2)
+            .map(|c| {
+                if le {
+                    u16::from_le_bytes([c[0], c[1]])
+                } else {
+                    u16::from_be_bytes([c[0], c[1]])
+                }
+            })
+            .collect();
+        String::from_utf16_lossy(&units)
+    };
+    match bytes {
+        [0xFF, 0xFE, ..] => utf16(true),
+        [0xFE, 0xFF, ..] => utf16(false),
+        _ => String::from_utf8_lossy(bytes).into_owned(),
+    }
+}
+
 /// Reads a file by its extension.
 ///
 /// # Errors
@@ -744,7 +772,7 @@ pub fn import_file(path: &Path) -> Result<Vec<ImportedMesh>, ImportError> {
                 path: shown.clone(),
                 message: e.to_string(),
             })?;
-            obj_from_str(&String::from_utf8_lossy(&bytes), &shown)
+            obj_from_str(&obj_text(&bytes), &shown)
         }
         "stl" => {
             let bytes = std::fs::read(path).map_err(|e| ImportError::Read {
@@ -763,6 +791,7 @@ pub fn import_file(path: &Path) -> Result<Vec<ImportedMesh>, ImportError> {
             })?;
             crate::gltf::gltf_from_bytes(&bytes, path.parent(), &shown)
         }
+        "" => Err(ImportError::NoExtension { path: shown }),
         other => Err(ImportError::Unsupported {
             path: shown,
             ext: other.to_string(),
