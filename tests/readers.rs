@@ -133,3 +133,83 @@ fn trimesh_reads_the_uvs_of_an_exported_obj() {
     assert_eq!(v[2], 1.0, "every UV is (x / 2, y) of its vertex");
     assert_eq!((v[3], v[4]), (0.0, 1.0));
 }
+
+/// The Khronos glTF-Validator (installed by `scripts/setup` at the version
+/// pinned in `scripts/gltf-validator/package-lock.json`) finds no error and
+/// no warning in any glTF or GLB export: every sample scene (meshes,
+/// hierarchies, curves as line strips, NURBS surfaces with their poles),
+/// evaluated and subdivided, and an imported OBJ with UVs and normals.
+#[test]
+fn the_khronos_validator_passes_every_gltf_and_glb_export() {
+    let root = std::path::PathBuf::from(std::env::var_os("CARGO_MANIFEST_DIR").unwrap());
+    let validator = root.join("scripts/gltf-validator");
+    assert!(
+        validator.join("node_modules/gltf-validator").is_dir(),
+        "the glTF-Validator is not installed: run scripts/setup"
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let mut files = Vec::new();
+    let mut export = |scene: &Path, name: &str, extra: &[&str]| {
+        for ext in ["gltf", "glb"] {
+            let out = dir.path().join(format!("{name}.{ext}"));
+            let mut args = vec![
+                "export",
+                scene.to_str().unwrap(),
+                "-o",
+                out.to_str().unwrap(),
+            ];
+            args.extend(extra);
+            let o = hedra(&args);
+            assert!(
+                o.status.success(),
+                "{name}: {}",
+                String::from_utf8_lossy(&o.stderr)
+            );
+            files.push(out);
+        }
+    };
+    for sample in ["table", "chair", "cup", "jar", "shapes"] {
+        let scene = root.join(format!("assets/samples/{sample}.hedra.ron"));
+        export(&scene, sample, &[]);
+        export(
+            &scene,
+            &format!("{sample}-subdivided"),
+            &["--subdivide", "1"],
+        );
+    }
+    // An OBJ with UVs and normals, and a sliver face, imported then exported.
+    let obj = dir.path().join("in.obj");
+    std::fs::write(
+        &obj,
+        "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvn 0 0 1\n\
+         f 1/1/1 2/2/1 3/3/1 4/4/1\nf 2 1 5\n",
+    )
+    .unwrap();
+    let imported = dir.path().join("imported.hedra.ron");
+    let o = hedra(&[
+        "import",
+        obj.to_str().unwrap(),
+        "-o",
+        imported.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    export(&imported, "imported", &[]);
+    let o = Command::new("node")
+        .arg(validator.join("validate.mjs"))
+        .args(&files)
+        .output()
+        .expect("node runs (scripts/setup installs it)");
+    assert!(
+        o.status.success(),
+        "the glTF-Validator found problems:\n{}{}",
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert_eq!(
+        String::from_utf8_lossy(&o.stdout)
+            .lines()
+            .filter(|l| l.starts_with("ok "))
+            .count(),
+        files.len()
+    );
+}
