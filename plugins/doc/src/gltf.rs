@@ -656,6 +656,7 @@ pub fn gltf_from_bytes(
             skipped_primitives: skipped,
             skipped_polylines: 0,
             face_numbers: crate::import::FaceNumbers::InNode,
+            not_imported: Vec::new(),
         });
         for child in node.children().collect::<Vec<_>>().into_iter().rev() {
             stack.push((child, Some(me)));
@@ -666,6 +667,29 @@ pub fn gltf_from_bytes(
             path: path.to_string(),
         });
     }
+    // What Hedra does not keep, said once for the file.
+    let d = &gltf.document;
+    let morphs = d
+        .meshes()
+        .flat_map(|m| m.primitives())
+        .filter(|p| p.morph_targets().next().is_some())
+        .count();
+    let counts = [
+        (d.materials().len(), "material(s)"),
+        (d.textures().len(), "texture(s)"),
+        (d.skins().len(), "skin(s)"),
+        (
+            morphs,
+            "primitive(s) with morph targets (their base shape is kept)",
+        ),
+        (d.animations().len(), "animation(s)"),
+        (d.cameras().len(), "camera(s)"),
+    ];
+    out[0].not_imported = counts
+        .iter()
+        .filter(|(n, _)| *n > 0)
+        .map(|(n, what)| format!("{n} {what}"))
+        .collect();
     Ok(out)
 }
 

@@ -37,6 +37,9 @@ pub struct ImportedMesh {
     pub skipped_polylines: usize,
     /// How the report's face numbers are shown (as the file counts them).
     pub face_numbers: FaceNumbers,
+    /// What the file has that Hedra does not import ("2 material(s)"), on
+    /// the first node of an import.
+    pub not_imported: Vec<String>,
     /// UVs and normals of the mesh's face corners that the file gave.
     pub corners: CornerAttributes,
 }
@@ -53,6 +56,7 @@ impl ImportedMesh {
             skipped_primitives: 0,
             skipped_polylines: 0,
             face_numbers: FaceNumbers::InNode,
+            not_imported: Vec::new(),
             corners: CornerAttributes::default(),
         }
     }
@@ -68,6 +72,7 @@ impl ImportedMesh {
             skipped_primitives: 0,
             skipped_polylines: 0,
             face_numbers: FaceNumbers::InNode,
+            not_imported: Vec::new(),
             corners: CornerAttributes::default(),
         }
     }
@@ -488,6 +493,12 @@ pub fn obj_from_str(text: &str, path: &str) -> Result<Vec<ImportedMesh>, ImportE
     }
     if let Some(first) = out.iter_mut().find(|m| m.mesh.is_some()) {
         first.skipped_polylines = polylines;
+        let materials = text
+            .lines()
+            .any(|l| matches!(l.split_whitespace().next(), Some("mtllib" | "usemtl")));
+        if materials {
+            first.not_imported = vec!["materials (mtllib, usemtl)".to_string()];
+        }
     }
     Ok(out)
 }
@@ -931,6 +942,14 @@ pub fn describe_repairs(meshes: &[ImportedMesh]) -> Vec<String> {
         parts.push(format!(
             "{polylines} polyline(s) (`l`) left out: Hedra imports faces"
         ));
+    }
+    let not_imported: Vec<&str> = meshes
+        .iter()
+        .flat_map(|m| &m.not_imported)
+        .map(String::as_str)
+        .collect();
+    if !not_imported.is_empty() {
+        parts.push(format!("not imported: {}", not_imported.join(", ")));
     }
     if parts.is_empty() {
         return Vec::new();

@@ -105,3 +105,37 @@ fn the_nurbs_sphere_exports_closed_without_zero_area_triangles() {
         assert!(area > 1e-12, "a zero-area triangle");
     }
 }
+
+/// What a file has that Hedra does not import is said once, in the summary.
+#[test]
+fn materials_and_other_dropped_parts_are_named() {
+    let obj = "mtllib box.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl Red\nf 1 2 3\n";
+    let meshes = hedra_doc::import::obj_from_str(obj, "m.obj").unwrap();
+    assert_eq!(
+        hedra_doc::import::describe_repairs(&meshes),
+        ["not imported: materials (mtllib, usemtl)"]
+    );
+    // A glTF triangle with two materials and a camera.
+    use base64::Engine;
+    let bytes: Vec<u8> = [[0.0f32, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]
+        .iter()
+        .flatten()
+        .flat_map(|x| x.to_le_bytes())
+        .collect();
+    let data = base64::engine::general_purpose::STANDARD.encode(&bytes);
+    let text = format!(
+        r#"{{"asset":{{"version":"2.0"}},"scene":0,"scenes":[{{"nodes":[0]}}],
+        "nodes":[{{"name":"T","mesh":0}}],
+        "meshes":[{{"primitives":[{{"attributes":{{"POSITION":0}},"material":0}}]}}],
+        "materials":[{{"name":"A"}},{{"name":"B"}}],
+        "cameras":[{{"type":"perspective","perspective":{{"yfov":1.0,"znear":0.1}}}}],
+        "accessors":[{{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]}}],
+        "bufferViews":[{{"buffer":0,"byteLength":36}}],
+        "buffers":[{{"byteLength":36,"uri":"data:application/octet-stream;base64,{data}"}}]}}"#
+    );
+    let meshes = hedra_doc::gltf::gltf_from_bytes(text.as_bytes(), None, "t.gltf").unwrap();
+    assert_eq!(
+        hedra_doc::import::describe_repairs(&meshes),
+        ["not imported: 2 material(s), 1 camera(s)"]
+    );
+}
