@@ -323,6 +323,16 @@ impl HalfEdgeMesh {
         positions: &[DVec3],
         polygons: &[P],
     ) -> Result<(Self, RepairReport), BuildError> {
+        // Most files need no repair: the strict build has no hash maps and,
+        // when it succeeds, gives the very mesh the repair would (nothing
+        // dropped, nothing split, faces in input order).
+        if let Ok(mesh) = Self::from_polygons(positions, polygons) {
+            let report = RepairReport {
+                face_origin: (0..polygons.len()).collect(),
+                ..RepairReport::default()
+            };
+            return Ok((mesh, report));
+        }
         let mut report = RepairReport::default();
         let mut kept: Vec<Vec<u32>> = Vec::new();
         let mut used: HashMap<(u32, u32), usize> = HashMap::new(); // directed edge -> kept face
