@@ -9,7 +9,8 @@
 //! into two triangles: 1,002,528 triangles); `obj`, `stl`, `glb` import that
 //! format from DIR (`make-exports` writes grid.stl and grid.glb first) and
 //! export it again; `scene` saves and loads the imported OBJ as a scene
-//! file. Times are printed in seconds.
+//! file, `scene-attrs` the same grid with a UV and a normal on every corner
+//! (`make-attrs` writes it). Times are printed in seconds.
 
 use hedra_doc::export::{ExportOptions, export_bytes};
 use hedra_doc::import::import_file;
@@ -79,9 +80,43 @@ fn main() {
                 std::fs::write(&out, bytes).unwrap();
             });
         }
-        "scene" => {
+        "make-attrs" => {
+            // The grid with a UV and a normal on every corner.
+            let mut text = String::new();
+            for j in 0..=N {
+                for i in 0..=N {
+                    let (u, v) = (i as f64 / N as f64, j as f64 / N as f64);
+                    let _ = writeln!(text, "v {u} 0 {v}\nvt {u} {v}");
+                }
+            }
+            text.push_str("vn 0 1 0\n");
+            let id = |i: usize, j: usize| j * (N + 1) + i + 1;
+            let c = |k: usize| format!("{k}/{k}/1");
+            for j in 0..N {
+                for i in 0..N {
+                    let (a, b, cc, d) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
+                    let _ = writeln!(
+                        text,
+                        "f {} {} {}\nf {} {} {}",
+                        c(a),
+                        c(d),
+                        c(cc),
+                        c(a),
+                        c(cc),
+                        c(b)
+                    );
+                }
+            }
+            std::fs::write(dir.join("attrs.obj"), text).unwrap();
+        }
+        "scene" | "scene-attrs" => {
+            let source = if phase == "scene" {
+                "grid.obj"
+            } else {
+                "attrs.obj"
+            };
             let mut s = Session::new();
-            s.import(&import_file(&dir.join("grid.obj")).unwrap(), "Import");
+            s.import(&import_file(&dir.join(source)).unwrap(), "Import");
             let path = dir.join("grid.hedra.ron");
             time("save scene", &mut || file::save(&mut s, &path).unwrap());
             println!(

@@ -4,22 +4,27 @@
 //! ```text
 //! (
 //!     format: "hedra-scene",
-//!     version: 1,
+//!     version: 2,
 //!     meshes: [ ... ],            // mesh pool, shared by nodes and history
+//!     corners: [ ... ],           // corner attribute pool (UVs, normals)
 //!     scene: (next_node_id: 4, nodes: [ ... ]),
-//!     history: (meshes: [ ... ], done: [ ... ], undone: [ ... ], ...),
+//!     history: (meshes: [ ... ], corners: [ ... ], done: [ ... ], ...),
 //! )
 //! ```
 //!
 //! Meshes are stored once in a pool and referenced by index, so the many
-//! history steps that share a mesh cost one copy. The history comes last and
+//! history steps that share a mesh cost one copy. Corner attributes (the
+//! UVs and normals of imported meshes) are pooled the same way, as flat
+//! lists of half-edge ids and numbers (version 2; version 1 kept them
+//! inline in every node and history step, as maps). The history comes last and
 //! is read separately: when it is damaged the scene still opens, without
 //! undo, and the caller gets a warning. Saving is atomic: a temporary file in
 //! the same folder is written and synced, the old file is kept as
 //! `.hedra.ron.bak`, and a rename puts the new file in place.
 //!
-//! Format versions: each older version has one typed migration function to
-//! the next (`migrate_vN_to_vN1`); there is only version 1 so far.
+//! Format versions: version 1 files are read as they are (version 2 only
+//! adds the corner pool and `corner_set` references); a newer build's file
+//! is refused by name.
 
 use crate::command::Command;
 use crate::history::{History, NodeChange, Transaction};
@@ -40,7 +45,7 @@ use std::sync::Arc;
 /// The format name written at the top of every scene file.
 pub const FORMAT_NAME: &str = "hedra-scene";
 /// The newest format version this build reads and the one it writes.
-pub const FORMAT_VERSION: u32 = 1;
+pub const FORMAT_VERSION: u32 = 2;
 /// The scene file extension.
 pub const EXTENSION: &str = "hedra.ron";
 
@@ -92,9 +97,13 @@ enum StoredContent {
         creases: Creases,
         #[serde(default, skip_serializing_if = "Option::is_none")]
         subdivision: Option<SubdivisionModifier>,
-        /// UVs and normals of face corners, by half-edge id.
+        /// UVs and normals of face corners, by half-edge id, inline
+        /// (version 1; version 2 writes `corner_set` instead).
         #[serde(default, skip_serializing_if = "CornerAttributes::is_empty")]
         corners: CornerAttributes,
+        /// Index of the node's corner attributes in the corner pool.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        corner_set: Option<usize>,
     },
     Curve(hedra_geom::curves::NurbsCurve),
     Surface(crate::scene::SurfaceShape),
@@ -141,10 +150,70 @@ struct StoredTransaction {
     next_id_after: u64,
 }
 
+/// One mesh's corner attributes, compactly: the half-edge ids that have a
+/// UV and the UVs as `u, v` pairs, the ids that have a normal and the
+/// normals as `x, y, z` triples.
+#[derive(Serialize, Deserialize, Default)]
+struct StoredCorners {
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    uv_halfedges: Vec<u32>,
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    uvs: Vec<f64>,
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    normal_halfedges: Vec<u32>,
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    normals: Vec<f64>,
+}
+
+impl StoredCorners {
+    fn of(c: &CornerAttributes) -> StoredCorners {
+        StoredCorners {
+            uv_halfedges: c.uvs.keys().map(|h| h.0).collect(),
+            uvs: c.uvs.values().flat_map(|uv| uv.to_array()).collect(),
+            normal_halfedges: c.normals.keys().map(|h| h.0).collect(),
+            normals: c.normals.values().flat_map(|n| n.to_array()).collect(),
+        }
+    }
+
+    fn restore(self) -> Result<CornerAttributes, String> {
+        if self.uvs.len() != 2 * self.uv_halfedges.len()
+            || self.normals.len() != 3 * self.normal_halfedges.len()
+        {
+            return Err(format!(
+                "{} UV half-edges with {} numbers, {} normal half-edges with {} numbers",
+                self.uv_halfedges.len(),
+                self.uvs.len(),
+                self.normal_halfedges.len(),
+                self.normals.len()
+            ));
+        }
+        let id = hedra_geom::HalfEdgeId;
+        Ok(CornerAttributes {
+            uvs: Arc::new(
+                self.uv_halfedges
+                    .iter()
+                    .zip(self.uvs.chunks_exact(2))
+                    .map(|(h, c)| (id(*h), glam::DVec2::new(c[0], c[1])))
+                    .collect(),
+            ),
+            normals: Arc::new(
+                self.normal_halfedges
+                    .iter()
+                    .zip(self.normals.chunks_exact(3))
+                    .map(|(h, c)| (id(*h), glam::DVec3::new(c[0], c[1], c[2])))
+                    .collect(),
+            ),
+        })
+    }
+}
+
 #[derive(Serialize, Deserialize)]
 struct StoredHistory {
     /// Meshes only the history uses; index `i` here is pool index `scene_meshes + i`.
     meshes: Vec<HalfEdgeMesh>,
+    /// Corner attributes only the history uses, numbered after the scene's.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    corners: Vec<StoredCorners>,
     done: Vec<StoredTransaction>,
     undone: Vec<StoredTransaction>,
     #[serde(default)]
@@ -158,6 +227,8 @@ struct FileOut<'a> {
     format: &'static str,
     version: u32,
     meshes: Vec<&'a HalfEdgeMesh>,
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    corners: Vec<StoredCorners>,
     scene: StoredScene,
     history: StoredHistory,
 }
@@ -167,6 +238,8 @@ struct FileIn {
     format: String,
     version: u32,
     meshes: Vec<HalfEdgeMesh>,
+    #[serde(default)]
+    corners: Vec<StoredCorners>,
     scene: StoredScene,
     #[serde(default)]
     history: Option<Box<RawValue>>,
@@ -174,10 +247,13 @@ struct FileIn {
 
 // ----- writing ---------------------------------------------------------------
 
-/// Collects meshes into a pool, each `Arc` once.
+/// Collects meshes and corner attributes into pools, each `Arc` once.
 struct MeshPool<'a> {
     index: HashMap<*const HalfEdgeMesh, usize>,
     meshes: Vec<&'a HalfEdgeMesh>,
+    /// Corner attributes by the identity of their two shared maps.
+    corner_index: HashMap<(usize, usize), usize>,
+    corner_sets: Vec<&'a CornerAttributes>,
 }
 
 impl<'a> MeshPool<'a> {
@@ -185,6 +261,16 @@ impl<'a> MeshPool<'a> {
         *self.index.entry(Arc::as_ptr(m)).or_insert_with(|| {
             self.meshes.push(m);
             self.meshes.len() - 1
+        })
+    }
+    fn add_corners(&mut self, c: &'a CornerAttributes) -> usize {
+        let key = (
+            Arc::as_ptr(&c.uvs) as usize,
+            Arc::as_ptr(&c.normals) as usize,
+        );
+        *self.corner_index.entry(key).or_insert_with(|| {
+            self.corner_sets.push(c);
+            self.corner_sets.len() - 1
         })
     }
     fn node(&mut self, n: &'a Node) -> StoredNode {
@@ -204,7 +290,8 @@ impl<'a> MeshPool<'a> {
                     shading: m.shading,
                     creases: m.creases.clone(),
                     subdivision: m.subdivision,
-                    corners: m.corners.clone(),
+                    corners: CornerAttributes::default(),
+                    corner_set: (!m.corners.is_empty()).then(|| self.add_corners(&m.corners)),
                 },
             },
         }
@@ -234,12 +321,15 @@ pub fn to_string(session: &Session) -> String {
     let mut pool = MeshPool {
         index: HashMap::new(),
         meshes: Vec::new(),
+        corner_index: HashMap::new(),
+        corner_sets: Vec::new(),
     };
     let scene = StoredScene {
         next_node_id: session.doc.next_node_id,
         nodes: session.doc.nodes().map(|n| pool.node(n)).collect(),
     };
     let scene_meshes = pool.meshes.len();
+    let scene_corners = pool.corner_sets.len();
     let h = &session.history;
     let done = h.done.iter().map(|t| pool.transaction(t)).collect();
     let undone = h.undone.iter().map(|t| pool.transaction(t)).collect();
@@ -249,13 +339,23 @@ pub fn to_string(session: &Session) -> String {
         .into_iter()
         .cloned()
         .collect();
+    let history_corners = pool.corner_sets[scene_corners..]
+        .iter()
+        .map(|c| StoredCorners::of(c))
+        .collect();
+    let corners = pool.corner_sets[..scene_corners]
+        .iter()
+        .map(|c| StoredCorners::of(c))
+        .collect();
     let file = FileOut {
         format: FORMAT_NAME,
         version: FORMAT_VERSION,
         meshes: pool.meshes,
+        corners,
         scene,
         history: StoredHistory {
             meshes: history_meshes,
+            corners: history_corners,
             done,
             undone,
             dropped: h.dropped,
@@ -471,7 +571,7 @@ fn read_v1(text: &str, path: &Path) -> Result<Loaded, FileError> {
             }
         }
     };
-    if file.format != FORMAT_NAME || file.version != 1 {
+    if file.format != FORMAT_NAME || !(1..=FORMAT_VERSION).contains(&file.version) {
         return Err(FileError::NotAScene {
             path: path.to_path_buf(),
             reason: "header fields disagree".into(),
@@ -482,10 +582,11 @@ fn read_v1(text: &str, path: &Path) -> Result<Loaded, FileError> {
         message,
     };
     let scene_pool: Vec<Arc<HalfEdgeMesh>> = file.meshes.into_iter().map(Arc::new).collect();
+    let scene_corners = restore_corners(file.corners).map_err(&invalid)?;
     let mut doc = Document::new();
     doc.next_node_id = file.scene.next_node_id;
     for sn in file.scene.nodes {
-        let node = restore_node(sn, &scene_pool).map_err(&invalid)?;
+        let node = restore_node(sn, &scene_pool, &scene_corners).map_err(&invalid)?;
         if doc.nodes.insert(node.id, node).is_some() {
             return Err(invalid("two nodes share one id".into()));
         }
@@ -497,7 +598,7 @@ fn read_v1(text: &str, path: &Path) -> Result<Loaded, FileError> {
         saved_serial: None,
     };
     if let Some(raw) = file.history {
-        match restore_history(&raw, scene_pool, &session.doc) {
+        match restore_history(&raw, scene_pool, scene_corners, &session.doc) {
             Ok(h) => session.history = h,
             Err(why) => warnings.push(format!(
                 "the undo history is damaged ({why}); the scene opened without it"
@@ -508,7 +609,21 @@ fn read_v1(text: &str, path: &Path) -> Result<Loaded, FileError> {
     Ok(Loaded { session, warnings })
 }
 
-fn restore_node(sn: StoredNode, pool: &[Arc<HalfEdgeMesh>]) -> Result<Node, String> {
+/// The corner pool's attributes, each restored once and shared by the nodes
+/// that name it.
+fn restore_corners(stored: Vec<StoredCorners>) -> Result<Vec<CornerAttributes>, String> {
+    stored
+        .into_iter()
+        .enumerate()
+        .map(|(i, c)| c.restore().map_err(|why| format!("corner set {i}: {why}")))
+        .collect()
+}
+
+fn restore_node(
+    sn: StoredNode,
+    pool: &[Arc<HalfEdgeMesh>],
+    corner_pool: &[CornerAttributes],
+) -> Result<Node, String> {
     let content = match sn.content {
         StoredContent::Empty => NodeContent::Empty,
         StoredContent::Curve(c) => NodeContent::Curve(Arc::new(c)),
@@ -519,8 +634,18 @@ fn restore_node(sn: StoredNode, pool: &[Arc<HalfEdgeMesh>]) -> Result<Node, Stri
             shading,
             creases,
             subdivision,
-            mut corners,
+            corners: inline_corners,
+            corner_set,
         } => {
+            let mut corners = match corner_set {
+                Some(i) => corner_pool.get(i).cloned().ok_or_else(|| {
+                    format!(
+                        "node {} '{}' uses corner set {i}, which is not stored",
+                        sn.id, sn.name
+                    )
+                })?,
+                None => inline_corners,
+            };
             let m = pool.get(mesh).ok_or_else(|| {
                 format!(
                     "node {} '{}' uses mesh {mesh}, which is not stored",
@@ -579,6 +704,7 @@ fn restore_node(sn: StoredNode, pool: &[Arc<HalfEdgeMesh>]) -> Result<Node, Stri
 fn restore_history(
     raw: &RawValue,
     mut pool: Vec<Arc<HalfEdgeMesh>>,
+    mut corner_pool: Vec<CornerAttributes>,
     doc: &Document,
 ) -> Result<History, String> {
     let stored: StoredHistory = raw.into_rust().map_err(|e| {
@@ -588,13 +714,20 @@ fn restore_history(
         )
     })?;
     pool.extend(stored.meshes.into_iter().map(Arc::new));
+    corner_pool.extend(restore_corners(stored.corners)?);
     let restore_tx = |t: StoredTransaction| -> Result<Transaction, String> {
         let mut changes = Vec::with_capacity(t.changes.len());
         for c in t.changes {
             changes.push(NodeChange {
                 id: c.id,
-                before: c.before.map(|n| restore_node(n, &pool)).transpose()?,
-                after: c.after.map(|n| restore_node(n, &pool)).transpose()?,
+                before: c
+                    .before
+                    .map(|n| restore_node(n, &pool, &corner_pool))
+                    .transpose()?,
+                after: c
+                    .after
+                    .map(|n| restore_node(n, &pool, &corner_pool))
+                    .transpose()?,
             });
         }
         Ok(Transaction {

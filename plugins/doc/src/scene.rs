@@ -186,9 +186,16 @@ impl CornerAttributes {
     /// file that might not match its mesh).
     pub fn retain_valid(&mut self, mesh: &HalfEdgeMesh) {
         let corner = |h: &HalfEdgeId| mesh.is_halfedge(*h) && mesh.face(*h).is_some();
-        Arc::make_mut(&mut self.uvs).retain(|h, uv| corner(h) && uv.is_finite());
-        Arc::make_mut(&mut self.normals)
-            .retain(|h, n| corner(h) && n.is_finite() && n.length_squared() > 0.0);
+        let uv_ok = |h: &HalfEdgeId, uv: &DVec2| corner(h) && uv.is_finite();
+        let normal_ok =
+            |h: &HalfEdgeId, n: &DVec3| corner(h) && n.is_finite() && n.length_squared() > 0.0;
+        // Copied only when something goes: shared maps stay shared.
+        if !self.uvs.iter().all(|(h, uv)| uv_ok(h, uv)) {
+            Arc::make_mut(&mut self.uvs).retain(|h, uv| uv_ok(h, uv));
+        }
+        if !self.normals.iter().all(|(h, n)| normal_ok(h, n)) {
+            Arc::make_mut(&mut self.normals).retain(|h, n| normal_ok(h, n));
+        }
     }
 
     /// The attributes after `before` was edited into `after`: normals are

@@ -684,3 +684,43 @@ fn mirrored_nodes_export_outside_out() {
         assert!((volume - 8.0).abs() < 1e-4, "STL volume {volume}");
     }
 }
+
+/// Corner attributes are stored once in the scene file however many
+/// history steps hold them, as flat lists, and load back exactly.
+#[test]
+fn corner_attributes_are_stored_once_and_load_back_exactly() {
+    let meshes = obj_from_str(BOX_AND_ROOF, "box.obj").unwrap();
+    let mut s = session_with(&meshes);
+    // More steps that keep the attributes (a move of the nodes).
+    for _ in 0..3 {
+        s.execute(&Command::Translate {
+            nodes: vec![NodeRef::Name("Box".into()), NodeRef::Name("Roof".into())],
+            offset: DVec3::X,
+        })
+        .unwrap();
+    }
+    let text = file::to_string(&s);
+    // Box (UVs and normals) and Roof (normals): two corner sets, once each.
+    assert_eq!(text.matches("normal_halfedges:").count(), 2, "{text}");
+    assert_eq!(text.matches("uv_halfedges:").count(), 1);
+    assert!(text.matches("corner_set:").count() >= 2 + 2 + 3 * 4);
+    let again = file::from_str(&text, Path::new("box.hedra.ron"))
+        .unwrap()
+        .session;
+    assert_eq!(again.doc, s.doc);
+    assert_eq!(again.history, s.history);
+    // The loaded nodes share one map per set, as the saved ones did.
+    let corners = |s: &Session, name: &str| match &s.doc.find_by_name(name).unwrap().content {
+        NodeContent::Mesh(m) => m.corners.clone(),
+        _ => unreachable!(),
+    };
+    let step = &again.history.done().last().unwrap().changes[0];
+    let NodeContent::Mesh(before) = &step.before.as_ref().unwrap().content else {
+        unreachable!()
+    };
+    let now = corners(&again, &step.before.as_ref().unwrap().name);
+    assert!(std::sync::Arc::ptr_eq(
+        &before.corners.normals,
+        &now.normals
+    ));
+}

@@ -69,7 +69,7 @@ fn save_load_save_gives_the_same_bytes_and_keeps_history() {
     assert!(!s.is_dirty());
     let first = std::fs::read_to_string(&path).unwrap();
     assert!(
-        first.starts_with("(\n    format: \"hedra-scene\",\n    version: 1,"),
+        first.starts_with("(\n    format: \"hedra-scene\",\n    version: 2,"),
         "{}",
         &first[..60]
     );
