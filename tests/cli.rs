@@ -45,7 +45,7 @@ fn run_builds_a_hierarchy_and_info_reports_it_field_by_field() {
     let dir = tempfile::tempdir().unwrap();
     let file = build_hierarchy(dir.path());
     let j = info_json(&file);
-    assert_eq!(j["format_version"], 1);
+    assert_eq!(j["format_version"], hedra_doc::file::FORMAT_VERSION);
     let nodes = j["nodes"].as_array().unwrap();
     assert_eq!(nodes.len(), 5);
     let by_name = |n: &str| {

@@ -488,3 +488,50 @@ fn knot_refinement_inserts_many_knots_and_keeps_the_curve() {
         Err(CurveError::OutsideDomain { .. })
     ));
 }
+
+/// Unclamped curves (uniform knots, as other CAD programs make them) can be
+/// clamped, elevated and split without changing their shape on the domain
+/// (openNURBS elevates them too).
+#[test]
+fn unclamped_curves_clamp_elevate_and_split_keeping_their_shape() {
+    use hedra_geom::curves::{Curve, NurbsCurve};
+    let points = vec![
+        DVec3::new(0.0, 0.0, 0.0),
+        DVec3::new(1.0, 2.0, 0.0),
+        DVec3::new(2.0, -1.0, 1.0),
+        DVec3::new(3.0, 2.0, 0.0),
+        DVec3::new(4.0, 0.0, -1.0),
+        DVec3::new(5.0, 1.0, 0.0),
+    ];
+    let knots: Vec<f64> = (0..10).map(f64::from).collect();
+    let weights = vec![1.0, 2.0, 0.5, 1.0, 3.0, 1.0];
+    let curve = NurbsCurve::new(3, knots, points, weights).unwrap();
+    assert!(!curve.is_clamped());
+    let (a, b) = curve.domain();
+    let ts: Vec<f64> = (0..=40).map(|i| a + (b - a) * i as f64 / 40.0).collect();
+    let same = |c: &NurbsCurve, what: &str| {
+        assert_eq!(c.domain(), (a, b), "{what}");
+        for &t in &ts {
+            let d = c.point(t).distance(curve.point(t));
+            assert!(d < 1e-10, "{what}: off by {d} at {t}");
+        }
+    };
+    let clamped = curve.clamped_ends();
+    assert!(clamped.is_clamped());
+    same(&clamped, "clamped");
+    assert!(
+        clamped.points()[0].distance(curve.point(a)) < 1e-12,
+        "the end is a control point"
+    );
+    let elevated = curve.elevate_degree().unwrap();
+    assert_eq!(elevated.degree(), 4);
+    same(&elevated, "elevated");
+    let (left, right) = curve.split(4.5).unwrap();
+    for &t in &ts {
+        let piece = if t <= 4.5 { &left } else { &right };
+        assert!(
+            piece.point(t).distance(curve.point(t)) < 1e-10,
+            "split at {t}"
+        );
+    }
+}

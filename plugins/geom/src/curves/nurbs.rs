@@ -314,15 +314,24 @@ impl NurbsCurve {
                 end,
             });
         }
-        let p = self.degree;
-        let k = self.span(u);
         let s = self.knots.iter().filter(|&&x| x == u).count();
-        if s >= p {
+        if s >= self.degree {
             return Err(CurveError::FullMultiplicity {
                 value: u,
                 multiplicity: s,
             });
         }
+        Ok(self.insert_knot_at(u))
+    }
+
+    /// Boehm's insertion of `u` in the closed domain, of multiplicity below
+    /// the degree (the callers check).
+    fn insert_knot_at(&self, u: f64) -> NurbsCurve {
+        let p = self.degree;
+        // The span [U_k, U_k+1) holding u, the last one when knots repeat
+        // (at the domain's start after an insertion there).
+        let k = (self.knots.partition_point(|&x| x <= u) - 1).min(self.points.len() - 1);
+        let s = self.knots.iter().filter(|&&x| x == u).count();
         let pw: Vec<DVec4> = self
             .points
             .iter()
@@ -344,12 +353,61 @@ impl NurbsCurve {
         let mut knots = self.knots.clone();
         knots.insert(k + 1, u);
         let (points, weights) = qw.into_iter().map(from_homogeneous).unzip();
-        Ok(NurbsCurve {
+        NurbsCurve {
             degree: p,
             knots,
             points,
             weights,
-        })
+        }
+    }
+    /// The same curve on the same domain with clamped ends (its ends become
+    /// control points): the domain's end knots are inserted up to
+    /// multiplicity `degree` (Boehm, which keeps the curve), then the knots
+    /// outside the domain and the control points that shape only the part
+    /// outside it are dropped (Piegl & Tiller, The NURBS Book, 12.2). A
+    /// clamped curve is returned as it is.
+    pub fn clamped_ends(&self) -> NurbsCurve {
+        if self.is_clamped() {
+            return self.clone();
+        }
+        // The start, then the end as the start of the reversed curve.
+        self.clamped_start().reversed().clamped_start().reversed()
+    }
+
+    /// [`clamped_ends`](Self::clamped_ends) at the start only.
+    fn clamped_start(&self) -> NurbsCurve {
+        let p = self.degree;
+        let (a, _) = self.domain();
+        let mut c = self.clone();
+        while c.knots.iter().filter(|&&x| x == a).count() < p {
+            c = c.insert_knot_at(a);
+        }
+        let below = c.knots.iter().filter(|&&x| x < a).count();
+        if below == 0 {
+            return c;
+        }
+        // The basis functions of the first below − 1 points vanish on the
+        // domain now: drop them with the knots below it, and clamp with
+        // one more `a`.
+        let mut knots = vec![a];
+        knots.extend(c.knots.iter().copied().filter(|&x| x >= a));
+        NurbsCurve {
+            degree: p,
+            knots,
+            points: c.points[below - 1..].to_vec(),
+            weights: c.weights[below - 1..].to_vec(),
+        }
+    }
+
+    /// The same curve run backwards on the same domain `[a, b]`: `t ↦ a + b − t`.
+    fn reversed(&self) -> NurbsCurve {
+        let (a, b) = self.domain();
+        NurbsCurve {
+            degree: self.degree,
+            knots: self.knots.iter().rev().map(|&x| a + b - x).collect(),
+            points: self.points.iter().rev().copied().collect(),
+            weights: self.weights.iter().rev().copied().collect(),
+        }
     }
 
     /// Positions at many parameters at once (clamped to the domain), much
@@ -372,10 +430,11 @@ impl NurbsCurve {
 
     /// The two pieces on either side of `u`, each a clamped curve tracing
     /// its part exactly: `u` is inserted until it has multiplicity
-    /// `degree`, where the curve passes through a control point.
+    /// `degree`, where the curve passes through a control point (an
+    /// unclamped curve is clamped first).
     ///
     /// # Errors
-    /// `u` outside the open domain, or an unclamped curve.
+    /// `u` outside the open domain.
     pub fn split(&self, u: f64) -> Result<(NurbsCurve, NurbsCurve), CurveError> {
         let (start, end) = self.domain();
         if !(u > start && u < end) {
@@ -386,9 +445,7 @@ impl NurbsCurve {
             });
         }
         if !self.is_clamped() {
-            return Err(CurveError::Parameter(
-                "splitting needs a clamped knot vector".into(),
-            ));
+            return self.clamped_ends().split(u);
         }
         let p = self.degree;
         let mut c = self.clone();
@@ -444,15 +501,14 @@ impl NurbsCurve {
 
     /// The rational Bézier segments between distinct knots, each as
     /// (parameter interval, homogeneous control points): the curve with
-    /// every interior knot inserted up to multiplicity `degree`.
+    /// every interior knot inserted up to multiplicity `degree` (an
+    /// unclamped curve is clamped first, [`clamped_ends`](Self::clamped_ends)).
     ///
     /// # Errors
-    /// An unclamped curve (its ends are not control points).
+    /// A knot insertion that fails.
     pub fn bezier_segments(&self) -> Result<Vec<((f64, f64), Vec<DVec4>)>, CurveError> {
         if !self.is_clamped() {
-            return Err(CurveError::Parameter(
-                "Bézier segments (and degree elevation) need a clamped knot vector".into(),
-            ));
+            return self.clamped_ends().bezier_segments();
         }
         let p = self.degree;
         let mut c = self.clone();
@@ -483,10 +539,11 @@ impl NurbsCurve {
 
     /// The same curve with degree one higher: each Bézier segment is
     /// elevated in homogeneous coordinates and the segments are joined
-    /// again (interior knots get multiplicity `degree + 1`).
+    /// again (interior knots get multiplicity `degree + 1`). An unclamped
+    /// curve comes back clamped, with the same shape on its domain.
     ///
     /// # Errors
-    /// An unclamped curve.
+    /// A knot insertion that fails.
     pub fn elevate_degree(&self) -> Result<NurbsCurve, CurveError> {
         let segments = self.bezier_segments()?;
         let p = self.degree;
