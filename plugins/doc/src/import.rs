@@ -384,12 +384,18 @@ pub fn obj_from_str(text: &str, path: &str) -> Result<Vec<ImportedMesh>, ImportE
                 }
             })?;
         if mesh.face_count() == 0 {
-            let name = if model.name.is_empty() {
-                "the file"
+            let name = if model.name.is_empty() || model.name == "unnamed_object" {
+                ""
             } else {
                 &model.name
             };
-            nothing_kept.get_or_insert_with(|| format!("{name}: {report}"));
+            let numbers = match segment {
+                Some(s) if s.face_lines.len() == polygons.len() => {
+                    FaceNumbers::Lines(s.face_lines.clone())
+                }
+                _ => FaceNumbers::InNode,
+            };
+            nothing_kept.get_or_insert_with(|| why_nothing_kept(name, &report, &numbers));
             continue;
         }
         let mesh = mesh.compacted_if_needed();
@@ -692,7 +698,11 @@ pub fn stl_from_bytes(
         };
         if mesh.face_count() == 0 {
             if !solid.triangles.is_empty() {
-                dropped.push(format!("{node_name}: {report}"));
+                dropped.push(why_nothing_kept(
+                    &node_name,
+                    &report,
+                    &FaceNumbers::Triangles { offset: first },
+                ));
             }
             continue;
         }
@@ -885,6 +895,27 @@ fn dropped_reason(
             "refers to a vertex the file does not have".into(),
         ),
         E::NonManifoldVertex { .. } | E::TooLarge { .. } => ("other", why.to_string()),
+    }
+}
+
+/// Why an object kept no face, in the words of the import summary: how
+/// many were dropped and the first one's reason, numbered as the file does.
+fn why_nothing_kept(name: &str, report: &RepairReport, numbers: &FaceNumbers) -> String {
+    match report.dropped_faces.first() {
+        Some((face, why)) => {
+            let (_, text) = dropped_reason(why, numbers, *face);
+            let whose = if name.is_empty() {
+                String::new()
+            } else {
+                format!("{name}: ")
+            };
+            format!(
+                "{whose}all {} face(s) dropped; {} {text}",
+                report.dropped_faces.len(),
+                numbers.name(*face)
+            )
+        }
+        None => format!("{name}: {report}"),
     }
 }
 
