@@ -697,7 +697,28 @@ pub fn gltf_from_bytes(
 /// than its header, and (gltf-json 1.4 panics) a primitive's `POSITION`
 /// naming an accessor past the list.
 /// Files that do not even parse are left to `gltf` to report.
+/// The version of a glTF 1.x file ("1.0"), found before the 2.0 reader
+/// fails on it: a GLB header of version 1, or JSON whose `asset.version`
+/// starts with 1 or that keeps `accessors` as a map (glTF 1 keys its
+/// objects by name; 2.0 lists them).
+fn gltf1_version(bytes: &[u8]) -> Option<String> {
+    if let Some(v) = bytes.strip_prefix(b"glTF").and_then(|h| h.get(..4)) {
+        return (u32::from_le_bytes([v[0], v[1], v[2], v[3]]) == 1).then(|| "1.0 binary".into());
+    }
+    let value: serde_json::Value = serde_json::from_slice(bytes).ok()?;
+    let version = value["asset"]["version"].as_str().unwrap_or("");
+    if version.starts_with("1.") {
+        return Some(version.to_string());
+    }
+    value["accessors"].is_object().then(|| "1.0".to_string())
+}
+
 fn check_before_validation(bytes: &[u8]) -> Result<(), String> {
+    if let Some(version) = gltf1_version(bytes) {
+        return Err(format!(
+            "glTF {version}, which Hedra does not read: re-export it as glTF 2.0"
+        ));
+    }
     // `gltf` subtracts the 12-byte header from the stated length unchecked.
     if let Some(&[a, b, c, d]) = bytes.strip_prefix(b"glTF").and_then(|h| h.get(4..8)) {
         let length = u32::from_le_bytes([a, b, c, d]);
