@@ -940,6 +940,13 @@ pub fn describe_repairs(meshes: &[ImportedMesh]) -> Vec<String> {
                 m.face_numbers.name(*face)
             ));
         }
+        for (face, loops) in &m.report.split_faces {
+            details.push(format!(
+                "{}: {} visits a corner twice; split there into {loops} face(s)",
+                m.name,
+                m.face_numbers.name(*face)
+            ));
+        }
         for (vertex, copies) in &m.report.split_vertices {
             split += 1;
             details.push(format!(
@@ -959,6 +966,12 @@ pub fn describe_repairs(meshes: &[ImportedMesh]) -> Vec<String> {
         parts.push(format!(
             "{dropped} face(s) dropped ({})",
             by_kind.join(", ")
+        ));
+    }
+    let pinched: usize = meshes.iter().map(|m| m.report.split_faces.len()).sum();
+    if pinched > 0 {
+        parts.push(format!(
+            "{pinched} face(s) that visit a corner twice split into simple faces"
         ));
     }
     if split > 0 {

@@ -47,12 +47,18 @@ pub struct RepairReport {
     pub split_vertices: Vec<(u32, usize)>,
     /// Kept input face index for each face id of the result.
     pub face_origin: Vec<usize>,
+    /// Input faces that visit a vertex more than once (a polygon pinched at
+    /// a point, a "keyhole"), split there into simple loops, with the number
+    /// of loops kept.
+    pub split_faces: Vec<(usize, usize)>,
 }
 
 impl RepairReport {
     /// True when the input was used as it was.
     pub fn is_clean(&self) -> bool {
-        self.dropped_faces.is_empty() && self.split_vertices.is_empty()
+        self.dropped_faces.is_empty()
+            && self.split_vertices.is_empty()
+            && self.split_faces.is_empty()
     }
 }
 
@@ -73,6 +79,12 @@ impl std::fmt::Display for RepairReport {
             }
             parts.push(text + ")");
         }
+        if !self.split_faces.is_empty() {
+            parts.push(format!(
+                "split {} face(s) that visit a vertex twice into simple loops",
+                self.split_faces.len()
+            ));
+        }
         if !self.split_vertices.is_empty() {
             let copies: usize = self.split_vertices.iter().map(|(_, n)| n).sum();
             parts.push(format!(
@@ -82,6 +94,40 @@ impl std::fmt::Display for RepairReport {
         }
         write!(f, "{}", parts.join(", "))
     }
+}
+
+/// The simple loops of a polygon that visits some vertices twice (pinched,
+/// as a keyhole outline), cut at the repeats (each loop of three or more
+/// corners; shorter ones, such as a doubled corner, vanish); `None` when no
+/// vertex repeats, or one repeats more than twice.
+fn simple_loops(poly: &[u32]) -> Option<Vec<Vec<u32>>> {
+    let mut count: HashMap<u32, usize> = HashMap::with_capacity(poly.len());
+    for &v in poly {
+        *count.entry(v).or_default() += 1;
+    }
+    // Only pinches (each repeated vertex visited twice): a face that runs
+    // around its outline again and again is garbage, not a shape.
+    if count.values().all(|&n| n == 1) || count.values().any(|&n| n > 2) {
+        return None;
+    }
+    let mut loops = Vec::new();
+    let mut path: Vec<u32> = Vec::with_capacity(poly.len());
+    for &v in poly {
+        if let Some(at) = path.iter().position(|&w| w == v) {
+            let cut: Vec<u32> = path.split_off(at + 1);
+            let mut piece = vec![v];
+            piece.extend(cut);
+            if piece.len() >= 3 {
+                loops.push(piece);
+            }
+        } else {
+            path.push(v);
+        }
+    }
+    if path.len() >= 3 {
+        loops.push(path);
+    }
+    Some(loops)
 }
 
 fn check_face(face: usize, poly: &[u32], vertex_count: usize) -> Result<(), BuildError> {
@@ -336,8 +382,24 @@ impl HalfEdgeMesh {
         let mut report = RepairReport::default();
         let mut kept: Vec<Vec<u32>> = Vec::new();
         let mut used: HashMap<(u32, u32), usize> = HashMap::new(); // directed edge -> kept face
+        // A face that visits a vertex twice becomes its simple loops, each
+        // checked and kept like a face of its own.
+        let mut pieces: Vec<(usize, Vec<u32>)> = Vec::with_capacity(polygons.len());
         for (fi, poly) in polygons.iter().enumerate() {
             let poly = poly.as_ref();
+            match simple_loops(poly) {
+                Some(loops)
+                    if !loops.is_empty()
+                        && poly.iter().all(|&v| (v as usize) < positions.len()) =>
+                {
+                    report.split_faces.push((fi, loops.len()));
+                    pieces.extend(loops.into_iter().map(|l| (fi, l)));
+                }
+                _ => pieces.push((fi, poly.to_vec())),
+            }
+        }
+        for (fi, poly) in &pieces {
+            let (fi, poly) = (*fi, poly.as_slice());
             if let Err(e) = check_face(fi, poly, positions.len()) {
                 report.dropped_faces.push((fi, e));
                 continue;

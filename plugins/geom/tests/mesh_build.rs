@@ -393,7 +393,39 @@ mod random_input {
             }
             let (m, report) = HalfEdgeMesh::from_polygons_repaired(&positions, &polys).unwrap();
             prop_assert!(m.validate().is_ok(), "{:?}", m.validate());
-            prop_assert_eq!(m.face_count() + report.dropped_faces.len(), polys.len());
+            // A face split at a repeated vertex counts once per loop kept.
+            let extra: usize = report.split_faces.iter().map(|(_, loops)| loops - 1).sum();
+            prop_assert_eq!(m.face_count() + report.dropped_faces.len(), polys.len() + extra);
         }
     }
+}
+
+/// A polygon pinched at a vertex (a keyhole outline that visits one
+/// vertex twice, as other programs write) becomes its two simple loops
+/// instead of being dropped; one that runs around its outline again and
+/// again is still dropped.
+#[test]
+fn a_pinched_polygon_is_split_into_simple_faces() {
+    use hedra_geom::{DVec3, HalfEdgeMesh};
+    // Two triangles meeting at vertex 0, written as one face 0 1 2 0 3 4.
+    let positions = vec![
+        DVec3::ZERO,
+        DVec3::new(1.0, 0.0, 0.0),
+        DVec3::new(1.0, 1.0, 0.0),
+        DVec3::new(-1.0, 0.0, 0.0),
+        DVec3::new(-1.0, -1.0, 0.0),
+    ];
+    let (m, report) =
+        HalfEdgeMesh::from_polygons_repaired(&positions, &[vec![0u32, 1, 2, 0, 3, 4]]).unwrap();
+    m.validate().unwrap();
+    assert_eq!(m.face_count(), 2);
+    assert_eq!(report.split_faces, [(0, 2)]);
+    assert!(report.dropped_faces.is_empty());
+    assert_eq!(report.face_origin, [0, 0], "both loops come from face 0");
+    let (m, report) =
+        HalfEdgeMesh::from_polygons_repaired(&positions, &[vec![0u32, 1, 2, 0, 1, 2, 0, 1, 2]])
+            .unwrap();
+    assert_eq!(m.face_count(), 0);
+    assert_eq!(report.dropped_faces.len(), 1);
+    assert!(report.split_faces.is_empty());
 }
