@@ -213,3 +213,145 @@ fn the_khronos_validator_passes_every_gltf_and_glb_export() {
         files.len()
     );
 }
+
+/// assimp's test models (installed by `scripts/setup`), imported by Hedra
+/// and exported again, are read by trimesh: every OBJ, STL and GLB export
+/// loads, with the bounds Hedra reports (`hedra info --json`), and the
+/// Khronos validator passes every GLB.
+#[test]
+fn trimesh_and_the_validator_read_the_exports_of_real_files() {
+    require_python_readers();
+    let models = Path::new("/usr/share/assimp/models");
+    assert!(
+        models.is_dir(),
+        "{} is missing: run scripts/setup (it installs assimp-testmodels)",
+        models.display()
+    );
+    let mut inputs = Vec::new();
+    let mut stack = vec![models.to_path_buf()];
+    while let Some(dir) = stack.pop() {
+        for entry in std::fs::read_dir(&dir).unwrap() {
+            let path = entry.unwrap().path();
+            let ext = path
+                .extension()
+                .and_then(|e| e.to_str())
+                .map(str::to_ascii_lowercase);
+            if path.is_dir() {
+                stack.push(path);
+            } else if ext.is_some_and(|e| ["obj", "stl", "gltf", "glb"].contains(&e.as_str())) {
+                inputs.push(path);
+            }
+        }
+    }
+    inputs.sort();
+    let dir = tempfile::tempdir().unwrap();
+    let (mut exports, mut glbs) = (Vec::new(), Vec::new());
+    for (i, input) in inputs.iter().enumerate() {
+        let scene = dir.path().join(format!("{i}.hedra.ron"));
+        let o = hedra(&[
+            "import",
+            input.to_str().unwrap(),
+            "-o",
+            scene.to_str().unwrap(),
+        ]);
+        if !o.status.success() {
+            continue; // refused with a message (pinned by plugins/doc/tests/real_files.rs)
+        }
+        for ext in ["obj", "stl", "glb"] {
+            let out = dir.path().join(format!("{i}.{ext}"));
+            let o = hedra(&[
+                "export",
+                scene.to_str().unwrap(),
+                "-o",
+                out.to_str().unwrap(),
+            ]);
+            if !o.status.success() {
+                // Only a scene without faces may be refused.
+                assert!(
+                    String::from_utf8_lossy(&o.stderr).contains("nothing to export"),
+                    "{}: {}",
+                    input.display(),
+                    String::from_utf8_lossy(&o.stderr)
+                );
+                continue;
+            }
+            if ext == "glb" {
+                glbs.push(out.clone());
+            }
+            exports.push((input.clone(), out));
+        }
+    }
+    assert!(exports.len() > 100, "{} exports", exports.len());
+    // One Python run for all: vertex count and bounds of each file.
+    let script = "import sys, trimesh\n\
+        for f in sys.argv[1:]:\n\
+        \x20   m = trimesh.load(f, force='mesh', process=False)\n\
+        \x20   if m.bounds is None:\n\
+        \x20       print(0, 0, 0, 0, 0, 0, 0)\n\
+        \x20       continue\n\
+        \x20   (lo, hi) = m.bounds\n\
+        \x20   print(len(m.vertices), lo[0], hi[0], lo[1], hi[1], lo[2], hi[2])";
+    let o = Command::new("python3")
+        .arg("-c")
+        .arg(script)
+        .args(exports.iter().map(|(_, out)| out))
+        .output()
+        .expect("python3 runs");
+    assert!(
+        o.status.success(),
+        "trimesh: {}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let rows: Vec<Vec<f64>> = String::from_utf8_lossy(&o.stdout)
+        .lines()
+        .map(|l| l.split_whitespace().map(|x| x.parse().unwrap()).collect())
+        .collect();
+    assert_eq!(rows.len(), exports.len());
+    // The three exports of one model agree on the bounds.
+    let mut by_input: std::collections::BTreeMap<&Path, Vec<&Vec<f64>>> = Default::default();
+    for ((input, out), row) in exports.iter().zip(&rows) {
+        // A scene of empties (points and lines left out) exports to GLB
+        // only, as nodes without meshes.
+        let alone = exports.iter().filter(|(i, _)| i == input).count() == 1;
+        assert!(
+            row[0] > 0.0 || alone,
+            "{} ({}): no vertices",
+            input.display(),
+            out.display()
+        );
+        if row[0] > 0.0 {
+            by_input.entry(input.as_path()).or_default().push(row);
+        }
+    }
+    for (input, rows) in by_input {
+        let first = rows[0];
+        let size = (1..=5)
+            .step_by(2)
+            .map(|k| first[k + 1] - first[k])
+            .fold(1.0, f64::max);
+        for row in &rows[1..] {
+            for k in 1..7 {
+                assert!(
+                    (row[k] - first[k]).abs() <= 1e-4 * size,
+                    "{}: bounds differ between exports: {first:?} vs {row:?}",
+                    input.display()
+                );
+            }
+        }
+    }
+    let root = std::path::PathBuf::from(std::env::var_os("CARGO_MANIFEST_DIR").unwrap());
+    let o = Command::new("node")
+        .arg(root.join("scripts/gltf-validator/validate.mjs"))
+        .args(&glbs)
+        .output()
+        .expect("node runs");
+    assert!(
+        o.status.success(),
+        "the glTF-Validator found problems:\n{}",
+        String::from_utf8_lossy(&o.stdout)
+            .lines()
+            .filter(|l| !l.starts_with("ok "))
+            .collect::<Vec<_>>()
+            .join("\n")
+    );
+}
