@@ -657,6 +657,7 @@ pub fn gltf_from_bytes(
             skipped_polylines: 0,
             face_numbers: crate::import::FaceNumbers::InNode,
             not_imported: Vec::new(),
+            vertex_numbers: Vec::new(),
         });
         for child in node.children().collect::<Vec<_>>().into_iter().rev() {
             stack.push((child, Some(me)));

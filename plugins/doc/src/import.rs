@@ -40,6 +40,9 @@ pub struct ImportedMesh {
     /// What the file has that Hedra does not import ("2 material(s)"), on
     /// the first node of an import.
     pub not_imported: Vec<String>,
+    /// The file's number of each input vertex (OBJ `v` lines, from 1), for
+    /// the report; empty when the file numbers vertices no other way.
+    pub vertex_numbers: Vec<u32>,
     /// UVs and normals of the mesh's face corners that the file gave.
     pub corners: CornerAttributes,
 }
@@ -57,6 +60,7 @@ impl ImportedMesh {
             skipped_polylines: 0,
             face_numbers: FaceNumbers::InNode,
             not_imported: Vec::new(),
+            vertex_numbers: Vec::new(),
             corners: CornerAttributes::default(),
         }
     }
@@ -73,6 +77,7 @@ impl ImportedMesh {
             skipped_polylines: 0,
             face_numbers: FaceNumbers::InNode,
             not_imported: Vec::new(),
+            vertex_numbers: Vec::new(),
             corners: CornerAttributes::default(),
         }
     }
@@ -141,6 +146,8 @@ struct ObjSegment {
     corners: Vec<(bool, bool)>,
     /// The line of each face (`f`), 1-based.
     face_lines: Vec<u32>,
+    /// The file's (1-based, absolute) vertex number of each corner.
+    corner_vertices: Vec<u32>,
 }
 
 /// Splits OBJ text the way tobj splits it into models: a new model at each
@@ -153,8 +160,10 @@ fn scan_obj(text: &str) -> Vec<ObjSegment> {
         group: None,
         corners: Vec::new(),
         face_lines: Vec::new(),
+        corner_vertices: Vec::new(),
     };
     let mut has_faces = false;
+    let mut vertices_seen = 0i64;
     for (number, line) in text.lines().enumerate() {
         let mut words = line.split_whitespace();
         match words.next() {
@@ -165,6 +174,7 @@ fn scan_obj(text: &str) -> Vec<ObjSegment> {
                         group: current.group.clone(),
                         corners: Vec::new(),
                         face_lines: Vec::new(),
+                        corner_vertices: Vec::new(),
                     };
                     out.push(std::mem::replace(&mut current, next));
                     has_faces = false;
@@ -180,15 +190,23 @@ fn scan_obj(text: &str) -> Vec<ObjSegment> {
                     current.group = name;
                 }
             }
+            Some("v") => vertices_seen += 1,
             Some("f") => {
                 has_faces = true;
                 current.face_lines.push(number as u32 + 1);
-                current.corners.extend(words.map(|w| {
-                    let mut parts = w.split('/').skip(1);
+                for w in words {
+                    let mut parts = w.split('/');
+                    // Negative numbers count back from the line.
+                    let v = parts
+                        .next()
+                        .and_then(|x| x.parse::<i64>().ok())
+                        .unwrap_or(0);
+                    let v = if v < 0 { vertices_seen + v + 1 } else { v };
+                    current.corner_vertices.push(v.max(0) as u32);
                     let vt = parts.next().is_some_and(|x| !x.is_empty());
                     let vn = parts.next().is_some_and(|x| !x.is_empty());
-                    (vt, vn)
-                }));
+                    current.corners.push((vt, vn));
+                }
             }
             _ => {}
         }
@@ -432,9 +450,20 @@ pub fn obj_from_str(text: &str, path: &str) -> Result<Vec<ImportedMesh>, ImportE
             }
             _ => FaceNumbers::InNode,
         };
+        // tobj numbers each model's vertices anew: map them back to the file's.
+        let mut vertex_numbers = Vec::new();
+        if let Some(seg) = segment.filter(|s| s.corner_vertices.len() == m.indices.len()) {
+            vertex_numbers = vec![0u32; positions.len()];
+            for (local, file) in m.indices.iter().zip(&seg.corner_vertices) {
+                if let Some(slot) = vertex_numbers.get_mut(*local as usize) {
+                    *slot = *file;
+                }
+            }
+        }
         let mut imported = ImportedMesh {
             corners,
             face_numbers,
+            vertex_numbers,
             ..ImportedMesh::mesh(String::new(), mesh, report)
         };
         match segment {
@@ -949,10 +978,13 @@ pub fn describe_repairs(meshes: &[ImportedMesh]) -> Vec<String> {
         }
         for (vertex, copies) in &m.report.split_vertices {
             split += 1;
+            let number = match m.vertex_numbers.get(*vertex as usize) {
+                Some(&n) if n > 0 => n,
+                _ => vertex + 1,
+            };
             details.push(format!(
-                "{}: vertex {} joined separate fans of faces; split into {} copies",
+                "{}: vertex {number} joined separate fans of faces; split into {} copies",
                 m.name,
-                vertex + 1,
                 copies + 1
             ));
         }

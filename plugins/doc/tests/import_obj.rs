@@ -153,3 +153,21 @@ fn dropping_every_face_says_why() {
         "loop.obj: no face could be kept: all 1 face(s) dropped; line 5 uses the same corner point twice"
     );
 }
+
+/// A split vertex is named by its number in the file (tobj numbers each
+/// object's vertices anew; the report maps them back).
+#[test]
+fn split_vertices_are_named_as_the_file_numbers_them() {
+    let text = "o A\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n\
+                o B\nv 0 0 5\nv 1 0 5\nv 0 1 5\nv -1 0 5\nv 0 -1 5\n\
+                f 4 5 6\nf 4 7 8\n";
+    let meshes = obj_from_str(text, "two.obj").unwrap();
+    let notes = describe_repairs(&meshes);
+    assert_eq!(
+        notes,
+        [
+            "1 of 2 object(s) repaired: 1 vertex(es) split where separate fans of faces met",
+            "  B: vertex 4 joined separate fans of faces; split into 2 copies",
+        ]
+    );
+}
