@@ -520,3 +520,26 @@ fn move_a_control_point_by_a_typed_value_and_cancel() {
     assert_eq!(shape_points(&user).0, moved, "Esc leaves the points");
     assert_eq!(user.undo_steps(), steps);
 }
+
+/// Numpad 5 switches to a parallel projection and back; picking follows
+/// (a click on the cube's top face still selects it).
+#[test]
+fn numpad_5_toggles_orthographic_and_picking_follows() {
+    let mut user = cube_in_edit_mode(KeyCode::Digit3);
+    let projection = |user: &mut User| {
+        let world = user.app.world_mut();
+        let mut q = world.query_filtered::<&Projection, With<hedra_scene::ViewportCamera>>();
+        matches!(q.single(world).unwrap(), Projection::Orthographic(_))
+    };
+    assert!(!projection(&mut user));
+    user.tap(KeyCode::Numpad5);
+    assert!(projection(&mut user), "orthographic");
+    assert!(user.status().contains("orthographic"), "{}", user.status());
+    let top = screen(&mut user, 0.0, 1.0, 0.0);
+    user.click(top);
+    assert_eq!(selected_faces(&user), 1, "the click selects the top face");
+    let face = *user.edit_mode().selection.faces.iter().next().unwrap();
+    assert!(user.first_mesh().face_normal(face).y > 0.99, "the top face");
+    user.tap(KeyCode::Numpad5);
+    assert!(!projection(&mut user), "perspective again");
+}

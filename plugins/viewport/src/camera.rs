@@ -9,6 +9,8 @@ pub struct OrbitCamera {
     pub yaw: f32,
     pub pitch: f32,
     pub distance: f32,
+    /// Numpad 5: parallel projection instead of perspective.
+    pub orthographic: bool,
 }
 
 impl Default for OrbitCamera {
@@ -18,11 +20,37 @@ impl Default for OrbitCamera {
             yaw: 0.75,
             pitch: -0.5,
             distance: 12.0,
+            orthographic: false,
         }
     }
 }
 
+/// The perspective's vertical field of view (Bevy's default).
+const FOV: f32 = std::f32::consts::FRAC_PI_4;
+
 impl OrbitCamera {
+    /// The projection: perspective, or parallel with the height the
+    /// perspective shows at the focus (so Numpad 5 keeps the framing and
+    /// the wheel still zooms).
+    pub fn projection(&self) -> Projection {
+        if !self.orthographic {
+            return Projection::Perspective(PerspectiveProjection {
+                fov: FOV,
+                ..default()
+            });
+        }
+        Projection::Orthographic(OrthographicProjection {
+            scaling_mode: bevy::camera::ScalingMode::FixedVertical {
+                viewport_height: 2.0 * self.distance * (FOV / 2.0).tan(),
+            },
+            // Everything along the view line is seen, in front of the eye
+            // or behind it.
+            near: -1e4,
+            far: 1e4,
+            ..OrthographicProjection::default_3d()
+        })
+    }
+
     pub fn transform(&self) -> Transform {
         let rotation = Quat::from_euler(EulerRot::YXZ, self.yaw, self.pitch, 0.0);
         Transform {
@@ -65,7 +93,8 @@ pub(crate) fn overlay_cameras_keep_the_picture(
 }
 
 /// Middle mouse orbits, Shift+middle pans, Ctrl+middle or the wheel zooms,
-/// Alt+left orbits (trackpads); numpad 1/3/7 give front/right/top views.
+/// Alt+left orbits (trackpads); numpad 1/3/7 give front/right/top views,
+/// numpad 5 switches between perspective and orthographic (Blender).
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn camera_controls(
     buttons: Res<ButtonInput<MouseButton>>,
@@ -75,9 +104,11 @@ pub(crate) fn camera_controls(
     gate: Res<InputGate>,
     tool: Res<TransformTool>,
     mut dragging: Local<bool>,
-    mut camera: Single<(&mut OrbitCamera, &mut Transform), With<ViewportCamera>>,
+    mut projected: Local<Option<(bool, Option<f32>)>>,
+    mut camera: Single<(&mut OrbitCamera, &mut Transform, &mut Projection), With<ViewportCamera>>,
+    mut status: ResMut<hedra_scene::StatusMessage>,
 ) {
-    let (orbit, transform) = &mut *camera;
+    let (orbit, transform, projection) = &mut *camera;
     let alt = modifiers::alt(&keys);
     let shift = modifiers::shift(&keys);
     let ctrl = modifiers::ctrl(&keys);
@@ -121,6 +152,14 @@ pub(crate) fn camera_controls(
         if keys.just_pressed(KeyCode::Numpad3) {
             (orbit.yaw, orbit.pitch) = (FRAC_PI_2 + flip, 0.0);
         }
+        if keys.just_pressed(KeyCode::Numpad5) {
+            orbit.orthographic = !orbit.orthographic;
+            status.info(if orbit.orthographic {
+                "View: orthographic (Numpad 5 for perspective)"
+            } else {
+                "View: perspective (Numpad 5 for orthographic)"
+            });
+        }
         if keys.just_pressed(KeyCode::Numpad7) {
             (orbit.yaw, orbit.pitch) = (
                 0.0,
@@ -135,6 +174,15 @@ pub(crate) fn camera_controls(
     let wanted = orbit.transform();
     if **transform != wanted {
         **transform = wanted;
+    }
+    // The projection follows the mode and, when parallel, the zoom.
+    let key = (
+        orbit.orthographic,
+        orbit.orthographic.then_some(orbit.distance),
+    );
+    if *projected != Some(key) {
+        *projected = Some(key);
+        **projection = orbit.projection();
     }
 }
 
