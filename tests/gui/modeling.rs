@@ -543,3 +543,19 @@ fn numpad_5_toggles_orthographic_and_picking_follows() {
     user.tap(KeyCode::Numpad5);
     assert!(!projection(&mut user), "perspective again");
 }
+
+/// Ctrl+T on the cube's top face: two triangles, one undo step; the Mesh
+/// menu offers the same.
+#[test]
+fn ctrl_t_triangulates_the_selected_faces() {
+    let mut user = cube_in_edit_mode(KeyCode::Digit3);
+    let top = screen(&mut user, 0.0, 1.0, 0.0);
+    user.click(top);
+    let steps = user.undo_steps();
+    user.shortcut(&[KeyCode::ControlLeft], KeyCode::KeyT);
+    assert_eq!(user.mesh_counts(), (8, 13, 7), "{}", user.status());
+    user.first_mesh().validate().unwrap();
+    assert_eq!(user.undo_steps(), steps + 1);
+    user.shortcut(&[KeyCode::ControlLeft], KeyCode::KeyZ);
+    assert_eq!(user.mesh_counts(), (8, 12, 6));
+}

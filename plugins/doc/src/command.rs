@@ -377,6 +377,11 @@ pub enum Command {
         node: NodeRef,
         vertices: VertexSet,
     },
+    /// Splits faces into triangles along their ear-clipping diagonals.
+    Triangulate {
+        node: NodeRef,
+        faces: FaceSet,
+    },
     /// Sets the subdivision crease sharpness of edges: 0 is smooth, 10
     /// infinitely sharp, values between fade out after that many levels.
     SetEdgeCrease {
@@ -651,6 +656,7 @@ impl Command {
             Command::LoopCut { cuts, .. } => format!("Loop Cut ({cuts})"),
             Command::SubdivideEdges { .. } => "Subdivide Edges".to_string(),
             Command::ConnectVertices { .. } => "Connect Vertices".to_string(),
+            Command::Triangulate { .. } => "Triangulate Faces".to_string(),
             Command::DissolveEdges { .. } => "Dissolve Edges".to_string(),
             Command::DissolveVertices { .. } => "Dissolve Vertices".to_string(),
             Command::FlipNormals { .. } => "Flip Normals".to_string(),
@@ -1557,6 +1563,9 @@ impl Plan<'_> {
                     ));
                 };
                 Ok(modeling::connect_vertices(m, a, b).map(drop))
+            })?,
+            Command::Triangulate { node, faces } => self.on_faces(node, faces, |m, fs| {
+                modeling::triangulate_faces(m, fs).map(drop)
             })?,
             Command::DissolveEdges { node, edges } => {
                 self.on_edges(node, edges, modeling::dissolve_edges)?

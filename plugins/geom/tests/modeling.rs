@@ -937,3 +937,54 @@ fn a_rounded_bevel_bends_its_segments_towards_the_old_corner() {
     bevel_edges(&mut flat, &[e], 0.5, 1).unwrap();
     assert!(c.volume() > flat.volume());
 }
+
+/// Ctrl+T: every face of a cube split into two triangles by Euler MEFs;
+/// nothing moves, the mesh stays closed and valid; a concave face (an L)
+/// triangulates inside its outline.
+#[test]
+fn triangulate_splits_faces_along_diagonals() {
+    use hedra_geom::{DVec3, HalfEdgeMesh, Primitive, modeling};
+    let mut cube = Primitive::Cube { size: 2.0 }.build().unwrap();
+    let positions = cube.positions().to_vec();
+    let faces: Vec<_> = cube.faces().collect();
+    let made = modeling::triangulate_faces(&mut cube, &faces).unwrap();
+    cube.validate().unwrap();
+    assert_eq!(made.len(), 6);
+    assert_eq!(
+        (cube.vertex_count(), cube.edge_count(), cube.face_count()),
+        (8, 18, 12)
+    );
+    assert!(cube.faces().all(|f| cube.face_degree(f) == 3));
+    assert_eq!(cube.positions(), &positions[..]);
+    // An L-shaped hexagon: 4 triangles, all facing up (none outside the L).
+    let l = [
+        DVec3::new(0.0, 0.0, 0.0),
+        DVec3::new(2.0, 0.0, 0.0),
+        DVec3::new(2.0, 0.0, -1.0),
+        DVec3::new(1.0, 0.0, -1.0),
+        DVec3::new(1.0, 0.0, -2.0),
+        DVec3::new(0.0, 0.0, -2.0),
+    ];
+    let mut m = HalfEdgeMesh::from_polygons(&l, &[vec![0u32, 1, 2, 3, 4, 5]]).unwrap();
+    let f: Vec<_> = m.faces().collect();
+    let up = m.face_normal(f[0]);
+    let tris = hedra_geom::query::triangulate_face(&m, f[0]);
+    modeling::triangulate_faces(&mut m, &f).unwrap();
+    m.validate().unwrap();
+    assert_eq!(m.face_count(), 4, "{tris:?}");
+    let area: f64 = m.faces().map(|g| m.face_area_vector(g).dot(up)).sum();
+    assert!(
+        (area - 3.0).abs() < 1e-12,
+        "the triangles cover the L: {area}"
+    );
+    assert!(m.faces().all(|g| m.face_normal(g).dot(up) > 0.99));
+    // Triangles stay as they are.
+    let before = m.clone();
+    let all: Vec<_> = m.faces().collect();
+    assert!(
+        modeling::triangulate_faces(&mut m, &all)
+            .unwrap()
+            .is_empty()
+    );
+    assert_eq!(m, before);
+}

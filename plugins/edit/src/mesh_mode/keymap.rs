@@ -146,6 +146,18 @@ pub fn edit_shortcuts(
         }
         return;
     }
+    // Ctrl+T (Blender): triangulate the selected faces.
+    if c && keys.just_pressed(KeyCode::KeyT) {
+        if mode.selection.faces.is_empty() {
+            status.error("Triangulate: select faces (press 3 for face mode)");
+        } else {
+            requests.write(DocRequest::Execute(Command::Triangulate {
+                node: node.clone(),
+                faces: FaceSet::Ids(mode.selection.faces.iter().map(|f| f.0).collect()),
+            }));
+        }
+        return;
+    }
     if c && keys.just_pressed(KeyCode::KeyX) {
         match delete_or_dissolve(node.clone(), mode.kind, &mode.selection, true) {
             Some(cmd) => {

@@ -601,6 +601,12 @@ pub(super) fn mesh_menu(
             faces: faces(),
         }
     });
+    item(ui, "Triangulate Faces\tCtrl+T", has_f, &|| {
+        Command::Triangulate {
+            node: n.clone(),
+            faces: faces(),
+        }
+    });
     ui.separator();
     ui.label(egui::RichText::new("Edges").weak());
     item(ui, "Loop Cut\tCtrl+R", sel.edges.len() == 1, &|| {
