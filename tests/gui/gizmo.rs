@@ -3,6 +3,7 @@
 //! a preview while dragging, exact values for what the drag did not touch,
 //! Esc or a right click puts everything back.
 
+use crate::modeling::cube_in_edit_mode;
 use crate::user::User;
 use bevy::gizmos::transform_gizmo::{TransformGizmoAxis, TransformGizmoState};
 use bevy::prelude::*;
@@ -106,10 +107,7 @@ fn dragging_the_gizmo_moves_an_object_in_one_step_and_keeps_the_rest_exact() {
 
 #[test]
 fn the_gizmo_moves_the_selected_vertices_in_edit_mode() {
-    let mut user = User::new();
-    user.add("Cube");
-    user.tap(KeyCode::Tab);
-    user.tap(KeyCode::Digit3);
+    let mut user = cube_in_edit_mode(KeyCode::Digit3);
     let top = user.screen_of(Vec3::Y);
     user.click(top);
     assert_eq!(user.edit_mode().selection.faces.len(), 1);
@@ -199,10 +197,7 @@ fn the_gizmo_moves_a_control_point_and_escape_puts_it_back() {
 #[test]
 fn the_view_menu_makes_a_scale_gizmo_that_scales_the_selection() {
     use bevy::gizmos::transform_gizmo::{TransformGizmoMode, TransformGizmoSettings};
-    let mut user = User::new();
-    user.add("Cube");
-    user.tap(KeyCode::Tab);
-    user.tap(KeyCode::Digit3);
+    let mut user = cube_in_edit_mode(KeyCode::Digit3);
     let top = user.screen_of(Vec3::Y);
     user.click(top);
     user.click_on("View");

@@ -9,7 +9,7 @@ use hedra_doc::NodeContent;
 use hedra_geom::DVec3;
 
 /// A cube (size 2, corners at ±1) in edit mode, in `mode` (1, 2 or 3).
-fn cube_in_edit_mode(mode: KeyCode) -> User {
+pub(crate) fn cube_in_edit_mode(mode: KeyCode) -> User {
     let mut user = User::new();
     user.add("Cube");
     user.tap(KeyCode::Tab);

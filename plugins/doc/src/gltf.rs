@@ -483,8 +483,15 @@ pub fn gltf_from_bytes(
         message,
     };
     check_before_validation(bytes).map_err(|m| err(format!("not a readable glTF file ({m})")))?;
-    let gltf = gltf::Gltf::from_slice(bytes)
-        .map_err(|e| err(format!("not a readable glTF file ({e})")))?;
+    let gltf = gltf::Gltf::from_slice(bytes).map_err(|e| {
+        // Why a 2.0 reader fails on it, said plainly for glTF 1 files
+        // (looked at only when reading failed).
+        let why = match gltf1_version(bytes) {
+            Some(v) => format!("glTF {v}, which Hedra does not read: re-export it as glTF 2.0"),
+            None => e.to_string(),
+        };
+        err(format!("not a readable glTF file ({why})"))
+    })?;
     let mut buffers: Vec<Vec<u8>> = Vec::new();
     for buffer in gltf.document.buffers() {
         let data = match buffer.source() {
@@ -698,8 +705,8 @@ pub fn gltf_from_bytes(
 /// than its header, and (gltf-json 1.4 panics) a primitive's `POSITION`
 /// naming an accessor past the list.
 /// Files that do not even parse are left to `gltf` to report.
-/// The version of a glTF 1.x file ("1.0"), found before the 2.0 reader
-/// fails on it: a GLB header of version 1, or JSON whose `asset.version`
+/// The version of a glTF 1.x file ("1.0"), once the 2.0 reader failed on
+/// it: a GLB header of version 1, or JSON whose `asset.version`
 /// starts with 1 or that keeps `accessors` as a map (glTF 1 keys its
 /// objects by name; 2.0 lists them).
 fn gltf1_version(bytes: &[u8]) -> Option<String> {
@@ -715,11 +722,6 @@ fn gltf1_version(bytes: &[u8]) -> Option<String> {
 }
 
 fn check_before_validation(bytes: &[u8]) -> Result<(), String> {
-    if let Some(version) = gltf1_version(bytes) {
-        return Err(format!(
-            "glTF {version}, which Hedra does not read: re-export it as glTF 2.0"
-        ));
-    }
     // `gltf` subtracts the 12-byte header from the stated length unchecked.
     if let Some(&[a, b, c, d]) = bytes.strip_prefix(b"glTF").and_then(|h| h.get(4..8)) {
         let length = u32::from_le_bytes([a, b, c, d]);

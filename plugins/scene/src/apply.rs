@@ -14,7 +14,7 @@ pub fn apply_requests(
     mut changed: MessageWriter<DocChanged>,
 ) {
     let state = &mut *state;
-    if let Some(done) = jobs.finished(false) {
+    if let Some(done) = jobs.finished() {
         let result = finish_file_job(state, &mut status, done);
         report(state, &mut status, &mut changed, result);
     }
@@ -48,6 +48,24 @@ fn report(
     }
 }
 
+/// Makes a loaded session (an opened file, a recovery point) the document,
+/// belonging to `path`; its warnings go to the user.
+fn adopt(
+    state: &mut DocState,
+    status: &mut StatusMessage,
+    loaded: hedra_doc::file::Loaded,
+    path: Option<PathBuf>,
+) -> DocChanged {
+    state.session = loaded.session;
+    state.path = path;
+    state.opened_serial = state.session.history.current_serial();
+    status.warnings.extend(loaded.warnings);
+    DocChanged {
+        created: vec![],
+        replaced: true,
+    }
+}
+
 /// Applies the result of a finished open or save.
 fn finish_file_job(
     state: &mut DocState,
@@ -56,15 +74,8 @@ fn finish_file_job(
 ) -> Result<Option<DocChanged>, String> {
     match done {
         FinishedFile::Opened(path, Ok(loaded)) => {
-            state.session = loaded.session;
-            state.path = Some(path.clone());
-            state.opened_serial = state.session.history.current_serial();
             status.info(format!("Opened {}", path.display()));
-            status.warnings.extend(loaded.warnings);
-            Ok(Some(DocChanged {
-                created: vec![],
-                replaced: true,
-            }))
+            Ok(Some(adopt(state, status, loaded, Some(path))))
         }
         FinishedFile::Opened(_, Err(e)) => Err(e.to_string()),
         FinishedFile::Saved(path, serial, Ok(())) => {
@@ -151,18 +162,12 @@ fn apply(
         }
         DocRequest::Recover(entry) => match hedra_doc::recovery::recover(entry) {
             Ok(loaded) => {
-                state.session = loaded.session;
-                state.path = entry.meta.original.clone();
-                state.opened_serial = state.session.history.current_serial();
+                let changed = adopt(state, status, loaded, entry.meta.original.clone());
                 status.info(format!(
                     "Recovered {} — save to keep it",
                     state.display_name()
                 ));
-                status.warnings.extend(loaded.warnings);
-                Ok(Some(DocChanged {
-                    created: vec![],
-                    replaced: true,
-                }))
+                Ok(Some(changed))
             }
             Err(e) => Err(format!("Recovery failed, the file was kept: {e}")),
         },

@@ -12,13 +12,23 @@ use std::collections::VecDeque;
 use std::sync::Mutex;
 use std::sync::mpsc::{Receiver, TryRecvError, channel};
 
-/// Waits for or polls a worker's result.
-fn receive<T>(done: &Mutex<Receiver<T>>, block: bool) -> Result<T, TryRecvError> {
+/// A worker's result once it has one (a worker that stopped without one
+/// is an error naming the file); `block` waits for it.
+fn receive<T>(
+    done: &Mutex<Receiver<Result<T, FileError>>>,
+    path: &std::path::Path,
+    block: bool,
+) -> Option<Result<T, FileError>> {
     let done = done.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
-    if block {
+    let r = if block {
         done.recv().map_err(|_| TryRecvError::Disconnected)
     } else {
         done.try_recv()
+    };
+    match r {
+        Ok(r) => Some(r),
+        Err(TryRecvError::Empty) => None,
+        Err(TryRecvError::Disconnected) => Some(Err(worker_died(path))),
     }
 }
 
@@ -106,28 +116,14 @@ impl FileJobs {
         });
     }
 
-    /// The running job's result, if it has finished (`block`: wait for it).
-    pub(crate) fn finished(&mut self, block: bool) -> Option<FinishedFile> {
+    /// The running job's result, if it has finished.
+    pub(crate) fn finished(&mut self) -> Option<FinishedFile> {
         let result = match self.running.as_ref()? {
             FileJob::Open { path, done } => {
-                let r = receive(done, block);
-                match r {
-                    Ok(r) => FinishedFile::Opened(path.clone(), r),
-                    Err(TryRecvError::Empty) => return None,
-                    Err(TryRecvError::Disconnected) => {
-                        FinishedFile::Opened(path.clone(), Err(worker_died(path)))
-                    }
-                }
+                FinishedFile::Opened(path.clone(), receive(done, path, false)?)
             }
             FileJob::Save { path, serial, done } => {
-                let r = receive(done, block);
-                match r {
-                    Ok(r) => FinishedFile::Saved(path.clone(), *serial, r),
-                    Err(TryRecvError::Empty) => return None,
-                    Err(TryRecvError::Disconnected) => {
-                        FinishedFile::Saved(path.clone(), *serial, Err(worker_died(path)))
-                    }
-                }
+                FinishedFile::Saved(path.clone(), *serial, receive(done, path, false)?)
             }
         };
         self.running = None;
@@ -152,7 +148,7 @@ fn worker_died(path: &std::path::Path) -> FileError {
 /// quitting right after Ctrl+S loses nothing (the file is complete on disk;
 /// the app is closing, so nothing else needs to know).
 pub fn finish_saves_on_exit(exits: MessageReader<AppExit>, jobs: Res<FileJobs>) {
-    if let (false, Some(FileJob::Save { done, .. })) = (exits.is_empty(), &jobs.running) {
-        let _ = receive(done, true);
+    if let (false, Some(FileJob::Save { done, path, .. })) = (exits.is_empty(), &jobs.running) {
+        let _ = receive(done, path, true);
     }
 }

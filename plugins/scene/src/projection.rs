@@ -359,7 +359,6 @@ pub fn project_render_meshes(
         status: &mut status,
         material: material.as_deref(),
     };
-    let mut smoothed = std::collections::HashSet::new();
     let mut any_changed = false;
     for (entity, node, name, content, mesh3d, on_screen) in &nodes {
         let Some(content) = content else {
@@ -373,9 +372,6 @@ pub fn project_render_meshes(
             }
             continue;
         };
-        if content.active_modifier().is_some() {
-            smoothed.insert(node.0);
-        }
         any_changed |= content.is_changed();
         if content.is_changed() || previews.is_changed() {
             let preview = previews.content(node.0);
@@ -383,8 +379,16 @@ pub fn project_render_meshes(
             projector.mesh(&mut ec, node.0, name, &content, preview, mesh3d, on_screen);
         }
     }
+    // Refinements of nodes that no longer smooth go (looked up only when
+    // a mesh changed).
     if any_changed {
-        smooth.retain(|id| smoothed.contains(&id));
+        smooth.retain(|id| {
+            map.0
+                .get(&id)
+                .and_then(|e| nodes.get(*e).ok())
+                .and_then(|(_, _, _, content, _, _)| content)
+                .is_some_and(|c| c.active_modifier().is_some())
+        });
     }
 }
 

@@ -145,15 +145,19 @@ pub fn project_control_points(
         let changed = previews.is_changed()
             || curve.as_ref().is_some_and(|c| c.is_changed())
             || surface.as_ref().is_some_and(|s| s.is_changed());
+        // Nothing to do unless the shape changed, or a node that is no
+        // longer a curve or surface still has point entities.
+        let is_point = |c: &&Entity| points.contains(**c);
+        let shape = curve.is_some() || surface.is_some();
+        if !changed && (shape || !children.into_iter().flatten().any(|c| is_point(&c))) {
+            continue;
+        }
         let existing: Vec<Entity> = children
             .into_iter()
             .flatten()
+            .filter(is_point)
             .copied()
-            .filter(|c| points.contains(*c))
             .collect();
-        if !changed && (curve.is_some() || surface.is_some() || existing.is_empty()) {
-            continue;
-        }
         let content = shown_shape(&previews, node.0, curve.as_deref(), surface.as_deref());
         let wanted = content.as_ref().map(control_points).unwrap_or_default();
         let weights = content.as_ref().and_then(control_weights);
