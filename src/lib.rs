@@ -1,6 +1,10 @@
 //! The Hedra application: the plugin group of the Bevy crates, the windowed
 //! app, a windowless app for tests, and the headless CLI.
 
+// Bevy systems take their world access as parameters: long parameter lists
+// and nested query types are how Bevy code is written (Bevy allows both too).
+#![allow(clippy::too_many_arguments, clippy::type_complexity)]
+
 use bevy::app::PluginGroupBuilder;
 use bevy::prelude::*;
 use bevy::render::view::screenshot::{Screenshot, ScreenshotCaptured, save_to_disk};

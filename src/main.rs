@@ -21,11 +21,11 @@ fn main() -> ExitCode {
             }
         },
         None => {
-            if let Some(f) = &cli.file {
-                if !f.exists() {
-                    eprintln!("hedra: error: {}: no such file", f.display());
-                    return ExitCode::FAILURE;
-                }
+            if let Some(f) = &cli.file
+                && !f.exists()
+            {
+                eprintln!("hedra: error: {}: no such file", f.display());
+                return ExitCode::FAILURE;
             }
             let faces = match cli
                 .select

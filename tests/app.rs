@@ -277,7 +277,7 @@ fn patching_positions_gives_the_same_render_mesh_as_rebuilding() {
         assert!(update_render_positions(&mut patched, &old, &new, shading));
         let rebuilt = render_mesh(&new, shading);
         for a in [Mesh::ATTRIBUTE_POSITION, Mesh::ATTRIBUTE_NORMAL] {
-            let (p, r) = (attr(&patched, a.clone()), attr(&rebuilt, a));
+            let (p, r) = (attr(&patched, a), attr(&rebuilt, a));
             assert_eq!(p.len(), r.len());
             for (x, y) in p.iter().zip(&r) {
                 assert!(
@@ -892,7 +892,7 @@ fn autosave_waits_for_tools_writes_changes_and_is_removed_by_a_save() {
         .resource_mut::<hedra_ui::UiState>()
         .transform_edit = None;
     let start = std::time::Instant::now();
-    while !(meta.exists() && !app.world().resource::<Recovery>().is_writing()) {
+    while !meta.exists() || app.world().resource::<Recovery>().is_writing() {
         assert!(start.elapsed().as_secs() < 10, "autosave not written");
         app.update();
         std::thread::sleep(std::time::Duration::from_millis(20));

@@ -628,9 +628,9 @@ fn eval_prints_exact_geometry_and_export_tessellates_curves_and_surfaces() {
         if let Some(rest) = l.strip_prefix("v ") {
             let c: Vec<f64> = rest.split(' ').map(|x| x.parse().unwrap()).collect();
             v.push([c[0], c[1], c[2]]);
-        } else if l.starts_with("l ") {
+        } else if let Some(rest) = l.strip_prefix("l ") {
             lines += 1;
-            let idx: Vec<usize> = l[2..].split(' ').map(|x| x.parse().unwrap()).collect();
+            let idx: Vec<usize> = rest.split(' ').map(|x| x.parse().unwrap()).collect();
             assert!(
                 idx.len() > 50,
                 "the circle is finely tessellated: {}",

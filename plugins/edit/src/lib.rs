@@ -4,6 +4,10 @@
 //! Tools never touch the document directly: they preview on entities and
 //! send one [`DocRequest`] when the user confirms, so a drag is one undo step.
 
+// Bevy systems take their world access as parameters: long parameter lists
+// and nested query types are how Bevy code is written (Bevy allows both too).
+#![allow(clippy::too_many_arguments, clippy::type_complexity)]
+
 use bevy::prelude::*;
 use bevy::window::PrimaryWindow;
 use glam::{DMat4, DQuat, DVec3};
@@ -425,7 +429,7 @@ pub fn subdivision_keys(
     let doc = &state.session.doc;
     let targets: Vec<NodeId> = match mode.node {
         Some(n) => vec![n],
-        None => selection.nodes.iter().copied().collect(),
+        None => selection.nodes.to_vec(),
     };
     let mut changed = Vec::new();
     for id in targets {

@@ -216,17 +216,16 @@ pub fn shape_select_and_shortcuts(
         && buttons.just_pressed(MouseButton::Left)
         && !alt(&keys)
         && !crate::gizmo_has_pointer(gizmo.as_deref())
+        && let Some(cursor) = cursor
     {
-        if let Some(cursor) = cursor {
-            match point_under_cursor(&points, world, cursor, cam, cam_t) {
-                Some(i) if shift(&keys) => {
-                    if !edit.selected.remove(&i) {
-                        edit.selected.insert(i);
-                    }
+        match point_under_cursor(&points, world, cursor, cam, cam_t) {
+            Some(i) if shift(&keys) => {
+                if !edit.selected.remove(&i) {
+                    edit.selected.insert(i);
                 }
-                Some(i) => edit.selected = BTreeSet::from([i]),
-                None => edit.box_select = Some((cursor, cursor)),
             }
+            Some(i) => edit.selected = BTreeSet::from([i]),
+            None => edit.box_select = Some((cursor, cursor)),
         }
     }
     if let (Some((start, _)), Some(cursor)) = (edit.box_select, cursor) {

@@ -14,6 +14,10 @@
 //! `render_mesh` (building meshes from content), `smooth`
 //! (subdivision previews refined in the background).
 
+// Bevy systems take their world access as parameters: long parameter lists
+// and nested query types are how Bevy code is written (Bevy allows both too).
+#![allow(clippy::too_many_arguments, clippy::type_complexity)]
+
 use bevy::asset::RenderAssetUsages;
 use bevy::mesh::{Indices, PrimitiveTopology};
 use bevy::prelude::*;

@@ -1,6 +1,10 @@
 //! Panels, menus, dialogs and the status bar (egui), plus the window title
 //! and the file workflow (open, save, ask before discarding changes).
 
+// Bevy systems take their world access as parameters: long parameter lists
+// and nested query types are how Bevy code is written (Bevy allows both too).
+#![allow(clippy::too_many_arguments, clippy::type_complexity)]
+
 use bevy::camera::visibility::RenderLayers;
 use bevy::camera::{CameraOutputMode, Viewport};
 use bevy::prelude::*;
@@ -458,10 +462,10 @@ fn remember_recent(
             }
         }
     }
-    if !state.session.is_dirty() {
-        if let Some(p) = ui.after_save.take() {
-            run_pending(p, &mut ui, &state, &mut requests, &mut exit);
-        }
+    if !state.session.is_dirty()
+        && let Some(p) = ui.after_save.take()
+    {
+        run_pending(p, &mut ui, &state, &mut requests, &mut exit);
     }
 }
 

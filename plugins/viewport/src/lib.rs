@@ -5,6 +5,10 @@
 //! curve and surface analysis (`analysis`). The systems here draw what the
 //! document and the tools left; they run in `SceneSystems::View`.
 
+// Bevy systems take their world access as parameters: long parameter lists
+// and nested query types are how Bevy code is written (Bevy allows both too).
+#![allow(clippy::too_many_arguments, clippy::type_complexity)]
+
 use bevy::core_pipeline::tonemapping::Tonemapping;
 use bevy::input::mouse::{AccumulatedMouseMotion, AccumulatedMouseScroll, MouseScrollUnit};
 use bevy::prelude::*;

@@ -64,10 +64,10 @@ pub(crate) fn update_edge_overlays(
             shown,
         };
         let existing = children.and_then(|c| c.iter().find(|c| overlays.contains(*c)));
-        if let Some(child) = existing {
-            if overlays.get(child).is_ok_and(|(o, _)| *o == wanted) {
-                continue;
-            }
+        if let Some(child) = existing
+            && overlays.get(child).is_ok_and(|(o, _)| *o == wanted)
+        {
+            continue;
         }
         let Some(content) = doc.node(node.0).map(|n| &n.content) else {
             continue;
@@ -247,12 +247,12 @@ pub(crate) fn update_edit_edges(
     });
     // The overlay follows the node's world transform every frame (the
     // entity spawned on the first frame has no Transform to set yet).
-    if let (Some((entity, _)), Some(node)) = (overlay.as_ref(), mode.node) {
-        if let Ok(mut t) = transforms.get_mut(*entity) {
-            let want = Transform::from_matrix(state.session.doc.world_matrix(node).as_mat4());
-            if *t != want {
-                *t = want;
-            }
+    if let (Some((entity, _)), Some(node)) = (overlay.as_ref(), mode.node)
+        && let Ok(mut t) = transforms.get_mut(*entity)
+    {
+        let want = Transform::from_matrix(state.session.doc.world_matrix(node).as_mat4());
+        if *t != want {
+            *t = want;
         }
     }
     if *built == key {

@@ -262,13 +262,13 @@ pub fn mode_keys(
     } else {
         None
     };
-    if let (Some(k), Some(mesh)) = (new_kind, edited_mesh(&state, &mode)) {
-        if k != mode.kind {
-            // Convert the selection like Blender: keep what the new kind can express.
-            mode.selection =
-                ElementSelection::from_vertices(k, &mesh, &mode.selection.all_vertices(&mesh));
-            mode.kind = k;
-        }
+    if let (Some(k), Some(mesh)) = (new_kind, edited_mesh(&state, &mode))
+        && k != mode.kind
+    {
+        // Convert the selection like Blender: keep what the new kind can express.
+        mode.selection =
+            ElementSelection::from_vertices(k, &mesh, &mode.selection.all_vertices(&mesh));
+        mode.kind = k;
     }
 }
 

@@ -87,15 +87,14 @@ pub fn select_elements(
         && gate.pointer_free
         && !mode.just_finished
         && !crate::gizmo_has_pointer(gizmo.as_deref())
+        && let Some(c) = cursor
     {
-        if let Some(c) = cursor {
-            *press = Some(Press {
-                start: c,
-                alt: alt(&keys),
-                ctrl: ctrl(&keys),
-                shift: shift(&keys),
-            });
-        }
+        *press = Some(Press {
+            start: c,
+            alt: alt(&keys),
+            ctrl: ctrl(&keys),
+            shift: shift(&keys),
+        });
     }
     if gate.keyboard_free && alt(&keys) && keys.just_pressed(KeyCode::KeyZ) {
         mode.x_ray = !mode.x_ray;

@@ -172,10 +172,11 @@ pub fn draw_ui(
     gate.pointer_free = cursor.is_some_and(|c| free.contains(c))
         && !ctx.egui_is_using_pointer()
         && !ctx.is_pointer_over_egui();
-    if focus_before.is_none() && ctx.input(|i| i.key_pressed(egui::Key::Tab)) {
-        if let Some(id) = ctx.memory(|m| m.focused()) {
-            ctx.memory_mut(|m| m.surrender_focus(id));
-        }
+    if focus_before.is_none()
+        && ctx.input(|i| i.key_pressed(egui::Key::Tab))
+        && let Some(id) = ctx.memory(|m| m.focused())
+    {
+        ctx.memory_mut(|m| m.surrender_focus(id));
     }
     gate.keyboard_free = !ctx.egui_wants_keyboard_input();
 

@@ -107,17 +107,17 @@ pub(super) fn outliner_row(
         if resp.double_clicked() {
             state.rename = Some(crate::Rename::new(id, &node.name));
         }
-        if let Some(dragged) = resp.dnd_release_payload::<NodeId>() {
-            if *dragged != id {
-                exec(
-                    events,
-                    Command::Reparent {
-                        node: NodeRef::from(*dragged),
-                        parent: Some(id.into()),
-                        keep_world: true,
-                    },
-                );
-            }
+        if let Some(dragged) = resp.dnd_release_payload::<NodeId>()
+            && *dragged != id
+        {
+            exec(
+                events,
+                Command::Reparent {
+                    node: NodeRef::from(*dragged),
+                    parent: Some(id.into()),
+                    keep_world: true,
+                },
+            );
         }
         resp.context_menu(|ui| {
             if ui.button("Rename").clicked() {

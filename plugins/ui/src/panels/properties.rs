@@ -93,23 +93,23 @@ pub(super) fn properties(
             }
             // A drag or a typed value becomes one step when the field is let go.
             let busy = resp.dragged() || resp.has_focus();
-            if !busy {
-                if let Some((eid, edited)) = state.transform_edit.take() {
-                    if eid == id && edited != node.transform {
-                        if edited.is_usable() {
-                            exec(
-                                events,
-                                Command::SetTransforms {
-                                    nodes: vec![(id.into(), edited)],
-                                },
-                            );
-                        } else {
-                            events.push(UiEvent::Preview(id, node.transform));
-                            events.push(UiEvent::Error(
-                                "A scale of zero (or a non-finite value) is not allowed".into(),
-                            ));
-                        }
-                    }
+            if !busy
+                && let Some((eid, edited)) = state.transform_edit.take()
+                && eid == id
+                && edited != node.transform
+            {
+                if edited.is_usable() {
+                    exec(
+                        events,
+                        Command::SetTransforms {
+                            nodes: vec![(id.into(), edited)],
+                        },
+                    );
+                } else {
+                    events.push(UiEvent::Preview(id, node.transform));
+                    events.push(UiEvent::Error(
+                        "A scale of zero (or a non-finite value) is not allowed".into(),
+                    ));
                 }
             }
         });
