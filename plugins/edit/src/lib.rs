@@ -27,16 +27,20 @@ pub use shape_mode::ShapeEdit;
 /// Selected nodes, in the order they were selected; the last one is active.
 #[derive(Resource, Default, Debug, Clone, PartialEq)]
 pub struct Selection {
+    /// The selected node ids, in selection order: the last one is active.
     pub nodes: Vec<NodeId>,
 }
 
 impl Selection {
+    /// The active (last selected) node, or `None` when nothing is selected.
     pub fn active(&self) -> Option<NodeId> {
         self.nodes.last().copied()
     }
+    /// True when `id` is selected, active or not.
     pub fn contains(&self, id: NodeId) -> bool {
         self.nodes.contains(&id)
     }
+    /// Replaces the selection with `ids`, in that order (the last one becomes active).
     pub fn set(&mut self, ids: impl IntoIterator<Item = NodeId>) {
         self.nodes = ids.into_iter().collect();
     }
@@ -49,6 +53,7 @@ impl Selection {
             self.nodes.push(id);
         }
     }
+    /// The selected nodes as command references (by id), in selection order.
     pub fn refs(&self) -> Vec<NodeRef> {
         self.nodes.iter().map(|&n| NodeRef::from(n)).collect()
     }

@@ -10,21 +10,30 @@ use glam::{DMat4, DQuat, DVec3};
 use hedra_doc::{Command, Document, NodeId, NodeRef, Transform as DocTransform};
 use hedra_scene::{DocRequest, DocState, PreviewSource, Previews, ToolPreview, ViewportCamera};
 
+/// What a modal object transform does.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 pub enum TransformKind {
+    /// Move (G).
     Grab,
+    /// Rotate (R).
     Rotate,
+    /// Scale (S).
     Scale,
 }
 
+/// A world axis a modal tool is locked to (the X, Y or Z key).
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 pub enum Axis {
+    /// The world X axis.
     X,
+    /// The world Y axis (up).
     Y,
+    /// The world Z axis.
     Z,
 }
 
 impl Axis {
+    /// The axis as a world-space unit vector.
     pub fn vector(self) -> DVec3 {
         match self {
             Axis::X => DVec3::X,
@@ -37,6 +46,7 @@ impl Axis {
 /// The tool's state; `active` is `Some` while a G/R/S is running.
 #[derive(Resource, Default, Debug)]
 pub struct TransformTool {
+    /// The running transform; `None` when no G/R/S is in progress.
     pub active: Option<ModalTransform>,
     /// Set on the frame a tool ended, so the confirming click selects nothing.
     pub just_finished: bool,
@@ -55,7 +65,10 @@ struct Item {
 /// A running G/R/S.
 #[derive(Clone, Debug)]
 pub struct ModalTransform {
+    /// Move, rotate or scale.
     pub kind: TransformKind,
+    /// The world axis locked with X / Y / Z; `None` when free (move in the view
+    /// plane, rotate about the view axis, scale uniformly).
     pub axis: Option<Axis>,
     /// Digits typed so far (an exact distance, angle in degrees, or factor).
     pub typed: crate::typing::TypedNumber,
@@ -310,15 +323,19 @@ pub fn drive_transform_tool(
 /// it), Enter, Space or a left click confirms. The object transform tool,
 /// the mesh tools and the control-point tools all read them here.
 pub struct ModalKeys<'a> {
+    /// This frame's keyboard state.
     pub keys: &'a ButtonInput<KeyCode>,
+    /// This frame's mouse-button state.
     pub buttons: &'a ButtonInput<MouseButton>,
 }
 
 impl ModalKeys<'_> {
+    /// True on the frame Esc or the right mouse button is pressed.
     pub fn cancel(&self) -> bool {
         self.keys.just_pressed(KeyCode::Escape) || self.buttons.just_pressed(MouseButton::Right)
     }
 
+    /// True on the frame Enter, Numpad Enter, Space or the left mouse button is pressed.
     pub fn confirm(&self) -> bool {
         self.keys
             .any_just_pressed([KeyCode::Enter, KeyCode::NumpadEnter, KeyCode::Space])

@@ -22,28 +22,39 @@ use crate::typing::TypedNumber;
 /// What a shape tool changes.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 pub enum ShapeToolKind {
+    /// Move the selected control points (G).
     Move,
+    /// Change the selected control points' weights (W); a typed number sets
+    /// them all to it.
     Weight,
 }
 
 /// A running shape tool.
 #[derive(Clone, Debug)]
 pub struct ShapeTool {
+    /// Which tool runs.
     pub kind: ShapeToolKind,
+    /// The world axis locked with X / Y / Z (move only); `None` when free.
     pub axis: Option<Axis>,
+    /// Digits typed so far: when they form a number, it replaces the mouse (a
+    /// world distance along the axis, or the new weight).
     pub typed: TypedNumber,
     start_cursor: Vec2,
     /// World-space centre of the selected points (the drag plane goes through it).
     pivot: DVec3,
+    /// What the status bar shows for the tool, with the typed digits or the
+    /// reason the command cannot apply appended.
     pub readout: String,
 }
 
 /// Edit-mode state of a curve or surface node.
 #[derive(Resource, Default, Debug)]
 pub struct ShapeEdit {
+    /// The curve or surface node being edited; `None` outside shape edit mode.
     pub node: Option<NodeId>,
     /// Selected control points (indices as commands count them).
     pub selected: BTreeSet<u32>,
+    /// The running tool, if any.
     pub tool: Option<ShapeTool>,
     /// The node's content as the running tool would leave it.
     pub preview: Option<NodeContent>,
@@ -54,6 +65,7 @@ pub struct ShapeEdit {
 }
 
 impl ShapeEdit {
+    /// True while a curve or surface node is in shape edit mode.
     pub fn active(&self) -> bool {
         self.node.is_some()
     }

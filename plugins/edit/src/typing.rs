@@ -59,9 +59,11 @@ impl TypedNumber {
             t.parse().ok()
         }
     }
+    /// True when nothing has been typed (or everything was deleted).
     pub fn is_empty(&self) -> bool {
         self.0.is_empty()
     }
+    /// The typed text as it stands, e.g. "-1.5" or "-" (for the readout).
     pub fn as_str(&self) -> &str {
         &self.0
     }

@@ -35,17 +35,23 @@ pub use tools::*;
 /// Which elements clicks select.
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
 pub enum ElementKind {
+    /// Vertices (key 1), the default.
     #[default]
     Vertex,
+    /// Edges (key 2).
     Edge,
+    /// Faces (key 3).
     Face,
 }
 
 /// Selected elements of the edited mesh (ids).
 #[derive(Clone, Debug, Default, PartialEq, Eq, Hash)]
 pub struct ElementSelection {
+    /// Selected vertices (the set vertex mode fills).
     pub vertices: BTreeSet<VertexId>,
+    /// Selected edges (the set edge mode fills).
     pub edges: BTreeSet<EdgeId>,
+    /// Selected faces (the set face mode fills).
     pub faces: BTreeSet<FaceId>,
     /// Vertices in the order they were clicked (for Merge at First / Last).
     pub clicked: Vec<VertexId>,
@@ -97,6 +103,7 @@ impl ElementSelection {
         sel
     }
 
+    /// True when no vertex, edge or face is selected.
     pub fn is_empty(&self) -> bool {
         self.vertices.is_empty() && self.edges.is_empty() && self.faces.is_empty()
     }
@@ -128,6 +135,7 @@ impl ElementSelection {
 /// The modal mesh tools.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 pub enum MeshToolKind {
+    /// Move the selected elements' vertices (G), in the view plane or along a locked axis.
     Move,
     /// Extrude the selected faces each on its own (Alt+E).
     ExtrudeIndividual,
@@ -144,18 +152,30 @@ pub enum MeshToolKind {
     /// Drag the subdivision crease of the selected edges, or the corner
     /// sharpness of the selected vertices in vertex mode (Shift+E).
     Crease,
+    /// Rotate the selected elements' vertices about their mean (R), about the view axis or a locked axis.
     Rotate,
+    /// Scale the selected elements' vertices about their mean (S), uniformly or along a locked axis.
     Scale,
+    /// Extrude the selected faces as one region along its normal (E, outside
+    /// edge mode).
     Extrude,
+    /// Inset the selected faces as one region (I).
     Inset,
+    /// Cut edge loops across the ring through the edge under the cursor, or
+    /// the first selected edge (Ctrl+R).
     LoopCut,
 }
 
 /// A running mesh tool.
 #[derive(Clone, Debug)]
 pub struct MeshTool {
+    /// Which tool runs.
     pub kind: MeshToolKind,
+    /// The world axis locked with X / Y / Z (move, rotate and scale only); `None`
+    /// when free.
     pub axis: Option<Axis>,
+    /// Digits typed so far: when they form a number, it replaces the mouse
+    /// (a distance, angle in degrees, factor, sharpness or cut count, by tool).
     pub typed: crate::typing::TypedNumber,
     start_cursor: Vec2,
     pivot: DVec3,
@@ -173,15 +193,21 @@ pub struct MeshTool {
     /// command has no such form).
     linear: Option<hedra_doc::preview::LinearPreview>,
     linear_tried: bool,
+    /// What the status bar shows for the tool ("Extrude 0.2500"), with the
+    /// typed digits or the reason the command cannot apply appended.
     pub readout: String,
 }
 
 /// Edit-mode state: the edited node, element mode, selection, running tool.
 #[derive(Resource, Default, Debug)]
 pub struct EditMode {
+    /// The mesh node being edited; `None` outside edit mode.
     pub node: Option<NodeId>,
+    /// Which elements clicks and box selection take (vertex, edge or face mode).
     pub kind: ElementKind,
+    /// The selected elements of the edited mesh.
     pub selection: ElementSelection,
+    /// The running modal tool, if any.
     pub tool: Option<MeshTool>,
     /// X-ray (Alt+Z): box selection also takes elements hidden behind the surface.
     pub x_ray: bool,
@@ -198,6 +224,7 @@ pub struct EditMode {
 }
 
 impl EditMode {
+    /// True while a mesh node is in edit mode.
     pub fn active(&self) -> bool {
         self.node.is_some()
     }

@@ -85,8 +85,11 @@ pub fn element_under_cursor(
 /// A picked element.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 pub enum ElementHit {
+    /// A vertex of the edited mesh.
     Vertex(VertexId),
+    /// An edge of the edited mesh.
     Edge(EdgeId),
+    /// A face of the edited mesh.
     Face(FaceId),
 }
 

@@ -6,9 +6,13 @@ use super::*;
 /// or a box drag.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Press {
+    /// Where the button went down (window coordinates, logical pixels).
     pub start: Vec2,
+    /// Alt was held: a click selects the edge loop under the cursor.
     pub alt: bool,
+    /// Ctrl was held: with Alt, the edge ring instead of the loop.
     pub ctrl: bool,
+    /// Shift was held: add to (or toggle in) the selection instead of replacing it.
     pub shift: bool,
 }
 
