@@ -47,7 +47,10 @@ pub use smooth::{SmoothPreviews, SmoothSource};
 /// The open document, where it lives on disk, and a change counter.
 #[derive(Resource, Default)]
 pub struct DocState {
+    /// The document with its undo history; changed only by [`apply_requests`].
     pub session: Session,
+    /// The file the document was opened from or last saved to (a recovered
+    /// document keeps its original file); `None` for a new, never saved one.
     pub path: Option<PathBuf>,
     /// Increases on every change of the document (command, undo, load, …).
     pub revision: u64,
@@ -70,16 +73,23 @@ impl DocState {
 /// shortcuts; applied in order by [`apply_requests`].
 #[derive(Message, Clone, Debug)]
 pub enum DocRequest {
+    /// Run a document command as one undo step.
     Execute(Command),
     /// Re-run the last step with changed parameters.
     AdjustLast(Command),
+    /// Undo the last step (nothing when there is none).
     Undo,
+    /// Redo the last undone step (nothing when there is none).
     Redo,
     /// Undo or redo until this many steps are done.
     JumpTo(usize),
     /// Replace the document with an empty one (callers ask about unsaved changes first).
     New,
+    /// Load a scene file on a worker thread; it replaces the document when it
+    /// has been read.
     Open(PathBuf),
+    /// Write the document to this file on a worker thread; the document's path
+    /// becomes it when the write succeeds.
     Save(PathBuf),
     /// Add the meshes of an OBJ file as new nodes (one step).
     Import(PathBuf),
@@ -88,7 +98,10 @@ pub enum DocRequest {
     Recover(hedra_doc::recovery::RecoveryEntry),
     /// Undo history limits from the preferences (steps, approximate bytes).
     HistoryLimits {
+        /// At most this many undo steps (at least 1 is kept).
         steps: usize,
+        /// At most about this many bytes of undo history (the newest step is
+        /// always kept).
         bytes: usize,
     },
 }
@@ -105,19 +118,25 @@ pub struct DocChanged {
 /// The user-facing outcome of the latest request (status bar, error popups).
 #[derive(Resource, Default, Debug)]
 pub struct StatusMessage {
+    /// The message shown in the status bar.
     pub text: String,
+    /// True when `text` reports a failure (shown in red).
     pub is_error: bool,
     /// Warnings that need acknowledging (damaged history, …).
     pub warnings: Vec<String>,
+    /// Increases with every [`info`](Self::info) and [`error`](Self::error),
+    /// so a message repeated with the same text can still be told apart as new.
     pub serial: u64,
 }
 
 impl StatusMessage {
+    /// Shows `text` as a normal message.
     pub fn info(&mut self, text: impl Into<String>) {
         self.text = text.into();
         self.is_error = false;
         self.serial += 1;
     }
+    /// Shows `text` as an error.
     pub fn error(&mut self, text: impl Into<String>) {
         self.text = text.into();
         self.is_error = true;
@@ -207,7 +226,10 @@ fn setup_material(mut commands: Commands, mut materials: ResMut<Assets<StandardM
 /// UI clears these while the pointer is over a panel or a text field has focus.
 #[derive(Resource, Debug, Clone, Copy)]
 pub struct InputGate {
+    /// False while the pointer is not over the 3D view (over a panel, or
+    /// outside the window) or egui is using it (a drag started in a panel).
     pub pointer_free: bool,
+    /// False while an egui widget (such as a text field) takes keyboard input.
     pub keyboard_free: bool,
 }
 
@@ -237,9 +259,11 @@ pub mod modifiers {
         held(keys, [KeyCode::ControlLeft, KeyCode::ControlRight])
             || held(keys, [KeyCode::SuperLeft, KeyCode::SuperRight])
     }
+    /// Shift (left or right).
     pub fn shift(keys: &ButtonInput<KeyCode>) -> bool {
         held(keys, [KeyCode::ShiftLeft, KeyCode::ShiftRight])
     }
+    /// Alt (left or right; Option on macOS).
     pub fn alt(keys: &ButtonInput<KeyCode>) -> bool {
         held(keys, [KeyCode::AltLeft, KeyCode::AltRight])
     }

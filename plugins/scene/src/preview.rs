@@ -37,10 +37,14 @@ pub enum PreviewSource {
 pub enum PreviewContent {
     /// A mesh tool's result; `creases` replace the document's when given.
     Mesh {
+        /// The mesh as the tool would leave it, in the node's local space.
         mesh: Arc<HalfEdgeMesh>,
+        /// Creases that replace the document's; `None` keeps the document's.
         creases: Option<Creases>,
     },
+    /// A control-point tool's curve.
     Curve(Arc<NurbsCurve>),
+    /// A control-point tool's surface.
     Surface(Arc<SurfaceShape>),
 }
 
@@ -78,11 +82,16 @@ impl PreviewContent {
 /// document's on screen.
 #[derive(Clone, Debug, Default)]
 pub struct ToolPreview {
+    /// Local transforms (relative to the parent) shown instead of the
+    /// document's, by node.
     pub transforms: HashMap<NodeId, DocTransform>,
+    /// Contents shown instead of the document's, by node.
     pub contents: HashMap<NodeId, PreviewContent>,
 }
 
 impl ToolPreview {
+    /// True when the preview changes nothing on screen (an empty preview
+    /// clears its slot instead of filling it).
     pub fn is_empty(&self) -> bool {
         self.transforms.is_empty() && self.contents.is_empty()
     }

@@ -12,7 +12,10 @@ pub struct NodeEntity(pub NodeId);
 /// [`sync_entities`].
 #[derive(Component, Clone, Copy, Debug, PartialEq, Eq)]
 pub struct ProjectedMesh {
+    /// The identity of the content's shared geometry (the address of its
+    /// `Arc`), so a changed mesh, curve or surface gives a different value.
     pub source: usize,
+    /// The content's shading (curves count as flat, surfaces as smooth).
     pub shading: Shading,
     /// The modifier and a fingerprint of the creases, for smooth previews.
     pub smooth: Option<(hedra_doc::SubdivisionModifier, u64)>,
@@ -42,9 +45,13 @@ pub fn active_modifier(content: &hedra_doc::MeshContent) -> Option<hedra_doc::Su
 /// it differs, so `Changed<NodeMesh>` means the document's mesh changed.
 #[derive(Component, Clone, Debug)]
 pub struct NodeMesh {
+    /// The cage, shared with the document (not copied).
     pub mesh: Arc<HalfEdgeMesh>,
+    /// Flat or smooth normals for the render mesh.
     pub shading: Shading,
+    /// Subdivision creases on the cage's edges and vertices.
     pub creases: hedra_geom::subdivision::Creases,
+    /// The subdivision modifier; `None` when the mesh has none.
     pub subdivision: Option<hedra_doc::SubdivisionModifier>,
 }
 

@@ -70,10 +70,15 @@ pub struct SmoothPreviews {
 
 /// What a smooth preview is made from.
 pub struct SmoothSource<'a> {
+    /// The mesh node the preview is for.
     pub node: NodeId,
+    /// The cage that is subdivided (its `Arc` identity is part of the job's key).
     pub cage: &'a Arc<HalfEdgeMesh>,
+    /// The creases the subdivision honours.
     pub creases: &'a Creases,
+    /// The subdivision modifier (its viewport level is what is refined).
     pub modifier: &'a SubdivisionModifier,
+    /// Flat or smooth normals for the resulting render mesh.
     pub shading: Shading,
 }
 
