@@ -9,15 +9,24 @@ use std::path::{Path, PathBuf};
 /// What a chosen path is for.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum FilePurpose {
+    /// Open a scene (.hedra.ron).
     Open,
+    /// Save the scene under a new path (the scene extension is added when
+    /// missing).
     SaveAs,
+    /// Import meshes as new nodes: OBJ, STL or glTF/GLB, despite the name.
     ImportObj,
+    /// Export the scene, offering .obj (Wavefront OBJ). As for every export,
+    /// the extension of the path finally chosen picks the format.
     ExportObj,
+    /// Export the scene, offering .stl (binary STL).
     ExportStl,
+    /// Export the scene, offering .glb (binary glTF 2.0; .gltf is accepted).
     ExportGlb,
 }
 
 impl FilePurpose {
+    /// The title of the dialog and of the path prompt ("Open Scene", …).
     pub fn title(self) -> &'static str {
         match self {
             FilePurpose::Open => "Open Scene",
@@ -50,23 +59,32 @@ impl FilePurpose {
 /// Something to do once the user has decided about unsaved changes.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Pending {
+    /// Replace the document with an empty one.
     New,
+    /// Open this scene file.
     Open(PathBuf),
     /// Show the Open dialog.
     BrowseOpen,
+    /// Quit the app.
     Quit,
 }
 
 /// The path prompt: a text field, with "Browse…" when a dialog backend exists.
 #[derive(Clone, Debug)]
 pub struct PathPrompt {
+    /// What the typed path will be used for.
     pub purpose: FilePurpose,
+    /// The path as typed so far (pre-filled with a suggestion when saving or
+    /// exporting).
     pub text: String,
 }
 
 /// A native file dialog running on the IO pool (it blocks its thread).
 pub struct DialogTask {
+    /// What the chosen path will be used for.
     pub purpose: FilePurpose,
+    /// The dialog's result: the chosen path, or `None` when it was cancelled
+    /// or the backend failed.
     pub task: Task<Option<PathBuf>>,
 }
 
@@ -77,6 +95,8 @@ pub fn dialog_backend_available() -> bool {
             .is_some_and(|paths| std::env::split_paths(&paths).any(|p| p.join("zenity").is_file()))
 }
 
+/// Opens the native dialog for `purpose` on the IO task pool, starting in
+/// `start_dir` when given; poll it with [`poll_dialog`].
 pub fn spawn_dialog(purpose: FilePurpose, start_dir: Option<PathBuf>) -> DialogTask {
     let (name, exts) = purpose.filter();
     let task = IoTaskPool::get().spawn(async move {
@@ -117,6 +137,8 @@ pub fn with_scene_extension(path: PathBuf) -> PathBuf {
 #[derive(Resource, Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(default)]
 pub struct Preferences {
+    /// Scenes recently opened or saved, newest first, as canonical paths (at
+    /// most ten).
     pub recent: Vec<PathBuf>,
     /// Seconds between autosaves of unsaved changes (0: never).
     pub autosave_seconds: u32,

@@ -26,9 +26,13 @@ pub use files::{FilePurpose, Pending, Preferences, SamplesDir};
 /// Everything the panels remember between frames.
 #[derive(Resource)]
 pub struct UiState {
+    /// The Outliner panel is shown (View menu).
     pub show_outliner: bool,
+    /// The Properties panel is shown (View menu).
     pub show_properties: bool,
+    /// The Undo History window is shown (Edit or View menu).
     pub show_history: bool,
+    /// The Preferences window is shown (Edit > Preferences…).
     pub show_preferences: bool,
     /// Shift+A menu position, while open.
     pub add_menu_at: Option<egui::Pos2>,
@@ -36,8 +40,12 @@ pub struct UiState {
     pub confirm: Option<Pending>,
     /// Runs after the next successful save (Save before New/Open/Quit).
     pub after_save: Option<Pending>,
+    /// The path prompt, while one is open (Open, Save As, Import, Export).
     pub path_prompt: Option<files::PathPrompt>,
+    /// The native file dialog, while one runs (beside the path prompt).
     pub dialog: Option<files::DialogTask>,
+    /// True when a native file dialog can be shown here (checked once at start);
+    /// without one, paths are typed into the prompt.
     pub dialog_backend: bool,
     /// Node being renamed in the outliner.
     pub rename: Option<Rename>,
@@ -51,6 +59,7 @@ pub struct UiState {
     pub knot_at: f64,
     /// The 3D area left by the panels, in logical pixels.
     pub viewport_rect: Option<egui::Rect>,
+    /// The window title last set, so the title is written only when it changes.
     pub last_title: String,
 }
 
@@ -81,13 +90,17 @@ impl Default for UiState {
 /// An outliner rename in progress.
 #[derive(Debug, Clone)]
 pub struct Rename {
+    /// The node being renamed.
     pub node: NodeId,
+    /// The name as edited so far (applied, trimmed, when the field loses
+    /// focus, unless Esc was pressed or it is empty).
     pub text: String,
     /// False until the field has been focused with its text selected.
     pub started: bool,
 }
 
 impl Rename {
+    /// Starts renaming `node`, with its current `name` in the field.
     pub fn new(node: NodeId, name: &str) -> Self {
         Rename {
             node,
@@ -100,18 +113,33 @@ impl Rename {
 /// Requests from menus and keys that need the file workflow.
 #[derive(Message, Clone, Debug, PartialEq)]
 pub enum FileAction {
+    /// New scene (Ctrl+N), after asking about unsaved changes.
     New,
+    /// Open a scene chosen in the file dialog or path prompt (Ctrl+O), after
+    /// asking about unsaved changes.
     Open,
+    /// Open this scene (recent files, samples, a dropped file), after asking
+    /// about unsaved changes.
     OpenPath(std::path::PathBuf),
+    /// Save to the document's file (Ctrl+S), or ask for a path when it has none.
     Save,
+    /// Save under a path chosen in the file dialog or path prompt (Ctrl+Shift+S).
     SaveAs,
+    /// Import meshes (OBJ, STL or glTF/GLB) from a file chosen in the file
+    /// dialog or path prompt.
     ImportObj,
+    /// Export to a path chosen in the file dialog or path prompt, offering OBJ.
     ExportObj,
+    /// Export to a path chosen in the file dialog or path prompt, offering STL.
     ExportStl,
+    /// Export to a path chosen in the file dialog or path prompt, offering GLB.
     ExportGlb,
+    /// Quit (Ctrl+Q or closing the window), after asking about unsaved changes.
     Quit,
 }
 
+/// The egui panels, menus and dialogs, the window title, the file workflow
+/// and recovery ([`recovery::RecoveryPlugin`]).
 pub struct UiPlugin;
 
 impl Plugin for UiPlugin {

@@ -81,6 +81,8 @@ impl Recovery {
     }
 }
 
+/// Autosave, the emergency snapshot for the panic hook, the start-up
+/// recovery offer, the undo history limits and the Preferences window.
 pub struct RecoveryPlugin;
 
 impl Plugin for RecoveryPlugin {
