@@ -121,14 +121,18 @@ pub(crate) fn draw_curve_analysis(
 /// planar section and a moving domain point.
 #[derive(Resource, Debug, Clone, PartialEq)]
 pub struct SurfaceAnalysis {
+    /// Draw the planar section: the plane's outline and where it cuts the surface.
     pub section: bool,
     /// The section plane's normal axis (0 = X, 1 = Y, 2 = Z, local space).
     pub section_axis: usize,
     /// Where the plane is, as a fraction of the control net's extent.
     pub section_at: f64,
+    /// Draw the moving domain point: the point at (`u`, `v`) with its normal
+    /// and the two iso-parameter curves through it.
     pub domain_point: bool,
-    /// The moving point's parameters, as fractions of the domain.
+    /// The moving point's u parameter, as a fraction of the u domain (0 to 1).
     pub u: f64,
+    /// The moving point's v parameter, as a fraction of the v domain (0 to 1).
     pub v: f64,
 }
 

@@ -5,9 +5,16 @@ use crate::*;
 /// Orbit camera state (Blender-style: turntable around a focus point).
 #[derive(Component, Debug, Clone, Copy, PartialEq)]
 pub struct OrbitCamera {
+    /// The point orbited and zoomed towards, in world space (Shift+middle
+    /// drag pans it; framing moves it to the centre of the framed bounds).
     pub focus: Vec3,
+    /// Turn about the world Y axis, in radians.
     pub yaw: f32,
+    /// Tilt about the camera's X axis, in radians, kept inside ±π/2;
+    /// negative looks down from above.
     pub pitch: f32,
+    /// Eye-to-focus distance in world units (the wheel zooms it); in
+    /// orthographic view it also sets the visible height.
     pub distance: f32,
     /// Numpad 5: parallel projection instead of perspective.
     pub orthographic: bool,
@@ -51,6 +58,7 @@ impl OrbitCamera {
         })
     }
 
+    /// The camera's transform: at `distance` from `focus`, looking at it.
     pub fn transform(&self) -> Transform {
         let rotation = Quat::from_euler(EulerRot::YXZ, self.yaw, self.pitch, 0.0);
         Transform {

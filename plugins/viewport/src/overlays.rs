@@ -28,9 +28,13 @@ pub(crate) fn shown_mesh<'a>(
 /// Overlay child entity showing a mesh node's edges, and what it was built for.
 #[derive(Component, Debug, Clone, Copy, PartialEq, Eq)]
 pub struct EdgeOverlay {
+    /// The projected content the lines were built from (a change rebuilds them).
     pub source: ProjectedMesh,
+    /// The node is selected (orange lines).
     pub selected: bool,
+    /// The node is the active one (yellow lines).
     pub active: bool,
+    /// The node is visible and not being edited; when false the overlay is empty.
     pub shown: bool,
 }
 
