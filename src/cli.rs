@@ -15,6 +15,7 @@ use std::path::{Path, PathBuf};
 #[derive(Parser, Debug)]
 #[command(name = "hedra", version, args_conflicts_with_subcommands = true)]
 pub struct Cli {
+    /// A headless subcommand; without one, the window opens.
     #[command(subcommand)]
     pub command: Option<Sub>,
     /// A scene (.hedra.ron) to open in the window.
@@ -38,10 +39,12 @@ pub struct Cli {
     pub run: Option<PathBuf>,
 }
 
+/// The headless subcommands (`hedra info`, `hedra run`, …).
 #[derive(Subcommand, Debug)]
 pub enum Sub {
     /// Print the scene's nodes and, for each mesh, its counts and invariants.
     Info {
+        /// The scene (.hedra.ron) to read.
         file: PathBuf,
         /// One JSON object instead of text (schema: docs/info-json.md).
         #[arg(long)]
@@ -53,45 +56,58 @@ pub enum Sub {
     /// Print the exact point, derivatives, normal and curvature of a curve
     /// or surface node at a parameter (local space).
     Eval {
+        /// The scene (.hedra.ron) to read.
         file: PathBuf,
         /// The node's name (or `#ID`).
         node: String,
         /// `U` for a curve, `U,V` for a surface.
         #[arg(long, allow_hyphen_values = true)]
         at: String,
+        /// One JSON object instead of text.
         #[arg(long)]
         json: bool,
     },
     /// Apply a RON script of commands (docs/commands.md) and save the result with its history.
     Run {
+        /// The script: a RON list of commands.
         script: PathBuf,
         /// Start from this scene instead of an empty one.
         #[arg(long)]
         input: Option<PathBuf>,
+        /// Where to write the resulting scene (.hedra.ron).
         #[arg(short, long)]
         output: PathBuf,
     },
     /// Undo steps of a saved scene's history.
     Undo {
+        /// The saved scene (.hedra.ron) whose history to step back.
         file: PathBuf,
+        /// How many steps to undo (at least 1).
         #[arg(long, default_value_t = 1)]
         steps: usize,
+        /// Where to write the resulting scene (.hedra.ron).
         #[arg(short, long)]
         output: PathBuf,
     },
     /// Redo steps of a saved scene's history.
     Redo {
+        /// The saved scene (.hedra.ron) whose history to step forward.
         file: PathBuf,
+        /// How many undone steps to redo (at least 1).
         #[arg(long, default_value_t = 1)]
         steps: usize,
+        /// Where to write the resulting scene (.hedra.ron).
         #[arg(short, long)]
         output: PathBuf,
     },
     /// Import meshes (OBJ with UVs and normals, binary or ASCII STL, glTF/GLB) as new nodes of a new scene (or of --input) and save it.
     Import {
+        /// The mesh file to import (.obj, .stl, .gltf or .glb).
         file: PathBuf,
+        /// Start from this scene instead of an empty one.
         #[arg(long)]
         input: Option<PathBuf>,
+        /// Where to write the resulting scene (.hedra.ron).
         #[arg(short, long)]
         output: PathBuf,
     },
@@ -99,7 +115,9 @@ pub enum Sub {
     /// .stl is triangulated). Meshes with a subdivision modifier are written
     /// smooth, at the modifier's export level.
     Export {
+        /// The scene (.hedra.ron) to read.
         file: PathBuf,
+        /// The file to write; its extension picks the format (.obj, .stl, .gltf or .glb).
         #[arg(short, long)]
         output: PathBuf,
         /// Subdivide every mesh this many levels (0–10) instead.

@@ -41,6 +41,7 @@ pub struct GuiOptions {
     pub file: Option<PathBuf>,
     /// Save a screenshot after `frames` frames and quit.
     pub screenshot: Option<PathBuf>,
+    /// Frames to render before the screenshot is taken (`--frames`).
     pub frames: u32,
     /// Start in edit mode on this node, with these faces selected.
     pub edit: Option<(String, Option<hedra_doc::FaceSet>)>,
@@ -218,10 +219,16 @@ fn start_in_edit_mode(
 /// `--screenshot`: capture the window once after some frames, then quit.
 #[derive(Resource, Debug)]
 pub struct ScreenshotPlan {
+    /// The PNG file the screenshot is saved to.
     pub path: PathBuf,
+    /// Frames to count before the screenshot is requested.
     pub after_frames: u32,
+    /// Frames counted so far; counting starts once the opened file has loaded,
+    /// and the app gives up with an error 600 frames after `after_frames`.
     pub frame: u32,
+    /// The screenshot has been requested (it arrives some frames later).
     pub requested: bool,
+    /// The screenshot has been saved; the app exits on the next frame.
     pub done: bool,
 }
 
