@@ -3,20 +3,28 @@
 //! modeling operations, subdivision, curves and surfaces build on these.
 //!
 //! All math is in `f64` ([`glam::DVec3`]); render code converts to `f32`.
+//!
+//! Connectivity is private to [`mesh`]: the Euler operators, face
+//! add/delete, orientation reversal, the bulk builders and the validator
+//! live there as submodules; everything else (modeling operations,
+//! subdivision, queries) uses the mesh's public API.
 
 pub mod build;
 pub mod curves;
-pub mod euler;
 pub mod ids;
 pub mod mesh;
 pub mod modeling;
-pub mod patch;
 pub mod primitives;
 pub mod query;
 pub mod subdivision;
 pub mod surfaces;
 pub mod topology;
-pub mod validate;
+
+// Modules that live inside the connectivity wall, at their old paths.
+/// Old name of [`add_delete`].
+#[doc(hidden)]
+pub use mesh::add_delete as patch;
+pub use mesh::{euler, validate};
 
 pub use build::{BuildError, RepairReport};
 pub use euler::EulerError;

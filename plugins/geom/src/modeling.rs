@@ -1079,52 +1079,6 @@ pub fn flip_normals(mesh: &mut HalfEdgeMesh) {
     mesh.reverse_orientation();
 }
 
-impl HalfEdgeMesh {
-    /// Reverses every loop (see [`flip_normals`]).
-    pub fn reverse_orientation(&mut self) {
-        let all: Vec<HalfEdgeId> = self.halfedges().collect();
-        self.reverse_halfedges(&all);
-    }
-
-    /// Reverses the loops of whole connected components given by a vertex
-    /// of each (their half-edges only; other components keep their sides).
-    pub fn reverse_components(&mut self, seeds: &[VertexId]) {
-        let (comp, _) = self.components();
-        let chosen: std::collections::HashSet<usize> = seeds
-            .iter()
-            .filter(|v| self.is_vertex(**v))
-            .map(|v| comp[v.index()])
-            .collect();
-        let hs: Vec<HalfEdgeId> = self
-            .halfedges()
-            .filter(|&h| chosen.contains(&comp[self.origin(h).index()]))
-            .collect();
-        self.reverse_halfedges(&hs);
-    }
-
-    /// Origin becomes the old target, next and prev swap: a closed set of
-    /// loops runs the other way.
-    fn reverse_halfedges(&mut self, hs: &[HalfEdgeId]) {
-        let targets: Vec<u32> = hs.iter().map(|&h| self.target(h).0).collect();
-        let mut touched = Vec::new();
-        for (&h, &t) in hs.iter().zip(&targets) {
-            let r = &mut self.halfedges[h.index()];
-            std::mem::swap(&mut r.next, &mut r.prev);
-            r.origin = t;
-            touched.push(VertexId(t));
-        }
-        touched.sort();
-        touched.dedup();
-        // Each vertex's stored half-edge now points into it: use one leaving it.
-        for v in touched {
-            if let Some(h) = self.vertex_halfedge(v) {
-                let out = if self.origin(h) == v { h } else { h.twin() };
-                self.fix_vertex_halfedge(v, out);
-            }
-        }
-    }
-}
-
 /// Bridges two boundary loops with a ring of quads (Blender's "Bridge Edge
 /// Loops"). `edges` name at least one edge of each loop; the loops need the
 /// same number of edges. Vertices are paired around the loops with the
