@@ -8,6 +8,7 @@ use super::{ModelingError, faces_around_vertices};
 use crate::ids::{EdgeId, FaceId, HalfEdgeId, VertexId};
 use crate::mesh::HalfEdgeMesh;
 use glam::DVec3;
+use std::collections::{BTreeSet, HashMap};
 
 /// Bevels vertices (Blender's Ctrl+Shift+B, one segment): each vertex is
 /// cut off by a new face through the points `width` along each of its
@@ -185,16 +186,66 @@ pub fn bevel_edges(
 /// fan of triangles through the arcs to a raised centre). The old end vertices go; the faces
 /// around them are taken out and added back (pmp `delete_face` /
 /// `add_face`); other elements keep their ids.
+///
+/// The steps, in order (each adds its new vertices to `work` in turn, so
+/// the ids come out as one pass would give them): check the edges and
+/// find their [`ends`](chamfer_ends), [slide distances](Chamfer::slide_distances)
+/// along unbeveled edges, [points](Chamfer::edge_points) on those edges,
+/// the [new corners](Chamfer::face_corners) of the faces around the ends,
+/// the [strips](Chamfer::strips) along the beveled edges, the
+/// [patches](Chamfer::patches) at the ends; then the faces are swapped.
 fn chamfer_edges(
     mesh: &mut HalfEdgeMesh,
     edges: &[EdgeId],
     width: f64,
     segments: u32,
 ) -> Result<Vec<FaceId>, ModelingError> {
-    use std::collections::{BTreeSet, HashMap};
     let beveled: BTreeSet<EdgeId> = edges.iter().copied().collect();
+    let ends = chamfer_ends(mesh, &beveled)?;
+    let chamfer = Chamfer {
+        mesh: &*mesh,
+        beveled,
+        ends,
+        width,
+        segments,
+    };
+    let slide = chamfer.slide_distances()?;
+    let mut work = mesh.clone();
+    let point_on = chamfer.edge_points(&mut work, &slide)?;
+    let faces = faces_around_vertices(mesh, &chamfer.ends.iter().copied().collect::<Vec<_>>());
+    let (corner_of, mut polygons) = chamfer.face_corners(&mut work, &faces, &point_on)?;
+    let mut arcs = ArcCache::new();
+    let strips = chamfer.strips(&mut work, &mut arcs, &corner_of);
+    let patches = chamfer.patches(
+        &mut work,
+        &mut arcs,
+        &faces,
+        &corner_of,
+        &point_on,
+        &mut polygons,
+    )?;
+    let n_faces = polygons.len();
+    polygons.extend(strips);
+    polygons.extend(patches);
+    work.delete_faces(&faces, true);
+    for &v in &chamfer.ends {
+        work.free_vertex(v);
+    }
+    let added = add_faces_in_any_order(&mut work, polygons, "the bevel")?;
+    work.validate()
+        .map_err(|e| ModelingError::Invalid(e.to_string()))?;
+    *mesh = work;
+    Ok(added[n_faces.min(added.len())..].to_vec())
+}
+
+/// The end vertices of the beveled edges; refuses an edge on a boundary
+/// or an end on one.
+fn chamfer_ends(
+    mesh: &HalfEdgeMesh,
+    beveled: &BTreeSet<EdgeId>,
+) -> Result<BTreeSet<VertexId>, ModelingError> {
     let mut ends: BTreeSet<VertexId> = BTreeSet::new();
-    for &e in &beveled {
+    for &e in beveled {
         let h = e.halfedge(0);
         if mesh.face(h).is_none() || mesh.face(h.twin()).is_none() {
             return Err(ModelingError::Parameter {
@@ -212,133 +263,199 @@ fn chamfer_edges(
             value: format!("{v} is on a boundary"),
         });
     }
-    let dir = |m: &HalfEdgeMesh, from: VertexId, to: VertexId| {
-        (m.position(to) - m.position(from)).normalize()
-    };
-    let sin_between = |a: DVec3, b: DVec3| a.cross(b).length();
-    // Distance along each unbeveled edge at an end where faces slide their
-    // corner (w / sin θ to the beveled edge of that face; the mean when both
-    // faces of the edge ask).
-    let mut slide: HashMap<(VertexId, EdgeId), (f64, u32)> = HashMap::new();
-    for &v in &ends {
-        for h in mesh.vertex_outgoing(v).collect::<Vec<_>>() {
-            // In face(h) the corner at v is between prev(h) (in) and h (out).
-            let (e_in, e_out) = (mesh.prev(h).edge(), h.edge());
-            let (u_in, u_out) = (
-                dir(mesh, v, mesh.origin(mesh.prev(h))),
-                dir(mesh, v, mesh.target(h)),
-            );
-            let sin = sin_between(u_in, u_out);
-            let (b_in, b_out) = (beveled.contains(&e_in), beveled.contains(&e_out));
-            let slid = match (b_in, b_out) {
-                (false, true) => Some(e_in),
-                (true, false) => Some(e_out),
-                _ => None,
-            };
-            if let Some(e) = slid {
-                if sin < 1e-9 {
-                    return Err(ModelingError::Parameter {
-                        what: "edges",
-                        allowed: "edges at an angle to their neighbours",
-                        value: format!("{e_in} and {e_out} are in line at {v}"),
-                    });
-                }
-                let entry = slide.entry((v, e)).or_insert((0.0, 0));
-                entry.0 += width / sin;
-                entry.1 += 1;
-            }
-        }
-    }
-    let mut work = mesh.clone();
-    let mut point_on: HashMap<(VertexId, EdgeId), VertexId> = HashMap::new();
-    let mut used_length: HashMap<EdgeId, f64> = HashMap::new();
-    for &v in &ends {
-        for h in mesh.vertex_outgoing(v) {
-            let e = h.edge();
-            if beveled.contains(&e) {
-                continue;
-            }
-            let t = slide
-                .get(&(v, e))
-                .map_or(width, |(sum, n)| sum / f64::from(*n));
-            *used_length.entry(e).or_default() += t;
-            let p = mesh.position(v) + dir(mesh, v, mesh.target(h)) * t;
-            point_on.insert((v, e), work.add_vertex(p)?);
-        }
-    }
-    for (&e, &used) in &used_length {
-        let [a, b] = mesh.edge_vertices(e);
-        let length = mesh.position(a).distance(mesh.position(b));
-        if used >= length * (1.0 - 1e-9) {
-            return Err(ModelingError::Parameter {
-                what: "width",
-                allowed: "small enough for the neighbouring edges",
-                value: format!("{width} needs {used:.6} of {e}, {length:.6} long"),
-            });
-        }
-    }
-    // New corners of every face around the ends; `corner_of[(f, v)]` is the
-    // point a corner at v became (for the quads).
-    let faces = faces_around_vertices(mesh, &ends.iter().copied().collect::<Vec<_>>());
-    let mut corner_of: HashMap<(FaceId, VertexId), VertexId> = HashMap::new();
-    let mut polygons = Vec::new();
-    for &f in &faces {
-        let mut corners = Vec::new();
-        for h in mesh.face_halfedges(f).collect::<Vec<_>>() {
-            let v = mesh.origin(h);
-            if !ends.contains(&v) {
-                corners.push(v);
-                continue;
-            }
-            let hin = mesh.prev(h);
-            let (e_in, e_out) = (hin.edge(), h.edge());
-            match (beveled.contains(&e_in), beveled.contains(&e_out)) {
-                (true, true) => {
-                    let (u_in, u_out) =
-                        (dir(mesh, v, mesh.origin(hin)), dir(mesh, v, mesh.target(h)));
-                    let sin = sin_between(u_in, u_out);
+    Ok(ends)
+}
+
+/// Unit direction from one vertex to another.
+fn dir(m: &HalfEdgeMesh, from: VertexId, to: VertexId) -> DVec3 {
+    (m.position(to) - m.position(from)).normalize()
+}
+
+/// Sine of the angle between two unit vectors.
+fn sin_between(a: DVec3, b: DVec3) -> f64 {
+    a.cross(b).length()
+}
+
+/// Per unbeveled edge at an end: the summed slide distances asked for and
+/// how many faces asked.
+type SlideMap = HashMap<(VertexId, EdgeId), (f64, u32)>;
+/// The new point on each unbeveled edge at each end.
+type PointMap = HashMap<(VertexId, EdgeId), VertexId>;
+/// The point a face's corner at an end became (one point per corner).
+type CornerMap = HashMap<(FaceId, VertexId), VertexId>;
+/// The inner points of each rounded arc, keyed by the end and its two
+/// corner points in id order, so edges in line share their arcs.
+type ArcCache = HashMap<(VertexId, VertexId, VertexId), Vec<VertexId>>;
+
+/// What one edge bevel works on: the mesh as it was, the beveled edges and
+/// their ends, and the parameters.
+struct Chamfer<'a> {
+    mesh: &'a HalfEdgeMesh,
+    beveled: BTreeSet<EdgeId>,
+    ends: BTreeSet<VertexId>,
+    width: f64,
+    segments: u32,
+}
+
+impl Chamfer<'_> {
+    /// Distance along each unbeveled edge at an end where faces slide their
+    /// corner (w / sin θ to the beveled edge of that face; the mean when both
+    /// faces of the edge ask).
+    fn slide_distances(&self) -> Result<SlideMap, ModelingError> {
+        let mesh = self.mesh;
+        let mut slide: SlideMap = HashMap::new();
+        for &v in &self.ends {
+            for h in mesh.vertex_outgoing(v).collect::<Vec<_>>() {
+                // In face(h) the corner at v is between prev(h) (in) and h (out).
+                let (e_in, e_out) = (mesh.prev(h).edge(), h.edge());
+                let (u_in, u_out) = (
+                    dir(mesh, v, mesh.origin(mesh.prev(h))),
+                    dir(mesh, v, mesh.target(h)),
+                );
+                let sin = sin_between(u_in, u_out);
+                let (b_in, b_out) = (self.beveled.contains(&e_in), self.beveled.contains(&e_out));
+                let slid = match (b_in, b_out) {
+                    (false, true) => Some(e_in),
+                    (true, false) => Some(e_out),
+                    _ => None,
+                };
+                if let Some(e) = slid {
                     if sin < 1e-9 {
                         return Err(ModelingError::Parameter {
                             what: "edges",
-                            allowed: "beveled edges at an angle",
+                            allowed: "edges at an angle to their neighbours",
                             value: format!("{e_in} and {e_out} are in line at {v}"),
                         });
                     }
-                    let q = mesh.position(v) + (u_in + u_out) * (width / sin);
-                    let id = work.add_vertex(q)?;
-                    corner_of.insert((f, v), id);
-                    corners.push(id);
-                }
-                (false, true) => {
-                    let id = point_on[&(v, e_in)];
-                    corner_of.insert((f, v), id);
-                    corners.push(id);
-                }
-                (true, false) => {
-                    let id = point_on[&(v, e_out)];
-                    corner_of.insert((f, v), id);
-                    corners.push(id);
-                }
-                (false, false) => {
-                    corners.push(point_on[&(v, e_in)]);
-                    corners.push(point_on[&(v, e_out)]);
+                    let entry = slide.entry((v, e)).or_insert((0.0, 0));
+                    entry.0 += self.width / sin;
+                    entry.1 += 1;
                 }
             }
         }
-        polygons.push(corners);
+        Ok(slide)
     }
-    // Rounded bevels: at each end the cap edge between the two new corners
-    // bends into a quadratic Bézier arc with the old vertex as control
-    // point (B(½) = c₁/4 + v/2 + c₂/4). Edges in line share their corners
-    // at a vertex, so the arc is keyed by the corner pair and shared too.
-    let mut arcs: HashMap<(VertexId, VertexId, VertexId), Vec<VertexId>> = HashMap::new();
-    let mut arc = |work: &mut HalfEdgeMesh, v: VertexId, from: VertexId, to: VertexId| {
+
+    /// The new point on every unbeveled edge at an end (at the slide
+    /// distance, else `width` along it); refuses when the points of both
+    /// ends would meet on an edge.
+    fn edge_points(
+        &self,
+        work: &mut HalfEdgeMesh,
+        slide: &SlideMap,
+    ) -> Result<PointMap, ModelingError> {
+        let (mesh, width) = (self.mesh, self.width);
+        let mut point_on: PointMap = HashMap::new();
+        let mut used_length: HashMap<EdgeId, f64> = HashMap::new();
+        for &v in &self.ends {
+            for h in mesh.vertex_outgoing(v) {
+                let e = h.edge();
+                if self.beveled.contains(&e) {
+                    continue;
+                }
+                let t = slide
+                    .get(&(v, e))
+                    .map_or(width, |(sum, n)| sum / f64::from(*n));
+                *used_length.entry(e).or_default() += t;
+                let p = mesh.position(v) + dir(mesh, v, mesh.target(h)) * t;
+                point_on.insert((v, e), work.add_vertex(p)?);
+            }
+        }
+        for (&e, &used) in &used_length {
+            let [a, b] = mesh.edge_vertices(e);
+            let length = mesh.position(a).distance(mesh.position(b));
+            if used >= length * (1.0 - 1e-9) {
+                return Err(ModelingError::Parameter {
+                    what: "width",
+                    allowed: "small enough for the neighbouring edges",
+                    value: format!("{width} needs {used:.6} of {e}, {length:.6} long"),
+                });
+            }
+        }
+        Ok(point_on)
+    }
+
+    /// New corners of every face around the ends, as the faces' new
+    /// polygons; `corner_of[(f, v)]` is the point a corner at v became (for
+    /// the quads).
+    fn face_corners(
+        &self,
+        work: &mut HalfEdgeMesh,
+        faces: &[FaceId],
+        point_on: &PointMap,
+    ) -> Result<(CornerMap, Vec<Vec<VertexId>>), ModelingError> {
+        let mesh = self.mesh;
+        let mut corner_of: CornerMap = HashMap::new();
+        let mut polygons = Vec::new();
+        for &f in faces {
+            let mut corners = Vec::new();
+            for h in mesh.face_halfedges(f).collect::<Vec<_>>() {
+                let v = mesh.origin(h);
+                if !self.ends.contains(&v) {
+                    corners.push(v);
+                    continue;
+                }
+                let hin = mesh.prev(h);
+                let (e_in, e_out) = (hin.edge(), h.edge());
+                match (self.beveled.contains(&e_in), self.beveled.contains(&e_out)) {
+                    (true, true) => {
+                        let (u_in, u_out) =
+                            (dir(mesh, v, mesh.origin(hin)), dir(mesh, v, mesh.target(h)));
+                        let sin = sin_between(u_in, u_out);
+                        if sin < 1e-9 {
+                            return Err(ModelingError::Parameter {
+                                what: "edges",
+                                allowed: "beveled edges at an angle",
+                                value: format!("{e_in} and {e_out} are in line at {v}"),
+                            });
+                        }
+                        let q = mesh.position(v) + (u_in + u_out) * (self.width / sin);
+                        let id = work.add_vertex(q)?;
+                        corner_of.insert((f, v), id);
+                        corners.push(id);
+                    }
+                    (false, true) => {
+                        let id = point_on[&(v, e_in)];
+                        corner_of.insert((f, v), id);
+                        corners.push(id);
+                    }
+                    (true, false) => {
+                        let id = point_on[&(v, e_out)];
+                        corner_of.insert((f, v), id);
+                        corners.push(id);
+                    }
+                    (false, false) => {
+                        corners.push(point_on[&(v, e_in)]);
+                        corners.push(point_on[&(v, e_out)]);
+                    }
+                }
+            }
+            polygons.push(corners);
+        }
+        Ok((corner_of, polygons))
+    }
+
+    /// Rounded bevels: at each end the cap edge between the two new corners
+    /// bends into a quadratic Bézier arc with the old vertex as control
+    /// point (B(½) = c₁/4 + v/2 + c₂/4). Edges in line share their corners
+    /// at a vertex, so the arc is keyed by the corner pair and shared too.
+    /// Returns the arc's inner points from `from` to `to` (none for one
+    /// segment).
+    fn arc(
+        &self,
+        arcs: &mut ArcCache,
+        work: &mut HalfEdgeMesh,
+        v: VertexId,
+        from: VertexId,
+        to: VertexId,
+    ) -> Vec<VertexId> {
+        let segments = self.segments;
         let key = (v, from.min(to), from.max(to));
         let mut inner = arcs
             .entry(key)
             .or_insert_with(|| {
                 let (c1, c2) = (work.position(key.1), work.position(key.2));
-                let control = mesh.position(v);
+                let control = self.mesh.position(v);
                 (1..segments)
                     .map(|k| {
                         let t = f64::from(k) / f64::from(segments);
@@ -354,45 +471,93 @@ fn chamfer_edges(
             inner.reverse();
         }
         inner
-    };
-    let mut strips = Vec::new();
-    for &e in &beveled {
-        let h = e.halfedge(0);
-        let t = h.twin();
-        let (a, b) = (mesh.origin(h), mesh.target(h));
-        let (fh, ft) = (
-            mesh.face(h).expect("checked"),
-            mesh.face(t).expect("checked"),
-        );
-        let side = |work: &mut HalfEdgeMesh,
-                    arc: &mut dyn FnMut(
-            &mut HalfEdgeMesh,
-            VertexId,
-            VertexId,
-            VertexId,
-        ) -> Vec<VertexId>,
-                    v: VertexId| {
-            let (from, to) = (corner_of[&(fh, v)], corner_of[&(ft, v)]);
-            let mut points = vec![from];
-            points.extend(arc(work, v, from, to));
-            points.push(to);
-            points
-        };
-        let along_a = side(&mut work, &mut arc, a);
-        let along_b = side(&mut work, &mut arc, b);
-        for k in 0..segments as usize {
-            strips.push(vec![along_a[k], along_a[k + 1], along_b[k + 1], along_b[k]]);
-        }
     }
-    // Patches: the new points around each end in fan order, when three or
-    // more distinct ones leave a gap. The fan turns from a face to the one
-    // across its incoming edge, so listing each face's out point before its
-    // in point runs every edge of the gap against its face; crossing a
-    // beveled edge, the gap follows that edge's arc. With only two points
-    // the arcs meet each other, or the one face cut between them (a box
-    // end) takes the arc as its new side.
-    let mut patches = Vec::new();
-    for &v in &ends {
+
+    /// The `segments` quads along each beveled edge, between its two faces'
+    /// new corners (and the arcs at its ends).
+    fn strips(
+        &self,
+        work: &mut HalfEdgeMesh,
+        arcs: &mut ArcCache,
+        corner_of: &CornerMap,
+    ) -> Vec<Vec<VertexId>> {
+        let mesh = self.mesh;
+        let mut strips = Vec::new();
+        for &e in &self.beveled {
+            let h = e.halfedge(0);
+            let t = h.twin();
+            let (a, b) = (mesh.origin(h), mesh.target(h));
+            let (fh, ft) = (
+                mesh.face(h).expect("checked"),
+                mesh.face(t).expect("checked"),
+            );
+            let side = |work: &mut HalfEdgeMesh, arcs: &mut ArcCache, v: VertexId| {
+                let (from, to) = (corner_of[&(fh, v)], corner_of[&(ft, v)]);
+                let mut points = vec![from];
+                points.extend(self.arc(arcs, work, v, from, to));
+                points.push(to);
+                points
+            };
+            let along_a = side(work, arcs, a);
+            let along_b = side(work, arcs, b);
+            for k in 0..self.segments as usize {
+                strips.push(vec![along_a[k], along_a[k + 1], along_b[k + 1], along_b[k]]);
+            }
+        }
+        strips
+    }
+
+    /// Patches: the new points around each end in fan order, when three or
+    /// more distinct ones leave a gap. The fan turns from a face to the one
+    /// across its incoming edge, so listing each face's out point before its
+    /// in point runs every edge of the gap against its face; crossing a
+    /// beveled edge, the gap follows that edge's arc. With only two points
+    /// the arcs meet each other, or the one face cut between them (a box
+    /// end) takes the arc as its new side (in `polygons`).
+    fn patches(
+        &self,
+        work: &mut HalfEdgeMesh,
+        arcs: &mut ArcCache,
+        faces: &[FaceId],
+        corner_of: &CornerMap,
+        point_on: &PointMap,
+        polygons: &mut [Vec<VertexId>],
+    ) -> Result<Vec<Vec<VertexId>>, ModelingError> {
+        let mesh = self.mesh;
+        let mut patches = Vec::new();
+        for &v in &self.ends {
+            let (ring, distinct) = self.ring_around(work, arcs, corner_of, point_on, v);
+            if distinct.len() >= 3 && self.segments == 1 {
+                patches.push(ring);
+            } else if distinct.len() >= 3 {
+                // Rounded: a fan of triangles to a centre raised towards the old
+                // vertex as the arcs are (half-way from the corners' centroid),
+                // instead of one flat n-gon.
+                let centroid = distinct.iter().map(|&p| work.position(p)).sum::<DVec3>()
+                    / distinct.len() as f64;
+                let centre = work.add_vertex(centroid + (mesh.position(v) - centroid) * 0.5)?;
+                for i in 0..ring.len() {
+                    patches.push(vec![ring[i], ring[(i + 1) % ring.len()], centre]);
+                }
+            } else if self.segments > 1 {
+                self.round_cut_corners(work, arcs, faces, corner_of, point_on, polygons, v);
+            }
+        }
+        Ok(patches)
+    }
+
+    /// The new points around end `v` in fan order (each face's out point
+    /// before its in point, and across a beveled edge its arc), without
+    /// repeats, and the set of distinct corner points among them.
+    fn ring_around(
+        &self,
+        work: &mut HalfEdgeMesh,
+        arcs: &mut ArcCache,
+        corner_of: &CornerMap,
+        point_on: &PointMap,
+        v: VertexId,
+    ) -> (Vec<VertexId>, BTreeSet<VertexId>) {
+        let mesh = self.mesh;
         let fan: Vec<HalfEdgeId> = mesh.vertex_outgoing(v).collect();
         let mut ring: Vec<VertexId> = Vec::new();
         let mut distinct = BTreeSet::new();
@@ -404,12 +569,12 @@ fn chamfer_edges(
                 None => vec![point_on[&(v, h.edge())], point_on[&(v, e_in)]],
             };
             distinct.extend(pts.iter().copied());
-            if beveled.contains(&e_in) {
+            if self.beveled.contains(&e_in) {
                 let g = mesh
                     .face(fan[(i + 1) % fan.len()])
                     .expect("inside the surface");
                 let (from, to) = (corner_of[&(f, v)], corner_of[&(g, v)]);
-                pts.extend(arc(&mut work, v, from, to));
+                pts.extend(self.arc(arcs, work, v, from, to));
             }
             for p in pts {
                 if ring.last() != Some(&p) {
@@ -420,51 +585,43 @@ fn chamfer_edges(
         while ring.len() > 1 && ring.first() == ring.last() {
             ring.pop();
         }
-        if distinct.len() >= 3 && segments == 1 {
-            patches.push(ring);
-        } else if distinct.len() >= 3 {
-            // Rounded: a fan of triangles to a centre raised towards the old
-            // vertex as the arcs are (half-way from the corners' centroid),
-            // instead of one flat n-gon.
-            let centroid =
-                distinct.iter().map(|&p| work.position(p)).sum::<DVec3>() / distinct.len() as f64;
-            let centre = work.add_vertex(centroid + (mesh.position(v) - centroid) * 0.5)?;
-            for i in 0..ring.len() {
-                patches.push(vec![ring[i], ring[(i + 1) % ring.len()], centre]);
+        (ring, distinct)
+    }
+
+    /// Rounded bevel with two points at `v`: each face around `v` that
+    /// kept no corner there (it was cut between two edge points) takes the
+    /// arc between them as its new side.
+    #[allow(clippy::too_many_arguments)]
+    fn round_cut_corners(
+        &self,
+        work: &mut HalfEdgeMesh,
+        arcs: &mut ArcCache,
+        faces: &[FaceId],
+        corner_of: &CornerMap,
+        point_on: &PointMap,
+        polygons: &mut [Vec<VertexId>],
+        v: VertexId,
+    ) {
+        let mesh = self.mesh;
+        for (i, &f) in faces.iter().enumerate() {
+            if corner_of.contains_key(&(f, v)) || !mesh.face_vertices(f).any(|x| x == v) {
+                continue;
             }
-        } else if segments > 1 {
-            for (i, &f) in faces.iter().enumerate() {
-                if corner_of.contains_key(&(f, v)) || !mesh.face_vertices(f).any(|x| x == v) {
-                    continue;
-                }
-                let h = mesh
-                    .face_halfedges(f)
-                    .find(|&h| mesh.origin(h) == v)
-                    .expect("a corner at v");
-                let (p_in, p_out) = (
-                    point_on[&(v, mesh.prev(h).edge())],
-                    point_on[&(v, h.edge())],
-                );
-                let inner = arc(&mut work, v, p_in, p_out);
-                let poly = &mut polygons[i];
-                let at = poly
-                    .iter()
-                    .position(|&x| x == p_in)
-                    .expect("the cut is in the face");
-                poly.splice(at + 1..at + 1, inner);
-            }
+            let h = mesh
+                .face_halfedges(f)
+                .find(|&h| mesh.origin(h) == v)
+                .expect("a corner at v");
+            let (p_in, p_out) = (
+                point_on[&(v, mesh.prev(h).edge())],
+                point_on[&(v, h.edge())],
+            );
+            let inner = self.arc(arcs, work, v, p_in, p_out);
+            let poly = &mut polygons[i];
+            let at = poly
+                .iter()
+                .position(|&x| x == p_in)
+                .expect("the cut is in the face");
+            poly.splice(at + 1..at + 1, inner);
         }
     }
-    let n_faces = polygons.len();
-    polygons.extend(strips);
-    polygons.extend(patches);
-    work.delete_faces(&faces, true);
-    for &v in &ends {
-        work.free_vertex(v);
-    }
-    let added = add_faces_in_any_order(&mut work, polygons, "the bevel")?;
-    work.validate()
-        .map_err(|e| ModelingError::Invalid(e.to_string()))?;
-    *mesh = work;
-    Ok(added[n_faces.min(added.len())..].to_vec())
 }
