@@ -1,13 +1,14 @@
 //! Free-form surfaces: the bilinear patch, tensor-product Bézier and NURBS
 //! surfaces (with the usual constructors: plane, sphere, cylinder,
 //! revolution and extrusion of a curve), Bézier triangles, ray intersection
-//! for picking and tessellation.
+//! for picking, fast grid evaluation of NURBS surfaces and tessellation.
 //!
 //! Every surface evaluates its point and first and second partial
 //! derivatives through [`Surface`]; intersection and tessellation use only
 //! that.
 
 pub mod bezier;
+pub mod fast;
 pub mod intersect;
 pub mod joins;
 pub mod nurbs;

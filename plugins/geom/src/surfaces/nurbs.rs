@@ -344,7 +344,8 @@ impl NurbsSurface {
     }
 
     fn grid_raw(&self, us: &[f64], vs: &[f64], normals: bool) -> (Vec<DVec3>, Vec<DVec3>) {
-        use crate::curves::fast::{Basis, MAX_FAST_DEGREE, homogeneous_points, surface_grid};
+        use super::fast::evaluate_grid;
+        use crate::curves::fast::{Basis, MAX_FAST_DEGREE, homogeneous_points};
         let ((u0, u1), (v0, v1)) = self.domain();
         let us: Vec<f64> = us.iter().map(|u| u.clamp(u0, u1)).collect();
         let vs: Vec<f64> = vs.iter().map(|v| v.clamp(v0, v1)).collect();
@@ -365,7 +366,7 @@ impl NurbsSurface {
         let bu = Basis::new(self.degree_u, &self.knots_u, self.nu);
         let bv = Basis::new(self.degree_v, &self.knots_v, self.nv);
         let pw = homogeneous_points(&self.points, &self.weights);
-        surface_grid(&bu, &bv, self.nv, &pw, &us, &vs, normals)
+        evaluate_grid(&bu, &bv, self.nv, &pw, &us, &vs, normals)
     }
 
     /// Inserts a knot in u (every column gets it; the surface does not move).

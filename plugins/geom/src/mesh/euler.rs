@@ -1,4 +1,6 @@
-//! Euler operators: the only code that changes mesh connectivity.
+//! Euler operators: the normal way to change mesh connectivity, and the
+//! allocation helpers the other writers inside [`crate::mesh`] share (see
+//! that module for the few exceptions and why they exist).
 //!
 //! Each operator checks its preconditions first and leaves the mesh untouched
 //! when one fails (a named [`EulerError`]), states its change of V, E, F, and
@@ -106,7 +108,7 @@ pub struct Collapse {
 impl HalfEdgeMesh {
     // ----- allocation -------------------------------------------------------
 
-    pub(crate) fn alloc_vertex(&mut self, p: DVec3) -> VertexId {
+    pub(super) fn alloc_vertex(&mut self, p: DVec3) -> VertexId {
         self.positions.push(p);
         self.vertex_out.push(NONE);
         self.vertex_dead.push(false);
@@ -114,7 +116,7 @@ impl HalfEdgeMesh {
         VertexId(self.positions.len() as u32 - 1)
     }
 
-    pub(crate) fn alloc_edge(&mut self, a: VertexId, b: VertexId) -> HalfEdgeId {
+    pub(super) fn alloc_edge(&mut self, a: VertexId, b: VertexId) -> HalfEdgeId {
         let h = self.halfedges.len() as u32;
         self.halfedges.push(HalfEdgeRecord {
             origin: a.0,
@@ -133,7 +135,7 @@ impl HalfEdgeMesh {
         HalfEdgeId(h)
     }
 
-    pub(crate) fn alloc_face(&mut self, h: HalfEdgeId) -> FaceId {
+    pub(super) fn alloc_face(&mut self, h: HalfEdgeId) -> FaceId {
         self.face_halfedge.push(h.0);
         self.face_dead.push(false);
         self.live_faces += 1;
@@ -141,6 +143,12 @@ impl HalfEdgeMesh {
     }
 
     /// Marks a vertex dead; its id is never handed out again.
+    ///
+    /// The one raw writer open to the whole crate: the modeling operations
+    /// that take faces out and add them back (weld, vertex and edge bevel)
+    /// drop the old, now isolated, vertices with it and validate the result
+    /// before it replaces the mesh. A vertex that still has edges leaves
+    /// dangling records, which that validation reports.
     pub(crate) fn free_vertex(&mut self, v: VertexId) {
         self.live_vertices -= 1;
         self.vertex_dead[v.index()] = true;
@@ -148,36 +156,36 @@ impl HalfEdgeMesh {
     }
 
     /// Marks an edge dead; its ids are never handed out again.
-    pub(crate) fn free_edge(&mut self, e: EdgeId) {
+    pub(super) fn free_edge(&mut self, e: EdgeId) {
         self.live_edges -= 1;
         self.edge_dead[e.index()] = true;
     }
 
     /// Marks a face dead; its id is never handed out again.
-    pub(crate) fn free_face(&mut self, f: FaceId) {
+    pub(super) fn free_face(&mut self, f: FaceId) {
         self.live_faces -= 1;
         self.face_dead[f.index()] = true;
     }
 
     #[inline]
-    pub(crate) fn link(&mut self, h: HalfEdgeId, n: HalfEdgeId) {
+    pub(super) fn link(&mut self, h: HalfEdgeId, n: HalfEdgeId) {
         self.halfedges[h.index()].next = n.0;
         self.halfedges[n.index()].prev = h.0;
     }
 
     #[inline]
-    pub(crate) fn set_face(&mut self, h: HalfEdgeId, f: Option<FaceId>) {
+    pub(super) fn set_face(&mut self, h: HalfEdgeId, f: Option<FaceId>) {
         self.halfedges[h.index()].face = f.map_or(NONE, |f| f.0);
     }
 
     #[inline]
-    pub(crate) fn set_origin(&mut self, h: HalfEdgeId, v: VertexId) {
+    pub(super) fn set_origin(&mut self, h: HalfEdgeId, v: VertexId) {
         self.halfedges[h.index()].origin = v.0;
     }
 
     /// Re-establishes the vertex's stored half-edge: a boundary one if any,
     /// else `preferred` (an outgoing half-edge known to be live).
-    pub(crate) fn fix_vertex_halfedge(&mut self, v: VertexId, preferred: HalfEdgeId) {
+    pub(super) fn fix_vertex_halfedge(&mut self, v: VertexId, preferred: HalfEdgeId) {
         self.vertex_out[v.index()] = preferred.0;
         let boundary = self
             .vertex_outgoing(v)

@@ -1,4 +1,5 @@
-//! The half-edge mesh: connectivity, positions, traversal and the validator.
+//! The half-edge mesh: connectivity, positions, traversal, and the only
+//! code that writes connectivity.
 //!
 //! Half-edge structure as taught in seed 000 (Bán, "half-edge: vertex, sym, face,
 //! next") and seed 001; storage follows pmp-library's `SurfaceMesh`: one record
@@ -8,7 +9,39 @@
 //! all its outgoing half-edges. A boundary vertex stores a boundary half-edge
 //! as its outgoing one, so boundary tests are O(1).
 //!
-//! Only [`crate::euler`] changes connectivity; everything else reads it.
+//! The arrays of [`HalfEdgeMesh`] are private to this module, so the compiler
+//! holds the rest of the kernel to the accessors, iterators and operators
+//! below. Inside the wall, connectivity is written by:
+//!
+//! - [`euler`]: the Euler operators, the normal way to change connectivity
+//!   (checked, invertible, with stated V/E/F changes);
+//! - [`add_delete`]: adding and deleting whole faces (pmp-library's
+//!   `add_face` / `delete_face`), which relink boundary fans that no single
+//!   Euler operator reaches;
+//! - `orientation`: reversing whole loops (flip normals), which rewrites
+//!   every half-edge in place instead of rebuilding the faces;
+//! - `construct`: the strict bulk build from polygons, one pass over the
+//!   corners instead of an operator per element;
+//! - `records`: [`MeshData`] in and out and dense renumbering, which copy
+//!   raw records.
+//!
+//! [`validate`] reads the raw records (it must survive corrupted ones).
+//! One low-level writer is open to the rest of the crate: `free_vertex`
+//! (in [`euler`]), with which weld and bevel drop the vertices they left
+//! isolated after taking faces out; they validate before keeping the
+//! result.
+//! Positions are geometry, not connectivity: anyone may move them through
+//! [`set_position`](HalfEdgeMesh::set_position) and
+//! [`positions_mut`](HalfEdgeMesh::positions_mut).
+
+pub mod add_delete;
+mod construct;
+pub mod euler;
+mod orientation;
+mod records;
+pub mod validate;
+
+pub use records::MeshData;
 
 use crate::ids::{EdgeId, FaceId, HalfEdgeId, NONE, VertexId};
 use glam::DVec3;
@@ -16,11 +49,11 @@ use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
-pub(crate) struct HalfEdgeRecord {
-    pub origin: u32,
-    pub next: u32,
-    pub prev: u32,
-    pub face: u32,
+struct HalfEdgeRecord {
+    origin: u32,
+    next: u32,
+    prev: u32,
+    face: u32,
 }
 
 /// One loop of a face (Mäntylä's Loop), entered at a corner: the half-edge
@@ -69,22 +102,22 @@ impl std::fmt::Display for LoopStart {
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(try_from = "MeshData", into = "MeshData")]
 pub struct HalfEdgeMesh {
-    pub(crate) positions: Vec<DVec3>,
-    pub(crate) vertex_out: Vec<u32>,
-    pub(crate) halfedges: Vec<HalfEdgeRecord>,
-    pub(crate) face_halfedge: Vec<u32>,
-    pub(crate) vertex_dead: Vec<bool>,
-    pub(crate) edge_dead: Vec<bool>,
-    pub(crate) face_dead: Vec<bool>,
-    pub(crate) live_vertices: usize,
-    pub(crate) live_edges: usize,
-    pub(crate) live_faces: usize,
+    positions: Vec<DVec3>,
+    vertex_out: Vec<u32>,
+    halfedges: Vec<HalfEdgeRecord>,
+    face_halfedge: Vec<u32>,
+    vertex_dead: Vec<bool>,
+    edge_dead: Vec<bool>,
+    face_dead: Vec<bool>,
+    live_vertices: usize,
+    live_edges: usize,
+    live_faces: usize,
     /// Inner rings by face; no entry (never an empty list) for a face without
     /// rings, so meshes without rings pay nothing.
-    pub(crate) face_rings: BTreeMap<FaceId, Vec<LoopStart>>,
+    face_rings: BTreeMap<FaceId, Vec<LoopStart>>,
     /// Faces whose outer loop is a lone vertex (no edges); their
     /// `face_halfedge` is `NONE`.
-    pub(crate) face_lone_vertex: BTreeMap<FaceId, VertexId>,
+    face_lone_vertex: BTreeMap<FaceId, VertexId>,
 }
 
 /// Counts and topological invariants of a mesh, as `hedra info` prints them.
@@ -433,10 +466,12 @@ impl HalfEdgeMesh {
         self.positions[v.index()] = p;
     }
     /// Positions indexed by vertex id (dead slots included).
+    #[inline]
     pub fn positions(&self) -> &[DVec3] {
         &self.positions
     }
     /// Mutable positions indexed by vertex id; connectivity cannot change this way.
+    #[inline]
     pub fn positions_mut(&mut self) -> &mut [DVec3] {
         &mut self.positions
     }
@@ -657,140 +692,5 @@ impl Iterator for FanIter<'_> {
         let n = self.mesh.prev(h).twin();
         self.current = (Some(n) != self.start).then_some(n);
         Some(h)
-    }
-}
-
-/// The stored form of a mesh in scene files: raw records, so that every id
-/// survives a save and load. Loading validates the result.
-#[derive(Clone, Debug, Serialize, Deserialize)]
-pub struct MeshData {
-    /// Vertex positions by vertex id.
-    pub positions: Vec<DVec3>,
-    /// Outgoing half-edge per vertex id, `-1` for none.
-    pub vertex_halfedge: Vec<i64>,
-    /// Per half-edge id: `(origin, next, prev, face)`, face `-1` on a boundary.
-    pub halfedges: Vec<(u32, u32, u32, i64)>,
-    /// One half-edge per face id (of its outer loop); `u32::MAX` for a face
-    /// without edges (listed in `lone_vertex_faces`).
-    pub face_halfedge: Vec<u32>,
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub dead_vertices: Vec<u32>,
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub dead_edges: Vec<u32>,
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub dead_faces: Vec<u32>,
-    /// Inner rings as `(face id, loop starts)`; absent (and the file
-    /// unchanged) when no face has a ring.
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub face_rings: Vec<(u32, Vec<LoopStart>)>,
-    /// Faces without edges as `(face id, lone vertex id)`; absent when none.
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub lone_vertex_faces: Vec<(u32, u32)>,
-}
-
-fn opt_to_i64(x: u32) -> i64 {
-    if x == NONE { -1 } else { x as i64 }
-}
-
-impl From<HalfEdgeMesh> for MeshData {
-    fn from(m: HalfEdgeMesh) -> Self {
-        let dead = |d: &[bool]| -> Vec<u32> {
-            d.iter()
-                .enumerate()
-                .filter(|(_, x)| **x)
-                .map(|(i, _)| i as u32)
-                .collect()
-        };
-        MeshData {
-            vertex_halfedge: m.vertex_out.iter().map(|&x| opt_to_i64(x)).collect(),
-            halfedges: m
-                .halfedges
-                .iter()
-                .map(|r| (r.origin, r.next, r.prev, opt_to_i64(r.face)))
-                .collect(),
-            face_halfedge: m.face_halfedge.clone(),
-            dead_vertices: dead(&m.vertex_dead),
-            dead_edges: dead(&m.edge_dead),
-            dead_faces: dead(&m.face_dead),
-            face_rings: m.face_rings.iter().map(|(f, r)| (f.0, r.clone())).collect(),
-            lone_vertex_faces: m.face_lone_vertex.iter().map(|(f, v)| (f.0, v.0)).collect(),
-            positions: m.positions,
-        }
-    }
-}
-
-impl TryFrom<MeshData> for HalfEdgeMesh {
-    type Error = String;
-    fn try_from(d: MeshData) -> Result<Self, String> {
-        let nv = d.positions.len();
-        if d.vertex_halfedge.len() != nv {
-            return Err(format!(
-                "mesh has {nv} positions but {} vertex records",
-                d.vertex_halfedge.len()
-            ));
-        }
-        if d.halfedges.len() % 2 != 0 {
-            return Err(format!("odd number of half-edges ({})", d.halfedges.len()));
-        }
-        let to_raw = |x: i64, what: &str| -> Result<u32, String> {
-            if x == -1 {
-                Ok(NONE)
-            } else if (0..NONE as i64).contains(&x) {
-                Ok(x as u32)
-            } else {
-                Err(format!("{what} id {x} is out of range"))
-            }
-        };
-        let mut m = HalfEdgeMesh {
-            positions: d.positions,
-            vertex_out: d
-                .vertex_halfedge
-                .iter()
-                .map(|&x| to_raw(x, "half-edge"))
-                .collect::<Result<_, _>>()?,
-            halfedges: d
-                .halfedges
-                .iter()
-                .map(|&(origin, next, prev, face)| {
-                    Ok(HalfEdgeRecord {
-                        origin,
-                        next,
-                        prev,
-                        face: to_raw(face, "face")?,
-                    })
-                })
-                .collect::<Result<_, String>>()?,
-            face_halfedge: d.face_halfedge,
-            ..Default::default()
-        };
-        m.vertex_dead = vec![false; nv];
-        m.edge_dead = vec![false; m.halfedges.len() / 2];
-        m.face_dead = vec![false; m.face_halfedge.len()];
-        for (list, flags, what) in [
-            (&d.dead_vertices, &mut m.vertex_dead, "vertex"),
-            (&d.dead_edges, &mut m.edge_dead, "edge"),
-            (&d.dead_faces, &mut m.face_dead, "face"),
-        ] {
-            for &i in list {
-                *flags
-                    .get_mut(i as usize)
-                    .ok_or_else(|| format!("dead {what} id {i} is out of range"))? = true;
-            }
-        }
-        m.live_vertices = m.vertex_dead.iter().filter(|d| !**d).count();
-        m.live_edges = m.edge_dead.iter().filter(|d| !**d).count();
-        m.live_faces = m.face_dead.iter().filter(|d| !**d).count();
-        for (f, rings) in d.face_rings {
-            if m.face_rings.insert(FaceId(f), rings).is_some() {
-                return Err(format!("face {f} has two ring lists"));
-            }
-        }
-        for (f, v) in d.lone_vertex_faces {
-            if m.face_lone_vertex.insert(FaceId(f), VertexId(v)).is_some() {
-                return Err(format!("face {f} has two lone vertices"));
-            }
-        }
-        m.validate().map_err(|e| e.to_string())?;
-        Ok(m)
     }
 }

@@ -2,6 +2,11 @@
 //! `delete_face`): the building blocks for region extrude, bridges and
 //! fills. Each call keeps the mesh manifold or refuses; compositions are
 //! checked with `validate()` by the callers that run them on a copy.
+//!
+//! They live inside [`crate::mesh`] because relinking the boundary fans
+//! around a new or removed face writes `next`/`prev` and the vertices'
+//! outgoing half-edges directly, which no single Euler operator does.
+//! (Formerly `patch.rs`; `hedra_geom::patch` still names this module.)
 
 use crate::euler::EulerError;
 use crate::ids::{FaceId, HalfEdgeId, NONE, VertexId};

@@ -1,0 +1,235 @@
+//! Whole-record conversions: the stored form [`MeshData`] in and out of
+//! a mesh (scene files), and renumbering the records densely (compaction of
+//! meshes with rings). Both copy raw records, so they live inside the
+//! [`mesh`](super) module.
+
+use super::{HalfEdgeMesh, HalfEdgeRecord, LoopStart};
+use crate::ids::{FaceId, HalfEdgeId, NONE, VertexId};
+use glam::DVec3;
+use serde::{Deserialize, Serialize};
+
+/// The stored form of a mesh in scene files: raw records, so that every id
+/// survives a save and load. Loading validates the result.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct MeshData {
+    /// Vertex positions by vertex id.
+    pub positions: Vec<DVec3>,
+    /// Outgoing half-edge per vertex id, `-1` for none.
+    pub vertex_halfedge: Vec<i64>,
+    /// Per half-edge id: `(origin, next, prev, face)`, face `-1` on a boundary.
+    pub halfedges: Vec<(u32, u32, u32, i64)>,
+    /// One half-edge per face id (of its outer loop); `u32::MAX` for a face
+    /// without edges (listed in `lone_vertex_faces`).
+    pub face_halfedge: Vec<u32>,
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub dead_vertices: Vec<u32>,
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub dead_edges: Vec<u32>,
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub dead_faces: Vec<u32>,
+    /// Inner rings as `(face id, loop starts)`; absent (and the file
+    /// unchanged) when no face has a ring.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub face_rings: Vec<(u32, Vec<LoopStart>)>,
+    /// Faces without edges as `(face id, lone vertex id)`; absent when none.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub lone_vertex_faces: Vec<(u32, u32)>,
+}
+
+fn opt_to_i64(x: u32) -> i64 {
+    if x == NONE { -1 } else { x as i64 }
+}
+
+impl From<HalfEdgeMesh> for MeshData {
+    fn from(m: HalfEdgeMesh) -> Self {
+        let dead = |d: &[bool]| -> Vec<u32> {
+            d.iter()
+                .enumerate()
+                .filter(|(_, x)| **x)
+                .map(|(i, _)| i as u32)
+                .collect()
+        };
+        MeshData {
+            vertex_halfedge: m.vertex_out.iter().map(|&x| opt_to_i64(x)).collect(),
+            halfedges: m
+                .halfedges
+                .iter()
+                .map(|r| (r.origin, r.next, r.prev, opt_to_i64(r.face)))
+                .collect(),
+            face_halfedge: m.face_halfedge.clone(),
+            dead_vertices: dead(&m.vertex_dead),
+            dead_edges: dead(&m.edge_dead),
+            dead_faces: dead(&m.face_dead),
+            face_rings: m.face_rings.iter().map(|(f, r)| (f.0, r.clone())).collect(),
+            lone_vertex_faces: m.face_lone_vertex.iter().map(|(f, v)| (f.0, v.0)).collect(),
+            positions: m.positions,
+        }
+    }
+}
+
+impl TryFrom<MeshData> for HalfEdgeMesh {
+    type Error = String;
+    fn try_from(d: MeshData) -> Result<Self, String> {
+        let nv = d.positions.len();
+        if d.vertex_halfedge.len() != nv {
+            return Err(format!(
+                "mesh has {nv} positions but {} vertex records",
+                d.vertex_halfedge.len()
+            ));
+        }
+        if d.halfedges.len() % 2 != 0 {
+            return Err(format!("odd number of half-edges ({})", d.halfedges.len()));
+        }
+        let to_raw = |x: i64, what: &str| -> Result<u32, String> {
+            if x == -1 {
+                Ok(NONE)
+            } else if (0..NONE as i64).contains(&x) {
+                Ok(x as u32)
+            } else {
+                Err(format!("{what} id {x} is out of range"))
+            }
+        };
+        let mut m = HalfEdgeMesh {
+            positions: d.positions,
+            vertex_out: d
+                .vertex_halfedge
+                .iter()
+                .map(|&x| to_raw(x, "half-edge"))
+                .collect::<Result<_, _>>()?,
+            halfedges: d
+                .halfedges
+                .iter()
+                .map(|&(origin, next, prev, face)| {
+                    Ok(HalfEdgeRecord {
+                        origin,
+                        next,
+                        prev,
+                        face: to_raw(face, "face")?,
+                    })
+                })
+                .collect::<Result<_, String>>()?,
+            face_halfedge: d.face_halfedge,
+            ..Default::default()
+        };
+        m.vertex_dead = vec![false; nv];
+        m.edge_dead = vec![false; m.halfedges.len() / 2];
+        m.face_dead = vec![false; m.face_halfedge.len()];
+        for (list, flags, what) in [
+            (&d.dead_vertices, &mut m.vertex_dead, "vertex"),
+            (&d.dead_edges, &mut m.edge_dead, "edge"),
+            (&d.dead_faces, &mut m.face_dead, "face"),
+        ] {
+            for &i in list {
+                *flags
+                    .get_mut(i as usize)
+                    .ok_or_else(|| format!("dead {what} id {i} is out of range"))? = true;
+            }
+        }
+        m.live_vertices = m.vertex_dead.iter().filter(|d| !**d).count();
+        m.live_edges = m.edge_dead.iter().filter(|d| !**d).count();
+        m.live_faces = m.face_dead.iter().filter(|d| !**d).count();
+        for (f, rings) in d.face_rings {
+            if m.face_rings.insert(FaceId(f), rings).is_some() {
+                return Err(format!("face {f} has two ring lists"));
+            }
+        }
+        for (f, v) in d.lone_vertex_faces {
+            if m.face_lone_vertex.insert(FaceId(f), VertexId(v)).is_some() {
+                return Err(format!("face {f} has two lone vertices"));
+            }
+        }
+        m.validate().map_err(|e| e.to_string())?;
+        Ok(m)
+    }
+}
+
+impl HalfEdgeMesh {
+    /// [`compacted`](Self::compacted) for meshes with rings: the same
+    /// records with dense ids, in the old order.
+    pub(crate) fn compacted_records(&self) -> HalfEdgeMesh {
+        let lone: Vec<VertexId> = self
+            .face_lone_vertex
+            .values()
+            .copied()
+            .chain(self.face_rings.values().flatten().filter_map(|l| match l {
+                LoopStart::Vertex(v) => Some(*v),
+                LoopStart::HalfEdge(_) => None,
+            }))
+            .collect();
+        let mut vmap = vec![NONE; self.positions.len()];
+        let mut positions = Vec::new();
+        for v in self
+            .vertices()
+            .filter(|&v| !self.is_isolated_vertex(v) || lone.contains(&v))
+        {
+            vmap[v.index()] = positions.len() as u32;
+            positions.push(self.position(v));
+        }
+        let mut emap = vec![NONE; self.edge_dead.len()];
+        for (i, e) in self.edges().enumerate() {
+            emap[e.index()] = i as u32;
+        }
+        let hmap = |h: u32| -> u32 {
+            if h == NONE {
+                NONE
+            } else {
+                (emap[h as usize / 2] << 1) | (h & 1)
+            }
+        };
+        let mut fmap = vec![NONE; self.face_halfedge.len()];
+        for (i, f) in self.faces().enumerate() {
+            fmap[f.index()] = i as u32;
+        }
+        let halfedges = self
+            .halfedges()
+            .map(|h| {
+                let r = &self.halfedges[h.index()];
+                HalfEdgeRecord {
+                    origin: vmap[r.origin as usize],
+                    next: hmap(r.next),
+                    prev: hmap(r.prev),
+                    face: if r.face == NONE {
+                        NONE
+                    } else {
+                        fmap[r.face as usize]
+                    },
+                }
+            })
+            .collect();
+        let map_loop = |l: &LoopStart| match *l {
+            LoopStart::HalfEdge(h) => LoopStart::HalfEdge(HalfEdgeId(hmap(h.0))),
+            LoopStart::Vertex(v) => LoopStart::Vertex(VertexId(vmap[v.index()])),
+        };
+        let nv = positions.len();
+        let (ne, nf) = (self.edge_count(), self.face_count());
+        HalfEdgeMesh {
+            vertex_out: self
+                .vertices()
+                .filter(|v| vmap[v.index()] != NONE)
+                .map(|v| hmap(self.vertex_out[v.index()]))
+                .collect(),
+            positions,
+            halfedges,
+            face_halfedge: self
+                .faces()
+                .map(|f| hmap(self.face_halfedge[f.index()]))
+                .collect(),
+            vertex_dead: vec![false; nv],
+            edge_dead: vec![false; ne],
+            face_dead: vec![false; nf],
+            live_vertices: nv,
+            live_edges: ne,
+            live_faces: nf,
+            face_rings: self
+                .face_rings
+                .iter()
+                .map(|(f, r)| (FaceId(fmap[f.index()]), r.iter().map(map_loop).collect()))
+                .collect(),
+            face_lone_vertex: self
+                .face_lone_vertex
+                .iter()
+                .map(|(f, v)| (FaceId(fmap[f.index()]), VertexId(vmap[v.index()])))
+                .collect(),
+        }
+    }
+}

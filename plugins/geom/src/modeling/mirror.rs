@@ -1,0 +1,145 @@
+//! Mirroring across a world axis: symmetrize (Blender's Symmetrize) and
+//! mirroring vertices about their median (Blender's Ctrl+M).
+
+use super::ModelingError;
+use crate::ids::VertexId;
+use crate::mesh::HalfEdgeMesh;
+use glam::DVec3;
+
+/// A world axis for mirroring and symmetrizing.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub enum MirrorAxis {
+    X,
+    Y,
+    Z,
+}
+
+impl MirrorAxis {
+    fn index(self) -> usize {
+        match self {
+            MirrorAxis::X => 0,
+            MirrorAxis::Y => 1,
+            MirrorAxis::Z => 2,
+        }
+    }
+    fn reflect(self, p: DVec3, center: f64) -> DVec3 {
+        let mut a = p.to_array();
+        let i = self.index();
+        a[i] = 2.0 * center - a[i];
+        DVec3::from_array(a)
+    }
+}
+
+/// Makes the mesh symmetric across the plane `axis = 0`: faces on the
+/// negative side are deleted and replaced by a mirror image of the positive
+/// side, joined at the vertices on the plane (Blender's Symmetrize, +X to −X
+/// for `X`). The plane must cut the mesh along edges (a loop cut there first).
+///
+/// # Errors
+/// [`ModelingError::Parameter`] when a face straddles the plane;
+/// [`ModelingError::Invalid`] when the mirrored half cannot be joined
+/// manifold. The mesh is unchanged on error.
+pub fn symmetrize(mesh: &mut HalfEdgeMesh, axis: MirrorAxis) -> Result<(), ModelingError> {
+    const EPS: f64 = 1e-9;
+    let i = axis.index();
+    let side = |v: VertexId| {
+        let c = mesh.position(v).to_array()[i];
+        if c > EPS {
+            1
+        } else if c < -EPS {
+            -1
+        } else {
+            0
+        }
+    };
+    let mut negative = Vec::new();
+    let mut positive = Vec::new();
+    for f in mesh.faces() {
+        let sides: Vec<i32> = mesh.face_vertices(f).map(side).collect();
+        match (sides.iter().any(|&s| s > 0), sides.iter().any(|&s| s < 0)) {
+            (true, true) => {
+                return Err(ModelingError::Parameter {
+                    what: "mesh",
+                    allowed: "cut by the mirror plane along edges (add a loop cut there)",
+                    value: format!("{f} crosses the plane"),
+                });
+            }
+            (false, true) => negative.push(f),
+            (true, false) => positive.push(f),
+            (false, false) => negative.push(f), // flat on the plane: rebuilt from the mirror
+        }
+    }
+    let polys: Vec<Vec<VertexId>> = positive
+        .iter()
+        .map(|&f| mesh.face_vertices(f).collect())
+        .collect();
+    let mut work = mesh.clone();
+    work.delete_faces(&negative, false);
+    // Snap plane vertices exactly onto the plane, then mirror the rest.
+    let mut mirror = std::collections::HashMap::new();
+    for p in &polys {
+        for &v in p {
+            if mirror.contains_key(&v) {
+                continue;
+            }
+            let m = if side(v) == 0 {
+                let mut a = work.position(v).to_array();
+                a[i] = 0.0;
+                work.set_position(v, DVec3::from_array(a));
+                v
+            } else {
+                work.add_vertex(axis.reflect(work.position(v), 0.0))?
+            };
+            mirror.insert(v, m);
+        }
+    }
+    for p in &polys {
+        // A mirror image turns orientation around: reverse the corner order.
+        let image: Vec<VertexId> = p.iter().rev().map(|v| mirror[v]).collect();
+        work.add_face(&image)
+            .map_err(|e| ModelingError::Invalid(format!("mirrored face: {e}")))?;
+    }
+    work.validate()
+        .map_err(|e| ModelingError::Invalid(e.to_string()))?;
+    *mesh = work;
+    Ok(())
+}
+
+/// Mirrors vertices across the plane through their median perpendicular to
+/// `axis` (Blender's Ctrl+M). Whole connected parts that are mirrored get
+/// their faces reversed so they keep facing outwards.
+///
+/// # Errors
+/// [`ModelingError::Empty`], [`ModelingError::Missing`].
+pub fn mirror_vertices(
+    mesh: &mut HalfEdgeMesh,
+    vertices: &[VertexId],
+    axis: MirrorAxis,
+) -> Result<(), ModelingError> {
+    if vertices.is_empty() {
+        return Err(ModelingError::Empty("no vertices"));
+    }
+    if let Some(v) = vertices.iter().find(|v| !mesh.is_vertex(**v)) {
+        return Err(ModelingError::Missing(v.to_string()));
+    }
+    let center = vertices
+        .iter()
+        .map(|&v| mesh.position(v).to_array()[axis.index()])
+        .sum::<f64>()
+        / vertices.len() as f64;
+    let set: std::collections::HashSet<VertexId> = vertices.iter().copied().collect();
+    for &v in &set {
+        let p = axis.reflect(mesh.position(v), center);
+        mesh.set_position(v, p);
+    }
+    // Components mirrored as a whole turn inside out: turn them back.
+    let (comp, count) = mesh.components();
+    let whole: Vec<VertexId> = (0..count)
+        .filter_map(|c| {
+            let members: Vec<VertexId> = mesh.vertices().filter(|v| comp[v.index()] == c).collect();
+            (!members.is_empty() && members.iter().all(|v| set.contains(v))).then(|| members[0])
+        })
+        .collect();
+    mesh.reverse_components(&whole);
+    Ok(())
+}
