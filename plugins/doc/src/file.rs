@@ -24,7 +24,9 @@
 //!
 //! Format versions: version 1 files are read as they are (version 2 only
 //! adds the corner pool and `corner_set` references); a newer build's file
-//! is refused by name.
+//! is refused by name. The commands in the history have a stored form of
+//! their own, pinned per version ([`stored_command`]). `docs/file-format.md`
+//! describes the format for other tools.
 
 use crate::command::Command;
 use crate::history::{History, NodeChange, Transaction};
@@ -41,6 +43,8 @@ use std::collections::HashMap;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
+
+pub mod stored_command;
 
 /// The format name written at the top of every scene file.
 pub const FORMAT_NAME: &str = "hedra-scene";
@@ -126,6 +130,10 @@ fn visible_default() -> bool {
     true
 }
 
+fn none<C>() -> Option<C> {
+    None
+}
+
 #[derive(Serialize, Deserialize)]
 struct StoredScene {
     next_node_id: u64,
@@ -139,12 +147,15 @@ struct StoredChange {
     after: Option<StoredNode>,
 }
 
+/// One history step. `C` is the stored command of the file's version
+/// ([`stored_command`]): reading parses the version's own shape and
+/// converts it to today's [`Command`].
 #[derive(Serialize, Deserialize)]
-struct StoredTransaction {
+struct StoredTransaction<C> {
     serial: u64,
     label: String,
-    #[serde(default)]
-    command: Option<Command>,
+    #[serde(default = "none")]
+    command: Option<C>,
     changes: Vec<StoredChange>,
     next_id_before: u64,
     next_id_after: u64,
@@ -208,14 +219,14 @@ impl StoredCorners {
 }
 
 #[derive(Serialize, Deserialize)]
-struct StoredHistory {
+struct StoredHistory<C> {
     /// Meshes only the history uses; index `i` here is pool index `scene_meshes + i`.
     meshes: Vec<HalfEdgeMesh>,
     /// Corner attributes only the history uses, numbered after the scene's.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     corners: Vec<StoredCorners>,
-    done: Vec<StoredTransaction>,
-    undone: Vec<StoredTransaction>,
+    done: Vec<StoredTransaction<C>>,
+    undone: Vec<StoredTransaction<C>>,
     #[serde(default)]
     dropped: usize,
     next_serial: u64,
@@ -230,7 +241,7 @@ struct FileOut<'a> {
     #[serde(skip_serializing_if = "Vec::is_empty")]
     corners: Vec<StoredCorners>,
     scene: StoredScene,
-    history: StoredHistory,
+    history: StoredHistory<&'a Command>,
 }
 
 #[derive(Deserialize)]
@@ -296,11 +307,11 @@ impl<'a> MeshPool<'a> {
             },
         }
     }
-    fn transaction(&mut self, t: &'a Transaction) -> StoredTransaction {
+    fn transaction(&mut self, t: &'a Transaction) -> StoredTransaction<&'a Command> {
         StoredTransaction {
             serial: t.serial,
             label: t.label.clone(),
-            command: t.command.clone(),
+            command: t.command.as_ref(),
             changes: t
                 .changes
                 .iter()
@@ -510,9 +521,10 @@ pub fn from_str(text: &str, path: &Path) -> Result<Loaded, FileError> {
             reason: "format version 0 does not exist".into(),
         });
     }
-    // Version 1 is current; older versions would be migrated here, one typed
-    // step at a time, before `read_v1`.
-    read_v1(text, path)
+    // Versions 1 and 2 share one reader (version 1 lacks the corner pool);
+    // a version that changes a stored shape converts the older ones in its
+    // readers (commands: `stored_command`).
+    read_scene(text, path)
 }
 
 /// Finds `format: "hedra-scene"` and `version: N` near the top of the text,
@@ -544,7 +556,7 @@ fn parse_error(path: &Path, e: ron::error::SpannedError) -> FileError {
     }
 }
 
-fn read_v1(text: &str, path: &Path) -> Result<Loaded, FileError> {
+fn read_scene(text: &str, path: &Path) -> Result<Loaded, FileError> {
     let mut warnings = Vec::new();
     // `history: (…)` is read as `Some(raw)`; the history is parsed later on its own.
     let options =
@@ -598,7 +610,7 @@ fn read_v1(text: &str, path: &Path) -> Result<Loaded, FileError> {
         saved_serial: None,
     };
     if let Some(raw) = file.history {
-        match restore_history(&raw, scene_pool, scene_corners, &session.doc) {
+        match restore_history(&raw, file.version, scene_pool, scene_corners, &session.doc) {
             Ok(h) => session.history = h,
             Err(why) => warnings.push(format!(
                 "the undo history is damaged ({why}); the scene opened without it"
@@ -703,11 +715,12 @@ fn restore_node(
 
 fn restore_history(
     raw: &RawValue,
+    version: u32,
     mut pool: Vec<Arc<HalfEdgeMesh>>,
     mut corner_pool: Vec<CornerAttributes>,
     doc: &Document,
 ) -> Result<History, String> {
-    let stored: StoredHistory = raw.into_rust().map_err(|e| {
+    let stored = stored_command::parse_history(version, raw).map_err(|e| {
         format!(
             "{} at history line {}, column {}",
             e.code, e.span.start.line, e.span.start.col
@@ -715,7 +728,7 @@ fn restore_history(
     })?;
     pool.extend(stored.meshes.into_iter().map(Arc::new));
     corner_pool.extend(restore_corners(stored.corners)?);
-    let restore_tx = |t: StoredTransaction| -> Result<Transaction, String> {
+    let restore_tx = |t: StoredTransaction<Command>| -> Result<Transaction, String> {
         let mut changes = Vec::with_capacity(t.changes.len());
         for c in t.changes {
             changes.push(NodeChange {
