@@ -603,7 +603,7 @@ fn read_scene(text: &str, path: &Path) -> Result<Loaded, FileError> {
             return Err(invalid("two nodes share one id".into()));
         }
     }
-    doc.check().map_err(&invalid)?;
+    doc.check().map_err(|e| invalid(e.to_string()))?;
     let mut session = Session {
         doc,
         history: History::default(),
@@ -848,7 +848,7 @@ mod tests {
         if let Some(node) = session.doc.nodes.get_mut(&id) {
             node.content = NodeContent::Mesh(MeshContent::new(Arc::new(mesh)));
         }
-        let err = session.doc.check().unwrap_err();
+        let err = session.doc.check().unwrap_err().to_string();
         assert!(
             err.contains("'Shell'") && err.contains(&face.to_string()),
             "{err}"

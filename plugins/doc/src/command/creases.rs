@@ -2,7 +2,7 @@
 //! creases, and snapping the cage to its limit surface.
 
 use super::plan::Plan;
-use super::{CommandError, NodeRef};
+use super::{CommandError, EditError, NodeRef};
 use crate::elements::{EdgeSet, VertexSet};
 use crate::scene::{CornerAttributes, NodeContent, SubdivisionModifier};
 use hedra_geom::subdivision::{self, INFINITE_SHARPNESS, Refiner};
@@ -64,8 +64,7 @@ impl Plan<'_> {
             (None, None) => {
                 return Err(CommandError::Element {
                     node: label,
-                    message: "has no subdivision modifier (give `levels` to subdivide anyway)"
-                        .into(),
+                    error: EditError::NoSubdivisionModifier,
                 });
             }
         };
@@ -90,7 +89,7 @@ impl Plan<'_> {
     ) -> Result<(), CommandError> {
         let s = check_sharpness(sharpness)?;
         self.edit_creases(node, |m, c| {
-            for e in edges.resolve(m).map_err(|e| e.0)? {
+            for e in edges.resolve(m)? {
                 c.set_edge(e, s);
             }
             Ok(())
@@ -105,7 +104,7 @@ impl Plan<'_> {
     ) -> Result<(), CommandError> {
         let s = check_sharpness(sharpness)?;
         self.edit_creases(node, |m, c| {
-            for v in vertices.resolve(m).map_err(|e| e.0)? {
+            for v in vertices.resolve(m)? {
                 c.set_vertex(v, s);
             }
             Ok(())

@@ -3,7 +3,7 @@
 //! elements a set names, in the node's local space.
 
 use super::plan::Plan;
-use super::{CommandError, NodeRef};
+use super::{CommandError, EditError, NodeRef};
 use crate::elements::{EdgeSet, FaceSet, VertexSet};
 use glam::DVec3;
 use hedra_geom::modeling::{self, MergePoint, MirrorAxis};
@@ -17,9 +17,9 @@ impl Plan<'_> {
         offset: DVec3,
     ) -> Result<(), CommandError> {
         self.edit_mesh(node, |m| {
-            let vs = vertices.resolve(m).map_err(|e| e.0)?;
+            let vs = vertices.resolve(m)?;
             if !offset.is_finite() {
-                return Err("the offset is not finite".into());
+                return Err(EditError::OffsetNotFinite);
             }
             for v in vs {
                 m.set_position(v, m.position(v) + offset);
@@ -35,11 +35,12 @@ impl Plan<'_> {
     ) -> Result<(), CommandError> {
         self.edit_mesh(node, |m| {
             for &(i, p) in positions {
-                if !m.is_vertex(VertexId(i)) {
-                    return Err(format!("vertex v{i} does not exist"));
+                let vertex = VertexId(i);
+                if !m.is_vertex(vertex) {
+                    return Err(EditError::NoSuchVertex { vertex });
                 }
                 if !p.is_finite() {
-                    return Err(format!("vertex v{i}: position is not finite"));
+                    return Err(EditError::PositionNotFinite { vertex });
                 }
                 m.set_position(VertexId(i), p);
             }
@@ -116,14 +117,16 @@ impl Plan<'_> {
         cuts: u32,
     ) -> Result<(), CommandError> {
         self.model(node, |m| {
-            let es = edge.resolve(m).map_err(|e| e.0)?;
+            let es = edge.resolve(m)?;
             let [e] = es[..] else {
-                return Err(format!(
-                    "a loop cut needs exactly one edge, {edge:?} names {}",
-                    es.len()
-                ));
+                return Err(EditError::LoopCutEdges {
+                    edges: edge.clone(),
+                    count: es.len(),
+                }
+                .into());
             };
-            Ok(modeling::loop_cut(m, e, cuts).map(drop))
+            modeling::loop_cut(m, e, cuts)?;
+            Ok(())
         })
     }
 
@@ -144,14 +147,16 @@ impl Plan<'_> {
         vertices: &VertexSet,
     ) -> Result<(), CommandError> {
         self.model(node, |m| {
-            let vs = vertices.resolve(m).map_err(|e| e.0)?;
+            let vs = vertices.resolve(m)?;
             let [a, b] = vs[..] else {
-                return Err(format!(
-                    "connecting needs exactly two vertices, {vertices:?} names {}",
-                    vs.len()
-                ));
+                return Err(EditError::ConnectVertices {
+                    vertices: vertices.clone(),
+                    count: vs.len(),
+                }
+                .into());
             };
-            Ok(modeling::connect_vertices(m, a, b).map(drop))
+            modeling::connect_vertices(m, a, b)?;
+            Ok(())
         })
     }
 
@@ -194,16 +199,16 @@ impl Plan<'_> {
     pub(super) fn flip_normals(&mut self, node: &NodeRef) -> Result<(), CommandError> {
         self.model(node, |m| {
             modeling::flip_normals(m);
-            Ok(Ok(()))
+            Ok(())
         })
     }
 
     pub(super) fn recalculate_normals(&mut self, node: &NodeRef) -> Result<(), CommandError> {
         self.model(node, |m| {
             if !modeling::recalculate_normals_outward(m) {
-                return Err("the mesh already faces outwards (or is open)".into());
+                return Err(EditError::AlreadyOutwards.into());
             }
-            Ok(Ok(()))
+            Ok(())
         })
     }
 
@@ -260,7 +265,7 @@ impl Plan<'_> {
         node: &NodeRef,
         axis: MirrorAxis,
     ) -> Result<(), CommandError> {
-        self.model(node, |m| Ok(modeling::symmetrize(m, axis)))
+        self.model(node, |m| Ok(modeling::symmetrize(m, axis)?))
     }
 
     pub(super) fn slide_edges(

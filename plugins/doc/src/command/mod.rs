@@ -19,12 +19,36 @@ mod spec;
 
 pub use spec::{Command, CurveSpec, NodeRef, ParameterDirection, SurfaceSpec};
 
+use crate::elements::{EdgeSet, ElementError, VertexSet};
 use crate::history::Transaction;
 use crate::scene::{Document, NodeId};
 use hedra_geom::curves::CurveError;
 use hedra_geom::subdivision::{self, INFINITE_SHARPNESS};
-use hedra_geom::{BuildError, FaceId, PrimitiveError};
+use hedra_geom::{BuildError, FaceId, PrimitiveError, VertexId};
 use plan::Plan;
+
+/// Why an edit refused the elements or values it was given (the node is
+/// named by [`CommandError::Element`]).
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum EditError {
+    /// An element set names nothing or an element the mesh does not have.
+    #[error(transparent)]
+    Elements(#[from] ElementError),
+    #[error("the offset is not finite")]
+    OffsetNotFinite,
+    #[error("vertex {vertex} does not exist")]
+    NoSuchVertex { vertex: VertexId },
+    #[error("vertex {vertex}: position is not finite")]
+    PositionNotFinite { vertex: VertexId },
+    #[error("a loop cut needs exactly one edge, {edges:?} names {count}")]
+    LoopCutEdges { edges: EdgeSet, count: usize },
+    #[error("connecting needs exactly two vertices, {vertices:?} names {count}")]
+    ConnectVertices { vertices: VertexSet, count: usize },
+    #[error("the mesh already faces outwards (or is open)")]
+    AlreadyOutwards,
+    #[error("has no subdivision modifier (give `levels` to subdivide anyway)")]
+    NoSubdivisionModifier,
+}
 
 /// Why a command was refused. The document is unchanged.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
@@ -47,8 +71,8 @@ pub enum CommandError {
     Primitive(#[from] PrimitiveError),
     #[error("bad mesh: {0}")]
     Mesh(#[from] BuildError),
-    #[error("{node}: {message}")]
-    Element { node: String, message: String },
+    #[error("{node}: {error}")]
+    Element { node: String, error: EditError },
     #[error("{node}: {error}")]
     Modeling {
         node: String,

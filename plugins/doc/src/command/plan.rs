@@ -3,7 +3,8 @@
 //! editing a mesh, curve or creases on a copy), and [`Plan::run`], which
 //! hands each command to its family's file.
 
-use super::{Command, CommandError, NodeRef};
+use super::{Command, CommandError, EditError, NodeRef};
+use crate::elements::ElementError;
 use crate::elements::{EdgeSet, FaceSet, VertexSet};
 use crate::history::NodeChange;
 use crate::scene::{Document, Node, NodeContent, NodeId, SurfaceShape, Transform};
@@ -11,6 +12,31 @@ use hedra_geom::curves::{CurveError, NurbsCurve};
 use hedra_geom::subdivision::Creases;
 use hedra_geom::{EdgeId, FaceId, HalfEdgeMesh, ModelingError, VertexId};
 use std::sync::Arc;
+
+/// Why a mesh edit refused: the elements or values it was given, or the
+/// kernel's operation.
+pub(super) enum Refusal {
+    Edit(EditError),
+    Modeling(ModelingError),
+}
+
+impl From<EditError> for Refusal {
+    fn from(e: EditError) -> Self {
+        Refusal::Edit(e)
+    }
+}
+
+impl From<ElementError> for Refusal {
+    fn from(e: ElementError) -> Self {
+        Refusal::Edit(e.into())
+    }
+}
+
+impl From<ModelingError> for Refusal {
+    fn from(e: ModelingError) -> Self {
+        Refusal::Modeling(e)
+    }
+}
 
 /// Collects the node changes of one command.
 pub(super) struct Plan<'a> {
@@ -141,13 +167,13 @@ impl Plan<'_> {
     }
 
     /// Applies `edit` to a copy of the node's mesh and stores the result
-    /// (no longer an adjustable primitive). `edit` reports element errors as text.
+    /// (no longer an adjustable primitive).
     pub(super) fn edit_mesh(
         &mut self,
         r: &NodeRef,
-        edit: impl FnOnce(&mut HalfEdgeMesh) -> Result<(), String>,
+        edit: impl FnOnce(&mut HalfEdgeMesh) -> Result<(), EditError>,
     ) -> Result<(), CommandError> {
-        self.model(r, |m| edit(m).map(Ok))
+        self.model(r, |m| Ok(edit(m)?))
     }
 
     /// Edits a curve or surface node; a refused edit changes nothing.
@@ -173,17 +199,15 @@ impl Plan<'_> {
     pub(super) fn edit_creases(
         &mut self,
         r: &NodeRef,
-        edit: impl FnOnce(&HalfEdgeMesh, &mut Creases) -> Result<(), String>,
+        edit: impl FnOnce(&HalfEdgeMesh, &mut Creases) -> Result<(), EditError>,
     ) -> Result<(), CommandError> {
         let mut n = self.node(r)?;
         let label = self.doc.label_of(n.id);
         let NodeContent::Mesh(content) = &mut n.content else {
             return Err(CommandError::NotAMesh { node: label });
         };
-        edit(&content.mesh, &mut content.creases).map_err(|message| CommandError::Element {
-            node: label,
-            message,
-        })?;
+        edit(&content.mesh, &mut content.creases)
+            .map_err(|error| CommandError::Element { node: label, error })?;
         self.set(n);
         Ok(())
     }
@@ -192,7 +216,7 @@ impl Plan<'_> {
     pub(super) fn model(
         &mut self,
         r: &NodeRef,
-        edit: impl FnOnce(&mut HalfEdgeMesh) -> Result<Result<(), hedra_geom::ModelingError>, String>,
+        edit: impl FnOnce(&mut HalfEdgeMesh) -> Result<(), Refusal>,
     ) -> Result<(), CommandError> {
         let mut n = self.node(r)?;
         let label = self.doc.label_of(n.id);
@@ -201,14 +225,11 @@ impl Plan<'_> {
         };
         let mut mesh = (*content.mesh).clone();
         match edit(&mut mesh) {
-            Err(message) => {
-                return Err(CommandError::Element {
-                    node: label,
-                    message,
-                });
+            Err(Refusal::Edit(error)) => return Err(CommandError::Element { node: label, error }),
+            Err(Refusal::Modeling(error)) => {
+                return Err(CommandError::Modeling { node: label, error });
             }
-            Ok(Err(error)) => return Err(CommandError::Modeling { node: label, error }),
-            Ok(Ok(())) => {}
+            Ok(()) => {}
         }
         debug_assert!(
             mesh.validate().is_ok(),
@@ -232,8 +253,8 @@ impl Plan<'_> {
         op: impl FnOnce(&mut HalfEdgeMesh, &[FaceId]) -> Result<(), ModelingError>,
     ) -> Result<(), CommandError> {
         self.model(r, |m| {
-            let fs = set.resolve(m).map_err(|e| e.0)?;
-            Ok(op(m, &fs))
+            let fs = set.resolve(m)?;
+            Ok(op(m, &fs)?)
         })
     }
 
@@ -245,8 +266,8 @@ impl Plan<'_> {
         op: impl FnOnce(&mut HalfEdgeMesh, &[EdgeId]) -> Result<(), ModelingError>,
     ) -> Result<(), CommandError> {
         self.model(r, |m| {
-            let es = set.resolve(m).map_err(|e| e.0)?;
-            Ok(op(m, &es))
+            let es = set.resolve(m)?;
+            Ok(op(m, &es)?)
         })
     }
 
@@ -258,8 +279,8 @@ impl Plan<'_> {
         op: impl FnOnce(&mut HalfEdgeMesh, &[VertexId]) -> Result<(), ModelingError>,
     ) -> Result<(), CommandError> {
         self.model(r, |m| {
-            let vs = set.resolve(m).map_err(|e| e.0)?;
-            Ok(op(m, &vs))
+            let vs = set.resolve(m)?;
+            Ok(op(m, &vs)?)
         })
     }
 
