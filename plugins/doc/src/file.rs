@@ -75,7 +75,11 @@ pub enum FileError {
         message: String,
     },
     #[error("{path}: {error}")]
-    Invalid { path: PathBuf, error: InvalidScene },
+    Invalid {
+        path: PathBuf,
+        /// Boxed: the scene problems are large and rare.
+        error: Box<InvalidScene>,
+    },
 }
 
 /// Why a file is not a Hedra scene file at all.
@@ -690,7 +694,7 @@ fn read_scene(text: &str, path: &Path) -> Result<Loaded, FileError> {
     }
     let invalid = |error: InvalidScene| FileError::Invalid {
         path: path.to_path_buf(),
-        error,
+        error: Box::new(error),
     };
     let scene_pool: Vec<Arc<HalfEdgeMesh>> = file.meshes.into_iter().map(Arc::new).collect();
     let scene_corners = restore_corners(file.corners).map_err(&invalid)?;
