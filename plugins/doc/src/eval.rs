@@ -7,7 +7,7 @@ use hedra_geom::curves::analysis::{curvature, frenet_frame};
 use hedra_geom::surfaces::Surface;
 use serde::Serialize;
 
-use crate::command::NodeRef;
+use crate::command::{CommandError, NodeRef};
 use crate::scene::{Document, NodeContent, SurfaceShape};
 
 /// What `hedra eval` prints.
@@ -28,6 +28,32 @@ pub struct Evaluation {
     pub curvature: Vec<f64>,
 }
 
+/// Why a node could not be evaluated.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum EvalError {
+    /// No node matches the reference.
+    #[error(transparent)]
+    Node(#[from] CommandError),
+    #[error("'{node}': {parameter} = {value} is outside the domain [{}, {}]", domain.0, domain.1)]
+    OutsideDomain {
+        node: String,
+        parameter: &'static str,
+        value: f64,
+        domain: (f64, f64),
+    },
+    #[error("'{node}' is a {kind}: give {wanted} parameter value(s), got {given}")]
+    ParameterCount {
+        node: String,
+        kind: &'static str,
+        wanted: usize,
+        given: usize,
+    },
+    #[error("'{node}': (u, v) = ({u}, {v}) is outside the triangle (u, v ≥ 0, u + v ≤ 1)")]
+    OutsideTriangle { node: String, u: f64, v: f64 },
+    #[error("'{node}' is a {kind}, not a curve or surface")]
+    NotAShape { node: String, kind: &'static str },
+}
+
 fn a(v: DVec3) -> [f64; 3] {
     v.to_array()
 }
@@ -37,31 +63,33 @@ fn a(v: DVec3) -> [f64; 3] {
 /// # Errors
 /// A message naming the node or the parameter: no such node, not a curve or
 /// surface, the wrong number of parameters, a parameter outside the domain.
-pub fn evaluate(doc: &Document, node: &NodeRef, params: &[f64]) -> Result<Evaluation, String> {
-    let id = doc.resolve(node).map_err(|e| e.to_string())?;
+pub fn evaluate(doc: &Document, node: &NodeRef, params: &[f64]) -> Result<Evaluation, EvalError> {
+    let id = doc.resolve(node)?;
     let n = doc
         .node(id)
-        .ok_or_else(|| format!("{node} does not exist"))?;
-    let inside = |t: f64, (lo, hi): (f64, f64), name: &str| {
+        .ok_or_else(|| CommandError::UnknownNode(node.clone()))?;
+    let inside = |t: f64, (lo, hi): (f64, f64), parameter: &'static str| {
         if t.is_finite() && t >= lo - 1e-12 && t <= hi + 1e-12 {
             Ok(())
         } else {
-            Err(format!(
-                "'{}': {name} = {t} is outside the domain [{lo}, {hi}]",
-                n.name
-            ))
+            Err(EvalError::OutsideDomain {
+                node: n.name.clone(),
+                parameter,
+                value: t,
+                domain: (lo, hi),
+            })
         }
     };
     let want = |count: usize| {
         if params.len() == count {
             Ok(())
         } else {
-            Err(format!(
-                "'{}' is a {}: give {count} parameter value(s), got {}",
-                n.name,
-                n.content.kind(),
-                params.len()
-            ))
+            Err(EvalError::ParameterCount {
+                node: n.name.clone(),
+                kind: n.content.kind(),
+                wanted: count,
+                given: params.len(),
+            })
         }
     };
     match &n.content {
@@ -119,10 +147,11 @@ pub fn evaluate(doc: &Document, node: &NodeRef, params: &[f64]) -> Result<Evalua
                 SurfaceShape::Triangle(t) => {
                     let w = 1.0 - u - v;
                     if !(u >= -1e-12 && v >= -1e-12 && w >= -1e-12) {
-                        return Err(format!(
-                            "'{}': (u, v) = ({u}, {v}) is outside the triangle (u, v ≥ 0, u + v ≤ 1)",
-                            n.name
-                        ));
+                        return Err(EvalError::OutsideTriangle {
+                            node: n.name.clone(),
+                            u,
+                            v,
+                        });
                     }
                     let b = DVec3::new(u, v, w);
                     let du = t.directional_derivative(b, DVec3::new(1.0, 0.0, -1.0));
@@ -141,11 +170,10 @@ pub fn evaluate(doc: &Document, node: &NodeRef, params: &[f64]) -> Result<Evalua
                 }
             }
         }
-        _ => Err(format!(
-            "'{}' is a {}, not a curve or surface",
-            n.name,
-            n.content.kind()
-        )),
+        _ => Err(EvalError::NotAShape {
+            node: n.name.clone(),
+            kind: n.content.kind(),
+        }),
     }
 }
 

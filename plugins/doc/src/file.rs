@@ -24,12 +24,14 @@
 //!
 //! Format versions: version 1 files are read as they are (version 2 only
 //! adds the corner pool and `corner_set` references); a newer build's file
-//! is refused by name.
+//! is refused by name. The commands in the history have a stored form of
+//! their own, pinned per version ([`stored_command`]). `docs/file-format.md`
+//! describes the format for other tools.
 
 use crate::command::Command;
 use crate::history::{History, NodeChange, Transaction};
 use crate::scene::{
-    CornerAttributes, Document, MeshContent, Node, NodeContent, NodeId, Shading,
+    CornerAttributes, Document, DocumentError, MeshContent, Node, NodeContent, NodeId, Shading,
     SubdivisionModifier, Transform,
 };
 use crate::session::Session;
@@ -41,6 +43,8 @@ use std::collections::HashMap;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
+
+pub mod stored_command;
 
 /// The format name written at the top of every scene file.
 pub const FORMAT_NAME: &str = "hedra-scene";
@@ -58,7 +62,7 @@ pub enum FileError {
         source: std::io::Error,
     },
     #[error("{path}: not a Hedra scene file ({reason})")]
-    NotAScene { path: PathBuf, reason: String },
+    NotAScene { path: PathBuf, reason: NotAScene },
     #[error(
         "{path}: written by a newer Hedra (format version {version}); this build reads versions up to {FORMAT_VERSION}"
     )]
@@ -70,8 +74,110 @@ pub enum FileError {
         column: usize,
         message: String,
     },
-    #[error("{path}: {message}")]
-    Invalid { path: PathBuf, message: String },
+    #[error("{path}: {error}")]
+    Invalid {
+        path: PathBuf,
+        /// Boxed: the scene problems are large and rare.
+        error: Box<InvalidScene>,
+    },
+}
+
+/// Why a file is not a Hedra scene file at all.
+#[derive(Debug, thiserror::Error)]
+pub enum NotAScene {
+    #[error("not UTF-8 text ({0})")]
+    NotUtf8(#[from] std::string::FromUtf8Error),
+    #[error("no format header")]
+    NoFormatHeader,
+    #[error("malformed format header")]
+    MalformedFormatHeader,
+    #[error("format is '{format}', expected '{FORMAT_NAME}'")]
+    OtherFormat { format: String },
+    #[error("no version header")]
+    NoVersionHeader,
+    #[error("malformed version header")]
+    MalformedVersionHeader,
+    #[error("format version 0 does not exist")]
+    VersionZero,
+    #[error("header fields disagree")]
+    HeaderFieldsDisagree,
+}
+
+/// What is wrong in a scene file that parsed: the scene cannot be opened.
+#[derive(Debug, thiserror::Error)]
+pub enum InvalidScene {
+    #[error("two nodes share one id")]
+    SharedId { node: NodeId },
+    #[error(transparent)]
+    Document(#[from] DocumentError),
+    #[error("corner set {index}: {counts}")]
+    CornerSet { index: usize, counts: CornerCounts },
+    #[error("node {node} '{name}' uses corner set {index}, which is not stored")]
+    MissingCornerSet {
+        node: NodeId,
+        name: String,
+        index: usize,
+    },
+    #[error("node {node} '{name}' uses mesh {index}, which is not stored")]
+    MissingMesh {
+        node: NodeId,
+        name: String,
+        index: usize,
+    },
+    #[error("node {node} '{name}': {problem}")]
+    Node {
+        node: NodeId,
+        name: String,
+        problem: NodeProblem,
+    },
+}
+
+/// A stored corner set whose lists do not pair up.
+#[derive(Debug, thiserror::Error)]
+#[error(
+    "{uv_halfedges} UV half-edges with {uvs} numbers, {normal_halfedges} normal half-edges with {normals} numbers"
+)]
+pub struct CornerCounts {
+    pub uv_halfedges: usize,
+    pub uvs: usize,
+    pub normal_halfedges: usize,
+    pub normals: usize,
+}
+
+/// A stored mesh node's parameter that a command would have refused.
+#[derive(Debug, thiserror::Error)]
+pub enum NodeProblem {
+    #[error(transparent)]
+    Primitive(#[from] hedra_geom::PrimitiveError),
+    #[error("subdivision level {level} is above the maximum {max}")]
+    Level { level: u32, max: u32 },
+    #[error("crease sharpness {0} is not a finite value ≥ 0")]
+    Sharpness(f64),
+}
+
+/// Why the history part of a file was dropped (the scene opened without it).
+#[derive(Debug, thiserror::Error)]
+pub enum HistoryError {
+    #[error("{message} at history line {line}, column {column}")]
+    Parse {
+        line: usize,
+        column: usize,
+        message: String,
+    },
+    #[error(transparent)]
+    Scene(#[from] InvalidScene),
+    #[error("step '{label}' does not lead to the state after it")]
+    StepDoesNotFit { label: String },
+    #[error("undoing step '{label}' gives a broken scene: {error}")]
+    UndoBreaks { label: String, error: DocumentError },
+    #[error("redoing step '{label}' gives a broken scene: {error}")]
+    RedoBreaks { label: String, error: DocumentError },
+    #[error("the steps do not lead to the saved scene")]
+    WrongEnd,
+    #[error("redo step '{label}' does not start from the scene")]
+    RedoDoesNotStart { label: String },
+    #[error("step serial numbers are out of order")]
+    SerialsOutOfOrder,
 }
 
 /// A scene read from a file, with what the reader had to give up.
@@ -126,6 +232,10 @@ fn visible_default() -> bool {
     true
 }
 
+fn none<C>() -> Option<C> {
+    None
+}
+
 #[derive(Serialize, Deserialize)]
 struct StoredScene {
     next_node_id: u64,
@@ -139,12 +249,15 @@ struct StoredChange {
     after: Option<StoredNode>,
 }
 
+/// One history step. `C` is the stored command of the file's version
+/// ([`stored_command`]): reading parses the version's own shape and
+/// converts it to today's [`Command`].
 #[derive(Serialize, Deserialize)]
-struct StoredTransaction {
+struct StoredTransaction<C> {
     serial: u64,
     label: String,
-    #[serde(default)]
-    command: Option<Command>,
+    #[serde(default = "none")]
+    command: Option<C>,
     changes: Vec<StoredChange>,
     next_id_before: u64,
     next_id_after: u64,
@@ -175,17 +288,16 @@ impl StoredCorners {
         }
     }
 
-    fn restore(self) -> Result<CornerAttributes, String> {
+    fn restore(self) -> Result<CornerAttributes, CornerCounts> {
         if self.uvs.len() != 2 * self.uv_halfedges.len()
             || self.normals.len() != 3 * self.normal_halfedges.len()
         {
-            return Err(format!(
-                "{} UV half-edges with {} numbers, {} normal half-edges with {} numbers",
-                self.uv_halfedges.len(),
-                self.uvs.len(),
-                self.normal_halfedges.len(),
-                self.normals.len()
-            ));
+            return Err(CornerCounts {
+                uv_halfedges: self.uv_halfedges.len(),
+                uvs: self.uvs.len(),
+                normal_halfedges: self.normal_halfedges.len(),
+                normals: self.normals.len(),
+            });
         }
         let id = hedra_geom::HalfEdgeId;
         Ok(CornerAttributes {
@@ -208,14 +320,14 @@ impl StoredCorners {
 }
 
 #[derive(Serialize, Deserialize)]
-struct StoredHistory {
+struct StoredHistory<C> {
     /// Meshes only the history uses; index `i` here is pool index `scene_meshes + i`.
     meshes: Vec<HalfEdgeMesh>,
     /// Corner attributes only the history uses, numbered after the scene's.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     corners: Vec<StoredCorners>,
-    done: Vec<StoredTransaction>,
-    undone: Vec<StoredTransaction>,
+    done: Vec<StoredTransaction<C>>,
+    undone: Vec<StoredTransaction<C>>,
     #[serde(default)]
     dropped: usize,
     next_serial: u64,
@@ -230,7 +342,7 @@ struct FileOut<'a> {
     #[serde(skip_serializing_if = "Vec::is_empty")]
     corners: Vec<StoredCorners>,
     scene: StoredScene,
-    history: StoredHistory,
+    history: StoredHistory<&'a Command>,
 }
 
 #[derive(Deserialize)]
@@ -296,11 +408,11 @@ impl<'a> MeshPool<'a> {
             },
         }
     }
-    fn transaction(&mut self, t: &'a Transaction) -> StoredTransaction {
+    fn transaction(&mut self, t: &'a Transaction) -> StoredTransaction<&'a Command> {
         StoredTransaction {
             serial: t.serial,
             label: t.label.clone(),
-            command: t.command.clone(),
+            command: t.command.as_ref(),
             changes: t
                 .changes
                 .iter()
@@ -484,7 +596,7 @@ pub fn load(path: &Path) -> Result<Loaded, FileError> {
     let bytes = std::fs::read(path).map_err(io(path))?;
     let text = String::from_utf8(bytes).map_err(|e| FileError::NotAScene {
         path: path.to_path_buf(),
-        reason: format!("not UTF-8 text ({e})"),
+        reason: e.into(),
     })?;
     from_str(&text, path)
 }
@@ -507,32 +619,35 @@ pub fn from_str(text: &str, path: &Path) -> Result<Loaded, FileError> {
     if version == 0 {
         return Err(FileError::NotAScene {
             path: path.to_path_buf(),
-            reason: "format version 0 does not exist".into(),
+            reason: NotAScene::VersionZero,
         });
     }
-    // Version 1 is current; older versions would be migrated here, one typed
-    // step at a time, before `read_v1`.
-    read_v1(text, path)
+    // Versions 1 and 2 share one reader (version 1 lacks the corner pool);
+    // a version that changes a stored shape converts the older ones in its
+    // readers (commands: `stored_command`).
+    read_scene(text, path)
 }
 
 /// Finds `format: "hedra-scene"` and `version: N` near the top of the text,
 /// without parsing the rest (so even a damaged file gets a clear answer).
-fn sniff_header(text: &str) -> Result<u32, String> {
+fn sniff_header(text: &str) -> Result<u32, NotAScene> {
     let head: String = text.chars().take(1024).collect();
     let after = |key: &str| head.find(key).map(|i| head[i + key.len()..].trim_start());
-    let format = after("format:").ok_or("no format header")?;
+    let format = after("format:").ok_or(NotAScene::NoFormatHeader)?;
     let format = format
         .strip_prefix('"')
         .and_then(|f| f.split('"').next())
-        .ok_or("malformed format header")?;
+        .ok_or(NotAScene::MalformedFormatHeader)?;
     if format != FORMAT_NAME {
-        return Err(format!("format is '{format}', expected '{FORMAT_NAME}'"));
+        return Err(NotAScene::OtherFormat {
+            format: format.to_string(),
+        });
     }
-    let version = after("version:").ok_or("no version header")?;
+    let version = after("version:").ok_or(NotAScene::NoVersionHeader)?;
     let digits: String = version.chars().take_while(char::is_ascii_digit).collect();
     digits
         .parse()
-        .map_err(|_| "malformed version header".to_string())
+        .map_err(|_| NotAScene::MalformedVersionHeader)
 }
 
 fn parse_error(path: &Path, e: ron::error::SpannedError) -> FileError {
@@ -544,7 +659,7 @@ fn parse_error(path: &Path, e: ron::error::SpannedError) -> FileError {
     }
 }
 
-fn read_v1(text: &str, path: &Path) -> Result<Loaded, FileError> {
+fn read_scene(text: &str, path: &Path) -> Result<Loaded, FileError> {
     let mut warnings = Vec::new();
     // `history: (…)` is read as `Some(raw)`; the history is parsed later on its own.
     let options =
@@ -574,12 +689,12 @@ fn read_v1(text: &str, path: &Path) -> Result<Loaded, FileError> {
     if file.format != FORMAT_NAME || !(1..=FORMAT_VERSION).contains(&file.version) {
         return Err(FileError::NotAScene {
             path: path.to_path_buf(),
-            reason: "header fields disagree".into(),
+            reason: NotAScene::HeaderFieldsDisagree,
         });
     }
-    let invalid = |message: String| FileError::Invalid {
+    let invalid = |error: InvalidScene| FileError::Invalid {
         path: path.to_path_buf(),
-        message,
+        error: Box::new(error),
     };
     let scene_pool: Vec<Arc<HalfEdgeMesh>> = file.meshes.into_iter().map(Arc::new).collect();
     let scene_corners = restore_corners(file.corners).map_err(&invalid)?;
@@ -587,18 +702,19 @@ fn read_v1(text: &str, path: &Path) -> Result<Loaded, FileError> {
     doc.next_node_id = file.scene.next_node_id;
     for sn in file.scene.nodes {
         let node = restore_node(sn, &scene_pool, &scene_corners).map_err(&invalid)?;
-        if doc.nodes.insert(node.id, node).is_some() {
-            return Err(invalid("two nodes share one id".into()));
+        let id = node.id;
+        if doc.nodes.insert(id, node).is_some() {
+            return Err(invalid(InvalidScene::SharedId { node: id }));
         }
     }
-    doc.check().map_err(&invalid)?;
+    doc.check().map_err(|e| invalid(e.into()))?;
     let mut session = Session {
         doc,
         history: History::default(),
         saved_serial: None,
     };
     if let Some(raw) = file.history {
-        match restore_history(&raw, scene_pool, scene_corners, &session.doc) {
+        match restore_history(&raw, file.version, scene_pool, scene_corners, &session.doc) {
             Ok(h) => session.history = h,
             Err(why) => warnings.push(format!(
                 "the undo history is damaged ({why}); the scene opened without it"
@@ -611,11 +727,14 @@ fn read_v1(text: &str, path: &Path) -> Result<Loaded, FileError> {
 
 /// The corner pool's attributes, each restored once and shared by the nodes
 /// that name it.
-fn restore_corners(stored: Vec<StoredCorners>) -> Result<Vec<CornerAttributes>, String> {
+fn restore_corners(stored: Vec<StoredCorners>) -> Result<Vec<CornerAttributes>, InvalidScene> {
     stored
         .into_iter()
         .enumerate()
-        .map(|(i, c)| c.restore().map_err(|why| format!("corner set {i}: {why}")))
+        .map(|(index, c)| {
+            c.restore()
+                .map_err(|counts| InvalidScene::CornerSet { index, counts })
+        })
         .collect()
 }
 
@@ -623,7 +742,7 @@ fn restore_node(
     sn: StoredNode,
     pool: &[Arc<HalfEdgeMesh>],
     corner_pool: &[CornerAttributes],
-) -> Result<Node, String> {
+) -> Result<Node, InvalidScene> {
     let content = match sn.content {
         StoredContent::Empty => NodeContent::Empty,
         StoredContent::Curve(c) => NodeContent::Curve(Arc::new(c)),
@@ -638,33 +757,35 @@ fn restore_node(
             corner_set,
         } => {
             let mut corners = match corner_set {
-                Some(i) => corner_pool.get(i).cloned().ok_or_else(|| {
-                    format!(
-                        "node {} '{}' uses corner set {i}, which is not stored",
-                        sn.id, sn.name
-                    )
+                Some(index) => corner_pool.get(index).cloned().ok_or_else(|| {
+                    InvalidScene::MissingCornerSet {
+                        node: sn.id,
+                        name: sn.name.clone(),
+                        index,
+                    }
                 })?,
                 None => inline_corners,
             };
-            let m = pool.get(mesh).ok_or_else(|| {
-                format!(
-                    "node {} '{}' uses mesh {mesh}, which is not stored",
-                    sn.id, sn.name
-                )
+            let m = pool.get(mesh).ok_or_else(|| InvalidScene::MissingMesh {
+                node: sn.id,
+                name: sn.name.clone(),
+                index: mesh,
             })?;
             // Parameters a command would have refused are refused here too
             // (found by fuzzing: a NaN cube size loaded and broke the round trip).
-            let here = |what: String| format!("node {} '{}': {what}", sn.id, sn.name);
+            let here = |problem: NodeProblem| InvalidScene::Node {
+                node: sn.id,
+                name: sn.name.clone(),
+                problem,
+            };
             if let Some(p) = &primitive {
-                p.check().map_err(|e| here(e.to_string()))?;
+                p.check().map_err(|e| here(e.into()))?;
             }
             if let Some(m) = &subdivision {
                 let level = m.viewport_level.max(m.export_level);
-                if level > hedra_geom::subdivision::MAX_LEVEL {
-                    return Err(here(format!(
-                        "subdivision level {level} is above the maximum {}",
-                        hedra_geom::subdivision::MAX_LEVEL
-                    )));
+                let max = hedra_geom::subdivision::MAX_LEVEL;
+                if level > max {
+                    return Err(here(NodeProblem::Level { level, max }));
                 }
             }
             let bad_sharpness = creases
@@ -673,9 +794,7 @@ fn restore_node(
                 .chain(creases.vertices.values())
                 .find(|s| !(s.is_finite() && **s >= 0.0));
             if let Some(s) = bad_sharpness {
-                return Err(here(format!(
-                    "crease sharpness {s} is not a finite value ≥ 0"
-                )));
+                return Err(here(NodeProblem::Sharpness(*s)));
             }
             let mut creases = creases;
             creases.retain_live(m);
@@ -703,19 +822,19 @@ fn restore_node(
 
 fn restore_history(
     raw: &RawValue,
+    version: u32,
     mut pool: Vec<Arc<HalfEdgeMesh>>,
     mut corner_pool: Vec<CornerAttributes>,
     doc: &Document,
-) -> Result<History, String> {
-    let stored: StoredHistory = raw.into_rust().map_err(|e| {
-        format!(
-            "{} at history line {}, column {}",
-            e.code, e.span.start.line, e.span.start.col
-        )
+) -> Result<History, HistoryError> {
+    let stored = stored_command::parse_history(version, raw).map_err(|e| HistoryError::Parse {
+        line: e.span.start.line,
+        column: e.span.start.col,
+        message: e.code.to_string(),
     })?;
     pool.extend(stored.meshes.into_iter().map(Arc::new));
     corner_pool.extend(restore_corners(stored.corners)?);
-    let restore_tx = |t: StoredTransaction| -> Result<Transaction, String> {
+    let restore_tx = |t: StoredTransaction<Command>| -> Result<Transaction, InvalidScene> {
         let mut changes = Vec::with_capacity(t.changes.len());
         for c in t.changes {
             changes.push(NodeChange {
@@ -763,16 +882,18 @@ fn restore_history(
     let mut probe_doc = doc.clone();
     for t in history.done.iter().rev() {
         if !t.fits(&probe_doc, false) {
-            return Err(format!(
-                "step '{}' does not lead to the state after it",
-                t.label
-            ));
+            return Err(HistoryError::StepDoesNotFit {
+                label: t.label.clone(),
+            });
         }
         t.apply(&mut probe_doc, false);
         // Every state undo reaches must be sound, not only the first one.
         probe_doc
             .check()
-            .map_err(|e| format!("undoing step '{}' gives a broken scene: {e}", t.label))?;
+            .map_err(|error| HistoryError::UndoBreaks {
+                label: t.label.clone(),
+                error,
+            })?;
     }
     for t in &history.done {
         t.apply(&mut probe_doc, true);
@@ -780,23 +901,26 @@ fn restore_history(
         // whose recorded next node id is too low passed the undo checks).
         probe_doc
             .check()
-            .map_err(|e| format!("redoing step '{}' gives a broken scene: {e}", t.label))?;
+            .map_err(|error| HistoryError::RedoBreaks {
+                label: t.label.clone(),
+                error,
+            })?;
     }
     if probe_doc != *doc {
-        return Err("the steps do not lead to the saved scene".into());
+        return Err(HistoryError::WrongEnd);
     }
     let mut redo_doc = doc.clone();
     for t in history.undone.iter().rev() {
         if !t.fits(&redo_doc, true) {
-            return Err(format!(
-                "redo step '{}' does not start from the scene",
-                t.label
-            ));
+            return Err(HistoryError::RedoDoesNotStart {
+                label: t.label.clone(),
+            });
         }
         t.apply(&mut redo_doc, true);
-        redo_doc
-            .check()
-            .map_err(|e| format!("redoing step '{}' gives a broken scene: {e}", t.label))?;
+        redo_doc.check().map_err(|error| HistoryError::RedoBreaks {
+            label: t.label.clone(),
+            error,
+        })?;
     }
     let serials: Vec<u64> = history
         .done
@@ -807,7 +931,7 @@ fn restore_history(
     if serials.windows(2).any(|w| w[0] >= w[1])
         || serials.last().is_some_and(|&s| s >= history.next_serial)
     {
-        return Err("step serial numbers are out of order".into());
+        return Err(HistoryError::SerialsOutOfOrder);
     }
     Ok(history)
 }
@@ -835,7 +959,7 @@ mod tests {
         if let Some(node) = session.doc.nodes.get_mut(&id) {
             node.content = NodeContent::Mesh(MeshContent::new(Arc::new(mesh)));
         }
-        let err = session.doc.check().unwrap_err();
+        let err = session.doc.check().unwrap_err().to_string();
         assert!(
             err.contains("'Shell'") && err.contains(&face.to_string()),
             "{err}"

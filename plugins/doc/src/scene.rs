@@ -503,43 +503,82 @@ impl Document {
     }
 
     /// Checks the tree: parents exist, no cycles, ids match keys, transforms usable.
-    pub fn check(&self) -> Result<(), String> {
+    ///
+    /// # Errors
+    /// The first [`DocumentError`] found, naming the node.
+    pub fn check(&self) -> Result<(), DocumentError> {
         for (id, n) in &self.nodes {
             if *id != n.id {
-                return Err(format!("node {} is stored under id {}", n.id, id));
+                return Err(DocumentError::WrongKey {
+                    node: n.id,
+                    key: *id,
+                });
             }
             if id.0 >= self.next_node_id {
-                return Err(format!(
-                    "node {id} is not below the next id {}",
-                    self.next_node_id
-                ));
+                return Err(DocumentError::IdNotBelowNext {
+                    node: *id,
+                    next: self.next_node_id,
+                });
             }
+            let named = || (*id, n.name.clone());
             if let Some(p) = n.parent {
                 if !self.nodes.contains_key(&p) {
-                    return Err(format!("node {id} '{}' has missing parent {p}", n.name));
+                    let (node, name) = named();
+                    return Err(DocumentError::MissingParent {
+                        node,
+                        name,
+                        parent: p,
+                    });
                 }
                 if self.is_ancestor(*id, p) {
-                    return Err(format!("node {id} '{}' is its own ancestor", n.name));
+                    let (node, name) = named();
+                    return Err(DocumentError::OwnAncestor { node, name });
                 }
             }
             if !n.transform.translation.is_finite()
                 || !n.transform.rotation.is_finite()
                 || !n.transform.scale.is_finite()
             {
-                return Err(format!("node {id} '{}' has a non-finite transform", n.name));
+                let (node, name) = named();
+                return Err(DocumentError::NonFiniteTransform { node, name });
             }
             // Faces with inner rings or without edges exist in the kernel
             // (Mäntylä's Euler operators); the editor's tools, rendering and
             // exports work on polygons, so a document holds polygon meshes.
             if let NodeContent::Mesh(m) = &n.content {
-                if let Some(f) = m.mesh.first_non_polygon_face() {
-                    return Err(format!(
-                        "node {id} '{}': {f} has an inner ring or no edges; Hedra edits polygon meshes only",
-                        n.name
-                    ));
+                if let Some(face) = m.mesh.first_non_polygon_face() {
+                    let (node, name) = named();
+                    return Err(DocumentError::NotPolygon { node, name, face });
                 }
             }
         }
         Ok(())
     }
+}
+
+/// What [`Document::check`] found wrong with a scene tree.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum DocumentError {
+    #[error("node {node} is stored under id {key}")]
+    WrongKey { node: NodeId, key: NodeId },
+    #[error("node {node} is not below the next id {next}")]
+    IdNotBelowNext { node: NodeId, next: u64 },
+    #[error("node {node} '{name}' has missing parent {parent}")]
+    MissingParent {
+        node: NodeId,
+        name: String,
+        parent: NodeId,
+    },
+    #[error("node {node} '{name}' is its own ancestor")]
+    OwnAncestor { node: NodeId, name: String },
+    #[error("node {node} '{name}' has a non-finite transform")]
+    NonFiniteTransform { node: NodeId, name: String },
+    #[error(
+        "node {node} '{name}': {face} has an inner ring or no edges; Hedra edits polygon meshes only"
+    )]
+    NotPolygon {
+        node: NodeId,
+        name: String,
+        face: hedra_geom::FaceId,
+    },
 }

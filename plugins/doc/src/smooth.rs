@@ -26,18 +26,30 @@ pub struct SmoothRefinement {
     stencils: Option<(StencilTable, StencilEvaluation)>,
 }
 
+/// Why a cage could not be refined.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error(transparent)]
+pub struct SmoothError(#[from] pub hedra_geom::subdivision::SubdivisionError);
+
+/// The message, for callers that report refinement failures as text (the
+/// viewport's background jobs).
+impl From<SmoothError> for String {
+    fn from(e: SmoothError) -> String {
+        e.to_string()
+    }
+}
+
 impl SmoothRefinement {
     /// Refines `cage` to the modifier's viewport level.
     ///
     /// # Errors
-    /// The subdivision's message (Loop on quads, too many faces).
+    /// The subdivision's [`SmoothError`] (Loop on quads, too many faces).
     pub fn new(
         cage: &Arc<HalfEdgeMesh>,
         creases: &Creases,
         modifier: &SubdivisionModifier,
-    ) -> Result<SmoothRefinement, String> {
-        let refiner = Refiner::new(cage, creases, modifier.options, modifier.viewport_level)
-            .map_err(|e| e.to_string())?;
+    ) -> Result<SmoothRefinement, SmoothError> {
+        let refiner = Refiner::new(cage, creases, modifier.options, modifier.viewport_level)?;
         Ok(Self::from_refiner(cage, creases, modifier, refiner))
     }
 

@@ -78,5 +78,17 @@ fn every_corpus_file_loads_is_sound_and_keeps_its_history() {
         }
         session.jump_to(steps);
         assert_eq!(session.doc, end, "{name}: redo returns to the saved scene");
+
+        // The steps the file kept to redo redo to sound scenes, and undo back.
+        let to_redo = session.history.undone().len();
+        while session.redo().is_some() {
+            session
+                .doc
+                .check()
+                .unwrap_or_else(|e| panic!("{name}: after redo: {e}"));
+        }
+        assert_eq!(session.history.done().len(), steps + to_redo, "{name}");
+        session.jump_to(steps);
+        assert_eq!(session.doc, end, "{name}: undo returns to the saved scene");
     }
 }

@@ -1,0 +1,364 @@
+//! Mesh modeling commands: moving vertices and the kernel's operations
+//! (extrude, inset, loop cut, bevel, dissolve, merge, mirror, …) on the
+//! elements a set names, in the node's local space.
+
+use super::plan::Plan;
+use super::{CommandError, EditError, NodeRef};
+use crate::elements::{EdgeSet, FaceSet, VertexSet};
+use glam::DVec3;
+use hedra_geom::modeling::{self, MergePoint, MirrorAxis};
+use hedra_geom::{ModelingError, VertexId};
+
+impl Plan<'_> {
+    pub(super) fn move_vertices(
+        &mut self,
+        node: &NodeRef,
+        vertices: &VertexSet,
+        offset: DVec3,
+    ) -> Result<(), CommandError> {
+        self.edit_mesh(node, |m| {
+            let vs = vertices.resolve(m)?;
+            if !offset.is_finite() {
+                return Err(EditError::OffsetNotFinite);
+            }
+            for v in vs {
+                m.set_position(v, m.position(v) + offset);
+            }
+            Ok(())
+        })
+    }
+
+    pub(super) fn set_vertex_positions(
+        &mut self,
+        node: &NodeRef,
+        positions: &[(u32, DVec3)],
+    ) -> Result<(), CommandError> {
+        self.edit_mesh(node, |m| {
+            for &(i, p) in positions {
+                let vertex = VertexId(i);
+                if !m.is_vertex(vertex) {
+                    return Err(EditError::NoSuchVertex { vertex });
+                }
+                if !p.is_finite() {
+                    return Err(EditError::PositionNotFinite { vertex });
+                }
+                m.set_position(VertexId(i), p);
+            }
+            Ok(())
+        })
+    }
+
+    pub(super) fn extrude_faces(
+        &mut self,
+        node: &NodeRef,
+        faces: &FaceSet,
+        distance: f64,
+    ) -> Result<(), CommandError> {
+        self.on_faces(node, faces, |m, fs| {
+            modeling::extrude_faces_individual(m, fs, distance).map(drop)
+        })
+    }
+
+    /// Extrudes faces as one region; its caps become the created faces.
+    pub(super) fn extrude_region(
+        &mut self,
+        node: &NodeRef,
+        faces: &FaceSet,
+        distance: f64,
+    ) -> Result<(), CommandError> {
+        let mut caps = Vec::new();
+        self.on_faces(node, faces, |m, fs| {
+            let normal = m.region_normal(fs);
+            if normal == DVec3::ZERO {
+                return Err(ModelingError::Parameter {
+                    what: "faces",
+                    allowed: "facing some common direction",
+                    value: "normals that cancel out".into(),
+                });
+            }
+            modeling::extrude_region(m, fs, normal * distance).map(|c| caps = c)
+        })?;
+        self.created_faces = caps;
+        Ok(())
+    }
+
+    pub(super) fn inset_faces(
+        &mut self,
+        node: &NodeRef,
+        faces: &FaceSet,
+        thickness: f64,
+        depth: f64,
+    ) -> Result<(), CommandError> {
+        self.on_faces(node, faces, |m, fs| {
+            modeling::inset_faces_individual(m, fs, thickness, depth).map(drop)
+        })
+    }
+
+    /// Insets faces as one region; the inner faces become the created faces.
+    pub(super) fn inset_region(
+        &mut self,
+        node: &NodeRef,
+        faces: &FaceSet,
+        thickness: f64,
+        depth: f64,
+    ) -> Result<(), CommandError> {
+        let mut inner = Vec::new();
+        self.on_faces(node, faces, |m, fs| {
+            modeling::inset_region(m, fs, thickness, depth).map(|c| inner = c)
+        })?;
+        self.created_faces = inner;
+        Ok(())
+    }
+
+    pub(super) fn loop_cut(
+        &mut self,
+        node: &NodeRef,
+        edge: &EdgeSet,
+        cuts: u32,
+    ) -> Result<(), CommandError> {
+        self.model(node, |m| {
+            let es = edge.resolve(m)?;
+            let [e] = es[..] else {
+                return Err(EditError::LoopCutEdges {
+                    edges: edge.clone(),
+                    count: es.len(),
+                }
+                .into());
+            };
+            modeling::loop_cut(m, e, cuts)?;
+            Ok(())
+        })
+    }
+
+    pub(super) fn subdivide_edges(
+        &mut self,
+        node: &NodeRef,
+        edges: &EdgeSet,
+        cuts: u32,
+    ) -> Result<(), CommandError> {
+        self.on_edges(node, edges, |m, es| {
+            modeling::subdivide_edges(m, es, cuts).map(drop)
+        })
+    }
+
+    pub(super) fn connect_vertices(
+        &mut self,
+        node: &NodeRef,
+        vertices: &VertexSet,
+    ) -> Result<(), CommandError> {
+        self.model(node, |m| {
+            let vs = vertices.resolve(m)?;
+            let [a, b] = vs[..] else {
+                return Err(EditError::ConnectVertices {
+                    vertices: vertices.clone(),
+                    count: vs.len(),
+                }
+                .into());
+            };
+            modeling::connect_vertices(m, a, b)?;
+            Ok(())
+        })
+    }
+
+    pub(super) fn triangulate(
+        &mut self,
+        node: &NodeRef,
+        faces: &FaceSet,
+    ) -> Result<(), CommandError> {
+        self.on_faces(node, faces, |m, fs| {
+            modeling::triangulate_faces(m, fs).map(drop)
+        })
+    }
+
+    pub(super) fn dissolve_edges(
+        &mut self,
+        node: &NodeRef,
+        edges: &EdgeSet,
+    ) -> Result<(), CommandError> {
+        self.on_edges(node, edges, modeling::dissolve_edges)
+    }
+
+    pub(super) fn dissolve_vertices(
+        &mut self,
+        node: &NodeRef,
+        vertices: &VertexSet,
+    ) -> Result<(), CommandError> {
+        self.on_vertices(node, vertices, modeling::dissolve_vertices)
+    }
+
+    pub(super) fn dissolve_faces(
+        &mut self,
+        node: &NodeRef,
+        faces: &FaceSet,
+    ) -> Result<(), CommandError> {
+        self.on_faces(node, faces, |m, fs| {
+            modeling::dissolve_faces(m, fs).map(drop)
+        })
+    }
+
+    pub(super) fn flip_normals(&mut self, node: &NodeRef) -> Result<(), CommandError> {
+        self.model(node, |m| {
+            modeling::flip_normals(m);
+            Ok(())
+        })
+    }
+
+    pub(super) fn recalculate_normals(&mut self, node: &NodeRef) -> Result<(), CommandError> {
+        self.model(node, |m| {
+            if !modeling::recalculate_normals_outward(m) {
+                return Err(EditError::AlreadyOutwards.into());
+            }
+            Ok(())
+        })
+    }
+
+    pub(super) fn make_holes(
+        &mut self,
+        node: &NodeRef,
+        faces: &FaceSet,
+    ) -> Result<(), CommandError> {
+        self.on_faces(node, faces, modeling::make_holes)
+    }
+
+    pub(super) fn fill_holes(
+        &mut self,
+        node: &NodeRef,
+        edges: &EdgeSet,
+    ) -> Result<(), CommandError> {
+        self.on_edges(node, edges, |m, es| modeling::fill_holes(m, es).map(drop))
+    }
+
+    pub(super) fn collapse_edges(
+        &mut self,
+        node: &NodeRef,
+        edges: &EdgeSet,
+    ) -> Result<(), CommandError> {
+        self.on_edges(node, edges, |m, es| {
+            modeling::collapse_edges(m, es).map(drop)
+        })
+    }
+
+    pub(super) fn extrude_edges(
+        &mut self,
+        node: &NodeRef,
+        edges: &EdgeSet,
+        offset: DVec3,
+    ) -> Result<(), CommandError> {
+        self.on_edges(node, edges, |m, es| {
+            modeling::extrude_boundary_edges(m, es, offset).map(drop)
+        })
+    }
+
+    pub(super) fn mirror_vertices(
+        &mut self,
+        node: &NodeRef,
+        vertices: &VertexSet,
+        axis: MirrorAxis,
+    ) -> Result<(), CommandError> {
+        self.on_vertices(node, vertices, |m, vs| {
+            modeling::mirror_vertices(m, vs, axis)
+        })
+    }
+
+    pub(super) fn symmetrize(
+        &mut self,
+        node: &NodeRef,
+        axis: MirrorAxis,
+    ) -> Result<(), CommandError> {
+        self.model(node, |m| Ok(modeling::symmetrize(m, axis)?))
+    }
+
+    pub(super) fn slide_edges(
+        &mut self,
+        node: &NodeRef,
+        edges: &EdgeSet,
+        factor: f64,
+    ) -> Result<(), CommandError> {
+        self.on_edges(node, edges, |m, es| modeling::slide_edges(m, es, factor))
+    }
+
+    pub(super) fn bevel_edges(
+        &mut self,
+        node: &NodeRef,
+        edges: &EdgeSet,
+        width: f64,
+        segments: u32,
+    ) -> Result<(), CommandError> {
+        self.on_edges(node, edges, |m, es| {
+            modeling::bevel_edges(m, es, width, segments).map(drop)
+        })
+    }
+
+    pub(super) fn bevel_vertices(
+        &mut self,
+        node: &NodeRef,
+        vertices: &VertexSet,
+        width: f64,
+    ) -> Result<(), CommandError> {
+        self.on_vertices(node, vertices, |m, vs| {
+            modeling::bevel_vertices(m, vs, width).map(drop)
+        })
+    }
+
+    pub(super) fn delete_faces(
+        &mut self,
+        node: &NodeRef,
+        faces: &FaceSet,
+    ) -> Result<(), CommandError> {
+        self.on_faces(node, faces, modeling::delete_faces)
+    }
+
+    /// Deletes edges with the faces around them.
+    pub(super) fn delete_edges(
+        &mut self,
+        node: &NodeRef,
+        edges: &EdgeSet,
+    ) -> Result<(), CommandError> {
+        self.on_edges(node, edges, |m, es| {
+            let fs = modeling::faces_around_edges(m, es);
+            modeling::delete_faces(m, &fs)
+        })
+    }
+
+    /// Deletes vertices with the faces around them.
+    pub(super) fn delete_vertices(
+        &mut self,
+        node: &NodeRef,
+        vertices: &VertexSet,
+    ) -> Result<(), CommandError> {
+        self.on_vertices(node, vertices, |m, vs| {
+            let fs = modeling::faces_around_vertices(m, vs);
+            modeling::delete_faces(m, &fs)
+        })
+    }
+
+    pub(super) fn merge_vertices(
+        &mut self,
+        node: &NodeRef,
+        vertices: &VertexSet,
+        at: MergePoint,
+    ) -> Result<(), CommandError> {
+        self.on_vertices(node, vertices, |m, vs| {
+            modeling::merge_vertices(m, vs, at).map(drop)
+        })
+    }
+
+    pub(super) fn merge_by_distance(
+        &mut self,
+        node: &NodeRef,
+        vertices: &VertexSet,
+        distance: f64,
+    ) -> Result<(), CommandError> {
+        self.on_vertices(node, vertices, |m, vs| {
+            modeling::merge_by_distance(m, vs, distance).map(drop)
+        })
+    }
+
+    pub(super) fn bridge_loops(
+        &mut self,
+        node: &NodeRef,
+        edges: &EdgeSet,
+    ) -> Result<(), CommandError> {
+        self.on_edges(node, edges, |m, es| modeling::bridge_loops(m, es).map(drop))
+    }
+}

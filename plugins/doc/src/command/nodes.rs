@@ -1,0 +1,271 @@
+//! Commands on nodes and the scene tree: adding primitives, meshes and
+//! empties, adjusting a primitive, transforms, names, parents, visibility,
+//! shading, deleting and duplicating.
+
+use super::plan::Plan;
+use super::{CommandError, NodeRef};
+use crate::scene::{CornerAttributes, MeshContent, NodeContent, NodeId, Shading, Transform};
+use glam::{DQuat, DVec3};
+use hedra_geom::subdivision::Creases;
+use hedra_geom::{HalfEdgeMesh, Primitive};
+use std::sync::Arc;
+
+/// Round primitives start smooth, boxy ones flat, as in most modelers.
+fn primitive_shading(p: &Primitive) -> Shading {
+    match p {
+        Primitive::UvSphere { .. } | Primitive::IcoSphere { .. } | Primitive::Torus { .. } => {
+            Shading::Smooth
+        }
+        _ => Shading::Flat,
+    }
+}
+
+impl Plan<'_> {
+    pub(super) fn add_primitive(
+        &mut self,
+        primitive: &Primitive,
+        name: &Option<String>,
+        parent: &Option<NodeRef>,
+        transform: Transform,
+    ) -> Result<(), CommandError> {
+        let mesh = primitive.build()?;
+        let name = name
+            .clone()
+            .unwrap_or_else(|| primitive.display_name().to_string());
+        let content = NodeContent::Mesh(MeshContent {
+            primitive: Some(primitive.clone()),
+            shading: primitive_shading(primitive),
+            ..MeshContent::new(Arc::new(mesh))
+        });
+        self.add_node(&name, parent, transform, content)?;
+        Ok(())
+    }
+
+    pub(super) fn add_mesh(
+        &mut self,
+        name: &str,
+        positions: &[DVec3],
+        polygons: &[Vec<u32>],
+        parent: &Option<NodeRef>,
+        transform: Transform,
+    ) -> Result<(), CommandError> {
+        let mesh = HalfEdgeMesh::from_polygons(positions, polygons)?;
+        let content = NodeContent::Mesh(MeshContent::new(Arc::new(mesh)));
+        self.add_node(name, parent, transform, content)?;
+        Ok(())
+    }
+
+    pub(super) fn add_empty(
+        &mut self,
+        name: &str,
+        parent: &Option<NodeRef>,
+        transform: Transform,
+    ) -> Result<(), CommandError> {
+        self.add_node(name, parent, transform, NodeContent::Empty)?;
+        Ok(())
+    }
+
+    /// Rebuilds a primitive node with new parameters of the same kind.
+    pub(super) fn set_primitive(
+        &mut self,
+        node: &NodeRef,
+        primitive: &Primitive,
+    ) -> Result<(), CommandError> {
+        let mut n = self.node(node)?;
+        let NodeContent::Mesh(content) = &n.content else {
+            return Err(CommandError::NotAMesh {
+                node: self.doc.label_of(n.id),
+            });
+        };
+        match &content.primitive {
+            Some(old) if old.kind() == primitive.kind() => {}
+            _ => {
+                return Err(CommandError::NotAPrimitive {
+                    node: self.doc.label_of(n.id),
+                });
+            }
+        }
+        let mesh = primitive.build()?;
+        n.content = NodeContent::Mesh(MeshContent {
+            mesh: Arc::new(mesh),
+            primitive: Some(primitive.clone()),
+            creases: Creases::default(),
+            corners: CornerAttributes::default(),
+            ..content.clone()
+        });
+        self.set(n);
+        Ok(())
+    }
+
+    pub(super) fn set_transforms(
+        &mut self,
+        nodes: &[(NodeRef, Transform)],
+    ) -> Result<(), CommandError> {
+        for (r, t) in nodes {
+            let n = self.node(r)?;
+            self.set_transform(n, *t)?;
+        }
+        Ok(())
+    }
+
+    pub(super) fn translate(
+        &mut self,
+        nodes: &[NodeRef],
+        offset: DVec3,
+    ) -> Result<(), CommandError> {
+        for r in nodes {
+            let n = self.node(r)?;
+            let t = Transform {
+                translation: n.transform.translation + offset,
+                ..n.transform
+            };
+            self.set_transform(n, t)?;
+        }
+        Ok(())
+    }
+
+    pub(super) fn rotate(
+        &mut self,
+        nodes: &[NodeRef],
+        axis: DVec3,
+        degrees: f64,
+    ) -> Result<(), CommandError> {
+        let Some(axis) = axis.try_normalize() else {
+            return Err(CommandError::Nothing("the rotation axis is zero"));
+        };
+        let q = DQuat::from_axis_angle(axis, degrees.to_radians());
+        for r in nodes {
+            let n = self.node(r)?;
+            let t = Transform {
+                rotation: (q * n.transform.rotation).normalize(),
+                ..n.transform
+            };
+            self.set_transform(n, t)?;
+        }
+        Ok(())
+    }
+
+    pub(super) fn scale(&mut self, nodes: &[NodeRef], factor: DVec3) -> Result<(), CommandError> {
+        for r in nodes {
+            let n = self.node(r)?;
+            let t = Transform {
+                scale: n.transform.scale * factor,
+                ..n.transform
+            };
+            self.set_transform(n, t)?;
+        }
+        Ok(())
+    }
+
+    pub(super) fn rename(&mut self, node: &NodeRef, name: &str) -> Result<(), CommandError> {
+        if name.trim().is_empty() {
+            return Err(CommandError::EmptyName);
+        }
+        let mut n = self.node(node)?;
+        if n.name != name {
+            n.name = self.unique_name(name);
+            self.set(n);
+        }
+        Ok(())
+    }
+
+    /// Gives a node a new parent; with `keep_world` it stays where it is.
+    pub(super) fn reparent(
+        &mut self,
+        node: &NodeRef,
+        parent: &Option<NodeRef>,
+        keep_world: bool,
+    ) -> Result<(), CommandError> {
+        let mut n = self.node(node)?;
+        let new_parent = parent.as_ref().map(|p| self.resolve(p)).transpose()?;
+        if let Some(p) = new_parent {
+            if self.doc.is_ancestor(n.id, p) {
+                return Err(CommandError::Cycle {
+                    node: self.doc.label_of(n.id),
+                    parent: self.doc.label_of(p),
+                });
+            }
+        }
+        if keep_world {
+            let world = self.doc.world_matrix(n.id);
+            let parent_world =
+                new_parent.map_or(glam::DMat4::IDENTITY, |p| self.doc.world_matrix(p));
+            n.transform = Transform::from_matrix(parent_world.inverse() * world);
+        }
+        n.parent = new_parent;
+        self.set(n);
+        Ok(())
+    }
+
+    pub(super) fn set_visible(
+        &mut self,
+        nodes: &[NodeRef],
+        visible: bool,
+    ) -> Result<(), CommandError> {
+        for r in nodes {
+            let mut n = self.node(r)?;
+            n.visible = visible;
+            self.set(n);
+        }
+        Ok(())
+    }
+
+    pub(super) fn set_shading(
+        &mut self,
+        nodes: &[NodeRef],
+        shading: Shading,
+    ) -> Result<(), CommandError> {
+        for r in nodes {
+            let mut n = self.node(r)?;
+            let NodeContent::Mesh(content) = &mut n.content else {
+                return Err(CommandError::NotAMesh {
+                    node: self.doc.label_of(n.id),
+                });
+            };
+            content.shading = shading;
+            self.set(n);
+        }
+        Ok(())
+    }
+
+    /// Deletes nodes with their descendants.
+    pub(super) fn delete(&mut self, nodes: &[NodeRef]) -> Result<(), CommandError> {
+        for r in nodes {
+            let id = self.resolve(r)?;
+            for x in self.doc.subtree(id).into_iter().rev() {
+                if self.current(x).is_some() {
+                    self.remove(x);
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Copies nodes with their descendants under new ids and names.
+    pub(super) fn duplicate(&mut self, nodes: &[NodeRef]) -> Result<(), CommandError> {
+        for r in nodes {
+            let root = self.resolve(r)?;
+            let subtree = self.doc.subtree(root);
+            let mut map = std::collections::HashMap::new();
+            for &old in &subtree {
+                map.insert(old, NodeId(self.next_id));
+                self.next_id += 1;
+            }
+            for &old in &subtree {
+                let mut n = self
+                    .current(old)
+                    .cloned()
+                    .ok_or(CommandError::UnknownNode(NodeRef::Id(old.0)))?;
+                n.id = map[&old];
+                n.parent = if old == root {
+                    n.parent
+                } else {
+                    n.parent.map(|p| map[&p])
+                };
+                n.name = self.unique_name(&n.name);
+                self.set(n);
+            }
+        }
+        Ok(())
+    }
+}
