@@ -988,3 +988,93 @@ fn triangulate_splits_faces_along_diagonals() {
     );
     assert_eq!(m, before);
 }
+
+#[test]
+fn tris_to_quads_undoes_triangulate_on_a_cube() {
+    use hedra_geom::{Primitive, modeling};
+    let mut cube = Primitive::Cube { size: 2.0 }.build().unwrap();
+    let positions = cube.positions().to_vec();
+    let faces: Vec<_> = cube.faces().collect();
+    modeling::triangulate_faces(&mut cube, &faces).unwrap();
+    let triangles: Vec<_> = cube.faces().collect();
+    let limit = modeling::DEFAULT_JOIN_LIMIT;
+    let quads = modeling::tris_to_quads(&mut cube, &triangles, limit, limit).unwrap();
+    cube.validate().unwrap();
+    assert_eq!(quads.len(), 6);
+    // The 12 cube edges sit between triangles at 90°: only the 6 diagonals go.
+    assert_eq!(
+        (cube.vertex_count(), cube.edge_count(), cube.face_count()),
+        (8, 12, 6)
+    );
+    assert!(cube.faces().all(|f| cube.face_degree(f) == 4));
+    assert_eq!(cube.positions(), &positions[..]);
+}
+
+#[test]
+fn tris_to_quads_respects_the_face_angle_shape_and_convexity() {
+    use hedra_geom::{DVec3, HalfEdgeMesh, ModelingError, modeling};
+    let limit = modeling::DEFAULT_JOIN_LIMIT;
+    // Two triangles of a unit square folded by `fold` about the diagonal 0–2.
+    let folded = |fold: f64| {
+        let p = [
+            DVec3::new(0.0, 0.0, 0.0),
+            DVec3::new(1.0, 0.0, 0.0),
+            DVec3::new(1.0, 0.0, -1.0),
+            DVec3::new(
+                0.5 - 0.5 * fold.cos(),
+                0.5_f64.sqrt() * fold.sin(),
+                -0.5 - 0.5 * fold.cos(),
+            ),
+        ];
+        HalfEdgeMesh::from_polygons(&p, &[vec![0u32, 1, 2], vec![0, 2, 3]]).unwrap()
+    };
+    let mut flat = folded(0.0);
+    let all: Vec<_> = flat.faces().collect();
+    assert_eq!(
+        modeling::tris_to_quads(&mut flat, &all, limit, limit)
+            .unwrap()
+            .len(),
+        1
+    );
+    flat.validate().unwrap();
+    assert_eq!((flat.edge_count(), flat.face_count()), (4, 1));
+    // Folded 60°: above the 40° face limit, joined under a 90° one.
+    let mut bent = folded(60f64.to_radians());
+    let all: Vec<_> = bent.faces().collect();
+    assert!(
+        modeling::tris_to_quads(&mut bent, &all, limit, limit)
+            .unwrap()
+            .is_empty()
+    );
+    assert_eq!(bent.face_count(), 2);
+    let wide = 90f64.to_radians();
+    assert_eq!(
+        modeling::tris_to_quads(&mut bent, &all, wide, wide)
+            .unwrap()
+            .len(),
+        1
+    );
+    bent.validate().unwrap();
+    // A dart (concave quad) is never made, whatever the limits.
+    let dart = [
+        DVec3::new(0.0, 0.0, 0.0),
+        DVec3::new(2.0, 0.0, -1.0),
+        DVec3::new(0.0, 0.0, -2.0),
+        DVec3::new(0.5, 0.0, -1.0),
+    ];
+    let mut m = HalfEdgeMesh::from_polygons(&dart, &[vec![0u32, 1, 3], vec![1, 2, 3]]).unwrap();
+    let all: Vec<_> = m.faces().collect();
+    let pi = std::f64::consts::PI;
+    assert!(
+        modeling::tris_to_quads(&mut m, &all, pi, pi)
+            .unwrap()
+            .is_empty()
+    );
+    assert!(matches!(
+        modeling::tris_to_quads(&mut m, &all, -1.0, limit),
+        Err(ModelingError::Parameter {
+            what: "face angle limit",
+            ..
+        })
+    ));
+}

@@ -44,4 +44,4 @@ pub use mirror::{MirrorAxis, mirror_vertices, symmetrize};
 pub use normals::{flip_normals, recalculate_normals_outward};
 pub use slide::slide_edges;
 pub use subdivide_edges::subdivide_edges;
-pub use triangulate::triangulate_faces;
+pub use triangulate::{DEFAULT_JOIN_LIMIT, triangulate_faces, tris_to_quads};

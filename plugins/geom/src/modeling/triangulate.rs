@@ -1,10 +1,14 @@
 //! Triangulating faces (Blender's Ctrl+T) along the diagonals of their
-//! ear-clipping triangulation ([`crate::query::triangulate_face`]).
+//! ear-clipping triangulation ([`crate::query::triangulate_face`]), and its
+//! inverse, joining triangles into quads (Blender's Alt+J,
+//! `bmo_join_triangles.c`).
 
 use super::ModelingError;
 use super::common::check_faces;
-use crate::ids::{FaceId, VertexId};
+use crate::ids::{EdgeId, FaceId, VertexId};
 use crate::mesh::HalfEdgeMesh;
+use std::collections::HashSet;
+use std::f64::consts::{FRAC_PI_2, PI};
 
 /// Splits faces into triangles (Blender's Ctrl+T): each face is cut along
 /// the diagonals of its ear-clipping triangulation
@@ -60,4 +64,114 @@ pub fn triangulate_faces(
         }
     }
     Ok(made)
+}
+
+/// Blender's default limit for both the face angle and the shape angle (40°).
+pub const DEFAULT_JOIN_LIMIT: f64 = 40.0 * PI / 180.0;
+
+/// Joins pairs of the selected triangles that share an edge into quads,
+/// best pairs first (Blender's Tris to Quads), and returns the quads.
+///
+/// A pair is a candidate when the angle between the two triangles' normals
+/// is at most `face_angle_limit`, every corner of the quad they make is
+/// within `shape_angle_limit` of a right angle, and the quad is convex.
+/// Candidates are taken in order of the error Blender uses: the normal
+/// angle over π/2 plus the corners' summed distance from π/2 over 2π; each
+/// triangle joins at most once. Other faces of the selection stay as they
+/// are. Each join is one [`kill_edge_face`](HalfEdgeMesh::kill_edge_face).
+///
+/// # Errors
+/// [`ModelingError::Empty`] for no faces, [`ModelingError::Missing`] for a
+/// dead face, [`ModelingError::Parameter`] for a limit outside [0, π].
+pub fn tris_to_quads(
+    mesh: &mut HalfEdgeMesh,
+    faces: &[FaceId],
+    face_angle_limit: f64,
+    shape_angle_limit: f64,
+) -> Result<Vec<FaceId>, ModelingError> {
+    check_faces(mesh, faces)?;
+    for (what, limit) in [
+        ("face angle limit", face_angle_limit),
+        ("shape angle limit", shape_angle_limit),
+    ] {
+        if !(0.0..=PI).contains(&limit) {
+            return Err(ModelingError::Parameter {
+                what,
+                allowed: "between 0 and π radians",
+                value: limit.to_string(),
+            });
+        }
+    }
+    let triangles: HashSet<FaceId> = faces
+        .iter()
+        .copied()
+        .filter(|&f| mesh.face_degree(f) == 3 && mesh.face_rings(f).is_empty())
+        .collect();
+    let mut candidates: Vec<(f64, EdgeId)> = Vec::new();
+    let mut seen = HashSet::new();
+    for &f in &triangles {
+        for h in mesh.face_halfedges(f) {
+            let e = h.edge();
+            let Some(g) = mesh.face(h.twin()) else {
+                continue;
+            };
+            if g == f || !triangles.contains(&g) || !seen.insert(e) {
+                continue;
+            }
+            if let Some(error) = join_error(mesh, e, face_angle_limit, shape_angle_limit) {
+                candidates.push((error, e));
+            }
+        }
+    }
+    candidates.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+    let mut joined = HashSet::new();
+    let mut quads = Vec::new();
+    for (_, e) in candidates {
+        let [Some(a), Some(b)] = mesh.edge_faces(e) else {
+            continue;
+        };
+        if joined.contains(&a) || joined.contains(&b) {
+            continue;
+        }
+        let killed = mesh.kill_edge_face(e)?;
+        let kept = if killed == a { b } else { a };
+        joined.insert(a);
+        joined.insert(b);
+        quads.push(kept);
+    }
+    Ok(quads)
+}
+
+/// The quad two triangles across `e` would make, corners in order, and
+/// Blender's join error, or `None` when the pair is outside the limits.
+fn join_error(mesh: &HalfEdgeMesh, e: EdgeId, face_limit: f64, shape_limit: f64) -> Option<f64> {
+    let h = e.halfedge(0);
+    let (f, g) = (mesh.face(h)?, mesh.face(h.twin())?);
+    // h runs a→b inside f; the quad is a, (g's apex), b, (f's apex).
+    let a = mesh.origin(h);
+    let b = mesh.target(h);
+    let apex_f = mesh.target(mesh.next(h));
+    let apex_g = mesh.target(mesh.next(h.twin()));
+    let quad = [a, apex_g, b, apex_f].map(|v| mesh.position(v));
+    let normal_angle = mesh.face_normal(f).angle_between(mesh.face_normal(g));
+    if !(normal_angle <= face_limit) {
+        return None;
+    }
+    let normal = (quad[2] - quad[0]).cross(quad[3] - quad[1]);
+    let mut shape = 0.0;
+    for i in 0..4 {
+        let (prev, here, next) = (quad[(i + 3) % 4], quad[i], quad[(i + 1) % 4]);
+        let (into, out) = (here - prev, next - here);
+        // Convex: every turn goes the same way around the quad's normal.
+        if into.cross(out).dot(normal) <= 0.0 {
+            return None;
+        }
+        let corner = (prev - here).angle_between(next - here);
+        let off = (corner - FRAC_PI_2).abs();
+        if !(off <= shape_limit) {
+            return None;
+        }
+        shape += off;
+    }
+    Some(normal_angle / FRAC_PI_2 + shape / (2.0 * PI))
 }
