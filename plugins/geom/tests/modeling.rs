@@ -1078,3 +1078,77 @@ fn tris_to_quads_respects_the_face_angle_shape_and_convexity() {
         })
     ));
 }
+
+#[test]
+fn bisect_cuts_a_cube_and_can_clear_and_fill_one_half() {
+    use hedra_geom::modeling::{self, BisectClear};
+    use hedra_geom::{DVec3, Primitive};
+    let cube = Primitive::Cube { size: 2.0 }.build().unwrap();
+    let all: Vec<_> = cube.faces().collect();
+    let (origin, up) = (DVec3::ZERO, DVec3::Y);
+
+    let mut cut = cube.clone();
+    let made = modeling::bisect(&mut cut, &all, origin, up, BisectClear::Neither, false).unwrap();
+    cut.validate().unwrap();
+    assert_eq!(
+        (cut.vertex_count(), cut.edge_count(), cut.face_count()),
+        (12, 20, 10)
+    );
+    assert_eq!((made.new_vertices.len(), made.cut_edges.len()), (4, 4));
+    assert!(made.new_vertices.iter().all(|&v| cut.position(v).y == 0.0));
+
+    // Upper half cleared, the cut filled: a closed half cube.
+    let mut half = cube.clone();
+    let made = modeling::bisect(&mut half, &all, origin, up, BisectClear::Outer, true).unwrap();
+    half.validate().unwrap();
+    assert_eq!(
+        (half.vertex_count(), half.edge_count(), half.face_count()),
+        (8, 12, 6)
+    );
+    assert_eq!(made.fill_faces.len(), 1);
+    assert!(half.stats().closed);
+    assert!(half.vertices().all(|v| half.position(v).y <= 0.0));
+    assert!((half.volume() - 4.0).abs() < 1e-12, "{}", half.volume());
+    // The fill faces outwards: up, on the kept lower half.
+    assert!(half.face_normal(made.fill_faces[0]).dot(up) > 0.99);
+
+    // A plane through four corners (x = z) splits no edge: only the top and
+    // bottom squares get a diagonal.
+    let mut diagonal = cube.clone();
+    let n = DVec3::new(1.0, 0.0, -1.0);
+    let made =
+        modeling::bisect(&mut diagonal, &all, origin, n, BisectClear::Neither, false).unwrap();
+    diagonal.validate().unwrap();
+    assert!(made.new_vertices.is_empty());
+    assert_eq!(
+        (
+            diagonal.vertex_count(),
+            diagonal.edge_count(),
+            diagonal.face_count()
+        ),
+        (8, 14, 8)
+    );
+
+    // A plane that misses the mesh changes nothing; a zero normal is refused.
+    let mut missed = cube.clone();
+    modeling::bisect(
+        &mut missed,
+        &all,
+        DVec3::Y * 5.0,
+        up,
+        BisectClear::Neither,
+        false,
+    )
+    .unwrap();
+    assert!(missed.same_as(&cube));
+    let err = modeling::bisect(
+        &mut missed,
+        &all,
+        origin,
+        DVec3::ZERO,
+        BisectClear::Neither,
+        false,
+    );
+    assert!(err.unwrap_err().to_string().contains("non-zero normal"));
+    assert!(missed.same_as(&cube));
+}

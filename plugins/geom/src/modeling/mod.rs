@@ -9,6 +9,7 @@
 //! re-exported here, so `hedra_geom::modeling::<operation>` is the one path.
 
 mod bevel;
+mod bisect;
 mod bridge;
 mod common;
 mod connect;
@@ -27,6 +28,7 @@ mod subdivide_edges;
 mod triangulate;
 
 pub use bevel::{bevel_edges, bevel_vertices};
+pub use bisect::{BisectClear, Bisected, bisect};
 pub use bridge::bridge_loops;
 pub use common::{faces_around_edges, faces_around_vertices};
 pub use connect::connect_vertices;
