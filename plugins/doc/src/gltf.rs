@@ -33,7 +33,7 @@ fn push_view(
     data: &[u8],
     target: json::buffer::Target,
 ) -> json::Index<json::buffer::View> {
-    while bin.len() % 4 != 0 {
+    while !bin.len().is_multiple_of(4) {
         bin.push(0);
     }
     let offset = bin.len();
@@ -422,7 +422,7 @@ pub fn to_gltf(doc: &Document, shape: ExportShape, binary: bool) -> Result<Vec<u
         nodes: roots,
     });
     root.scene = Some(scene);
-    while bin.len() % 4 != 0 {
+    while !bin.len().is_multiple_of(4) {
         bin.push(0);
     }
     let uri = (!binary).then(|| {

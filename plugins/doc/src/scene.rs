@@ -545,11 +545,11 @@ impl Document {
             // Faces with inner rings or without edges exist in the kernel
             // (Mäntylä's Euler operators); the editor's tools, rendering and
             // exports work on polygons, so a document holds polygon meshes.
-            if let NodeContent::Mesh(m) = &n.content {
-                if let Some(face) = m.mesh.first_non_polygon_face() {
-                    let (node, name) = named();
-                    return Err(DocumentError::NotPolygon { node, name, face });
-                }
+            if let NodeContent::Mesh(m) = &n.content
+                && let Some(face) = m.mesh.first_non_polygon_face()
+            {
+                let (node, name) = named();
+                return Err(DocumentError::NotPolygon { node, name, face });
             }
         }
         Ok(())

@@ -21,7 +21,8 @@ pub enum ScriptError {
         path: PathBuf,
         index: usize,
         label: String,
-        error: CommandError,
+        /// Boxed: a command's error is large and a script stops at the first.
+        error: Box<CommandError>,
     },
 }
 
@@ -59,7 +60,7 @@ pub fn run(
                 path: path.to_path_buf(),
                 index: i + 1,
                 label: c.label(),
-                error,
+                error: Box::new(error),
             })
         })
         .collect()
