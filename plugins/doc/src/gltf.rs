@@ -484,7 +484,7 @@ pub fn gltf_from_bytes(
     };
     let gltf_error = |error: GltfError| ImportError::Gltf {
         path: path.to_string(),
-        error,
+        error: Box::new(error),
     };
     check_before_validation(bytes).map_err(gltf_error)?;
     let gltf = gltf::Gltf::from_slice(bytes).map_err(|e| {

@@ -253,8 +253,9 @@ pub enum ImportError {
     Gltf {
         /// The file, as the caller named it.
         path: String,
-        /// What is wrong, naming the mesh, accessor or buffer view.
-        error: crate::gltf::GltfError,
+        /// What is wrong, naming the mesh, accessor or buffer view (boxed:
+        /// it is large and rare).
+        error: Box<crate::gltf::GltfError>,
     },
 }
 
