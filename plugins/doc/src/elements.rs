@@ -9,11 +9,15 @@ use serde::{Deserialize, Serialize};
 /// Faces of a mesh.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub enum FaceSet {
+    /// Every face of the mesh.
     All,
+    /// These face ids (as `hedra info` and the topology panel show them).
     Ids(Vec<u32>),
     /// Faces whose normal is within `degrees` of `direction`.
     Facing {
+        /// The direction in local space; need not be unit length, must not be zero.
         direction: DVec3,
+        /// The largest angle between a face normal and `direction`.
         degrees: f64,
     },
     /// The face whose centre is nearest to a point.
@@ -25,7 +29,9 @@ pub enum FaceSet {
 /// Edges of a mesh.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub enum EdgeSet {
+    /// Every edge of the mesh.
     All,
+    /// These edge ids.
     Ids(Vec<u32>),
     /// The edge whose midpoint is nearest to a point.
     Nearest(DVec3),
@@ -38,7 +44,9 @@ pub enum EdgeSet {
 /// Vertices of a mesh.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub enum VertexSet {
+    /// Every vertex of the mesh.
     All,
+    /// These vertex ids, in the given order.
     Ids(Vec<u32>),
     /// The vertex nearest to a point.
     Nearest(DVec3),
@@ -46,7 +54,9 @@ pub enum VertexSet {
     NearestEach(Vec<DVec3>),
     /// Vertices within `radius` of `center`.
     Within {
+        /// The centre in local space.
         center: DVec3,
+        /// The distance, inclusive, in local units.
         radius: f64,
     },
     /// The corners of a face set.

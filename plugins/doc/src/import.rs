@@ -25,11 +25,17 @@ use std::sync::Arc;
 /// had to be repaired, its parent among the imported nodes, its transform.
 #[derive(Debug)]
 pub struct ImportedMesh {
+    /// The node's name: the file's object, group or node name, else one made
+    /// up from the file (its stem, "Node 3").
     pub name: String,
+    /// The mesh in the node's local space; `None` for a grouping node (or when
+    /// repair dropped every face).
     pub mesh: Option<HalfEdgeMesh>,
+    /// What repair dropped or split to make the mesh manifold.
     pub report: RepairReport,
     /// Index of the parent in the same import list.
     pub parent: Option<usize>,
+    /// The local transform relative to the parent (identity for OBJ and STL).
     pub transform: Transform,
     /// Primitives that are not triangles (points, lines) and were left out.
     pub skipped_primitives: usize,
@@ -218,19 +224,44 @@ fn scan_obj(text: &str) -> Vec<ObjSegment> {
 /// Why a file could not be imported.
 #[derive(Debug, thiserror::Error)]
 pub enum ImportError {
+    /// The file cannot be read or parsed; the message says where and why.
     #[error("{path}: {message}")]
-    Read { path: String, message: String },
+    Read {
+        /// The file, as the caller named it.
+        path: String,
+        /// What went wrong, naming the line, object or buffer where known.
+        message: String,
+    },
+    /// An extension Hedra does not import.
     #[error("{path}: unsupported format '.{ext}' (supported: .obj, .stl, .gltf, .glb)")]
-    Unsupported { path: String, ext: String },
+    Unsupported {
+        /// The file, as the caller named it.
+        path: String,
+        /// The extension, without the dot.
+        ext: String,
+    },
     #[error(
         "{path}: the file name has no extension to tell its format (supported: .obj, .stl, .gltf, .glb)"
     )]
-    NoExtension { path: String },
+    /// A file name without an extension.
+    NoExtension {
+        /// The file, as the caller named it.
+        path: String,
+    },
+    /// A readable file with no faces (or, for glTF, no nodes).
     #[error("{path}: contains no faces")]
-    Empty { path: String },
+    Empty {
+        /// The file, as the caller named it.
+        path: String,
+    },
     /// Every face was dropped: the first object's repair report says why.
     #[error("{path}: no face could be kept: {reason}")]
-    NothingLeft { path: String, reason: String },
+    NothingLeft {
+        /// The file, as the caller named it.
+        path: String,
+        /// The first dropped object's repair report, as a sentence.
+        reason: String,
+    },
     /// A malformed OBJ line, found before the OBJ reader runs.
     #[error("{path}: {error}")]
     Obj {
@@ -1075,7 +1106,10 @@ pub enum FaceNumbers {
     Lines(Vec<u32>),
     /// "triangle n": STL triangles counted over the whole file, this node's
     /// first being `offset + 1`.
-    Triangles { offset: usize },
+    Triangles {
+        /// How many triangles of the file come before this node's.
+        offset: usize,
+    },
 }
 
 impl FaceNumbers {

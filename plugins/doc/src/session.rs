@@ -8,7 +8,9 @@ use crate::scene::{Document, NodeId};
 /// An open document, its undo history and whether it changed since saving.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Session {
+    /// The document as it is now.
     pub doc: Document,
+    /// Its undo and redo steps.
     pub history: History,
     /// History serial at the last save or load (`None`: never saved).
     pub saved_serial: Option<u64>,
@@ -27,12 +29,14 @@ impl Default for Session {
 /// What an applied command did.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Applied {
+    /// The step's history label ("Add Cube").
     pub label: String,
     /// Nodes that did not exist before (for selecting them).
     pub created: Vec<NodeId>,
 }
 
 impl Session {
+    /// An empty document with an empty history, counted as saved (not dirty).
     pub fn new() -> Self {
         Self::default()
     }
@@ -103,9 +107,13 @@ impl Session {
         self.commit(t)
     }
 
+    /// Undoes the last step; its label, or `None` when there is nothing to
+    /// undo.
     pub fn undo(&mut self) -> Option<String> {
         self.history.undo(&mut self.doc).map(|t| t.label.clone())
     }
+    /// Redoes the last undone step; its label, or `None` when there is
+    /// nothing to redo.
     pub fn redo(&mut self) -> Option<String> {
         self.history.redo(&mut self.doc).map(|t| t.label.clone())
     }
