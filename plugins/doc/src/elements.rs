@@ -9,11 +9,15 @@ use serde::{Deserialize, Serialize};
 /// Faces of a mesh.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub enum FaceSet {
+    /// Every face of the mesh.
     All,
+    /// These face ids (as `hedra info` and the topology panel show them).
     Ids(Vec<u32>),
     /// Faces whose normal is within `degrees` of `direction`.
     Facing {
+        /// The direction in local space; need not be unit length, must not be zero.
         direction: DVec3,
+        /// The largest angle between a face normal and `direction`.
         degrees: f64,
     },
     /// The face whose centre is nearest to a point.
@@ -25,7 +29,9 @@ pub enum FaceSet {
 /// Edges of a mesh.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub enum EdgeSet {
+    /// Every edge of the mesh.
     All,
+    /// These edge ids.
     Ids(Vec<u32>),
     /// The edge whose midpoint is nearest to a point.
     Nearest(DVec3),
@@ -38,7 +44,9 @@ pub enum EdgeSet {
 /// Vertices of a mesh.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub enum VertexSet {
+    /// Every vertex of the mesh.
     All,
+    /// These vertex ids, in the given order.
     Ids(Vec<u32>),
     /// The vertex nearest to a point.
     Nearest(DVec3),
@@ -46,7 +54,9 @@ pub enum VertexSet {
     NearestEach(Vec<DVec3>),
     /// Vertices within `radius` of `center`.
     Within {
+        /// The centre in local space.
         center: DVec3,
+        /// The distance, inclusive, in local units.
         radius: f64,
     },
     /// The corners of a face set.
@@ -58,8 +68,50 @@ pub enum VertexSet {
 /// An id in a command that the mesh does not have, or a predicate that
 /// matched nothing.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
-#[error("{0}")]
-pub struct ElementError(pub String);
+pub enum ElementError {
+    /// [`FaceSet::Ids`] names a face the mesh does not have.
+    #[error("face {face} does not exist")]
+    NoSuchFace {
+        /// The first missing id.
+        face: FaceId,
+    },
+    /// [`EdgeSet::Ids`] names an edge the mesh does not have.
+    #[error("edge {edge} does not exist")]
+    NoSuchEdge {
+        /// The first missing id.
+        edge: EdgeId,
+    },
+    /// [`VertexSet::Ids`] names a vertex the mesh does not have.
+    #[error("vertex {vertex} does not exist")]
+    NoSuchVertex {
+        /// The first missing id.
+        vertex: VertexId,
+    },
+    /// [`FaceSet::Facing`] was given a zero (or non-finite) direction.
+    #[error("the direction of Facing is zero")]
+    ZeroFacingDirection,
+    /// A face set resolved to no face.
+    #[error("no face matches {faces:?}")]
+    NoFaceMatches {
+        /// The set that matched nothing.
+        faces: FaceSet,
+    },
+    /// An edge set resolved to no edge.
+    #[error("no edge matches {edges:?}")]
+    NoEdgeMatches {
+        /// The set that matched nothing.
+        edges: EdgeSet,
+    },
+    /// A vertex set resolved to no vertex.
+    #[error("no vertex matches {vertices:?}")]
+    NoVertexMatches {
+        /// The set that matched nothing.
+        vertices: VertexSet,
+    },
+    /// [`VertexSet::NearestEach`] on a mesh without vertices.
+    #[error("the mesh has no vertices")]
+    NoVertices,
+}
 
 fn nearest<T: Copy>(items: impl Iterator<Item = T>, key: impl Fn(T) -> f64) -> Option<T> {
     items
@@ -79,14 +131,14 @@ impl FaceSet {
             FaceSet::Ids(ids) => {
                 let v: Vec<FaceId> = ids.iter().map(|&i| FaceId(i)).collect();
                 if let Some(f) = v.iter().find(|f| !m.is_face(**f)) {
-                    return Err(ElementError(format!("face {f} does not exist")));
+                    return Err(ElementError::NoSuchFace { face: *f });
                 }
                 v
             }
             FaceSet::Facing { direction, degrees } => {
                 let d = direction.normalize_or_zero();
                 if d == DVec3::ZERO {
-                    return Err(ElementError("the direction of Facing is zero".into()));
+                    return Err(ElementError::ZeroFacingDirection);
                 }
                 let cos = degrees.to_radians().cos();
                 m.faces()
@@ -106,7 +158,9 @@ impl FaceSet {
             }
         };
         if out.is_empty() {
-            return Err(ElementError(format!("no face matches {self:?}")));
+            return Err(ElementError::NoFaceMatches {
+                faces: self.clone(),
+            });
         }
         Ok(out)
     }
@@ -123,7 +177,7 @@ impl EdgeSet {
             EdgeSet::Ids(ids) => {
                 let v: Vec<EdgeId> = ids.iter().map(|&i| EdgeId(i)).collect();
                 if let Some(e) = v.iter().find(|e| !m.is_edge(**e)) {
-                    return Err(ElementError(format!("edge {e} does not exist")));
+                    return Err(ElementError::NoSuchEdge { edge: *e });
                 }
                 v
             }
@@ -150,7 +204,9 @@ impl EdgeSet {
             }
         };
         if out.is_empty() {
-            return Err(ElementError(format!("no edge matches {self:?}")));
+            return Err(ElementError::NoEdgeMatches {
+                edges: self.clone(),
+            });
         }
         Ok(out)
     }
@@ -167,7 +223,7 @@ impl VertexSet {
             VertexSet::Ids(ids) => {
                 let v: Vec<VertexId> = ids.iter().map(|&i| VertexId(i)).collect();
                 if let Some(x) = v.iter().find(|x| !m.is_vertex(**x)) {
-                    return Err(ElementError(format!("vertex {x} does not exist")));
+                    return Err(ElementError::NoSuchVertex { vertex: *x });
                 }
                 return Ok(v); // keep the given order (ConnectVertices pairs them)
             }
@@ -180,7 +236,7 @@ impl VertexSet {
                     .filter_map(|p| nearest(m.vertices(), |v| m.position(v).distance_squared(*p)))
                     .collect();
                 if v.is_empty() {
-                    return Err(ElementError("the mesh has no vertices".into()));
+                    return Err(ElementError::NoVertices);
                 }
                 return Ok(v);
             }
@@ -202,7 +258,9 @@ impl VertexSet {
         out.sort();
         out.dedup();
         if out.is_empty() {
-            return Err(ElementError(format!("no vertex matches {self:?}")));
+            return Err(ElementError::NoVertexMatches {
+                vertices: self.clone(),
+            });
         }
         Ok(out)
     }

@@ -13,10 +13,14 @@ use crate::scene::{Document, NodeContent, SurfaceShape};
 /// What `hedra eval` prints.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Evaluation {
+    /// The node's name.
     pub node: String,
     /// "curve", "surface" or "triangle".
     pub kind: &'static str,
+    /// The parameter values evaluated at: `[t]` for curves, `[u, v]` for
+    /// surfaces and triangles.
     pub parameter: Vec<f64>,
+    /// The point, in the node's local space.
     pub point: [f64; 3],
     /// Curves: [d/dt]; surfaces: [∂/∂u, ∂/∂v]; triangles: along u and v (w = 1 − u − v).
     pub first_derivatives: Vec<[f64; 3]>,
@@ -34,24 +38,48 @@ pub enum EvalError {
     /// No node matches the reference.
     #[error(transparent)]
     Node(#[from] CommandError),
+    /// A parameter value outside the curve's or surface's domain.
     #[error("'{node}': {parameter} = {value} is outside the domain [{}, {}]", domain.0, domain.1)]
     OutsideDomain {
+        /// The node's name.
         node: String,
+        /// Which parameter: "t", "u" or "v".
         parameter: &'static str,
+        /// The value given.
         value: f64,
+        /// The domain, as (start, end).
         domain: (f64, f64),
     },
+    /// One value given for a surface, or two for a curve.
     #[error("'{node}' is a {kind}: give {wanted} parameter value(s), got {given}")]
     ParameterCount {
+        /// The node's name.
         node: String,
+        /// "curve", "surface" or "triangle".
         kind: &'static str,
+        /// How many values that kind takes.
         wanted: usize,
+        /// How many were given.
         given: usize,
     },
+    /// Barycentric `(u, v)` outside a Bézier triangle.
     #[error("'{node}': (u, v) = ({u}, {v}) is outside the triangle (u, v ≥ 0, u + v ≤ 1)")]
-    OutsideTriangle { node: String, u: f64, v: f64 },
+    OutsideTriangle {
+        /// The node's name.
+        node: String,
+        /// The u value given.
+        u: f64,
+        /// The v value given.
+        v: f64,
+    },
+    /// The node is a mesh or an empty.
     #[error("'{node}' is a {kind}, not a curve or surface")]
-    NotAShape { node: String, kind: &'static str },
+    NotAShape {
+        /// The node's name.
+        node: String,
+        /// What it is ("mesh", "empty").
+        kind: &'static str,
+    },
 }
 
 fn a(v: DVec3) -> [f64; 3] {

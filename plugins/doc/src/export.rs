@@ -41,6 +41,7 @@ pub const EXPORT_FORMATS: &[(&str, &str)] = &[
 /// How to export.
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
 pub struct ExportOptions {
+    /// Which shape of each mesh to write (default: evaluated, modifiers applied).
     pub shape: ExportShape,
     /// Write STL as text instead of binary.
     pub ascii_stl: bool,
@@ -440,6 +441,8 @@ fn welded(
     (ps, ns, tris)
 }
 
+/// True when the node and every ancestor are visible (false for an
+/// unknown id).
 pub fn is_visible(doc: &Document, id: crate::scene::NodeId) -> bool {
     let mut cur = Some(id);
     let mut guard = doc.node_count() + 1;

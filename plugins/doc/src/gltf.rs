@@ -33,7 +33,7 @@ fn push_view(
     data: &[u8],
     target: json::buffer::Target,
 ) -> json::Index<json::buffer::View> {
-    while bin.len() % 4 != 0 {
+    while !bin.len().is_multiple_of(4) {
         bin.push(0);
     }
     let offset = bin.len();
@@ -422,7 +422,7 @@ pub fn to_gltf(doc: &Document, shape: ExportShape, binary: bool) -> Result<Vec<u
         nodes: roots,
     });
     root.scene = Some(scene);
-    while bin.len() % 4 != 0 {
+    while !bin.len().is_multiple_of(4) {
         bin.push(0);
     }
     let uri = (!binary).then(|| {
@@ -482,7 +482,11 @@ pub fn gltf_from_bytes(
         path: path.to_string(),
         message,
     };
-    check_before_validation(bytes).map_err(|m| err(format!("not a readable glTF file ({m})")))?;
+    let gltf_error = |error: GltfError| ImportError::Gltf {
+        path: path.to_string(),
+        error: Box::new(error),
+    };
+    check_before_validation(bytes).map_err(gltf_error)?;
     let gltf = gltf::Gltf::from_slice(bytes).map_err(|e| {
         // Why a 2.0 reader fails on it, said plainly for glTF 1 files
         // (looked at only when reading failed).
@@ -591,8 +595,12 @@ pub fn gltf_from_bytes(
                     skipped += 1;
                     continue;
                 }
-                check_accessors(&primitive, &buffers)
-                    .map_err(|m| err(format!("mesh '{}': {m}", mesh.name().unwrap_or("?"))))?;
+                check_accessors(&primitive, &buffers).map_err(|error| {
+                    gltf_error(GltfError::Accessor {
+                        mesh: mesh.name().unwrap_or("?").to_string(),
+                        error,
+                    })
+                })?;
                 let reader = primitive.reader(|b| buffers.get(b.index()).map(|d| d.as_slice()));
                 let Some(points) = reader.read_positions() else {
                     skipped += 1;
@@ -701,10 +709,6 @@ pub fn gltf_from_bytes(
     Ok(out)
 }
 
-/// What `gltf` reads or validates without checking: a GLB length shorter
-/// than its header, and (gltf-json 1.4 panics) a primitive's `POSITION`
-/// naming an accessor past the list.
-/// Files that do not even parse are left to `gltf` to report.
 /// The version of a glTF 1.x file ("1.0"), once the 2.0 reader failed on
 /// it: a GLB header of version 1, or JSON whose `asset.version`
 /// starts with 1 or that keeps `accessors` as a map (glTF 1 keys its
@@ -721,14 +725,141 @@ fn gltf1_version(bytes: &[u8]) -> Option<String> {
     value["accessors"].is_object().then(|| "1.0".to_string())
 }
 
-fn check_before_validation(bytes: &[u8]) -> Result<(), String> {
+/// Why a glTF file is refused before its meshes are read: what the `gltf`
+/// crate would read out of bounds, panic on or silently read wrong.
+/// Indices (mesh, primitive, accessor, buffer view, buffer) count from 0 as
+/// in the file's JSON.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum GltfError {
+    /// A GLB header whose total length is less than the 12-byte header.
+    #[error(
+        "not a readable glTF file (the GLB header gives a length of {length} bytes, less than the header itself)"
+    )]
+    GlbLengthShort {
+        /// The length the header gives, in bytes.
+        length: u32,
+    },
+    /// A primitive attribute naming an accessor past the file's list.
+    #[error(
+        "not a readable glTF file (mesh {mesh}, primitive {primitive}: an attribute uses accessor {accessor}, but the file has {accessors})"
+    )]
+    AccessorPastList {
+        /// The mesh's index.
+        mesh: usize,
+        /// The primitive's index in its mesh.
+        primitive: usize,
+        /// The accessor index the attribute gives.
+        accessor: usize,
+        /// How many accessors the file has.
+        accessors: usize,
+    },
+    /// An accessor of a triangle primitive that Hedra would read (its
+    /// positions, normals, first UVs or indices) is unusable.
+    #[error("mesh '{mesh}': {error}")]
+    Accessor {
+        /// The mesh's name, `?` when it has none.
+        mesh: String,
+        /// What is wrong with the accessor.
+        error: AccessorError,
+    },
+}
+
+/// Why an accessor of a glTF primitive cannot be read.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum AccessorError {
+    /// Elements of a type or component type the attribute cannot have
+    /// (positions and normals are `VEC3` floats; UVs `VEC2` floats or
+    /// normalised bytes or shorts; indices unsigned scalars).
+    #[error(
+        "accessor {accessor} has {dimensions:?} {data_type:?} elements, which this attribute cannot have"
+    )]
+    Layout {
+        /// The accessor's index.
+        accessor: usize,
+        /// Its element type.
+        dimensions: gltf::accessor::Dimensions,
+        /// Its component type.
+        data_type: gltf::accessor::DataType,
+    },
+    /// A sparse accessor.
+    #[error("accessor {accessor} is sparse, which is not supported")]
+    Sparse {
+        /// The accessor's index.
+        accessor: usize,
+    },
+    /// An accessor with a count of zero.
+    #[error("accessor {accessor} has no elements")]
+    NoElements {
+        /// The accessor's index.
+        accessor: usize,
+    },
+    /// An accessor without a buffer view (all zeros, which Hedra does not
+    /// read).
+    #[error("accessor {accessor} has no buffer view")]
+    NoBufferView {
+        /// The accessor's index.
+        accessor: usize,
+    },
+    /// A buffer view's byte stride shorter than the accessor's elements.
+    #[error(
+        "buffer view {view} has a stride of {stride} bytes, less than accessor {accessor}'s {size}-byte elements"
+    )]
+    StrideShort {
+        /// The buffer view's index.
+        view: usize,
+        /// Its byte stride.
+        stride: u128,
+        /// The accessor's index.
+        accessor: usize,
+        /// The size of one of its elements, in bytes.
+        size: u128,
+    },
+    /// An accessor reaching past the end of its buffer view.
+    #[error(
+        "accessor {accessor} ({count} elements of {size} bytes) needs {needed} bytes, but buffer view {view} has {length}"
+    )]
+    PastView {
+        /// The accessor's index.
+        accessor: usize,
+        /// Its element count.
+        count: u128,
+        /// The size of one element, in bytes.
+        size: u128,
+        /// Bytes from the view's start to the end of the last element.
+        needed: u128,
+        /// The buffer view's index.
+        view: usize,
+        /// The view's length in bytes.
+        length: usize,
+    },
+    /// A buffer view reaching past the end of its buffer's data.
+    #[error(
+        "buffer view {view} (bytes {start}..{end}) lies outside buffer {buffer} of {have} bytes"
+    )]
+    ViewOutsideBuffer {
+        /// The buffer view's index.
+        view: usize,
+        /// The view's first byte in the buffer.
+        start: usize,
+        /// One past the view's last byte in the buffer.
+        end: u128,
+        /// The buffer's index.
+        buffer: usize,
+        /// The bytes the buffer has.
+        have: usize,
+    },
+}
+
+/// What `gltf` reads or validates without checking: a GLB length shorter
+/// than its header, and (gltf-json 1.4 panics) a primitive's `POSITION`
+/// naming an accessor past the list.
+/// Files that do not even parse are left to `gltf` to report.
+fn check_before_validation(bytes: &[u8]) -> Result<(), GltfError> {
     // `gltf` subtracts the 12-byte header from the stated length unchecked.
     if let Some(&[a, b, c, d]) = bytes.strip_prefix(b"glTF").and_then(|h| h.get(4..8)) {
         let length = u32::from_le_bytes([a, b, c, d]);
         if length < 12 {
-            return Err(format!(
-                "the GLB header gives a length of {length} bytes, less than the header itself"
-            ));
+            return Err(GltfError::GlbLengthShort { length });
         }
     }
     let text: std::borrow::Cow<[u8]> = if bytes.starts_with(b"glTF") {
@@ -746,11 +877,12 @@ fn check_before_validation(bytes: &[u8]) -> Result<(), String> {
         for (p, primitive) in mesh.primitives.iter().enumerate() {
             for accessor in primitive.attributes.values() {
                 if accessor.value() >= root.accessors.len() {
-                    return Err(format!(
-                        "mesh {m}, primitive {p}: an attribute uses accessor {}, but the file has {}",
-                        accessor.value(),
-                        root.accessors.len()
-                    ));
+                    return Err(GltfError::AccessorPastList {
+                        mesh: m,
+                        primitive: p,
+                        accessor: accessor.value(),
+                        accessors: root.accessors.len(),
+                    });
                 }
             }
         }
@@ -761,7 +893,7 @@ fn check_before_validation(bytes: &[u8]) -> Result<(), String> {
 /// Every accessor of a primitive lies inside its buffer view and every view
 /// inside its buffer (the `gltf` reader silently gives nothing otherwise,
 /// and a count larger than the data must not be trusted).
-fn check_accessors(primitive: &gltf::Primitive, buffers: &[Vec<u8>]) -> Result<(), String> {
+fn check_accessors(primitive: &gltf::Primitive, buffers: &[Vec<u8>]) -> Result<(), AccessorError> {
     use gltf::accessor::{DataType, Dimensions};
     use gltf::mesh::Semantic;
     // The attributes Hedra reads, with the layouts the `gltf` reader
@@ -790,33 +922,36 @@ fn check_accessors(primitive: &gltf::Primitive, buffers: &[Vec<u8>]) -> Result<(
         }));
     for (a, layouts) in read {
         if !layouts.contains(&(a.dimensions(), a.data_type())) {
-            return Err(format!(
-                "accessor {} has {:?} {:?} elements, which this attribute cannot have",
-                a.index(),
-                a.dimensions(),
-                a.data_type()
-            ));
+            return Err(AccessorError::Layout {
+                accessor: a.index(),
+                dimensions: a.dimensions(),
+                data_type: a.data_type(),
+            });
         }
         if a.sparse().is_some() {
-            return Err(format!(
-                "accessor {} is sparse, which is not supported",
-                a.index()
-            ));
+            return Err(AccessorError::Sparse {
+                accessor: a.index(),
+            });
         }
         if a.count() == 0 {
-            return Err(format!("accessor {} has no elements", a.index()));
+            return Err(AccessorError::NoElements {
+                accessor: a.index(),
+            });
         }
         let Some(view) = a.view() else {
-            return Err(format!("accessor {} has no buffer view", a.index()));
+            return Err(AccessorError::NoBufferView {
+                accessor: a.index(),
+            });
         };
         let (count, size) = (a.count() as u128, a.size() as u128);
         let stride = view.stride().map_or(size, |s| s as u128);
         if stride < size {
-            return Err(format!(
-                "buffer view {} has a stride of {stride} bytes, less than accessor {}'s {size}-byte elements",
-                view.index(),
-                a.index()
-            ));
+            return Err(AccessorError::StrideShort {
+                view: view.index(),
+                stride,
+                accessor: a.index(),
+                size,
+            });
         }
         let needed = if count == 0 {
             0
@@ -824,22 +959,25 @@ fn check_accessors(primitive: &gltf::Primitive, buffers: &[Vec<u8>]) -> Result<(
             a.offset() as u128 + stride * (count - 1) + size
         };
         if needed > view.length() as u128 {
-            return Err(format!(
-                "accessor {} ({count} elements of {size} bytes) needs {needed} bytes, but buffer view {} has {}",
-                a.index(),
-                view.index(),
-                view.length()
-            ));
+            return Err(AccessorError::PastView {
+                accessor: a.index(),
+                count,
+                size,
+                needed,
+                view: view.index(),
+                length: view.length(),
+            });
         }
         let buffer = view.buffer().index();
         let have = buffers.get(buffer).map_or(0, Vec::len);
         if view.offset() as u128 + view.length() as u128 > have as u128 {
-            return Err(format!(
-                "buffer view {} (bytes {}..{}) lies outside buffer {buffer} of {have} bytes",
-                view.index(),
-                view.offset(),
-                view.offset() as u128 + view.length() as u128
-            ));
+            return Err(AccessorError::ViewOutsideBuffer {
+                view: view.index(),
+                start: view.offset(),
+                end: view.offset() as u128 + view.length() as u128,
+                buffer,
+                have,
+            });
         }
     }
     Ok(())

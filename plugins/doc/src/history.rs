@@ -16,8 +16,11 @@ use std::sync::Arc;
 /// One node replaced: `None` before means created, `None` after means deleted.
 #[derive(Clone, Debug, PartialEq)]
 pub struct NodeChange {
+    /// The node replaced.
     pub id: NodeId,
+    /// The node before the step; `None`: the step created it.
     pub before: Option<Node>,
+    /// The node after the step; `None`: the step deleted it.
     pub after: Option<Node>,
 }
 
@@ -30,8 +33,12 @@ pub struct Transaction {
     pub label: String,
     /// The command that produced it, if any.
     pub command: Option<Command>,
+    /// Every node the step changes, in the order they were decided; undo
+    /// applies them in reverse.
     pub changes: Vec<NodeChange>,
+    /// The document's next free node id before the step (restored by undo).
     pub next_id_before: u64,
+    /// The next free node id after the step (restored by redo).
     pub next_id_after: u64,
 }
 
@@ -130,9 +137,11 @@ impl Default for History {
 }
 
 impl History {
+    /// True when there is a step to undo.
     pub fn can_undo(&self) -> bool {
         !self.done.is_empty()
     }
+    /// True when there is an undone step to redo (a new step clears them).
     pub fn can_redo(&self) -> bool {
         !self.undone.is_empty()
     }

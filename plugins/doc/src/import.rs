@@ -25,11 +25,17 @@ use std::sync::Arc;
 /// had to be repaired, its parent among the imported nodes, its transform.
 #[derive(Debug)]
 pub struct ImportedMesh {
+    /// The node's name: the file's object, group or node name, else one made
+    /// up from the file (its stem, "Node 3").
     pub name: String,
+    /// The mesh in the node's local space; `None` for a grouping node (or when
+    /// repair dropped every face).
     pub mesh: Option<HalfEdgeMesh>,
+    /// What repair dropped or split to make the mesh manifold.
     pub report: RepairReport,
     /// Index of the parent in the same import list.
     pub parent: Option<usize>,
+    /// The local transform relative to the parent (identity for OBJ and STL).
     pub transform: Transform,
     /// Primitives that are not triangles (points, lines) and were left out.
     pub skipped_primitives: usize,
@@ -218,19 +224,251 @@ fn scan_obj(text: &str) -> Vec<ObjSegment> {
 /// Why a file could not be imported.
 #[derive(Debug, thiserror::Error)]
 pub enum ImportError {
+    /// The file cannot be read or parsed; the message says where and why.
     #[error("{path}: {message}")]
-    Read { path: String, message: String },
+    Read {
+        /// The file, as the caller named it.
+        path: String,
+        /// What went wrong, naming the line, object or buffer where known.
+        message: String,
+    },
+    /// An extension Hedra does not import.
     #[error("{path}: unsupported format '.{ext}' (supported: .obj, .stl, .gltf, .glb)")]
-    Unsupported { path: String, ext: String },
+    Unsupported {
+        /// The file, as the caller named it.
+        path: String,
+        /// The extension, without the dot.
+        ext: String,
+    },
     #[error(
         "{path}: the file name has no extension to tell its format (supported: .obj, .stl, .gltf, .glb)"
     )]
-    NoExtension { path: String },
+    /// A file name without an extension.
+    NoExtension {
+        /// The file, as the caller named it.
+        path: String,
+    },
+    /// A readable file with no faces (or, for glTF, no nodes).
     #[error("{path}: contains no faces")]
-    Empty { path: String },
+    Empty {
+        /// The file, as the caller named it.
+        path: String,
+    },
     /// Every face was dropped: the first object's repair report says why.
     #[error("{path}: no face could be kept: {reason}")]
-    NothingLeft { path: String, reason: String },
+    NothingLeft {
+        /// The file, as the caller named it.
+        path: String,
+        /// The first dropped object's repair report, as a sentence.
+        reason: String,
+    },
+    /// A malformed OBJ line, found before the OBJ reader runs.
+    #[error("{path}: {error}")]
+    Obj {
+        /// The file, as the caller named it.
+        path: String,
+        /// What is wrong, and on which line.
+        error: ObjError,
+    },
+    /// A malformed STL triangle.
+    #[error("{path}: {error}")]
+    Stl {
+        /// The file, as the caller named it.
+        path: String,
+        /// What is wrong, and in which triangle (and line, for ASCII).
+        error: StlError,
+    },
+    /// A glTF file whose data would be read out of bounds or in a layout
+    /// Hedra does not read.
+    #[error("{path}: {error}")]
+    Gltf {
+        /// The file, as the caller named it.
+        path: String,
+        /// What is wrong, naming the mesh, accessor or buffer view (boxed:
+        /// it is large and rare).
+        error: Box<crate::gltf::GltfError>,
+    },
+}
+
+/// The kinds of element an OBJ file lists, which faces refer to by number.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ObjElement {
+    /// A `v` line.
+    Vertex,
+    /// A `vt` line.
+    TextureCoordinate,
+    /// A `vn` line.
+    Normal,
+}
+
+impl ObjElement {
+    /// The order faces name them in (`v/vt/vn`).
+    const ALL: [ObjElement; 3] = [
+        ObjElement::Vertex,
+        ObjElement::TextureCoordinate,
+        ObjElement::Normal,
+    ];
+
+    /// The singular name used in messages ("texture coordinate").
+    pub fn one(self) -> &'static str {
+        match self {
+            ObjElement::Vertex => "vertex",
+            ObjElement::TextureCoordinate => "texture coordinate",
+            ObjElement::Normal => "normal",
+        }
+    }
+
+    /// The plural name used in messages ("texture coordinates").
+    pub fn many(self) -> &'static str {
+        match self {
+            ObjElement::Vertex => "vertices",
+            ObjElement::TextureCoordinate => "texture coordinates",
+            ObjElement::Normal => "normals",
+        }
+    }
+}
+
+/// A malformed line of an OBJ file. Lines count from 1.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum ObjError {
+    /// A `v` line without three numbers for x, y and z.
+    #[error("line {line}: a vertex needs three numbers, found '{found}'")]
+    VertexNumbers {
+        /// The line of the vertex.
+        line: usize,
+        /// The words after `v`, joined by spaces.
+        found: String,
+    },
+    /// A vertex coordinate that is infinite or NaN (`nan`, `inf`, `1e999`).
+    #[error("line {line}: vertex coordinate '{value}' is not a finite number")]
+    NonFiniteCoordinate {
+        /// The line of the vertex.
+        line: usize,
+        /// The coordinate as written.
+        value: String,
+    },
+    /// A vertex whose coordinates become infinite when divided by its `w`.
+    #[error("line {line}: vertex ({x}, {y}, {z}) divided by w = {w} is not a finite number")]
+    NonFiniteDivided {
+        /// The line of the vertex.
+        line: usize,
+        /// The x coordinate as read.
+        x: f64,
+        /// The y coordinate as read.
+        y: f64,
+        /// The z coordinate as read.
+        z: f64,
+        /// The (non-zero) weight.
+        w: f64,
+    },
+    /// A `vt` line without its u, or a `vn` line without x, y and z.
+    #[error("line {line}: a {} needs {needs} number(s), found '{found}'", .element.one())]
+    AttributeNumbers {
+        /// The line of the `vt` or `vn`.
+        line: usize,
+        /// [`ObjElement::TextureCoordinate`] or [`ObjElement::Normal`].
+        element: ObjElement,
+        /// How many numbers that element needs (1 or 3).
+        needs: usize,
+        /// The words after the keyword, joined by spaces.
+        found: String,
+    },
+    /// A negative (relative) index reaching back before the first element.
+    #[error(
+        "line {line}: face refers to {} {index}, but only {before} {} come before it",
+        .element.one(),
+        .element.many()
+    )]
+    BeforeFirst {
+        /// The line of the face (or polyline).
+        line: usize,
+        /// The kind of element the index counts.
+        element: ObjElement,
+        /// The index as written (negative).
+        index: i64,
+        /// How many such elements come before the line.
+        before: usize,
+    },
+    /// Index 0, which OBJ does not use.
+    #[error("line {line}: face refers to {} 0 (OBJ counts from 1)", .element.one())]
+    ZeroIndex {
+        /// The line of the face (or polyline).
+        line: usize,
+        /// The kind of element the index counts.
+        element: ObjElement,
+    },
+    /// A positive index past the elements the whole file has.
+    #[error(
+        "line {line}: face refers to {} {index}, but the file has {total} {}",
+        .element.one(),
+        .element.many()
+    )]
+    PastLast {
+        /// The line of the face (or polyline).
+        line: usize,
+        /// The kind of element the index counts.
+        element: ObjElement,
+        /// The index as written.
+        index: i64,
+        /// How many such elements the file has.
+        total: usize,
+    },
+}
+
+/// A malformed STL triangle. Triangles count from 1 over the whole file,
+/// lines (ASCII STL only) from 1.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum StlError {
+    /// An ASCII `vertex` line without three numbers.
+    #[error("line {line}, triangle {triangle}: a vertex needs three numbers, found '{found}'")]
+    VertexNumbers {
+        /// The line of the vertex.
+        line: usize,
+        /// The facet the vertex belongs to.
+        triangle: usize,
+        /// The words after `vertex`, joined by spaces.
+        found: String,
+    },
+    /// An ASCII vertex coordinate that is not finite as a 32-bit float
+    /// (STL's precision).
+    #[error("line {line}, triangle {triangle}: vertex coordinate '{value}' is not finite")]
+    NonFiniteCoordinate {
+        /// The line of the vertex.
+        line: usize,
+        /// The facet the vertex belongs to.
+        triangle: usize,
+        /// The coordinate as written.
+        value: String,
+    },
+    /// An ASCII `vertex` line before any `facet`.
+    #[error("line {line}: a vertex outside any facet")]
+    VertexOutsideFacet {
+        /// The line of the vertex.
+        line: usize,
+    },
+    /// An ASCII `endfacet` after other than three vertices.
+    #[error("line {line}, triangle {triangle}: a facet needs three vertices, found {found}")]
+    FacetCorners {
+        /// The line of the `endfacet`.
+        line: usize,
+        /// The facet.
+        triangle: usize,
+        /// How many vertices it has.
+        found: usize,
+    },
+    /// A binary STL triangle with an infinite or NaN corner.
+    #[error(
+        "triangle {triangle} has a corner that is not finite: ({}, {}, {})",
+        .corner.x,
+        .corner.y,
+        .corner.z
+    )]
+    NonFiniteCorner {
+        /// The triangle.
+        triangle: usize,
+        /// The first corner that is not finite, as read.
+        corner: DVec3,
+    },
 }
 
 /// Checks what tobj does not report by line: a vertex coordinate that is
@@ -238,12 +476,7 @@ pub enum ImportError {
 /// and a face or line index (`v`, `vt` or `vn`) outside the elements the
 /// file has. Positive indices count over the whole file, negative ones back
 /// from the line. Messages name the line.
-fn check_obj_text(text: &str) -> Result<(), String> {
-    const KINDS: [(&str, &str); 3] = [
-        ("vertex", "vertices"),
-        ("texture coordinate", "texture coordinates"),
-        ("normal", "normals"),
-    ];
+fn check_obj_text(text: &str) -> Result<(), ObjError> {
     let mut totals = [0usize; 3];
     for line in text.lines() {
         match line.split_whitespace().next() {
@@ -263,26 +496,30 @@ fn check_obj_text(text: &str) -> Result<(), String> {
                 let values: Vec<&str> = words.collect();
                 let parsed: Vec<Option<f64>> = values.iter().map(|w| w.parse().ok()).collect();
                 if parsed.len() < 3 || parsed[..3].contains(&None) {
-                    return Err(format!(
-                        "line {number}: a vertex needs three numbers, found '{}'",
-                        values.join(" ")
-                    ));
+                    return Err(ObjError::VertexNumbers {
+                        line: number,
+                        found: values.join(" "),
+                    });
                 }
                 if let Some(bad) =
                     (0..values.len().min(3)).find(|&k| parsed[k].is_some_and(|x| !x.is_finite()))
                 {
-                    return Err(format!(
-                        "line {number}: vertex coordinate '{}' is not a finite number",
-                        values[bad]
-                    ));
+                    return Err(ObjError::NonFiniteCoordinate {
+                        line: number,
+                        value: values[bad].to_string(),
+                    });
                 }
                 if let [Some(x), Some(y), Some(z), Some(w)] = parsed[..]
                     && w != 0.0
                     && [x, y, z].iter().any(|c| !(c / w).is_finite())
                 {
-                    return Err(format!(
-                        "line {number}: vertex ({x}, {y}, {z}) divided by w = {w} is not a finite number"
-                    ));
+                    return Err(ObjError::NonFiniteDivided {
+                        line: number,
+                        x,
+                        y,
+                        z,
+                        w,
+                    });
                 }
             }
             Some(key @ ("vt" | "vn")) => {
@@ -291,11 +528,12 @@ fn check_obj_text(text: &str) -> Result<(), String> {
                 let values: Vec<&str> = words.collect();
                 if values.len() < needs || values[..needs].iter().any(|w| w.parse::<f64>().is_err())
                 {
-                    return Err(format!(
-                        "line {number}: a {} needs {needs} number(s), found '{}'",
-                        KINDS[k].0,
-                        values.join(" ")
-                    ));
+                    return Err(ObjError::AttributeNumbers {
+                        line: number,
+                        element: ObjElement::ALL[k],
+                        needs,
+                        found: values.join(" "),
+                    });
                 }
             }
             Some("f" | "l") => {
@@ -310,19 +548,23 @@ fn check_obj_text(text: &str) -> Result<(), String> {
                             i >= 1 && i as u64 <= totals[k] as u64
                         };
                         if !fits {
-                            let (one, many) = KINDS[k];
+                            let (line, element) = (number, ObjElement::ALL[k]);
                             return Err(if i < 0 {
-                                format!(
-                                    "line {number}: face refers to {one} {i}, but only {} {many} come before it",
-                                    seen[k]
-                                )
+                                ObjError::BeforeFirst {
+                                    line,
+                                    element,
+                                    index: i,
+                                    before: seen[k],
+                                }
                             } else if i == 0 {
-                                format!("line {number}: face refers to {one} 0 (OBJ counts from 1)")
+                                ObjError::ZeroIndex { line, element }
                             } else {
-                                format!(
-                                    "line {number}: face refers to {one} {i}, but the file has {} {many}",
-                                    totals[k]
-                                )
+                                ObjError::PastLast {
+                                    line,
+                                    element,
+                                    index: i,
+                                    total: totals[k],
+                                }
                             });
                         }
                     }
@@ -340,9 +582,9 @@ fn check_obj_text(text: &str) -> Result<(), String> {
 /// [`ImportError::Read`] when the OBJ is malformed, [`ImportError::Empty`]
 /// when nothing usable remains.
 pub fn obj_from_str(text: &str, path: &str) -> Result<Vec<ImportedMesh>, ImportError> {
-    check_obj_text(text).map_err(|message| ImportError::Read {
+    check_obj_text(text).map_err(|error| ImportError::Obj {
         path: path.to_string(),
-        message,
+        error,
     })?;
     let (cleaned, polylines) = without_polylines(text);
     let text = cleaned.as_str();
@@ -584,7 +826,7 @@ fn starts_like_ascii_stl(bytes: &[u8]) -> bool {
 /// Reads an ASCII STL: every `solid` block, keywords in any case (`facet`,
 /// `vertex`, `endfacet`, `endsolid`; `normal`, `outer loop` and `endloop`
 /// are not needed). Messages name the line and the triangle.
-fn parse_ascii_stl(text: &str) -> Result<Vec<AsciiSolid>, String> {
+fn parse_ascii_stl(text: &str) -> Result<Vec<AsciiSolid>, StlError> {
     let mut solids: Vec<AsciiSolid> = Vec::new();
     let mut corners: Option<Vec<DVec3>> = None;
     let mut triangle = 0usize;
@@ -608,29 +850,32 @@ fn parse_ascii_stl(text: &str) -> Result<Vec<AsciiSolid>, String> {
                 let values: Vec<&str> = words.collect();
                 let parsed: Vec<f64> = values.iter().filter_map(|w| w.parse().ok()).collect();
                 if values.len() != 3 || parsed.len() != 3 {
-                    return Err(format!(
-                        "line {number}, triangle {triangle}: a vertex needs three numbers, found '{}'",
-                        values.join(" ")
-                    ));
+                    return Err(StlError::VertexNumbers {
+                        line: number,
+                        triangle,
+                        found: values.join(" "),
+                    });
                 }
                 if let Some(k) = (0..3).find(|&k| !(parsed[k] as f32).is_finite()) {
-                    return Err(format!(
-                        "line {number}, triangle {triangle}: vertex coordinate '{}' is not finite",
-                        values[k]
-                    ));
+                    return Err(StlError::NonFiniteCoordinate {
+                        line: number,
+                        triangle,
+                        value: values[k].to_string(),
+                    });
                 }
                 let Some(c) = corners.as_mut() else {
-                    return Err(format!("line {number}: a vertex outside any facet"));
+                    return Err(StlError::VertexOutsideFacet { line: number });
                 };
                 c.push(DVec3::new(parsed[0], parsed[1], parsed[2]));
             }
             "endfacet" => {
                 let c = corners.take().unwrap_or_default();
                 let [a, b, c] = c[..] else {
-                    return Err(format!(
-                        "line {number}, triangle {triangle}: a facet needs three vertices, found {}",
-                        c.len()
-                    ));
+                    return Err(StlError::FacetCorners {
+                        line: number,
+                        triangle,
+                        found: c.len(),
+                    });
                 };
                 if solids.is_empty() {
                     solids.push(AsciiSolid {
@@ -689,6 +934,10 @@ pub fn stl_from_bytes(
         path: path.to_string(),
         message,
     };
+    let stl_error = |error: StlError| ImportError::Stl {
+        path: path.to_string(),
+        error,
+    };
     let binary_size = bytes
         .get(80..84)
         .map(|c| 84 + 50 * u32::from_le_bytes([c[0], c[1], c[2], c[3]]) as u64);
@@ -704,11 +953,11 @@ pub fn stl_from_bytes(
     let solids = if is_ascii {
         let text = std::str::from_utf8(bytes)
             .map_err(|e| read_error(format!("an ASCII STL that is not UTF-8 text ({e})")))?;
-        parse_ascii_stl(text).map_err(read_error)?
+        parse_ascii_stl(text).map_err(stl_error)?
     } else {
         vec![AsciiSolid {
             name: String::new(),
-            triangles: binary_stl_triangles(bytes).map_err(read_error)?,
+            triangles: binary_stl_triangles(bytes).map_err(stl_error)?,
         }]
     };
     let mut out = Vec::new();
@@ -756,7 +1005,7 @@ pub fn stl_from_bytes(
 
 /// The triangles of a binary STL (its length already checked), refusing
 /// corners that are not finite.
-fn binary_stl_triangles(bytes: &[u8]) -> Result<Vec<[DVec3; 3]>, String> {
+fn binary_stl_triangles(bytes: &[u8]) -> Result<Vec<[DVec3; 3]>, StlError> {
     let count = u32::from_le_bytes([bytes[80], bytes[81], bytes[82], bytes[83]]) as usize;
     let mut out = Vec::with_capacity(count);
     for t in 0..count {
@@ -768,13 +1017,10 @@ fn binary_stl_triangles(bytes: &[u8]) -> Result<Vec<[DVec3; 3]>, String> {
         let corner = |c: usize| DVec3::new(float(3 * c), float(3 * c + 1), float(3 * c + 2));
         let tri = [corner(0), corner(1), corner(2)];
         if let Some(p) = tri.iter().find(|p| !p.is_finite()) {
-            return Err(format!(
-                "triangle {} has a corner that is not finite: ({}, {}, {})",
-                t + 1,
-                p.x,
-                p.y,
-                p.z
-            ));
+            return Err(StlError::NonFiniteCorner {
+                triangle: t + 1,
+                corner: *p,
+            });
         }
         out.push(tri);
     }
@@ -860,7 +1106,10 @@ pub enum FaceNumbers {
     Lines(Vec<u32>),
     /// "triangle n": STL triangles counted over the whole file, this node's
     /// first being `offset + 1`.
-    Triangles { offset: usize },
+    Triangles {
+        /// How many triangles of the file come before this node's.
+        offset: usize,
+    },
 }
 
 impl FaceNumbers {

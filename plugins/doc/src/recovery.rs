@@ -60,6 +60,7 @@ impl RecoveryKind {
 pub struct RecoveryMeta {
     /// The document's own file (`None`: never saved).
     pub original: Option<PathBuf>,
+    /// Why the recovery point was written.
     pub kind: RecoveryKind,
     /// When it was written, milliseconds since the Unix epoch.
     pub saved_unix_ms: u64,
@@ -74,8 +75,11 @@ pub struct RecoveryMeta {
 /// A recovery point found in the folder.
 #[derive(Clone, Debug, PartialEq)]
 pub struct RecoveryEntry {
+    /// The recovery scene file.
     pub scene: PathBuf,
+    /// The meta file beside it.
     pub meta_path: PathBuf,
+    /// What the meta file says.
     pub meta: RecoveryMeta,
 }
 
@@ -156,6 +160,7 @@ impl RecoveryPoint {
         }
     }
 
+    /// The document's own file (`None`: never saved).
     pub fn original(&self) -> Option<&Path> {
         self.original.as_deref()
     }

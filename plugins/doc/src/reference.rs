@@ -20,26 +20,43 @@ pub enum ReferenceError {
     /// Absolute, a URI scheme or drive letter, `..` past the folder, or a
     /// link out of it.
     #[error("refers to '{reference}', outside the file's folder; refused")]
-    Outside { reference: String },
+    Outside {
+        /// The reference as the file gives it.
+        reference: String,
+    },
     /// Percent-decodes to something that is no file name (invalid UTF-8, NUL,
     /// an empty name).
     #[error("refers to '{reference}', which is not a file name; refused")]
-    NotAFileName { reference: String },
+    NotAFileName {
+        /// The reference as the file gives it.
+        reference: String,
+    },
     /// Nothing of that name inside the folder.
     #[error("refers to '{reference}', which cannot be found next to the file")]
-    Missing { reference: String },
+    Missing {
+        /// The reference as the file gives it.
+        reference: String,
+    },
     /// The file is larger than the size the referring file declares.
     #[error(
         "refers to '{reference}', a file of {actual} bytes where {declared} are declared; not read"
     )]
     TooLarge {
+        /// The reference as the file gives it.
         reference: String,
+        /// The file's size in bytes.
         actual: u64,
+        /// The size the referring file declares, in bytes.
         declared: u64,
     },
     /// The file exists inside the folder but cannot be read.
     #[error("refers to '{reference}', which cannot be read ({message})")]
-    Unreadable { reference: String, message: String },
+    Unreadable {
+        /// The reference as the file gives it.
+        reference: String,
+        /// The operating system's error.
+        message: String,
+    },
 }
 
 /// The file that `reference` names inside `folder`, canonical (links

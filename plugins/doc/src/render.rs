@@ -10,8 +10,12 @@ use hedra_geom::{FaceId, HalfEdgeMesh, VertexId};
 /// Positions, normals and triangle indices for the GPU (f32, as rendered).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct RenderBuffers {
+    /// Vertex positions in the mesh's (node's local) space.
     pub positions: Vec<[f32; 3]>,
+    /// Unit normals, one per position.
     pub normals: Vec<[f32; 3]>,
+    /// Three indices into `positions` per triangle, counter-clockwise seen from
+    /// outside.
     pub indices: Vec<u32>,
 }
 
@@ -141,6 +145,7 @@ pub fn patch_positions(
 /// How the edit-mode overlay draws an edge (the viewport picks the colour).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum EdgeLook {
+    /// Not selected, related or creased.
     Plain,
     /// Selected, or between selected faces or (in vertex mode) vertices.
     Selected,
@@ -155,9 +160,11 @@ pub enum EdgeLook {
 pub struct OverlaySelection<'a> {
     /// In vertex mode: an edge with both ends here is selected.
     pub vertices: Option<&'a std::collections::BTreeSet<VertexId>>,
+    /// Selected edges.
     pub edges: &'a std::collections::BTreeSet<hedra_geom::EdgeId>,
     /// An edge of a selected face is selected.
     pub faces: &'a std::collections::BTreeSet<FaceId>,
+    /// Edges related to the selected element (drawn as related).
     pub related_edges: &'a std::collections::BTreeSet<hedra_geom::EdgeId>,
     /// An edge of a related face is related.
     pub related_faces: &'a std::collections::BTreeSet<FaceId>,
@@ -248,7 +255,10 @@ pub fn extent(points: &[hedra_geom::DVec3]) -> f64 {
 /// so a drag re-evaluates only the part of the grid its change can reach.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SurfaceGrid {
+    /// The u values of the grid rows, increasing, from the domain's start to
+    /// its end.
     pub us: Vec<f64>,
+    /// The v values of the grid columns, increasing, over the domain.
     pub vs: Vec<f64>,
 }
 

@@ -8,74 +8,117 @@ use hedra_geom::MeshStats;
 use serde::Serialize;
 use std::fmt::Write;
 
+/// The whole `hedra info` report of a session (`docs/info-json.md`).
 #[derive(Serialize)]
 pub struct SceneReport {
+    /// The scene file format version this build writes.
     pub format_version: u32,
+    /// Every node, in id (creation) order.
     pub nodes: Vec<NodeReport>,
+    /// The undo history's size and labels.
     pub history: HistoryReport,
 }
 
+/// One node of the report.
 #[derive(Serialize)]
 pub struct NodeReport {
+    /// The node's id.
     pub id: u64,
+    /// The node's name.
     pub name: String,
+    /// "empty", "mesh", "curve" or "surface".
     pub kind: &'static str,
+    /// The parent's id; `None` at the top level.
     pub parent: Option<u64>,
+    /// The node's own visibility flag (a hidden ancestor is not counted).
     pub visible: bool,
+    /// The transform relative to the parent.
     pub local: TransformReport,
+    /// The transform relative to the world (the parents' transforms composed,
+    /// root first).
     pub world: TransformReport,
+    /// Counts and invariants of a mesh node's cage; `None` for other kinds.
     pub mesh: Option<MeshReport>,
     /// Curves and surfaces: degrees, control points, domain.
     pub shape: Option<ShapeReport>,
 }
 
+/// A transform as plain arrays.
 #[derive(Serialize)]
 pub struct TransformReport {
+    /// Translation `[x, y, z]`.
     pub translation: [f64; 3],
     /// Quaternion `[x, y, z, w]`.
     pub rotation: [f64; 4],
+    /// Scale `[x, y, z]`.
     pub scale: [f64; 3],
 }
 
+/// A mesh node's cage: counts and invariants, creases, corner attributes.
 #[derive(Serialize)]
 pub struct MeshReport {
+    /// Live vertices.
     pub vertices: usize,
+    /// Live edges.
     pub edges: usize,
+    /// Live faces.
     pub faces: usize,
+    /// Holes in the surface: loops of edges with a face on one side only.
     pub boundary_loops: usize,
+    /// Connected components.
     pub shells: usize,
+    /// V − E + F.
     pub euler_characteristic: i64,
+    /// Handles, from χ = 2S − 2g − b; `None` when the mesh is invalid.
     pub genus: Option<i64>,
+    /// True when the mesh is valid and has no boundary.
     pub closed: bool,
+    /// True when the half-edge validator passed.
     pub manifold: bool,
+    /// True when the half-edge validator passed.
     pub valid: bool,
+    /// The validator's message when not valid.
     pub validation_error: Option<String>,
+    /// The primitive kind the mesh was made from; `None` once edited, or for
+    /// meshes not made from a primitive.
     pub primitive: Option<String>,
-    /// Edges and vertices with a subdivision crease.
+    /// Edges with a subdivision crease.
     pub creased_edges: usize,
+    /// Vertices with a subdivision corner sharpness.
     pub creased_vertices: usize,
+    /// The subdivision modifier; `None` without one.
     pub subdivision: Option<SubdivisionReport>,
-    /// Face corners, and how many of them have a UV or a custom normal.
+    /// Face corners (the sum of the faces' sides).
     pub corners: usize,
+    /// Face corners with a UV.
     pub uv_corners: usize,
+    /// Face corners with a custom normal.
     pub normal_corners: usize,
 }
 
+/// A mesh node's subdivision modifier.
 #[derive(Serialize)]
 pub struct SubdivisionReport {
+    /// The scheme's label ("Catmull-Clark").
     pub scheme: &'static str,
+    /// Levels shown in the viewport.
     pub viewport_level: u32,
+    /// Levels written on export.
     pub export_level: u32,
+    /// The boundary rule's label ("Edges only").
     pub boundary: &'static str,
+    /// The crease method's label ("Uniform").
     pub crease_method: &'static str,
 }
 
+/// A curve or surface node's shape.
 #[derive(Serialize)]
 pub struct ShapeReport {
     /// "nurbs curve", "nurbs surface", "bezier triangle".
     pub kind: &'static str,
     /// One degree for curves and triangles, (u, v) for surfaces.
     pub degrees: Vec<usize>,
+    /// Number of control points.
     pub control_points: usize,
     /// Curves: [start, end]; surfaces: [u0, u1, v0, v1]; triangles: none.
     pub domain: Vec<f64>,
@@ -121,10 +164,14 @@ fn shape_report(content: &NodeContent) -> Option<ShapeReport> {
     }
 }
 
+/// The size of the undo history.
 #[derive(Serialize)]
 pub struct HistoryReport {
+    /// Steps that can be undone.
     pub undo_steps: usize,
+    /// Undone steps that can be redone.
     pub redo_steps: usize,
+    /// Oldest steps dropped by the history limits.
     pub dropped_steps: usize,
     /// Labels of the undoable steps, oldest first.
     pub labels: Vec<String>,
@@ -177,6 +224,7 @@ fn mesh_report(content: &crate::scene::MeshContent) -> MeshReport {
 }
 
 impl SceneReport {
+    /// The report of a session's document and history.
     pub fn new(session: &Session) -> Self {
         let doc: &Document = &session.doc;
         let nodes = doc
@@ -209,6 +257,7 @@ impl SceneReport {
         }
     }
 
+    /// Pretty-printed JSON, as `hedra info --json` prints it.
     pub fn to_json(&self) -> String {
         serde_json::to_string_pretty(self).expect("reports always serialise")
     }

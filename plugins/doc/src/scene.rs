@@ -27,10 +27,14 @@ impl fmt::Display for NodeId {
 /// Translation, rotation and scale, applied as T·R·S.
 #[derive(Copy, Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Transform {
+    /// Position of the node's origin in its parent's space (world space for a
+    /// top-level node).
     #[serde(default)]
     pub translation: DVec3,
+    /// Rotation about the node's origin, a unit quaternion.
     #[serde(default = "identity_rotation")]
     pub rotation: DQuat,
+    /// Scale along the node's own axes; no component may be zero.
     #[serde(default = "unit_scale")]
     pub scale: DVec3,
 }
@@ -49,18 +53,21 @@ impl Default for Transform {
 }
 
 impl Transform {
+    /// No translation or rotation, unit scale.
     pub const IDENTITY: Transform = Transform {
         translation: DVec3::ZERO,
         rotation: DQuat::IDENTITY,
         scale: DVec3::ONE,
     };
 
+    /// A pure translation by `t` (in the parent's space).
     pub fn from_translation(t: DVec3) -> Self {
         Transform {
             translation: t,
             ..Self::IDENTITY
         }
     }
+    /// The local-to-parent matrix, T·R·S.
     pub fn to_matrix(&self) -> DMat4 {
         DMat4::from_scale_rotation_translation(self.scale, self.rotation, self.translation)
     }
@@ -88,8 +95,13 @@ impl Transform {
 /// from, so they can be adjusted.
 #[derive(Clone, Debug, PartialEq)]
 pub struct MeshContent {
+    /// The cage, in the node's local space; shared, so an edit replaces it
+    /// rather than changing it in place.
     pub mesh: Arc<HalfEdgeMesh>,
+    /// The primitive's parameters while the mesh is unedited; `None` once it
+    /// has been edited (or was never a primitive).
     pub primitive: Option<Primitive>,
+    /// Flat or smooth normals when drawn and exported.
     pub shading: Shading,
     /// Edge crease and vertex corner sharpness, used by subdivision.
     pub creases: Creases,
@@ -136,12 +148,16 @@ pub struct CornerAttributes {
         skip_serializing_if = "shared_map::is_empty",
         with = "shared_map"
     )]
+    /// Texture coordinates by face corner: the corner at the half-edge's
+    /// origin, in its face. v runs up (as in OBJ).
     pub uvs: Arc<BTreeMap<HalfEdgeId, DVec2>>,
     #[serde(
         default,
         skip_serializing_if = "shared_map::is_empty",
         with = "shared_map"
     )]
+    /// Custom unit normals by face corner, in the node's local space; corners
+    /// without one use the shading's normal.
     pub normals: Arc<BTreeMap<HalfEdgeId, DVec3>>,
 }
 
@@ -256,6 +272,7 @@ impl MeshContent {
 /// modifier): the cage stays editable, the viewport shows the smooth result.
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
 pub struct SubdivisionModifier {
+    /// Scheme, boundary rule and crease method.
     #[serde(default)]
     pub options: SubdivisionOptions,
     /// Levels shown in the viewport.
@@ -302,8 +319,10 @@ impl SubdivisionModifier {
 /// shows crisp faces) or per vertex (area-weighted average).
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 pub enum Shading {
+    /// One normal per face.
     #[default]
     Flat,
+    /// Area-weighted averaged normals per vertex.
     Smooth,
 }
 
@@ -312,6 +331,7 @@ pub enum Shading {
 pub enum NodeContent {
     /// A transform-only node for grouping.
     Empty,
+    /// A polygon mesh.
     Mesh(MeshContent),
     /// A free-form curve (NURBS; Bézier curves are clamped NURBS).
     Curve(Arc<NurbsCurve>),
@@ -329,6 +349,7 @@ impl NodeContent {
             NodeContent::Surface(_) => "surface",
         }
     }
+    /// The mesh cage, for a mesh node.
     pub fn mesh(&self) -> Option<&HalfEdgeMesh> {
         match self {
             NodeContent::Mesh(m) => Some(&m.mesh),
@@ -341,7 +362,9 @@ impl NodeContent {
 /// NURBS) or a Bézier triangle.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub enum SurfaceShape {
+    /// A NURBS surface.
     Nurbs(NurbsSurface),
+    /// A Bézier triangle.
     Triangle(BezierTriangle),
 }
 
@@ -388,11 +411,18 @@ impl SurfaceShape {
 /// A scene-graph node.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Node {
+    /// The node's id, unique in its document and never reused.
     pub id: NodeId,
+    /// The node's name; commands and imports keep names unique.
     pub name: String,
+    /// The parent node; `None` at the top level.
     pub parent: Option<NodeId>,
+    /// The local transform, relative to the parent (to the world at the top
+    /// level).
     pub transform: Transform,
+    /// False when hidden; a hidden node hides its descendants too.
     pub visible: bool,
+    /// What the node holds.
     pub content: NodeContent,
 }
 
@@ -404,12 +434,14 @@ pub struct Document {
 }
 
 impl Document {
+    /// An empty document; the first node gets id 1.
     pub fn new() -> Self {
         Document {
             nodes: BTreeMap::new(),
             next_node_id: 1,
         }
     }
+    /// The node with this id, if there is one.
     pub fn node(&self, id: NodeId) -> Option<&Node> {
         self.nodes.get(&id)
     }
@@ -417,6 +449,7 @@ impl Document {
     pub fn nodes(&self) -> impl Iterator<Item = &Node> {
         self.nodes.values()
     }
+    /// How many nodes the document has.
     pub fn node_count(&self) -> usize {
         self.nodes.len()
     }
@@ -424,6 +457,7 @@ impl Document {
     pub fn next_node_id(&self) -> NodeId {
         NodeId(self.next_node_id)
     }
+    /// The node with exactly this name, if there is one.
     pub fn find_by_name(&self, name: &str) -> Option<&Node> {
         self.nodes.values().find(|n| n.name == name)
     }
@@ -545,11 +579,11 @@ impl Document {
             // Faces with inner rings or without edges exist in the kernel
             // (Mäntylä's Euler operators); the editor's tools, rendering and
             // exports work on polygons, so a document holds polygon meshes.
-            if let NodeContent::Mesh(m) = &n.content {
-                if let Some(face) = m.mesh.first_non_polygon_face() {
-                    let (node, name) = named();
-                    return Err(DocumentError::NotPolygon { node, name, face });
-                }
+            if let NodeContent::Mesh(m) = &n.content
+                && let Some(face) = m.mesh.first_non_polygon_face()
+            {
+                let (node, name) = named();
+                return Err(DocumentError::NotPolygon { node, name, face });
             }
         }
         Ok(())
@@ -559,26 +593,58 @@ impl Document {
 /// What [`Document::check`] found wrong with a scene tree.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 pub enum DocumentError {
+    /// A node stored under another id than its own.
     #[error("node {node} is stored under id {key}")]
-    WrongKey { node: NodeId, key: NodeId },
+    WrongKey {
+        /// The node's own id.
+        node: NodeId,
+        /// The id it is stored under.
+        key: NodeId,
+    },
+    /// A node id at or above the next id to hand out (a new node would clash).
     #[error("node {node} is not below the next id {next}")]
-    IdNotBelowNext { node: NodeId, next: u64 },
+    IdNotBelowNext {
+        /// The node's id.
+        node: NodeId,
+        /// The document's next free id.
+        next: u64,
+    },
+    /// A node whose parent does not exist.
     #[error("node {node} '{name}' has missing parent {parent}")]
     MissingParent {
+        /// The node's id.
         node: NodeId,
+        /// The node's name.
         name: String,
+        /// The missing parent's id.
         parent: NodeId,
     },
+    /// A node that is its own ancestor (a parent cycle).
     #[error("node {node} '{name}' is its own ancestor")]
-    OwnAncestor { node: NodeId, name: String },
+    OwnAncestor {
+        /// The node's id.
+        node: NodeId,
+        /// The node's name.
+        name: String,
+    },
+    /// A node transform with a value that is not finite.
     #[error("node {node} '{name}' has a non-finite transform")]
-    NonFiniteTransform { node: NodeId, name: String },
+    NonFiniteTransform {
+        /// The node's id.
+        node: NodeId,
+        /// The node's name.
+        name: String,
+    },
     #[error(
         "node {node} '{name}': {face} has an inner ring or no edges; Hedra edits polygon meshes only"
     )]
+    /// A mesh face with an inner ring or without edges.
     NotPolygon {
+        /// The node's id.
         node: NodeId,
+        /// The node's name.
         name: String,
+        /// The first such face.
         face: hedra_geom::FaceId,
     },
 }

@@ -9,19 +9,30 @@ use std::path::{Path, PathBuf};
 /// Why a script stopped.
 #[derive(Debug, thiserror::Error)]
 pub enum ScriptError {
+    /// The text is not a RON list of commands (an unknown command or field
+    /// included).
     #[error("{path}:{line}:{column}: {message}")]
     Parse {
+        /// The script file.
         path: PathBuf,
+        /// The line of the error, from 1.
         line: usize,
+        /// The column of the error, from 1.
         column: usize,
+        /// The RON parser's message.
         message: String,
     },
+    /// A command was refused; the commands before it stay applied.
     #[error("{path}: command {index} ({label}): {error}")]
     Command {
+        /// The script file.
         path: PathBuf,
+        /// The command's place in the script, from 1.
         index: usize,
+        /// The command's history label ("Extrude Faces").
         label: String,
-        error: CommandError,
+        /// Boxed: a command's error is large and a script stops at the first.
+        error: Box<CommandError>,
     },
 }
 
@@ -59,7 +70,7 @@ pub fn run(
                 path: path.to_path_buf(),
                 index: i + 1,
                 label: c.label(),
-                error,
+                error: Box::new(error),
             })
         })
         .collect()

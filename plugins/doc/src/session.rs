@@ -6,9 +6,51 @@ use crate::history::{History, Transaction};
 use crate::scene::{Document, NodeId};
 
 /// An open document, its undo history and whether it changed since saving.
+///
+/// This is where a user of the crate starts: every [`Command`] is applied
+/// through [`Session::execute`] as one undo step.
+///
+/// ```
+/// use glam::DVec3;
+/// use hedra_doc::{Command, FaceSet, NodeRef, Session};
+/// use hedra_geom::Primitive;
+///
+/// let mut session = Session::new();
+/// session.execute(&Command::AddPrimitive {
+///     primitive: Primitive::Cube { size: 2.0 },
+///     name: Some("Box".into()),
+///     parent: None,
+///     transform: Default::default(),
+/// })?;
+/// let counts = |s: &Session| {
+///     let node = s.doc.find_by_name("Box").expect("the cube node");
+///     let mesh = node.content.mesh().expect("a mesh node");
+///     (mesh.vertex_count(), mesh.edge_count(), mesh.face_count())
+/// };
+/// assert_eq!(counts(&session), (8, 12, 6));
+///
+/// // Extrude the top face (the face whose centre is nearest to +Y) by 0.5.
+/// let applied = session.execute(&Command::ExtrudeFaces {
+///     node: NodeRef::Name("Box".into()),
+///     faces: FaceSet::Nearest(DVec3::Y),
+///     distance: 0.5,
+/// })?;
+/// assert_eq!(applied.label, "Extrude Faces");
+/// assert_eq!(counts(&session), (12, 20, 10));
+/// assert!(session.is_dirty());
+///
+/// // Undo gives the cube back; redo the extrusion again.
+/// assert_eq!(session.undo().as_deref(), Some("Extrude Faces"));
+/// assert_eq!(counts(&session), (8, 12, 6));
+/// session.redo();
+/// assert_eq!(counts(&session), (12, 20, 10));
+/// # Ok::<(), hedra_doc::CommandError>(())
+/// ```
 #[derive(Clone, Debug, PartialEq)]
 pub struct Session {
+    /// The document as it is now.
     pub doc: Document,
+    /// Its undo and redo steps.
     pub history: History,
     /// History serial at the last save or load (`None`: never saved).
     pub saved_serial: Option<u64>,
@@ -27,12 +69,14 @@ impl Default for Session {
 /// What an applied command did.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Applied {
+    /// The step's history label ("Add Cube").
     pub label: String,
     /// Nodes that did not exist before (for selecting them).
     pub created: Vec<NodeId>,
 }
 
 impl Session {
+    /// An empty document with an empty history, counted as saved (not dirty).
     pub fn new() -> Self {
         Self::default()
     }
@@ -103,9 +147,13 @@ impl Session {
         self.commit(t)
     }
 
+    /// Undoes the last step; its label, or `None` when there is nothing to
+    /// undo.
     pub fn undo(&mut self) -> Option<String> {
         self.history.undo(&mut self.doc).map(|t| t.label.clone())
     }
+    /// Redoes the last undone step; its label, or `None` when there is
+    /// nothing to redo.
     pub fn redo(&mut self) -> Option<String> {
         self.history.redo(&mut self.doc).map(|t| t.label.clone())
     }

@@ -34,18 +34,42 @@ pub enum EditError {
     /// An element set names nothing or an element the mesh does not have.
     #[error(transparent)]
     Elements(#[from] ElementError),
+    /// A move offset or distance with an infinite or NaN component.
     #[error("the offset is not finite")]
     OffsetNotFinite,
+    /// [`Command::SetVertexPositions`] names a vertex the mesh does not have.
     #[error("vertex {vertex} does not exist")]
-    NoSuchVertex { vertex: VertexId },
+    NoSuchVertex {
+        /// The missing id.
+        vertex: VertexId,
+    },
+    /// [`Command::SetVertexPositions`] gives a position that is not finite.
     #[error("vertex {vertex}: position is not finite")]
-    PositionNotFinite { vertex: VertexId },
+    PositionNotFinite {
+        /// The vertex it was given for.
+        vertex: VertexId,
+    },
+    /// [`Command::LoopCut`]'s edge set names other than one edge.
     #[error("a loop cut needs exactly one edge, {edges:?} names {count}")]
-    LoopCutEdges { edges: EdgeSet, count: usize },
+    LoopCutEdges {
+        /// The set as given.
+        edges: EdgeSet,
+        /// How many edges it names.
+        count: usize,
+    },
+    /// [`Command::ConnectVertices`]'s vertex set names other than two vertices.
     #[error("connecting needs exactly two vertices, {vertices:?} names {count}")]
-    ConnectVertices { vertices: VertexSet, count: usize },
+    ConnectVertices {
+        /// The set as given.
+        vertices: VertexSet,
+        /// How many vertices it names.
+        count: usize,
+    },
+    /// [`Command::RecalculateNormals`] on a mesh with nothing to turn.
     #[error("the mesh already faces outwards (or is open)")]
     AlreadyOutwards,
+    /// [`Command::ApplySubdivision`] without `levels` on a node without a
+    /// subdivision modifier.
     #[error("has no subdivision modifier (give `levels` to subdivide anyway)")]
     NoSubdivisionModifier,
 }
@@ -53,42 +77,93 @@ pub enum EditError {
 /// Why a command was refused. The document is unchanged.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum CommandError {
+    /// No node has this id or name.
     #[error("{0} does not exist")]
     UnknownNode(NodeRef),
+    /// A mesh command (or shading, subdivision) names a node that is not a mesh.
     #[error("{node} is not a mesh")]
-    NotAMesh { node: String },
+    NotAMesh {
+        /// The node, as `'name' (#id)`.
+        node: String,
+    },
+    /// [`Command::SetPrimitive`] on a mesh that is not an unedited primitive
+    /// of the same kind.
     #[error("{node} was not made from a primitive (or has been edited since)")]
-    NotAPrimitive { node: String },
+    NotAPrimitive {
+        /// The node, as `'name' (#id)`.
+        node: String,
+    },
+    /// [`Command::Reparent`] would make a node its own ancestor.
     #[error("cannot parent {node} to {parent}: it would become its own ancestor")]
-    Cycle { node: String, parent: String },
+    Cycle {
+        /// The node being moved, as `'name' (#id)`.
+        node: String,
+        /// The parent asked for, one of its descendants (or itself).
+        parent: String,
+    },
+    /// A transform with a non-finite value, a zero rotation quaternion or a
+    /// zero scale component.
     #[error("invalid transform for {node}: values must be finite and scale non-zero")]
-    BadTransform { node: String },
+    BadTransform {
+        /// The node it was for, as `'name' (#id)`.
+        node: String,
+    },
+    /// A name that is empty or only white space.
     #[error("a node name cannot be empty")]
     EmptyName,
+    /// The command would change nothing (or has nothing to act on, such as a
+    /// zero rotation axis); the message says why.
     #[error("nothing to do: {0}")]
     Nothing(&'static str),
+    /// A primitive's parameters are out of range.
     #[error(transparent)]
     Primitive(#[from] PrimitiveError),
+    /// [`Command::AddMesh`]'s polygons do not form a valid half-edge mesh.
     #[error("bad mesh: {0}")]
     Mesh(#[from] BuildError),
+    /// A mesh edit refused its elements or values.
     #[error("{node}: {error}")]
-    Element { node: String, error: EditError },
+    Element {
+        /// The node, as `'name' (#id)`.
+        node: String,
+        /// What was wrong.
+        error: EditError,
+    },
+    /// The kernel refused a mesh operation (it would break the mesh).
     #[error("{node}: {error}")]
     Modeling {
+        /// The node, as `'name' (#id)`.
         node: String,
+        /// The kernel's reason.
         error: hedra_geom::ModelingError,
     },
+    /// A curve or surface command with bad data (knots, weights, degrees,
+    /// indices).
     #[error("{node}: {error}")]
-    Curve { node: String, error: CurveError },
+    Curve {
+        /// The node being added or edited.
+        node: String,
+        /// The kernel's reason.
+        error: CurveError,
+    },
+    /// A curve or surface command names a node that is neither.
     #[error("{node} is not a curve or surface")]
-    NotAShape { node: String },
+    NotAShape {
+        /// The node, as `'name' (#id)`.
+        node: String,
+    },
+    /// Subdividing the mesh failed (a Loop scheme on non-triangles, say).
     #[error("{node}: {error}")]
     Subdivision {
+        /// The node, as `'name' (#id)`.
         node: String,
+        /// The kernel's reason.
         error: subdivision::SubdivisionError,
     },
+    /// A crease sharpness outside 0 to 10 (or not finite).
     #[error("sharpness must be between 0 and {INFINITE_SHARPNESS} (infinitely sharp), not {0}")]
     Sharpness(f64),
+    /// A subdivision level above [`subdivision::MAX_LEVEL`].
     #[error("subdivision level {0} is above the maximum of {max}", max = subdivision::MAX_LEVEL)]
     Level(u32),
 }
@@ -158,6 +233,7 @@ impl Document {
 /// A decided command and the mesh elements it makes.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Decision {
+    /// The transaction to apply and push on the history.
     pub transaction: Transaction,
     /// The faces a region extrude makes (its caps) or a region inset makes
     /// (the inner faces), in the order of the command's faces; empty for

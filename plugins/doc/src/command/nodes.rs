@@ -178,13 +178,13 @@ impl Plan<'_> {
     ) -> Result<(), CommandError> {
         let mut n = self.node(node)?;
         let new_parent = parent.as_ref().map(|p| self.resolve(p)).transpose()?;
-        if let Some(p) = new_parent {
-            if self.doc.is_ancestor(n.id, p) {
-                return Err(CommandError::Cycle {
-                    node: self.doc.label_of(n.id),
-                    parent: self.doc.label_of(p),
-                });
-            }
+        if let Some(p) = new_parent
+            && self.doc.is_ancestor(n.id, p)
+        {
+            return Err(CommandError::Cycle {
+                node: self.doc.label_of(n.id),
+                parent: self.doc.label_of(p),
+            });
         }
         if keep_world {
             let world = self.doc.world_matrix(n.id);

@@ -145,10 +145,9 @@ impl Plan<'_> {
 
     pub(super) fn node(&self, r: &NodeRef) -> Result<Node, CommandError> {
         let id = self.resolve(r)?;
-        Ok(self
-            .current(id)
+        self.current(id)
             .cloned()
-            .ok_or(CommandError::UnknownNode(r.clone()))?)
+            .ok_or(CommandError::UnknownNode(r.clone()))
     }
 
     pub(super) fn set_transform(

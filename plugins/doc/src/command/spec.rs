@@ -14,8 +14,10 @@ use std::fmt;
 /// Which parameter of a surface.
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 pub enum ParameterDirection {
+    /// The first parameter (for NURBS surfaces, along the rows `i` of `i * nv + j`).
     #[default]
     U,
+    /// The second parameter (along `j`).
     V,
 }
 
@@ -24,21 +26,35 @@ pub enum ParameterDirection {
 pub enum CurveSpec {
     /// A NURBS curve; knots default to clamped uniform on [0, 1], weights to 1.
     Nurbs {
+        /// Polynomial degree (1 = a polyline); needs at least `degree + 1` points.
         degree: usize,
+        /// Control points in the node's local space.
         points: Vec<DVec3>,
+        /// One positive weight per point; `None`: all 1 (non-rational).
         #[serde(default)]
         weights: Option<Vec<f64>>,
+        /// `points + degree + 1` non-decreasing knots; `None`: clamped uniform on [0, 1].
         #[serde(default)]
         knots: Option<Vec<f64>>,
     },
     /// A Bézier curve of degree `points − 1`.
-    Bezier { points: Vec<DVec3> },
+    Bezier {
+        /// Control points in the node's local space (at least 2).
+        points: Vec<DVec3>,
+    },
     /// The exact NURBS circle in the XZ plane.
-    Circle { radius: f64 },
+    Circle {
+        /// Radius in local units, positive.
+        radius: f64,
+    },
     /// A closed periodic B-spline around the points.
     Closed {
+        /// Polynomial degree.
         degree: usize,
+        /// Control points in the node's local space, in order around the loop
+        /// (at least `degree + 1`; Hedra wraps them, so do not repeat any).
         points: Vec<DVec3>,
+        /// One positive weight per point; `None`: all 1.
         #[serde(default)]
         weights: Option<Vec<f64>>,
     },
@@ -50,46 +66,70 @@ pub enum SurfaceSpec {
     /// A NURBS surface of `nu × nv` points (`i * nv + j`); knots default to
     /// clamped uniform, weights to 1.
     Nurbs {
+        /// Degree along u (the `i` rows).
         degree_u: usize,
+        /// Degree along v (the `j` columns).
         degree_v: usize,
+        /// Number of control points along u.
         nu: usize,
+        /// Number of control points along v.
         nv: usize,
+        /// `nu * nv` control points in the node's local space, point `(i, j)` at `i * nv + j`.
         points: Vec<DVec3>,
+        /// One positive weight per point, in the same order; `None`: all 1.
         #[serde(default)]
         weights: Option<Vec<f64>>,
+        /// `nu + degree_u + 1` knots along u; `None`: clamped uniform.
         #[serde(default)]
         knots_u: Option<Vec<f64>>,
+        /// `nv + degree_v + 1` knots along v; `None`: clamped uniform.
         #[serde(default)]
         knots_v: Option<Vec<f64>>,
     },
     /// A tensor-product Bézier patch of `nu × nv` points.
     Bezier {
+        /// Number of control points along u (degree `nu - 1`).
         nu: usize,
+        /// Number of control points along v (degree `nv - 1`).
         nv: usize,
+        /// `nu * nv` control points in local space, point `(i, j)` at `i * nv + j`.
         points: Vec<DVec3>,
     },
     /// A Bézier triangle: (n+1)(n+2)/2 points, rows of equal i.
     Triangle {
+        /// The triangle's degree `n`.
         degree: usize,
+        /// `(n+1)(n+2)/2` control points in local space: rows of equal `i`, `j`
+        /// rising (`b_00n, b_01(n-1), …`).
         points: Vec<DVec3>,
     },
+    /// A flat square in the local XZ plane, centred on the origin.
     Plane {
+        /// Side length, positive.
         size: f64,
     },
+    /// An exact rational sphere around the local origin.
     Sphere {
+        /// Radius, positive.
         radius: f64,
     },
+    /// An exact open cylinder around the local Y axis, from y = 0 up to `height`.
     Cylinder {
+        /// Radius, positive.
         radius: f64,
+        /// Height along Y, positive.
         height: f64,
     },
     /// The curve of another node revolved around the Y axis.
     Revolve {
+        /// The curve node to turn; its control points are read in its own local space (XY plane).
         profile: NodeRef,
     },
     /// The curve of another node swept along a direction.
     Extrude {
+        /// The curve node to sweep, read in its own local space.
         profile: NodeRef,
+        /// The sweep vector (length included), in the new node's local space.
         direction: DVec3,
     },
 }
@@ -97,7 +137,9 @@ pub enum SurfaceSpec {
 /// A node named by id or by (unique) name, so scripts need not know ids.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
 pub enum NodeRef {
+    /// The node with this id (`NodeId`'s number, as `hedra info` shows it).
     Id(u64),
+    /// The node with this exact name (names are unique in a document).
     Name(String),
 }
 
@@ -118,147 +160,231 @@ impl From<NodeId> for NodeRef {
 
 /// Everything a user can do to a document. Each variant is documented with
 /// a RON example in `docs/commands.md`.
+///
+/// Run through [`Session::execute`](crate::Session::execute), each command is
+/// one undo step: undo puts back every node it changed exactly as it was
+/// (id, name, parent, mesh, creases), redo applies the same result again. A
+/// command that fails changes nothing. Node transforms are relative to the
+/// parent; positions, offsets and element predicates of mesh, curve and
+/// surface commands are in the node's own (local) space. Editing the mesh of
+/// a primitive node makes it a plain mesh, which [`Command::SetPrimitive`]
+/// no longer accepts (undo makes it a primitive again).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub enum Command {
     /// Adds a primitive mesh node.
     AddPrimitive {
+        /// The kind and its parameters (`Cube(size: 2.0)`).
         primitive: Primitive,
+        /// The node's name; `None`: the primitive's display name ("Cube"). Made
+        /// unique with a `.001`-style suffix when taken.
         #[serde(default)]
         name: Option<String>,
+        /// The new node's parent; `None` (the default): the top level.
         #[serde(default)]
         parent: Option<NodeRef>,
+        /// The new node's local transform, relative to its parent (default:
+        /// identity).
         #[serde(default)]
         transform: Transform,
     },
     /// Adds a mesh from explicit positions and polygons (vertex index lists,
     /// counter-clockwise seen from outside).
     AddMesh {
+        /// The new node's name, made unique with a `.001`-style suffix when taken.
         name: String,
+        /// Vertex positions in the node's local space.
         positions: Vec<DVec3>,
+        /// Vertex index lists into `positions`, counter-clockwise seen from outside;
+        /// they must form a manifold, consistently oriented surface.
         polygons: Vec<Vec<u32>>,
+        /// The new node's parent; `None` (the default): the top level.
         #[serde(default)]
         parent: Option<NodeRef>,
+        /// The new node's local transform, relative to its parent (default:
+        /// identity).
         #[serde(default)]
         transform: Transform,
     },
     /// Adds an empty (grouping) node.
     AddEmpty {
+        /// The new node's name, made unique with a `.001`-style suffix when taken.
         name: String,
+        /// The new node's parent; `None` (the default): the top level.
         #[serde(default)]
         parent: Option<NodeRef>,
+        /// The new node's local transform, relative to its parent (default:
+        /// identity).
         #[serde(default)]
         transform: Transform,
     },
     /// Rebuilds a primitive node with new parameters ("adjust last operation").
+    /// The rebuilt mesh has no creases, UVs or custom normals; undo restores
+    /// the old mesh with them.
     SetPrimitive {
+        /// A mesh node that is still an unedited primitive.
         node: NodeRef,
+        /// New parameters; must be the same kind as the node's.
         primitive: Primitive,
     },
     /// Sets local transforms of one or more nodes in one step.
     SetTransforms {
+        /// Each node with its new local transform (relative to its parent).
         nodes: Vec<(NodeRef, Transform)>,
     },
     /// Moves nodes by an offset in their parent's space.
     Translate {
+        /// The nodes, changed in this order.
         nodes: Vec<NodeRef>,
+        /// The offset, in each node's parent space (world space at the top level).
         offset: DVec3,
     },
     /// Rotates nodes about their own origin around an axis (degrees).
     Rotate {
+        /// The nodes, changed in this order.
         nodes: Vec<NodeRef>,
+        /// The rotation axis in the parent's space; need not be unit length, must
+        /// not be zero.
         axis: DVec3,
+        /// The angle in degrees, counter-clockwise looking down the axis.
         degrees: f64,
     },
     /// Multiplies nodes' scale.
     Scale {
+        /// The nodes, changed in this order.
         nodes: Vec<NodeRef>,
+        /// Per-axis factor each node's scale is multiplied by; a zero component
+        /// is refused.
         factor: DVec3,
     },
+    /// Renames a node. A name that is taken gets a `.001`-style suffix; an empty
+    /// name is refused.
     Rename {
+        /// The node to rename.
         node: NodeRef,
+        /// The new name (not empty).
         name: String,
     },
     /// Gives a node a new parent (`None` for the root). With `keep_world`
     /// the node stays where it is in the world.
     Reparent {
+        /// The node to move in the tree (it keeps its descendants).
         node: NodeRef,
+        /// The new parent, `None` for the top level; not the node itself or one of
+        /// its descendants.
         parent: Option<NodeRef>,
+        /// `true` (the default): the local transform is recomputed so the node
+        /// stays put in the world; `false`: the local transform is kept.
         #[serde(default = "yes")]
         keep_world: bool,
     },
+    /// Shows or hides nodes (hidden nodes are not drawn or exported; they stay
+    /// in the file).
     SetVisible {
+        /// The nodes, changed in this order.
         nodes: Vec<NodeRef>,
+        /// `true` to show, `false` to hide.
         visible: bool,
     },
     /// Flat or smooth shading of mesh nodes.
     SetShading {
+        /// Mesh nodes (any other node is refused).
         nodes: Vec<NodeRef>,
+        /// `Flat` (one normal per face) or `Smooth` (averaged vertex normals).
         shading: Shading,
     },
     /// Adds, changes or (with `None`) removes the subdivision modifier of
     /// mesh nodes.
     SetSubdivision {
+        /// Mesh nodes (any other node is refused).
         nodes: Vec<NodeRef>,
+        /// The levels and options; `None` removes the modifier.
         modifier: Option<SubdivisionModifier>,
     },
     /// Replaces the cage by its subdivision (at `levels`, or the modifier's
     /// viewport level) and removes the modifier; creases that are left after
-    /// the refinement stay on the new edges.
+    /// the refinement stay on the new edges. Undo restores the cage and the
+    /// modifier.
     ApplySubdivision {
+        /// A mesh node.
         node: NodeRef,
+        /// Levels to apply; `None`: the modifier's viewport level (then the node
+        /// must have a modifier).
         #[serde(default)]
         levels: Option<u32>,
     },
-    /// Deletes nodes with their descendants.
+    /// Deletes nodes with their descendants. Undo brings them back with
+    /// their ids and names.
     Delete {
+        /// The nodes to delete; their descendants go too.
         nodes: Vec<NodeRef>,
     },
-    /// Copies nodes with their descendants; copies get new ids and names.
+    /// Copies nodes with their descendants; copies get new ids and names
+    /// (`Box.001`); a copy has its original's parent and transform.
     Duplicate {
+        /// The nodes to copy; each copy has the original's parent.
         nodes: Vec<NodeRef>,
     },
 
     // ----- curves and surfaces (control points in the node's local space) -----
     /// Adds a curve node.
     AddCurve {
+        /// The new node's name, made unique with a `.001`-style suffix when taken.
         name: String,
+        /// The curve's kind and control points (local space).
         curve: CurveSpec,
+        /// The new node's parent; `None` (the default): the top level.
         #[serde(default)]
         parent: Option<NodeRef>,
+        /// The new node's local transform, relative to its parent (default:
+        /// identity).
         #[serde(default)]
         transform: Transform,
     },
     /// Adds a surface node.
     AddSurface {
+        /// The new node's name, made unique with a `.001`-style suffix when taken.
         name: String,
+        /// The surface's kind and control points (local space).
         surface: SurfaceSpec,
+        /// The new node's parent; `None` (the default): the top level.
         #[serde(default)]
         parent: Option<NodeRef>,
+        /// The new node's local transform, relative to its parent (default:
+        /// identity).
         #[serde(default)]
         transform: Transform,
     },
     /// Moves control points of a curve or surface (by index, as `hedra
     /// info --json` counts them; NURBS surfaces: `i * nv + j`).
     SetControlPoints {
+        /// A curve or surface node.
         node: NodeRef,
+        /// `(index, new position)` pairs, positions in the node's local space.
         points: Vec<(u32, DVec3)>,
     },
     /// Sets the weights of control points (each must be positive).
     SetWeights {
+        /// A curve or surface node.
         node: NodeRef,
+        /// `(index, weight)` pairs; each weight must be positive.
         weights: Vec<(u32, f64)>,
     },
     /// Inserts a knot without changing the shape (surfaces: in `direction`).
     InsertKnot {
+        /// A curve or NURBS surface node.
         node: NodeRef,
+        /// The parameter value of the new knot, inside the knot range.
         at: f64,
+        /// For surfaces, which parameter (default `U`); ignored for curves.
         #[serde(default)]
         direction: ParameterDirection,
     },
     /// Raises the degree by one without changing the shape (surfaces: in
     /// `direction`).
     ElevateDegree {
+        /// A curve, NURBS surface or Bézier triangle node.
         node: NodeRef,
+        /// For NURBS surfaces, which parameter (default `U`); ignored otherwise.
         #[serde(default)]
         direction: ParameterDirection,
     },
@@ -266,200 +392,283 @@ pub enum Command {
     // ----- mesh editing (element positions in the node's local space) -----
     /// Moves vertices by an offset.
     MoveVertices {
+        /// The mesh node to edit.
         node: NodeRef,
+        /// The vertices, by id or by a predicate in local space.
         vertices: VertexSet,
+        /// The offset in the node's local space.
         offset: DVec3,
     },
     /// Sets vertex positions (what the edit-mode move tool sends).
     SetVertexPositions {
+        /// The mesh node to edit.
         node: NodeRef,
+        /// `(vertex id, new position)` pairs, positions in local space.
         positions: Vec<(u32, DVec3)>,
     },
     /// Extrudes each face on its own along its normal.
     ExtrudeFaces {
+        /// The mesh node to edit.
         node: NodeRef,
+        /// The faces, by id or by a predicate in local space.
         faces: FaceSet,
+        /// How far along each face's normal, in local units (negative: inwards).
         distance: f64,
     },
     /// Extrudes faces as one region along their average normal; faces
     /// inside the region stay joined.
     ExtrudeRegion {
+        /// The mesh node to edit.
         node: NodeRef,
+        /// The faces, by id or by a predicate in local space.
         faces: FaceSet,
+        /// How far along the region's average normal, in local units.
         distance: f64,
     },
     /// Insets each face on its own: a border `thickness` wide, the inner face
     /// pushed by `depth` along the normal.
     InsetFaces {
+        /// The mesh node to edit.
         node: NodeRef,
+        /// The faces, by id or by a predicate in local space.
         faces: FaceSet,
+        /// Border width in local units.
         thickness: f64,
+        /// How far the inner face moves along its normal (default 0; negative: in).
         #[serde(default)]
         depth: f64,
     },
     /// Insets faces as one region: a border `thickness` wide inside the
     /// region's outline, the region pushed by `depth` along its normal.
     InsetRegion {
+        /// The mesh node to edit.
         node: NodeRef,
+        /// The faces, by id or by a predicate in local space.
         faces: FaceSet,
+        /// Border width in local units.
         thickness: f64,
+        /// How far the region moves along its average normal (default 0).
         #[serde(default)]
         depth: f64,
     },
     /// Cuts `cuts` evenly spaced edge loops across the ring of quads through one edge.
     LoopCut {
+        /// The mesh node to edit.
         node: NodeRef,
+        /// Exactly one edge of the quad ring to cut across.
         edge: EdgeSet,
+        /// Number of loops (default 1).
         #[serde(default = "one")]
         cuts: u32,
     },
     /// Splits edges into `cuts + 1` equal parts.
     SubdivideEdges {
+        /// The mesh node to edit.
         node: NodeRef,
+        /// The edges, by id or by a predicate in local space.
         edges: EdgeSet,
+        /// New vertices per edge (default 1: split in half).
         #[serde(default = "one")]
         cuts: u32,
     },
     /// Joins two vertices of one face by a new edge, splitting the face.
     ConnectVertices {
+        /// The mesh node to edit.
         node: NodeRef,
+        /// Exactly two vertices that share a face and no edge.
         vertices: VertexSet,
     },
     /// Splits faces into triangles along their ear-clipping diagonals.
     Triangulate {
+        /// The mesh node to edit.
         node: NodeRef,
+        /// The faces, by id or by a predicate in local space.
         faces: FaceSet,
     },
     /// Sets the subdivision crease sharpness of edges: 0 is smooth, 10
     /// infinitely sharp, values between fade out after that many levels.
     SetEdgeCrease {
+        /// The mesh node to edit.
         node: NodeRef,
+        /// The edges, by id or by a predicate in local space.
         edges: EdgeSet,
+        /// 0 (smooth) to 10 (infinitely sharp); outside that range is refused.
         sharpness: f64,
     },
     /// Sets the subdivision corner sharpness of vertices (0 … 10).
     SetVertexCrease {
+        /// The mesh node to edit.
         node: NodeRef,
+        /// The vertices, by id or by a predicate in local space.
         vertices: VertexSet,
+        /// 0 (smooth) to 10 (infinitely sharp); outside that range is refused.
         sharpness: f64,
     },
     /// Moves every cage vertex onto the limit surface of its subdivision
     /// (the node's modifier options, or Catmull-Clark).
     SnapToLimit {
+        /// The mesh node to edit.
         node: NodeRef,
     },
     /// Removes edges, merging the faces on their two sides.
     DissolveEdges {
+        /// The mesh node to edit.
         node: NodeRef,
+        /// The edges, by id or by a predicate in local space.
         edges: EdgeSet,
     },
     /// Removes vertices of valence 2, joining their edges.
     DissolveVertices {
+        /// The mesh node to edit.
         node: NodeRef,
+        /// The vertices, by id or by a predicate in local space.
         vertices: VertexSet,
     },
     /// Reverses every face of the mesh.
     FlipNormals {
+        /// The mesh node to edit.
         node: NodeRef,
     },
     /// Turns a closed mesh that faces inwards outwards (no change otherwise).
     RecalculateNormals {
+        /// The mesh node to edit.
         node: NodeRef,
     },
     /// Deletes faces, keeping their edges: each becomes a hole.
     MakeHoles {
+        /// The mesh node to edit.
         node: NodeRef,
+        /// The faces to remove; faces touching a boundary are refused.
         faces: FaceSet,
     },
     /// Fills the boundary loops through the given edges with a face each.
     FillHoles {
+        /// The mesh node to edit.
         node: NodeRef,
+        /// An edge of each boundary loop to fill.
         edges: EdgeSet,
     },
     /// Collapses each edge into a vertex at its midpoint.
     CollapseEdges {
+        /// The mesh node to edit.
         node: NodeRef,
+        /// The edges, by id or by a predicate in local space.
         edges: EdgeSet,
     },
     /// Extrudes boundary edges: a quad on each edge's open side, reaching to
     /// copies of its ends moved by `offset`.
     ExtrudeEdges {
+        /// The mesh node to edit.
         node: NodeRef,
+        /// Boundary edges (with a face on one side only).
         edges: EdgeSet,
+        /// Where the copied ends go, relative to the originals, in local space.
         offset: DVec3,
     },
     /// Mirrors vertices across the plane through their median perpendicular to an axis.
     MirrorVertices {
+        /// The mesh node to edit.
         node: NodeRef,
+        /// The vertices, by id or by a predicate in local space.
         vertices: VertexSet,
+        /// The axis the mirror plane is perpendicular to.
         axis: MirrorAxis,
     },
     /// Replaces the negative side of the mesh by a mirror image of the positive side.
     Symmetrize {
+        /// The mesh node to edit.
         node: NodeRef,
+        /// The axis whose positive side is kept and mirrored.
         axis: MirrorAxis,
     },
     /// Slides edge chains along the edges beside them; `factor` in [-1, 1]
     /// picks the side by its sign.
     SlideEdges {
+        /// The mesh node to edit.
         node: NodeRef,
+        /// The edges, by id or by a predicate in local space.
         edges: EdgeSet,
+        /// Fraction of the way along the neighbouring edges, in [-1, 1]; the sign
+        /// picks the side.
         factor: f64,
     },
     /// Bevels edges `width` wide; more than one segment rounds the bevel.
     BevelEdges {
+        /// The mesh node to edit.
         node: NodeRef,
+        /// The edges, by id or by a predicate in local space.
         edges: EdgeSet,
+        /// Distance from the old edge to each side of the bevel, in local units.
         width: f64,
+        /// Strips across the bevel (default 1: flat; more: rounded).
         #[serde(default = "one")]
         segments: u32,
     },
     /// Cuts vertices off with a face through the points `width` along
     /// their edges (vertex bevel).
     BevelVertices {
+        /// The mesh node to edit.
         node: NodeRef,
+        /// The vertices, by id or by a predicate in local space.
         vertices: VertexSet,
+        /// Distance along each edge to the cut, in local units; less than the edge.
         width: f64,
     },
     /// Merges faces into one by removing the edges between them.
     DissolveFaces {
+        /// The mesh node to edit.
         node: NodeRef,
+        /// The faces, by id or by a predicate in local space.
         faces: FaceSet,
     },
     /// Deletes faces with the edges and vertices only they use.
     DeleteFaces {
+        /// The mesh node to edit.
         node: NodeRef,
+        /// The faces, by id or by a predicate in local space.
         faces: FaceSet,
     },
     /// Deletes edges with the faces around them.
     DeleteEdges {
+        /// The mesh node to edit.
         node: NodeRef,
+        /// The edges, by id or by a predicate in local space.
         edges: EdgeSet,
     },
     /// Deletes vertices with the faces around them.
     DeleteVertices {
+        /// The mesh node to edit.
         node: NodeRef,
+        /// The vertices, by id or by a predicate in local space.
         vertices: VertexSet,
     },
     /// Merges vertices into one at their centre, the first or the last
     /// given; vertices not joined by edges are welded.
     MergeVertices {
+        /// The mesh node to edit.
         node: NodeRef,
+        /// The vertices, by id or by a predicate in local space.
         vertices: VertexSet,
+        /// Where the merged vertex goes: `Center` (default), `First` or `Last` given.
         #[serde(default, skip_serializing_if = "is_default")]
         at: hedra_geom::modeling::MergePoint,
     },
     /// Welds vertices closer than `distance` to each other (all of the
     /// mesh's unless `vertices` is given).
     MergeByDistance {
+        /// The mesh node to edit.
         node: NodeRef,
+        /// The vertices to consider (default: all).
         #[serde(default = "all_vertices")]
         vertices: VertexSet,
+        /// Vertices closer than this (local units) are welded.
         distance: f64,
     },
     /// Joins two boundary loops (named by some of their edges) with quads.
     BridgeLoops {
+        /// The mesh node to edit.
         node: NodeRef,
+        /// At least one edge of each of the two boundary loops.
         edges: EdgeSet,
     },
 }

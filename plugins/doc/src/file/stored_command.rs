@@ -32,8 +32,11 @@ pub type StoredV2 = Command;
 /// Why a stored command could not be read.
 #[derive(Debug, thiserror::Error)]
 pub enum StoredCommandError {
+    /// The file's format version is newer (or older) than any this build reads.
     #[error("format version {0} has no stored commands this build knows")]
     Version(u32),
+    /// The stored text is not a command of that version (the RON error has the
+    /// line and column inside the command text).
     #[error("{0}")]
     Parse(#[from] ron::error::SpannedError),
 }
