@@ -559,3 +559,32 @@ fn ctrl_t_triangulates_the_selected_faces() {
     user.shortcut(&[KeyCode::ControlLeft], KeyCode::KeyZ);
     assert_eq!(user.mesh_counts(), (8, 12, 6));
 }
+
+/// Alt+J after Ctrl+T on every face: the triangles join back into the
+/// cube's six quads, one undo step; with nothing selected the status says
+/// what to do and the history does not move.
+#[test]
+fn alt_j_joins_the_selected_triangles_into_quads() {
+    let mut user = cube_in_edit_mode(KeyCode::Digit3);
+    user.tap(KeyCode::KeyA);
+    user.shortcut(&[KeyCode::ControlLeft], KeyCode::KeyT);
+    assert_eq!(user.mesh_counts(), (8, 18, 12), "{}", user.status());
+    user.tap(KeyCode::KeyA);
+    let steps = user.undo_steps();
+    user.shortcut(&[KeyCode::AltLeft], KeyCode::KeyJ);
+    assert_eq!(user.mesh_counts(), (8, 12, 6), "{}", user.status());
+    let mesh = user.first_mesh();
+    mesh.validate().unwrap();
+    assert!(mesh.faces().all(|f| mesh.face_degree(f) == 4));
+    assert_eq!(user.undo_steps(), steps + 1);
+    user.shortcut(&[KeyCode::ControlLeft], KeyCode::KeyZ);
+    assert_eq!(user.mesh_counts(), (8, 18, 12));
+    user.shortcut(&[KeyCode::AltLeft], KeyCode::KeyA);
+    user.shortcut(&[KeyCode::AltLeft], KeyCode::KeyJ);
+    assert!(
+        user.status().contains("Tris to Quads: select faces"),
+        "{}",
+        user.status()
+    );
+    assert_eq!(user.undo_steps(), steps);
+}

@@ -44,7 +44,7 @@ fn every_command_example_in_the_docs_runs() {
         .collect();
     kinds.sort();
     kinds.dedup();
-    assert_eq!(kinds.len(), 55, "{kinds:?}");
+    assert_eq!(kinds.len(), 57, "{kinds:?}");
     let mut session = hedra_doc::Session::new();
     hedra_doc::script::run(&mut session, &commands, Path::new("docs/commands.md"))
         .unwrap_or_else(|e| panic!("{e}"));
@@ -133,6 +133,17 @@ fn every_command_example_in_the_docs_runs() {
         "merged at the first vertex"
     );
     assert!(!at(glam::DVec3::new(1.5, 0.0, 0.5)));
+    // Bisect with the upper half cleared and the cut filled, then
+    // triangulated and joined back: the closed lower half of the cube.
+    let cut = doc.find_by_name("Halved").unwrap().content.mesh().unwrap();
+    cut.validate().unwrap();
+    assert_eq!(
+        (cut.vertex_count(), cut.edge_count(), cut.face_count()),
+        (8, 12, 6)
+    );
+    assert!(cut.stats().closed);
+    assert!(cut.faces().all(|f| cut.face_degree(f) == 4));
+    assert!(cut.vertices().all(|v| cut.position(v).y <= 0.0));
     let bridge = doc.find_by_name("Bridge").unwrap().content.mesh().unwrap();
     assert!(bridge.stats().closed, "the two squares became a closed box");
     let block = doc.find_by_name("Block").unwrap().content.mesh().unwrap();

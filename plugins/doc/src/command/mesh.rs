@@ -6,7 +6,7 @@ use super::plan::Plan;
 use super::{CommandError, EditError, NodeRef};
 use crate::elements::{EdgeSet, FaceSet, VertexSet};
 use glam::DVec3;
-use hedra_geom::modeling::{self, MergePoint, MirrorAxis};
+use hedra_geom::modeling::{self, BisectClear, MergePoint, MirrorAxis};
 use hedra_geom::{ModelingError, VertexId};
 
 impl Plan<'_> {
@@ -167,6 +167,33 @@ impl Plan<'_> {
     ) -> Result<(), CommandError> {
         self.on_faces(node, faces, |m, fs| {
             modeling::triangulate_faces(m, fs).map(drop)
+        })
+    }
+
+    pub(super) fn tris_to_quads(
+        &mut self,
+        node: &NodeRef,
+        faces: &FaceSet,
+        face_degrees: f64,
+        shape_degrees: f64,
+    ) -> Result<(), CommandError> {
+        self.on_faces(node, faces, |m, fs| {
+            let (face, shape) = (face_degrees.to_radians(), shape_degrees.to_radians());
+            modeling::tris_to_quads(m, fs, face, shape).map(drop)
+        })
+    }
+
+    pub(super) fn bisect(
+        &mut self,
+        node: &NodeRef,
+        faces: &FaceSet,
+        point: DVec3,
+        normal: DVec3,
+        clear: BisectClear,
+        fill: bool,
+    ) -> Result<(), CommandError> {
+        self.on_faces(node, faces, |m, fs| {
+            modeling::bisect(m, fs, point, normal, clear, fill).map(drop)
         })
     }
 

@@ -400,6 +400,20 @@ impl Plan<'_> {
             }
             Command::ConnectVertices { node, vertices } => self.connect_vertices(node, vertices),
             Command::Triangulate { node, faces } => self.triangulate(node, faces),
+            Command::TrisToQuads {
+                node,
+                faces,
+                face_degrees,
+                shape_degrees,
+            } => self.tris_to_quads(node, faces, *face_degrees, *shape_degrees),
+            Command::Bisect {
+                node,
+                faces,
+                point,
+                normal,
+                clear,
+                fill,
+            } => self.bisect(node, faces, *point, *normal, *clear, *fill),
             Command::DissolveEdges { node, edges } => self.dissolve_edges(node, edges),
             Command::DissolveVertices { node, vertices } => self.dissolve_vertices(node, vertices),
             Command::DissolveFaces { node, faces } => self.dissolve_faces(node, faces),

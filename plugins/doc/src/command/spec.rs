@@ -7,7 +7,7 @@ use crate::elements::{EdgeSet, FaceSet, VertexSet};
 use crate::scene::{NodeId, Shading, SubdivisionModifier, Transform};
 use glam::DVec3;
 use hedra_geom::Primitive;
-use hedra_geom::modeling::MirrorAxis;
+use hedra_geom::modeling::{BisectClear, MirrorAxis};
 use serde::{Deserialize, Serialize};
 use std::fmt;
 
@@ -485,6 +485,42 @@ pub enum Command {
         /// The faces, by id or by a predicate in local space.
         faces: FaceSet,
     },
+    /// Joins neighbouring triangles of the faces into quads, best pairs
+    /// first (Blender's Tris to Quads); other faces stay as they are.
+    TrisToQuads {
+        /// The mesh node to edit.
+        node: NodeRef,
+        /// The faces, by id or by a predicate in local space; only the
+        /// triangles among them are joined.
+        faces: FaceSet,
+        /// The largest angle between two triangles' normals that still
+        /// joins them, in degrees (default 40, as Blender).
+        #[serde(default = "join_limit_degrees")]
+        face_degrees: f64,
+        /// The largest distance of a quad's corner from a right angle, in
+        /// degrees (default 40, as Blender).
+        #[serde(default = "join_limit_degrees")]
+        shape_degrees: f64,
+    },
+    /// Cuts faces with a plane (Blender's Bisect): edges crossing it are
+    /// split, faces split along it; optionally one side is deleted and the
+    /// cut filled.
+    Bisect {
+        /// The mesh node to edit.
+        node: NodeRef,
+        /// The faces to cut, by id or by a predicate in local space.
+        faces: FaceSet,
+        /// A point on the plane, in the node's local space.
+        point: DVec3,
+        /// The plane's normal, in local space (any length but zero).
+        normal: DVec3,
+        /// Which side to delete after cutting (default: neither).
+        #[serde(default)]
+        clear: BisectClear,
+        /// Close each cut loop left open by the clear with a face.
+        #[serde(default)]
+        fill: bool,
+    },
     /// Sets the subdivision crease sharpness of edges: 0 is smooth, 10
     /// infinitely sharp, values between fade out after that many levels.
     SetEdgeCrease {
@@ -734,6 +770,8 @@ impl Command {
             Command::SubdivideEdges { .. } => "Subdivide Edges".to_string(),
             Command::ConnectVertices { .. } => "Connect Vertices".to_string(),
             Command::Triangulate { .. } => "Triangulate Faces".to_string(),
+            Command::TrisToQuads { .. } => "Tris to Quads".to_string(),
+            Command::Bisect { .. } => "Bisect".to_string(),
             Command::DissolveEdges { .. } => "Dissolve Edges".to_string(),
             Command::DissolveVertices { .. } => "Dissolve Vertices".to_string(),
             Command::FlipNormals { .. } => "Flip Normals".to_string(),
@@ -769,4 +807,9 @@ fn plural(n: usize, what: &str) -> String {
     } else {
         format!("{n} {what}s")
     }
+}
+
+/// Blender's default limit for Tris to Quads' face and shape angles.
+fn join_limit_degrees() -> f64 {
+    40.0
 }

@@ -158,6 +158,20 @@ pub fn edit_shortcuts(
         }
         return;
     }
+    // Alt+J (Blender): join the selected triangles into quads.
+    if a && keys.just_pressed(KeyCode::KeyJ) {
+        if mode.selection.faces.is_empty() {
+            status.error("Tris to Quads: select faces (press 3 for face mode)");
+        } else {
+            requests.write(DocRequest::Execute(Command::TrisToQuads {
+                node: node.clone(),
+                faces: FaceSet::Ids(mode.selection.faces.iter().map(|f| f.0).collect()),
+                face_degrees: 40.0,
+                shape_degrees: 40.0,
+            }));
+        }
+        return;
+    }
     if c && keys.just_pressed(KeyCode::KeyX) {
         match delete_or_dissolve(node.clone(), mode.kind, &mode.selection, true) {
             Some(cmd) => {

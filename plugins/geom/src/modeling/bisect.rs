@@ -11,7 +11,7 @@ use glam::DVec3;
 use std::collections::{HashMap, HashSet};
 
 /// Which side of the plane [`bisect`] deletes after cutting.
-#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum BisectClear {
     /// Keep both sides.
     #[default]

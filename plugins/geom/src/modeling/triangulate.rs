@@ -97,8 +97,8 @@ pub fn tris_to_quads(
         if !(0.0..=PI).contains(&limit) {
             return Err(ModelingError::Parameter {
                 what,
-                allowed: "between 0 and π radians",
-                value: limit.to_string(),
+                allowed: "between 0° and 180°",
+                value: format!("{}°", limit.to_degrees()),
             });
         }
     }

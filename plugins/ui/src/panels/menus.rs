@@ -607,6 +607,14 @@ pub(super) fn mesh_menu(
             faces: faces(),
         }
     });
+    item(ui, "Tris to Quads\tAlt+J", has_f, &|| {
+        Command::TrisToQuads {
+            node: n.clone(),
+            faces: faces(),
+            face_degrees: 40.0,
+            shape_degrees: 40.0,
+        }
+    });
     ui.separator();
     ui.label(egui::RichText::new("Edges").weak());
     item(ui, "Loop Cut\tCtrl+R", sel.edges.len() == 1, &|| {
