@@ -2,7 +2,7 @@
 //! change the entities that mirror the document; undo restores them.
 
 use bevy::prelude::*;
-use hedra_doc::{Command, NodeRef, Transform as DocTransform};
+use hedra_doc::{Command, NodeRef, NodeTransform};
 use hedra_geom::Primitive;
 use hedra_scene::{DocRequest, DocState, NodeEntities, NodeEntity, ProjectedMesh, StatusMessage};
 
@@ -42,7 +42,7 @@ fn commands_spawn_entities_with_meshes_and_hierarchy_and_undo_removes_them() {
         DocRequest::Execute(Command::AddEmpty {
             name: "Group".into(),
             parent: None,
-            transform: DocTransform::from_translation(hedra_geom::DVec3::new(0.0, 2.0, 0.0)),
+            transform: NodeTransform::from_translation(hedra_geom::DVec3::new(0.0, 2.0, 0.0)),
         }),
     );
     send(
@@ -51,7 +51,7 @@ fn commands_spawn_entities_with_meshes_and_hierarchy_and_undo_removes_them() {
             primitive: Primitive::Cube { size: 2.0 },
             name: Some("Box".into()),
             parent: Some(NodeRef::Name("Group".into())),
-            transform: DocTransform::from_translation(hedra_geom::DVec3::new(1.0, 0.0, 0.0)),
+            transform: NodeTransform::from_translation(hedra_geom::DVec3::new(1.0, 0.0, 0.0)),
         }),
     );
     let ents = node_entities(&mut app);
@@ -147,7 +147,7 @@ fn changing_shading_or_primitive_rebuilds_only_that_render_mesh() {
                 },
                 name: Some(name.into()),
                 parent: None,
-                transform: DocTransform::IDENTITY,
+                transform: NodeTransform::IDENTITY,
             }),
         );
     }
@@ -227,7 +227,7 @@ fn new_selection_follows_created_nodes() {
             primitive: Primitive::Cube { size: 1.0 },
             name: None,
             parent: None,
-            transform: DocTransform::IDENTITY,
+            transform: NodeTransform::IDENTITY,
         }),
     );
     let sel = app.world().resource::<hedra_edit::Selection>().clone();
@@ -304,7 +304,7 @@ fn a_subdivision_modifier_renders_the_refined_mesh_and_drags_keep_its_layout() {
             primitive: Primitive::Cube { size: 2.0 },
             name: Some("Box".into()),
             parent: None,
-            transform: DocTransform::IDENTITY,
+            transform: NodeTransform::IDENTITY,
         }),
     );
     send(
@@ -412,7 +412,7 @@ fn large_subdivision_levels_refine_in_the_background_and_can_be_cancelled() {
             },
             name: Some("Ring".into()),
             parent: None,
-            transform: DocTransform::IDENTITY,
+            transform: NodeTransform::IDENTITY,
         }),
     );
     let vertices = |app: &mut App| {
@@ -487,7 +487,7 @@ fn curves_and_surfaces_get_render_meshes_and_can_be_picked() {
             name: "Ball".into(),
             surface: SurfaceSpec::Sphere { radius: 1.0 },
             parent: None,
-            transform: DocTransform::IDENTITY,
+            transform: NodeTransform::IDENTITY,
         }),
     );
     send(
@@ -496,7 +496,7 @@ fn curves_and_surfaces_get_render_meshes_and_can_be_picked() {
             name: "Ring".into(),
             curve: CurveSpec::Circle { radius: 3.0 },
             parent: None,
-            transform: DocTransform::IDENTITY,
+            transform: NodeTransform::IDENTITY,
         }),
     );
     let ents = node_entities(&mut app);
@@ -648,7 +648,7 @@ fn a_weight_change_re_tessellates_only_the_patches_it_can_reach() {
                 knots_v: None,
             },
             parent: None,
-            transform: DocTransform::IDENTITY,
+            transform: NodeTransform::IDENTITY,
         }),
     );
     let sheet = node_entities(&mut app)[0].0;
@@ -749,7 +749,7 @@ fn add_cube(name: &str) -> DocRequest {
         primitive: Primitive::Cube { size: 1.0 },
         name: Some(name.into()),
         parent: None,
-        transform: DocTransform::IDENTITY,
+        transform: NodeTransform::IDENTITY,
     })
 }
 
@@ -771,7 +771,7 @@ fn big_files_open_and_save_off_the_frame() {
             },
             name: Some("Dense".into()),
             parent: None,
-            transform: DocTransform::IDENTITY,
+            transform: NodeTransform::IDENTITY,
         })
         .unwrap();
     hedra_doc::file::save(&mut session, &big).unwrap();
@@ -858,7 +858,7 @@ fn autosave_waits_for_tools_writes_changes_and_is_removed_by_a_save() {
             primitive: Primitive::Cube { size: 1.0 },
             name: Some(name.into()),
             parent: None,
-            transform: DocTransform::IDENTITY,
+            transform: NodeTransform::IDENTITY,
         })
     };
     send(&mut app, cube("A"));
@@ -879,7 +879,7 @@ fn autosave_waits_for_tools_writes_changes_and_is_removed_by_a_save() {
         .id;
     app.world_mut()
         .resource_mut::<hedra_ui::UiState>()
-        .transform_edit = Some((node, DocTransform::IDENTITY));
+        .transform_edit = Some((node, NodeTransform::IDENTITY));
     std::thread::sleep(std::time::Duration::from_millis(1100));
     for _ in 0..3 {
         app.update();
@@ -957,7 +957,7 @@ fn an_error_exit_saves_the_work_and_a_normal_exit_cleans_up() {
                 primitive: Primitive::Cube { size: 1.0 },
                 name: Some("Unsaved".into()),
                 parent: None,
-                transform: DocTransform::IDENTITY,
+                transform: NodeTransform::IDENTITY,
             }),
         );
         let (emergency, _) = app

@@ -7,7 +7,7 @@ use crate::modeling::cube_in_edit_mode;
 use crate::user::User;
 use bevy::gizmos::transform_gizmo::{TransformGizmoAxis, TransformGizmoState};
 use bevy::prelude::*;
-use hedra_doc::Transform as DocTransform;
+use hedra_doc::NodeTransform;
 use hedra_geom::DVec3;
 
 fn gizmo(user: &User) -> &TransformGizmoState {
@@ -47,7 +47,7 @@ fn drag_x(user: &mut User, centre: Vec3, pixels: f32, release: bool) {
     }
 }
 
-fn first_node_transform(user: &User) -> DocTransform {
+fn first_node_transform(user: &User) -> NodeTransform {
     user.doc().nodes().next().unwrap().transform
 }
 
@@ -67,7 +67,7 @@ fn dragging_the_gizmo_moves_an_object_in_one_step_and_keeps_the_rest_exact() {
     let mut user = User::new();
     user.add("Cube");
     // A rotation and scale that f32 cannot hold exactly.
-    let exact = DocTransform {
+    let exact = NodeTransform {
         translation: DVec3::ZERO,
         rotation: hedra_geom::DQuat::from_rotation_y(0.1),
         scale: DVec3::splat(1.0 / 3.0),

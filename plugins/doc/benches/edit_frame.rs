@@ -11,7 +11,7 @@
 use criterion::{BatchSize, Criterion, criterion_main};
 use glam::DVec3;
 use hedra_doc::render::{OverlaySelection, edge_overlay, patch_positions, render_buffers};
-use hedra_doc::{Command, NodeContent, NodeRef, Session, Shading, Transform, VertexSet};
+use hedra_doc::{Command, NodeContent, NodeRef, NodeTransform, Session, Shading, VertexSet};
 use hedra_geom::Primitive;
 use std::hint::black_box;
 
@@ -30,7 +30,7 @@ fn bench(c: &mut Criterion) {
             },
             name: Some("Dense".into()),
             parent: None,
-            transform: Transform::IDENTITY,
+            transform: NodeTransform::IDENTITY,
         })
         .unwrap();
     let doc = &session.doc;

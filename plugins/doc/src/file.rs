@@ -31,8 +31,8 @@
 use crate::command::Command;
 use crate::history::{History, NodeChange, Transaction};
 use crate::scene::{
-    CornerAttributes, Document, DocumentError, MeshContent, Node, NodeContent, NodeId, Shading,
-    SubdivisionModifier, Transform,
+    CornerAttributes, Document, DocumentError, MeshContent, Node, NodeContent, NodeId,
+    NodeTransform, Shading, SubdivisionModifier,
 };
 use crate::session::Session;
 use hedra_geom::subdivision::Creases;
@@ -322,7 +322,7 @@ struct StoredNode {
     #[serde(default)]
     parent: Option<NodeId>,
     #[serde(default)]
-    transform: Transform,
+    transform: NodeTransform,
     #[serde(default = "visible_default")]
     visible: bool,
     content: StoredContent,
@@ -1050,7 +1050,7 @@ mod tests {
                 primitive: Primitive::Cube { size: 1.0 },
                 name: Some("Shell".into()),
                 parent: None,
-                transform: Transform::IDENTITY,
+                transform: NodeTransform::IDENTITY,
             })
             .unwrap();
         let id = session.doc.find_by_name("Shell").unwrap().id;

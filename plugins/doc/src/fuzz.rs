@@ -15,13 +15,13 @@
 
 use crate::file;
 use crate::import::{ImportError, ImportedMesh};
-use crate::scene::{Document, NodeContent, SurfaceShape, Transform};
+use crate::scene::{Document, NodeContent, NodeTransform, SurfaceShape};
 use std::path::Path;
 
 /// The file name the bodies pass to the loaders; errors must mention it.
 pub const FUZZ_PATH: &str = "fuzz-input";
 
-fn check_transform(t: &Transform, what: &str) {
+fn check_transform(t: &NodeTransform, what: &str) {
     assert!(
         t.translation.is_finite() && t.rotation.is_finite() && t.scale.is_finite(),
         "{what}: non-finite transform {t:?}"

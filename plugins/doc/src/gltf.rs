@@ -24,7 +24,7 @@ use json::validation::USize64;
 
 use crate::export::{ExportShape, Geometry, is_visible, node_geometry};
 use crate::import::{ImportError, ImportedMesh, corner_attributes};
-use crate::scene::{CornerAttributes, Document, NodeContent, NodeId, Shading, Transform};
+use crate::scene::{CornerAttributes, Document, NodeContent, NodeId, NodeTransform, Shading};
 
 /// Appends `data` to the buffer (4-byte aligned) and returns its view.
 fn push_view(
@@ -562,7 +562,7 @@ pub fn gltf_from_bytes(
             )));
         }
         let (t, r, s) = node.transform().decomposed();
-        let transform = Transform {
+        let transform = NodeTransform {
             translation: DVec3::from_array(t.map(f64::from)),
             rotation: DQuat::from_array(r.map(f64::from)).normalize(),
             scale: DVec3::from_array(s.map(f64::from)),

@@ -14,7 +14,9 @@
 //! A group name that appears again later gives another node.
 
 use crate::history::{NodeChange, Transaction};
-use crate::scene::{CornerAttributes, Document, MeshContent, Node, NodeContent, NodeId, Transform};
+use crate::scene::{
+    CornerAttributes, Document, MeshContent, Node, NodeContent, NodeId, NodeTransform,
+};
 use glam::{DVec2, DVec3};
 use hedra_geom::{HalfEdgeMesh, RepairReport};
 use std::collections::HashMap;
@@ -36,7 +38,7 @@ pub struct ImportedMesh {
     /// Index of the parent in the same import list.
     pub parent: Option<usize>,
     /// The local transform relative to the parent (identity for OBJ and STL).
-    pub transform: Transform,
+    pub transform: NodeTransform,
     /// Primitives that are not triangles (points, lines) and were left out.
     pub skipped_primitives: usize,
     /// OBJ polylines (`l`) left out (Hedra imports faces).
@@ -61,7 +63,7 @@ impl ImportedMesh {
             mesh: Some(mesh),
             report,
             parent: None,
-            transform: Transform::IDENTITY,
+            transform: NodeTransform::IDENTITY,
             skipped_primitives: 0,
             skipped_polylines: 0,
             face_numbers: FaceNumbers::InNode,
@@ -78,7 +80,7 @@ impl ImportedMesh {
             mesh: None,
             report: RepairReport::default(),
             parent: None,
-            transform: Transform::IDENTITY,
+            transform: NodeTransform::IDENTITY,
             skipped_primitives: 0,
             skipped_polylines: 0,
             face_numbers: FaceNumbers::InNode,

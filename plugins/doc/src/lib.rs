@@ -25,7 +25,7 @@ pub use command::{Command, CommandError, NodeRef};
 pub use elements::{EdgeSet, FaceSet, VertexSet};
 pub use history::{History, NodeChange, Transaction};
 pub use scene::{
-    CornerAttributes, Document, MeshContent, Node, NodeContent, NodeId, Shading,
-    SubdivisionModifier, SurfaceShape, Transform,
+    CornerAttributes, Document, MeshContent, Node, NodeContent, NodeId, NodeTransform, Shading,
+    SubdivisionModifier, SurfaceShape,
 };
 pub use session::{Applied, Session};

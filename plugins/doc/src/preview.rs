@@ -134,7 +134,7 @@ impl LinearPreview {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::{FaceSet, NodeRef, Session, Transform};
+    use crate::{FaceSet, NodeRef, NodeTransform, Session};
     use hedra_geom::Primitive;
 
     #[test]
@@ -149,7 +149,7 @@ mod tests {
                 },
                 name: Some("G".into()),
                 parent: None,
-                transform: Transform::IDENTITY,
+                transform: NodeTransform::IDENTITY,
             })
             .unwrap();
         let node = session.doc.find_by_name("G").unwrap().id;

@@ -177,7 +177,7 @@ pub struct HistoryReport {
     pub labels: Vec<String>,
 }
 
-fn transform(t: &crate::scene::Transform) -> TransformReport {
+fn transform(t: &crate::scene::NodeTransform) -> TransformReport {
     TransformReport {
         translation: t.translation.to_array(),
         rotation: t.rotation.to_array(),

@@ -26,7 +26,7 @@ impl fmt::Display for NodeId {
 
 /// Translation, rotation and scale, applied as T·R·S.
 #[derive(Copy, Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct Transform {
+pub struct NodeTransform {
     /// Position of the node's origin in its parent's space (world space for a
     /// top-level node).
     #[serde(default)]
@@ -46,15 +46,15 @@ fn unit_scale() -> DVec3 {
     DVec3::ONE
 }
 
-impl Default for Transform {
+impl Default for NodeTransform {
     fn default() -> Self {
-        Transform::IDENTITY
+        NodeTransform::IDENTITY
     }
 }
 
-impl Transform {
+impl NodeTransform {
     /// No translation or rotation, unit scale.
-    pub const IDENTITY: Transform = Transform {
+    pub const IDENTITY: NodeTransform = NodeTransform {
         translation: DVec3::ZERO,
         rotation: DQuat::IDENTITY,
         scale: DVec3::ONE,
@@ -62,7 +62,7 @@ impl Transform {
 
     /// A pure translation by `t` (in the parent's space).
     pub fn from_translation(t: DVec3) -> Self {
-        Transform {
+        NodeTransform {
             translation: t,
             ..Self::IDENTITY
         }
@@ -74,7 +74,7 @@ impl Transform {
     /// Decomposes an affine matrix (shear is lost).
     pub fn from_matrix(m: DMat4) -> Self {
         let (scale, rotation, translation) = m.to_scale_rotation_translation();
-        Transform {
+        NodeTransform {
             translation,
             rotation: rotation.normalize(),
             scale,
@@ -419,7 +419,7 @@ pub struct Node {
     pub parent: Option<NodeId>,
     /// The local transform, relative to the parent (to the world at the top
     /// level).
-    pub transform: Transform,
+    pub transform: NodeTransform,
     /// False when hidden; a hidden node hides its descendants too.
     pub visible: bool,
     /// What the node holds.
@@ -513,8 +513,8 @@ impl Document {
         m
     }
     /// The node's world transform, decomposed.
-    pub fn world_transform(&self, id: NodeId) -> Transform {
-        Transform::from_matrix(self.world_matrix(id))
+    pub fn world_transform(&self, id: NodeId) -> NodeTransform {
+        NodeTransform::from_matrix(self.world_matrix(id))
     }
     /// `name` if unused, else `name.001`, `name.002`, … like Blender.
     pub fn unique_name(&self, name: &str) -> String {

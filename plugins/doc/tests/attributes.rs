@@ -609,9 +609,9 @@ fn mirrored_nodes_export_outside_out() {
     s.execute(&Command::SetTransforms {
         nodes: vec![(
             NodeRef::Name("Box".into()),
-            hedra_doc::Transform {
+            hedra_doc::NodeTransform {
                 scale: DVec3::new(-2.0, 2.0, 2.0),
-                ..hedra_doc::Transform::IDENTITY
+                ..hedra_doc::NodeTransform::IDENTITY
             },
         )],
     })

@@ -1,7 +1,7 @@
 //! Commands, undo/redo and the scene graph.
 
 use glam::{DQuat, DVec3};
-use hedra_doc::{Command, CommandError, NodeContent, NodeRef, Session, Transform};
+use hedra_doc::{Command, CommandError, NodeContent, NodeRef, NodeTransform, Session};
 use hedra_geom::Primitive;
 use proptest::prelude::*;
 
@@ -14,7 +14,7 @@ fn add(p: Primitive, n: &str) -> Command {
         primitive: p,
         name: Some(n.into()),
         parent: None,
-        transform: Transform::IDENTITY,
+        transform: NodeTransform::IDENTITY,
     }
 }
 
@@ -67,7 +67,7 @@ fn world_transforms_compose_parents_and_reparent_keeps_world_position() {
     s.execute(&Command::AddEmpty {
         name: "Base".into(),
         parent: None,
-        transform: Transform {
+        transform: NodeTransform {
             translation: DVec3::new(10.0, 0.0, 0.0),
             rotation: DQuat::from_rotation_y(90f64.to_radians()),
             scale: DVec3::splat(2.0),
@@ -78,7 +78,7 @@ fn world_transforms_compose_parents_and_reparent_keeps_world_position() {
         primitive: cube(),
         name: Some("Arm".into()),
         parent: Some(name("Base")),
-        transform: Transform::from_translation(DVec3::new(1.0, 0.0, 0.0)),
+        transform: NodeTransform::from_translation(DVec3::new(1.0, 0.0, 0.0)),
     })
     .unwrap();
     let arm = s.doc.find_by_name("Arm").unwrap().id;
@@ -124,13 +124,13 @@ fn errors_name_the_culprit_and_change_nothing() {
     s.execute(&Command::AddEmpty {
         name: "A".into(),
         parent: None,
-        transform: Transform::IDENTITY,
+        transform: NodeTransform::IDENTITY,
     })
     .unwrap();
     s.execute(&Command::AddEmpty {
         name: "B".into(),
         parent: Some(name("A")),
-        transform: Transform::IDENTITY,
+        transform: NodeTransform::IDENTITY,
     })
     .unwrap();
     let before = s.clone();
@@ -162,7 +162,7 @@ fn errors_name_the_culprit_and_change_nothing() {
             positions: vec![DVec3::ZERO; 3],
             polygons: vec![vec![0, 1, 5]],
             parent: None,
-            transform: Transform::IDENTITY,
+            transform: NodeTransform::IDENTITY,
         })
         .unwrap_err();
     assert!(e.to_string().contains("face 0 refers to vertex 5"), "{e}");
@@ -186,7 +186,7 @@ fn delete_takes_descendants_and_undo_brings_them_back() {
     s.execute(&Command::AddEmpty {
         name: "A".into(),
         parent: None,
-        transform: Transform::IDENTITY,
+        transform: NodeTransform::IDENTITY,
     })
     .unwrap();
     s.execute(&add(cube(), "C")).unwrap();
@@ -212,14 +212,14 @@ fn duplicate_copies_subtrees_with_new_ids_and_shared_meshes() {
     s.execute(&Command::AddEmpty {
         name: "A".into(),
         parent: None,
-        transform: Transform::IDENTITY,
+        transform: NodeTransform::IDENTITY,
     })
     .unwrap();
     s.execute(&Command::AddPrimitive {
         primitive: cube(),
         name: Some("C".into()),
         parent: Some(name("A")),
-        transform: Transform::IDENTITY,
+        transform: NodeTransform::IDENTITY,
     })
     .unwrap();
     let applied = s
@@ -389,7 +389,7 @@ fn arb_command() -> impl Strategy<Value = Command> {
             },
             name: None,
             parent,
-            transform: Transform::IDENTITY,
+            transform: NodeTransform::IDENTITY,
         }),
         (node.clone(), -5.0..5.0f64).prop_map(|(n, x)| Command::Translate {
             nodes: vec![n],
@@ -526,7 +526,7 @@ fn mesh_commands_edit_the_mesh_undo_exactly_and_name_bad_elements() {
     s.execute(&Command::AddEmpty {
         name: "E".into(),
         parent: None,
-        transform: Transform::IDENTITY,
+        transform: NodeTransform::IDENTITY,
     })
     .unwrap();
     let e = s

@@ -2,7 +2,7 @@
 //! recovery point (its own test binary: the hook is process-wide).
 
 use hedra_doc::recovery::{self, RecoveryKind, RecoveryPoint};
-use hedra_doc::{Command, Session, Transform};
+use hedra_doc::{Command, NodeTransform, Session};
 use hedra_geom::Primitive;
 use std::sync::{Arc, Mutex};
 
@@ -15,7 +15,7 @@ fn a_panic_saves_the_last_committed_document_for_the_next_start() {
             primitive: Primitive::Cube { size: 1.0 },
             name: Some("Saved by the hook".into()),
             parent: None,
-            transform: Transform::IDENTITY,
+            transform: NodeTransform::IDENTITY,
         })
         .unwrap();
     let point = RecoveryPoint::new(dir.path(), None);

@@ -10,7 +10,7 @@ use hedra_doc::file;
 use hedra_doc::fuzz;
 use hedra_doc::gltf::gltf_from_bytes;
 use hedra_doc::import::{obj_from_str, stl_from_bytes};
-use hedra_doc::{Command, NodeRef, Session, Transform};
+use hedra_doc::{Command, NodeRef, NodeTransform, Session};
 use hedra_geom::Primitive;
 use std::path::{Path, PathBuf};
 
@@ -185,7 +185,7 @@ fn scene_with_a_mesh_index_out_of_the_pool() {
         primitive: Primitive::Cube { size: 1.0 },
         name: Some("Box".into()),
         parent: None,
-        transform: Transform::IDENTITY,
+        transform: NodeTransform::IDENTITY,
     })
     .unwrap();
     let text = file::to_string(&s);
@@ -205,7 +205,7 @@ fn small_scene() -> Session {
     run(Command::AddEmpty {
         name: "Rig".into(),
         parent: None,
-        transform: Transform {
+        transform: NodeTransform {
             translation: glam::DVec3::new(1.0, 2.0, 3.0),
             rotation: glam::DQuat::from_rotation_y(0.5),
             scale: glam::DVec3::splat(2.0),
@@ -215,7 +215,7 @@ fn small_scene() -> Session {
         primitive: Primitive::Cube { size: 2.0 },
         name: Some("Box".into()),
         parent: Some(NodeRef::Name("Rig".into())),
-        transform: Transform::IDENTITY,
+        transform: NodeTransform::IDENTITY,
     });
     run(Command::AddPrimitive {
         primitive: Primitive::UvSphere {
@@ -225,7 +225,7 @@ fn small_scene() -> Session {
         },
         name: Some("Ball".into()),
         parent: None,
-        transform: Transform::IDENTITY,
+        transform: NodeTransform::IDENTITY,
     });
     s
 }
@@ -300,14 +300,14 @@ fn write_seeds() {
         name: "Ring".into(),
         curve: CurveSpec::Circle { radius: 1.0 },
         parent: None,
-        transform: Transform::IDENTITY,
+        transform: NodeTransform::IDENTITY,
     })
     .unwrap();
     s.execute(&Command::AddSurface {
         name: "Dome".into(),
         surface: SurfaceSpec::Sphere { radius: 0.5 },
         parent: None,
-        transform: Transform::IDENTITY,
+        transform: NodeTransform::IDENTITY,
     })
     .unwrap();
     s.undo();

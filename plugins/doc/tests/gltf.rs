@@ -6,7 +6,7 @@ use glam::{DQuat, DVec3};
 use hedra_doc::command::{CurveSpec, SurfaceSpec};
 use hedra_doc::export::{ExportOptions, export_bytes};
 use hedra_doc::import::import_file;
-use hedra_doc::{Command, NodeRef, Session, Transform};
+use hedra_doc::{Command, NodeRef, NodeTransform, Session};
 use hedra_geom::Primitive;
 
 fn scene() -> Session {
@@ -19,7 +19,7 @@ fn scene() -> Session {
         Command::AddEmpty {
             name: "Rig".into(),
             parent: None,
-            transform: Transform {
+            transform: NodeTransform {
                 translation: DVec3::new(1.0, 2.0, 3.0),
                 rotation: DQuat::from_rotation_y(0.5),
                 scale: DVec3::splat(2.0),
@@ -32,9 +32,9 @@ fn scene() -> Session {
             primitive: Primitive::Cube { size: 2.0 },
             name: Some("Box".into()),
             parent: Some(NodeRef::Name("Rig".into())),
-            transform: Transform {
+            transform: NodeTransform {
                 translation: DVec3::new(0.0, 1.0, 0.0),
-                ..Transform::IDENTITY
+                ..NodeTransform::IDENTITY
             },
         },
     );
@@ -48,7 +48,7 @@ fn scene() -> Session {
             },
             name: Some("Ball".into()),
             parent: None,
-            transform: Transform::IDENTITY,
+            transform: NodeTransform::IDENTITY,
         },
     );
     // (A UV sphere is shaded smooth from the start: shared vertex normals.)
@@ -58,7 +58,7 @@ fn scene() -> Session {
             name: "Ring".into(),
             curve: CurveSpec::Circle { radius: 1.0 },
             parent: None,
-            transform: Transform::IDENTITY,
+            transform: NodeTransform::IDENTITY,
         },
     );
     run(
@@ -67,7 +67,7 @@ fn scene() -> Session {
             name: "Dome".into(),
             surface: SurfaceSpec::Sphere { radius: 0.5 },
             parent: None,
-            transform: Transform::IDENTITY,
+            transform: NodeTransform::IDENTITY,
         },
     );
     s

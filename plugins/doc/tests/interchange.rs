@@ -5,7 +5,7 @@
 use hedra_doc::command::SurfaceSpec;
 use hedra_doc::export::{ExportOptions, export_bytes};
 use hedra_doc::import::{import_file, stl_from_bytes};
-use hedra_doc::{Command, Session, Transform};
+use hedra_doc::{Command, NodeTransform, Session};
 use std::path::Path;
 
 #[test]
@@ -56,7 +56,7 @@ fn exporting_nothing_is_an_error_not_an_empty_file() {
         Command::AddEmpty {
             name: "Rig".into(),
             parent: None,
-            transform: Transform::IDENTITY,
+            transform: NodeTransform::IDENTITY,
         },
     );
     for file in ["x.stl", "x.obj"] {
@@ -70,7 +70,7 @@ fn exporting_nothing_is_an_error_not_an_empty_file() {
             name: "Ring".into(),
             curve: hedra_doc::command::CurveSpec::Circle { radius: 1.0 },
             parent: None,
-            transform: Transform::IDENTITY,
+            transform: NodeTransform::IDENTITY,
         },
     );
     assert!(export_bytes(&s.doc, Path::new("x.obj"), ExportOptions::default()).is_ok());
@@ -87,7 +87,7 @@ fn the_nurbs_sphere_exports_closed_without_zero_area_triangles() {
             name: "Ball".into(),
             surface: SurfaceSpec::Sphere { radius: 1.0 },
             parent: None,
-            transform: Transform::IDENTITY,
+            transform: NodeTransform::IDENTITY,
         },
     );
     let bytes = export_bytes(&s.doc, Path::new("b.stl"), ExportOptions::default()).unwrap();

@@ -9,7 +9,7 @@
 //! the save, and each time checks the file on disk.
 
 use hedra_doc::file;
-use hedra_doc::{Command, Session, Transform};
+use hedra_doc::{Command, NodeTransform, Session};
 use hedra_geom::Primitive;
 use std::io::{BufRead, BufReader, Write};
 use std::path::Path;
@@ -28,7 +28,7 @@ fn scene(rows: u32) -> Session {
         },
         name: Some("Grid".into()),
         parent: None,
-        transform: Transform::IDENTITY,
+        transform: NodeTransform::IDENTITY,
     })
     .unwrap();
     s

@@ -3,7 +3,7 @@
 
 use glam::DVec3;
 use hedra_doc::recovery::{self, RecoveryKind, RecoveryPoint};
-use hedra_doc::{Command, NodeRef, Session, Transform, file};
+use hedra_doc::{Command, NodeRef, NodeTransform, Session, file};
 use hedra_geom::Primitive;
 use std::path::Path;
 
@@ -13,7 +13,7 @@ fn edited_session() -> Session {
         primitive: Primitive::Cube { size: 2.0 },
         name: Some("Box".into()),
         parent: None,
-        transform: Transform::IDENTITY,
+        transform: NodeTransform::IDENTITY,
     })
     .unwrap();
     s.execute(&Command::Translate {

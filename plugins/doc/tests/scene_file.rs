@@ -2,7 +2,7 @@
 
 use glam::DVec3;
 use hedra_doc::file::{self, FileError};
-use hedra_doc::{Command, NodeRef, Session, Transform};
+use hedra_doc::{Command, NodeRef, NodeTransform, Session};
 use hedra_geom::Primitive;
 use std::path::Path;
 
@@ -12,13 +12,13 @@ fn sample_session() -> Session {
         Command::AddEmpty {
             name: "Table".into(),
             parent: None,
-            transform: Transform::from_translation(DVec3::new(0.0, 1.0, 0.0)),
+            transform: NodeTransform::from_translation(DVec3::new(0.0, 1.0, 0.0)),
         },
         Command::AddPrimitive {
             primitive: Primitive::Cube { size: 2.0 },
             name: Some("Top".into()),
             parent: Some(NodeRef::Name("Table".into())),
-            transform: Transform::IDENTITY,
+            transform: NodeTransform::IDENTITY,
         },
         Command::AddPrimitive {
             primitive: Primitive::Cylinder {
@@ -28,7 +28,7 @@ fn sample_session() -> Session {
             },
             name: Some("Leg".into()),
             parent: Some(NodeRef::Name("Table".into())),
-            transform: Transform::IDENTITY,
+            transform: NodeTransform::IDENTITY,
         },
         Command::Translate {
             nodes: vec![NodeRef::Name("Leg".into())],
@@ -50,7 +50,7 @@ fn sample_session() -> Session {
             },
             name: None,
             parent: None,
-            transform: Transform::IDENTITY,
+            transform: NodeTransform::IDENTITY,
         },
     ];
     for c in &cmds {
@@ -107,7 +107,7 @@ fn meshes_shared_between_history_steps_are_stored_once() {
         },
         name: None,
         parent: None,
-        transform: Transform::IDENTITY,
+        transform: NodeTransform::IDENTITY,
     })
     .unwrap();
     for i in 0..20 {
@@ -128,7 +128,7 @@ fn meshes_shared_between_history_steps_are_stored_once() {
             },
             name: None,
             parent: None,
-            transform: Transform::IDENTITY,
+            transform: NodeTransform::IDENTITY,
         })
         .unwrap();
         file::to_string(&t).len()
@@ -234,7 +234,7 @@ fn atomic_save_keeps_a_backup_and_a_failed_save_loses_nothing() {
     s.execute(&Command::AddEmpty {
         name: "New".into(),
         parent: None,
-        transform: Transform::IDENTITY,
+        transform: NodeTransform::IDENTITY,
     })
     .unwrap();
     assert!(s.is_dirty());
@@ -252,7 +252,7 @@ fn atomic_save_keeps_a_backup_and_a_failed_save_loses_nothing() {
     s.execute(&Command::AddEmpty {
         name: "More".into(),
         parent: None,
-        transform: Transform::IDENTITY,
+        transform: NodeTransform::IDENTITY,
     })
     .unwrap();
     let e = file::save(&mut s, &dir.path().join("missing/b.hedra.ron")).unwrap_err();
@@ -272,7 +272,7 @@ fn subdivision_modifiers_and_creases_are_saved_and_undone() {
             primitive: Primitive::Cube { size: 2.0 },
             name: Some("Box".into()),
             parent: None,
-            transform: Transform::IDENTITY,
+            transform: NodeTransform::IDENTITY,
         },
     );
     let node = || NodeRef::Name("Box".into());
@@ -368,14 +368,14 @@ fn curves_and_surfaces_round_trip_through_the_file_and_bad_data_is_refused() {
         name: "Ring".into(),
         curve: CurveSpec::Circle { radius: 2.0 },
         parent: None,
-        transform: Transform::IDENTITY,
+        transform: NodeTransform::IDENTITY,
     })
     .unwrap();
     s.execute(&Command::AddSurface {
         name: "Ball".into(),
         surface: SurfaceSpec::Sphere { radius: 1.0 },
         parent: None,
-        transform: Transform::IDENTITY,
+        transform: NodeTransform::IDENTITY,
     })
     .unwrap();
     s.execute(&Command::SetWeights {
@@ -424,7 +424,7 @@ fn curves_and_surfaces_round_trip_through_the_file_and_bad_data_is_refused() {
                     knots: Some(vec![0.0, 0.0, 1.0, 0.5, 1.0, 1.0]),
                 },
                 parent: None,
-                transform: Transform::IDENTITY,
+                transform: NodeTransform::IDENTITY,
             },
             "knot 3 (0.5) is smaller than the one before it",
         ),

@@ -11,7 +11,7 @@
 use bevy::prelude::*;
 use bevy::window::PrimaryWindow;
 use glam::{DMat4, DQuat, DVec3};
-use hedra_doc::{Command, Document, NodeContent, NodeId, NodeRef, Transform as DocTransform};
+use hedra_doc::{Command, Document, NodeContent, NodeId, NodeRef, NodeTransform};
 use hedra_scene::modifiers::{alt, ctrl, shift};
 use hedra_scene::{DocChanged, DocRequest, DocState, InputGate, SceneSystems, ViewportCamera};
 
@@ -490,8 +490,8 @@ pub fn subdivision_keys(
 }
 
 /// Local transform that puts a node at `world` under a parent at `parent_world`.
-pub fn local_from_world(parent_world: DMat4, world: DMat4) -> DocTransform {
-    DocTransform::from_matrix(parent_world.inverse() * world)
+pub fn local_from_world(parent_world: DMat4, world: DMat4) -> NodeTransform {
+    NodeTransform::from_matrix(parent_world.inverse() * world)
 }
 
 /// True while the pointer is on a transform gizmo handle or drags one: a

@@ -7,7 +7,7 @@ use crate::{local_from_world, rotation_about};
 use bevy::prelude::*;
 use bevy::window::PrimaryWindow;
 use glam::{DMat4, DQuat, DVec3};
-use hedra_doc::{Command, Document, NodeId, NodeRef, Transform as DocTransform};
+use hedra_doc::{Command, Document, NodeId, NodeRef, NodeTransform};
 use hedra_scene::{DocRequest, DocState, PreviewSource, Previews, ToolPreview, ViewportCamera};
 
 /// What a modal object transform does.
@@ -57,7 +57,7 @@ pub struct TransformTool {
 #[derive(Clone, Debug)]
 struct Item {
     id: NodeId,
-    local: DocTransform,
+    local: NodeTransform,
     world: DMat4,
     parent_world: DMat4,
 }
@@ -143,7 +143,7 @@ impl ModalTransform {
         cursor: Vec2,
         ray_at: impl Fn(Vec2) -> Option<(DVec3, DVec3)>,
         view_dir: DVec3,
-    ) -> Vec<(NodeId, DocTransform)> {
+    ) -> Vec<(NodeId, NodeTransform)> {
         let axis_name = self.axis.map_or(String::new(), |a| format!(" {a:?}"));
         match self.kind {
             TransformKind::Grab => {
@@ -215,7 +215,7 @@ impl ModalTransform {
                         let translation = i.parent_world.inverse().transform_point3(moved);
                         (
                             i.id,
-                            DocTransform {
+                            NodeTransform {
                                 translation,
                                 rotation: i.local.rotation,
                                 scale: i.local.scale * f,
@@ -285,7 +285,7 @@ pub fn drive_transform_tool(
         modal.readout = format!("{} [{}]", modal.readout, modal.typed.as_str());
     }
     if modal_keys.confirm() {
-        let changed: Vec<(NodeRef, DocTransform)> = result
+        let changed: Vec<(NodeRef, NodeTransform)> = result
             .into_iter()
             .filter(|(id, t)| {
                 state

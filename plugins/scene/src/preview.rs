@@ -9,8 +9,8 @@
 //! result.
 
 use crate::*;
+use hedra_doc::NodeTransform;
 use hedra_doc::SurfaceShape;
-use hedra_doc::Transform as DocTransform;
 use hedra_geom::curves::NurbsCurve;
 use hedra_geom::subdivision::Creases;
 use std::collections::BTreeMap;
@@ -84,7 +84,7 @@ impl PreviewContent {
 pub struct ToolPreview {
     /// Local transforms (relative to the parent) shown instead of the
     /// document's, by node.
-    pub transforms: HashMap<NodeId, DocTransform>,
+    pub transforms: HashMap<NodeId, NodeTransform>,
     /// Contents shown instead of the document's, by node.
     pub contents: HashMap<NodeId, PreviewContent>,
 }
@@ -122,7 +122,7 @@ impl Previews {
 
     /// The transform shown for `node` instead of the document's, if a tool
     /// previews one (the later slot wins; only one tool runs at a time).
-    pub fn transform(&self, node: NodeId) -> Option<&DocTransform> {
+    pub fn transform(&self, node: NodeId) -> Option<&NodeTransform> {
         self.slots
             .values()
             .rev()

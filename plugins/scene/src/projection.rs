@@ -93,7 +93,7 @@ pub struct NodeSurface(pub Arc<hedra_doc::SurfaceShape>);
 pub struct NodeEntities(pub HashMap<NodeId, Entity>);
 
 /// A document transform as a Bevy one (f32).
-pub fn bevy_transform(t: &hedra_doc::Transform) -> Transform {
+pub fn bevy_transform(t: &hedra_doc::NodeTransform) -> Transform {
     Transform {
         translation: t.translation.as_vec3(),
         rotation: t.rotation.as_quat(),

@@ -11,7 +11,7 @@ use bevy::prelude::*;
 use bevy::render::render_resource::BlendState;
 use bevy::window::{PrimaryWindow, WindowCloseRequested};
 use bevy_egui::{EguiGlobalSettings, EguiPlugin, EguiPrimaryContextPass, PrimaryEguiContext, egui};
-use hedra_doc::{Command, NodeId, Transform as DocTransform};
+use hedra_doc::{Command, NodeId, NodeTransform};
 use hedra_edit::{Selection, TransformTool};
 use hedra_scene::modifiers::{ctrl, shift};
 use hedra_scene::{DocRequest, DocState, InputGate, StatusMessage, ViewportCamera};
@@ -50,7 +50,7 @@ pub struct UiState {
     /// Node being renamed in the outliner.
     pub rename: Option<Rename>,
     /// Transform fields being dragged in the properties panel (committed on release).
-    pub transform_edit: Option<(NodeId, DocTransform)>,
+    pub transform_edit: Option<(NodeId, NodeTransform)>,
     /// Crease field being dragged (committed on release).
     pub crease_edit: Option<f64>,
     /// Weight field being dragged (committed on release).

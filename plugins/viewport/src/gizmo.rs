@@ -27,7 +27,7 @@ pub enum GizmoTarget {
     /// An object: its exact world transform and its parent's world matrix.
     Object {
         node: NodeId,
-        world: DocTransform,
+        world: NodeTransform,
         parent_world: DMat4,
     },
     /// Selected mesh vertices (`mesh: true`) or control points, by index,
@@ -82,7 +82,7 @@ impl GizmoTarget {
         let node = doc.node(selection.active()?)?;
         let parent_world = node.parent.map_or(DMat4::IDENTITY, |p| doc.world_matrix(p));
         let world = if node.parent.is_some() {
-            DocTransform::from_matrix(parent_world * node.transform.to_matrix())
+            NodeTransform::from_matrix(parent_world * node.transform.to_matrix())
         } else {
             node.transform
         };
@@ -125,7 +125,7 @@ impl GizmoTarget {
                 let local = if *parent_world == DMat4::IDENTITY {
                     new_world
                 } else {
-                    DocTransform::from_matrix(parent_world.inverse() * new_world.to_matrix())
+                    NodeTransform::from_matrix(parent_world.inverse() * new_world.to_matrix())
                 };
                 Some(Command::SetTransforms {
                     nodes: vec![((*node).into(), local)],
@@ -298,7 +298,7 @@ fn preview_of(doc: &hedra_doc::Document, node: NodeId, cmd: &Command) -> Option<
 /// exact value, so moving an object does not round its rotation and scale;
 /// a moved translation gains the f32 delta, a turned rotation the f32 turn,
 /// a scaled axis the f32 ratio.
-pub(crate) fn dragged_transform(doc: &DocTransform, dragged: &Transform) -> DocTransform {
+pub(crate) fn dragged_transform(doc: &NodeTransform, dragged: &Transform) -> NodeTransform {
     let before = Transform {
         translation: doc.translation.as_vec3(),
         rotation: doc.rotation.as_quat(),
@@ -325,7 +325,7 @@ pub(crate) fn dragged_transform(doc: &DocTransform, dragged: &Transform) -> DocT
         ratio(dragged.scale.y, before.scale.y, doc.scale.y),
         ratio(dragged.scale.z, before.scale.z, doc.scale.z),
     );
-    DocTransform {
+    NodeTransform {
         translation,
         rotation,
         scale,
@@ -337,15 +337,15 @@ mod tests {
     use super::*;
     use glam::DQuat;
 
-    fn doc() -> DocTransform {
-        DocTransform {
+    fn doc() -> NodeTransform {
+        NodeTransform {
             translation: DVec3::new(0.1, 0.2, 1.0 / 3.0),
             rotation: DQuat::from_rotation_y(0.3),
             scale: DVec3::new(1.0 / 3.0, 2.0, 0.7),
         }
     }
 
-    fn as_dragged(t: &DocTransform) -> Transform {
+    fn as_dragged(t: &NodeTransform) -> Transform {
         Transform {
             translation: t.translation.as_vec3(),
             rotation: t.rotation.as_quat(),

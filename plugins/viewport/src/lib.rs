@@ -13,7 +13,7 @@ use bevy::core_pipeline::tonemapping::Tonemapping;
 use bevy::input::mouse::{AccumulatedMouseMotion, AccumulatedMouseScroll, MouseScrollUnit};
 use bevy::prelude::*;
 use glam::DVec3;
-use hedra_doc::{NodeContent, Transform as DocTransform};
+use hedra_doc::{NodeContent, NodeTransform};
 use hedra_edit::{EditMode, ElementKind, Selection, TransformTool};
 use hedra_scene::modifiers;
 use hedra_scene::{

@@ -4,7 +4,7 @@
 
 use super::plan::Plan;
 use super::{CommandError, NodeRef};
-use crate::scene::{CornerAttributes, MeshContent, NodeContent, NodeId, Shading, Transform};
+use crate::scene::{CornerAttributes, MeshContent, NodeContent, NodeId, NodeTransform, Shading};
 use glam::{DQuat, DVec3};
 use hedra_geom::subdivision::Creases;
 use hedra_geom::{HalfEdgeMesh, Primitive};
@@ -26,7 +26,7 @@ impl Plan<'_> {
         primitive: &Primitive,
         name: &Option<String>,
         parent: &Option<NodeRef>,
-        transform: Transform,
+        transform: NodeTransform,
     ) -> Result<(), CommandError> {
         let mesh = primitive.build()?;
         let name = name
@@ -47,7 +47,7 @@ impl Plan<'_> {
         positions: &[DVec3],
         polygons: &[Vec<u32>],
         parent: &Option<NodeRef>,
-        transform: Transform,
+        transform: NodeTransform,
     ) -> Result<(), CommandError> {
         let mesh = HalfEdgeMesh::from_polygons(positions, polygons)?;
         let content = NodeContent::Mesh(MeshContent::new(Arc::new(mesh)));
@@ -59,7 +59,7 @@ impl Plan<'_> {
         &mut self,
         name: &str,
         parent: &Option<NodeRef>,
-        transform: Transform,
+        transform: NodeTransform,
     ) -> Result<(), CommandError> {
         self.add_node(name, parent, transform, NodeContent::Empty)?;
         Ok(())
@@ -99,7 +99,7 @@ impl Plan<'_> {
 
     pub(super) fn set_transforms(
         &mut self,
-        nodes: &[(NodeRef, Transform)],
+        nodes: &[(NodeRef, NodeTransform)],
     ) -> Result<(), CommandError> {
         for (r, t) in nodes {
             let n = self.node(r)?;
@@ -115,7 +115,7 @@ impl Plan<'_> {
     ) -> Result<(), CommandError> {
         for r in nodes {
             let n = self.node(r)?;
-            let t = Transform {
+            let t = NodeTransform {
                 translation: n.transform.translation + offset,
                 ..n.transform
             };
@@ -136,7 +136,7 @@ impl Plan<'_> {
         let q = DQuat::from_axis_angle(axis, degrees.to_radians());
         for r in nodes {
             let n = self.node(r)?;
-            let t = Transform {
+            let t = NodeTransform {
                 rotation: (q * n.transform.rotation).normalize(),
                 ..n.transform
             };
@@ -148,7 +148,7 @@ impl Plan<'_> {
     pub(super) fn scale(&mut self, nodes: &[NodeRef], factor: DVec3) -> Result<(), CommandError> {
         for r in nodes {
             let n = self.node(r)?;
-            let t = Transform {
+            let t = NodeTransform {
                 scale: n.transform.scale * factor,
                 ..n.transform
             };
@@ -190,7 +190,7 @@ impl Plan<'_> {
             let world = self.doc.world_matrix(n.id);
             let parent_world =
                 new_parent.map_or(glam::DMat4::IDENTITY, |p| self.doc.world_matrix(p));
-            n.transform = Transform::from_matrix(parent_world.inverse() * world);
+            n.transform = NodeTransform::from_matrix(parent_world.inverse() * world);
         }
         n.parent = new_parent;
         self.set(n);

@@ -7,7 +7,7 @@ use super::{Command, CommandError, EditError, NodeRef};
 use crate::elements::ElementError;
 use crate::elements::{EdgeSet, FaceSet, VertexSet};
 use crate::history::NodeChange;
-use crate::scene::{Document, Node, NodeContent, NodeId, SurfaceShape, Transform};
+use crate::scene::{Document, Node, NodeContent, NodeId, NodeTransform, SurfaceShape};
 use hedra_geom::curves::{CurveError, NurbsCurve};
 use hedra_geom::subdivision::Creases;
 use hedra_geom::{EdgeId, FaceId, HalfEdgeMesh, ModelingError, VertexId};
@@ -117,7 +117,7 @@ impl Plan<'_> {
         &mut self,
         name: &str,
         parent: &Option<NodeRef>,
-        transform: Transform,
+        transform: NodeTransform,
         content: NodeContent,
     ) -> Result<NodeId, CommandError> {
         if name.trim().is_empty() {
@@ -153,7 +153,7 @@ impl Plan<'_> {
     pub(super) fn set_transform(
         &mut self,
         mut node: Node,
-        transform: Transform,
+        transform: NodeTransform,
     ) -> Result<(), CommandError> {
         if !transform.is_usable() {
             return Err(CommandError::BadTransform {

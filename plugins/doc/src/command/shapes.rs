@@ -3,7 +3,7 @@
 
 use super::plan::Plan;
 use super::{CommandError, CurveSpec, NodeRef, ParameterDirection, SurfaceSpec};
-use crate::scene::{NodeContent, SurfaceShape, Transform};
+use crate::scene::{NodeContent, NodeTransform, SurfaceShape};
 use glam::DVec3;
 use hedra_geom::curves::nurbs::clamped_uniform_knots;
 use hedra_geom::curves::{CurveError, NurbsCurve};
@@ -129,7 +129,7 @@ impl Plan<'_> {
         name: &str,
         curve: &CurveSpec,
         parent: &Option<NodeRef>,
-        transform: Transform,
+        transform: NodeTransform,
     ) -> Result<(), CommandError> {
         let c = curve_from_spec(curve).map_err(|error| CommandError::Curve {
             node: format!("curve '{name}'"),
@@ -144,7 +144,7 @@ impl Plan<'_> {
         name: &str,
         surface: &SurfaceSpec,
         parent: &Option<NodeRef>,
-        transform: Transform,
+        transform: NodeTransform,
     ) -> Result<(), CommandError> {
         let shape = self
             .surface_from_spec(surface)

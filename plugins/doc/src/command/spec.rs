@@ -4,7 +4,7 @@
 //! stored form of the history (see `file::stored_command`).
 
 use crate::elements::{EdgeSet, FaceSet, VertexSet};
-use crate::scene::{NodeId, Shading, SubdivisionModifier, Transform};
+use crate::scene::{NodeId, NodeTransform, Shading, SubdivisionModifier};
 use glam::DVec3;
 use hedra_geom::Primitive;
 use hedra_geom::modeling::{BisectClear, MirrorAxis};
@@ -185,7 +185,7 @@ pub enum Command {
         /// The new node's local transform, relative to its parent (default:
         /// identity).
         #[serde(default)]
-        transform: Transform,
+        transform: NodeTransform,
     },
     /// Adds a mesh from explicit positions and polygons (vertex index lists,
     /// counter-clockwise seen from outside).
@@ -203,7 +203,7 @@ pub enum Command {
         /// The new node's local transform, relative to its parent (default:
         /// identity).
         #[serde(default)]
-        transform: Transform,
+        transform: NodeTransform,
     },
     /// Adds an empty (grouping) node.
     AddEmpty {
@@ -215,7 +215,7 @@ pub enum Command {
         /// The new node's local transform, relative to its parent (default:
         /// identity).
         #[serde(default)]
-        transform: Transform,
+        transform: NodeTransform,
     },
     /// Rebuilds a primitive node with new parameters ("adjust last operation").
     /// The rebuilt mesh has no creases, UVs or custom normals; undo restores
@@ -229,7 +229,7 @@ pub enum Command {
     /// Sets local transforms of one or more nodes in one step.
     SetTransforms {
         /// Each node with its new local transform (relative to its parent).
-        nodes: Vec<(NodeRef, Transform)>,
+        nodes: Vec<(NodeRef, NodeTransform)>,
     },
     /// Moves nodes by an offset in their parent's space.
     Translate {
@@ -338,7 +338,7 @@ pub enum Command {
         /// The new node's local transform, relative to its parent (default:
         /// identity).
         #[serde(default)]
-        transform: Transform,
+        transform: NodeTransform,
     },
     /// Adds a surface node.
     AddSurface {
@@ -352,7 +352,7 @@ pub enum Command {
         /// The new node's local transform, relative to its parent (default:
         /// identity).
         #[serde(default)]
-        transform: Transform,
+        transform: NodeTransform,
     },
     /// Moves control points of a curve or surface (by index, as `hedra
     /// info --json` counts them; NURBS surfaces: `i * nv + j`).

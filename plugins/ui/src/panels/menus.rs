@@ -212,7 +212,7 @@ pub(super) fn add_primitive_buttons(ui: &mut egui::Ui, events: &mut Vec<UiEvent>
                     primitive: p,
                     name: None,
                     parent: None,
-                    transform: DocTransform::IDENTITY,
+                    transform: NodeTransform::IDENTITY,
                 },
             );
             ui.close();
@@ -248,13 +248,13 @@ pub(super) fn add_shape_buttons(
         name: name.into(),
         curve,
         parent: None,
-        transform: DocTransform::IDENTITY,
+        transform: NodeTransform::IDENTITY,
     };
     let surface_cmd = |name: &str, surface: SurfaceSpec| Command::AddSurface {
         name: name.into(),
         surface,
         parent: None,
-        transform: DocTransform::IDENTITY,
+        transform: NodeTransform::IDENTITY,
     };
     ui.separator();
     ui.label(egui::RichText::new("Curves").weak());
@@ -394,7 +394,7 @@ pub(super) fn add_shape_buttons(
         revolve.unwrap_or(Command::AddEmpty {
             name: String::new(),
             parent: None,
-            transform: DocTransform::IDENTITY,
+            transform: NodeTransform::IDENTITY,
         }),
     );
 }

@@ -11,9 +11,7 @@ use bevy::ecs::system::SystemParam;
 use bevy::prelude::*;
 use bevy_egui::{EguiContexts, egui};
 use glam::{DQuat, DVec3, EulerRot};
-use hedra_doc::{
-    Command, Document, NodeContent, NodeId, NodeRef, Shading, Transform as DocTransform,
-};
+use hedra_doc::{Command, Document, NodeContent, NodeId, NodeRef, NodeTransform, Shading};
 use hedra_edit::{EditMode, ElementKind, Selection, TransformTool};
 use hedra_geom::Primitive;
 use hedra_scene::{DocRequest, DocState, InputGate, StatusMessage};
@@ -42,7 +40,7 @@ enum UiEvent {
     Select(NodeId, bool),
     Request(DocRequest),
     File(FileAction),
-    Preview(NodeId, DocTransform),
+    Preview(NodeId, NodeTransform),
     Error(String),
 }
 
