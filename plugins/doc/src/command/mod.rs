@@ -80,6 +80,22 @@ pub enum CommandError {
     },
     #[error("{node}: {error}")]
     Curve { node: String, error: CurveError },
+    /// The profile node a surface is revolved or extruded from does not exist.
+    #[error("{node}: {profile} does not exist")]
+    NoProfile {
+        /// The surface being made, as `surface 'name'`.
+        node: String,
+        /// The profile as the command named it.
+        profile: NodeRef,
+    },
+    /// The profile node a surface is revolved or extruded from is not a curve.
+    #[error("{node}: {profile} is not a curve")]
+    ProfileNotACurve {
+        /// The surface being made, as `surface 'name'`.
+        node: String,
+        /// The profile as the command named it.
+        profile: NodeRef,
+    },
     #[error("{node} is not a curve or surface")]
     NotAShape { node: String },
     #[error("{node}: {error}")]

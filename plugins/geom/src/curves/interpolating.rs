@@ -40,10 +40,11 @@ fn hermite_basis(t: f64) -> [[f64; 4]; 3] {
 /// Parameter values must be finite and increase.
 fn check_parameters(params: &[f64], count: usize) -> Result<(), CurveError> {
     if params.len() != count {
-        return Err(CurveError::Parameter(format!(
-            "{count} points need {count} parameter values, got {}",
-            params.len()
-        )));
+        return Err(CurveError::CountMismatch {
+            points: count,
+            what: "parameter values",
+            got: params.len(),
+        });
     }
     if let Some(i) = params.iter().position(|t| !t.is_finite()) {
         return Err(CurveError::NotFinite {
@@ -52,10 +53,10 @@ fn check_parameters(params: &[f64], count: usize) -> Result<(), CurveError> {
         });
     }
     if let Some(i) = (1..params.len()).find(|&i| params[i] <= params[i - 1]) {
-        return Err(CurveError::Parameter(format!(
-            "parameter {i} ({}) does not increase",
-            params[i]
-        )));
+        return Err(CurveError::NotIncreasing {
+            index: i,
+            value: params[i],
+        });
     }
     Ok(())
 }
@@ -99,15 +100,13 @@ impl HermiteSpline {
             });
         }
         check_points(&points)?;
-        check_points(&tangents)
-            .map_err(|_| CurveError::Parameter("a tangent is not finite".into()))?;
+        check_points(&tangents).map_err(|_| CurveError::NotFiniteVector { what: "a tangent" })?;
         if tangents.len() != points.len() {
-            return Err(CurveError::Parameter(format!(
-                "{} points need {} tangents, got {}",
-                points.len(),
-                points.len(),
-                tangents.len()
-            )));
+            return Err(CurveError::CountMismatch {
+                points: points.len(),
+                what: "tangents",
+                got: tangents.len(),
+            });
         }
         check_parameters(&params, points.len())?;
         Ok(HermiteSpline {
@@ -145,10 +144,11 @@ impl HermiteSpline {
     ) -> Result<Self, CurveError> {
         let n = points.len();
         if keys.len() != n {
-            return Err(CurveError::Parameter(format!(
-                "{n} points need {n} T/B/C keys, got {}",
-                keys.len()
-            )));
+            return Err(CurveError::CountMismatch {
+                points: n,
+                what: "T/B/C keys",
+                got: keys.len(),
+            });
         }
         check_parameters(&params, n)?;
         let mut outgoing = Vec::with_capacity(n);
@@ -378,9 +378,7 @@ impl PowerBasisCurve {
                 .max_by(|&a, &b| m[a][col].abs().total_cmp(&m[b][col].abs()))
                 .expect("rows remain");
             if m[pivot][col].abs() < 1e-300 {
-                return Err(CurveError::Parameter(
-                    "the Vandermonde system is singular".into(),
-                ));
+                return Err(CurveError::Singular);
             }
             m.swap(col, pivot);
             rhs.swap(col, pivot);

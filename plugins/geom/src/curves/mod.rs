@@ -65,8 +65,43 @@ pub enum CurveError {
     FullMultiplicity { value: f64, multiplicity: usize },
     #[error("control point {index} does not exist (there are {count})")]
     NoSuchPoint { index: usize, count: usize },
-    #[error("{0}")]
-    Parameter(String),
+    #[error("{points} points need {points} {what}, got {got}")]
+    CountMismatch {
+        points: usize,
+        what: &'static str,
+        got: usize,
+    },
+    #[error("parameter {index} ({value}) does not increase")]
+    NotIncreasing { index: usize, value: f64 },
+    #[error("{what} is not finite")]
+    NotFiniteVector { what: &'static str },
+    #[error("the Vandermonde system is singular")]
+    Singular,
+    #[error("a degree {degree} Bézier triangle has {needed} control points, got {got}")]
+    TrianglePointCount {
+        degree: usize,
+        needed: usize,
+        got: usize,
+    },
+    #[error("a Bézier surface needs at least 2 × 2 control points, got {nu} × {nv}")]
+    GridTooSmall { nu: usize, nv: usize },
+    #[error("{nu} × {nv} control points expected, got {got}")]
+    GridPointCount { nu: usize, nv: usize, got: usize },
+    #[error(
+        "{nu} × {nv} control points and weights expected, got {points} points and {weights} weights"
+    )]
+    GridCount {
+        nu: usize,
+        nv: usize,
+        points: usize,
+        weights: usize,
+    },
+    #[error("{what} must be positive, not {value}")]
+    NotPositive { what: &'static str, value: f64 },
+    #[error("Bézier triangles are polynomial: they have no weights")]
+    TriangleWeights,
+    #[error("Bézier triangles have no knots (elevate or split them instead)")]
+    TriangleKnots,
 }
 
 /// Checks that every point is finite.

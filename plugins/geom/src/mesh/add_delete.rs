@@ -42,7 +42,7 @@ impl HalfEdgeMesh {
         }
         for (i, &v) in vertices.iter().enumerate() {
             if !self.is_vertex(v) {
-                return Err(EulerError::Missing(v.to_string()));
+                return Err(EulerError::Missing(v.into()));
             }
             if vertices[..i].contains(&v) {
                 return Err(EulerError::Degenerate);

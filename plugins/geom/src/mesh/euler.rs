@@ -22,7 +22,7 @@
 //! compaction): an inverse restores every live element with the same id and
 //! links, leaving the freed slots dead at the end.
 
-use crate::ids::{EdgeId, FaceId, HalfEdgeId, NONE, VertexId};
+use crate::ids::{EdgeId, ElementId, FaceId, HalfEdgeId, NONE, VertexId};
 use crate::mesh::{HalfEdgeMesh, HalfEdgeRecord, LoopStart};
 use glam::DVec3;
 use std::collections::BTreeSet;
@@ -30,8 +30,8 @@ use std::collections::BTreeSet;
 /// Why an Euler operator refused; the mesh is unchanged.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 pub enum EulerError {
-    #[error("{0} does not exist")]
-    Missing(String),
+    #[error("{} does not exist", .0.short())]
+    Missing(ElementId),
     #[error("{halfedge} lies on a boundary; the operator needs a face")]
     NoFace { halfedge: HalfEdgeId },
     #[error("{a} and {b} are not on the same face loop")]
@@ -199,7 +199,7 @@ impl HalfEdgeMesh {
         if self.is_halfedge(h) {
             Ok(())
         } else {
-            Err(EulerError::Missing(h.to_string()))
+            Err(EulerError::Missing(h.into()))
         }
     }
 
@@ -207,7 +207,7 @@ impl HalfEdgeMesh {
         if self.is_edge(e) {
             Ok(())
         } else {
-            Err(EulerError::Missing(e.to_string()))
+            Err(EulerError::Missing(e.into()))
         }
     }
 
@@ -290,7 +290,7 @@ impl HalfEdgeMesh {
             }
             LoopStart::Vertex(v) => {
                 if !self.is_vertex(v) {
-                    return Err(EulerError::Missing(v.to_string()));
+                    return Err(EulerError::Missing(v.into()));
                 }
                 self.lone_vertex_loop(v)
                     .ok_or(EulerError::NotLoneVertex { vertex: v })
@@ -588,7 +588,7 @@ impl HalfEdgeMesh {
     /// drop below three sides, [`EulerError::SelfLoop`].
     pub fn join_edges(&mut self, v: VertexId) -> Result<EdgeId, EulerError> {
         if !self.is_vertex(v) {
-            return Err(EulerError::Missing(v.to_string()));
+            return Err(EulerError::Missing(v.into()));
         }
         let outs: Vec<HalfEdgeId> = self.vertex_outgoing(v).collect();
         if outs.len() != 2 {
@@ -822,7 +822,7 @@ impl HalfEdgeMesh {
         p: DVec3,
     ) -> Result<EdgeId, EulerError> {
         if !self.is_vertex(v) {
-            return Err(EulerError::Missing(v.to_string()));
+            return Err(EulerError::Missing(v.into()));
         }
         self.check_halfedge(first)?;
         self.check_halfedge(last)?;
@@ -886,7 +886,7 @@ impl HalfEdgeMesh {
     /// a wire (a loop of fewer than three edges).
     pub fn make_hole(&mut self, f: FaceId) -> Result<HalfEdgeId, EulerError> {
         if !self.is_face(f) {
-            return Err(EulerError::Missing(f.to_string()));
+            return Err(EulerError::Missing(f.into()));
         }
         self.check_polygon_face(f)?;
         let loop_: Vec<HalfEdgeId> = self.face_halfedges(f).collect();
@@ -981,7 +981,7 @@ impl HalfEdgeMesh {
     /// face has edges or rings.
     pub fn kill_vertex_face_shell(&mut self, f: FaceId) -> Result<VertexId, EulerError> {
         if !self.is_face(f) {
-            return Err(EulerError::Missing(f.to_string()));
+            return Err(EulerError::Missing(f.into()));
         }
         let Some(v) = self.lone_vertex_face(f) else {
             return Err(EulerError::NotVertexFaceShell { face: f });
@@ -1180,7 +1180,7 @@ impl HalfEdgeMesh {
     ) -> Result<LoopStart, EulerError> {
         for f in [keep, kill] {
             if !self.is_face(f) {
-                return Err(EulerError::Missing(f.to_string()));
+                return Err(EulerError::Missing(f.into()));
             }
         }
         if keep == kill {
@@ -1275,7 +1275,7 @@ impl HalfEdgeMesh {
     /// a vertex twice is extruded on a copy first.
     pub fn extrude_face(&mut self, f: FaceId, offset: DVec3) -> Result<Vec<FaceId>, EulerError> {
         if !self.is_face(f) {
-            return Err(EulerError::Missing(f.to_string()));
+            return Err(EulerError::Missing(f.into()));
         }
         if !offset.is_finite() {
             return Err(EulerError::NonFinite);

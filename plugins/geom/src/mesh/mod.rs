@@ -41,7 +41,7 @@ mod orientation;
 mod records;
 pub mod validate;
 
-pub use records::MeshData;
+pub use records::{MeshData, MeshDataError};
 
 use crate::ids::{EdgeId, FaceId, HalfEdgeId, NONE, VertexId};
 use glam::DVec3;
@@ -141,7 +141,11 @@ pub struct MeshStats {
     pub genus: Option<i64>,
     pub closed: bool,
     pub manifold: bool,
-    /// `None` when [`HalfEdgeMesh::validate`] passed, else its first problems.
+    /// `Ok` when [`HalfEdgeMesh::validate`] passed, else the message of its
+    /// [`ValidationError`](crate::ValidationError). Kept a message on
+    /// purpose: the stats are serialised (`hedra info`) and read back, and
+    /// a violation's `&'static str` fields cannot be deserialised; call
+    /// `validate` for the typed error.
     pub validation: Result<(), String>,
 }
 

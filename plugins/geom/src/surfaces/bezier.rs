@@ -49,15 +49,14 @@ impl BezierSurface {
     /// Fewer than 2 × 2 points, a count that is not `nu · nv`, non-finite points.
     pub fn new(nu: usize, nv: usize, points: Vec<DVec3>) -> Result<Self, CurveError> {
         if nu < 2 || nv < 2 {
-            return Err(CurveError::Parameter(format!(
-                "a Bézier surface needs at least 2 × 2 control points, got {nu} × {nv}"
-            )));
+            return Err(CurveError::GridTooSmall { nu, nv });
         }
         if points.len() != nu * nv {
-            return Err(CurveError::Parameter(format!(
-                "{nu} × {nv} control points expected, got {}",
-                points.len()
-            )));
+            return Err(CurveError::GridPointCount {
+                nu,
+                nv,
+                got: points.len(),
+            });
         }
         check_points(&points)?;
         Ok(BezierSurface { nu, nv, points })

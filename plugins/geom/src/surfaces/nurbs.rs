@@ -78,11 +78,12 @@ impl NurbsSurface {
         weights: Vec<f64>,
     ) -> Result<Self, CurveError> {
         if points.len() != nu * nv || weights.len() != nu * nv {
-            return Err(CurveError::Parameter(format!(
-                "{nu} × {nv} control points and weights expected, got {} points and {} weights",
-                points.len(),
-                weights.len()
-            )));
+            return Err(CurveError::GridCount {
+                nu,
+                nv,
+                points: points.len(),
+                weights: weights.len(),
+            });
         }
         check_points(&points)?;
         // Validate each direction through a curve of the first row / column.
@@ -230,9 +231,9 @@ impl NurbsSurface {
     /// A non-finite direction.
     pub fn extrude(profile: &NurbsCurve, direction: DVec3) -> Result<Self, CurveError> {
         if !direction.is_finite() {
-            return Err(CurveError::Parameter(
-                "the extrusion direction is not finite".into(),
-            ));
+            return Err(CurveError::NotFiniteVector {
+                what: "the extrusion direction",
+            });
         }
         let nu = profile.points().len();
         let mut points = Vec::with_capacity(2 * nu);

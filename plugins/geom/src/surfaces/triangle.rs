@@ -51,11 +51,11 @@ impl BezierTriangle {
             return Err(CurveError::ZeroDegree);
         }
         if points.len() != point_count(degree) {
-            return Err(CurveError::Parameter(format!(
-                "a degree {degree} Bézier triangle has {} control points, got {}",
-                point_count(degree),
-                points.len()
-            )));
+            return Err(CurveError::TrianglePointCount {
+                degree,
+                needed: point_count(degree),
+                got: points.len(),
+            });
         }
         check_points(&points)?;
         Ok(BezierTriangle { degree, points })
