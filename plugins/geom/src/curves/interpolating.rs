@@ -384,8 +384,9 @@ impl PowerBasisCurve {
             rhs.swap(col, pivot);
             for row in col + 1..n {
                 let f = m[row][col] / m[col][col];
-                for k in col..n {
-                    m[row][k] -= f * m[col][k];
+                let (above, below) = m.split_at_mut(row);
+                for (x, &y) in below[0][col..n].iter_mut().zip(&above[col][col..n]) {
+                    *x -= f * y;
                 }
                 let r = rhs[col];
                 rhs[row] -= f * r;

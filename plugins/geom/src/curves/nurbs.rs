@@ -9,6 +9,10 @@ use glam::{DVec3, DVec4};
 
 use super::{Curve, CurveError, check_points};
 
+/// One rational Bézier segment of a NURBS curve: its parameter interval
+/// `(start, end)` and its homogeneous control points (`w·x, w·y, w·z, w`).
+pub type BezierSegment = ((f64, f64), Vec<DVec4>);
+
 /// A NURBS curve: control points with weights, a degree and a knot vector
 /// of `points + degree + 1` non-decreasing values. Its domain is
 /// `[knots[degree], knots[points]]`; clamped, unclamped and periodic knot
@@ -90,7 +94,8 @@ impl NurbsCurve {
         if let Some((index, &value)) = weights
             .iter()
             .enumerate()
-            .find(|(_, w)| !(**w > 0.0) || !w.is_finite())
+            .find(|(_, w)| !w.is_finite() || **w <= 0.0)
+        // NaN is not finite
         {
             return Err(CurveError::BadWeight { index, value });
         }
@@ -235,7 +240,8 @@ impl NurbsCurve {
     /// curve would leave the convex hull or divide by zero).
     pub fn set_weight(&mut self, i: usize, w: f64) -> Result<(), CurveError> {
         self.check_index(i)?;
-        if !(w > 0.0) || !w.is_finite() {
+        if !w.is_finite() || w <= 0.0 {
+            // NaN is not finite: refused too
             return Err(CurveError::BadWeight { index: i, value: w });
         }
         self.weights[i] = w;
@@ -506,7 +512,7 @@ impl NurbsCurve {
     ///
     /// # Errors
     /// A knot insertion that fails.
-    pub fn bezier_segments(&self) -> Result<Vec<((f64, f64), Vec<DVec4>)>, CurveError> {
+    pub fn bezier_segments(&self) -> Result<Vec<BezierSegment>, CurveError> {
         if !self.is_clamped() {
             return self.clamped_ends().bezier_segments();
         }
@@ -658,9 +664,9 @@ pub fn basis_derivatives(
         }
     }
     let mut factor = p as f64;
-    for k in 1..=n {
-        for j in 0..=p {
-            ders[k][j] *= factor;
+    for (k, row) in ders.iter_mut().enumerate().take(n + 1).skip(1) {
+        for d in row.iter_mut().take(p + 1) {
+            *d *= factor;
         }
         factor *= (p - k) as f64;
     }

@@ -98,7 +98,7 @@ impl TryFrom<MeshData> for HalfEdgeMesh {
                 records: d.vertex_halfedge.len(),
             });
         }
-        if d.halfedges.len() % 2 != 0 {
+        if !d.halfedges.len().is_multiple_of(2) {
             return Err(MeshDataError::OddHalfEdges {
                 count: d.halfedges.len(),
             });

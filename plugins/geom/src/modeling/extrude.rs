@@ -93,9 +93,9 @@ pub(super) fn rebuild_region(
     for p in &polys {
         for &v in p {
             if boundary.iter().any(|&(a, _)| a == v) {
-                if !copy.contains_key(&v) {
+                if let std::collections::hash_map::Entry::Vacant(slot) = copy.entry(v) {
                     let at = outline(v, work.position(v));
-                    copy.insert(v, work.add_vertex(at)?);
+                    slot.insert(work.add_vertex(at)?);
                 }
             } else if moved.insert(v) {
                 let at = inner(v, work.position(v));
@@ -162,9 +162,8 @@ pub fn extrude_boundary_edges(
     let mut copy = std::collections::HashMap::new();
     for &(x, y) in &sides {
         for v in [x, y] {
-            if !copy.contains_key(&v) {
-                let c = work.add_vertex(work.position(v) + offset)?;
-                copy.insert(v, c);
+            if let std::collections::hash_map::Entry::Vacant(slot) = copy.entry(v) {
+                slot.insert(work.add_vertex(work.position(v) + offset)?);
             }
         }
     }

@@ -267,9 +267,9 @@ pub fn merge_by_distance(
         }
     }
     let mut groups: std::collections::BTreeMap<usize, Vec<VertexId>> = Default::default();
-    for i in 0..vs.len() {
+    for (i, &v) in vs.iter().enumerate() {
         let r = root(&mut parent, i);
-        groups.entry(r).or_default().push(vs[i]);
+        groups.entry(r).or_default().push(v);
     }
     let clusters: Vec<(Vec<VertexId>, DVec3)> = groups
         .into_values()

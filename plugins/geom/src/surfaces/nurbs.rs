@@ -99,7 +99,8 @@ impl NurbsSurface {
         if let Some((index, &value)) = weights
             .iter()
             .enumerate()
-            .find(|(_, w)| !(**w > 0.0) || !w.is_finite())
+            .find(|(_, w)| !w.is_finite() || **w <= 0.0)
+        // NaN is not finite
         {
             return Err(CurveError::BadWeight { index, value });
         }
@@ -153,7 +154,8 @@ impl NurbsSurface {
     /// No such point, or a weight that is not positive and finite.
     pub fn set_weight(&mut self, i: usize, j: usize, w: f64) -> Result<(), CurveError> {
         let k = self.index(i, j)?;
-        if !(w > 0.0) || !w.is_finite() {
+        if !w.is_finite() || w <= 0.0 {
+            // NaN is not finite: refused too
             return Err(CurveError::BadWeight { index: k, value: w });
         }
         self.weights[k] = w;
