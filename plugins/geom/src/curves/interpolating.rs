@@ -77,9 +77,14 @@ fn locate(params: &[f64], t: f64) -> (usize, f64) {
 /// the two differ only at Kochanek-Bartels keys with continuity ≠ 0.
 #[derive(Clone, Debug, PartialEq)]
 pub struct HermiteSpline {
+    /// Strictly increasing parameter of each key.
     pub params: Vec<f64>,
+    /// The point at each key.
     pub points: Vec<DVec3>,
+    /// Outgoing tangent (dp/dt) at each key.
     pub tangents: Vec<DVec3>,
+    /// Incoming tangent at each key; equal to `tangents` except at
+    /// Kochanek-Bartels keys with continuity ≠ 0.
     pub incoming: Vec<DVec3>,
 }
 
@@ -207,9 +212,11 @@ impl HermiteSpline {
 /// second derivative given at both ends; C2 where segments share them.
 #[derive(Clone, Debug, PartialEq)]
 pub struct QuinticHermite {
-    /// `[p0, p1]`, `[v0, v1]` (first derivatives), `[a0, a1]` (second).
+    /// Positions `[p0, p1]` at t = 0 and t = 1.
     pub points: [DVec3; 2],
+    /// First derivatives `[v0, v1]` at t = 0 and t = 1.
     pub velocities: [DVec3; 2],
+    /// Second derivatives `[a0, a1]` at t = 0 and t = 1.
     pub accelerations: [DVec3; 2],
 }
 
@@ -266,8 +273,13 @@ impl Curve for QuinticHermite {
 /// Tension, bias and continuity of one Kochanek-Bartels key, each in [−1, 1].
 #[derive(Copy, Clone, Debug, Default, PartialEq)]
 pub struct Tbc {
+    /// Tension T: 1 shortens the tangents to zero, −1 doubles them.
     pub tension: f64,
+    /// Bias B: > 0 leans the tangent towards the incoming chord, < 0 the
+    /// outgoing one.
     pub bias: f64,
+    /// Continuity C: ≠ 0 makes the incoming and outgoing tangents differ
+    /// (a corner).
     pub continuity: f64,
 }
 
@@ -350,6 +362,7 @@ pub fn c2_cubic_spline(params: Vec<f64>, points: Vec<DVec3>) -> Result<HermiteSp
 pub struct PowerBasisCurve {
     /// `p(t) = Σ coefficients[k] t^k`.
     pub coefficients: Vec<DVec3>,
+    /// `(first, last)` interpolation parameter; evaluation clamps to it.
     pub domain: (f64, f64),
 }
 
@@ -428,7 +441,9 @@ impl Curve for PowerBasisCurve {
 /// A polyline through points at parameters (linear interpolation).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Polyline {
+    /// Parameter of each point, increasing.
     pub params: Vec<f64>,
+    /// The points, in order.
     pub points: Vec<DVec3>,
 }
 

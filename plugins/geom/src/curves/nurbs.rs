@@ -29,9 +29,13 @@ pub struct NurbsCurve {
 /// The stored form of a [`NurbsCurve`], validated on load.
 #[derive(serde::Serialize, serde::Deserialize)]
 pub struct NurbsCurveData {
+    /// Polynomial degree p ≥ 1.
     pub degree: usize,
+    /// Non-decreasing knot vector of `points + degree + 1` values.
     pub knots: Vec<f64>,
+    /// Control points.
     pub points: Vec<DVec3>,
+    /// Positive weight of each control point.
     pub weights: Vec<f64>,
 }
 
@@ -201,15 +205,19 @@ impl NurbsCurve {
         Self::new(2, knots, points, weights).expect("the circle's data is valid")
     }
 
+    /// Polynomial degree p.
     pub fn degree(&self) -> usize {
         self.degree
     }
+    /// The knot vector (`points + degree + 1` values).
     pub fn knots(&self) -> &[f64] {
         &self.knots
     }
+    /// Control points (Cartesian, not multiplied by their weights).
     pub fn points(&self) -> &[DVec3] {
         &self.points
     }
+    /// Weight of each control point (all positive).
     pub fn weights(&self) -> &[f64] {
         &self.weights
     }

@@ -30,58 +30,142 @@ use std::collections::BTreeSet;
 /// Why an Euler operator refused; the mesh is unchanged.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 pub enum EulerError {
+    /// An argument names an element that is not live in the mesh.
     #[error("{} does not exist", .0.short())]
     Missing(ElementId),
+    /// The half-edge has no face (it lies on a boundary loop).
     #[error("{halfedge} lies on a boundary; the operator needs a face")]
-    NoFace { halfedge: HalfEdgeId },
+    NoFace {
+        /// The boundary half-edge.
+        halfedge: HalfEdgeId,
+    },
+    /// Two half-edges that must share a face loop do not.
     #[error("{a} and {b} are not on the same face loop")]
-    NotSameLoop { a: HalfEdgeId, b: HalfEdgeId },
+    NotSameLoop {
+        /// The first half-edge given.
+        a: HalfEdgeId,
+        /// The second half-edge given.
+        b: HalfEdgeId,
+    },
+    /// The result would have a face of fewer than three sides.
     #[error("the new edge would make a face with fewer than 3 sides")]
     Degenerate,
+    /// The vertex has the wrong number of edges for the operator.
     #[error("{vertex} has valence {valence}; the operator needs {needed}")]
     Valence {
+        /// The vertex.
         vertex: VertexId,
+        /// Its number of edges.
         valence: usize,
+        /// What the operator needs, as words (`"exactly 2"`).
         needed: &'static str,
     },
+    /// The edge has one face on both of its sides.
     #[error("{edge} has the same face on both sides")]
-    SameFace { edge: EdgeId },
+    SameFace {
+        /// The edge.
+        edge: EdgeId,
+    },
+    /// The operator needs an edge between two faces, or an interior edge.
     #[error("{edge} is a boundary edge")]
-    BoundaryEdge { edge: EdgeId },
+    BoundaryEdge {
+        /// The edge.
+        edge: EdgeId,
+    },
+    /// Joining the two faces would not give a simple polygon.
     #[error(
         "faces {a} and {b} share more than one edge; joining them would not give a simple polygon"
     )]
-    SharedEdges { a: FaceId, b: FaceId },
+    SharedEdges {
+        /// One face beside the edge.
+        a: FaceId,
+        /// The other face.
+        b: FaceId,
+    },
+    /// Killing an edge and vertex needs an end of valence 1.
     #[error("{edge} is not a dangling edge (no end of valence 1)")]
-    NotDangling { edge: EdgeId },
+    NotDangling {
+        /// The edge.
+        edge: EdgeId,
+    },
+    /// The new edge would start and end at one vertex.
     #[error("the new edge would join {vertex} to itself")]
-    SelfLoop { vertex: VertexId },
+    SelfLoop {
+        /// The vertex at both ends.
+        vertex: VertexId,
+    },
+    /// A new position has a NaN or infinite coordinate.
     #[error("position is not finite")]
     NonFinite,
+    /// An edge collapse whose ends have a common neighbour.
     #[error("{a} and {b} share a neighbour; collapsing their edge would double an edge")]
-    SharedNeighbours { a: VertexId, b: VertexId },
+    SharedNeighbours {
+        /// The vertex that is kept.
+        a: VertexId,
+        /// The vertex that would be merged into it.
+        b: VertexId,
+    },
+    /// The half-edges given do not bound a proper part of the vertex's fan
+    /// (also: a new face would not fit into the boundary around the vertex).
     #[error("the half-edges do not delimit a part of {vertex}'s fan")]
-    NotInFan { vertex: VertexId },
+    NotInFan {
+        /// The vertex.
+        vertex: VertexId,
+    },
+    /// The operator needs a face with one loop of edges.
     #[error("{face} has inner rings or no edges; the operator needs a plain polygon")]
-    HasRings { face: FaceId },
+    HasRings {
+        /// The face.
+        face: FaceId,
+    },
+    /// The vertex is not the lone vertex of a face loop (see [`LoopStart`]).
     #[error("{vertex} is not the lone vertex of a loop")]
-    NotLoneVertex { vertex: VertexId },
+    NotLoneVertex {
+        /// The vertex.
+        vertex: VertexId,
+    },
+    /// KVFS on a face that is more than one vertex and one face.
     #[error(
         "{face} is not a shell of one vertex and one face (KVFS needs a face whose only loop is a lone vertex)"
     )]
-    NotVertexFaceShell { face: FaceId },
+    NotVertexFaceShell {
+        /// The face.
+        face: FaceId,
+    },
+    /// Two corners that must share a face do not.
     #[error("the corners lie on different faces ({a} and {b})")]
-    DifferentFaces { a: FaceId, b: FaceId },
+    DifferentFaces {
+        /// The first corner's face.
+        a: FaceId,
+        /// The second corner's face.
+        b: FaceId,
+    },
+    /// MEKR on two corners of one loop, which MEF joins instead.
     #[error("the corners lie on the same loop of {face}; join them with make_edge_face")]
-    SameLoop { face: FaceId },
+    SameLoop {
+        /// The face.
+        face: FaceId,
+    },
+    /// The loop given as a ring is the face's outer loop.
     #[error("the loop is the outer loop of {face}, not one of its rings")]
-    NotARing { face: FaceId },
+    NotARing {
+        /// The face.
+        face: FaceId,
+    },
+    /// KFMRH asked to make a face a ring of itself.
     #[error("{face} cannot become a ring of itself")]
-    FaceWithItself { face: FaceId },
+    FaceWithItself {
+        /// The face.
+        face: FaceId,
+    },
+    /// KFMRH on faces that share a vertex.
     #[error("faces {a} and {b} share {vertex}; a ring must not touch the face's other loops")]
     FacesTouch {
+        /// The face that keeps its loops.
         a: FaceId,
+        /// The face that would become its ring.
         b: FaceId,
+        /// A vertex on both.
         vertex: VertexId,
     },
 }
@@ -98,10 +182,15 @@ enum Role {
 /// that belonged to the removed vertex, and both old positions.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Collapse {
+    /// The vertex that stays (the origin of the collapsed half-edge).
     pub kept: VertexId,
+    /// First outgoing half-edge of `kept` that came from the removed vertex.
     pub first: HalfEdgeId,
+    /// Last such half-edge, in fan order.
     pub last: HalfEdgeId,
+    /// Where `kept` was before the collapse.
     pub kept_position: DVec3,
+    /// Where the removed vertex was.
     pub removed_position: DVec3,
 }
 

@@ -22,10 +22,13 @@ pub struct MeshData {
     /// One half-edge per face id (of its outer loop); `u32::MAX` for a face
     /// without edges (listed in `lone_vertex_faces`).
     pub face_halfedge: Vec<u32>,
+    /// Ids of removed vertices (their slots stay, so ids do not shift).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub dead_vertices: Vec<u32>,
+    /// Ids of removed edges.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub dead_edges: Vec<u32>,
+    /// Ids of removed faces.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub dead_faces: Vec<u32>,
     /// Inner rings as `(face id, loop starts)`; absent (and the file
@@ -41,18 +44,49 @@ pub struct MeshData {
 /// `TryFrom<MeshData>`, used when a scene file is loaded).
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 pub enum MeshDataError {
+    /// `vertex_halfedge` and `positions` differ in length.
     #[error("mesh has {positions} positions but {records} vertex records")]
-    VertexRecords { positions: usize, records: usize },
+    VertexRecords {
+        /// Length of `positions`.
+        positions: usize,
+        /// Length of `vertex_halfedge`.
+        records: usize,
+    },
+    /// Half-edges come in pairs; the list has an odd length.
     #[error("odd number of half-edges ({count})")]
-    OddHalfEdges { count: usize },
+    OddHalfEdges {
+        /// Length of `halfedges`.
+        count: usize,
+    },
+    /// A stored reference is neither `-1` nor a 32-bit id.
     #[error("{kind} id {id} is out of range")]
-    IdOutOfRange { kind: ElementKind, id: i64 },
+    IdOutOfRange {
+        /// What the reference names (a half-edge or a face).
+        kind: ElementKind,
+        /// The stored value.
+        id: i64,
+    },
+    /// A dead-element list names an id past its array.
     #[error("dead {kind} id {id} is out of range")]
-    DeadOutOfRange { kind: ElementKind, id: u32 },
+    DeadOutOfRange {
+        /// Which list: vertices, edges or faces.
+        kind: ElementKind,
+        /// The stored id.
+        id: u32,
+    },
+    /// `face_rings` lists a face twice.
     #[error("face {} has two ring lists", .face.0)]
-    TwoRingLists { face: FaceId },
+    TwoRingLists {
+        /// The face.
+        face: FaceId,
+    },
+    /// `lone_vertex_faces` lists a face twice.
     #[error("face {} has two lone vertices", .face.0)]
-    TwoLoneVertices { face: FaceId },
+    TwoLoneVertices {
+        /// The face.
+        face: FaceId,
+    },
+    /// The records read back but break an invariant (the validator's report).
     #[error(transparent)]
     Invalid(#[from] ValidationError),
 }

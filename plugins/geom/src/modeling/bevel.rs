@@ -138,7 +138,7 @@ pub fn bevel_vertices(
 
 /// Bevels edges (Blender's Ctrl+B) `width` wide, flat or rounded with
 /// `segments`, at any valence and where beveled edges meet (see
-/// [`chamfer_edges`]). Returns the new faces: the strips, then the patches.
+/// `chamfer_edges`). Returns the new faces: the strips, then the patches.
 ///
 /// # Errors
 /// [`ModelingError::Parameter`] for a width that is not positive or too

@@ -9,8 +9,11 @@ use glam::DVec3;
 /// A world axis for mirroring and symmetrizing.
 #[derive(Copy, Clone, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum MirrorAxis {
+    /// Across a plane of constant x (the x coordinate flips).
     X,
+    /// Across a plane of constant y.
     Y,
+    /// Across a plane of constant z.
     Z,
 }
 

@@ -35,12 +35,15 @@ impl Surface for BilinearPatch {
     }
 }
 
-/// A tensor-product Bézier surface of degree `(nu − 1, nv − 1)` on [0,1]²
+/// A tensor-product Bézier surface of degree `(nu − 1, nv − 1)` on `[0, 1]²`
 /// with control points `points[i * nv + j]` (i along u, j along v).
 #[derive(Clone, Debug, PartialEq)]
 pub struct BezierSurface {
+    /// Control points in u (degree in u + 1), at least 2.
     pub nu: usize,
+    /// Control points in v (degree in v + 1), at least 2.
     pub nv: usize,
+    /// The `nu × nv` control points, row-major: `(i, j)` at `i * nv + j`.
     pub points: Vec<DVec3>,
 }
 

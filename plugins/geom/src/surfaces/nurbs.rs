@@ -28,13 +28,21 @@ pub struct NurbsSurface {
 /// The stored form of a [`NurbsSurface`], validated on load.
 #[derive(serde::Serialize, serde::Deserialize)]
 pub struct NurbsSurfaceData {
+    /// Degree in u.
     pub degree_u: usize,
+    /// Degree in v.
     pub degree_v: usize,
+    /// Knot vector in u (`nu + degree_u + 1` values).
     pub knots_u: Vec<f64>,
+    /// Knot vector in v (`nv + degree_v + 1` values).
     pub knots_v: Vec<f64>,
+    /// Control points in the u direction.
     pub nu: usize,
+    /// Control points in the v direction.
     pub nv: usize,
+    /// The `nu × nv` control points, row-major: point `(i, j)` at `i * nv + j`.
     pub points: Vec<DVec3>,
+    /// Positive weight of each control point, in the same order.
     pub weights: Vec<f64>,
 }
 
@@ -116,18 +124,23 @@ impl NurbsSurface {
         })
     }
 
+    /// `(degree in u, degree in v)`.
     pub fn degrees(&self) -> (usize, usize) {
         (self.degree_u, self.degree_v)
     }
+    /// `(nu, nv)`: control points in u and in v.
     pub fn size(&self) -> (usize, usize) {
         (self.nu, self.nv)
     }
+    /// `(knots in u, knots in v)`.
     pub fn knots(&self) -> (&[f64], &[f64]) {
         (&self.knots_u, &self.knots_v)
     }
+    /// Control points, row-major: `(i, j)` at `i * nv + j`.
     pub fn points(&self) -> &[DVec3] {
         &self.points
     }
+    /// Weights, in the order of [`points`](Self::points).
     pub fn weights(&self) -> &[f64] {
         &self.weights
     }
