@@ -72,6 +72,28 @@ impl NurbsCurve {
     /// A [`CurveError`] naming what is wrong: degree 0, too few points, the
     /// wrong number of knots, decreasing knots, an empty domain, a weight
     /// that is not positive, a non-finite number.
+    ///
+    /// # Example
+    /// A quarter of the unit circle: degree 2, the middle weight √2/2.
+    /// ```
+    /// use hedra_geom::curves::{Curve, CurveError, NurbsCurve};
+    /// use hedra_geom::DVec3;
+    /// let w = std::f64::consts::FRAC_1_SQRT_2;
+    /// let points = vec![DVec3::X, DVec3::new(1.0, 1.0, 0.0), DVec3::Y];
+    /// let knots = vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0];
+    /// let arc = NurbsCurve::new(2, knots.clone(), points.clone(), vec![1.0, w, 1.0])?;
+    /// for i in 0..=10 {
+    ///     let p = arc.point(i as f64 / 10.0);
+    ///     assert!((p.length() - 1.0).abs() < 1e-12, "{p} is on the unit circle");
+    /// }
+    /// let mid = arc.point(0.5);
+    /// assert!((mid - DVec3::new(w, w, 0.0)).length() < 1e-12);
+    ///
+    /// // A weight that is not positive is refused, naming it.
+    /// let err = NurbsCurve::new(2, knots, points, vec![1.0, 0.0, 1.0]).unwrap_err();
+    /// assert_eq!(err, CurveError::BadWeight { index: 1, value: 0.0 });
+    /// # Ok::<(), CurveError>(())
+    /// ```
     pub fn new(
         degree: usize,
         knots: Vec<f64>,

@@ -501,6 +501,26 @@ impl HalfEdgeMesh {
     /// [`EulerError::NotSameLoop`], [`EulerError::NoFace`],
     /// [`EulerError::Degenerate`] when either new face would have fewer than
     /// three sides, [`EulerError::SelfLoop`].
+    ///
+    /// # Example
+    /// Splitting a cube's face along a diagonal, then joining it back:
+    /// ```
+    /// use hedra_geom::{FaceId, HalfEdgeId, Primitive};
+    /// let cube = Primitive::Cube { size: 2.0 }.build()?;
+    /// let mut m = cube.clone();
+    /// let loop_: Vec<HalfEdgeId> = m.face_halfedges(FaceId(0)).collect();
+    /// // target(loop_[0]) and target(loop_[2]) are opposite corners.
+    /// let (e, f) = m.make_edge_face(loop_[0], loop_[2])?;
+    /// assert_eq!((m.vertex_count(), m.edge_count(), m.face_count()), (8, 13, 7));
+    /// assert_eq!(m.face_halfedges(f).count(), 3);
+    /// m.validate()?;
+    ///
+    /// assert_eq!(m.kill_edge_face(e)?, f);
+    /// assert_eq!((m.vertex_count(), m.edge_count(), m.face_count()), (8, 12, 6));
+    /// m.validate()?;
+    /// assert!(m.same_as(&cube));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn make_edge_face(
         &mut self,
         h_a: HalfEdgeId,
@@ -635,6 +655,28 @@ impl HalfEdgeMesh {
     ///
     /// # Errors
     /// [`EulerError::Missing`], [`EulerError::NonFinite`].
+    ///
+    /// # Example
+    /// ```
+    /// use hedra_geom::{EdgeId, EulerError, Primitive};
+    /// let cube = Primitive::Cube { size: 2.0 }.build()?;
+    /// let mut m = cube.clone();
+    /// let e = EdgeId(0);
+    /// let v = m.split_edge(e, m.edge_midpoint(e))?;
+    /// assert_eq!((m.vertex_count(), m.edge_count(), m.face_count()), (9, 13, 6));
+    /// assert_eq!(m.vertex_valence(v), 2);
+    /// m.validate()?;
+    ///
+    /// assert_eq!(m.join_edges(v)?, e);
+    /// m.validate()?;
+    /// assert!(m.same_as(&cube));
+    ///
+    /// // A refusal names the element and leaves the mesh as it was.
+    /// let err = m.split_edge(EdgeId(99), m.edge_midpoint(e)).unwrap_err();
+    /// assert_eq!(err, EulerError::Missing(EdgeId(99).into()));
+    /// assert_eq!(err.to_string(), "e99 does not exist");
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn split_edge(&mut self, e: EdgeId, p: DVec3) -> Result<VertexId, EulerError> {
         self.check_edge(e)?;
         if !p.is_finite() {

@@ -497,6 +497,22 @@ impl Refiner {
     /// # Errors
     /// As [`Refiner::new`]. (Refining a valid half-edge mesh always gives a
     /// valid one, so the build cannot fail.)
+    ///
+    /// # Example
+    /// One level of Catmull-Clark turns each of a cube's 6 quads into 4:
+    /// ```
+    /// use hedra_geom::subdivision::{Creases, Options, Refiner, Scheme};
+    /// use hedra_geom::Primitive;
+    /// let cube = Primitive::Cube { size: 2.0 }.build()?;
+    /// let options = Options { scheme: Scheme::CatmullClark, ..Options::default() };
+    /// let (smooth, _creases) = Refiner::subdivide(&cube, &Creases::default(), options, 1)?;
+    /// // 8 corners + 12 edge points + 6 face points.
+    /// assert_eq!((smooth.vertex_count(), smooth.edge_count(), smooth.face_count()), (26, 48, 24));
+    /// smooth.validate()?;
+    /// // The surface shrinks inside the cage: every point stays within the cube.
+    /// assert!(smooth.vertices().all(|v| smooth.position(v).abs().max_element() <= 1.0));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn subdivide(
         mesh: &HalfEdgeMesh,
         creases: &Creases,
