@@ -76,5 +76,9 @@ fn split_join(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, build_and_validate, split_join);
-criterion_main!(benches);
+// In a private module: criterion_group! makes a pub fn it cannot document.
+mod group {
+    use super::*;
+    criterion_group!(benches, build_and_validate, split_join);
+}
+criterion_main!(group::benches);

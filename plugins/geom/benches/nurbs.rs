@@ -86,5 +86,9 @@ fn nurbs(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, nurbs);
-criterion_main!(benches);
+// In a private module: criterion_group! makes a pub fn it cannot document.
+mod group {
+    use super::*;
+    criterion_group!(benches, nurbs);
+}
+criterion_main!(group::benches);

@@ -80,5 +80,9 @@ fn catmull_clark(c: &mut Criterion) {
     bench_mesh(c, "cc_torus_10k", &torus_10k(), &[1, 2, 3]);
 }
 
-criterion_group!(benches, catmull_clark);
-criterion_main!(benches);
+// In a private module: criterion_group! makes a pub fn it cannot document.
+mod group {
+    use super::*;
+    criterion_group!(benches, catmull_clark);
+}
+criterion_main!(group::benches);

@@ -15,28 +15,73 @@ use std::collections::HashMap;
 /// Face and vertex numbers are indices into the input lists.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 pub enum BuildError {
+    /// A polygon names a vertex index past the end of the position list.
     #[error("face {face} refers to vertex {index}, but there are only {vertex_count} vertices")]
     IndexOutOfRange {
+        /// Index of the polygon in the input.
         face: usize,
+        /// The vertex index it names.
         index: u32,
+        /// Length of the position list.
         vertex_count: usize,
     },
+    /// A polygon has fewer than three corners.
     #[error("face {face} has {sides} vertices; a face needs at least 3")]
-    TooFewSides { face: usize, sides: usize },
+    TooFewSides {
+        /// Index of the polygon in the input.
+        face: usize,
+        /// Its number of corners.
+        sides: usize,
+    },
+    /// A polygon visits the same vertex twice.
     #[error("face {face} uses vertex {vertex} more than once")]
-    RepeatedVertex { face: usize, vertex: u32 },
+    RepeatedVertex {
+        /// Index of the polygon in the input.
+        face: usize,
+        /// The input vertex it repeats.
+        vertex: u32,
+    },
+    /// Three or more polygons share one edge.
     #[error("edge {a}-{b} is shared by more than two faces (faces {faces:?})")]
-    NonManifoldEdge { a: u32, b: u32, faces: Vec<usize> },
+    NonManifoldEdge {
+        /// One end of the edge (input vertex index).
+        a: u32,
+        /// The other end.
+        b: u32,
+        /// Every input polygon that uses the edge.
+        faces: Vec<usize>,
+    },
+    /// Two polygons run along an edge in the same direction, so their
+    /// windings disagree.
     #[error(
         "faces {faces:?} both run edge {a}->{b} in the same direction: their orientations disagree"
     )]
-    InconsistentOrientation { a: u32, b: u32, faces: Vec<usize> },
+    InconsistentOrientation {
+        /// Start of the directed edge (input vertex index).
+        a: u32,
+        /// End of the directed edge.
+        b: u32,
+        /// The input polygons that both run `a`→`b`.
+        faces: Vec<usize>,
+    },
+    /// The polygons around a vertex form more than one fan.
     #[error("vertex {vertex} joins separate fans of faces (non-manifold vertex)")]
-    NonManifoldVertex { vertex: u32 },
+    NonManifoldVertex {
+        /// The input vertex index.
+        vertex: u32,
+    },
+    /// A position has a NaN or infinite coordinate.
     #[error("vertex {vertex} has a non-finite position")]
-    NonFinitePosition { vertex: u32 },
+    NonFinitePosition {
+        /// The input vertex index.
+        vertex: u32,
+    },
+    /// More elements than a 32-bit id can number.
     #[error("the mesh is too large: {what} exceed the 32-bit id space")]
-    TooLarge { what: &'static str },
+    TooLarge {
+        /// Which elements overflow: `"vertices"`, `"corners"` or `"half-edges"`.
+        what: &'static str,
+    },
 }
 
 /// What [`HalfEdgeMesh::from_polygons_repaired`] had to change.

@@ -81,17 +81,90 @@ impl EdgeId {
 /// An element of any kind, for selections and error messages.
 #[derive(Copy, Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
 pub enum ElementId {
+    /// A vertex.
     Vertex(VertexId),
+    /// An undirected edge.
     Edge(EdgeId),
+    /// A face.
     Face(FaceId),
+    /// A directed half-edge (named by errors about a half-edge argument).
+    HalfEdge(HalfEdgeId),
+}
+
+impl ElementId {
+    /// The bare id (`v3`, `e5`, `f0`, `h7`), without the kind's name that
+    /// [`Display`](fmt::Display) puts in front.
+    pub fn short(&self) -> &dyn fmt::Display {
+        match self {
+            ElementId::Vertex(v) => v,
+            ElementId::Edge(e) => e,
+            ElementId::Face(f) => f,
+            ElementId::HalfEdge(h) => h,
+        }
+    }
+
+    /// What kind of element this is.
+    pub fn kind(&self) -> ElementKind {
+        match self {
+            ElementId::Vertex(_) => ElementKind::Vertex,
+            ElementId::Edge(_) => ElementKind::Edge,
+            ElementId::Face(_) => ElementKind::Face,
+            ElementId::HalfEdge(_) => ElementKind::HalfEdge,
+        }
+    }
 }
 
 impl fmt::Display for ElementId {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            ElementId::Vertex(v) => write!(f, "vertex {v}"),
-            ElementId::Edge(e) => write!(f, "edge {e}"),
-            ElementId::Face(x) => write!(f, "face {x}"),
-        }
+        write!(f, "{} {}", self.kind(), self.short())
+    }
+}
+
+impl From<VertexId> for ElementId {
+    fn from(v: VertexId) -> Self {
+        ElementId::Vertex(v)
+    }
+}
+
+impl From<EdgeId> for ElementId {
+    fn from(e: EdgeId) -> Self {
+        ElementId::Edge(e)
+    }
+}
+
+impl From<FaceId> for ElementId {
+    fn from(f: FaceId) -> Self {
+        ElementId::Face(f)
+    }
+}
+
+impl From<HalfEdgeId> for ElementId {
+    fn from(h: HalfEdgeId) -> Self {
+        ElementId::HalfEdge(h)
+    }
+}
+
+/// The kind of a mesh element, for messages that name a kind without an id
+/// (displayed as `vertex`, `half-edge`, `edge`, `face`).
+#[derive(Copy, Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
+pub enum ElementKind {
+    /// Vertices.
+    Vertex,
+    /// Directed half-edges.
+    HalfEdge,
+    /// Undirected edges.
+    Edge,
+    /// Faces.
+    Face,
+}
+
+impl fmt::Display for ElementKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            ElementKind::Vertex => "vertex",
+            ElementKind::HalfEdge => "half-edge",
+            ElementKind::Edge => "edge",
+            ElementKind::Face => "face",
+        })
     }
 }

@@ -34,9 +34,9 @@ pub use mesh::{euler, validate};
 // Mesh, ids and the errors of building, checking and editing it.
 pub use build::{BuildError, RepairReport};
 pub use euler::EulerError;
-pub use ids::{EdgeId, ElementId, FaceId, HalfEdgeId, VertexId};
-pub use mesh::{HalfEdgeMesh, LoopStart, MeshData, MeshStats};
-pub use modeling::{MergePoint, MirrorAxis, ModelingError};
+pub use ids::{EdgeId, ElementId, ElementKind, FaceId, HalfEdgeId, VertexId};
+pub use mesh::{HalfEdgeMesh, LoopStart, MeshData, MeshDataError, MeshStats};
+pub use modeling::{InvalidResult, MergePoint, MirrorAxis, ModelingError, NewFace};
 pub use primitives::{Primitive, PrimitiveError};
 pub use validate::{ValidationError, Violation};
 

@@ -13,38 +13,68 @@ use std::f64::consts::{PI, TAU};
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub enum Primitive {
     /// A square in the XZ plane facing +Y.
-    Plane { size: f64 },
-    /// An axis-aligned cube centred at the origin.
-    Cube { size: f64 },
-    /// A plane of `x_segments × z_segments` quads.
-    Grid {
-        x_segments: u32,
-        z_segments: u32,
+    Plane {
+        /// Side length.
         size: f64,
     },
+    /// An axis-aligned cube centred at the origin.
+    Cube {
+        /// Edge length.
+        size: f64,
+    },
+    /// A plane of `x_segments × z_segments` quads.
+    Grid {
+        /// Quads along X.
+        x_segments: u32,
+        /// Quads along Z.
+        z_segments: u32,
+        /// Side length of the whole (square) grid.
+        size: f64,
+    },
+    /// A sphere of latitude rings and longitude segments, poles on the Y
+    /// axis (triangle fans there, quads elsewhere).
     UvSphere {
+        /// Vertices around each ring (longitude).
         segments: u32,
+        /// Bands from pole to pole (latitude); `rings − 1` vertex rings.
         rings: u32,
+        /// Sphere radius.
         radius: f64,
     },
     /// An icosahedron split `subdivisions` times (0 is the icosahedron).
-    IcoSphere { subdivisions: u32, radius: f64 },
+    IcoSphere {
+        /// Times each triangle is split into four.
+        subdivisions: u32,
+        /// Radius every vertex is projected to.
+        radius: f64,
+    },
     /// Y-aligned, n-gon caps.
     Cylinder {
+        /// Side quads around the axis.
         segments: u32,
+        /// Cap radius.
         radius: f64,
+        /// Height along Y, centred at the origin.
         depth: f64,
     },
     /// Apex up, n-gon base.
     Cone {
+        /// Side triangles around the axis.
         segments: u32,
+        /// Base radius.
         radius: f64,
+        /// Height along Y from base to apex, centred at the origin.
         depth: f64,
     },
+    /// A ring around the Y axis, all quads.
     Torus {
+        /// Segments around the Y axis.
         major_segments: u32,
+        /// Segments around the tube.
         minor_segments: u32,
+        /// Distance from the Y axis to the tube's centre line.
         major_radius: f64,
+        /// Radius of the tube.
         minor_radius: f64,
     },
 }
@@ -53,9 +83,14 @@ pub enum Primitive {
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 #[error("{primitive}: {parameter} = {value} is out of range ({allowed})")]
 pub struct PrimitiveError {
+    /// The primitive's kind, as in commands (`"cube"`, `"uv_sphere"`, ...).
     pub primitive: &'static str,
+    /// The parameter's name.
     pub parameter: &'static str,
+    /// The refused value, formatted (`"0"`, `"NaN"`): parameters are floats
+    /// or integers.
     pub value: String,
+    /// The allowed range, as words.
     pub allowed: &'static str,
 }
 

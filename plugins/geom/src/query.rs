@@ -154,10 +154,9 @@ pub fn ray_cast(mesh: &HalfEdgeMesh, origin: DVec3, dir: DVec3) -> Option<(FaceI
                 mesh.position(a),
                 mesh.position(b),
                 mesh.position(c),
-            ) {
-                if best.is_none_or(|(_, bt)| t < bt) {
-                    best = Some((f, t));
-                }
+            ) && best.is_none_or(|(_, bt)| t < bt)
+            {
+                best = Some((f, t));
             }
         }
     }

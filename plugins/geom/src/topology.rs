@@ -10,11 +10,17 @@ use std::fmt::Write;
 /// One half-edge's links.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct HalfEdgeRecord {
+    /// The half-edge described.
     pub halfedge: HalfEdgeId,
+    /// The vertex it starts at.
     pub origin: VertexId,
+    /// The opposite half-edge of its edge.
     pub twin: HalfEdgeId,
+    /// The following half-edge of its loop.
     pub next: HalfEdgeId,
+    /// The preceding half-edge of its loop.
     pub prev: HalfEdgeId,
+    /// The face on its left; `None` on a boundary.
     pub face: Option<FaceId>,
 }
 
@@ -24,17 +30,27 @@ pub struct HalfEdgeRecord {
 /// after it in the loop of each face.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct WingedEdgeRow {
+    /// The edge described.
     pub edge: EdgeId,
+    /// Origin of its half-edge 0.
     pub start: VertexId,
+    /// Target of its half-edge 0.
     pub end: VertexId,
+    /// Face of half-edge 0; `None` on a boundary.
     pub left_face: Option<FaceId>,
+    /// Face of half-edge 1; `None` on a boundary.
     pub right_face: Option<FaceId>,
+    /// Edge before it in the left loop.
     pub left_predecessor: EdgeId,
+    /// Edge after it in the left loop.
     pub left_successor: EdgeId,
+    /// Edge before it in the right loop.
     pub right_predecessor: EdgeId,
+    /// Edge after it in the right loop.
     pub right_successor: EdgeId,
 }
 
+/// The record of live half-edge `h`.
 pub fn halfedge_record(m: &HalfEdgeMesh, h: HalfEdgeId) -> HalfEdgeRecord {
     HalfEdgeRecord {
         halfedge: h,
@@ -46,6 +62,7 @@ pub fn halfedge_record(m: &HalfEdgeMesh, h: HalfEdgeId) -> HalfEdgeRecord {
     }
 }
 
+/// The winged-edge row of live edge `e`.
 pub fn winged_edge_row(m: &HalfEdgeMesh, e: EdgeId) -> WingedEdgeRow {
     let (l, r) = (e.halfedge(0), e.halfedge(1));
     WingedEdgeRow {

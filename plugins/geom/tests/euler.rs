@@ -180,7 +180,7 @@ fn precondition_failures_are_named_and_change_nothing() {
     ));
     assert_eq!(
         m.split_edge(EdgeId(99), DVec3::ZERO),
-        Err(EulerError::Missing("e99".into()))
+        Err(EulerError::Missing(EdgeId(99).into()))
     );
     assert_eq!(
         m.split_edge(EdgeId(0), DVec3::NAN),

@@ -358,17 +358,18 @@ fn corrupted_stored_mesh_is_refused_with_the_element_named() {
     let m = Primitive::Cube { size: 2.0 }.build().unwrap();
     let mut data = hedra_geom::MeshData::from(m.clone());
     data.halfedges[3].1 = 999;
-    let e = HalfEdgeMesh::try_from(data).unwrap_err();
+    let e = HalfEdgeMesh::try_from(data).unwrap_err().to_string();
     assert!(e.contains("h3: next refers to missing element 999"), "{e}");
     let mut data = hedra_geom::MeshData::from(m.clone());
     data.halfedges[0].1 = data.halfedges[5].1;
-    let e = HalfEdgeMesh::try_from(data).unwrap_err();
+    let e = HalfEdgeMesh::try_from(data).unwrap_err().to_string();
     assert!(e.starts_with("invalid mesh"), "{e}");
     let mut data = hedra_geom::MeshData::from(m);
     data.positions.pop();
     assert!(
         HalfEdgeMesh::try_from(data)
             .unwrap_err()
+            .to_string()
             .contains("positions")
     );
 }

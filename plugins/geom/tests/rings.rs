@@ -475,7 +475,7 @@ fn files_without_rings_are_unchanged() {
 fn the_validator_checks_the_ring_tables() {
     let (m, top, _, _, ring) = cube_with_square_ring();
     let data = MeshData::from(m.clone());
-    let load = |d: MeshData| HalfEdgeMesh::try_from(d);
+    let load = |d: MeshData| HalfEdgeMesh::try_from(d).map_err(|e| e.to_string());
     assert!(load(data.clone()).is_ok());
     // A ring that starts on the outer loop.
     let mut d = data.clone();
@@ -533,7 +533,7 @@ fn precondition_failures_are_named_and_change_nothing() {
     );
     check(
         m.kill_vertex_face_shell(FaceId(99)).map(|_| ()),
-        EulerError::Missing("f99".into()),
+        EulerError::Missing(FaceId(99).into()),
         &m,
     );
     check(
@@ -553,7 +553,7 @@ fn precondition_failures_are_named_and_change_nothing() {
     );
     check(
         m.kill_edge_make_ring(HalfEdgeId(999)).map(|_| ()),
-        EulerError::Missing("h999".into()),
+        EulerError::Missing(HalfEdgeId(999).into()),
         &m,
     );
     // MEKR: same loop, not a ring, different faces, a corner on a boundary.

@@ -146,6 +146,22 @@ pub enum CommandError {
         /// The kernel's reason.
         error: CurveError,
     },
+    /// The profile node a surface is revolved or extruded from does not exist.
+    #[error("{node}: {profile} does not exist")]
+    NoProfile {
+        /// The surface being made, as `surface 'name'`.
+        node: String,
+        /// The profile as the command named it.
+        profile: NodeRef,
+    },
+    /// The profile node a surface is revolved or extruded from is not a curve.
+    #[error("{node}: {profile} is not a curve")]
+    ProfileNotACurve {
+        /// The surface being made, as `surface 'name'`.
+        node: String,
+        /// The profile as the command named it.
+        profile: NodeRef,
+    },
     /// A curve or surface command names a node that is neither.
     #[error("{node} is not a curve or surface")]
     NotAShape {

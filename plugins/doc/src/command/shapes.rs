@@ -31,9 +31,10 @@ fn curve_from_spec(spec: &CurveSpec) -> Result<NurbsCurve, CurveError> {
         }
         CurveSpec::Circle { radius } => {
             if !(radius.is_finite() && *radius > 0.0) {
-                return Err(CurveError::Parameter(format!(
-                    "a circle's radius must be positive, not {radius}"
-                )));
+                return Err(CurveError::NotPositive {
+                    what: "a circle's radius",
+                    value: *radius,
+                });
             }
             Ok(NurbsCurve::circle(DVec3::ZERO, *radius))
         }
@@ -49,27 +50,46 @@ fn curve_from_spec(spec: &CurveSpec) -> Result<NurbsCurve, CurveError> {
     }
 }
 
-fn positive(what: &str, x: f64) -> Result<(), CurveError> {
+fn positive(what: &'static str, x: f64) -> Result<(), CurveError> {
     if x.is_finite() && x > 0.0 {
         Ok(())
     } else {
-        Err(CurveError::Parameter(format!(
-            "{what} must be positive, not {x}"
-        )))
+        Err(CurveError::NotPositive { what, value: x })
     }
 }
 
 impl Plan<'_> {
-    /// The surface a spec describes (Revolve and Extrude read another node's curve).
-    fn surface_from_spec(&self, spec: &SurfaceSpec) -> Result<SurfaceShape, CurveError> {
-        let profile = |r: &NodeRef| -> Result<NurbsCurve, CurveError> {
-            let id = self
-                .resolve(r)
-                .map_err(|e| CurveError::Parameter(e.to_string()))?;
-            match self.current(id).map(|n| &n.content) {
-                Some(NodeContent::Curve(c)) => Ok((**c).clone()),
-                _ => Err(CurveError::Parameter(format!("{r} is not a curve"))),
+    /// The curve of a surface's profile node; `node` names the surface.
+    fn profile_curve(&self, r: &NodeRef, node: &str) -> Result<NurbsCurve, CommandError> {
+        let id = match self.resolve(r) {
+            Ok(id) => id,
+            Err(CommandError::UnknownNode(profile)) => {
+                return Err(CommandError::NoProfile {
+                    node: node.to_string(),
+                    profile,
+                });
             }
+            Err(e) => return Err(e),
+        };
+        match self.current(id).map(|n| &n.content) {
+            Some(NodeContent::Curve(c)) => Ok((**c).clone()),
+            _ => Err(CommandError::ProfileNotACurve {
+                node: node.to_string(),
+                profile: r.clone(),
+            }),
+        }
+    }
+
+    /// The surface a spec describes (Revolve and Extrude read another
+    /// node's curve, looked up first); `node` names the surface.
+    fn surface_from_spec(
+        &self,
+        spec: &SurfaceSpec,
+        node: &str,
+    ) -> Result<SurfaceShape, CommandError> {
+        let curve = |error: CurveError| CommandError::Curve {
+            node: node.to_string(),
+            error,
         };
         Ok(match spec {
             SurfaceSpec::Nurbs {
@@ -81,46 +101,53 @@ impl Plan<'_> {
                 weights,
                 knots_u,
                 knots_v,
-            } => SurfaceShape::Nurbs(NurbsSurface::new(
-                *degree_u,
-                *degree_v,
-                knots_u
-                    .clone()
-                    .unwrap_or_else(|| clamped_uniform_knots(*degree_u, *nu)),
-                knots_v
-                    .clone()
-                    .unwrap_or_else(|| clamped_uniform_knots(*degree_v, *nv)),
-                *nu,
-                *nv,
-                points.clone(),
-                weights.clone().unwrap_or_else(|| vec![1.0; points.len()]),
-            )?),
-            SurfaceSpec::Bezier { nu, nv, points } => {
-                SurfaceShape::Nurbs(NurbsSurface::from_bezier(*nu, *nv, points.clone())?)
-            }
+            } => SurfaceShape::Nurbs(
+                NurbsSurface::new(
+                    *degree_u,
+                    *degree_v,
+                    knots_u
+                        .clone()
+                        .unwrap_or_else(|| clamped_uniform_knots(*degree_u, *nu)),
+                    knots_v
+                        .clone()
+                        .unwrap_or_else(|| clamped_uniform_knots(*degree_v, *nv)),
+                    *nu,
+                    *nv,
+                    points.clone(),
+                    weights.clone().unwrap_or_else(|| vec![1.0; points.len()]),
+                )
+                .map_err(curve)?,
+            ),
+            SurfaceSpec::Bezier { nu, nv, points } => SurfaceShape::Nurbs(
+                NurbsSurface::from_bezier(*nu, *nv, points.clone()).map_err(curve)?,
+            ),
             SurfaceSpec::Triangle { degree, points } => {
-                SurfaceShape::Triangle(BezierTriangle::new(*degree, points.clone())?)
+                SurfaceShape::Triangle(BezierTriangle::new(*degree, points.clone()).map_err(curve)?)
             }
             SurfaceSpec::Plane { size } => {
-                positive("size", *size)?;
+                positive("size", *size).map_err(curve)?;
                 SurfaceShape::Nurbs(NurbsSurface::plane(*size))
             }
             SurfaceSpec::Sphere { radius } => {
-                positive("radius", *radius)?;
+                positive("radius", *radius).map_err(curve)?;
                 SurfaceShape::Nurbs(NurbsSurface::sphere(DVec3::ZERO, *radius))
             }
             SurfaceSpec::Cylinder { radius, height } => {
-                positive("radius", *radius)?;
-                positive("height", *height)?;
+                positive("radius", *radius).map_err(curve)?;
+                positive("height", *height).map_err(curve)?;
                 SurfaceShape::Nurbs(NurbsSurface::cylinder(*radius, *height))
             }
             SurfaceSpec::Revolve { profile: r } => {
-                SurfaceShape::Nurbs(NurbsSurface::revolve(&profile(r)?)?)
+                let c = self.profile_curve(r, node)?;
+                SurfaceShape::Nurbs(NurbsSurface::revolve(&c).map_err(curve)?)
             }
             SurfaceSpec::Extrude {
                 profile: r,
                 direction,
-            } => SurfaceShape::Nurbs(NurbsSurface::extrude(&profile(r)?, *direction)?),
+            } => {
+                let c = self.profile_curve(r, node)?;
+                SurfaceShape::Nurbs(NurbsSurface::extrude(&c, *direction).map_err(curve)?)
+            }
         })
     }
 
@@ -146,12 +173,7 @@ impl Plan<'_> {
         parent: &Option<NodeRef>,
         transform: NodeTransform,
     ) -> Result<(), CommandError> {
-        let shape = self
-            .surface_from_spec(surface)
-            .map_err(|error| CommandError::Curve {
-                node: format!("surface '{name}'"),
-                error,
-            })?;
+        let shape = self.surface_from_spec(surface, &format!("surface '{name}'"))?;
         self.add_node(
             name,
             parent,
@@ -227,9 +249,7 @@ impl Plan<'_> {
                     }
                     Ok(())
                 }
-                SurfaceShape::Triangle(_) => Err(CurveError::Parameter(
-                    "Bézier triangles are polynomial: they have no weights".into(),
-                )),
+                SurfaceShape::Triangle(_) => Err(CurveError::TriangleWeights),
             },
         )
     }
@@ -254,9 +274,7 @@ impl Plan<'_> {
                     };
                     Ok(())
                 }
-                SurfaceShape::Triangle(_) => Err(CurveError::Parameter(
-                    "Bézier triangles have no knots (elevate or split them instead)".into(),
-                )),
+                SurfaceShape::Triangle(_) => Err(CurveError::TriangleKnots),
             },
         )
     }

@@ -9,6 +9,7 @@ use super::{Curve, CurveError, binomial, check_points};
 /// A polynomial Bézier curve on [0, 1] with `degree + 1` control points.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Bezier {
+    /// Control points, first and last on the curve.
     pub points: Vec<DVec3>,
 }
 
@@ -34,6 +35,7 @@ impl Bezier {
         Ok(Bezier { points })
     }
 
+    /// The polynomial degree: one less than the number of control points.
     pub fn degree(&self) -> usize {
         self.points.len() - 1
     }

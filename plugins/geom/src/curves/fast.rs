@@ -48,6 +48,7 @@ impl Basis {
         }
     }
 
+    /// The polynomial degree p of the basis functions.
     pub fn degree(&self) -> usize {
         self.degree
     }

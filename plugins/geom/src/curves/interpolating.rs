@@ -40,10 +40,11 @@ fn hermite_basis(t: f64) -> [[f64; 4]; 3] {
 /// Parameter values must be finite and increase.
 fn check_parameters(params: &[f64], count: usize) -> Result<(), CurveError> {
     if params.len() != count {
-        return Err(CurveError::Parameter(format!(
-            "{count} points need {count} parameter values, got {}",
-            params.len()
-        )));
+        return Err(CurveError::CountMismatch {
+            points: count,
+            what: "parameter values",
+            got: params.len(),
+        });
     }
     if let Some(i) = params.iter().position(|t| !t.is_finite()) {
         return Err(CurveError::NotFinite {
@@ -52,10 +53,10 @@ fn check_parameters(params: &[f64], count: usize) -> Result<(), CurveError> {
         });
     }
     if let Some(i) = (1..params.len()).find(|&i| params[i] <= params[i - 1]) {
-        return Err(CurveError::Parameter(format!(
-            "parameter {i} ({}) does not increase",
-            params[i]
-        )));
+        return Err(CurveError::NotIncreasing {
+            index: i,
+            value: params[i],
+        });
     }
     Ok(())
 }
@@ -76,9 +77,14 @@ fn locate(params: &[f64], t: f64) -> (usize, f64) {
 /// the two differ only at Kochanek-Bartels keys with continuity ≠ 0.
 #[derive(Clone, Debug, PartialEq)]
 pub struct HermiteSpline {
+    /// Strictly increasing parameter of each key.
     pub params: Vec<f64>,
+    /// The point at each key.
     pub points: Vec<DVec3>,
+    /// Outgoing tangent (dp/dt) at each key.
     pub tangents: Vec<DVec3>,
+    /// Incoming tangent at each key; equal to `tangents` except at
+    /// Kochanek-Bartels keys with continuity ≠ 0.
     pub incoming: Vec<DVec3>,
 }
 
@@ -99,15 +105,13 @@ impl HermiteSpline {
             });
         }
         check_points(&points)?;
-        check_points(&tangents)
-            .map_err(|_| CurveError::Parameter("a tangent is not finite".into()))?;
+        check_points(&tangents).map_err(|_| CurveError::NotFiniteVector { what: "a tangent" })?;
         if tangents.len() != points.len() {
-            return Err(CurveError::Parameter(format!(
-                "{} points need {} tangents, got {}",
-                points.len(),
-                points.len(),
-                tangents.len()
-            )));
+            return Err(CurveError::CountMismatch {
+                points: points.len(),
+                what: "tangents",
+                got: tangents.len(),
+            });
         }
         check_parameters(&params, points.len())?;
         Ok(HermiteSpline {
@@ -145,10 +149,11 @@ impl HermiteSpline {
     ) -> Result<Self, CurveError> {
         let n = points.len();
         if keys.len() != n {
-            return Err(CurveError::Parameter(format!(
-                "{n} points need {n} T/B/C keys, got {}",
-                keys.len()
-            )));
+            return Err(CurveError::CountMismatch {
+                points: n,
+                what: "T/B/C keys",
+                got: keys.len(),
+            });
         }
         check_parameters(&params, n)?;
         let mut outgoing = Vec::with_capacity(n);
@@ -207,9 +212,11 @@ impl HermiteSpline {
 /// second derivative given at both ends; C2 where segments share them.
 #[derive(Clone, Debug, PartialEq)]
 pub struct QuinticHermite {
-    /// `[p0, p1]`, `[v0, v1]` (first derivatives), `[a0, a1]` (second).
+    /// Positions `[p0, p1]` at t = 0 and t = 1.
     pub points: [DVec3; 2],
+    /// First derivatives `[v0, v1]` at t = 0 and t = 1.
     pub velocities: [DVec3; 2],
+    /// Second derivatives `[a0, a1]` at t = 0 and t = 1.
     pub accelerations: [DVec3; 2],
 }
 
@@ -266,8 +273,13 @@ impl Curve for QuinticHermite {
 /// Tension, bias and continuity of one Kochanek-Bartels key, each in [−1, 1].
 #[derive(Copy, Clone, Debug, Default, PartialEq)]
 pub struct Tbc {
+    /// Tension T: 1 shortens the tangents to zero, −1 doubles them.
     pub tension: f64,
+    /// Bias B: > 0 leans the tangent towards the incoming chord, < 0 the
+    /// outgoing one.
     pub bias: f64,
+    /// Continuity C: ≠ 0 makes the incoming and outgoing tangents differ
+    /// (a corner).
     pub continuity: f64,
 }
 
@@ -350,6 +362,7 @@ pub fn c2_cubic_spline(params: Vec<f64>, points: Vec<DVec3>) -> Result<HermiteSp
 pub struct PowerBasisCurve {
     /// `p(t) = Σ coefficients[k] t^k`.
     pub coefficients: Vec<DVec3>,
+    /// `(first, last)` interpolation parameter; evaluation clamps to it.
     pub domain: (f64, f64),
 }
 
@@ -378,16 +391,15 @@ impl PowerBasisCurve {
                 .max_by(|&a, &b| m[a][col].abs().total_cmp(&m[b][col].abs()))
                 .expect("rows remain");
             if m[pivot][col].abs() < 1e-300 {
-                return Err(CurveError::Parameter(
-                    "the Vandermonde system is singular".into(),
-                ));
+                return Err(CurveError::Singular);
             }
             m.swap(col, pivot);
             rhs.swap(col, pivot);
             for row in col + 1..n {
                 let f = m[row][col] / m[col][col];
-                for k in col..n {
-                    m[row][k] -= f * m[col][k];
+                let (above, below) = m.split_at_mut(row);
+                for (x, &y) in below[0][col..n].iter_mut().zip(&above[col][col..n]) {
+                    *x -= f * y;
                 }
                 let r = rhs[col];
                 rhs[row] -= f * r;
@@ -429,7 +441,9 @@ impl Curve for PowerBasisCurve {
 /// A polyline through points at parameters (linear interpolation).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Polyline {
+    /// Parameter of each point, increasing.
     pub params: Vec<f64>,
+    /// The points, in order.
     pub points: Vec<DVec3>,
 }
 

@@ -32,41 +32,182 @@ pub trait Curve {
 /// Why a curve cannot be made or changed.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum CurveError {
+    /// Fewer control points than the degree needs (`degree + 1`).
     #[error("a degree {degree} curve needs at least {needed} control points, got {got}")]
     TooFewPoints {
+        /// The requested degree.
         degree: usize,
+        /// The minimum number of control points.
         needed: usize,
+        /// The number given.
         got: usize,
     },
+    /// Degree 0 was requested.
     #[error("degree must be at least 1")]
     ZeroDegree,
+    /// The knot vector's length is not `points + degree + 1`.
     #[error("{points} control points of degree {degree} need {needed} knots, got {got}")]
     KnotCount {
+        /// Number of control points.
         points: usize,
+        /// The degree.
         degree: usize,
+        /// The knot count they need.
         needed: usize,
+        /// The knot count given.
         got: usize,
     },
+    /// A knot is smaller than its predecessor.
     #[error("knot {index} ({value}) is smaller than the one before it (knots must not decrease)")]
-    DecreasingKnots { index: usize, value: f64 },
+    DecreasingKnots {
+        /// Position of the knot in the vector.
+        index: usize,
+        /// Its value.
+        value: f64,
+    },
+    /// The domain `[knots[degree], knots[points]]` has zero length.
     #[error("the knot vector has an empty domain (all the inner knots are equal)")]
     EmptyDomain,
+    /// A weight is zero, negative, NaN or infinite.
     #[error("weight {index} is {value}: weights must be positive")]
-    BadWeight { index: usize, value: f64 },
+    BadWeight {
+        /// Index of the weight (of its control point; `i * nv + j` on a
+        /// surface).
+        index: usize,
+        /// The refused value.
+        value: f64,
+    },
+    /// An input value is NaN or infinite.
     #[error("{what} {index} is not finite")]
-    NotFinite { what: &'static str, index: usize },
+    NotFinite {
+        /// What kind of value: `"control point"`, `"knot"`, `"parameter"`.
+        what: &'static str,
+        /// Its index in its list.
+        index: usize,
+    },
+    /// The weight list's length differs from the point list's.
     #[error("{points} points but {weights} weights")]
-    WeightCount { points: usize, weights: usize },
+    WeightCount {
+        /// Number of control points.
+        points: usize,
+        /// Number of weights.
+        weights: usize,
+    },
+    /// A parameter (for example a knot to insert) lies outside the domain.
     #[error("parameter {value} is outside the domain [{start}, {end}]")]
-    OutsideDomain { value: f64, start: f64, end: f64 },
+    OutsideDomain {
+        /// The refused parameter.
+        value: f64,
+        /// Start of the domain.
+        start: f64,
+        /// End of the domain.
+        end: f64,
+    },
+    /// Knot insertion at a knot whose multiplicity already equals the degree.
     #[error(
         "knot {value} already has multiplicity {multiplicity} (the degree): no more can be inserted"
     )]
-    FullMultiplicity { value: f64, multiplicity: usize },
+    FullMultiplicity {
+        /// The knot value.
+        value: f64,
+        /// Its current multiplicity.
+        multiplicity: usize,
+    },
+    /// A control point index past the end.
     #[error("control point {index} does not exist (there are {count})")]
-    NoSuchPoint { index: usize, count: usize },
-    #[error("{0}")]
-    Parameter(String),
+    NoSuchPoint {
+        /// The index asked for.
+        index: usize,
+        /// The number of control points.
+        count: usize,
+    },
+    /// A per-point list (parameters, tangents, keys) has the wrong length.
+    #[error("{points} points need {points} {what}, got {got}")]
+    CountMismatch {
+        /// Number of points.
+        points: usize,
+        /// What the list holds: `"parameter values"`, `"tangents"`,
+        /// `"T/B/C keys"`.
+        what: &'static str,
+        /// Its length.
+        got: usize,
+    },
+    /// Interpolation parameters that do not strictly increase.
+    #[error("parameter {index} ({value}) does not increase")]
+    NotIncreasing {
+        /// Index of the first parameter not above its predecessor.
+        index: usize,
+        /// Its value.
+        value: f64,
+    },
+    /// A vector input (a tangent, a direction) is NaN or infinite.
+    #[error("{what} is not finite")]
+    NotFiniteVector {
+        /// The input, with its article: `"a tangent"`, `"the extrusion
+        /// direction"`.
+        what: &'static str,
+    },
+    /// Power-basis interpolation met a singular system (parameters too
+    /// close together).
+    #[error("the Vandermonde system is singular")]
+    Singular,
+    /// A Bézier triangle's point count is not `(n + 1)(n + 2) / 2`.
+    #[error("a degree {degree} Bézier triangle has {needed} control points, got {got}")]
+    TrianglePointCount {
+        /// The degree n.
+        degree: usize,
+        /// `(n + 1)(n + 2) / 2`.
+        needed: usize,
+        /// The number given.
+        got: usize,
+    },
+    /// A Bézier surface grid smaller than 2 × 2.
+    #[error("a Bézier surface needs at least 2 × 2 control points, got {nu} × {nv}")]
+    GridTooSmall {
+        /// Points in the u direction.
+        nu: usize,
+        /// Points in the v direction.
+        nv: usize,
+    },
+    /// A Bézier surface's point count is not `nu · nv`.
+    #[error("{nu} × {nv} control points expected, got {got}")]
+    GridPointCount {
+        /// Points in the u direction.
+        nu: usize,
+        /// Points in the v direction.
+        nv: usize,
+        /// The number given.
+        got: usize,
+    },
+    /// A NURBS surface's point or weight count is not `nu · nv`.
+    #[error(
+        "{nu} × {nv} control points and weights expected, got {points} points and {weights} weights"
+    )]
+    GridCount {
+        /// Points in the u direction.
+        nu: usize,
+        /// Points in the v direction.
+        nv: usize,
+        /// Number of points given.
+        points: usize,
+        /// Number of weights given.
+        weights: usize,
+    },
+    /// A size (radius, height, ...) that is zero, negative or not finite.
+    #[error("{what} must be positive, not {value}")]
+    NotPositive {
+        /// The quantity, as the message names it (`"radius"`, `"a circle's
+        /// radius"`).
+        what: &'static str,
+        /// The refused value.
+        value: f64,
+    },
+    /// Weights were set on a Bézier triangle, which has none.
+    #[error("Bézier triangles are polynomial: they have no weights")]
+    TriangleWeights,
+    /// A knot was inserted into a Bézier triangle, which has no knots.
+    #[error("Bézier triangles have no knots (elevate or split them instead)")]
+    TriangleKnots,
 }
 
 /// Checks that every point is finite.

@@ -9,6 +9,10 @@ use glam::{DVec3, DVec4};
 
 use super::{Curve, CurveError, check_points};
 
+/// One rational Bézier segment of a NURBS curve: its parameter interval
+/// `(start, end)` and its homogeneous control points (`w·x, w·y, w·z, w`).
+pub type BezierSegment = ((f64, f64), Vec<DVec4>);
+
 /// A NURBS curve: control points with weights, a degree and a knot vector
 /// of `points + degree + 1` non-decreasing values. Its domain is
 /// `[knots[degree], knots[points]]`; clamped, unclamped and periodic knot
@@ -25,9 +29,13 @@ pub struct NurbsCurve {
 /// The stored form of a [`NurbsCurve`], validated on load.
 #[derive(serde::Serialize, serde::Deserialize)]
 pub struct NurbsCurveData {
+    /// Polynomial degree p ≥ 1.
     pub degree: usize,
+    /// Non-decreasing knot vector of `points + degree + 1` values.
     pub knots: Vec<f64>,
+    /// Control points.
     pub points: Vec<DVec3>,
+    /// Positive weight of each control point.
     pub weights: Vec<f64>,
 }
 
@@ -64,6 +72,28 @@ impl NurbsCurve {
     /// A [`CurveError`] naming what is wrong: degree 0, too few points, the
     /// wrong number of knots, decreasing knots, an empty domain, a weight
     /// that is not positive, a non-finite number.
+    ///
+    /// # Example
+    /// A quarter of the unit circle: degree 2, the middle weight √2/2.
+    /// ```
+    /// use hedra_geom::curves::{Curve, CurveError, NurbsCurve};
+    /// use hedra_geom::DVec3;
+    /// let w = std::f64::consts::FRAC_1_SQRT_2;
+    /// let points = vec![DVec3::X, DVec3::new(1.0, 1.0, 0.0), DVec3::Y];
+    /// let knots = vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0];
+    /// let arc = NurbsCurve::new(2, knots.clone(), points.clone(), vec![1.0, w, 1.0])?;
+    /// for i in 0..=10 {
+    ///     let p = arc.point(i as f64 / 10.0);
+    ///     assert!((p.length() - 1.0).abs() < 1e-12, "{p} is on the unit circle");
+    /// }
+    /// let mid = arc.point(0.5);
+    /// assert!((mid - DVec3::new(w, w, 0.0)).length() < 1e-12);
+    ///
+    /// // A weight that is not positive is refused, naming it.
+    /// let err = NurbsCurve::new(2, knots, points, vec![1.0, 0.0, 1.0]).unwrap_err();
+    /// assert_eq!(err, CurveError::BadWeight { index: 1, value: 0.0 });
+    /// # Ok::<(), CurveError>(())
+    /// ```
     pub fn new(
         degree: usize,
         knots: Vec<f64>,
@@ -90,7 +120,8 @@ impl NurbsCurve {
         if let Some((index, &value)) = weights
             .iter()
             .enumerate()
-            .find(|(_, w)| !(**w > 0.0) || !w.is_finite())
+            .find(|(_, w)| !w.is_finite() || **w <= 0.0)
+        // NaN is not finite
         {
             return Err(CurveError::BadWeight { index, value });
         }
@@ -196,15 +227,19 @@ impl NurbsCurve {
         Self::new(2, knots, points, weights).expect("the circle's data is valid")
     }
 
+    /// Polynomial degree p.
     pub fn degree(&self) -> usize {
         self.degree
     }
+    /// The knot vector (`points + degree + 1` values).
     pub fn knots(&self) -> &[f64] {
         &self.knots
     }
+    /// Control points (Cartesian, not multiplied by their weights).
     pub fn points(&self) -> &[DVec3] {
         &self.points
     }
+    /// Weight of each control point (all positive).
     pub fn weights(&self) -> &[f64] {
         &self.weights
     }
@@ -235,7 +270,8 @@ impl NurbsCurve {
     /// curve would leave the convex hull or divide by zero).
     pub fn set_weight(&mut self, i: usize, w: f64) -> Result<(), CurveError> {
         self.check_index(i)?;
-        if !(w > 0.0) || !w.is_finite() {
+        if !w.is_finite() || w <= 0.0 {
+            // NaN is not finite: refused too
             return Err(CurveError::BadWeight { index: i, value: w });
         }
         self.weights[i] = w;
@@ -506,7 +542,7 @@ impl NurbsCurve {
     ///
     /// # Errors
     /// A knot insertion that fails.
-    pub fn bezier_segments(&self) -> Result<Vec<((f64, f64), Vec<DVec4>)>, CurveError> {
+    pub fn bezier_segments(&self) -> Result<Vec<BezierSegment>, CurveError> {
         if !self.is_clamped() {
             return self.clamped_ends().bezier_segments();
         }
@@ -658,9 +694,9 @@ pub fn basis_derivatives(
         }
     }
     let mut factor = p as f64;
-    for k in 1..=n {
-        for j in 0..=p {
-            ders[k][j] *= factor;
+    for (k, row) in ders.iter_mut().enumerate().take(n + 1).skip(1) {
+        for d in row.iter_mut().take(p + 1) {
+            *d *= factor;
         }
         factor *= (p - k) as f64;
     }

@@ -42,7 +42,7 @@ impl HalfEdgeMesh {
         }
         for (i, &v) in vertices.iter().enumerate() {
             if !self.is_vertex(v) {
-                return Err(EulerError::Missing(v.to_string()));
+                return Err(EulerError::Missing(v.into()));
             }
             if vertices[..i].contains(&v) {
                 return Err(EulerError::Degenerate);
@@ -57,12 +57,12 @@ impl HalfEdgeMesh {
         let mut hs: Vec<Option<HalfEdgeId>> = Vec::with_capacity(n);
         for i in 0..n {
             let h = self.find_halfedge(vertices[i], vertices[(i + 1) % n]);
-            if let Some(h) = h {
-                if !self.is_boundary_halfedge(h) {
-                    return Err(EulerError::NotInFan {
-                        vertex: vertices[i],
-                    });
-                }
+            if let Some(h) = h
+                && !self.is_boundary_halfedge(h)
+            {
+                return Err(EulerError::NotInFan {
+                    vertex: vertices[i],
+                });
             }
             hs.push(h);
         }
@@ -71,35 +71,35 @@ impl HalfEdgeMesh {
         let mut next_cache: Vec<(HalfEdgeId, HalfEdgeId)> = Vec::new();
         for i in 0..n {
             let ii = (i + 1) % n;
-            if let (Some(inner_prev), Some(inner_next)) = (hs[i], hs[ii]) {
-                if self.next(inner_prev) != inner_next {
-                    let outer_prev = inner_next.twin();
-                    let mut boundary_prev = outer_prev;
-                    let mut guard = self.halfedges.len();
-                    loop {
-                        boundary_prev = self.next(boundary_prev).twin();
-                        guard -= 1;
-                        if guard == 0 {
-                            return Err(EulerError::NotInFan {
-                                vertex: vertices[ii],
-                            });
-                        }
-                        if self.is_boundary_halfedge(boundary_prev) && boundary_prev != inner_prev {
-                            break;
-                        }
-                    }
-                    let boundary_next = self.next(boundary_prev);
-                    if boundary_next == inner_next {
+            if let (Some(inner_prev), Some(inner_next)) = (hs[i], hs[ii])
+                && self.next(inner_prev) != inner_next
+            {
+                let outer_prev = inner_next.twin();
+                let mut boundary_prev = outer_prev;
+                let mut guard = self.halfedges.len();
+                loop {
+                    boundary_prev = self.next(boundary_prev).twin();
+                    guard -= 1;
+                    if guard == 0 {
                         return Err(EulerError::NotInFan {
                             vertex: vertices[ii],
                         });
                     }
-                    let patch_start = self.next(inner_prev);
-                    let patch_end = self.prev(inner_next);
-                    next_cache.push((boundary_prev, patch_start));
-                    next_cache.push((patch_end, boundary_next));
-                    next_cache.push((inner_prev, inner_next));
+                    if self.is_boundary_halfedge(boundary_prev) && boundary_prev != inner_prev {
+                        break;
+                    }
                 }
+                let boundary_next = self.next(boundary_prev);
+                if boundary_next == inner_next {
+                    return Err(EulerError::NotInFan {
+                        vertex: vertices[ii],
+                    });
+                }
+                let patch_start = self.next(inner_prev);
+                let patch_end = self.prev(inner_next);
+                next_cache.push((boundary_prev, patch_start));
+                next_cache.push((patch_end, boundary_next));
+                next_cache.push((inner_prev, inner_next));
             }
         }
         for (a, b) in next_cache.drain(..) {

@@ -165,9 +165,9 @@ impl HalfEdgeMesh {
         }
         // Boundary half-edges: each vertex may start at most one.
         let mut boundary_out = vec![NONE; nv];
-        for h in 0..halfedges.len() {
-            if halfedges[h].face == NONE {
-                let o = halfedges[h].origin as usize;
+        for (h, record) in halfedges.iter().enumerate() {
+            if record.face == NONE {
+                let o = record.origin as usize;
                 if boundary_out[o] != NONE {
                     return Err(BuildError::NonManifoldVertex { vertex: o as u32 });
                 }
@@ -183,11 +183,11 @@ impl HalfEdgeMesh {
             }
         }
         let mut vertex_out = boundary_out;
-        for v in 0..nv {
-            if vertex_out[v] == NONE {
-                if let Some(&c) = outgoing(v as u32).first() {
-                    vertex_out[v] = corner_he[c as usize];
-                }
+        for (v, out) in vertex_out.iter_mut().enumerate() {
+            if *out == NONE
+                && let Some(&c) = outgoing(v as u32).first()
+            {
+                *out = corner_he[c as usize];
             }
         }
         let ne = halfedges.len() / 2;

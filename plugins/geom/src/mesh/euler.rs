@@ -22,7 +22,7 @@
 //! compaction): an inverse restores every live element with the same id and
 //! links, leaving the freed slots dead at the end.
 
-use crate::ids::{EdgeId, FaceId, HalfEdgeId, NONE, VertexId};
+use crate::ids::{EdgeId, ElementId, FaceId, HalfEdgeId, NONE, VertexId};
 use crate::mesh::{HalfEdgeMesh, HalfEdgeRecord, LoopStart};
 use glam::DVec3;
 use std::collections::BTreeSet;
@@ -30,58 +30,142 @@ use std::collections::BTreeSet;
 /// Why an Euler operator refused; the mesh is unchanged.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 pub enum EulerError {
-    #[error("{0} does not exist")]
-    Missing(String),
+    /// An argument names an element that is not live in the mesh.
+    #[error("{} does not exist", .0.short())]
+    Missing(ElementId),
+    /// The half-edge has no face (it lies on a boundary loop).
     #[error("{halfedge} lies on a boundary; the operator needs a face")]
-    NoFace { halfedge: HalfEdgeId },
+    NoFace {
+        /// The boundary half-edge.
+        halfedge: HalfEdgeId,
+    },
+    /// Two half-edges that must share a face loop do not.
     #[error("{a} and {b} are not on the same face loop")]
-    NotSameLoop { a: HalfEdgeId, b: HalfEdgeId },
+    NotSameLoop {
+        /// The first half-edge given.
+        a: HalfEdgeId,
+        /// The second half-edge given.
+        b: HalfEdgeId,
+    },
+    /// The result would have a face of fewer than three sides.
     #[error("the new edge would make a face with fewer than 3 sides")]
     Degenerate,
+    /// The vertex has the wrong number of edges for the operator.
     #[error("{vertex} has valence {valence}; the operator needs {needed}")]
     Valence {
+        /// The vertex.
         vertex: VertexId,
+        /// Its number of edges.
         valence: usize,
+        /// What the operator needs, as words (`"exactly 2"`).
         needed: &'static str,
     },
+    /// The edge has one face on both of its sides.
     #[error("{edge} has the same face on both sides")]
-    SameFace { edge: EdgeId },
+    SameFace {
+        /// The edge.
+        edge: EdgeId,
+    },
+    /// The operator needs an edge between two faces, or an interior edge.
     #[error("{edge} is a boundary edge")]
-    BoundaryEdge { edge: EdgeId },
+    BoundaryEdge {
+        /// The edge.
+        edge: EdgeId,
+    },
+    /// Joining the two faces would not give a simple polygon.
     #[error(
         "faces {a} and {b} share more than one edge; joining them would not give a simple polygon"
     )]
-    SharedEdges { a: FaceId, b: FaceId },
+    SharedEdges {
+        /// One face beside the edge.
+        a: FaceId,
+        /// The other face.
+        b: FaceId,
+    },
+    /// Killing an edge and vertex needs an end of valence 1.
     #[error("{edge} is not a dangling edge (no end of valence 1)")]
-    NotDangling { edge: EdgeId },
+    NotDangling {
+        /// The edge.
+        edge: EdgeId,
+    },
+    /// The new edge would start and end at one vertex.
     #[error("the new edge would join {vertex} to itself")]
-    SelfLoop { vertex: VertexId },
+    SelfLoop {
+        /// The vertex at both ends.
+        vertex: VertexId,
+    },
+    /// A new position has a NaN or infinite coordinate.
     #[error("position is not finite")]
     NonFinite,
+    /// An edge collapse whose ends have a common neighbour.
     #[error("{a} and {b} share a neighbour; collapsing their edge would double an edge")]
-    SharedNeighbours { a: VertexId, b: VertexId },
+    SharedNeighbours {
+        /// The vertex that is kept.
+        a: VertexId,
+        /// The vertex that would be merged into it.
+        b: VertexId,
+    },
+    /// The half-edges given do not bound a proper part of the vertex's fan
+    /// (also: a new face would not fit into the boundary around the vertex).
     #[error("the half-edges do not delimit a part of {vertex}'s fan")]
-    NotInFan { vertex: VertexId },
+    NotInFan {
+        /// The vertex.
+        vertex: VertexId,
+    },
+    /// The operator needs a face with one loop of edges.
     #[error("{face} has inner rings or no edges; the operator needs a plain polygon")]
-    HasRings { face: FaceId },
+    HasRings {
+        /// The face.
+        face: FaceId,
+    },
+    /// The vertex is not the lone vertex of a face loop (see [`LoopStart`]).
     #[error("{vertex} is not the lone vertex of a loop")]
-    NotLoneVertex { vertex: VertexId },
+    NotLoneVertex {
+        /// The vertex.
+        vertex: VertexId,
+    },
+    /// KVFS on a face that is more than one vertex and one face.
     #[error(
         "{face} is not a shell of one vertex and one face (KVFS needs a face whose only loop is a lone vertex)"
     )]
-    NotVertexFaceShell { face: FaceId },
+    NotVertexFaceShell {
+        /// The face.
+        face: FaceId,
+    },
+    /// Two corners that must share a face do not.
     #[error("the corners lie on different faces ({a} and {b})")]
-    DifferentFaces { a: FaceId, b: FaceId },
+    DifferentFaces {
+        /// The first corner's face.
+        a: FaceId,
+        /// The second corner's face.
+        b: FaceId,
+    },
+    /// MEKR on two corners of one loop, which MEF joins instead.
     #[error("the corners lie on the same loop of {face}; join them with make_edge_face")]
-    SameLoop { face: FaceId },
+    SameLoop {
+        /// The face.
+        face: FaceId,
+    },
+    /// The loop given as a ring is the face's outer loop.
     #[error("the loop is the outer loop of {face}, not one of its rings")]
-    NotARing { face: FaceId },
+    NotARing {
+        /// The face.
+        face: FaceId,
+    },
+    /// KFMRH asked to make a face a ring of itself.
     #[error("{face} cannot become a ring of itself")]
-    FaceWithItself { face: FaceId },
+    FaceWithItself {
+        /// The face.
+        face: FaceId,
+    },
+    /// KFMRH on faces that share a vertex.
     #[error("faces {a} and {b} share {vertex}; a ring must not touch the face's other loops")]
     FacesTouch {
+        /// The face that keeps its loops.
         a: FaceId,
+        /// The face that would become its ring.
         b: FaceId,
+        /// A vertex on both.
         vertex: VertexId,
     },
 }
@@ -98,10 +182,15 @@ enum Role {
 /// that belonged to the removed vertex, and both old positions.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Collapse {
+    /// The vertex that stays (the origin of the collapsed half-edge).
     pub kept: VertexId,
+    /// First outgoing half-edge of `kept` that came from the removed vertex.
     pub first: HalfEdgeId,
+    /// Last such half-edge, in fan order.
     pub last: HalfEdgeId,
+    /// Where `kept` was before the collapse.
     pub kept_position: DVec3,
+    /// Where the removed vertex was.
     pub removed_position: DVec3,
 }
 
@@ -199,7 +288,7 @@ impl HalfEdgeMesh {
         if self.is_halfedge(h) {
             Ok(())
         } else {
-            Err(EulerError::Missing(h.to_string()))
+            Err(EulerError::Missing(h.into()))
         }
     }
 
@@ -207,7 +296,7 @@ impl HalfEdgeMesh {
         if self.is_edge(e) {
             Ok(())
         } else {
-            Err(EulerError::Missing(e.to_string()))
+            Err(EulerError::Missing(e.into()))
         }
     }
 
@@ -290,7 +379,7 @@ impl HalfEdgeMesh {
             }
             LoopStart::Vertex(v) => {
                 if !self.is_vertex(v) {
-                    return Err(EulerError::Missing(v.to_string()));
+                    return Err(EulerError::Missing(v.into()));
                 }
                 self.lone_vertex_loop(v)
                     .ok_or(EulerError::NotLoneVertex { vertex: v })
@@ -412,6 +501,26 @@ impl HalfEdgeMesh {
     /// [`EulerError::NotSameLoop`], [`EulerError::NoFace`],
     /// [`EulerError::Degenerate`] when either new face would have fewer than
     /// three sides, [`EulerError::SelfLoop`].
+    ///
+    /// # Example
+    /// Splitting a cube's face along a diagonal, then joining it back:
+    /// ```
+    /// use hedra_geom::{FaceId, HalfEdgeId, Primitive};
+    /// let cube = Primitive::Cube { size: 2.0 }.build()?;
+    /// let mut m = cube.clone();
+    /// let loop_: Vec<HalfEdgeId> = m.face_halfedges(FaceId(0)).collect();
+    /// // target(loop_[0]) and target(loop_[2]) are opposite corners.
+    /// let (e, f) = m.make_edge_face(loop_[0], loop_[2])?;
+    /// assert_eq!((m.vertex_count(), m.edge_count(), m.face_count()), (8, 13, 7));
+    /// assert_eq!(m.face_halfedges(f).count(), 3);
+    /// m.validate()?;
+    ///
+    /// assert_eq!(m.kill_edge_face(e)?, f);
+    /// assert_eq!((m.vertex_count(), m.edge_count(), m.face_count()), (8, 12, 6));
+    /// m.validate()?;
+    /// assert!(m.same_as(&cube));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn make_edge_face(
         &mut self,
         h_a: HalfEdgeId,
@@ -546,6 +655,28 @@ impl HalfEdgeMesh {
     ///
     /// # Errors
     /// [`EulerError::Missing`], [`EulerError::NonFinite`].
+    ///
+    /// # Example
+    /// ```
+    /// use hedra_geom::{EdgeId, EulerError, Primitive};
+    /// let cube = Primitive::Cube { size: 2.0 }.build()?;
+    /// let mut m = cube.clone();
+    /// let e = EdgeId(0);
+    /// let v = m.split_edge(e, m.edge_midpoint(e))?;
+    /// assert_eq!((m.vertex_count(), m.edge_count(), m.face_count()), (9, 13, 6));
+    /// assert_eq!(m.vertex_valence(v), 2);
+    /// m.validate()?;
+    ///
+    /// assert_eq!(m.join_edges(v)?, e);
+    /// m.validate()?;
+    /// assert!(m.same_as(&cube));
+    ///
+    /// // A refusal names the element and leaves the mesh as it was.
+    /// let err = m.split_edge(EdgeId(99), m.edge_midpoint(e)).unwrap_err();
+    /// assert_eq!(err, EulerError::Missing(EdgeId(99).into()));
+    /// assert_eq!(err.to_string(), "e99 does not exist");
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn split_edge(&mut self, e: EdgeId, p: DVec3) -> Result<VertexId, EulerError> {
         self.check_edge(e)?;
         if !p.is_finite() {
@@ -588,7 +719,7 @@ impl HalfEdgeMesh {
     /// drop below three sides, [`EulerError::SelfLoop`].
     pub fn join_edges(&mut self, v: VertexId) -> Result<EdgeId, EulerError> {
         if !self.is_vertex(v) {
-            return Err(EulerError::Missing(v.to_string()));
+            return Err(EulerError::Missing(v.into()));
         }
         let outs: Vec<HalfEdgeId> = self.vertex_outgoing(v).collect();
         if outs.len() != 2 {
@@ -822,7 +953,7 @@ impl HalfEdgeMesh {
         p: DVec3,
     ) -> Result<EdgeId, EulerError> {
         if !self.is_vertex(v) {
-            return Err(EulerError::Missing(v.to_string()));
+            return Err(EulerError::Missing(v.into()));
         }
         self.check_halfedge(first)?;
         self.check_halfedge(last)?;
@@ -886,7 +1017,7 @@ impl HalfEdgeMesh {
     /// a wire (a loop of fewer than three edges).
     pub fn make_hole(&mut self, f: FaceId) -> Result<HalfEdgeId, EulerError> {
         if !self.is_face(f) {
-            return Err(EulerError::Missing(f.to_string()));
+            return Err(EulerError::Missing(f.into()));
         }
         self.check_polygon_face(f)?;
         let loop_: Vec<HalfEdgeId> = self.face_halfedges(f).collect();
@@ -981,7 +1112,7 @@ impl HalfEdgeMesh {
     /// face has edges or rings.
     pub fn kill_vertex_face_shell(&mut self, f: FaceId) -> Result<VertexId, EulerError> {
         if !self.is_face(f) {
-            return Err(EulerError::Missing(f.to_string()));
+            return Err(EulerError::Missing(f.into()));
         }
         let Some(v) = self.lone_vertex_face(f) else {
             return Err(EulerError::NotVertexFaceShell { face: f });
@@ -1180,7 +1311,7 @@ impl HalfEdgeMesh {
     ) -> Result<LoopStart, EulerError> {
         for f in [keep, kill] {
             if !self.is_face(f) {
-                return Err(EulerError::Missing(f.to_string()));
+                return Err(EulerError::Missing(f.into()));
             }
         }
         if keep == kill {
@@ -1275,7 +1406,7 @@ impl HalfEdgeMesh {
     /// a vertex twice is extruded on a copy first.
     pub fn extrude_face(&mut self, f: FaceId, offset: DVec3) -> Result<Vec<FaceId>, EulerError> {
         if !self.is_face(f) {
-            return Err(EulerError::Missing(f.to_string()));
+            return Err(EulerError::Missing(f.into()));
         }
         if !offset.is_finite() {
             return Err(EulerError::NonFinite);

@@ -41,7 +41,7 @@ mod orientation;
 mod records;
 pub mod validate;
 
-pub use records::MeshData;
+pub use records::{MeshData, MeshDataError};
 
 use crate::ids::{EdgeId, FaceId, HalfEdgeId, NONE, VertexId};
 use glam::DVec3;
@@ -63,7 +63,9 @@ struct HalfEdgeRecord {
 /// half-edge's origin, between `prev(h)` and `h`.
 #[derive(Copy, Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
 pub enum LoopStart {
+    /// A loop with edges, entered at this half-edge.
     HalfEdge(HalfEdgeId),
+    /// A loop without edges: its one (isolated) vertex.
     Vertex(VertexId),
 }
 
@@ -123,9 +125,14 @@ pub struct HalfEdgeMesh {
 /// Counts and topological invariants of a mesh, as `hedra info` prints them.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct MeshStats {
+    /// Live vertices V.
     pub vertices: usize,
+    /// Live edges E.
     pub edges: usize,
+    /// Live faces F.
     pub faces: usize,
+    /// Closed loops of boundary half-edges; 0 when the mesh is invalid
+    /// (they are not counted then).
     pub boundary_loops: usize,
     /// Inner rings of faces (loops L − F); zero for ordinary meshes.
     #[serde(default, skip_serializing_if = "is_zero")]
@@ -139,9 +146,14 @@ pub struct MeshStats {
     /// 2(S − H), each boundary loop counted as a face of one loop (so
     /// χ = 2S − 2g − b without rings); `None` when the mesh is invalid.
     pub genus: Option<i64>,
+    /// Valid and without boundary loops.
     pub closed: bool,
+    /// The validator passed (it rejects non-manifold fans).
     pub manifold: bool,
-    /// `None` when [`HalfEdgeMesh::validate`] passed, else its first problems.
+    /// `Ok` when [`HalfEdgeMesh::validate`] passed, else the message of its
+    /// [`ValidationError`](crate::ValidationError). Kept a message on
+    /// purpose: `MeshStats` derives `Deserialize`, which a violation's
+    /// `&'static str` fields cannot; call `validate` for the typed error.
     pub validation: Result<(), String>,
 }
 
@@ -188,34 +200,42 @@ impl HalfEdgeMesh {
 
     // ----- liveness ------------------------------------------------------
 
+    /// True when `v` is a live vertex (in range and not removed).
     pub fn is_vertex(&self, v: VertexId) -> bool {
         v.index() < self.vertex_dead.len() && !self.vertex_dead[v.index()]
     }
+    /// True when `e` is a live edge.
     pub fn is_edge(&self, e: EdgeId) -> bool {
         e.index() < self.edge_dead.len() && !self.edge_dead[e.index()]
     }
+    /// True when `h` belongs to a live edge.
     pub fn is_halfedge(&self, h: HalfEdgeId) -> bool {
         self.is_edge(h.edge())
     }
+    /// True when `f` is a live face.
     pub fn is_face(&self, f: FaceId) -> bool {
         f.index() < self.face_dead.len() && !self.face_dead[f.index()]
     }
 
     // ----- iteration over live elements ----------------------------------
 
+    /// Live vertices in id order.
     pub fn vertices(&self) -> impl Iterator<Item = VertexId> + '_ {
         (0..self.vertex_dead.len() as u32)
             .filter(|&i| !self.vertex_dead[i as usize])
             .map(VertexId)
     }
+    /// Live edges in id order.
     pub fn edges(&self) -> impl Iterator<Item = EdgeId> + '_ {
         (0..self.edge_dead.len() as u32)
             .filter(|&i| !self.edge_dead[i as usize])
             .map(EdgeId)
     }
+    /// Both half-edges of every live edge, in id order.
     pub fn halfedges(&self) -> impl Iterator<Item = HalfEdgeId> + '_ {
         self.edges().flat_map(|e| [e.halfedge(0), e.halfedge(1)])
     }
+    /// Live faces in id order.
     pub fn faces(&self) -> impl Iterator<Item = FaceId> + '_ {
         (0..self.face_dead.len() as u32)
             .filter(|&i| !self.face_dead[i as usize])
@@ -238,10 +258,12 @@ impl HalfEdgeMesh {
     pub fn target(&self, h: HalfEdgeId) -> VertexId {
         VertexId(self.he(h.twin()).origin)
     }
+    /// The following half-edge of `h`'s loop (face or boundary).
     #[inline]
     pub fn next(&self, h: HalfEdgeId) -> HalfEdgeId {
         HalfEdgeId(self.he(h).next)
     }
+    /// The preceding half-edge of `h`'s loop.
     #[inline]
     pub fn prev(&self, h: HalfEdgeId) -> HalfEdgeId {
         HalfEdgeId(self.he(h).prev)
@@ -252,10 +274,12 @@ impl HalfEdgeMesh {
         let f = self.he(h).face;
         (f != NONE).then_some(FaceId(f))
     }
+    /// True when `h` has no face (it runs along a boundary loop).
     #[inline]
     pub fn is_boundary_halfedge(&self, h: HalfEdgeId) -> bool {
         self.he(h).face == NONE
     }
+    /// True when either side of `e` has no face.
     pub fn is_boundary_edge(&self, e: EdgeId) -> bool {
         self.is_boundary_halfedge(e.halfedge(0)) || self.is_boundary_halfedge(e.halfedge(1))
     }
@@ -266,10 +290,12 @@ impl HalfEdgeMesh {
         let h = self.vertex_out[v.index()];
         (h != NONE).then_some(HalfEdgeId(h))
     }
+    /// True when `v` lies on a boundary (false for an isolated vertex).
     pub fn is_boundary_vertex(&self, v: VertexId) -> bool {
         self.vertex_halfedge(v)
             .is_some_and(|h| self.is_boundary_halfedge(h))
     }
+    /// True when `v` has no edges.
     pub fn is_isolated_vertex(&self, v: VertexId) -> bool {
         self.vertex_out[v.index()] == NONE
     }
@@ -457,10 +483,13 @@ impl HalfEdgeMesh {
 
     // ----- geometry ------------------------------------------------------
 
+    /// Position of vertex `v`.
     #[inline]
     pub fn position(&self, v: VertexId) -> DVec3 {
         self.positions[v.index()]
     }
+    /// Moves vertex `v` to `p` (connectivity is unchanged; `p` is not
+    /// checked for finiteness, [`validate`](Self::validate) reports it).
     #[inline]
     pub fn set_position(&mut self, v: VertexId, p: DVec3) {
         self.positions[v.index()] = p;
@@ -531,10 +560,12 @@ impl HalfEdgeMesh {
             .sum::<DVec3>()
             .normalize_or_zero()
     }
+    /// Midpoint of edge `e`'s two ends.
     pub fn edge_midpoint(&self, e: EdgeId) -> DVec3 {
         let [a, b] = self.edge_vertices(e);
         (self.position(a) + self.position(b)) * 0.5
     }
+    /// Distance between edge `e`'s two ends.
     pub fn edge_length(&self, e: EdgeId) -> f64 {
         let [a, b] = self.edge_vertices(e);
         self.position(a).distance(self.position(b))

@@ -4,7 +4,8 @@
 //! [`mesh`](super) module.
 
 use super::{HalfEdgeMesh, HalfEdgeRecord, LoopStart};
-use crate::ids::{FaceId, HalfEdgeId, NONE, VertexId};
+use crate::ids::{ElementKind, FaceId, HalfEdgeId, NONE, VertexId};
+use crate::validate::ValidationError;
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
@@ -21,10 +22,13 @@ pub struct MeshData {
     /// One half-edge per face id (of its outer loop); `u32::MAX` for a face
     /// without edges (listed in `lone_vertex_faces`).
     pub face_halfedge: Vec<u32>,
+    /// Ids of removed vertices (their slots stay, so ids do not shift).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub dead_vertices: Vec<u32>,
+    /// Ids of removed edges.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub dead_edges: Vec<u32>,
+    /// Ids of removed faces.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub dead_faces: Vec<u32>,
     /// Inner rings as `(face id, loop starts)`; absent (and the file
@@ -34,6 +38,57 @@ pub struct MeshData {
     /// Faces without edges as `(face id, lone vertex id)`; absent when none.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub lone_vertex_faces: Vec<(u32, u32)>,
+}
+
+/// Why stored records do not make a mesh ([`HalfEdgeMesh`]'s
+/// `TryFrom<MeshData>`, used when a scene file is loaded).
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum MeshDataError {
+    /// `vertex_halfedge` and `positions` differ in length.
+    #[error("mesh has {positions} positions but {records} vertex records")]
+    VertexRecords {
+        /// Length of `positions`.
+        positions: usize,
+        /// Length of `vertex_halfedge`.
+        records: usize,
+    },
+    /// Half-edges come in pairs; the list has an odd length.
+    #[error("odd number of half-edges ({count})")]
+    OddHalfEdges {
+        /// Length of `halfedges`.
+        count: usize,
+    },
+    /// A stored reference is neither `-1` nor a 32-bit id.
+    #[error("{kind} id {id} is out of range")]
+    IdOutOfRange {
+        /// What the reference names (a half-edge or a face).
+        kind: ElementKind,
+        /// The stored value.
+        id: i64,
+    },
+    /// A dead-element list names an id past its array.
+    #[error("dead {kind} id {id} is out of range")]
+    DeadOutOfRange {
+        /// Which list: vertices, edges or faces.
+        kind: ElementKind,
+        /// The stored id.
+        id: u32,
+    },
+    /// `face_rings` lists a face twice.
+    #[error("face {} has two ring lists", .face.0)]
+    TwoRingLists {
+        /// The face.
+        face: FaceId,
+    },
+    /// `lone_vertex_faces` lists a face twice.
+    #[error("face {} has two lone vertices", .face.0)]
+    TwoLoneVertices {
+        /// The face.
+        face: FaceId,
+    },
+    /// The records read back but break an invariant (the validator's report).
+    #[error(transparent)]
+    Invalid(#[from] ValidationError),
 }
 
 fn opt_to_i64(x: u32) -> i64 {
@@ -68,25 +123,27 @@ impl From<HalfEdgeMesh> for MeshData {
 }
 
 impl TryFrom<MeshData> for HalfEdgeMesh {
-    type Error = String;
-    fn try_from(d: MeshData) -> Result<Self, String> {
+    type Error = MeshDataError;
+    fn try_from(d: MeshData) -> Result<Self, MeshDataError> {
         let nv = d.positions.len();
         if d.vertex_halfedge.len() != nv {
-            return Err(format!(
-                "mesh has {nv} positions but {} vertex records",
-                d.vertex_halfedge.len()
-            ));
+            return Err(MeshDataError::VertexRecords {
+                positions: nv,
+                records: d.vertex_halfedge.len(),
+            });
         }
-        if d.halfedges.len() % 2 != 0 {
-            return Err(format!("odd number of half-edges ({})", d.halfedges.len()));
+        if !d.halfedges.len().is_multiple_of(2) {
+            return Err(MeshDataError::OddHalfEdges {
+                count: d.halfedges.len(),
+            });
         }
-        let to_raw = |x: i64, what: &str| -> Result<u32, String> {
+        let to_raw = |x: i64, kind: ElementKind| -> Result<u32, MeshDataError> {
             if x == -1 {
                 Ok(NONE)
             } else if (0..NONE as i64).contains(&x) {
                 Ok(x as u32)
             } else {
-                Err(format!("{what} id {x} is out of range"))
+                Err(MeshDataError::IdOutOfRange { kind, id: x })
             }
         };
         let mut m = HalfEdgeMesh {
@@ -94,7 +151,7 @@ impl TryFrom<MeshData> for HalfEdgeMesh {
             vertex_out: d
                 .vertex_halfedge
                 .iter()
-                .map(|&x| to_raw(x, "half-edge"))
+                .map(|&x| to_raw(x, ElementKind::HalfEdge))
                 .collect::<Result<_, _>>()?,
             halfedges: d
                 .halfedges
@@ -104,25 +161,25 @@ impl TryFrom<MeshData> for HalfEdgeMesh {
                         origin,
                         next,
                         prev,
-                        face: to_raw(face, "face")?,
+                        face: to_raw(face, ElementKind::Face)?,
                     })
                 })
-                .collect::<Result<_, String>>()?,
+                .collect::<Result<_, MeshDataError>>()?,
             face_halfedge: d.face_halfedge,
             ..Default::default()
         };
         m.vertex_dead = vec![false; nv];
         m.edge_dead = vec![false; m.halfedges.len() / 2];
         m.face_dead = vec![false; m.face_halfedge.len()];
-        for (list, flags, what) in [
-            (&d.dead_vertices, &mut m.vertex_dead, "vertex"),
-            (&d.dead_edges, &mut m.edge_dead, "edge"),
-            (&d.dead_faces, &mut m.face_dead, "face"),
+        for (list, flags, kind) in [
+            (&d.dead_vertices, &mut m.vertex_dead, ElementKind::Vertex),
+            (&d.dead_edges, &mut m.edge_dead, ElementKind::Edge),
+            (&d.dead_faces, &mut m.face_dead, ElementKind::Face),
         ] {
             for &i in list {
                 *flags
                     .get_mut(i as usize)
-                    .ok_or_else(|| format!("dead {what} id {i} is out of range"))? = true;
+                    .ok_or(MeshDataError::DeadOutOfRange { kind, id: i })? = true;
             }
         }
         m.live_vertices = m.vertex_dead.iter().filter(|d| !**d).count();
@@ -130,15 +187,15 @@ impl TryFrom<MeshData> for HalfEdgeMesh {
         m.live_faces = m.face_dead.iter().filter(|d| !**d).count();
         for (f, rings) in d.face_rings {
             if m.face_rings.insert(FaceId(f), rings).is_some() {
-                return Err(format!("face {f} has two ring lists"));
+                return Err(MeshDataError::TwoRingLists { face: FaceId(f) });
             }
         }
         for (f, v) in d.lone_vertex_faces {
             if m.face_lone_vertex.insert(FaceId(f), VertexId(v)).is_some() {
-                return Err(format!("face {f} has two lone vertices"));
+                return Err(MeshDataError::TwoLoneVertices { face: FaceId(f) });
             }
         }
-        m.validate().map_err(|e| e.to_string())?;
+        m.validate()?;
         Ok(m)
     }
 }

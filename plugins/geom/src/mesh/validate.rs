@@ -2,7 +2,7 @@
 //! `validateConnectivity`): called after every operator in the tests, and on
 //! every mesh read from a file. It never panics, even on corrupted records.
 
-use crate::ids::{FaceId, HalfEdgeId, NONE, VertexId};
+use crate::ids::{ElementId, FaceId, HalfEdgeId, NONE, VertexId};
 use crate::mesh::{HalfEdgeMesh, LoopStart};
 use std::fmt;
 
@@ -11,45 +11,99 @@ use std::fmt;
 pub enum Violation {
     /// A record refers to an id outside its array or to a dead element.
     DanglingReference {
-        element: String,
+        /// The record that holds the reference.
+        element: ElementId,
+        /// Which of its fields: `"half-edge"`, `"origin"`, `"next"`,
+        /// `"prev"`, `"face"`, `"ring half-edge"`.
         field: &'static str,
+        /// The raw id it holds.
         value: u32,
     },
     /// `next(prev(h)) != h` or `prev(next(h)) != h`.
-    BrokenLink { halfedge: HalfEdgeId },
+    BrokenLink {
+        /// The half-edge whose links disagree.
+        halfedge: HalfEdgeId,
+    },
     /// `origin(next(h)) != target(h)`.
-    DisconnectedLoop { halfedge: HalfEdgeId },
+    DisconnectedLoop {
+        /// The half-edge whose successor starts elsewhere.
+        halfedge: HalfEdgeId,
+    },
     /// Consecutive half-edges of a loop disagree on their face.
-    FaceMismatch { halfedge: HalfEdgeId },
+    FaceMismatch {
+        /// The half-edge whose successor names another face.
+        halfedge: HalfEdgeId,
+    },
     /// An edge from a vertex to itself.
-    SelfLoop { halfedge: HalfEdgeId },
+    SelfLoop {
+        /// One half-edge of the edge.
+        halfedge: HalfEdgeId,
+    },
     /// A face's loop does not come back to its start, or has fewer than 3 sides.
-    BadFaceLoop { face: FaceId, len: usize },
+    BadFaceLoop {
+        /// The face.
+        face: FaceId,
+        /// Half-edges walked before giving up or closing.
+        len: usize,
+    },
     /// A face's half-edge count differs from the half-edges that name it.
-    StrayFaceHalfEdge { face: FaceId },
+    StrayFaceHalfEdge {
+        /// The face.
+        face: FaceId,
+    },
     /// A loop's lone vertex is dead, has edges, is used by another loop, or
     /// the face's outer half-edge and lone vertex disagree.
-    BadLoneVertex { face: FaceId, vertex: VertexId },
+    BadLoneVertex {
+        /// The face whose loop it is.
+        face: FaceId,
+        /// The lone vertex.
+        vertex: VertexId,
+    },
     /// A ring of a face starts on the outer loop or on another ring.
-    RingOverlap { face: FaceId, halfedge: HalfEdgeId },
+    RingOverlap {
+        /// The face.
+        face: FaceId,
+        /// The ring's start half-edge.
+        halfedge: HalfEdgeId,
+    },
     /// A ring list for a dead face, or an empty one.
-    BadRingTable { face: FaceId },
+    BadRingTable {
+        /// The face the list is stored for.
+        face: FaceId,
+    },
     /// `origin(vertex_halfedge(v)) != v`.
-    WrongVertexHalfEdge { vertex: VertexId },
+    WrongVertexHalfEdge {
+        /// The vertex.
+        vertex: VertexId,
+    },
     /// The fan around a vertex misses some of its outgoing half-edges.
     NonManifoldVertex {
+        /// The vertex.
         vertex: VertexId,
+        /// Outgoing half-edges reached by walking its fan.
         fan: usize,
+        /// Outgoing half-edges it has in all.
         outgoing: usize,
     },
     /// A boundary vertex whose stored half-edge is not a boundary one.
-    BoundaryNotFirst { vertex: VertexId },
+    BoundaryNotFirst {
+        /// The vertex.
+        vertex: VertexId,
+    },
     /// A non-finite coordinate.
-    NonFinitePosition { vertex: VertexId },
+    NonFinitePosition {
+        /// The vertex.
+        vertex: VertexId,
+    },
     /// Cached live counts disagree with the flags.
     WrongCount {
+        /// Which count: `"vertex record"` or `"edge record"` (array
+        /// lengths that disagree), or `"vertex"`, `"edge"`, `"face"` (live
+        /// counts).
         what: &'static str,
+        /// The stored count.
         cached: usize,
+        /// The count found.
         actual: usize,
     },
 }
@@ -62,7 +116,11 @@ impl fmt::Display for Violation {
                 field,
                 value,
             } => {
-                write!(f, "{element}: {field} refers to missing element {value}")
+                write!(
+                    f,
+                    "{}: {field} refers to missing element {value}",
+                    element.short()
+                )
             }
             Violation::BrokenLink { halfedge } => write!(f, "{halfedge}: next/prev links disagree"),
             Violation::DisconnectedLoop { halfedge } => {
@@ -128,6 +186,7 @@ impl fmt::Display for Violation {
 /// (at most [`ValidationError::LIMIT`]).
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 pub struct ValidationError {
+    /// The violations, in the order found (never empty).
     pub violations: Vec<Violation>,
 }
 
@@ -216,7 +275,7 @@ impl HalfEdgeMesh {
         let live_vertex = |x: u32| (x as usize) < nv && !self.vertex_dead[x as usize];
         let live_he = |x: u32| (x as usize) < nh && !self.edge_dead[x as usize / 2];
         let live_face = |x: u32| (x as usize) < nf && !self.face_dead[x as usize];
-        let push = |out: &mut Vec<Violation>, element: String, field, value| {
+        let push = |out: &mut Vec<Violation>, element: ElementId, field, value| {
             if out.len() < ValidationError::LIMIT {
                 out.push(Violation::DanglingReference {
                     element,
@@ -228,7 +287,7 @@ impl HalfEdgeMesh {
         for v in self.vertices() {
             let h = self.vertex_out[v.index()];
             if h != NONE && !live_he(h) {
-                push(out, v.to_string(), "half-edge", h);
+                push(out, v.into(), "half-edge", h);
             }
             if !self.positions[v.index()].is_finite() {
                 out.push(Violation::NonFinitePosition { vertex: v });
@@ -237,16 +296,16 @@ impl HalfEdgeMesh {
         for h in self.halfedges() {
             let r = &self.halfedges[h.index()];
             if !live_vertex(r.origin) {
-                push(out, h.to_string(), "origin", r.origin);
+                push(out, h.into(), "origin", r.origin);
             }
             if !live_he(r.next) {
-                push(out, h.to_string(), "next", r.next);
+                push(out, h.into(), "next", r.next);
             }
             if !live_he(r.prev) {
-                push(out, h.to_string(), "prev", r.prev);
+                push(out, h.into(), "prev", r.prev);
             }
             if r.face != NONE && !live_face(r.face) {
-                push(out, h.to_string(), "face", r.face);
+                push(out, h.into(), "face", r.face);
             }
         }
         for f in self.faces() {
@@ -255,7 +314,7 @@ impl HalfEdgeMesh {
             if let Some(&v) = lone.filter(|_| h != NONE) {
                 out.push(Violation::BadLoneVertex { face: f, vertex: v });
             } else if lone.is_none() && !live_he(h) {
-                push(out, f.to_string(), "half-edge", h);
+                push(out, f.into(), "half-edge", h);
             }
         }
         // Rings and lone vertices (side tables, empty for ordinary meshes).
@@ -280,7 +339,7 @@ impl HalfEdgeMesh {
             for &r in rings {
                 match r {
                     LoopStart::HalfEdge(h) if !live_he(h.0) => {
-                        push(out, f.to_string(), "ring half-edge", h.0);
+                        push(out, f.into(), "ring half-edge", h.0);
                     }
                     LoopStart::HalfEdge(_) => {}
                     LoopStart::Vertex(v) => check_lone(out, f, v),

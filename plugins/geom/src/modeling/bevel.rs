@@ -45,7 +45,7 @@ pub fn bevel_vertices(
     set.dedup();
     for &v in &set {
         if !mesh.is_vertex(v) {
-            return Err(ModelingError::Missing(v.to_string()));
+            return Err(ModelingError::Missing(v.into()));
         }
         if mesh.is_isolated_vertex(v) {
             return Err(ModelingError::Parameter {
@@ -131,15 +131,14 @@ pub fn bevel_vertices(
         work.free_vertex(v);
     }
     let added = add_faces_in_any_order(&mut work, polygons, "the bevel")?;
-    work.validate()
-        .map_err(|e| ModelingError::Invalid(e.to_string()))?;
+    work.validate()?;
     *mesh = work;
     Ok(added[face_count.min(added.len())..].to_vec())
 }
 
 /// Bevels edges (Blender's Ctrl+B) `width` wide, flat or rounded with
 /// `segments`, at any valence and where beveled edges meet (see
-/// [`chamfer_edges`]). Returns the new faces: the strips, then the patches.
+/// `chamfer_edges`). Returns the new faces: the strips, then the patches.
 ///
 /// # Errors
 /// [`ModelingError::Parameter`] for a width that is not positive or too
@@ -169,7 +168,7 @@ pub fn bevel_edges(
         });
     }
     if let Some(e) = edges.iter().find(|e| !mesh.is_edge(**e)) {
-        return Err(ModelingError::Missing(e.to_string()));
+        return Err(ModelingError::Missing((*e).into()));
     }
     chamfer_edges(mesh, edges, width, segments)
 }
@@ -232,8 +231,7 @@ fn chamfer_edges(
         work.free_vertex(v);
     }
     let added = add_faces_in_any_order(&mut work, polygons, "the bevel")?;
-    work.validate()
-        .map_err(|e| ModelingError::Invalid(e.to_string()))?;
+    work.validate()?;
     *mesh = work;
     Ok(added[n_faces.min(added.len())..].to_vec())
 }

@@ -187,8 +187,7 @@ pub fn bisect(
             }
         }
     }
-    work.validate()
-        .map_err(|e| ModelingError::Invalid(e.to_string()))?;
+    work.validate()?;
     *mesh = work;
     Ok(out)
 }

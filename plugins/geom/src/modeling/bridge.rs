@@ -1,7 +1,7 @@
 //! Bridging two boundary loops with a ring of quads (Blender's "Bridge
 //! Edge Loops").
 
-use super::ModelingError;
+use super::{InvalidResult, ModelingError, NewFace};
 use crate::ids::{EdgeId, FaceId, HalfEdgeId, VertexId};
 use crate::mesh::HalfEdgeMesh;
 
@@ -19,7 +19,7 @@ pub fn bridge_loops(
     edges: &[EdgeId],
 ) -> Result<Vec<FaceId>, ModelingError> {
     if let Some(e) = edges.iter().find(|e| !mesh.is_edge(**e)) {
-        return Err(ModelingError::Missing(e.to_string()));
+        return Err(ModelingError::Missing((*e).into()));
     }
     let loops = mesh.boundary_loops();
     let mut chosen: Vec<&Vec<HalfEdgeId>> = loops
@@ -63,13 +63,14 @@ pub fn bridge_loops(
             at(s - i - 1),
             at(s - i),
         ];
-        out.push(
-            work.add_face(&quad)
-                .map_err(|e| ModelingError::Invalid(format!("bridge quad {i}: {e}")))?,
-        );
+        out.push(work.add_face(&quad).map_err(|error| {
+            ModelingError::Invalid(InvalidResult::Face {
+                face: NewFace::BridgeQuad { index: i as usize },
+                error,
+            })
+        })?);
     }
-    work.validate()
-        .map_err(|e| ModelingError::Invalid(e.to_string()))?;
+    work.validate()?;
     *mesh = work;
     Ok(out)
 }

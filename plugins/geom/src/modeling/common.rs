@@ -3,7 +3,7 @@
 //! faces around a selection (public: the edit tools use them to turn an
 //! edge or vertex selection into faces).
 
-use super::ModelingError;
+use super::{InvalidResult, ModelingError};
 use crate::ids::{EdgeId, FaceId, HalfEdgeId, VertexId};
 use crate::mesh::HalfEdgeMesh;
 
@@ -12,7 +12,7 @@ pub(super) fn check_faces(mesh: &HalfEdgeMesh, faces: &[FaceId]) -> Result<(), M
         return Err(ModelingError::Empty("no faces"));
     }
     match faces.iter().find(|f| !mesh.is_face(**f)) {
-        Some(f) => Err(ModelingError::Missing(f.to_string())),
+        Some(f) => Err(ModelingError::Missing((*f).into())),
         None => Ok(()),
     }
 }
@@ -58,7 +58,7 @@ pub(super) fn connect_in_shared_face(
 pub(super) fn add_faces_in_any_order(
     work: &mut HalfEdgeMesh,
     polygons: Vec<Vec<VertexId>>,
-    what: &str,
+    what: &'static str,
 ) -> Result<Vec<FaceId>, ModelingError> {
     let mut added = vec![None; polygons.len()];
     let mut pending: Vec<usize> = (0..polygons.len()).collect();
@@ -76,10 +76,10 @@ pub(super) fn add_faces_in_any_order(
             }
         }
         if failed.len() == before {
-            return Err(ModelingError::Invalid(format!(
-                "{what} would make the surface non-manifold ({})",
-                last_error.map_or_else(String::new, |e| e.to_string())
-            )));
+            return Err(ModelingError::Invalid(InvalidResult::NonManifold {
+                operation: what,
+                error: last_error,
+            }));
         }
         pending = failed;
     }

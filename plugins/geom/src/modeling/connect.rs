@@ -16,7 +16,7 @@ pub fn connect_vertices(
 ) -> Result<EdgeId, ModelingError> {
     for v in [a, b] {
         if !mesh.is_vertex(v) {
-            return Err(ModelingError::Missing(v.to_string()));
+            return Err(ModelingError::Missing(v.into()));
         }
     }
     connect_in_shared_face(mesh, a, b, None)

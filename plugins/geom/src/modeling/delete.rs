@@ -17,8 +17,7 @@ pub fn delete_faces(mesh: &mut HalfEdgeMesh, faces: &[FaceId]) -> Result<(), Mod
     check_faces(mesh, faces)?;
     let mut work = mesh.clone();
     work.delete_faces(faces, false);
-    work.validate()
-        .map_err(|e| ModelingError::Invalid(e.to_string()))?;
+    work.validate()?;
     *mesh = work;
     Ok(())
 }

@@ -18,7 +18,7 @@ pub fn dissolve_edges(mesh: &mut HalfEdgeMesh, edges: &[EdgeId]) -> Result<(), M
     let mut work = mesh.clone();
     for &e in edges {
         if !work.is_edge(e) {
-            return Err(ModelingError::Missing(e.to_string()));
+            return Err(ModelingError::Missing(e.into()));
         }
         work.kill_edge_face(e)?;
     }
@@ -162,8 +162,7 @@ pub fn dissolve_faces(
             break;
         }
     }
-    work.validate()
-        .map_err(|e| ModelingError::Invalid(e.to_string()))?;
+    work.validate()?;
     *mesh = work;
     Ok(region.into_iter().collect())
 }

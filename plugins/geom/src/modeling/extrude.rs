@@ -1,8 +1,9 @@
 //! Extrude: faces one by one or as a region (Blender's E), and open
 //! boundary edges; region extrude and inset share [`rebuild_region`].
 
-use super::ModelingError;
 use super::common::check_faces;
+use super::{InvalidResult, ModelingError, NewFace};
+use crate::euler::EulerError;
 use crate::ids::{EdgeId, FaceId, VertexId};
 use crate::mesh::HalfEdgeMesh;
 use glam::DVec3;
@@ -92,9 +93,9 @@ pub(super) fn rebuild_region(
     for p in &polys {
         for &v in p {
             if boundary.iter().any(|&(a, _)| a == v) {
-                if !copy.contains_key(&v) {
+                if let std::collections::hash_map::Entry::Vacant(slot) = copy.entry(v) {
                     let at = outline(v, work.position(v));
-                    copy.insert(v, work.add_vertex(at)?);
+                    slot.insert(work.add_vertex(at)?);
                 }
             } else if moved.insert(v) {
                 let at = inner(v, work.position(v));
@@ -103,20 +104,22 @@ pub(super) fn rebuild_region(
         }
     }
     let lift = |v: VertexId| copy.get(&v).copied().unwrap_or(v);
-    let invalid = |why: String| ModelingError::Invalid(why);
+    let invalid = |face: NewFace, error: EulerError| {
+        ModelingError::Invalid(InvalidResult::Face { face, error })
+    };
     for &(a, b) in &boundary {
         work.add_face(&[a, b, lift(b), lift(a)])
-            .map_err(|e| invalid(format!("side of edge {a}-{b}: {e}")))?;
+            .map_err(|e| invalid(NewFace::Side { a, b }, e))?;
     }
     let mut caps = Vec::with_capacity(polys.len());
     for p in &polys {
         let lifted: Vec<VertexId> = p.iter().map(|&v| lift(v)).collect();
         caps.push(
             work.add_face(&lifted)
-                .map_err(|e| invalid(format!("cap: {e}")))?,
+                .map_err(|e| invalid(NewFace::Cap, e))?,
         );
     }
-    work.validate().map_err(|e| invalid(e.to_string()))?;
+    work.validate()?;
     *mesh = work;
     Ok(caps)
 }
@@ -147,7 +150,7 @@ pub fn extrude_boundary_edges(
     let mut sides = Vec::with_capacity(edges.len());
     for &e in edges {
         if !mesh.is_edge(e) {
-            return Err(ModelingError::Missing(e.to_string()));
+            return Err(ModelingError::Missing(e.into()));
         }
         let h = [e.halfedge(0), e.halfedge(1)]
             .into_iter()
@@ -159,9 +162,8 @@ pub fn extrude_boundary_edges(
     let mut copy = std::collections::HashMap::new();
     for &(x, y) in &sides {
         for v in [x, y] {
-            if !copy.contains_key(&v) {
-                let c = work.add_vertex(work.position(v) + offset)?;
-                copy.insert(v, c);
+            if let std::collections::hash_map::Entry::Vacant(slot) = copy.entry(v) {
+                slot.insert(work.add_vertex(work.position(v) + offset)?);
             }
         }
     }
@@ -169,11 +171,15 @@ pub fn extrude_boundary_edges(
     for &(x, y) in &sides {
         let f = work
             .add_face(&[x, y, copy[&y], copy[&x]])
-            .map_err(|e| ModelingError::Invalid(format!("edge {x}-{y}: {e}")))?;
+            .map_err(|error| {
+                ModelingError::Invalid(InvalidResult::Face {
+                    face: NewFace::BoundaryEdge { a: x, b: y },
+                    error,
+                })
+            })?;
         out.push(f);
     }
-    work.validate()
-        .map_err(|e| ModelingError::Invalid(e.to_string()))?;
+    work.validate()?;
     *mesh = work;
     Ok(out)
 }

@@ -35,7 +35,7 @@ pub fn fill_holes(mesh: &mut HalfEdgeMesh, edges: &[EdgeId]) -> Result<Vec<FaceI
     let mut out = Vec::new();
     for &e in edges {
         if !work.is_edge(e) {
-            return Err(ModelingError::Missing(e.to_string()));
+            return Err(ModelingError::Missing(e.into()));
         }
         let h = [e.halfedge(0), e.halfedge(1)]
             .into_iter()

@@ -24,7 +24,7 @@ pub fn inset_region(
     depth: f64,
 ) -> Result<Vec<FaceId>, ModelingError> {
     check_faces(mesh, faces)?;
-    if !(thickness.is_finite() && thickness >= 0.0) || !depth.is_finite() {
+    if !(thickness.is_finite() && thickness >= 0.0 && depth.is_finite()) {
         return Err(ModelingError::Parameter {
             what: "thickness and depth",
             allowed: "finite, thickness >= 0",
@@ -76,7 +76,7 @@ pub fn inset_faces_individual(
     depth: f64,
 ) -> Result<Vec<FaceId>, ModelingError> {
     check_faces(mesh, faces)?;
-    if !(thickness.is_finite() && thickness >= 0.0) || !depth.is_finite() {
+    if !(thickness.is_finite() && thickness >= 0.0 && depth.is_finite()) {
         return Err(ModelingError::Parameter {
             what: "thickness and depth",
             allowed: "finite, thickness >= 0",

@@ -53,7 +53,7 @@ pub fn loop_cut(
     cuts: u32,
 ) -> Result<Vec<EdgeId>, ModelingError> {
     if !mesh.is_edge(edge) {
-        return Err(ModelingError::Missing(edge.to_string()));
+        return Err(ModelingError::Missing(edge.into()));
     }
     if !(1..=64).contains(&cuts) {
         return Err(ModelingError::Parameter {

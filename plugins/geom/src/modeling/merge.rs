@@ -2,7 +2,7 @@
 //! (Blender's M), weld (Wings 3D) and merge by distance.
 
 use super::common::add_faces_in_any_order;
-use super::{ModelingError, faces_around_vertices};
+use super::{InvalidResult, ModelingError, faces_around_vertices};
 use crate::ids::{EdgeId, VertexId};
 use crate::mesh::HalfEdgeMesh;
 use glam::DVec3;
@@ -48,7 +48,7 @@ pub fn merge_at_center(
         return Err(ModelingError::Empty("merging needs at least two vertices"));
     }
     if let Some(v) = vertices.iter().find(|v| !mesh.is_vertex(**v)) {
-        return Err(ModelingError::Missing(v.to_string()));
+        return Err(ModelingError::Missing((*v).into()));
     }
     let center = vertices.iter().map(|&v| mesh.position(v)).sum::<DVec3>() / vertices.len() as f64;
     merge_at(mesh, vertices, center)
@@ -83,7 +83,7 @@ pub fn merge_vertices(
         return Err(ModelingError::Empty("merging needs at least two vertices"));
     }
     if let Some(v) = vertices.iter().find(|v| !mesh.is_vertex(**v)) {
-        return Err(ModelingError::Missing(v.to_string()));
+        return Err(ModelingError::Missing((*v).into()));
     }
     let target = match point {
         MergePoint::Center => {
@@ -156,7 +156,7 @@ pub fn weld_vertices(
     let mut keep: std::collections::HashMap<VertexId, VertexId> = Default::default();
     for (cluster, _) in clusters {
         if let Some(v) = cluster.iter().find(|v| !mesh.is_vertex(**v)) {
-            return Err(ModelingError::Missing(v.to_string()));
+            return Err(ModelingError::Missing((*v).into()));
         }
         for &v in &cluster[1..] {
             if v != cluster[0] {
@@ -183,18 +183,14 @@ pub fn weld_vertices(
         let mut sorted = corners.clone();
         sorted.sort();
         if sorted.windows(2).any(|w| w[0] == w[1]) {
-            return Err(ModelingError::Invalid(format!(
-                "welding would make {f} meet itself at a vertex"
-            )));
+            return Err(InvalidResult::FaceMeetsItself { face: f }.into());
         }
         polygons.push(corners);
     }
     work.delete_faces(&faces, true);
     for &v in &gone {
         if !work.is_isolated_vertex(v) {
-            return Err(ModelingError::Invalid(format!(
-                "{v} has edges without faces; delete them before welding"
-            )));
+            return Err(InvalidResult::WireEdges { vertex: v }.into());
         }
         work.free_vertex(v);
     }
@@ -202,8 +198,7 @@ pub fn weld_vertices(
         work.set_position(cluster[0], *point);
     }
     add_faces_in_any_order(&mut work, polygons, "welding")?;
-    work.validate()
-        .map_err(|e| ModelingError::Invalid(e.to_string()))?;
+    work.validate()?;
     *mesh = work;
     Ok(gone.len())
 }
@@ -232,7 +227,7 @@ pub fn merge_by_distance(
         });
     }
     if let Some(v) = candidates.iter().find(|v| !mesh.is_vertex(**v)) {
-        return Err(ModelingError::Missing(v.to_string()));
+        return Err(ModelingError::Missing((*v).into()));
     }
     let mut vs: Vec<VertexId> = candidates.to_vec();
     vs.sort();
@@ -272,9 +267,9 @@ pub fn merge_by_distance(
         }
     }
     let mut groups: std::collections::BTreeMap<usize, Vec<VertexId>> = Default::default();
-    for i in 0..vs.len() {
+    for (i, &v) in vs.iter().enumerate() {
         let r = root(&mut parent, i);
-        groups.entry(r).or_default().push(vs[i]);
+        groups.entry(r).or_default().push(v);
     }
     let clusters: Vec<(Vec<VertexId>, DVec3)> = groups
         .into_values()

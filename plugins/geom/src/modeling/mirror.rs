@@ -1,7 +1,7 @@
 //! Mirroring across a world axis: symmetrize (Blender's Symmetrize) and
 //! mirroring vertices about their median (Blender's Ctrl+M).
 
-use super::ModelingError;
+use super::{InvalidResult, ModelingError, NewFace};
 use crate::ids::VertexId;
 use crate::mesh::HalfEdgeMesh;
 use glam::DVec3;
@@ -9,8 +9,11 @@ use glam::DVec3;
 /// A world axis for mirroring and symmetrizing.
 #[derive(Copy, Clone, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum MirrorAxis {
+    /// Across a plane of constant x (the x coordinate flips).
     X,
+    /// Across a plane of constant y.
     Y,
+    /// Across a plane of constant z.
     Z,
 }
 
@@ -96,11 +99,14 @@ pub fn symmetrize(mesh: &mut HalfEdgeMesh, axis: MirrorAxis) -> Result<(), Model
     for p in &polys {
         // A mirror image turns orientation around: reverse the corner order.
         let image: Vec<VertexId> = p.iter().rev().map(|v| mirror[v]).collect();
-        work.add_face(&image)
-            .map_err(|e| ModelingError::Invalid(format!("mirrored face: {e}")))?;
+        work.add_face(&image).map_err(|error| {
+            ModelingError::Invalid(InvalidResult::Face {
+                face: NewFace::Mirrored,
+                error,
+            })
+        })?;
     }
-    work.validate()
-        .map_err(|e| ModelingError::Invalid(e.to_string()))?;
+    work.validate()?;
     *mesh = work;
     Ok(())
 }
@@ -120,7 +126,7 @@ pub fn mirror_vertices(
         return Err(ModelingError::Empty("no vertices"));
     }
     if let Some(v) = vertices.iter().find(|v| !mesh.is_vertex(**v)) {
-        return Err(ModelingError::Missing(v.to_string()));
+        return Err(ModelingError::Missing((*v).into()));
     }
     let center = vertices
         .iter()

@@ -34,7 +34,7 @@ pub use common::{faces_around_edges, faces_around_vertices};
 pub use connect::connect_vertices;
 pub use delete::delete_faces;
 pub use dissolve::{dissolve_edges, dissolve_faces, dissolve_vertices};
-pub use error::ModelingError;
+pub use error::{InvalidResult, ModelingError, NewFace};
 pub use extrude::{extrude_boundary_edges, extrude_faces_individual, extrude_region};
 pub use holes::{fill_holes, make_holes};
 pub use inset::{inset_faces_individual, inset_region};

@@ -24,7 +24,7 @@ pub fn slide_edges(
         return Err(ModelingError::Empty("no edges"));
     }
     if let Some(e) = edges.iter().find(|e| !mesh.is_edge(**e)) {
-        return Err(ModelingError::Missing(e.to_string()));
+        return Err(ModelingError::Missing((*e).into()));
     }
     if !(factor.is_finite() && (-1.0..=1.0).contains(&factor)) {
         return Err(ModelingError::Parameter {

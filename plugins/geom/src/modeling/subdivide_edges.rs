@@ -17,7 +17,7 @@ pub fn subdivide_edges(
         return Err(ModelingError::Empty("no edges"));
     }
     if let Some(e) = edges.iter().find(|e| !mesh.is_edge(**e)) {
-        return Err(ModelingError::Missing(e.to_string()));
+        return Err(ModelingError::Missing((*e).into()));
     }
     if !(1..=64).contains(&cuts) {
         return Err(ModelingError::Parameter {

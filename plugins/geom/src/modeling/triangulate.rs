@@ -154,7 +154,8 @@ fn join_error(mesh: &HalfEdgeMesh, e: EdgeId, face_limit: f64, shape_limit: f64)
     let apex_g = mesh.target(mesh.next(h.twin()));
     let quad = [a, apex_g, b, apex_f].map(|v| mesh.position(v));
     let normal_angle = mesh.face_normal(f).angle_between(mesh.face_normal(g));
-    if !(normal_angle <= face_limit) {
+    // NaN (a degenerate triangle) never joins.
+    if normal_angle.is_nan() || normal_angle > face_limit {
         return None;
     }
     let normal = (quad[2] - quad[0]).cross(quad[3] - quad[1]);
@@ -168,7 +169,7 @@ fn join_error(mesh: &HalfEdgeMesh, e: EdgeId, face_limit: f64, shape_limit: f64)
         }
         let corner = (prev - here).angle_between(next - here);
         let off = (corner - FRAC_PI_2).abs();
-        if !(off <= shape_limit) {
+        if off.is_nan() || off > shape_limit {
             return None;
         }
         shape += off;

@@ -67,6 +67,7 @@ pub enum Scheme {
 }
 
 impl Scheme {
+    /// Every scheme, in menu order.
     pub const ALL: [Scheme; 4] = [
         Scheme::CatmullClark,
         Scheme::Loop,
@@ -74,6 +75,7 @@ impl Scheme {
         Scheme::Linear,
     ];
 
+    /// The scheme's name for display (`"Catmull-Clark"`).
     pub fn label(self) -> &'static str {
         match self {
             Scheme::CatmullClark => "Catmull-Clark",
@@ -99,11 +101,13 @@ pub enum BoundaryInterpolation {
 }
 
 impl BoundaryInterpolation {
+    /// Every rule, in menu order.
     pub const ALL: [BoundaryInterpolation; 3] = [
         BoundaryInterpolation::None,
         BoundaryInterpolation::EdgesOnly,
         BoundaryInterpolation::EdgesAndCorners,
     ];
+    /// The rule's name for display (`"Edges only"`).
     pub fn label(self) -> &'static str {
         match self {
             BoundaryInterpolation::None => "None",
@@ -125,7 +129,9 @@ pub enum CreaseMethod {
 }
 
 impl CreaseMethod {
+    /// Every method, in menu order.
     pub const ALL: [CreaseMethod; 2] = [CreaseMethod::Uniform, CreaseMethod::Chaikin];
+    /// The method's name for display.
     pub fn label(self) -> &'static str {
         match self {
             CreaseMethod::Uniform => "Uniform",
@@ -137,10 +143,13 @@ impl CreaseMethod {
 /// Scheme and rules of a refinement.
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
 pub struct Options {
+    /// The subdivision scheme.
     #[serde(default)]
     pub scheme: Scheme,
+    /// How boundary edges and corners are treated.
     #[serde(default)]
     pub boundary: BoundaryInterpolation,
+    /// How semi-sharp creases soften from level to level.
     #[serde(default)]
     pub crease_method: CreaseMethod,
 }
@@ -151,13 +160,16 @@ pub struct Options {
 /// longer exist are ignored.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct Creases {
+    /// Crease sharpness per edge (only values above 0 are stored).
     #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
     pub edges: BTreeMap<EdgeId, f64>,
+    /// Corner sharpness per vertex (only values above 0 are stored).
     #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
     pub vertices: BTreeMap<VertexId, f64>,
 }
 
 impl Creases {
+    /// True when no edge or vertex has a sharpness entry.
     pub fn is_empty(&self) -> bool {
         self.edges.is_empty() && self.vertices.is_empty()
     }
@@ -195,20 +207,46 @@ impl Creases {
 /// Why a refinement cannot be made.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum SubdivisionError {
+    /// Loop subdivision of a cage with a face that is not a triangle.
     #[error(
         "Loop subdivision needs triangles, but face {face} has {sides} sides (triangulate first)"
     )]
-    NotTriangles { face: FaceId, sides: usize },
+    NotTriangles {
+        /// A cage face that is not a triangle.
+        face: FaceId,
+        /// Its number of sides.
+        sides: usize,
+    },
+    /// More levels than [`MAX_LEVEL`] were asked for.
     #[error("level {level} is above the maximum of {MAX_LEVEL}")]
-    LevelTooHigh { level: u32 },
+    LevelTooHigh {
+        /// The level asked for.
+        level: u32,
+    },
+    /// Limit evaluation asked of a scheme or level it does not cover.
     #[error("{} has no limit surface evaluation here (Catmull-Clark needs an all-quad level, Loop triangles)", scheme.label())]
-    NoLimit { scheme: Scheme },
+    NoLimit {
+        /// The refinement's scheme.
+        scheme: Scheme,
+    },
+    /// The caller's `go_on` callback returned false
+    /// ([`Refiner::new_cancellable`]).
     #[error("cancelled")]
     Cancelled,
+    /// The cage has a face with rings or without edges.
     #[error("face {face} has inner rings or no edges; subdivision needs plain polygons")]
-    FaceWithRings { face: FaceId },
+    FaceWithRings {
+        /// The face.
+        face: FaceId,
+    },
+    /// The result would have more than [`MAX_FACES`] faces.
     #[error("level {level} would make {faces} faces, more than the limit of {MAX_FACES}")]
-    TooManyFaces { level: u32, faces: usize },
+    TooManyFaces {
+        /// The level that would exceed the limit.
+        level: u32,
+        /// Its face count.
+        faces: usize,
+    },
 }
 
 /// The refinement of one cage topology to a number of levels: every level's
@@ -298,6 +336,7 @@ impl Refiner {
         })
     }
 
+    /// The scheme and rules this refinement was built with.
     pub fn options(&self) -> Options {
         self.options
     }
@@ -458,6 +497,22 @@ impl Refiner {
     /// # Errors
     /// As [`Refiner::new`]. (Refining a valid half-edge mesh always gives a
     /// valid one, so the build cannot fail.)
+    ///
+    /// # Example
+    /// One level of Catmull-Clark turns each of a cube's 6 quads into 4:
+    /// ```
+    /// use hedra_geom::subdivision::{Creases, Options, Refiner, Scheme};
+    /// use hedra_geom::Primitive;
+    /// let cube = Primitive::Cube { size: 2.0 }.build()?;
+    /// let options = Options { scheme: Scheme::CatmullClark, ..Options::default() };
+    /// let (smooth, _creases) = Refiner::subdivide(&cube, &Creases::default(), options, 1)?;
+    /// // 8 corners + 12 edge points + 6 face points.
+    /// assert_eq!((smooth.vertex_count(), smooth.edge_count(), smooth.face_count()), (26, 48, 24));
+    /// smooth.validate()?;
+    /// // The surface shrinks inside the cage: every point stays within the cube.
+    /// assert!(smooth.vertices().all(|v| smooth.position(v).abs().max_element() <= 1.0));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn subdivide(
         mesh: &HalfEdgeMesh,
         creases: &Creases,

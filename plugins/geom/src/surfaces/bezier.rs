@@ -35,12 +35,15 @@ impl Surface for BilinearPatch {
     }
 }
 
-/// A tensor-product Bézier surface of degree `(nu − 1, nv − 1)` on [0,1]²
+/// A tensor-product Bézier surface of degree `(nu − 1, nv − 1)` on `[0, 1]²`
 /// with control points `points[i * nv + j]` (i along u, j along v).
 #[derive(Clone, Debug, PartialEq)]
 pub struct BezierSurface {
+    /// Control points in u (degree in u + 1), at least 2.
     pub nu: usize,
+    /// Control points in v (degree in v + 1), at least 2.
     pub nv: usize,
+    /// The `nu × nv` control points, row-major: `(i, j)` at `i * nv + j`.
     pub points: Vec<DVec3>,
 }
 
@@ -49,15 +52,14 @@ impl BezierSurface {
     /// Fewer than 2 × 2 points, a count that is not `nu · nv`, non-finite points.
     pub fn new(nu: usize, nv: usize, points: Vec<DVec3>) -> Result<Self, CurveError> {
         if nu < 2 || nv < 2 {
-            return Err(CurveError::Parameter(format!(
-                "a Bézier surface needs at least 2 × 2 control points, got {nu} × {nv}"
-            )));
+            return Err(CurveError::GridTooSmall { nu, nv });
         }
         if points.len() != nu * nv {
-            return Err(CurveError::Parameter(format!(
-                "{nu} × {nv} control points expected, got {}",
-                points.len()
-            )));
+            return Err(CurveError::GridPointCount {
+                nu,
+                nv,
+                got: points.len(),
+            });
         }
         check_points(&points)?;
         Ok(BezierSurface { nu, nv, points })

@@ -10,10 +10,14 @@ use super::tessellate::grid;
 /// Where a ray meets a surface.
 #[derive(Copy, Clone, Debug, PartialEq)]
 pub struct RayHit {
+    /// Surface parameter u of the hit.
     pub u: f64,
+    /// Surface parameter v of the hit.
     pub v: f64,
-    /// Distance along the (unit) ray direction.
+    /// Ray parameter of the hit (`origin + t·dir`), in units of `dir`'s
+    /// length.
     pub t: f64,
+    /// The surface point `S(u, v)`.
     pub point: DVec3,
 }
 

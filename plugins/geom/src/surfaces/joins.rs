@@ -11,14 +11,19 @@ use super::{BezierTriangle, Surface};
 /// A boundary of a patch, as a function of `s` in [0, 1].
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 pub enum Boundary {
-    /// Rectangular patches: `u = u_start`, `u = u_end`, `v = v_start`, `v = v_end`.
+    /// Rectangular patches: the side `u = u_start`.
     U0,
+    /// The side `u = u_end`.
     U1,
+    /// The side `v = v_start`.
     V0,
+    /// The side `v = v_end`.
     V1,
-    /// Triangles: the edge opposite the corner with u = 1 (u = 0), v = 1, w = 1.
+    /// Triangles: the edge `u = 0`, opposite the corner u = 1.
     TriangleU0,
+    /// The triangle edge `v = 0`, opposite the corner v = 1.
     TriangleV0,
+    /// The triangle edge `w = 0`, opposite the corner w = 1.
     TriangleW0,
 }
 

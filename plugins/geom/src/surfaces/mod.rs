@@ -24,11 +24,17 @@ pub use triangle::BezierTriangle;
 /// A point of a surface with its partial derivatives.
 #[derive(Copy, Clone, Debug, Default, PartialEq)]
 pub struct SurfacePoint {
+    /// The point `S(u, v)`.
     pub p: DVec3,
+    /// First partial derivative `S_u`.
     pub du: DVec3,
+    /// First partial derivative `S_v`.
     pub dv: DVec3,
+    /// Second partial derivative `S_uu`.
     pub duu: DVec3,
+    /// Mixed partial derivative `S_uv`.
     pub duv: DVec3,
+    /// Second partial derivative `S_vv`.
     pub dvv: DVec3,
 }
 
@@ -45,9 +51,12 @@ pub trait Surface {
     fn domain(&self) -> ((f64, f64), (f64, f64));
     /// Point and partial derivatives at `(u, v)` (clamped to the domain).
     fn evaluate(&self, u: f64, v: f64) -> SurfacePoint;
+    /// The point at `(u, v)`.
     fn point(&self, u: f64, v: f64) -> DVec3 {
         self.evaluate(u, v).p
     }
+    /// `S_u × S_v` normalised at `(u, v)`; zero where the derivatives are
+    /// parallel (see [`unit_normal`](Self::unit_normal) for poles).
     fn normal(&self, u: f64, v: f64) -> DVec3 {
         self.evaluate(u, v).normal()
     }

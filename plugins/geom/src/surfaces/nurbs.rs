@@ -28,13 +28,21 @@ pub struct NurbsSurface {
 /// The stored form of a [`NurbsSurface`], validated on load.
 #[derive(serde::Serialize, serde::Deserialize)]
 pub struct NurbsSurfaceData {
+    /// Degree in u.
     pub degree_u: usize,
+    /// Degree in v.
     pub degree_v: usize,
+    /// Knot vector in u (`nu + degree_u + 1` values).
     pub knots_u: Vec<f64>,
+    /// Knot vector in v (`nv + degree_v + 1` values).
     pub knots_v: Vec<f64>,
+    /// Control points in the u direction.
     pub nu: usize,
+    /// Control points in the v direction.
     pub nv: usize,
+    /// The `nu × nv` control points, row-major: point `(i, j)` at `i * nv + j`.
     pub points: Vec<DVec3>,
+    /// Positive weight of each control point, in the same order.
     pub weights: Vec<f64>,
 }
 
@@ -78,11 +86,12 @@ impl NurbsSurface {
         weights: Vec<f64>,
     ) -> Result<Self, CurveError> {
         if points.len() != nu * nv || weights.len() != nu * nv {
-            return Err(CurveError::Parameter(format!(
-                "{nu} × {nv} control points and weights expected, got {} points and {} weights",
-                points.len(),
-                weights.len()
-            )));
+            return Err(CurveError::GridCount {
+                nu,
+                nv,
+                points: points.len(),
+                weights: weights.len(),
+            });
         }
         check_points(&points)?;
         // Validate each direction through a curve of the first row / column.
@@ -98,7 +107,8 @@ impl NurbsSurface {
         if let Some((index, &value)) = weights
             .iter()
             .enumerate()
-            .find(|(_, w)| !(**w > 0.0) || !w.is_finite())
+            .find(|(_, w)| !w.is_finite() || **w <= 0.0)
+        // NaN is not finite
         {
             return Err(CurveError::BadWeight { index, value });
         }
@@ -114,18 +124,23 @@ impl NurbsSurface {
         })
     }
 
+    /// `(degree in u, degree in v)`.
     pub fn degrees(&self) -> (usize, usize) {
         (self.degree_u, self.degree_v)
     }
+    /// `(nu, nv)`: control points in u and in v.
     pub fn size(&self) -> (usize, usize) {
         (self.nu, self.nv)
     }
+    /// `(knots in u, knots in v)`.
     pub fn knots(&self) -> (&[f64], &[f64]) {
         (&self.knots_u, &self.knots_v)
     }
+    /// Control points, row-major: `(i, j)` at `i * nv + j`.
     pub fn points(&self) -> &[DVec3] {
         &self.points
     }
+    /// Weights, in the order of [`points`](Self::points).
     pub fn weights(&self) -> &[f64] {
         &self.weights
     }
@@ -152,7 +167,8 @@ impl NurbsSurface {
     /// No such point, or a weight that is not positive and finite.
     pub fn set_weight(&mut self, i: usize, j: usize, w: f64) -> Result<(), CurveError> {
         let k = self.index(i, j)?;
-        if !(w > 0.0) || !w.is_finite() {
+        if !w.is_finite() || w <= 0.0 {
+            // NaN is not finite: refused too
             return Err(CurveError::BadWeight { index: k, value: w });
         }
         self.weights[k] = w;
@@ -230,9 +246,9 @@ impl NurbsSurface {
     /// A non-finite direction.
     pub fn extrude(profile: &NurbsCurve, direction: DVec3) -> Result<Self, CurveError> {
         if !direction.is_finite() {
-            return Err(CurveError::Parameter(
-                "the extrusion direction is not finite".into(),
-            ));
+            return Err(CurveError::NotFiniteVector {
+                what: "the extrusion direction",
+            });
         }
         let nu = profile.points().len();
         let mut points = Vec::with_capacity(2 * nu);

@@ -11,9 +11,13 @@ use crate::curves::Curve;
 /// Triangles of a surface with the parameters of each vertex.
 #[derive(Clone, Debug, Default)]
 pub struct SurfaceMesh {
+    /// Vertex positions.
     pub positions: Vec<DVec3>,
+    /// Unit normal per vertex (the limit normal at poles).
     pub normals: Vec<DVec3>,
+    /// `(u, v)` of each vertex.
     pub params: Vec<(f64, f64)>,
+    /// Vertex indices of each triangle.
     pub triangles: Vec<[u32; 3]>,
 }
 

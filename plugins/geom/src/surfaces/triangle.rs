@@ -11,14 +11,18 @@ use crate::curves::{CurveError, binomial, check_points};
 #[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 #[serde(try_from = "BezierTriangleData", into = "BezierTriangleData")]
 pub struct BezierTriangle {
+    /// Degree n ≥ 1.
     pub degree: usize,
+    /// The `(n + 1)(n + 2) / 2` control points.
     pub points: Vec<DVec3>,
 }
 
 /// The stored form of a [`BezierTriangle`], validated on load.
 #[derive(serde::Serialize, serde::Deserialize)]
 pub struct BezierTriangleData {
+    /// Degree n ≥ 1.
     pub degree: usize,
+    /// The `(n + 1)(n + 2) / 2` control points.
     pub points: Vec<DVec3>,
 }
 
@@ -51,11 +55,11 @@ impl BezierTriangle {
             return Err(CurveError::ZeroDegree);
         }
         if points.len() != point_count(degree) {
-            return Err(CurveError::Parameter(format!(
-                "a degree {degree} Bézier triangle has {} control points, got {}",
-                point_count(degree),
-                points.len()
-            )));
+            return Err(CurveError::TrianglePointCount {
+                degree,
+                needed: point_count(degree),
+                got: points.len(),
+            });
         }
         check_points(&points)?;
         Ok(BezierTriangle { degree, points })
