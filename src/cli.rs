@@ -321,7 +321,7 @@ pub fn run(sub: Sub) -> Result<(), CliError> {
                 ascii_stl: ascii,
             };
             let bytes = hedra_doc::export::export_bytes(&session.doc, &output, options)
-                .map_err(CliError)?;
+                .map_err(|e| CliError(e.to_string()))?;
             file::write_atomic_bytes(&output, &bytes)?;
         }
     }

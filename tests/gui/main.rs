@@ -192,3 +192,68 @@ fn properties_show_zero_angles_without_a_minus_sign() {
     );
     assert!(texts.iter().any(|t| t == "Z 0.0"), "{texts:?}");
 }
+
+/// The mesh material as the shading leaves it: (alpha, blended).
+fn mesh_material(user: &User) -> (f32, bool) {
+    let handle = user
+        .app
+        .world()
+        .resource::<hedra_scene::MeshMaterial>()
+        .0
+        .clone();
+    let materials = user.app.world().resource::<Assets<StandardMaterial>>();
+    let m = materials.get(&handle).expect("the mesh material");
+    (
+        m.base_color.alpha(),
+        matches!(m.alpha_mode, AlphaMode::Blend),
+    )
+}
+
+/// Shift+Z and Alt+Z (Blender) and View ▸ Wireframe / X-ray switch the
+/// shading: faces vanish in wireframe, turn see-through in X-ray and are
+/// opaque again when both are off; inside a G move, Shift+Z is the axis key
+/// and leaves the shading alone.
+#[test]
+fn shift_z_and_alt_z_switch_wireframe_and_x_ray() {
+    let mut user = User::new();
+    user.add("Cube");
+    let shading = |user: &User| *user.app.world().resource::<hedra_scene::ViewportShading>();
+    assert_eq!(mesh_material(&user), (1.0, false), "solid at start");
+    user.shortcut(&[KeyCode::ShiftLeft], KeyCode::KeyZ);
+    assert!(shading(&user).wireframe, "{}", user.status());
+    assert_eq!(
+        mesh_material(&user),
+        (0.0, true),
+        "wireframe hides the faces"
+    );
+    user.shortcut(&[KeyCode::AltLeft], KeyCode::KeyZ);
+    user.shortcut(&[KeyCode::ShiftLeft], KeyCode::KeyZ);
+    assert_eq!(
+        shading(&user),
+        hedra_scene::ViewportShading {
+            wireframe: false,
+            x_ray: true
+        }
+    );
+    assert_eq!(
+        mesh_material(&user),
+        (hedra_scene::X_RAY_ALPHA, true),
+        "X-ray"
+    );
+    user.shortcut(&[KeyCode::AltLeft], KeyCode::KeyZ);
+    assert_eq!(mesh_material(&user), (1.0, false), "solid again");
+    // The View menu says the same and sets the same.
+    user.click_on("View");
+    user.click_on("Wireframe\tShift+Z");
+    assert!(shading(&user).wireframe);
+    assert_eq!(mesh_material(&user), (0.0, true));
+    user.tap(KeyCode::Escape);
+    user.shortcut(&[KeyCode::ShiftLeft], KeyCode::KeyZ);
+    assert_eq!(shading(&user), hedra_scene::ViewportShading::default());
+    // G, Shift+Z (move on X and Y), Esc: the shading did not change.
+    user.move_to(user.viewport_center());
+    user.tap(KeyCode::KeyG);
+    user.shortcut(&[KeyCode::ShiftLeft], KeyCode::KeyZ);
+    user.tap(KeyCode::Escape);
+    assert_eq!(shading(&user), hedra_scene::ViewportShading::default());
+}

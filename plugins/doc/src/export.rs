@@ -15,7 +15,7 @@ use hedra_geom::HalfEdgeMesh;
 use std::borrow::Cow;
 use std::collections::HashMap;
 use std::fmt::Write;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 /// Which shape of each mesh is written.
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
@@ -47,15 +47,67 @@ pub struct ExportOptions {
     pub ascii_stl: bool,
 }
 
+/// Why an export could not be made; nothing is written then.
+#[derive(Debug, thiserror::Error)]
+pub enum ExportError {
+    /// The scene has nothing the format can hold (no visible meshes or
+    /// surfaces for STL; no visible meshes, curves or surfaces for OBJ).
+    #[error("{}: nothing to export: the scene has no visible {}", path.display(), if *triangles_only {
+        "meshes or surfaces (STL holds triangles only)"
+    } else {
+        "meshes, curves or surfaces"
+    })]
+    NothingToExport {
+        /// The file asked for.
+        path: PathBuf,
+        /// The format holds triangles only (STL), so curves do not count.
+        triangles_only: bool,
+    },
+    /// The path's extension names no export format.
+    #[error("{}: unsupported export format '.{extension}' (supported: {})", path.display(), supported_formats())]
+    UnsupportedFormat {
+        /// The file asked for.
+        path: PathBuf,
+        /// Its extension, lower case (empty when it has none).
+        extension: String,
+    },
+    /// A mesh's subdivision for the export could not be made (Loop on a
+    /// mesh with quads, a level too large).
+    #[error("node '{node}': {error}")]
+    Subdivision {
+        /// The node's name.
+        node: String,
+        /// The kernel's reason.
+        error: hedra_geom::subdivision::SubdivisionError,
+    },
+    /// serde_json could not write the glTF document.
+    #[error("cannot write glTF: {0}")]
+    GltfJson(String),
+    /// The GLB container could not be assembled.
+    #[error("cannot write GLB: {0}")]
+    Glb(String),
+}
+
+/// The export extensions as the error lists them: `.obj, .stl, ...`.
+fn supported_formats() -> String {
+    EXPORT_FORMATS
+        .iter()
+        .map(|(e, _)| format!(".{e}"))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
 /// The document in the format that `path`'s extension names.
 ///
 /// # Errors
-/// A message naming the file when the extension is not an export format.
+/// [`ExportError`] naming the file when the extension is not an export
+/// format or the scene holds nothing the format can, or naming the node
+/// whose subdivision failed.
 pub fn export_bytes(
     doc: &Document,
     path: &Path,
     options: ExportOptions,
-) -> Result<Vec<u8>, String> {
+) -> Result<Vec<u8>, ExportError> {
     let shape = options.shape;
     let ext = path
         .extension()
@@ -63,19 +115,14 @@ pub fn export_bytes(
         .unwrap_or("")
         .to_ascii_lowercase();
     // OBJ and STL of nothing would be empty files: say so instead.
-    let items = |stl: bool| -> Result<Vec<ExportItem<'_>>, String> {
+    let items = |stl: bool| -> Result<Vec<ExportItem<'_>>, ExportError> {
         let items = export_meshes(doc, shape)?;
         let holds = |i: &ExportItem| !stl || !matches!(i.geometry, Geometry::Polyline(_));
         if !items.iter().any(holds) {
-            return Err(format!(
-                "{}: nothing to export: the scene has no visible {}",
-                path.display(),
-                if stl {
-                    "meshes or surfaces (STL holds triangles only)"
-                } else {
-                    "meshes, curves or surfaces"
-                }
-            ));
+            return Err(ExportError::NothingToExport {
+                path: path.to_path_buf(),
+                triangles_only: stl,
+            });
         }
         Ok(items)
     };
@@ -85,15 +132,10 @@ pub fn export_bytes(
         "stl" => Ok(to_stl(&items(true)?)),
         "gltf" => crate::gltf::to_gltf(doc, shape, false),
         "glb" => crate::gltf::to_gltf(doc, shape, true),
-        other => Err(format!(
-            "{}: unsupported export format '.{other}' (supported: {})",
-            path.display(),
-            EXPORT_FORMATS
-                .iter()
-                .map(|(e, _)| format!(".{e}"))
-                .collect::<Vec<_>>()
-                .join(", ")
-        )),
+        other => Err(ExportError::UnsupportedFormat {
+            path: path.to_path_buf(),
+            extension: other.to_string(),
+        }),
     }
 }
 
@@ -339,9 +381,9 @@ const EXPORT_TOLERANCE: f64 = 1e-4;
 /// The visible meshes, curves and surfaces in the requested shape.
 ///
 /// # Errors
-/// A message naming the node when its subdivision cannot be made (Loop on
-/// a mesh with quads, a level too large).
-fn export_meshes(doc: &Document, shape: ExportShape) -> Result<Vec<ExportItem<'_>>, String> {
+/// [`ExportError::Subdivision`] naming the node when its subdivision cannot
+/// be made (Loop on a mesh with quads, a level too large).
+fn export_meshes(doc: &Document, shape: ExportShape) -> Result<Vec<ExportItem<'_>>, ExportError> {
     let mut out = Vec::new();
     for node in doc.nodes() {
         if !is_visible(doc, node.id) {
@@ -374,11 +416,12 @@ fn export_meshes(doc: &Document, shape: ExportShape) -> Result<Vec<ExportItem<'_
 /// `None` for empties.
 ///
 /// # Errors
-/// A message naming the node when its subdivision cannot be made.
+/// [`ExportError::Subdivision`] naming the node when its subdivision
+/// cannot be made.
 pub(crate) fn node_geometry(
     node: &Node,
     shape: ExportShape,
-) -> Result<Option<Geometry<'_>>, String> {
+) -> Result<Option<Geometry<'_>>, ExportError> {
     use hedra_geom::curves::Curve;
     Ok(Some(match &node.content {
         NodeContent::Empty => return Ok(None),
@@ -391,7 +434,10 @@ pub(crate) fn node_geometry(
             Geometry::Mesh(
                 content
                     .subdivided(level)
-                    .map_err(|e| format!("node '{}': {e}", node.name))?,
+                    .map_err(|error| ExportError::Subdivision {
+                        node: node.name.clone(),
+                        error,
+                    })?,
             )
         }
         NodeContent::Curve(c) => {

@@ -22,7 +22,7 @@ use hedra_geom::HalfEdgeMesh;
 use json::validation::Checked::Valid;
 use json::validation::USize64;
 
-use crate::export::{ExportShape, Geometry, is_visible, node_geometry};
+use crate::export::{ExportError, ExportShape, Geometry, is_visible, node_geometry};
 use crate::import::{ImportError, ImportedMesh, corner_attributes};
 use crate::scene::{CornerAttributes, Document, NodeContent, NodeId, NodeTransform, Shading};
 
@@ -230,8 +230,8 @@ fn corner_triangles(m: &HalfEdgeMesh, shading: Shading, c: &CornerAttributes) ->
 /// The document's visible nodes as glTF (`binary`: a `.glb` file).
 ///
 /// # Errors
-/// A message naming a node whose shape cannot be evaluated.
-pub fn to_gltf(doc: &Document, shape: ExportShape, binary: bool) -> Result<Vec<u8>, String> {
+/// [`ExportError`] naming a node whose shape cannot be evaluated.
+pub fn to_gltf(doc: &Document, shape: ExportShape, binary: bool) -> Result<Vec<u8>, ExportError> {
     let mut root = json::Root {
         asset: json::Asset {
             version: "2.0".into(),
@@ -442,7 +442,7 @@ pub fn to_gltf(doc: &Document, shape: ExportShape, binary: bool) -> Result<Vec<u
     }
     let text = root
         .to_string()
-        .map_err(|e| format!("cannot write glTF: {e}"))?;
+        .map_err(|e| ExportError::GltfJson(e.to_string()))?;
     if !binary {
         return Ok(text.into_bytes());
     }
@@ -460,7 +460,7 @@ pub fn to_gltf(doc: &Document, shape: ExportShape, binary: bool) -> Result<Vec<u
         json: json_bytes.into(),
         bin: (!bin.is_empty()).then(|| bin.into()),
     };
-    glb.to_vec().map_err(|e| format!("cannot write GLB: {e}"))
+    glb.to_vec().map_err(|e| ExportError::Glb(e.to_string()))
 }
 
 /// Reads a `.gltf` or `.glb` file's scene: every node becomes a node with

@@ -60,7 +60,9 @@ fn exporting_nothing_is_an_error_not_an_empty_file() {
         },
     );
     for file in ["x.stl", "x.obj"] {
-        let e = export_bytes(&s.doc, Path::new(file), ExportOptions::default()).unwrap_err();
+        let e = export_bytes(&s.doc, Path::new(file), ExportOptions::default())
+            .unwrap_err()
+            .to_string();
         assert!(e.starts_with(&format!("{file}: nothing to export")), "{e}");
     }
     // A curve alone: OBJ writes it as a polyline, STL cannot hold it.
@@ -74,7 +76,9 @@ fn exporting_nothing_is_an_error_not_an_empty_file() {
         },
     );
     assert!(export_bytes(&s.doc, Path::new("x.obj"), ExportOptions::default()).is_ok());
-    let e = export_bytes(&s.doc, Path::new("x.stl"), ExportOptions::default()).unwrap_err();
+    let e = export_bytes(&s.doc, Path::new("x.stl"), ExportOptions::default())
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("STL holds triangles only"), "{e}");
 }
 

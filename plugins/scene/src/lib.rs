@@ -148,6 +148,61 @@ impl StatusMessage {
 #[derive(Resource, Clone)]
 pub struct MeshMaterial(pub Handle<StandardMaterial>);
 
+/// How the viewport draws meshes and surfaces, as Blender's shading
+/// header: Shift+Z toggles wireframe, Alt+Z X-ray (View menu too).
+#[derive(Resource, Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct ViewportShading {
+    /// Faces are not drawn: only the edge overlays show (Blender's
+    /// Wireframe shading); like Blender's, it sees and selects through.
+    pub wireframe: bool,
+    /// Faces are see-through ([`X_RAY_ALPHA`]) and edit-mode box select
+    /// takes the elements behind them too.
+    pub x_ray: bool,
+}
+
+impl ViewportShading {
+    /// Whether what is behind a face shows and can be selected.
+    pub fn see_through(&self) -> bool {
+        self.wireframe || self.x_ray
+    }
+
+    /// The alpha of the shared mesh material: 0 in wireframe, [`X_RAY_ALPHA`]
+    /// in X-ray, 1 when solid.
+    pub fn face_alpha(&self) -> f32 {
+        if self.wireframe {
+            0.0
+        } else if self.x_ray {
+            X_RAY_ALPHA
+        } else {
+            1.0
+        }
+    }
+}
+
+/// How opaque faces are in X-ray shading (Blender's default is 0.5; lower
+/// here because the cage's edges are drawn over it).
+pub const X_RAY_ALPHA: f32 = 0.35;
+
+/// Puts the shading on the shared mesh material: blended and faded for
+/// X-ray, fully transparent for wireframe, opaque when solid.
+fn apply_viewport_shading(
+    shading: Res<ViewportShading>,
+    material: Option<Res<MeshMaterial>>,
+    mut materials: ResMut<Assets<StandardMaterial>>,
+) {
+    let Some(material) = material else { return };
+    let Some(mut m) = materials.get_mut(&material.0) else {
+        return;
+    };
+    let alpha = shading.face_alpha();
+    m.base_color.set_alpha(alpha);
+    m.alpha_mode = if alpha < 1.0 {
+        AlphaMode::Blend
+    } else {
+        AlphaMode::Opaque
+    };
+}
+
 /// The stages of a frame's `Update`, in order (configured by
 /// [`ScenePlugin`]); every plugin puts its systems into one of them, inside
 /// its own set (`EditSystems`, `ViewportSystems`, `UiSystems`, …):
@@ -180,6 +235,7 @@ impl Plugin for ScenePlugin {
             .init_resource::<Previews>()
             .init_resource::<FileJobs>()
             .init_resource::<InputGate>()
+            .init_resource::<ViewportShading>()
             .add_message::<DocRequest>()
             .add_message::<DocChanged>()
             .configure_sets(
@@ -194,6 +250,12 @@ impl Plugin for ScenePlugin {
             )
             .add_systems(Startup, setup_material)
             .add_systems(Update, apply_requests.in_set(SceneSystems::Apply))
+            .add_systems(
+                Update,
+                apply_viewport_shading
+                    .run_if(resource_changed::<ViewportShading>)
+                    .in_set(SceneSystems::View),
+            )
             .add_systems(Last, file_jobs::finish_saves_on_exit)
             .add_systems(
                 Update,

@@ -404,6 +404,7 @@ pub fn use_path(
                 &path,
                 hedra_doc::export::ExportOptions::default(),
             )
+            .map_err(|e| e.to_string())
             .and_then(|b| {
                 hedra_doc::file::write_atomic_bytes(&path, &b).map_err(|e| e.to_string())
             });

@@ -26,12 +26,14 @@ mod camera;
 mod gizmo;
 mod grid;
 mod overlays;
+mod shading;
 
 pub use analysis::*;
 pub use camera::*;
 use gizmo::*;
 pub use grid::*;
 pub use overlays::*;
+pub use shading::shading_keys;
 
 /// The camera, grid, overlays, gizmo and analysis drawing, in
 /// `SceneSystems::View` (the gizmo's drag is a tool: `SceneSystems::Tools`).
@@ -74,7 +76,7 @@ impl Plugin for ViewportPlugin {
             .add_systems(PostStartup, overlay_cameras_keep_the_picture)
             .add_systems(
                 Update,
-                (camera_controls, frame_selection, draw_grid)
+                (shading_keys, camera_controls, frame_selection, draw_grid)
                     .chain()
                     .in_set(ViewportSystems),
             )

@@ -209,8 +209,6 @@ pub struct EditMode {
     pub selection: ElementSelection,
     /// The running modal tool, if any.
     pub tool: Option<MeshTool>,
-    /// X-ray (Alt+Z): box selection also takes elements hidden behind the surface.
-    pub x_ray: bool,
     /// M in vertex mode: the merge menu is open at this window position.
     pub merge_menu_at: Option<Vec2>,
     /// The mesh as the running tool would leave it (shown instead of the document's).

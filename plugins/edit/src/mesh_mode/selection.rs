@@ -39,6 +39,7 @@ pub fn select_elements(
     mut b_box: Local<Option<Vec2>>,
     mut status: ResMut<StatusMessage>,
     gizmo: Option<Res<TransformGizmoState>>,
+    shading: Res<hedra_scene::ViewportShading>,
 ) {
     if !mode.active() || mode.tool.is_some() {
         *press = None;
@@ -100,15 +101,9 @@ pub fn select_elements(
             shift: shift(&keys),
         });
     }
-    if gate.keyboard_free && alt(&keys) && keys.just_pressed(KeyCode::KeyZ) {
-        mode.x_ray = !mode.x_ray;
-        status.info(if mode.x_ray {
-            "X-ray on: box select also takes hidden elements"
-        } else {
-            "X-ray off: box select takes only what is in sight"
-        });
-    }
-    let x_ray = mode.x_ray;
+    // X-ray and wireframe (Alt+Z, Shift+Z; `hedra_viewport::shading_keys`)
+    // see through: box select takes hidden elements too.
+    let x_ray = shading.see_through();
     let Some(p) = *press else { return };
     let moved = cursor.is_some_and(|c| c.distance(p.start) > 4.0);
     if buttons.pressed(MouseButton::Left) {

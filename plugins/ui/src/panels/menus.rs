@@ -2,13 +2,25 @@
 
 use super::*;
 
+/// What the View menu changes in the viewport (written back after the menus).
+pub(super) struct ViewChoices<'a> {
+    /// What the transform gizmo does.
+    pub gizmo_mode: &'a mut bevy::gizmos::transform_gizmo::TransformGizmoMode,
+    /// Wireframe and X-ray.
+    pub shading: &'a mut hedra_scene::ViewportShading,
+}
+
 pub(super) fn menu_bar(
     ui: &mut egui::Ui,
     state: &mut UiState,
     model: &Model,
-    gizmo_mode: &mut bevy::gizmos::transform_gizmo::TransformGizmoMode,
+    view: ViewChoices,
     events: &mut Vec<UiEvent>,
 ) {
+    let ViewChoices {
+        gizmo_mode,
+        shading,
+    } = view;
     egui::MenuBar::new().ui(ui, |ui| {
         ui.menu_button("File", |ui| {
             if ui.button("New\tCtrl+N").clicked() {
@@ -187,6 +199,9 @@ pub(super) fn menu_bar(
             ui.checkbox(&mut state.show_outliner, "Outliner");
             ui.checkbox(&mut state.show_properties, "Properties");
             ui.checkbox(&mut state.show_history, "Undo History");
+            ui.separator();
+            ui.checkbox(&mut shading.wireframe, "Wireframe\tShift+Z");
+            ui.checkbox(&mut shading.x_ray, "X-ray\tAlt+Z");
             ui.separator();
             // The transform gizmo on objects, mesh elements and control points.
             {

@@ -65,6 +65,7 @@ pub struct Model<'w> {
     mode: ResMut<'w, EditMode>,
     previews: Res<'w, hedra_scene::SmoothPreviews>,
     shape_edit: Res<'w, hedra_edit::ShapeEdit>,
+    shading: ResMut<'w, hedra_scene::ViewportShading>,
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -94,12 +95,21 @@ pub fn draw_ui(
     let doc = &model.state.session.doc;
 
     // View ▸ Gizmo chooses what the transform gizmo does.
+    // View ▸ Wireframe and X-ray choose the shading.
     let mut gizmo_mode = writers.gizmo.mode;
+    let mut shading = *model.shading;
     egui::Panel::top("menu").show(&mut root, |ui| {
-        menu_bar(ui, &mut ui_state, &model, &mut gizmo_mode, &mut events)
+        let view = ViewChoices {
+            gizmo_mode: &mut gizmo_mode,
+            shading: &mut shading,
+        };
+        menu_bar(ui, &mut ui_state, &model, view, &mut events)
     });
     if writers.gizmo.mode != gizmo_mode {
         writers.gizmo.mode = gizmo_mode;
+    }
+    if *model.shading != shading {
+        *model.shading = shading;
     }
     egui::Panel::bottom("status").show(&mut root, |ui| status_bar(ui, &model));
     if ui_state.show_outliner {

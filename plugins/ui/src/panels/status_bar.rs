@@ -61,7 +61,7 @@ pub(super) fn status_bar(ui: &mut egui::Ui, model: &Model) {
                     ui.label(egui::RichText::new(&t.readout).color(egui::Color32::from_rgb(255, 200, 80)));
                     ui.add(egui::Label::new("move the mouse · type a value · Enter/click confirm · Esc/right-click cancel").truncate());
                 } else {
-                    let x_ray = if edit.x_ray { "X-ray on (Alt+Z)" } else { "Alt+Z X-ray" };
+                    let x_ray = if model.shading.see_through() { "X-ray on (Alt+Z)" } else { "Alt+Z X-ray" };
                     ui.add(egui::Label::new(format!("1/2/3 kind · G move · E extrude · I inset · Ctrl+R loop cut · J connect · X dissolve · {x_ray} · Tab exit")).truncate());
                 }
             } else {
