@@ -588,3 +588,78 @@ fn alt_j_joins_the_selected_triangles_into_quads() {
     );
     assert_eq!(user.undo_steps(), steps);
 }
+
+/// Mesh ▸ Bisect, then a horizontal drag through the cube's middle in the
+/// front view: the plane y = 0 cuts it (12/20/10, one undo step); with
+/// Shift held at the release the part right of the line (below it) goes
+/// and the cut is filled: the closed upper half (8/12/6). Esc cancels.
+#[test]
+fn bisect_cuts_along_a_dragged_line() {
+    let mut user = cube_in_edit_mode(KeyCode::Digit3);
+    user.tap(KeyCode::Numpad1);
+    user.tap(KeyCode::KeyA);
+    let (left, right) = (
+        user.screen_of(Vec3::new(-2.0, 0.0, 0.0)),
+        user.screen_of(Vec3::new(2.0, 0.0, 0.0)),
+    );
+    let steps = user.undo_steps();
+    open_mesh_menu(&mut user);
+    user.click_on("Bisect (drag a line)");
+    assert!(
+        user.status().contains("Bisect: drag a line"),
+        "{}",
+        user.status()
+    );
+    user.drag(left, right, 6);
+    assert_eq!(user.mesh_counts(), (12, 20, 10), "{}", user.status());
+    let mesh = user.first_mesh();
+    mesh.validate().unwrap();
+    let cut: Vec<_> = mesh
+        .vertices()
+        .filter(|&v| mesh.position(v).y.abs() < 1e-9)
+        .collect();
+    assert_eq!(cut.len(), 4, "the new vertices lie on y = 0");
+    assert_eq!(user.undo_steps(), steps + 1);
+    assert!(!user.edit_mode().selection.faces.is_empty());
+
+    user.shortcut(&[KeyCode::ControlLeft], KeyCode::KeyZ);
+    user.tap(KeyCode::KeyA);
+    open_mesh_menu(&mut user);
+    user.click_on("Bisect (drag a line)");
+    user.key_down(KeyCode::ShiftLeft);
+    user.drag(left, right, 6);
+    user.key_up(KeyCode::ShiftLeft);
+    assert_eq!(user.mesh_counts(), (8, 12, 6), "{}", user.status());
+    let mesh = user.first_mesh();
+    mesh.validate().unwrap();
+    assert!(mesh.stats().closed);
+    assert!(
+        mesh.vertices().all(|v| mesh.position(v).y >= -1e-9),
+        "the upper half is kept"
+    );
+
+    // Esc before the drag: nothing is cut, and clicks select again.
+    user.shortcut(&[KeyCode::ControlLeft], KeyCode::KeyZ);
+    open_mesh_menu(&mut user);
+    user.click_on("Bisect (drag a line)");
+    user.tap(KeyCode::Escape);
+    assert!(
+        user.status().contains("\"Bisect cancelled\""),
+        "{}",
+        user.status()
+    );
+    let steps = user.undo_steps();
+    user.drag(left, right, 6);
+    assert_eq!(user.undo_steps(), steps);
+    assert_eq!(user.mesh_counts(), (8, 12, 6));
+}
+
+/// Opens the menu bar's Mesh menu (the properties panel has a Mesh button too).
+fn open_mesh_menu(user: &mut User) {
+    let bar = user
+        .find_all("Mesh")
+        .into_iter()
+        .min_by(|a, b| a.min.y.total_cmp(&b.min.y));
+    let bar = bar.expect("a Mesh menu");
+    user.click(Vec2::new(bar.center().x, bar.center().y));
+}

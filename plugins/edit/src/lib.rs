@@ -20,7 +20,9 @@ pub mod modal;
 pub mod shape_mode;
 pub mod typing;
 
-pub use mesh_mode::{EditMode, ElementKind, ElementSelection, MeshTool, MeshToolKind};
+pub use mesh_mode::{
+    BisectDrag, EditMode, ElementKind, ElementSelection, MeshTool, MeshToolKind, start_bisect,
+};
 pub use modal::{Axis, ModalTransform, TransformKind, TransformTool};
 pub use shape_mode::ShapeEdit;
 
@@ -74,6 +76,7 @@ impl Plugin for EditPlugin {
         app.init_resource::<Selection>()
             .init_resource::<TransformTool>()
             .init_resource::<EditMode>()
+            .init_resource::<mesh_mode::BisectDrag>()
             .init_resource::<ShapeEdit>()
             .configure_sets(Update, EditSystems.in_set(SceneSystems::Tools))
             .add_systems(
@@ -88,6 +91,7 @@ impl Plugin for EditPlugin {
                     object_shortcuts,
                     subdivision_keys,
                     mesh_mode::edit_shortcuts,
+                    mesh_mode::bisect_by_drag,
                     pick_objects,
                     mesh_mode::select_elements,
                     mesh_mode::publish_mesh_preview,

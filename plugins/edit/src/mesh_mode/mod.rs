@@ -20,12 +20,14 @@ use hedra_scene::{DocChanged, DocRequest, DocState, InputGate, StatusMessage, Vi
 use std::collections::BTreeSet;
 use std::sync::Arc;
 
+mod bisect;
 mod keymap;
 mod picking;
 mod preview;
 mod selection;
 mod tools;
 
+pub use bisect::*;
 pub use keymap::*;
 pub use picking::*;
 pub use preview::*;

@@ -40,8 +40,9 @@ pub fn select_elements(
     mut status: ResMut<StatusMessage>,
     gizmo: Option<Res<TransformGizmoState>>,
     shading: Res<hedra_scene::ViewportShading>,
+    bisect: Res<BisectDrag>,
 ) {
-    if !mode.active() || mode.tool.is_some() {
+    if !mode.active() || mode.tool.is_some() || bisect.armed {
         *press = None;
         *b_box = None;
         mode.box_select = None;

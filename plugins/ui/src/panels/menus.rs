@@ -577,6 +577,7 @@ pub(super) fn mesh_menu(
         !sel.vertices.is_empty(),
     );
     let mut merge_events = Vec::new();
+    let mut start_bisect = false;
     let mut item = |ui: &mut egui::Ui, label: &str, enabled: bool, cmd: &dyn Fn() -> Command| {
         if ui.add_enabled(enabled, egui::Button::new(label)).clicked() {
             exec(events, cmd());
@@ -630,6 +631,14 @@ pub(super) fn mesh_menu(
             shape_degrees: 40.0,
         }
     });
+    if ui
+        .add_enabled(has_f, egui::Button::new("Bisect (drag a line)"))
+        .clicked()
+    {
+        // Pushed after the menu: `item` holds the event list until then.
+        start_bisect = true;
+        ui.close();
+    }
     ui.separator();
     ui.label(egui::RichText::new("Edges").weak());
     item(ui, "Loop Cut\tCtrl+R", sel.edges.len() == 1, &|| {
@@ -724,6 +733,9 @@ pub(super) fn mesh_menu(
         Command::RecalculateNormals { node: n.clone() }
     });
     events.extend(merge_events);
+    if start_bisect {
+        events.push(UiEvent::StartBisect);
+    }
 }
 
 /// The vertices a selection touches, of any element kind, as a command's set.

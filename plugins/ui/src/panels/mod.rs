@@ -42,6 +42,8 @@ enum UiEvent {
     File(FileAction),
     Preview(NodeId, NodeTransform),
     Error(String),
+    /// Mesh ▸ Bisect: arm the drag of the cutting line.
+    StartBisect,
 }
 
 #[derive(SystemParam)]
@@ -52,6 +54,7 @@ pub struct Writers<'w> {
     analysis: ResMut<'w, hedra_viewport::CurveAnalysis>,
     surface_analysis: ResMut<'w, hedra_viewport::SurfaceAnalysis>,
     gizmo: ResMut<'w, bevy::gizmos::transform_gizmo::TransformGizmoSettings>,
+    bisect: ResMut<'w, hedra_edit::BisectDrag>,
 }
 
 #[derive(SystemParam)]
@@ -205,6 +208,9 @@ pub fn draw_ui(
                 writers.files.write(f);
             }
             UiEvent::Error(e) => model.status.error(e),
+            UiEvent::StartBisect => {
+                hedra_edit::start_bisect(&mut writers.bisect, &model.mode, &mut model.status)
+            }
             UiEvent::Preview(id, t) => hedra_scene::Previews::show(
                 &mut tool_previews,
                 hedra_scene::PreviewSource::Properties,
