@@ -663,3 +663,31 @@ fn open_mesh_menu(user: &mut User) {
     let bar = bar.expect("a Mesh menu");
     user.click(Vec2::new(bar.center().x, bar.center().y));
 }
+
+/// After a plain bisect the Adjust Last panel offers Blender's options:
+/// ticking Fill with the outer side cleared gives the closed upper half
+/// without redoing the drag, still one undo step.
+#[test]
+fn adjust_last_bisect_clears_a_side_and_fills() {
+    let mut user = cube_in_edit_mode(KeyCode::Digit3);
+    user.tap(KeyCode::Numpad1);
+    user.tap(KeyCode::KeyA);
+    let (left, right) = (
+        user.screen_of(Vec3::new(-2.0, 0.0, 0.0)),
+        user.screen_of(Vec3::new(2.0, 0.0, 0.0)),
+    );
+    let steps = user.undo_steps();
+    open_mesh_menu(&mut user);
+    user.click_on("Bisect (drag a line)");
+    user.drag(left, right, 6);
+    assert_eq!(user.mesh_counts(), (12, 20, 10), "{}", user.status());
+    assert!(user.shows("Adjust Last: Bisect"));
+    user.click_on("Neither side");
+    user.click_on("Outer (right of the line)");
+    user.click_on("Fill");
+    assert_eq!(user.mesh_counts(), (8, 12, 6), "{}", user.status());
+    let mesh = user.first_mesh();
+    assert!(mesh.stats().closed);
+    assert!(mesh.vertices().all(|v| mesh.position(v).y >= -1e-9));
+    assert_eq!(user.undo_steps(), steps + 1, "adjusting replaces the step");
+}

@@ -32,6 +32,8 @@ pub(super) fn adjust_last_window(
             | Command::MergeByDistance { .. }
             | Command::MergeVertices { .. }
             | Command::BevelVertices { .. }
+            | Command::Bisect { .. }
+            | Command::TrisToQuads { .. }
     );
     if !editable {
         return;
@@ -80,6 +82,35 @@ pub(super) fn adjust_last_window(
                 }
                 Command::BevelVertices { width, .. } => {
                     number_row(ui, "Width", width, 0.005, 0.0001..=1e6)
+                }
+                // Blender's Bisect panel: which side to clear, and the fill.
+                Command::Bisect { clear, fill, .. } => {
+                    use hedra_geom::modeling::BisectClear;
+                    let before = (*clear, *fill);
+                    ui.horizontal(|ui| {
+                        ui.label("Clear");
+                        choice(
+                            ui,
+                            "adjust-bisect-clear",
+                            clear,
+                            &[BisectClear::Neither, BisectClear::Outer, BisectClear::Inner],
+                            |c| match c {
+                                BisectClear::Neither => "Neither side",
+                                BisectClear::Outer => "Outer (right of the line)",
+                                BisectClear::Inner => "Inner (left of the line)",
+                            },
+                        )
+                    });
+                    ui.checkbox(fill, "Fill");
+                    (*clear, *fill) != before
+                }
+                Command::TrisToQuads {
+                    face_degrees,
+                    shape_degrees,
+                    ..
+                } => {
+                    number_row(ui, "Max face angle°", face_degrees, 0.5, 0.0..=180.0)
+                        | number_row(ui, "Max shape angle°", shape_degrees, 0.5, 0.0..=180.0)
                 }
                 Command::MergeByDistance { distance, .. } => {
                     number_row(ui, "Distance", distance, 0.001, 0.0..=1e6)
