@@ -257,3 +257,50 @@ fn shift_z_and_alt_z_switch_wireframe_and_x_ray() {
     user.tap(KeyCode::Escape);
     assert_eq!(shading(&user), hedra_scene::ViewportShading::default());
 }
+
+/// View ▸ Statistics shows Blender's counts in the viewport: objects and
+/// the cages' vertices, edges, faces and triangles in object mode, the
+/// selected and total elements in edit mode; they follow an edit.
+#[test]
+fn the_statistics_overlay_counts_the_scene_and_the_selection() {
+    let mut user = User::new();
+    user.add("Cube");
+    assert!(!user.shows("Triangles 12"), "off by default");
+    user.click_on("View");
+    user.click_on("Statistics");
+    user.tap(KeyCode::Escape);
+    for line in [
+        "Objects 1/1",
+        "Vertices 8",
+        "Edges 12",
+        "Faces 6",
+        "Triangles 12",
+    ] {
+        assert!(user.shows(line), "{line}");
+    }
+    user.move_to(user.viewport_center());
+    user.tap(KeyCode::Tab);
+    user.tap(KeyCode::Digit3);
+    user.tap(KeyCode::KeyA);
+    for line in ["Vertices 8/8", "Edges 12/12", "Faces 6/6", "Triangles 12"] {
+        assert!(user.shows(line), "{line}");
+    }
+    user.shortcut(&[KeyCode::AltLeft], KeyCode::KeyA);
+    assert!(user.shows("Vertices 0/8"), "nothing selected");
+    assert!(user.shows("Faces 0/6"));
+    // One face, then its triangulation: the totals follow (13 edges, 7 faces).
+    let top = user.screen_of(Vec3::Y);
+    user.click(top);
+    assert!(user.shows("Vertices 4/8") && user.shows("Edges 4/12") && user.shows("Faces 1/6"));
+    user.shortcut(&[KeyCode::ControlLeft], KeyCode::KeyT);
+    let shown = |user: &User, prefix: &str, total: &str| {
+        user.widgets()
+            .iter()
+            .any(|w| w.text.starts_with(prefix) && w.text.ends_with(total))
+    };
+    assert!(shown(&user, "Edges ", "/13") && shown(&user, "Faces ", "/7"));
+    assert!(
+        user.shows("Triangles 12"),
+        "a cube's triangle count does not change"
+    );
+}

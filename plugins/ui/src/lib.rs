@@ -32,6 +32,9 @@ pub struct UiState {
     pub show_properties: bool,
     /// The Undo History window is shown (Edit or View menu).
     pub show_history: bool,
+    /// The statistics overlay (View ▸ Statistics): counts of the scene and
+    /// of the selection in the viewport's top left corner.
+    pub show_statistics: bool,
     /// The Preferences window is shown (Edit > Preferences…).
     pub show_preferences: bool,
     /// Shift+A menu position, while open.
@@ -69,6 +72,7 @@ impl Default for UiState {
             show_outliner: true,
             show_properties: true,
             show_history: false,
+            show_statistics: false,
             show_preferences: false,
             add_menu_at: None,
             confirm: None,

@@ -200,6 +200,7 @@ pub(super) fn menu_bar(
             ui.checkbox(&mut state.show_properties, "Properties");
             ui.checkbox(&mut state.show_history, "Undo History");
             ui.separator();
+            ui.checkbox(&mut state.show_statistics, "Statistics");
             ui.checkbox(&mut shading.wireframe, "Wireframe\tShift+Z");
             ui.checkbox(&mut shading.x_ray, "X-ray\tAlt+Z");
             ui.separator();

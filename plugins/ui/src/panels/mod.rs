@@ -172,6 +172,9 @@ pub fn draw_ui(
     if ui_state.show_history {
         history_window(&ctx, &model, &mut ui_state, &mut events);
     }
+    if ui_state.show_statistics {
+        statistics_overlay(&ctx, free, &model);
+    }
     adjust_last_window(&ctx, free, &model, &mut events);
     let curve = active_curve(&model.state.session.doc, model.selection.active());
     add_menu(&ctx, &mut ui_state, &mut events, curve);

@@ -198,3 +198,80 @@ pub(super) fn history_window(
                 });
         });
 }
+
+/// Blender's Statistics overlay in the viewport's top left corner: in
+/// object mode the selected and total objects and the vertices, edges,
+/// faces and triangles of the visible meshes' cages; in edit mode the
+/// selected and total elements of the edited mesh.
+pub(super) fn statistics_overlay(ctx: &egui::Context, viewport: egui::Rect, model: &Model) {
+    let lines = statistics_lines(&model.state.session.doc, &model.selection, &model.mode);
+    egui::Area::new("statistics".into())
+        .fixed_pos(viewport.left_top() + egui::vec2(10.0, 8.0))
+        .interactable(false)
+        .show(ctx, |ui| {
+            for line in lines {
+                ui.label(egui::RichText::new(line).color(egui::Color32::from_gray(225)));
+            }
+        });
+}
+
+/// The overlay's lines (see [`statistics_overlay`]).
+fn statistics_lines(doc: &Document, selection: &Selection, mode: &EditMode) -> Vec<String> {
+    let triangles = |m: &hedra_geom::HalfEdgeMesh| -> usize {
+        m.faces().map(|f| m.face_degree(f).saturating_sub(2)).sum()
+    };
+    if let Some(node) = mode.node
+        && let Some(NodeContent::Mesh(c)) = doc.node(node).map(|n| &n.content)
+    {
+        let (m, s) = (&c.mesh, &mode.selection);
+        // Counted as Blender flushes a selection: the vertices and edges of
+        // selected faces and edges count as selected, and so do the edges
+        // (vertex mode) and faces (vertex and edge modes) they close.
+        let vertices = s.all_vertices(m);
+        let mut edges: std::collections::BTreeSet<hedra_geom::EdgeId> =
+            s.edges.iter().copied().filter(|&e| m.is_edge(e)).collect();
+        for &f in s.faces.iter().filter(|&&f| m.is_face(f)) {
+            edges.extend(m.face_halfedges(f).map(|h| h.edge()));
+        }
+        if mode.kind == ElementKind::Vertex {
+            edges.extend(
+                m.edges()
+                    .filter(|&e| m.edge_vertices(e).iter().all(|v| vertices.contains(v))),
+            );
+        }
+        let faces = match mode.kind {
+            ElementKind::Face => s.faces.iter().filter(|&&f| m.is_face(f)).count(),
+            _ => m
+                .faces()
+                .filter(|&f| m.face_halfedges(f).all(|h| edges.contains(&h.edge())))
+                .count(),
+        };
+        return vec![
+            format!("Vertices {}/{}", vertices.len(), m.vertex_count()),
+            format!("Edges {}/{}", edges.len(), m.edge_count()),
+            format!("Faces {faces}/{}", m.face_count()),
+            format!("Triangles {}", triangles(m)),
+        ];
+    }
+    let visible: Vec<&hedra_doc::Node> = doc
+        .nodes()
+        .filter(|n| hedra_edit::visible(doc, n.id))
+        .collect();
+    let selected = visible.iter().filter(|n| selection.contains(n.id)).count();
+    let (mut v, mut e, mut f, mut t) = (0, 0, 0, 0);
+    for n in &visible {
+        if let NodeContent::Mesh(c) = &n.content {
+            v += c.mesh.vertex_count();
+            e += c.mesh.edge_count();
+            f += c.mesh.face_count();
+            t += triangles(&c.mesh);
+        }
+    }
+    vec![
+        format!("Objects {selected}/{}", visible.len()),
+        format!("Vertices {v}"),
+        format!("Edges {e}"),
+        format!("Faces {f}"),
+        format!("Triangles {t}"),
+    ]
+}
