@@ -691,3 +691,58 @@ fn adjust_last_bisect_clears_a_side_and_fills() {
     assert!(mesh.vertices().all(|v| mesh.position(v).y >= -1e-9));
     assert_eq!(user.undo_steps(), steps + 1, "adjusting replaces the step");
 }
+
+/// Shift+Tab turns increment snapping on: a G drag of the cube lands on
+/// whole grid steps; with snapping off, Ctrl held during the drag snaps
+/// too, and a plain drag does not. In edit mode the selected face moves by
+/// whole steps as well, so its corners stay on integer coordinates.
+#[test]
+fn shift_tab_snaps_moves_to_whole_grid_steps() {
+    let whole = |v: DVec3| v.to_array().iter().all(|c| c.fract() == 0.0);
+    let drag_with_g = |user: &mut User, by: Vec2, ctrl: bool| {
+        let start = user.viewport_center();
+        user.move_to(start);
+        user.tap(KeyCode::KeyG);
+        if ctrl {
+            user.key_down(KeyCode::ControlLeft);
+        }
+        user.glide_to(start + by, 5);
+        user.click(start + by);
+        if ctrl {
+            user.key_up(KeyCode::ControlLeft);
+        }
+    };
+    let translation = |user: &User| user.doc().nodes().next().unwrap().transform.translation;
+
+    let mut user = User::new();
+    user.add("Cube");
+    user.shortcut(&[KeyCode::ShiftLeft], KeyCode::Tab);
+    assert!(user.app.world().resource::<hedra_edit::Snapping>().enabled);
+    assert_eq!(user.edit_mode().node, None, "Shift+Tab is not Tab");
+    drag_with_g(&mut user, Vec2::new(137.0, -23.0), false);
+    let t = translation(&user);
+    assert!(t != DVec3::ZERO && whole(t), "{t}");
+
+    user.shortcut(&[KeyCode::ShiftLeft], KeyCode::Tab);
+    let before = translation(&user);
+    drag_with_g(&mut user, Vec2::new(-91.0, 57.0), true);
+    let t = translation(&user);
+    assert!(
+        t != before && whole(t),
+        "Ctrl snaps while snapping is off: {t}"
+    );
+    drag_with_g(&mut user, Vec2::new(43.0, 29.0), false);
+    assert!(!whole(translation(&user)), "a plain drag is free");
+
+    let mut user = cube_in_edit_mode(KeyCode::Digit3);
+    let top = user.screen_of(Vec3::Y);
+    user.click(top);
+    user.shortcut(&[KeyCode::ShiftLeft], KeyCode::Tab);
+    drag_with_g(&mut user, Vec2::new(120.0, -70.0), false);
+    let mesh = user.first_mesh();
+    assert!(mesh.vertices().all(|v| whole(mesh.position(v))));
+    assert!(
+        mesh.vertices()
+            .any(|v| mesh.position(v).y > 1.0 || mesh.position(v).x.abs() > 1.0)
+    );
+}

@@ -18,6 +18,7 @@ use hedra_scene::{DocChanged, DocRequest, DocState, InputGate, SceneSystems, Vie
 pub mod mesh_mode;
 pub mod modal;
 pub mod shape_mode;
+mod snapping;
 pub mod typing;
 
 pub use mesh_mode::{
@@ -25,6 +26,7 @@ pub use mesh_mode::{
 };
 pub use modal::{Axis, ModalTransform, TransformKind, TransformTool};
 pub use shape_mode::ShapeEdit;
+pub use snapping::{Snapping, drag_translation, snapping_keys};
 
 /// Selected nodes, in the order they were selected; the last one is active.
 #[derive(Resource, Default, Debug, Clone, PartialEq)]
@@ -77,6 +79,7 @@ impl Plugin for EditPlugin {
             .init_resource::<TransformTool>()
             .init_resource::<EditMode>()
             .init_resource::<mesh_mode::BisectDrag>()
+            .init_resource::<Snapping>()
             .init_resource::<ShapeEdit>()
             .configure_sets(Update, EditSystems.in_set(SceneSystems::Tools))
             .add_systems(
@@ -85,6 +88,7 @@ impl Plugin for EditPlugin {
                     follow_document_changes,
                     mesh_mode::follow_changes,
                     mesh_mode::mode_keys,
+                    snapping_keys,
                     undo_keys,
                     modal::drive_transform_tool,
                     mesh_mode::drive_mesh_tool,

@@ -143,6 +143,7 @@ impl ModalTransform {
         cursor: Vec2,
         ray_at: impl Fn(Vec2) -> Option<(DVec3, DVec3)>,
         view_dir: DVec3,
+        snapping: Option<&crate::Snapping>,
     ) -> Vec<(NodeId, NodeTransform)> {
         let axis_name = self.axis.map_or(String::new(), |a| format!(" {a:?}"));
         match self.kind {
@@ -150,19 +151,15 @@ impl ModalTransform {
                 let delta = if let Some(v) = self.typed.value() {
                     self.axis.unwrap_or(Axis::X).vector() * v
                 } else {
-                    let plane_hit = |p: Vec2| -> Option<DVec3> {
-                        let (o, d) = ray_at(p)?;
-                        let denom = d.dot(view_dir);
-                        (denom.abs() > 1e-12)
-                            .then(|| o + d * ((self.pivot - o).dot(view_dir) / denom))
-                    };
-                    match (plane_hit(self.start_cursor), plane_hit(cursor)) {
-                        (Some(a), Some(b)) => {
-                            let d = b - a;
-                            self.axis.map_or(d, |ax| ax.vector() * d.dot(ax.vector()))
-                        }
-                        _ => DVec3::ZERO,
-                    }
+                    crate::drag_translation(
+                        self.start_cursor,
+                        cursor,
+                        self.pivot,
+                        view_dir,
+                        self.axis,
+                        &ray_at,
+                        snapping.map(|s| s.step),
+                    )
                 };
                 self.readout = format!(
                     "Move{axis_name} ({:.4}, {:.4}, {:.4})",
@@ -179,7 +176,10 @@ impl ModalTransform {
                     let a = (self.start_cursor - self.pivot_screen).to_angle();
                     let b = (cursor - self.pivot_screen).to_angle();
                     // Screen y points down: a clockwise drag on screen is a negative angle.
-                    -((b - a) as f64).to_degrees()
+                    let degrees = -((b - a) as f64).to_degrees();
+                    snapping.map_or(degrees, |s| {
+                        crate::Snapping::round(true, degrees, s.angle_step)
+                    })
                 });
                 // Without a constraint, rotate about the view axis (towards the viewer).
                 let axis = self.axis.map_or(-view_dir, Axis::vector);
@@ -200,7 +200,10 @@ impl ModalTransform {
             TransformKind::Scale => {
                 let factor = self.typed.value().unwrap_or_else(|| {
                     let d0 = (self.start_cursor - self.pivot_screen).length().max(1.0);
-                    ((cursor - self.pivot_screen).length() / d0) as f64
+                    let factor = ((cursor - self.pivot_screen).length() / d0) as f64;
+                    snapping.map_or(factor, |s| {
+                        crate::Snapping::round(true, factor, s.scale_step)
+                    })
                 });
                 let f = match self.axis {
                     None => DVec3::splat(factor),
@@ -240,6 +243,7 @@ pub fn drive_transform_tool(
     selection: Res<crate::Selection>,
     mut previews: ResMut<Previews>,
     mut requests: MessageWriter<DocRequest>,
+    snapping: Res<crate::Snapping>,
 ) {
     tool.just_finished = false;
     let (cam, cam_t) = *camera;
@@ -280,6 +284,7 @@ pub fn drive_transform_tool(
                 .map(|r| (r.origin.as_dvec3(), Vec3::from(r.direction).as_dvec3()))
         },
         view_dir,
+        snapping.active(&keys).then_some(&*snapping),
     );
     if !modal.typed.is_empty() {
         modal.readout = format!("{} [{}]", modal.readout, modal.typed.as_str());

@@ -90,6 +90,7 @@ pub fn shape_mode_keys(
         || edit.tool.is_some()
         || mesh_mode.active()
         || !keys.just_pressed(KeyCode::Tab)
+        || hedra_scene::modifiers::shift(&keys)
     {
         return;
     }
@@ -373,6 +374,7 @@ pub fn drive_shape_tool(
     camera: Single<(&Camera, &GlobalTransform), With<ViewportCamera>>,
     mut requests: MessageWriter<DocRequest>,
     mut status: ResMut<StatusMessage>,
+    snapping: Res<crate::Snapping>,
 ) {
     let (Some(id), Some(mut tool)) = (edit.node, edit.tool.take()) else {
         return;
@@ -401,21 +403,21 @@ pub fn drive_shape_tool(
     let cmd = match tool.kind {
         ShapeToolKind::Move => {
             let view_dir = (cam_t.rotation() * Vec3::NEG_Z).as_dvec3();
-            let plane_hit = |p: Vec2| -> Option<DVec3> {
+            let ray_at = |p: Vec2| {
                 let r = cam.viewport_to_world(cam_t, p).ok()?;
-                let (o, d) = (r.origin.as_dvec3(), Vec3::from(r.direction).as_dvec3());
-                let denom = d.dot(view_dir);
-                (denom.abs() > 1e-12).then(|| o + d * ((tool.pivot - o).dot(view_dir) / denom))
+                Some((r.origin.as_dvec3(), Vec3::from(r.direction).as_dvec3()))
             };
             let world_delta = match tool.typed.value() {
                 Some(v) => tool.axis.unwrap_or(Axis::X).vector() * v,
-                None => match (plane_hit(tool.start_cursor), plane_hit(cursor)) {
-                    (Some(a), Some(b)) => {
-                        let d = b - a;
-                        tool.axis.map_or(d, |ax| ax.vector() * d.dot(ax.vector()))
-                    }
-                    _ => DVec3::ZERO,
-                },
+                None => crate::drag_translation(
+                    tool.start_cursor,
+                    cursor,
+                    tool.pivot,
+                    view_dir,
+                    tool.axis,
+                    &ray_at,
+                    snapping.active(&keys).then_some(snapping.step),
+                ),
             };
             tool.readout = format!(
                 "Move control points ({:.4}, {:.4}, {:.4})",

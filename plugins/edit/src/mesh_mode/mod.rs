@@ -256,7 +256,8 @@ pub fn mode_keys(
     if !gate.keyboard_free || tool.active.is_some() || mode.tool.is_some() {
         return;
     }
-    if keys.just_pressed(KeyCode::Tab) {
+    // Shift+Tab is snapping (`snapping_keys`).
+    if keys.just_pressed(KeyCode::Tab) && !shift(&keys) {
         if mode.active() {
             mode.node = None;
             mode.selection = ElementSelection::default();

@@ -13,6 +13,7 @@ pub(super) fn tool_command(
     ray_at: &dyn Fn(Vec2) -> Option<(DVec3, DVec3)>,
     view_dir: DVec3,
     pixel_size: f64,
+    snap_step: Option<f64>,
 ) -> Command {
     let drag = (cursor - tool.start_cursor).x as f64 * pixel_size;
     let faces = || FaceSet::Ids(selection.faces.iter().map(|f| f.0).collect());
@@ -21,18 +22,15 @@ pub(super) fn tool_command(
             let world_delta = if let Some(v) = tool.typed.value() {
                 tool.axis.unwrap_or(Axis::X).vector() * v
             } else {
-                let plane_hit = |p: Vec2| -> Option<DVec3> {
-                    let (o, d) = ray_at(p)?;
-                    let denom = d.dot(view_dir);
-                    (denom.abs() > 1e-12).then(|| o + d * ((tool.pivot - o).dot(view_dir) / denom))
-                };
-                match (plane_hit(tool.start_cursor), plane_hit(cursor)) {
-                    (Some(a), Some(b)) => {
-                        let d = b - a;
-                        tool.axis.map_or(d, |ax| ax.vector() * d.dot(ax.vector()))
-                    }
-                    _ => DVec3::ZERO,
-                }
+                crate::drag_translation(
+                    tool.start_cursor,
+                    cursor,
+                    tool.pivot,
+                    view_dir,
+                    tool.axis,
+                    ray_at,
+                    snap_step,
+                )
             };
             let verb = if tool.kind == MeshToolKind::Move {
                 "Move"
@@ -237,6 +235,7 @@ pub fn drive_mesh_tool(
     state: Res<DocState>,
     mut requests: MessageWriter<DocRequest>,
     mut status: ResMut<hedra_scene::StatusMessage>,
+    snapping: Res<crate::Snapping>,
 ) {
     mode.just_finished = false;
     let Some(mut tool) = mode.tool.take() else {
@@ -309,6 +308,7 @@ pub fn drive_mesh_tool(
         &ray_at,
         view_dir,
         pixel_size,
+        snapping.active(&keys).then_some(snapping.step),
     );
     if !tool.typed.is_empty() {
         tool.readout = format!("{} [{}]", tool.readout, tool.typed.as_str());

@@ -8,6 +8,8 @@ pub(super) struct ViewChoices<'a> {
     pub gizmo_mode: &'a mut bevy::gizmos::transform_gizmo::TransformGizmoMode,
     /// Wireframe and X-ray.
     pub shading: &'a mut hedra_scene::ViewportShading,
+    /// Increment snapping and its steps.
+    pub snapping: &'a mut hedra_edit::Snapping,
 }
 
 pub(super) fn menu_bar(
@@ -20,6 +22,7 @@ pub(super) fn menu_bar(
     let ViewChoices {
         gizmo_mode,
         shading,
+        snapping,
     } = view;
     egui::MenuBar::new().ui(ui, |ui| {
         ui.menu_button("File", |ui| {
@@ -203,6 +206,22 @@ pub(super) fn menu_bar(
             ui.checkbox(&mut state.show_statistics, "Statistics");
             ui.checkbox(&mut shading.wireframe, "Wireframe\tShift+Z");
             ui.checkbox(&mut shading.x_ray, "X-ray\tAlt+Z");
+            ui.separator();
+            ui.checkbox(&mut snapping.enabled, "Snap (increments)\tShift+Tab");
+            ui.horizontal(|ui| {
+                ui.label("Snap step");
+                ui.add(
+                    egui::DragValue::new(&mut snapping.step)
+                        .speed(0.01)
+                        .range(0.001..=1000.0),
+                );
+                ui.label("angle°");
+                ui.add(
+                    egui::DragValue::new(&mut snapping.angle_step)
+                        .speed(0.1)
+                        .range(0.1..=180.0),
+                );
+            });
             ui.separator();
             // The transform gizmo on objects, mesh elements and control points.
             {

@@ -55,6 +55,7 @@ pub struct Writers<'w> {
     surface_analysis: ResMut<'w, hedra_viewport::SurfaceAnalysis>,
     gizmo: ResMut<'w, bevy::gizmos::transform_gizmo::TransformGizmoSettings>,
     bisect: ResMut<'w, hedra_edit::BisectDrag>,
+    snapping: ResMut<'w, hedra_edit::Snapping>,
 }
 
 #[derive(SystemParam)]
@@ -101,10 +102,12 @@ pub fn draw_ui(
     // View ▸ Wireframe and X-ray choose the shading.
     let mut gizmo_mode = writers.gizmo.mode;
     let mut shading = *model.shading;
+    let mut snapping = *writers.snapping;
     egui::Panel::top("menu").show(&mut root, |ui| {
         let view = ViewChoices {
             gizmo_mode: &mut gizmo_mode,
             shading: &mut shading,
+            snapping: &mut snapping,
         };
         menu_bar(ui, &mut ui_state, &model, view, &mut events)
     });
@@ -113,6 +116,9 @@ pub fn draw_ui(
     }
     if *model.shading != shading {
         *model.shading = shading;
+    }
+    if *writers.snapping != snapping {
+        *writers.snapping = snapping;
     }
     egui::Panel::bottom("status").show(&mut root, |ui| status_bar(ui, &model));
     if ui_state.show_outliner {

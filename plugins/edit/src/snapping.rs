@@ -1,0 +1,102 @@
+//! Increment snapping (Blender's Shift+Tab, and Ctrl held during a drag
+//! to invert it): moves go in whole grid steps, rotations in angle steps,
+//! scales in factor steps. Typed values are exact and never snapped.
+//! The one place that turns a drag into a translation, for the object,
+//! mesh and control-point tools alike.
+
+use crate::modal::Axis;
+use bevy::prelude::*;
+use glam::DVec3;
+use hedra_scene::modifiers::ctrl;
+
+/// Whether and how the transform tools snap.
+#[derive(Resource, Debug, Clone, Copy, PartialEq)]
+pub struct Snapping {
+    /// Snapping is on (Shift+Tab, View ▸ Snap); Ctrl held inverts it.
+    pub enabled: bool,
+    /// The move step in world units (the grid's cell is 1).
+    pub step: f64,
+    /// The rotation step in degrees (Blender's 5°).
+    pub angle_step: f64,
+    /// The scale step (0.1).
+    pub scale_step: f64,
+}
+
+impl Default for Snapping {
+    fn default() -> Self {
+        Snapping {
+            enabled: false,
+            step: 1.0,
+            angle_step: 5.0,
+            scale_step: 0.1,
+        }
+    }
+}
+
+impl Snapping {
+    /// Snapping applies now: on and Ctrl not held, or off and Ctrl held.
+    pub fn active(&self, keys: &ButtonInput<KeyCode>) -> bool {
+        self.enabled != ctrl(keys)
+    }
+
+    /// `value` to the nearest multiple of `step` when snapping is active.
+    pub fn round(active: bool, value: f64, step: f64) -> f64 {
+        if active && step > 0.0 {
+            (value / step).round() * step
+        } else {
+            value
+        }
+    }
+}
+
+/// The world translation of a drag from `start` to `cursor` (window
+/// coordinates) on the plane through `pivot` facing the view, along `axis`
+/// when one is set, each component snapped to `step` when given.
+pub fn drag_translation(
+    start: Vec2,
+    cursor: Vec2,
+    pivot: DVec3,
+    view_dir: DVec3,
+    axis: Option<Axis>,
+    ray_at: &dyn Fn(Vec2) -> Option<(DVec3, DVec3)>,
+    step: Option<f64>,
+) -> DVec3 {
+    let plane_hit = |p: Vec2| -> Option<DVec3> {
+        let (o, d) = ray_at(p)?;
+        let denom = d.dot(view_dir);
+        (denom.abs() > 1e-12).then(|| o + d * ((pivot - o).dot(view_dir) / denom))
+    };
+    let delta = match (plane_hit(start), plane_hit(cursor)) {
+        (Some(a), Some(b)) => {
+            let d = b - a;
+            axis.map_or(d, |ax| ax.vector() * d.dot(ax.vector()))
+        }
+        _ => DVec3::ZERO,
+    };
+    match step {
+        Some(s) => DVec3::new(
+            Snapping::round(true, delta.x, s),
+            Snapping::round(true, delta.y, s),
+            Snapping::round(true, delta.z, s),
+        ),
+        None => delta,
+    }
+}
+
+/// Shift+Tab toggles snapping (outside a running tool, as Blender).
+pub fn snapping_keys(
+    keys: Res<ButtonInput<KeyCode>>,
+    gate: Res<hedra_scene::InputGate>,
+    mut snapping: ResMut<Snapping>,
+    mut status: ResMut<hedra_scene::StatusMessage>,
+) {
+    if gate.keyboard_free && hedra_scene::modifiers::shift(&keys) && keys.just_pressed(KeyCode::Tab)
+    {
+        snapping.enabled = !snapping.enabled;
+        status.info(if snapping.enabled {
+            "Snapping on: moves in grid steps, rotations in 5°, scales in 0.1 (Ctrl inverts; Shift+Tab off)"
+        } else {
+            "Snapping off (Shift+Tab on; Ctrl snaps during a drag)"
+        });
+    }
+}
