@@ -304,3 +304,37 @@ fn the_statistics_overlay_counts_the_scene_and_the_selection() {
         "a cube's triangle count does not change"
     );
 }
+
+/// Shift+right click on the cube's top puts the 3D cursor on that face; a
+/// cube added next goes there; View ▸ Cursor to World Origin and Cursor to
+/// Selected move it back and to the selected object.
+#[test]
+fn shift_right_click_places_the_3d_cursor_where_objects_are_added() {
+    let cursor = |user: &User| user.app.world().resource::<hedra_scene::Cursor3d>().0;
+    let mut user = User::new();
+    user.add("Cube");
+    let top = user.screen_of(Vec3::new(0.3, 1.0, 0.2));
+    user.move_to(top);
+    user.key_down(KeyCode::ShiftLeft);
+    user.button_down(MouseButton::Right);
+    user.frames(2);
+    user.button_up(MouseButton::Right);
+    user.key_up(KeyCode::ShiftLeft);
+    user.frames(2);
+    let at = cursor(&user);
+    assert!((at.y - 1.0).abs() < 1e-4, "on the top face: {at}");
+    assert!(
+        (at.x - 0.3).abs() < 0.02 && (at.z - 0.2).abs() < 0.02,
+        "{at}"
+    );
+    user.add("Cube");
+    let added = user.doc().nodes().last().unwrap().transform.translation;
+    assert_eq!(added, at, "the new cube is at the cursor");
+    user.click_on("View");
+    user.click_on("Cursor to World Origin");
+    assert_eq!(cursor(&user), hedra_geom::DVec3::ZERO);
+    // The new cube is selected: Cursor to Selected puts it back there.
+    user.click_on("View");
+    user.click_on("Cursor to Selected");
+    assert_eq!(cursor(&user), at);
+}

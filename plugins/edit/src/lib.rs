@@ -15,12 +15,14 @@ use hedra_doc::{Command, Document, NodeContent, NodeId, NodeRef, NodeTransform};
 use hedra_scene::modifiers::{alt, ctrl, shift};
 use hedra_scene::{DocChanged, DocRequest, DocState, InputGate, SceneSystems, ViewportCamera};
 
+mod cursor;
 pub mod mesh_mode;
 pub mod modal;
 pub mod shape_mode;
 mod snapping;
 pub mod typing;
 
+pub use cursor::place_cursor;
 pub use mesh_mode::{
     BisectDrag, EditMode, ElementKind, ElementSelection, MeshTool, MeshToolKind, start_bisect,
 };
@@ -96,6 +98,7 @@ impl Plugin for EditPlugin {
                     subdivision_keys,
                     mesh_mode::edit_shortcuts,
                     mesh_mode::bisect_by_drag,
+                    place_cursor,
                     pick_objects,
                     mesh_mode::select_elements,
                     mesh_mode::publish_mesh_preview,

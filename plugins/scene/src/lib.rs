@@ -148,6 +148,11 @@ impl StatusMessage {
 #[derive(Resource, Clone)]
 pub struct MeshMaterial(pub Handle<StandardMaterial>);
 
+/// The 3D cursor's world position (Blender's): Shift+right click places
+/// it, new objects are added there, and the View menu moves it.
+#[derive(Resource, Debug, Clone, Copy, Default, PartialEq)]
+pub struct Cursor3d(pub glam::DVec3);
+
 /// How the viewport draws meshes and surfaces, as Blender's shading
 /// header: Shift+Z toggles wireframe, Alt+Z X-ray (View menu too).
 #[derive(Resource, Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -236,6 +241,7 @@ impl Plugin for ScenePlugin {
             .init_resource::<FileJobs>()
             .init_resource::<InputGate>()
             .init_resource::<ViewportShading>()
+            .init_resource::<Cursor3d>()
             .add_message::<DocRequest>()
             .add_message::<DocChanged>()
             .configure_sets(

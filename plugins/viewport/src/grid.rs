@@ -29,3 +29,32 @@ pub(crate) fn draw_grid(mut grid: Gizmos, mut axes: Gizmos<AxisGizmos>) {
         Color::srgb(0.35, 0.8, 0.3),
     );
 }
+
+/// The 3D cursor's lines: drawn over everything, as Blender does.
+#[derive(Default, Reflect, GizmoConfigGroup)]
+pub struct CursorGizmos;
+
+/// The 3D cursor as Blender draws it: a red-and-white ring facing the view
+/// with short cross hairs, sized to stay the same on screen.
+pub(crate) fn draw_cursor(
+    cursor: Res<hedra_scene::Cursor3d>,
+    camera: Single<&GlobalTransform, With<ViewportCamera>>,
+    mut gizmos: Gizmos<CursorGizmos>,
+) {
+    let at = cursor.0.as_vec3();
+    let size = camera.translation().distance(at).max(1e-3) * 0.025;
+    let facing = Isometry3d::new(at, camera.rotation());
+    let (red, white) = (Color::srgb(0.9, 0.2, 0.2), Color::srgb(0.95, 0.95, 0.95));
+    // Alternating arcs make the dashed ring.
+    for k in 0..8 {
+        let start = k as f32 * std::f32::consts::FRAC_PI_4;
+        let arc = Isometry3d::new(at, camera.rotation() * Quat::from_rotation_z(start));
+        let color = if k % 2 == 0 { red } else { white };
+        gizmos.arc_3d(std::f32::consts::FRAC_PI_4, size, arc, color);
+    }
+    let (right, up) = (facing.rotation * Vec3::X, facing.rotation * Vec3::Y);
+    for d in [right, up] {
+        gizmos.line(at + d * size * 0.5, at + d * size * 1.6, Color::BLACK);
+        gizmos.line(at - d * size * 0.5, at - d * size * 1.6, Color::BLACK);
+    }
+}

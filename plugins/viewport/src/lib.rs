@@ -65,6 +65,17 @@ impl Plugin for ViewportPlugin {
                     ..default()
                 },
             )
+            .insert_gizmo_config(
+                CursorGizmos,
+                GizmoConfig {
+                    line: GizmoLineConfig {
+                        width: 2.0,
+                        ..default()
+                    },
+                    depth_bias: -1.0,
+                    ..default()
+                },
+            )
             .add_systems(Startup, (spawn_camera, spawn_gizmo_proxy))
             // The gizmo's drag is a tool: its command is applied this frame.
             .add_systems(
@@ -76,7 +87,13 @@ impl Plugin for ViewportPlugin {
             .add_systems(PostStartup, overlay_cameras_keep_the_picture)
             .add_systems(
                 Update,
-                (shading_keys, camera_controls, frame_selection, draw_grid)
+                (
+                    shading_keys,
+                    camera_controls,
+                    frame_selection,
+                    draw_grid,
+                    draw_cursor,
+                )
                     .chain()
                     .in_set(ViewportSystems),
             )

@@ -10,6 +10,8 @@ pub(super) struct ViewChoices<'a> {
     pub shading: &'a mut hedra_scene::ViewportShading,
     /// Increment snapping and its steps.
     pub snapping: &'a mut hedra_edit::Snapping,
+    /// The 3D cursor's world position.
+    pub cursor: &'a mut DVec3,
 }
 
 pub(super) fn menu_bar(
@@ -23,6 +25,7 @@ pub(super) fn menu_bar(
         gizmo_mode,
         shading,
         snapping,
+        cursor,
     } = view;
     egui::MenuBar::new().ui(ui, |ui| {
         ui.menu_button("File", |ui| {
@@ -126,9 +129,10 @@ pub(super) fn menu_bar(
             }
         });
         let curve = active_curve(&model.state.session.doc, model.selection.active());
+        let at = *cursor;
         ui.menu_button("Add", |ui| {
-            add_primitive_buttons(ui, events);
-            add_shape_buttons(ui, events, curve);
+            add_primitive_buttons(ui, events, at);
+            add_shape_buttons(ui, events, curve, at);
         });
         if let Some(node) = model.mode.node {
             ui.menu_button("Mesh", |ui| mesh_menu(ui, node, &model.mode, events));
@@ -231,13 +235,35 @@ pub(super) fn menu_bar(
                 ui.radio_value(gizmo_mode, Mode::Scale, "Gizmo: scale");
             }
             ui.separator();
+            if ui.button("Cursor to World Origin").clicked() {
+                *cursor = DVec3::ZERO;
+                ui.close();
+            }
+            let selected = selection_center(&model.state.session.doc, &model.selection);
+            if ui
+                .add_enabled(selected.is_some(), egui::Button::new("Cursor to Selected"))
+                .clicked()
+            {
+                *cursor = selected.unwrap_or(*cursor);
+                ui.close();
+            }
+            ui.label("Shift+right click: place the 3D cursor");
+            ui.separator();
             ui.label("Frame selected: F or Numpad .");
             ui.label("Frame all: Home");
         });
     });
 }
 
-pub(super) fn add_primitive_buttons(ui: &mut egui::Ui, events: &mut Vec<UiEvent>) {
+/// The transform of a new object: at the 3D cursor.
+fn at_cursor(at: DVec3) -> NodeTransform {
+    NodeTransform {
+        translation: at,
+        ..NodeTransform::IDENTITY
+    }
+}
+
+pub(super) fn add_primitive_buttons(ui: &mut egui::Ui, events: &mut Vec<UiEvent>, at: DVec3) {
     for kind in Primitive::KINDS {
         let p = Primitive::default_of(kind).expect("listed kinds have defaults");
         if ui.button(p.display_name()).clicked() {
@@ -247,7 +273,7 @@ pub(super) fn add_primitive_buttons(ui: &mut egui::Ui, events: &mut Vec<UiEvent>
                     primitive: p,
                     name: None,
                     parent: None,
-                    transform: NodeTransform::IDENTITY,
+                    transform: at_cursor(at),
                 },
             );
             ui.close();
@@ -270,6 +296,7 @@ pub(super) fn add_shape_buttons(
     ui: &mut egui::Ui,
     events: &mut Vec<UiEvent>,
     curve: Option<NodeId>,
+    at: DVec3,
 ) {
     use hedra_doc::command::{CurveSpec, SurfaceSpec};
     let v = |x: f64, y: f64, z: f64| DVec3::new(x, y, z);
@@ -283,13 +310,13 @@ pub(super) fn add_shape_buttons(
         name: name.into(),
         curve,
         parent: None,
-        transform: NodeTransform::IDENTITY,
+        transform: at_cursor(at),
     };
     let surface_cmd = |name: &str, surface: SurfaceSpec| Command::AddSurface {
         name: name.into(),
         surface,
         parent: None,
-        transform: NodeTransform::IDENTITY,
+        transform: at_cursor(at),
     };
     ui.separator();
     ui.label(egui::RichText::new("Curves").weak());
@@ -439,14 +466,15 @@ pub(super) fn add_menu(
     state: &mut UiState,
     events: &mut Vec<UiEvent>,
     curve: Option<NodeId>,
+    at: DVec3,
 ) {
     let Some(pos) = state.add_menu_at else { return };
     let close = cursor_menu(ctx, ADD_MENU, pos, |ui| {
         ui.label(egui::RichText::new("Add").strong());
         ui.separator();
         let before = events.len();
-        add_primitive_buttons(ui, events);
-        add_shape_buttons(ui, events, curve);
+        add_primitive_buttons(ui, events, at);
+        add_shape_buttons(ui, events, curve, at);
         events.len() > before
     });
     if close {
@@ -776,4 +804,15 @@ pub(super) fn selection_vertices(
     } else {
         None
     }
+}
+
+/// The mean world origin of the selected nodes (Cursor to Selected).
+fn selection_center(doc: &Document, selection: &Selection) -> Option<DVec3> {
+    let origins: Vec<DVec3> = selection
+        .nodes
+        .iter()
+        .filter(|&&id| doc.node(id).is_some())
+        .map(|&id| doc.world_matrix(id).w_axis.truncate())
+        .collect();
+    (!origins.is_empty()).then(|| origins.iter().sum::<DVec3>() / origins.len() as f64)
 }

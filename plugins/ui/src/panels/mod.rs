@@ -56,6 +56,7 @@ pub struct Writers<'w> {
     gizmo: ResMut<'w, bevy::gizmos::transform_gizmo::TransformGizmoSettings>,
     bisect: ResMut<'w, hedra_edit::BisectDrag>,
     snapping: ResMut<'w, hedra_edit::Snapping>,
+    cursor: ResMut<'w, hedra_scene::Cursor3d>,
 }
 
 #[derive(SystemParam)]
@@ -103,11 +104,13 @@ pub fn draw_ui(
     let mut gizmo_mode = writers.gizmo.mode;
     let mut shading = *model.shading;
     let mut snapping = *writers.snapping;
+    let mut cursor = writers.cursor.0;
     egui::Panel::top("menu").show(&mut root, |ui| {
         let view = ViewChoices {
             gizmo_mode: &mut gizmo_mode,
             shading: &mut shading,
             snapping: &mut snapping,
+            cursor: &mut cursor,
         };
         menu_bar(ui, &mut ui_state, &model, view, &mut events)
     });
@@ -119,6 +122,9 @@ pub fn draw_ui(
     }
     if *writers.snapping != snapping {
         *writers.snapping = snapping;
+    }
+    if writers.cursor.0 != cursor {
+        writers.cursor.0 = cursor;
     }
     egui::Panel::bottom("status").show(&mut root, |ui| status_bar(ui, &model));
     if ui_state.show_outliner {
@@ -183,7 +189,7 @@ pub fn draw_ui(
     }
     adjust_last_window(&ctx, free, &model, &mut events);
     let curve = active_curve(&model.state.session.doc, model.selection.active());
-    add_menu(&ctx, &mut ui_state, &mut events, curve);
+    add_menu(&ctx, &mut ui_state, &mut events, curve, writers.cursor.0);
     merge_menu(&ctx, &mut model, &mut events);
     dialogs(&ctx, &mut ui_state, &mut model, &mut writers);
 
