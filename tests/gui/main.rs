@@ -232,7 +232,8 @@ fn shift_z_and_alt_z_switch_wireframe_and_x_ray() {
         shading(&user),
         hedra_scene::ViewportShading {
             wireframe: false,
-            x_ray: true
+            x_ray: true,
+            face_orientation: false,
         }
     );
     assert_eq!(
@@ -337,4 +338,57 @@ fn shift_right_click_places_the_3d_cursor_where_objects_are_added() {
     user.click_on("View");
     user.click_on("Cursor to Selected");
     assert_eq!(cursor(&user), at);
+}
+
+/// View ▸ Face Orientation: the cube's render mesh takes the blue front
+/// material and gets a child drawing the same mesh in red on back faces;
+/// turned off, the shared material comes back and the child goes.
+#[test]
+fn face_orientation_colours_front_and_back_faces() {
+    let mut user = User::new();
+    user.add("Cube");
+    let materials = user
+        .app
+        .world()
+        .resource::<hedra_scene::FaceOrientationMaterials>()
+        .clone();
+    let shared = user
+        .app
+        .world()
+        .resource::<hedra_scene::MeshMaterial>()
+        .0
+        .clone();
+    let look = |user: &mut User| {
+        let world = user.app.world_mut();
+        let mut meshes = world
+            .query_filtered::<(Entity, &Mesh3d, &MeshMaterial3d<StandardMaterial>), (
+                With<hedra_scene::NodeEntity>,
+                Without<hedra_scene::BackFaces>,
+            )>();
+        let (e, mesh, material) = meshes.single(world).unwrap();
+        let (e, mesh, material) = (e, mesh.0.clone(), material.0.clone());
+        let mut backs = world.query_filtered::<(&Mesh3d, &MeshMaterial3d<StandardMaterial>, &ChildOf), With<hedra_scene::BackFaces>>();
+        let backs: Vec<_> = backs
+            .iter(world)
+            .map(|(m, mat, p)| (m.0.clone(), mat.0.clone(), p.parent()))
+            .collect();
+        (e, mesh, material, backs)
+    };
+    user.click_on("View");
+    user.click_on("Face Orientation");
+    user.frames(2);
+    let (cube, mesh, material, backs) = look(&mut user);
+    assert_eq!(material, materials.front, "blue on the front faces");
+    assert_eq!(
+        backs,
+        vec![(mesh, materials.back.clone(), cube)],
+        "red behind, same mesh"
+    );
+    user.tap(KeyCode::Escape);
+    user.click_on("View");
+    user.click_on("Face Orientation");
+    user.frames(2);
+    let (_, _, material, backs) = look(&mut user);
+    assert_eq!(material, shared);
+    assert!(backs.is_empty());
 }

@@ -163,6 +163,9 @@ pub struct ViewportShading {
     /// Faces are see-through ([`X_RAY_ALPHA`]) and edit-mode box select
     /// takes the elements behind them too.
     pub x_ray: bool,
+    /// Blender's Face Orientation overlay: front faces blue, back faces
+    /// red, to find flipped normals (View menu).
+    pub face_orientation: bool,
 }
 
 impl ViewportShading {
@@ -187,6 +190,99 @@ impl ViewportShading {
 /// How opaque faces are in X-ray shading (Blender's default is 0.5; lower
 /// here because the cage's edges are drawn over it).
 pub const X_RAY_ALPHA: f32 = 0.35;
+
+/// The two materials of the face orientation overlay: unlit blue drawn
+/// on front faces only, unlit red on back faces only.
+#[derive(Resource, Clone)]
+pub struct FaceOrientationMaterials {
+    /// Blue, back faces culled: put on the mesh entities themselves.
+    pub front: Handle<StandardMaterial>,
+    /// Red, front faces culled: on each mesh entity's [`BackFaces`] child.
+    pub back: Handle<StandardMaterial>,
+}
+
+/// A child entity that draws its parent's render mesh again with the red
+/// back-face material while the face orientation overlay is on.
+#[derive(Component, Debug)]
+pub struct BackFaces;
+
+fn setup_face_orientation(mut commands: Commands, mut materials: ResMut<Assets<StandardMaterial>>) {
+    let side = |color: Color, cull: bevy::render::render_resource::Face| StandardMaterial {
+        base_color: color,
+        unlit: true,
+        cull_mode: Some(cull),
+        ..default()
+    };
+    use bevy::render::render_resource::Face;
+    commands.insert_resource(FaceOrientationMaterials {
+        front: materials.add(side(Color::srgb(0.25, 0.4, 0.85), Face::Back)),
+        back: materials.add(side(Color::srgb(0.8, 0.2, 0.2), Face::Front)),
+    });
+}
+
+/// Shows or removes the face orientation overlay: mesh entities (nodes and
+/// surface patches) get the blue front material and a [`BackFaces`] child
+/// with the same mesh in red; turned off, they get the shared material
+/// back and the children go. Re-run every frame while on, because a
+/// rebuilt render mesh comes back with the shared material.
+#[allow(clippy::type_complexity)]
+fn project_face_orientation(
+    mut commands: Commands,
+    shading: Res<ViewportShading>,
+    orientation: Option<Res<FaceOrientationMaterials>>,
+    shared: Option<Res<MeshMaterial>>,
+    meshes: Query<(Entity, &Mesh3d, &MeshMaterial3d<StandardMaterial>), Without<BackFaces>>,
+    backs: Query<(Entity, &Mesh3d, &ChildOf), With<BackFaces>>,
+) {
+    let (Some(orientation), Some(shared)) = (orientation, shared) else {
+        return;
+    };
+    if !shading.face_orientation {
+        if !shading.is_changed() {
+            return;
+        }
+        for (e, _, m) in &meshes {
+            if m.0 == orientation.front {
+                commands.entity(e).insert(MeshMaterial3d(shared.0.clone()));
+            }
+        }
+        for (e, _, _) in &backs {
+            commands.entity(e).despawn();
+        }
+        return;
+    }
+    let mut with_back = std::collections::HashSet::new();
+    for (e, mesh, parent) in &backs {
+        match meshes.get(parent.parent()) {
+            Ok((_, parent_mesh, _)) => {
+                with_back.insert(parent.parent());
+                if parent_mesh.0 != mesh.0 {
+                    commands.entity(e).insert(Mesh3d(parent_mesh.0.clone()));
+                }
+            }
+            Err(_) => commands.entity(e).despawn(),
+        }
+    }
+    for (e, mesh, m) in &meshes {
+        if m.0 != shared.0 && m.0 != orientation.front {
+            continue; // not a model mesh (gizmo proxies and the like)
+        }
+        if m.0 != orientation.front {
+            commands
+                .entity(e)
+                .insert(MeshMaterial3d(orientation.front.clone()));
+        }
+        if !with_back.contains(&e) {
+            commands.spawn((
+                BackFaces,
+                Mesh3d(mesh.0.clone()),
+                MeshMaterial3d(orientation.back.clone()),
+                Transform::IDENTITY,
+                ChildOf(e),
+            ));
+        }
+    }
+}
 
 /// Puts the shading on the shared mesh material: blended and faded for
 /// X-ray, fully transparent for wireframe, opaque when solid.
@@ -254,12 +350,14 @@ impl Plugin for ScenePlugin {
                 )
                     .chain(),
             )
-            .add_systems(Startup, setup_material)
+            .add_systems(Startup, (setup_material, setup_face_orientation))
             .add_systems(Update, apply_requests.in_set(SceneSystems::Apply))
             .add_systems(
                 Update,
-                apply_viewport_shading
-                    .run_if(resource_changed::<ViewportShading>)
+                (
+                    apply_viewport_shading.run_if(resource_changed::<ViewportShading>),
+                    project_face_orientation,
+                )
                     .in_set(SceneSystems::View),
             )
             .add_systems(Last, file_jobs::finish_saves_on_exit)

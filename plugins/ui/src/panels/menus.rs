@@ -210,6 +210,7 @@ pub(super) fn menu_bar(
             ui.checkbox(&mut state.show_statistics, "Statistics");
             ui.checkbox(&mut shading.wireframe, "Wireframe\tShift+Z");
             ui.checkbox(&mut shading.x_ray, "X-ray\tAlt+Z");
+            ui.checkbox(&mut shading.face_orientation, "Face Orientation");
             ui.separator();
             ui.checkbox(&mut snapping.enabled, "Snap (increments)\tShift+Tab");
             ui.horizontal(|ui| {
