@@ -746,3 +746,43 @@ fn shift_tab_snaps_moves_to_whole_grid_steps() {
             .any(|v| mesh.position(v).y > 1.0 || mesh.position(v).x.abs() > 1.0)
     );
 }
+
+/// Snap to Vertex (View menu) with snapping on: G on one corner of the cube
+/// and the pointer near another puts the first exactly on the second; the
+/// target is published for the viewport to draw while the move runs.
+#[test]
+fn vertex_snapping_puts_a_vertex_exactly_on_another() {
+    let mut user = cube_in_edit_mode(KeyCode::Digit1);
+    let (from, onto) = (DVec3::new(1.0, 1.0, 1.0), DVec3::new(-1.0, 1.0, 1.0));
+    let corner = user.screen_of(from.as_vec3());
+    user.click(corner);
+    let moved = user
+        .edit_mode()
+        .selection
+        .vertices
+        .iter()
+        .next()
+        .copied()
+        .unwrap();
+    assert_eq!(user.first_mesh().position(moved), from);
+    user.click_on("View");
+    user.click_on("Vertex");
+    user.tap(KeyCode::Escape);
+    user.shortcut(&[KeyCode::ShiftLeft], KeyCode::Tab);
+    user.move_to(corner);
+    user.tap(KeyCode::KeyG);
+    let near = user.screen_of(onto.as_vec3()) + Vec2::new(6.0, -5.0);
+    user.glide_to(near, 5);
+    let target = user.app.world().resource::<hedra_edit::SnapTarget>().0;
+    assert_eq!(target, Some(onto), "the target is drawn");
+    user.click(near);
+    assert_eq!(
+        user.first_mesh().position(moved),
+        onto,
+        "exactly on the other corner"
+    );
+    assert_eq!(
+        user.app.world().resource::<hedra_edit::SnapTarget>().0,
+        None
+    );
+}

@@ -28,7 +28,9 @@ pub use mesh_mode::{
 };
 pub use modal::{Axis, ModalTransform, TransformKind, TransformTool};
 pub use shape_mode::ShapeEdit;
-pub use snapping::{Snapping, drag_translation, snapping_keys};
+pub use snapping::{
+    MoveSnap, SnapElement, SnapTarget, Snapping, drag_translation, snapping_keys, vertex_snap,
+};
 
 /// Selected nodes, in the order they were selected; the last one is active.
 #[derive(Resource, Default, Debug, Clone, PartialEq)]
@@ -82,6 +84,7 @@ impl Plugin for EditPlugin {
             .init_resource::<EditMode>()
             .init_resource::<mesh_mode::BisectDrag>()
             .init_resource::<Snapping>()
+            .init_resource::<SnapTarget>()
             .init_resource::<ShapeEdit>()
             .configure_sets(Update, EditSystems.in_set(SceneSystems::Tools))
             .add_systems(

@@ -9,11 +9,32 @@ use bevy::prelude::*;
 use glam::DVec3;
 use hedra_scene::modifiers::ctrl;
 
+/// What a move snaps to (Blender's snap target element).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub enum SnapElement {
+    /// Whole steps of [`Snapping::step`].
+    #[default]
+    Increment,
+    /// In mesh edit mode: the moved vertex nearest the target lands exactly
+    /// on the mesh vertex nearest the pointer (within
+    /// [`VERTEX_SNAP_PIXELS`]); elsewhere, increments.
+    Vertex,
+}
+
+/// How near the pointer (logical pixels) a vertex must be to snap to it.
+pub const VERTEX_SNAP_PIXELS: f32 = 20.0;
+
+/// Where the running move snapped to this frame (world), for drawing.
+#[derive(Resource, Debug, Clone, Copy, Default, PartialEq)]
+pub struct SnapTarget(pub Option<DVec3>);
+
 /// Whether and how the transform tools snap.
 #[derive(Resource, Debug, Clone, Copy, PartialEq)]
 pub struct Snapping {
     /// Snapping is on (Shift+Tab, View ▸ Snap); Ctrl held inverts it.
     pub enabled: bool,
+    /// What moves snap to.
+    pub element: SnapElement,
     /// The move step in world units (the grid's cell is 1).
     pub step: f64,
     /// The rotation step in degrees (Blender's 5°).
@@ -26,6 +47,7 @@ impl Default for Snapping {
     fn default() -> Self {
         Snapping {
             enabled: false,
+            element: SnapElement::Increment,
             step: 1.0,
             angle_step: 5.0,
             scale_step: 0.1,
@@ -99,4 +121,44 @@ pub fn snapping_keys(
             "Snapping off (Shift+Tab on; Ctrl snaps during a drag)"
         });
     }
+}
+
+/// How a running move is snapped this frame.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum MoveSnap {
+    /// No snapping: the drag as it is.
+    Free,
+    /// Each component of the drag to whole multiples of the step.
+    Increment(f64),
+    /// This exact world translation (a vertex onto a vertex).
+    To(DVec3),
+}
+
+/// Vertex snapping for a move of `moved` (local ids of `mesh`, placed by
+/// `world`): the mesh vertex outside `moved` nearest the pointer on screen
+/// (within [`VERTEX_SNAP_PIXELS`]) is the target, the moved vertex nearest
+/// it the base (Blender's "closest"); returns the target and the
+/// translation from base to target, both in world space.
+pub fn vertex_snap(
+    mesh: &hedra_geom::HalfEdgeMesh,
+    world: glam::DMat4,
+    moved: &std::collections::BTreeSet<hedra_geom::VertexId>,
+    cursor: Vec2,
+    to_screen: &dyn Fn(DVec3) -> Option<Vec2>,
+) -> Option<(DVec3, DVec3)> {
+    let target = mesh
+        .vertices()
+        .filter(|v| !moved.contains(v))
+        .filter_map(|v| {
+            let p = world.transform_point3(mesh.position(v));
+            let d = to_screen(p)?.distance(cursor);
+            (d <= VERTEX_SNAP_PIXELS).then_some((d, p))
+        })
+        .min_by(|a, b| a.0.total_cmp(&b.0))?
+        .1;
+    let base = moved
+        .iter()
+        .map(|&v| world.transform_point3(mesh.position(v)))
+        .min_by(|a, b| a.distance(target).total_cmp(&b.distance(target)))?;
+    Some((target, target - base))
 }

@@ -58,3 +58,16 @@ pub(crate) fn draw_cursor(
         gizmos.line(at - d * size * 0.5, at - d * size * 1.6, Color::BLACK);
     }
 }
+
+/// The vertex a running move snapped to: a ring around it, over everything.
+pub(crate) fn draw_snap_target(
+    target: Res<hedra_edit::SnapTarget>,
+    camera: Single<&GlobalTransform, With<ViewportCamera>>,
+    mut gizmos: Gizmos<CursorGizmos>,
+) {
+    let Some(at) = target.0 else { return };
+    let at = at.as_vec3();
+    let size = camera.translation().distance(at).max(1e-3) * 0.012;
+    let facing = Isometry3d::new(at, camera.rotation());
+    gizmos.circle(facing, size, Color::srgb(1.0, 0.6, 0.1));
+}

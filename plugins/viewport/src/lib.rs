@@ -93,6 +93,7 @@ impl Plugin for ViewportPlugin {
                     frame_selection,
                     draw_grid,
                     draw_cursor,
+                    draw_snap_target,
                 )
                     .chain()
                     .in_set(ViewportSystems),

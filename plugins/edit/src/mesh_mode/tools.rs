@@ -13,24 +13,27 @@ pub(super) fn tool_command(
     ray_at: &dyn Fn(Vec2) -> Option<(DVec3, DVec3)>,
     view_dir: DVec3,
     pixel_size: f64,
-    snap_step: Option<f64>,
+    snap: crate::MoveSnap,
 ) -> Command {
     let drag = (cursor - tool.start_cursor).x as f64 * pixel_size;
     let faces = || FaceSet::Ids(selection.faces.iter().map(|f| f.0).collect());
     match tool.kind {
         MeshToolKind::Move | MeshToolKind::ExtrudeEdges => {
-            let world_delta = if let Some(v) = tool.typed.value() {
-                tool.axis.unwrap_or(Axis::X).vector() * v
-            } else {
-                crate::drag_translation(
+            let world_delta = match (tool.typed.value(), snap) {
+                (Some(v), _) => tool.axis.unwrap_or(Axis::X).vector() * v,
+                (None, crate::MoveSnap::To(delta)) => delta,
+                (None, snap) => crate::drag_translation(
                     tool.start_cursor,
                     cursor,
                     tool.pivot,
                     view_dir,
                     tool.axis,
                     ray_at,
-                    snap_step,
-                )
+                    match snap {
+                        crate::MoveSnap::Increment(step) => Some(step),
+                        _ => None,
+                    },
+                ),
             };
             let verb = if tool.kind == MeshToolKind::Move {
                 "Move"
@@ -236,8 +239,10 @@ pub fn drive_mesh_tool(
     mut requests: MessageWriter<DocRequest>,
     mut status: ResMut<hedra_scene::StatusMessage>,
     snapping: Res<crate::Snapping>,
+    mut snap_target: ResMut<crate::SnapTarget>,
 ) {
     mode.just_finished = false;
+    snap_target.0 = None;
     let Some(mut tool) = mode.tool.take() else {
         return;
     };
@@ -298,6 +303,21 @@ pub fn drive_mesh_tool(
             .ok()
             .map(|r| (r.origin.as_dvec3(), Vec3::from(r.direction).as_dvec3()))
     };
+    let snap = match (snapping.active(&keys), snapping.element) {
+        (false, _) => crate::MoveSnap::Free,
+        (true, crate::SnapElement::Vertex) if tool.kind == MeshToolKind::Move => {
+            let to_screen = |p: DVec3| cam.world_to_viewport(cam_t, p.as_vec3()).ok();
+            let moved = mode.selection.all_vertices(&mesh);
+            match crate::vertex_snap(&mesh, world, &moved, cursor, &to_screen) {
+                Some((target, delta)) => {
+                    snap_target.0 = Some(target);
+                    crate::MoveSnap::To(delta)
+                }
+                None => crate::MoveSnap::Free,
+            }
+        }
+        (true, _) => crate::MoveSnap::Increment(snapping.step),
+    };
     let cmd = tool_command(
         &mut tool,
         NodeRef::from(node_id),
@@ -308,7 +328,7 @@ pub fn drive_mesh_tool(
         &ray_at,
         view_dir,
         pixel_size,
-        snapping.active(&keys).then_some(snapping.step),
+        snap,
     );
     if !tool.typed.is_empty() {
         tool.readout = format!("{} [{}]", tool.readout, tool.typed.as_str());

@@ -212,7 +212,13 @@ pub(super) fn menu_bar(
             ui.checkbox(&mut shading.x_ray, "X-ray\tAlt+Z");
             ui.checkbox(&mut shading.face_orientation, "Face Orientation");
             ui.separator();
-            ui.checkbox(&mut snapping.enabled, "Snap (increments)\tShift+Tab");
+            ui.checkbox(&mut snapping.enabled, "Snap\tShift+Tab");
+            ui.horizontal(|ui| {
+                use hedra_edit::SnapElement;
+                ui.label("Snap to");
+                ui.radio_value(&mut snapping.element, SnapElement::Increment, "Increment");
+                ui.radio_value(&mut snapping.element, SnapElement::Vertex, "Vertex");
+            });
             ui.horizontal(|ui| {
                 ui.label("Snap step");
                 ui.add(
