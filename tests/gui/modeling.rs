@@ -786,3 +786,30 @@ fn vertex_snapping_puts_a_vertex_exactly_on_another() {
         None
     );
 }
+
+/// With snapping on, R turns the object in whole 5° steps and S scales it
+/// in steps of 0.1 (object mode).
+#[test]
+fn snapping_rotates_in_5_degree_and_scales_in_tenth_steps() {
+    let mut user = User::new();
+    user.add("Cube");
+    user.shortcut(&[KeyCode::ShiftLeft], KeyCode::Tab);
+    let center = user.viewport_center();
+    let steps_of = |x: f64, step: f64| ((x / step) - (x / step).round()).abs() < 1e-9;
+
+    user.move_to(center + Vec2::new(80.0, 0.0));
+    user.tap(KeyCode::KeyR);
+    user.glide_to(center + Vec2::new(50.0, -67.0), 5);
+    user.click(center + Vec2::new(50.0, -67.0));
+    let rotation = user.doc().nodes().next().unwrap().transform.rotation;
+    let degrees = rotation.to_axis_angle().1.to_degrees();
+    assert!(degrees > 1.0 && steps_of(degrees, 5.0), "{degrees}°");
+
+    user.move_to(center + Vec2::new(80.0, 0.0));
+    user.tap(KeyCode::KeyS);
+    user.glide_to(center + Vec2::new(117.0, 9.0), 5);
+    user.click(center + Vec2::new(117.0, 9.0));
+    let scale = user.doc().nodes().next().unwrap().transform.scale;
+    assert!(scale.x > 1.05 && steps_of(scale.x, 0.1), "{scale}");
+    assert_eq!(scale.x, scale.y);
+}

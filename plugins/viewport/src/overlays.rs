@@ -36,6 +36,9 @@ pub struct EdgeOverlay {
     pub active: bool,
     /// The node is visible and not being edited; when false the overlay is empty.
     pub shown: bool,
+    /// Wireframe shading is on: unselected wires are drawn light, since
+    /// no face is behind them.
+    pub wireframe: bool,
 }
 
 /// Keeps one retained line gizmo per mesh node with its edges: dark for
@@ -53,8 +56,10 @@ pub(crate) fn update_edge_overlays(
     nodes: Query<(Entity, &NodeEntity, &ProjectedMesh, Option<&Children>)>,
     mut overlays: Query<(&mut EdgeOverlay, &Gizmo)>,
     mut assets: ResMut<Assets<GizmoAsset>>,
+    shading: Res<hedra_scene::ViewportShading>,
 ) {
     let doc = &state.session.doc;
+    let wireframe = shading.wireframe;
     for (entity, node, projected, children) in &nodes {
         let selected = selection.contains(node.0);
         let active = selection.active() == Some(node.0);
@@ -66,6 +71,7 @@ pub(crate) fn update_edge_overlays(
             selected,
             active,
             shown,
+            wireframe,
         };
         let existing = children.and_then(|c| c.iter().find(|c| overlays.contains(*c)));
         if let Some(child) = existing
@@ -79,6 +85,7 @@ pub(crate) fn update_edge_overlays(
         let color = match (selected, active) {
             (true, true) => Color::srgb(1.0, 0.78, 0.25),
             (true, false) => Color::srgb(0.95, 0.45, 0.1),
+            _ if wireframe => Color::srgba(0.85, 0.87, 0.9, 0.9),
             _ => Color::srgba(0.05, 0.05, 0.07, 0.8),
         };
         let mut asset = GizmoAsset::new();
