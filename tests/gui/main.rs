@@ -392,3 +392,32 @@ fn face_orientation_colours_front_and_back_faces() {
     assert_eq!(material, shared);
     assert!(backs.is_empty());
 }
+
+/// Shift+S opens the snap menu at the pointer: Selection to Cursor moves
+/// the selected cube's origin onto the 3D cursor in one undo step, Cursor
+/// to World Origin puts the cursor back.
+#[test]
+fn shift_s_snaps_the_selection_to_the_cursor_and_back() {
+    let cursor = |user: &User| user.app.world().resource::<hedra_scene::Cursor3d>().0;
+    let mut user = User::new();
+    user.add("Cube");
+    user.app
+        .world_mut()
+        .resource_mut::<hedra_scene::Cursor3d>()
+        .0 = hedra_geom::DVec3::new(2.0, 0.5, -1.0);
+    let steps = user.undo_steps();
+    user.move_to(user.viewport_center());
+    user.shortcut(&[KeyCode::ShiftLeft], KeyCode::KeyS);
+    assert!(
+        user.shows("Selection to Cursor"),
+        "Shift+S shows the snap menu"
+    );
+    user.click_on("Selection to Cursor");
+    let t = user.doc().nodes().next().unwrap().transform.translation;
+    assert_eq!(t, hedra_geom::DVec3::new(2.0, 0.5, -1.0));
+    assert_eq!(user.undo_steps(), steps + 1);
+    assert!(!user.shows("Selection to Cursor"), "the menu closed");
+    user.shortcut(&[KeyCode::ShiftLeft], KeyCode::KeyS);
+    user.click_on("Cursor to World Origin");
+    assert_eq!(cursor(&user), hedra_geom::DVec3::ZERO);
+}

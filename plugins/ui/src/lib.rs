@@ -18,7 +18,7 @@ use hedra_scene::{DocRequest, DocState, InputGate, StatusMessage, ViewportCamera
 
 pub mod files;
 mod panels;
-pub use panels::{ADD_MENU, MERGE_MENU};
+pub use panels::{ADD_MENU, MERGE_MENU, SNAP_MENU};
 pub mod recovery;
 
 pub use files::{FilePurpose, Pending, Preferences, SamplesDir};
@@ -39,6 +39,8 @@ pub struct UiState {
     pub show_preferences: bool,
     /// Shift+A menu position, while open.
     pub add_menu_at: Option<egui::Pos2>,
+    /// Shift+S snap menu position, while open.
+    pub snap_menu_at: Option<egui::Pos2>,
     /// Waiting for the user to decide about unsaved changes.
     pub confirm: Option<Pending>,
     /// Runs after the next successful save (Save before New/Open/Quit).
@@ -75,6 +77,7 @@ impl Default for UiState {
             show_statistics: false,
             show_preferences: false,
             add_menu_at: None,
+            snap_menu_at: None,
             confirm: None,
             after_save: None,
             path_prompt: None,
@@ -258,6 +261,8 @@ fn global_shortcuts(
         }
     } else if shift && keys.just_pressed(KeyCode::KeyA) {
         ui.add_menu_at = window.cursor_position().map(|c| egui::pos2(c.x, c.y));
+    } else if shift && keys.just_pressed(KeyCode::KeyS) {
+        ui.snap_menu_at = window.cursor_position().map(|c| egui::pos2(c.x, c.y));
     }
 }
 

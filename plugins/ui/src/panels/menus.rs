@@ -492,6 +492,70 @@ pub(super) fn add_menu(
 /// The egui id of the Shift+A menu.
 pub const ADD_MENU: &str = "add-menu";
 
+/// The egui id of the Shift+S snap menu.
+pub const SNAP_MENU: &str = "snap-menu";
+
+/// Shift+S: Blender's snap menu at the pointer, for the 3D cursor and the
+/// selected objects.
+pub(super) fn snap_menu(
+    ctx: &egui::Context,
+    state: &mut UiState,
+    model: &Model,
+    cursor: &mut DVec3,
+    events: &mut Vec<UiEvent>,
+) {
+    let Some(pos) = state.snap_menu_at else {
+        return;
+    };
+    let doc = &model.state.session.doc;
+    let selected = selection_center(doc, &model.selection);
+    let object_mode = model.mode.node.is_none() && model.shape_edit.node.is_none();
+    let close = cursor_menu(ctx, SNAP_MENU, pos, |ui| {
+        ui.label(egui::RichText::new("Snap").strong());
+        ui.separator();
+        if ui.button("Cursor to World Origin").clicked() {
+            *cursor = DVec3::ZERO;
+            return true;
+        }
+        if ui
+            .add_enabled(selected.is_some(), egui::Button::new("Cursor to Selected"))
+            .clicked()
+        {
+            *cursor = selected.unwrap_or(*cursor);
+            return true;
+        }
+        let movable = object_mode && selected.is_some();
+        if ui
+            .add_enabled(movable, egui::Button::new("Selection to Cursor"))
+            .clicked()
+        {
+            // Each selected object's origin goes to the cursor, in its parent's space.
+            let nodes = model
+                .selection
+                .nodes
+                .iter()
+                .filter_map(|&id| {
+                    let node = doc.node(id)?;
+                    let parent = node
+                        .parent
+                        .map_or(glam::DMat4::IDENTITY, |p| doc.world_matrix(p));
+                    let transform = NodeTransform {
+                        translation: parent.inverse().transform_point3(*cursor),
+                        ..node.transform
+                    };
+                    Some((NodeRef::from(id), transform))
+                })
+                .collect();
+            exec(events, Command::SetTransforms { nodes });
+            return true;
+        }
+        false
+    });
+    if close {
+        state.snap_menu_at = None;
+    }
+}
+
 /// The egui id of the M merge menu.
 pub const MERGE_MENU: &str = "merge-menu";
 

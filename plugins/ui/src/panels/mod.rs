@@ -28,7 +28,7 @@ mod windows;
 use dialogs::*;
 use inspector::*;
 use menus::*;
-pub use menus::{ADD_MENU, MERGE_MENU};
+pub use menus::{ADD_MENU, MERGE_MENU, SNAP_MENU};
 use outliner::*;
 use properties::*;
 use status_bar::*;
@@ -123,6 +123,7 @@ pub fn draw_ui(
     if *writers.snapping != snapping {
         *writers.snapping = snapping;
     }
+    snap_menu(&ctx, &mut ui_state, &model, &mut cursor, &mut events);
     if writers.cursor.0 != cursor {
         writers.cursor.0 = cursor;
     }
