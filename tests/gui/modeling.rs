@@ -595,13 +595,7 @@ fn alt_j_joins_the_selected_triangles_into_quads() {
 /// and the cut is filled: the closed upper half (8/12/6). Esc cancels.
 #[test]
 fn bisect_cuts_along_a_dragged_line() {
-    let mut user = cube_in_edit_mode(KeyCode::Digit3);
-    user.tap(KeyCode::Numpad1);
-    user.tap(KeyCode::KeyA);
-    let (left, right) = (
-        user.screen_of(Vec3::new(-2.0, 0.0, 0.0)),
-        user.screen_of(Vec3::new(2.0, 0.0, 0.0)),
-    );
+    let (mut user, left, right) = cube_in_front_view_all_faces();
     let steps = user.undo_steps();
     open_mesh_menu(&mut user);
     user.click_on("Bisect (drag a line)");
@@ -669,13 +663,7 @@ fn open_mesh_menu(user: &mut User) {
 /// without redoing the drag, still one undo step.
 #[test]
 fn adjust_last_bisect_clears_a_side_and_fills() {
-    let mut user = cube_in_edit_mode(KeyCode::Digit3);
-    user.tap(KeyCode::Numpad1);
-    user.tap(KeyCode::KeyA);
-    let (left, right) = (
-        user.screen_of(Vec3::new(-2.0, 0.0, 0.0)),
-        user.screen_of(Vec3::new(2.0, 0.0, 0.0)),
-    );
+    let (mut user, left, right) = cube_in_front_view_all_faces();
     let steps = user.undo_steps();
     open_mesh_menu(&mut user);
     user.click_on("Bisect (drag a line)");
@@ -812,4 +800,16 @@ fn snapping_rotates_in_5_degree_and_scales_in_tenth_steps() {
     let scale = user.doc().nodes().next().unwrap().transform.scale;
     assert!(scale.x > 1.05 && steps_of(scale.x, 0.1), "{scale}");
     assert_eq!(scale.x, scale.y);
+}
+
+/// The cube in face edit mode, seen from the front (Numpad 1) with every
+/// face selected, and the screen points of (-2, 0, 0) and (2, 0, 0): a
+/// horizontal line through its middle.
+fn cube_in_front_view_all_faces() -> (User, Vec2, Vec2) {
+    let mut user = cube_in_edit_mode(KeyCode::Digit3);
+    user.tap(KeyCode::Numpad1);
+    user.tap(KeyCode::KeyA);
+    let left = user.screen_of(Vec3::new(-2.0, 0.0, 0.0));
+    let right = user.screen_of(Vec3::new(2.0, 0.0, 0.0));
+    (user, left, right)
 }

@@ -1,32 +1,12 @@
 //! The examples in docs/commands.md run, in order, as one script.
 
+mod common;
+
 use std::path::Path;
 
 #[test]
 fn every_command_example_in_the_docs_runs() {
-    let md = std::fs::read_to_string(
-        std::path::PathBuf::from(
-            std::env::var_os("CARGO_MANIFEST_DIR").expect("set by cargo test"),
-        )
-        .join("../../docs/commands.md"),
-    )
-    .unwrap();
-    let mut blocks = Vec::new();
-    let mut current: Option<String> = None;
-    for line in md.lines() {
-        match (&mut current, line.trim_start()) {
-            (None, "```ron") => current = Some(String::new()),
-            (Some(b), "```") => {
-                blocks.push(b.trim().to_string());
-                current = None;
-            }
-            (Some(b), _) => {
-                b.push_str(line);
-                b.push('\n');
-            }
-            _ => {}
-        }
-    }
+    let blocks = common::commands_md_blocks();
     assert!(blocks.len() >= 15, "found only {} examples", blocks.len());
     let script = format!("[\n{}\n]", blocks.join(",\n"));
     let commands = hedra_doc::script::parse(&script, Path::new("docs/commands.md"))

@@ -9,6 +9,8 @@
 //! docs/commands.md it lacks (so a new command gets its line); it never
 //! changes a line that is already there.
 
+mod common;
+
 use hedra_doc::Command;
 use hedra_doc::file::{self, FORMAT_VERSION, stored_command};
 use serde::Deserialize;
@@ -83,23 +85,7 @@ fn command_variants() -> Vec<&'static str> {
 
 /// The examples of docs/commands.md, as commands.
 fn docs_examples() -> Vec<Command> {
-    let md = std::fs::read_to_string(manifest_dir().join("../../docs/commands.md")).unwrap();
-    let mut blocks = Vec::new();
-    let mut current: Option<String> = None;
-    for line in md.lines() {
-        match (&mut current, line.trim_start()) {
-            (None, "```ron") => current = Some(String::new()),
-            (Some(b), "```") => {
-                blocks.push(b.trim().to_string());
-                current = None;
-            }
-            (Some(b), _) => {
-                b.push_str(line);
-                b.push('\n');
-            }
-            _ => {}
-        }
-    }
+    let blocks = common::commands_md_blocks();
     let script = format!("[\n{}\n]", blocks.join(",\n"));
     hedra_doc::script::parse(&script, Path::new("docs/commands.md")).unwrap()
 }

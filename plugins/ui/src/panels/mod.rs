@@ -16,20 +16,27 @@ use hedra_edit::{EditMode, ElementKind, Selection, TransformTool};
 use hedra_geom::Primitive;
 use hedra_scene::{DocRequest, DocState, InputGate, StatusMessage};
 
+mod add_menu;
 mod dialogs;
 mod inspector;
 mod menus;
+mod mesh_menu;
 mod outliner;
+mod pointer_menus;
 mod properties;
 mod status_bar;
 mod weight_labels;
 mod windows;
 
+pub use add_menu::ADD_MENU;
+use add_menu::*;
 use dialogs::*;
 use inspector::*;
 use menus::*;
-pub use menus::{ADD_MENU, MERGE_MENU, SNAP_MENU};
+use mesh_menu::*;
 use outliner::*;
+use pointer_menus::*;
+pub use pointer_menus::{MERGE_MENU, SNAP_MENU};
 use properties::*;
 use status_bar::*;
 use weight_labels::*;

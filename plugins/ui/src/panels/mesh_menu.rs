@@ -1,0 +1,205 @@
+//! Edit mode's Mesh menu: every tool on the current selection.
+
+use super::*;
+
+/// Edit mode's Mesh menu: every tool on the current selection. Amounts start
+/// at sensible defaults and are changed in the Adjust Last window, as in
+/// Blender; the keys run the same tools interactively.
+pub(super) fn mesh_menu(
+    ui: &mut egui::Ui,
+    node: NodeId,
+    mode: &EditMode,
+    events: &mut Vec<UiEvent>,
+) {
+    use hedra_doc::{EdgeSet, FaceSet, VertexSet};
+    let sel = &mode.selection;
+    let faces = || FaceSet::Ids(sel.faces.iter().map(|f| f.0).collect());
+    let edges = || EdgeSet::Ids(sel.edges.iter().map(|e| e.0).collect());
+    let vertices = || VertexSet::Ids(sel.vertices.iter().map(|v| v.0).collect());
+    let n = NodeRef::from(node);
+    let (has_f, has_e, has_v) = (
+        !sel.faces.is_empty(),
+        !sel.edges.is_empty(),
+        !sel.vertices.is_empty(),
+    );
+    let mut merge_events = Vec::new();
+    let mut start_bisect = false;
+    let mut item = |ui: &mut egui::Ui, label: &str, enabled: bool, cmd: &dyn Fn() -> Command| {
+        if ui.add_enabled(enabled, egui::Button::new(label)).clicked() {
+            exec(events, cmd());
+            ui.close();
+        }
+    };
+    ui.label(egui::RichText::new("Faces").weak());
+    item(ui, "Extrude Region\tE", has_f, &|| Command::ExtrudeRegion {
+        node: n.clone(),
+        faces: faces(),
+        distance: 0.5,
+    });
+    item(ui, "Extrude Individual\tAlt+E", has_f, &|| {
+        Command::ExtrudeFaces {
+            node: n.clone(),
+            faces: faces(),
+            distance: 0.5,
+        }
+    });
+    item(ui, "Inset Region\tI", has_f, &|| Command::InsetRegion {
+        node: n.clone(),
+        faces: faces(),
+        thickness: 0.1,
+        depth: 0.0,
+    });
+    item(ui, "Inset Individual\tAlt+I", has_f, &|| {
+        Command::InsetFaces {
+            node: n.clone(),
+            faces: faces(),
+            thickness: 0.1,
+            depth: 0.0,
+        }
+    });
+    item(ui, "Delete Only Faces (keep edges)", has_f, &|| {
+        Command::MakeHoles {
+            node: n.clone(),
+            faces: faces(),
+        }
+    });
+    item(ui, "Triangulate Faces\tCtrl+T", has_f, &|| {
+        Command::Triangulate {
+            node: n.clone(),
+            faces: faces(),
+        }
+    });
+    item(ui, "Tris to Quads\tAlt+J", has_f, &|| {
+        Command::TrisToQuads {
+            node: n.clone(),
+            faces: faces(),
+            face_degrees: 40.0,
+            shape_degrees: 40.0,
+        }
+    });
+    if ui
+        .add_enabled(has_f, egui::Button::new("Bisect (drag a line)"))
+        .clicked()
+    {
+        // Pushed after the menu: `item` holds the event list until then.
+        start_bisect = true;
+        ui.close();
+    }
+    ui.separator();
+    ui.label(egui::RichText::new("Edges").weak());
+    item(ui, "Loop Cut\tCtrl+R", sel.edges.len() == 1, &|| {
+        Command::LoopCut {
+            node: n.clone(),
+            edge: edges(),
+            cuts: 1,
+        }
+    });
+    item(ui, "Subdivide", has_e, &|| Command::SubdivideEdges {
+        node: n.clone(),
+        edges: edges(),
+        cuts: 1,
+    });
+    item(ui, "Bridge Edge Loops", has_e, &|| Command::BridgeLoops {
+        node: n.clone(),
+        edges: edges(),
+    });
+    item(ui, "Fill\tF", has_e, &|| Command::FillHoles {
+        node: n.clone(),
+        edges: edges(),
+    });
+    item(ui, "Collapse\tM", has_e, &|| Command::CollapseEdges {
+        node: n.clone(),
+        edges: edges(),
+    });
+    item(ui, "Dissolve Edges\tX", has_e, &|| Command::DissolveEdges {
+        node: n.clone(),
+        edges: edges(),
+    });
+    ui.separator();
+    ui.label(egui::RichText::new("Vertices").weak());
+    item(ui, "Connect\tJ", sel.vertices.len() == 2, &|| {
+        Command::ConnectVertices {
+            node: n.clone(),
+            vertices: vertices(),
+        }
+    });
+    ui.menu_button("Merge\tM", |ui| {
+        merge_buttons(ui, node, sel, &mut merge_events)
+    });
+    item(ui, "Bevel Vertices\tCtrl+Shift+B", has_v, &|| {
+        Command::BevelVertices {
+            node: n.clone(),
+            vertices: vertices(),
+            width: 0.1,
+        }
+    });
+    item(ui, "Dissolve Vertices\tX", has_v, &|| {
+        Command::DissolveVertices {
+            node: n.clone(),
+            vertices: vertices(),
+        }
+    });
+    ui.separator();
+    ui.label(egui::RichText::new("Symmetry").weak());
+    for axis in [
+        hedra_geom::modeling::MirrorAxis::X,
+        hedra_geom::modeling::MirrorAxis::Y,
+        hedra_geom::modeling::MirrorAxis::Z,
+    ] {
+        let set = selection_vertices(sel);
+        item(ui, &format!("Mirror {axis:?}"), set.is_some(), &|| {
+            Command::MirrorVertices {
+                node: n.clone(),
+                vertices: set.clone().unwrap_or(VertexSet::All),
+                axis,
+            }
+        });
+    }
+    for axis in [
+        hedra_geom::modeling::MirrorAxis::X,
+        hedra_geom::modeling::MirrorAxis::Y,
+        hedra_geom::modeling::MirrorAxis::Z,
+    ] {
+        item(
+            ui,
+            &format!("Symmetrize +{axis:?} to -{axis:?}"),
+            true,
+            &|| Command::Symmetrize {
+                node: n.clone(),
+                axis,
+            },
+        );
+    }
+    ui.separator();
+    ui.label(egui::RichText::new("Normals").weak());
+    item(ui, "Flip\tAlt+N", true, &|| Command::FlipNormals {
+        node: n.clone(),
+    });
+    item(ui, "Recalculate Outside\tShift+N", true, &|| {
+        Command::RecalculateNormals { node: n.clone() }
+    });
+    events.extend(merge_events);
+    if start_bisect {
+        events.push(UiEvent::StartBisect);
+    }
+}
+
+/// The vertices a selection touches, of any element kind, as a command's set.
+pub(super) fn selection_vertices(
+    sel: &hedra_edit::ElementSelection,
+) -> Option<hedra_doc::VertexSet> {
+    use hedra_doc::{EdgeSet, FaceSet, VertexSet};
+    if !sel.faces.is_empty() {
+        Some(VertexSet::OfFaces(Box::new(FaceSet::Ids(
+            sel.faces.iter().map(|f| f.0).collect(),
+        ))))
+    } else if !sel.edges.is_empty() {
+        Some(VertexSet::OfEdges(Box::new(EdgeSet::Ids(
+            sel.edges.iter().map(|e| e.0).collect(),
+        ))))
+    } else if !sel.vertices.is_empty() {
+        Some(VertexSet::Ids(sel.vertices.iter().map(|v| v.0).collect()))
+    } else {
+        None
+    }
+}
