@@ -21,7 +21,7 @@ pub fn place_cursor(
     mut cursor: ResMut<Cursor3d>,
     mut status: ResMut<StatusMessage>,
 ) {
-    let busy = tool.active.is_some() || mode.tool.is_some() || shape_edit.tool.is_some();
+    let busy = modal_tool_running(&tool, &mode, &shape_edit);
     if busy || !gate.pointer_free || !shift(&keys) || !buttons.just_pressed(MouseButton::Right) {
         return;
     }

@@ -257,6 +257,12 @@ pub fn cursor_ray(
     Some((ray.origin.as_dvec3(), Vec3::from(ray.direction).as_dvec3()))
 }
 
+/// Whether a modal tool runs (object G/R/S, a mesh tool, a control-point
+/// tool): its keys and clicks are not shortcuts then.
+pub fn modal_tool_running(tool: &TransformTool, mode: &EditMode, shape_edit: &ShapeEdit) -> bool {
+    tool.active.is_some() || mode.tool.is_some() || shape_edit.tool.is_some()
+}
+
 /// Click selects the object under the cursor (Shift toggles), click on empty space deselects.
 #[allow(clippy::too_many_arguments)]
 fn pick_objects(

@@ -189,7 +189,7 @@ pub(crate) fn place_gizmo_proxy(
     if gizmo_state.active {
         return;
     }
-    let modal_running = tool.active.is_some() || mode.tool.is_some() || shape_edit.tool.is_some();
+    let modal_running = hedra_edit::modal_tool_running(&tool, &mode, &shape_edit);
     let target = (!modal_running)
         .then(|| GizmoTarget::of_selection(&state.session.doc, &selection, &mode, &shape_edit))
         .flatten();

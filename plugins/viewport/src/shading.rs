@@ -15,7 +15,7 @@ pub fn shading_keys(
     mut shading: ResMut<ViewportShading>,
     mut status: ResMut<StatusMessage>,
 ) {
-    let busy = tool.active.is_some() || mode.tool.is_some() || shape_edit.tool.is_some();
+    let busy = hedra_edit::modal_tool_running(&tool, &mode, &shape_edit);
     if !gate.keyboard_free || busy || !keys.just_pressed(KeyCode::KeyZ) || modifiers::ctrl(&keys) {
         return;
     }
