@@ -813,3 +813,77 @@ fn cube_in_front_view_all_faces() -> (User, Vec2, Vec2) {
     let right = user.screen_of(Vec3::new(2.0, 0.0, 0.0));
     (user, left, right)
 }
+
+/// O turns proportional editing on; G Y 1 on the middle vertex of a grid
+/// lifts every vertex within the radius by Blender's smooth falloff of its
+/// distance, after one wheel notch grew the radius from 1 to 1.1; the
+/// influence circle is published while the move runs.
+#[test]
+fn proportional_move_lifts_neighbours_by_the_smooth_falloff() {
+    let mut user = User::new();
+    user.add("Grid");
+    user.tap(KeyCode::Tab);
+    user.tap(KeyCode::Digit1);
+    let middle = user.screen_of(Vec3::ZERO);
+    user.click(middle);
+    let picked = *user.edit_mode().selection.vertices.iter().next().unwrap();
+    assert_eq!(user.first_mesh().position(picked), DVec3::ZERO);
+    let before: Vec<DVec3> = user.first_mesh().positions().to_vec();
+    user.tap(KeyCode::KeyO);
+    assert!(
+        user.status().contains("Proportional editing on"),
+        "{}",
+        user.status()
+    );
+    user.move_to(middle + Vec2::new(0.0, 40.0));
+    user.tap(KeyCode::KeyG);
+    user.wheel(1.0);
+    user.frame();
+    let ring = user
+        .app
+        .world()
+        .resource::<hedra_edit::ProportionalRing>()
+        .0;
+    let (center, radius) = ring.expect("the circle is drawn during the move");
+    assert!(
+        center.length() < 1e-9 && (radius - 1.1).abs() < 1e-9,
+        "{ring:?}"
+    );
+    user.tap(KeyCode::KeyY);
+    user.type_text("1");
+    user.tap(KeyCode::Enter);
+    assert!(
+        user.app
+            .world()
+            .resource::<hedra_edit::ProportionalRing>()
+            .0
+            .is_none()
+    );
+    let mesh = user.first_mesh();
+    let mut lifted = 0;
+    for v in mesh.vertices() {
+        let was = before[v.index()];
+        let d = DVec3::new(was.x, 0.0, was.z).length();
+        let t = (1.0 - d / 1.1).max(0.0);
+        let expected = if v == picked {
+            1.0
+        } else {
+            3.0 * t * t - 2.0 * t * t * t
+        };
+        let now = mesh.position(v);
+        assert!(
+            (now.y - expected).abs() < 1e-9 && now.x == was.x && now.z == was.z,
+            "vertex at ({:.1}, {:.1}) rose to {} (expected {expected})",
+            was.x,
+            was.z,
+            now.y
+        );
+        lifted += (now.y > 0.0) as usize;
+    }
+    // Grid points within 1.1 of the middle, 0.2 apart: more than the cross.
+    assert!(
+        lifted > 20 && lifted < mesh.vertex_count(),
+        "{lifted} lifted"
+    );
+    mesh.validate().unwrap();
+}

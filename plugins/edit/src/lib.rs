@@ -18,6 +18,7 @@ use hedra_scene::{DocChanged, DocRequest, DocState, InputGate, SceneSystems, Vie
 mod cursor;
 pub mod mesh_mode;
 pub mod modal;
+mod proportional;
 pub mod shape_mode;
 mod snapping;
 pub mod typing;
@@ -27,6 +28,7 @@ pub use mesh_mode::{
     BisectDrag, EditMode, ElementKind, ElementSelection, MeshTool, MeshToolKind, start_bisect,
 };
 pub use modal::{Axis, ModalTransform, TransformKind, TransformTool};
+pub use proportional::{Proportional, ProportionalRing, proportional_keys};
 pub use shape_mode::ShapeEdit;
 pub use snapping::{
     MoveSnap, SnapElement, SnapTarget, Snapping, drag_translation, snapping_keys, vertex_snap,
@@ -85,6 +87,8 @@ impl Plugin for EditPlugin {
             .init_resource::<mesh_mode::BisectDrag>()
             .init_resource::<Snapping>()
             .init_resource::<SnapTarget>()
+            .init_resource::<Proportional>()
+            .init_resource::<ProportionalRing>()
             .init_resource::<ShapeEdit>()
             .configure_sets(Update, EditSystems.in_set(SceneSystems::Tools))
             .add_systems(
@@ -94,6 +98,7 @@ impl Plugin for EditPlugin {
                     mesh_mode::follow_changes,
                     mesh_mode::mode_keys,
                     snapping_keys,
+                    proportional_keys,
                     undo_keys,
                     modal::drive_transform_tool,
                     mesh_mode::drive_mesh_tool,

@@ -375,7 +375,11 @@ pub fn drive_shape_tool(
     mut requests: MessageWriter<DocRequest>,
     mut status: ResMut<StatusMessage>,
     snapping: Res<crate::Snapping>,
+    scroll: Res<bevy::input::mouse::AccumulatedMouseScroll>,
+    mut proportional: ResMut<crate::Proportional>,
+    mut ring: ResMut<crate::ProportionalRing>,
 ) {
+    // The ring is cleared each frame by `drive_mesh_tool`, which runs first.
     let (Some(id), Some(mut tool)) = (edit.node, edit.tool.take()) else {
         return;
     };
@@ -424,13 +428,40 @@ pub fn drive_shape_tool(
                 world_delta.x, world_delta.y, world_delta.z
             );
             let local = world.inverse().transform_vector3(world_delta);
+            let mut moved: Vec<(u32, DVec3)> = edit
+                .selected
+                .iter()
+                .map(|&i| (i, points[i as usize] + local))
+                .collect();
+            // Proportional editing: the other points by their falloff
+            // weights, from world distances.
+            if proportional.enabled {
+                proportional.adjust_radius(&keys, scroll.delta.y);
+                ring.0 = Some((tool.pivot, proportional.radius));
+                let world_points: Vec<DVec3> =
+                    points.iter().map(|&p| world.transform_point3(p)).collect();
+                let selected: Vec<usize> = edit.selected.iter().map(|&i| i as usize).collect();
+                let weights = hedra_geom::proportional::point_weights(
+                    &world_points,
+                    &selected,
+                    proportional.radius,
+                    proportional.falloff,
+                );
+                moved.extend(
+                    weights
+                        .into_iter()
+                        .map(|(i, w)| (i as u32, points[i] + local * w)),
+                );
+                tool.readout = format!(
+                    "{} · proportional {} radius {:.3} (wheel)",
+                    tool.readout,
+                    proportional.falloff.label(),
+                    proportional.radius
+                );
+            }
             Command::SetControlPoints {
                 node: reference,
-                points: edit
-                    .selected
-                    .iter()
-                    .map(|&i| (i, points[i as usize] + local))
-                    .collect(),
+                points: moved,
             }
         }
         ShapeToolKind::Weight => {

@@ -15,6 +15,7 @@ pub mod ids;
 pub mod mesh;
 pub mod modeling;
 pub mod primitives;
+pub mod proportional;
 pub mod query;
 pub mod subdivision;
 pub mod surfaces;

@@ -71,3 +71,19 @@ pub(crate) fn draw_snap_target(
     let facing = Isometry3d::new(at, camera.rotation());
     gizmos.circle(facing, size, Color::srgb(1.0, 0.6, 0.1));
 }
+
+/// The influence circle of a running proportional transform, around its
+/// pivot and facing the view.
+pub(crate) fn draw_proportional_ring(
+    ring: Res<hedra_edit::ProportionalRing>,
+    camera: Single<&GlobalTransform, With<ViewportCamera>>,
+    mut gizmos: Gizmos<CursorGizmos>,
+) {
+    let Some((center, radius)) = ring.0 else {
+        return;
+    };
+    let facing = Isometry3d::new(center.as_vec3(), camera.rotation());
+    gizmos
+        .circle(facing, radius as f32, Color::srgb(0.9, 0.9, 0.9))
+        .resolution(64);
+}

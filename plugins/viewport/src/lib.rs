@@ -94,6 +94,7 @@ impl Plugin for ViewportPlugin {
                     draw_grid,
                     draw_cursor,
                     draw_snap_target,
+                    draw_proportional_ring,
                 )
                     .chain()
                     .in_set(ViewportSystems),

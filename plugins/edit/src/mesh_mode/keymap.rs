@@ -50,6 +50,7 @@ pub fn edit_shortcuts(
         created_faces: Vec::new(),
         linear: None,
         linear_tried: false,
+        proportional: None,
         readout: String::new(),
     };
     if c && keys.just_pressed(KeyCode::KeyR) {

@@ -17,6 +17,7 @@ use hedra_geom::subdivision::Creases;
 use hedra_geom::{EdgeId, FaceId, HalfEdgeMesh, VertexId};
 use hedra_scene::modifiers::{alt, ctrl, shift};
 use hedra_scene::{DocChanged, DocRequest, DocState, InputGate, StatusMessage, ViewportCamera};
+use std::collections::BTreeMap;
 use std::collections::BTreeSet;
 use std::sync::Arc;
 
@@ -195,6 +196,8 @@ pub struct MeshTool {
     /// command has no such form).
     linear: Option<hedra_doc::preview::LinearPreview>,
     linear_tried: bool,
+    /// Proportional editing: the neighbours' weights for these settings.
+    proportional: Option<tools::CachedWeights>,
     /// What the status bar shows for the tool ("Extrude 0.2500"), with the
     /// typed digits or the reason the command cannot apply appended.
     pub readout: String,

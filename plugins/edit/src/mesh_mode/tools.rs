@@ -14,6 +14,7 @@ pub(super) fn tool_command(
     view_dir: DVec3,
     pixel_size: f64,
     snap: crate::MoveSnap,
+    proportional: Option<&BTreeMap<VertexId, f64>>,
 ) -> Command {
     let drag = (cursor - tool.start_cursor).x as f64 * pixel_size;
     let faces = || FaceSet::Ids(selection.faces.iter().map(|f| f.0).collect());
@@ -45,6 +46,12 @@ pub(super) fn tool_command(
                 world_delta.x, world_delta.y, world_delta.z
             );
             let offset = world.inverse().transform_vector3(world_delta);
+            if let Some(weights) = proportional.filter(|_| tool.kind == MeshToolKind::Move) {
+                let positions = weighted_positions(mesh, selection, world, weights, &|p, w| {
+                    p + world_delta * w
+                });
+                return Command::SetVertexPositions { node, positions };
+            }
             if tool.kind == MeshToolKind::ExtrudeEdges {
                 let edges = EdgeSet::Ids(selection.edges.iter().map(|e| e.0).collect());
                 return Command::ExtrudeEdges {
@@ -126,18 +133,22 @@ pub(super) fn tool_command(
             }
         }
         MeshToolKind::Rotate | MeshToolKind::Scale => {
-            let xf: DMat4 = if tool.kind == MeshToolKind::Rotate {
+            // The world-space transform taken with weight `w` (1: in full).
+            let xf: Box<dyn Fn(f64) -> DMat4> = if tool.kind == MeshToolKind::Rotate {
                 let degrees = tool.typed.value().unwrap_or_else(|| {
                     let a = (tool.start_cursor - tool.pivot_screen).to_angle();
                     let b = (cursor - tool.pivot_screen).to_angle();
                     -((b - a) as f64).to_degrees()
                 });
                 tool.readout = format!("Rotate {degrees:.2}°");
-                let axis = tool.axis.map_or(-view_dir, Axis::vector);
-                crate::rotation_about(
-                    tool.pivot,
-                    glam::DQuat::from_axis_angle(axis.normalize(), degrees.to_radians()),
-                )
+                let axis = tool.axis.map_or(-view_dir, Axis::vector).normalize();
+                let pivot = tool.pivot;
+                Box::new(move |w| {
+                    crate::rotation_about(
+                        pivot,
+                        glam::DQuat::from_axis_angle(axis, w * degrees.to_radians()),
+                    )
+                })
             } else {
                 let factor = tool.typed.value().unwrap_or_else(|| {
                     let d0 = (tool.start_cursor - tool.pivot_screen).length().max(1.0);
@@ -147,12 +158,21 @@ pub(super) fn tool_command(
                 let f = tool.axis.map_or(DVec3::splat(factor), |a| {
                     DVec3::ONE + a.vector() * (factor - 1.0)
                 });
-                DMat4::from_translation(tool.pivot)
-                    * DMat4::from_scale(f)
-                    * DMat4::from_translation(-tool.pivot)
+                let pivot = tool.pivot;
+                Box::new(move |w| {
+                    DMat4::from_translation(pivot)
+                        * DMat4::from_scale(DVec3::ONE + (f - DVec3::ONE) * w)
+                        * DMat4::from_translation(-pivot)
+                })
             };
+            if let Some(weights) = proportional {
+                let positions = weighted_positions(mesh, selection, world, weights, &|p, w| {
+                    xf(w).transform_point3(p)
+                });
+                return Command::SetVertexPositions { node, positions };
+            }
             // The world-space transform, applied to mesh-space positions.
-            let local = world.inverse() * xf * world;
+            let local = world.inverse() * xf(1.0) * world;
             let positions = selection
                 .all_vertices(mesh)
                 .into_iter()
@@ -226,6 +246,37 @@ pub(super) fn tool_command(
     }
 }
 
+/// New local positions of the selected vertices (transformed in full) and
+/// of their proportional neighbours (by their weights): `transform` takes
+/// a world position and a weight.
+fn weighted_positions(
+    mesh: &HalfEdgeMesh,
+    selection: &ElementSelection,
+    world: DMat4,
+    weights: &BTreeMap<VertexId, f64>,
+    transform: &dyn Fn(DVec3, f64) -> DVec3,
+) -> Vec<(u32, DVec3)> {
+    let to_local = world.inverse();
+    let moved = |v: VertexId, w: f64| {
+        let p = world.transform_point3(mesh.position(v));
+        (v.0, to_local.transform_point3(transform(p, w)))
+    };
+    selection
+        .all_vertices(mesh)
+        .into_iter()
+        .map(|v| moved(v, 1.0))
+        .chain(weights.iter().map(|(&v, &w)| moved(v, w)))
+        .collect()
+}
+
+/// The proportional weights of the unselected vertices for the running
+/// G/R/S (world distances), kept while the settings stay the same.
+#[derive(Clone, Debug)]
+pub(super) struct CachedWeights {
+    pub(super) settings: crate::Proportional,
+    pub(super) weights: BTreeMap<VertexId, f64>,
+}
+
 /// Runs the active mesh tool: preview each frame, confirm or cancel.
 #[allow(clippy::too_many_arguments)]
 pub fn drive_mesh_tool(
@@ -240,9 +291,12 @@ pub fn drive_mesh_tool(
     mut status: ResMut<hedra_scene::StatusMessage>,
     snapping: Res<crate::Snapping>,
     mut snap_target: ResMut<crate::SnapTarget>,
+    mut proportional: ResMut<crate::Proportional>,
+    mut ring: ResMut<crate::ProportionalRing>,
 ) {
     mode.just_finished = false;
     snap_target.0 = None;
+    ring.0 = None;
     let Some(mut tool) = mode.tool.take() else {
         return;
     };
@@ -318,6 +372,38 @@ pub fn drive_mesh_tool(
         }
         (true, _) => crate::MoveSnap::Increment(snapping.step),
     };
+    // Proportional editing: G/R/S move the neighbours too; the wheel sizes it.
+    let soft = proportional.enabled
+        && matches!(
+            tool.kind,
+            MeshToolKind::Move | MeshToolKind::Rotate | MeshToolKind::Scale
+        );
+    if soft {
+        proportional.adjust_radius(&keys, scroll.delta.y);
+        ring.0 = Some((tool.pivot, proportional.radius));
+        if tool
+            .proportional
+            .as_ref()
+            .is_none_or(|c| c.settings != *proportional)
+        {
+            let selected: Vec<VertexId> = mode.selection.all_vertices(&mesh).into_iter().collect();
+            let position = |v: VertexId| world.transform_point3(mesh.position(v));
+            tool.proportional = Some(tools::CachedWeights {
+                settings: *proportional,
+                weights: hedra_geom::proportional::mesh_weights(
+                    &mesh,
+                    &position,
+                    &selected,
+                    proportional.radius,
+                    proportional.falloff,
+                    proportional.connected_only,
+                ),
+            });
+        }
+    }
+    // Out of the tool while the tool is borrowed for the command.
+    let cached = tool.proportional.take();
+    let weights = cached.as_ref().filter(|_| soft).map(|c| &c.weights);
     let cmd = tool_command(
         &mut tool,
         NodeRef::from(node_id),
@@ -329,7 +415,17 @@ pub fn drive_mesh_tool(
         view_dir,
         pixel_size,
         snap,
+        weights,
     );
+    tool.proportional = cached;
+    if soft {
+        tool.readout = format!(
+            "{} · proportional {} radius {:.3} (wheel)",
+            tool.readout,
+            proportional.falloff.label(),
+            proportional.radius
+        );
+    }
     if !tool.typed.is_empty() {
         tool.readout = format!("{} [{}]", tool.readout, tool.typed.as_str());
     }

@@ -10,6 +10,8 @@ pub(super) struct ViewChoices<'a> {
     pub shading: &'a mut hedra_scene::ViewportShading,
     /// Increment snapping and its steps.
     pub snapping: &'a mut hedra_edit::Snapping,
+    /// Proportional editing and its falloff and radius.
+    pub proportional: &'a mut hedra_edit::Proportional,
     /// The 3D cursor's world position.
     pub cursor: &'a mut DVec3,
 }
@@ -25,6 +27,7 @@ pub(super) fn menu_bar(
         gizmo_mode,
         shading,
         snapping,
+        proportional,
         cursor,
     } = view;
     egui::MenuBar::new().ui(ui, |ui| {
@@ -233,6 +236,26 @@ pub(super) fn menu_bar(
                         .range(0.1..=180.0),
                 );
             });
+            ui.separator();
+            ui.checkbox(&mut proportional.enabled, "Proportional Editing\tO");
+            ui.horizontal(|ui| {
+                ui.label("Falloff");
+                egui::ComboBox::from_id_salt("proportional-falloff")
+                    .selected_text(proportional.falloff.label())
+                    .show_ui(ui, |ui| {
+                        for f in hedra_geom::proportional::Falloff::ALL {
+                            ui.selectable_value(&mut proportional.falloff, f, f.label());
+                        }
+                    });
+                ui.label("radius");
+                let (lo, hi) = hedra_edit::Proportional::RADIUS_RANGE;
+                ui.add(
+                    egui::DragValue::new(&mut proportional.radius)
+                        .speed(0.01)
+                        .range(lo..=hi),
+                );
+            });
+            ui.checkbox(&mut proportional.connected_only, "Connected Only");
             ui.separator();
             // The transform gizmo on objects, mesh elements and control points.
             {

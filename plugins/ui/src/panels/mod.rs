@@ -63,6 +63,7 @@ pub struct Writers<'w> {
     gizmo: ResMut<'w, bevy::gizmos::transform_gizmo::TransformGizmoSettings>,
     bisect: ResMut<'w, hedra_edit::BisectDrag>,
     snapping: ResMut<'w, hedra_edit::Snapping>,
+    proportional: ResMut<'w, hedra_edit::Proportional>,
     cursor: ResMut<'w, hedra_scene::Cursor3d>,
 }
 
@@ -111,12 +112,14 @@ pub fn draw_ui(
     let mut gizmo_mode = writers.gizmo.mode;
     let mut shading = *model.shading;
     let mut snapping = *writers.snapping;
+    let mut proportional = *writers.proportional;
     let mut cursor = writers.cursor.0;
     egui::Panel::top("menu").show(&mut root, |ui| {
         let view = ViewChoices {
             gizmo_mode: &mut gizmo_mode,
             shading: &mut shading,
             snapping: &mut snapping,
+            proportional: &mut proportional,
             cursor: &mut cursor,
         };
         menu_bar(ui, &mut ui_state, &model, view, &mut events)
@@ -129,6 +132,9 @@ pub fn draw_ui(
     }
     if *writers.snapping != snapping {
         *writers.snapping = snapping;
+    }
+    if *writers.proportional != proportional {
+        *writers.proportional = proportional;
     }
     snap_menu(&ctx, &mut ui_state, &model, &mut cursor, &mut events);
     if writers.cursor.0 != cursor {
