@@ -1,6 +1,7 @@
 //! Why a modeling operation refused: [`ModelingError`], shared by every
 //! operation in this module.
 
+use crate::build::BuildError;
 use crate::euler::EulerError;
 use crate::ids::{EdgeId, ElementId, FaceId, VertexId};
 use crate::validate::ValidationError;
@@ -106,6 +107,19 @@ pub enum InvalidResult {
         operation: &'static str,
         /// The last refusal of `add_face`, if any.
         error: Option<EulerError>,
+    },
+    /// Copies of the mesh (a mirror or an array), welded where they meet,
+    /// do not form a manifold, consistently oriented surface (a merge
+    /// distance so large that a copy meets itself, or copies that overlap
+    /// along more than a seam). The builder's error names input indices of
+    /// the copies, not the source mesh's ids.
+    #[error("{operation} would not make a manifold surface: {error}")]
+    Copies {
+        /// The operation, as the message names it (`"the mirror"`,
+        /// `"the array"`).
+        operation: &'static str,
+        /// Why the strict build refused the welded copies.
+        error: BuildError,
     },
 }
 

@@ -8,11 +8,13 @@
 //! API (queries, Euler operators, face add/delete); every operation is
 //! re-exported here, so `hedra_geom::modeling::<operation>` is the one path.
 
+mod array;
 mod bevel;
 mod bisect;
 mod bridge;
 mod common;
 mod connect;
+mod copies;
 mod delete;
 mod dissolve;
 mod error;
@@ -27,11 +29,13 @@ mod slide;
 mod subdivide_edges;
 mod triangulate;
 
+pub use array::{ArrayOffset, MAX_ARRAY_COUNT, arrayed, arrayed_copies};
 pub use bevel::{bevel_edges, bevel_vertices};
 pub use bisect::{BisectClear, Bisected, bisect};
 pub use bridge::bridge_loops;
 pub use common::{faces_around_edges, faces_around_vertices};
 pub use connect::connect_vertices;
+pub use copies::CopiedMesh;
 pub use delete::delete_faces;
 pub use dissolve::{dissolve_edges, dissolve_faces, dissolve_vertices};
 pub use error::{InvalidResult, ModelingError, NewFace};
@@ -42,7 +46,7 @@ pub use loop_cut::{edge_ring, loop_cut};
 pub use merge::{
     MergePoint, collapse_edges, merge_at_center, merge_by_distance, merge_vertices, weld_vertices,
 };
-pub use mirror::{MirrorAxis, mirror_vertices, symmetrize};
+pub use mirror::{MirrorAxis, mirror_vertices, mirrored, mirrored_copies, symmetrize};
 pub use normals::{flip_normals, recalculate_normals_outward};
 pub use slide::slide_edges;
 pub use subdivide_edges::subdivide_edges;
