@@ -20,13 +20,14 @@ use std::path::{Path, PathBuf};
 /// Which shape of each mesh is written.
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
 pub enum ExportShape {
-    /// The evaluated shape: meshes with a subdivision modifier at its export level.
+    /// The evaluated shape: meshes with their modifier stack (Mirror,
+    /// Array) applied and a subdivision modifier at its export level.
     #[default]
     Evaluated,
     /// The editable cage, modifiers ignored.
     Cage,
     /// Every mesh subdivided this many levels (its modifier's scheme, else
-    /// Catmull-Clark).
+    /// Catmull-Clark), its stack modifiers applied.
     Subdivided(u32),
 }
 
@@ -71,14 +72,14 @@ pub enum ExportError {
         /// Its extension, lower case (empty when it has none).
         extension: String,
     },
-    /// A mesh's subdivision for the export could not be made (Loop on a
-    /// mesh with quads, a level too large).
+    /// A mesh's evaluated shape for the export could not be made (a stack
+    /// modifier that refused, Loop on a mesh with quads, a level too large).
     #[error("node '{node}': {error}")]
-    Subdivision {
+    Evaluation {
         /// The node's name.
         node: String,
-        /// The kernel's reason.
-        error: hedra_geom::subdivision::SubdivisionError,
+        /// The modifier's or the subdivision's reason.
+        error: crate::modifiers::EvaluationError,
     },
     /// serde_json could not write the glTF document.
     #[error("cannot write glTF: {0}")]
@@ -381,8 +382,8 @@ const EXPORT_TOLERANCE: f64 = 1e-4;
 /// The visible meshes, curves and surfaces in the requested shape.
 ///
 /// # Errors
-/// [`ExportError::Subdivision`] naming the node when its subdivision cannot
-/// be made (Loop on a mesh with quads, a level too large).
+/// [`ExportError::Evaluation`] naming the node when its modifiers cannot
+/// be evaluated (Loop on a mesh with quads, a level too large).
 fn export_meshes(doc: &Document, shape: ExportShape) -> Result<Vec<ExportItem<'_>>, ExportError> {
     let mut out = Vec::new();
     for node in doc.nodes() {
@@ -416,8 +417,8 @@ fn export_meshes(doc: &Document, shape: ExportShape) -> Result<Vec<ExportItem<'_
 /// `None` for empties.
 ///
 /// # Errors
-/// [`ExportError::Subdivision`] naming the node when its subdivision
-/// cannot be made.
+/// [`ExportError::Evaluation`] naming the node when its modifier stack or
+/// subdivision cannot be evaluated.
 pub(crate) fn node_geometry(
     node: &Node,
     shape: ExportShape,
@@ -427,14 +428,15 @@ pub(crate) fn node_geometry(
         NodeContent::Empty => return Ok(None),
         NodeContent::Mesh(content) => {
             let level = match shape {
-                ExportShape::Cage => 0,
+                ExportShape::Cage => return Ok(Some(Geometry::Mesh(Cow::Borrowed(&content.mesh)))),
                 ExportShape::Evaluated => content.subdivision.map_or(0, |m| m.export_level),
                 ExportShape::Subdivided(level) => level,
             };
+            // The stack modifiers, then (or among them) subdivision at `level`.
             Geometry::Mesh(
                 content
-                    .subdivided(level)
-                    .map_err(|error| ExportError::Subdivision {
+                    .evaluated(level)
+                    .map_err(|error| ExportError::Evaluation {
                         node: node.name.clone(),
                         error,
                     })?,

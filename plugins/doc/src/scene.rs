@@ -105,8 +105,13 @@ pub struct MeshContent {
     pub shading: Shading,
     /// Edge crease and vertex corner sharpness, used by subdivision.
     pub creases: Creases,
-    /// The non-destructive subdivision modifier, if the node has one.
+    /// The non-destructive subdivision modifier, if the node has one; its
+    /// [`stack_position`](SubdivisionModifier::stack_position) places it
+    /// among `modifiers`.
     pub subdivision: Option<SubdivisionModifier>,
+    /// The modifier stack (Mirror, Array), applied to the cage in order;
+    /// see [`MeshContent::evaluated`].
+    pub modifiers: Vec<crate::modifiers::MeshModifier>,
     /// Imported UVs and normals of face corners (none for meshes made in Hedra).
     pub corners: CornerAttributes,
 }
@@ -120,6 +125,7 @@ impl MeshContent {
             shading: Shading::Flat,
             creases: Creases::default(),
             subdivision: None,
+            modifiers: Vec::new(),
             corners: CornerAttributes::default(),
         }
     }
@@ -248,26 +254,6 @@ impl CornerAttributes {
     }
 }
 
-impl MeshContent {
-    /// The mesh subdivided `level` times with the modifier's options
-    /// (Catmull-Clark without a modifier); level 0 is the cage itself.
-    ///
-    /// # Errors
-    /// When the scheme does not fit the mesh or the result is too large.
-    pub fn subdivided(
-        &self,
-        level: u32,
-    ) -> Result<std::borrow::Cow<'_, HalfEdgeMesh>, hedra_geom::subdivision::SubdivisionError> {
-        if level == 0 {
-            return Ok(std::borrow::Cow::Borrowed(&self.mesh));
-        }
-        let options = self.subdivision.unwrap_or_default().options;
-        let (mesh, _) =
-            hedra_geom::subdivision::Refiner::subdivide(&self.mesh, &self.creases, options, level)?;
-        Ok(std::borrow::Cow::Owned(mesh))
-    }
-}
-
 /// A subdivision modifier on a mesh node (Blender's Subdivision Surface
 /// modifier): the cage stays editable, the viewport shows the smooth result.
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -284,6 +270,12 @@ pub struct SubdivisionModifier {
     /// Draw the cage's edges over the smooth result.
     #[serde(default = "yes")]
     pub show_cage: bool,
+    /// Where subdivision runs in the node's modifier stack: after this many
+    /// stack modifiers (0: on the cage, before all of them). `None` (the
+    /// default): after all of them, Blender's usual Mirror → Subdivision
+    /// order, which welds the halves before smoothing them.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stack_position: Option<usize>,
 }
 
 /// Serde defaults shared by the document's stored types.
@@ -311,6 +303,7 @@ impl SubdivisionModifier {
             viewport_level: level,
             export_level: level.max(2),
             show_cage: true,
+            stack_position: None,
         }
     }
 }

@@ -24,7 +24,7 @@ fn every_command_example_in_the_docs_runs() {
         .collect();
     kinds.sort();
     kinds.dedup();
-    assert_eq!(kinds.len(), 57, "{kinds:?}");
+    assert_eq!(kinds.len(), 62, "{kinds:?}");
     let mut session = hedra_doc::Session::new();
     hedra_doc::script::run(&mut session, &commands, Path::new("docs/commands.md"))
         .unwrap_or_else(|e| panic!("{e}"));
@@ -171,6 +171,30 @@ fn every_command_example_in_the_docs_runs() {
         (hi.x - 0.5).abs() < 1e-12 && (lo.x + 0.5).abs() < 1e-12,
         "{lo} {hi}"
     );
+    // The modifier stack: the mirrored half box, applied, is a closed box
+    // cage that keeps its subdivision; the tube keeps its array.
+    let mesh_content = |name: &str| match &doc.find_by_name(name).unwrap().content {
+        hedra_doc::NodeContent::Mesh(c) => c.clone(),
+        _ => panic!("{name} is a mesh"),
+    };
+    let half_box = mesh_content("HalfBox");
+    assert!(half_box.modifiers.is_empty(), "applied");
+    assert!(
+        half_box.subdivision.is_some(),
+        "subdivision stays a modifier"
+    );
+    half_box.mesh.validate().unwrap();
+    let s = half_box.mesh.stats();
+    assert_eq!((s.vertices, s.edges, s.faces), (12, 20, 10));
+    assert_eq!((s.closed, s.genus), (true, Some(0)));
+    let tube = mesh_content("Tube");
+    assert_eq!(tube.modifiers.len(), 1);
+    assert_eq!(tube.mesh.face_count(), 4, "the cage is one piece of tube");
+    let evaluated = tube.evaluated(0).unwrap();
+    evaluated.validate().unwrap();
+    let s = evaluated.stats();
+    assert_eq!((s.vertices, s.edges, s.faces), (16, 28, 12));
+    assert_eq!((s.shells, s.boundary_loops, s.genus), (1, 2, Some(0)));
     // Curves and surfaces: edits keep their shapes where they promise to.
     use hedra_geom::curves::Curve;
     let curve = |name: &str| match &doc.find_by_name(name).unwrap().content {

@@ -8,10 +8,12 @@
 //! - `plan`: the [`Plan`](plan::Plan) a command is decided into, its helpers,
 //!   and the dispatch by family to
 //! - `nodes` (scene tree and node properties), `mesh` (mesh modeling),
-//!   `creases` (creases and the subdivision modifier), `shapes` (curves and surfaces).
+//!   `creases` (creases and the subdivision modifier), `modifiers` (the
+//!   Mirror/Array modifier stack), `shapes` (curves and surfaces).
 
 mod creases;
 mod mesh;
+mod modifiers;
 mod nodes;
 mod plan;
 mod shapes;
@@ -179,6 +181,46 @@ pub enum CommandError {
     /// A crease sharpness outside 0 to 10 (or not finite).
     #[error("sharpness must be between 0 and {INFINITE_SHARPNESS} (infinitely sharp), not {0}")]
     Sharpness(f64),
+    /// A modifier stack that cannot be evaluated or applied: the error
+    /// names the modifier (by its number in the stack, from 1) and the
+    /// kernel's reason.
+    #[error("{node}: {error}")]
+    Modifier {
+        /// The node, as `'name' (#id)`.
+        node: String,
+        /// Which modifier refused and why.
+        error: crate::modifiers::EvaluationError,
+    },
+    /// A modifier with values out of range (an array count of 0, a
+    /// negative merge distance).
+    #[error("{node}: {problem}")]
+    ModifierValue {
+        /// The node, as `'name' (#id)`.
+        node: String,
+        /// What is out of range.
+        problem: crate::modifiers::ModifierProblem,
+    },
+    /// A modifier index past the end of the node's stack.
+    #[error("{node} has no modifier {} (its stack has {count})", index + 1)]
+    NoModifier {
+        /// The node, as `'name' (#id)`.
+        node: String,
+        /// The index given, from 0 (the message counts from 1).
+        index: usize,
+        /// How many modifiers the stack has.
+        count: usize,
+    },
+    /// [`Command::ApplyModifiers`] would apply a modifier that runs after
+    /// subdivision (the result would change).
+    #[error(
+        "{node}: subdivision runs after {position} of the stack's modifiers; apply only those, or move subdivision last"
+    )]
+    SubdivisionFirst {
+        /// The node, as `'name' (#id)`.
+        node: String,
+        /// How many modifiers run before subdivision.
+        position: usize,
+    },
     /// A subdivision level above [`subdivision::MAX_LEVEL`].
     #[error("subdivision level {0} is above the maximum of {max}", max = subdivision::MAX_LEVEL)]
     Level(u32),

@@ -363,6 +363,17 @@ impl Plan<'_> {
             } => self.set_vertex_crease(node, vertices, *sharpness),
             Command::SnapToLimit { node } => self.snap_to_limit(node),
 
+            // ----- the modifier stack (modifiers.rs) -----
+            Command::AddModifier { node, modifier } => self.add_modifier(node, modifier),
+            Command::SetModifier {
+                node,
+                index,
+                modifier,
+            } => self.set_modifier(node, *index, modifier),
+            Command::RemoveModifier { node, index } => self.remove_modifier(node, *index),
+            Command::MoveModifier { node, from, to } => self.move_modifier(node, *from, *to),
+            Command::ApplyModifiers { node, count } => self.apply_modifiers(node, *count),
+
             // ----- mesh modeling (mesh.rs) -----
             Command::MoveVertices {
                 node,

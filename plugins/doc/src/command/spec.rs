@@ -4,6 +4,7 @@
 //! stored form of the history (see `file::stored_command`).
 
 use crate::elements::{EdgeSet, FaceSet, VertexSet};
+use crate::modifiers::MeshModifier;
 use crate::scene::{NodeId, NodeTransform, Shading, SubdivisionModifier};
 use glam::DVec3;
 use hedra_geom::Primitive;
@@ -311,6 +312,58 @@ pub enum Command {
         /// must have a modifier).
         #[serde(default)]
         levels: Option<u32>,
+    },
+    /// Adds a modifier (Mirror, Array) at the end of a mesh node's stack
+    /// (Blender's Add Modifier). A subdivision modifier at its default
+    /// place stays last. Refused when the stack would not evaluate (a
+    /// mirror merge that is not manifold), naming the modifier.
+    AddModifier {
+        /// A mesh node.
+        node: NodeRef,
+        /// The modifier and its settings.
+        modifier: MeshModifier,
+    },
+    /// Replaces the settings of modifier `index` of a mesh node's stack.
+    SetModifier {
+        /// A mesh node.
+        node: NodeRef,
+        /// The modifier's place in the stack, from 0.
+        index: usize,
+        /// Its new kind and settings.
+        modifier: MeshModifier,
+    },
+    /// Removes modifier `index` from a mesh node's stack; subdivision keeps
+    /// its place after the same modifiers.
+    RemoveModifier {
+        /// A mesh node.
+        node: NodeRef,
+        /// The modifier's place in the stack, from 0.
+        index: usize,
+    },
+    /// Moves a modifier within a mesh node's stack (Blender's Move Up /
+    /// Move Down). Subdivision's place is its own field
+    /// ([`SubdivisionModifier::stack_position`]), set by
+    /// [`Command::SetSubdivision`], and is not moved.
+    MoveModifier {
+        /// A mesh node.
+        node: NodeRef,
+        /// The modifier's place in the stack, from 0.
+        from: usize,
+        /// Its new place, from 0.
+        to: usize,
+    },
+    /// Makes the first `count` stack modifiers (default: all) part of the
+    /// cage, in one undo step: their result becomes the mesh (creases on
+    /// every copy, UVs on every copied corner) and they leave the stack.
+    /// Blender applies one modifier at a time from the top: `count: Some(1)`.
+    /// Subdivision stays a modifier; applying a modifier that runs after
+    /// subdivision is refused.
+    ApplyModifiers {
+        /// A mesh node with stack modifiers.
+        node: NodeRef,
+        /// How many modifiers, from the top of the stack (default: all).
+        #[serde(default)]
+        count: Option<usize>,
     },
     /// Deletes nodes with their descendants. Undo brings them back with
     /// their ids and names.
@@ -747,6 +800,12 @@ impl Command {
                 modifier: Some(m), ..
             } => format!("Subdivision Level {}", m.viewport_level),
             Command::ApplySubdivision { .. } => "Apply Subdivision".to_string(),
+            Command::AddModifier { modifier, .. } => format!("Add {} Modifier", modifier.name()),
+            Command::SetModifier { modifier, .. } => format!("Change {} Modifier", modifier.name()),
+            Command::RemoveModifier { .. } => "Remove Modifier".to_string(),
+            Command::MoveModifier { .. } => "Move Modifier".to_string(),
+            Command::ApplyModifiers { count: Some(1), .. } => "Apply Modifier".to_string(),
+            Command::ApplyModifiers { .. } => "Apply Modifiers".to_string(),
             Command::SetEdgeCrease { sharpness, .. } => format!("Edge Crease {sharpness:.2}"),
             Command::SetVertexCrease { sharpness, .. } => format!("Vertex Crease {sharpness:.2}"),
             Command::SnapToLimit { .. } => "Snap to Limit Surface".to_string(),
