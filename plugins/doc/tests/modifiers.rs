@@ -466,3 +466,37 @@ fn clipping_keeps_vertices_on_the_mirror_plane() {
     let p = m.clip(DVec3::new(0.0, 0.0, 0.0), DVec3::new(0.3, 0.3, 0.3));
     assert_eq!(p, DVec3::splat(0.3), "clipping off");
 }
+
+#[test]
+fn applying_carries_uvs_to_every_copied_corner_and_drops_normals() {
+    use std::collections::BTreeMap;
+    use std::sync::Arc;
+    let s = session();
+    let mut c = content(&s, "HalfBox");
+    // A UV per corner: the corner's vertex position projected on y, z.
+    let m = c.mesh.clone();
+    let uvs: BTreeMap<_, _> = m
+        .halfedges()
+        .filter(|&h| m.face(h).is_some())
+        .map(|h| {
+            let p = m.position(m.origin(h));
+            (h, glam::DVec2::new(p.y, p.z))
+        })
+        .collect();
+    assert_eq!(uvs.len(), 20);
+    c.corners.uvs = Arc::new(uvs);
+    c.modifiers.push(mirror_x());
+    let applied = c.with_modifiers_applied(1).unwrap();
+    assert!(applied.modifiers.is_empty());
+    assert!(applied.corners.normals.is_empty());
+    let am = &applied.mesh;
+    assert_eq!(applied.corners.uvs.len(), 40, "every corner of both halves");
+    for (h, uv) in applied.corners.uvs.iter() {
+        let p = am.position(am.origin(*h));
+        assert_eq!(
+            *uv,
+            glam::DVec2::new(p.y, p.z),
+            "the UV of the mirrored corner"
+        );
+    }
+}
