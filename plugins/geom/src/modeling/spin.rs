@@ -18,6 +18,9 @@
 //! - **An edge profile** must be boundary edges (an edge with faces on both
 //!   sides has no open side to grow from): each step adds a ring of quads on
 //!   the open side, as [`extrude_boundary_edges`](super::extrude_boundary_edges).
+//!   A full turn of them is refused: its last step would come back onto the
+//!   face beside the edges, giving each a third face (Blender makes them
+//!   non-manifold; Hedra's meshes stay manifold).
 //! - **A full turn** (`|angle| = 2π` within [`FULL_TURN_TOLERANCE`], no
 //!   advance along the axis) joins the last step to the first, with no
 //!   duplicate vertices and no caps: Blender's spin with its merge of the
@@ -91,17 +94,25 @@ pub struct SpinResult {
 }
 
 /// Spins `profile` by `angle` radians about the axis through `center` along
-/// `axis`, in `steps` equal steps (Blender's Spin; see the [module
-/// documentation](self) for what a face and an edge profile become, full
-/// turns and vertices on the axis). The new faces follow the orientation of
-/// the faces beside the profile; a face region with nothing beside it makes
-/// a closed solid, oriented with its normals pointing out (Blender leaves
-/// that to its Flip Normals option).
+/// `axis`, in `steps` equal steps (Blender's Spin). A region's outline gets
+/// a ring of side faces per step and its faces end as the end cap (plus a
+/// start cap when nothing borders it); boundary edges get a ring of quads
+/// per step. A full turn (within [`FULL_TURN_TOLERANCE`]) joins the last
+/// step to the first; vertices within [`AXIS_TOLERANCE`] of the axis are
+/// shared by every step (faces there are triangles). Positive angles turn
+/// counter-clockwise seen from the axis' tip. The new faces follow the
+/// orientation of the faces beside the profile; a region with nothing
+/// beside it makes a closed solid, oriented with its normals pointing out
+/// (Blender leaves that to its Flip Normals option).
 ///
 /// Counts: an edge profile of `e` edges over `v` vertices (none on the axis)
-/// adds `e · steps` faces, and `v · steps` vertices (`v · (steps − 1)` for a
-/// full turn). Complexity: O(profile size × steps), plus the validation of
-/// the mesh.
+/// adds `e · steps` faces and `v · steps` vertices; a region of `f` faces
+/// with `o` outline edges over `u` outline vertices adds `o · steps` sides,
+/// `u · steps` vertices (`u · (steps − 1)` for a full turn) and its caps.
+/// Complexity: O(profile size × steps), plus the validation of the mesh.
+///
+/// Inverse: none as one operator (deleting `faces` leaves the copies of the
+/// profile); the document's undo restores the mesh.
 ///
 /// # Errors
 /// [`ModelingError::Empty`] / [`ModelingError::Missing`] for the profile,
