@@ -23,7 +23,7 @@ pub mod session;
 pub mod smooth;
 
 pub use command::{Command, CommandError, NodeRef};
-pub use elements::{EdgeSet, FaceSet, VertexSet};
+pub use elements::{EdgeSet, FaceSet, ProfileSet, VertexSet};
 pub use history::{History, NodeChange, Transaction};
 pub use modifiers::{ArrayModifier, EvaluationError, MeshModifier, MirrorModifier};
 pub use scene::{

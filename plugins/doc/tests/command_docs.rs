@@ -24,7 +24,7 @@ fn every_command_example_in_the_docs_runs() {
         .collect();
     kinds.sort();
     kinds.dedup();
-    assert_eq!(kinds.len(), 62, "{kinds:?}");
+    assert_eq!(kinds.len(), 64, "{kinds:?}");
     let mut session = hedra_doc::Session::new();
     hedra_doc::script::run(&mut session, &commands, Path::new("docs/commands.md"))
         .unwrap_or_else(|e| panic!("{e}"));
@@ -124,6 +124,23 @@ fn every_command_example_in_the_docs_runs() {
     assert!(cut.stats().closed);
     assert!(cut.faces().all(|f| cut.face_degree(f) == 4));
     assert!(cut.vertices().all(|v| cut.position(v).y <= 0.0));
+    // Spin and screw: the torus, the fin and the spring.
+    let donut = doc.find_by_name("Donut").unwrap().content.mesh().unwrap();
+    let s = donut.stats();
+    assert_eq!((s.vertices, s.edges, s.faces), (32, 64, 32));
+    assert_eq!((s.genus, s.closed), (Some(1), true));
+    let fin = doc.find_by_name("Fin").unwrap().content.mesh().unwrap();
+    let s = fin.stats();
+    assert_eq!((s.vertices, s.faces, s.boundary_loops), (12, 5, 1));
+    let spring = doc.find_by_name("Spring").unwrap().content.mesh().unwrap();
+    let s = spring.stats();
+    // 37 rings of 4 vertices, 36 × 4 sides and two caps: a closed solid.
+    assert_eq!((s.vertices, s.faces, s.genus), (148, 146, Some(0)));
+    let (lo, hi) = spring.bounds().unwrap();
+    assert!(
+        (hi.z - lo.z - 5.5).abs() < 1e-9,
+        "three turns of 1.5 plus the square: {lo} {hi}"
+    );
     let bridge = doc.find_by_name("Bridge").unwrap().content.mesh().unwrap();
     assert!(bridge.stats().closed, "the two squares became a closed box");
     let block = doc.find_by_name("Block").unwrap().content.mesh().unwrap();

@@ -3,7 +3,7 @@
 //! the label each shows in the history panel. Its serde form is also the
 //! stored form of the history (see `file::stored_command`).
 
-use crate::elements::{EdgeSet, FaceSet, VertexSet};
+use crate::elements::{EdgeSet, FaceSet, ProfileSet, VertexSet};
 use crate::modifiers::MeshModifier;
 use crate::scene::{NodeId, NodeTransform, Shading, SubdivisionModifier};
 use glam::DVec3;
@@ -574,6 +574,51 @@ pub enum Command {
         #[serde(default)]
         fill: bool,
     },
+    /// Spins a profile around an axis in steps (Blender's Spin): a region
+    /// of faces sweeps a solid (its faces end as the end cap), boundary
+    /// edges sweep a surface of quads. A full turn (±360°) joins the last
+    /// step to the first; vertices on the axis are shared by every step.
+    /// See `hedra_geom::modeling::spin`.
+    Spin {
+        /// The mesh node to edit.
+        node: NodeRef,
+        /// What to sweep: `Faces(…)` or `Edges(…)` (boundary edges only).
+        profile: ProfileSet,
+        /// A point on the axis, in the node's local space (the GUI sends
+        /// the 3D cursor).
+        center: DVec3,
+        /// The axis direction in local space, any length but zero (the GUI
+        /// sends the view direction); positive degrees turn
+        /// counter-clockwise seen from its tip.
+        axis: DVec3,
+        /// The whole sweep's angle in degrees, not zero; ±360 closes.
+        degrees: f64,
+        /// Steps the angle is divided into (at least 1; 3 for a full turn).
+        steps: u32,
+    },
+    /// Screws a profile around an axis (Blender's Screw): a spin of
+    /// `turns` full turns that advances `pitch` along the axis per turn.
+    /// Its ends never join, unless `pitch` is 0 (then it is a spin).
+    /// See `hedra_geom::modeling::screw`.
+    Screw {
+        /// The mesh node to edit.
+        node: NodeRef,
+        /// What to sweep: `Faces(…)` or `Edges(…)` (boundary edges only).
+        profile: ProfileSet,
+        /// A point on the axis, in the node's local space.
+        center: DVec3,
+        /// The axis direction in local space, any length but zero; the
+        /// screw turns counter-clockwise seen from its tip.
+        axis: DVec3,
+        /// Full turns (default 1).
+        #[serde(default = "one")]
+        turns: u32,
+        /// Steps per turn.
+        steps: u32,
+        /// Distance along the axis per turn, in local units (negative:
+        /// against the axis).
+        pitch: f64,
+    },
     /// Sets the subdivision crease sharpness of edges: 0 is smooth, 10
     /// infinitely sharp, values between fade out after that many levels.
     SetEdgeCrease {
@@ -831,6 +876,8 @@ impl Command {
             Command::Triangulate { .. } => "Triangulate Faces".to_string(),
             Command::TrisToQuads { .. } => "Tris to Quads".to_string(),
             Command::Bisect { .. } => "Bisect".to_string(),
+            Command::Spin { .. } => "Spin".to_string(),
+            Command::Screw { .. } => "Screw".to_string(),
             Command::DissolveEdges { .. } => "Dissolve Edges".to_string(),
             Command::DissolveVertices { .. } => "Dissolve Vertices".to_string(),
             Command::FlipNormals { .. } => "Flip Normals".to_string(),

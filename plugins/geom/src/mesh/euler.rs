@@ -234,7 +234,8 @@ impl HalfEdgeMesh {
     /// Marks a vertex dead; its id is never handed out again.
     ///
     /// The one raw writer open to the whole crate: the modeling operations
-    /// that take faces out and add them back (weld, vertex and edge bevel)
+    /// that take faces out and add them back (weld, vertex and edge bevel,
+    /// a full-turn spin of a region with inner vertices)
     /// drop the old, now isolated, vertices with it and validate the result
     /// before it replaces the mesh. A vertex that still has edges leaves
     /// dangling records, which that validation reports.

@@ -66,6 +66,26 @@ pub enum ModelingError {
         /// The merge distance given.
         distance: f64,
     },
+    /// A spin profile edge with faces on both sides: it has no open side
+    /// for the sweep to grow from.
+    #[error(
+        "{edge} has faces on both sides: a spin profile of edges must be boundary edges (spin the faces instead)"
+    )]
+    SpinEdgeNotBoundary {
+        /// The interior edge.
+        edge: EdgeId,
+    },
+    /// A full-turn spin whose profile has a face beside it: the last step
+    /// would come back onto that face, giving the edge a third face.
+    #[error(
+        "a full turn would bring the sweep back onto {face} beside {edge}: spin less than 360 degrees, or spin a profile with nothing beside it"
+    )]
+    FullTurnMeetsFace {
+        /// The profile edge the face is beside.
+        edge: EdgeId,
+        /// The face beside the profile.
+        face: FaceId,
+    },
     /// An Euler operator the operation uses refused.
     #[error(transparent)]
     Euler(#[from] EulerError),

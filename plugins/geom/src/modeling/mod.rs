@@ -26,6 +26,7 @@ mod merge;
 mod mirror;
 mod normals;
 mod slide;
+mod spin;
 mod subdivide_edges;
 mod triangulate;
 
@@ -49,5 +50,8 @@ pub use merge::{
 pub use mirror::{MirrorAxis, mirror_vertices, mirrored, mirrored_copies, symmetrize};
 pub use normals::{flip_normals, recalculate_normals_outward};
 pub use slide::slide_edges;
+pub use spin::{
+    AXIS_TOLERANCE, FULL_TURN_TOLERANCE, MAX_SPIN_STEPS, SpinProfile, SpinResult, screw, spin,
+};
 pub use subdivide_edges::subdivide_edges;
 pub use triangulate::{DEFAULT_JOIN_LIMIT, triangulate_faces, tris_to_quads};
