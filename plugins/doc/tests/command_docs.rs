@@ -24,7 +24,7 @@ fn every_command_example_in_the_docs_runs() {
         .collect();
     kinds.sort();
     kinds.dedup();
-    assert_eq!(kinds.len(), 57, "{kinds:?}");
+    assert_eq!(kinds.len(), 58, "{kinds:?}");
     let mut session = hedra_doc::Session::new();
     hedra_doc::script::run(&mut session, &commands, Path::new("docs/commands.md"))
         .unwrap_or_else(|e| panic!("{e}"));
@@ -124,6 +124,25 @@ fn every_command_example_in_the_docs_runs() {
     assert!(cut.stats().closed);
     assert!(cut.faces().all(|f| cut.face_degree(f) == 4));
     assert!(cut.vertices().all(|v| cut.position(v).y <= 0.0));
+    // Knife across the front face: two edges split, the front face in two,
+    // the back face untouched.
+    let carved = doc.find_by_name("Carved").unwrap().content.mesh().unwrap();
+    carved.validate().unwrap();
+    assert_eq!(
+        (
+            carved.vertex_count(),
+            carved.edge_count(),
+            carved.face_count()
+        ),
+        (10, 15, 7)
+    );
+    assert_eq!(
+        carved
+            .faces()
+            .filter(|&f| carved.face_normal(f).z > 0.999)
+            .count(),
+        2
+    );
     let bridge = doc.find_by_name("Bridge").unwrap().content.mesh().unwrap();
     assert!(bridge.stats().closed, "the two squares became a closed box");
     let block = doc.find_by_name("Block").unwrap().content.mesh().unwrap();

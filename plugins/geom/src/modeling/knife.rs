@@ -57,9 +57,12 @@ const PLANE_TOLERANCE: f64 = 1e-9;
 /// becomes a vertex of the split (the path bends there, as in Blender). A
 /// point at an end of the path (or of a part of it cut off by a boundary)
 /// would leave a dangling edge inside the face, which Blender keeps but
-/// Hedra does not: triangulation, subdivision and export assume every
-/// face's loop is a simple polygon. Such ends are dropped, so the cut
-/// starts and ends at the first and last edge it crosses.
+/// Hedra does not: `validate` accepts such a spike (MEV makes one), but
+/// triangulation (ear clipping of the face's corner list), subdivision and
+/// export read each face's loop as a simple polygon, and a spike visits its
+/// base vertex twice. Such ends are dropped (KEV), so the cut starts and
+/// ends at the first and last edge it crosses; an end on an edge still
+/// splits that edge.
 ///
 /// Segments of zero length, or seen end-on along `view`, cut nothing and
 /// are skipped.
