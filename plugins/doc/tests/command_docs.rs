@@ -24,7 +24,7 @@ fn every_command_example_in_the_docs_runs() {
         .collect();
     kinds.sort();
     kinds.dedup();
-    assert_eq!(kinds.len(), 64, "{kinds:?}");
+    assert_eq!(kinds.len(), 65, "{kinds:?}");
     let mut session = hedra_doc::Session::new();
     hedra_doc::script::run(&mut session, &commands, Path::new("docs/commands.md"))
         .unwrap_or_else(|e| panic!("{e}"));
@@ -140,6 +140,25 @@ fn every_command_example_in_the_docs_runs() {
     assert!(
         (hi.z - lo.z - 5.5).abs() < 1e-9,
         "three turns of 1.5 plus the square: {lo} {hi}"
+    );
+    // Knife across the front face: two edges split, the front face in two,
+    // the back face untouched.
+    let carved = doc.find_by_name("Carved").unwrap().content.mesh().unwrap();
+    carved.validate().unwrap();
+    assert_eq!(
+        (
+            carved.vertex_count(),
+            carved.edge_count(),
+            carved.face_count()
+        ),
+        (10, 15, 7)
+    );
+    assert_eq!(
+        carved
+            .faces()
+            .filter(|&f| carved.face_normal(f).z > 0.999)
+            .count(),
+        2
     );
     let bridge = doc.find_by_name("Bridge").unwrap().content.mesh().unwrap();
     assert!(bridge.stats().closed, "the two squares became a closed box");

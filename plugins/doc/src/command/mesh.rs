@@ -231,6 +231,23 @@ impl Plan<'_> {
         })
     }
 
+    /// Knife cut along `points` seen along `view`; its cut edges become
+    /// the created edges.
+    pub(super) fn knife(
+        &mut self,
+        node: &NodeRef,
+        points: &[DVec3],
+        view: DVec3,
+    ) -> Result<(), CommandError> {
+        let mut cut_edges = Vec::new();
+        self.model(node, |m| {
+            cut_edges = modeling::knife(m, points, view)?.cut_edges;
+            Ok(())
+        })?;
+        self.created_edges = cut_edges;
+        Ok(())
+    }
+
     pub(super) fn dissolve_edges(
         &mut self,
         node: &NodeRef,

@@ -26,7 +26,7 @@ use crate::history::Transaction;
 use crate::scene::{Document, NodeId};
 use hedra_geom::curves::CurveError;
 use hedra_geom::subdivision::{self, INFINITE_SHARPNESS};
-use hedra_geom::{BuildError, FaceId, PrimitiveError, VertexId};
+use hedra_geom::{BuildError, EdgeId, FaceId, PrimitiveError, VertexId};
 use plan::Plan;
 
 /// Why an edit refused the elements or values it was given (the node is
@@ -269,6 +269,7 @@ impl Document {
             next_id: self.next_node_id,
             changes: Vec::new(),
             created_faces: Vec::new(),
+            created_edges: Vec::new(),
         };
         plan.run(cmd)?;
         if plan.changes.is_empty() {
@@ -284,6 +285,7 @@ impl Document {
                 next_id_after: plan.next_id,
             },
             created_faces: plan.created_faces,
+            created_edges: plan.created_edges,
         })
     }
 }
@@ -297,4 +299,8 @@ pub struct Decision {
     /// (the inner faces), in the order of the command's faces; empty for
     /// other commands. Not part of the history: only tools use it.
     pub created_faces: Vec<FaceId>,
+    /// The edges a knife cut makes or runs along, in path order (Blender
+    /// selects them after the cut); empty for other commands. Not part of
+    /// the history: only tools use it.
+    pub created_edges: Vec<EdgeId>,
 }

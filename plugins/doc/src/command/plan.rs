@@ -45,6 +45,8 @@ pub(super) struct Plan<'a> {
     pub(super) changes: Vec<NodeChange>,
     /// See [`Decision::created_faces`](super::Decision::created_faces).
     pub(super) created_faces: Vec<FaceId>,
+    /// See [`Decision::created_edges`](super::Decision::created_edges).
+    pub(super) created_edges: Vec<EdgeId>,
 }
 
 impl Plan<'_> {
@@ -442,6 +444,7 @@ impl Plan<'_> {
                 steps,
                 pitch,
             } => self.screw(node, profile, *center, *axis, *turns, *steps, *pitch),
+            Command::Knife { node, points, view } => self.knife(node, points, *view),
             Command::DissolveEdges { node, edges } => self.dissolve_edges(node, edges),
             Command::DissolveVertices { node, vertices } => self.dissolve_vertices(node, vertices),
             Command::DissolveFaces { node, faces } => self.dissolve_faces(node, faces),

@@ -619,6 +619,27 @@ pub enum Command {
         /// against the axis).
         pitch: f64,
     },
+    /// Cuts faces along a path of points on the surface (Blender's Knife,
+    /// K, without cut-through): each pair of consecutive points and the
+    /// view direction span a curtain, and the faces the cut walks across
+    /// from the first point to the second are split where the curtain
+    /// meets them. Only the faces on that walk are cut, not the ones
+    /// behind. Path ends strictly inside a face are dropped (the cut starts
+    /// and ends at the first and last edge it crosses); see
+    /// `hedra_geom::modeling::knife`. The cut edges are the decision's
+    /// `created_edges`.
+    Knife {
+        /// The mesh node to edit.
+        node: NodeRef,
+        /// The path, in the node's local space: at least two points, each
+        /// on a face, an edge or a vertex of the mesh (as a viewport pick
+        /// gives them; a point on a vertex uses it, one on an edge splits
+        /// it there).
+        points: Vec<DVec3>,
+        /// The direction the path is seen along, in local space (from the
+        /// eye into the scene; any length but zero).
+        view: DVec3,
+    },
     /// Sets the subdivision crease sharpness of edges: 0 is smooth, 10
     /// infinitely sharp, values between fade out after that many levels.
     SetEdgeCrease {
@@ -878,6 +899,7 @@ impl Command {
             Command::Bisect { .. } => "Bisect".to_string(),
             Command::Spin { .. } => "Spin".to_string(),
             Command::Screw { .. } => "Screw".to_string(),
+            Command::Knife { .. } => "Knife".to_string(),
             Command::DissolveEdges { .. } => "Dissolve Edges".to_string(),
             Command::DissolveVertices { .. } => "Dissolve Vertices".to_string(),
             Command::FlipNormals { .. } => "Flip Normals".to_string(),

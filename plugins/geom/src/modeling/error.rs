@@ -5,6 +5,7 @@ use crate::build::BuildError;
 use crate::euler::EulerError;
 use crate::ids::{EdgeId, ElementId, FaceId, VertexId};
 use crate::validate::ValidationError;
+use glam::DVec3;
 use std::fmt;
 
 /// Why a modeling operation refused; the mesh is unchanged.
@@ -86,6 +87,19 @@ pub enum ModelingError {
         /// The face beside the profile.
         face: FaceId,
     },
+    /// A knife point farther from every face than the tolerance (it
+    /// must lie on the surface, as a viewport pick does).
+    #[error("knife point {index} at {point} is not on the mesh surface")]
+    NotOnSurface {
+        /// The point's position in the path, from 0.
+        index: usize,
+        /// The point, in the mesh's space.
+        point: DVec3,
+    },
+    /// A knife path that splits no edge and no face: its points lie inside
+    /// one face without reaching an edge.
+    #[error("the knife path crosses no edge: nothing to cut")]
+    NothingToCut,
     /// An Euler operator the operation uses refused.
     #[error(transparent)]
     Euler(#[from] EulerError),

@@ -21,6 +21,7 @@ mod error;
 mod extrude;
 mod holes;
 mod inset;
+mod knife;
 mod loop_cut;
 mod merge;
 mod mirror;
@@ -43,6 +44,7 @@ pub use error::{InvalidResult, ModelingError, NewFace};
 pub use extrude::{extrude_boundary_edges, extrude_faces_individual, extrude_region};
 pub use holes::{fill_holes, make_holes};
 pub use inset::{inset_faces_individual, inset_region};
+pub use knife::{KnifeResult, knife};
 pub use loop_cut::{edge_ring, loop_cut};
 pub use merge::{
     MergePoint, collapse_edges, merge_at_center, merge_by_distance, merge_vertices, weld_vertices,
