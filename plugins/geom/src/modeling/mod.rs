@@ -23,6 +23,7 @@ mod loop_cut;
 mod merge;
 mod mirror;
 mod normals;
+mod rip;
 mod slide;
 mod subdivide_edges;
 mod triangulate;
@@ -44,6 +45,7 @@ pub use merge::{
 };
 pub use mirror::{MirrorAxis, mirror_vertices, symmetrize};
 pub use normals::{flip_normals, recalculate_normals_outward};
+pub use rip::{RipResult, rip_edges, rip_vertex};
 pub use slide::slide_edges;
 pub use subdivide_edges::subdivide_edges;
 pub use triangulate::{DEFAULT_JOIN_LIMIT, triangulate_faces, tris_to_quads};
