@@ -576,15 +576,11 @@ impl Document {
                 let (node, name) = named();
                 return Err(DocumentError::NonFiniteTransform { node, name });
             }
-            // Faces with inner rings or without edges exist in the kernel
-            // (Mäntylä's Euler operators); the editor's tools, rendering and
-            // exports work on polygons, so a document holds polygon meshes.
-            if let NodeContent::Mesh(m) = &n.content
-                && let Some(face) = m.mesh.first_non_polygon_face()
-            {
-                let (node, name) = named();
-                return Err(DocumentError::NotPolygon { node, name, face });
-            }
+            // Faces with inner rings or without edges (Mäntylä's Euler
+            // operators, `Command::Euler`) are allowed: the file stores
+            // them, rendering draws their outer loop's triangles only where
+            // the kernel can triangulate, and exports and subdivision
+            // refuse them by name.
         }
         Ok(())
     }
@@ -634,17 +630,5 @@ pub enum DocumentError {
         node: NodeId,
         /// The node's name.
         name: String,
-    },
-    #[error(
-        "node {node} '{name}': {face} has an inner ring or no edges; Hedra edits polygon meshes only"
-    )]
-    /// A mesh face with an inner ring or without edges.
-    NotPolygon {
-        /// The node's id.
-        node: NodeId,
-        /// The node's name.
-        name: String,
-        /// The first such face.
-        face: hedra_geom::FaceId,
     },
 }
