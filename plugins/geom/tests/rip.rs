@@ -257,3 +257,67 @@ fn topology_deltas_read_as_the_change() {
     );
     assert_eq!(before.to_string(), "V 25, E 40, F 16, L 16, S 1, H 0, B 1");
 }
+
+#[test]
+fn ripping_every_edge_of_a_cube_leaves_six_loose_quads() {
+    let mut m = Primitive::Cube { size: 2.0 }.build().unwrap();
+    let all: Vec<EdgeId> = m.edges().collect();
+    let r = modeling::rip_edges(&mut m, &all).unwrap();
+    // Every corner had three ripped edges: three copies of it.
+    assert_eq!(short(counts(&m)), (24, 24, 6, 6, 0, 6));
+    assert_eq!(r.new_vertices().len(), 16);
+    assert!(m.faces().all(|f| m.face_degree(f) == 4));
+}
+
+#[test]
+fn any_set_of_edges_rips_into_a_valid_mesh_or_is_refused_unchanged() {
+    // A small linear congruential generator: the same subsets every run.
+    let mut seed: u64 = 0x9e37_79b9_7f4a_7c15;
+    let mut next = move || {
+        seed = seed
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        seed >> 33
+    };
+    let meshes = [
+        grid(),
+        Primitive::UvSphere {
+            segments: 8,
+            rings: 6,
+            radius: 1.0,
+        }
+        .build()
+        .unwrap(),
+        Primitive::Cube { size: 2.0 }.build().unwrap(),
+    ];
+    let (mut ripped, mut refused) = (0, 0);
+    for m0 in &meshes {
+        let edges: Vec<EdgeId> = m0.edges().collect();
+        for _ in 0..60 {
+            let pick: Vec<EdgeId> = edges.iter().copied().filter(|_| next() % 4 == 0).collect();
+            if pick.is_empty() {
+                continue;
+            }
+            let mut m = m0.clone();
+            match modeling::rip_edges(&mut m, &pick) {
+                Ok(r) => {
+                    let c = counts(&m);
+                    let c0 = TopologyCounts::of(m0);
+                    assert_eq!(c.edges - c0.edges, r.edges.len() as i64);
+                    assert_eq!(c.vertices - c0.vertices, r.new_vertices().len() as i64);
+                    assert_eq!(c.faces, c0.faces);
+                    ripped += 1;
+                }
+                Err(ModelingError::RipLoneEdge { .. } | ModelingError::RipOpenEdge { .. }) => {
+                    assert!(m.same_as(m0));
+                    refused += 1;
+                }
+                Err(e) => panic!("unexpected refusal: {e}"),
+            }
+        }
+    }
+    assert!(
+        ripped > 20 && refused > 20,
+        "{ripped} ripped, {refused} refused"
+    );
+}
