@@ -217,8 +217,9 @@ impl CornerAttributes {
     /// The attributes after `before` was edited into `after`: normals are
     /// dropped when the mesh changed at all; each UV stays with its corner,
     /// found as the half-edge of the same face that leaves the same vertex
-    /// (usually the same id; after a flip it is a neighbouring half-edge).
-    /// UVs of corners that no longer exist are dropped.
+    /// (usually the same id; after a flip it is a neighbouring half-edge;
+    /// after a rip, the half-edge of the same face leaving the vertex's new
+    /// copy). UVs of corners that no longer exist are dropped.
     pub fn follow_edit(&self, before: &HalfEdgeMesh, after: &HalfEdgeMesh) -> CornerAttributes {
         if before == after {
             return self.clone();
@@ -230,10 +231,23 @@ impl CornerAttributes {
                 continue;
             }
             let v = before.origin(h);
-            let Some(f) = after.face(h) else { continue };
-            if after.origin(h) == v {
+            // A ripped edge's half-edge leaves its face for the boundary;
+            // the face keeps the corner on a new half-edge.
+            let Some(f) = after
+                .face(h)
+                .or(before.face(h).filter(|&f| after.is_face(f)))
+            else {
+                continue;
+            };
+            if after.face(h) == Some(f) && after.origin(h) == v {
                 uvs.insert(h, uv);
             } else if let Some(c) = after.face_halfedges(f).find(|&x| after.origin(x) == v) {
+                moved.push((c, uv));
+            } else if let Some(c) = after.face_halfedges(f).find(|&x| {
+                // The vertex was copied (rip): the new vertex at its place.
+                let o = after.origin(x);
+                !before.is_vertex(o) && after.position(o) == before.position(v)
+            }) {
                 moved.push((c, uv));
             }
         }

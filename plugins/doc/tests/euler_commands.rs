@@ -401,3 +401,32 @@ fn rip_as_a_command_tears_the_cube_in_two() {
         "V +1, E +2, B +1"
     );
 }
+
+#[test]
+fn a_rip_keeps_every_corner_uv() {
+    let path =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/corpus/scenes/v2-uv-panel.hedra.ron");
+    let mut s = hedra_doc::file::load(&path).unwrap().session;
+    let panel = NodeRef::Name("Panel".into());
+    let content = |s: &Session| match &s.doc.find_by_name("Panel").unwrap().content {
+        hedra_doc::NodeContent::Mesh(c) => c.clone(),
+        _ => panic!("Panel is a mesh"),
+    };
+    assert_eq!(content(&s).corners.uvs.len(), 8);
+    // Two quads sharing the edge x = 1: ripping it separates them.
+    s.execute(&Command::Rip {
+        node: panel,
+        edges: EdgeSet::Nearest(DVec3::new(1.0, 0.5, 0.0)),
+    })
+    .unwrap();
+    let c = content(&s);
+    c.mesh.validate().unwrap();
+    assert_eq!(c.mesh.shell_count(), 2);
+    assert_eq!(c.corners.uvs.len(), 8, "every face corner keeps its UV");
+    for (&h, uv) in c.corners.uvs.iter() {
+        assert!(c.mesh.face(h).is_some());
+        // The panel's UVs are its positions halved in x.
+        let p = c.mesh.position(c.mesh.origin(h));
+        assert_eq!((uv.x, uv.y), (p.x / 2.0, p.y), "{h}");
+    }
+}
