@@ -81,6 +81,17 @@ pub enum ExportError {
         /// The modifier's or the subdivision's reason.
         error: crate::modifiers::EvaluationError,
     },
+    /// A mesh has a face with an inner ring or without edges (made by the
+    /// Euler operators), which the exchange formats cannot hold.
+    #[error(
+        "node '{node}': {face} has an inner ring or no edges; OBJ, STL and glTF hold plain polygons only (join the ring to the face's outer loop with MEKR first)"
+    )]
+    NotPolygon {
+        /// The node's name.
+        node: String,
+        /// The first such face.
+        face: hedra_geom::FaceId,
+    },
     /// serde_json could not write the glTF document.
     #[error("cannot write glTF: {0}")]
     GltfJson(String),
@@ -418,7 +429,8 @@ fn export_meshes(doc: &Document, shape: ExportShape) -> Result<Vec<ExportItem<'_
 ///
 /// # Errors
 /// [`ExportError::Evaluation`] naming the node when its modifier stack or
-/// subdivision cannot be evaluated.
+/// subdivision cannot be evaluated. [`ExportError::NotPolygon`] for a mesh
+/// with a face with rings or without edges.
 pub(crate) fn node_geometry(
     node: &Node,
     shape: ExportShape,
@@ -427,6 +439,12 @@ pub(crate) fn node_geometry(
     Ok(Some(match &node.content {
         NodeContent::Empty => return Ok(None),
         NodeContent::Mesh(content) => {
+            if let Some(face) = content.mesh.first_non_polygon_face() {
+                return Err(ExportError::NotPolygon {
+                    node: node.name.clone(),
+                    face,
+                });
+            }
             let level = match shape {
                 ExportShape::Cage => return Ok(Some(Geometry::Mesh(Cow::Borrowed(&content.mesh)))),
                 ExportShape::Evaluated => content.subdivision.map_or(0, |m| m.export_level),

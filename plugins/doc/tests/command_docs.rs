@@ -24,7 +24,7 @@ fn every_command_example_in_the_docs_runs() {
         .collect();
     kinds.sort();
     kinds.dedup();
-    assert_eq!(kinds.len(), 65, "{kinds:?}");
+    assert_eq!(kinds.len(), 69, "{kinds:?}");
     let mut session = hedra_doc::Session::new();
     hedra_doc::script::run(&mut session, &commands, Path::new("docs/commands.md"))
         .unwrap_or_else(|e| panic!("{e}"));
@@ -231,6 +231,61 @@ fn every_command_example_in_the_docs_runs() {
     let s = evaluated.stats();
     assert_eq!((s.vertices, s.edges, s.faces), (16, 28, 12));
     assert_eq!((s.shells, s.boundary_loops, s.genus), (1, 2, Some(0)));
+    // Rip, vertex rip, vertex split and the Euler operators.
+    use hedra_geom::TopologyCounts;
+    let counts = |name: &str| {
+        let m = doc.find_by_name(name).unwrap().content.mesh().unwrap();
+        m.validate().unwrap();
+        let c = TopologyCounts::of(m);
+        assert!(c.euler_poincare_holds(), "{name}: {c}");
+        c.to_string()
+    };
+    assert_eq!(counts("Torn"), "V 30, E 44, F 16, L 16, S 2, H 0, B 2");
+    assert_eq!(counts("Pinched"), "V 26, E 42, F 16, L 16, S 1, H 0, B 2");
+    assert_eq!(counts("Split"), "V 26, E 41, F 16, L 16, S 1, H 0, B 1");
+    let split = doc.find_by_name("Split").unwrap().content.mesh().unwrap();
+    let mut degrees: Vec<usize> = split.faces().map(|f| split.face_degree(f)).collect();
+    degrees.sort();
+    assert_eq!(degrees[14..], [5, 5], "two quads gained a side");
+    assert_eq!(counts("Ringed"), "V 12, E 16, F 7, L 8, S 1, H 0, B 0");
+    let ringed = doc.find_by_name("Ringed").unwrap().content.mesh().unwrap();
+    let top = ringed
+        .faces()
+        .find(|&f| !ringed.face_rings(f).is_empty())
+        .expect("a face with a ring");
+    assert!(
+        ringed.face_normal(top).y > 0.9,
+        "the ring is in the top face"
+    );
+    assert_eq!(ringed.loop_halfedges(ringed.face_rings(top)[0]).count(), 4);
+    assert_eq!(counts("Euler Cube"), "V 8, E 12, F 6, L 6, S 1, H 0, B 0");
+    let labels: Vec<&str> = session
+        .history
+        .done()
+        .iter()
+        .map(|t| t.label.as_str())
+        .filter(|l| l.starts_with("Euler") || l.starts_with("Rip") || l.starts_with("Split"))
+        .collect();
+    assert_eq!(
+        labels,
+        [
+            "Rip",
+            "Rip Vertex",
+            "Split Vertex",
+            "Euler MEV",
+            "Euler MEV",
+            "Euler MEV",
+            "Euler MEV",
+            "Euler MEF",
+            "Euler KEMR",
+            "Euler KFMRH",
+            "Euler MFKRH",
+            "Euler MVFS",
+            "Euler MEV",
+            "Euler KEV",
+            "Euler KVFS"
+        ]
+    );
     // Curves and surfaces: edits keep their shapes where they promise to.
     use hedra_geom::curves::Curve;
     let curve = |name: &str| match &doc.find_by_name(name).unwrap().content {

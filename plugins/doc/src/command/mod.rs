@@ -8,10 +8,12 @@
 //! - `plan`: the [`Plan`](plan::Plan) a command is decided into, its helpers,
 //!   and the dispatch by family to
 //! - `nodes` (scene tree and node properties), `mesh` (mesh modeling),
+//!   `euler` (rip, vertex split and the Euler operators as commands),
 //!   `creases` (creases and the subdivision modifier), `modifiers` (the
 //!   Mirror/Array modifier stack), `shapes` (curves and surfaces).
 
 mod creases;
+mod euler;
 mod mesh;
 mod modifiers;
 mod nodes;
@@ -19,7 +21,7 @@ mod plan;
 mod shapes;
 mod spec;
 
-pub use spec::{Command, CurveSpec, NodeRef, ParameterDirection, SurfaceSpec};
+pub use spec::{Command, Corner, CurveSpec, EulerOp, NodeRef, ParameterDirection, SurfaceSpec};
 
 use crate::elements::{EdgeSet, ElementError, VertexSet};
 use crate::history::Transaction;
@@ -66,6 +68,28 @@ pub enum EditError {
         vertices: VertexSet,
         /// How many vertices it names.
         count: usize,
+    },
+    /// A set that must name exactly one element names none or several.
+    #[error("{role} must name exactly one element, it names {count}")]
+    NotOne {
+        /// The argument, as the message names it (`` "`vertex`" ``).
+        role: &'static str,
+        /// How many elements it names.
+        count: usize,
+    },
+    /// Two vertices a command needs joined by an edge are not.
+    #[error("no edge runs from {a} to {b}")]
+    NotJoined {
+        /// The first vertex.
+        a: VertexId,
+        /// The second vertex.
+        b: VertexId,
+    },
+    /// An Euler operator that joins corners on edges was given a lone vertex.
+    #[error("{vertex} is a lone vertex; this operator needs a corner between two edges")]
+    LoneCorner {
+        /// The lone vertex.
+        vertex: VertexId,
     },
     /// [`Command::RecalculateNormals`] on a mesh with nothing to turn.
     #[error("the mesh already faces outwards (or is open)")]

@@ -640,6 +640,54 @@ pub enum Command {
         /// eye into the scene; any length but zero).
         view: DVec3,
     },
+    /// Tears the mesh open along edges (Blender's Rip, V in edit mode):
+    /// each edge becomes two boundary edges, one per side, and the vertices
+    /// along them are duplicated so the sides come apart; a path that ends
+    /// inside the surface keeps its end vertex (a slit).
+    Rip {
+        /// The mesh node to edit.
+        node: NodeRef,
+        /// The edges to rip, each with a face on both sides.
+        edges: EdgeSet,
+    },
+    /// Rips one vertex off one of its faces (Blender's Rip on a single
+    /// vertex): the face's corner gets a vertex of its own.
+    RipVertex {
+        /// The mesh node to edit.
+        node: NodeRef,
+        /// Exactly one vertex.
+        vertex: VertexSet,
+        /// Exactly one face at the vertex (Blender: the one nearest the mouse).
+        face: FaceSet,
+    },
+    /// Vertex split, the inverse of an edge collapse (Hoppe's progressive
+    /// meshes, seed 004): the edges of `vertex` from the one to `first` to
+    /// the one to `last`, counter-clockwise seen from the front (the order
+    /// of the vertex's fan), move to a new vertex at `position`, joined to
+    /// `vertex` by a new edge; the faces on the far side of `first` and
+    /// `last` gain a side each.
+    SplitVertex {
+        /// The mesh node to edit.
+        node: NodeRef,
+        /// Exactly one vertex to split.
+        vertex: VertexSet,
+        /// The neighbour whose edge is the first to move.
+        first: VertexSet,
+        /// The neighbour whose edge is the last to move (may be `first`).
+        last: VertexSet,
+        /// Where the new vertex goes, in local space.
+        position: DVec3,
+    },
+    /// One Euler operator on a mesh (Mäntylä's MEV, KEV, MEF, KEF, KEMR,
+    /// MEKR, KFMRH, MFKRH, MVFS, KVFS): the low-level steps every modeling
+    /// operation is made of, for teaching and for building faces with
+    /// rings. Each keeps V − E + F − (L − F) = 2(S − H).
+    Euler {
+        /// The mesh node to edit.
+        node: NodeRef,
+        /// The operator and its arguments.
+        op: EulerOp,
+    },
     /// Sets the subdivision crease sharpness of edges: 0 is smooth, 10
     /// infinitely sharp, values between fade out after that many levels.
     SetEdgeCrease {
@@ -925,6 +973,10 @@ impl Command {
             Command::DeleteEdges { .. } => "Delete Edges".to_string(),
             Command::DeleteVertices { .. } => "Delete Vertices".to_string(),
             Command::ExtrudeEdges { .. } => "Extrude Edges".to_string(),
+            Command::Rip { .. } => "Rip".to_string(),
+            Command::RipVertex { .. } => "Rip Vertex".to_string(),
+            Command::SplitVertex { .. } => "Split Vertex".to_string(),
+            Command::Euler { op, .. } => format!("Euler {}", op.name()),
         }
     }
 }
@@ -940,4 +992,127 @@ fn plural(n: usize, what: &str) -> String {
 /// Blender's default limit for Tris to Quads' face and shape angles.
 fn join_limit_degrees() -> f64 {
     40.0
+}
+
+/// A corner of a face loop, where an Euler operator inserts or joins an
+/// edge. Named by the half-edge that arrives at it, so a vertex that a
+/// loop passes twice (the end of a dangling edge, say) is still one
+/// unambiguous corner.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub enum Corner {
+    /// The corner at vertex `at` reached along the edge from `from`: on the
+    /// face to the left of the half-edge `from` → `at`, between that
+    /// half-edge and the next one of its loop.
+    At {
+        /// The corner's vertex (exactly one).
+        at: VertexSet,
+        /// The vertex before it on the loop (exactly one, joined to `at`).
+        from: VertexSet,
+    },
+    /// A loop without edges: its lone vertex (left by MVFS, or by KEMR
+    /// when a ring is a single vertex).
+    Lone(VertexSet),
+}
+
+/// An Euler operator and its arguments, for [`Command::Euler`]. Each names
+/// its change of V, E, F, loops L, shells S and holes H; the kernel
+/// functions are `HalfEdgeMesh::make_edge_vertex` and the others named.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub enum EulerOp {
+    /// MEV (`make_edge_vertex`): a new vertex at `position` joined to the
+    /// corner's vertex by a new edge dangling into the corner's face.
+    /// V +1, E +1. On a lone vertex the loop becomes a wire of one edge.
+    Mev {
+        /// Where the edge starts.
+        corner: Corner,
+        /// The new vertex, in local space.
+        position: DVec3,
+    },
+    /// KEV (`kill_edge_vertex`): removes an edge with an end of valence 1
+    /// and that end. V −1, E −1.
+    Kev {
+        /// Exactly one dangling edge.
+        edge: EdgeSet,
+    },
+    /// MEF (`make_edge_face`): joins two corners of one loop of a face by
+    /// a new edge; the part of the loop after `a` keeps the face, the part
+    /// after `b` becomes a new face. E +1, F +1, L +1.
+    Mef {
+        /// The first corner (its side keeps the face).
+        a: Corner,
+        /// The second corner, on the same loop (its side is the new face).
+        b: Corner,
+    },
+    /// KEF (`kill_edge_face`): removes an edge between two different
+    /// faces, which become one. E −1, F −1, L −1.
+    Kef {
+        /// Exactly one edge.
+        edge: EdgeSet,
+    },
+    /// KEMR (`kill_edge_make_ring`): removes an edge whose two sides lie on
+    /// the same loop of one face; the loop falls apart in two and the part
+    /// on `to`'s side becomes an inner ring of the face (a lone vertex if
+    /// it has no edges left). E −1, L +1.
+    Kemr {
+        /// The end of the edge whose side keeps the loop's place.
+        from: VertexSet,
+        /// The other end; its side becomes the new ring.
+        to: VertexSet,
+    },
+    /// MEKR (`make_edge_kill_ring`): joins a corner of one loop of a face
+    /// to a corner of one of its rings by a new edge; the ring merges into
+    /// the first loop. E +1, L −1.
+    Mekr {
+        /// A corner on the loop that stays (outer loop or ring).
+        a: Corner,
+        /// A corner on a ring of the same face.
+        ring: Corner,
+    },
+    /// KFMRH (`kill_face_make_ring_hole`): face `kill` disappears and its
+    /// loop becomes an inner ring of face `keep` (Mäntylä's through hole).
+    /// F −1; H +1 when both faces are in one shell, else S −1.
+    Kfmrh {
+        /// The face that gets the ring (exactly one).
+        keep: FaceSet,
+        /// The face that becomes the ring (exactly one; no rings, sharing
+        /// no vertex with `keep`).
+        kill: FaceSet,
+    },
+    /// MFKRH (`make_face_kill_ring_hole`): a ring leaves its face and
+    /// becomes the outer loop of a new face. F +1; H −1, or S +1 when the
+    /// ring was all that held another shell.
+    Mfkrh {
+        /// Any corner of the ring, or its lone vertex.
+        ring: Corner,
+    },
+    /// MVFS (`make_vertex_face_shell`): a new shell of one vertex and one
+    /// face whose only loop is that vertex. V +1, F +1, L +1, S +1.
+    Mvfs {
+        /// The vertex, in local space.
+        position: DVec3,
+    },
+    /// KVFS (`kill_vertex_face_shell`): removes a shell of one vertex and
+    /// one face. V −1, F −1, L −1, S −1.
+    Kvfs {
+        /// The lone vertex of the shell (exactly one).
+        vertex: VertexSet,
+    },
+}
+
+impl EulerOp {
+    /// The operator's short name, as in the literature (`"MEV"`).
+    pub fn name(&self) -> &'static str {
+        match self {
+            EulerOp::Mev { .. } => "MEV",
+            EulerOp::Kev { .. } => "KEV",
+            EulerOp::Mef { .. } => "MEF",
+            EulerOp::Kef { .. } => "KEF",
+            EulerOp::Kemr { .. } => "KEMR",
+            EulerOp::Mekr { .. } => "MEKR",
+            EulerOp::Kfmrh { .. } => "KFMRH",
+            EulerOp::Mfkrh { .. } => "MFKRH",
+            EulerOp::Mvfs { .. } => "MVFS",
+            EulerOp::Kvfs { .. } => "KVFS",
+        }
+    }
 }

@@ -293,7 +293,7 @@ impl HalfEdgeMesh {
         }
     }
 
-    fn check_edge(&self, e: EdgeId) -> Result<(), EulerError> {
+    pub(super) fn check_edge(&self, e: EdgeId) -> Result<(), EulerError> {
         if self.is_edge(e) {
             Ok(())
         } else {
@@ -356,7 +356,12 @@ impl HalfEdgeMesh {
 
     /// After the half-edges `old` left a loop of `f`, any loop start on them
     /// moves to `new` (which lies on the same loop, or is its lone vertex).
-    fn replace_loop_start(&mut self, f: Option<FaceId>, old: &[HalfEdgeId], new: LoopStart) {
+    pub(super) fn replace_loop_start(
+        &mut self,
+        f: Option<FaceId>,
+        old: &[HalfEdgeId],
+        new: LoopStart,
+    ) {
         let Some(f) = f else { return };
         let fh = self.face_halfedge[f.index()];
         if fh != NONE && old.contains(&HalfEdgeId(fh)) {

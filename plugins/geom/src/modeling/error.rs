@@ -100,6 +100,29 @@ pub enum ModelingError {
     /// one face without reaching an edge.
     #[error("the knife path crosses no edge: nothing to cut")]
     NothingToCut,
+    /// Rip on an edge that already has no face on one side.
+    #[error("{edge} is already on a boundary: only edges between two faces can be ripped")]
+    RipOpenEdge {
+        /// The boundary edge.
+        edge: EdgeId,
+    },
+    /// Rip on an edge ripped alone with both ends inside the surface: its
+    /// two copies would join the same two vertices.
+    #[error(
+        "{edge} is ripped alone and both its ends are inside the mesh: its two copies would join the same two vertices (rip a path of two or more edges, or one that reaches a boundary)"
+    )]
+    RipLoneEdge {
+        /// The edge.
+        edge: EdgeId,
+    },
+    /// Vertex rip at a corner with nothing to rip.
+    #[error("{vertex} is not a corner of {face} with an edge between two faces: nothing to rip")]
+    RipCorner {
+        /// The vertex.
+        vertex: VertexId,
+        /// The face it was to be ripped off.
+        face: FaceId,
+    },
     /// An Euler operator the operation uses refused.
     #[error(transparent)]
     Euler(#[from] EulerError),

@@ -26,6 +26,7 @@ mod loop_cut;
 mod merge;
 mod mirror;
 mod normals;
+mod rip;
 mod slide;
 mod spin;
 mod subdivide_edges;
@@ -51,6 +52,7 @@ pub use merge::{
 };
 pub use mirror::{MirrorAxis, mirror_vertices, mirrored, mirrored_copies, symmetrize};
 pub use normals::{flip_normals, recalculate_normals_outward};
+pub use rip::{RipResult, rip_edges, rip_vertex};
 pub use slide::slide_edges;
 pub use spin::{
     AXIS_TOLERANCE, FULL_TURN_TOLERANCE, MAX_SPIN_STEPS, SpinProfile, SpinResult, screw, spin,
