@@ -3,6 +3,7 @@
 //! (local) space.
 
 use glam::DVec3;
+use hedra_geom::modeling::SpinProfile;
 use hedra_geom::{EdgeId, FaceId, HalfEdgeMesh, VertexId};
 use serde::{Deserialize, Serialize};
 
@@ -63,6 +64,31 @@ pub enum VertexSet {
     OfFaces(Box<FaceSet>),
     /// The ends of an edge set.
     OfEdges(Box<EdgeSet>),
+}
+
+/// What a spin or screw sweeps ([`Command::Spin`](crate::Command::Spin),
+/// [`Command::Screw`](crate::Command::Screw)): as Blender's Spin sweeps the
+/// selected faces when there are any, and the selected edges otherwise.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub enum ProfileSet {
+    /// A region of faces, swept as a solid: side faces along its outline,
+    /// its faces as the end cap (and the start cap when nothing borders it).
+    Faces(FaceSet),
+    /// Boundary edges, swept as a surface of quads on their open side.
+    Edges(EdgeSet),
+}
+
+impl ProfileSet {
+    /// The kernel's profile for these elements.
+    ///
+    /// # Errors
+    /// [`ElementError`] for a missing id or an empty match.
+    pub fn resolve(&self, m: &HalfEdgeMesh) -> Result<SpinProfile, ElementError> {
+        Ok(match self {
+            ProfileSet::Faces(faces) => SpinProfile::Faces(faces.resolve(m)?),
+            ProfileSet::Edges(edges) => SpinProfile::Edges(edges.resolve(m)?),
+        })
+    }
 }
 
 /// An id in a command that the mesh does not have, or a predicate that

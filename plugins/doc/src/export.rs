@@ -20,13 +20,14 @@ use std::path::{Path, PathBuf};
 /// Which shape of each mesh is written.
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
 pub enum ExportShape {
-    /// The evaluated shape: meshes with a subdivision modifier at its export level.
+    /// The evaluated shape: meshes with their modifier stack (Mirror,
+    /// Array) applied and a subdivision modifier at its export level.
     #[default]
     Evaluated,
     /// The editable cage, modifiers ignored.
     Cage,
     /// Every mesh subdivided this many levels (its modifier's scheme, else
-    /// Catmull-Clark).
+    /// Catmull-Clark), its stack modifiers applied.
     Subdivided(u32),
 }
 
@@ -71,14 +72,25 @@ pub enum ExportError {
         /// Its extension, lower case (empty when it has none).
         extension: String,
     },
-    /// A mesh's subdivision for the export could not be made (Loop on a
-    /// mesh with quads, a level too large).
+    /// A mesh's evaluated shape for the export could not be made (a stack
+    /// modifier that refused, Loop on a mesh with quads, a level too large).
     #[error("node '{node}': {error}")]
-    Subdivision {
+    Evaluation {
         /// The node's name.
         node: String,
-        /// The kernel's reason.
-        error: hedra_geom::subdivision::SubdivisionError,
+        /// The modifier's or the subdivision's reason.
+        error: crate::modifiers::EvaluationError,
+    },
+    /// A mesh has a face with an inner ring or without edges (made by the
+    /// Euler operators), which the exchange formats cannot hold.
+    #[error(
+        "node '{node}': {face} has an inner ring or no edges; OBJ, STL and glTF hold plain polygons only (join the ring to the face's outer loop with MEKR first)"
+    )]
+    NotPolygon {
+        /// The node's name.
+        node: String,
+        /// The first such face.
+        face: hedra_geom::FaceId,
     },
     /// serde_json could not write the glTF document.
     #[error("cannot write glTF: {0}")]
@@ -381,8 +393,8 @@ const EXPORT_TOLERANCE: f64 = 1e-4;
 /// The visible meshes, curves and surfaces in the requested shape.
 ///
 /// # Errors
-/// [`ExportError::Subdivision`] naming the node when its subdivision cannot
-/// be made (Loop on a mesh with quads, a level too large).
+/// [`ExportError::Evaluation`] naming the node when its modifiers cannot
+/// be evaluated (Loop on a mesh with quads, a level too large).
 fn export_meshes(doc: &Document, shape: ExportShape) -> Result<Vec<ExportItem<'_>>, ExportError> {
     let mut out = Vec::new();
     for node in doc.nodes() {
@@ -416,8 +428,9 @@ fn export_meshes(doc: &Document, shape: ExportShape) -> Result<Vec<ExportItem<'_
 /// `None` for empties.
 ///
 /// # Errors
-/// [`ExportError::Subdivision`] naming the node when its subdivision
-/// cannot be made.
+/// [`ExportError::Evaluation`] naming the node when its modifier stack or
+/// subdivision cannot be evaluated. [`ExportError::NotPolygon`] for a mesh
+/// with a face with rings or without edges.
 pub(crate) fn node_geometry(
     node: &Node,
     shape: ExportShape,
@@ -426,15 +439,22 @@ pub(crate) fn node_geometry(
     Ok(Some(match &node.content {
         NodeContent::Empty => return Ok(None),
         NodeContent::Mesh(content) => {
+            if let Some(face) = content.mesh.first_non_polygon_face() {
+                return Err(ExportError::NotPolygon {
+                    node: node.name.clone(),
+                    face,
+                });
+            }
             let level = match shape {
-                ExportShape::Cage => 0,
+                ExportShape::Cage => return Ok(Some(Geometry::Mesh(Cow::Borrowed(&content.mesh)))),
                 ExportShape::Evaluated => content.subdivision.map_or(0, |m| m.export_level),
                 ExportShape::Subdivided(level) => level,
             };
+            // The stack modifiers, then (or among them) subdivision at `level`.
             Geometry::Mesh(
                 content
-                    .subdivided(level)
-                    .map_err(|error| ExportError::Subdivision {
+                    .evaluated(level)
+                    .map_err(|error| ExportError::Evaluation {
                         node: node.name.clone(),
                         error,
                     })?,

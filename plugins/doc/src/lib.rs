@@ -11,6 +11,7 @@ pub mod fuzz;
 pub mod gltf;
 pub mod history;
 pub mod import;
+pub mod modifiers;
 pub mod preview;
 pub mod recovery;
 pub mod reference;
@@ -22,8 +23,9 @@ pub mod session;
 pub mod smooth;
 
 pub use command::{Command, CommandError, NodeRef};
-pub use elements::{EdgeSet, FaceSet, VertexSet};
+pub use elements::{EdgeSet, FaceSet, ProfileSet, VertexSet};
 pub use history::{History, NodeChange, Transaction};
+pub use modifiers::{ArrayModifier, EvaluationError, MeshModifier, MirrorModifier};
 pub use scene::{
     CornerAttributes, Document, MeshContent, Node, NodeContent, NodeId, NodeTransform, Shading,
     SubdivisionModifier, SurfaceShape,

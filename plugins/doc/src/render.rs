@@ -4,7 +4,7 @@
 //! Bevy `Mesh`.
 
 use crate::scene::Shading;
-use hedra_geom::query::triangulate_face;
+use hedra_geom::query::triangulate_outer_loop;
 use hedra_geom::{FaceId, HalfEdgeMesh, VertexId};
 
 /// Positions, normals and triangle indices for the GPU (f32, as rendered).
@@ -24,6 +24,10 @@ pub struct RenderBuffers {
 /// (a cube gets 24 vertices: seed 000's "cube problem"); smooth shading
 /// shares one corner per vertex, in id order, with area-weighted vertex
 /// normals.
+///
+/// A face with inner rings (made by the Euler operators) is drawn as its
+/// outer loop only, covering its rings; a face without edges (MVFS) or a
+/// wire draws nothing. Both keep their corners in the flat layout.
 ///
 /// Complexity: O(corners), O(n²) only inside concave n-gons (ear clipping).
 pub fn render_buffers(mesh: &HalfEdgeMesh, shading: Shading) -> RenderBuffers {
@@ -46,7 +50,7 @@ pub fn render_buffers(mesh: &HalfEdgeMesh, shading: Shading) -> RenderBuffers {
                         .expect("a triangle corner is a face corner")
                         as u32
                 };
-                for tri in triangulate_face(mesh, f) {
+                for tri in triangulate_outer_loop(mesh, f) {
                     b.indices.extend(tri.iter().map(corner));
                 }
             }
@@ -59,7 +63,7 @@ pub fn render_buffers(mesh: &HalfEdgeMesh, shading: Shading) -> RenderBuffers {
                 b.normals.push(mesh.vertex_normal(v).as_vec3().to_array());
             }
             for f in mesh.faces() {
-                for tri in triangulate_face(mesh, f) {
+                for tri in triangulate_outer_loop(mesh, f) {
                     b.indices.extend(tri.iter().map(|v| index[v.index()]));
                 }
             }

@@ -88,12 +88,47 @@ pub struct MeshReport {
     pub creased_vertices: usize,
     /// The subdivision modifier; `None` without one.
     pub subdivision: Option<SubdivisionReport>,
+    /// The modifier stack (Mirror, Array), in order; left out when empty.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub modifiers: Vec<ModifierReport>,
+    /// The cage with the stack applied (no subdivision); `None` (left out)
+    /// without stack modifiers.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub evaluated: Option<EvaluatedReport>,
     /// Face corners (the sum of the faces' sides).
     pub corners: usize,
     /// Face corners with a UV.
     pub uv_corners: usize,
     /// Face corners with a custom normal.
     pub normal_corners: usize,
+}
+
+/// A modifier of a mesh node's stack.
+#[derive(Serialize)]
+pub struct ModifierReport {
+    /// `"Mirror"` or `"Array"`.
+    pub kind: &'static str,
+    /// Its settings in words (`"Mirror X, merge 0.001"`).
+    pub summary: String,
+}
+
+/// The counts of a mesh node's stack result.
+#[derive(Serialize)]
+pub struct EvaluatedReport {
+    /// Vertices of the result.
+    pub vertices: usize,
+    /// Edges of the result.
+    pub edges: usize,
+    /// Faces of the result.
+    pub faces: usize,
+    /// Loops of boundary edges.
+    pub boundary_loops: usize,
+    /// Connected components.
+    pub shells: usize,
+    /// Handles; `None` when not valid.
+    pub genus: Option<i64>,
+    /// Why the stack could not be evaluated (then the counts are 0).
+    pub error: Option<String>,
 }
 
 /// A mesh node's subdivision modifier.
@@ -109,6 +144,8 @@ pub struct SubdivisionReport {
     pub boundary: &'static str,
     /// The crease method's label ("Uniform").
     pub crease_method: &'static str,
+    /// How many stack modifiers run before subdivision.
+    pub stack_position: usize,
 }
 
 /// A curve or surface node's shape.
@@ -207,6 +244,40 @@ fn mesh_report(content: &crate::scene::MeshContent) -> MeshReport {
             export_level: m.export_level,
             boundary: m.options.boundary.label(),
             crease_method: m.options.crease_method.label(),
+            stack_position: content.subdivision_position(),
+        }),
+        modifiers: content
+            .modifiers
+            .iter()
+            .map(|m| ModifierReport {
+                kind: m.name(),
+                summary: m.summary(),
+            })
+            .collect(),
+        evaluated: content.has_stack_modifiers().then(|| {
+            match content.apply_stack(content.modifiers.len()) {
+                Ok(e) => {
+                    let s = e.mesh.stats();
+                    EvaluatedReport {
+                        vertices: s.vertices,
+                        edges: s.edges,
+                        faces: s.faces,
+                        boundary_loops: s.boundary_loops,
+                        shells: s.shells,
+                        genus: s.genus,
+                        error: None,
+                    }
+                }
+                Err(e) => EvaluatedReport {
+                    vertices: 0,
+                    edges: 0,
+                    faces: 0,
+                    boundary_loops: 0,
+                    shells: 0,
+                    genus: None,
+                    error: Some(e.to_string()),
+                },
+            }
         }),
         primitive: content.primitive.as_ref().map(|p| p.kind().to_string()),
         vertices: s.vertices,
@@ -322,13 +393,40 @@ impl SceneReport {
                 if let Some(sd) = &m.subdivision {
                     let _ = writeln!(
                         out,
-                        "    subdivision: {}, level {} in the viewport, {} on export, boundary {}, creases {}",
+                        "    subdivision: {}, level {} in the viewport, {} on export, boundary {}, creases {}{}",
                         sd.scheme,
                         sd.viewport_level,
                         sd.export_level,
                         sd.boundary,
-                        sd.crease_method
+                        sd.crease_method,
+                        if sd.stack_position < m.modifiers.len() {
+                            format!(", after {} of the stack's modifiers", sd.stack_position)
+                        } else {
+                            String::new()
+                        }
                     );
+                }
+                for (i, md) in m.modifiers.iter().enumerate() {
+                    let _ = writeln!(out, "    modifier {}: {}", i + 1, md.summary);
+                }
+                if let Some(e) = &m.evaluated {
+                    match &e.error {
+                        Some(err) => {
+                            let _ = writeln!(out, "    evaluated: error: {err}");
+                        }
+                        None => {
+                            let _ = writeln!(
+                                out,
+                                "    evaluated: V {} E {} F {}, boundary loops {}, shells {}, genus {}",
+                                e.vertices,
+                                e.edges,
+                                e.faces,
+                                e.boundary_loops,
+                                e.shells,
+                                e.genus.map_or("?".into(), |g| g.to_string()),
+                            );
+                        }
+                    }
                 }
                 if m.uv_corners + m.normal_corners > 0 {
                     let _ = writeln!(

@@ -105,8 +105,13 @@ pub struct MeshContent {
     pub shading: Shading,
     /// Edge crease and vertex corner sharpness, used by subdivision.
     pub creases: Creases,
-    /// The non-destructive subdivision modifier, if the node has one.
+    /// The non-destructive subdivision modifier, if the node has one; its
+    /// [`stack_position`](SubdivisionModifier::stack_position) places it
+    /// among `modifiers`.
     pub subdivision: Option<SubdivisionModifier>,
+    /// The modifier stack (Mirror, Array), applied to the cage in order;
+    /// see [`MeshContent::evaluated`].
+    pub modifiers: Vec<crate::modifiers::MeshModifier>,
     /// Imported UVs and normals of face corners (none for meshes made in Hedra).
     pub corners: CornerAttributes,
 }
@@ -120,6 +125,7 @@ impl MeshContent {
             shading: Shading::Flat,
             creases: Creases::default(),
             subdivision: None,
+            modifiers: Vec::new(),
             corners: CornerAttributes::default(),
         }
     }
@@ -217,8 +223,9 @@ impl CornerAttributes {
     /// The attributes after `before` was edited into `after`: normals are
     /// dropped when the mesh changed at all; each UV stays with its corner,
     /// found as the half-edge of the same face that leaves the same vertex
-    /// (usually the same id; after a flip it is a neighbouring half-edge).
-    /// UVs of corners that no longer exist are dropped.
+    /// (usually the same id; after a flip it is a neighbouring half-edge;
+    /// after a rip, the half-edge of the same face leaving the vertex's new
+    /// copy). UVs of corners that no longer exist are dropped.
     pub fn follow_edit(&self, before: &HalfEdgeMesh, after: &HalfEdgeMesh) -> CornerAttributes {
         if before == after {
             return self.clone();
@@ -230,10 +237,23 @@ impl CornerAttributes {
                 continue;
             }
             let v = before.origin(h);
-            let Some(f) = after.face(h) else { continue };
-            if after.origin(h) == v {
+            // A ripped edge's half-edge leaves its face for the boundary;
+            // the face keeps the corner on a new half-edge.
+            let Some(f) = after
+                .face(h)
+                .or(before.face(h).filter(|&f| after.is_face(f)))
+            else {
+                continue;
+            };
+            if after.face(h) == Some(f) && after.origin(h) == v {
                 uvs.insert(h, uv);
             } else if let Some(c) = after.face_halfedges(f).find(|&x| after.origin(x) == v) {
+                moved.push((c, uv));
+            } else if let Some(c) = after.face_halfedges(f).find(|&x| {
+                // The vertex was copied (rip): the new vertex at its place.
+                let o = after.origin(x);
+                !before.is_vertex(o) && after.position(o) == before.position(v)
+            }) {
                 moved.push((c, uv));
             }
         }
@@ -245,26 +265,6 @@ impl CornerAttributes {
             uvs: Arc::new(uvs),
             normals: Arc::default(),
         }
-    }
-}
-
-impl MeshContent {
-    /// The mesh subdivided `level` times with the modifier's options
-    /// (Catmull-Clark without a modifier); level 0 is the cage itself.
-    ///
-    /// # Errors
-    /// When the scheme does not fit the mesh or the result is too large.
-    pub fn subdivided(
-        &self,
-        level: u32,
-    ) -> Result<std::borrow::Cow<'_, HalfEdgeMesh>, hedra_geom::subdivision::SubdivisionError> {
-        if level == 0 {
-            return Ok(std::borrow::Cow::Borrowed(&self.mesh));
-        }
-        let options = self.subdivision.unwrap_or_default().options;
-        let (mesh, _) =
-            hedra_geom::subdivision::Refiner::subdivide(&self.mesh, &self.creases, options, level)?;
-        Ok(std::borrow::Cow::Owned(mesh))
     }
 }
 
@@ -284,6 +284,12 @@ pub struct SubdivisionModifier {
     /// Draw the cage's edges over the smooth result.
     #[serde(default = "yes")]
     pub show_cage: bool,
+    /// Where subdivision runs in the node's modifier stack: after this many
+    /// stack modifiers (0: on the cage, before all of them). `None` (the
+    /// default): after all of them, Blender's usual Mirror → Subdivision
+    /// order, which welds the halves before smoothing them.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stack_position: Option<usize>,
 }
 
 /// Serde defaults shared by the document's stored types.
@@ -311,6 +317,7 @@ impl SubdivisionModifier {
             viewport_level: level,
             export_level: level.max(2),
             show_cage: true,
+            stack_position: None,
         }
     }
 }
@@ -576,15 +583,11 @@ impl Document {
                 let (node, name) = named();
                 return Err(DocumentError::NonFiniteTransform { node, name });
             }
-            // Faces with inner rings or without edges exist in the kernel
-            // (Mäntylä's Euler operators); the editor's tools, rendering and
-            // exports work on polygons, so a document holds polygon meshes.
-            if let NodeContent::Mesh(m) = &n.content
-                && let Some(face) = m.mesh.first_non_polygon_face()
-            {
-                let (node, name) = named();
-                return Err(DocumentError::NotPolygon { node, name, face });
-            }
+            // Faces with inner rings or without edges (Mäntylä's Euler
+            // operators, `Command::Euler`) are allowed: the file stores
+            // them, rendering draws their outer loop's triangles only where
+            // the kernel can triangulate, and exports and subdivision
+            // refuse them by name.
         }
         Ok(())
     }
@@ -634,17 +637,5 @@ pub enum DocumentError {
         node: NodeId,
         /// The node's name.
         name: String,
-    },
-    #[error(
-        "node {node} '{name}': {face} has an inner ring or no edges; Hedra edits polygon meshes only"
-    )]
-    /// A mesh face with an inner ring or without edges.
-    NotPolygon {
-        /// The node's id.
-        node: NodeId,
-        /// The node's name.
-        name: String,
-        /// The first such face.
-        face: hedra_geom::FaceId,
     },
 }

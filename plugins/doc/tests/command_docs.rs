@@ -24,7 +24,7 @@ fn every_command_example_in_the_docs_runs() {
         .collect();
     kinds.sort();
     kinds.dedup();
-    assert_eq!(kinds.len(), 57, "{kinds:?}");
+    assert_eq!(kinds.len(), 69, "{kinds:?}");
     let mut session = hedra_doc::Session::new();
     hedra_doc::script::run(&mut session, &commands, Path::new("docs/commands.md"))
         .unwrap_or_else(|e| panic!("{e}"));
@@ -124,6 +124,42 @@ fn every_command_example_in_the_docs_runs() {
     assert!(cut.stats().closed);
     assert!(cut.faces().all(|f| cut.face_degree(f) == 4));
     assert!(cut.vertices().all(|v| cut.position(v).y <= 0.0));
+    // Spin and screw: the torus, the fin and the spring.
+    let donut = doc.find_by_name("Donut").unwrap().content.mesh().unwrap();
+    let s = donut.stats();
+    assert_eq!((s.vertices, s.edges, s.faces), (32, 64, 32));
+    assert_eq!((s.genus, s.closed), (Some(1), true));
+    let fin = doc.find_by_name("Fin").unwrap().content.mesh().unwrap();
+    let s = fin.stats();
+    assert_eq!((s.vertices, s.faces, s.boundary_loops), (12, 5, 1));
+    let spring = doc.find_by_name("Spring").unwrap().content.mesh().unwrap();
+    let s = spring.stats();
+    // 37 rings of 4 vertices, 36 × 4 sides and two caps: a closed solid.
+    assert_eq!((s.vertices, s.faces, s.genus), (148, 146, Some(0)));
+    let (lo, hi) = spring.bounds().unwrap();
+    assert!(
+        (hi.z - lo.z - 5.5).abs() < 1e-9,
+        "three turns of 1.5 plus the square: {lo} {hi}"
+    );
+    // Knife across the front face: two edges split, the front face in two,
+    // the back face untouched.
+    let carved = doc.find_by_name("Carved").unwrap().content.mesh().unwrap();
+    carved.validate().unwrap();
+    assert_eq!(
+        (
+            carved.vertex_count(),
+            carved.edge_count(),
+            carved.face_count()
+        ),
+        (10, 15, 7)
+    );
+    assert_eq!(
+        carved
+            .faces()
+            .filter(|&f| carved.face_normal(f).z > 0.999)
+            .count(),
+        2
+    );
     let bridge = doc.find_by_name("Bridge").unwrap().content.mesh().unwrap();
     assert!(bridge.stats().closed, "the two squares became a closed box");
     let block = doc.find_by_name("Block").unwrap().content.mesh().unwrap();
@@ -170,6 +206,85 @@ fn every_command_example_in_the_docs_runs() {
     assert!(
         (hi.x - 0.5).abs() < 1e-12 && (lo.x + 0.5).abs() < 1e-12,
         "{lo} {hi}"
+    );
+    // The modifier stack: the mirrored half box, applied, is a closed box
+    // cage that keeps its subdivision; the tube keeps its array.
+    let mesh_content = |name: &str| match &doc.find_by_name(name).unwrap().content {
+        hedra_doc::NodeContent::Mesh(c) => c.clone(),
+        _ => panic!("{name} is a mesh"),
+    };
+    let half_box = mesh_content("HalfBox");
+    assert!(half_box.modifiers.is_empty(), "applied");
+    assert!(
+        half_box.subdivision.is_some(),
+        "subdivision stays a modifier"
+    );
+    half_box.mesh.validate().unwrap();
+    let s = half_box.mesh.stats();
+    assert_eq!((s.vertices, s.edges, s.faces), (12, 20, 10));
+    assert_eq!((s.closed, s.genus), (true, Some(0)));
+    let tube = mesh_content("Tube");
+    assert_eq!(tube.modifiers.len(), 1);
+    assert_eq!(tube.mesh.face_count(), 4, "the cage is one piece of tube");
+    let evaluated = tube.evaluated(0).unwrap();
+    evaluated.validate().unwrap();
+    let s = evaluated.stats();
+    assert_eq!((s.vertices, s.edges, s.faces), (16, 28, 12));
+    assert_eq!((s.shells, s.boundary_loops, s.genus), (1, 2, Some(0)));
+    // Rip, vertex rip, vertex split and the Euler operators.
+    use hedra_geom::TopologyCounts;
+    let counts = |name: &str| {
+        let m = doc.find_by_name(name).unwrap().content.mesh().unwrap();
+        m.validate().unwrap();
+        let c = TopologyCounts::of(m);
+        assert!(c.euler_poincare_holds(), "{name}: {c}");
+        c.to_string()
+    };
+    assert_eq!(counts("Torn"), "V 30, E 44, F 16, L 16, S 2, H 0, B 2");
+    assert_eq!(counts("Pinched"), "V 26, E 42, F 16, L 16, S 1, H 0, B 2");
+    assert_eq!(counts("Split"), "V 26, E 41, F 16, L 16, S 1, H 0, B 1");
+    let split = doc.find_by_name("Split").unwrap().content.mesh().unwrap();
+    let mut degrees: Vec<usize> = split.faces().map(|f| split.face_degree(f)).collect();
+    degrees.sort();
+    assert_eq!(degrees[14..], [5, 5], "two quads gained a side");
+    assert_eq!(counts("Ringed"), "V 12, E 16, F 7, L 8, S 1, H 0, B 0");
+    let ringed = doc.find_by_name("Ringed").unwrap().content.mesh().unwrap();
+    let top = ringed
+        .faces()
+        .find(|&f| !ringed.face_rings(f).is_empty())
+        .expect("a face with a ring");
+    assert!(
+        ringed.face_normal(top).y > 0.9,
+        "the ring is in the top face"
+    );
+    assert_eq!(ringed.loop_halfedges(ringed.face_rings(top)[0]).count(), 4);
+    assert_eq!(counts("Euler Cube"), "V 8, E 12, F 6, L 6, S 1, H 0, B 0");
+    let labels: Vec<&str> = session
+        .history
+        .done()
+        .iter()
+        .map(|t| t.label.as_str())
+        .filter(|l| l.starts_with("Euler") || l.starts_with("Rip") || l.starts_with("Split"))
+        .collect();
+    assert_eq!(
+        labels,
+        [
+            "Rip",
+            "Rip Vertex",
+            "Split Vertex",
+            "Euler MEV",
+            "Euler MEV",
+            "Euler MEV",
+            "Euler MEV",
+            "Euler MEF",
+            "Euler KEMR",
+            "Euler KFMRH",
+            "Euler MFKRH",
+            "Euler MVFS",
+            "Euler MEV",
+            "Euler KEV",
+            "Euler KVFS"
+        ]
     );
     // Curves and surfaces: edits keep their shapes where they promise to.
     use hedra_geom::curves::Curve;

@@ -588,3 +588,62 @@ fn region_extrude_and_inset_report_the_faces_they_make() {
             .is_empty()
     );
 }
+
+/// Knife (K): a cut across a cube's front face, as the viewport gives it
+/// (points in local space, the view direction), splits only the front
+/// face, reports the cut edge, and undoes to the plain cube.
+#[test]
+fn knife_cuts_the_front_of_a_cube_and_reports_the_cut_edge() {
+    let mut s = Session::new();
+    s.execute(&add(cube(), "Box")).unwrap();
+    let before = s.doc.clone();
+    let knife = Command::Knife {
+        node: name("Box"),
+        points: vec![DVec3::new(0.0, 1.0, 1.0), DVec3::new(0.0, -1.0, 1.0)],
+        view: DVec3::NEG_Z,
+    };
+    assert_eq!(knife.label(), "Knife");
+    let decision = s.doc.decide_with_result(&knife, 1).unwrap();
+    let node = decision.transaction.changes[0].after.as_ref().unwrap();
+    let mesh = node.content.mesh().unwrap();
+    mesh.validate().unwrap();
+    assert_eq!(
+        (mesh.vertex_count(), mesh.edge_count(), mesh.face_count()),
+        (10, 15, 7)
+    );
+    let [e] = decision.created_edges[..] else {
+        panic!("one cut edge: {:?}", decision.created_edges);
+    };
+    let ends = mesh.edge_vertices(e).map(|v| mesh.position(v));
+    assert_eq!(
+        ends,
+        [DVec3::new(0.0, 1.0, 1.0), DVec3::new(0.0, -1.0, 1.0)]
+    );
+    assert!(decision.created_faces.is_empty());
+
+    s.execute(&knife).unwrap();
+    let mesh = s.doc.find_by_name("Box").unwrap().content.mesh().unwrap();
+    assert_eq!(mesh.face_count(), 7);
+    assert_eq!(s.undo().as_deref(), Some("Knife"));
+    assert_eq!(s.doc, before);
+
+    // A point off the surface is refused, naming the node and the point.
+    let off = Command::Knife {
+        node: name("Box"),
+        points: vec![DVec3::new(0.0, 1.0, 1.0), DVec3::new(0.0, 0.0, 2.0)],
+        view: DVec3::NEG_Z,
+    };
+    let err = s.execute(&off).unwrap_err();
+    assert!(
+        matches!(
+            &err,
+            CommandError::Modeling {
+                error: hedra_geom::ModelingError::NotOnSurface { index: 1, .. },
+                ..
+            }
+        ),
+        "{err:?}"
+    );
+    assert!(err.to_string().contains("knife point 1"), "{err}");
+    assert_eq!(s.doc, before);
+}

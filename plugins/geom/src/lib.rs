@@ -39,6 +39,7 @@ pub use ids::{EdgeId, ElementId, ElementKind, FaceId, HalfEdgeId, VertexId};
 pub use mesh::{HalfEdgeMesh, LoopStart, MeshData, MeshDataError, MeshStats};
 pub use modeling::{InvalidResult, MergePoint, MirrorAxis, ModelingError, NewFace};
 pub use primitives::{Primitive, PrimitiveError};
+pub use topology::{TopologyCounts, TopologyDelta};
 pub use validate::{ValidationError, Violation};
 
 // Subdivision, curves and surfaces.

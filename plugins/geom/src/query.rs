@@ -14,12 +14,30 @@ pub fn triangulate_face(mesh: &HalfEdgeMesh, f: FaceId) -> Vec<[VertexId; 3]> {
     if !mesh.is_polygon_face(f) || mesh.face_degree(f) < 3 {
         return Vec::new(); // rings, no edges or a wire: nothing to fill (issue 3)
     }
+    triangulate_outer_loop(mesh, f)
+}
+
+/// Triangles of a face's outer loop alone, its inner rings ignored: how the
+/// viewport draws a face with rings (Mäntylä's faces of several loops,
+/// made by the Euler operators), which covers the rings' area. Nothing for
+/// a face without edges or a wire. Same method and complexity as
+/// [`triangulate_face`], which this is for a plain polygon.
+pub fn triangulate_outer_loop(mesh: &HalfEdgeMesh, f: FaceId) -> Vec<[VertexId; 3]> {
     let verts: Vec<VertexId> = mesh.face_vertices(f).collect();
     let n = verts.len();
+    if n < 3 {
+        return Vec::new();
+    }
     if n == 3 {
         return vec![[verts[0], verts[1], verts[2]]];
     }
-    let normal = mesh.face_area_vector(f);
+    // Newell's normal of the outer loop (a ring would subtract its area).
+    let normal = verts
+        .iter()
+        .zip(verts.iter().cycle().skip(1))
+        .map(|(&a, &b)| mesh.position(a).cross(mesh.position(b)))
+        .sum::<DVec3>()
+        * 0.5;
     if normal.length_squared() < 1e-300 {
         return fan(&verts);
     }

@@ -209,3 +209,146 @@ pub fn linked_vertices(
     out.sort();
     out
 }
+
+/// The topological counts of a mesh that the Euler operators change, as a
+/// topology inspector shows them: V, E, F, loops L (outer loops plus
+/// rings), shells S, holes H (genus) and boundary loops B.
+///
+/// They satisfy the Euler–Poincaré formula V − E + F − (L − F) = 2(S − H)
+/// with each boundary loop counted as a face of one loop (Mäntylä, "An
+/// Introduction to Solid Modeling", ch. 4), so H is computed from the
+/// others: H = S − (V − E + F + B − (L − F)) / 2. See
+/// [`euler_poincare_holds`](Self::euler_poincare_holds).
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Hash)]
+pub struct TopologyCounts {
+    /// Live vertices V.
+    pub vertices: i64,
+    /// Live edges E.
+    pub edges: i64,
+    /// Live faces F.
+    pub faces: i64,
+    /// Face loops L: one outer loop per face plus the inner rings.
+    pub loops: i64,
+    /// Shells S (connected components, the loops of a face in one shell).
+    pub shells: i64,
+    /// Holes H (handles, genus), from the formula; rounded down when the
+    /// formula's left side is odd (an invalid mesh).
+    pub holes: i64,
+    /// Boundary loops B (holes in the surface, counted as faces).
+    pub boundary_loops: i64,
+}
+
+impl TopologyCounts {
+    /// The counts of `mesh`. Boundary loops are walked without validating;
+    /// on an invalid mesh the numbers describe its records as they are.
+    ///
+    /// Complexity: O(V + E + F).
+    pub fn of(mesh: &HalfEdgeMesh) -> Self {
+        let vertices = mesh.vertex_count() as i64;
+        let edges = mesh.edge_count() as i64;
+        let faces = mesh.face_count() as i64;
+        let loops = mesh.loop_count() as i64;
+        let shells = mesh.shell_count() as i64;
+        let boundary_loops = mesh.boundary_loops().len() as i64;
+        let chi = vertices - edges + faces + boundary_loops - (loops - faces);
+        TopologyCounts {
+            vertices,
+            edges,
+            faces,
+            loops,
+            shells,
+            holes: shells - chi.div_euclid(2),
+            boundary_loops,
+        }
+    }
+
+    /// V − E + F + B − (L − F) = 2(S − H) holds exactly (the left side is
+    /// even); false points at broken records.
+    pub fn euler_poincare_holds(&self) -> bool {
+        let chi = self.vertices - self.edges + self.faces + self.boundary_loops
+            - (self.loops - self.faces);
+        chi == 2 * (self.shells - self.holes)
+    }
+
+    /// The change from `before` to `self`.
+    pub fn since(&self, before: &TopologyCounts) -> TopologyDelta {
+        TopologyDelta {
+            vertices: self.vertices - before.vertices,
+            edges: self.edges - before.edges,
+            faces: self.faces - before.faces,
+            loops: self.loops - before.loops,
+            shells: self.shells - before.shells,
+            holes: self.holes - before.holes,
+            boundary_loops: self.boundary_loops - before.boundary_loops,
+        }
+    }
+}
+
+impl std::fmt::Display for TopologyCounts {
+    /// `V 8, E 12, F 6, L 6, S 1, H 0, B 0`.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "V {}, E {}, F {}, L {}, S {}, H {}, B {}",
+            self.vertices,
+            self.edges,
+            self.faces,
+            self.loops,
+            self.shells,
+            self.holes,
+            self.boundary_loops
+        )
+    }
+}
+
+/// The difference of two [`TopologyCounts`] (after − before), what a
+/// command did to the topology: MEV is `V +1, E +1`, KEMR `E -1, L +1`.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Hash)]
+pub struct TopologyDelta {
+    /// Change of V.
+    pub vertices: i64,
+    /// Change of E.
+    pub edges: i64,
+    /// Change of F.
+    pub faces: i64,
+    /// Change of L.
+    pub loops: i64,
+    /// Change of S.
+    pub shells: i64,
+    /// Change of H.
+    pub holes: i64,
+    /// Change of B.
+    pub boundary_loops: i64,
+}
+
+impl TopologyDelta {
+    /// True when nothing changed.
+    pub fn is_zero(&self) -> bool {
+        *self == TopologyDelta::default()
+    }
+}
+
+impl std::fmt::Display for TopologyDelta {
+    /// The counts that changed, signed, in the order V, E, F, L, S, H, B
+    /// (`V +1, E +1`); `no change` when none did.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let parts: Vec<String> = [
+            ("V", self.vertices),
+            ("E", self.edges),
+            ("F", self.faces),
+            ("L", self.loops),
+            ("S", self.shells),
+            ("H", self.holes),
+            ("B", self.boundary_loops),
+        ]
+        .into_iter()
+        .filter(|(_, d)| *d != 0)
+        .map(|(name, d)| format!("{name} {d:+}"))
+        .collect();
+        if parts.is_empty() {
+            write!(f, "no change")
+        } else {
+            write!(f, "{}", parts.join(", "))
+        }
+    }
+}

@@ -4,7 +4,7 @@
 
 use super::plan::Plan;
 use super::{CommandError, EditError, NodeRef};
-use crate::elements::{EdgeSet, FaceSet, VertexSet};
+use crate::elements::{EdgeSet, FaceSet, ProfileSet, VertexSet};
 use glam::DVec3;
 use hedra_geom::modeling::{self, BisectClear, MergePoint, MirrorAxis};
 use hedra_geom::{ModelingError, VertexId};
@@ -195,6 +195,57 @@ impl Plan<'_> {
         self.on_faces(node, faces, |m, fs| {
             modeling::bisect(m, fs, point, normal, clear, fill).map(drop)
         })
+    }
+
+    pub(super) fn spin(
+        &mut self,
+        node: &NodeRef,
+        profile: &ProfileSet,
+        center: DVec3,
+        axis: DVec3,
+        degrees: f64,
+        steps: u32,
+    ) -> Result<(), CommandError> {
+        self.model(node, |m| {
+            let p = profile.resolve(m)?;
+            modeling::spin(m, &p, center, axis, degrees.to_radians(), steps)?;
+            Ok(())
+        })
+    }
+
+    #[allow(clippy::too_many_arguments)] // one per field of Command::Screw
+    pub(super) fn screw(
+        &mut self,
+        node: &NodeRef,
+        profile: &ProfileSet,
+        center: DVec3,
+        axis: DVec3,
+        turns: u32,
+        steps: u32,
+        pitch: f64,
+    ) -> Result<(), CommandError> {
+        self.model(node, |m| {
+            let p = profile.resolve(m)?;
+            modeling::screw(m, &p, center, axis, turns, steps, pitch)?;
+            Ok(())
+        })
+    }
+
+    /// Knife cut along `points` seen along `view`; its cut edges become
+    /// the created edges.
+    pub(super) fn knife(
+        &mut self,
+        node: &NodeRef,
+        points: &[DVec3],
+        view: DVec3,
+    ) -> Result<(), CommandError> {
+        let mut cut_edges = Vec::new();
+        self.model(node, |m| {
+            cut_edges = modeling::knife(m, points, view)?.cut_edges;
+            Ok(())
+        })?;
+        self.created_edges = cut_edges;
+        Ok(())
     }
 
     pub(super) fn dissolve_edges(

@@ -8,23 +8,27 @@
 //! - `plan`: the [`Plan`](plan::Plan) a command is decided into, its helpers,
 //!   and the dispatch by family to
 //! - `nodes` (scene tree and node properties), `mesh` (mesh modeling),
-//!   `creases` (creases and the subdivision modifier), `shapes` (curves and surfaces).
+//!   `euler` (rip, vertex split and the Euler operators as commands),
+//!   `creases` (creases and the subdivision modifier), `modifiers` (the
+//!   Mirror/Array modifier stack), `shapes` (curves and surfaces).
 
 mod creases;
+mod euler;
 mod mesh;
+mod modifiers;
 mod nodes;
 mod plan;
 mod shapes;
 mod spec;
 
-pub use spec::{Command, CurveSpec, NodeRef, ParameterDirection, SurfaceSpec};
+pub use spec::{Command, Corner, CurveSpec, EulerOp, NodeRef, ParameterDirection, SurfaceSpec};
 
 use crate::elements::{EdgeSet, ElementError, VertexSet};
 use crate::history::Transaction;
 use crate::scene::{Document, NodeId};
 use hedra_geom::curves::CurveError;
 use hedra_geom::subdivision::{self, INFINITE_SHARPNESS};
-use hedra_geom::{BuildError, FaceId, PrimitiveError, VertexId};
+use hedra_geom::{BuildError, EdgeId, FaceId, PrimitiveError, VertexId};
 use plan::Plan;
 
 /// Why an edit refused the elements or values it was given (the node is
@@ -64,6 +68,28 @@ pub enum EditError {
         vertices: VertexSet,
         /// How many vertices it names.
         count: usize,
+    },
+    /// A set that must name exactly one element names none or several.
+    #[error("{role} must name exactly one element, it names {count}")]
+    NotOne {
+        /// The argument, as the message names it (`` "`vertex`" ``).
+        role: &'static str,
+        /// How many elements it names.
+        count: usize,
+    },
+    /// Two vertices a command needs joined by an edge are not.
+    #[error("no edge runs from {a} to {b}")]
+    NotJoined {
+        /// The first vertex.
+        a: VertexId,
+        /// The second vertex.
+        b: VertexId,
+    },
+    /// An Euler operator that joins corners on edges was given a lone vertex.
+    #[error("{vertex} is a lone vertex; this operator needs a corner between two edges")]
+    LoneCorner {
+        /// The lone vertex.
+        vertex: VertexId,
     },
     /// [`Command::RecalculateNormals`] on a mesh with nothing to turn.
     #[error("the mesh already faces outwards (or is open)")]
@@ -179,6 +205,46 @@ pub enum CommandError {
     /// A crease sharpness outside 0 to 10 (or not finite).
     #[error("sharpness must be between 0 and {INFINITE_SHARPNESS} (infinitely sharp), not {0}")]
     Sharpness(f64),
+    /// A modifier stack that cannot be evaluated or applied: the error
+    /// names the modifier (by its number in the stack, from 1) and the
+    /// kernel's reason.
+    #[error("{node}: {error}")]
+    Modifier {
+        /// The node, as `'name' (#id)`.
+        node: String,
+        /// Which modifier refused and why.
+        error: crate::modifiers::EvaluationError,
+    },
+    /// A modifier with values out of range (an array count of 0, a
+    /// negative merge distance).
+    #[error("{node}: {problem}")]
+    ModifierValue {
+        /// The node, as `'name' (#id)`.
+        node: String,
+        /// What is out of range.
+        problem: crate::modifiers::ModifierProblem,
+    },
+    /// A modifier index past the end of the node's stack.
+    #[error("{node} has no modifier {} (its stack has {count})", index + 1)]
+    NoModifier {
+        /// The node, as `'name' (#id)`.
+        node: String,
+        /// The index given, from 0 (the message counts from 1).
+        index: usize,
+        /// How many modifiers the stack has.
+        count: usize,
+    },
+    /// [`Command::ApplyModifiers`] would apply a modifier that runs after
+    /// subdivision (the result would change).
+    #[error(
+        "{node}: subdivision runs after {position} of the stack's modifiers; apply only those, or move subdivision last"
+    )]
+    SubdivisionFirst {
+        /// The node, as `'name' (#id)`.
+        node: String,
+        /// How many modifiers run before subdivision.
+        position: usize,
+    },
     /// A subdivision level above [`subdivision::MAX_LEVEL`].
     #[error("subdivision level {0} is above the maximum of {max}", max = subdivision::MAX_LEVEL)]
     Level(u32),
@@ -227,6 +293,7 @@ impl Document {
             next_id: self.next_node_id,
             changes: Vec::new(),
             created_faces: Vec::new(),
+            created_edges: Vec::new(),
         };
         plan.run(cmd)?;
         if plan.changes.is_empty() {
@@ -242,6 +309,7 @@ impl Document {
                 next_id_after: plan.next_id,
             },
             created_faces: plan.created_faces,
+            created_edges: plan.created_edges,
         })
     }
 }
@@ -255,4 +323,8 @@ pub struct Decision {
     /// (the inner faces), in the order of the command's faces; empty for
     /// other commands. Not part of the history: only tools use it.
     pub created_faces: Vec<FaceId>,
+    /// The edges a knife cut makes or runs along, in path order (Blender
+    /// selects them after the cut); empty for other commands. Not part of
+    /// the history: only tools use it.
+    pub created_edges: Vec<EdgeId>,
 }

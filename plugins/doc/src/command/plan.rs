@@ -45,6 +45,8 @@ pub(super) struct Plan<'a> {
     pub(super) changes: Vec<NodeChange>,
     /// See [`Decision::created_faces`](super::Decision::created_faces).
     pub(super) created_faces: Vec<FaceId>,
+    /// See [`Decision::created_edges`](super::Decision::created_edges).
+    pub(super) created_edges: Vec<EdgeId>,
 }
 
 impl Plan<'_> {
@@ -363,6 +365,17 @@ impl Plan<'_> {
             } => self.set_vertex_crease(node, vertices, *sharpness),
             Command::SnapToLimit { node } => self.snap_to_limit(node),
 
+            // ----- the modifier stack (modifiers.rs) -----
+            Command::AddModifier { node, modifier } => self.add_modifier(node, modifier),
+            Command::SetModifier {
+                node,
+                index,
+                modifier,
+            } => self.set_modifier(node, *index, modifier),
+            Command::RemoveModifier { node, index } => self.remove_modifier(node, *index),
+            Command::MoveModifier { node, from, to } => self.move_modifier(node, *from, *to),
+            Command::ApplyModifiers { node, count } => self.apply_modifiers(node, *count),
+
             // ----- mesh modeling (mesh.rs) -----
             Command::MoveVertices {
                 node,
@@ -414,6 +427,34 @@ impl Plan<'_> {
                 clear,
                 fill,
             } => self.bisect(node, faces, *point, *normal, *clear, *fill),
+            Command::Spin {
+                node,
+                profile,
+                center,
+                axis,
+                degrees,
+                steps,
+            } => self.spin(node, profile, *center, *axis, *degrees, *steps),
+            Command::Screw {
+                node,
+                profile,
+                center,
+                axis,
+                turns,
+                steps,
+                pitch,
+            } => self.screw(node, profile, *center, *axis, *turns, *steps, *pitch),
+            Command::Knife { node, points, view } => self.knife(node, points, *view),
+            Command::Rip { node, edges } => self.rip(node, edges),
+            Command::RipVertex { node, vertex, face } => self.rip_vertex(node, vertex, face),
+            Command::SplitVertex {
+                node,
+                vertex,
+                first,
+                last,
+                position,
+            } => self.split_vertex(node, vertex, first, last, *position),
+            Command::Euler { node, op } => self.euler(node, op),
             Command::DissolveEdges { node, edges } => self.dissolve_edges(node, edges),
             Command::DissolveVertices { node, vertices } => self.dissolve_vertices(node, vertices),
             Command::DissolveFaces { node, faces } => self.dissolve_faces(node, faces),

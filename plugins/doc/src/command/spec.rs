@@ -3,7 +3,8 @@
 //! the label each shows in the history panel. Its serde form is also the
 //! stored form of the history (see `file::stored_command`).
 
-use crate::elements::{EdgeSet, FaceSet, VertexSet};
+use crate::elements::{EdgeSet, FaceSet, ProfileSet, VertexSet};
+use crate::modifiers::MeshModifier;
 use crate::scene::{NodeId, NodeTransform, Shading, SubdivisionModifier};
 use glam::DVec3;
 use hedra_geom::Primitive;
@@ -312,6 +313,58 @@ pub enum Command {
         #[serde(default)]
         levels: Option<u32>,
     },
+    /// Adds a modifier (Mirror, Array) at the end of a mesh node's stack
+    /// (Blender's Add Modifier). A subdivision modifier at its default
+    /// place stays last. Refused when the stack would not evaluate (a
+    /// mirror merge that is not manifold), naming the modifier.
+    AddModifier {
+        /// A mesh node.
+        node: NodeRef,
+        /// The modifier and its settings.
+        modifier: MeshModifier,
+    },
+    /// Replaces the settings of modifier `index` of a mesh node's stack.
+    SetModifier {
+        /// A mesh node.
+        node: NodeRef,
+        /// The modifier's place in the stack, from 0.
+        index: usize,
+        /// Its new kind and settings.
+        modifier: MeshModifier,
+    },
+    /// Removes modifier `index` from a mesh node's stack; subdivision keeps
+    /// its place after the same modifiers.
+    RemoveModifier {
+        /// A mesh node.
+        node: NodeRef,
+        /// The modifier's place in the stack, from 0.
+        index: usize,
+    },
+    /// Moves a modifier within a mesh node's stack (Blender's Move Up /
+    /// Move Down). Subdivision's place is its own field
+    /// ([`SubdivisionModifier::stack_position`]), set by
+    /// [`Command::SetSubdivision`], and is not moved.
+    MoveModifier {
+        /// A mesh node.
+        node: NodeRef,
+        /// The modifier's place in the stack, from 0.
+        from: usize,
+        /// Its new place, from 0.
+        to: usize,
+    },
+    /// Makes the first `count` stack modifiers (default: all) part of the
+    /// cage, in one undo step: their result becomes the mesh (creases on
+    /// every copy, UVs on every copied corner) and they leave the stack.
+    /// Blender applies one modifier at a time from the top: `count: Some(1)`.
+    /// Subdivision stays a modifier; applying a modifier that runs after
+    /// subdivision is refused.
+    ApplyModifiers {
+        /// A mesh node with stack modifiers.
+        node: NodeRef,
+        /// How many modifiers, from the top of the stack (default: all).
+        #[serde(default)]
+        count: Option<usize>,
+    },
     /// Deletes nodes with their descendants. Undo brings them back with
     /// their ids and names.
     Delete {
@@ -520,6 +573,120 @@ pub enum Command {
         /// Close each cut loop left open by the clear with a face.
         #[serde(default)]
         fill: bool,
+    },
+    /// Spins a profile around an axis in steps (Blender's Spin): a region
+    /// of faces sweeps a solid (its faces end as the end cap), boundary
+    /// edges sweep a surface of quads. A full turn (±360°) joins the last
+    /// step to the first; vertices on the axis are shared by every step.
+    /// See `hedra_geom::modeling::spin`.
+    Spin {
+        /// The mesh node to edit.
+        node: NodeRef,
+        /// What to sweep: `Faces(…)` or `Edges(…)` (boundary edges only).
+        profile: ProfileSet,
+        /// A point on the axis, in the node's local space (the GUI sends
+        /// the 3D cursor).
+        center: DVec3,
+        /// The axis direction in local space, any length but zero (the GUI
+        /// sends the view direction); positive degrees turn
+        /// counter-clockwise seen from its tip.
+        axis: DVec3,
+        /// The whole sweep's angle in degrees, not zero; ±360 closes.
+        degrees: f64,
+        /// Steps the angle is divided into (at least 1; 3 for a full turn).
+        steps: u32,
+    },
+    /// Screws a profile around an axis (Blender's Screw): a spin of
+    /// `turns` full turns that advances `pitch` along the axis per turn.
+    /// Its ends never join, unless `pitch` is 0 (then it is a spin).
+    /// See `hedra_geom::modeling::screw`.
+    Screw {
+        /// The mesh node to edit.
+        node: NodeRef,
+        /// What to sweep: `Faces(…)` or `Edges(…)` (boundary edges only).
+        profile: ProfileSet,
+        /// A point on the axis, in the node's local space.
+        center: DVec3,
+        /// The axis direction in local space, any length but zero; the
+        /// screw turns counter-clockwise seen from its tip.
+        axis: DVec3,
+        /// Full turns (default 1).
+        #[serde(default = "one")]
+        turns: u32,
+        /// Steps per turn.
+        steps: u32,
+        /// Distance along the axis per turn, in local units (negative:
+        /// against the axis).
+        pitch: f64,
+    },
+    /// Cuts faces along a path of points on the surface (Blender's Knife,
+    /// K, without cut-through): each pair of consecutive points and the
+    /// view direction span a curtain, and the faces the cut walks across
+    /// from the first point to the second are split where the curtain
+    /// meets them. Only the faces on that walk are cut, not the ones
+    /// behind. Path ends strictly inside a face are dropped (the cut starts
+    /// and ends at the first and last edge it crosses); see
+    /// `hedra_geom::modeling::knife`. The cut edges are the decision's
+    /// `created_edges`.
+    Knife {
+        /// The mesh node to edit.
+        node: NodeRef,
+        /// The path, in the node's local space: at least two points, each
+        /// on a face, an edge or a vertex of the mesh (as a viewport pick
+        /// gives them; a point on a vertex uses it, one on an edge splits
+        /// it there).
+        points: Vec<DVec3>,
+        /// The direction the path is seen along, in local space (from the
+        /// eye into the scene; any length but zero).
+        view: DVec3,
+    },
+    /// Tears the mesh open along edges (Blender's Rip, V in edit mode):
+    /// each edge becomes two boundary edges, one per side, and the vertices
+    /// along them are duplicated so the sides come apart; a path that ends
+    /// inside the surface keeps its end vertex (a slit).
+    Rip {
+        /// The mesh node to edit.
+        node: NodeRef,
+        /// The edges to rip, each with a face on both sides.
+        edges: EdgeSet,
+    },
+    /// Rips one vertex off one of its faces (Blender's Rip on a single
+    /// vertex): the face's corner gets a vertex of its own.
+    RipVertex {
+        /// The mesh node to edit.
+        node: NodeRef,
+        /// Exactly one vertex.
+        vertex: VertexSet,
+        /// Exactly one face at the vertex (Blender: the one nearest the mouse).
+        face: FaceSet,
+    },
+    /// Vertex split, the inverse of an edge collapse (Hoppe's progressive
+    /// meshes, seed 004): the edges of `vertex` from the one to `first` to
+    /// the one to `last`, counter-clockwise seen from the front (the order
+    /// of the vertex's fan), move to a new vertex at `position`, joined to
+    /// `vertex` by a new edge; the faces on the far side of `first` and
+    /// `last` gain a side each.
+    SplitVertex {
+        /// The mesh node to edit.
+        node: NodeRef,
+        /// Exactly one vertex to split.
+        vertex: VertexSet,
+        /// The neighbour whose edge is the first to move.
+        first: VertexSet,
+        /// The neighbour whose edge is the last to move (may be `first`).
+        last: VertexSet,
+        /// Where the new vertex goes, in local space.
+        position: DVec3,
+    },
+    /// One Euler operator on a mesh (Mäntylä's MEV, KEV, MEF, KEF, KEMR,
+    /// MEKR, KFMRH, MFKRH, MVFS, KVFS): the low-level steps every modeling
+    /// operation is made of, for teaching and for building faces with
+    /// rings. Each keeps V − E + F − (L − F) = 2(S − H).
+    Euler {
+        /// The mesh node to edit.
+        node: NodeRef,
+        /// The operator and its arguments.
+        op: EulerOp,
     },
     /// Sets the subdivision crease sharpness of edges: 0 is smooth, 10
     /// infinitely sharp, values between fade out after that many levels.
@@ -747,6 +914,12 @@ impl Command {
                 modifier: Some(m), ..
             } => format!("Subdivision Level {}", m.viewport_level),
             Command::ApplySubdivision { .. } => "Apply Subdivision".to_string(),
+            Command::AddModifier { modifier, .. } => format!("Add {} Modifier", modifier.name()),
+            Command::SetModifier { modifier, .. } => format!("Change {} Modifier", modifier.name()),
+            Command::RemoveModifier { .. } => "Remove Modifier".to_string(),
+            Command::MoveModifier { .. } => "Move Modifier".to_string(),
+            Command::ApplyModifiers { count: Some(1), .. } => "Apply Modifier".to_string(),
+            Command::ApplyModifiers { .. } => "Apply Modifiers".to_string(),
             Command::SetEdgeCrease { sharpness, .. } => format!("Edge Crease {sharpness:.2}"),
             Command::SetVertexCrease { sharpness, .. } => format!("Vertex Crease {sharpness:.2}"),
             Command::SnapToLimit { .. } => "Snap to Limit Surface".to_string(),
@@ -772,6 +945,9 @@ impl Command {
             Command::Triangulate { .. } => "Triangulate Faces".to_string(),
             Command::TrisToQuads { .. } => "Tris to Quads".to_string(),
             Command::Bisect { .. } => "Bisect".to_string(),
+            Command::Spin { .. } => "Spin".to_string(),
+            Command::Screw { .. } => "Screw".to_string(),
+            Command::Knife { .. } => "Knife".to_string(),
             Command::DissolveEdges { .. } => "Dissolve Edges".to_string(),
             Command::DissolveVertices { .. } => "Dissolve Vertices".to_string(),
             Command::FlipNormals { .. } => "Flip Normals".to_string(),
@@ -797,6 +973,10 @@ impl Command {
             Command::DeleteEdges { .. } => "Delete Edges".to_string(),
             Command::DeleteVertices { .. } => "Delete Vertices".to_string(),
             Command::ExtrudeEdges { .. } => "Extrude Edges".to_string(),
+            Command::Rip { .. } => "Rip".to_string(),
+            Command::RipVertex { .. } => "Rip Vertex".to_string(),
+            Command::SplitVertex { .. } => "Split Vertex".to_string(),
+            Command::Euler { op, .. } => format!("Euler {}", op.name()),
         }
     }
 }
@@ -812,4 +992,127 @@ fn plural(n: usize, what: &str) -> String {
 /// Blender's default limit for Tris to Quads' face and shape angles.
 fn join_limit_degrees() -> f64 {
     40.0
+}
+
+/// A corner of a face loop, where an Euler operator inserts or joins an
+/// edge. Named by the half-edge that arrives at it, so a vertex that a
+/// loop passes twice (the end of a dangling edge, say) is still one
+/// unambiguous corner.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub enum Corner {
+    /// The corner at vertex `at` reached along the edge from `from`: on the
+    /// face to the left of the half-edge `from` → `at`, between that
+    /// half-edge and the next one of its loop.
+    At {
+        /// The corner's vertex (exactly one).
+        at: VertexSet,
+        /// The vertex before it on the loop (exactly one, joined to `at`).
+        from: VertexSet,
+    },
+    /// A loop without edges: its lone vertex (left by MVFS, or by KEMR
+    /// when a ring is a single vertex).
+    Lone(VertexSet),
+}
+
+/// An Euler operator and its arguments, for [`Command::Euler`]. Each names
+/// its change of V, E, F, loops L, shells S and holes H; the kernel
+/// functions are `HalfEdgeMesh::make_edge_vertex` and the others named.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub enum EulerOp {
+    /// MEV (`make_edge_vertex`): a new vertex at `position` joined to the
+    /// corner's vertex by a new edge dangling into the corner's face.
+    /// V +1, E +1. On a lone vertex the loop becomes a wire of one edge.
+    Mev {
+        /// Where the edge starts.
+        corner: Corner,
+        /// The new vertex, in local space.
+        position: DVec3,
+    },
+    /// KEV (`kill_edge_vertex`): removes an edge with an end of valence 1
+    /// and that end. V −1, E −1.
+    Kev {
+        /// Exactly one dangling edge.
+        edge: EdgeSet,
+    },
+    /// MEF (`make_edge_face`): joins two corners of one loop of a face by
+    /// a new edge; the part of the loop after `a` keeps the face, the part
+    /// after `b` becomes a new face. E +1, F +1, L +1.
+    Mef {
+        /// The first corner (its side keeps the face).
+        a: Corner,
+        /// The second corner, on the same loop (its side is the new face).
+        b: Corner,
+    },
+    /// KEF (`kill_edge_face`): removes an edge between two different
+    /// faces, which become one. E −1, F −1, L −1.
+    Kef {
+        /// Exactly one edge.
+        edge: EdgeSet,
+    },
+    /// KEMR (`kill_edge_make_ring`): removes an edge whose two sides lie on
+    /// the same loop of one face; the loop falls apart in two and the part
+    /// on `to`'s side becomes an inner ring of the face (a lone vertex if
+    /// it has no edges left). E −1, L +1.
+    Kemr {
+        /// The end of the edge whose side keeps the loop's place.
+        from: VertexSet,
+        /// The other end; its side becomes the new ring.
+        to: VertexSet,
+    },
+    /// MEKR (`make_edge_kill_ring`): joins a corner of one loop of a face
+    /// to a corner of one of its rings by a new edge; the ring merges into
+    /// the first loop. E +1, L −1.
+    Mekr {
+        /// A corner on the loop that stays (outer loop or ring).
+        a: Corner,
+        /// A corner on a ring of the same face.
+        ring: Corner,
+    },
+    /// KFMRH (`kill_face_make_ring_hole`): face `kill` disappears and its
+    /// loop becomes an inner ring of face `keep` (Mäntylä's through hole).
+    /// F −1; H +1 when both faces are in one shell, else S −1.
+    Kfmrh {
+        /// The face that gets the ring (exactly one).
+        keep: FaceSet,
+        /// The face that becomes the ring (exactly one; no rings, sharing
+        /// no vertex with `keep`).
+        kill: FaceSet,
+    },
+    /// MFKRH (`make_face_kill_ring_hole`): a ring leaves its face and
+    /// becomes the outer loop of a new face. F +1; H −1, or S +1 when the
+    /// ring was all that held another shell.
+    Mfkrh {
+        /// Any corner of the ring, or its lone vertex.
+        ring: Corner,
+    },
+    /// MVFS (`make_vertex_face_shell`): a new shell of one vertex and one
+    /// face whose only loop is that vertex. V +1, F +1, L +1, S +1.
+    Mvfs {
+        /// The vertex, in local space.
+        position: DVec3,
+    },
+    /// KVFS (`kill_vertex_face_shell`): removes a shell of one vertex and
+    /// one face. V −1, F −1, L −1, S −1.
+    Kvfs {
+        /// The lone vertex of the shell (exactly one).
+        vertex: VertexSet,
+    },
+}
+
+impl EulerOp {
+    /// The operator's short name, as in the literature (`"MEV"`).
+    pub fn name(&self) -> &'static str {
+        match self {
+            EulerOp::Mev { .. } => "MEV",
+            EulerOp::Kev { .. } => "KEV",
+            EulerOp::Mef { .. } => "MEF",
+            EulerOp::Kef { .. } => "KEF",
+            EulerOp::Kemr { .. } => "KEMR",
+            EulerOp::Mekr { .. } => "MEKR",
+            EulerOp::Kfmrh { .. } => "KFMRH",
+            EulerOp::Mfkrh { .. } => "MFKRH",
+            EulerOp::Mvfs { .. } => "MVFS",
+            EulerOp::Kvfs { .. } => "KVFS",
+        }
+    }
 }

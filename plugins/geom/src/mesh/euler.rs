@@ -234,7 +234,8 @@ impl HalfEdgeMesh {
     /// Marks a vertex dead; its id is never handed out again.
     ///
     /// The one raw writer open to the whole crate: the modeling operations
-    /// that take faces out and add them back (weld, vertex and edge bevel)
+    /// that take faces out and add them back (weld, vertex and edge bevel,
+    /// a full-turn spin of a region with inner vertices)
     /// drop the old, now isolated, vertices with it and validate the result
     /// before it replaces the mesh. A vertex that still has edges leaves
     /// dangling records, which that validation reports.
@@ -292,7 +293,7 @@ impl HalfEdgeMesh {
         }
     }
 
-    fn check_edge(&self, e: EdgeId) -> Result<(), EulerError> {
+    pub(super) fn check_edge(&self, e: EdgeId) -> Result<(), EulerError> {
         if self.is_edge(e) {
             Ok(())
         } else {
@@ -355,7 +356,12 @@ impl HalfEdgeMesh {
 
     /// After the half-edges `old` left a loop of `f`, any loop start on them
     /// moves to `new` (which lies on the same loop, or is its lone vertex).
-    fn replace_loop_start(&mut self, f: Option<FaceId>, old: &[HalfEdgeId], new: LoopStart) {
+    pub(super) fn replace_loop_start(
+        &mut self,
+        f: Option<FaceId>,
+        old: &[HalfEdgeId],
+        new: LoopStart,
+    ) {
         let Some(f) = f else { return };
         let fh = self.face_halfedge[f.index()];
         if fh != NONE && old.contains(&HalfEdgeId(fh)) {

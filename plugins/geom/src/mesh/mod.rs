@@ -18,6 +18,9 @@
 //! - [`add_delete`]: adding and deleting whole faces (pmp-library's
 //!   `add_face` / `delete_face`), which relink boundary fans that no single
 //!   Euler operator reaches;
+//! - [`cut`]: cutting the surface open along edges (the connectivity of
+//!   Blender's Rip), which relinks the boundary fans of every vertex on
+//!   the cut and moves wedges of fans to new vertices at once;
 //! - `orientation`: reversing whole loops (flip normals), which rewrites
 //!   every half-edge in place instead of rebuilding the faces;
 //! - `construct`: the strict bulk build from polygons, one pass over the
@@ -36,6 +39,7 @@
 
 pub mod add_delete;
 mod construct;
+pub mod cut;
 pub mod euler;
 mod orientation;
 mod records;

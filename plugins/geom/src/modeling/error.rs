@@ -1,9 +1,11 @@
 //! Why a modeling operation refused: [`ModelingError`], shared by every
 //! operation in this module.
 
+use crate::build::BuildError;
 use crate::euler::EulerError;
 use crate::ids::{EdgeId, ElementId, FaceId, VertexId};
 use crate::validate::ValidationError;
+use glam::DVec3;
 use std::fmt;
 
 /// Why a modeling operation refused; the mesh is unchanged.
@@ -65,6 +67,62 @@ pub enum ModelingError {
         /// The merge distance given.
         distance: f64,
     },
+    /// A spin profile edge with faces on both sides: it has no open side
+    /// for the sweep to grow from.
+    #[error(
+        "{edge} has faces on both sides: a spin profile of edges must be boundary edges (spin the faces instead)"
+    )]
+    SpinEdgeNotBoundary {
+        /// The interior edge.
+        edge: EdgeId,
+    },
+    /// A full-turn spin whose profile has a face beside it: the last step
+    /// would come back onto that face, giving the edge a third face.
+    #[error(
+        "a full turn would bring the sweep back onto {face} beside {edge}: spin less than 360 degrees, or spin a profile with nothing beside it"
+    )]
+    FullTurnMeetsFace {
+        /// The profile edge the face is beside.
+        edge: EdgeId,
+        /// The face beside the profile.
+        face: FaceId,
+    },
+    /// A knife point farther from every face than the tolerance (it
+    /// must lie on the surface, as a viewport pick does).
+    #[error("knife point {index} at {point} is not on the mesh surface")]
+    NotOnSurface {
+        /// The point's position in the path, from 0.
+        index: usize,
+        /// The point, in the mesh's space.
+        point: DVec3,
+    },
+    /// A knife path that splits no edge and no face: its points lie inside
+    /// one face without reaching an edge.
+    #[error("the knife path crosses no edge: nothing to cut")]
+    NothingToCut,
+    /// Rip on an edge that already has no face on one side.
+    #[error("{edge} is already on a boundary: only edges between two faces can be ripped")]
+    RipOpenEdge {
+        /// The boundary edge.
+        edge: EdgeId,
+    },
+    /// Rip on an edge ripped alone with both ends inside the surface: its
+    /// two copies would join the same two vertices.
+    #[error(
+        "{edge} is ripped alone and both its ends are inside the mesh: its two copies would join the same two vertices (rip a path of two or more edges, or one that reaches a boundary)"
+    )]
+    RipLoneEdge {
+        /// The edge.
+        edge: EdgeId,
+    },
+    /// Vertex rip at a corner with nothing to rip.
+    #[error("{vertex} is not a corner of {face} with an edge between two faces: nothing to rip")]
+    RipCorner {
+        /// The vertex.
+        vertex: VertexId,
+        /// The face it was to be ripped off.
+        face: FaceId,
+    },
     /// An Euler operator the operation uses refused.
     #[error(transparent)]
     Euler(#[from] EulerError),
@@ -106,6 +164,19 @@ pub enum InvalidResult {
         operation: &'static str,
         /// The last refusal of `add_face`, if any.
         error: Option<EulerError>,
+    },
+    /// Copies of the mesh (a mirror or an array), welded where they meet,
+    /// do not form a manifold, consistently oriented surface (a merge
+    /// distance so large that a copy meets itself, or copies that overlap
+    /// along more than a seam). The builder's error names input indices of
+    /// the copies, not the source mesh's ids.
+    #[error("{operation} would not make a manifold surface: {error}")]
+    Copies {
+        /// The operation, as the message names it (`"the mirror"`,
+        /// `"the array"`).
+        operation: &'static str,
+        /// Why the strict build refused the welded copies.
+        error: BuildError,
     },
 }
 

@@ -1,6 +1,8 @@
-//! Mirroring across a world axis: symmetrize (Blender's Symmetrize) and
-//! mirroring vertices about their median (Blender's Ctrl+M).
+//! Mirroring across a world axis: symmetrize (Blender's Symmetrize),
+//! mirroring vertices about their median (Blender's Ctrl+M), and the
+//! mirrored copies of the Mirror modifier ([`mirrored`]).
 
+use super::copies::{CopiedMesh, Soup, check_distance, join, root};
 use super::{InvalidResult, ModelingError, NewFace};
 use crate::ids::VertexId;
 use crate::mesh::HalfEdgeMesh;
@@ -18,7 +20,11 @@ pub enum MirrorAxis {
 }
 
 impl MirrorAxis {
-    fn index(self) -> usize {
+    /// The three axes in the order Blender's Mirror modifier applies them.
+    pub const ALL: [MirrorAxis; 3] = [MirrorAxis::X, MirrorAxis::Y, MirrorAxis::Z];
+
+    /// The coordinate the axis flips: 0 for x, 1 for y, 2 for z.
+    pub fn index(self) -> usize {
         match self {
             MirrorAxis::X => 0,
             MirrorAxis::Y => 1,
@@ -148,4 +154,95 @@ pub fn mirror_vertices(
         .collect();
     mesh.reverse_components(&whole);
     Ok(())
+}
+
+/// The Mirror modifier's result (Blender's Mirror modifier,
+/// `MOD_mirror.cc`): the mesh and its mirror images across the planes
+/// x = 0, y = 0, z = 0 of its own (local) space, for each axis set in
+/// `axes` (`[x, y, z]`), applied in the order X, Y, Z, each to the result of
+/// the previous one, so that all three give 8 copies. Mirror images have
+/// their faces reversed, so normals keep facing outwards.
+///
+/// With `merge_distance: Some(d)` (Blender's Merge option), a vertex within
+/// `d` of the mirror plane is moved onto the plane and welded with its
+/// image, so a half model whose open seam lies on the plane becomes one
+/// piece. (Blender compares a vertex with its image, 2·|x| < d; here the
+/// distance is to the plane, |x| ≤ d, which is what the modifier's
+/// clipping keeps.) With `None` the copies stay separate.
+///
+/// No axis set gives a copy of the mesh. Isolated vertices and wire edges
+/// are not copied. The result's ids are new; see [`mirrored_copies`] for
+/// where each element came from.
+///
+/// # Errors
+/// [`ModelingError::Empty`] for a mesh without faces;
+/// [`ModelingError::Parameter`] for a negative or non-finite merge
+/// distance or a face with inner rings; [`ModelingError::Invalid`] with
+/// [`InvalidResult::Copies`] when the welded copies are not manifold (faces
+/// lying in the mirror plane, or a seam that is not a boundary).
+///
+/// Complexity: O(copies × corners).
+///
+/// ```
+/// use hedra_geom::{HalfEdgeMesh, DVec3, modeling::mirrored};
+/// // A unit quad touching the plane x = 0 along one edge.
+/// let quad = HalfEdgeMesh::from_polygons(
+///     &[DVec3::new(0.0, 0.0, 0.0), DVec3::new(1.0, 0.0, 0.0),
+///       DVec3::new(1.0, 1.0, 0.0), DVec3::new(0.0, 1.0, 0.0)],
+///     &[[0u32, 1, 2, 3]],
+/// ).unwrap();
+/// let both = mirrored(&quad, [true, false, false], Some(0.001)).unwrap();
+/// assert_eq!((both.vertex_count(), both.edge_count(), both.face_count()), (6, 7, 2));
+/// ```
+pub fn mirrored(
+    mesh: &HalfEdgeMesh,
+    axes: [bool; 3],
+    merge_distance: Option<f64>,
+) -> Result<HalfEdgeMesh, ModelingError> {
+    mirrored_copies(mesh, axes, merge_distance).map(|c| c.mesh)
+}
+
+/// [`mirrored`], with the source vertex and face of every result element
+/// (to carry creases and corner attributes over).
+///
+/// # Errors
+/// As [`mirrored`].
+pub fn mirrored_copies(
+    mesh: &HalfEdgeMesh,
+    axes: [bool; 3],
+    merge_distance: Option<f64>,
+) -> Result<CopiedMesh, ModelingError> {
+    if let Some(d) = merge_distance {
+        check_distance(d)?;
+    }
+    let mut soup = Soup::of(mesh)?;
+    for axis in MirrorAxis::ALL.into_iter().filter(|a| axes[a.index()]) {
+        let i = axis.index();
+        let (n, faces) = (soup.positions.len(), soup.polygons.len());
+        // Vertices on the seam go exactly onto the plane first, so that
+        // they and their images coincide.
+        let on_plane: Vec<bool> = soup
+            .positions
+            .iter()
+            .map(|p| merge_distance.is_some_and(|d| p[i].abs() <= d))
+            .collect();
+        for (p, _) in soup
+            .positions
+            .iter_mut()
+            .zip(&on_plane)
+            .filter(|(_, o)| **o)
+        {
+            p[i] = 0.0;
+        }
+        let base = soup.append_copy(n, faces, |p| axis.reflect(p, 0.0), true);
+        let mut parent: Vec<u32> = (0..soup.positions.len() as u32).collect();
+        for (k, _) in on_plane.iter().enumerate().filter(|(_, o)| **o) {
+            join(&mut parent, k as u32, base + k as u32);
+        }
+        let rep: Vec<u32> = (0..parent.len() as u32)
+            .map(|k| root(&mut parent, k))
+            .collect();
+        soup.weld(&rep);
+    }
+    soup.build("the mirror")
 }

@@ -1,0 +1,162 @@
+//! Commands on a mesh node's modifier stack (Mirror, Array): adding,
+//! changing, removing and reordering modifiers, and applying them to the
+//! cage. Subdivision's place in the stack is a field of its modifier, set
+//! with [`Command::SetSubdivision`](super::Command::SetSubdivision).
+
+use super::plan::Plan;
+use super::{CommandError, NodeRef};
+use crate::modifiers::MeshModifier;
+use crate::scene::{MeshContent, Node, NodeContent};
+
+impl Plan<'_> {
+    /// The mesh node `r` with its label, or why not.
+    fn mesh_node(&self, r: &NodeRef) -> Result<(Node, String), CommandError> {
+        let n = self.node(r)?;
+        let label = self.doc.label_of(n.id);
+        if !matches!(n.content, NodeContent::Mesh(_)) {
+            return Err(CommandError::NotAMesh { node: label });
+        }
+        Ok((n, label))
+    }
+
+    /// Changes the stack of mesh node `r` with `edit`, then checks that the
+    /// new stack evaluates (so a merge that cannot be welded is refused
+    /// when it is set, naming the modifier).
+    fn edit_stack(
+        &mut self,
+        r: &NodeRef,
+        edit: impl FnOnce(&mut MeshContent, &str) -> Result<(), CommandError>,
+    ) -> Result<(), CommandError> {
+        let (mut n, label) = self.mesh_node(r)?;
+        let NodeContent::Mesh(content) = &mut n.content else {
+            unreachable!("mesh_node checked the content");
+        };
+        edit(content, &label)?;
+        content
+            .apply_stack(content.modifiers.len())
+            .map_err(|error| CommandError::Modifier {
+                node: label.clone(),
+                error,
+            })?;
+        self.set(n);
+        Ok(())
+    }
+
+    pub(super) fn add_modifier(
+        &mut self,
+        node: &NodeRef,
+        modifier: &MeshModifier,
+    ) -> Result<(), CommandError> {
+        self.edit_stack(node, |c, label| {
+            check(modifier, label)?;
+            c.modifiers.push(*modifier);
+            Ok(())
+        })
+    }
+
+    pub(super) fn set_modifier(
+        &mut self,
+        node: &NodeRef,
+        index: usize,
+        modifier: &MeshModifier,
+    ) -> Result<(), CommandError> {
+        self.edit_stack(node, |c, label| {
+            check(modifier, label)?;
+            let slot = slot(c, index, label)?;
+            c.modifiers[slot] = *modifier;
+            Ok(())
+        })
+    }
+
+    pub(super) fn remove_modifier(
+        &mut self,
+        node: &NodeRef,
+        index: usize,
+    ) -> Result<(), CommandError> {
+        self.edit_stack(node, |c, label| {
+            let slot = slot(c, index, label)?;
+            c.modifiers.remove(slot);
+            // Subdivision stays after the same modifiers.
+            if let Some(s) = &mut c.subdivision
+                && let Some(p) = &mut s.stack_position
+                && slot < *p
+            {
+                *p -= 1;
+            }
+            Ok(())
+        })
+    }
+
+    pub(super) fn move_modifier(
+        &mut self,
+        node: &NodeRef,
+        from: usize,
+        to: usize,
+    ) -> Result<(), CommandError> {
+        self.edit_stack(node, |c, label| {
+            let from = slot(c, from, label)?;
+            let to = slot(c, to, label)?;
+            let m = c.modifiers.remove(from);
+            c.modifiers.insert(to, m);
+            Ok(())
+        })
+    }
+
+    /// Makes the first `count` stack modifiers (all by default) part of the
+    /// cage; they must all run before subdivision.
+    pub(super) fn apply_modifiers(
+        &mut self,
+        node: &NodeRef,
+        count: Option<usize>,
+    ) -> Result<(), CommandError> {
+        let (mut n, label) = self.mesh_node(node)?;
+        let NodeContent::Mesh(content) = &mut n.content else {
+            unreachable!("mesh_node checked the content");
+        };
+        if content.modifiers.is_empty() {
+            return Err(CommandError::Nothing("the node has no modifiers to apply"));
+        }
+        let count = count.unwrap_or(content.modifiers.len());
+        if count == 0 || count > content.modifiers.len() {
+            return Err(CommandError::NoModifier {
+                node: label,
+                index: count.saturating_sub(1),
+                count: content.modifiers.len(),
+            });
+        }
+        if content.subdivision_position() < count {
+            return Err(CommandError::SubdivisionFirst {
+                node: label,
+                position: content.subdivision_position(),
+            });
+        }
+        *content = content
+            .with_modifiers_applied(count)
+            .map_err(|error| CommandError::Modifier { node: label, error })?;
+        self.set(n);
+        Ok(())
+    }
+}
+
+/// The modifier's values, or [`CommandError::ModifierValue`].
+fn check(modifier: &MeshModifier, label: &str) -> Result<(), CommandError> {
+    modifier
+        .check()
+        .map_err(|problem| CommandError::ModifierValue {
+            node: label.to_string(),
+            problem,
+        })
+}
+
+/// `index` if the stack has it, else [`CommandError::NoModifier`].
+fn slot(c: &MeshContent, index: usize, label: &str) -> Result<usize, CommandError> {
+    if index < c.modifiers.len() {
+        Ok(index)
+    } else {
+        Err(CommandError::NoModifier {
+            node: label.to_string(),
+            index,
+            count: c.modifiers.len(),
+        })
+    }
+}
