@@ -887,3 +887,128 @@ fn proportional_move_lifts_neighbours_by_the_smooth_falloff() {
     );
     mesh.validate().unwrap();
 }
+
+/// The open half of a cube (x ≥ 0, its seam on x = 0), named "Cube".
+fn half_cube() -> User {
+    let mut user = User::new();
+    user.add("Cube");
+    user.app
+        .world_mut()
+        .write_message(hedra_scene::DocRequest::Execute(
+            hedra_doc::Command::Bisect {
+                node: hedra_doc::NodeRef::Name("Cube".into()),
+                faces: hedra_doc::FaceSet::All,
+                point: DVec3::ZERO,
+                normal: DVec3::X,
+                clear: hedra_geom::modeling::BisectClear::Inner,
+                fill: false,
+            },
+        ));
+    user.frames(2);
+    assert_eq!(user.mesh_counts(), (8, 12, 5), "{}", user.status());
+    user
+}
+
+fn mesh_content(user: &User) -> hedra_doc::MeshContent {
+    match &user.doc().nodes().next().unwrap().content {
+        NodeContent::Mesh(c) => c.clone(),
+        _ => panic!("a mesh"),
+    }
+}
+
+/// Properties ▸ Modifiers ▸ Mirror on a half cube: the viewport draws the
+/// welded whole (both halves), the cage stays the half; with Clipping on,
+/// a seam vertex dragged with G stays on x = 0 while it moves up.
+#[test]
+fn mirror_modifier_draws_both_halves_and_clipping_holds_the_seam() {
+    let mut user = half_cube();
+    user.click_on("Mirror");
+    let content = mesh_content(&user);
+    assert_eq!(content.modifiers.len(), 1, "{}", user.status());
+    let drawn = user.render_positions();
+    assert!(
+        drawn.iter().any(|p| p.x < -0.9) && drawn.iter().any(|p| p.x > 0.9),
+        "both halves are drawn"
+    );
+    let whole = content.evaluated(0).unwrap();
+    assert_eq!(
+        (whole.vertex_count(), whole.edge_count(), whole.face_count()),
+        (12, 20, 10),
+        "one closed box of two halves (the seam welded)"
+    );
+    assert_eq!(user.mesh_counts(), (8, 12, 5), "the cage stays the half");
+    user.click_on("Clipping");
+    assert!(matches!(
+        mesh_content(&user).modifiers[0],
+        hedra_doc::MeshModifier::Mirror(m) if m.clipping
+    ));
+    user.tap(KeyCode::Tab);
+    user.tap(KeyCode::Digit1);
+    let seam = Vec3::new(0.0, 1.0, 1.0);
+    let at = user.screen_of(seam);
+    user.click(at);
+    let picked = *user.edit_mode().selection.vertices.iter().next().unwrap();
+    assert_eq!(user.first_mesh().position(picked), seam.as_dvec3());
+    user.move_to(at);
+    user.tap(KeyCode::KeyG);
+    let to = at + Vec2::new(50.0, -40.0);
+    user.glide_to(to, 5);
+    user.click(to);
+    let moved = user.first_mesh().position(picked);
+    assert_eq!(
+        moved.x, 0.0,
+        "clipping keeps the seam vertex on x = 0: {moved}"
+    );
+    assert!(moved.y > 1.05, "it moved up: {moved}");
+    user.first_mesh().validate().unwrap();
+}
+
+/// Properties ▸ Modifiers ▸ Array with Merge on a cube without its ±X
+/// faces, count 3: the evaluated mesh is one open tube of 16/28/12 and
+/// the viewport draws three cubes' length.
+#[test]
+fn array_modifier_with_merge_makes_one_tube() {
+    let mut user = User::new();
+    user.add("Cube");
+    for x in [1.0, -1.0] {
+        user.app
+            .world_mut()
+            .write_message(hedra_scene::DocRequest::Execute(
+                hedra_doc::Command::DeleteFaces {
+                    node: hedra_doc::NodeRef::Name("Cube".into()),
+                    faces: hedra_doc::FaceSet::Facing {
+                        direction: DVec3::new(x, 0.0, 0.0),
+                        degrees: 1.0,
+                    },
+                },
+            ));
+        user.frames(2);
+    }
+    assert_eq!(user.mesh_counts(), (8, 12, 4));
+    user.click_on("Array");
+    let steps = user.undo_steps();
+    // Count 2 → 3 (the first drag value is the count), then Merge.
+    let count = user.find("2");
+    user.click(count);
+    user.type_text("3");
+    user.tap(KeyCode::Enter);
+    user.frames(2);
+    user.click_on("Merge");
+    let content = mesh_content(&user);
+    let hedra_doc::MeshModifier::Array(a) = content.modifiers[0] else {
+        panic!("an array")
+    };
+    assert_eq!((a.count, a.merge), (3, true), "{}", user.status());
+    assert!(user.undo_steps() > steps);
+    let tube = content.evaluated(0).unwrap();
+    tube.validate().unwrap();
+    assert_eq!(
+        (tube.vertex_count(), tube.edge_count(), tube.face_count()),
+        (16, 28, 12)
+    );
+    let s = tube.stats();
+    assert_eq!((s.shells, s.boundary_loops), (1, 2));
+    let drawn = user.render_positions();
+    let right = drawn.iter().map(|p| p.x).fold(f32::MIN, f32::max);
+    assert!((right - 5.0).abs() < 1e-5, "three cubes' length: {right}");
+}

@@ -53,6 +53,8 @@ pub struct NodeMesh {
     pub creases: hedra_geom::subdivision::Creases,
     /// The subdivision modifier; `None` when the mesh has none.
     pub subdivision: Option<hedra_doc::SubdivisionModifier>,
+    /// The Mirror and Array modifiers, in stack order.
+    pub modifiers: Vec<hedra_doc::MeshModifier>,
 }
 
 impl NodeMesh {
@@ -62,6 +64,7 @@ impl NodeMesh {
             shading: c.shading,
             creases: c.creases.clone(),
             subdivision: c.subdivision,
+            modifiers: c.modifiers.clone(),
         }
     }
 
@@ -70,6 +73,22 @@ impl NodeMesh {
             && self.shading == c.shading
             && self.subdivision == c.subdivision
             && self.creases == c.creases
+            && self.modifiers == c.modifiers
+    }
+
+    /// The content with `cage` and `creases` in place of the document's
+    /// (a tool's preview), to evaluate the modifier stack on.
+    fn content_with(
+        &self,
+        cage: &Arc<HalfEdgeMesh>,
+        creases: &hedra_geom::subdivision::Creases,
+    ) -> hedra_doc::MeshContent {
+        let mut content = hedra_doc::MeshContent::new(cage.clone());
+        content.shading = self.shading;
+        content.creases = creases.clone();
+        content.subdivision = self.subdivision;
+        content.modifiers = self.modifiers.clone();
+        content
     }
 
     /// The subdivision the viewport shows, if any.
@@ -303,6 +322,7 @@ pub struct OnScreen {
     mesh: Arc<HalfEdgeMesh>,
     shading: Shading,
     smooth: Option<(hedra_doc::SubdivisionModifier, u64)>,
+    modifiers: Vec<hedra_doc::MeshModifier>,
 }
 
 impl OnScreen {
@@ -433,10 +453,20 @@ impl Projector<'_, '_, '_, '_> {
             mesh: cage.clone(),
             shading: content.shading,
             smooth: modifier.map(|m| (m, creases_fingerprint(creases))),
+            modifiers: content.modifiers.clone(),
         };
-        let same_look = on_screen
-            .is_some_and(|o| o.shading == wanted.shading && o.smooth.map(|s| s.0) == modifier);
+        let same_look = on_screen.is_some_and(|o| {
+            o.shading == wanted.shading
+                && o.smooth.map(|s| s.0) == modifier
+                && o.modifiers == wanted.modifiers
+        });
         if same_look && on_screen.is_some_and(|o| o.shows_mesh(cage) && o.smooth == wanted.smooth) {
+            return;
+        }
+        if !content.modifiers.is_empty() {
+            let built = self.with_stack(node, name, content, cage, creases, modifier.as_ref());
+            set_render_mesh(ec, mesh3d, self.meshes, built, self.material);
+            ec.insert(wanted);
             return;
         }
         let mut render = mesh3d.and_then(|h| self.meshes.get_mut(&h.0));
@@ -487,6 +517,60 @@ impl Projector<'_, '_, '_, '_> {
             set_render_mesh(ec, mesh3d, self.meshes, built, self.material);
         }
         ec.insert(wanted);
+    }
+}
+
+impl Projector<'_, '_, '_, '_> {
+    /// The render mesh of a node with Mirror or Array modifiers: the stack
+    /// evaluated on the cage (or a tool's preview of it) every time, then
+    /// the smooth preview of that result when subdivision comes last, or
+    /// the whole evaluation when subdivision comes earlier. Shows the cage
+    /// with a message when the stack cannot be evaluated.
+    fn with_stack(
+        &mut self,
+        node: NodeId,
+        name: &str,
+        content: &NodeMesh,
+        cage: &Arc<HalfEdgeMesh>,
+        creases: &hedra_geom::subdivision::Creases,
+        modifier: Option<&hedra_doc::SubdivisionModifier>,
+    ) -> Mesh {
+        let full = content.content_with(cage, creases);
+        let shading = content.shading;
+        let evaluated = full.smooth_cage().and_then(|stacked| match stacked {
+            Some(stacked) => Ok(Ok((
+                Arc::new(stacked.mesh.into_owned()),
+                stacked.creases.into_owned(),
+            ))),
+            None => full
+                .evaluated(modifier.map_or(0, |m| m.viewport_level))
+                .map(|m| Err(render_mesh(&m, shading))),
+        });
+        match evaluated {
+            Ok(Ok((stacked, stacked_creases))) => match modifier {
+                None => render_mesh(&stacked, shading),
+                Some(m) => self
+                    .smooth
+                    .render_mesh(&SmoothSource {
+                        node,
+                        cage: &stacked,
+                        creases: &stacked_creases,
+                        modifier: m,
+                        shading,
+                    })
+                    .unwrap_or_else(|message| {
+                        self.status
+                            .error(format!("'{name}': subdivision not shown: {message}"));
+                        render_mesh(&stacked, shading)
+                    }),
+            },
+            Ok(Err(built)) => built,
+            Err(e) => {
+                self.status
+                    .error(format!("'{name}': modifiers not shown: {e}"));
+                render_mesh(cage, shading)
+            }
+        }
     }
 }
 

@@ -246,6 +246,51 @@ pub(super) fn tool_command(
     }
 }
 
+/// A move of vertices with each Mirror modifier's clipping held (Blender's
+/// Clipping): a vertex on a mirror plane stays on it, one that would cross
+/// it stops on it. Other commands pass unchanged.
+fn clip_to_mirrors(
+    cmd: Command,
+    mesh: &HalfEdgeMesh,
+    modifiers: &[hedra_doc::MeshModifier],
+) -> Command {
+    let mirrors: Vec<&hedra_doc::MirrorModifier> = modifiers
+        .iter()
+        .filter_map(|m| match m {
+            hedra_doc::MeshModifier::Mirror(m) if m.clipping => Some(m),
+            _ => None,
+        })
+        .collect();
+    if mirrors.is_empty() {
+        return cmd;
+    }
+    let clip = |v: u32, after: DVec3| {
+        let before = mesh.position(VertexId(v));
+        mirrors.iter().fold(after, |p, m| m.clip(before, p))
+    };
+    match cmd {
+        Command::MoveVertices {
+            node,
+            vertices: VertexSet::Ids(ids),
+            offset,
+        } => Command::SetVertexPositions {
+            node,
+            positions: ids
+                .iter()
+                .map(|&v| (v, clip(v, mesh.position(VertexId(v)) + offset)))
+                .collect(),
+        },
+        Command::SetVertexPositions { node, positions } => Command::SetVertexPositions {
+            node,
+            positions: positions
+                .into_iter()
+                .map(|(v, p)| (v, clip(v, p)))
+                .collect(),
+        },
+        other => other,
+    }
+}
+
 /// New local positions of the selected vertices (transformed in full) and
 /// of their proportional neighbours (by their weights): `transform` takes
 /// a world position and a weight.
@@ -418,6 +463,10 @@ pub fn drive_mesh_tool(
         weights,
     );
     tool.proportional = cached;
+    let cmd = match state.session.doc.node(node_id).map(|n| &n.content) {
+        Some(NodeContent::Mesh(content)) => clip_to_mirrors(cmd, &mesh, &content.modifiers),
+        _ => cmd,
+    };
     if soft {
         tool.readout = format!(
             "{} · proportional {} radius {:.3} (wheel)",

@@ -129,6 +129,9 @@ pub(super) fn properties(
         });
     }
     if let NodeContent::Mesh(content) = &node.content {
+        egui::CollapsingHeader::new("Modifiers")
+            .default_open(true)
+            .show(ui, |ui| modifier_stack_panel(ui, id, content, events));
         egui::CollapsingHeader::new("Subdivision")
             .default_open(true)
             .show(ui, |ui| {

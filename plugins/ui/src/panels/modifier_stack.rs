@@ -1,0 +1,185 @@
+//! The Properties panel's modifier stack: Blender's Mirror and Array
+//! modifiers on a mesh node, each with its settings, moved up and down,
+//! applied or removed; and where subdivision runs among them.
+
+use super::*;
+use hedra_doc::{ArrayModifier, MeshModifier, MirrorModifier};
+
+/// The node's Mirror and Array modifiers, top to bottom in evaluation
+/// order, with Add buttons; every change is one command (one undo step).
+pub(super) fn modifier_stack_panel(
+    ui: &mut egui::Ui,
+    id: NodeId,
+    content: &hedra_doc::MeshContent,
+    events: &mut Vec<UiEvent>,
+) {
+    let node = || NodeRef::from(id);
+    ui.horizontal(|ui| {
+        ui.label("Add");
+        if ui
+            .button("Mirror")
+            .on_hover_text("Mirror copies across x = 0 of the object (seam welded)")
+            .clicked()
+        {
+            exec(
+                events,
+                Command::AddModifier {
+                    node: node(),
+                    modifier: MeshModifier::Mirror(MirrorModifier::default()),
+                },
+            );
+        }
+        if ui
+            .button("Array")
+            .on_hover_text("Copies in a row, one bounding box apart along x")
+            .clicked()
+        {
+            exec(
+                events,
+                Command::AddModifier {
+                    node: node(),
+                    modifier: MeshModifier::Array(ArrayModifier::default()),
+                },
+            );
+        }
+    });
+    let count = content.modifiers.len();
+    for (index, modifier) in content.modifiers.iter().enumerate() {
+        ui.separator();
+        ui.push_id(("modifier", index), |ui| {
+            ui.horizontal(|ui| {
+                ui.strong(format!("{}. {}", index + 1, modifier.name()));
+                let moved = |to: usize| Command::MoveModifier {
+                    node: node(),
+                    from: index,
+                    to,
+                };
+                if ui.add_enabled(index > 0, egui::Button::new("▲")).clicked() {
+                    exec(events, moved(index - 1));
+                }
+                if ui
+                    .add_enabled(index + 1 < count, egui::Button::new("▼"))
+                    .clicked()
+                {
+                    exec(events, moved(index + 1));
+                }
+                if ui
+                    .add_enabled(index == 0, egui::Button::new("Apply"))
+                    .on_hover_text(
+                        "Make the top modifier's result the mesh (Blender applies from the top)",
+                    )
+                    .clicked()
+                {
+                    exec(
+                        events,
+                        Command::ApplyModifiers {
+                            node: node(),
+                            count: Some(1),
+                        },
+                    );
+                }
+                if ui.button("Remove").clicked() {
+                    exec(
+                        events,
+                        Command::RemoveModifier {
+                            node: node(),
+                            index,
+                        },
+                    );
+                }
+            });
+            let mut edited = *modifier;
+            match &mut edited {
+                MeshModifier::Mirror(m) => mirror_settings(ui, m),
+                MeshModifier::Array(a) => array_settings(ui, a),
+            }
+            if edited != *modifier {
+                exec(
+                    events,
+                    Command::SetModifier {
+                        node: node(),
+                        index,
+                        modifier: edited,
+                    },
+                );
+            }
+        });
+    }
+    if let (Some(sub), true) = (content.subdivision, count > 0) {
+        ui.separator();
+        let mut after = content.subdivision_position();
+        ui.horizontal(|ui| {
+            ui.label("Subdivision after");
+            ui.add(egui::DragValue::new(&mut after).range(0..=count))
+                .on_hover_text(
+                    "How many of these modifiers run before subdivision (all: mirror, then smooth)",
+                );
+            ui.label(format!("of {count}"));
+        });
+        if after != content.subdivision_position() {
+            let mut moved = sub;
+            moved.stack_position = (after < count).then_some(after);
+            exec(
+                events,
+                Command::SetSubdivision {
+                    nodes: vec![node()],
+                    modifier: Some(moved),
+                },
+            );
+        }
+    }
+}
+
+/// Axes, merge and clipping of a Mirror modifier.
+fn mirror_settings(ui: &mut egui::Ui, m: &mut MirrorModifier) {
+    ui.horizontal(|ui| {
+        ui.label("Axes");
+        for (i, axis) in ["X", "Y", "Z"].iter().enumerate() {
+            ui.checkbox(&mut m.axes[i], *axis);
+        }
+    });
+    ui.horizontal(|ui| {
+        ui.checkbox(&mut m.merge, "Merge");
+        ui.add_enabled(
+            m.merge,
+            egui::DragValue::new(&mut m.merge_distance)
+                .speed(0.0005)
+                .range(0.0..=10.0)
+                .max_decimals(4),
+        );
+    });
+    ui.checkbox(&mut m.clipping, "Clipping")
+        .on_hover_text("Vertices on the mirror plane stay on it while you move them");
+}
+
+/// Count, offsets and merge of an Array modifier.
+fn array_settings(ui: &mut egui::Ui, a: &mut ArrayModifier) {
+    ui.horizontal(|ui| {
+        ui.label("Count");
+        ui.add(egui::DragValue::new(&mut a.count).range(1..=1000));
+    });
+    for (label, offset, default) in [
+        ("Relative offset", &mut a.relative_offset, DVec3::X),
+        ("Constant offset", &mut a.constant_offset, DVec3::ZERO),
+    ] {
+        let mut on = offset.is_some();
+        ui.checkbox(&mut on, label);
+        match (on, offset.as_mut()) {
+            (true, Some(v)) => {
+                vec3_row(ui, "", v, 0.01);
+            }
+            (true, None) => *offset = Some(default),
+            (false, _) => *offset = None,
+        }
+    }
+    ui.horizontal(|ui| {
+        ui.checkbox(&mut a.merge, "Merge");
+        ui.add_enabled(
+            a.merge,
+            egui::DragValue::new(&mut a.merge_distance)
+                .speed(0.0005)
+                .range(0.0..=10.0)
+                .max_decimals(4),
+        );
+    });
+}
