@@ -1012,3 +1012,47 @@ fn array_modifier_with_merge_makes_one_tube() {
     let right = drawn.iter().map(|p| p.x).fold(f32::MIN, f32::max);
     assert!((right - 5.0).abs() < 1e-5, "three cubes' length: {right}");
 }
+
+/// Mesh ▸ Spin on a plane seen from the front with the 3D cursor at
+/// (2, 0, 0): a quarter turn in 9 steps (Blender's defaults), then Adjust
+/// Last to 360° in 8 steps gives the closed torus of genus 1 (32/64/32).
+#[test]
+fn spin_a_square_a_full_turn_into_a_torus() {
+    let mut user = User::new();
+    user.add("Plane");
+    user.app
+        .world_mut()
+        .resource_mut::<hedra_scene::Cursor3d>()
+        .0 = DVec3::new(2.0, 0.0, 0.0);
+    user.tap(KeyCode::Numpad1);
+    user.tap(KeyCode::Tab);
+    user.tap(KeyCode::Digit3);
+    user.tap(KeyCode::KeyA);
+    open_mesh_menu(&mut user);
+    user.click_on("Spin (about the cursor, view axis)");
+    assert_eq!(user.mesh_counts(), (40, 76, 38), "{}", user.status());
+    user.first_mesh().validate().unwrap();
+    let steps = user.undo_steps();
+    for (from, to) in [("90", "360"), ("9", "8")] {
+        user.click_on(from);
+        user.type_text(to);
+        user.tap(KeyCode::Enter);
+        user.frames(2);
+    }
+    assert_eq!(user.undo_steps(), steps, "Adjust Last replaces the step");
+    let torus = user.first_mesh();
+    torus.validate().unwrap();
+    let s = torus.stats();
+    assert_eq!(
+        (s.vertices, s.edges, s.faces),
+        (32, 64, 32),
+        "{}",
+        user.status()
+    );
+    assert_eq!((s.closed, s.genus), (true, Some(1)));
+    // The plane (side 2) reaches 1 and 3 from the axis through the cursor along z.
+    for p in torus.vertices().map(|v| torus.position(v)) {
+        let r = (p.truncate() - hedra_geom::DVec2::new(2.0, 0.0)).length();
+        assert!((r - 1.0).abs() < 1e-9 || (r - 3.0).abs() < 1e-9, "{p}");
+    }
+}

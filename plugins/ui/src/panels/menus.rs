@@ -14,6 +14,8 @@ pub(super) struct ViewChoices<'a> {
     pub proportional: &'a mut hedra_edit::Proportional,
     /// The 3D cursor's world position.
     pub cursor: &'a mut DVec3,
+    /// The direction the viewport looks (world), the axis Spin turns about.
+    pub view_direction: Option<DVec3>,
 }
 
 pub(super) fn menu_bar(
@@ -29,6 +31,7 @@ pub(super) fn menu_bar(
         snapping,
         proportional,
         cursor,
+        view_direction,
     } = view;
     egui::MenuBar::new().ui(ui, |ui| {
         ui.menu_button("File", |ui| {
@@ -138,7 +141,18 @@ pub(super) fn menu_bar(
             add_shape_buttons(ui, events, curve, at);
         });
         if let Some(node) = model.mode.node {
-            ui.menu_button("Mesh", |ui| mesh_menu(ui, node, &model.mode, events));
+            // Spin turns about the view axis through the 3D cursor (Blender),
+            // both given to the command in the node's local space.
+            let to_local = model.state.session.doc.world_matrix(node).inverse();
+            let spin_axis = view_direction.map(|d| {
+                (
+                    to_local.transform_point3(*cursor),
+                    to_local.transform_vector3(d),
+                )
+            });
+            ui.menu_button("Mesh", |ui| {
+                mesh_menu(ui, node, &model.mode, spin_axis, events)
+            });
         }
         ui.menu_button("Object", |ui| {
             let sel = model.selection.refs();

@@ -9,6 +9,7 @@ pub(super) fn mesh_menu(
     ui: &mut egui::Ui,
     node: NodeId,
     mode: &EditMode,
+    spin_axis: Option<(DVec3, DVec3)>,
     events: &mut Vec<UiEvent>,
 ) {
     use hedra_doc::{EdgeSet, FaceSet, VertexSet};
@@ -77,6 +78,44 @@ pub(super) fn mesh_menu(
             shape_degrees: 40.0,
         }
     });
+    // Spin and Screw sweep the selected faces, or else the selected
+    // boundary edges, about the view axis through the 3D cursor.
+    let profile = || {
+        if has_f {
+            hedra_doc::ProfileSet::Faces(faces())
+        } else {
+            hedra_doc::ProfileSet::Edges(edges())
+        }
+    };
+    if let Some((center, axis)) = spin_axis {
+        item(
+            ui,
+            "Spin (about the cursor, view axis)",
+            has_f || has_e,
+            &|| Command::Spin {
+                node: n.clone(),
+                profile: profile(),
+                center,
+                axis,
+                degrees: 90.0,
+                steps: 9,
+            },
+        );
+        item(
+            ui,
+            "Screw (about the cursor, view axis)",
+            has_f || has_e,
+            &|| Command::Screw {
+                node: n.clone(),
+                profile: profile(),
+                center,
+                axis,
+                turns: 2,
+                steps: 12,
+                pitch: 1.0,
+            },
+        );
+    }
     if ui
         .add_enabled(has_f, egui::Button::new("Bisect (drag a line)"))
         .clicked()

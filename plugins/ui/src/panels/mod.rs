@@ -116,8 +116,13 @@ pub fn draw_ui(
     let mut snapping = *writers.snapping;
     let mut proportional = *writers.proportional;
     let mut cursor = writers.cursor.0;
+    let view_direction = camera
+        .single()
+        .ok()
+        .map(|(_, t)| (t.rotation() * Vec3::NEG_Z).as_dvec3());
     egui::Panel::top("menu").show(&mut root, |ui| {
         let view = ViewChoices {
+            view_direction,
             gizmo_mode: &mut gizmo_mode,
             shading: &mut shading,
             snapping: &mut snapping,

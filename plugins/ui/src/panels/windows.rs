@@ -34,6 +34,8 @@ pub(super) fn adjust_last_window(
             | Command::BevelVertices { .. }
             | Command::Bisect { .. }
             | Command::TrisToQuads { .. }
+            | Command::Spin { .. }
+            | Command::Screw { .. }
     );
     if !editable {
         return;
@@ -111,6 +113,41 @@ pub(super) fn adjust_last_window(
                 } => {
                     number_row(ui, "Max face angle°", face_degrees, 0.5, 0.0..=180.0)
                         | number_row(ui, "Max shape angle°", shape_degrees, 0.5, 0.0..=180.0)
+                }
+                Command::Spin {
+                    degrees,
+                    steps,
+                    center,
+                    axis,
+                    ..
+                } => {
+                    let d = number_row(ui, "Angle°", degrees, 1.0, -3600.0..=3600.0);
+                    let s = ui.horizontal(|ui| {
+                        ui.label("Steps");
+                        ui.add(egui::DragValue::new(steps).speed(0.1).range(1..=1024))
+                            .changed()
+                    });
+                    let c = vec3_row(ui, "Center", center, 0.01).changed();
+                    let a = vec3_row(ui, "Axis", axis, 0.01).changed();
+                    d | s.inner | c | a
+                }
+                Command::Screw {
+                    turns,
+                    steps,
+                    pitch,
+                    ..
+                } => {
+                    let t = ui.horizontal(|ui| {
+                        ui.label("Turns");
+                        ui.add(egui::DragValue::new(turns).speed(0.1).range(1..=256))
+                            .changed()
+                    });
+                    let s = ui.horizontal(|ui| {
+                        ui.label("Steps per turn");
+                        ui.add(egui::DragValue::new(steps).speed(0.1).range(3..=1024))
+                            .changed()
+                    });
+                    t.inner | s.inner | number_row(ui, "Pitch", pitch, 0.01, -1e6..=1e6)
                 }
                 Command::MergeByDistance { distance, .. } => {
                     number_row(ui, "Distance", distance, 0.001, 0.0..=1e6)
