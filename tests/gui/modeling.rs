@@ -1056,3 +1056,56 @@ fn spin_a_square_a_full_turn_into_a_torus() {
         assert!((r - 1.0).abs() < 1e-9 || (r - 3.0).abs() < 1e-9, "{p}");
     }
 }
+
+/// K, click near the middles of the front face's top and bottom edges
+/// (they snap there), a stray third click taken back with Backspace,
+/// Enter: the front face is cut in two (8/12/6 → 10/15/7), the back face
+/// is not, the cut edge is selected, one undo step.
+#[test]
+fn knife_across_the_front_face_of_a_cube() {
+    let mut user = cube_in_edit_mode(KeyCode::Digit1);
+    user.tap(KeyCode::Numpad1);
+    let steps = user.undo_steps();
+    user.tap(KeyCode::KeyK);
+    assert!(user.status().contains("Knife"), "{}", user.status());
+    let top = user.screen_of(Vec3::new(0.0, 1.0, 1.0)) + Vec2::new(3.0, 4.0);
+    let bottom = user.screen_of(Vec3::new(0.0, -1.0, 1.0)) + Vec2::new(-2.0, -4.0);
+    user.click(top);
+    user.click(bottom);
+    let stray = user.screen_of(Vec3::new(0.5, 0.0, 1.0));
+    user.click(stray);
+    assert_eq!(
+        user.app
+            .world()
+            .resource::<hedra_edit::KnifeTool>()
+            .points
+            .len(),
+        3
+    );
+    user.tap(KeyCode::Backspace);
+    user.tap(KeyCode::Enter);
+    user.frames(2);
+    assert_eq!(user.mesh_counts(), (10, 15, 7), "{}", user.status());
+    let mesh = user.first_mesh();
+    mesh.validate().unwrap();
+    assert_eq!(user.undo_steps(), steps + 1);
+    let front = mesh
+        .faces()
+        .filter(|&f| mesh.face_normal(f).z > 0.999)
+        .count();
+    let back = mesh
+        .faces()
+        .filter(|&f| mesh.face_normal(f).z < -0.999)
+        .count();
+    assert_eq!((front, back), (2, 1), "only the front face is cut");
+    let selected: Vec<_> = user.edit_mode().selection.edges.iter().copied().collect();
+    assert_eq!(selected.len(), 1, "the cut edge is selected");
+    let [a, b] = mesh.edge_vertices(selected[0]).map(|v| mesh.position(v));
+    let mut ends = [a, b];
+    ends.sort_by(|p, q| p.y.total_cmp(&q.y));
+    assert_eq!(
+        ends,
+        [DVec3::new(0.0, -1.0, 1.0), DVec3::new(0.0, 1.0, 1.0)]
+    );
+    assert!(!user.app.world().resource::<hedra_edit::KnifeTool>().active);
+}

@@ -25,7 +25,8 @@ pub mod typing;
 
 pub use cursor::place_cursor;
 pub use mesh_mode::{
-    BisectDrag, EditMode, ElementKind, ElementSelection, MeshTool, MeshToolKind, start_bisect,
+    BisectDrag, EditMode, ElementKind, ElementSelection, KnifeTool, MeshTool, MeshToolKind,
+    start_bisect,
 };
 pub use modal::{Axis, ModalTransform, TransformKind, TransformTool};
 pub use proportional::{Proportional, ProportionalRing, proportional_keys};
@@ -85,6 +86,7 @@ impl Plugin for EditPlugin {
             .init_resource::<TransformTool>()
             .init_resource::<EditMode>()
             .init_resource::<mesh_mode::BisectDrag>()
+            .init_resource::<mesh_mode::KnifeTool>()
             .init_resource::<Snapping>()
             .init_resource::<SnapTarget>()
             .init_resource::<Proportional>()
@@ -106,6 +108,8 @@ impl Plugin for EditPlugin {
                     subdivision_keys,
                     mesh_mode::edit_shortcuts,
                     mesh_mode::bisect_by_drag,
+                    mesh_mode::start_knife,
+                    mesh_mode::drive_knife,
                     place_cursor,
                     pick_objects,
                     mesh_mode::select_elements,

@@ -87,3 +87,24 @@ pub(crate) fn draw_proportional_ring(
         .circle(facing, radius as f32, Color::srgb(0.9, 0.9, 0.9))
         .resolution(64);
 }
+
+/// The knife's path while it runs: its points ringed and joined, the last
+/// segment to where the pointer would add the next point.
+pub(crate) fn draw_knife_path(
+    knife: Res<hedra_edit::KnifeTool>,
+    camera: Single<&GlobalTransform, With<ViewportCamera>>,
+    mut gizmos: Gizmos<CursorGizmos>,
+) {
+    if !knife.active {
+        return;
+    }
+    let color = Color::srgb(0.2, 0.9, 0.3);
+    let points: Vec<Vec3> = knife.drawn.iter().map(|p| p.as_vec3()).collect();
+    for pair in points.windows(2) {
+        gizmos.line(pair[0], pair[1], color);
+    }
+    for &p in &points {
+        let size = camera.translation().distance(p).max(1e-3) * 0.006;
+        gizmos.circle(Isometry3d::new(p, camera.rotation()), size, color);
+    }
+}

@@ -95,6 +95,7 @@ impl Plugin for ViewportPlugin {
                     draw_cursor,
                     draw_snap_target,
                     draw_proportional_ring,
+                    draw_knife_path,
                 )
                     .chain()
                     .in_set(ViewportSystems),

@@ -13,8 +13,9 @@ pub fn edit_shortcuts(
     camera: Single<(&Camera, &GlobalTransform), With<ViewportCamera>>,
     mut requests: MessageWriter<DocRequest>,
     mut status: ResMut<hedra_scene::StatusMessage>,
+    knife: Res<KnifeTool>,
 ) {
-    if !mode.active() || mode.tool.is_some() || !gate.keyboard_free {
+    if !mode.active() || mode.tool.is_some() || !gate.keyboard_free || knife.active {
         return;
     }
     let Some(mesh) = edited_mesh(&state, &mode) else {

@@ -23,6 +23,7 @@ use std::sync::Arc;
 
 mod bisect;
 mod keymap;
+mod knife;
 mod picking;
 mod preview;
 mod selection;
@@ -30,6 +31,7 @@ mod tools;
 
 pub use bisect::*;
 pub use keymap::*;
+pub use knife::*;
 pub use picking::*;
 pub use preview::*;
 pub use selection::*;

@@ -41,8 +41,9 @@ pub fn select_elements(
     gizmo: Option<Res<TransformGizmoState>>,
     shading: Res<hedra_scene::ViewportShading>,
     bisect: Res<BisectDrag>,
+    knife: Res<KnifeTool>,
 ) {
-    if !mode.active() || mode.tool.is_some() || bisect.armed {
+    if !mode.active() || mode.tool.is_some() || bisect.armed || knife.active {
         *press = None;
         *b_box = None;
         mode.box_select = None;

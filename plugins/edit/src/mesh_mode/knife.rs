@@ -1,0 +1,171 @@
+//! The Knife (Blender's K in edit mode): click points on the mesh's
+//! surface, Enter cuts along the path (`Command::Knife`, one undo step) and
+//! selects the cut edges; Backspace takes the last point back, Esc or a
+//! right click cancels. A click near a vertex (or, failing that, an edge's
+//! midpoint) snaps to it, as Blender's knife does; elsewhere the point is
+//! where the pointer's ray meets the surface.
+
+use super::*;
+
+/// What the status line says while the knife runs.
+const KNIFE_HELP: &str = "Knife: click points on the surface (near a vertex or an edge's \
+     middle snaps to it) · Enter cuts · Backspace removes the last point · Esc cancels";
+
+/// How near the pointer (logical pixels) a vertex or edge midpoint snaps.
+const KNIFE_SNAP_PIXELS: f32 = 12.0;
+
+/// The running knife: its path so far, in the edited mesh's local space.
+#[derive(Resource, Debug, Default, Clone, PartialEq)]
+pub struct KnifeTool {
+    /// K started the tool; edit-mode selection and shortcuts ignore input.
+    pub active: bool,
+    /// The clicked points, local space.
+    pub points: Vec<DVec3>,
+    /// The path in world space with the point the pointer would add last,
+    /// for drawing.
+    pub drawn: Vec<DVec3>,
+}
+
+/// K in edit mode (no tool running) starts the knife.
+pub fn start_knife(
+    keys: Res<ButtonInput<KeyCode>>,
+    gate: Res<InputGate>,
+    mode: Res<EditMode>,
+    mut knife: ResMut<KnifeTool>,
+    mut status: ResMut<StatusMessage>,
+) {
+    if knife.active
+        || !mode.active()
+        || mode.tool.is_some()
+        || !gate.keyboard_free
+        || ctrl(&keys)
+        || alt(&keys)
+        || shift(&keys)
+        || !keys.just_pressed(KeyCode::KeyK)
+    {
+        return;
+    }
+    *knife = KnifeTool {
+        active: true,
+        ..Default::default()
+    };
+    status.info(KNIFE_HELP);
+}
+
+/// The surface point a click at `cursor` adds: a vertex or edge midpoint
+/// within [`KNIFE_SNAP_PIXELS`] of the pointer, else the ray's hit on the
+/// mesh (local space); `None` off the mesh.
+fn knife_point(
+    mesh: &HalfEdgeMesh,
+    world: DMat4,
+    ray: Option<(DVec3, DVec3)>,
+    cursor: Vec2,
+    to_screen: &dyn Fn(DVec3) -> Option<Vec2>,
+) -> Option<DVec3> {
+    let (origin, dir) = ray?;
+    let to_local = world.inverse();
+    let (o, d) = (
+        to_local.transform_point3(origin),
+        to_local.transform_vector3(dir),
+    );
+    // Snap only to what is in sight from the eye (tested for the few
+    // points near the pointer only).
+    let near = |points: &mut dyn Iterator<Item = DVec3>| {
+        let mut close: Vec<(f32, DVec3)> = points
+            .filter_map(|p| {
+                let d = to_screen(world.transform_point3(p))?.distance(cursor);
+                (d <= KNIFE_SNAP_PIXELS).then_some((d, p))
+            })
+            .collect();
+        close.sort_by(|a, b| a.0.total_cmp(&b.0));
+        close
+            .into_iter()
+            .map(|(_, p)| p)
+            .find(|&p| hedra_geom::query::is_visible_from(mesh, o, p))
+    };
+    let hit = hedra_geom::query::ray_cast(mesh, o, d).map(|(_, t)| o + d * t);
+    near(&mut mesh.vertices().map(|v| mesh.position(v)))
+        .or_else(|| near(&mut mesh.edges().map(|e| mesh.edge_midpoint(e))))
+        .or(hit)
+}
+
+/// Follows the knife: adds a point per click, draws the path, cuts on
+/// Enter and selects the cut edges; cancels on Esc, a right click or when
+/// edit mode ends.
+pub fn drive_knife(
+    buttons: Res<ButtonInput<MouseButton>>,
+    keys: Res<ButtonInput<KeyCode>>,
+    gate: Res<InputGate>,
+    mut knife: ResMut<KnifeTool>,
+    mut mode: ResMut<EditMode>,
+    state: Res<DocState>,
+    window: Single<&Window, With<PrimaryWindow>>,
+    camera: Single<(&Camera, &GlobalTransform), With<ViewportCamera>>,
+    mut requests: MessageWriter<DocRequest>,
+    mut status: ResMut<StatusMessage>,
+) {
+    if !knife.active {
+        return;
+    }
+    let (Some(node), Some(mesh)) = (mode.node, edited_mesh(&state, &mode)) else {
+        *knife = KnifeTool::default();
+        return;
+    };
+    if keys.just_pressed(KeyCode::Escape) || buttons.just_pressed(MouseButton::Right) {
+        *knife = KnifeTool::default();
+        status.info("Knife cancelled");
+        return;
+    }
+    let (cam, cam_t) = *camera;
+    let world = state.session.doc.world_matrix(node);
+    let to_screen = |p: DVec3| cam.world_to_viewport(cam_t, p.as_vec3()).ok();
+    let under_pointer = window.cursor_position().and_then(|c| {
+        knife_point(
+            &mesh,
+            world,
+            crate::cursor_ray(&window, cam, cam_t),
+            c,
+            &to_screen,
+        )
+    });
+    if keys.just_pressed(KeyCode::Backspace) {
+        knife.points.pop();
+    }
+    if gate.pointer_free && buttons.just_pressed(MouseButton::Left) {
+        match under_pointer {
+            Some(p) => knife.points.push(p),
+            None => status.error("Knife: click on the mesh's surface"),
+        }
+    }
+    knife.drawn = knife
+        .points
+        .iter()
+        .chain(under_pointer.iter())
+        .map(|&p| world.transform_point3(p))
+        .collect();
+    if !keys.just_pressed(KeyCode::Enter) && !keys.just_pressed(KeyCode::NumpadEnter) {
+        return;
+    }
+    let points = std::mem::take(&mut knife.points);
+    *knife = KnifeTool::default();
+    let view = world
+        .inverse()
+        .transform_vector3((cam_t.rotation() * Vec3::NEG_Z).as_dvec3());
+    let cmd = Command::Knife {
+        node: NodeRef::from(node),
+        points,
+        view,
+    };
+    match state.session.doc.decide_with_result(&cmd, 0) {
+        Ok(decision) => {
+            // Blender leaves the cut edges selected.
+            mode.kind = ElementKind::Edge;
+            mode.selection = ElementSelection {
+                edges: decision.created_edges.iter().copied().collect(),
+                ..Default::default()
+            };
+            requests.write(DocRequest::Execute(cmd));
+        }
+        Err(e) => status.error(format!("Knife: {e}")),
+    }
+}
