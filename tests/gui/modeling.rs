@@ -1109,3 +1109,49 @@ fn knife_across_the_front_face_of_a_cube() {
     );
     assert!(!user.app.world().resource::<hedra_edit::KnifeTool>().active);
 }
+
+/// Two edges in the middle of a grid (top view), V, drag, click: the grid
+/// is slit along them (the middle vertex doubled, the two edges doubled,
+/// their ends shared), one copy of the middle vertex follows the pointer
+/// and the other stays; one valid mesh.
+#[test]
+fn rip_two_edges_of_a_grid_and_pull_one_side() {
+    let mut user = User::new();
+    user.add("Grid");
+    user.tap(KeyCode::Tab);
+    user.tap(KeyCode::Digit2);
+    user.tap(KeyCode::Numpad7);
+    let (v0, e0, f0) = user.mesh_counts();
+    // A box around the two edges (a second click would land on the
+    // gizmo the first selection shows).
+    let corner = user.screen_of(Vec3::new(-0.25, 0.0, -0.05));
+    let opposite = user.screen_of(Vec3::new(0.25, 0.0, 0.05));
+    user.drag(corner, opposite, 6);
+    assert_eq!(user.edit_mode().selection.edges.len(), 2);
+    let beside = user.screen_of(Vec3::new(0.0, 0.0, 0.1));
+    user.move_to(beside);
+    user.tap(KeyCode::KeyV);
+    user.frames(2);
+    assert_eq!(
+        user.mesh_counts(),
+        (v0 + 1, e0 + 2, f0),
+        "{}",
+        user.status()
+    );
+    let pulled = user.screen_of(Vec3::new(0.0, 0.0, 0.3));
+    user.glide_to(pulled, 5);
+    user.click(pulled);
+    let mesh = user.first_mesh();
+    mesh.validate().unwrap();
+    assert_eq!(user.mesh_counts(), (v0 + 1, e0 + 2, f0));
+    let middle: Vec<DVec3> = mesh
+        .vertices()
+        .map(|v| mesh.position(v))
+        .filter(|p| p.x.abs() < 1e-9 && p.z.abs() < 0.5 && p.y == 0.0)
+        .collect();
+    assert!(
+        middle.iter().any(|p| p.z == 0.0) && middle.iter().any(|p| p.z > 0.1),
+        "one copy stays, the other was pulled toward +z: {middle:?}"
+    );
+    assert_eq!(mesh.boundary_loops().len(), 2, "the outline and the slit");
+}

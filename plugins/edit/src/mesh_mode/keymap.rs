@@ -174,6 +174,69 @@ pub fn edit_shortcuts(
         }
         return;
     }
+    // V (Blender's Rip): split the mesh along the selected edges (in
+    // vertex mode, the edges between selected vertices) and grab the side
+    // nearest the pointer.
+    if keys.just_pressed(KeyCode::KeyV) && !c && !a && !s {
+        let edges: Vec<EdgeId> = if mode.kind == ElementKind::Vertex {
+            mesh.edges()
+                .filter(|&e| {
+                    mesh.edge_vertices(e)
+                        .iter()
+                        .all(|v| mode.selection.vertices.contains(v))
+                })
+                .collect()
+        } else {
+            mode.selection.edges.iter().copied().collect()
+        };
+        if edges.is_empty() {
+            status.error("Rip: select the edges to rip along (2 for edge mode)");
+            return;
+        }
+        // Ripped on a copy first: the command makes the same mesh, so the
+        // side found here is the one to grab.
+        let mut ripped = (*mesh).clone();
+        match hedra_geom::modeling::rip_edges(&mut ripped, &edges) {
+            Ok(rip) => {
+                let (cam, cam_t) = *camera;
+                let side_centre = |pick: &dyn Fn(&(EdgeId, EdgeId)) -> EdgeId| {
+                    let faces: Vec<DVec3> = rip
+                        .edges
+                        .iter()
+                        .filter_map(|pair| {
+                            let [f, g] = ripped.edge_faces(pick(pair));
+                            f.or(g).map(|f| ripped.face_centroid(f))
+                        })
+                        .collect();
+                    let mean = faces.iter().sum::<DVec3>() / faces.len().max(1) as f64;
+                    cam.world_to_viewport(cam_t, world.transform_point3(mean).as_vec3())
+                        .map_or(f32::MAX, |p| p.distance(cursor))
+                };
+                let grab_a = side_centre(&|p| p.0) <= side_centre(&|p| p.1);
+                let (side, other) = if grab_a {
+                    (&rip.side_a, &rip.side_b)
+                } else {
+                    (&rip.side_b, &rip.side_a)
+                };
+                requests.write(DocRequest::Execute(Command::Rip {
+                    node: node.clone(),
+                    edges: EdgeSet::Ids(edges.iter().map(|e| e.0).collect()),
+                }));
+                mode.kind = ElementKind::Vertex;
+                mode.selection = ElementSelection {
+                    vertices: side
+                        .iter()
+                        .filter(|v| !other.contains(v))
+                        .copied()
+                        .collect(),
+                    ..Default::default()
+                };
+                mode.tool = Some(start(MeshToolKind::Move));
+            }
+            Err(e) => status.error(format!("Rip: {e}")),
+        }
+        return;
+    }
     if c && keys.just_pressed(KeyCode::KeyX) {
         match delete_or_dissolve(node.clone(), mode.kind, &mode.selection, true) {
             Some(cmd) => {
