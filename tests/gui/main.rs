@@ -421,3 +421,33 @@ fn shift_s_snaps_the_selection_to_the_cursor_and_back() {
     user.click_on("Cursor to World Origin");
     assert_eq!(cursor(&user), hedra_geom::DVec3::ZERO);
 }
+
+/// F1 shows the keys of the current mode, from the keymap the shortcuts
+/// use: object mode lists Shift+D, edit mode the knife on K; Esc closes it;
+/// the Mesh menu's items carry the same table's keys.
+#[test]
+fn f1_lists_the_keys_of_the_current_mode() {
+    let mut user = User::new();
+    user.add("Cube");
+    user.tap(KeyCode::F1);
+    assert!(user.shows("Keys: Object mode"));
+    assert!(user.shows("Shift+D") && user.shows("duplicate and move"));
+    assert!(!user.shows("K"), "no edit-mode keys in object mode");
+    user.tap(KeyCode::Escape);
+    assert!(!user.shows("Keys: Object mode"), "Esc closes it");
+    user.tap(KeyCode::Tab);
+    user.tap(KeyCode::F1);
+    assert!(user.shows("Keys: Edit mode"));
+    assert!(user.shows("K") && user.shows("knife: click points, Enter cuts"));
+    assert!(user.shows("X, Delete"), "an action's chords on one row");
+    user.tap(KeyCode::F1);
+    assert!(!user.shows("Keys: Edit mode"), "F1 again closes it");
+    let bar = user
+        .find_all("Mesh")
+        .into_iter()
+        .min_by(|a, b| a.min.y.total_cmp(&b.min.y))
+        .expect("the Mesh menu");
+    user.click(Vec2::new(bar.center().x, bar.center().y));
+    assert!(user.shows("Triangulate Faces\tCtrl+T"));
+    assert!(user.shows("Dissolve Edges\tCtrl+X"));
+}

@@ -15,6 +15,7 @@ use hedra_doc::{Command, Document, NodeContent, NodeId, NodeRef, NodeTransform};
 use hedra_scene::modifiers::{alt, ctrl, shift};
 use hedra_scene::{DocChanged, DocRequest, DocState, InputGate, SceneSystems, ViewportCamera};
 
+pub mod bindings;
 mod cursor;
 pub mod mesh_mode;
 pub mod modal;
@@ -90,6 +91,7 @@ impl Plugin for EditPlugin {
             .init_resource::<Snapping>()
             .init_resource::<SnapTarget>()
             .init_resource::<Proportional>()
+            .init_resource::<bindings::KeyHelp>()
             .init_resource::<ProportionalRing>()
             .init_resource::<ShapeEdit>()
             .configure_sets(Update, EditSystems.in_set(SceneSystems::Tools))
@@ -101,6 +103,7 @@ impl Plugin for EditPlugin {
                     mesh_mode::mode_keys,
                     snapping_keys,
                     proportional_keys,
+                    bindings::key_help_keys,
                     undo_keys,
                     modal::drive_transform_tool,
                     mesh_mode::drive_mesh_tool,
@@ -361,20 +364,16 @@ pub fn object_shortcuts(
         return;
     }
     let doc = &state.session.doc;
-    let (ctrl, shift, alt) = (ctrl(&keys), shift(&keys), alt(&keys));
-    let pressed = |k: KeyCode| keys.just_pressed(k);
-    if ctrl {
-        return; // other Ctrl shortcuts belong to the menus
+    let pressed = |action| bindings::pressed(&keys, bindings::KeyMode::Object, action);
+    use bindings::Action;
+    if pressed(Action::SelectNone) {
+        selection.nodes.clear();
+    } else if pressed(Action::SelectAll) {
+        selection.set(doc.nodes().filter(|n| visible(doc, n.id)).map(|n| n.id));
     }
-    if pressed(KeyCode::KeyA) && !shift {
-        if alt {
-            selection.nodes.clear();
-        } else {
-            selection.set(doc.nodes().filter(|n| visible(doc, n.id)).map(|n| n.id));
-        }
-    }
-    if pressed(KeyCode::KeyH) {
-        if alt {
+    let unhide = pressed(Action::Unhide);
+    if unhide || pressed(Action::Hide) {
+        if unhide {
             let hidden: Vec<NodeRef> = doc
                 .nodes()
                 .filter(|n| !n.visible)
@@ -393,24 +392,22 @@ pub fn object_shortcuts(
             }));
         }
     }
-    if (pressed(KeyCode::KeyX) || pressed(KeyCode::Delete)) && !selection.nodes.is_empty() {
+    if pressed(Action::Delete) && !selection.nodes.is_empty() {
         requests.write(DocRequest::Execute(Command::Delete {
             nodes: selection.refs(),
         }));
     }
-    if shift && pressed(KeyCode::KeyD) && !selection.nodes.is_empty() {
+    if pressed(Action::Duplicate) && !selection.nodes.is_empty() {
         requests.write(DocRequest::Execute(Command::Duplicate {
             nodes: selection.refs(),
         }));
         tool.grab_after_duplicate = true;
     }
-    let kind = if shift || alt {
-        None
-    } else if pressed(KeyCode::KeyG) {
+    let kind = if pressed(Action::Move) {
         Some(TransformKind::Grab)
-    } else if pressed(KeyCode::KeyR) {
+    } else if pressed(Action::Rotate) {
         Some(TransformKind::Rotate)
-    } else if pressed(KeyCode::KeyS) {
+    } else if pressed(Action::Scale) {
         Some(TransformKind::Scale)
     } else {
         None

@@ -8,7 +8,6 @@
 use bevy::prelude::*;
 use glam::DVec3;
 use hedra_geom::proportional::Falloff;
-use hedra_scene::modifiers::{alt, ctrl, shift};
 
 /// Whether and how transforms move the selection's neighbours.
 #[derive(Resource, Debug, Clone, Copy, PartialEq)]
@@ -87,13 +86,16 @@ pub fn proportional_keys(
 ) {
     let editing =
         (mode.active() && mode.tool.is_none()) || (shapes.active() && shapes.tool.is_none());
-    if !editing || !gate.keyboard_free || ctrl(&keys) || alt(&keys) {
+    use crate::bindings::{Action, KeyMode, pressed};
+    // Control-point mode uses edit mode's keys.
+    let cycle = pressed(&keys, KeyMode::Edit, Action::ProportionalFalloff);
+    if !editing || !gate.keyboard_free {
         return;
     }
-    if !keys.just_pressed(KeyCode::KeyO) {
+    if !cycle && !pressed(&keys, KeyMode::Edit, Action::Proportional) {
         return;
     }
-    if shift(&keys) {
+    if cycle {
         let at = Falloff::ALL
             .iter()
             .position(|&f| f == proportional.falloff)

@@ -537,40 +537,47 @@ impl Projector<'_, '_, '_, '_> {
     ) -> Mesh {
         let full = content.content_with(cage, creases);
         let shading = content.shading;
-        let evaluated = full.smooth_cage().and_then(|stacked| match stacked {
-            Some(stacked) => Ok(Ok((
-                Arc::new(stacked.mesh.into_owned()),
-                stacked.creases.into_owned(),
-            ))),
-            None => full
-                .evaluated(modifier.map_or(0, |m| m.viewport_level))
-                .map(|m| Err(render_mesh(&m, shading))),
-        });
-        match evaluated {
-            Ok(Ok((stacked, stacked_creases))) => match modifier {
-                None => render_mesh(&stacked, shading),
-                Some(m) => self
-                    .smooth
-                    .render_mesh(&SmoothSource {
-                        node,
-                        cage: &stacked,
-                        creases: &stacked_creases,
-                        modifier: m,
-                        shading,
-                    })
-                    .unwrap_or_else(|message| {
-                        self.status
-                            .error(format!("'{name}': subdivision not shown: {message}"));
-                        render_mesh(&stacked, shading)
-                    }),
+        let stacked = match full.smooth_cage() {
+            Ok(Some(stacked)) => stacked,
+            // Subdivision runs before a stack modifier: evaluate it all.
+            Ok(None) => match full.evaluated(modifier.map_or(0, |m| m.viewport_level)) {
+                Ok(mesh) => return render_mesh(&mesh, shading),
+                Err(e) => return self.cage_instead(name, &e, cage, shading),
             },
-            Ok(Err(built)) => built,
-            Err(e) => {
+            Err(e) => return self.cage_instead(name, &e, cage, shading),
+        };
+        let stacked_creases = stacked.creases.into_owned();
+        let stacked = Arc::new(stacked.mesh.into_owned());
+        let Some(m) = modifier else {
+            return render_mesh(&stacked, shading);
+        };
+        self.smooth
+            .render_mesh(&SmoothSource {
+                node,
+                cage: &stacked,
+                creases: &stacked_creases,
+                modifier: m,
+                shading,
+            })
+            .unwrap_or_else(|message| {
                 self.status
-                    .error(format!("'{name}': modifiers not shown: {e}"));
-                render_mesh(cage, shading)
-            }
-        }
+                    .error(format!("'{name}': subdivision not shown: {message}"));
+                render_mesh(&stacked, shading)
+            })
+    }
+
+    /// The cage's render mesh, with a message saying why the modifiers
+    /// are not shown.
+    fn cage_instead(
+        &mut self,
+        name: &str,
+        error: &hedra_doc::EvaluationError,
+        cage: &HalfEdgeMesh,
+        shading: Shading,
+    ) -> Mesh {
+        self.status
+            .error(format!("'{name}': modifiers not shown: {error}"));
+        render_mesh(cage, shading)
     }
 }
 

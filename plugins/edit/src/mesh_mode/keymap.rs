@@ -1,6 +1,7 @@
 //! The edit-mode keys that start a tool or run a command at once (E, I, Ctrl+R, Ctrl+B, J, M, X, F, …).
 
 use super::*;
+use crate::bindings::{Action, KeyMode};
 
 /// Starts tools and runs instant ones (J, X).
 #[allow(clippy::too_many_arguments)]
@@ -23,7 +24,7 @@ pub fn edit_shortcuts(
     };
     let node = NodeRef::from(mode.node.expect("active"));
     let world = state.session.doc.world_matrix(mode.node.expect("active"));
-    let (c, s, a) = (ctrl(&keys), shift(&keys), alt(&keys));
+    let (c, a) = (ctrl(&keys), alt(&keys));
     let Some(cursor) = window.cursor_position() else {
         return;
     };
@@ -54,7 +55,7 @@ pub fn edit_shortcuts(
         proportional: None,
         readout: String::new(),
     };
-    if c && keys.just_pressed(KeyCode::KeyR) {
+    if crate::bindings::pressed(&keys, KeyMode::Edit, Action::LoopCut) {
         let (cam, cam_t) = *camera;
         let edge = match element_under_cursor(ElementKind::Edge, &mesh, world, &window, cam, cam_t)
         {
@@ -77,37 +78,33 @@ pub fn edit_shortcuts(
     let faces_selected = !mode.selection.faces.is_empty();
     let edges_selected = !mode.selection.edges.is_empty();
     let vertices_selected = !mode.selection.vertices.is_empty();
-    for (held, key, selected, tool, refusal) in [
+    for (action, selected, tool, refusal) in [
         (
-            c && s,
-            KeyCode::KeyB,
+            Action::BevelVertices,
             vertices_selected,
             MeshToolKind::BevelVertices,
             "Vertex bevel: select vertices first (press 1 for vertex mode)",
         ),
         (
-            a,
-            KeyCode::KeyI,
+            Action::InsetIndividual,
             faces_selected,
             MeshToolKind::InsetIndividual,
             "Inset: select faces first (press 3 for face mode)",
         ),
         (
-            a,
-            KeyCode::KeyE,
+            Action::ExtrudeIndividual,
             faces_selected,
             MeshToolKind::ExtrudeIndividual,
             "Extrude: select faces first (press 3 for face mode)",
         ),
         (
-            c && !s,
-            KeyCode::KeyB,
+            Action::Bevel,
             edges_selected,
             MeshToolKind::Bevel,
             "Bevel: select edges first (press 2 for edge mode)",
         ),
     ] {
-        if held && keys.just_pressed(key) {
+        if crate::bindings::pressed(&keys, KeyMode::Edit, action) {
             if selected {
                 mode.tool = Some(start(tool));
             } else {
@@ -116,7 +113,7 @@ pub fn edit_shortcuts(
             return;
         }
     }
-    if s && keys.just_pressed(KeyCode::KeyE) {
+    if crate::bindings::pressed(&keys, KeyMode::Edit, Action::Crease) {
         let creases = match state
             .session
             .doc
@@ -149,7 +146,7 @@ pub fn edit_shortcuts(
         return;
     }
     // Ctrl+T (Blender): triangulate the selected faces.
-    if c && keys.just_pressed(KeyCode::KeyT) {
+    if crate::bindings::pressed(&keys, KeyMode::Edit, Action::Triangulate) {
         if mode.selection.faces.is_empty() {
             status.error("Triangulate: select faces (press 3 for face mode)");
         } else {
@@ -161,7 +158,7 @@ pub fn edit_shortcuts(
         return;
     }
     // Alt+J (Blender): join the selected triangles into quads.
-    if a && keys.just_pressed(KeyCode::KeyJ) {
+    if crate::bindings::pressed(&keys, KeyMode::Edit, Action::TrisToQuads) {
         if mode.selection.faces.is_empty() {
             status.error("Tris to Quads: select faces (press 3 for face mode)");
         } else {
@@ -177,7 +174,7 @@ pub fn edit_shortcuts(
     // V (Blender's Rip): split the mesh along the selected edges (in
     // vertex mode, the edges between selected vertices) and grab the side
     // nearest the pointer.
-    if keys.just_pressed(KeyCode::KeyV) && !c && !a && !s {
+    if crate::bindings::pressed(&keys, KeyMode::Edit, Action::Rip) {
         let edges: Vec<EdgeId> = if mode.kind == ElementKind::Vertex {
             mesh.edges()
                 .filter(|&e| {
@@ -237,7 +234,7 @@ pub fn edit_shortcuts(
         }
         return;
     }
-    if c && keys.just_pressed(KeyCode::KeyX) {
+    if crate::bindings::pressed(&keys, KeyMode::Edit, Action::Dissolve) {
         match delete_or_dissolve(node.clone(), mode.kind, &mode.selection, true) {
             Some(cmd) => {
                 requests.write(DocRequest::Execute(cmd));
@@ -246,8 +243,9 @@ pub fn edit_shortcuts(
         }
         return;
     }
-    if keys.just_pressed(KeyCode::KeyN) && (a || s) {
-        let cmd = if a {
+    let flip = crate::bindings::pressed(&keys, KeyMode::Edit, Action::FlipNormals);
+    if flip || crate::bindings::pressed(&keys, KeyMode::Edit, Action::RecalculateNormals) {
+        let cmd = if flip {
             Command::FlipNormals { node: node.clone() }
         } else {
             Command::RecalculateNormals { node: node.clone() }
@@ -258,7 +256,7 @@ pub fn edit_shortcuts(
     if c || a {
         return;
     }
-    if keys.just_pressed(KeyCode::KeyF) {
+    if crate::bindings::pressed(&keys, KeyMode::Edit, Action::Fill) {
         let edges: Vec<u32> = mode
             .selection
             .edges
@@ -287,12 +285,12 @@ pub fn edit_shortcuts(
         }
         return;
     }
-    for (key, kind) in [
-        (KeyCode::KeyG, MeshToolKind::Move),
-        (KeyCode::KeyR, MeshToolKind::Rotate),
-        (KeyCode::KeyS, MeshToolKind::Scale),
+    for (action, kind) in [
+        (Action::Move, MeshToolKind::Move),
+        (Action::Rotate, MeshToolKind::Rotate),
+        (Action::Scale, MeshToolKind::Scale),
     ] {
-        if keys.just_pressed(key) {
+        if crate::bindings::pressed(&keys, KeyMode::Edit, action) {
             if verts.is_empty() {
                 status.error("Nothing selected to transform");
             } else {
@@ -300,33 +298,35 @@ pub fn edit_shortcuts(
             }
         }
     }
-    if keys.just_pressed(KeyCode::KeyE) && !s && mode.kind == ElementKind::Edge {
+    let extrude = crate::bindings::pressed(&keys, KeyMode::Edit, Action::Extrude);
+    if extrude && mode.kind == ElementKind::Edge {
         if mode.selection.edges.is_empty() {
             status.error("Extrude: select boundary edges first");
         } else {
             mode.tool = Some(start(MeshToolKind::ExtrudeEdges));
         }
-    } else if keys.just_pressed(KeyCode::KeyE) && !s {
+    } else if extrude {
         if mode.selection.faces.is_empty() {
             status.error("Extrude: select faces first (press 3 for face mode)");
         } else {
             mode.tool = Some(start(MeshToolKind::Extrude));
         }
     }
-    if keys.just_pressed(KeyCode::KeyI) {
+    if crate::bindings::pressed(&keys, KeyMode::Edit, Action::Inset) {
         if mode.selection.faces.is_empty() {
             status.error("Inset: select faces first (press 3 for face mode)");
         } else {
             mode.tool = Some(start(MeshToolKind::Inset));
         }
     }
-    if keys.just_pressed(KeyCode::KeyM) && mode.kind == ElementKind::Vertex {
+    let merge = crate::bindings::pressed(&keys, KeyMode::Edit, Action::MergeOrCollapse);
+    if merge && mode.kind == ElementKind::Vertex {
         if mode.selection.vertices.len() < 2 {
             status.error("Merge: select two or more vertices");
         } else {
             mode.merge_menu_at = window.cursor_position();
         }
-    } else if keys.just_pressed(KeyCode::KeyM) {
+    } else if merge {
         if mode.selection.edges.is_empty() {
             status.error("Collapse: select edges (press 2 for edge mode)");
         } else {
@@ -336,7 +336,7 @@ pub fn edit_shortcuts(
             }));
         }
     }
-    if keys.just_pressed(KeyCode::KeyJ) {
+    if crate::bindings::pressed(&keys, KeyMode::Edit, Action::Connect) {
         let vs: Vec<u32> = mode.selection.vertices.iter().map(|v| v.0).collect();
         if vs.len() == 2 {
             requests.write(DocRequest::Execute(Command::ConnectVertices {
@@ -346,7 +346,7 @@ pub fn edit_shortcuts(
         } else {
             status.error("Connect: select exactly two vertices of one face");
         }
-    } else if keys.just_pressed(KeyCode::KeyX) || keys.just_pressed(KeyCode::Delete) {
+    } else if crate::bindings::pressed(&keys, KeyMode::Edit, Action::Delete) {
         match delete_or_dissolve(node, mode.kind, &mode.selection, false) {
             Some(c) => {
                 requests.write(DocRequest::Execute(c));

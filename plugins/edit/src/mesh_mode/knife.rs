@@ -38,10 +38,11 @@ pub fn start_knife(
         || !mode.active()
         || mode.tool.is_some()
         || !gate.keyboard_free
-        || ctrl(&keys)
-        || alt(&keys)
-        || shift(&keys)
-        || !keys.just_pressed(KeyCode::KeyK)
+        || !crate::bindings::pressed(
+            &keys,
+            crate::bindings::KeyMode::Edit,
+            crate::bindings::Action::Knife,
+        )
     {
         return;
     }

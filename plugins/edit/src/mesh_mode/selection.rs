@@ -222,13 +222,14 @@ pub(super) fn keyboard_selection(
     cam_t: &GlobalTransform,
 ) {
     let sel = &mut mode.selection;
-    let (c, a, s) = (ctrl(keys), alt(keys), shift(keys));
+    use crate::bindings::{Action, KeyMode, pressed};
     let set_from_vertices = |sel: &mut ElementSelection, verts: &BTreeSet<VertexId>| {
         *sel = ElementSelection::from_vertices(kind, mesh, verts);
     };
-    if !c && !s && keys.just_pressed(KeyCode::KeyA) {
+    let all = pressed(keys, KeyMode::Edit, Action::SelectAll);
+    if all || pressed(keys, KeyMode::Edit, Action::SelectNone) {
         *sel = ElementSelection::default();
-        if !a {
+        if all {
             match kind {
                 ElementKind::Vertex => sel.vertices = mesh.vertices().collect(),
                 ElementKind::Edge => sel.edges = mesh.edges().collect(),
@@ -236,7 +237,7 @@ pub(super) fn keyboard_selection(
             }
         }
     }
-    if c && keys.just_pressed(KeyCode::KeyI) {
+    if pressed(keys, KeyMode::Edit, Action::InvertSelection) {
         match kind {
             ElementKind::Vertex => {
                 sel.vertices = mesh
@@ -252,9 +253,8 @@ pub(super) fn keyboard_selection(
             }
         }
     }
-    let grow = c && (keys.just_pressed(KeyCode::NumpadAdd) || keys.just_pressed(KeyCode::Equal));
-    let shrink =
-        c && (keys.just_pressed(KeyCode::NumpadSubtract) || keys.just_pressed(KeyCode::Minus));
+    let grow = pressed(keys, KeyMode::Edit, Action::GrowSelection);
+    let shrink = pressed(keys, KeyMode::Edit, Action::ShrinkSelection);
     if grow || shrink {
         let verts = sel.all_vertices(mesh);
         let next: BTreeSet<VertexId> = if grow {
@@ -271,8 +271,9 @@ pub(super) fn keyboard_selection(
         };
         set_from_vertices(sel, &next);
     }
-    if keys.just_pressed(KeyCode::KeyL) {
-        let seeds: Vec<VertexId> = if c {
+    let linked_to_selection = pressed(keys, KeyMode::Edit, Action::SelectLinked);
+    if linked_to_selection || pressed(keys, KeyMode::Edit, Action::SelectLinkedUnderPointer) {
+        let seeds: Vec<VertexId> = if linked_to_selection {
             sel.all_vertices(mesh).into_iter().collect()
         } else {
             match element_under_cursor(kind, mesh, world, window, cam, cam_t) {
@@ -285,7 +286,7 @@ pub(super) fn keyboard_selection(
         let mut linked: BTreeSet<VertexId> = hedra_geom::topology::linked_vertices(mesh, seeds)
             .into_iter()
             .collect();
-        if !c {
+        if !linked_to_selection {
             linked.extend(sel.all_vertices(mesh));
         }
         set_from_vertices(sel, &linked);

@@ -1,6 +1,12 @@
 //! Edit mode's Mesh menu: every tool on the current selection.
 
 use super::*;
+use hedra_edit::bindings::{Action, KeyMode, chord_label};
+
+/// A menu item's text with its edit-mode keys from the keymap after a tab.
+fn keyed(label: &str, action: Action) -> String {
+    format!("{label}\t{}", chord_label(KeyMode::Edit, action))
+}
 
 /// Edit mode's Mesh menu: every tool on the current selection. Amounts start
 /// at sensible defaults and are changed in the Adjust Last window, as in
@@ -32,52 +38,71 @@ pub(super) fn mesh_menu(
         }
     };
     ui.label(egui::RichText::new("Faces").weak());
-    item(ui, "Extrude Region\tE", has_f, &|| Command::ExtrudeRegion {
-        node: n.clone(),
-        faces: faces(),
-        distance: 0.5,
-    });
-    item(ui, "Extrude Individual\tAlt+E", has_f, &|| {
-        Command::ExtrudeFaces {
+    item(
+        ui,
+        &keyed("Extrude Region", Action::Extrude),
+        has_f,
+        &|| Command::ExtrudeRegion {
             node: n.clone(),
             faces: faces(),
             distance: 0.5,
-        }
-    });
-    item(ui, "Inset Region\tI", has_f, &|| Command::InsetRegion {
-        node: n.clone(),
-        faces: faces(),
-        thickness: 0.1,
-        depth: 0.0,
-    });
-    item(ui, "Inset Individual\tAlt+I", has_f, &|| {
-        Command::InsetFaces {
+        },
+    );
+    item(
+        ui,
+        &keyed("Extrude Individual", Action::ExtrudeIndividual),
+        has_f,
+        &|| Command::ExtrudeFaces {
+            node: n.clone(),
+            faces: faces(),
+            distance: 0.5,
+        },
+    );
+    item(ui, &keyed("Inset Region", Action::Inset), has_f, &|| {
+        Command::InsetRegion {
             node: n.clone(),
             faces: faces(),
             thickness: 0.1,
             depth: 0.0,
         }
     });
+    item(
+        ui,
+        &keyed("Inset Individual", Action::InsetIndividual),
+        has_f,
+        &|| Command::InsetFaces {
+            node: n.clone(),
+            faces: faces(),
+            thickness: 0.1,
+            depth: 0.0,
+        },
+    );
     item(ui, "Delete Only Faces (keep edges)", has_f, &|| {
         Command::MakeHoles {
             node: n.clone(),
             faces: faces(),
         }
     });
-    item(ui, "Triangulate Faces\tCtrl+T", has_f, &|| {
-        Command::Triangulate {
+    item(
+        ui,
+        &keyed("Triangulate Faces", Action::Triangulate),
+        has_f,
+        &|| Command::Triangulate {
             node: n.clone(),
             faces: faces(),
-        }
-    });
-    item(ui, "Tris to Quads\tAlt+J", has_f, &|| {
-        Command::TrisToQuads {
+        },
+    );
+    item(
+        ui,
+        &keyed("Tris to Quads", Action::TrisToQuads),
+        has_f,
+        &|| Command::TrisToQuads {
             node: n.clone(),
             faces: faces(),
             face_degrees: 40.0,
             shape_degrees: 40.0,
-        }
-    });
+        },
+    );
     // Spin and Screw sweep the selected faces, or else the selected
     // boundary edges, about the view axis through the 3D cursor.
     let profile = || {
@@ -126,13 +151,16 @@ pub(super) fn mesh_menu(
     }
     ui.separator();
     ui.label(egui::RichText::new("Edges").weak());
-    item(ui, "Loop Cut\tCtrl+R", sel.edges.len() == 1, &|| {
-        Command::LoopCut {
+    item(
+        ui,
+        &keyed("Loop Cut", Action::LoopCut),
+        sel.edges.len() == 1,
+        &|| Command::LoopCut {
             node: n.clone(),
             edge: edges(),
             cuts: 1,
-        }
-    });
+        },
+    );
     item(ui, "Subdivide", has_e, &|| Command::SubdivideEdges {
         node: n.clone(),
         edges: edges(),
@@ -142,42 +170,63 @@ pub(super) fn mesh_menu(
         node: n.clone(),
         edges: edges(),
     });
-    item(ui, "Fill\tF", has_e, &|| Command::FillHoles {
-        node: n.clone(),
-        edges: edges(),
-    });
-    item(ui, "Collapse\tM", has_e, &|| Command::CollapseEdges {
-        node: n.clone(),
-        edges: edges(),
-    });
-    item(ui, "Dissolve Edges\tX", has_e, &|| Command::DissolveEdges {
-        node: n.clone(),
-        edges: edges(),
-    });
-    ui.separator();
-    ui.label(egui::RichText::new("Vertices").weak());
-    item(ui, "Connect\tJ", sel.vertices.len() == 2, &|| {
-        Command::ConnectVertices {
+    item(ui, &keyed("Fill", Action::Fill), has_e, &|| {
+        Command::FillHoles {
             node: n.clone(),
-            vertices: vertices(),
+            edges: edges(),
         }
     });
-    ui.menu_button("Merge\tM", |ui| {
+    item(
+        ui,
+        &keyed("Collapse", Action::MergeOrCollapse),
+        has_e,
+        &|| Command::CollapseEdges {
+            node: n.clone(),
+            edges: edges(),
+        },
+    );
+    item(
+        ui,
+        &keyed("Dissolve Edges", Action::Dissolve),
+        has_e,
+        &|| Command::DissolveEdges {
+            node: n.clone(),
+            edges: edges(),
+        },
+    );
+    ui.separator();
+    ui.label(egui::RichText::new("Vertices").weak());
+    item(
+        ui,
+        &keyed("Connect", Action::Connect),
+        sel.vertices.len() == 2,
+        &|| Command::ConnectVertices {
+            node: n.clone(),
+            vertices: vertices(),
+        },
+    );
+    ui.menu_button(keyed("Merge", Action::MergeOrCollapse), |ui| {
         merge_buttons(ui, node, sel, &mut merge_events)
     });
-    item(ui, "Bevel Vertices\tCtrl+Shift+B", has_v, &|| {
-        Command::BevelVertices {
+    item(
+        ui,
+        &keyed("Bevel Vertices", Action::BevelVertices),
+        has_v,
+        &|| Command::BevelVertices {
             node: n.clone(),
             vertices: vertices(),
             width: 0.1,
-        }
-    });
-    item(ui, "Dissolve Vertices\tX", has_v, &|| {
-        Command::DissolveVertices {
+        },
+    );
+    item(
+        ui,
+        &keyed("Dissolve Vertices", Action::Dissolve),
+        has_v,
+        &|| Command::DissolveVertices {
             node: n.clone(),
             vertices: vertices(),
-        }
-    });
+        },
+    );
     ui.separator();
     ui.label(egui::RichText::new("Symmetry").weak());
     for axis in [
@@ -211,12 +260,15 @@ pub(super) fn mesh_menu(
     }
     ui.separator();
     ui.label(egui::RichText::new("Normals").weak());
-    item(ui, "Flip\tAlt+N", true, &|| Command::FlipNormals {
-        node: n.clone(),
+    item(ui, &keyed("Flip", Action::FlipNormals), true, &|| {
+        Command::FlipNormals { node: n.clone() }
     });
-    item(ui, "Recalculate Outside\tShift+N", true, &|| {
-        Command::RecalculateNormals { node: n.clone() }
-    });
+    item(
+        ui,
+        &keyed("Recalculate Outside", Action::RecalculateNormals),
+        true,
+        &|| Command::RecalculateNormals { node: n.clone() },
+    );
     events.extend(merge_events);
     if start_bisect {
         events.push(UiEvent::StartBisect);

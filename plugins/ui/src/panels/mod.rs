@@ -66,6 +66,7 @@ pub struct Writers<'w> {
     bisect: ResMut<'w, hedra_edit::BisectDrag>,
     snapping: ResMut<'w, hedra_edit::Snapping>,
     proportional: ResMut<'w, hedra_edit::Proportional>,
+    key_help: ResMut<'w, hedra_edit::bindings::KeyHelp>,
     cursor: ResMut<'w, hedra_scene::Cursor3d>,
 }
 
@@ -209,6 +210,11 @@ pub fn draw_ui(
         statistics_overlay(&ctx, free, &model);
     }
     adjust_last_window(&ctx, free, &model, &mut events);
+    let mut key_help = *writers.key_help;
+    key_help_window(&ctx, free, &model, &mut key_help);
+    if *writers.key_help != key_help {
+        *writers.key_help = key_help;
+    }
     let curve = active_curve(&model.state.session.doc, model.selection.active());
     add_menu(&ctx, &mut ui_state, &mut events, curve, writers.cursor.0);
     merge_menu(&ctx, &mut model, &mut events);

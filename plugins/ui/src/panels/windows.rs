@@ -2,6 +2,45 @@
 
 use super::*;
 
+/// The key help (F1): every key of the current mode with what it does,
+/// read from the keymap the shortcuts use (`hedra_edit::bindings`).
+pub(super) fn key_help_window(
+    ctx: &egui::Context,
+    viewport: egui::Rect,
+    model: &Model,
+    help: &mut hedra_edit::bindings::KeyHelp,
+) {
+    use hedra_edit::bindings::{KeyMode, bindings_of};
+    if !help.0 {
+        return;
+    }
+    let mode = if model.mode.active() {
+        KeyMode::Edit
+    } else {
+        KeyMode::Object
+    };
+    egui::Window::new(format!("Keys: {}", mode.label()))
+        .id("key-help".into())
+        .open(&mut help.0)
+        .collapsible(false)
+        .resizable(false)
+        .pivot(egui::Align2::CENTER_CENTER)
+        .default_pos(viewport.center())
+        .show(ctx, |ui| {
+            egui::Grid::new("key-help-grid")
+                .num_columns(2)
+                .striped(true)
+                .show(ui, |ui| {
+                    for (chord, what) in bindings_of(mode) {
+                        ui.strong(chord);
+                        ui.label(what);
+                        ui.end_row();
+                    }
+                });
+            ui.label(egui::RichText::new("F1 or Esc closes this").weak());
+        });
+}
+
 /// Blender's "adjust last operation": the parameters of the last step, when
 /// it added a primitive, editable in place.
 pub(super) fn adjust_last_window(
