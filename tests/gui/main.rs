@@ -451,3 +451,31 @@ fn f1_lists_the_keys_of_the_current_mode() {
     assert!(user.shows("Triangulate Faces\tCtrl+T"));
     assert!(user.shows("Dissolve Edges\tCtrl+X"));
 }
+
+/// `.` makes the 3D cursor the pivot: S 2 on a cube at the origin with the
+/// cursor at (2, 0, 0) doubles its size and moves it to (−2, 0, 0), as
+/// Blender's 3D Cursor pivot does; `.` again gives the median back.
+#[test]
+fn the_3d_cursor_as_pivot_scales_about_the_cursor() {
+    let mut user = User::new();
+    user.add("Cube");
+    user.app
+        .world_mut()
+        .resource_mut::<hedra_scene::Cursor3d>()
+        .0 = hedra_geom::DVec3::new(2.0, 0.0, 0.0);
+    user.tap(KeyCode::Period);
+    assert!(user.status().contains("3D Cursor"), "{}", user.status());
+    let center = user.viewport_center();
+    user.move_to(center + Vec2::new(60.0, 0.0));
+    user.tap(KeyCode::KeyS);
+    user.type_text("2");
+    user.tap(KeyCode::Enter);
+    let t = user.doc().nodes().next().unwrap().transform;
+    assert_eq!(t.scale, hedra_geom::DVec3::splat(2.0));
+    assert!(
+        (t.translation - hedra_geom::DVec3::new(-2.0, 0.0, 0.0)).length() < 1e-12,
+        "{t:?}"
+    );
+    user.tap(KeyCode::Period);
+    assert!(user.status().contains("Median Point"), "{}", user.status());
+}

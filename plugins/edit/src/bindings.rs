@@ -161,6 +161,7 @@ pub enum Action {
     Proportional,
     ProportionalFalloff,
     KeyHelp,
+    PivotPoint,
 }
 
 /// One row of the keymap.
@@ -213,6 +214,12 @@ pub const BINDINGS: &[Binding] = &[
     bind(Object, Chord::key(K::KeyH), A::Hide, "hide the selection"),
     bind(Object, Chord::alt(K::KeyH), A::Unhide, "unhide all"),
     bind(Object, Chord::key(K::F1), A::KeyHelp, "this key help"),
+    bind(
+        Object,
+        Chord::key(K::Period),
+        A::PivotPoint,
+        "pivot: median point / 3D cursor",
+    ),
     bind(Edit, Chord::key(K::KeyA), A::SelectAll, "select all"),
     bind(Edit, Chord::alt(K::KeyA), A::SelectNone, "select none"),
     bind(
@@ -393,6 +400,12 @@ pub const BINDINGS: &[Binding] = &[
         "next proportional falloff",
     ),
     bind(Edit, Chord::key(K::F1), A::KeyHelp, "this key help"),
+    bind(
+        Edit,
+        Chord::key(K::Period),
+        A::PivotPoint,
+        "pivot: median point / 3D cursor",
+    ),
 ];
 
 /// True when a chord bound to `action` in `mode` was pressed this frame.

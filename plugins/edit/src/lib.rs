@@ -92,6 +92,7 @@ impl Plugin for EditPlugin {
             .init_resource::<SnapTarget>()
             .init_resource::<Proportional>()
             .init_resource::<bindings::KeyHelp>()
+            .init_resource::<PivotPoint>()
             .init_resource::<ProportionalRing>()
             .init_resource::<ShapeEdit>()
             .configure_sets(Update, EditSystems.in_set(SceneSystems::Tools))
@@ -104,6 +105,7 @@ impl Plugin for EditPlugin {
                     snapping_keys,
                     proportional_keys,
                     bindings::key_help_keys,
+                    pivot_keys,
                     undo_keys,
                     modal::drive_transform_tool,
                     mesh_mode::drive_mesh_tool,
@@ -359,6 +361,8 @@ pub fn object_shortcuts(
     camera: Single<(&Camera, &GlobalTransform), With<ViewportCamera>>,
     mode: Res<EditMode>,
     shape_edit: Res<ShapeEdit>,
+    pivot_point: Res<PivotPoint>,
+    cursor: Res<hedra_scene::Cursor3d>,
 ) {
     if !gate.keyboard_free || tool.active.is_some() || mode.active() || shape_edit.active() {
         return;
@@ -414,7 +418,60 @@ pub fn object_shortcuts(
     };
     if let Some(kind) = kind {
         let (cam, cam_t) = *camera;
-        tool.active = ModalTransform::start(kind, doc, &selection.nodes, &window, cam, cam_t);
+        tool.active =
+            ModalTransform::start(kind, doc, &selection.nodes, &window, cam, cam_t).map(|m| {
+                match *pivot_point {
+                    PivotPoint::Cursor => m.about(cursor.0, cam, cam_t),
+                    PivotPoint::MedianPoint => m,
+                }
+            });
+    }
+}
+
+/// What R and S turn and scale about (Blender's Pivot Point).
+#[derive(Resource, Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub enum PivotPoint {
+    /// The median of the selected objects' origins, or of the selected
+    /// vertices in edit mode.
+    #[default]
+    MedianPoint,
+    /// The 3D cursor.
+    Cursor,
+}
+
+impl PivotPoint {
+    /// The name the View menu and the status line show.
+    pub fn label(self) -> &'static str {
+        match self {
+            PivotPoint::MedianPoint => "Median Point",
+            PivotPoint::Cursor => "3D Cursor",
+        }
+    }
+}
+
+/// `.` switches the pivot point between the median and the 3D cursor (in
+/// Blender it opens the pivot menu).
+pub fn pivot_keys(
+    keys: Res<ButtonInput<KeyCode>>,
+    gate: Res<InputGate>,
+    mode: Res<EditMode>,
+    mut pivot: ResMut<PivotPoint>,
+    mut status: ResMut<hedra_scene::StatusMessage>,
+) {
+    let here = if mode.active() {
+        bindings::KeyMode::Edit
+    } else {
+        bindings::KeyMode::Object
+    };
+    if gate.keyboard_free && bindings::pressed(&keys, here, bindings::Action::PivotPoint) {
+        *pivot = match *pivot {
+            PivotPoint::MedianPoint => PivotPoint::Cursor,
+            PivotPoint::Cursor => PivotPoint::MedianPoint,
+        };
+        status.info(format!(
+            "Pivot: {} (R and S turn and scale about it; . switches)",
+            pivot.label()
+        ));
     }
 }
 

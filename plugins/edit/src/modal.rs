@@ -137,6 +137,21 @@ impl ModalTransform {
         })
     }
 
+    /// The same tool turning and scaling about `pivot` (world) instead of
+    /// the selection's median (Blender's 3D cursor pivot).
+    pub fn about(
+        mut self,
+        pivot: DVec3,
+        camera: &Camera,
+        camera_transform: &GlobalTransform,
+    ) -> Self {
+        self.pivot = pivot;
+        self.pivot_screen = camera
+            .world_to_viewport(camera_transform, pivot.as_vec3())
+            .unwrap_or(self.start_cursor);
+        self
+    }
+
     /// New local transforms for the cursor position (window coordinates).
     pub fn compute(
         &mut self,

@@ -15,6 +15,8 @@ pub fn edit_shortcuts(
     mut requests: MessageWriter<DocRequest>,
     mut status: ResMut<hedra_scene::StatusMessage>,
     knife: Res<KnifeTool>,
+    pivot_point: Res<crate::PivotPoint>,
+    cursor_3d: Res<hedra_scene::Cursor3d>,
 ) {
     if !mode.active() || mode.tool.is_some() || !gate.keyboard_free || knife.active {
         return;
@@ -34,7 +36,10 @@ pub fn edit_shortcuts(
     } else {
         verts.iter().map(|&v| mesh.position(v)).sum::<DVec3>() / verts.len() as f64
     };
-    let pivot = world.transform_point3(pivot_local);
+    let pivot = match *pivot_point {
+        crate::PivotPoint::MedianPoint => world.transform_point3(pivot_local),
+        crate::PivotPoint::Cursor => cursor_3d.0,
+    };
     let pivot_screen = camera
         .0
         .world_to_viewport(camera.1, pivot.as_vec3())

@@ -10,6 +10,8 @@ pub(super) struct ViewChoices<'a> {
     pub shading: &'a mut hedra_scene::ViewportShading,
     /// Increment snapping and its steps.
     pub snapping: &'a mut hedra_edit::Snapping,
+    /// What R and S turn and scale about.
+    pub pivot: &'a mut hedra_edit::PivotPoint,
     /// Proportional editing and its falloff and radius.
     pub proportional: &'a mut hedra_edit::Proportional,
     /// The 3D cursor's world position.
@@ -30,6 +32,7 @@ pub(super) fn menu_bar(
         shading,
         snapping,
         proportional,
+        pivot,
         cursor,
         view_direction,
     } = view;
@@ -251,6 +254,13 @@ pub(super) fn menu_bar(
                 );
             });
             ui.separator();
+            ui.horizontal(|ui| {
+                use hedra_edit::PivotPoint;
+                ui.label("Pivot\t.");
+                for p in [PivotPoint::MedianPoint, PivotPoint::Cursor] {
+                    ui.radio_value(pivot, p, p.label());
+                }
+            });
             ui.checkbox(&mut proportional.enabled, "Proportional Editing\tO");
             ui.horizontal(|ui| {
                 ui.label("Falloff");

@@ -67,6 +67,7 @@ pub struct Writers<'w> {
     snapping: ResMut<'w, hedra_edit::Snapping>,
     proportional: ResMut<'w, hedra_edit::Proportional>,
     key_help: ResMut<'w, hedra_edit::bindings::KeyHelp>,
+    pivot: ResMut<'w, hedra_edit::PivotPoint>,
     cursor: ResMut<'w, hedra_scene::Cursor3d>,
 }
 
@@ -116,6 +117,7 @@ pub fn draw_ui(
     let mut shading = *model.shading;
     let mut snapping = *writers.snapping;
     let mut proportional = *writers.proportional;
+    let mut pivot = *writers.pivot;
     let mut cursor = writers.cursor.0;
     let view_direction = camera
         .single()
@@ -128,6 +130,7 @@ pub fn draw_ui(
             shading: &mut shading,
             snapping: &mut snapping,
             proportional: &mut proportional,
+            pivot: &mut pivot,
             cursor: &mut cursor,
         };
         menu_bar(ui, &mut ui_state, &model, view, &mut events)
@@ -143,6 +146,9 @@ pub fn draw_ui(
     }
     if *writers.proportional != proportional {
         *writers.proportional = proportional;
+    }
+    if *writers.pivot != pivot {
+        *writers.pivot = pivot;
     }
     snap_menu(&ctx, &mut ui_state, &model, &mut cursor, &mut events);
     if writers.cursor.0 != cursor {
