@@ -1155,3 +1155,46 @@ fn rip_two_edges_of_a_grid_and_pull_one_side() {
     );
     assert_eq!(mesh.boundary_loops().len(), 2, "the outline and the slit");
 }
+
+/// Mesh ▸ Euler Operators on a cube: KEF on the clicked edge merges two
+/// faces (E −1, F −1, L −1, shown in the topology inspector); after undo,
+/// KFMRH with the top and bottom faces selected makes the bottom a ring
+/// of the top: a through hole (F −1, H +1), a valid document mesh.
+#[test]
+fn euler_operators_from_the_mesh_menu_show_their_change() {
+    let mut user = cube_in_edit_mode(KeyCode::Digit2);
+    let edge = screen(&mut user, 0.0, 1.0, 1.0);
+    user.click(edge);
+    open_mesh_menu(&mut user);
+    user.click_on("Euler Operators ⏵");
+    user.click_on("KEF: kill the selected edge, merging its faces");
+    assert_eq!(user.mesh_counts(), (8, 11, 5), "{}", user.status());
+    assert!(
+        user.shows("Euler KEF: E -1, F -1, L -1"),
+        "the inspector shows the change"
+    );
+    user.shortcut(&[KeyCode::ControlLeft], KeyCode::KeyZ);
+    assert_eq!(user.mesh_counts(), (8, 12, 6));
+    // Top and bottom faces: two boxes in X-ray from the front, where the
+    // faces' centres are the middles of the top and bottom edges (a click
+    // would land on the gizmo of the first selection).
+    user.tap(KeyCode::Digit3);
+    user.tap(KeyCode::Numpad1);
+    user.shortcut(&[KeyCode::AltLeft], KeyCode::KeyZ);
+    user.key_down(KeyCode::ShiftLeft);
+    for y in [1.0, -1.0] {
+        let a = screen(&mut user, -0.3, y - 0.2, 0.0);
+        let b = screen(&mut user, 0.3, y + 0.2, 0.0);
+        user.drag(a, b, 4);
+    }
+    user.key_up(KeyCode::ShiftLeft);
+    assert_eq!(user.edit_mode().selection.faces.len(), 2);
+    open_mesh_menu(&mut user);
+    user.click_on("Euler Operators ⏵");
+    user.click_on("KFMRH: the smaller of 2 selected faces becomes a ring (hole) of the other");
+    assert_eq!(user.mesh_counts(), (8, 12, 5), "{}", user.status());
+    let mesh = user.first_mesh();
+    mesh.validate().unwrap();
+    assert_eq!(mesh.ring_count(), 1);
+    assert!(user.shows("Euler KFMRH: F -1, H +1"), "{:?}", user.status());
+}

@@ -123,3 +123,32 @@ pub(super) fn topology_inspector(
         );
     }
 }
+
+/// The mesh's V, E, F, loops, shells, holes (genus) and borders, and how
+/// the last undo step changed them (Euler operators name exactly such a
+/// change: MEV is "V +1, E +1").
+pub(super) fn topology_counts(
+    ui: &mut egui::Ui,
+    id: NodeId,
+    mesh: &hedra_geom::HalfEdgeMesh,
+    model: &Model,
+) {
+    use hedra_geom::TopologyCounts;
+    let now = TopologyCounts::of(mesh);
+    ui.label(format!("{now}"));
+    let Some(last) = model.state.session.history.done().last() else {
+        return;
+    };
+    let before = last
+        .changes
+        .iter()
+        .find(|c| c.id == id)
+        .and_then(|c| c.before.as_ref())
+        .and_then(|n| match &n.content {
+            NodeContent::Mesh(m) => Some(TopologyCounts::of(&m.mesh)),
+            _ => None,
+        });
+    if let Some(before) = before {
+        ui.label(format!("{}: {}", last.label, now.since(&before)));
+    }
+}

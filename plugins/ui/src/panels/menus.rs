@@ -154,7 +154,11 @@ pub(super) fn menu_bar(
                 )
             });
             ui.menu_button("Mesh", |ui| {
-                mesh_menu(ui, node, &model.mode, spin_axis, events)
+                let mesh = match model.state.session.doc.node(node).map(|n| &n.content) {
+                    Some(NodeContent::Mesh(m)) => Some(m.mesh.clone()),
+                    _ => None,
+                };
+                mesh_menu(ui, node, &model.mode, spin_axis, mesh.as_deref(), events)
             });
         }
         ui.menu_button("Object", |ui| {

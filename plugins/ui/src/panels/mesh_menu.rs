@@ -16,6 +16,7 @@ pub(super) fn mesh_menu(
     node: NodeId,
     mode: &EditMode,
     spin_axis: Option<(DVec3, DVec3)>,
+    mesh: Option<&hedra_geom::HalfEdgeMesh>,
     events: &mut Vec<UiEvent>,
 ) {
     use hedra_doc::{EdgeSet, FaceSet, VertexSet};
@@ -30,6 +31,7 @@ pub(super) fn mesh_menu(
         !sel.vertices.is_empty(),
     );
     let mut merge_events = Vec::new();
+    let mut euler_events = Vec::new();
     let mut start_bisect = false;
     let mut item = |ui: &mut egui::Ui, label: &str, enabled: bool, cmd: &dyn Fn() -> Command| {
         if ui.add_enabled(enabled, egui::Button::new(label)).clicked() {
@@ -258,6 +260,11 @@ pub(super) fn mesh_menu(
             },
         );
     }
+    if let Some(mesh) = mesh {
+        ui.menu_button("Euler Operators", |ui| {
+            euler_operator_buttons(ui, node, mesh, sel, &mut euler_events)
+        });
+    }
     ui.separator();
     ui.label(egui::RichText::new("Normals").weak());
     item(ui, &keyed("Flip", Action::FlipNormals), true, &|| {
@@ -270,6 +277,7 @@ pub(super) fn mesh_menu(
         &|| Command::RecalculateNormals { node: n.clone() },
     );
     events.extend(merge_events);
+    events.extend(euler_events);
     if start_bisect {
         events.push(UiEvent::StartBisect);
     }
@@ -293,4 +301,120 @@ pub(super) fn selection_vertices(
     } else {
         None
     }
+}
+
+/// Mesh ▸ Euler Operators: the seeds' operators applied to the selection,
+/// one command each (the topology inspector shows the V/E/F/L/S/H change
+/// the step made). Each item says what it needs selected.
+fn euler_operator_buttons(
+    ui: &mut egui::Ui,
+    node: NodeId,
+    mesh: &hedra_geom::HalfEdgeMesh,
+    sel: &hedra_edit::ElementSelection,
+    events: &mut Vec<UiEvent>,
+) {
+    use hedra_doc::command::{Corner, EulerOp};
+    use hedra_doc::{EdgeSet, FaceSet, VertexSet};
+    let one = |v: hedra_geom::VertexId| VertexSet::Ids(vec![v.0]);
+    let edge = match sel.edges.iter().collect::<Vec<_>>().as_slice() {
+        [e] => Some(**e),
+        _ => None,
+    };
+    // The corner of `v` on face `f`: reached along the loop's edge into it.
+    let corner = |f: hedra_geom::FaceId, v: hedra_geom::VertexId| {
+        mesh.face_all_halfedges(f)
+            .find(|&h| mesh.target(h) == v)
+            .map(|h| Corner::At {
+                at: one(v),
+                from: one(mesh.origin(h)),
+            })
+    };
+    let mef = match sel.vertices.iter().copied().collect::<Vec<_>>().as_slice() {
+        [a, b] => mesh
+            .vertex_faces(*a)
+            .find(|&f| mesh.face_vertices(f).any(|v| v == *b))
+            .and_then(|f| Some((corner(f, *a)?, corner(f, *b)?))),
+        _ => None,
+    };
+    let faces: Vec<hedra_geom::FaceId> = sel.faces.iter().copied().collect();
+    // KFMRH: the larger selected face keeps, the smaller becomes its ring.
+    let kfmrh = match faces.as_slice() {
+        [a, b] => {
+            let area = |f: hedra_geom::FaceId| mesh.face_area_vector(f).length();
+            Some(if area(*a) >= area(*b) {
+                (*a, *b)
+            } else {
+                (*b, *a)
+            })
+        }
+        _ => None,
+    };
+    let ring = match faces.as_slice() {
+        [f] => mesh.face_rings(*f).first().and_then(|&r| {
+            let h = mesh.loop_halfedges(r).next()?;
+            Some(Corner::At {
+                at: one(mesh.target(h)),
+                from: one(mesh.origin(h)),
+            })
+        }),
+        _ => None,
+    };
+    let n = NodeRef::from(node);
+    let mut run = |ui: &mut egui::Ui, label: &str, op: Option<EulerOp>| {
+        if ui
+            .add_enabled(op.is_some(), egui::Button::new(label))
+            .clicked()
+        {
+            if let Some(op) = op {
+                exec(
+                    events,
+                    Command::Euler {
+                        node: n.clone(),
+                        op,
+                    },
+                );
+            }
+            ui.close();
+        }
+    };
+    let edge_set = |e: hedra_geom::EdgeId| EdgeSet::Ids(vec![e.0]);
+    run(
+        ui,
+        "MEF: edge and face between 2 selected vertices",
+        mef.map(|(a, b)| EulerOp::Mef { a, b }),
+    );
+    run(
+        ui,
+        "KEF: kill the selected edge, merging its faces",
+        edge.map(|e| EulerOp::Kef { edge: edge_set(e) }),
+    );
+    run(
+        ui,
+        "KEV: kill the selected dangling edge and its end",
+        edge.map(|e| EulerOp::Kev { edge: edge_set(e) }),
+    );
+    run(
+        ui,
+        "KEMR: kill the selected bridge edge, making a ring",
+        edge.map(|e| {
+            let [a, b] = mesh.edge_vertices(e);
+            EulerOp::Kemr {
+                from: one(a),
+                to: one(b),
+            }
+        }),
+    );
+    run(
+        ui,
+        "KFMRH: the smaller of 2 selected faces becomes a ring (hole) of the other",
+        kfmrh.map(|(keep, kill)| EulerOp::Kfmrh {
+            keep: FaceSet::Ids(vec![keep.0]),
+            kill: FaceSet::Ids(vec![kill.0]),
+        }),
+    );
+    run(
+        ui,
+        "MFKRH: the selected face's first ring becomes a face",
+        ring.map(|ring| EulerOp::Mfkrh { ring }),
+    );
 }

@@ -144,6 +144,7 @@ pub(super) fn properties(
         egui::CollapsingHeader::new("Topology inspector")
             .default_open(true)
             .show(ui, |ui| {
+                topology_counts(ui, id, &content.mesh, model);
                 topology_inspector(ui, &content.mesh, &model.mode.selection)
             });
     }
