@@ -479,3 +479,54 @@ fn the_3d_cursor_as_pivot_scales_about_the_cursor() {
     user.tap(KeyCode::Period);
     assert!(user.status().contains("Median Point"), "{}", user.status());
 }
+
+/// Ctrl+Alt+Q splits the viewport: the perspective camera takes the
+/// bottom-right quarter and the top, front and right cameras (active only
+/// now, orthographic) the other three; it does not quit (Ctrl+Q does);
+/// again gives one view.
+#[test]
+fn ctrl_alt_q_shows_the_quad_view() {
+    let mut user = User::new();
+    user.add("Cube");
+    let viewport = |user: &mut User| {
+        let world = user.app.world_mut();
+        let mut q = world.query_filtered::<&Camera, With<hedra_scene::ViewportCamera>>();
+        q.single(world).unwrap().viewport.clone().unwrap()
+    };
+    let whole = viewport(&mut user);
+    user.shortcut(&[KeyCode::ControlLeft, KeyCode::AltLeft], KeyCode::KeyQ);
+    user.frames(2);
+    assert!(user.app.world().resource::<hedra_scene::QuadView>().0);
+    let main = viewport(&mut user);
+    assert_eq!(main.physical_size, whole.physical_size / 2);
+    assert_eq!(
+        main.physical_position,
+        whole.physical_position + whole.physical_size / 2
+    );
+    let world = user.app.world_mut();
+    let mut q = world.query::<(&hedra_viewport::QuadViewCamera, &Camera, &Projection)>();
+    let quads: Vec<_> = q
+        .iter(world)
+        .map(|(v, c, p)| {
+            (
+                *v,
+                c.is_active,
+                c.viewport.clone().unwrap().physical_position,
+                matches!(p, Projection::Orthographic(_)),
+            )
+        })
+        .collect();
+    assert_eq!(quads.len(), 3);
+    assert!(quads.iter().all(|q| q.1 && q.3), "{quads:?}");
+    let top = quads
+        .iter()
+        .find(|q| q.0 == hedra_viewport::QuadViewCamera::Top)
+        .unwrap();
+    assert_eq!(
+        top.2, whole.physical_position,
+        "top view in the top-left quarter"
+    );
+    user.shortcut(&[KeyCode::ControlLeft, KeyCode::AltLeft], KeyCode::KeyQ);
+    user.frames(2);
+    assert_eq!(viewport(&mut user).physical_size, whole.physical_size);
+}

@@ -153,6 +153,11 @@ pub struct MeshMaterial(pub Handle<StandardMaterial>);
 #[derive(Resource, Debug, Clone, Copy, Default, PartialEq)]
 pub struct Cursor3d(pub glam::DVec3);
 
+/// Quad view (Blender's Ctrl+Alt+Q): the viewport split in four, top,
+/// front and right orthographic views beside the perspective one.
+#[derive(Resource, Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct QuadView(pub bool);
+
 /// How the viewport draws meshes and surfaces, as Blender's shading
 /// header: Shift+Z toggles wireframe, Alt+Z X-ray (View menu too).
 #[derive(Resource, Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -337,6 +342,7 @@ impl Plugin for ScenePlugin {
             .init_resource::<FileJobs>()
             .init_resource::<InputGate>()
             .init_resource::<ViewportShading>()
+            .init_resource::<QuadView>()
             .init_resource::<Cursor3d>()
             .add_message::<DocRequest>()
             .add_message::<DocChanged>()

@@ -13,7 +13,7 @@ use bevy::window::{PrimaryWindow, WindowCloseRequested};
 use bevy_egui::{EguiGlobalSettings, EguiPlugin, EguiPrimaryContextPass, PrimaryEguiContext, egui};
 use hedra_doc::{Command, NodeId, NodeTransform};
 use hedra_edit::{Selection, TransformTool};
-use hedra_scene::modifiers::{ctrl, shift};
+use hedra_scene::modifiers::{alt, ctrl, shift};
 use hedra_scene::{DocRequest, DocState, InputGate, StatusMessage, ViewportCamera};
 
 pub mod files;
@@ -206,26 +206,56 @@ fn spawn_ui_camera(mut commands: Commands, mut settings: ResMut<EguiGlobalSettin
 /// Gives the 3D camera the area the panels leave free.
 fn apply_viewport_rect(
     ui: Res<UiState>,
+    quad: Res<hedra_scene::QuadView>,
     window: Single<&Window, With<PrimaryWindow>>,
     mut camera: Single<&mut Camera, With<ViewportCamera>>,
+    mut quad_cameras: Query<
+        (&hedra_viewport::QuadViewCamera, &mut Camera),
+        Without<ViewportCamera>,
+    >,
 ) {
-    let Some(rect) = ui.viewport_rect else { return };
+    let Some(free) = ui.viewport_rect else { return };
+    // In quad view the perspective camera takes the bottom-right quarter
+    // and the fixed views the others.
+    let quarter = |column: f32, row: f32| {
+        let size = free.size() / 2.0;
+        egui::Rect::from_min_size(free.min + egui::vec2(column * size.x, row * size.y), size)
+    };
+    let rect = if quad.0 { quarter(1.0, 1.0) } else { free };
+    for (view, mut c) in &mut quad_cameras {
+        let (column, row) = match view {
+            hedra_viewport::QuadViewCamera::Top => (0.0, 0.0),
+            hedra_viewport::QuadViewCamera::Front => (1.0, 0.0),
+            hedra_viewport::QuadViewCamera::Right => (0.0, 1.0),
+        };
+        let v = physical_viewport(&window, quarter(column, row));
+        if c.viewport.as_ref().is_none_or(|old| {
+            old.physical_position != v.physical_position || old.physical_size != v.physical_size
+        }) {
+            c.viewport = Some(v);
+        }
+    }
+    let viewport = physical_viewport(&window, rect);
+    if camera.viewport.as_ref().is_none_or(|v| {
+        v.physical_position != viewport.physical_position
+            || v.physical_size != viewport.physical_size
+    }) {
+        camera.viewport = Some(viewport);
+    }
+}
+
+/// A window rectangle (logical pixels) as a camera viewport (physical).
+fn physical_viewport(window: &Window, rect: egui::Rect) -> Viewport {
     let scale = window.scale_factor();
     let (w, h) = (window.physical_width(), window.physical_height());
     let x = ((rect.min.x * scale).max(0.0) as u32).min(w.saturating_sub(1));
     let y = ((rect.min.y * scale).max(0.0) as u32).min(h.saturating_sub(1));
     let width = ((rect.width() * scale) as u32).clamp(1, w.saturating_sub(x).max(1));
     let height = ((rect.height() * scale) as u32).clamp(1, h.saturating_sub(y).max(1));
-    let viewport = Viewport {
+    Viewport {
         physical_position: UVec2::new(x, y),
         physical_size: UVec2::new(width, height),
         ..default()
-    };
-    if camera.viewport.as_ref().is_none_or(|v| {
-        v.physical_position != viewport.physical_position
-            || v.physical_size != viewport.physical_size
-    }) {
-        camera.viewport = Some(viewport);
     }
 }
 
@@ -256,7 +286,8 @@ fn global_shortcuts(
                 FileAction::Save
             });
         }
-        if keys.just_pressed(KeyCode::KeyQ) {
+        // Ctrl+Alt+Q is quad view.
+        if keys.just_pressed(KeyCode::KeyQ) && !alt(&keys) {
             actions.write(FileAction::Quit);
         }
     } else if shift && keys.just_pressed(KeyCode::KeyA) {

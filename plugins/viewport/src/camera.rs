@@ -262,3 +262,130 @@ pub(crate) fn frame_selection(
         camera.distance = radius / (22.5f32.to_radians()).sin() * 1.1;
     }
 }
+
+/// One of quad view's three fixed orthographic views.
+#[derive(Component, Debug, Clone, Copy, PartialEq, Eq)]
+pub enum QuadViewCamera {
+    /// Looking down −Y (Numpad 7's view).
+    Top,
+    /// Looking along −Z (Numpad 1's view).
+    Front,
+    /// Looking along −X (Numpad 3's view).
+    Right,
+}
+
+impl QuadViewCamera {
+    /// The three, in the quadrants top-left, top-right, bottom-left (the
+    /// perspective viewport takes bottom-right, as in Blender).
+    pub const ALL: [QuadViewCamera; 3] = [
+        QuadViewCamera::Top,
+        QuadViewCamera::Front,
+        QuadViewCamera::Right,
+    ];
+
+    /// The name painted in its corner.
+    pub fn label(self) -> &'static str {
+        match self {
+            QuadViewCamera::Top => "Top",
+            QuadViewCamera::Front => "Front",
+            QuadViewCamera::Right => "Right",
+        }
+    }
+
+    /// The orbit camera's yaw and pitch for this view.
+    fn angles(self) -> (f32, f32) {
+        use std::f32::consts::FRAC_PI_2;
+        match self {
+            QuadViewCamera::Top => (0.0, -FRAC_PI_2 + 1e-4),
+            QuadViewCamera::Front => (0.0, 0.0),
+            QuadViewCamera::Right => (FRAC_PI_2, 0.0),
+        }
+    }
+}
+
+/// The three quad-view cameras, inactive until Ctrl+Alt+Q; they draw after
+/// the main camera, into their own quarters of the viewport.
+pub(crate) fn spawn_quad_cameras(mut commands: Commands) {
+    for (i, view) in QuadViewCamera::ALL.into_iter().enumerate() {
+        commands.spawn((
+            Camera3d::default(),
+            Camera {
+                is_active: false,
+                order: 1 + i as isize,
+                ..default()
+            },
+            view,
+            Tonemapping::TonyMcMapface,
+            Msaa::Sample4,
+        ));
+    }
+}
+
+/// Ctrl+Alt+Q toggles quad view (Blender); the View menu too.
+pub(crate) fn quad_view_keys(
+    keys: Res<ButtonInput<KeyCode>>,
+    gate: Res<InputGate>,
+    mut quad: ResMut<hedra_scene::QuadView>,
+    mut status: ResMut<hedra_scene::StatusMessage>,
+) {
+    if gate.keyboard_free
+        && modifiers::ctrl(&keys)
+        && modifiers::alt(&keys)
+        && keys.just_pressed(KeyCode::KeyQ)
+    {
+        quad.0 = !quad.0;
+        status.info(if quad.0 {
+            "Quad view: top, front and right (orthographic) beside the perspective view, which takes the input (Ctrl+Alt+Q: one view)"
+        } else {
+            "One view (Ctrl+Alt+Q: quad view)"
+        });
+    }
+}
+
+/// The quad-view cameras follow the main camera's focus and zoom, each
+/// looking along its axis in orthographic projection; active only in quad
+/// view.
+pub(crate) fn follow_quad_cameras(
+    quad: Res<hedra_scene::QuadView>,
+    main: Single<&OrbitCamera, With<ViewportCamera>>,
+    mut cameras: Query<(
+        &QuadViewCamera,
+        &mut Camera,
+        &mut Transform,
+        &mut Projection,
+    )>,
+) {
+    for (view, mut camera, mut transform, mut projection) in &mut cameras {
+        if camera.is_active != quad.0 {
+            camera.is_active = quad.0;
+        }
+        if !quad.0 {
+            continue;
+        }
+        let (yaw, pitch) = view.angles();
+        let orbit = OrbitCamera {
+            yaw,
+            pitch,
+            orthographic: true,
+            ..**main
+        };
+        let t = orbit.transform();
+        if *transform != t {
+            *transform = t;
+        }
+        // Written only when the zoom changed (or on the first frame).
+        let height = |p: &Projection| match p {
+            Projection::Orthographic(o) => match o.scaling_mode {
+                bevy::camera::ScalingMode::FixedVertical { viewport_height } => {
+                    Some(viewport_height)
+                }
+                _ => None,
+            },
+            _ => None,
+        };
+        let p = orbit.projection();
+        if height(&projection) != height(&p) {
+            *projection = p;
+        }
+    }
+}

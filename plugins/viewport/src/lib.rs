@@ -76,7 +76,10 @@ impl Plugin for ViewportPlugin {
                     ..default()
                 },
             )
-            .add_systems(Startup, (spawn_camera, spawn_gizmo_proxy))
+            .add_systems(
+                Startup,
+                (spawn_camera, spawn_quad_cameras, spawn_gizmo_proxy),
+            )
             // The gizmo's drag is a tool: its command is applied this frame.
             .add_systems(
                 Update,
@@ -89,7 +92,9 @@ impl Plugin for ViewportPlugin {
                 Update,
                 (
                     shading_keys,
+                    quad_view_keys,
                     camera_controls,
+                    follow_quad_cameras,
                     frame_selection,
                     draw_grid,
                     draw_cursor,

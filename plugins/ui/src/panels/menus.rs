@@ -10,6 +10,8 @@ pub(super) struct ViewChoices<'a> {
     pub shading: &'a mut hedra_scene::ViewportShading,
     /// Increment snapping and its steps.
     pub snapping: &'a mut hedra_edit::Snapping,
+    /// Quad view on.
+    pub quad_view: &'a mut bool,
     /// What R and S turn and scale about.
     pub pivot: &'a mut hedra_edit::PivotPoint,
     /// Proportional editing and its falloff and radius.
@@ -33,6 +35,7 @@ pub(super) fn menu_bar(
         snapping,
         proportional,
         pivot,
+        quad_view,
         cursor,
         view_direction,
     } = view;
@@ -235,6 +238,7 @@ pub(super) fn menu_bar(
             ui.checkbox(&mut shading.wireframe, "Wireframe\tShift+Z");
             ui.checkbox(&mut shading.x_ray, "X-ray\tAlt+Z");
             ui.checkbox(&mut shading.face_orientation, "Face Orientation");
+            ui.checkbox(quad_view, "Quad View\tCtrl+Alt+Q");
             ui.separator();
             ui.checkbox(&mut snapping.enabled, "Snap\tShift+Tab");
             ui.horizontal(|ui| {

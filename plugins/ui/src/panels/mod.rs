@@ -68,6 +68,7 @@ pub struct Writers<'w> {
     proportional: ResMut<'w, hedra_edit::Proportional>,
     key_help: ResMut<'w, hedra_edit::bindings::KeyHelp>,
     pivot: ResMut<'w, hedra_edit::PivotPoint>,
+    quad_view: ResMut<'w, hedra_scene::QuadView>,
     cursor: ResMut<'w, hedra_scene::Cursor3d>,
 }
 
@@ -118,6 +119,7 @@ pub fn draw_ui(
     let mut snapping = *writers.snapping;
     let mut proportional = *writers.proportional;
     let mut pivot = *writers.pivot;
+    let mut quad_view = writers.quad_view.0;
     let mut cursor = writers.cursor.0;
     let view_direction = camera
         .single()
@@ -131,6 +133,7 @@ pub fn draw_ui(
             snapping: &mut snapping,
             proportional: &mut proportional,
             pivot: &mut pivot,
+            quad_view: &mut quad_view,
             cursor: &mut cursor,
         };
         menu_bar(ui, &mut ui_state, &model, view, &mut events)
@@ -149,6 +152,9 @@ pub fn draw_ui(
     }
     if *writers.pivot != pivot {
         *writers.pivot = pivot;
+    }
+    if writers.quad_view.0 != quad_view {
+        writers.quad_view.0 = quad_view;
     }
     snap_menu(&ctx, &mut ui_state, &model, &mut cursor, &mut events);
     if writers.cursor.0 != cursor {
@@ -184,6 +190,28 @@ pub fn draw_ui(
     }
     let free = root.available_rect_before_wrap();
     ui_state.viewport_rect = Some(free);
+    if quad_view {
+        // Quad view's quarters are named in their corners.
+        let painter = root.painter_at(free);
+        let half = free.size() / 2.0;
+        for (label, at) in [
+            ("Top", free.min),
+            ("Front", free.min + egui::vec2(half.x, 0.0)),
+            ("Right", free.min + egui::vec2(0.0, half.y)),
+            ("Perspective", free.min + half),
+        ] {
+            painter.text(
+                at + egui::vec2(8.0, 6.0),
+                egui::Align2::LEFT_TOP,
+                label,
+                egui::FontId::proportional(13.0),
+                egui::Color32::from_gray(220),
+            );
+        }
+        let line = egui::Stroke::new(1.0, egui::Color32::from_gray(90));
+        painter.line_segment([free.center_top(), free.center_bottom()], line);
+        painter.line_segment([free.left_center(), free.right_center()], line);
+    }
     if let Ok((cam, cam_t)) = camera.single() {
         let points = model
             .shape_edit
