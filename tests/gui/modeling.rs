@@ -753,9 +753,7 @@ fn vertex_snapping_puts_a_vertex_exactly_on_another() {
         .copied()
         .unwrap();
     assert_eq!(user.first_mesh().position(moved), from);
-    user.click_on("View");
-    user.click_on("Vertex");
-    user.tap(KeyCode::Escape);
+    choose_snap_element(&mut user, "Vertex");
     user.shortcut(&[KeyCode::ShiftLeft], KeyCode::Tab);
     user.move_to(corner);
     user.tap(KeyCode::KeyG);
@@ -1197,4 +1195,57 @@ fn euler_operators_from_the_mesh_menu_show_their_change() {
     mesh.validate().unwrap();
     assert_eq!(mesh.ring_count(), 1);
     assert!(user.shows("Euler KFMRH: F -1, H +1"), "{:?}", user.status());
+}
+
+/// View ▸ Snap to ▸ `element` (the combo box), menu closed again.
+fn choose_snap_element(user: &mut User, element: &str) {
+    user.click_on("View");
+    user.click_on(element);
+    user.tap(KeyCode::Escape);
+}
+
+/// Edge Center and Face snapping (View ▸ Snap to): G puts a cube corner
+/// exactly on the middle of a far edge; then another corner onto the top
+/// face under the pointer (on the plane y = 1).
+#[test]
+fn edge_center_and_face_snapping() {
+    let mut user = cube_in_edit_mode(KeyCode::Digit1);
+    choose_snap_element(&mut user, "Edge Center");
+    user.shortcut(&[KeyCode::ShiftLeft], KeyCode::Tab);
+    let corner = user.screen_of(Vec3::new(1.0, 1.0, 1.0));
+    user.click(corner);
+    let moved = *user.edit_mode().selection.vertices.iter().next().unwrap();
+    user.move_to(corner);
+    user.tap(KeyCode::KeyG);
+    let middle = Vec3::new(-1.0, 1.0, 0.0);
+    let near = user.screen_of(middle) + Vec2::new(5.0, 4.0);
+    user.glide_to(near, 5);
+    assert_eq!(
+        user.app.world().resource::<hedra_edit::SnapTarget>().0,
+        Some(middle.as_dvec3())
+    );
+    user.click(near);
+    assert_eq!(user.first_mesh().position(moved), middle.as_dvec3());
+    user.shortcut(&[KeyCode::ControlLeft], KeyCode::KeyZ);
+
+    choose_snap_element(&mut user, "Face");
+    let low = user.screen_of(Vec3::new(1.0, -1.0, 1.0));
+    user.click(low);
+    let moved = *user.edit_mode().selection.vertices.iter().next().unwrap();
+    assert_eq!(
+        user.first_mesh().position(moved),
+        DVec3::new(1.0, -1.0, 1.0)
+    );
+    user.move_to(low);
+    user.tap(KeyCode::KeyG);
+    let on_top = user.screen_of(Vec3::new(-0.3, 1.0, -0.2));
+    user.glide_to(on_top, 5);
+    user.click(on_top);
+    let p = user.first_mesh().position(moved);
+    assert!((p.y - 1.0).abs() < 1e-9, "on the top face's plane: {p}");
+    assert!(
+        (p.x + 0.3).abs() < 0.05 && (p.z + 0.2).abs() < 0.05,
+        "under the pointer: {p}"
+    );
+    user.first_mesh().validate().unwrap();
 }

@@ -33,7 +33,8 @@ pub use modal::{Axis, ModalTransform, TransformKind, TransformTool};
 pub use proportional::{Proportional, ProportionalRing, proportional_keys};
 pub use shape_mode::ShapeEdit;
 pub use snapping::{
-    MoveSnap, SnapElement, SnapTarget, Snapping, drag_translation, snapping_keys, vertex_snap,
+    MoveSnap, SnapElement, SnapTarget, Snapping, drag_translation, element_snap, snapping_keys,
+    vertex_snap,
 };
 
 /// Selected nodes, in the order they were selected; the last one is active.

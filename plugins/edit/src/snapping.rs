@@ -19,6 +19,37 @@ pub enum SnapElement {
     /// on the mesh vertex nearest the pointer (within
     /// [`VERTEX_SNAP_PIXELS`]); elsewhere, increments.
     Vertex,
+    /// In mesh edit mode: onto the point of an edge nearest the pointer's
+    /// ray (Blender's Edge), within [`VERTEX_SNAP_PIXELS`].
+    Edge,
+    /// In mesh edit mode: onto the middle of the edge nearest the pointer
+    /// (Blender's Edge Center).
+    EdgeCenter,
+    /// In mesh edit mode: onto the surface under the pointer (Blender's
+    /// Face Project), the moved faces left out.
+    Face,
+}
+
+impl SnapElement {
+    /// Every element, in menu order.
+    pub const ALL: [SnapElement; 5] = [
+        SnapElement::Increment,
+        SnapElement::Vertex,
+        SnapElement::Edge,
+        SnapElement::EdgeCenter,
+        SnapElement::Face,
+    ];
+
+    /// The name the View menu shows.
+    pub fn label(self) -> &'static str {
+        match self {
+            SnapElement::Increment => "Increment",
+            SnapElement::Vertex => "Vertex",
+            SnapElement::Edge => "Edge",
+            SnapElement::EdgeCenter => "Edge Center",
+            SnapElement::Face => "Face",
+        }
+    }
 }
 
 /// How near the pointer (logical pixels) a vertex must be to snap to it.
@@ -132,6 +163,88 @@ pub enum MoveSnap {
     Increment(f64),
     /// This exact world translation (a vertex onto a vertex).
     To(DVec3),
+}
+
+/// Snapping of a move of `moved` onto an element of `mesh` (placed by
+/// `world`) other than the moved ones: the target point by `element`
+/// (vertex, edge point, edge centre or surface point under the pointer,
+/// see [`SnapElement`]), the base the moved vertex nearest it (Blender's
+/// "closest"); returns the target and the translation from base to
+/// target, in world space. Increments give `None` (they are not a target).
+pub fn element_snap(
+    element: SnapElement,
+    mesh: &hedra_geom::HalfEdgeMesh,
+    world: glam::DMat4,
+    moved: &std::collections::BTreeSet<hedra_geom::VertexId>,
+    cursor: Vec2,
+    ray: Option<(DVec3, DVec3)>,
+    to_screen: &dyn Fn(DVec3) -> Option<Vec2>,
+) -> Option<(DVec3, DVec3)> {
+    let untouched = |vs: &[hedra_geom::VertexId]| vs.iter().all(|v| !moved.contains(v));
+    let nearest_on_screen = |points: &mut dyn Iterator<Item = DVec3>| {
+        points
+            .filter_map(|p| {
+                let d = to_screen(p)?.distance(cursor);
+                (d <= VERTEX_SNAP_PIXELS).then_some((d, p))
+            })
+            .min_by(|a, b| a.0.total_cmp(&b.0))
+            .map(|(_, p)| p)
+    };
+    let edges = || {
+        mesh.edges()
+            .filter(move |&e| untouched(&mesh.edge_vertices(e)))
+            .map(move |e| {
+                mesh.edge_vertices(e)
+                    .map(|v| world.transform_point3(mesh.position(v)))
+            })
+    };
+    let target = match element {
+        SnapElement::Increment => return None,
+        SnapElement::Vertex => return vertex_snap(mesh, world, moved, cursor, to_screen),
+        SnapElement::EdgeCenter => nearest_on_screen(&mut edges().map(|[a, b]| a.lerp(b, 0.5)))?,
+        SnapElement::Edge => {
+            let (o, d) = ray?;
+            // The point of each edge nearest the pointer's ray.
+            nearest_on_screen(&mut edges().map(|[a, b]| closest_on_segment(a, b, o, d)))?
+        }
+        SnapElement::Face => {
+            let (o, d) = ray?;
+            let to_local = world.inverse();
+            let (lo, ld) = (to_local.transform_point3(o), to_local.transform_vector3(d));
+            let t = mesh
+                .faces()
+                .filter(|&f| untouched(&mesh.face_vertices(f).collect::<Vec<_>>()))
+                .flat_map(|f| hedra_geom::query::triangulate_face(mesh, f))
+                .filter_map(|[a, b, c]| {
+                    let p = |v| mesh.position(v);
+                    hedra_geom::query::ray_triangle(lo, ld, p(a), p(b), p(c))
+                })
+                .min_by(|a, b| a.total_cmp(b))?;
+            world.transform_point3(lo + ld * t)
+        }
+    };
+    let base = moved
+        .iter()
+        .map(|&v| world.transform_point3(mesh.position(v)))
+        .min_by(|a, b| a.distance(target).total_cmp(&b.distance(target)))?;
+    Some((target, target - base))
+}
+
+/// The point of segment `a`–`b` nearest the line through `o` along `d`.
+fn closest_on_segment(a: DVec3, b: DVec3, o: DVec3, d: DVec3) -> DVec3 {
+    // Closest points of two lines (Ericson, Real-Time Collision Detection
+    // 5.1.8), the segment's parameter clamped to [0, 1].
+    let u = b - a;
+    let w = a - o;
+    let (uu, ud, dd) = (u.dot(u), u.dot(d), d.dot(d));
+    let (uw, dw) = (u.dot(w), d.dot(w));
+    let denom = uu * dd - ud * ud;
+    let s = if denom.abs() < 1e-15 {
+        0.0
+    } else {
+        ((ud * dw - dd * uw) / denom).clamp(0.0, 1.0)
+    };
+    a + u * s
 }
 
 /// Vertex snapping for a move of `moved` (local ids of `mesh`, placed by

@@ -404,10 +404,20 @@ pub fn drive_mesh_tool(
     };
     let snap = match (snapping.active(&keys), snapping.element) {
         (false, _) => crate::MoveSnap::Free,
-        (true, crate::SnapElement::Vertex) if tool.kind == MeshToolKind::Move => {
+        (true, element)
+            if tool.kind == MeshToolKind::Move && element != crate::SnapElement::Increment =>
+        {
             let to_screen = |p: DVec3| cam.world_to_viewport(cam_t, p.as_vec3()).ok();
             let moved = mode.selection.all_vertices(&mesh);
-            match crate::vertex_snap(&mesh, world, &moved, cursor, &to_screen) {
+            match crate::element_snap(
+                element,
+                &mesh,
+                world,
+                &moved,
+                cursor,
+                ray_at(cursor),
+                &to_screen,
+            ) {
                 Some((target, delta)) => {
                     snap_target.0 = Some(target);
                     crate::MoveSnap::To(delta)

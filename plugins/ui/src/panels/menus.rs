@@ -244,8 +244,10 @@ pub(super) fn menu_bar(
             ui.horizontal(|ui| {
                 use hedra_edit::SnapElement;
                 ui.label("Snap to");
-                ui.radio_value(&mut snapping.element, SnapElement::Increment, "Increment");
-                ui.radio_value(&mut snapping.element, SnapElement::Vertex, "Vertex");
+                // Radio buttons: a combo box's popup would close the menu.
+                for e in SnapElement::ALL {
+                    ui.radio_value(&mut snapping.element, e, e.label());
+                }
             });
             ui.horizontal(|ui| {
                 ui.label("Snap step");
@@ -272,13 +274,9 @@ pub(super) fn menu_bar(
             ui.checkbox(&mut proportional.enabled, "Proportional Editing\tO");
             ui.horizontal(|ui| {
                 ui.label("Falloff");
-                egui::ComboBox::from_id_salt("proportional-falloff")
-                    .selected_text(proportional.falloff.label())
-                    .show_ui(ui, |ui| {
-                        for f in hedra_geom::proportional::Falloff::ALL {
-                            ui.selectable_value(&mut proportional.falloff, f, f.label());
-                        }
-                    });
+                for f in hedra_geom::proportional::Falloff::ALL {
+                    ui.radio_value(&mut proportional.falloff, f, f.label());
+                }
                 ui.label("radius");
                 let (lo, hi) = hedra_edit::Proportional::RADIUS_RANGE;
                 ui.add(
