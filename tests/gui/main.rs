@@ -435,6 +435,9 @@ fn f1_lists_the_keys_of_the_current_mode() {
     assert!(!user.shows("K"), "no edit-mode keys in object mode");
     user.tap(KeyCode::Escape);
     assert!(!user.shows("Keys: Object mode"), "Esc closes it");
+    user.shortcut(&[KeyCode::ShiftLeft], KeyCode::Slash);
+    assert!(user.shows("Keys: Object mode"), "? opens it too");
+    user.tap(KeyCode::Escape);
     user.tap(KeyCode::Tab);
     user.tap(KeyCode::F1);
     assert!(user.shows("Keys: Edit mode"));

@@ -114,6 +114,7 @@ pub fn key_label(key: KeyCode) -> String {
         KeyCode::Escape => "Esc".into(),
         KeyCode::PageUp => "Page Up".into(),
         KeyCode::PageDown => "Page Down".into(),
+        KeyCode::Slash => "/".into(),
         _ => debug
             .strip_prefix("Key")
             .or_else(|| debug.strip_prefix("Digit"))
@@ -214,6 +215,7 @@ pub const BINDINGS: &[Binding] = &[
     bind(Object, Chord::key(K::KeyH), A::Hide, "hide the selection"),
     bind(Object, Chord::alt(K::KeyH), A::Unhide, "unhide all"),
     bind(Object, Chord::key(K::F1), A::KeyHelp, "this key help"),
+    bind(Object, Chord::shift(K::Slash), A::KeyHelp, "this key help"),
     bind(
         Object,
         Chord::key(K::Period),
@@ -400,6 +402,7 @@ pub const BINDINGS: &[Binding] = &[
         "next proportional falloff",
     ),
     bind(Edit, Chord::key(K::F1), A::KeyHelp, "this key help"),
+    bind(Edit, Chord::shift(K::Slash), A::KeyHelp, "this key help"),
     bind(
         Edit,
         Chord::key(K::Period),

@@ -9,7 +9,8 @@ use super::*;
 
 /// What the status line says while the knife runs.
 const KNIFE_HELP: &str = "Knife: click points on the surface (near a vertex or an edge's \
-     middle snaps to it) · Enter cuts · Backspace removes the last point · Esc cancels";
+     middle snaps to it) · C: angle constraint (45° steps on screen) · Enter cuts · \
+     Backspace removes the last point · Esc cancels";
 
 /// How near the pointer (logical pixels) a vertex or edge midpoint snaps.
 const KNIFE_SNAP_PIXELS: f32 = 12.0;
@@ -24,6 +25,19 @@ pub struct KnifeTool {
     /// The path in world space with the point the pointer would add last,
     /// for drawing.
     pub drawn: Vec<DVec3>,
+    /// C toggles it: the next segment runs at a multiple of 45° on screen
+    /// from the last point (Blender's knife angle constraint).
+    pub angle_constraint: bool,
+}
+
+/// `cursor` moved onto the nearest screen line through `from` at a multiple
+/// of 45°.
+pub fn constrain_to_45_degrees(from: Vec2, cursor: Vec2) -> Vec2 {
+    let d = cursor - from;
+    let step = std::f32::consts::FRAC_PI_4;
+    let angle = (d.y.atan2(d.x) / step).round() * step;
+    let dir = Vec2::new(angle.cos(), angle.sin());
+    from + dir * d.dot(dir)
 }
 
 /// K in edit mode (no tool running) starts the knife.
@@ -120,14 +134,25 @@ pub fn drive_knife(
     let (cam, cam_t) = *camera;
     let world = state.session.doc.world_matrix(node);
     let to_screen = |p: DVec3| cam.world_to_viewport(cam_t, p.as_vec3()).ok();
-    let under_pointer = window.cursor_position().and_then(|c| {
-        knife_point(
-            &mesh,
-            world,
-            crate::cursor_ray(&window, cam, cam_t),
-            c,
-            &to_screen,
-        )
+    if keys.just_pressed(KeyCode::KeyC) {
+        knife.angle_constraint = !knife.angle_constraint;
+    }
+    // With the angle constraint the pointer is moved onto the nearest 45°
+    // line from the last point, and the surface point taken there.
+    let last_on_screen = knife
+        .points
+        .last()
+        .and_then(|&p| to_screen(world.transform_point3(p)));
+    let pointer = window.cursor_position().map(|c| match last_on_screen {
+        Some(from) if knife.angle_constraint => constrain_to_45_degrees(from, c),
+        _ => c,
+    });
+    let under_pointer = pointer.and_then(|c| {
+        let ray = cam
+            .viewport_to_world(cam_t, c)
+            .ok()
+            .map(|r| (r.origin.as_dvec3(), Vec3::from(r.direction).as_dvec3()));
+        knife_point(&mesh, world, ray, c, &to_screen)
     });
     if keys.just_pressed(KeyCode::Backspace) {
         knife.points.pop();
@@ -168,5 +193,23 @@ pub fn drive_knife(
             requests.write(DocRequest::Execute(cmd));
         }
         Err(e) => status.error(format!("Knife: {e}")),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_angle_constraint_keeps_45_degree_lines() {
+        let from = Vec2::new(100.0, 100.0);
+        // Nearly horizontal: onto the horizontal line.
+        assert_eq!(
+            constrain_to_45_degrees(from, Vec2::new(150.0, 104.0)),
+            Vec2::new(150.0, 100.0)
+        );
+        // Nearly diagonal: onto the diagonal, projected.
+        let p = constrain_to_45_degrees(from, Vec2::new(140.0, 136.0));
+        assert!((p - Vec2::new(138.0, 138.0)).length() < 1e-3, "{p}");
     }
 }
