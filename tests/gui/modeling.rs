@@ -556,6 +556,19 @@ fn ctrl_t_triangulates_the_selected_faces() {
     assert_eq!(user.mesh_counts(), (8, 13, 7), "{}", user.status());
     user.first_mesh().validate().unwrap();
     assert_eq!(user.undo_steps(), steps + 1);
+    // Ctrl+T uses Beauty; Adjust Last offers the other methods.
+    assert!(user.shows("Beauty"), "Adjust Last shows the method");
+    let last = user.doc_last_command();
+    assert!(
+        matches!(
+            last,
+            Some(hedra_doc::Command::Triangulate {
+                method: hedra_geom::modeling::TriangulateMethod::Beauty,
+                ..
+            })
+        ),
+        "{last:?}"
+    );
     user.shortcut(&[KeyCode::ControlLeft], KeyCode::KeyZ);
     assert_eq!(user.mesh_counts(), (8, 12, 6));
 }

@@ -376,6 +376,18 @@ impl User {
         &self.app.world().resource::<DocState>().session.doc
     }
 
+    /// The command of the last undo step, if it has one.
+    pub fn doc_last_command(&self) -> Option<hedra_doc::Command> {
+        self.app
+            .world()
+            .resource::<DocState>()
+            .session
+            .history
+            .done()
+            .last()
+            .and_then(|t| t.command.clone())
+    }
+
     pub fn undo_steps(&self) -> usize {
         self.app
             .world()

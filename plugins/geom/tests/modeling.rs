@@ -947,7 +947,8 @@ fn triangulate_splits_faces_along_diagonals() {
     let mut cube = Primitive::Cube { size: 2.0 }.build().unwrap();
     let positions = cube.positions().to_vec();
     let faces: Vec<_> = cube.faces().collect();
-    let made = modeling::triangulate_faces(&mut cube, &faces).unwrap();
+    let made =
+        modeling::triangulate_faces(&mut cube, &faces, modeling::TriangulateMethod::Clip).unwrap();
     cube.validate().unwrap();
     assert_eq!(made.len(), 6);
     assert_eq!(
@@ -969,7 +970,7 @@ fn triangulate_splits_faces_along_diagonals() {
     let f: Vec<_> = m.faces().collect();
     let up = m.face_normal(f[0]);
     let tris = hedra_geom::query::triangulate_face(&m, f[0]);
-    modeling::triangulate_faces(&mut m, &f).unwrap();
+    modeling::triangulate_faces(&mut m, &f, modeling::TriangulateMethod::Clip).unwrap();
     m.validate().unwrap();
     assert_eq!(m.face_count(), 4, "{tris:?}");
     let area: f64 = m.faces().map(|g| m.face_area_vector(g).dot(up)).sum();
@@ -982,7 +983,7 @@ fn triangulate_splits_faces_along_diagonals() {
     let before = m.clone();
     let all: Vec<_> = m.faces().collect();
     assert!(
-        modeling::triangulate_faces(&mut m, &all)
+        modeling::triangulate_faces(&mut m, &all, modeling::TriangulateMethod::Clip)
             .unwrap()
             .is_empty()
     );
@@ -995,7 +996,7 @@ fn tris_to_quads_undoes_triangulate_on_a_cube() {
     let mut cube = Primitive::Cube { size: 2.0 }.build().unwrap();
     let positions = cube.positions().to_vec();
     let faces: Vec<_> = cube.faces().collect();
-    modeling::triangulate_faces(&mut cube, &faces).unwrap();
+    modeling::triangulate_faces(&mut cube, &faces, modeling::TriangulateMethod::Clip).unwrap();
     let triangles: Vec<_> = cube.faces().collect();
     let limit = modeling::DEFAULT_JOIN_LIMIT;
     let quads = modeling::tris_to_quads(&mut cube, &triangles, limit, limit).unwrap();
@@ -1151,4 +1152,80 @@ fn bisect_cuts_a_cube_and_can_clear_and_fill_one_half() {
     );
     assert!(err.unwrap_err().to_string().contains("non-zero normal"));
     assert!(missed.same_as(&cube));
+}
+
+/// Beauty cuts a long thin quad along its short diagonal (both triangles'
+/// smallest angle larger than along the long one); the fixed fan cuts it
+/// from its first corner whatever the shape; a concave face falls back to
+/// ear clipping for the fan. Counts and validity for every method.
+#[test]
+fn triangulate_methods_choose_their_diagonals() {
+    use hedra_geom::modeling::{self, TriangulateMethod};
+    // A kite: corners 0 and 2 far apart, 1 and 3 close together.
+    let kite = || {
+        HalfEdgeMesh::from_polygons(
+            &[
+                DVec3::new(-3.0, 0.0, 0.0),
+                DVec3::new(0.0, 0.0, 0.5),
+                DVec3::new(3.0, 0.0, 0.0),
+                DVec3::new(0.0, 0.0, -0.5),
+            ],
+            &[vec![0u32, 1, 2, 3]],
+        )
+        .unwrap()
+    };
+    let diagonal = |method: TriangulateMethod| {
+        let mut m = kite();
+        let f = m.faces().next().unwrap();
+        modeling::triangulate_faces(&mut m, &[f], method).unwrap();
+        m.validate().unwrap();
+        assert_eq!(
+            (m.vertex_count(), m.edge_count(), m.face_count()),
+            (4, 5, 2)
+        );
+        let mut d: Vec<u32> = m
+            .edges()
+            .map(|e| m.edge_vertices(e))
+            .find(|[a, b]| (a.0 + 2) % 4 == b.0 || (b.0 + 2) % 4 == a.0)
+            .unwrap()
+            .iter()
+            .map(|v| v.0)
+            .collect();
+        d.sort();
+        d
+    };
+    assert_eq!(
+        diagonal(TriangulateMethod::Beauty),
+        vec![1, 3],
+        "the short diagonal"
+    );
+    assert_eq!(
+        diagonal(TriangulateMethod::Fan),
+        vec![0, 2],
+        "from the first corner"
+    );
+    // An L-shaped hexagon whose first corner (2, 0) does not see the
+    // corner (1, -2) past the inner corner: its fan would leave the face.
+    let mut l = HalfEdgeMesh::from_polygons(
+        &[
+            DVec3::new(0.0, 0.0, 0.0),
+            DVec3::new(0.0, 0.0, -2.0),
+            DVec3::new(1.0, 0.0, -2.0),
+            DVec3::new(1.0, 0.0, -1.0),
+            DVec3::new(2.0, 0.0, -1.0),
+            DVec3::new(2.0, 0.0, 0.0),
+        ],
+        &[vec![5u32, 4, 3, 2, 1, 0]],
+    )
+    .unwrap();
+    let f = l.faces().next().unwrap();
+    modeling::triangulate_faces(&mut l, &[f], TriangulateMethod::Fan).unwrap();
+    l.validate().unwrap();
+    assert_eq!(l.face_count(), 4);
+    for f in l.faces() {
+        assert!(
+            l.face_normal(f).y > 0.99,
+            "every triangle inside the outline, facing up"
+        );
+    }
 }

@@ -164,9 +164,10 @@ impl Plan<'_> {
         &mut self,
         node: &NodeRef,
         faces: &FaceSet,
+        method: modeling::TriangulateMethod,
     ) -> Result<(), CommandError> {
         self.on_faces(node, faces, |m, fs| {
-            modeling::triangulate_faces(m, fs).map(drop)
+            modeling::triangulate_faces(m, fs, method).map(drop)
         })
     }
 

@@ -412,7 +412,11 @@ impl Plan<'_> {
                 self.subdivide_edges(node, edges, *cuts)
             }
             Command::ConnectVertices { node, vertices } => self.connect_vertices(node, vertices),
-            Command::Triangulate { node, faces } => self.triangulate(node, faces),
+            Command::Triangulate {
+                node,
+                faces,
+                method,
+            } => self.triangulate(node, faces, *method),
             Command::TrisToQuads {
                 node,
                 faces,

@@ -8,7 +8,12 @@ use crate::modifiers::MeshModifier;
 use crate::scene::{NodeId, NodeTransform, Shading, SubdivisionModifier};
 use glam::DVec3;
 use hedra_geom::Primitive;
-use hedra_geom::modeling::{BisectClear, MirrorAxis};
+use hedra_geom::modeling::{BisectClear, MirrorAxis, TriangulateMethod};
+
+/// Serde: the default triangulation is not written.
+fn is_clip(method: &TriangulateMethod) -> bool {
+    *method == TriangulateMethod::Clip
+}
 use serde::{Deserialize, Serialize};
 use std::fmt;
 
@@ -537,6 +542,12 @@ pub enum Command {
         node: NodeRef,
         /// The faces, by id or by a predicate in local space.
         faces: FaceSet,
+        /// Which diagonals: `Beauty` (most regular triangles), `Fan` (from
+        /// each face's first corner) or `Clip` (plain ear clipping, the
+        /// default, which is what files written before the choice existed
+        /// replay).
+        #[serde(default, skip_serializing_if = "is_clip")]
+        method: TriangulateMethod,
     },
     /// Joins neighbouring triangles of the faces into quads, best pairs
     /// first (Blender's Tris to Quads); other faces stay as they are.

@@ -158,6 +158,7 @@ pub fn edit_shortcuts(
             requests.write(DocRequest::Execute(Command::Triangulate {
                 node: node.clone(),
                 faces: FaceSet::Ids(mode.selection.faces.iter().map(|f| f.0).collect()),
+                method: hedra_geom::modeling::TriangulateMethod::Beauty,
             }));
         }
         return;

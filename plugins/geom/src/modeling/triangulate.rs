@@ -10,9 +10,126 @@ use crate::mesh::HalfEdgeMesh;
 use std::collections::HashSet;
 use std::f64::consts::{FRAC_PI_2, PI};
 
+/// Which triangles a face is cut into (Blender's Triangulate quad and
+/// n-gon methods).
+#[derive(
+    Copy, Clone, Debug, Default, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize,
+)]
+pub enum TriangulateMethod {
+    /// The ear-clipping triangulation as it comes
+    /// ([`crate::query::triangulate_face`]; Blender's n-gon "Clip").
+    #[default]
+    Clip,
+    /// Ear clipping, then diagonals flipped while that makes the
+    /// triangles more regular: Lawson's flips to the Delaunay
+    /// triangulation of the face's outline (the sum of the two angles
+    /// facing a diagonal at most π), which maximises the smallest angle
+    /// (Blender's "Beauty"); a quad is cut along its better diagonal.
+    Beauty,
+    /// A fan from the face's first corner (Blender's "Fixed" for quads),
+    /// when every fan triangle lies inside the face; ear clipping for a
+    /// face where it would not (a concave face).
+    Fan,
+}
+
+impl TriangulateMethod {
+    /// Every method, in menu order.
+    pub const ALL: [TriangulateMethod; 3] = [
+        TriangulateMethod::Beauty,
+        TriangulateMethod::Fan,
+        TriangulateMethod::Clip,
+    ];
+
+    /// The name a menu shows.
+    pub fn label(self) -> &'static str {
+        match self {
+            TriangulateMethod::Clip => "Clip (ear clipping)",
+            TriangulateMethod::Beauty => "Beauty",
+            TriangulateMethod::Fan => "Fixed fan",
+        }
+    }
+}
+
+/// The triangles `method` cuts face `f` into, as corner triples in the
+/// face's orientation.
+fn face_triangles(mesh: &HalfEdgeMesh, f: FaceId, method: TriangulateMethod) -> Vec<[VertexId; 3]> {
+    let clipped = crate::query::triangulate_face(mesh, f);
+    match method {
+        TriangulateMethod::Clip => clipped,
+        TriangulateMethod::Beauty => beauty_flips(mesh, f, clipped),
+        TriangulateMethod::Fan => {
+            let corners: Vec<VertexId> = mesh.face_vertices(f).collect();
+            let normal = mesh.face_area_vector(f);
+            let fan: Vec<[VertexId; 3]> = (1..corners.len() - 1)
+                .map(|i| [corners[0], corners[i], corners[i + 1]])
+                .collect();
+            let inside = fan
+                .iter()
+                .all(|t| triangle_area(mesh, *t).dot(normal) > 0.0);
+            if inside { fan } else { clipped }
+        }
+    }
+}
+
+/// Twice the area vector of a triangle (its normal, by the right-hand rule).
+fn triangle_area(mesh: &HalfEdgeMesh, [a, b, c]: [VertexId; 3]) -> glam::DVec3 {
+    let p = |v| mesh.position(v);
+    (p(b) - p(a)).cross(p(c) - p(a))
+}
+
+/// Lawson's flips (Lawson 1977; de Berg et al., Computational Geometry,
+/// ch. 9): while two triangles sharing a diagonal see it under angles
+/// summing to more than π, and their quad is convex, the other diagonal
+/// replaces it. Ends at the Delaunay triangulation of the outline.
+fn beauty_flips(
+    mesh: &HalfEdgeMesh,
+    f: FaceId,
+    mut tris: Vec<[VertexId; 3]>,
+) -> Vec<[VertexId; 3]> {
+    let normal = mesh.face_area_vector(f);
+    let angle_at = |apex: VertexId, a: VertexId, b: VertexId| {
+        let p = |v| mesh.position(v);
+        (p(a) - p(apex)).angle_between(p(b) - p(apex))
+    };
+    // Each flip raises the smallest angle; the bound only guards against
+    // rounding cycles.
+    for _ in 0..tris.len() * tris.len() + 1 {
+        let mut flipped = false;
+        'pairs: for i in 0..tris.len() {
+            for j in i + 1..tris.len() {
+                // A shared diagonal a→b in tris[i] is b→a in tris[j].
+                for k in 0..3 {
+                    let (a, b, c) = (tris[i][k], tris[i][(k + 1) % 3], tris[i][(k + 2) % 3]);
+                    let Some(m) = (0..3).find(|&m| tris[j][m] == b && tris[j][(m + 1) % 3] == a)
+                    else {
+                        continue;
+                    };
+                    let d = tris[j][(m + 2) % 3];
+                    if angle_at(c, a, b) + angle_at(d, b, a) <= std::f64::consts::PI + 1e-9 {
+                        continue;
+                    }
+                    let (t1, t2) = ([c, a, d], [d, b, c]);
+                    let convex = [t1, t2]
+                        .iter()
+                        .all(|t| triangle_area(mesh, *t).dot(normal) > 0.0);
+                    if convex {
+                        tris[i] = t1;
+                        tris[j] = t2;
+                        flipped = true;
+                        break 'pairs;
+                    }
+                }
+            }
+        }
+        if !flipped {
+            break;
+        }
+    }
+    tris
+}
+
 /// Splits faces into triangles (Blender's Ctrl+T): each face is cut along
-/// the diagonals of its ear-clipping triangulation
-/// ([`crate::query::triangulate_face`]), one Euler MEF
+/// the diagonals of the triangles `method` gives, one Euler MEF
 /// ([`HalfEdgeMesh::make_edge_face`]) per diagonal; positions do not move
 /// and triangles are left as they are. Returns the faces made.
 ///
@@ -21,6 +138,7 @@ use std::f64::consts::{FRAC_PI_2, PI};
 pub fn triangulate_faces(
     mesh: &mut HalfEdgeMesh,
     faces: &[FaceId],
+    method: TriangulateMethod,
 ) -> Result<Vec<FaceId>, ModelingError> {
     check_faces(mesh, faces)?;
     let mut made = Vec::new();
@@ -37,7 +155,7 @@ pub fn triangulate_faces(
             })
         };
         let mut diagonals: Vec<(VertexId, VertexId)> = Vec::new();
-        for t in crate::query::triangulate_face(mesh, f) {
+        for t in face_triangles(mesh, f, method) {
             for k in 0..3 {
                 let (a, b) = (t[k], t[(k + 1) % 3]);
                 if !outline(a, b) && !diagonals.iter().any(|&d| d == (a, b) || d == (b, a)) {

@@ -92,6 +92,7 @@ pub(super) fn mesh_menu(
         &|| Command::Triangulate {
             node: n.clone(),
             faces: faces(),
+            method: hedra_geom::modeling::TriangulateMethod::Beauty,
         },
     );
     item(

@@ -73,6 +73,7 @@ pub(super) fn adjust_last_window(
             | Command::BevelVertices { .. }
             | Command::Bisect { .. }
             | Command::TrisToQuads { .. }
+            | Command::Triangulate { .. }
             | Command::Spin { .. }
             | Command::Screw { .. }
     );
@@ -152,6 +153,21 @@ pub(super) fn adjust_last_window(
                 } => {
                     number_row(ui, "Max face angle°", face_degrees, 0.5, 0.0..=180.0)
                         | number_row(ui, "Max shape angle°", shape_degrees, 0.5, 0.0..=180.0)
+                }
+                Command::Triangulate { method, .. } => {
+                    use hedra_geom::modeling::TriangulateMethod;
+                    let before = *method;
+                    ui.horizontal(|ui| {
+                        ui.label("Method");
+                        choice(
+                            ui,
+                            "adjust-triangulate",
+                            method,
+                            &TriangulateMethod::ALL,
+                            TriangulateMethod::label,
+                        )
+                    });
+                    *method != before
                 }
                 Command::Spin {
                     degrees,
