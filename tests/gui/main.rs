@@ -233,7 +233,7 @@ fn shift_z_and_alt_z_switch_wireframe_and_x_ray() {
         hedra_scene::ViewportShading {
             wireframe: false,
             x_ray: true,
-            face_orientation: false,
+            ..Default::default()
         }
     );
     assert_eq!(
@@ -241,6 +241,17 @@ fn shift_z_and_alt_z_switch_wireframe_and_x_ray() {
         (hedra_scene::X_RAY_ALPHA, true),
         "X-ray"
     );
+    // View ▸ X-ray's opacity sets the faces' alpha.
+    user.click_on("View");
+    user.click_on("35% opaque");
+    user.type_text("60");
+    user.tap(KeyCode::Enter);
+    user.frames(2);
+    assert_eq!(mesh_material(&user), (0.6, true), "X-ray at 60 %");
+    user.click_on("60% opaque");
+    user.type_text("35");
+    user.tap(KeyCode::Enter);
+    user.tap(KeyCode::Escape);
     user.shortcut(&[KeyCode::AltLeft], KeyCode::KeyZ);
     assert_eq!(mesh_material(&user), (1.0, false), "solid again");
     // The View menu says the same and sets the same.

@@ -160,7 +160,7 @@ pub struct QuadView(pub bool);
 
 /// How the viewport draws meshes and surfaces, as Blender's shading
 /// header: Shift+Z toggles wireframe, Alt+Z X-ray (View menu too).
-#[derive(Resource, Debug, Clone, Copy, Default, PartialEq, Eq)]
+#[derive(Resource, Debug, Clone, Copy, PartialEq, Eq)]
 pub struct ViewportShading {
     /// Faces are not drawn: only the edge overlays show (Blender's
     /// Wireframe shading); like Blender's, it sees and selects through.
@@ -171,6 +171,20 @@ pub struct ViewportShading {
     /// Blender's Face Orientation overlay: front faces blue, back faces
     /// red, to find flipped normals (View menu).
     pub face_orientation: bool,
+    /// How opaque faces are in X-ray, in percent (View ▸ X-ray opacity;
+    /// [`X_RAY_ALPHA`] by default).
+    pub x_ray_opacity: u8,
+}
+
+impl Default for ViewportShading {
+    fn default() -> Self {
+        ViewportShading {
+            wireframe: false,
+            x_ray: false,
+            face_orientation: false,
+            x_ray_opacity: (X_RAY_ALPHA * 100.0).round() as u8,
+        }
+    }
 }
 
 impl ViewportShading {
@@ -179,21 +193,21 @@ impl ViewportShading {
         self.wireframe || self.x_ray
     }
 
-    /// The alpha of the shared mesh material: 0 in wireframe, [`X_RAY_ALPHA`]
-    /// in X-ray, 1 when solid.
+    /// The alpha of the shared mesh material: 0 in wireframe, the X-ray
+    /// opacity in X-ray, 1 when solid.
     pub fn face_alpha(&self) -> f32 {
         if self.wireframe {
             0.0
         } else if self.x_ray {
-            X_RAY_ALPHA
+            f32::from(self.x_ray_opacity.min(100)) / 100.0
         } else {
             1.0
         }
     }
 }
 
-/// How opaque faces are in X-ray shading (Blender's default is 0.5; lower
-/// here because the cage's edges are drawn over it).
+/// How opaque faces are in X-ray shading by default (Blender's default is
+/// 0.5; lower here because the cage's edges are drawn over it).
 pub const X_RAY_ALPHA: f32 = 0.35;
 
 /// The two materials of the face orientation overlay: unlit blue drawn

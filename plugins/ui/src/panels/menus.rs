@@ -236,7 +236,14 @@ pub(super) fn menu_bar(
             ui.separator();
             ui.checkbox(&mut state.show_statistics, "Statistics");
             ui.checkbox(&mut shading.wireframe, "Wireframe\tShift+Z");
-            ui.checkbox(&mut shading.x_ray, "X-ray\tAlt+Z");
+            ui.horizontal(|ui| {
+                ui.checkbox(&mut shading.x_ray, "X-ray\tAlt+Z");
+                ui.add(
+                    egui::DragValue::new(&mut shading.x_ray_opacity)
+                        .range(0..=100)
+                        .suffix("% opaque"),
+                );
+            });
             ui.checkbox(&mut shading.face_orientation, "Face Orientation");
             ui.checkbox(quad_view, "Quad View\tCtrl+Alt+Q");
             ui.separator();
