@@ -549,3 +549,44 @@ fn ctrl_alt_q_shows_the_quad_view() {
     user.frames(2);
     assert_eq!(viewport(&mut user).physical_size, whole.physical_size);
 }
+
+/// The cube's edge overlay: how many line segments it draws.
+fn overlay_segments(user: &mut User) -> usize {
+    let world = user.app.world_mut();
+    let mut q = world.query::<(&hedra_viewport::EdgeOverlay, &bevy::gizmos::retained::Gizmo)>();
+    let handle = q.single(world).expect("one mesh overlay").1.handle.clone();
+    let assets = world.resource::<Assets<bevy::gizmos::GizmoAsset>>();
+    assets.get(&handle).unwrap().buffer().list_positions.len() / 2
+}
+
+/// View ▸ Cages: the cage's edges over a subdivided cube go and come back;
+/// a plain mesh keeps its edges either way.
+#[test]
+fn view_cages_hides_the_cage_over_smoothed_meshes() {
+    let mut user = User::new();
+    user.add("Cube");
+    user.tap(KeyCode::Escape);
+    user.frames(2);
+    assert_eq!(overlay_segments(&mut user), 12, "a plain cube's 12 edges");
+    user.click_on("View");
+    user.click_on("Cages (over smoothed and modified meshes)");
+    user.tap(KeyCode::Escape);
+    user.frames(2);
+    assert_eq!(
+        overlay_segments(&mut user),
+        12,
+        "a plain mesh keeps its edges"
+    );
+    user.shortcut(&[KeyCode::ControlLeft], KeyCode::Digit1);
+    user.frames(3);
+    assert_eq!(
+        overlay_segments(&mut user),
+        0,
+        "the cage over the smooth cube is hidden"
+    );
+    user.click_on("View");
+    user.click_on("Cages (over smoothed and modified meshes)");
+    user.tap(KeyCode::Escape);
+    user.frames(2);
+    assert_eq!(overlay_segments(&mut user), 12, "and shown again");
+}

@@ -174,6 +174,10 @@ pub struct ViewportShading {
     /// How opaque faces are in X-ray, in percent (View ▸ X-ray opacity;
     /// [`X_RAY_ALPHA`] by default).
     pub x_ray_opacity: u8,
+    /// Draw the cage's edges over meshes shown smoothed or through
+    /// modifiers (View ▸ Cages; on by default); each subdivision modifier
+    /// can also hide its own (Show cage).
+    pub cages: bool,
 }
 
 impl Default for ViewportShading {
@@ -183,6 +187,7 @@ impl Default for ViewportShading {
             x_ray: false,
             face_orientation: false,
             x_ray_opacity: (X_RAY_ALPHA * 100.0).round() as u8,
+            cages: true,
         }
     }
 }

@@ -39,6 +39,8 @@ pub struct EdgeOverlay {
     /// Wireframe shading is on: unselected wires are drawn light, since
     /// no face is behind them.
     pub wireframe: bool,
+    /// Cages over smoothed and modified meshes are drawn (View ▸ Cages).
+    pub cages: bool,
 }
 
 /// Keeps one retained line gizmo per mesh node with its edges: dark for
@@ -72,6 +74,7 @@ pub(crate) fn update_edge_overlays(
             active,
             shown,
             wireframe,
+            cages: shading.cages,
         };
         let existing = children.and_then(|c| c.iter().find(|c| overlays.contains(*c)));
         if let Some(child) = existing
@@ -97,7 +100,10 @@ pub(crate) fn update_edge_overlays(
                     Some(_) if !selected => Color::srgba(0.75, 0.78, 0.85, 0.55),
                     _ => color,
                 };
-                if smooth.is_none_or(|m| m.show_cage) {
+                // A cage over a smoothed or modified mesh, unless hidden
+                // (View ▸ Cages, or the modifier's Show cage).
+                let derived = smooth.is_some() || content.has_stack_modifiers();
+                if smooth.is_none_or(|m| m.show_cage) && (wanted.cages || !derived) {
                     let m = &content.mesh;
                     for e in m.edges() {
                         let [a, b] = m.edge_vertices(e);

@@ -245,6 +245,10 @@ pub(super) fn menu_bar(
                 );
             });
             ui.checkbox(&mut shading.face_orientation, "Face Orientation");
+            ui.checkbox(
+                &mut shading.cages,
+                "Cages (over smoothed and modified meshes)",
+            );
             ui.checkbox(quad_view, "Quad View\tCtrl+Alt+Q");
             ui.separator();
             ui.checkbox(&mut snapping.enabled, "Snap\tShift+Tab");
