@@ -376,26 +376,23 @@ impl User {
         &self.app.world().resource::<DocState>().session.doc
     }
 
-    /// The command of the last undo step, if it has one.
-    pub fn doc_last_command(&self) -> Option<hedra_doc::Command> {
+    /// The steps Ctrl+Z can undo, oldest first.
+    fn done(&self) -> &[hedra_doc::Transaction] {
         self.app
             .world()
             .resource::<DocState>()
             .session
             .history
             .done()
-            .last()
-            .and_then(|t| t.command.clone())
+    }
+
+    /// The command of the last undo step, if it has one.
+    pub fn doc_last_command(&self) -> Option<hedra_doc::Command> {
+        self.done().last().and_then(|t| t.command.clone())
     }
 
     pub fn undo_steps(&self) -> usize {
-        self.app
-            .world()
-            .resource::<DocState>()
-            .session
-            .history
-            .done()
-            .len()
+        self.done().len()
     }
 
     pub fn status(&self) -> String {

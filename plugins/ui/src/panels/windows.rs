@@ -93,12 +93,7 @@ pub(super) fn adjust_last_window(
                     width, segments, ..
                 } => {
                     let w = number_row(ui, "Width", width, 0.005, 0.0001..=1e6);
-                    let s = ui.horizontal(|ui| {
-                        ui.label("Segments");
-                        ui.add(egui::DragValue::new(segments).speed(0.1).range(1..=32))
-                            .changed()
-                    });
-                    w | s.inner
+                    w | count_row(ui, "Segments", segments, 1..=32)
                 }
                 Command::SlideEdges { factor, .. } => {
                     number_row(ui, "Factor", factor, 0.01, -1.0..=1.0)
@@ -177,14 +172,10 @@ pub(super) fn adjust_last_window(
                     ..
                 } => {
                     let d = number_row(ui, "Angle°", degrees, 1.0, -3600.0..=3600.0);
-                    let s = ui.horizontal(|ui| {
-                        ui.label("Steps");
-                        ui.add(egui::DragValue::new(steps).speed(0.1).range(1..=1024))
-                            .changed()
-                    });
+                    let s = count_row(ui, "Steps", steps, 1..=1024);
                     let c = vec3_row(ui, "Center", center, 0.01).changed();
                     let a = vec3_row(ui, "Axis", axis, 0.01).changed();
-                    d | s.inner | c | a
+                    d | s | c | a
                 }
                 Command::Screw {
                     turns,
@@ -192,17 +183,9 @@ pub(super) fn adjust_last_window(
                     pitch,
                     ..
                 } => {
-                    let t = ui.horizontal(|ui| {
-                        ui.label("Turns");
-                        ui.add(egui::DragValue::new(turns).speed(0.1).range(1..=256))
-                            .changed()
-                    });
-                    let s = ui.horizontal(|ui| {
-                        ui.label("Steps per turn");
-                        ui.add(egui::DragValue::new(steps).speed(0.1).range(3..=1024))
-                            .changed()
-                    });
-                    t.inner | s.inner | number_row(ui, "Pitch", pitch, 0.01, -1e6..=1e6)
+                    count_row(ui, "Turns", turns, 1..=256)
+                        | count_row(ui, "Steps per turn", steps, 3..=1024)
+                        | number_row(ui, "Pitch", pitch, 0.01, -1e6..=1e6)
                 }
                 Command::MergeByDistance { distance, .. } => {
                     number_row(ui, "Distance", distance, 0.001, 0.0..=1e6)
@@ -234,6 +217,22 @@ pub(super) fn adjust_last_window(
                 events.push(UiEvent::Request(DocRequest::AdjustLast(edited.clone())));
             }
         });
+}
+
+/// A labelled whole-number field (segments, steps, turns); true when it
+/// changed.
+fn count_row(
+    ui: &mut egui::Ui,
+    label: &str,
+    v: &mut u32,
+    range: std::ops::RangeInclusive<u32>,
+) -> bool {
+    ui.horizontal(|ui| {
+        ui.label(label);
+        ui.add(egui::DragValue::new(v).speed(0.1).range(range))
+            .changed()
+    })
+    .inner
 }
 
 pub(super) fn number_row(
