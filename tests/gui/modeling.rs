@@ -1217,6 +1217,77 @@ fn choose_snap_element(user: &mut User, element: &str) {
     user.tap(KeyCode::Escape);
 }
 
+/// Object mode snaps too: with Snap to Vertex on, G on a second cube at
+/// x = 4 and the pointer near the first cube's corner (1, 1, 1) puts the
+/// second cube's nearest corner (3, 1, 1) exactly on it, so the cube lands
+/// at x = 2; the target is drawn while the move runs.
+#[test]
+fn object_mode_snaps_a_cube_corner_onto_another_cube() {
+    let mut user = User::new();
+    user.add("Cube");
+    user.add("Cube");
+    let second = user
+        .app
+        .world()
+        .resource::<hedra_edit::Selection>()
+        .active()
+        .unwrap();
+    user.app
+        .world_mut()
+        .write_message(hedra_scene::DocRequest::Execute(
+            hedra_doc::Command::SetTransforms {
+                nodes: vec![(
+                    hedra_doc::NodeRef::from(second),
+                    hedra_doc::NodeTransform::from_translation(DVec3::new(4.0, 0.0, 0.0)),
+                )],
+            },
+        ));
+    user.frames(2);
+    choose_snap_element(&mut user, "Vertex");
+    user.shortcut(&[KeyCode::ShiftLeft], KeyCode::Tab);
+    let start = user.screen_of(Vec3::new(4.0, 0.0, 0.0));
+    user.move_to(start);
+    user.tap(KeyCode::KeyG);
+    let corner = Vec3::new(1.0, 1.0, 1.0);
+    let near = user.screen_of(corner) + Vec2::new(5.0, -4.0);
+    user.glide_to(near, 5);
+    let target = user.app.world().resource::<hedra_edit::SnapTarget>().0;
+    assert_eq!(target, Some(corner.as_dvec3()), "the target is drawn");
+    user.click(near);
+    let moved = user.doc().node(second).unwrap().transform.translation;
+    assert_eq!(moved, DVec3::new(2.0, 0.0, 0.0), "{}", user.status());
+}
+
+/// Control-point mode snaps onto the shape's other points: G on the
+/// surface's middle point with Snap to Vertex on and the pointer near a
+/// neighbour puts it exactly there.
+#[test]
+fn control_point_mode_snaps_a_point_onto_another() {
+    let (mut user, target, at) = surface_with_its_middle_point_clicked();
+    choose_snap_element(&mut user, "Vertex");
+    user.shortcut(&[KeyCode::ShiftLeft], KeyCode::Tab);
+    let (points, _) = shape_points(&user);
+    let other = (0..points.len())
+        .filter(|&i| i != target)
+        .min_by(|&a, &b| {
+            let d = |i: usize| points[i].distance(points[target]);
+            d(a).total_cmp(&d(b))
+        })
+        .unwrap();
+    user.move_to(at);
+    user.tap(KeyCode::KeyG);
+    let near = user.screen_of(points[other].as_vec3()) + Vec2::new(4.0, 3.0);
+    user.glide_to(near, 5);
+    assert_eq!(
+        user.app.world().resource::<hedra_edit::SnapTarget>().0,
+        Some(points[other]),
+        "the target is drawn"
+    );
+    user.click(near);
+    let (moved, _) = shape_points(&user);
+    assert_eq!(moved[target], points[other], "{}", user.status());
+}
+
 /// Edge Center and Face snapping (View ▸ Snap to): G puts a cube corner
 /// exactly on the middle of a far edge; then another corner onto the top
 /// face under the pointer (on the plane y = 1).

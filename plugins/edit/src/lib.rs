@@ -33,8 +33,8 @@ pub use modal::{Axis, ModalTransform, TransformKind, TransformTool};
 pub use proportional::{Proportional, ProportionalRing, proportional_keys};
 pub use shape_mode::ShapeEdit;
 pub use snapping::{
-    MoveSnap, SnapElement, SnapTarget, Snapping, drag_translation, element_snap, snapping_keys,
-    vertex_snap,
+    MoveSnap, SnapElement, SnapMesh, SnapScene, SnapTarget, Snapping, drag_translation, move_snap,
+    snap_translation, snapping_keys,
 };
 
 /// Selected nodes, in the order they were selected; the last one is active.
@@ -100,14 +100,18 @@ impl Plugin for EditPlugin {
             .add_systems(
                 Update,
                 (
-                    follow_document_changes,
-                    mesh_mode::follow_changes,
-                    mesh_mode::mode_keys,
+                    (
+                        follow_document_changes,
+                        mesh_mode::follow_changes,
+                        mesh_mode::mode_keys,
+                    )
+                        .chain(),
                     snapping_keys,
                     proportional_keys,
                     bindings::key_help_keys,
                     pivot_keys,
                     undo_keys,
+                    clear_tool_overlays,
                     modal::drive_transform_tool,
                     mesh_mode::drive_mesh_tool,
                     object_shortcuts,
@@ -163,6 +167,13 @@ pub fn follow_document_changes(
     if selection.nodes.iter().any(|id| doc.node(*id).is_none()) {
         selection.nodes.retain(|id| doc.node(*id).is_some());
     }
+}
+
+/// Clears what the running tools drew last frame (the snap target and the
+/// proportional ring); the tool still running publishes it again.
+fn clear_tool_overlays(mut snap_target: ResMut<SnapTarget>, mut ring: ResMut<ProportionalRing>) {
+    snap_target.0 = None;
+    ring.0 = None;
 }
 
 /// True when a node and all its parents are visible.

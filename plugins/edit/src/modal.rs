@@ -159,6 +159,7 @@ impl ModalTransform {
         ray_at: impl Fn(Vec2) -> Option<(DVec3, DVec3)>,
         view_dir: DVec3,
         snapping: Option<&crate::Snapping>,
+        snap: crate::MoveSnap,
     ) -> Vec<(NodeId, NodeTransform)> {
         let axis_name = self.axis.map_or(String::new(), |a| format!(" {a:?}"));
         match self.kind {
@@ -166,14 +167,13 @@ impl ModalTransform {
                 let delta = if let Some(v) = self.typed.value() {
                     self.axis.unwrap_or(Axis::X).vector() * v
                 } else {
-                    crate::drag_translation(
+                    snap.translation(
                         self.start_cursor,
                         cursor,
                         self.pivot,
                         view_dir,
                         self.axis,
                         &ray_at,
-                        snapping.map(|s| s.step),
                     )
                 };
                 self.readout = format!(
@@ -259,6 +259,7 @@ pub fn drive_transform_tool(
     mut previews: ResMut<Previews>,
     mut requests: MessageWriter<DocRequest>,
     snapping: Res<crate::Snapping>,
+    mut snap_target: ResMut<crate::SnapTarget>,
 ) {
     tool.just_finished = false;
     let (cam, cam_t) = *camera;
@@ -291,16 +292,33 @@ pub fn drive_transform_tool(
     modal.typed.read(&keys, true);
     let cursor = window.cursor_position().unwrap_or(modal.start_cursor);
     let view_dir = (cam_t.rotation() * Vec3::NEG_Z).as_dvec3();
-    let result = modal.compute(
-        cursor,
-        |p| {
-            cam.viewport_to_world(cam_t, p)
-                .ok()
-                .map(|r| (r.origin.as_dvec3(), Vec3::from(r.direction).as_dvec3()))
-        },
-        view_dir,
-        snapping.active(&keys).then_some(&*snapping),
-    );
+    let ray_at = |p: Vec2| {
+        cam.viewport_to_world(cam_t, p)
+            .ok()
+            .map(|r| (r.origin.as_dvec3(), Vec3::from(r.direction).as_dvec3()))
+    };
+    let active = snapping.active(&keys);
+    let snap = if modal.kind == TransformKind::Grab {
+        // The moved nodes and their children are neither targets nor left
+        // behind: their vertices (or origins) are the snap bases.
+        let doc = &state.session.doc;
+        let moving: Vec<NodeId> = modal.items.iter().flat_map(|i| doc.subtree(i.id)).collect();
+        let scene = crate::SnapScene::of_document(doc, |id| !moving.contains(&id));
+        let to_screen = |p: DVec3| cam.world_to_viewport(cam_t, p.as_vec3()).ok();
+        crate::move_snap(
+            &snapping,
+            active,
+            &scene,
+            moving.iter().flat_map(|&id| node_points_in_world(doc, id)),
+            cursor,
+            ray_at(cursor),
+            &to_screen,
+            &mut snap_target,
+        )
+    } else {
+        crate::MoveSnap::Free
+    };
+    let result = modal.compute(cursor, ray_at, view_dir, active.then_some(&*snapping), snap);
     if !modal.typed.is_empty() {
         modal.readout = format!("{} [{}]", modal.readout, modal.typed.as_str());
     }
@@ -336,6 +354,27 @@ pub fn drive_transform_tool(
         },
     );
     tool.active = Some(modal);
+}
+
+/// A node's points in world space, the bases of an object snap: a mesh's
+/// vertices, a curve's or surface's control points, else its origin.
+fn node_points_in_world(doc: &hedra_doc::Document, id: NodeId) -> Vec<DVec3> {
+    let Some(node) = doc.node(id) else {
+        return Vec::new();
+    };
+    let world = doc.world_matrix(id);
+    let local: Vec<DVec3> = match &node.content {
+        hedra_doc::NodeContent::Mesh(m) => m.mesh.vertices().map(|v| m.mesh.position(v)).collect(),
+        content => hedra_scene::control_points(content),
+    };
+    if local.is_empty() {
+        vec![world.w_axis.truncate()]
+    } else {
+        local
+            .into_iter()
+            .map(|p| world.transform_point3(p))
+            .collect()
+    }
 }
 
 /// The keys every modal tool shares, as in Blender: Esc or a right click

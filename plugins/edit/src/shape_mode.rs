@@ -378,8 +378,10 @@ pub fn drive_shape_tool(
     scroll: Res<bevy::input::mouse::AccumulatedMouseScroll>,
     mut proportional: ResMut<crate::Proportional>,
     mut ring: ResMut<crate::ProportionalRing>,
+    mut snap_target: ResMut<crate::SnapTarget>,
 ) {
-    // The ring is cleared each frame by `drive_mesh_tool`, which runs first.
+    // The ring and the snap target are cleared each frame by
+    // `clear_tool_overlays`, which runs first.
     let (Some(id), Some(mut tool)) = (edit.node, edit.tool.take()) else {
         return;
     };
@@ -411,16 +413,36 @@ pub fn drive_shape_tool(
                 let r = cam.viewport_to_world(cam_t, p).ok()?;
                 Some((r.origin.as_dvec3(), Vec3::from(r.direction).as_dvec3()))
             };
+            // Snapping: onto the shape's other control points and onto
+            // every other node's vertices, edges, faces and control points.
+            let doc = &state.session.doc;
+            let mut scene = crate::SnapScene::of_document(doc, |other| other != id);
+            let world_point = |i: usize| world.transform_point3(points[i]);
+            scene.points.extend(
+                (0..points.len())
+                    .filter(|&i| !edit.selected.contains(&(i as u32)))
+                    .map(world_point),
+            );
+            let to_screen = |p: DVec3| cam.world_to_viewport(cam_t, p.as_vec3()).ok();
+            let snap = crate::move_snap(
+                &snapping,
+                snapping.active(&keys),
+                &scene,
+                edit.selected.iter().map(|&i| world_point(i as usize)),
+                cursor,
+                ray_at(cursor),
+                &to_screen,
+                &mut snap_target,
+            );
             let world_delta = match tool.typed.value() {
                 Some(v) => tool.axis.unwrap_or(Axis::X).vector() * v,
-                None => crate::drag_translation(
+                None => snap.translation(
                     tool.start_cursor,
                     cursor,
                     tool.pivot,
                     view_dir,
                     tool.axis,
                     &ray_at,
-                    snapping.active(&keys).then_some(snapping.step),
                 ),
             };
             tool.readout = format!(

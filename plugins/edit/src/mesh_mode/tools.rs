@@ -20,20 +20,15 @@ pub(super) fn tool_command(
     let faces = || FaceSet::Ids(selection.faces.iter().map(|f| f.0).collect());
     match tool.kind {
         MeshToolKind::Move | MeshToolKind::ExtrudeEdges => {
-            let world_delta = match (tool.typed.value(), snap) {
-                (Some(v), _) => tool.axis.unwrap_or(Axis::X).vector() * v,
-                (None, crate::MoveSnap::To(delta)) => delta,
-                (None, snap) => crate::drag_translation(
+            let world_delta = match tool.typed.value() {
+                Some(v) => tool.axis.unwrap_or(Axis::X).vector() * v,
+                None => snap.translation(
                     tool.start_cursor,
                     cursor,
                     tool.pivot,
                     view_dir,
                     tool.axis,
                     ray_at,
-                    match snap {
-                        crate::MoveSnap::Increment(step) => Some(step),
-                        _ => None,
-                    },
                 ),
             };
             let verb = if tool.kind == MeshToolKind::Move {
@@ -340,8 +335,6 @@ pub fn drive_mesh_tool(
     mut ring: ResMut<crate::ProportionalRing>,
 ) {
     mode.just_finished = false;
-    snap_target.0 = None;
-    ring.0 = None;
     let Some(mut tool) = mode.tool.take() else {
         return;
     };
@@ -402,30 +395,34 @@ pub fn drive_mesh_tool(
             .ok()
             .map(|r| (r.origin.as_dvec3(), Vec3::from(r.direction).as_dvec3()))
     };
-    let snap = match (snapping.active(&keys), snapping.element) {
-        (false, _) => crate::MoveSnap::Free,
-        (true, element)
-            if tool.kind == MeshToolKind::Move && element != crate::SnapElement::Increment =>
-        {
-            let to_screen = |p: DVec3| cam.world_to_viewport(cam_t, p.as_vec3()).ok();
-            let moved = mode.selection.all_vertices(&mesh);
-            match crate::element_snap(
-                element,
-                &mesh,
-                world,
-                &moved,
-                cursor,
-                ray_at(cursor),
-                &to_screen,
-            ) {
-                Some((target, delta)) => {
-                    snap_target.0 = Some(target);
-                    crate::MoveSnap::To(delta)
-                }
-                None => crate::MoveSnap::Free,
-            }
-        }
-        (true, _) => crate::MoveSnap::Increment(snapping.step),
+    // Snapping: a move lands on the scene's vertices, edges or faces (this
+    // mesh's moving part left out); the other tools go in increments.
+    let snap = if tool.kind == MeshToolKind::Move {
+        let to_screen = |p: DVec3| cam.world_to_viewport(cam_t, p.as_vec3()).ok();
+        let moving = mode.selection.all_vertices(&mesh);
+        let doc = &state.session.doc;
+        let mut scene = crate::SnapScene::of_document(doc, |id| id != node_id);
+        scene.meshes.push(crate::SnapMesh {
+            mesh: &mesh,
+            world,
+            moving: Some(&moving),
+        });
+        crate::move_snap(
+            &snapping,
+            snapping.active(&keys),
+            &scene,
+            moving
+                .iter()
+                .map(|&v| world.transform_point3(mesh.position(v))),
+            cursor,
+            ray_at(cursor),
+            &to_screen,
+            &mut snap_target,
+        )
+    } else if snapping.active(&keys) {
+        crate::MoveSnap::Increment(snapping.step)
+    } else {
+        crate::MoveSnap::Free
     };
     // Proportional editing: G/R/S move the neighbours too; the wheel sizes it.
     let soft = proportional.enabled
