@@ -1167,6 +1167,69 @@ fn rip_two_edges_of_a_grid_and_pull_one_side() {
     assert_eq!(mesh.boundary_loops().len(), 2, "the outline and the slit");
 }
 
+/// Alt+V splits the grid's middle vertex (seed 004's vertex split): the new
+/// vertex follows the pointer and takes the edge on its side, joined to the
+/// old one by a new edge (V +1, E +1, F same), one undo step; Mesh ▸ Split
+/// Vertex starts the same tool, here pulled the other way.
+#[test]
+fn alt_v_splits_a_vertex_toward_the_pointer() {
+    let mut user = User::new();
+    user.add("Grid");
+    user.tap(KeyCode::Tab);
+    user.tap(KeyCode::Digit1);
+    user.tap(KeyCode::Numpad7);
+    let (v0, e0, f0) = user.mesh_counts();
+    let middle = user.screen_of(Vec3::ZERO);
+    user.click(middle);
+    let v = *user.edit_mode().selection.vertices.iter().next().unwrap();
+    assert_eq!(user.first_mesh().position(v), DVec3::ZERO);
+    let steps = user.undo_steps();
+    for (start_tool, side) in [(true, 1.0), (false, -1.0)] {
+        if start_tool {
+            user.move_to(middle);
+            user.shortcut(&[KeyCode::AltLeft], KeyCode::KeyV);
+        } else {
+            open_mesh_menu(&mut user);
+            user.click_on("Split Vertex\tAlt+V");
+        }
+        let pulled = user.screen_of(Vec3::new(0.0, 0.0, 0.1 * side as f32));
+        user.glide_to(pulled, 5);
+        user.click(pulled);
+        let mesh = user.first_mesh();
+        mesh.validate().unwrap();
+        assert_eq!(
+            user.mesh_counts(),
+            (v0 + 1, e0 + 1, f0),
+            "{}",
+            user.status()
+        );
+        assert_eq!(user.undo_steps(), steps + 1);
+        let new = mesh.vertices().max_by_key(|v| v.0).unwrap();
+        let p = mesh.position(new);
+        assert!(
+            (p.z * side - 0.1).abs() < 0.01 && p.x.abs() < 0.01 && p.y.abs() < 1e-3,
+            "the new vertex is under the pointer: {p}"
+        );
+        let mut around: Vec<DVec3> = mesh
+            .vertex_neighbors(new)
+            .map(|w| mesh.position(w))
+            .collect();
+        around.sort_by(|a, b| a.z.total_cmp(&b.z));
+        assert_eq!(
+            around.len(),
+            2,
+            "joined to the old vertex and the edge on its side"
+        );
+        assert!(around.contains(&DVec3::ZERO), "{around:?}");
+        assert!(
+            around.iter().any(|q| q.x == 0.0 && q.z * side > 0.1),
+            "the edge toward the pointer moved: {around:?}"
+        );
+        user.shortcut(&[KeyCode::ControlLeft], KeyCode::KeyZ);
+        assert_eq!(user.mesh_counts(), (v0, e0, f0));
+    }
+}
+
 /// Mesh ▸ Euler Operators on a cube: KEF on the clicked edge merges two
 /// faces (E −1, F −1, L −1, shown in the topology inspector); after undo,
 /// KFMRH with the top and bottom faces selected makes the bottom a ring

@@ -153,6 +153,7 @@ pub enum Action {
     TrisToQuads,
     Knife,
     Rip,
+    SplitVertex,
     Dissolve,
     FlipNormals,
     RecalculateNormals,
@@ -348,6 +349,12 @@ pub const BINDINGS: &[Binding] = &[
     ),
     bind(
         Edit,
+        Chord::alt(K::KeyV),
+        A::SplitVertex,
+        "split the vertex: its edges on the pointer's side go to a new vertex",
+    ),
+    bind(
+        Edit,
         Chord::key(K::KeyX),
         A::Delete,
         "delete the selected elements",
@@ -443,6 +450,12 @@ pub fn bindings_of(mode: KeyMode) -> Vec<(String, &'static str)> {
         .map(|b| (chord_label(mode, b.action), b.what))
         .collect()
 }
+
+/// An action asked for from a menu rather than by its keys: the shortcut
+/// systems run it next frame exactly as if its chord had been pressed, so
+/// a menu item and its key start the same interactive tool.
+#[derive(Resource, Debug, Default, Clone, Copy, PartialEq, Eq)]
+pub struct RequestedAction(pub Option<Action>);
 
 /// Whether the key help (F1) is shown.
 #[derive(Resource, Debug, Default, Clone, Copy, PartialEq, Eq)]

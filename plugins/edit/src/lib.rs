@@ -93,6 +93,7 @@ impl Plugin for EditPlugin {
             .init_resource::<SnapTarget>()
             .init_resource::<Proportional>()
             .init_resource::<bindings::KeyHelp>()
+            .init_resource::<bindings::RequestedAction>()
             .init_resource::<PivotPoint>()
             .init_resource::<ProportionalRing>()
             .init_resource::<ShapeEdit>()

@@ -17,10 +17,16 @@ pub fn edit_shortcuts(
     knife: Res<KnifeTool>,
     pivot_point: Res<crate::PivotPoint>,
     cursor_3d: Res<hedra_scene::Cursor3d>,
+    mut requested: ResMut<crate::bindings::RequestedAction>,
 ) {
+    let requested = requested.0.take();
     if !mode.active() || mode.tool.is_some() || !gate.keyboard_free || knife.active {
         return;
     }
+    // A chord, or the same action asked for from a menu.
+    let wants = |action: Action| {
+        requested == Some(action) || crate::bindings::pressed(&keys, KeyMode::Edit, action)
+    };
     let Some(mesh) = edited_mesh(&state, &mode) else {
         return;
     };
@@ -60,7 +66,7 @@ pub fn edit_shortcuts(
         proportional: None,
         readout: String::new(),
     };
-    if crate::bindings::pressed(&keys, KeyMode::Edit, Action::LoopCut) {
+    if wants(Action::LoopCut) {
         let (cam, cam_t) = *camera;
         let edge = match element_under_cursor(ElementKind::Edge, &mesh, world, &window, cam, cam_t)
         {
@@ -76,6 +82,25 @@ pub fn edit_shortcuts(
             None => status.error(
                 "Loop cut: point at an edge of a quad strip (or select one), then press Ctrl+R",
             ),
+        }
+        return;
+    }
+    // Alt+V: the vertex split follows the pointer from the vertex itself.
+    if wants(Action::SplitVertex) {
+        match mode.selection.vertices.iter().collect::<Vec<_>>()[..] {
+            [&v] if mesh.vertex_neighbors(v).count() < 2 => {
+                status.error("Split vertex: the vertex needs two edges or more")
+            }
+            [&v] if mode.selection.edges.is_empty() && mode.selection.faces.is_empty() => {
+                let mut t = start(MeshToolKind::SplitVertex);
+                t.pivot = world.transform_point3(mesh.position(v));
+                t.pivot_screen = camera
+                    .0
+                    .world_to_viewport(camera.1, t.pivot.as_vec3())
+                    .unwrap_or(cursor);
+                mode.tool = Some(t);
+            }
+            _ => status.error("Split vertex: select exactly one vertex (press 1 for vertex mode)"),
         }
         return;
     }
@@ -109,7 +134,7 @@ pub fn edit_shortcuts(
             "Bevel: select edges first (press 2 for edge mode)",
         ),
     ] {
-        if crate::bindings::pressed(&keys, KeyMode::Edit, action) {
+        if wants(action) {
             if selected {
                 mode.tool = Some(start(tool));
             } else {
@@ -118,7 +143,7 @@ pub fn edit_shortcuts(
             return;
         }
     }
-    if crate::bindings::pressed(&keys, KeyMode::Edit, Action::Crease) {
+    if wants(Action::Crease) {
         let creases = match state
             .session
             .doc
@@ -151,7 +176,7 @@ pub fn edit_shortcuts(
         return;
     }
     // Ctrl+T (Blender): triangulate the selected faces.
-    if crate::bindings::pressed(&keys, KeyMode::Edit, Action::Triangulate) {
+    if wants(Action::Triangulate) {
         if mode.selection.faces.is_empty() {
             status.error("Triangulate: select faces (press 3 for face mode)");
         } else {
@@ -164,7 +189,7 @@ pub fn edit_shortcuts(
         return;
     }
     // Alt+J (Blender): join the selected triangles into quads.
-    if crate::bindings::pressed(&keys, KeyMode::Edit, Action::TrisToQuads) {
+    if wants(Action::TrisToQuads) {
         if mode.selection.faces.is_empty() {
             status.error("Tris to Quads: select faces (press 3 for face mode)");
         } else {
@@ -180,7 +205,7 @@ pub fn edit_shortcuts(
     // V (Blender's Rip): split the mesh along the selected edges (in
     // vertex mode, the edges between selected vertices) and grab the side
     // nearest the pointer.
-    if crate::bindings::pressed(&keys, KeyMode::Edit, Action::Rip) {
+    if wants(Action::Rip) {
         let edges: Vec<EdgeId> = if mode.kind == ElementKind::Vertex {
             mesh.edges()
                 .filter(|&e| {
@@ -240,7 +265,7 @@ pub fn edit_shortcuts(
         }
         return;
     }
-    if crate::bindings::pressed(&keys, KeyMode::Edit, Action::Dissolve) {
+    if wants(Action::Dissolve) {
         match delete_or_dissolve(node.clone(), mode.kind, &mode.selection, true) {
             Some(cmd) => {
                 requests.write(DocRequest::Execute(cmd));
@@ -249,8 +274,8 @@ pub fn edit_shortcuts(
         }
         return;
     }
-    let flip = crate::bindings::pressed(&keys, KeyMode::Edit, Action::FlipNormals);
-    if flip || crate::bindings::pressed(&keys, KeyMode::Edit, Action::RecalculateNormals) {
+    let flip = wants(Action::FlipNormals);
+    if flip || wants(Action::RecalculateNormals) {
         let cmd = if flip {
             Command::FlipNormals { node: node.clone() }
         } else {
@@ -262,7 +287,7 @@ pub fn edit_shortcuts(
     if c || a {
         return;
     }
-    if crate::bindings::pressed(&keys, KeyMode::Edit, Action::Fill) {
+    if wants(Action::Fill) {
         let edges: Vec<u32> = mode
             .selection
             .edges
@@ -296,7 +321,7 @@ pub fn edit_shortcuts(
         (Action::Rotate, MeshToolKind::Rotate),
         (Action::Scale, MeshToolKind::Scale),
     ] {
-        if crate::bindings::pressed(&keys, KeyMode::Edit, action) {
+        if wants(action) {
             if verts.is_empty() {
                 status.error("Nothing selected to transform");
             } else {
@@ -304,7 +329,7 @@ pub fn edit_shortcuts(
             }
         }
     }
-    let extrude = crate::bindings::pressed(&keys, KeyMode::Edit, Action::Extrude);
+    let extrude = wants(Action::Extrude);
     if extrude && mode.kind == ElementKind::Edge {
         if mode.selection.edges.is_empty() {
             status.error("Extrude: select boundary edges first");
@@ -318,14 +343,14 @@ pub fn edit_shortcuts(
             mode.tool = Some(start(MeshToolKind::Extrude));
         }
     }
-    if crate::bindings::pressed(&keys, KeyMode::Edit, Action::Inset) {
+    if wants(Action::Inset) {
         if mode.selection.faces.is_empty() {
             status.error("Inset: select faces first (press 3 for face mode)");
         } else {
             mode.tool = Some(start(MeshToolKind::Inset));
         }
     }
-    let merge = crate::bindings::pressed(&keys, KeyMode::Edit, Action::MergeOrCollapse);
+    let merge = wants(Action::MergeOrCollapse);
     if merge && mode.kind == ElementKind::Vertex {
         if mode.selection.vertices.len() < 2 {
             status.error("Merge: select two or more vertices");
@@ -342,7 +367,7 @@ pub fn edit_shortcuts(
             }));
         }
     }
-    if crate::bindings::pressed(&keys, KeyMode::Edit, Action::Connect) {
+    if wants(Action::Connect) {
         let vs: Vec<u32> = mode.selection.vertices.iter().map(|v| v.0).collect();
         if vs.len() == 2 {
             requests.write(DocRequest::Execute(Command::ConnectVertices {
@@ -352,7 +377,7 @@ pub fn edit_shortcuts(
         } else {
             status.error("Connect: select exactly two vertices of one face");
         }
-    } else if crate::bindings::pressed(&keys, KeyMode::Edit, Action::Delete) {
+    } else if wants(Action::Delete) {
         match delete_or_dissolve(node, mode.kind, &mode.selection, false) {
             Some(c) => {
                 requests.write(DocRequest::Execute(c));

@@ -169,6 +169,10 @@ pub enum MeshToolKind {
     /// Cut edge loops across the ring through the edge under the cursor, or
     /// the first selected edge (Ctrl+R).
     LoopCut,
+    /// Split the one selected vertex (Alt+V, seed 004's vertex split, the
+    /// inverse of an edge collapse): the new vertex follows the pointer and
+    /// takes the vertex's edges on the pointer's side.
+    SplitVertex,
 }
 
 /// A running mesh tool.

@@ -226,6 +226,36 @@ pub(super) fn tool_command(
                 }
             }
         }
+        MeshToolKind::SplitVertex => {
+            let v = *selection.vertices.first().expect("one vertex to split");
+            // The new vertex goes where the pointer is, on the view plane
+            // through the vertex (snapped like a move).
+            let world_delta = match tool.typed.value() {
+                Some(d) => tool.axis.unwrap_or(Axis::X).vector() * d,
+                None => snap.translation(
+                    tool.pivot_screen,
+                    cursor,
+                    tool.pivot,
+                    view_dir,
+                    tool.axis,
+                    ray_at,
+                ),
+            };
+            let (first, last) = split_side(mesh, v, world.inverse().transform_vector3(world_delta));
+            tool.readout = format!(
+                "Split vertex: new vertex at ({:.4}, {:.4}, {:.4}) from it; the edges on the pointer's side follow",
+                world_delta.x, world_delta.y, world_delta.z
+            );
+            Command::SplitVertex {
+                node,
+                vertex: VertexSet::Ids(vec![v.0]),
+                first: VertexSet::Ids(vec![first.0]),
+                last: VertexSet::Ids(vec![last.0]),
+                position: world
+                    .inverse()
+                    .transform_point3(world.transform_point3(mesh.position(v)) + world_delta),
+            }
+        }
         MeshToolKind::LoopCut => {
             let cuts = tool
                 .typed
@@ -239,6 +269,32 @@ pub(super) fn tool_command(
             }
         }
     }
+}
+
+/// The first and last neighbour, in fan order, of the edges of `v` that a
+/// vertex split towards `towards` (local) moves to the new vertex: the
+/// longest run of consecutive edges that point the same way as `towards`,
+/// never all of them; the one edge pointing most that way when none does.
+fn split_side(mesh: &HalfEdgeMesh, v: VertexId, towards: DVec3) -> (VertexId, VertexId) {
+    let fan: Vec<VertexId> = mesh.vertex_neighbors(v).collect();
+    let here = mesh.position(v);
+    let score: Vec<f64> = fan
+        .iter()
+        .map(|&w| (mesh.position(w) - here).normalize_or_zero().dot(towards))
+        .collect();
+    let n = fan.len();
+    let best = (0..n)
+        .max_by(|&a, &b| score[a].total_cmp(&score[b]))
+        .unwrap_or(0);
+    // Grow the run around the best edge while the neighbours point the same way.
+    let (mut back, mut ahead) = (0, 0);
+    while back + ahead + 1 < n - 1 && score[(best + n - back - 1) % n] > 0.0 {
+        back += 1;
+    }
+    while back + ahead + 1 < n - 1 && score[(best + ahead + 1) % n] > 0.0 {
+        ahead += 1;
+    }
+    (fan[(best + n - back) % n], fan[(best + ahead) % n])
 }
 
 /// A move of vertices with each Mirror modifier's clipping held (Blender's
@@ -397,7 +453,7 @@ pub fn drive_mesh_tool(
     };
     // Snapping: a move lands on the scene's vertices, edges or faces (this
     // mesh's moving part left out); the other tools go in increments.
-    let snap = if tool.kind == MeshToolKind::Move {
+    let snap = if matches!(tool.kind, MeshToolKind::Move | MeshToolKind::SplitVertex) {
         let to_screen = |p: DVec3| cam.world_to_viewport(cam_t, p.as_vec3()).ok();
         let moving = mode.selection.all_vertices(&mesh);
         let doc = &state.session.doc;

@@ -33,6 +33,7 @@ pub(super) fn mesh_menu(
     let mut merge_events = Vec::new();
     let mut euler_events = Vec::new();
     let mut start_bisect = false;
+    let mut tool_to_start = None;
     let mut item = |ui: &mut egui::Ui, label: &str, enabled: bool, cmd: &dyn Fn() -> Command| {
         if ui.add_enabled(enabled, egui::Button::new(label)).clicked() {
             exec(events, cmd());
@@ -221,6 +222,17 @@ pub(super) fn mesh_menu(
             width: 0.1,
         },
     );
+    if ui
+        .add_enabled(
+            sel.vertices.len() == 1,
+            egui::Button::new(keyed("Split Vertex", Action::SplitVertex)),
+        )
+        .on_hover_text("The vertex's edges on the pointer's side go to a new vertex joined to it by an edge (the inverse of a collapse); click to place it")
+        .clicked()
+    {
+        tool_to_start = Some(Action::SplitVertex);
+        ui.close();
+    }
     item(
         ui,
         &keyed("Dissolve Vertices", Action::Dissolve),
@@ -279,6 +291,7 @@ pub(super) fn mesh_menu(
     );
     events.extend(merge_events);
     events.extend(euler_events);
+    events.extend(tool_to_start.map(UiEvent::Start));
     if start_bisect {
         events.push(UiEvent::StartBisect);
     }

@@ -53,6 +53,8 @@ enum UiEvent {
     Error(String),
     /// Mesh ▸ Bisect: arm the drag of the cutting line.
     StartBisect,
+    /// A menu item that starts the same interactive tool as its keys.
+    Start(hedra_edit::bindings::Action),
 }
 
 #[derive(SystemParam)]
@@ -67,6 +69,7 @@ pub struct Writers<'w> {
     snapping: ResMut<'w, hedra_edit::Snapping>,
     proportional: ResMut<'w, hedra_edit::Proportional>,
     key_help: ResMut<'w, hedra_edit::bindings::KeyHelp>,
+    requested: ResMut<'w, hedra_edit::bindings::RequestedAction>,
     pivot: ResMut<'w, hedra_edit::PivotPoint>,
     quad_view: ResMut<'w, hedra_scene::QuadView>,
     cursor: ResMut<'w, hedra_scene::Cursor3d>,
@@ -287,6 +290,7 @@ pub fn draw_ui(
             UiEvent::StartBisect => {
                 hedra_edit::start_bisect(&mut writers.bisect, &model.mode, &mut model.status)
             }
+            UiEvent::Start(action) => writers.requested.0 = Some(action),
             UiEvent::Preview(id, t) => hedra_scene::Previews::show(
                 &mut tool_previews,
                 hedra_scene::PreviewSource::Properties,
