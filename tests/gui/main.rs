@@ -469,6 +469,41 @@ fn f1_lists_the_keys_of_the_current_mode() {
     user.click(Vec2::new(bar.center().x, bar.center().y));
     assert!(user.shows("Triangulate Faces\tCtrl+T"));
     assert!(user.shows("Dissolve Edges\tCtrl+X"));
+    user.tap(KeyCode::Escape);
+    // Every menu's keys come from the same table.
+    user.click_on("View");
+    assert!(user.shows("Quad View\tCtrl+Alt+Q"));
+    user.tap(KeyCode::Escape);
+    user.click_on("Edit");
+    assert!(user.shows("Redo\tCtrl+Shift+Z, Ctrl+Y"));
+    user.tap(KeyCode::Escape);
+
+    // The keys that work in every mode are listed under the mode's own;
+    // while a tool runs, its keys open by themselves.
+    user.tap(KeyCode::Tab);
+    user.tap(KeyCode::F1);
+    assert!(user.shows("Everywhere") && user.shows("quad view: top, front, right and perspective"));
+    assert!(
+        !user.shows("only along X (again: free)"),
+        "tool keys folded"
+    );
+    user.tap(KeyCode::F1);
+    user.move_to(user.viewport_center());
+    user.tap(KeyCode::KeyG);
+    user.tap(KeyCode::F1);
+    assert!(
+        user.shows("only along X (again: free)"),
+        "G runs: its keys show"
+    );
+    user.tap(KeyCode::Escape);
+
+    // Control-point mode has its own table.
+    let mut user = User::new();
+    user.add("NURBS Surface");
+    user.tap(KeyCode::Tab);
+    user.tap(KeyCode::F1);
+    assert!(user.shows("Keys: Control-point mode"));
+    assert!(user.shows("insert a knot where the pointer is (the shape stays)"));
 }
 
 /// `.` makes the 3D cursor the pivot: S 2 on a cube at the origin with the

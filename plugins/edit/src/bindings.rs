@@ -10,18 +10,27 @@ use hedra_scene::modifiers::{alt, ctrl, shift};
 /// Where a binding applies.
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
 pub enum KeyMode {
+    /// In every mode while no tool runs: files, undo, views, shading.
+    Everywhere,
     /// Object mode: the scene's nodes.
     Object,
     /// Mesh edit mode: vertices, edges and faces.
     Edit,
+    /// Control-point mode: a curve's or surface's points and weights.
+    ControlPoints,
+    /// While a modal tool runs (G/R/S, extrude, bevel, knife, …).
+    Tool,
 }
 
 impl KeyMode {
     /// The mode's name as the key help titles it.
     pub fn label(self) -> &'static str {
         match self {
+            KeyMode::Everywhere => "Everywhere",
             KeyMode::Object => "Object mode",
             KeyMode::Edit => "Edit mode",
+            KeyMode::ControlPoints => "Control-point mode",
+            KeyMode::Tool => "While a tool runs",
         }
     }
 }
@@ -37,6 +46,9 @@ pub struct Chord {
     pub shift: bool,
     /// Alt held.
     pub alt: bool,
+    /// Whatever modifiers are held (a tool's Enter or X still works while
+    /// Ctrl inverts snapping).
+    pub any_modifiers: bool,
 }
 
 impl Chord {
@@ -47,6 +59,14 @@ impl Chord {
             ctrl: false,
             shift: false,
             alt: false,
+            any_modifiers: false,
+        }
+    }
+    /// The key, whatever modifiers are held.
+    pub const fn any(key: KeyCode) -> Chord {
+        Chord {
+            any_modifiers: true,
+            ..Chord::key(key)
         }
     }
     /// The key with Ctrl.
@@ -78,13 +98,20 @@ impl Chord {
             ..Chord::key(key)
         }
     }
+    /// The key with Ctrl and Alt.
+    pub const fn ctrl_alt(key: KeyCode) -> Chord {
+        Chord {
+            ctrl: true,
+            alt: true,
+            ..Chord::key(key)
+        }
+    }
 
     /// Pressed this frame with exactly these modifiers.
     pub fn just_pressed(&self, keys: &ButtonInput<KeyCode>) -> bool {
         keys.just_pressed(self.key)
-            && ctrl(keys) == self.ctrl
-            && shift(keys) == self.shift
-            && alt(keys) == self.alt
+            && (self.any_modifiers
+                || (ctrl(keys) == self.ctrl && shift(keys) == self.shift && alt(keys) == self.alt))
     }
 
     /// As a person writes it: "Ctrl+Shift+B", "Numpad +", "Delete".
@@ -115,6 +142,13 @@ pub fn key_label(key: KeyCode) -> String {
         KeyCode::PageUp => "Page Up".into(),
         KeyCode::PageDown => "Page Down".into(),
         KeyCode::Slash => "/".into(),
+        KeyCode::NumpadDecimal => "Numpad .".into(),
+        KeyCode::NumpadEnter => "Numpad Enter".into(),
+        KeyCode::Period => ".".into(),
+        KeyCode::Numpad1 => "Numpad 1".into(),
+        KeyCode::Numpad3 => "Numpad 3".into(),
+        KeyCode::Numpad5 => "Numpad 5".into(),
+        KeyCode::Numpad7 => "Numpad 7".into(),
         _ => debug
             .strip_prefix("Key")
             .or_else(|| debug.strip_prefix("Digit"))
@@ -127,6 +161,51 @@ pub fn key_label(key: KeyCode) -> String {
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
 #[allow(missing_docs)] // each is described by its binding's text
 pub enum Action {
+    NewFile,
+    OpenFile,
+    Save,
+    SaveAs,
+    Quit,
+    Undo,
+    Redo,
+    AddMenu,
+    SnapMenu,
+    Snapping,
+    Wireframe,
+    XRay,
+    QuadView,
+    ViewFront,
+    ViewBack,
+    ViewRight,
+    ViewLeft,
+    ViewTop,
+    ViewBottom,
+    Orthographic,
+    FrameSelected,
+    FrameAll,
+    SubdivisionLevel,
+    SubdivisionUp,
+    SubdivisionDown,
+    EditModeToggle,
+    VertexMode,
+    EdgeMode,
+    FaceMode,
+    BoxSelect,
+    Weight,
+    InsertKnot,
+    InsertKnotV,
+    Confirm,
+    Cancel,
+    AxisX,
+    AxisY,
+    AxisZ,
+    Slide,
+    MoreCuts,
+    FewerCuts,
+    LargerRadius,
+    SmallerRadius,
+    KnifeAngle,
+    KnifeBack,
     SelectAll,
     SelectNone,
     InvertSelection,
@@ -190,11 +269,157 @@ const fn bind(mode: KeyMode, chord: Chord, action: Action, what: &'static str) -
 
 use Action as A;
 use KeyCode as K;
-use KeyMode::{Edit, Object};
+use KeyMode::{ControlPoints, Edit, Everywhere, Object, Tool};
 
 /// The keymap (Blender's keys). An action may have several chords (X and
-/// Delete); within a mode a chord runs one action.
+/// Delete); within a mode a chord runs one action, and a chord bound
+/// everywhere is bound in no single mode.
 pub const BINDINGS: &[Binding] = &[
+    bind(Everywhere, Chord::ctrl(K::KeyN), A::NewFile, "new scene"),
+    bind(
+        Everywhere,
+        Chord::ctrl(K::KeyO),
+        A::OpenFile,
+        "open a scene",
+    ),
+    bind(Everywhere, Chord::ctrl(K::KeyS), A::Save, "save"),
+    bind(Everywhere, Chord::ctrl_shift(K::KeyS), A::SaveAs, "save as"),
+    bind(
+        Everywhere,
+        Chord::ctrl(K::KeyQ),
+        A::Quit,
+        "quit (asks first when there are unsaved changes)",
+    ),
+    bind(Everywhere, Chord::ctrl(K::KeyZ), A::Undo, "undo"),
+    bind(Everywhere, Chord::ctrl_shift(K::KeyZ), A::Redo, "redo"),
+    bind(Everywhere, Chord::ctrl(K::KeyY), A::Redo, "redo"),
+    bind(
+        Everywhere,
+        Chord::shift(K::KeyA),
+        A::AddMenu,
+        "add menu at the pointer",
+    ),
+    bind(
+        Everywhere,
+        Chord::shift(K::KeyS),
+        A::SnapMenu,
+        "snap menu at the pointer (3D cursor, selection)",
+    ),
+    bind(
+        Everywhere,
+        Chord::key(K::Tab),
+        A::EditModeToggle,
+        "edit the active mesh (control points of a curve or surface); again to leave",
+    ),
+    bind(
+        Everywhere,
+        Chord::shift(K::Tab),
+        A::Snapping,
+        "snapping on/off (Ctrl held during a drag inverts it)",
+    ),
+    bind(
+        Everywhere,
+        Chord::shift(K::KeyZ),
+        A::Wireframe,
+        "wireframe on/off",
+    ),
+    bind(
+        Everywhere,
+        Chord::alt(K::KeyZ),
+        A::XRay,
+        "X-ray on/off (see through, select through)",
+    ),
+    bind(
+        Everywhere,
+        Chord::ctrl_alt(K::KeyQ),
+        A::QuadView,
+        "quad view: top, front, right and perspective",
+    ),
+    bind(
+        Everywhere,
+        Chord::key(K::Numpad1),
+        A::ViewFront,
+        "front view",
+    ),
+    bind(
+        Everywhere,
+        Chord::ctrl(K::Numpad1),
+        A::ViewBack,
+        "back view",
+    ),
+    bind(
+        Everywhere,
+        Chord::key(K::Numpad3),
+        A::ViewRight,
+        "right view",
+    ),
+    bind(
+        Everywhere,
+        Chord::ctrl(K::Numpad3),
+        A::ViewLeft,
+        "left view",
+    ),
+    bind(Everywhere, Chord::key(K::Numpad7), A::ViewTop, "top view"),
+    bind(
+        Everywhere,
+        Chord::ctrl(K::Numpad7),
+        A::ViewBottom,
+        "bottom view",
+    ),
+    bind(
+        Everywhere,
+        Chord::key(K::Numpad5),
+        A::Orthographic,
+        "perspective / orthographic",
+    ),
+    bind(
+        Everywhere,
+        Chord::key(K::NumpadDecimal),
+        A::FrameSelected,
+        "frame the selection",
+    ),
+    bind(
+        Everywhere,
+        Chord::key(K::Home),
+        A::FrameAll,
+        "frame everything",
+    ),
+    bind(
+        Everywhere,
+        Chord::ctrl(K::Digit0),
+        A::SubdivisionLevel,
+        "subdivision level 0–5 of the selected meshes (0: the cage alone)",
+    ),
+    bind(Everywhere, Chord::ctrl(K::Digit1), A::SubdivisionLevel, ""),
+    bind(Everywhere, Chord::ctrl(K::Digit2), A::SubdivisionLevel, ""),
+    bind(Everywhere, Chord::ctrl(K::Digit3), A::SubdivisionLevel, ""),
+    bind(Everywhere, Chord::ctrl(K::Digit4), A::SubdivisionLevel, ""),
+    bind(Everywhere, Chord::ctrl(K::Digit5), A::SubdivisionLevel, ""),
+    bind(
+        Everywhere,
+        Chord::key(K::PageUp),
+        A::SubdivisionUp,
+        "one subdivision level more",
+    ),
+    bind(
+        Everywhere,
+        Chord::key(K::PageDown),
+        A::SubdivisionDown,
+        "one subdivision level less",
+    ),
+    bind(
+        Everywhere,
+        Chord::key(K::Period),
+        A::PivotPoint,
+        "pivot: median point / 3D cursor",
+    ),
+    bind(Everywhere, Chord::key(K::F1), A::KeyHelp, "this key help"),
+    bind(
+        Everywhere,
+        Chord::shift(K::Slash),
+        A::KeyHelp,
+        "this key help",
+    ),
     bind(Object, Chord::key(K::KeyA), A::SelectAll, "select all"),
     bind(Object, Chord::alt(K::KeyA), A::SelectNone, "select none"),
     bind(
@@ -215,13 +440,25 @@ pub const BINDINGS: &[Binding] = &[
     bind(Object, Chord::key(K::Delete), A::Delete, "delete"),
     bind(Object, Chord::key(K::KeyH), A::Hide, "hide the selection"),
     bind(Object, Chord::alt(K::KeyH), A::Unhide, "unhide all"),
-    bind(Object, Chord::key(K::F1), A::KeyHelp, "this key help"),
-    bind(Object, Chord::shift(K::Slash), A::KeyHelp, "this key help"),
     bind(
         Object,
-        Chord::key(K::Period),
-        A::PivotPoint,
-        "pivot: median point / 3D cursor",
+        Chord::key(K::KeyF),
+        A::FrameSelected,
+        "frame the selection",
+    ),
+    bind(
+        Edit,
+        Chord::key(K::Digit1),
+        A::VertexMode,
+        "select vertices",
+    ),
+    bind(Edit, Chord::key(K::Digit2), A::EdgeMode, "select edges"),
+    bind(Edit, Chord::key(K::Digit3), A::FaceMode, "select faces"),
+    bind(
+        Edit,
+        Chord::key(K::KeyB),
+        A::BoxSelect,
+        "box select: click the opposite corner",
     ),
     bind(Edit, Chord::key(K::KeyA), A::SelectAll, "select all"),
     bind(Edit, Chord::alt(K::KeyA), A::SelectNone, "select none"),
@@ -408,14 +645,136 @@ pub const BINDINGS: &[Binding] = &[
         A::ProportionalFalloff,
         "next proportional falloff",
     ),
-    bind(Edit, Chord::key(K::F1), A::KeyHelp, "this key help"),
-    bind(Edit, Chord::shift(K::Slash), A::KeyHelp, "this key help"),
     bind(
-        Edit,
-        Chord::key(K::Period),
-        A::PivotPoint,
-        "pivot: median point / 3D cursor",
+        ControlPoints,
+        Chord::key(K::KeyA),
+        A::SelectAll,
+        "select all points",
     ),
+    bind(
+        ControlPoints,
+        Chord::alt(K::KeyA),
+        A::SelectNone,
+        "select none",
+    ),
+    bind(
+        ControlPoints,
+        Chord::key(K::KeyB),
+        A::BoxSelect,
+        "box select: click the opposite corner",
+    ),
+    bind(
+        ControlPoints,
+        Chord::key(K::KeyG),
+        A::Move,
+        "move the selected points",
+    ),
+    bind(
+        ControlPoints,
+        Chord::key(K::KeyW),
+        A::Weight,
+        "change the selected points' weights (drag right: heavier)",
+    ),
+    bind(
+        ControlPoints,
+        Chord::key(K::KeyK),
+        A::InsertKnot,
+        "insert a knot where the pointer is (the shape stays)",
+    ),
+    bind(
+        ControlPoints,
+        Chord::shift(K::KeyK),
+        A::InsertKnotV,
+        "insert a knot in v (surfaces)",
+    ),
+    bind(
+        ControlPoints,
+        Chord::key(K::KeyO),
+        A::Proportional,
+        "proportional editing on/off (wheel: radius)",
+    ),
+    bind(
+        ControlPoints,
+        Chord::shift(K::KeyO),
+        A::ProportionalFalloff,
+        "next proportional falloff",
+    ),
+    bind(
+        Tool,
+        Chord::any(K::Enter),
+        A::Confirm,
+        "confirm (or a left click; the knife cuts)",
+    ),
+    bind(Tool, Chord::any(K::NumpadEnter), A::Confirm, ""),
+    bind(Tool, Chord::any(K::Space), A::Confirm, ""),
+    bind(
+        Tool,
+        Chord::any(K::Escape),
+        A::Cancel,
+        "cancel (or a right click): nothing changes",
+    ),
+    bind(
+        Tool,
+        Chord::any(K::KeyX),
+        A::AxisX,
+        "only along X (again: free)",
+    ),
+    bind(Tool, Chord::any(K::KeyY), A::AxisY, "only along Y"),
+    bind(Tool, Chord::any(K::KeyZ), A::AxisZ, "only along Z"),
+    bind(
+        Tool,
+        Chord::key(K::KeyG),
+        A::Slide,
+        "moving edges: slide them along their neighbours instead",
+    ),
+    bind(
+        Tool,
+        Chord::key(K::NumpadAdd),
+        A::MoreCuts,
+        "loop cut, bevel: one cut or segment more (or the wheel)",
+    ),
+    bind(Tool, Chord::key(K::Equal), A::MoreCuts, ""),
+    bind(
+        Tool,
+        Chord::key(K::NumpadSubtract),
+        A::FewerCuts,
+        "loop cut, bevel: one cut or segment less",
+    ),
+    bind(Tool, Chord::key(K::Minus), A::FewerCuts, ""),
+    bind(
+        Tool,
+        Chord::key(K::PageUp),
+        A::LargerRadius,
+        "proportional radius larger (or the wheel)",
+    ),
+    bind(
+        Tool,
+        Chord::key(K::PageDown),
+        A::SmallerRadius,
+        "proportional radius smaller",
+    ),
+    bind(
+        Tool,
+        Chord::key(K::KeyC),
+        A::KnifeAngle,
+        "knife: keep the next segment at a multiple of 45°",
+    ),
+    bind(
+        Tool,
+        Chord::key(K::Backspace),
+        A::KnifeBack,
+        "knife: take the last point back",
+    ),
+];
+
+/// What the key help adds under the running tool's keys: the input that
+/// is not one key.
+pub const TOOL_NOTES: &[(&str, &str)] = &[
+    (
+        "0–9 . -",
+        "type an exact amount (distance, angle, factor, count)",
+    ),
+    ("Ctrl (held)", "snapping inverted while held"),
 ];
 
 /// True when a chord bound to `action` in `mode` was pressed this frame.
@@ -424,6 +783,16 @@ pub fn pressed(keys: &ButtonInput<KeyCode>, mode: KeyMode, action: Action) -> bo
         .iter()
         .filter(|b| b.mode == mode && b.action == action)
         .any(|b| b.chord.just_pressed(keys))
+}
+
+/// The key of the chord bound to `action` in `mode` that was pressed this
+/// frame, for actions with a family of keys (Ctrl+0…Ctrl+5).
+pub fn pressed_key(keys: &ButtonInput<KeyCode>, mode: KeyMode, action: Action) -> Option<KeyCode> {
+    BINDINGS
+        .iter()
+        .filter(|b| b.mode == mode && b.action == action)
+        .find(|b| b.chord.just_pressed(keys))
+        .map(|b| b.chord.key)
 }
 
 /// The chords of `action` in `mode`, as a menu shows them ("X, Delete").
@@ -457,6 +826,17 @@ pub fn bindings_of(mode: KeyMode) -> Vec<(String, &'static str)> {
 #[derive(Resource, Debug, Default, Clone, Copy, PartialEq, Eq)]
 pub struct RequestedAction(pub Option<Action>);
 
+impl RequestedAction {
+    /// True, once, when `action` was asked for.
+    pub fn take(&mut self, action: Action) -> bool {
+        let asked = self.0 == Some(action);
+        if asked {
+            self.0 = None;
+        }
+        asked
+    }
+}
+
 /// Whether the key help (F1) is shown.
 #[derive(Resource, Debug, Default, Clone, Copy, PartialEq, Eq)]
 pub struct KeyHelp(pub bool);
@@ -465,11 +845,9 @@ pub struct KeyHelp(pub bool);
 pub fn key_help_keys(
     keys: Res<ButtonInput<KeyCode>>,
     gate: Res<hedra_scene::InputGate>,
-    mode: Res<crate::EditMode>,
     mut help: ResMut<KeyHelp>,
 ) {
-    let here = if mode.active() { Edit } else { Object };
-    if gate.keyboard_free && pressed(&keys, here, A::KeyHelp) {
+    if gate.keyboard_free && pressed(&keys, Everywhere, A::KeyHelp) {
         help.0 = !help.0;
     } else if help.0 && keys.just_pressed(KeyCode::Escape) {
         help.0 = false;
@@ -482,10 +860,17 @@ mod tests {
 
     #[test]
     fn within_a_mode_each_chord_runs_one_action() {
+        // A chord bound everywhere would also run in the mode it shares.
+        let clash = |a: &Binding, b: &Binding| {
+            a.chord == b.chord
+                && (a.mode == b.mode
+                    || (a.mode == Everywhere && b.mode != Tool)
+                    || (b.mode == Everywhere && a.mode != Tool))
+        };
         for (i, a) in BINDINGS.iter().enumerate() {
             for b in &BINDINGS[i + 1..] {
                 assert!(
-                    !(a.mode == b.mode && a.chord == b.chord),
+                    !clash(a, b),
                     "{} is bound twice in {:?}: {:?} and {:?}",
                     a.chord.label(),
                     a.mode,
@@ -509,6 +894,24 @@ mod tests {
             1,
             "an action is listed once"
         );
+    }
+
+    #[test]
+    fn every_action_says_what_it_does() {
+        for mode in [Everywhere, Object, Edit, ControlPoints, Tool] {
+            for (chord, what) in bindings_of(mode) {
+                assert!(!what.is_empty(), "{chord} in {mode:?} has no text");
+            }
+        }
+    }
+
+    #[test]
+    fn tool_keys_work_whatever_modifiers_are_held() {
+        let mut keys = ButtonInput::<KeyCode>::default();
+        keys.press(K::ControlLeft);
+        keys.press(K::Enter);
+        assert!(pressed(&keys, Tool, A::Confirm), "Enter with Ctrl held");
+        assert!(!pressed(&keys, Everywhere, A::Save));
     }
 
     #[test]

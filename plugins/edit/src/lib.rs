@@ -12,7 +12,7 @@ use bevy::prelude::*;
 use bevy::window::PrimaryWindow;
 use glam::{DMat4, DQuat, DVec3};
 use hedra_doc::{Command, Document, NodeContent, NodeId, NodeRef, NodeTransform};
-use hedra_scene::modifiers::{alt, ctrl, shift};
+use hedra_scene::modifiers::{alt, shift};
 use hedra_scene::{DocChanged, DocRequest, DocState, InputGate, SceneSystems, ViewportCamera};
 
 pub mod bindings;
@@ -346,16 +346,13 @@ pub fn undo_keys(
     mode: Res<EditMode>,
     mut requests: MessageWriter<DocRequest>,
 ) {
-    if !gate.keyboard_free || tool.active.is_some() || mode.tool.is_some() || !ctrl(&keys) {
+    if !gate.keyboard_free || tool.active.is_some() || mode.tool.is_some() {
         return;
     }
-    if keys.just_pressed(KeyCode::KeyZ) {
-        requests.write(if shift(&keys) {
-            DocRequest::Redo
-        } else {
-            DocRequest::Undo
-        });
-    } else if keys.just_pressed(KeyCode::KeyY) {
+    let pressed = |action| bindings::pressed(&keys, bindings::KeyMode::Everywhere, action);
+    if pressed(bindings::Action::Undo) {
+        requests.write(DocRequest::Undo);
+    } else if pressed(bindings::Action::Redo) {
         requests.write(DocRequest::Redo);
     }
 }
@@ -467,16 +464,16 @@ impl PivotPoint {
 pub fn pivot_keys(
     keys: Res<ButtonInput<KeyCode>>,
     gate: Res<InputGate>,
-    mode: Res<EditMode>,
     mut pivot: ResMut<PivotPoint>,
     mut status: ResMut<hedra_scene::StatusMessage>,
 ) {
-    let here = if mode.active() {
-        bindings::KeyMode::Edit
-    } else {
-        bindings::KeyMode::Object
-    };
-    if gate.keyboard_free && bindings::pressed(&keys, here, bindings::Action::PivotPoint) {
+    if gate.keyboard_free
+        && bindings::pressed(
+            &keys,
+            bindings::KeyMode::Everywhere,
+            bindings::Action::PivotPoint,
+        )
+    {
         *pivot = match *pivot {
             PivotPoint::MedianPoint => PivotPoint::Cursor,
             PivotPoint::Cursor => PivotPoint::MedianPoint,
@@ -513,13 +510,13 @@ pub fn subdivision_keys(
         (KeyCode::Digit4, 4),
         (KeyCode::Digit5, 5),
     ];
-    let set_level = LEVEL_KEYS
-        .iter()
-        .find(|(k, _)| ctrl(&keys) && keys.just_pressed(*k))
+    use bindings::{Action, KeyMode::Everywhere};
+    let set_level = bindings::pressed_key(&keys, Everywhere, Action::SubdivisionLevel)
+        .and_then(|key| LEVEL_KEYS.iter().find(|(k, _)| *k == key))
         .map(|&(_, level)| level);
-    let step: i64 = if keys.just_pressed(KeyCode::PageUp) {
+    let step: i64 = if bindings::pressed(&keys, Everywhere, Action::SubdivisionUp) {
         1
-    } else if keys.just_pressed(KeyCode::PageDown) {
+    } else if bindings::pressed(&keys, Everywhere, Action::SubdivisionDown) {
         -1
     } else {
         0

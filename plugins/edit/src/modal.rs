@@ -3,6 +3,7 @@
 //! (press again to free); typing a number gives an exact amount; Enter or a
 //! left click confirms as one undo step; Esc or a right click restores.
 
+use crate::bindings::{Action, KeyMode};
 use crate::{local_from_world, rotation_about};
 use bevy::prelude::*;
 use bevy::window::PrimaryWindow;
@@ -391,25 +392,27 @@ pub struct ModalKeys<'a> {
 impl ModalKeys<'_> {
     /// True on the frame Esc or the right mouse button is pressed.
     pub fn cancel(&self) -> bool {
-        self.keys.just_pressed(KeyCode::Escape) || self.buttons.just_pressed(MouseButton::Right)
+        self.pressed(Action::Cancel) || self.buttons.just_pressed(MouseButton::Right)
+    }
+
+    fn pressed(&self, action: Action) -> bool {
+        crate::bindings::pressed(self.keys, KeyMode::Tool, action)
     }
 
     /// True on the frame Enter, Numpad Enter, Space or the left mouse button is pressed.
     pub fn confirm(&self) -> bool {
-        self.keys
-            .any_just_pressed([KeyCode::Enter, KeyCode::NumpadEnter, KeyCode::Space])
-            || self.buttons.just_pressed(MouseButton::Left)
+        self.pressed(Action::Confirm) || self.buttons.just_pressed(MouseButton::Left)
     }
 
     /// Locks `axis` to the axis whose key was pressed, or frees it when it
     /// was already locked there.
     pub fn toggle_axis(&self, axis: &mut Option<Axis>) {
-        for (key, a) in [
-            (KeyCode::KeyX, Axis::X),
-            (KeyCode::KeyY, Axis::Y),
-            (KeyCode::KeyZ, Axis::Z),
+        for (action, a) in [
+            (Action::AxisX, Axis::X),
+            (Action::AxisY, Axis::Y),
+            (Action::AxisZ, Axis::Z),
         ] {
-            if self.keys.just_pressed(key) {
+            if self.pressed(action) {
                 *axis = if *axis == Some(a) { None } else { Some(a) };
             }
         }

@@ -5,6 +5,7 @@
 //! Page Down) changes the radius while a transform runs; the radius is
 //! drawn as a circle around the pivot.
 
+use crate::bindings::{Action, KeyMode, pressed};
 use bevy::prelude::*;
 use glam::DVec3;
 use hedra_geom::proportional::Falloff;
@@ -43,8 +44,8 @@ impl Proportional {
     pub fn adjust_radius(&mut self, keys: &ButtonInput<KeyCode>, wheel: f32) -> bool {
         // Not `signum`: it is 1 for a still wheel (0.0).
         let notches = (wheel > 0.0) as i32 - (wheel < 0.0) as i32
-            + keys.just_pressed(KeyCode::PageUp) as i32
-            - keys.just_pressed(KeyCode::PageDown) as i32;
+            + pressed(keys, KeyMode::Tool, Action::LargerRadius) as i32
+            - pressed(keys, KeyMode::Tool, Action::SmallerRadius) as i32;
         if notches == 0 {
             return false;
         }
@@ -86,13 +87,16 @@ pub fn proportional_keys(
 ) {
     let editing =
         (mode.active() && mode.tool.is_none()) || (shapes.active() && shapes.tool.is_none());
-    use crate::bindings::{Action, KeyMode, pressed};
-    // Control-point mode uses edit mode's keys.
-    let cycle = pressed(&keys, KeyMode::Edit, Action::ProportionalFalloff);
+    let here = if mode.active() {
+        KeyMode::Edit
+    } else {
+        KeyMode::ControlPoints
+    };
+    let cycle = pressed(&keys, here, Action::ProportionalFalloff);
     if !editing || !gate.keyboard_free {
         return;
     }
-    if !cycle && !pressed(&keys, KeyMode::Edit, Action::Proportional) {
+    if !cycle && !pressed(&keys, here, Action::Proportional) {
         return;
     }
     if cycle {

@@ -6,6 +6,7 @@
 //! Like the mesh tools, a tool decides its command on a copy every frame
 //! and shows the result; Enter or a click confirms it as one undo step.
 
+use crate::bindings::{Action, KeyMode};
 use std::collections::BTreeSet;
 
 use bevy::gizmos::transform_gizmo::TransformGizmoState;
@@ -13,7 +14,7 @@ use bevy::prelude::*;
 use bevy::window::PrimaryWindow;
 use glam::DVec3;
 use hedra_doc::{Command, NodeContent, NodeId, NodeRef, SurfaceShape};
-use hedra_scene::modifiers::{alt, ctrl, shift};
+use hedra_scene::modifiers::{alt, shift};
 use hedra_scene::{DocRequest, DocState, InputGate, StatusMessage, ViewportCamera};
 
 use crate::modal::Axis;
@@ -89,8 +90,7 @@ pub fn shape_mode_keys(
     if !gate.keyboard_free
         || edit.tool.is_some()
         || mesh_mode.active()
-        || !keys.just_pressed(KeyCode::Tab)
-        || hedra_scene::modifiers::shift(&keys)
+        || !crate::bindings::pressed(&keys, KeyMode::Everywhere, Action::EditModeToggle)
     {
         return;
     }
@@ -199,9 +199,9 @@ pub fn shape_select_and_shortcuts(
     let cursor = window.cursor_position();
     // B (Blender): a box from the cursor follows the mouse; a click adds
     // the points it holds; Esc or a right click cancels.
+    let pressed = |action| crate::bindings::pressed(&keys, KeyMode::ControlPoints, action);
     if gate.keyboard_free
-        && keys.just_pressed(KeyCode::KeyB)
-        && !(ctrl(&keys) || shift(&keys) || alt(&keys))
+        && pressed(Action::BoxSelect)
         && let Some(c) = cursor
     {
         edit.box_select = Some((c, c));
@@ -254,21 +254,20 @@ pub fn shape_select_and_shortcuts(
             select_in_box(&mut edit.selected, &points, world, (a, b), (cam, cam_t));
         }
     }
-    if !gate.keyboard_free || ctrl(&keys) {
+    if !gate.keyboard_free {
         return;
     }
-    if keys.just_pressed(KeyCode::KeyA) {
-        edit.selected = if alt(&keys) {
-            BTreeSet::new()
-        } else {
-            (0..points.len() as u32).collect()
-        };
+    if pressed(Action::SelectAll) {
+        edit.selected = (0..points.len() as u32).collect();
+    } else if pressed(Action::SelectNone) {
+        edit.selected = BTreeSet::new();
     }
-    if keys.just_pressed(KeyCode::KeyK) {
+    let in_v = pressed(Action::InsertKnotV);
+    if in_v || pressed(Action::InsertKnot) {
         let Some(cursor) = window.cursor_position() else {
             return;
         };
-        match knot_under_cursor(id, &node.content, world, cursor, (cam, cam_t), shift(&keys)) {
+        match knot_under_cursor(id, &node.content, world, cursor, (cam, cam_t), in_v) {
             Some(cmd) => {
                 requests.write(DocRequest::Execute(cmd));
             }
@@ -276,9 +275,9 @@ pub fn shape_select_and_shortcuts(
         }
         return;
     }
-    let kind = if keys.just_pressed(KeyCode::KeyG) {
+    let kind = if pressed(Action::Move) {
         Some(ShapeToolKind::Move)
-    } else if keys.just_pressed(KeyCode::KeyW) {
+    } else if pressed(Action::Weight) {
         Some(ShapeToolKind::Weight)
     } else {
         None

@@ -146,8 +146,8 @@ pub fn snapping_keys(
     mut snapping: ResMut<Snapping>,
     mut status: ResMut<hedra_scene::StatusMessage>,
 ) {
-    if gate.keyboard_free && hedra_scene::modifiers::shift(&keys) && keys.just_pressed(KeyCode::Tab)
-    {
+    use crate::bindings::{Action, KeyMode, pressed};
+    if gate.keyboard_free && pressed(&keys, KeyMode::Everywhere, Action::Snapping) {
         snapping.enabled = !snapping.enabled;
         status.info(if snapping.enabled {
             "Snapping on: moves in grid steps, rotations in 5°, scales in 0.1 (Ctrl inverts; Shift+Tab off)"

@@ -13,7 +13,6 @@ use bevy::window::{PrimaryWindow, WindowCloseRequested};
 use bevy_egui::{EguiGlobalSettings, EguiPlugin, EguiPrimaryContextPass, PrimaryEguiContext, egui};
 use hedra_doc::{Command, NodeId, NodeTransform};
 use hedra_edit::{Selection, TransformTool};
-use hedra_scene::modifiers::{alt, ctrl, shift};
 use hedra_scene::{DocRequest, DocState, InputGate, StatusMessage, ViewportCamera};
 
 pub mod files;
@@ -271,29 +270,24 @@ fn global_shortcuts(
     if !gate.keyboard_free || tool.active.is_some() {
         return;
     }
-    let shift = shift(&keys);
-    if ctrl(&keys) {
-        if keys.just_pressed(KeyCode::KeyN) {
-            actions.write(FileAction::New);
+    use hedra_edit::bindings::{Action, KeyMode, pressed};
+    let pressed = |action| pressed(&keys, KeyMode::Everywhere, action);
+    for (action, file) in [
+        (Action::NewFile, FileAction::New),
+        (Action::OpenFile, FileAction::Open),
+        (Action::Save, FileAction::Save),
+        (Action::SaveAs, FileAction::SaveAs),
+        (Action::Quit, FileAction::Quit),
+    ] {
+        if pressed(action) {
+            actions.write(file);
         }
-        if keys.just_pressed(KeyCode::KeyO) {
-            actions.write(FileAction::Open);
-        }
-        if keys.just_pressed(KeyCode::KeyS) {
-            actions.write(if shift {
-                FileAction::SaveAs
-            } else {
-                FileAction::Save
-            });
-        }
-        // Ctrl+Alt+Q is quad view.
-        if keys.just_pressed(KeyCode::KeyQ) && !alt(&keys) {
-            actions.write(FileAction::Quit);
-        }
-    } else if shift && keys.just_pressed(KeyCode::KeyA) {
-        ui.add_menu_at = window.cursor_position().map(|c| egui::pos2(c.x, c.y));
-    } else if shift && keys.just_pressed(KeyCode::KeyS) {
-        ui.snap_menu_at = window.cursor_position().map(|c| egui::pos2(c.x, c.y));
+    }
+    let pointer = || window.cursor_position().map(|c| egui::pos2(c.x, c.y));
+    if pressed(Action::AddMenu) {
+        ui.add_menu_at = pointer();
+    } else if pressed(Action::SnapMenu) {
+        ui.snap_menu_at = pointer();
     }
 }
 

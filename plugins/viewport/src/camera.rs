@@ -153,30 +153,29 @@ pub(crate) fn camera_controls(
         orbit.distance = (orbit.distance * 0.88f32.powf(lines)).clamp(0.01, 1e5);
     }
     if gate.keyboard_free && tool.active.is_none() {
-        let flip = if ctrl { std::f32::consts::PI } else { 0.0 };
-        if keys.just_pressed(KeyCode::Numpad1) {
-            (orbit.yaw, orbit.pitch) = (flip, 0.0);
+        use hedra_edit::bindings::{Action, KeyMode, pressed};
+        let pressed = |action| pressed(&keys, KeyMode::Everywhere, action);
+        let flip = std::f32::consts::PI;
+        let view = [
+            (Action::ViewFront, 0.0, 0.0),
+            (Action::ViewBack, flip, 0.0),
+            (Action::ViewRight, FRAC_PI_2, 0.0),
+            (Action::ViewLeft, FRAC_PI_2 + flip, 0.0),
+            (Action::ViewTop, 0.0, -FRAC_PI_2 + 0.001),
+            (Action::ViewBottom, 0.0, FRAC_PI_2 - 0.001),
+        ]
+        .into_iter()
+        .find(|&(action, _, _)| pressed(action));
+        if let Some((_, yaw, pitch)) = view {
+            (orbit.yaw, orbit.pitch) = (yaw, pitch);
         }
-        if keys.just_pressed(KeyCode::Numpad3) {
-            (orbit.yaw, orbit.pitch) = (FRAC_PI_2 + flip, 0.0);
-        }
-        if keys.just_pressed(KeyCode::Numpad5) {
+        if pressed(Action::Orthographic) {
             orbit.orthographic = !orbit.orthographic;
             status.info(if orbit.orthographic {
                 "View: orthographic (Numpad 5 for perspective)"
             } else {
                 "View: perspective (Numpad 5 for orthographic)"
             });
-        }
-        if keys.just_pressed(KeyCode::Numpad7) {
-            (orbit.yaw, orbit.pitch) = (
-                0.0,
-                if ctrl {
-                    FRAC_PI_2 - 0.001
-                } else {
-                    -FRAC_PI_2 + 0.001
-                },
-            );
         }
     }
     let wanted = orbit.transform();
@@ -239,19 +238,17 @@ pub(crate) fn frame_selection(
     if !gate.keyboard_free || tool.active.is_some() {
         return;
     }
+    use hedra_edit::bindings::{Action, KeyMode, pressed};
     // In edit mode F fills holes; Numpad . still frames.
-    let f_frames = !mode.active();
-    let ctrl = modifiers::ctrl(&keys);
-    let bounds = if !ctrl
-        && ((f_frames && keys.just_pressed(KeyCode::KeyF))
-            || keys.just_pressed(KeyCode::NumpadDecimal))
+    let bounds = if (!mode.active() && pressed(&keys, KeyMode::Object, Action::FrameSelected))
+        || pressed(&keys, KeyMode::Everywhere, Action::FrameSelected)
     {
         if selection.nodes.is_empty() {
             world_bounds(&state, state.session.doc.nodes().map(|n| n.id))
         } else {
             world_bounds(&state, selection.nodes.iter().copied())
         }
-    } else if keys.just_pressed(KeyCode::Home) {
+    } else if pressed(&keys, KeyMode::Everywhere, Action::FrameAll) {
         world_bounds(&state, state.session.doc.nodes().map(|n| n.id))
     } else {
         return;
@@ -328,11 +325,8 @@ pub(crate) fn quad_view_keys(
     mut quad: ResMut<hedra_scene::QuadView>,
     mut status: ResMut<hedra_scene::StatusMessage>,
 ) {
-    if gate.keyboard_free
-        && modifiers::ctrl(&keys)
-        && modifiers::alt(&keys)
-        && keys.just_pressed(KeyCode::KeyQ)
-    {
+    use hedra_edit::bindings::{Action, KeyMode, pressed};
+    if gate.keyboard_free && pressed(&keys, KeyMode::Everywhere, Action::QuadView) {
         quad.0 = !quad.0;
         status.info(if quad.0 {
             "Quad view: top, front and right (orthographic) beside the perspective view, which takes the input (Ctrl+Alt+Q: one view)"

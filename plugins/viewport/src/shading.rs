@@ -15,18 +15,19 @@ pub fn shading_keys(
     mut shading: ResMut<ViewportShading>,
     mut status: ResMut<StatusMessage>,
 ) {
+    use hedra_edit::bindings::{Action, KeyMode, pressed};
     let busy = hedra_edit::modal_tool_running(&tool, &mode, &shape_edit);
-    if !gate.keyboard_free || busy || !keys.just_pressed(KeyCode::KeyZ) || modifiers::ctrl(&keys) {
+    if !gate.keyboard_free || busy {
         return;
     }
-    if modifiers::shift(&keys) {
+    if pressed(&keys, KeyMode::Everywhere, Action::Wireframe) {
         shading.wireframe = !shading.wireframe;
         status.info(if shading.wireframe {
             "Wireframe: faces hidden, everything selectable through (Shift+Z: solid)"
         } else {
             "Solid shading (Shift+Z: wireframe)"
         });
-    } else if modifiers::alt(&keys) {
+    } else if pressed(&keys, KeyMode::Everywhere, Action::XRay) {
         shading.x_ray = !shading.x_ray;
         status.info(if shading.x_ray {
             "X-ray on: faces see-through, box select also takes hidden elements"

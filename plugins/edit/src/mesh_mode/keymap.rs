@@ -19,13 +19,16 @@ pub fn edit_shortcuts(
     cursor_3d: Res<hedra_scene::Cursor3d>,
     mut requested: ResMut<crate::bindings::RequestedAction>,
 ) {
-    let requested = requested.0.take();
+    if !mode.active() {
+        // A menu's request outlives no edit mode.
+        requested.0 = None;
+    }
     if !mode.active() || mode.tool.is_some() || !gate.keyboard_free || knife.active {
         return;
     }
     // A chord, or the same action asked for from a menu.
-    let wants = |action: Action| {
-        requested == Some(action) || crate::bindings::pressed(&keys, KeyMode::Edit, action)
+    let mut wants = |action: Action| {
+        requested.take(action) || crate::bindings::pressed(&keys, KeyMode::Edit, action)
     };
     let Some(mesh) = edited_mesh(&state, &mode) else {
         return;

@@ -6,6 +6,7 @@
 //! where the pointer's ray meets the surface.
 
 use super::*;
+use crate::bindings::{Action, KeyMode};
 
 /// What the status line says while the knife runs.
 const KNIFE_HELP: &str = "Knife: click points on the surface (near a vertex or an edge's \
@@ -126,7 +127,8 @@ pub fn drive_knife(
         *knife = KnifeTool::default();
         return;
     };
-    if keys.just_pressed(KeyCode::Escape) || buttons.just_pressed(MouseButton::Right) {
+    let pressed = |action| crate::bindings::pressed(&keys, KeyMode::Tool, action);
+    if pressed(Action::Cancel) || buttons.just_pressed(MouseButton::Right) {
         *knife = KnifeTool::default();
         status.info("Knife cancelled");
         return;
@@ -134,7 +136,7 @@ pub fn drive_knife(
     let (cam, cam_t) = *camera;
     let world = state.session.doc.world_matrix(node);
     let to_screen = |p: DVec3| cam.world_to_viewport(cam_t, p.as_vec3()).ok();
-    if keys.just_pressed(KeyCode::KeyC) {
+    if pressed(Action::KnifeAngle) {
         knife.angle_constraint = !knife.angle_constraint;
     }
     // With the angle constraint the pointer is moved onto the nearest 45°
@@ -154,7 +156,7 @@ pub fn drive_knife(
             .map(|r| (r.origin.as_dvec3(), Vec3::from(r.direction).as_dvec3()));
         knife_point(&mesh, world, ray, c, &to_screen)
     });
-    if keys.just_pressed(KeyCode::Backspace) {
+    if pressed(Action::KnifeBack) {
         knife.points.pop();
     }
     if gate.pointer_free && buttons.just_pressed(MouseButton::Left) {
@@ -169,7 +171,8 @@ pub fn drive_knife(
         .chain(under_pointer.iter())
         .map(|&p| world.transform_point3(p))
         .collect();
-    if !keys.just_pressed(KeyCode::Enter) && !keys.just_pressed(KeyCode::NumpadEnter) {
+    // Enter cuts (Space does not: the knife is clicked, not confirmed).
+    if !keys.any_just_pressed([KeyCode::Enter, KeyCode::NumpadEnter]) {
         return;
     }
     let points = std::mem::take(&mut knife.points);

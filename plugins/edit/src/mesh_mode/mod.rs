@@ -265,8 +265,8 @@ pub fn mode_keys(
     if !gate.keyboard_free || tool.active.is_some() || mode.tool.is_some() {
         return;
     }
-    // Shift+Tab is snapping (`snapping_keys`).
-    if keys.just_pressed(KeyCode::Tab) && !shift(&keys) {
+    use crate::bindings::{Action, KeyMode, pressed};
+    if pressed(&keys, KeyMode::Everywhere, Action::EditModeToggle) {
         if mode.active() {
             mode.node = None;
             mode.selection = ElementSelection::default();
@@ -290,11 +290,11 @@ pub fn mode_keys(
     if !mode.active() || ctrl(&keys) {
         return;
     }
-    let new_kind = if keys.just_pressed(KeyCode::Digit1) {
+    let new_kind = if pressed(&keys, KeyMode::Edit, Action::VertexMode) {
         Some(ElementKind::Vertex)
-    } else if keys.just_pressed(KeyCode::Digit2) {
+    } else if pressed(&keys, KeyMode::Edit, Action::EdgeMode) {
         Some(ElementKind::Edge)
-    } else if keys.just_pressed(KeyCode::Digit3) {
+    } else if pressed(&keys, KeyMode::Edit, Action::FaceMode) {
         Some(ElementKind::Face)
     } else {
         None

@@ -62,8 +62,11 @@ pub fn select_elements(
     // B (Blender): a box from the cursor follows the mouse; a click closes
     // it and adds what it holds; Esc or a right click cancels.
     if gate.keyboard_free
-        && keys.just_pressed(KeyCode::KeyB)
-        && !(ctrl(&keys) || shift(&keys) || alt(&keys))
+        && crate::bindings::pressed(
+            &keys,
+            crate::bindings::KeyMode::Edit,
+            crate::bindings::Action::BoxSelect,
+        )
     {
         *b_box = cursor;
         status.info("Box select: move to the opposite corner and click (Esc cancels)");

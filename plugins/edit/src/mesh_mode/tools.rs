@@ -1,6 +1,7 @@
 //! The running mesh tool: the command the mouse and typed value ask for, decided on a copy each frame as a preview, confirmed or cancelled.
 
 use super::*;
+use crate::bindings::{Action, KeyMode};
 
 /// The command a tool would run for the cursor position.
 pub(super) fn tool_command(
@@ -416,7 +417,7 @@ pub fn drive_mesh_tool(
     // G again while moving edges: slide them instead (Blender's G G).
     if tool.kind == MeshToolKind::Move
         && mode.kind == ElementKind::Edge
-        && keys.just_pressed(KeyCode::KeyG)
+        && crate::bindings::pressed(&keys, KeyMode::Tool, Action::Slide)
     {
         tool.kind = MeshToolKind::SlideEdges;
         tool.typed = Default::default();
@@ -425,10 +426,10 @@ pub fn drive_mesh_tool(
     let loop_cut = matches!(tool.kind, MeshToolKind::LoopCut | MeshToolKind::Bevel);
     tool.typed.read(&keys, !loop_cut);
     if loop_cut {
-        let less = keys.any_just_pressed([KeyCode::Minus, KeyCode::NumpadSubtract])
+        let less = crate::bindings::pressed(&keys, KeyMode::Tool, Action::FewerCuts)
             || scroll.delta.y < 0.0;
-        let more =
-            keys.any_just_pressed([KeyCode::NumpadAdd, KeyCode::Equal]) || scroll.delta.y > 0.0;
+        let more = crate::bindings::pressed(&keys, KeyMode::Tool, Action::MoreCuts)
+            || scroll.delta.y > 0.0;
         if less {
             tool.cuts = tool.cuts.saturating_sub(1).max(1);
         } else if more {

@@ -1,6 +1,10 @@
 //! The menu bar: File, Edit, Add, Mesh (in edit mode), Object and View.
 
 use super::*;
+use hedra_edit::bindings::{
+    Action,
+    KeyMode::{Edit, Everywhere, Object},
+};
 
 /// What the View menu changes in the viewport (written back after the menus).
 pub(super) struct ViewChoices<'a> {
@@ -41,10 +45,16 @@ pub(super) fn menu_bar(
     } = view;
     egui::MenuBar::new().ui(ui, |ui| {
         ui.menu_button("File", |ui| {
-            if ui.button("New\tCtrl+N").clicked() {
+            if ui
+                .button(keyed_in(Everywhere, "New", Action::NewFile))
+                .clicked()
+            {
                 events.push(UiEvent::File(FileAction::New));
             }
-            if ui.button("Open…\tCtrl+O").clicked() {
+            if ui
+                .button(keyed_in(Everywhere, "Open…", Action::OpenFile))
+                .clicked()
+            {
                 events.push(UiEvent::File(FileAction::Open));
             }
             ui.menu_button("Open Recent", |ui| {
@@ -77,10 +87,16 @@ pub(super) fn menu_bar(
                 }
             });
             ui.separator();
-            if ui.button("Save\tCtrl+S").clicked() {
+            if ui
+                .button(keyed_in(Everywhere, "Save", Action::Save))
+                .clicked()
+            {
                 events.push(UiEvent::File(FileAction::Save));
             }
-            if ui.button("Save As…\tCtrl+Shift+S").clicked() {
+            if ui
+                .button(keyed_in(Everywhere, "Save As…", Action::SaveAs))
+                .clicked()
+            {
                 events.push(UiEvent::File(FileAction::SaveAs));
             }
             ui.separator();
@@ -107,20 +123,29 @@ pub(super) fn menu_bar(
                 }
             });
             ui.separator();
-            if ui.button("Quit\tCtrl+Q").clicked() {
+            if ui
+                .button(keyed_in(Everywhere, "Quit", Action::Quit))
+                .clicked()
+            {
                 events.push(UiEvent::File(FileAction::Quit));
             }
         });
         ui.menu_button("Edit", |ui| {
             let h = &model.state.session.history;
             if ui
-                .add_enabled(h.can_undo(), egui::Button::new("Undo\tCtrl+Z"))
+                .add_enabled(
+                    h.can_undo(),
+                    egui::Button::new(keyed_in(Everywhere, "Undo", Action::Undo)),
+                )
                 .clicked()
             {
                 events.push(UiEvent::Request(DocRequest::Undo));
             }
             if ui
-                .add_enabled(h.can_redo(), egui::Button::new("Redo\tCtrl+Shift+Z"))
+                .add_enabled(
+                    h.can_redo(),
+                    egui::Button::new(keyed_in(Everywhere, "Redo", Action::Redo)),
+                )
                 .clicked()
             {
                 events.push(UiEvent::Request(DocRequest::Redo));
@@ -168,18 +193,30 @@ pub(super) fn menu_bar(
             let sel = model.selection.refs();
             let any = !sel.is_empty();
             if ui
-                .add_enabled(any, egui::Button::new("Duplicate\tShift+D"))
+                .add_enabled(
+                    any,
+                    egui::Button::new(keyed_in(Object, "Duplicate", Action::Duplicate)),
+                )
                 .clicked()
             {
                 exec(events, Command::Duplicate { nodes: sel.clone() });
             }
             if ui
-                .add_enabled(any, egui::Button::new("Delete\tX"))
+                .add_enabled(
+                    any,
+                    egui::Button::new(keyed_in(Object, "Delete", Action::Delete)),
+                )
                 .clicked()
             {
                 exec(events, Command::Delete { nodes: sel.clone() });
             }
-            if ui.add_enabled(any, egui::Button::new("Hide\tH")).clicked() {
+            if ui
+                .add_enabled(
+                    any,
+                    egui::Button::new(keyed_in(Object, "Hide", Action::Hide)),
+                )
+                .clicked()
+            {
                 exec(
                     events,
                     Command::SetVisible {
@@ -235,9 +272,15 @@ pub(super) fn menu_bar(
             ui.checkbox(&mut state.show_history, "Undo History");
             ui.separator();
             ui.checkbox(&mut state.show_statistics, "Statistics");
-            ui.checkbox(&mut shading.wireframe, "Wireframe\tShift+Z");
+            ui.checkbox(
+                &mut shading.wireframe,
+                keyed_in(Everywhere, "Wireframe", Action::Wireframe),
+            );
             ui.horizontal(|ui| {
-                ui.checkbox(&mut shading.x_ray, "X-ray\tAlt+Z");
+                ui.checkbox(
+                    &mut shading.x_ray,
+                    keyed_in(Everywhere, "X-ray", Action::XRay),
+                );
                 ui.add(
                     egui::DragValue::new(&mut shading.x_ray_opacity)
                         .range(0..=100)
@@ -249,9 +292,15 @@ pub(super) fn menu_bar(
                 &mut shading.cages,
                 "Cages (over smoothed and modified meshes)",
             );
-            ui.checkbox(quad_view, "Quad View\tCtrl+Alt+Q");
+            ui.checkbox(
+                quad_view,
+                keyed_in(Everywhere, "Quad View", Action::QuadView),
+            );
             ui.separator();
-            ui.checkbox(&mut snapping.enabled, "Snap\tShift+Tab");
+            ui.checkbox(
+                &mut snapping.enabled,
+                keyed_in(Everywhere, "Snap", Action::Snapping),
+            );
             ui.horizontal(|ui| {
                 use hedra_edit::SnapElement;
                 ui.label("Snap to");
@@ -277,12 +326,15 @@ pub(super) fn menu_bar(
             ui.separator();
             ui.horizontal(|ui| {
                 use hedra_edit::PivotPoint;
-                ui.label("Pivot\t.");
+                ui.label(keyed_in(Everywhere, "Pivot", Action::PivotPoint));
                 for p in [PivotPoint::MedianPoint, PivotPoint::Cursor] {
                     ui.radio_value(pivot, p, p.label());
                 }
             });
-            ui.checkbox(&mut proportional.enabled, "Proportional Editing\tO");
+            ui.checkbox(
+                &mut proportional.enabled,
+                keyed_in(Edit, "Proportional Editing", Action::Proportional),
+            );
             ui.horizontal(|ui| {
                 ui.label("Falloff");
                 for f in hedra_geom::proportional::Falloff::ALL {
@@ -320,8 +372,17 @@ pub(super) fn menu_bar(
             }
             ui.label("Shift+right click: place the 3D cursor");
             ui.separator();
-            ui.label("Frame selected: F or Numpad .");
-            ui.label("Frame all: Home");
+            {
+                use hedra_edit::bindings::chord_label;
+                let frame = [Object, Everywhere]
+                    .map(|mode| chord_label(mode, Action::FrameSelected))
+                    .join(", ");
+                ui.label(format!("Frame selected: {frame}"));
+                ui.label(format!(
+                    "Frame all: {}",
+                    chord_label(Everywhere, Action::FrameAll)
+                ));
+            }
         });
     });
 }

@@ -1,11 +1,11 @@
 //! Edit mode's Mesh menu: every tool on the current selection.
 
 use super::*;
-use hedra_edit::bindings::{Action, KeyMode, chord_label};
+use hedra_edit::bindings::{Action, KeyMode};
 
 /// A menu item's text with its edit-mode keys from the keymap after a tab.
 fn keyed(label: &str, action: Action) -> String {
-    format!("{label}\t{}", chord_label(KeyMode::Edit, action))
+    keyed_in(KeyMode::Edit, label, action)
 }
 
 /// Edit mode's Mesh menu: every tool on the current selection. Amounts start

@@ -44,6 +44,19 @@ use status_bar::*;
 use weight_labels::*;
 use windows::*;
 
+/// A menu item's text with its keys in `mode` from the keymap after a tab,
+/// so a menu cannot show a key that does something else.
+fn keyed_in(
+    mode: hedra_edit::bindings::KeyMode,
+    label: &str,
+    action: hedra_edit::bindings::Action,
+) -> String {
+    format!(
+        "{label}\t{}",
+        hedra_edit::bindings::chord_label(mode, action)
+    )
+}
+
 /// What the panels decided this frame; applied after drawing.
 enum UiEvent {
     Select(NodeId, bool),

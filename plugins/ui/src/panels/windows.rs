@@ -10,14 +10,29 @@ pub(super) fn key_help_window(
     model: &Model,
     help: &mut hedra_edit::bindings::KeyHelp,
 ) {
-    use hedra_edit::bindings::{KeyMode, bindings_of};
+    use hedra_edit::bindings::{KeyMode, TOOL_NOTES, bindings_of};
     if !help.0 {
         return;
     }
     let mode = if model.mode.active() {
         KeyMode::Edit
+    } else if model.shape_edit.active() {
+        KeyMode::ControlPoints
     } else {
         KeyMode::Object
+    };
+    let tool_running = hedra_edit::modal_tool_running(&model.tool, &model.mode, &model.shape_edit);
+    let rows = |ui: &mut egui::Ui, id: &str, rows: &[(String, &str)]| {
+        egui::Grid::new(id)
+            .num_columns(2)
+            .striped(true)
+            .show(ui, |ui| {
+                for (chord, what) in rows {
+                    ui.strong(chord);
+                    ui.label(*what);
+                    ui.end_row();
+                }
+            });
     };
     egui::Window::new(format!("Keys: {}", mode.label()))
         .id("key-help".into())
@@ -27,15 +42,26 @@ pub(super) fn key_help_window(
         .pivot(egui::Align2::CENTER_CENTER)
         .default_pos(viewport.center())
         .show(ctx, |ui| {
-            egui::Grid::new("key-help-grid")
-                .num_columns(2)
-                .striped(true)
+            egui::ScrollArea::vertical()
+                .max_height(viewport.height() * 0.75)
                 .show(ui, |ui| {
-                    for (chord, what) in bindings_of(mode) {
-                        ui.strong(chord);
-                        ui.label(what);
-                        ui.end_row();
-                    }
+                    rows(ui, "key-help-mode", &bindings_of(mode));
+                    ui.separator();
+                    ui.strong(KeyMode::Everywhere.label());
+                    rows(ui, "key-help-everywhere", &bindings_of(KeyMode::Everywhere));
+                    ui.separator();
+                    // Open by itself while a tool runs.
+                    egui::CollapsingHeader::new(KeyMode::Tool.label())
+                        .id_salt("key-help-tool")
+                        .open(tool_running.then_some(true))
+                        .show(ui, |ui| {
+                            let notes: Vec<(String, &str)> = TOOL_NOTES
+                                .iter()
+                                .map(|&(keys, what)| (keys.to_string(), what))
+                                .collect();
+                            rows(ui, "key-help-tool-rows", &bindings_of(KeyMode::Tool));
+                            rows(ui, "key-help-tool-notes", &notes);
+                        });
                 });
             ui.label(egui::RichText::new("F1 or Esc closes this").weak());
         });
