@@ -805,6 +805,31 @@ pub fn chord_label(mode: KeyMode, action: Action) -> String {
         .join(", ")
 }
 
+/// The first chord of `action` in `mode` ("X" for X, Delete), for short
+/// hints; empty when it has none.
+pub fn first_chord_label(mode: KeyMode, action: Action) -> String {
+    BINDINGS
+        .iter()
+        .find(|b| b.mode == mode && b.action == action)
+        .map_or(String::new(), |b| b.chord.label())
+}
+
+/// A status-bar hint from the keymap: "G move · E extrude · …", the keys
+/// joined by "/" where several actions share one word ("1/2/3 kind").
+pub fn hints(items: &[(KeyMode, &[Action], &str)]) -> String {
+    items
+        .iter()
+        .map(|(mode, actions, word)| {
+            let keys: Vec<String> = actions
+                .iter()
+                .map(|&a| first_chord_label(*mode, a))
+                .collect();
+            format!("{} {word}", keys.join("/"))
+        })
+        .collect::<Vec<_>>()
+        .join(" · ")
+}
+
 /// The key help's rows for `mode`: each action once, with all its chords.
 pub fn bindings_of(mode: KeyMode) -> Vec<(String, &'static str)> {
     let mut seen = Vec::new();
@@ -903,6 +928,18 @@ mod tests {
                 assert!(!what.is_empty(), "{chord} in {mode:?} has no text");
             }
         }
+    }
+
+    #[test]
+    fn hints_read_the_keymap() {
+        assert_eq!(
+            hints(&[
+                (Edit, &[A::VertexMode, A::EdgeMode, A::FaceMode], "kind"),
+                (Edit, &[A::Delete], "delete"),
+                (Edit, &[A::Dissolve], "dissolve"),
+            ]),
+            "1/2/3 kind · X delete · Ctrl+X dissolve"
+        );
     }
 
     #[test]

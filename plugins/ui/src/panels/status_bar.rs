@@ -1,6 +1,30 @@
 //! The status bar: mode, selection, the keys of what you are doing, messages.
 
 use super::*;
+use hedra_edit::bindings::{
+    Action as A,
+    KeyMode::{self, ControlPoints, Edit, Everywhere, Object, Tool},
+    hints,
+};
+
+/// What the status bar says while a modal tool runs, from the keymap.
+fn tool_hint() -> String {
+    hints(&[
+        (Tool, &[A::AxisX, A::AxisY, A::AxisZ], "constrain"),
+        (Tool, &[A::Confirm], "(or click) confirm"),
+        (Tool, &[A::Cancel], "(or right-click) cancel"),
+    ]) + " · type a value"
+}
+
+/// The keys a mode's status bar reminds of, from the keymap, ending with
+/// the key that lists them all.
+fn mode_hint(items: &[(KeyMode, &[A], &str)]) -> String {
+    format!(
+        "{} · {}",
+        hints(items),
+        hints(&[(Everywhere, &[A::KeyHelp], "all keys")])
+    )
+}
 
 pub(super) fn status_bar(ui: &mut egui::Ui, model: &Model) {
     // The message is laid out first, from the right, so the key hints give
@@ -17,7 +41,8 @@ pub(super) fn status_bar(ui: &mut egui::Ui, model: &Model) {
         if progress.is_empty() {
             ui.scope(|ui| {
                 ui.set_max_width(most);
-                ui.add(egui::Label::new(text).truncate()).on_hover_text(&s.text);
+                ui.add(egui::Label::new(text).truncate())
+                    .on_hover_text(&s.text);
             });
         } else {
             // Background subdivision: a bar per job, Esc cancels.
@@ -36,15 +61,31 @@ pub(super) fn status_bar(ui: &mut egui::Ui, model: &Model) {
             let edit = &model.mode;
             if let Some(node) = model.shape_edit.node.and_then(|n| doc.node(n)) {
                 let se = &model.shape_edit;
-                ui.label(egui::RichText::new("Edit Mode · Control Points").strong().color(egui::Color32::from_rgb(255, 170, 80)));
+                ui.label(
+                    egui::RichText::new("Edit Mode · Control Points")
+                        .strong()
+                        .color(egui::Color32::from_rgb(255, 170, 80)),
+                );
                 ui.separator();
                 ui.label(format!("{}: {} selected", node.name, se.selected.len()));
                 ui.separator();
                 if let Some(t) = &se.tool {
-                    ui.label(egui::RichText::new(&t.readout).color(egui::Color32::from_rgb(255, 200, 80)));
-                    ui.add(egui::Label::new("move the mouse · type a value · Enter/click confirm · Esc/right-click cancel").truncate());
+                    ui.label(
+                        egui::RichText::new(&t.readout)
+                            .color(egui::Color32::from_rgb(255, 200, 80)),
+                    );
+                    ui.add(egui::Label::new(tool_hint()).truncate());
                 } else {
-                    ui.add(egui::Label::new("click select · A all · G move · W weight · K insert knot · Tab exit").truncate());
+                    ui.add(
+                        egui::Label::new(mode_hint(&[
+                            (ControlPoints, &[A::SelectAll], "all"),
+                            (ControlPoints, &[A::Move], "move"),
+                            (ControlPoints, &[A::Weight], "weight"),
+                            (ControlPoints, &[A::InsertKnot], "insert knot"),
+                            (Everywhere, &[A::EditModeToggle], "exit"),
+                        ]))
+                        .truncate(),
+                    );
                 }
             } else if let Some(node) = edit.node.and_then(|n| doc.node(n)) {
                 let kind = match edit.kind {
@@ -52,33 +93,84 @@ pub(super) fn status_bar(ui: &mut egui::Ui, model: &Model) {
                     ElementKind::Edge => "Edge",
                     ElementKind::Face => "Face",
                 };
-                ui.label(egui::RichText::new(format!("Edit Mode · {kind}")).strong().color(egui::Color32::from_rgb(255, 170, 80)));
+                ui.label(
+                    egui::RichText::new(format!("Edit Mode · {kind}"))
+                        .strong()
+                        .color(egui::Color32::from_rgb(255, 170, 80)),
+                );
                 ui.separator();
                 let s = &edit.selection;
-                ui.label(format!("{}: {} vertices, {} edges, {} faces selected", node.name, s.vertices.len(), s.edges.len(), s.faces.len()));
+                ui.label(format!(
+                    "{}: {} vertices, {} edges, {} faces selected",
+                    node.name,
+                    s.vertices.len(),
+                    s.edges.len(),
+                    s.faces.len()
+                ));
                 ui.separator();
                 if let Some(t) = &edit.tool {
-                    ui.label(egui::RichText::new(&t.readout).color(egui::Color32::from_rgb(255, 200, 80)));
-                    ui.add(egui::Label::new("move the mouse · type a value · Enter/click confirm · Esc/right-click cancel").truncate());
+                    ui.label(
+                        egui::RichText::new(&t.readout)
+                            .color(egui::Color32::from_rgb(255, 200, 80)),
+                    );
+                    ui.add(egui::Label::new(tool_hint()).truncate());
                 } else {
-                    let x_ray = if model.shading.see_through() { "X-ray on (Alt+Z)" } else { "Alt+Z X-ray" };
-                    ui.add(egui::Label::new(format!("1/2/3 kind · G move · E extrude · I inset · Ctrl+R loop cut · J connect · X dissolve · {x_ray} · Tab exit")).truncate());
+                    let x_ray = if model.shading.see_through() {
+                        "X-ray off"
+                    } else {
+                        "X-ray"
+                    };
+                    ui.add(
+                        egui::Label::new(mode_hint(&[
+                            (Edit, &[A::VertexMode, A::EdgeMode, A::FaceMode], "kind"),
+                            (Edit, &[A::Move], "move"),
+                            (Edit, &[A::Extrude], "extrude"),
+                            (Edit, &[A::Inset], "inset"),
+                            (Edit, &[A::LoopCut], "loop cut"),
+                            (Edit, &[A::Connect], "connect"),
+                            (Edit, &[A::Delete], "delete"),
+                            (Edit, &[A::Dissolve], "dissolve"),
+                            (Everywhere, &[A::XRay], x_ray),
+                            (Everywhere, &[A::EditModeToggle], "exit"),
+                        ]))
+                        .truncate(),
+                    );
                 }
             } else {
                 ui.label(egui::RichText::new("Object Mode").strong());
                 ui.separator();
                 let sel = &model.selection.nodes;
-                match (sel.len(), model.selection.active().and_then(|a| doc.node(a))) {
+                match (
+                    sel.len(),
+                    model.selection.active().and_then(|a| doc.node(a)),
+                ) {
                     (0, _) | (_, None) => ui.label("Nothing selected"),
                     (1, Some(n)) => ui.label(format!("Selected: {}", n.name)),
                     (k, Some(n)) => ui.label(format!("{k} selected, active: {}", n.name)),
                 };
                 ui.separator();
                 if let Some(m) = &model.tool.active {
-                    ui.label(egui::RichText::new(&m.readout).color(egui::Color32::from_rgb(255, 200, 80)));
-                    ui.add(egui::Label::new("X/Y/Z constrain · type a value · Enter/click confirm · Esc/right-click cancel").truncate());
+                    ui.label(
+                        egui::RichText::new(&m.readout)
+                            .color(egui::Color32::from_rgb(255, 200, 80)),
+                    );
+                    ui.add(egui::Label::new(tool_hint()).truncate());
                 } else {
-                    ui.add(egui::Label::new("G move · R rotate · S scale · X delete · Shift+D duplicate · Shift+A add · Tab edit · Ctrl+Z undo · MMB orbit").truncate());
+                    ui.add(
+                        egui::Label::new(
+                            mode_hint(&[
+                                (Object, &[A::Move], "move"),
+                                (Object, &[A::Rotate], "rotate"),
+                                (Object, &[A::Scale], "scale"),
+                                (Object, &[A::Delete], "delete"),
+                                (Object, &[A::Duplicate], "duplicate"),
+                                (Everywhere, &[A::AddMenu], "add"),
+                                (Everywhere, &[A::EditModeToggle], "edit"),
+                                (Everywhere, &[A::Undo], "undo"),
+                            ]) + " · MMB orbit",
+                        )
+                        .truncate(),
+                    );
                 }
             }
         });

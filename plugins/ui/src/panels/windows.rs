@@ -22,18 +22,26 @@ pub(super) fn key_help_window(
         KeyMode::Object
     };
     let tool_running = hedra_edit::modal_tool_running(&model.tool, &model.mode, &model.shape_edit);
-    let rows = |ui: &mut egui::Ui, id: &str, rows: &[(String, &str)]| {
-        egui::Grid::new(id)
-            .num_columns(2)
-            .striped(true)
-            .show(ui, |ui| {
-                for (chord, what) in rows {
-                    ui.strong(chord);
-                    ui.label(*what);
-                    ui.end_row();
-                }
-            });
-    };
+    let notes: Vec<(String, &str)> = TOOL_NOTES
+        .iter()
+        .map(|&(keys, what)| (keys.to_string(), what))
+        .collect();
+    let tool_rows: Vec<(String, &str)> = bindings_of(KeyMode::Tool)
+        .into_iter()
+        .chain(notes)
+        .collect();
+    // One table, a heading row per section; a running tool's keys first.
+    let mut sections = vec![
+        (mode.label(), bindings_of(mode)),
+        (
+            KeyMode::Everywhere.label(),
+            bindings_of(KeyMode::Everywhere),
+        ),
+        (KeyMode::Tool.label(), tool_rows),
+    ];
+    if tool_running {
+        sections.rotate_right(1);
+    }
     egui::Window::new(format!("Keys: {}", mode.label()))
         .id("key-help".into())
         .open(&mut help.0)
@@ -42,28 +50,25 @@ pub(super) fn key_help_window(
         .pivot(egui::Align2::CENTER_CENTER)
         .default_pos(viewport.center())
         .show(ctx, |ui| {
+            ui.label(egui::RichText::new("F1 or Esc closes this").weak());
             egui::ScrollArea::vertical()
-                .max_height(viewport.height() * 0.75)
+                .max_height(viewport.height() * 0.65)
                 .show(ui, |ui| {
-                    rows(ui, "key-help-mode", &bindings_of(mode));
-                    ui.separator();
-                    ui.strong(KeyMode::Everywhere.label());
-                    rows(ui, "key-help-everywhere", &bindings_of(KeyMode::Everywhere));
-                    ui.separator();
-                    // Open by itself while a tool runs.
-                    egui::CollapsingHeader::new(KeyMode::Tool.label())
-                        .id_salt("key-help-tool")
-                        .open(tool_running.then_some(true))
+                    egui::Grid::new("key-help-grid")
+                        .num_columns(2)
+                        .striped(true)
                         .show(ui, |ui| {
-                            let notes: Vec<(String, &str)> = TOOL_NOTES
-                                .iter()
-                                .map(|&(keys, what)| (keys.to_string(), what))
-                                .collect();
-                            rows(ui, "key-help-tool-rows", &bindings_of(KeyMode::Tool));
-                            rows(ui, "key-help-tool-notes", &notes);
+                            for (heading, rows) in &sections {
+                                ui.heading(*heading);
+                                ui.end_row();
+                                for (chord, what) in rows {
+                                    ui.strong(chord);
+                                    ui.label(*what);
+                                    ui.end_row();
+                                }
+                            }
                         });
                 });
-            ui.label(egui::RichText::new("F1 or Esc closes this").weak());
         });
 }
 
