@@ -273,6 +273,40 @@ fn shift_z_and_alt_z_switch_wireframe_and_x_ray() {
     user.shortcut(&[KeyCode::ShiftLeft], KeyCode::KeyZ);
     user.tap(KeyCode::Escape);
     assert_eq!(shading(&user), hedra_scene::ViewportShading::default());
+    // Z alone: Blender's shading choice at the pointer.
+    user.tap(KeyCode::KeyZ);
+    assert!(user.shows("Face Orientation"), "the Z menu is open");
+    user.click_on("Wireframe\tShift+Z");
+    assert!(shading(&user).wireframe);
+    assert!(!user.shows("Face Orientation"), "a choice closes it");
+    user.tap(KeyCode::KeyZ);
+    user.click_on("Solid");
+    assert_eq!(shading(&user), hedra_scene::ViewportShading::default());
+    user.tap(KeyCode::KeyZ);
+    user.click_on("Shade Smooth");
+    let node = user.doc().nodes().next().unwrap();
+    let hedra_doc::NodeContent::Mesh(content) = &node.content else {
+        panic!("a mesh")
+    };
+    assert_eq!(
+        content.shading,
+        hedra_doc::Shading::Smooth,
+        "the selected cube"
+    );
+    assert!(!user.shows("Face Orientation"), "closed after the choice");
+    // While G runs, Z is the axis, not the menu.
+    user.move_to(user.viewport_center());
+    user.tap(KeyCode::KeyG);
+    assert!(
+        user.app
+            .world()
+            .resource::<hedra_edit::TransformTool>()
+            .active
+            .is_some()
+    );
+    user.tap(KeyCode::KeyZ);
+    assert!(!user.shows("Face Orientation"));
+    user.tap(KeyCode::Escape);
 }
 
 /// View ▸ Statistics shows Blender's counts in the viewport: objects and

@@ -171,6 +171,7 @@ pub enum Action {
     AddMenu,
     SnapMenu,
     Snapping,
+    ShadingMenu,
     Wireframe,
     XRay,
     QuadView,
@@ -316,6 +317,12 @@ pub const BINDINGS: &[Binding] = &[
         Chord::shift(K::Tab),
         A::Snapping,
         "snapping on/off (Ctrl held during a drag inverts it)",
+    ),
+    bind(
+        Everywhere,
+        Chord::key(K::KeyZ),
+        A::ShadingMenu,
+        "shading menu at the pointer: solid, wireframe, X-ray, flat, smooth",
     ),
     bind(
         Everywhere,

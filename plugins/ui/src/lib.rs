@@ -40,6 +40,8 @@ pub struct UiState {
     pub add_menu_at: Option<egui::Pos2>,
     /// Shift+S snap menu position, while open.
     pub snap_menu_at: Option<egui::Pos2>,
+    /// Z shading menu position, while open.
+    pub shading_menu_at: Option<egui::Pos2>,
     /// Waiting for the user to decide about unsaved changes.
     pub confirm: Option<Pending>,
     /// Runs after the next successful save (Save before New/Open/Quit).
@@ -77,6 +79,7 @@ impl Default for UiState {
             show_preferences: false,
             add_menu_at: None,
             snap_menu_at: None,
+            shading_menu_at: None,
             confirm: None,
             after_save: None,
             path_prompt: None,
@@ -258,16 +261,19 @@ fn physical_viewport(window: &Window, rect: egui::Rect) -> Viewport {
     }
 }
 
-/// Ctrl+N/O/S, Ctrl+Shift+S, Ctrl+Q, Shift+A.
+/// Ctrl+N/O/S, Ctrl+Shift+S, Ctrl+Q and the menus at the pointer (Shift+A,
+/// Shift+S, Z), while no tool runs (Z is then the tool's axis).
 fn global_shortcuts(
     keys: Res<ButtonInput<KeyCode>>,
     gate: Res<InputGate>,
     tool: Res<TransformTool>,
+    mode: Res<hedra_edit::EditMode>,
+    shape_edit: Res<hedra_edit::ShapeEdit>,
     window: Single<&Window, With<PrimaryWindow>>,
     mut ui: ResMut<UiState>,
     mut actions: MessageWriter<FileAction>,
 ) {
-    if !gate.keyboard_free || tool.active.is_some() {
+    if !gate.keyboard_free || hedra_edit::modal_tool_running(&tool, &mode, &shape_edit) {
         return;
     }
     use hedra_edit::bindings::{Action, KeyMode, pressed};
@@ -288,6 +294,8 @@ fn global_shortcuts(
         ui.add_menu_at = pointer();
     } else if pressed(Action::SnapMenu) {
         ui.snap_menu_at = pointer();
+    } else if pressed(Action::ShadingMenu) {
+        ui.shading_menu_at = pointer();
     }
 }
 

@@ -157,9 +157,6 @@ pub fn draw_ui(
     if writers.gizmo.mode != gizmo_mode {
         writers.gizmo.mode = gizmo_mode;
     }
-    if *model.shading != shading {
-        *model.shading = shading;
-    }
     if *writers.snapping != snapping {
         *writers.snapping = snapping;
     }
@@ -173,6 +170,16 @@ pub fn draw_ui(
         writers.quad_view.0 = quad_view;
     }
     snap_menu(&ctx, &mut ui_state, &model, &mut cursor, &mut events);
+    shading_menu(
+        &ctx,
+        &mut ui_state,
+        &mut shading,
+        &model.selection,
+        &mut events,
+    );
+    if *model.shading != shading {
+        *model.shading = shading;
+    }
     if writers.cursor.0 != cursor {
         writers.cursor.0 = cursor;
     }

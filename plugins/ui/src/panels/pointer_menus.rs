@@ -67,6 +67,84 @@ pub(super) fn snap_menu(
     }
 }
 
+/// Z: Blender's shading pie as a menu at the pointer: solid, wireframe or
+/// X-ray for the viewport, the overlays, and flat or smooth shading of the
+/// selected objects.
+pub(super) fn shading_menu(
+    ctx: &egui::Context,
+    state: &mut UiState,
+    shading: &mut hedra_scene::ViewportShading,
+    selection: &Selection,
+    events: &mut Vec<UiEvent>,
+) {
+    use hedra_edit::bindings::{Action, KeyMode::Everywhere};
+    let Some(pos) = state.shading_menu_at else {
+        return;
+    };
+    let selected = selection.refs();
+    let close = cursor_menu(ctx, "shading-menu", pos, |ui| {
+        ui.label(egui::RichText::new("Shading").strong());
+        ui.separator();
+        let solid = !shading.wireframe && !shading.x_ray;
+        if ui.radio(solid, "Solid").clicked() {
+            (shading.wireframe, shading.x_ray) = (false, false);
+            return true;
+        }
+        if ui
+            .radio(
+                shading.wireframe,
+                keyed_in(Everywhere, "Wireframe", Action::Wireframe),
+            )
+            .clicked()
+        {
+            (shading.wireframe, shading.x_ray) = (true, false);
+            return true;
+        }
+        if ui
+            .radio(
+                shading.x_ray && !shading.wireframe,
+                keyed_in(Everywhere, "X-ray", Action::XRay),
+            )
+            .clicked()
+        {
+            (shading.wireframe, shading.x_ray) = (false, true);
+            return true;
+        }
+        ui.separator();
+        if ui
+            .checkbox(&mut shading.face_orientation, "Face Orientation")
+            .clicked()
+            || ui.checkbox(&mut shading.cages, "Cages").clicked()
+        {
+            return true;
+        }
+        ui.separator();
+        for (label, how) in [
+            ("Shade Flat", Shading::Flat),
+            ("Shade Smooth", Shading::Smooth),
+        ] {
+            if ui
+                .add_enabled(!selected.is_empty(), egui::Button::new(label))
+                .on_hover_text("the selected objects")
+                .clicked()
+            {
+                exec(
+                    events,
+                    Command::SetShading {
+                        nodes: selected.clone(),
+                        shading: how,
+                    },
+                );
+                return true;
+            }
+        }
+        false
+    });
+    if close {
+        state.shading_menu_at = None;
+    }
+}
+
 /// The egui id of the M merge menu.
 pub const MERGE_MENU: &str = "merge-menu";
 
