@@ -974,6 +974,26 @@ fn mirror_modifier_draws_both_halves_and_clipping_holds_the_seam() {
     user.first_mesh().validate().unwrap();
 }
 
+/// A click on the mirrored half selects the object, as on the half that
+/// is the cage: picking hits what is drawn.
+#[test]
+fn a_click_on_the_mirrored_half_selects_the_object() {
+    let mut user = half_cube();
+    user.click_on("Mirror");
+    user.shortcut(&[KeyCode::AltLeft], KeyCode::KeyA);
+    let selection = |user: &User| {
+        user.app
+            .world()
+            .resource::<hedra_edit::Selection>()
+            .nodes
+            .len()
+    };
+    assert_eq!(selection(&user), 0);
+    let mirrored_top = user.screen_of(Vec3::new(-0.5, 1.0, 0.5));
+    user.click(mirrored_top);
+    assert_eq!(selection(&user), 1, "{}", user.status());
+}
+
 /// Properties ▸ Modifiers ▸ Array with Merge on a cube without its ±X
 /// faces, count 3: the evaluated mesh is one open tube of 16/28/12 and
 /// the viewport draws three cubes' length.

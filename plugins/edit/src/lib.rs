@@ -199,6 +199,13 @@ pub fn pick_node(doc: &Document, origin: DVec3, dir: DVec3) -> Option<(NodeId, f
         let ld = inv.transform_vector3(dir);
         // `t` is the same parameter along the world ray (affine map).
         let t = match &node.content {
+            // What is drawn is hit: the mirrored half and the array's
+            // copies too (their cage, before subdivision).
+            NodeContent::Mesh(content) if content.has_stack_modifiers() => content
+                .evaluated(0)
+                .ok()
+                .and_then(|mesh| hedra_geom::query::ray_cast(&mesh, lo, ld))
+                .map(|(_, t)| t),
             NodeContent::Mesh(content) => {
                 hedra_geom::query::ray_cast(&content.mesh, lo, ld).map(|(_, t)| t)
             }
