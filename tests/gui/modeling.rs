@@ -1416,3 +1416,78 @@ fn edge_center_and_face_snapping() {
     );
     user.first_mesh().validate().unwrap();
 }
+
+/// Add ▸ Draw Curve in the top view with increment snapping on: four
+/// clicks put four control points exactly on the grid's crossings (on the
+/// ground plane through the 3D cursor), a fifth click and Backspace take
+/// one back, Enter makes a cubic NURBS curve of those four points in one
+/// undo step, selected.
+#[test]
+fn draw_a_curve_by_clicks_on_the_grid() {
+    let mut user = User::new();
+    user.tap(KeyCode::Numpad7);
+    user.shortcut(&[KeyCode::ShiftLeft], KeyCode::Tab);
+    let center = user.viewport_center();
+    user.open_add_menu_at(center);
+    user.click_on("Draw Curve");
+    assert!(user.app.world().resource::<hedra_edit::CurveDraw>().active);
+    let wanted = [
+        DVec3::new(-2.0, 0.0, 0.0),
+        DVec3::new(-1.0, 0.0, 1.0),
+        DVec3::new(1.0, 0.0, -1.0),
+        DVec3::new(2.0, 0.0, 0.0),
+    ];
+    // A little off each crossing: the increments put it back.
+    for p in wanted.iter().chain([DVec3::new(0.0, 0.0, 2.0)].iter()) {
+        let at = user.screen_of(p.as_vec3()) + Vec2::new(3.0, -2.0);
+        user.glide_to(at, 2);
+        user.click(at);
+    }
+    assert_eq!(
+        user.app
+            .world()
+            .resource::<hedra_edit::CurveDraw>()
+            .points
+            .len(),
+        5
+    );
+    user.tap(KeyCode::Backspace);
+    let steps = user.undo_steps();
+    user.tap(KeyCode::Enter);
+    assert_eq!(user.undo_steps(), steps + 1, "{}", user.status());
+    let node = user.doc().nodes().next().expect("a curve node");
+    assert_eq!(
+        hedra_edit::shape_mode::control_points(&node.content),
+        wanted
+    );
+    assert_eq!(
+        user.app
+            .world()
+            .resource::<hedra_edit::Selection>()
+            .active(),
+        Some(node.id),
+        "the new curve is selected"
+    );
+    assert!(!user.app.world().resource::<hedra_edit::CurveDraw>().active);
+}
+
+/// Drawing snaps onto other objects too (Snap to Vertex): a click near the
+/// cube's corner puts the point exactly on it; Esc drops the drawing.
+#[test]
+fn a_drawn_point_snaps_onto_a_cube_corner_and_esc_cancels() {
+    let mut user = User::new();
+    user.add("Cube");
+    choose_snap_element(&mut user, "Vertex");
+    user.shortcut(&[KeyCode::ShiftLeft], KeyCode::Tab);
+    let corner = Vec3::new(1.0, 1.0, 1.0);
+    user.open_add_menu_at(user.viewport_center() + Vec2::new(200.0, 150.0));
+    user.click_on("Draw Curve");
+    let near = user.screen_of(corner) + Vec2::new(5.0, 4.0);
+    user.glide_to(near, 3);
+    user.click(near);
+    let draw = user.app.world().resource::<hedra_edit::CurveDraw>();
+    assert_eq!(draw.points, vec![corner.as_dvec3()]);
+    user.tap(KeyCode::Escape);
+    assert!(!user.app.world().resource::<hedra_edit::CurveDraw>().active);
+    assert_eq!(user.doc().nodes().count(), 1, "nothing added");
+}

@@ -206,7 +206,7 @@ pub enum Action {
     LargerRadius,
     SmallerRadius,
     KnifeAngle,
-    KnifeBack,
+    RemoveLastPoint,
     SelectAll,
     SelectNone,
     InvertSelection,
@@ -769,8 +769,8 @@ pub const BINDINGS: &[Binding] = &[
     bind(
         Tool,
         Chord::key(K::Backspace),
-        A::KnifeBack,
-        "knife: take the last point back",
+        A::RemoveLastPoint,
+        "knife, curve drawing: take the last point back",
     ),
 ];
 

@@ -17,6 +17,7 @@ use hedra_scene::{DocChanged, DocRequest, DocState, InputGate, SceneSystems, Vie
 
 pub mod bindings;
 mod cursor;
+mod curve_draw;
 pub mod mesh_mode;
 pub mod modal;
 mod proportional;
@@ -25,6 +26,7 @@ mod snapping;
 pub mod typing;
 
 pub use cursor::place_cursor;
+pub use curve_draw::{CurveDraw, construction_plane};
 pub use mesh_mode::{
     BisectDrag, EditMode, ElementKind, ElementSelection, KnifeTool, MeshTool, MeshToolKind,
     start_bisect,
@@ -97,6 +99,7 @@ impl Plugin for EditPlugin {
             .init_resource::<PivotPoint>()
             .init_resource::<ProportionalRing>()
             .init_resource::<ShapeEdit>()
+            .init_resource::<CurveDraw>()
             .configure_sets(Update, EditSystems.in_set(SceneSystems::Tools))
             .add_systems(
                 Update,
@@ -137,6 +140,7 @@ impl Plugin for EditPlugin {
                     shape_mode::drive_shape_tool,
                     shape_mode::shape_select_and_shortcuts,
                     shape_mode::publish_shape_preview,
+                    curve_draw::drive_curve_draw,
                 )
                     .chain()
                     .after(mesh_mode::publish_mesh_preview)
@@ -311,9 +315,12 @@ fn pick_objects(
     gizmo: Option<Res<TransformGizmoState>>,
     mode: Res<EditMode>,
     shape_edit: Res<ShapeEdit>,
+    draw: Res<CurveDraw>,
 ) {
     if mode.active()
         || shape_edit.active()
+        || draw.active
+        || draw.just_finished
         || !buttons.just_pressed(MouseButton::Left)
         || !gate.pointer_free
         || tool.active.is_some()
@@ -380,8 +387,14 @@ pub fn object_shortcuts(
     shape_edit: Res<ShapeEdit>,
     pivot_point: Res<PivotPoint>,
     cursor: Res<hedra_scene::Cursor3d>,
+    draw: Res<CurveDraw>,
 ) {
-    if !gate.keyboard_free || tool.active.is_some() || mode.active() || shape_edit.active() {
+    if !gate.keyboard_free
+        || tool.active.is_some()
+        || mode.active()
+        || shape_edit.active()
+        || draw.active
+    {
         return;
     }
     let doc = &state.session.doc;

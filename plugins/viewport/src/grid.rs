@@ -90,6 +90,36 @@ pub(crate) fn draw_proportional_ring(
 
 /// The knife's path while it runs: its points ringed and joined, the last
 /// segment to where the pointer would add the next point.
+/// The curve being drawn (Add ▸ Draw Curve): its control polygon dim, the
+/// curve bright, a ring on each point.
+pub(crate) fn draw_curve_drawing(
+    draw: Res<hedra_edit::CurveDraw>,
+    camera: Single<&GlobalTransform, With<ViewportCamera>>,
+    mut gizmos: Gizmos<CursorGizmos>,
+) {
+    if !draw.active {
+        return;
+    }
+    let curve = Color::srgb(1.0, 0.75, 0.2);
+    let polygon = Color::srgba(1.0, 0.75, 0.2, 0.35);
+    let control: Vec<Vec3> = draw
+        .points
+        .iter()
+        .chain(draw.hover.iter())
+        .map(|p| p.as_vec3())
+        .collect();
+    for pair in control.windows(2) {
+        gizmos.line(pair[0], pair[1], polygon);
+    }
+    for pair in draw.drawn.windows(2) {
+        gizmos.line(pair[0].as_vec3(), pair[1].as_vec3(), curve);
+    }
+    for &p in &control {
+        let size = camera.translation().distance(p).max(1e-3) * 0.006;
+        gizmos.circle(Isometry3d::new(p, camera.rotation()), size, curve);
+    }
+}
+
 pub(crate) fn draw_knife_path(
     knife: Res<hedra_edit::KnifeTool>,
     camera: Single<&GlobalTransform, With<ViewportCamera>>,

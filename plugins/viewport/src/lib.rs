@@ -101,6 +101,7 @@ impl Plugin for ViewportPlugin {
                     draw_snap_target,
                     draw_proportional_ring,
                     draw_knife_path,
+                    draw_curve_drawing,
                 )
                     .chain()
                     .in_set(ViewportSystems),

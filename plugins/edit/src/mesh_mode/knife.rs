@@ -156,7 +156,7 @@ pub fn drive_knife(
             .map(|r| (r.origin.as_dvec3(), Vec3::from(r.direction).as_dvec3()));
         knife_point(&mesh, world, ray, c, &to_screen)
     });
-    if pressed(Action::KnifeBack) {
+    if pressed(Action::RemoveLastPoint) {
         knife.points.pop();
     }
     if gate.pointer_free && buttons.just_pressed(MouseButton::Left) {

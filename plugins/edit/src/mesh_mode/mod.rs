@@ -261,8 +261,9 @@ pub fn mode_keys(
     state: Res<DocState>,
     tool: Res<TransformTool>,
     mut status: ResMut<hedra_scene::StatusMessage>,
+    draw: Res<crate::CurveDraw>,
 ) {
-    if !gate.keyboard_free || tool.active.is_some() || mode.tool.is_some() {
+    if !gate.keyboard_free || tool.active.is_some() || mode.tool.is_some() || draw.active {
         return;
     }
     use crate::bindings::{Action, KeyMode, pressed};

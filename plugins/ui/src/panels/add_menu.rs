@@ -48,6 +48,16 @@ pub(super) fn add_shape_buttons(
 ) {
     use hedra_doc::command::{CurveSpec, SurfaceSpec};
     let v = |x: f64, y: f64, z: f64| DVec3::new(x, y, z);
+    ui.separator();
+    ui.label(egui::RichText::new("Curves").weak());
+    if ui
+        .button("Draw Curve")
+        .on_hover_text("Click control points on a surface or the grid plane; Enter ends")
+        .clicked()
+    {
+        events.push(UiEvent::DrawCurve);
+        ui.close();
+    }
     let mut add = |ui: &mut egui::Ui, label: &str, enabled: bool, command: Command| {
         if ui.add_enabled(enabled, egui::Button::new(label)).clicked() {
             exec(events, command);
@@ -66,8 +76,7 @@ pub(super) fn add_shape_buttons(
         parent: None,
         transform: at_cursor(at),
     };
-    ui.separator();
-    ui.label(egui::RichText::new("Curves").weak());
+
     let wave = vec![
         v(-2.0, 0.0, 0.0),
         v(-1.0, 1.5, 0.0),

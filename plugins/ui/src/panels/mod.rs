@@ -68,6 +68,8 @@ enum UiEvent {
     StartBisect,
     /// A menu item that starts the same interactive tool as its keys.
     Start(hedra_edit::bindings::Action),
+    /// Add ▸ Draw Curve: start drawing a curve by clicks.
+    DrawCurve,
 }
 
 #[derive(SystemParam)]
@@ -83,6 +85,7 @@ pub struct Writers<'w> {
     proportional: ResMut<'w, hedra_edit::Proportional>,
     key_help: ResMut<'w, hedra_edit::bindings::KeyHelp>,
     requested: ResMut<'w, hedra_edit::bindings::RequestedAction>,
+    curve_draw: ResMut<'w, hedra_edit::CurveDraw>,
     pivot: ResMut<'w, hedra_edit::PivotPoint>,
     quad_view: ResMut<'w, hedra_scene::QuadView>,
     cursor: ResMut<'w, hedra_scene::Cursor3d>,
@@ -311,6 +314,10 @@ pub fn draw_ui(
                 hedra_edit::start_bisect(&mut writers.bisect, &model.mode, &mut model.status)
             }
             UiEvent::Start(action) => writers.requested.0 = Some(action),
+            UiEvent::DrawCurve => {
+                model.selection.nodes.clear();
+                writers.curve_draw.start(&mut model.status);
+            }
             UiEvent::Preview(id, t) => hedra_scene::Previews::show(
                 &mut tool_previews,
                 hedra_scene::PreviewSource::Properties,
