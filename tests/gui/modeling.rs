@@ -1491,3 +1491,42 @@ fn a_drawn_point_snaps_onto_a_cube_corner_and_esc_cancels() {
     assert!(!user.app.world().resource::<hedra_edit::CurveDraw>().active);
     assert_eq!(user.doc().nodes().count(), 1, "nothing added");
 }
+
+/// R and S in control-point mode: A selects every point of the surface,
+/// S 2 Enter doubles their distances from their median, R Y 90 Enter turns
+/// them a quarter about the vertical through it; one undo step each.
+#[test]
+fn r_and_s_turn_and_scale_control_points_about_their_median() {
+    let mut user = User::new();
+    user.add("NURBS Surface");
+    user.tap(KeyCode::Tab);
+    user.move_to(user.viewport_center() + Vec2::new(120.0, 40.0));
+    user.tap(KeyCode::KeyA);
+    let (before, _) = shape_points(&user);
+    let median = before.iter().sum::<DVec3>() / before.len() as f64;
+    let steps = user.undo_steps();
+    user.tap(KeyCode::KeyS);
+    user.type_text("2");
+    user.tap(KeyCode::Enter);
+    let (scaled, _) = shape_points(&user);
+    for (p, q) in before.iter().zip(&scaled) {
+        assert!(
+            (*q - (median + (*p - median) * 2.0)).length() < 1e-12,
+            "{p} → {q}"
+        );
+    }
+    assert_eq!(user.undo_steps(), steps + 1);
+    user.tap(KeyCode::KeyR);
+    user.tap(KeyCode::KeyY);
+    user.type_text("90");
+    user.tap(KeyCode::Enter);
+    let (turned, _) = shape_points(&user);
+    let quarter = hedra_geom::DQuat::from_rotation_y(90f64.to_radians());
+    for (p, q) in scaled.iter().zip(&turned) {
+        assert!(
+            (*q - (median + quarter * (*p - median))).length() < 1e-9,
+            "{p} → {q}"
+        );
+    }
+    assert_eq!(user.undo_steps(), steps + 2, "{}", user.status());
+}

@@ -678,6 +678,18 @@ pub const BINDINGS: &[Binding] = &[
     ),
     bind(
         ControlPoints,
+        Chord::key(K::KeyR),
+        A::Rotate,
+        "rotate the selected points (about their median or the 3D cursor)",
+    ),
+    bind(
+        ControlPoints,
+        Chord::key(K::KeyS),
+        A::Scale,
+        "scale the selected points",
+    ),
+    bind(
+        ControlPoints,
         Chord::key(K::KeyW),
         A::Weight,
         "change the selected points' weights (drag right: heavier)",

@@ -188,22 +188,17 @@ impl ModalTransform {
                     .collect()
             }
             TransformKind::Rotate => {
-                let degrees = self.typed.value().unwrap_or_else(|| {
-                    let a = (self.start_cursor - self.pivot_screen).to_angle();
-                    let b = (cursor - self.pivot_screen).to_angle();
-                    // Screen y points down: a clockwise drag on screen is a negative angle.
-                    let degrees = -((b - a) as f64).to_degrees();
-                    snapping.map_or(degrees, |s| {
-                        crate::Snapping::round(true, degrees, s.angle_step)
-                    })
-                });
-                // Without a constraint, rotate about the view axis (towards the viewer).
-                let axis = self.axis.map_or(-view_dir, Axis::vector);
-                self.readout = format!("Rotate{axis_name} {degrees:.2}°");
-                let m = rotation_about(
+                let (turn, readout) = turn_or_scale(
+                    true,
+                    (self.start_cursor, cursor, self.pivot_screen),
                     self.pivot,
-                    DQuat::from_axis_angle(axis.normalize(), degrees.to_radians()),
+                    self.axis,
+                    view_dir,
+                    self.typed.value(),
+                    snapping,
                 );
+                self.readout = readout.replacen("Rotate", &format!("Rotate{axis_name}"), 1);
+                let m = turn(1.0);
                 self.items
                     .iter()
                     .map(|i| {
@@ -355,6 +350,64 @@ pub fn drive_transform_tool(
         },
     );
     tool.active = Some(modal);
+}
+
+/// The world transform of an R or S drag on points (mesh vertices, control
+/// points) about `pivot`, as a function of the weight it is taken with (1:
+/// in full; less for proportional neighbours), and the readout. R turns by
+/// the pointer's angle about the pivot on screen (about the view axis, or
+/// `axis`), S scales by the ratio of its distances from the pivot; a typed
+/// value replaces the pointer; with `snapping` the angle goes in its angle
+/// step and the factor in its scale step (Blender).
+pub fn turn_or_scale(
+    rotate: bool,
+    (start_cursor, cursor, pivot_screen): (Vec2, Vec2, Vec2),
+    pivot: DVec3,
+    axis: Option<Axis>,
+    view_dir: DVec3,
+    typed: Option<f64>,
+    snapping: Option<&crate::Snapping>,
+) -> (Box<dyn Fn(f64) -> DMat4>, String) {
+    if rotate {
+        let degrees = typed.unwrap_or_else(|| {
+            let a = (start_cursor - pivot_screen).to_angle();
+            let b = (cursor - pivot_screen).to_angle();
+            // Screen y points down: a clockwise drag on screen is a negative angle.
+            let degrees = -((b - a) as f64).to_degrees();
+            snapping.map_or(degrees, |s| {
+                crate::Snapping::round(true, degrees, s.angle_step)
+            })
+        });
+        let axis = axis.map_or(-view_dir, Axis::vector).normalize();
+        (
+            Box::new(move |w| {
+                rotation_about(
+                    pivot,
+                    DQuat::from_axis_angle(axis, w * degrees.to_radians()),
+                )
+            }),
+            format!("Rotate {degrees:.2}°"),
+        )
+    } else {
+        let factor = typed.unwrap_or_else(|| {
+            let d0 = (start_cursor - pivot_screen).length().max(1.0);
+            let factor = ((cursor - pivot_screen).length() / d0) as f64;
+            snapping.map_or(factor, |s| {
+                crate::Snapping::round(true, factor, s.scale_step)
+            })
+        });
+        let f = axis.map_or(DVec3::splat(factor), |a| {
+            DVec3::ONE + a.vector() * (factor - 1.0)
+        });
+        (
+            Box::new(move |w| {
+                DMat4::from_translation(pivot)
+                    * DMat4::from_scale(DVec3::ONE + (f - DVec3::ONE) * w)
+                    * DMat4::from_translation(-pivot)
+            }),
+            format!("Scale {factor:.4}"),
+        )
+    }
 }
 
 /// A node's points in world space, the bases of an object snap: a mesh's

@@ -28,6 +28,10 @@ pub enum ShapeToolKind {
     /// Change the selected control points' weights (W); a typed number sets
     /// them all to it.
     Weight,
+    /// Turn the selected control points about the pivot (R).
+    Rotate,
+    /// Scale the selected control points about the pivot (S).
+    Scale,
 }
 
 /// A running shape tool.
@@ -41,8 +45,11 @@ pub struct ShapeTool {
     /// world distance along the axis, or the new weight).
     pub typed: TypedNumber,
     start_cursor: Vec2,
-    /// World-space centre of the selected points (the drag plane goes through it).
+    /// World-space centre of the selected points (the drag plane goes
+    /// through it; R and S turn and scale about it, or about the 3D cursor).
     pivot: DVec3,
+    /// Where the pivot is on screen (R measures the pointer's angle about it).
+    pivot_screen: Vec2,
     /// What the status bar shows for the tool, with the typed digits or the
     /// reason the command cannot apply appended.
     pub readout: String,
@@ -178,6 +185,8 @@ pub fn shape_select_and_shortcuts(
     mut requests: MessageWriter<DocRequest>,
     mut b_box: Local<bool>,
     gizmo: Option<Res<TransformGizmoState>>,
+    pivot_point: Res<crate::PivotPoint>,
+    cursor_3d: Res<hedra_scene::Cursor3d>,
 ) {
     let Some(id) = edit.node else {
         *b_box = false;
@@ -279,6 +288,10 @@ pub fn shape_select_and_shortcuts(
         Some(ShapeToolKind::Move)
     } else if pressed(Action::Weight) {
         Some(ShapeToolKind::Weight)
+    } else if pressed(Action::Rotate) {
+        Some(ShapeToolKind::Rotate)
+    } else if pressed(Action::Scale) {
+        Some(ShapeToolKind::Scale)
     } else {
         None
     };
@@ -297,12 +310,20 @@ pub fn shape_select_and_shortcuts(
         .map(|&i| points[i as usize])
         .sum::<DVec3>()
         / edit.selected.len() as f64;
+    let pivot = match (kind, *pivot_point) {
+        (ShapeToolKind::Rotate | ShapeToolKind::Scale, crate::PivotPoint::Cursor) => cursor_3d.0,
+        _ => world.transform_point3(centre),
+    };
+    let start_cursor = window.cursor_position().unwrap_or_default();
     edit.tool = Some(ShapeTool {
         kind,
         axis: None,
         typed: TypedNumber::default(),
-        start_cursor: window.cursor_position().unwrap_or_default(),
-        pivot: world.transform_point3(centre),
+        start_cursor,
+        pivot,
+        pivot_screen: cam
+            .world_to_viewport(cam_t, pivot.as_vec3())
+            .unwrap_or(start_cursor),
         readout: String::new(),
     });
 }
@@ -396,7 +417,7 @@ pub fn drive_shape_tool(
         edit.just_finished = true;
         return;
     }
-    if tool.kind == ShapeToolKind::Move {
+    if tool.kind != ShapeToolKind::Weight {
         modal_keys.toggle_axis(&mut tool.axis);
     }
     tool.typed.read(&keys, true);
@@ -483,6 +504,46 @@ pub fn drive_shape_tool(
             Command::SetControlPoints {
                 node: reference,
                 points: moved,
+            }
+        }
+        ShapeToolKind::Rotate | ShapeToolKind::Scale => {
+            let view_dir = (cam_t.rotation() * Vec3::NEG_Z).as_dvec3();
+            let (xf, readout) = crate::modal::turn_or_scale(
+                tool.kind == ShapeToolKind::Rotate,
+                (tool.start_cursor, cursor, tool.pivot_screen),
+                tool.pivot,
+                tool.axis,
+                view_dir,
+                tool.typed.value(),
+                snapping.active(&keys).then_some(&*snapping),
+            );
+            tool.readout = format!("{readout} (control points)");
+            let to_local = world.inverse();
+            let moved = |i: usize, w: f64| {
+                to_local.transform_point3(xf(w).transform_point3(world.transform_point3(points[i])))
+            };
+            let mut new: Vec<(u32, DVec3)> = edit
+                .selected
+                .iter()
+                .map(|&i| (i, moved(i as usize, 1.0)))
+                .collect();
+            if proportional.enabled {
+                proportional.adjust_radius(&keys, scroll.delta.y);
+                ring.0 = Some((tool.pivot, proportional.radius));
+                let world_points: Vec<DVec3> =
+                    points.iter().map(|&p| world.transform_point3(p)).collect();
+                let selected: Vec<usize> = edit.selected.iter().map(|&i| i as usize).collect();
+                let weights = hedra_geom::proportional::point_weights(
+                    &world_points,
+                    &selected,
+                    proportional.radius,
+                    proportional.falloff,
+                );
+                new.extend(weights.into_iter().map(|(i, w)| (i as u32, moved(i, w))));
+            }
+            Command::SetControlPoints {
+                node: reference,
+                points: new,
             }
         }
         ShapeToolKind::Weight => {

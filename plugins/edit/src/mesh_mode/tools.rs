@@ -15,6 +15,7 @@ pub(super) fn tool_command(
     view_dir: DVec3,
     pixel_size: f64,
     snap: crate::MoveSnap,
+    steps: Option<&crate::Snapping>,
     proportional: Option<&BTreeMap<VertexId, f64>>,
 ) -> Command {
     let drag = (cursor - tool.start_cursor).x as f64 * pixel_size;
@@ -130,37 +131,16 @@ pub(super) fn tool_command(
         }
         MeshToolKind::Rotate | MeshToolKind::Scale => {
             // The world-space transform taken with weight `w` (1: in full).
-            let xf: Box<dyn Fn(f64) -> DMat4> = if tool.kind == MeshToolKind::Rotate {
-                let degrees = tool.typed.value().unwrap_or_else(|| {
-                    let a = (tool.start_cursor - tool.pivot_screen).to_angle();
-                    let b = (cursor - tool.pivot_screen).to_angle();
-                    -((b - a) as f64).to_degrees()
-                });
-                tool.readout = format!("Rotate {degrees:.2}°");
-                let axis = tool.axis.map_or(-view_dir, Axis::vector).normalize();
-                let pivot = tool.pivot;
-                Box::new(move |w| {
-                    crate::rotation_about(
-                        pivot,
-                        glam::DQuat::from_axis_angle(axis, w * degrees.to_radians()),
-                    )
-                })
-            } else {
-                let factor = tool.typed.value().unwrap_or_else(|| {
-                    let d0 = (tool.start_cursor - tool.pivot_screen).length().max(1.0);
-                    ((cursor - tool.pivot_screen).length() / d0) as f64
-                });
-                tool.readout = format!("Scale {factor:.4}");
-                let f = tool.axis.map_or(DVec3::splat(factor), |a| {
-                    DVec3::ONE + a.vector() * (factor - 1.0)
-                });
-                let pivot = tool.pivot;
-                Box::new(move |w| {
-                    DMat4::from_translation(pivot)
-                        * DMat4::from_scale(DVec3::ONE + (f - DVec3::ONE) * w)
-                        * DMat4::from_translation(-pivot)
-                })
-            };
+            let (xf, readout) = crate::modal::turn_or_scale(
+                tool.kind == MeshToolKind::Rotate,
+                (tool.start_cursor, cursor, tool.pivot_screen),
+                tool.pivot,
+                tool.axis,
+                view_dir,
+                tool.typed.value(),
+                steps,
+            );
+            tool.readout = readout;
             if let Some(weights) = proportional {
                 let positions = weighted_positions(mesh, selection, world, weights, &|p, w| {
                     xf(w).transform_point3(p)
@@ -524,6 +504,7 @@ pub fn drive_mesh_tool(
         view_dir,
         pixel_size,
         snap,
+        snapping.active(&keys).then_some(&*snapping),
         weights,
     );
     tool.proportional = cached;

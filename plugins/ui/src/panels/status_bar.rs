@@ -80,6 +80,8 @@ pub(super) fn status_bar(ui: &mut egui::Ui, model: &Model) {
                         egui::Label::new(mode_hint(&[
                             (ControlPoints, &[A::SelectAll], "all"),
                             (ControlPoints, &[A::Move], "move"),
+                            (ControlPoints, &[A::Rotate], "rotate"),
+                            (ControlPoints, &[A::Scale], "scale"),
                             (ControlPoints, &[A::Weight], "weight"),
                             (ControlPoints, &[A::InsertKnot], "insert knot"),
                             (Everywhere, &[A::EditModeToggle], "exit"),
