@@ -1530,3 +1530,84 @@ fn r_and_s_turn_and_scale_control_points_about_their_median() {
     }
     assert_eq!(user.undo_steps(), steps + 2, "{}", user.status());
 }
+
+/// The curve panel measures the selected curve: its length (against the
+/// kernel's arc length of the same curve), Divide makes a polyline whose
+/// points are an equal arc length apart along it, and the closest point to
+/// the pointer is no farther than any of 20 000 samples.
+#[test]
+fn the_curve_panel_measures_length_divides_and_finds_the_closest_point() {
+    use hedra_geom::curves::Curve;
+    use hedra_geom::curves::analysis::{arc_length, closest_parameter};
+    let mut user = User::new();
+    user.add("NURBS Curve");
+    let node = user.doc().nodes().next().unwrap().clone();
+    let NodeContent::Curve(curve) = &node.content else {
+        panic!("a curve")
+    };
+    let curve = (**curve).clone();
+    let (a, b) = curve.domain();
+    let length = arc_length(&curve, a, b);
+    assert!(
+        user.shows(&format!("Length {length:.6}")),
+        "the panel shows {length:.6}"
+    );
+
+    user.click_on("Divide into equal lengths");
+    let divided = user.doc().nodes().last().unwrap().clone();
+    assert_eq!(divided.name, "NURBS Curve divided");
+    let points = hedra_edit::shape_mode::control_points(&divided.content);
+    assert_eq!(points.len(), 10);
+    let params: Vec<f64> = points
+        .iter()
+        .map(|&p| closest_parameter(&curve, p))
+        .collect();
+    for w in params.windows(2) {
+        let piece = arc_length(&curve, w[0], w[1]);
+        assert!(
+            (piece - length / 9.0).abs() < 1e-9,
+            "{piece} vs {}",
+            length / 9.0
+        );
+    }
+
+    // Back to the first curve alone: the closest point to the pointer.
+    user.shortcut(&[KeyCode::ControlLeft], KeyCode::KeyZ);
+    assert_eq!(user.doc().nodes().count(), 1);
+    let at = user.screen_of(curve.point(0.3).as_vec3()) + Vec2::new(25.0, 30.0);
+    let on_curve = user.screen_of(curve.point(0.5).as_vec3());
+    user.click(on_curve);
+    assert_eq!(
+        user.app
+            .world()
+            .resource::<hedra_edit::Selection>()
+            .active(),
+        Some(node.id)
+    );
+    user.click_on("Closest point to the pointer");
+    user.move_to(at);
+    user.frames(2);
+    let found = user
+        .app
+        .world()
+        .resource::<hedra_viewport::CurveAnalysis>()
+        .closest_found
+        .expect("a closest point");
+    let nearest_sample = (0..=20_000)
+        .map(|i| {
+            curve
+                .point(a + (b - a) * i as f64 / 20_000.0)
+                .distance(found.from)
+        })
+        .fold(f64::INFINITY, f64::min);
+    assert!(
+        found.distance <= nearest_sample + 1e-9,
+        "{} vs {nearest_sample}",
+        found.distance
+    );
+    assert!((curve.point(found.t) - found.at).length() < 1e-12);
+    assert!(user.shows(&format!(
+        "t {:.6} · distance {:.6}",
+        found.t, found.distance
+    )));
+}

@@ -63,6 +63,8 @@ pub struct UiState {
     pub weight_edit: Option<f64>,
     /// Where "Insert knot" inserts.
     pub knot_at: f64,
+    /// How many equal arc lengths Curve ▸ Divide makes.
+    pub divide_count: usize,
     /// The 3D area left by the panels, in logical pixels.
     pub viewport_rect: Option<egui::Rect>,
     /// The window title last set, so the title is written only when it changes.
@@ -90,6 +92,7 @@ impl Default for UiState {
             crease_edit: None,
             weight_edit: None,
             knot_at: 0.5,
+            divide_count: 10,
             viewport_rect: None,
             last_title: String::new(),
         }

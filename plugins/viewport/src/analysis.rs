@@ -18,6 +18,106 @@ pub struct CurveAnalysis {
     pub frame: bool,
     /// Where that point is, as a fraction of the domain.
     pub at: f64,
+    /// The point of the curve nearest the pointer, found by Newton's method
+    /// with the seed's stopping tests, drawn and reported live.
+    pub closest: bool,
+    /// What the closest-point probe found this frame (world space).
+    pub closest_found: Option<ClosestPoint>,
+}
+
+/// The point of the active curve nearest the pointer (on the plane facing
+/// the view through the curve's middle).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ClosestPoint {
+    /// The pointer's point in the world.
+    pub from: DVec3,
+    /// The curve's parameter there.
+    pub t: f64,
+    /// The nearest point of the curve.
+    pub at: DVec3,
+    /// Its distance from `from`.
+    pub distance: f64,
+}
+
+/// The curve `c` with its control points carried into the world by
+/// `world` (NURBS are affine invariant: the same curve, in world units, so
+/// lengths and distances are the world's).
+pub fn world_curve(
+    c: &hedra_geom::NurbsCurve,
+    world: glam::DMat4,
+) -> Option<hedra_geom::NurbsCurve> {
+    hedra_geom::NurbsCurve::new(
+        c.degree(),
+        c.knots().to_vec(),
+        c.points()
+            .iter()
+            .map(|&p| world.transform_point3(p))
+            .collect(),
+        c.weights().to_vec(),
+    )
+    .ok()
+}
+
+/// Finds the closest point of the active curve to the pointer each frame
+/// while [`CurveAnalysis::closest`] is on, and draws it.
+pub(crate) fn closest_point_to_pointer(
+    mut analysis: ResMut<CurveAnalysis>,
+    selection: Res<Selection>,
+    state: Res<DocState>,
+    window: Single<&Window, With<bevy::window::PrimaryWindow>>,
+    camera: Single<(&Camera, &GlobalTransform), With<ViewportCamera>>,
+    mut gizmos: Gizmos<AxisGizmos>,
+) {
+    let found = if analysis.closest {
+        find_closest(&selection, &state, &window, *camera)
+    } else {
+        None
+    };
+    if analysis.closest_found != found {
+        analysis.closest_found = found;
+    }
+    if let Some(c) = found {
+        gizmos.line(c.from.as_vec3(), c.at.as_vec3(), Color::WHITE);
+        gizmos.sphere(
+            Isometry3d::from_translation(c.at.as_vec3()),
+            (c.distance.max(0.05) * 0.05) as f32,
+            Color::WHITE,
+        );
+    }
+}
+
+fn find_closest(
+    selection: &Selection,
+    state: &DocState,
+    window: &Window,
+    (cam, cam_t): (&Camera, &GlobalTransform),
+) -> Option<ClosestPoint> {
+    use hedra_geom::curves::Curve;
+    let id = selection.active()?;
+    let doc = &state.session.doc;
+    let NodeContent::Curve(c) = &doc.node(id)?.content else {
+        return None;
+    };
+    let curve = world_curve(c, doc.world_matrix(id))?;
+    let ray = cam
+        .viewport_to_world(cam_t, window.cursor_position()?)
+        .ok()?;
+    let (o, d) = (ray.origin.as_dvec3(), Vec3::from(ray.direction).as_dvec3());
+    let middle = curve.points().iter().sum::<DVec3>() / curve.points().len() as f64;
+    let normal = (cam_t.rotation() * Vec3::NEG_Z).as_dvec3();
+    let denom = d.dot(normal);
+    if denom.abs() < 1e-12 {
+        return None;
+    }
+    let from = o + d * ((middle - o).dot(normal) / denom);
+    let t = hedra_geom::curves::analysis::closest_parameter(&curve, from);
+    let at = curve.point(t);
+    Some(ClosestPoint {
+        from,
+        t,
+        at,
+        distance: at.distance(from),
+    })
 }
 
 impl Default for CurveAnalysis {
@@ -28,6 +128,8 @@ impl Default for CurveAnalysis {
             colour_by_curvature: false,
             frame: false,
             at: 0.5,
+            closest: false,
+            closest_found: None,
         }
     }
 }

@@ -115,6 +115,7 @@ impl Plugin for ViewportPlugin {
                     draw_edit_overlay,
                     draw_shape_edit,
                     draw_curve_analysis,
+                    closest_point_to_pointer,
                     draw_surface_analysis,
                 )
                     .in_set(ViewportSystems),

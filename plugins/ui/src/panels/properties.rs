@@ -203,6 +203,68 @@ pub(super) fn properties(
     }
 }
 
+/// A curve's length (world units), its division into equal arc lengths as
+/// a new polyline node, and the closest point to the pointer (seed 001's
+/// curve operations).
+fn curve_measures(
+    ui: &mut egui::Ui,
+    id: NodeId,
+    content: &NodeContent,
+    model: &Model,
+    state: &mut UiState,
+    analysis: &mut hedra_viewport::CurveAnalysis,
+    events: &mut Vec<UiEvent>,
+) {
+    use hedra_geom::curves::{
+        Curve,
+        analysis::{arc_length, equal_arc_length_parameters},
+    };
+    let NodeContent::Curve(c) = content else {
+        return;
+    };
+    let doc = &model.state.session.doc;
+    if let Some(world) = hedra_viewport::world_curve(c, doc.world_matrix(id)) {
+        let (a, b) = world.domain();
+        ui.label(format!("Length {:.6}", arc_length(&world, a, b)));
+    }
+    ui.horizontal(|ui| {
+        ui.add(
+            egui::DragValue::new(&mut state.divide_count)
+                .range(2..=10_000)
+                .suffix(" points"),
+        );
+        if ui
+            .button("Divide into equal lengths")
+            .on_hover_text("A new polyline through points an equal arc length apart")
+            .clicked()
+        {
+            let node = doc.node(id);
+            let params = equal_arc_length_parameters(&**c, state.divide_count);
+            exec(
+                events,
+                Command::AddCurve {
+                    name: format!("{} divided", node.map_or("Curve", |n| n.name.as_str())),
+                    curve: hedra_doc::command::CurveSpec::Nurbs {
+                        degree: 1,
+                        points: c.points_at(&params),
+                        weights: None,
+                        knots: None,
+                    },
+                    parent: node.and_then(|n| n.parent).map(NodeRef::from),
+                    transform: node.map_or_else(NodeTransform::default, |n| n.transform),
+                },
+            );
+        }
+    });
+    ui.checkbox(&mut analysis.closest, "Closest point to the pointer");
+    if analysis.closest {
+        ui.label(match analysis.closest_found {
+            Some(p) => format!("t {:.6} · distance {:.6}", p.t, p.distance),
+            None => "point into the viewport".to_string(),
+        });
+    }
+}
+
 /// A curve's or surface's degree, knots and control points; in edit mode
 /// (Tab) the weight of the selected points; knot insertion and degree
 /// elevation.
@@ -321,6 +383,7 @@ pub(super) fn shape_panel(
         if analysis.frame {
             ui.add(egui::Slider::new(&mut analysis.at, 0.0..=1.0).text("at"));
         }
+        curve_measures(ui, id, content, model, state, analysis, events);
     }
     if matches!(content, NodeContent::Surface(s) if matches!(**s, hedra_doc::SurfaceShape::Nurbs(_)))
     {
