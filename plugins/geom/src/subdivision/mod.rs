@@ -23,7 +23,7 @@ mod refine;
 mod rules;
 mod stencil;
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
@@ -152,12 +152,85 @@ pub struct Options {
     /// How semi-sharp creases soften from level to level.
     #[serde(default)]
     pub crease_method: CreaseMethod,
+    /// Catmull-Clark only: OpenSubdiv's `TRI_SUB_SMOOTH` rule for
+    /// triangles. The edge point of an edge beside a triangle weighs the
+    /// triangle's face point by 0.47 instead of 0.25 (both faces' weights are
+    /// averaged into `f`, each end vertex gets `(1 − 2f) / 2`), which rounds
+    /// triangles in a quad mesh more evenly. Off by default (plain
+    /// Catmull-Clark, and how files written before it load).
+    #[serde(default, skip_serializing_if = "is_false")]
+    pub smooth_triangles: bool,
 }
 
-/// Crease sharpness of edges and corner sharpness of vertices, by the cage's
-/// ids; missing entries are 0 (smooth). Values at or above
-/// [`INFINITE_SHARPNESS`] are infinitely sharp. Entries of elements that no
-/// longer exist are ignored.
+fn is_false(b: &bool) -> bool {
+    !*b
+}
+
+/// Which of the [`Options`] and cage tags a scheme honours
+/// ([`Scheme::applicable`]), so a panel can grey out the rest.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub struct Applicable {
+    /// Edge crease and vertex corner sharpness, and the crease method.
+    pub creases: bool,
+    /// The boundary rule ([`Options::boundary`]).
+    pub boundary: bool,
+    /// [`Options::smooth_triangles`].
+    pub smooth_triangles: bool,
+    /// Face holes ([`Creases::holes`]).
+    pub holes: bool,
+    /// Why the options that do not apply do not, for a tooltip (empty when
+    /// everything applies).
+    pub reason: &'static str,
+}
+
+impl Scheme {
+    /// Which options and tags this scheme honours. Catmull-Clark honours all;
+    /// Loop all but smooth triangles (its faces are all triangles already);
+    /// Doo-Sabin and Linear neither creases nor the boundary rule: Doo-Sabin
+    /// is a corner-cutting (dual) scheme whose new points are affine
+    /// combinations of one face's corners, so it has no edge or vertex rule
+    /// a sharpness could switch, and its surface always stops short of an
+    /// open boundary (boundary edges and vertices make no faces); Linear
+    /// moves no points (OpenSubdiv's bilinear scheme likewise ignores both).
+    /// Every scheme honours holes.
+    pub fn applicable(self) -> Applicable {
+        match self {
+            Scheme::CatmullClark => Applicable {
+                creases: true,
+                boundary: true,
+                smooth_triangles: true,
+                holes: true,
+                reason: "",
+            },
+            Scheme::Loop => Applicable {
+                creases: true,
+                boundary: true,
+                smooth_triangles: false,
+                holes: true,
+                reason: "Smooth triangles is a Catmull-Clark rule; Loop's faces are all triangles",
+            },
+            Scheme::DooSabin => Applicable {
+                creases: false,
+                boundary: false,
+                smooth_triangles: false,
+                holes: true,
+                reason: "Doo-Sabin cuts corners: it has no edge or vertex rule for creases to sharpen, and its surface always stops short of an open boundary",
+            },
+            Scheme::Linear => Applicable {
+                creases: false,
+                boundary: false,
+                smooth_triangles: false,
+                holes: true,
+                reason: "Linear splits faces without moving points: creases and boundary rules change nothing",
+            },
+        }
+    }
+}
+
+/// The cage's subdivision tags, by the cage's ids: crease sharpness of
+/// edges, corner sharpness of vertices (missing entries are 0, smooth;
+/// values at or above [`INFINITE_SHARPNESS`] are infinitely sharp) and face
+/// holes. Entries of elements that no longer exist are ignored.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct Creases {
     /// Crease sharpness per edge (only values above 0 are stored).
@@ -166,12 +239,29 @@ pub struct Creases {
     /// Corner sharpness per vertex (only values above 0 are stored).
     #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
     pub vertices: BTreeMap<VertexId, f64>,
+    /// Faces that are holes (OpenSubdiv's face hole tag): a hole is refined
+    /// like any face and its neighbours keep their shape, but it leaves no
+    /// faces in the refined or limit surface.
+    #[serde(default, skip_serializing_if = "BTreeSet::is_empty")]
+    pub holes: BTreeSet<FaceId>,
 }
 
 impl Creases {
     /// True when no edge or vertex has a sharpness entry.
     pub fn is_empty(&self) -> bool {
-        self.edges.is_empty() && self.vertices.is_empty()
+        self.edges.is_empty() && self.vertices.is_empty() && self.holes.is_empty()
+    }
+    /// True when face `f` is a hole.
+    pub fn is_hole(&self, f: FaceId) -> bool {
+        self.holes.contains(&f)
+    }
+    /// Makes face `f` a hole (`true`) or clears its hole (`false`).
+    pub fn set_hole(&mut self, f: FaceId, hole: bool) {
+        if hole {
+            self.holes.insert(f);
+        } else {
+            self.holes.remove(&f);
+        }
     }
     /// Sharpness of edge `e` (0 when unset).
     pub fn edge(&self, e: EdgeId) -> f64 {
@@ -201,6 +291,7 @@ impl Creases {
     pub fn retain_live(&mut self, mesh: &HalfEdgeMesh) {
         self.edges.retain(|e, _| mesh.is_edge(*e));
         self.vertices.retain(|v, _| mesh.is_vertex(*v));
+        self.holes.retain(|f| mesh.is_face(*f));
     }
 }
 
@@ -257,7 +348,8 @@ pub struct Refiner {
     options: Options,
     pub(crate) levels: Vec<Level>,
     cage: CageMap,
-    /// Per cage face (dense): left out of the result (boundary `None`).
+    /// Per cage face (dense): left out of the result (a hole, or boundary
+    /// `None`).
     hidden_cage_faces: Vec<bool>,
 }
 
@@ -307,7 +399,10 @@ impl Refiner {
                 sides: mesh.face_degree(f),
             });
         }
-        let (cage_level, cage) = Level::from_mesh(mesh, creases, options.boundary);
+        let hide_boundary =
+            options.boundary == BoundaryInterpolation::None && options.scheme.applicable().boundary;
+        let (cage_level, cage, hidden_cage_faces) =
+            Level::from_mesh(mesh, creases, options.boundary, hide_boundary);
         let split = split_for(options.scheme, &cage_level);
         for level in 1..=levels {
             let faces = faces_after(&cage_level, split, level);
@@ -315,7 +410,6 @@ impl Refiner {
                 return Err(SubdivisionError::TooManyFaces { level, faces });
             }
         }
-        let hidden_cage_faces = hidden_faces(&cage_level, options.boundary);
         let mut all = vec![cage_level];
         for level in 1..=levels {
             let child = refine_topology(
@@ -362,6 +456,27 @@ impl Refiner {
         (0..last.face_count())
             .filter(|&f| !self.hidden_cage_faces[last.face_origin[f] as usize])
             .map(move |f| &last.face_vertices[last.face_corners(f as u32)])
+    }
+    /// Refined face `f` (of all [`face_count`](Self::face_count) faces,
+    /// hidden ones included) as vertex indices.
+    pub fn face(&self, f: usize) -> &[u32] {
+        let last = self.last();
+        &last.face_vertices[last.face_corners(f as u32)]
+    }
+    /// True when refined face `f` (of all [`face_count`](Self::face_count)
+    /// faces) is left out of the result: it descends from a hole, or from a
+    /// face that boundary `None` leaves out.
+    pub fn is_face_hidden(&self, f: usize) -> bool {
+        self.hidden_cage_faces[self.last().face_origin[f] as usize]
+    }
+    /// True when cage face `f` is left out of the result (a hole, or a face
+    /// that boundary `None` leaves out); false for faces not in the cage.
+    pub fn is_cage_face_hidden(&self, f: FaceId) -> bool {
+        self.cage
+            .faces
+            .iter()
+            .position(|&g| g == f)
+            .is_some_and(|i| self.hidden_cage_faces[i])
     }
     /// The cage face each shown refined face comes from, in [`faces`](Self::faces) order.
     pub fn face_origins(&self) -> impl Iterator<Item = FaceId> + '_ {
@@ -469,6 +584,13 @@ impl Refiner {
                     .collect()
             })
             .collect();
+        // Isolated vertices stay (they are in no face, so not yet kept).
+        for v in 0..last.vertex_count {
+            if used[v] == u32::MAX && last.vertex_edges(v as u32).is_empty() {
+                used[v] = kept_positions.len() as u32;
+                kept_positions.push(positions[v]);
+            }
+        }
         let mesh = HalfEdgeMesh::from_polygons(&kept_positions, &faces)?;
         let mut creases = Creases::default();
         for ([a, b], s) in self.edges() {
@@ -546,27 +668,13 @@ fn faces_after(cage: &Level, split: Split, levels: u32) -> usize {
 /// How many faces `levels` steps of `scheme` make from `mesh`, without
 /// refining (to decide whether to refine in the background).
 pub fn face_count_after(mesh: &HalfEdgeMesh, scheme: Scheme, levels: u32) -> usize {
-    let (cage, _) = Level::from_mesh(mesh, &Creases::default(), BoundaryInterpolation::EdgesOnly);
+    let (cage, _, _) = Level::from_mesh(
+        mesh,
+        &Creases::default(),
+        BoundaryInterpolation::EdgesOnly,
+        false,
+    );
     faces_after(&cage, split_for(scheme, &cage), levels)
-}
-
-/// Faces left out with boundary `None`: those with a vertex on the boundary.
-fn hidden_faces(level: &Level, boundary: BoundaryInterpolation) -> Vec<bool> {
-    let mut hidden = vec![false; level.face_count()];
-    if boundary != BoundaryInterpolation::None {
-        return hidden;
-    }
-    for e in 0..level.edge_count() as u32 {
-        if level.is_boundary_edge(e) {
-            for v in level.edge_vertices[e as usize] {
-                for &c in level.vertex_corners(v) {
-                    hidden[level.face_origin[level.corner_face(c as usize) as usize] as usize] =
-                        true;
-                }
-            }
-        }
-    }
-    hidden
 }
 
 fn split_for(scheme: Scheme, cage: &Level) -> Split {
@@ -641,7 +749,7 @@ pub(crate) fn point_mask(
     let masks = masks_for(options.scheme);
     match point {
         ChildPoint::Face(f) => rules::face_mask(parent, f, sink),
-        ChildPoint::Edge(e) => rules::edge_mask(parent, e, masks, sink),
+        ChildPoint::Edge(e) => rules::edge_mask(parent, e, masks, options.smooth_triangles, sink),
         ChildPoint::Vertex(v) => rules::vertex_mask(parent, v, masks, options.crease_method, sink),
         ChildPoint::Corner(c) => {
             let r = parent.face_corners(parent.corner_face(c as usize));
