@@ -363,6 +363,7 @@ impl Plan<'_> {
                 vertices,
                 sharpness,
             } => self.set_vertex_crease(node, vertices, *sharpness),
+            Command::SetFaceHole { node, faces, hole } => self.set_face_hole(node, faces, *hole),
             Command::SnapToLimit { node } => self.snap_to_limit(node),
 
             // ----- the modifier stack (modifiers.rs) -----

@@ -718,6 +718,18 @@ pub enum Command {
         /// 0 (smooth) to 10 (infinitely sharp); outside that range is refused.
         sharpness: f64,
     },
+    /// Makes faces subdivision holes (`hole: true`) or clears their holes
+    /// (OpenSubdiv's face holes): a hole is refined like any face and its
+    /// neighbours keep their shape, but it leaves no faces in the subdivided
+    /// result (viewport, export, apply). The cage keeps every face.
+    SetFaceHole {
+        /// The mesh node to edit.
+        node: NodeRef,
+        /// The faces, by id or by a predicate in local space.
+        faces: FaceSet,
+        /// True makes holes, false clears them.
+        hole: bool,
+    },
     /// Moves every cage vertex onto the limit surface of its subdivision
     /// (the node's modifier options, or Catmull-Clark).
     SnapToLimit {
@@ -933,6 +945,8 @@ impl Command {
             Command::ApplyModifiers { .. } => "Apply Modifiers".to_string(),
             Command::SetEdgeCrease { sharpness, .. } => format!("Edge Crease {sharpness:.2}"),
             Command::SetVertexCrease { sharpness, .. } => format!("Vertex Crease {sharpness:.2}"),
+            Command::SetFaceHole { hole: true, .. } => "Make Hole".to_string(),
+            Command::SetFaceHole { hole: false, .. } => "Clear Hole".to_string(),
             Command::SnapToLimit { .. } => "Snap to Limit Surface".to_string(),
             Command::AddCurve { name, .. } => format!("Add Curve '{name}'"),
             Command::AddSurface { name, .. } => format!("Add Surface '{name}'"),
