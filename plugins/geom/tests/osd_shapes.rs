@@ -335,3 +335,20 @@ fn opensubdiv_regression_shapes_match_opensubdiv() {
     let expected_different: Vec<&str> = KNOWN_DIFFERENT.iter().map(|(n, _)| *n).collect();
     assert_eq!(different_names, expected_different, "shapes that differ");
 }
+
+#[test]
+fn catmark_edgenone_shows_the_faces_opensubdiv_shows() {
+    // Boundary None: 13 of the 36 cage faces keep every boundary vertex's
+    // boundary edges infinitely sharp (or touch no boundary); each is 16
+    // faces at level 2.
+    let shape = load("catmark_edgenone").unwrap();
+    assert_eq!(shape.options.boundary, BoundaryInterpolation::None);
+    assert_eq!(shape.mesh.face_count(), 36);
+    let level0 = Refiner::new(&shape.mesh, &shape.creases, shape.options, 0).unwrap();
+    assert_eq!(level0.faces().count(), 13);
+    let level2 = Refiner::new(&shape.mesh, &shape.creases, shape.options, 2).unwrap();
+    assert_eq!(level2.faces().count(), 208);
+    let stored = &stored()["catmark_edgenone"];
+    let osd = stored.iter().find(|s| s.level == 2).unwrap();
+    assert_eq!(osd.hidden.iter().filter(|&&h| !h).count(), 208);
+}
