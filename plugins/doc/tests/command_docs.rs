@@ -24,7 +24,7 @@ fn every_command_example_in_the_docs_runs() {
         .collect();
     kinds.sort();
     kinds.dedup();
-    assert_eq!(kinds.len(), 70, "{kinds:?}");
+    assert_eq!(kinds.len(), 71, "{kinds:?}");
     let mut session = hedra_doc::Session::new();
     hedra_doc::script::run(&mut session, &commands, Path::new("docs/commands.md"))
         .unwrap_or_else(|e| panic!("{e}"));
@@ -206,6 +206,11 @@ fn every_command_example_in_the_docs_runs() {
     };
     assert_eq!(content.mesh.face_count(), 6);
     assert_eq!(content.creases.holes.len(), 1);
+    // Its tapered crease: two edges, at 1 and 3 (midpoints at 1/4 and 3/4).
+    assert_eq!(content.creases.tapers.len(), 1);
+    let mut along: Vec<f64> = content.creases.edge_sharpness().into_values().collect();
+    along.sort_by(f64::total_cmp);
+    assert_eq!(along, [1.0, 3.0]);
     let smooth = content.evaluated(2).unwrap();
     assert_eq!(smooth.face_count(), 5 * 16);
     smooth.validate().unwrap();

@@ -565,3 +565,52 @@ fn face_holes_and_smooth_triangles_are_saved_undone_and_exported() {
     assert!(e.to_string().contains("99"), "{e}");
     assert_eq!(s.doc, before);
 }
+
+#[test]
+fn crease_tapers_are_saved_undone_and_refused_by_name() {
+    use hedra_doc::NodeContent;
+    use hedra_doc::elements::{EdgeSet, VertexSet};
+    let mut s = Session::new();
+    s.execute(&Command::AddPrimitive {
+        primitive: Primitive::Cube { size: 2.0 },
+        name: Some("Box".into()),
+        parent: None,
+        transform: NodeTransform::IDENTITY,
+    })
+    .unwrap();
+    let node = || NodeRef::Name("Box".into());
+    // Two bottom edges, from the corner (−1, −1, 1) round to (1, −1, −1).
+    let edges =
+        || EdgeSet::NearestEach(vec![DVec3::new(0.0, -1.0, 1.0), DVec3::new(1.0, -1.0, 0.0)]);
+    let taper = |from: DVec3| Command::SetCreaseTaper {
+        node: node(),
+        edges: edges(),
+        from: VertexSet::Nearest(from),
+        start: 2.0,
+        end: 6.0,
+    };
+    let before = s.doc.clone();
+    // The middle vertex (1, −1, 1) is not an end.
+    let e = s.execute(&taper(DVec3::new(1.0, -1.0, 1.0))).unwrap_err();
+    assert!(e.to_string().contains("is not an end of the chain"), "{e}");
+    assert_eq!(s.doc, before);
+    s.execute(&taper(DVec3::new(-1.0, -1.0, 1.0))).unwrap();
+    assert_eq!(
+        s.history.done().last().unwrap().label,
+        "Crease Taper 2.00 to 6.00"
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("taper.hedra.ron");
+    file::save(&mut s, &path).unwrap();
+    let mut back = file::load(&path).unwrap().session;
+    assert_eq!(back.doc, s.doc);
+    let creases = |s: &Session| match &s.doc.find_by_name("Box").unwrap().content {
+        NodeContent::Mesh(m) => m.creases.clone(),
+        _ => panic!("Box is a mesh"),
+    };
+    let mut values: Vec<f64> = creases(&back).edge_sharpness().into_values().collect();
+    values.sort_by(f64::total_cmp);
+    assert_eq!(values, [3.0, 5.0]);
+    back.undo().unwrap();
+    assert!(creases(&back).is_empty());
+}

@@ -215,3 +215,132 @@ fn doo_sabin_ignores_creases_and_the_boundary_rule() {
         assert_eq!(r.faces().count(), r0.faces().count());
     }
 }
+
+/// A 6 × 6 grid in the xz plane with the middle row (z = 0) raised to
+/// y = 1, and that row's edges in order from x = −1 to x = 1.
+fn ridge() -> (HalfEdgeMesh, Vec<hedra_geom::EdgeId>, hedra_geom::VertexId) {
+    let mut mesh = grid(6);
+    for v in mesh.vertices().collect::<Vec<_>>() {
+        let p = mesh.position(v);
+        if p.z.abs() < 1e-9 {
+            mesh.set_position(v, DVec3::new(p.x, 1.0, p.z));
+        }
+    }
+    let on_row = |v| mesh.position(v).z.abs() < 1e-9;
+    let mut chain: Vec<_> = mesh
+        .edges()
+        .filter(|&e| mesh.edge_vertices(e).iter().all(|&v| on_row(v)))
+        .collect();
+    let mid_x = |e| {
+        let [a, b] = mesh.edge_vertices(e);
+        mesh.position(a).x + mesh.position(b).x
+    };
+    chain.sort_by(|&a, &b| mid_x(a).total_cmp(&mid_x(b)));
+    let start = mesh
+        .vertices()
+        .find(|&v| on_row(v) && mesh.position(v).x < -0.99)
+        .unwrap();
+    (mesh, chain, start)
+}
+
+fn refined(mesh: &HalfEdgeMesh, creases: &Creases) -> Vec<DVec3> {
+    let r = Refiner::new(mesh, creases, Options::default(), 3).unwrap();
+    r.refine(&r.cage_positions(mesh))
+}
+
+#[test]
+fn a_constant_taper_is_the_constant_crease() {
+    let (mesh, chain, start) = ridge();
+    assert_eq!(chain.len(), 6);
+    let mut taper = Creases::default();
+    taper.set_taper(&mesh, &chain, start, 2.5, 2.5).unwrap();
+    let mut plain = Creases::default();
+    for &e in &chain {
+        plain.set_edge(e, 2.5);
+    }
+    assert_eq!(taper.edge_sharpness(), plain.edges);
+    assert_eq!(refined(&mesh, &taper), refined(&mesh, &plain));
+    // Reversed order and the other end give the same chain.
+    let mut reversed: Vec<_> = chain.clone();
+    reversed.reverse();
+    let end = mesh
+        .vertices()
+        .find(|&v| mesh.position(v).z.abs() < 1e-9 && mesh.position(v).x > 0.99)
+        .unwrap();
+    let mut other = Creases::default();
+    other.set_taper(&mesh, &reversed, end, 2.5, 2.5).unwrap();
+    assert_eq!(refined(&mesh, &other), refined(&mesh, &plain));
+}
+
+#[test]
+fn a_taper_from_0_to_4_blends_monotonically_from_smooth_to_sharp() {
+    let (mesh, chain, start) = ridge();
+    let mut taper = Creases::default();
+    taper.set_taper(&mesh, &chain, start, 0.0, 4.0).unwrap();
+    // Midpoints at 1/12, 3/12, … 11/12 of the way: 1/3, 1, … 11/3.
+    let s: Vec<f64> = chain.iter().map(|&e| taper.edge(e)).collect();
+    for (i, v) in s.iter().enumerate() {
+        assert!((v - 4.0 * (2 * i + 1) as f64 / 12.0).abs() < 1e-12, "{s:?}");
+    }
+    let mut sharp = Creases::default();
+    for &e in &chain {
+        sharp.set_edge(e, 4.0);
+    }
+    let (p_smooth, p_sharp, p_taper) = (
+        refined(&mesh, &Creases::default()),
+        refined(&mesh, &sharp),
+        refined(&mesh, &taper),
+    );
+    // The refined points on the ridge line (z = 0), inside the boundary.
+    let mut ridge: Vec<usize> = (0..p_smooth.len())
+        .filter(|&i| p_smooth[i].z.abs() < 1e-9 && p_smooth[i].x.abs() < 0.99)
+        .collect();
+    ridge.sort_by(|&a, &b| p_smooth[a].x.total_cmp(&p_smooth[b].x));
+    assert!(ridge.len() > 20);
+    let blend: Vec<f64> = ridge
+        .iter()
+        .map(|&i| (p_taper[i].y - p_smooth[i].y) / (p_sharp[i].y - p_smooth[i].y))
+        .collect();
+    for w in blend.windows(2) {
+        assert!(w[1] >= w[0] - 1e-9, "not monotone: {blend:?}");
+    }
+    assert!(
+        blend.iter().all(|&b| (-1e-9..=1.0 + 1e-9).contains(&b)),
+        "{blend:?}"
+    );
+    // Near the start it is nearly smooth, near the end sharp.
+    assert!(blend[0] < 0.5 && *blend.last().unwrap() > 0.99, "{blend:?}");
+}
+
+#[test]
+fn a_taper_needs_one_chain_from_an_end() {
+    use hedra_geom::subdivision::TaperError;
+    let (mesh, chain, start) = ridge();
+    let mut c = Creases::default();
+    let middle = mesh.edge_vertices(chain[2])[0];
+    assert_eq!(
+        c.set_taper(&mesh, &chain, middle, 0.0, 4.0),
+        Err(TaperError::NotAnEnd { vertex: middle })
+    );
+    let gapped = [chain[0], chain[2]];
+    assert!(matches!(
+        c.set_taper(&mesh, &gapped, start, 0.0, 4.0),
+        Err(TaperError::NotAChain { .. })
+    ));
+    assert_eq!(
+        c.set_taper(&mesh, &[], start, 0.0, 4.0),
+        Err(TaperError::NoEdges)
+    );
+    assert_eq!(
+        c.set_taper(&mesh, &chain, start, -1.0, 4.0),
+        Err(TaperError::BadSharpness(-1.0))
+    );
+    assert!(c.is_empty());
+    // A plain crease on one edge takes it out of the taper.
+    c.set_taper(&mesh, &chain, start, 0.0, 4.0).unwrap();
+    c.set_edge(chain[5], 10.0);
+    assert_eq!(c.tapers[0].edges.len(), 5);
+    assert_eq!(c.edge(chain[5]), 10.0);
+    c.clear_taper(&chain);
+    assert!(c.tapers.is_empty());
+}

@@ -111,6 +111,23 @@ impl Plan<'_> {
         })
     }
 
+    pub(super) fn set_crease_taper(
+        &mut self,
+        node: &NodeRef,
+        edges: &EdgeSet,
+        from: &VertexSet,
+        start: f64,
+        end: f64,
+    ) -> Result<(), CommandError> {
+        let (start, end) = (check_sharpness(start)?, check_sharpness(end)?);
+        self.edit_creases(node, |m, c| {
+            let chain = edges.resolve(m)?;
+            let from = super::euler::one_vertex(m, from, "`from`")?;
+            c.set_taper(m, &chain, from, start, end)?;
+            Ok(())
+        })
+    }
+
     pub(super) fn set_face_hole(
         &mut self,
         node: &NodeRef,

@@ -162,10 +162,17 @@ impl Level {
             level.face_origin.push(map.faces.len() as u32);
             map.faces.push(f);
         }
+        let tapered;
+        let edge_sharpness = if creases.tapers.is_empty() {
+            &creases.edges
+        } else {
+            tapered = creases.edge_sharpness();
+            &tapered
+        };
         level.edge_sharpness = map
             .edges
             .iter()
-            .map(|e| clamp_sharpness(creases.edges.get(e).copied().unwrap_or(0.0)))
+            .map(|e| clamp_sharpness(edge_sharpness.get(e).copied().unwrap_or(0.0)))
             .collect();
         level.vertex_sharpness = map
             .vertices
