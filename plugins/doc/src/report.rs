@@ -231,7 +231,12 @@ fn mesh_report(content: &crate::scene::MeshContent) -> MeshReport {
         corners: crate::scene::CornerAttributes::corner_count(m),
         uv_corners: content.corners.uvs.keys().filter(corner).count(),
         normal_corners: content.corners.normals.keys().filter(corner).count(),
-        creased_edges: content.creases.edges.keys().filter(|e| live(e)).count(),
+        creased_edges: content
+            .creases
+            .edge_sharpness()
+            .keys()
+            .filter(|e| live(e))
+            .count(),
         creased_vertices: content
             .creases
             .vertices

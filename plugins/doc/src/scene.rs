@@ -335,6 +335,10 @@ pub enum Shading {
 
 /// What a node holds.
 #[derive(Clone, Debug, PartialEq)]
+#[allow(
+    clippy::large_enum_variant,
+    reason = "a few hundred bytes per node; boxing the mesh content would change every match on it for nothing measurable"
+)]
 pub enum NodeContent {
     /// A transform-only node for grouping.
     Empty,

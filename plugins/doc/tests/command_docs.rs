@@ -24,7 +24,7 @@ fn every_command_example_in_the_docs_runs() {
         .collect();
     kinds.sort();
     kinds.dedup();
-    assert_eq!(kinds.len(), 69, "{kinds:?}");
+    assert_eq!(kinds.len(), 71, "{kinds:?}");
     let mut session = hedra_doc::Session::new();
     hedra_doc::script::run(&mut session, &commands, Path::new("docs/commands.md"))
         .unwrap_or_else(|e| panic!("{e}"));
@@ -198,6 +198,23 @@ fn every_command_example_in_the_docs_runs() {
     // The top face stays flat at y = 1 (its edges are infinitely sharp).
     let (_, hi) = content.mesh.bounds().unwrap();
     assert!((hi.y - 1.0).abs() < 1e-12, "{hi}");
+    // The open box: its top is a hole, so level 2 shows 5 × 16 faces; the
+    // cage keeps all 6.
+    let open = doc.find_by_name("Open Box").unwrap();
+    let hedra_doc::NodeContent::Mesh(content) = &open.content else {
+        panic!("Open Box is a mesh");
+    };
+    assert_eq!(content.mesh.face_count(), 6);
+    assert_eq!(content.creases.holes.len(), 1);
+    // Its tapered crease: two edges, at 1 and 3 (midpoints at 1/4 and 3/4).
+    assert_eq!(content.creases.tapers.len(), 1);
+    let mut along: Vec<f64> = content.creases.edge_sharpness().into_values().collect();
+    along.sort_by(f64::total_cmp);
+    assert_eq!(along, [1.0, 3.0]);
+    let smooth = content.evaluated(2).unwrap();
+    assert_eq!(smooth.face_count(), 5 * 16);
+    smooth.validate().unwrap();
+    assert!(!smooth.stats().closed, "the top is open");
     let snapped = doc.find_by_name("Snapped").unwrap().content.mesh().unwrap();
     assert_eq!(snapped.face_count(), 24);
     let (lo, hi) = snapped.bounds().unwrap();

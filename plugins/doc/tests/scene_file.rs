@@ -482,3 +482,135 @@ fn out_of_range_parameters_in_a_file_are_refused_by_node() {
         );
     }
 }
+
+#[test]
+fn face_holes_and_smooth_triangles_are_saved_undone_and_exported() {
+    use hedra_doc::elements::FaceSet;
+    use hedra_doc::export::{ExportOptions, export_bytes};
+    use hedra_doc::{NodeContent, SubdivisionModifier};
+    let mut s = Session::new();
+    let run = |s: &mut Session, c: Command| s.execute(&c).unwrap();
+    run(
+        &mut s,
+        Command::AddPrimitive {
+            primitive: Primitive::Cube { size: 2.0 },
+            name: Some("Box".into()),
+            parent: None,
+            transform: NodeTransform::IDENTITY,
+        },
+    );
+    let node = || NodeRef::Name("Box".into());
+    let mut modifier = SubdivisionModifier::with_level(2);
+    modifier.options.smooth_triangles = true;
+    run(
+        &mut s,
+        Command::SetSubdivision {
+            nodes: vec![node()],
+            modifier: Some(modifier),
+        },
+    );
+    run(
+        &mut s,
+        Command::SetFaceHole {
+            node: node(),
+            faces: FaceSet::Ids(vec![0, 1]),
+            hole: true,
+        },
+    );
+    run(
+        &mut s,
+        Command::SetFaceHole {
+            node: node(),
+            faces: FaceSet::Ids(vec![1]),
+            hole: false,
+        },
+    );
+    assert_eq!(s.history.done().last().unwrap().label, "Clear Hole");
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("holes.hedra.ron");
+    file::save(&mut s, &path).unwrap();
+    let text = std::fs::read_to_string(&path).unwrap();
+    assert!(text.contains("holes: [0]"), "{text}");
+    assert!(text.contains("smooth_triangles: true"), "{text}");
+    let mut back = file::load(&path).unwrap().session;
+    assert_eq!(back.doc, s.doc);
+    let content = |s: &Session| match &s.doc.find_by_name("Box").unwrap().content {
+        NodeContent::Mesh(m) => m.clone(),
+        _ => panic!("Box is a mesh"),
+    };
+    assert_eq!(content(&back).subdivision, Some(modifier));
+    assert!(content(&back).creases.is_hole(hedra_geom::FaceId(0)));
+    // Export at level 2 leaves 16 faces for the hole out: 5 × 16 quads.
+    let obj = export_bytes(&back.doc, Path::new("box.obj"), ExportOptions::default()).unwrap();
+    let faces = String::from_utf8(obj)
+        .unwrap()
+        .lines()
+        .filter(|l| l.starts_with("f "))
+        .count();
+    assert_eq!(faces, 5 * 16);
+    // Undo: the cleared hole comes back, then both go.
+    back.undo().unwrap();
+    assert_eq!(content(&back).creases.holes.len(), 2);
+    back.undo().unwrap();
+    assert!(content(&back).creases.holes.is_empty());
+    // A face the mesh does not have is refused and changes nothing.
+    let before = s.doc.clone();
+    let e = s
+        .execute(&Command::SetFaceHole {
+            node: node(),
+            faces: FaceSet::Ids(vec![99]),
+            hole: true,
+        })
+        .unwrap_err();
+    assert!(e.to_string().contains("99"), "{e}");
+    assert_eq!(s.doc, before);
+}
+
+#[test]
+fn crease_tapers_are_saved_undone_and_refused_by_name() {
+    use hedra_doc::NodeContent;
+    use hedra_doc::elements::{EdgeSet, VertexSet};
+    let mut s = Session::new();
+    s.execute(&Command::AddPrimitive {
+        primitive: Primitive::Cube { size: 2.0 },
+        name: Some("Box".into()),
+        parent: None,
+        transform: NodeTransform::IDENTITY,
+    })
+    .unwrap();
+    let node = || NodeRef::Name("Box".into());
+    // Two bottom edges, from the corner (−1, −1, 1) round to (1, −1, −1).
+    let edges =
+        || EdgeSet::NearestEach(vec![DVec3::new(0.0, -1.0, 1.0), DVec3::new(1.0, -1.0, 0.0)]);
+    let taper = |from: DVec3| Command::SetCreaseTaper {
+        node: node(),
+        edges: edges(),
+        from: VertexSet::Nearest(from),
+        start: 2.0,
+        end: 6.0,
+    };
+    let before = s.doc.clone();
+    // The middle vertex (1, −1, 1) is not an end.
+    let e = s.execute(&taper(DVec3::new(1.0, -1.0, 1.0))).unwrap_err();
+    assert!(e.to_string().contains("is not an end of the chain"), "{e}");
+    assert_eq!(s.doc, before);
+    s.execute(&taper(DVec3::new(-1.0, -1.0, 1.0))).unwrap();
+    assert_eq!(
+        s.history.done().last().unwrap().label,
+        "Crease Taper 2.00 to 6.00"
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("taper.hedra.ron");
+    file::save(&mut s, &path).unwrap();
+    let mut back = file::load(&path).unwrap().session;
+    assert_eq!(back.doc, s.doc);
+    let creases = |s: &Session| match &s.doc.find_by_name("Box").unwrap().content {
+        NodeContent::Mesh(m) => m.creases.clone(),
+        _ => panic!("Box is a mesh"),
+    };
+    let mut values: Vec<f64> = creases(&back).edge_sharpness().into_values().collect();
+    values.sort_by(f64::total_cmp);
+    assert_eq!(values, [3.0, 5.0]);
+    back.undo().unwrap();
+    assert!(creases(&back).is_empty());
+}

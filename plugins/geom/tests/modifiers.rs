@@ -294,3 +294,19 @@ fn creases_and_corners_follow_every_copy() {
         assert!(m.corner_source(&half_box(), h).is_some());
     }
 }
+
+#[test]
+fn a_mirrored_copy_of_a_hole_is_a_hole() {
+    let half = half_box();
+    let top = half.faces().find(|&f| half.face_normal(f).y > 0.9).unwrap();
+    let mut creases = Creases::default();
+    creases.set_hole(top, true);
+    let c = mirrored_copies(&half, [true, false, false], Some(0.001)).unwrap();
+    let carried = c.creases(&half, &creases);
+    // Both halves' tops, and nothing else.
+    assert_eq!(carried.holes.len(), 2);
+    for &f in &carried.holes {
+        assert_eq!(c.face_source(f), top);
+        assert!(c.mesh.face_normal(f).y > 0.9);
+    }
+}

@@ -539,6 +539,7 @@ proptest! {
             scheme,
             boundary: BoundaryInterpolation::ALL[boundary],
             crease_method: if chaikin { CreaseMethod::Chaikin } else { CreaseMethod::Uniform },
+            smooth_triangles: scheme == Scheme::CatmullClark && boundary == 1,
         };
         let r = Refiner::new(&mesh, &creases, opts, levels).unwrap();
         let cage_points = r.cage_positions(&mesh);

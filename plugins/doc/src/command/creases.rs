@@ -1,9 +1,9 @@
 //! Commands on subdivision: the modifier, applying it, edge and vertex
-//! creases, and snapping the cage to its limit surface.
+//! creases, face holes, and snapping the cage to its limit surface.
 
 use super::plan::Plan;
 use super::{CommandError, EditError, NodeRef};
-use crate::elements::{EdgeSet, VertexSet};
+use crate::elements::{EdgeSet, FaceSet, VertexSet};
 use crate::scene::{CornerAttributes, NodeContent, SubdivisionModifier};
 use hedra_geom::subdivision::{self, INFINITE_SHARPNESS, Refiner};
 use std::sync::Arc;
@@ -106,6 +106,37 @@ impl Plan<'_> {
         self.edit_creases(node, |m, c| {
             for v in vertices.resolve(m)? {
                 c.set_vertex(v, s);
+            }
+            Ok(())
+        })
+    }
+
+    pub(super) fn set_crease_taper(
+        &mut self,
+        node: &NodeRef,
+        edges: &EdgeSet,
+        from: &VertexSet,
+        start: f64,
+        end: f64,
+    ) -> Result<(), CommandError> {
+        let (start, end) = (check_sharpness(start)?, check_sharpness(end)?);
+        self.edit_creases(node, |m, c| {
+            let chain = edges.resolve(m)?;
+            let from = super::euler::one_vertex(m, from, "`from`")?;
+            c.set_taper(m, &chain, from, start, end)?;
+            Ok(())
+        })
+    }
+
+    pub(super) fn set_face_hole(
+        &mut self,
+        node: &NodeRef,
+        faces: &FaceSet,
+        hole: bool,
+    ) -> Result<(), CommandError> {
+        self.edit_creases(node, |m, c| {
+            for f in faces.resolve(m)? {
+                c.set_hole(f, hole);
             }
             Ok(())
         })

@@ -13,7 +13,7 @@ use hedra_geom::modeling::{self, ModelingError};
 use hedra_geom::{EdgeId, FaceId, HalfEdgeId, HalfEdgeMesh, LoopStart, VertexId};
 
 /// The one vertex a set names.
-fn one_vertex(
+pub(super) fn one_vertex(
     m: &HalfEdgeMesh,
     set: &VertexSet,
     role: &'static str,

@@ -98,6 +98,9 @@ pub enum EditError {
     /// subdivision modifier.
     #[error("has no subdivision modifier (give `levels` to subdivide anyway)")]
     NoSubdivisionModifier,
+    /// [`Command::SetCreaseTaper`]'s edges are not one chain from `from`.
+    #[error(transparent)]
+    Taper(#[from] hedra_geom::subdivision::TaperError),
 }
 
 /// Why a command was refused. The document is unchanged.

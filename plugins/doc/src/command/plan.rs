@@ -363,6 +363,14 @@ impl Plan<'_> {
                 vertices,
                 sharpness,
             } => self.set_vertex_crease(node, vertices, *sharpness),
+            Command::SetCreaseTaper {
+                node,
+                edges,
+                from,
+                start,
+                end,
+            } => self.set_crease_taper(node, edges, from, *start, *end),
+            Command::SetFaceHole { node, faces, hole } => self.set_face_hole(node, faces, *hole),
             Command::SnapToLimit { node } => self.snap_to_limit(node),
 
             // ----- the modifier stack (modifiers.rs) -----

@@ -718,6 +718,36 @@ pub enum Command {
         /// 0 (smooth) to 10 (infinitely sharp); outside that range is refused.
         sharpness: f64,
     },
+    /// Makes a chain of edges one tapered crease: sharpness `start` at
+    /// vertex `from` (an end of the path the edges form, or any vertex of
+    /// their loop), `end` at the other end, linear in arc length between
+    /// (each edge takes the value at its midpoint, measured when the command
+    /// runs). The edges leave any crease or taper they had; `SetEdgeCrease`
+    /// on an edge takes it out of its taper again.
+    SetCreaseTaper {
+        /// The mesh node to edit.
+        node: NodeRef,
+        /// The chain's edges, in any order.
+        edges: EdgeSet,
+        /// The vertex where the chain starts (exactly one).
+        from: VertexSet,
+        /// Sharpness at `from`, 0 … 10.
+        start: f64,
+        /// Sharpness at the other end, 0 … 10.
+        end: f64,
+    },
+    /// Makes faces subdivision holes (`hole: true`) or clears their holes
+    /// (OpenSubdiv's face holes): a hole is refined like any face and its
+    /// neighbours keep their shape, but it leaves no faces in the subdivided
+    /// result (viewport, export, apply). The cage keeps every face.
+    SetFaceHole {
+        /// The mesh node to edit.
+        node: NodeRef,
+        /// The faces, by id or by a predicate in local space.
+        faces: FaceSet,
+        /// True makes holes, false clears them.
+        hole: bool,
+    },
     /// Moves every cage vertex onto the limit surface of its subdivision
     /// (the node's modifier options, or Catmull-Clark).
     SnapToLimit {
@@ -933,6 +963,11 @@ impl Command {
             Command::ApplyModifiers { .. } => "Apply Modifiers".to_string(),
             Command::SetEdgeCrease { sharpness, .. } => format!("Edge Crease {sharpness:.2}"),
             Command::SetVertexCrease { sharpness, .. } => format!("Vertex Crease {sharpness:.2}"),
+            Command::SetCreaseTaper { start, end, .. } => {
+                format!("Crease Taper {start:.2} to {end:.2}")
+            }
+            Command::SetFaceHole { hole: true, .. } => "Make Hole".to_string(),
+            Command::SetFaceHole { hole: false, .. } => "Clear Hole".to_string(),
             Command::SnapToLimit { .. } => "Snap to Limit Surface".to_string(),
             Command::AddCurve { name, .. } => format!("Add Curve '{name}'"),
             Command::AddSurface { name, .. } => format!("Add Surface '{name}'"),

@@ -65,11 +65,17 @@ impl CopiedMesh {
 
     /// The source's creases carried to every copy: each edge of a copied
     /// face gets the sharpness of the source edge it copies; a vertex the
-    /// largest corner sharpness of the source vertices welded into it.
+    /// largest corner sharpness of the source vertices welded into it; a
+    /// copy of a hole is a hole.
     pub fn creases(&self, source: &HalfEdgeMesh, creases: &Creases) -> Creases {
         let mut out = Creases::default();
         if creases.is_empty() {
             return out;
+        }
+        for (j, f) in self.face_origin.iter().enumerate() {
+            if creases.is_hole(*f) {
+                out.set_hole(FaceId(j as u32), true);
+            }
         }
         for corners in &self.corner_origin {
             for (k, &(a, sa)) in corners.iter().enumerate() {

@@ -6,6 +6,7 @@
 use std::collections::HashMap;
 use std::sync::OnceLock;
 
+use super::rules::is_infinite;
 use super::{BoundaryInterpolation, Creases, INFINITE_SHARPNESS};
 use crate::{EdgeId, FaceId, HalfEdgeMesh, VertexId};
 
@@ -115,18 +116,26 @@ impl Level {
         self.face_offsets.windows(2).all(|w| w[1] - w[0] == n)
     }
 
-    /// The level of a half-edge mesh's live faces with the given creases.
+    /// The level of a half-edge mesh's live faces and vertices (isolated
+    /// vertices too: they are corners, infinitely sharp, and stay put at
+    /// every level, as OpenSubdiv keeps them) with the given creases.
     /// Boundary edges are infinitely sharp; with
     /// [`BoundaryInterpolation::EdgesAndCorners`] so are boundary vertices
     /// that touch a single face (OpenSubdiv's `VTX_BOUNDARY_EDGE_AND_CORNER`).
+    ///
+    /// Also returns, per cage face, whether it is left out of the result:
+    /// a hole of `creases`, or (when `hide_boundary`, boundary `None`) a face
+    /// at a vertex one of whose boundary edges the user did not make
+    /// infinitely sharp (OpenSubdiv's `prepareComponentTagsAndSharpness`).
     pub fn from_mesh(
         mesh: &HalfEdgeMesh,
         creases: &Creases,
         boundary: BoundaryInterpolation,
-    ) -> (Level, CageMap) {
+        hide_boundary: bool,
+    ) -> (Level, CageMap, Vec<bool>) {
         let mut map = CageMap::default();
         let mut vmap = vec![NONE; mesh.vertex_capacity()];
-        for v in mesh.vertices().filter(|&v| !mesh.is_isolated_vertex(v)) {
+        for v in mesh.vertices() {
             vmap[v.index()] = map.vertices.len() as u32;
             map.vertices.push(v);
         }
@@ -153,33 +162,52 @@ impl Level {
             level.face_origin.push(map.faces.len() as u32);
             map.faces.push(f);
         }
+        let tapered;
+        let edge_sharpness = if creases.tapers.is_empty() {
+            &creases.edges
+        } else {
+            tapered = creases.edge_sharpness();
+            &tapered
+        };
         level.edge_sharpness = map
             .edges
             .iter()
-            .map(|e| clamp_sharpness(creases.edges.get(e).copied().unwrap_or(0.0)))
+            .map(|e| clamp_sharpness(edge_sharpness.get(e).copied().unwrap_or(0.0)))
             .collect();
         level.vertex_sharpness = map
             .vertices
             .iter()
             .map(|v| clamp_sharpness(creases.vertices.get(v).copied().unwrap_or(0.0)))
             .collect();
+        let mut hidden: Vec<bool> = map.faces.iter().map(|&f| creases.is_hole(f)).collect();
+        if hide_boundary {
+            for v in 0..level.vertex_count as u32 {
+                let soft_boundary = level.vertex_edges(v).iter().any(|&e| {
+                    level.is_boundary_edge(e) && !is_infinite(level.edge_sharpness[e as usize])
+                });
+                if soft_boundary {
+                    for &c in level.vertex_corners(v) {
+                        hidden[level.corner_face(c as usize) as usize] = true;
+                    }
+                }
+            }
+        }
         for e in 0..level.edge_count() {
             if level.is_boundary_edge(e as u32) {
                 level.edge_sharpness[e] = INFINITE_SHARPNESS;
             }
         }
-        if boundary == BoundaryInterpolation::EdgesAndCorners {
-            for v in 0..level.vertex_count {
-                let on_boundary = level
-                    .vertex_edges(v as u32)
-                    .iter()
-                    .any(|&e| level.is_boundary_edge(e));
-                if on_boundary && level.vertex_corners(v as u32).len() == 1 {
-                    level.vertex_sharpness[v] = INFINITE_SHARPNESS;
-                }
+        for v in 0..level.vertex_count {
+            let edges = level.vertex_edges(v as u32);
+            let isolated = edges.is_empty();
+            let boundary_corner = boundary == BoundaryInterpolation::EdgesAndCorners
+                && level.vertex_corners(v as u32).len() == 1
+                && edges.iter().any(|&e| level.is_boundary_edge(e));
+            if isolated || boundary_corner {
+                level.vertex_sharpness[v] = INFINITE_SHARPNESS;
             }
         }
-        (level, map)
+        (level, map, hidden)
     }
 
     /// A level from polygons alone (no creases); edges are found by vertex

@@ -23,7 +23,7 @@ mod refine;
 mod rules;
 mod stencil;
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
@@ -152,12 +152,85 @@ pub struct Options {
     /// How semi-sharp creases soften from level to level.
     #[serde(default)]
     pub crease_method: CreaseMethod,
+    /// Catmull-Clark only: OpenSubdiv's `TRI_SUB_SMOOTH` rule for
+    /// triangles. The edge point of an edge beside a triangle weighs the
+    /// triangle's face point by 0.47 instead of 0.25 (both faces' weights are
+    /// averaged into `f`, each end vertex gets `(1 − 2f) / 2`), which rounds
+    /// triangles in a quad mesh more evenly. Off by default (plain
+    /// Catmull-Clark, and how files written before it load).
+    #[serde(default, skip_serializing_if = "is_false")]
+    pub smooth_triangles: bool,
 }
 
-/// Crease sharpness of edges and corner sharpness of vertices, by the cage's
-/// ids; missing entries are 0 (smooth). Values at or above
-/// [`INFINITE_SHARPNESS`] are infinitely sharp. Entries of elements that no
-/// longer exist are ignored.
+fn is_false(b: &bool) -> bool {
+    !*b
+}
+
+/// Which of the [`Options`] and cage tags a scheme honours
+/// ([`Scheme::applicable`]), so a panel can grey out the rest.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub struct Applicable {
+    /// Edge crease and vertex corner sharpness, and the crease method.
+    pub creases: bool,
+    /// The boundary rule ([`Options::boundary`]).
+    pub boundary: bool,
+    /// [`Options::smooth_triangles`].
+    pub smooth_triangles: bool,
+    /// Face holes ([`Creases::holes`]).
+    pub holes: bool,
+    /// Why the options that do not apply do not, for a tooltip (empty when
+    /// everything applies).
+    pub reason: &'static str,
+}
+
+impl Scheme {
+    /// Which options and tags this scheme honours. Catmull-Clark honours all;
+    /// Loop all but smooth triangles (its faces are all triangles already);
+    /// Doo-Sabin and Linear neither creases nor the boundary rule: Doo-Sabin
+    /// is a corner-cutting (dual) scheme whose new points are affine
+    /// combinations of one face's corners, so it has no edge or vertex rule
+    /// a sharpness could switch, and its surface always stops short of an
+    /// open boundary (boundary edges and vertices make no faces); Linear
+    /// moves no points (OpenSubdiv's bilinear scheme likewise ignores both).
+    /// Every scheme honours holes.
+    pub fn applicable(self) -> Applicable {
+        match self {
+            Scheme::CatmullClark => Applicable {
+                creases: true,
+                boundary: true,
+                smooth_triangles: true,
+                holes: true,
+                reason: "",
+            },
+            Scheme::Loop => Applicable {
+                creases: true,
+                boundary: true,
+                smooth_triangles: false,
+                holes: true,
+                reason: "Smooth triangles is a Catmull-Clark rule; Loop's faces are all triangles",
+            },
+            Scheme::DooSabin => Applicable {
+                creases: false,
+                boundary: false,
+                smooth_triangles: false,
+                holes: true,
+                reason: "Doo-Sabin cuts corners: it has no edge or vertex rule for creases to sharpen, and its surface always stops short of an open boundary",
+            },
+            Scheme::Linear => Applicable {
+                creases: false,
+                boundary: false,
+                smooth_triangles: false,
+                holes: true,
+                reason: "Linear splits faces without moving points: creases and boundary rules change nothing",
+            },
+        }
+    }
+}
+
+/// The cage's subdivision tags, by the cage's ids: crease sharpness of
+/// edges, corner sharpness of vertices (missing entries are 0, smooth;
+/// values at or above [`INFINITE_SHARPNESS`] are infinitely sharp) and face
+/// holes. Entries of elements that no longer exist are ignored.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct Creases {
     /// Crease sharpness per edge (only values above 0 are stored).
@@ -166,16 +239,183 @@ pub struct Creases {
     /// Corner sharpness per vertex (only values above 0 are stored).
     #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
     pub vertices: BTreeMap<VertexId, f64>,
+    /// Faces that are holes (OpenSubdiv's face hole tag): a hole is refined
+    /// like any face and its neighbours keep their shape, but it leaves no
+    /// faces in the refined or limit surface.
+    #[serde(default, skip_serializing_if = "BTreeSet::is_empty")]
+    pub holes: BTreeSet<FaceId>,
+    /// Chains of edges whose sharpness runs from a start to an end value
+    /// along the chain ([`set_taper`](Self::set_taper)). An edge is in at
+    /// most one chain, and then not in [`edges`](Self::edges).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub tapers: Vec<CreaseTaper>,
+}
+
+/// A crease whose sharpness varies along a chain of edges (Rhino's tapered
+/// SubD creases; OpenSubdiv has only per-edge sharpness): `start` at the
+/// chain's first vertex, `end` at its last, linear in arc length between.
+/// Each edge takes the value at its midpoint, measured along the chain when
+/// the taper was set (so moving vertices later does not change it), and is
+/// then subdivided with the ordinary semi-sharp rules.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct CreaseTaper {
+    /// The chain's edges in order, each with the arc-length fraction
+    /// (0 at the start, 1 at the end) of its midpoint.
+    pub edges: Vec<(EdgeId, f64)>,
+    /// Sharpness at the chain's start.
+    pub start: f64,
+    /// Sharpness at the chain's end.
+    pub end: f64,
+}
+
+impl CreaseTaper {
+    /// The sharpness at arc-length fraction `t` (0 … 1) of the chain.
+    pub fn sharpness_at(&self, t: f64) -> f64 {
+        self.start + (self.end - self.start) * t
+    }
+}
+
+/// Why [`Creases::set_taper`] refused a chain. The creases are unchanged.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum TaperError {
+    /// No edges were given.
+    #[error("a tapered crease needs at least one edge")]
+    NoEdges,
+    /// An edge id the mesh does not have.
+    #[error("edge {edge} does not exist")]
+    NoSuchEdge {
+        /// The missing edge.
+        edge: EdgeId,
+    },
+    /// The edges do not form one path or one loop (a vertex with three or
+    /// more of them, or separate pieces).
+    #[error("the edges do not form one chain (a path or a loop): {why}")]
+    NotAChain {
+        /// Which way they fail.
+        why: &'static str,
+    },
+    /// The start vertex is not an end of the path (or not on the loop).
+    #[error("vertex {vertex} is not an end of the chain")]
+    NotAnEnd {
+        /// The vertex given as the start.
+        vertex: VertexId,
+    },
+    /// A sharpness that is negative or not finite.
+    #[error("sharpness {0} is not a finite value of 0 or more")]
+    BadSharpness(f64),
 }
 
 impl Creases {
     /// True when no edge or vertex has a sharpness entry.
     pub fn is_empty(&self) -> bool {
-        self.edges.is_empty() && self.vertices.is_empty()
+        self.edges.is_empty()
+            && self.vertices.is_empty()
+            && self.holes.is_empty()
+            && self.tapers.is_empty()
     }
-    /// Sharpness of edge `e` (0 when unset).
+    /// True when face `f` is a hole.
+    pub fn is_hole(&self, f: FaceId) -> bool {
+        self.holes.contains(&f)
+    }
+    /// Makes face `f` a hole (`true`) or clears its hole (`false`).
+    pub fn set_hole(&mut self, f: FaceId, hole: bool) {
+        if hole {
+            self.holes.insert(f);
+        } else {
+            self.holes.remove(&f);
+        }
+    }
+    /// Sharpness of edge `e` (0 when unset): its own, or its value along a
+    /// tapered chain.
     pub fn edge(&self, e: EdgeId) -> f64 {
-        self.edges.get(&e).copied().unwrap_or(0.0)
+        if let Some(&s) = self.edges.get(&e) {
+            return s;
+        }
+        self.tapers
+            .iter()
+            .find_map(|t| {
+                t.edges
+                    .iter()
+                    .find(|(te, _)| *te == e)
+                    .map(|&(_, at)| t.sharpness_at(at))
+            })
+            .unwrap_or(0.0)
+    }
+    /// Every edge with a sharpness above 0, its own or from a taper.
+    pub fn edge_sharpness(&self) -> BTreeMap<EdgeId, f64> {
+        let mut out = self.edges.clone();
+        for t in &self.tapers {
+            for &(e, at) in &t.edges {
+                let s = t.sharpness_at(at);
+                if s > 0.0 {
+                    out.insert(e, s);
+                }
+            }
+        }
+        out
+    }
+    /// Makes `edges` one tapered crease: sharpness `start` at vertex `from`
+    /// (an end of the path the edges form, or any vertex of the loop they
+    /// form), `end` at the other end, linear in arc length between (each
+    /// edge takes the value at its midpoint, measured now). The edges leave
+    /// any plain crease or other taper they were in; inverse: `set_edge`
+    /// of each edge to its old value, or [`clear_taper`](Self::clear_taper).
+    /// Complexity: O(edges · tapers).
+    ///
+    /// # Errors
+    /// [`TaperError`] when the edges are none, missing, not one path or
+    /// loop, `from` is not an end, or a sharpness is negative or not finite.
+    pub fn set_taper(
+        &mut self,
+        mesh: &HalfEdgeMesh,
+        edges: &[EdgeId],
+        from: VertexId,
+        start: f64,
+        end: f64,
+    ) -> Result<(), TaperError> {
+        for s in [start, end] {
+            if !s.is_finite() || s < 0.0 {
+                return Err(TaperError::BadSharpness(s));
+            }
+        }
+        let chain = order_chain(mesh, edges, from)?;
+        let lengths: Vec<f64> = chain
+            .iter()
+            .map(|&e| {
+                let [a, b] = mesh.edge_vertices(e);
+                mesh.position(a).distance(mesh.position(b))
+            })
+            .collect();
+        let total: f64 = lengths.iter().sum();
+        let mut run = 0.0;
+        let mut taper = CreaseTaper {
+            edges: Vec::with_capacity(chain.len()),
+            start,
+            end,
+        };
+        for (&e, &l) in chain.iter().zip(&lengths) {
+            let t = if total > 0.0 {
+                (run + 0.5 * l) / total
+            } else {
+                0.5
+            };
+            run += l;
+            taper.edges.push((e, t));
+        }
+        self.clear_taper(&chain);
+        for e in &chain {
+            self.edges.remove(e);
+        }
+        self.tapers.push(taper);
+        Ok(())
+    }
+    /// Takes `edges` out of every taper (they become smooth unless they
+    /// have a plain crease); tapers left without edges are removed.
+    pub fn clear_taper(&mut self, edges: &[EdgeId]) {
+        for t in &mut self.tapers {
+            t.edges.retain(|(e, _)| !edges.contains(e));
+        }
+        self.tapers.retain(|t| !t.edges.is_empty());
     }
     /// Corner sharpness of vertex `v` (0 when unset).
     pub fn vertex(&self, v: VertexId) -> f64 {
@@ -183,6 +423,7 @@ impl Creases {
     }
     /// Sets (or with 0, clears) the sharpness of edge `e`.
     pub fn set_edge(&mut self, e: EdgeId, sharpness: f64) {
+        self.clear_taper(&[e]);
         if sharpness > 0.0 {
             self.edges.insert(e, sharpness);
         } else {
@@ -201,7 +442,66 @@ impl Creases {
     pub fn retain_live(&mut self, mesh: &HalfEdgeMesh) {
         self.edges.retain(|e, _| mesh.is_edge(*e));
         self.vertices.retain(|v, _| mesh.is_vertex(*v));
+        self.holes.retain(|f| mesh.is_face(*f));
+        for t in &mut self.tapers {
+            t.edges.retain(|(e, _)| mesh.is_edge(*e));
+        }
+        self.tapers.retain(|t| !t.edges.is_empty());
     }
+}
+
+/// `edges` in order along the path or loop they form, starting at `from`.
+fn order_chain(
+    mesh: &HalfEdgeMesh,
+    edges: &[EdgeId],
+    from: VertexId,
+) -> Result<Vec<EdgeId>, TaperError> {
+    if edges.is_empty() {
+        return Err(TaperError::NoEdges);
+    }
+    let mut at: BTreeMap<VertexId, Vec<EdgeId>> = BTreeMap::new();
+    let mut unique = BTreeSet::new();
+    for &e in edges {
+        if !mesh.is_edge(e) {
+            return Err(TaperError::NoSuchEdge { edge: e });
+        }
+        if unique.insert(e) {
+            for v in mesh.edge_vertices(e) {
+                at.entry(v).or_default().push(e);
+            }
+        }
+    }
+    if at.values().any(|es| es.len() > 2) {
+        return Err(TaperError::NotAChain {
+            why: "a vertex has three or more of them",
+        });
+    }
+    let ends = at.values().filter(|es| es.len() == 1).count();
+    let from_ok = match at.get(&from) {
+        Some(es) => ends == 0 || es.len() == 1,
+        None => false,
+    };
+    if !from_ok {
+        return Err(TaperError::NotAnEnd { vertex: from });
+    }
+    let mut chain = Vec::with_capacity(unique.len());
+    let mut v = from;
+    let mut prev: Option<EdgeId> = None;
+    while let Some(&e) = at[&v].iter().find(|&&e| Some(e) != prev) {
+        if chain.first() == Some(&e) {
+            break;
+        }
+        chain.push(e);
+        prev = Some(e);
+        let [a, b] = mesh.edge_vertices(e);
+        v = if a == v { b } else { a };
+    }
+    if chain.len() != unique.len() {
+        return Err(TaperError::NotAChain {
+            why: "they fall into separate pieces",
+        });
+    }
+    Ok(chain)
 }
 
 /// Why a refinement cannot be made.
@@ -257,7 +557,8 @@ pub struct Refiner {
     options: Options,
     pub(crate) levels: Vec<Level>,
     cage: CageMap,
-    /// Per cage face (dense): left out of the result (boundary `None`).
+    /// Per cage face (dense): left out of the result (a hole, or boundary
+    /// `None`).
     hidden_cage_faces: Vec<bool>,
 }
 
@@ -307,7 +608,10 @@ impl Refiner {
                 sides: mesh.face_degree(f),
             });
         }
-        let (cage_level, cage) = Level::from_mesh(mesh, creases, options.boundary);
+        let hide_boundary =
+            options.boundary == BoundaryInterpolation::None && options.scheme.applicable().boundary;
+        let (cage_level, cage, hidden_cage_faces) =
+            Level::from_mesh(mesh, creases, options.boundary, hide_boundary);
         let split = split_for(options.scheme, &cage_level);
         for level in 1..=levels {
             let faces = faces_after(&cage_level, split, level);
@@ -315,7 +619,6 @@ impl Refiner {
                 return Err(SubdivisionError::TooManyFaces { level, faces });
             }
         }
-        let hidden_cage_faces = hidden_faces(&cage_level, options.boundary);
         let mut all = vec![cage_level];
         for level in 1..=levels {
             let child = refine_topology(
@@ -362,6 +665,27 @@ impl Refiner {
         (0..last.face_count())
             .filter(|&f| !self.hidden_cage_faces[last.face_origin[f] as usize])
             .map(move |f| &last.face_vertices[last.face_corners(f as u32)])
+    }
+    /// Refined face `f` (of all [`face_count`](Self::face_count) faces,
+    /// hidden ones included) as vertex indices.
+    pub fn face(&self, f: usize) -> &[u32] {
+        let last = self.last();
+        &last.face_vertices[last.face_corners(f as u32)]
+    }
+    /// True when refined face `f` (of all [`face_count`](Self::face_count)
+    /// faces) is left out of the result: it descends from a hole, or from a
+    /// face that boundary `None` leaves out.
+    pub fn is_face_hidden(&self, f: usize) -> bool {
+        self.hidden_cage_faces[self.last().face_origin[f] as usize]
+    }
+    /// True when cage face `f` is left out of the result (a hole, or a face
+    /// that boundary `None` leaves out); false for faces not in the cage.
+    pub fn is_cage_face_hidden(&self, f: FaceId) -> bool {
+        self.cage
+            .faces
+            .iter()
+            .position(|&g| g == f)
+            .is_some_and(|i| self.hidden_cage_faces[i])
     }
     /// The cage face each shown refined face comes from, in [`faces`](Self::faces) order.
     pub fn face_origins(&self) -> impl Iterator<Item = FaceId> + '_ {
@@ -469,6 +793,13 @@ impl Refiner {
                     .collect()
             })
             .collect();
+        // Isolated vertices stay (they are in no face, so not yet kept).
+        for v in 0..last.vertex_count {
+            if used[v] == u32::MAX && last.vertex_edges(v as u32).is_empty() {
+                used[v] = kept_positions.len() as u32;
+                kept_positions.push(positions[v]);
+            }
+        }
         let mesh = HalfEdgeMesh::from_polygons(&kept_positions, &faces)?;
         let mut creases = Creases::default();
         for ([a, b], s) in self.edges() {
@@ -546,27 +877,13 @@ fn faces_after(cage: &Level, split: Split, levels: u32) -> usize {
 /// How many faces `levels` steps of `scheme` make from `mesh`, without
 /// refining (to decide whether to refine in the background).
 pub fn face_count_after(mesh: &HalfEdgeMesh, scheme: Scheme, levels: u32) -> usize {
-    let (cage, _) = Level::from_mesh(mesh, &Creases::default(), BoundaryInterpolation::EdgesOnly);
+    let (cage, _, _) = Level::from_mesh(
+        mesh,
+        &Creases::default(),
+        BoundaryInterpolation::EdgesOnly,
+        false,
+    );
     faces_after(&cage, split_for(scheme, &cage), levels)
-}
-
-/// Faces left out with boundary `None`: those with a vertex on the boundary.
-fn hidden_faces(level: &Level, boundary: BoundaryInterpolation) -> Vec<bool> {
-    let mut hidden = vec![false; level.face_count()];
-    if boundary != BoundaryInterpolation::None {
-        return hidden;
-    }
-    for e in 0..level.edge_count() as u32 {
-        if level.is_boundary_edge(e) {
-            for v in level.edge_vertices[e as usize] {
-                for &c in level.vertex_corners(v) {
-                    hidden[level.face_origin[level.corner_face(c as usize) as usize] as usize] =
-                        true;
-                }
-            }
-        }
-    }
-    hidden
 }
 
 fn split_for(scheme: Scheme, cage: &Level) -> Split {
@@ -641,7 +958,7 @@ pub(crate) fn point_mask(
     let masks = masks_for(options.scheme);
     match point {
         ChildPoint::Face(f) => rules::face_mask(parent, f, sink),
-        ChildPoint::Edge(e) => rules::edge_mask(parent, e, masks, sink),
+        ChildPoint::Edge(e) => rules::edge_mask(parent, e, masks, options.smooth_triangles, sink),
         ChildPoint::Vertex(v) => rules::vertex_mask(parent, v, masks, options.crease_method, sink),
         ChildPoint::Corner(c) => {
             let r = parent.face_corners(parent.corner_face(c as usize));

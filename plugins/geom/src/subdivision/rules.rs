@@ -15,6 +15,10 @@ use std::f64::consts::TAU;
 use super::level::{Level, NONE};
 use super::{CreaseMethod, INFINITE_SHARPNESS};
 
+/// The face weight of a triangle in a smooth Catmull-Clark edge mask with
+/// smooth triangles (OpenSubdiv's `CATMARK_SMOOTH_TRI_EDGE_WEIGHT`).
+const TRIANGLE_EDGE_WEIGHT: f64 = 0.47;
+
 /// Receives the weighted sources of one child point.
 pub(crate) trait Sink {
     /// Parent vertex `v` with weight `w`.
@@ -100,8 +104,17 @@ pub(crate) fn face_mask(level: &Level, f: u32, sink: &mut impl Sink) {
 /// The edge point of edge `e`. Smooth Catmull-Clark: ¼ of each end and of
 /// each adjacent face point; smooth Loop: ⅜ of each end and ⅛ of the two
 /// opposite vertices; sharp (s ≥ 1, boundary): the midpoint; 0 < s < 1 blends
-/// the two with weight s.
-pub(crate) fn edge_mask(level: &Level, e: u32, masks: Masks, sink: &mut impl Sink) {
+/// the two with weight s. With `smooth_triangles` (OpenSubdiv's
+/// `TRI_SUB_SMOOTH`, `catmarkScheme.h`), a Catmull-Clark edge beside a
+/// triangle weighs each face point by `f = (w0 + w1) / 2`, where `w` is 0.47
+/// for a triangle and 0.25 otherwise, and each end by `(1 − 2f) / 2`.
+pub(crate) fn edge_mask(
+    level: &Level,
+    e: u32,
+    masks: Masks,
+    smooth_triangles: bool,
+    sink: &mut impl Sink,
+) {
     let [a, b] = level.edge_vertices[e as usize];
     let s = level.edge_sharpness[e as usize] as f64;
     let sharp = if masks == Masks::Linear || level.is_boundary_edge(e) {
@@ -120,10 +133,19 @@ pub(crate) fn edge_mask(level: &Level, e: u32, masks: Masks, sink: &mut impl Sin
     let [f0, f1] = level.edge_faces(e);
     match masks {
         Masks::CatmullClark => {
-            sink.vertex(a, 0.25 * smooth);
-            sink.vertex(b, 0.25 * smooth);
-            sink.face(f0, 0.25 * smooth);
-            sink.face(f1, 0.25 * smooth);
+            let (mut vw, mut fw) = (0.25, 0.25);
+            if smooth_triangles {
+                let tri = |f: u32| level.face_corners(f).len() == 3;
+                if tri(f0) || tri(f1) {
+                    let w = |f: u32| if tri(f) { TRIANGLE_EDGE_WEIGHT } else { 0.25 };
+                    fw = 0.5 * (w(f0) + w(f1));
+                    vw = 0.5 * (1.0 - 2.0 * fw);
+                }
+            }
+            sink.vertex(a, vw * smooth);
+            sink.vertex(b, vw * smooth);
+            sink.face(f0, fw * smooth);
+            sink.face(f1, fw * smooth);
         }
         Masks::Loop => {
             sink.vertex(a, 0.375 * smooth);
