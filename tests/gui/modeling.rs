@@ -1611,3 +1611,79 @@ fn the_curve_panel_measures_length_divides_and_finds_the_closest_point() {
         found.t, found.distance
     )));
 }
+
+/// Mesh ▸ Make Hole on the top face of a subdivided cube: the face is a
+/// hole (saved in the document), the smooth surface has nothing above the
+/// top's middle any more, the neighbours stay; Clear Hole brings it back.
+/// The subdivision panel greys out what Doo-Sabin ignores and says why.
+#[test]
+fn make_hole_leaves_no_surface_and_doo_sabin_greys_out_its_options() {
+    let mut user = cube_in_edit_mode(KeyCode::Digit3);
+    user.shortcut(&[KeyCode::ControlLeft], KeyCode::Digit2);
+    let top_middle = |user: &User| {
+        user.render_positions()
+            .iter()
+            .any(|p| p.x.abs() < 0.1 && p.z.abs() < 0.1 && p.y > 0.5)
+    };
+    assert!(top_middle(&user), "the smooth top is drawn");
+    let top = user.screen_of(Vec3::new(0.2, 1.0, 0.3));
+    user.click(top);
+    open_mesh_menu(&mut user);
+    user.click_on("Make Hole (subdivision)");
+    assert_eq!(
+        mesh_content(&user).creases.holes.len(),
+        1,
+        "{}",
+        user.status()
+    );
+    user.frames(3);
+    assert!(!top_middle(&user), "no surface where the hole is");
+    assert!(user.shows("1 hole face(s): no surface there (Mesh ▸ Clear Hole)"));
+    open_mesh_menu(&mut user);
+    user.click_on("Clear Hole");
+    assert!(mesh_content(&user).creases.holes.is_empty());
+    user.frames(3);
+    assert!(top_middle(&user));
+
+    let mut modifier = mesh_content(&user).subdivision.unwrap();
+    modifier.options.scheme = hedra_geom::subdivision::Scheme::DooSabin;
+    user.app
+        .world_mut()
+        .write_message(hedra_scene::DocRequest::Execute(
+            hedra_doc::Command::SetSubdivision {
+                nodes: vec![hedra_doc::NodeRef::Name("Cube".into())],
+                modifier: Some(modifier),
+            },
+        ));
+    user.frames(2);
+    assert!(
+        user.shows(
+            hedra_geom::subdivision::Scheme::DooSabin
+                .applicable()
+                .reason
+        )
+    );
+}
+
+/// The crease taper row: two edges of the cube's top in a chain, Set gives
+/// one tapered chain from 0 at one end to 4 at the other.
+#[test]
+fn a_tapered_crease_from_the_panel() {
+    let mut user = cube_in_edit_mode(KeyCode::Digit2);
+    user.tap(KeyCode::Numpad7);
+    // A click on the top's front edge, Shift+click on its right edge.
+    let front = user.screen_of(Vec3::new(0.0, 1.0, 1.0));
+    user.click(front);
+    let right = user.screen_of(Vec3::new(1.0, 1.0, -0.3));
+    user.key_down(KeyCode::ShiftLeft);
+    user.click(right);
+    user.key_up(KeyCode::ShiftLeft);
+    let edges = user.edit_mode().selection.edges.clone();
+    assert_eq!(edges.len(), 2, "two edges in a chain");
+    user.click_on("Set");
+    let creases = mesh_content(&user).creases;
+    assert_eq!(creases.tapers.len(), 1, "{}", user.status());
+    let taper = &creases.tapers[0];
+    assert_eq!((taper.start, taper.end), (0.0, 4.0));
+    assert_eq!(taper.edges.len(), 2);
+}

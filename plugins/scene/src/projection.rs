@@ -25,12 +25,14 @@ pub struct ProjectedMesh {
 pub fn creases_fingerprint(creases: &hedra_geom::subdivision::Creases) -> u64 {
     use std::hash::{Hash, Hasher};
     let mut h = std::collections::hash_map::DefaultHasher::new();
-    for (e, s) in &creases.edges {
+    // Every edge's sharpness, tapered chains included, then corners and holes.
+    for (e, s) in creases.edge_sharpness() {
         (e, s.to_bits()).hash(&mut h);
     }
     for (v, s) in &creases.vertices {
         (v, s.to_bits()).hash(&mut h);
     }
+    creases.holes.hash(&mut h);
     h.finish()
 }
 

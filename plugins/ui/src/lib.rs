@@ -59,6 +59,9 @@ pub struct UiState {
     pub transform_edit: Option<(NodeId, NodeTransform)>,
     /// Crease field being dragged (committed on release).
     pub crease_edit: Option<f64>,
+    /// The tapered crease the panel sets on the selected edge chain: the
+    /// sharpness at its start and at its end, and which end starts.
+    pub taper: (f64, f64, bool),
     /// Weight field being dragged (committed on release).
     pub weight_edit: Option<f64>,
     /// Where "Insert knot" inserts.
@@ -90,6 +93,7 @@ impl Default for UiState {
             rename: None,
             transform_edit: None,
             crease_edit: None,
+            taper: (0.0, 4.0, false),
             weight_edit: None,
             knot_at: 0.5,
             divide_count: 10,

@@ -354,6 +354,14 @@ pub(crate) fn draw_edit_edges(
         };
         asset.line(Vec3::from(a), Vec3::from(b), color);
     }
+    // Subdivision holes: a star from each hole face's middle to its corners.
+    let hole = Color::srgb(0.6, 0.15, 0.55);
+    for &f in creases.holes.iter().filter(|f| mesh.is_face(**f)) {
+        let middle = mesh.face_centroid(f).as_vec3();
+        for v in mesh.face_vertices(f) {
+            asset.line(middle, mesh.position(v).as_vec3(), hole);
+        }
+    }
 }
 
 /// Shape edit mode: the curve (or surface's control net) as the running

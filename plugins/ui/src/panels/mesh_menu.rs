@@ -107,6 +107,15 @@ pub(super) fn mesh_menu(
             shape_degrees: 40.0,
         },
     );
+    // Subdivision holes (OpenSubdiv's face hole tag): the faces leave no
+    // surface; their neighbours keep their shape.
+    for (label, hole) in [("Make Hole (subdivision)", true), ("Clear Hole", false)] {
+        item(ui, label, has_f, &|| Command::SetFaceHole {
+            node: n.clone(),
+            faces: faces(),
+            hole,
+        });
+    }
     // Spin and Screw sweep the selected faces, or else the selected
     // boundary edges, about the view axis through the 3D cursor.
     let profile = || {

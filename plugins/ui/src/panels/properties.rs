@@ -509,6 +509,8 @@ pub(super) fn subdivision_panel(
         }
         Some(m) => {
             let mut e = m;
+            // What the chosen scheme honours; the rest is greyed out, with why.
+            let applies = e.options.scheme.applicable();
             egui::Grid::new("subdivision-grid")
                 .num_columns(2)
                 .show(ui, |ui| {
@@ -531,24 +533,42 @@ pub(super) fn subdivision_panel(
                     ui.add(egui::DragValue::new(&mut e.export_level).range(0..=MAX_LEVEL));
                     ui.end_row();
                     ui.label("Boundary");
-                    choice(
-                        ui,
-                        "boundary",
-                        &mut e.options.boundary,
-                        &BoundaryInterpolation::ALL,
-                        BoundaryInterpolation::label,
-                    );
+                    ui.add_enabled_ui(applies.boundary, |ui| {
+                        choice(
+                            ui,
+                            "boundary",
+                            &mut e.options.boundary,
+                            &BoundaryInterpolation::ALL,
+                            BoundaryInterpolation::label,
+                        )
+                    });
                     ui.end_row();
                     ui.label("Creases");
-                    choice(
-                        ui,
-                        "crease-method",
-                        &mut e.options.crease_method,
-                        &CreaseMethod::ALL,
-                        CreaseMethod::label,
-                    );
+                    ui.add_enabled_ui(applies.creases, |ui| {
+                        choice(
+                            ui,
+                            "crease-method",
+                            &mut e.options.crease_method,
+                            &CreaseMethod::ALL,
+                            CreaseMethod::label,
+                        )
+                    });
                     ui.end_row();
                 });
+            ui.add_enabled(
+                applies.smooth_triangles,
+                egui::Checkbox::new(&mut e.options.smooth_triangles, "Smooth triangles"),
+            )
+            .on_hover_text("OpenSubdiv's rule for triangles in Catmull-Clark: rounder results where a cage has triangles");
+            if !applies.reason.is_empty() {
+                ui.add(egui::Label::new(egui::RichText::new(applies.reason).weak()).wrap());
+            }
+            if !content.creases.holes.is_empty() {
+                ui.label(format!(
+                    "{} hole face(s): no surface there (Mesh ▸ Clear Hole)",
+                    content.creases.holes.len()
+                ));
+            }
             ui.checkbox(&mut e.show_cage, "Show cage");
             if e != m {
                 set(events, Some(e));
@@ -652,6 +672,68 @@ pub(super) fn subdivision_panel(
                         ),
                         sharpness: value,
                     }
+                },
+            );
+        }
+    });
+    if !vertex_mode {
+        taper_row(ui, id, &content.mesh, &sel.edges, state, events);
+    }
+}
+
+/// A crease whose sharpness runs from a start to an end value along the
+/// selected chain of edges (Rhino's tapered SubD creases): the chain's ends
+/// are the vertices with one selected edge (any vertex of a closed loop);
+/// Reverse swaps which end starts.
+fn taper_row(
+    ui: &mut egui::Ui,
+    id: NodeId,
+    mesh: &hedra_geom::HalfEdgeMesh,
+    edges: &std::collections::BTreeSet<hedra_geom::EdgeId>,
+    state: &mut UiState,
+    events: &mut Vec<UiEvent>,
+) {
+    let mut uses = std::collections::BTreeMap::<hedra_geom::VertexId, usize>::new();
+    for &e in edges.iter().filter(|e| mesh.is_edge(**e)) {
+        for v in mesh.edge_vertices(e) {
+            *uses.entry(v).or_default() += 1;
+        }
+    }
+    let mut ends: Vec<hedra_geom::VertexId> = uses
+        .iter()
+        .filter(|(_, n)| **n == 1)
+        .map(|(v, _)| *v)
+        .collect();
+    if ends.is_empty() {
+        ends.extend(uses.keys().next());
+    }
+    let Some(&first) = ends.first() else { return };
+    let from = if state.taper.2 {
+        *ends.last().unwrap_or(&first)
+    } else {
+        first
+    };
+    let (start, end, reversed) = &mut state.taper;
+    ui.horizontal(|ui| {
+        ui.label("Taper");
+        ui.add(egui::DragValue::new(start).range(0.0..=10.0).speed(0.05).prefix("from "));
+        ui.add(egui::DragValue::new(end).range(0.0..=10.0).speed(0.05).prefix("to "));
+        ui.checkbox(reversed, "Reverse");
+        if ui
+            .button("Set")
+            .on_hover_text(format!(
+                "The crease runs from {start:.2} at vertex {from} to {end:.2} at the chain's other end"
+            ))
+            .clicked()
+        {
+            exec(
+                events,
+                Command::SetCreaseTaper {
+                    node: id.into(),
+                    edges: hedra_doc::elements::EdgeSet::Ids(edges.iter().map(|e| e.0).collect()),
+                    from: hedra_doc::elements::VertexSet::Ids(vec![from.0]),
+                    start: *start,
+                    end: *end,
                 },
             );
         }
