@@ -34,6 +34,13 @@ impl Plan<'_> {
             unreachable!("mesh_node checked the content");
         };
         edit(content, &label)?;
+        // Decimate records first, so that the check below evaluates from them.
+        content
+            .refresh_decimations()
+            .map_err(|error| CommandError::Modifier {
+                node: label.clone(),
+                error,
+            })?;
         content
             .apply_stack(content.modifiers.len())
             .map_err(|error| CommandError::Modifier {

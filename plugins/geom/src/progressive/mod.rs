@@ -48,7 +48,7 @@ use crate::subdivision::Creases;
 use crate::validate::ValidationError;
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
-use std::cmp::Ordering;
+use std::cmp::Reverse;
 use std::collections::{BTreeSet, BinaryHeap};
 use std::sync::Arc;
 
@@ -330,26 +330,20 @@ impl TryFrom<Stored> for ProgressiveMesh {
     }
 }
 
-/// A cost for the heap: smallest first, ties by edge id.
-#[derive(Copy, Clone, PartialEq)]
-struct Entry {
-    cost: f64,
-    edge: u32,
-    stamp: u32,
+/// A heap entry packed in 8 bytes (half the cache misses of a wider
+/// one): the cost as `f32` bits (costs are never negative, so their bits
+/// order as the costs do) above the edge id; smallest first through
+/// `Reverse`, ties by edge id. The exact cost is computed again when the
+/// entry comes first.
+fn entry(cost: f32, e: EdgeId) -> Reverse<u64> {
+    Reverse(((cost.to_bits() as u64) << 32) | e.0 as u64)
 }
-impl Eq for Entry {}
-impl Ord for Entry {
-    fn cmp(&self, o: &Self) -> Ordering {
-        o.cost
-            .total_cmp(&self.cost)
-            .then_with(|| o.edge.cmp(&self.edge))
-    }
+fn entry_parts(x: Reverse<u64>) -> (f32, EdgeId) {
+    (f32::from_bits((x.0 >> 32) as u32), EdgeId(x.0 as u32))
 }
-impl PartialOrd for Entry {
-    fn partial_cmp(&self, o: &Self) -> Option<Ordering> {
-        Some(self.cmp(o))
-    }
-}
+
+/// `queued` for an edge without a live heap entry.
+const NOT_QUEUED: u32 = u32::MAX;
 
 /// The simplification's state while it builds the sequence.
 struct Simplifier<'a> {
@@ -358,9 +352,19 @@ struct Simplifier<'a> {
     creases: &'a Creases,
     quadrics: Vec<Quadric>,
     feature: Vec<bool>,
-    stamp: Vec<u32>,
-    heap: BinaryHeap<Entry>,
+    /// The cost bits of an edge's live heap entry ([`NOT_QUEUED`]: none);
+    /// other entries of the edge are stale.
+    queued: Vec<u32>,
+    heap: BinaryHeap<Reverse<u64>>,
     cos_limit: f64,
+    /// Vertices on a feature edge or a border (a collapse passes the flag
+    /// on to the kept vertex); the others have no feature edges to count.
+    near_feature: Vec<bool>,
+    /// Vertices with corner sharpness (with `keep_creases`): they stay.
+    corner_sharp: Vec<bool>,
+    /// Edges whose collapses were refused in this pass (fold-over, link
+    /// condition), tried again in the next one.
+    refused: Vec<EdgeId>,
 }
 
 impl Simplifier<'_> {
@@ -371,6 +375,9 @@ impl Simplifier<'_> {
     /// the features: one or three or more feature edges, or two that turn
     /// by more than [`CORNER_TURN`].
     fn feature_degree(&self, v: VertexId) -> (usize, bool) {
+        if !self.near_feature[v.index()] {
+            return (0, false);
+        }
         let m = &self.mesh;
         let mut ends = [DVec3::ZERO; 2];
         let mut n = 0;
@@ -399,7 +406,7 @@ impl Simplifier<'_> {
     fn fixed(&self, v: VertexId, corner: bool) -> bool {
         corner
             || (self.options.keep_borders && self.mesh.is_boundary_vertex(v))
-            || (self.options.keep_creases && self.creases.vertex(v) > 0.0)
+            || self.corner_sharp[v.index()]
     }
 
     /// The position and error of collapsing `h` (its target into its
@@ -443,8 +450,18 @@ impl Simplifier<'_> {
         Some(best)
     }
 
-    /// The allowed collapses of `e`, cheapest first.
+    /// The allowed collapses of `e`, cheapest first. Away from features
+    /// both directions have the same placement and cost, computed once.
     fn candidates(&self, e: EdgeId) -> Vec<(f64, HalfEdgeId, DVec3)> {
+        let [a, b] = self.mesh.edge_vertices(e);
+        let plain = |v: VertexId| !self.near_feature[v.index()] && !self.corner_sharp[v.index()];
+        if plain(a) && plain(b) {
+            let h = e.halfedge(0);
+            return match self.candidate(h) {
+                Some((c, p)) => vec![(c, h, p), (c, h.twin(), p)],
+                None => Vec::new(),
+            };
+        }
         let mut out: Vec<(f64, HalfEdgeId, DVec3)> = [e.halfedge(0), e.halfedge(1)]
             .into_iter()
             .filter_map(|h| self.candidate(h).map(|(c, p)| (c, h, p)))
@@ -453,15 +470,27 @@ impl Simplifier<'_> {
         out
     }
 
+    /// Queues `e` at its current cost, unless it is queued at a lower one
+    /// already: that entry stays (lazy invalidation), and when it comes
+    /// first its cost is computed again and the edge queued anew if it
+    /// grew. Costs mostly grow as quadrics add up, so most changes cost no
+    /// heap operation.
     fn push(&mut self, e: EdgeId) {
-        self.stamp[e.index()] = self.stamp[e.index()].wrapping_add(1);
-        if let Some(&(cost, _, _)) = self.candidates(e).first() {
-            self.heap.push(Entry {
-                cost,
-                edge: e.0,
-                stamp: self.stamp[e.index()],
-            });
+        let Some(&(cost, _, _)) = self.candidates(e).first() else {
+            self.queued[e.index()] = NOT_QUEUED;
+            return;
+        };
+        let cost = cost as f32;
+        let q = self.queued[e.index()];
+        if q != NOT_QUEUED && f32::from_bits(q) <= cost {
+            return;
         }
+        self.enqueue(e, cost);
+    }
+
+    fn enqueue(&mut self, e: EdgeId, cost: f32) {
+        self.queued[e.index()] = cost.to_bits();
+        self.heap.push(entry(cost, e));
     }
 
     /// The checks the Euler operator does not make: no triangle edge that
@@ -527,7 +556,12 @@ impl ProgressiveMesh {
         let mut s = Simplifier {
             quadrics: vec![Quadric::default(); input.vertex_capacity()],
             feature: vec![false; input.edge_capacity()],
-            stamp: vec![0; input.edge_capacity()],
+            queued: vec![NOT_QUEUED; input.edge_capacity()],
+            near_feature: vec![false; input.vertex_capacity()],
+            corner_sharp: (0..input.vertex_capacity() as u32)
+                .map(|v| options.keep_creases && creases.vertex(VertexId(v)) > 0.0)
+                .collect(),
+            refused: Vec::new(),
             heap: BinaryHeap::new(),
             cos_limit: options.max_normal_change.to_radians().cos(),
             options,
@@ -537,16 +571,21 @@ impl ProgressiveMesh {
         s.init_quadrics();
         let n_faces = s.mesh.face_count();
         let mut splits = Vec::new();
+        let mut next: Vec<EdgeId> = s.mesh.edges().collect();
+        // Passes until one collapses nothing: a collapse refused for its
+        // neighbourhood (a fold-over) may be allowed once that changed.
         loop {
-            let edges: Vec<EdgeId> = s.mesh.edges().collect();
-            for e in edges {
-                s.push(e);
+            for e in next {
+                if s.mesh.is_edge(e) {
+                    s.push(e);
+                }
             }
             let before = splits.len();
             s.run(&mut splits);
             if splits.len() == before {
                 break;
             }
+            next = std::mem::take(&mut s.refused);
         }
         let capacity = [
             s.mesh.vertex_capacity(),
@@ -976,6 +1015,8 @@ impl Simplifier<'_> {
                 continue;
             }
             let [a, b] = m.edge_vertices(e);
+            self.near_feature[a.index()] = true;
+            self.near_feature[b.index()] = true;
             let (pa, pb) = (m.position(a), m.position(b));
             let dir = pb - pa;
             let len2 = dir.length_squared();
@@ -993,32 +1034,34 @@ impl Simplifier<'_> {
 
     /// Collapses from the heap until it is empty, appending the records.
     fn run(&mut self, out: &mut Vec<VertexSplit>) {
-        while let Some(entry) = self.heap.pop() {
-            let e = EdgeId(entry.edge);
-            if !self.mesh.is_edge(e) || self.stamp[e.index()] != entry.stamp {
+        while let Some(x) = self.heap.pop() {
+            let (queued_cost, e) = entry_parts(x);
+            if !self.mesh.is_edge(e) || self.queued[e.index()] != queued_cost.to_bits() {
                 continue;
             }
+            self.queued[e.index()] = NOT_QUEUED;
             let candidates = self.candidates(e);
             let Some(&(cost, _, _)) = candidates.first() else {
                 continue;
             };
-            if cost > entry.cost * (1.0 + 1e-9) + 1e-300 {
+            if cost as f32 > queued_cost {
                 // Its neighbourhood changed since it was queued: requeue.
-                self.heap.push(Entry {
-                    cost,
-                    edge: e.0,
-                    stamp: entry.stamp,
-                });
+                self.enqueue(e, cost as f32);
                 continue;
             }
+            let mut done = false;
             for (cost, h, p) in candidates {
                 if !self.allowed(h, p) {
                     continue;
                 }
                 if let Some(split) = self.collapse(h, p, cost) {
                     out.push(split);
+                    done = true;
                     break;
                 }
+            }
+            if !done {
+                self.refused.push(e);
             }
         }
     }
@@ -1064,6 +1107,7 @@ impl Simplifier<'_> {
         }
         let q = self.quadrics[a.index()] + self.quadrics[b.index()];
         self.quadrics[a.index()] = q;
+        self.near_feature[a.index()] |= self.near_feature[b.index()];
         let around: Vec<EdgeId> = self.mesh.vertex_outgoing(a).map(|o| o.edge()).collect();
         for e in around {
             self.push(e);
