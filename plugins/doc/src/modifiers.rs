@@ -432,6 +432,27 @@ pub fn decimate_key(mesh: &HalfEdgeMesh, creases: &Creases, options: &DecimateOp
 
 /// The UV seams of `mesh`: edges where a corner on one side and the corner
 /// at the same vertex on the other side both have UVs, and they differ.
+///
+/// # Example
+/// Two quads of a grid with the UVs of the right one moved: the edge
+/// between them is the one seam.
+/// ```
+/// use hedra_doc::{CornerAttributes, modifiers::uv_seams};
+/// use hedra_geom::{DVec2, Primitive};
+/// use std::sync::Arc;
+/// let m = Primitive::Grid { x_segments: 2, z_segments: 1, size: 2.0 }.build()?;
+/// let mut uvs = std::collections::BTreeMap::new();
+/// for h in m.halfedges().filter(|&h| m.face(h).is_some()) {
+///     let p = m.position(m.origin(h));
+///     let right = m.face_centroid(m.face(h).unwrap()).x > 0.0;
+///     uvs.insert(h, DVec2::new(p.x + if right { 5.0 } else { 0.0 }, p.z));
+/// }
+/// let corners = CornerAttributes { uvs: Arc::new(uvs), ..Default::default() };
+/// let seams: Vec<_> = uv_seams(&m, &corners).into_iter().collect();
+/// assert_eq!(seams.len(), 1);
+/// assert!(m.edge_vertices(seams[0]).iter().all(|&v| m.position(v).x == 0.0));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn uv_seams(mesh: &HalfEdgeMesh, corners: &CornerAttributes) -> BTreeSet<EdgeId> {
     let uvs = &corners.uvs;
     if uvs.is_empty() {

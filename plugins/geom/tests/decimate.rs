@@ -591,3 +591,56 @@ proptest! {
         prop_assert!(pm.level_mesh().same_as(&triangulated(&m)));
     }
 }
+
+#[test]
+fn seams_hold_as_a_line_of_edges() {
+    // A bent 8 × 8 grid with a seam along x = 0.
+    let grid = Primitive::Grid {
+        x_segments: 8,
+        z_segments: 8,
+        size: 2.0,
+    }
+    .build()
+    .unwrap();
+    let mut m = grid.clone();
+    for v in grid.vertices() {
+        let p = grid.position(v);
+        m.set_position(
+            v,
+            DVec3::new(p.x, 0.3 * (p.x * 1.5).cos() * (p.z * 2.0).sin(), p.z),
+        );
+    }
+    let seams = m
+        .edges()
+        .filter(|&e| m.edge_vertices(e).iter().all(|&v| m.position(v).x == 0.0))
+        .collect();
+    let options = DecimateOptions {
+        seams,
+        ..DecimateOptions::default()
+    };
+    let mut pm = ProgressiveMesh::build(&m, &Creases::default(), &options).unwrap();
+    pm.seek(0).unwrap();
+    let base = pm.mesh();
+    base.validate().unwrap();
+    // A path of edges on x = 0 still runs from z = −1 to z = 1.
+    let on = |v: hedra_geom::VertexId| base.position(v).x == 0.0;
+    let start = base
+        .vertices()
+        .find(|&v| on(v) && base.position(v).z == -1.0)
+        .unwrap();
+    let mut seen = vec![start];
+    let mut stack = vec![start];
+    while let Some(v) = stack.pop() {
+        for w in base.vertex_neighbors(v) {
+            if on(w) && !seen.contains(&w) {
+                seen.push(w);
+                stack.push(w);
+            }
+        }
+    }
+    assert!(
+        seen.iter().any(|&v| base.position(v).z == 1.0),
+        "the seam line holds"
+    );
+    assert!(base.face_count() < m.face_count());
+}
