@@ -789,3 +789,69 @@ fn a_reader_that_goes_away_ends_the_output_quietly() {
         assert!(!err.contains("panicked"), "{args:?}: {err}");
     }
 }
+
+/// A Decimate modifier's levels in `hedra info`, and `hedra export --lod`
+/// writing the level nearest a ratio: a quarter of the 1280 triangles;
+/// a ratio out of range, or a scene without Decimate, is refused by name.
+#[test]
+fn info_reports_levels_and_export_lod_writes_one() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = dir.path().join("rock.hedra.ron");
+    let o = hedra(&["run", &script("rock.ron"), "-o", scene.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let o = hedra(&["info", scene.to_str().unwrap()]);
+    let text = String::from_utf8_lossy(&o.stdout);
+    let line = text
+        .lines()
+        .find(|l| l.contains("levels of detail"))
+        .unwrap_or_else(|| panic!("{text}"));
+    assert!(line.ends_with("to 1280 faces)"), "{line}");
+    let obj = dir.path().join("rock.obj");
+    let o = hedra(&[
+        "export",
+        scene.to_str().unwrap(),
+        "-o",
+        obj.to_str().unwrap(),
+        "--lod",
+        "0.25",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let faces = std::fs::read_to_string(&obj)
+        .unwrap()
+        .lines()
+        .filter(|l| l.starts_with("f "))
+        .count();
+    assert!(
+        faces <= 320 && faces >= 300,
+        "{faces} faces, about a quarter of 1280"
+    );
+    let o = hedra(&[
+        "export",
+        scene.to_str().unwrap(),
+        "-o",
+        obj.to_str().unwrap(),
+        "--lod",
+        "1.5",
+    ]);
+    assert!(!o.status.success());
+    assert!(
+        stderr(&o).contains("--lod 1.5: the ratio must be above 0 and at most 1"),
+        "{}",
+        stderr(&o)
+    );
+    let plain = build_hierarchy(dir.path());
+    let o = hedra(&[
+        "export",
+        plain.to_str().unwrap(),
+        "-o",
+        obj.to_str().unwrap(),
+        "--lod",
+        "0.5",
+    ]);
+    assert!(!o.status.success());
+    assert!(
+        stderr(&o).contains("no Decimate modifier"),
+        "{}",
+        stderr(&o)
+    );
+}

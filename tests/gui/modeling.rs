@@ -1687,3 +1687,44 @@ fn a_tapered_crease_from_the_panel() {
     assert_eq!((taper.start, taper.end), (0.0, 4.0));
     assert_eq!(taper.edges.len(), 2);
 }
+
+/// Properties ▸ Modifiers ▸ Decimate on an icosphere: the level slider
+/// scrubs the progressive mesh; let go at the far left it sets the
+/// coarsest level (one undo step) and the drawn mesh has that many faces.
+#[test]
+fn the_decimate_level_slider_scrubs_the_progressive_mesh() {
+    let mut user = User::new();
+    user.add("Icosphere");
+    let faces = user.first_mesh().face_count();
+    user.click_on("Decimate");
+    let content = mesh_content(&user);
+    assert!(matches!(
+        content.modifiers[..],
+        [hedra_doc::MeshModifier::Decimate(_)]
+    ));
+    let counts = content.decimate_face_counts(0).unwrap().unwrap();
+    assert_eq!(
+        *counts.last().unwrap(),
+        faces,
+        "the finest level is the input"
+    );
+    let label = user
+        .widgets()
+        .iter()
+        .find(|w| w.text.starts_with("level · "))
+        .expect("the level slider")
+        .rect;
+    let steps = user.undo_steps();
+    let from = Vec2::new(label.min.x - 50.0, label.center().y);
+    let to = Vec2::new(label.min.x - 400.0, label.center().y);
+    user.drag(from, to, 8);
+    user.frames(3);
+    assert_eq!(user.undo_steps(), steps + 1, "one step for the whole drag");
+    let hedra_doc::MeshModifier::Decimate(d) = mesh_content(&user).modifiers[0] else {
+        panic!("decimate")
+    };
+    assert_eq!(d.level, Some(0), "the coarsest level");
+    let shown = mesh_content(&user).evaluated(0).unwrap().face_count();
+    assert_eq!(shown, counts[0]);
+    assert!(user.shows(&format!("level · {} faces", counts[0])));
+}

@@ -321,6 +321,10 @@ enum StoredContent {
         /// Index of the node's corner attributes in the corner pool.
         #[serde(default, skip_serializing_if = "Option::is_none")]
         corner_set: Option<usize>,
+        /// The progressive records of the Decimate modifiers (base mesh
+        /// and vertex splits each); absent without Decimate modifiers.
+        #[serde(default, skip_serializing_if = "Vec::is_empty")]
+        decimations: Vec<crate::modifiers::DecimateRecord>,
     },
     Curve(hedra_geom::curves::NurbsCurve),
     Surface(crate::scene::SurfaceShape),
@@ -516,6 +520,7 @@ impl<'a> MeshPool<'a> {
                     modifiers: m.modifiers.clone(),
                     corners: CornerAttributes::default(),
                     corner_set: (!m.corners.is_empty()).then(|| self.add_corners(&m.corners)),
+                    decimations: m.decimations.iter().map(|r| (**r).clone()).collect(),
                 },
             },
         }
@@ -868,6 +873,7 @@ fn restore_node(
             modifiers,
             corners: inline_corners,
             corner_set,
+            decimations,
         } => {
             let mut corners = match corner_set {
                 Some(index) => corner_pool.get(index).cloned().ok_or_else(|| {
@@ -925,6 +931,7 @@ fn restore_node(
                 subdivision,
                 modifiers,
                 corners,
+                decimations: decimations.into_iter().map(Arc::new).collect(),
             })
         }
     };

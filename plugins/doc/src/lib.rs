@@ -25,7 +25,9 @@ pub mod smooth;
 pub use command::{Command, CommandError, NodeRef};
 pub use elements::{EdgeSet, FaceSet, ProfileSet, VertexSet};
 pub use history::{History, NodeChange, Transaction};
-pub use modifiers::{ArrayModifier, EvaluationError, MeshModifier, MirrorModifier};
+pub use modifiers::{
+    ArrayModifier, DecimateModifier, DecimateRecord, EvaluationError, MeshModifier, MirrorModifier,
+};
 pub use scene::{
     CornerAttributes, Document, MeshContent, Node, NodeContent, NodeId, NodeTransform, Shading,
     SubdivisionModifier, SurfaceShape,

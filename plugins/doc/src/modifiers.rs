@@ -1,5 +1,5 @@
-//! A mesh node's modifier stack (Blender's modifier stack): the Mirror
-//! and Array modifiers, evaluated in order on the cage, and where the
+//! A mesh node's modifier stack (Blender's modifier stack): the Mirror,
+//! Array and Decimate modifiers, evaluated in order on the cage, and where the
 //! subdivision modifier runs among them
 //! ([`SubdivisionModifier::stack_position`](crate::SubdivisionModifier::stack_position)). The cage stays what the user
 //! edits; [`MeshContent::evaluated`] is what export, `hedra info` and the
@@ -19,11 +19,12 @@ use hedra_geom::modeling::{
     ArrayOffset, CopiedMesh, MAX_ARRAY_COUNT, MirrorAxis, ModelingError, arrayed_copies,
     mirrored_copies,
 };
+use hedra_geom::progressive::{DecimateError, DecimateOptions, DecimateTarget, ProgressiveMesh};
 use hedra_geom::subdivision::{Creases, Refiner, SubdivisionError};
-use hedra_geom::{HalfEdgeId, HalfEdgeMesh};
+use hedra_geom::{EdgeId, HalfEdgeId, HalfEdgeMesh};
 use serde::{Deserialize, Serialize};
 use std::borrow::Cow;
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 use std::fmt;
 use std::sync::Arc;
 
@@ -34,14 +35,19 @@ pub enum MeshModifier {
     Mirror(MirrorModifier),
     /// Copies in a row (Blender's Array).
     Array(ArrayModifier),
+    /// Fewer faces by edge collapses, at a level of its progressive mesh
+    /// (Blender's Decimate, Collapse).
+    Decimate(DecimateModifier),
 }
 
 impl MeshModifier {
-    /// The modifier's kind as the user sees it: `"Mirror"` or `"Array"`.
+    /// The modifier's kind as the user sees it: `"Mirror"`, `"Array"` or
+    /// `"Decimate"`.
     pub fn name(&self) -> &'static str {
         match self {
             MeshModifier::Mirror(_) => "Mirror",
             MeshModifier::Array(_) => "Array",
+            MeshModifier::Decimate(_) => "Decimate",
         }
     }
 
@@ -79,6 +85,26 @@ impl MeshModifier {
                 }
                 s
             }
+            MeshModifier::Decimate(d) => {
+                let mut s = match (d.level, d.target) {
+                    (Some(level), _) => format!("Decimate to level {level}"),
+                    (None, DecimateTarget::Ratio(r)) => format!("Decimate to {}%", r * 100.0),
+                    (None, DecimateTarget::Faces(n)) => format!("Decimate to {n} faces"),
+                };
+                for (on, what) in [
+                    (d.keep_borders, "borders"),
+                    (d.keep_creases, "creases"),
+                    (d.keep_uv_seams, "UV seams"),
+                ] {
+                    if on {
+                        s += &format!(", keep {what}");
+                    }
+                }
+                if let Some(a) = d.sharp_angle {
+                    s += &format!(", sharp {a}°");
+                }
+                s
+            }
         }
     }
 
@@ -106,17 +132,26 @@ impl MeshModifier {
                 }
                 distance(a.merge, a.merge_distance)
             }
+            MeshModifier::Decimate(d) => d.check(),
         }
     }
 
-    /// The modifier applied to `mesh`, with where each result element came
-    /// from.
+    /// A Mirror or Array modifier applied to `mesh`, with where each
+    /// result element came from. A Decimate modifier needs its
+    /// progressive record and is applied by [`MeshContent::evaluate`] and
+    /// [`MeshContent::with_modifiers_applied`]; here it is refused.
     ///
     /// # Errors
     /// The kernel's [`ModelingError`] (a count of 0, a merge that is not
-    /// manifold, a mesh without faces).
+    /// manifold, a mesh without faces); [`ModelingError::Parameter`] for
+    /// Decimate.
     pub fn apply(&self, mesh: &HalfEdgeMesh) -> Result<CopiedMesh, ModelingError> {
         match self {
+            MeshModifier::Decimate(_) => Err(ModelingError::Parameter {
+                what: "modifier",
+                allowed: "Mirror or Array (Decimate is evaluated with its record)",
+                value: "Decimate".into(),
+            }),
             MeshModifier::Mirror(m) => {
                 mirrored_copies(mesh, m.axes, m.merge.then_some(m.merge_distance))
             }
@@ -242,6 +277,200 @@ impl Default for ArrayModifier {
     }
 }
 
+/// Blender's Decimate modifier (Collapse) with Hedra's level slider: the
+/// mesh simplified by quadric edge collapses
+/// ([`hedra_geom::progressive`]) down to `target`, or to `level` of its
+/// progressive mesh when the slider has set one. The progressive record
+/// is built once per input and kept beside the stack
+/// ([`MeshContent::decimations`]), so changing the target or the level
+/// replays splits or collapses instead of simplifying again. The mesh is
+/// triangulated first (no quads are kept).
+#[derive(Copy, Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct DecimateModifier {
+    /// How far: a ratio of the faces (default 0.5) or a face count.
+    #[serde(default = "half")]
+    pub target: DecimateTarget,
+    /// A level of the progressive mesh (0: the coarsest), set by the
+    /// level slider; it wins over `target` (default none).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub level: Option<usize>,
+    /// Border vertices never move (default off: they slide along the
+    /// border, which keeps its shape).
+    #[serde(default)]
+    pub keep_borders: bool,
+    /// Creased edges hold and corner-sharp vertices stay (default on).
+    #[serde(default = "crate::scene::yes")]
+    pub keep_creases: bool,
+    /// Edges where the UVs of the corners on both sides differ hold
+    /// (default on; only when the modifier runs on the cage, which has
+    /// the UVs).
+    #[serde(default = "crate::scene::yes")]
+    pub keep_uv_seams: bool,
+    /// Edges whose faces meet at more than this angle (degrees) hold
+    /// (default none).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sharp_angle: Option<f64>,
+}
+
+fn half() -> DecimateTarget {
+    DecimateTarget::Ratio(0.5)
+}
+
+impl Default for DecimateModifier {
+    fn default() -> Self {
+        DecimateModifier {
+            target: half(),
+            level: None,
+            keep_borders: false,
+            keep_creases: true,
+            keep_uv_seams: true,
+            sharp_angle: None,
+        }
+    }
+}
+
+impl DecimateModifier {
+    /// Checks the target ratio and the sharp angle.
+    ///
+    /// # Errors
+    /// [`ModifierProblem::Ratio`], [`ModifierProblem::SharpAngle`].
+    pub fn check(&self) -> Result<(), ModifierProblem> {
+        if let DecimateTarget::Ratio(r) = self.target
+            && !(r > 0.0 && r <= 1.0)
+        {
+            return Err(ModifierProblem::Ratio(r));
+        }
+        if let Some(a) = self.sharp_angle
+            && !(0.0..=180.0).contains(&a)
+        {
+            return Err(ModifierProblem::SharpAngle(a));
+        }
+        Ok(())
+    }
+
+    /// The kernel's options for these settings, with the seams to keep.
+    pub fn options(&self, seams: BTreeSet<EdgeId>) -> DecimateOptions {
+        DecimateOptions {
+            keep_borders: self.keep_borders,
+            keep_creases: self.keep_creases,
+            sharp_angle: self.sharp_angle,
+            seams: if self.keep_uv_seams {
+                seams
+            } else {
+                BTreeSet::new()
+            },
+            ..DecimateOptions::default()
+        }
+    }
+
+    /// The level these settings show on `progressive`: `level` (clamped),
+    /// else the finest level within `target`, else the coarsest.
+    pub fn level_on(&self, progressive: &ProgressiveMesh) -> usize {
+        match self.level {
+            Some(l) => l.min(progressive.max_level()),
+            None => progressive.nearest_level(self.target),
+        }
+    }
+}
+
+/// A Decimate modifier's progressive record, kept beside the stack and in
+/// the scene file: the record (base mesh and vertex splits, not every
+/// level) and a fingerprint of what it was built from.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct DecimateRecord {
+    /// [`decimate_key`] of the modifier's input mesh, creases and options.
+    pub key: u64,
+    /// The progressive mesh.
+    pub progressive: ProgressiveMesh,
+}
+
+/// A fingerprint (64-bit FNV-1a, the same in every build) of a mesh's
+/// records, its creases and decimation options: records whose key matches
+/// were built from exactly this input.
+pub fn decimate_key(mesh: &HalfEdgeMesh, creases: &Creases, options: &DecimateOptions) -> u64 {
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    let mut eat = |x: u64| {
+        for b in x.to_le_bytes() {
+            h ^= b as u64;
+            h = h.wrapping_mul(0x0000_0100_0000_01b3);
+        }
+    };
+    eat(mesh.vertex_capacity() as u64);
+    eat(mesh.edge_capacity() as u64);
+    eat(mesh.face_capacity() as u64);
+    for v in mesh.vertices() {
+        let p = mesh.position(v);
+        eat(v.0 as u64);
+        for c in [p.x, p.y, p.z] {
+            eat(c.to_bits());
+        }
+    }
+    for x in mesh.halfedges() {
+        eat(x.0 as u64);
+        eat(mesh.origin(x).0 as u64);
+        eat(mesh.next(x).0 as u64);
+        eat(mesh.face(x).map_or(u64::MAX, |f| f.0 as u64));
+    }
+    for (e, s) in &creases.edges {
+        eat(e.0 as u64);
+        eat(s.to_bits());
+    }
+    eat(u64::MAX);
+    for (v, s) in &creases.vertices {
+        eat(v.0 as u64);
+        eat(s.to_bits());
+    }
+    eat(options.keep_borders as u64);
+    eat(options.keep_creases as u64);
+    eat(options.sharp_angle.map_or(u64::MAX, f64::to_bits));
+    eat(options.max_normal_change.to_bits());
+    for e in &options.seams {
+        eat(e.0 as u64);
+    }
+    h
+}
+
+/// The UV seams of `mesh`: edges where a corner on one side and the corner
+/// at the same vertex on the other side both have UVs, and they differ.
+///
+/// # Example
+/// Two quads of a grid with the UVs of the right one moved: the edge
+/// between them is the one seam.
+/// ```
+/// use hedra_doc::{CornerAttributes, modifiers::uv_seams};
+/// use hedra_geom::{DVec2, Primitive};
+/// use std::sync::Arc;
+/// let m = Primitive::Grid { x_segments: 2, z_segments: 1, size: 2.0 }.build()?;
+/// let mut uvs = std::collections::BTreeMap::new();
+/// for h in m.halfedges().filter(|&h| m.face(h).is_some()) {
+///     let p = m.position(m.origin(h));
+///     let right = m.face_centroid(m.face(h).unwrap()).x > 0.0;
+///     uvs.insert(h, DVec2::new(p.x + if right { 5.0 } else { 0.0 }, p.z));
+/// }
+/// let corners = CornerAttributes { uvs: Arc::new(uvs), ..Default::default() };
+/// let seams: Vec<_> = uv_seams(&m, &corners).into_iter().collect();
+/// assert_eq!(seams.len(), 1);
+/// assert!(m.edge_vertices(seams[0]).iter().all(|&v| m.position(v).x == 0.0));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn uv_seams(mesh: &HalfEdgeMesh, corners: &CornerAttributes) -> BTreeSet<EdgeId> {
+    let uvs = &corners.uvs;
+    if uvs.is_empty() {
+        return BTreeSet::new();
+    }
+    let differ = |x: HalfEdgeId, y: HalfEdgeId| match (uvs.get(&x), uvs.get(&y)) {
+        (Some(a), Some(b)) => a != b,
+        _ => false,
+    };
+    mesh.edges()
+        .filter(|&e| !mesh.is_boundary_edge(e))
+        .filter(|&e| {
+            let (h, t) = (e.halfedge(0), e.halfedge(1));
+            differ(h, mesh.next(t)) || differ(mesh.next(h), t)
+        })
+        .collect()
+}
+
 /// A modifier value out of range (refused by the modifier commands and
 /// when loading a file).
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
@@ -255,6 +484,12 @@ pub enum ModifierProblem {
     /// An array offset with an infinite or NaN component.
     #[error("array offset is not finite")]
     Offset,
+    /// A decimation ratio outside (0, 1].
+    #[error("decimate ratio must be above 0 and at most 1, got {0}")]
+    Ratio(f64),
+    /// A sharp-feature angle outside 0° to 180°.
+    #[error("sharp angle must be between 0 and 180 degrees, got {0}")]
+    SharpAngle(f64),
 }
 
 /// Why a node's stack could not be evaluated.
@@ -274,6 +509,15 @@ pub enum EvaluationError {
     /// The subdivision modifier refused (its message as it is).
     #[error(transparent)]
     Subdivision(#[from] SubdivisionError),
+    /// A Decimate modifier refused (its input is not manifold polygons,
+    /// say), numbered from 1.
+    #[error("modifier {} (Decimate): {error}", index + 1)]
+    Decimate {
+        /// The modifier's index in the stack, from 0.
+        index: usize,
+        /// The kernel's reason.
+        error: DecimateError,
+    },
 }
 
 /// A node's mesh with some or all of its stack applied, and the creases
@@ -332,6 +576,15 @@ impl MeshContent {
         mut current: Evaluated<'a>,
     ) -> Result<Evaluated<'a>, EvaluationError> {
         for (k, m) in modifiers.iter().enumerate() {
+            if let MeshModifier::Decimate(d) = m {
+                let (pm, level) = self.decimated(d, first_index + k, &current)?;
+                current = Evaluated {
+                    mesh: Cow::Owned(pm.level_mesh()),
+                    creases: Cow::Owned(pm.level_creases(&current.creases)),
+                };
+                debug_assert_eq!(pm.level(), level);
+                continue;
+            }
             let copies = m
                 .apply(&current.mesh)
                 .map_err(|error| EvaluationError::Modifier {
@@ -346,6 +599,164 @@ impl MeshContent {
             };
         }
         Ok(current)
+    }
+
+    /// The kernel options of Decimate modifier `d` on `input`: its UV
+    /// seams are the cage's when `input` is the cage itself.
+    fn decimate_options(&self, d: &DecimateModifier, input: &HalfEdgeMesh) -> DecimateOptions {
+        let on_cage = std::ptr::eq(input, self.mesh.as_ref());
+        let seams = if on_cage && d.keep_uv_seams {
+            uv_seams(input, &self.corners)
+        } else {
+            BTreeSet::new()
+        };
+        d.options(seams)
+    }
+
+    /// The progressive mesh of Decimate modifier `d` (at stack `index`) on
+    /// `input`, moved to the modifier's level: a copy of its stored record
+    /// when one was built from this very input, else built now.
+    fn decimated(
+        &self,
+        d: &DecimateModifier,
+        index: usize,
+        input: &Evaluated<'_>,
+    ) -> Result<(ProgressiveMesh, usize), EvaluationError> {
+        let here = |error| EvaluationError::Decimate { index, error };
+        let options = self.decimate_options(d, &input.mesh);
+        let key = decimate_key(&input.mesh, &input.creases, &options);
+        let mut pm = match self.decimations.iter().find(|r| r.key == key) {
+            Some(r) => r.progressive.clone(),
+            None => ProgressiveMesh::build(&input.mesh, &input.creases, &options).map_err(here)?,
+        };
+        let level = d.level_on(&pm);
+        pm.seek(level).map_err(here)?;
+        Ok((pm, level))
+    }
+
+    /// The progressive mesh of the Decimate modifier at stack `index`, at
+    /// the level it shows: its stored record when there is one for its
+    /// input (subdivision before it at the viewport level), else built now.
+    /// `None` when that modifier is not a Decimate. The app clones it to
+    /// scrub the level (`seek`) without evaluating the stack again.
+    ///
+    /// # Errors
+    /// [`EvaluationError`] naming the modifier that refused.
+    pub fn progressive(&self, index: usize) -> Result<Option<ProgressiveMesh>, EvaluationError> {
+        let Some(MeshModifier::Decimate(d)) = self.modifiers.get(index) else {
+            return Ok(None);
+        };
+        let split = self.subdivision_position();
+        let input = if split <= index {
+            let before = self.run_stack(&self.modifiers[..split], 0, self.start())?;
+            let level = self.subdivision.map_or(0, |s| s.viewport_level);
+            let smooth = if level == 0 {
+                before
+            } else {
+                let options = self.subdivision.unwrap_or_default().options;
+                let (mesh, creases) =
+                    Refiner::subdivide(&before.mesh, &before.creases, options, level)?;
+                Evaluated {
+                    mesh: Cow::Owned(mesh),
+                    creases: Cow::Owned(creases),
+                }
+            };
+            self.run_stack(&self.modifiers[split..index], split, smooth)?
+        } else {
+            self.run_stack(&self.modifiers[..index], 0, self.start())?
+        };
+        self.decimated(d, index, &input).map(|(pm, _)| Some(pm))
+    }
+
+    /// The face count of every level of the Decimate modifier at stack
+    /// `index`, from the coarsest (level 0) to its input's (what `hedra
+    /// info` reports as the levels available); `None` when that modifier is
+    /// not a Decimate.
+    ///
+    /// # Errors
+    /// As [`progressive`](Self::progressive).
+    pub fn decimate_face_counts(
+        &self,
+        index: usize,
+    ) -> Result<Option<Vec<usize>>, EvaluationError> {
+        Ok(self.progressive(index)?.map(|pm| pm.face_counts().to_vec()))
+    }
+
+    /// True when the stack has a Decimate modifier.
+    pub fn has_decimate(&self) -> bool {
+        self.modifiers
+            .iter()
+            .any(|m| matches!(m, MeshModifier::Decimate(_)))
+    }
+
+    /// Builds the progressive record of every Decimate modifier whose
+    /// input has none and drops records no modifier uses any more; each
+    /// record is left at its modifier's level, so that evaluating starts
+    /// there. The commands call this after every change of a node that has
+    /// Decimate modifiers (an edit of the cage changes their input).
+    ///
+    /// # Errors
+    /// [`EvaluationError`] naming the modifier that refused; the records
+    /// are unchanged then.
+    pub fn refresh_decimations(&mut self) -> Result<(), EvaluationError> {
+        if !self.has_decimate() {
+            self.decimations.clear();
+            return Ok(());
+        }
+        let split = self.subdivision_position();
+        let mut records: Vec<Arc<DecimateRecord>> = Vec::new();
+        let mut current = self.start();
+        for (index, m) in self.modifiers.iter().enumerate() {
+            if index == split
+                && let Some(s) = self.subdivision.filter(|s| s.viewport_level > 0)
+            {
+                // Subdivision before a Decimate: the record is the one of
+                // the viewport level (another level builds its own when
+                // evaluated).
+                let (mesh, creases) = Refiner::subdivide(
+                    &current.mesh,
+                    &current.creases,
+                    s.options,
+                    s.viewport_level,
+                )?;
+                current = Evaluated {
+                    mesh: Cow::Owned(mesh),
+                    creases: Cow::Owned(creases),
+                };
+            }
+            if let MeshModifier::Decimate(d) = m {
+                let options = self.decimate_options(d, &current.mesh);
+                let key = decimate_key(&current.mesh, &current.creases, &options);
+                let record = match self.decimations.iter().find(|r| r.key == key) {
+                    Some(r) => r.clone(),
+                    None => {
+                        let pm = ProgressiveMesh::build(&current.mesh, &current.creases, &options)
+                            .map_err(|error| EvaluationError::Decimate { index, error })?;
+                        Arc::new(DecimateRecord {
+                            key,
+                            progressive: pm,
+                        })
+                    }
+                };
+                let mut record = record;
+                let level = d.level_on(&record.progressive);
+                if record.progressive.level() != level {
+                    Arc::make_mut(&mut record)
+                        .progressive
+                        .seek(level)
+                        .map_err(|error| EvaluationError::Decimate { index, error })?;
+                }
+                current = Evaluated {
+                    mesh: Cow::Owned(record.progressive.level_mesh()),
+                    creases: Cow::Owned(record.progressive.level_creases(&current.creases)),
+                };
+                records.push(record);
+                continue;
+            }
+            current = self.run_stack(std::slice::from_ref(m), index, current)?;
+        }
+        self.decimations = records;
+        Ok(())
     }
 
     /// The node's final mesh with subdivision at `level` (0: no
@@ -413,6 +824,20 @@ impl MeshContent {
         let count = count.min(self.modifiers.len());
         let mut out = self.clone();
         for (index, m) in self.modifiers[..count].iter().enumerate() {
+            if let MeshModifier::Decimate(d) = m {
+                let input = Evaluated {
+                    mesh: Cow::Borrowed(out.mesh.as_ref()),
+                    creases: Cow::Borrowed(&out.creases),
+                };
+                // Seams are found on `out`'s cage, which is the input here.
+                let (pm, _) = out.decimated(d, index, &input)?;
+                let mesh = pm.level_mesh();
+                let creases = pm.level_creases(&out.creases);
+                out.corners = decimated_uvs(&out.mesh, &mesh, &out.corners);
+                out.creases = creases;
+                out.mesh = Arc::new(mesh);
+                continue;
+            }
             let copies = m
                 .apply(&out.mesh)
                 .map_err(|error| EvaluationError::Modifier {
@@ -428,12 +853,52 @@ impl MeshContent {
             out.primitive = None;
         }
         out.modifiers.drain(..count);
+        out.decimations.clear();
         if let Some(s) = &mut out.subdivision
             && let Some(p) = &mut s.stack_position
         {
             *p = p.saturating_sub(count);
         }
         Ok(out)
+    }
+}
+
+/// The UVs of `source`'s corners on `decimated` (the same ids where they
+/// survive): a corner keeps its UV when it still leaves the same vertex,
+/// else (its vertex merged into another, or a corner that triangulation
+/// made) it takes the UV of a corner of `source` at its vertex. Custom
+/// normals are dropped.
+pub fn decimated_uvs(
+    source: &HalfEdgeMesh,
+    decimated: &HalfEdgeMesh,
+    corners: &CornerAttributes,
+) -> CornerAttributes {
+    if corners.uvs.is_empty() {
+        return CornerAttributes::default();
+    }
+    let mut at_vertex: BTreeMap<hedra_geom::VertexId, glam::DVec2> = BTreeMap::new();
+    for (h, uv) in corners.uvs.iter() {
+        if source.is_halfedge(*h) {
+            at_vertex.entry(source.origin(*h)).or_insert(*uv);
+        }
+    }
+    let mut uvs: BTreeMap<HalfEdgeId, glam::DVec2> = BTreeMap::new();
+    for h in decimated.halfedges() {
+        if decimated.face(h).is_none() {
+            continue;
+        }
+        let v = decimated.origin(h);
+        let own = corners
+            .uvs
+            .get(&h)
+            .filter(|_| source.is_halfedge(h) && source.origin(h) == v);
+        if let Some(uv) = own.or_else(|| at_vertex.get(&v)) {
+            uvs.insert(h, *uv);
+        }
+    }
+    CornerAttributes {
+        uvs: Arc::new(uvs),
+        normals: Arc::default(),
     }
 }
 

@@ -110,6 +110,22 @@ pub struct ModifierReport {
     pub kind: &'static str,
     /// Its settings in words (`"Mirror X, merge 0.001"`).
     pub summary: String,
+    /// A Decimate modifier's progressive mesh: the face counts of its
+    /// coarsest and finest levels and how many levels lie between; left out
+    /// for other kinds.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub levels: Option<LevelsReport>,
+}
+
+/// The levels of detail a Decimate modifier's progressive mesh holds.
+#[derive(Serialize)]
+pub struct LevelsReport {
+    /// How many levels (vertex splits + 1).
+    pub count: usize,
+    /// Faces at the coarsest level.
+    pub min_faces: usize,
+    /// Faces at the finest level (the input).
+    pub max_faces: usize,
 }
 
 /// The counts of a mesh node's stack result.
@@ -254,9 +270,21 @@ fn mesh_report(content: &crate::scene::MeshContent) -> MeshReport {
         modifiers: content
             .modifiers
             .iter()
-            .map(|m| ModifierReport {
+            .enumerate()
+            .map(|(i, m)| ModifierReport {
                 kind: m.name(),
                 summary: m.summary(),
+                levels: content
+                    .decimate_face_counts(i)
+                    .ok()
+                    .flatten()
+                    .and_then(|counts| {
+                        Some(LevelsReport {
+                            count: counts.len(),
+                            min_faces: *counts.first()?,
+                            max_faces: *counts.last()?,
+                        })
+                    }),
             })
             .collect(),
         evaluated: content.has_stack_modifiers().then(|| {
@@ -413,6 +441,13 @@ impl SceneReport {
                 }
                 for (i, md) in m.modifiers.iter().enumerate() {
                     let _ = writeln!(out, "    modifier {}: {}", i + 1, md.summary);
+                    if let Some(l) = &md.levels {
+                        let _ = writeln!(
+                            out,
+                            "      levels of detail: {} ({} to {} faces)",
+                            l.count, l.min_faces, l.max_faces
+                        );
+                    }
                 }
                 if let Some(e) = &m.evaluated {
                     match &e.error {

@@ -114,6 +114,10 @@ pub struct MeshContent {
     pub modifiers: Vec<crate::modifiers::MeshModifier>,
     /// Imported UVs and normals of face corners (none for meshes made in Hedra).
     pub corners: CornerAttributes,
+    /// The progressive records of the stack's Decimate modifiers, beside
+    /// them (see [`MeshContent::refresh_decimations`]); shared, so undo
+    /// steps hold them without copies.
+    pub decimations: Vec<Arc<crate::modifiers::DecimateRecord>>,
 }
 
 impl MeshContent {
@@ -127,6 +131,7 @@ impl MeshContent {
             subdivision: None,
             modifiers: Vec::new(),
             corners: CornerAttributes::default(),
+            decimations: Vec::new(),
         }
     }
 }

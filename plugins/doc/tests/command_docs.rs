@@ -24,7 +24,7 @@ fn every_command_example_in_the_docs_runs() {
         .collect();
     kinds.sort();
     kinds.dedup();
-    assert_eq!(kinds.len(), 71, "{kinds:?}");
+    assert_eq!(kinds.len(), 72, "{kinds:?}");
     let mut session = hedra_doc::Session::new();
     hedra_doc::script::run(&mut session, &commands, Path::new("docs/commands.md"))
         .unwrap_or_else(|e| panic!("{e}"));
@@ -129,6 +129,20 @@ fn every_command_example_in_the_docs_runs() {
     let s = donut.stats();
     assert_eq!((s.vertices, s.edges, s.faces), (32, 64, 32));
     assert_eq!((s.genus, s.closed), (Some(1), true));
+    // Decimate: the modifier shows level 100 of the record kept beside it;
+    // the one-shot command leaves 48 triangles of the torus, still a torus.
+    let hedra_doc::NodeContent::Mesh(rock) = &doc.find_by_name("Rock").unwrap().content else {
+        panic!("Rock is a mesh")
+    };
+    assert_eq!(rock.decimations.len(), 1);
+    let levels = rock.decimate_face_counts(0).unwrap().unwrap();
+    let shown = rock.evaluated(0).unwrap();
+    shown.validate().unwrap();
+    assert_eq!(shown.face_count(), levels[100]);
+    assert_eq!(*levels.last().unwrap(), 1280);
+    let bagel = doc.find_by_name("Bagel").unwrap().content.mesh().unwrap();
+    let s = bagel.stats();
+    assert_eq!((s.faces, s.genus, s.closed), (48, Some(1), true));
     let fin = doc.find_by_name("Fin").unwrap().content.mesh().unwrap();
     let s = fin.stats();
     assert_eq!((s.vertices, s.faces, s.boundary_loops), (12, 5, 1));

@@ -15,6 +15,7 @@ pub mod ids;
 pub mod mesh;
 pub mod modeling;
 pub mod primitives;
+pub mod progressive;
 pub mod proportional;
 pub mod query;
 pub mod subdivision;
@@ -39,6 +40,7 @@ pub use ids::{EdgeId, ElementId, ElementKind, FaceId, HalfEdgeId, VertexId};
 pub use mesh::{HalfEdgeMesh, LoopStart, MeshData, MeshDataError, MeshStats};
 pub use modeling::{InvalidResult, MergePoint, MirrorAxis, ModelingError, NewFace};
 pub use primitives::{Primitive, PrimitiveError};
+pub use progressive::{DecimateError, DecimateOptions, DecimateTarget, ProgressiveMesh};
 pub use topology::{TopologyCounts, TopologyDelta};
 pub use validate::{ValidationError, Violation};
 

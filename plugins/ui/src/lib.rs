@@ -62,6 +62,11 @@ pub struct UiState {
     /// The tapered crease the panel sets on the selected edge chain: the
     /// sharpness at its start and at its end, and which end starts.
     pub taper: (f64, f64, bool),
+    /// The face counts of the levels of the Decimate modifier last shown,
+    /// keyed by what they depend on (node, index, cage, settings).
+    pub decimate_counts: Option<(u64, Vec<usize>)>,
+    /// The level the Decimate slider is being dragged to (applied when let go).
+    pub decimate_level_edit: Option<usize>,
     /// Weight field being dragged (committed on release).
     pub weight_edit: Option<f64>,
     /// Where "Insert knot" inserts.
@@ -94,6 +99,8 @@ impl Default for UiState {
             transform_edit: None,
             crease_edit: None,
             taper: (0.0, 4.0, false),
+            decimate_counts: None,
+            decimate_level_edit: None,
             weight_edit: None,
             knot_at: 0.5,
             divide_count: 10,

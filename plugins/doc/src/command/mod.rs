@@ -218,6 +218,15 @@ pub enum CommandError {
         /// Which modifier refused and why.
         error: crate::modifiers::EvaluationError,
     },
+    /// [`Command::Decimate`] refused: a mesh that is not manifold
+    /// polygons, or a target below what it can be simplified to.
+    #[error("{node}: {error}")]
+    Decimate {
+        /// The node, as `'name' (#id)`.
+        node: String,
+        /// The kernel's reason.
+        error: hedra_geom::progressive::DecimateError,
+    },
     /// A modifier with values out of range (an array count of 0, a
     /// negative merge distance).
     #[error("{node}: {problem}")]

@@ -5,8 +5,10 @@
 
 use super::plan::Plan;
 use super::{CommandError, NodeRef};
-use crate::modifiers::MeshModifier;
+use crate::modifiers::{DecimateModifier, MeshModifier, decimated_uvs, uv_seams};
 use crate::scene::{MeshContent, Node, NodeContent};
+use hedra_geom::progressive::ProgressiveMesh;
+use std::sync::Arc;
 
 impl Plan<'_> {
     /// The mesh node `r` with its label, or why not.
@@ -32,6 +34,13 @@ impl Plan<'_> {
             unreachable!("mesh_node checked the content");
         };
         edit(content, &label)?;
+        // Decimate records first, so that the check below evaluates from them.
+        content
+            .refresh_decimations()
+            .map_err(|error| CommandError::Modifier {
+                node: label.clone(),
+                error,
+            })?;
         content
             .apply_stack(content.modifiers.len())
             .map_err(|error| CommandError::Modifier {
@@ -133,6 +142,38 @@ impl Plan<'_> {
         *content = content
             .with_modifiers_applied(count)
             .map_err(|error| CommandError::Modifier { node: label, error })?;
+        self.set(n);
+        Ok(())
+    }
+}
+
+impl Plan<'_> {
+    /// [`Command::Decimate`](super::Command::Decimate): the cage replaced
+    /// by its simplification (the modifier stack stays).
+    pub(super) fn decimate(
+        &mut self,
+        node: &NodeRef,
+        settings: DecimateModifier,
+    ) -> Result<(), CommandError> {
+        let (mut n, label) = self.mesh_node(node)?;
+        let NodeContent::Mesh(content) = &mut n.content else {
+            unreachable!("mesh_node checked the content");
+        };
+        check(&MeshModifier::Decimate(settings), &label)?;
+        let here = |error| CommandError::Decimate {
+            node: label.clone(),
+            error,
+        };
+        let options = settings.options(uv_seams(&content.mesh, &content.corners));
+        let mut pm =
+            ProgressiveMesh::build(&content.mesh, &content.creases, &options).map_err(here)?;
+        let level = pm.level_for(settings.target).map_err(here)?;
+        pm.seek(level).map_err(here)?;
+        let mesh = pm.level_mesh();
+        content.creases = pm.level_creases(&content.creases);
+        content.corners = decimated_uvs(&content.mesh, &mesh, &content.corners);
+        content.mesh = Arc::new(mesh);
+        content.primitive = None;
         self.set(n);
         Ok(())
     }

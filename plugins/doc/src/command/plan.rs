@@ -62,7 +62,14 @@ impl Plan<'_> {
         self.doc.resolve(r)
     }
 
-    pub(super) fn set(&mut self, node: Node) {
+    pub(super) fn set(&mut self, mut node: Node) {
+        // A Decimate modifier's input may have changed: its record follows
+        // (an input it cannot decimate shows when the stack is evaluated).
+        if let NodeContent::Mesh(c) = &mut node.content
+            && (c.has_decimate() || !c.decimations.is_empty())
+        {
+            let _ = c.refresh_decimations();
+        }
         if let Some(c) = self.changes.iter_mut().find(|c| c.id == node.id) {
             c.after = Some(node);
         } else {
@@ -383,6 +390,24 @@ impl Plan<'_> {
             Command::RemoveModifier { node, index } => self.remove_modifier(node, *index),
             Command::MoveModifier { node, from, to } => self.move_modifier(node, *from, *to),
             Command::ApplyModifiers { node, count } => self.apply_modifiers(node, *count),
+            Command::Decimate {
+                node,
+                target,
+                keep_borders,
+                keep_creases,
+                keep_uv_seams,
+                sharp_angle,
+            } => self.decimate(
+                node,
+                crate::modifiers::DecimateModifier {
+                    target: *target,
+                    level: None,
+                    keep_borders: *keep_borders,
+                    keep_creases: *keep_creases,
+                    keep_uv_seams: *keep_uv_seams,
+                    sharp_angle: *sharp_angle,
+                },
+            ),
 
             // ----- mesh modeling (mesh.rs) -----
             Command::MoveVertices {

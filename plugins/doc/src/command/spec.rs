@@ -370,6 +370,32 @@ pub enum Command {
         #[serde(default)]
         count: Option<usize>,
     },
+    /// Simplifies a mesh node's cage once (Blender's Decimate modifier
+    /// applied): quadric edge collapses on the triangulated cage down to
+    /// `target` (a ratio of its triangles or a face count), keeping
+    /// borders, creases, UV seams and sharp edges as the options say;
+    /// creases follow the collapses and UVs their corners. Refused when
+    /// the target is below what the mesh can be simplified to, naming
+    /// that minimum. For a level that stays adjustable use a `Decimate`
+    /// modifier ([`Command::AddModifier`]).
+    Decimate {
+        /// A mesh node.
+        node: NodeRef,
+        /// `Ratio(r)` with r in (0, 1] or `Faces(n)`.
+        target: hedra_geom::progressive::DecimateTarget,
+        /// Border vertices never move (default off).
+        #[serde(default)]
+        keep_borders: bool,
+        /// Creased edges hold (default on).
+        #[serde(default = "yes")]
+        keep_creases: bool,
+        /// UV seams hold (default on).
+        #[serde(default = "yes")]
+        keep_uv_seams: bool,
+        /// Edges sharper than this many degrees hold (default none).
+        #[serde(default)]
+        sharp_angle: Option<f64>,
+    },
     /// Deletes nodes with their descendants. Undo brings them back with
     /// their ids and names.
     Delete {
@@ -961,6 +987,7 @@ impl Command {
             Command::MoveModifier { .. } => "Move Modifier".to_string(),
             Command::ApplyModifiers { count: Some(1), .. } => "Apply Modifier".to_string(),
             Command::ApplyModifiers { .. } => "Apply Modifiers".to_string(),
+            Command::Decimate { .. } => "Decimate".to_string(),
             Command::SetEdgeCrease { sharpness, .. } => format!("Edge Crease {sharpness:.2}"),
             Command::SetVertexCrease { sharpness, .. } => format!("Vertex Crease {sharpness:.2}"),
             Command::SetCreaseTaper { start, end, .. } => {

@@ -3,7 +3,8 @@
 //! applied or removed; and where subdivision runs among them.
 
 use super::*;
-use hedra_doc::{ArrayModifier, MeshModifier, MirrorModifier};
+use hedra_doc::{ArrayModifier, DecimateModifier, MeshModifier, MirrorModifier};
+use hedra_geom::progressive::DecimateTarget;
 
 /// The node's Mirror and Array modifiers, top to bottom in evaluation
 /// order, with Add buttons; every change is one command (one undo step).
@@ -11,6 +12,7 @@ pub(super) fn modifier_stack_panel(
     ui: &mut egui::Ui,
     id: NodeId,
     content: &hedra_doc::MeshContent,
+    state: &mut UiState,
     events: &mut Vec<UiEvent>,
 ) {
     let node = || NodeRef::from(id);
@@ -39,6 +41,21 @@ pub(super) fn modifier_stack_panel(
                 Command::AddModifier {
                     node: node(),
                     modifier: MeshModifier::Array(ArrayModifier::default()),
+                },
+            );
+        }
+        if ui
+            .button("Decimate")
+            .on_hover_text(
+                "Fewer faces by edge collapses (quadric error); a slider scrubs every level",
+            )
+            .clicked()
+        {
+            exec(
+                events,
+                Command::AddModifier {
+                    node: node(),
+                    modifier: MeshModifier::Decimate(DecimateModifier::default()),
                 },
             );
         }
@@ -92,6 +109,7 @@ pub(super) fn modifier_stack_panel(
             match &mut edited {
                 MeshModifier::Mirror(m) => mirror_settings(ui, m),
                 MeshModifier::Array(a) => array_settings(ui, a),
+                MeshModifier::Decimate(d) => decimate_settings(ui, id, index, content, d, state),
             }
             if edited != *modifier {
                 exec(
@@ -128,6 +146,97 @@ pub(super) fn modifier_stack_panel(
             );
         }
     }
+}
+
+/// Target, level slider and what holds, of a Decimate modifier. The level
+/// slider moves through the progressive mesh's levels; the level is set
+/// when the slider is let go (one undo step).
+fn decimate_settings(
+    ui: &mut egui::Ui,
+    id: NodeId,
+    index: usize,
+    content: &hedra_doc::MeshContent,
+    d: &mut DecimateModifier,
+    state: &mut UiState,
+) {
+    use std::hash::{Hash, Hasher};
+    let mut hasher = std::collections::hash_map::DefaultHasher::new();
+    let settings = DecimateModifier { level: None, ..*d };
+    (
+        id,
+        index,
+        std::sync::Arc::as_ptr(&content.mesh) as usize,
+        format!("{settings:?}"),
+    )
+        .hash(&mut hasher);
+    let key = hasher.finish();
+    if state
+        .decimate_counts
+        .as_ref()
+        .is_none_or(|(k, _)| *k != key)
+    {
+        let counts = content
+            .decimate_face_counts(index)
+            .ok()
+            .flatten()
+            .unwrap_or_default();
+        state.decimate_counts = Some((key, counts));
+    }
+    let counts = state
+        .decimate_counts
+        .as_ref()
+        .map(|(_, c)| c.clone())
+        .unwrap_or_default();
+    ui.horizontal(|ui| {
+        let mut by_ratio = matches!(d.target, DecimateTarget::Ratio(_));
+        ui.radio_value(&mut by_ratio, true, "Ratio");
+        ui.radio_value(&mut by_ratio, false, "Faces");
+        match (&mut d.target, by_ratio) {
+            (DecimateTarget::Ratio(r), true) => {
+                ui.add(egui::Slider::new(r, 0.01..=1.0));
+            }
+            (DecimateTarget::Faces(n), false) => {
+                ui.add(egui::DragValue::new(n).range(1..=10_000_000));
+            }
+            (target, true) => *target = DecimateTarget::Ratio(0.5),
+            (target, false) => {
+                *target = DecimateTarget::Faces(counts.last().map_or(100, |n| n / 2))
+            }
+        }
+    });
+    if let (Some(&least), Some(&most)) = (counts.first(), counts.last()) {
+        let shown = d
+            .level
+            .unwrap_or_else(|| {
+                let wanted = match d.target {
+                    DecimateTarget::Ratio(r) => (most as f64 * r).round() as usize,
+                    DecimateTarget::Faces(n) => n,
+                };
+                counts.iter().rposition(|&c| c <= wanted).unwrap_or(0)
+            })
+            .min(counts.len() - 1);
+        let mut level = state.decimate_level_edit.unwrap_or(shown);
+        let faces = counts[level.min(counts.len() - 1)];
+        let r = ui.add(
+            egui::Slider::new(&mut level, 0..=counts.len() - 1)
+                .text(format!("level · {faces} faces")),
+        );
+        ui.label(
+            egui::RichText::new(format!("{} levels, {least} to {most} faces", counts.len())).weak(),
+        );
+        if r.dragged() || r.has_focus() {
+            state.decimate_level_edit = Some(level);
+        } else if let Some(l) = state.decimate_level_edit.take() {
+            d.level = Some(l);
+        } else if r.changed() {
+            d.level = Some(level);
+        }
+    }
+    ui.horizontal(|ui| {
+        ui.checkbox(&mut d.keep_borders, "Keep borders");
+        ui.checkbox(&mut d.keep_creases, "Keep creases");
+        ui.checkbox(&mut d.keep_uv_seams, "Keep UV seams");
+    });
 }
 
 /// Axes, merge and clipping of a Mirror modifier.

@@ -131,7 +131,9 @@ pub(super) fn properties(
     if let NodeContent::Mesh(content) = &node.content {
         egui::CollapsingHeader::new("Modifiers")
             .default_open(true)
-            .show(ui, |ui| modifier_stack_panel(ui, id, content, events));
+            .show(ui, |ui| {
+                modifier_stack_panel(ui, id, content, state, events)
+            });
         egui::CollapsingHeader::new("Subdivision")
             .default_open(true)
             .show(ui, |ui| {

@@ -1,0 +1,1198 @@
+//! Progressive meshes: simplification by quadric-driven edge collapses,
+//! kept as a record that reaches any level of detail between a coarse base
+//! mesh and the input by replaying vertex splits or edge collapses.
+//!
+//! Sources: seed 004 (progressive meshes, edge collapse / vertex split);
+//! H. Hoppe, "Progressive Meshes", SIGGRAPH 1996 (the record: base mesh
+//! plus vertex splits); M. Garland and P. Heckbert, "Surface
+//! Simplification Using Quadric Error Metrics", SIGGRAPH 1997 (the cost,
+//! the optimal placement and the boundary planes).
+//!
+//! [`ProgressiveMesh::build`] triangulates a copy of the input when it has
+//! larger faces (Hedra keeps no quads while decimating: each collapse
+//! removes the triangles beside its edge), computes a quadric per vertex
+//! (area-weighted face planes, plus strongly weighted planes through the
+//! feature edges, perpendicular to their faces: borders, creases, UV seams
+//! and edges sharper than the sharp-feature angle) and collapses edges
+//! cheapest first from a priority queue with lazy invalidation, until no
+//! collapse is allowed. Every collapse goes through the kernel's Euler
+//! operator [`HalfEdgeMesh::collapse_edge_removing_triangles`] (with its
+//! link condition, so genus, shells and border count never change) and is
+//! refused when it would turn a face's normal by more than
+//! [`DecimateOptions::max_normal_change`] (fold-over).
+//!
+//! Feature edges hold: a vertex on two feature edges may only slide along
+//! them into a neighbour on the same line (placed on that edge), a vertex
+//! on one or three or more feature edges, or on two that turn by more than
+//! 45° (a corner), never moves, and with
+//! [`DecimateOptions::keep_borders`] no border vertex moves at all.
+//!
+//! Levels are numbered from 0 (the base mesh) to
+//! [`level_count`](ProgressiveMesh::level_count)` − 1` (the input). Each
+//! level's elements carry the ids they had in the (triangulated) input:
+//! [`ProgressiveMesh::level_mesh`] returns the current level in those ids,
+//! so that collapsing everything and splitting it all back gives a mesh
+//! [`same_as`](HalfEdgeMesh::same_as) the input. The working mesh itself
+//! ([`ProgressiveMesh::mesh`]) gets fresh ids from every vertex split, as
+//! the kernel never reuses ids.
+
+mod quadric;
+
+pub use quadric::Quadric;
+
+use crate::EulerError;
+use crate::ids::{EdgeId, FaceId, HalfEdgeId, VertexId};
+use crate::mesh::{HalfEdgeMesh, MeshData, MeshDataError};
+use crate::modeling::{ModelingError, TriangulateMethod, triangulate_faces};
+use crate::subdivision::Creases;
+use crate::validate::ValidationError;
+use glam::DVec3;
+use serde::{Deserialize, Serialize};
+use std::cmp::Reverse;
+use std::collections::{BTreeSet, BinaryHeap};
+use std::sync::Arc;
+
+/// Weight of a feature plane against the area-weighted face planes, per
+/// squared edge length (Garland and Heckbert's boundary penalty).
+const FEATURE_WEIGHT: f64 = 1000.0;
+
+/// A vertex where two feature edges (border, crease, seam, sharp) meet
+/// turning by more than this (45°) is a corner of the features and never
+/// moves.
+const CORNER_TURN: f64 = std::f64::consts::FRAC_PI_4;
+
+/// What [`ProgressiveMesh::build`] keeps while it simplifies.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct DecimateOptions {
+    /// Border vertices never move and are never removed (default off:
+    /// borders still hold their shape, their vertices slide along them).
+    #[serde(default)]
+    pub keep_borders: bool,
+    /// Creased edges (sharpness above 0) are feature edges and vertices
+    /// with corner sharpness never move (default on).
+    #[serde(default = "yes")]
+    pub keep_creases: bool,
+    /// Edges whose faces meet at more than this angle in degrees are
+    /// feature edges (`None`, the default: no angle test).
+    #[serde(default)]
+    pub sharp_angle: Option<f64>,
+    /// The largest turn of a face normal a collapse may cause, in degrees
+    /// (default 60); larger turns are fold-overs and refused.
+    #[serde(default = "normal_limit")]
+    pub max_normal_change: f64,
+    /// Edges of the input that are UV seams (the document finds them from
+    /// its corner UVs), kept as feature edges.
+    #[serde(default, skip_serializing_if = "BTreeSet::is_empty")]
+    pub seams: BTreeSet<EdgeId>,
+}
+
+fn yes() -> bool {
+    true
+}
+fn normal_limit() -> f64 {
+    60.0
+}
+
+impl Default for DecimateOptions {
+    fn default() -> Self {
+        DecimateOptions {
+            keep_borders: false,
+            keep_creases: true,
+            sharp_angle: None,
+            max_normal_change: normal_limit(),
+            seams: BTreeSet::new(),
+        }
+    }
+}
+
+/// How far to simplify.
+#[derive(Copy, Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub enum DecimateTarget {
+    /// A fraction of the input's faces (of its triangles after
+    /// triangulation), in (0, 1].
+    Ratio(f64),
+    /// At most this many faces.
+    Faces(usize),
+}
+
+/// Why a simplification or a level change refused; the mesh (or the
+/// progressive mesh) is unchanged.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum DecimateError {
+    /// The input is not a valid manifold mesh (the validator's report).
+    #[error("cannot decimate a mesh that is not manifold: {0}")]
+    NotManifold(ValidationError),
+    /// A face with inner rings or without edges.
+    #[error("cannot decimate {face}: it is not a plain polygon (it has rings or no edges)")]
+    NotPolygon {
+        /// The face.
+        face: FaceId,
+    },
+    /// The input has no faces.
+    #[error("cannot decimate a mesh without faces")]
+    NoFaces,
+    /// Triangulating the input failed.
+    #[error("cannot triangulate the mesh before decimating: {0}")]
+    Triangulate(ModelingError),
+    /// A ratio outside (0, 1] or not a number.
+    #[error("the target ratio must be above 0 and at most 1, got {0}")]
+    Ratio(f64),
+    /// The target asks for fewer faces than the simplification reaches.
+    #[error(
+        "{target} faces is below the {minimum} this mesh can be simplified to \
+         (its topology, borders, creases and the fold-over limit allow no fewer)"
+    )]
+    BelowMinimum {
+        /// The faces asked for.
+        target: usize,
+        /// The fewest faces of any level (the base mesh's).
+        minimum: usize,
+    },
+    /// A level outside `0..level_count`.
+    #[error("level {level} does not exist (levels 0 to {max})")]
+    NoLevel {
+        /// The level asked for.
+        level: usize,
+        /// The finest level (the input).
+        max: usize,
+    },
+    /// A stored record that does not replay on its base mesh (a damaged
+    /// file): the Euler operator's refusal.
+    #[error("the progressive record does not replay: {0}")]
+    Replay(EulerError),
+    /// A stored record whose ids or mesh are out of range.
+    #[error("the progressive record is damaged: {0}")]
+    Record(String),
+}
+
+impl From<MeshDataError> for DecimateError {
+    fn from(e: MeshDataError) -> Self {
+        DecimateError::Record(e.to_string())
+    }
+}
+
+/// One edge collapse of the sequence and the vertex split that undoes it
+/// (Hoppe's `vsplit` record), in the ids of the input mesh.
+///
+/// Collapsing `edge` (from `kept` to `removed`) moves `kept` to `position`
+/// and removes `removed` with the triangles `left` (beside `edge`) and
+/// `right` (beside its twin), each with its edge at `removed` (left) or at
+/// `kept` (right). The split moves the outgoing half-edges of `kept` from
+/// `first` to `last` (fan order) back to `removed`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct VertexSplit {
+    /// The collapsed half-edge, from the kept to the removed vertex.
+    #[serde(rename = "h")]
+    pub edge: HalfEdgeId,
+    /// The vertex that stays.
+    #[serde(rename = "k")]
+    pub kept: VertexId,
+    /// The vertex that goes.
+    #[serde(rename = "r")]
+    pub removed: VertexId,
+    /// First half-edge of the kept vertex's fan that belonged to `removed`.
+    #[serde(rename = "f")]
+    pub first: HalfEdgeId,
+    /// Last such half-edge.
+    #[serde(rename = "l")]
+    pub last: HalfEdgeId,
+    /// The triangle beside `edge`, its half-edge from `removed` to its
+    /// third corner (whose edge goes) and the edge from that corner to
+    /// `kept` (which stays, taking the place of the one that goes); `None`
+    /// when that side is a border.
+    #[serde(rename = "tl", default, skip_serializing_if = "Option::is_none")]
+    pub left: Option<(FaceId, HalfEdgeId, EdgeId)>,
+    /// The triangle beside `edge`'s twin, its half-edge from `kept` to its
+    /// third corner (whose edge goes) and the edge from that corner to
+    /// `removed` (which stays).
+    #[serde(rename = "tr", default, skip_serializing_if = "Option::is_none")]
+    pub right: Option<(FaceId, HalfEdgeId, EdgeId)>,
+    /// Where `kept` goes by the collapse.
+    #[serde(rename = "p")]
+    pub position: DVec3,
+    /// Where `kept` was before it.
+    #[serde(rename = "pk")]
+    pub kept_position: DVec3,
+    /// Where `removed` was.
+    #[serde(rename = "pr")]
+    pub removed_position: DVec3,
+    /// The quadric error of the collapse.
+    #[serde(rename = "e")]
+    pub error: f64,
+}
+
+impl VertexSplit {
+    fn triangles(&self) -> usize {
+        self.left.is_some() as usize + self.right.is_some() as usize
+    }
+}
+
+/// The base mesh in dense ids and, per dense id, the input id.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+struct Base {
+    mesh: HalfEdgeMesh,
+    vertices: Vec<u32>,
+    edges: Vec<u32>,
+    faces: Vec<u32>,
+}
+
+/// The stored form: Hoppe's base mesh plus the vertex splits (in collapse
+/// order; levels replay them backwards), and the input's id space.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+struct Stored {
+    capacity: [usize; 3],
+    base: Base,
+    splits: Vec<VertexSplit>,
+}
+
+/// A progressive mesh (Hoppe 1996): the collapse sequence of a
+/// simplification with the current level's mesh, movable to any level by
+/// replaying vertex splits (finer) or edge collapses (coarser) from where
+/// it is, never by simplifying again.
+///
+/// Serialises as the base mesh and the splits (`serde`); a loaded one is
+/// at level 0 (the base).
+#[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(into = "Stored", try_from = "Stored")]
+pub struct ProgressiveMesh {
+    capacity: [usize; 3],
+    base: Arc<Base>,
+    splits: Arc<Vec<VertexSplit>>,
+    face_counts: Arc<Vec<usize>>,
+    mesh: HalfEdgeMesh,
+    level: usize,
+    /// Input id → current id (vertices, faces); edges as `current << 1 |
+    /// flip`, flip set when the input's half-edge 0 is the current 1.
+    fwd_v: Vec<u32>,
+    fwd_e: Vec<u32>,
+    fwd_f: Vec<u32>,
+    /// Current id → input id, same encoding.
+    inv_v: Vec<u32>,
+    inv_e: Vec<u32>,
+    inv_f: Vec<u32>,
+}
+
+impl PartialEq for ProgressiveMesh {
+    /// Equal records (the base and the splits); the current level is
+    /// not compared.
+    fn eq(&self, other: &Self) -> bool {
+        self.capacity == other.capacity && self.base == other.base && self.splits == other.splits
+    }
+}
+
+impl From<ProgressiveMesh> for Stored {
+    fn from(p: ProgressiveMesh) -> Stored {
+        Stored {
+            capacity: p.capacity,
+            base: (*p.base).clone(),
+            splits: (*p.splits).clone(),
+        }
+    }
+}
+
+impl TryFrom<Stored> for ProgressiveMesh {
+    type Error = DecimateError;
+    fn try_from(s: Stored) -> Result<Self, DecimateError> {
+        let [nv, ne, nf] = s.capacity;
+        let b = &s.base;
+        let bad = |what: &str| DecimateError::Record(what.to_string());
+        if b.vertices.len() != b.mesh.vertex_capacity()
+            || b.edges.len() != b.mesh.edge_capacity()
+            || b.faces.len() != b.mesh.face_capacity()
+        {
+            return Err(bad("the base's id tables do not match its mesh"));
+        }
+        let in_range = |ids: &[u32], n: usize| ids.iter().all(|&x| (x as usize) < n);
+        if !in_range(&b.vertices, nv) || !in_range(&b.edges, ne) || !in_range(&b.faces, nf) {
+            return Err(bad("a base id is outside the input's"));
+        }
+        for s in s.splits.iter() {
+            let hs = [Some(s.edge), Some(s.first), Some(s.last)]
+                .into_iter()
+                .chain([s.left, s.right].into_iter().flatten().map(|t| Some(t.1)));
+            let faces_ok = [s.left, s.right]
+                .into_iter()
+                .flatten()
+                .all(|t| t.0.index() < nf && t.2.index() < ne);
+            if !hs.flatten().all(|h| h.edge().index() < ne)
+                || s.kept.index() >= nv
+                || s.removed.index() >= nv
+                || !faces_ok
+            {
+                return Err(bad("a split names an id outside the input's"));
+            }
+        }
+        Ok(ProgressiveMesh::from_parts(
+            s.capacity,
+            Arc::new(s.base),
+            Arc::new(s.splits),
+        ))
+    }
+}
+
+/// A heap entry packed in 8 bytes (half the cache misses of a wider
+/// one): the cost as `f32` bits (costs are never negative, so their bits
+/// order as the costs do) above the edge id; smallest first through
+/// `Reverse`, ties by edge id. The exact cost is computed again when the
+/// entry comes first.
+fn entry(cost: f32, e: EdgeId) -> Reverse<u64> {
+    Reverse(((cost.to_bits() as u64) << 32) | e.0 as u64)
+}
+fn entry_parts(x: Reverse<u64>) -> (f32, EdgeId) {
+    (f32::from_bits((x.0 >> 32) as u32), EdgeId(x.0 as u32))
+}
+
+/// `queued` for an edge without a live heap entry.
+const NOT_QUEUED: u32 = u32::MAX;
+
+/// The simplification's state while it builds the sequence.
+struct Simplifier<'a> {
+    mesh: HalfEdgeMesh,
+    options: &'a DecimateOptions,
+    creases: &'a Creases,
+    quadrics: Vec<Quadric>,
+    feature: Vec<bool>,
+    /// The cost bits of an edge's live heap entry ([`NOT_QUEUED`]: none);
+    /// other entries of the edge are stale.
+    queued: Vec<u32>,
+    heap: BinaryHeap<Reverse<u64>>,
+    cos_limit: f64,
+    /// Vertices on a feature edge or a border (a collapse passes the flag
+    /// on to the kept vertex); the others have no feature edges to count.
+    near_feature: Vec<bool>,
+    /// Vertices with corner sharpness (with `keep_creases`): they stay.
+    corner_sharp: Vec<bool>,
+    /// Edges whose collapses were refused in this pass (fold-over, link
+    /// condition), tried again in the next one.
+    refused: Vec<EdgeId>,
+}
+
+impl Simplifier<'_> {
+    fn is_feature(&self, e: EdgeId) -> bool {
+        self.feature[e.index()] || self.mesh.is_boundary_edge(e)
+    }
+    /// Number of feature edges at `v`, and whether `v` is a corner of
+    /// the features: one or three or more feature edges, or two that turn
+    /// by more than [`CORNER_TURN`].
+    fn feature_degree(&self, v: VertexId) -> (usize, bool) {
+        if !self.near_feature[v.index()] {
+            return (0, false);
+        }
+        let m = &self.mesh;
+        let mut ends = [DVec3::ZERO; 2];
+        let mut n = 0;
+        for h in m.vertex_outgoing(v) {
+            if self.is_feature(h.edge()) {
+                if n < 2 {
+                    ends[n] = m.position(m.target(h));
+                }
+                n += 1;
+            }
+        }
+        let corner = match n {
+            0 => false,
+            2 => {
+                let p = m.position(v);
+                let (x, y) = (
+                    (p - ends[0]).normalize_or_zero(),
+                    (ends[1] - p).normalize_or_zero(),
+                );
+                x.dot(y) < CORNER_TURN.cos()
+            }
+            _ => true,
+        };
+        (n, corner)
+    }
+    fn fixed(&self, v: VertexId, corner: bool) -> bool {
+        corner
+            || (self.options.keep_borders && self.mesh.is_boundary_vertex(v))
+            || self.corner_sharp[v.index()]
+    }
+
+    /// The position and error of collapsing `h` (its target into its
+    /// origin), or `None` when the features forbid it.
+    fn candidate(&self, h: HalfEdgeId) -> Option<(f64, DVec3)> {
+        let m = &self.mesh;
+        let (a, b) = (m.origin(h), m.target(h));
+        let ((da, corner_a), (db, corner_b)) = (self.feature_degree(a), self.feature_degree(b));
+        if self.fixed(b, corner_b) {
+            return None;
+        }
+        let on_feature = self.is_feature(h.edge());
+        if db == 2 && !on_feature {
+            return None;
+        }
+        let q = self.quadrics[a.index()] + self.quadrics[b.index()];
+        let (pa, pb) = (m.position(a), m.position(b));
+        if self.fixed(a, corner_a) || (da > 0 && db == 0) {
+            return Some((q.error(pa), pa));
+        }
+        let mid = (pa + pb) * 0.5;
+        let mut best = (q.error(pa), pa);
+        let optimum = q.minimizer().map(|p| {
+            if db == 2 {
+                // Sliding along a feature line: stay on the edge.
+                let d = pb - pa;
+                pa + d * ((p - pa).dot(d) / d.length_squared()).clamp(0.0, 1.0)
+            } else {
+                p
+            }
+        });
+        let reach = 2.0 * pa.distance(pb);
+        let optimum = optimum.filter(|p| p.distance(mid) <= reach);
+        for p in [Some(pb), Some(mid), optimum].into_iter().flatten() {
+            let e = q.error(p);
+            // Endpoints win ties, so exact positions (corners) stay exact.
+            if e < best.0 * (1.0 - 1e-9) {
+                best = (e, p);
+            }
+        }
+        Some(best)
+    }
+
+    /// The allowed collapses of `e`, cheapest first. Away from features
+    /// both directions have the same placement and cost, computed once.
+    fn candidates(&self, e: EdgeId) -> Vec<(f64, HalfEdgeId, DVec3)> {
+        let [a, b] = self.mesh.edge_vertices(e);
+        let plain = |v: VertexId| !self.near_feature[v.index()] && !self.corner_sharp[v.index()];
+        if plain(a) && plain(b) {
+            let h = e.halfedge(0);
+            return match self.candidate(h) {
+                Some((c, p)) => vec![(c, h, p), (c, h.twin(), p)],
+                None => Vec::new(),
+            };
+        }
+        let mut out: Vec<(f64, HalfEdgeId, DVec3)> = [e.halfedge(0), e.halfedge(1)]
+            .into_iter()
+            .filter_map(|h| self.candidate(h).map(|(c, p)| (c, h, p)))
+            .collect();
+        out.sort_by(|x, y| x.0.total_cmp(&y.0));
+        out
+    }
+
+    /// Queues `e` at its current cost, unless it is queued at a lower one
+    /// already: that entry stays (lazy invalidation), and when it comes
+    /// first its cost is computed again and the edge queued anew if it
+    /// grew. Costs mostly grow as quadrics add up, so most changes cost no
+    /// heap operation.
+    fn push(&mut self, e: EdgeId) {
+        let Some(&(cost, _, _)) = self.candidates(e).first() else {
+            self.queued[e.index()] = NOT_QUEUED;
+            return;
+        };
+        let cost = cost as f32;
+        let q = self.queued[e.index()];
+        if q != NOT_QUEUED && f32::from_bits(q) <= cost {
+            return;
+        }
+        self.enqueue(e, cost);
+    }
+
+    fn enqueue(&mut self, e: EdgeId, cost: f32) {
+        self.queued[e.index()] = cost.to_bits();
+        self.heap.push(entry(cost, e));
+    }
+
+    /// The checks the Euler operator does not make: no triangle edge that
+    /// the collapse removes may be a border (its vertex split could not
+    /// rebuild the triangle), and no face may turn by more than the limit
+    /// or degenerate.
+    fn allowed(&self, h: HalfEdgeId, p: DVec3) -> bool {
+        let m = &self.mesh;
+        let t = h.twin();
+        for x in [h, t] {
+            if m.face(x).is_some() && m.is_boundary_edge(m.next(x).edge()) {
+                return false;
+            }
+        }
+        let (a, b) = (m.origin(h), m.target(h));
+        let (fl, fr) = (m.face(h), m.face(t));
+        for v in [a, b] {
+            for o in m.vertex_outgoing(v) {
+                let Some(f) = m.face(o) else { continue };
+                if Some(f) == fl || Some(f) == fr {
+                    continue;
+                }
+                let x = m.position(m.target(o));
+                let y = m.position(m.target(m.next(o)));
+                let q = m.position(v);
+                let before = (x - q).cross(y - q);
+                let after = (x - p).cross(y - p);
+                let scale = before.length();
+                let turned = after.length();
+                if turned <= 1e-12 * scale.max(1e-300) || turned == 0.0 {
+                    return false;
+                }
+                if before.dot(after) < self.cos_limit * scale * turned {
+                    return false;
+                }
+            }
+        }
+        true
+    }
+}
+
+impl ProgressiveMesh {
+    /// Simplifies (a triangulated copy of) `mesh` as far as the options
+    /// allow and keeps the whole sequence; the result stands at level 0,
+    /// the base mesh. `creases` are the input's (by its ids).
+    ///
+    /// Inverse: seeking the last level
+    /// ([`seek`](Self::seek)`(level_count() − 1)`) gives the input back.
+    ///
+    /// # Errors
+    /// [`DecimateError::NotManifold`], [`DecimateError::NotPolygon`],
+    /// [`DecimateError::NoFaces`], [`DecimateError::Triangulate`]; the
+    /// input is never changed.
+    ///
+    /// Complexity: O(n log n) for n edges (a heap of edge collapses, each
+    /// touching one vertex's neighbourhood).
+    pub fn build(
+        mesh: &HalfEdgeMesh,
+        creases: &Creases,
+        options: &DecimateOptions,
+    ) -> Result<ProgressiveMesh, DecimateError> {
+        let input = Self::triangulated(mesh)?;
+        let mut s = Simplifier {
+            quadrics: vec![Quadric::default(); input.vertex_capacity()],
+            feature: vec![false; input.edge_capacity()],
+            queued: vec![NOT_QUEUED; input.edge_capacity()],
+            near_feature: vec![false; input.vertex_capacity()],
+            corner_sharp: (0..input.vertex_capacity() as u32)
+                .map(|v| options.keep_creases && creases.vertex(VertexId(v)) > 0.0)
+                .collect(),
+            refused: Vec::new(),
+            heap: BinaryHeap::new(),
+            cos_limit: options.max_normal_change.to_radians().cos(),
+            options,
+            creases,
+            mesh: input,
+        };
+        s.init_quadrics();
+        let n_faces = s.mesh.face_count();
+        let mut splits = Vec::new();
+        let mut next: Vec<EdgeId> = s.mesh.edges().collect();
+        // Passes until one collapses nothing: a collapse refused for its
+        // neighbourhood (a fold-over) may be allowed once that changed.
+        loop {
+            for e in next {
+                if s.mesh.is_edge(e) {
+                    s.push(e);
+                }
+            }
+            let before = splits.len();
+            s.run(&mut splits);
+            if splits.len() == before {
+                break;
+            }
+            next = std::mem::take(&mut s.refused);
+        }
+        let capacity = [
+            s.mesh.vertex_capacity(),
+            s.mesh.edge_capacity(),
+            s.mesh.face_capacity(),
+        ];
+        let base = Arc::new(Self::compact(&s.mesh)?);
+        let mut pm = ProgressiveMesh::from_parts(capacity, base, Arc::new(splits));
+        debug_assert_eq!(pm.face_counts.last(), Some(&n_faces));
+        // The simplified mesh is the base in the input's ids: keep it as the
+        // working mesh instead of the dense copy.
+        pm.mesh = s.mesh;
+        pm.identity_maps();
+        Ok(pm)
+    }
+
+    /// A triangulated copy of `mesh`, after checking it.
+    fn triangulated(mesh: &HalfEdgeMesh) -> Result<HalfEdgeMesh, DecimateError> {
+        mesh.validate().map_err(DecimateError::NotManifold)?;
+        if let Some(face) = mesh.first_non_polygon_face() {
+            return Err(DecimateError::NotPolygon { face });
+        }
+        if mesh.face_count() == 0 {
+            return Err(DecimateError::NoFaces);
+        }
+        let mut out = mesh.clone();
+        let big: Vec<FaceId> = mesh.faces().filter(|&f| mesh.face_degree(f) > 3).collect();
+        if !big.is_empty() {
+            triangulate_faces(&mut out, &big, TriangulateMethod::Beauty)
+                .map_err(DecimateError::Triangulate)?;
+        }
+        Ok(out)
+    }
+
+    fn from_parts(
+        capacity: [usize; 3],
+        base: Arc<Base>,
+        splits: Arc<Vec<VertexSplit>>,
+    ) -> ProgressiveMesh {
+        let mut counts = Vec::with_capacity(splits.len() + 1);
+        let mut faces = base.mesh.face_count();
+        counts.push(faces);
+        for s in splits.iter().rev() {
+            faces += s.triangles();
+            counts.push(faces);
+        }
+        let [nv, ne, nf] = capacity;
+        let mut fwd_v = vec![u32::MAX; nv];
+        let mut fwd_e = vec![u32::MAX; ne];
+        let mut fwd_f = vec![u32::MAX; nf];
+        for (i, &x) in base.vertices.iter().enumerate() {
+            fwd_v[x as usize] = i as u32;
+        }
+        for (i, &x) in base.edges.iter().enumerate() {
+            fwd_e[x as usize] = (i as u32) << 1;
+        }
+        for (i, &x) in base.faces.iter().enumerate() {
+            fwd_f[x as usize] = i as u32;
+        }
+        ProgressiveMesh {
+            capacity,
+            mesh: base.mesh.clone(),
+            inv_v: base.vertices.clone(),
+            inv_e: base.edges.iter().map(|&e| e << 1).collect(),
+            inv_f: base.faces.clone(),
+            fwd_v,
+            fwd_e,
+            fwd_f,
+            level: 0,
+            face_counts: Arc::new(counts),
+            base,
+            splits,
+        }
+    }
+
+    /// The maps when the working mesh is in the input's ids.
+    fn identity_maps(&mut self) {
+        let [nv, ne, nf] = self.capacity;
+        self.fwd_v = (0..nv as u32).collect();
+        self.fwd_e = (0..ne as u32).map(|e| e << 1).collect();
+        self.fwd_f = (0..nf as u32).collect();
+        self.inv_v = self.fwd_v.clone();
+        self.inv_e = self.fwd_e.clone();
+        self.inv_f = self.fwd_f.clone();
+    }
+
+    /// The mesh with dense ids and the input id of each.
+    fn compact(mesh: &HalfEdgeMesh) -> Result<Base, DecimateError> {
+        let rank = |n: usize, live: &mut dyn Iterator<Item = u32>| {
+            let mut map = vec![u32::MAX; n];
+            let mut back = Vec::new();
+            for x in live {
+                map[x as usize] = back.len() as u32;
+                back.push(x);
+            }
+            (map, back)
+        };
+        let (vm, vertices) = rank(mesh.vertex_capacity(), &mut mesh.vertices().map(|v| v.0));
+        let (em, edges) = rank(mesh.edge_capacity(), &mut mesh.edges().map(|e| e.0));
+        let (fm, faces) = rank(mesh.face_capacity(), &mut mesh.faces().map(|f| f.0));
+        let dense = renumber(
+            mesh,
+            [vertices.len(), edges.len(), faces.len()],
+            |v| vm[v.index()],
+            |h| (em[h.edge().index()] << 1) | (h.0 & 1),
+            |f| fm[f.index()],
+        )?;
+        Ok(Base {
+            mesh: dense,
+            vertices,
+            edges,
+            faces,
+        })
+    }
+
+    // ----- queries --------------------------------------------------------
+
+    /// Number of levels: one more than the number of vertex splits.
+    pub fn level_count(&self) -> usize {
+        self.splits.len() + 1
+    }
+    /// The current level (0: the base mesh; `level_count() − 1`: the input).
+    pub fn level(&self) -> usize {
+        self.level
+    }
+    /// The finest level, the input's.
+    pub fn max_level(&self) -> usize {
+        self.splits.len()
+    }
+    /// Faces at each level, from the base (index 0) to the input.
+    pub fn face_counts(&self) -> &[usize] {
+        &self.face_counts
+    }
+    /// Faces at `level` (`None` past the last level).
+    pub fn face_count_at(&self, level: usize) -> Option<usize> {
+        self.face_counts.get(level).copied()
+    }
+    /// The vertex splits in collapse order: split `i` undoes the `i`-th
+    /// collapse from the input, so going from level `L` to `L − 1`
+    /// collapses `splits()[max_level() − L]`.
+    pub fn splits(&self) -> &[VertexSplit] {
+        &self.splits
+    }
+    /// The error of `level`: the largest quadric error of the collapses
+    /// that lead from the input to it (0 for the input). It never grows as
+    /// faces are added back.
+    pub fn error_at(&self, level: usize) -> f64 {
+        let applied = self.max_level().saturating_sub(level);
+        self.splits[..applied.min(self.splits.len())]
+            .iter()
+            .map(|s| s.error)
+            .fold(0.0, f64::max)
+    }
+    /// The input's creases carried to the current level, by the input's
+    /// ids: an edge that a collapse merged into another (the two edges of
+    /// a removed triangle that meet at the removed vertex's neighbour
+    /// become one) passes its sharpness on when larger; corner sharpness
+    /// of removed vertices goes with them.
+    ///
+    /// Complexity: O(collapses applied + creases).
+    pub fn level_creases(&self, creases: &Creases) -> Creases {
+        let mut out = creases.clone();
+        if out.is_empty() {
+            return out;
+        }
+        let applied = self.max_level() - self.level;
+        for s in &self.splits[..applied] {
+            for (_, gone, keep) in [s.left, s.right].into_iter().flatten() {
+                let sharp = out.edge(gone.edge());
+                if sharp > out.edge(keep) {
+                    out.set_edge(keep, sharp);
+                }
+                out.set_edge(gone.edge(), 0.0);
+            }
+            out.set_edge(s.edge.edge(), 0.0);
+            out.set_vertex(s.removed, 0.0);
+        }
+        out
+    }
+
+    /// The base mesh (level 0) in dense ids.
+    pub fn base_mesh(&self) -> &HalfEdgeMesh {
+        &self.base.mesh
+    }
+    /// The current level's working mesh. Its ids are fresh ones after
+    /// vertex splits; [`level_mesh`](Self::level_mesh) gives the input's.
+    pub fn mesh(&self) -> &HalfEdgeMesh {
+        &self.mesh
+    }
+    /// The input vertex a vertex of [`mesh`](Self::mesh) stands for.
+    pub fn input_vertex(&self, v: VertexId) -> VertexId {
+        VertexId(self.inv_v[v.index()])
+    }
+
+    /// The level with at most the target's faces and the most faces, or
+    /// an error when the base has more.
+    ///
+    /// # Errors
+    /// [`DecimateError::Ratio`] for a ratio outside (0, 1],
+    /// [`DecimateError::BelowMinimum`].
+    pub fn level_for(&self, target: DecimateTarget) -> Result<usize, DecimateError> {
+        let goal = self.target_faces(target)?;
+        let minimum = self.face_counts[0];
+        if goal < minimum {
+            return Err(DecimateError::BelowMinimum {
+                target: goal,
+                minimum,
+            });
+        }
+        Ok(self.face_counts.partition_point(|&f| f <= goal) - 1)
+    }
+
+    /// [`level_for`](Self::level_for) clamped to the levels there are (the
+    /// base for a target below it; the input for a bad ratio above 1).
+    pub fn nearest_level(&self, target: DecimateTarget) -> usize {
+        let goal = match target {
+            DecimateTarget::Ratio(r) if r.is_nan() => 0,
+            DecimateTarget::Ratio(r) => {
+                (r.clamp(0.0, 1.0) * *self.face_counts.last().unwrap_or(&0) as f64).round() as usize
+            }
+            DecimateTarget::Faces(n) => n,
+        };
+        self.face_counts.partition_point(|&f| f <= goal).max(1) - 1
+    }
+
+    fn target_faces(&self, target: DecimateTarget) -> Result<usize, DecimateError> {
+        match target {
+            DecimateTarget::Ratio(r) => {
+                if !(r > 0.0 && r <= 1.0) {
+                    return Err(DecimateError::Ratio(r));
+                }
+                Ok((r * *self.face_counts.last().unwrap_or(&0) as f64).round() as usize)
+            }
+            DecimateTarget::Faces(n) => Ok(n),
+        }
+    }
+
+    // ----- moving between levels ---------------------------------------------
+
+    /// Moves to `level` from the current one: vertex splits to go finer,
+    /// edge collapses to go coarser, one Euler operator sequence per level
+    /// passed.
+    ///
+    /// Inverse: `seek` back to the level it was at.
+    ///
+    /// # Errors
+    /// [`DecimateError::NoLevel`]; [`DecimateError::Replay`] only for a
+    /// damaged stored record (the level reached is then kept).
+    ///
+    /// Complexity: O(Σ valence) over the levels passed.
+    pub fn seek(&mut self, level: usize) -> Result<(), DecimateError> {
+        if level > self.max_level() {
+            return Err(DecimateError::NoLevel {
+                level,
+                max: self.max_level(),
+            });
+        }
+        while self.level < level {
+            let i = self.max_level() - self.level - 1;
+            self.split(i).map_err(DecimateError::Replay)?;
+            self.level += 1;
+        }
+        while self.level > level {
+            let i = self.max_level() - self.level;
+            let s = &self.splits[i];
+            let h = self.cur_h(s.edge);
+            let p = s.position;
+            self.mesh
+                .collapse_edge_removing_triangles(h, p)
+                .map_err(DecimateError::Replay)?;
+            self.level -= 1;
+        }
+        self.compact_if_grown()?;
+        Ok(())
+    }
+
+    /// Moves to the level with at most `faces` faces (the base when it has
+    /// more); returns the level.
+    ///
+    /// # Errors
+    /// As [`seek`](Self::seek).
+    pub fn set_face_count(&mut self, faces: usize) -> Result<usize, DecimateError> {
+        let level = self.nearest_level(DecimateTarget::Faces(faces));
+        self.seek(level)?;
+        Ok(level)
+    }
+
+    /// The current level in the input's ids (every element of a level is
+    /// one of the input's): at the last level a mesh
+    /// [`same_as`](HalfEdgeMesh::same_as) the (triangulated) input.
+    ///
+    /// Complexity: O(input ids).
+    pub fn level_mesh(&self) -> HalfEdgeMesh {
+        let [nv, ne, nf] = self.capacity;
+        let (iv, ie, iff) = (&self.inv_v, &self.inv_e, &self.inv_f);
+        renumber(
+            &self.mesh,
+            [nv, ne, nf],
+            |v| iv[v.index()],
+            |h| {
+                let x = ie[h.edge().index()];
+                ((x >> 1) << 1) | ((h.0 & 1) ^ (x & 1))
+            },
+            |f| iff[f.index()],
+        )
+        .expect("a level renumbers into the input's ids")
+    }
+
+    /// After many moves the working mesh collects dead slots (each split
+    /// takes fresh ids); rebuild it in the input's ids then.
+    fn compact_if_grown(&mut self) -> Result<(), DecimateError> {
+        if self.mesh.vertex_capacity() > 3 * self.capacity[0] + 1024 {
+            self.mesh = self.level_mesh();
+            self.identity_maps();
+        }
+        Ok(())
+    }
+
+    fn cur_v(&self, v: VertexId) -> VertexId {
+        VertexId(self.fwd_v[v.index()])
+    }
+    fn cur_h(&self, h: HalfEdgeId) -> HalfEdgeId {
+        let x = self.fwd_e[h.edge().index()];
+        HalfEdgeId(((x >> 1) << 1) | ((h.0 & 1) ^ (x & 1)))
+    }
+    fn grow(&mut self) {
+        self.inv_v.resize(self.mesh.vertex_capacity(), u32::MAX);
+        self.inv_e.resize(self.mesh.edge_capacity(), u32::MAX);
+        self.inv_f.resize(self.mesh.face_capacity(), u32::MAX);
+    }
+    fn map_vertex(&mut self, input: VertexId, current: VertexId) {
+        self.fwd_v[input.index()] = current.0;
+        self.inv_v[current.index()] = input.0;
+    }
+    /// Records that input half-edge `input` is current half-edge `current`.
+    fn map_halfedge(&mut self, input: HalfEdgeId, current: HalfEdgeId) {
+        let flip = (input.0 ^ current.0) & 1;
+        self.fwd_e[input.edge().index()] = (current.edge().0 << 1) | flip;
+        self.inv_e[current.edge().index()] = (input.edge().0 << 1) | flip;
+    }
+    fn map_face(&mut self, input: FaceId, current: FaceId) {
+        self.fwd_f[input.index()] = current.0;
+        self.inv_f[current.index()] = input.0;
+    }
+
+    /// Undoes collapse `i`: a vertex split, then one MEF per triangle.
+    fn split(&mut self, i: usize) -> Result<(), EulerError> {
+        let s = self.splits[i].clone();
+        let a = self.cur_v(s.kept);
+        let (first, last) = (self.cur_h(s.first), self.cur_h(s.last));
+        let e = self.mesh.split_vertex(a, first, last, s.removed_position)?;
+        self.mesh.set_position(a, s.kept_position);
+        self.grow();
+        let (h_new, t_new) = (e.halfedge(0), e.halfedge(1));
+        let w = self.mesh.target(h_new);
+        self.map_vertex(s.removed, w);
+        self.map_halfedge(s.edge, h_new);
+        if let Some((face, removed, _)) = s.left {
+            let hb = self.mesh.prev(self.mesh.prev(h_new));
+            let (ne, g) = self.mesh.make_edge_face(h_new, hb)?;
+            self.grow();
+            let from_w = if self.mesh.origin(ne.halfedge(0)) == w {
+                ne.halfedge(0)
+            } else {
+                ne.halfedge(1)
+            };
+            self.map_halfedge(removed, from_w);
+            let tri = self.mesh.face(h_new).expect("the new triangle");
+            self.map_split_face(face, tri, g);
+        }
+        if let Some((face, removed, _)) = s.right {
+            let hb = self.mesh.prev(first.twin());
+            let (ne, g) = self.mesh.make_edge_face(t_new, hb)?;
+            self.grow();
+            let from_a = if self.mesh.origin(ne.halfedge(0)) == a {
+                ne.halfedge(0)
+            } else {
+                ne.halfedge(1)
+            };
+            self.map_halfedge(removed, from_a);
+            let tri = self.mesh.face(t_new).expect("the new triangle");
+            self.map_split_face(face, tri, g);
+        }
+        Ok(())
+    }
+
+    /// After a MEF made face `made` and left the triangle `tri` (either may
+    /// be the old face's id): the triangle is input face `input`, the other
+    /// part keeps the input face the old id stood for.
+    fn map_split_face(&mut self, input: FaceId, tri: FaceId, made: FaceId) {
+        if tri != made {
+            let other = FaceId(self.inv_f[tri.index()]);
+            self.map_face(other, made);
+        }
+        self.map_face(input, tri);
+    }
+}
+
+impl Simplifier<'_> {
+    fn init_quadrics(&mut self) {
+        let m = &self.mesh;
+        let cos_sharp = self.options.sharp_angle.map(|a| a.to_radians().cos());
+        for f in m.faces() {
+            let n = m.face_area_vector(f);
+            let area = n.length();
+            if area <= 0.0 {
+                continue;
+            }
+            let q = Quadric::plane(
+                n / area,
+                m.position(m.face_vertices(f).next().unwrap()),
+                area,
+            );
+            for v in m.face_vertices(f) {
+                self.quadrics[v.index()] += q;
+            }
+        }
+        for e in m.edges() {
+            let crease = self.options.keep_creases && self.creases.edge(e) > 0.0;
+            let seam = self.options.seams.contains(&e);
+            let sharp = match (cos_sharp, m.edge_faces(e)) {
+                (Some(c), [Some(f), Some(g)]) => m.face_normal(f).dot(m.face_normal(g)) < c,
+                _ => false,
+            };
+            self.feature[e.index()] = crease || seam || sharp;
+            if !(self.feature[e.index()] || m.is_boundary_edge(e)) {
+                continue;
+            }
+            let [a, b] = m.edge_vertices(e);
+            self.near_feature[a.index()] = true;
+            self.near_feature[b.index()] = true;
+            let (pa, pb) = (m.position(a), m.position(b));
+            let dir = pb - pa;
+            let len2 = dir.length_squared();
+            for f in m.edge_faces(e).into_iter().flatten() {
+                let n = dir.cross(m.face_normal(f)).normalize_or_zero();
+                if n == DVec3::ZERO {
+                    continue;
+                }
+                let q = Quadric::plane(n, pa, FEATURE_WEIGHT * len2);
+                self.quadrics[a.index()] += q;
+                self.quadrics[b.index()] += q;
+            }
+        }
+    }
+
+    /// Collapses from the heap until it is empty, appending the records.
+    fn run(&mut self, out: &mut Vec<VertexSplit>) {
+        while let Some(x) = self.heap.pop() {
+            let (queued_cost, e) = entry_parts(x);
+            if !self.mesh.is_edge(e) || self.queued[e.index()] != queued_cost.to_bits() {
+                continue;
+            }
+            self.queued[e.index()] = NOT_QUEUED;
+            let candidates = self.candidates(e);
+            let Some(&(cost, _, _)) = candidates.first() else {
+                continue;
+            };
+            if cost as f32 > queued_cost {
+                // Its neighbourhood changed since it was queued: requeue.
+                self.enqueue(e, cost as f32);
+                continue;
+            }
+            let mut done = false;
+            for (cost, h, p) in candidates {
+                if !self.allowed(h, p) {
+                    continue;
+                }
+                if let Some(split) = self.collapse(h, p, cost) {
+                    out.push(split);
+                    done = true;
+                    break;
+                }
+            }
+            if !done {
+                self.refused.push(e);
+            }
+        }
+    }
+
+    /// One collapse through the Euler operator, with its record; `None`
+    /// when the operator refuses (the mesh is then unchanged).
+    fn collapse(&mut self, h: HalfEdgeId, p: DVec3, cost: f64) -> Option<VertexSplit> {
+        let m = &self.mesh;
+        let t = h.twin();
+        let (a, b) = (m.origin(h), m.target(h));
+        let tri = |x: HalfEdgeId| m.face(x).is_some() && m.next(m.next(m.next(x))) == x;
+        let left = tri(h).then(|| (m.face(h).unwrap(), m.next(h), m.prev(h).edge()));
+        let right = tri(t).then(|| (m.face(t).unwrap(), m.next(t), m.prev(t).edge()));
+        let last = match left {
+            Some((_, nh, _)) => m.next(nh.twin()),
+            None => m.next(h),
+        };
+        let split = VertexSplit {
+            edge: h,
+            kept: a,
+            removed: b,
+            first: m.prev(t).twin(),
+            last,
+            left,
+            right,
+            position: p,
+            kept_position: m.position(a),
+            removed_position: m.position(b),
+            error: cost,
+        };
+        // The triangles' surviving edges take over the features of the
+        // removed ones.
+        let transfers: Vec<(EdgeId, EdgeId)> = [left, right]
+            .into_iter()
+            .flatten()
+            .map(|(_, gone, keep)| (gone.edge(), keep))
+            .collect();
+        self.mesh.collapse_edge_removing_triangles(h, p).ok()?;
+        for (gone, keep) in transfers {
+            if self.feature[gone.index()] {
+                self.feature[keep.index()] = true;
+            }
+        }
+        let q = self.quadrics[a.index()] + self.quadrics[b.index()];
+        self.quadrics[a.index()] = q;
+        self.near_feature[a.index()] |= self.near_feature[b.index()];
+        let around: Vec<EdgeId> = self.mesh.vertex_outgoing(a).map(|o| o.edge()).collect();
+        for e in around {
+            self.push(e);
+        }
+        Some(split)
+    }
+}
+
+/// `mesh` with every live element renamed by the maps, in an id space of
+/// the given capacities (vertices, edges, faces); other slots are dead.
+/// Built through [`MeshData`], so the result is validated.
+fn renumber(
+    mesh: &HalfEdgeMesh,
+    [nv, ne, nf]: [usize; 3],
+    vmap: impl Fn(VertexId) -> u32,
+    hmap: impl Fn(HalfEdgeId) -> u32,
+    fmap: impl Fn(FaceId) -> u32,
+) -> Result<HalfEdgeMesh, MeshDataError> {
+    let mut positions = vec![DVec3::ZERO; nv];
+    let mut vertex_halfedge = vec![-1i64; nv];
+    let mut halfedges = vec![(0u32, 0u32, 0u32, -1i64); 2 * ne];
+    let mut face_halfedge = vec![u32::MAX; nf];
+    let (mut live_v, mut live_e, mut live_f) = (vec![false; nv], vec![false; ne], vec![false; nf]);
+    for v in mesh.vertices() {
+        let i = vmap(v) as usize;
+        live_v[i] = true;
+        positions[i] = mesh.position(v);
+        vertex_halfedge[i] = mesh.vertex_halfedge(v).map_or(-1, |h| hmap(h) as i64);
+    }
+    for h in mesh.halfedges() {
+        let i = hmap(h) as usize;
+        live_e[i / 2] = true;
+        halfedges[i] = (
+            vmap(mesh.origin(h)),
+            hmap(mesh.next(h)),
+            hmap(mesh.prev(h)),
+            mesh.face(h).map_or(-1, |f| fmap(f) as i64),
+        );
+    }
+    for f in mesh.faces() {
+        let i = fmap(f) as usize;
+        live_f[i] = true;
+        face_halfedge[i] = hmap(mesh.face_halfedge(f));
+    }
+    let dead = |live: &[bool]| -> Vec<u32> {
+        live.iter()
+            .enumerate()
+            .filter(|(_, l)| !**l)
+            .map(|(i, _)| i as u32)
+            .collect()
+    };
+    HalfEdgeMesh::try_from(MeshData {
+        positions,
+        vertex_halfedge,
+        halfedges,
+        face_halfedge,
+        dead_vertices: dead(&live_v),
+        dead_edges: dead(&live_e),
+        dead_faces: dead(&live_f),
+        face_rings: Vec::new(),
+        lone_vertex_faces: Vec::new(),
+    })
+}
+
+/// Simplifies `mesh` to `target` in one go (Blender's Decimate ▸
+/// Collapse, applied): builds the progressive mesh and returns the level,
+/// triangulated, in the input's ids where they survive (triangulation's
+/// new edges and faces have fresh ones).
+///
+/// Inverse: none (keep the [`ProgressiveMesh`] to go back).
+///
+/// # Errors
+/// As [`ProgressiveMesh::build`] and [`ProgressiveMesh::level_for`]
+/// ([`DecimateError::BelowMinimum`] when the target is below what the
+/// mesh can be simplified to).
+///
+/// Complexity: O(n log n).
+pub fn decimate(
+    mesh: &HalfEdgeMesh,
+    creases: &Creases,
+    options: &DecimateOptions,
+    target: DecimateTarget,
+) -> Result<HalfEdgeMesh, DecimateError> {
+    let mut pm = ProgressiveMesh::build(mesh, creases, options)?;
+    let level = pm.level_for(target)?;
+    pm.seek(level)?;
+    Ok(pm.level_mesh())
+}

@@ -1,0 +1,646 @@
+//! Progressive meshes (issue 18): QEM edge collapses recorded so that every
+//! level replays through the Euler operators. Each level is validated; the
+//! round trip gives the input back with its ids; topology, borders and
+//! creases hold; no face folds over.
+
+use hedra_geom::modeling::{TriangulateMethod, triangulate_faces};
+use hedra_geom::progressive::{
+    DecimateError, DecimateOptions, DecimateTarget, ProgressiveMesh, decimate,
+};
+use hedra_geom::subdivision::Creases;
+use hedra_geom::{DVec3, FaceId, HalfEdgeMesh, Primitive};
+use proptest::prelude::*;
+
+/// A cube of side 2 with each side cut into `n × n` quads.
+fn cut_cube(n: u32) -> HalfEdgeMesh {
+    let mut positions: Vec<DVec3> = Vec::new();
+    let mut index = std::collections::HashMap::new();
+    let mut id = |p: DVec3, positions: &mut Vec<DVec3>| -> u32 {
+        let key = (
+            (p.x * 1e6).round() as i64,
+            (p.y * 1e6).round() as i64,
+            (p.z * 1e6).round() as i64,
+        );
+        *index.entry(key).or_insert_with(|| {
+            positions.push(p);
+            positions.len() as u32 - 1
+        })
+    };
+    let mut polys = Vec::new();
+    for axis in 0..3 {
+        for sign in [-1.0, 1.0] {
+            let normal = DVec3::from_array({
+                let mut a = [0.0; 3];
+                a[axis] = sign;
+                a
+            });
+            let u = DVec3::from_array({
+                let mut a = [0.0; 3];
+                a[(axis + 1) % 3] = 1.0;
+                a
+            });
+            let v = normal.cross(u);
+            for i in 0..n {
+                for j in 0..n {
+                    let at = |a: u32, b: u32| {
+                        normal
+                            + u * (2.0 * a as f64 / n as f64 - 1.0)
+                            + v * (2.0 * b as f64 / n as f64 - 1.0)
+                    };
+                    let quad = [at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)];
+                    polys.push(quad.map(|p| id(p, &mut positions)).to_vec());
+                }
+            }
+        }
+    }
+    HalfEdgeMesh::from_polygons(&positions, &polys).unwrap()
+}
+
+/// Sharpness 10 on the edges along the cube's 12 edges.
+fn cube_edge_creases(m: &HalfEdgeMesh) -> Creases {
+    let on_edge = |p: DVec3| {
+        p.abs()
+            .to_array()
+            .iter()
+            .filter(|c| (**c - 1.0).abs() < 1e-9)
+            .count()
+            >= 2
+    };
+    let mut creases = Creases::default();
+    for e in m.edges() {
+        let [a, b] = m.edge_vertices(e);
+        let (pa, pb) = (m.position(a), m.position(b));
+        let d = (pb - pa).abs();
+        let axis_aligned = d.to_array().iter().filter(|c| **c > 1e-9).count() == 1;
+        // Both ends on one cube edge: they share the two ±1 coordinates.
+        let same_line = (0..3)
+            .filter(|&i| (pa[i].abs() - 1.0).abs() < 1e-9 && pa[i] == pb[i])
+            .count()
+            >= 2;
+        if on_edge(pa) && on_edge(pb) && axis_aligned && same_line {
+            creases.set_edge(e, 10.0);
+        }
+    }
+    creases
+}
+
+fn shapes() -> Vec<(&'static str, HalfEdgeMesh)> {
+    vec![
+        (
+            "icosphere",
+            Primitive::IcoSphere {
+                subdivisions: 2,
+                radius: 1.0,
+            }
+            .build()
+            .unwrap(),
+        ),
+        (
+            "torus",
+            Primitive::Torus {
+                major_segments: 16,
+                minor_segments: 8,
+                major_radius: 1.0,
+                minor_radius: 0.35,
+            }
+            .build()
+            .unwrap(),
+        ),
+        (
+            "uv sphere",
+            Primitive::UvSphere {
+                segments: 12,
+                rings: 8,
+                radius: 1.0,
+            }
+            .build()
+            .unwrap(),
+        ),
+        ("subdivided cube", cut_cube(4)),
+        (
+            "grid",
+            Primitive::Grid {
+                x_segments: 8,
+                z_segments: 6,
+                size: 2.0,
+            }
+            .build()
+            .unwrap(),
+        ),
+    ]
+}
+
+/// The input as the progressive mesh sees it: triangulated by Beauty.
+fn triangulated(m: &HalfEdgeMesh) -> HalfEdgeMesh {
+    let mut t = m.clone();
+    let big: Vec<FaceId> = m.faces().filter(|&f| m.face_degree(f) > 3).collect();
+    if !big.is_empty() {
+        triangulate_faces(&mut t, &big, TriangulateMethod::Beauty).unwrap();
+    }
+    t
+}
+
+#[test]
+fn collapsing_all_then_splitting_all_gives_the_input_back_with_its_ids() {
+    for (name, m) in shapes() {
+        let input = triangulated(&m);
+        let mut pm =
+            ProgressiveMesh::build(&m, &Creases::default(), &DecimateOptions::default()).unwrap();
+        assert_eq!(pm.level(), 0);
+        assert!(pm.max_level() > 0, "{name}: some collapse happened");
+        assert!(pm.face_counts()[0] < input.face_count(), "{name}");
+        assert_eq!(*pm.face_counts().last().unwrap(), input.face_count());
+        // Every split, one level at a time, each level valid.
+        for level in 1..=pm.max_level() {
+            pm.seek(level).unwrap();
+            pm.mesh()
+                .validate()
+                .unwrap_or_else(|e| panic!("{name} level {level}: {e}"));
+            assert_eq!(
+                pm.mesh().face_count(),
+                pm.face_counts()[level],
+                "{name} level {level}"
+            );
+        }
+        assert!(
+            pm.level_mesh().same_as(&input),
+            "{name}: all splits give the input"
+        );
+        // Every collapse back down, then all splits again in one go.
+        for level in (0..pm.max_level()).rev() {
+            pm.seek(level).unwrap();
+            pm.mesh().validate().unwrap();
+        }
+        assert!(
+            pm.level_mesh().same_as(&pm.base_level_in_input_ids()),
+            "{name}: base"
+        );
+        pm.seek(pm.max_level()).unwrap();
+        assert!(pm.level_mesh().same_as(&input), "{name}: second round trip");
+    }
+}
+
+/// Helper trait for the test: the base level in the input's ids, reached
+/// from a fresh build.
+trait BaseInInputIds {
+    fn base_level_in_input_ids(&self) -> HalfEdgeMesh;
+}
+impl BaseInInputIds for ProgressiveMesh {
+    fn base_level_in_input_ids(&self) -> HalfEdgeMesh {
+        let mut p = self.clone();
+        p.seek(0).unwrap();
+        p.level_mesh()
+    }
+}
+
+#[test]
+fn a_level_is_the_same_mesh_from_above_and_from_below() {
+    let m = Primitive::Torus {
+        major_segments: 12,
+        minor_segments: 6,
+        major_radius: 1.0,
+        minor_radius: 0.4,
+    }
+    .build()
+    .unwrap();
+    let mut pm =
+        ProgressiveMesh::build(&m, &Creases::default(), &DecimateOptions::default()).unwrap();
+    let mid = pm.max_level() / 2;
+    pm.seek(mid).unwrap();
+    let from_below = pm.level_mesh();
+    pm.seek(pm.max_level()).unwrap();
+    pm.seek(mid).unwrap();
+    assert!(pm.level_mesh().same_as(&from_below));
+    assert_eq!(pm.mesh().face_count(), pm.face_counts()[mid]);
+}
+
+#[test]
+fn genus_and_border_count_hold_at_every_level() {
+    for (name, m) in shapes() {
+        let s0 = m.stats();
+        let mut pm =
+            ProgressiveMesh::build(&m, &Creases::default(), &DecimateOptions::default()).unwrap();
+        for level in 0..=pm.max_level() {
+            pm.seek(level).unwrap();
+            let s = pm.mesh().stats();
+            assert_eq!(s.genus, s0.genus, "{name} level {level}");
+            assert_eq!(s.boundary_loops, s0.boundary_loops, "{name} level {level}");
+            assert_eq!(s.shells, s0.shells, "{name} level {level}");
+        }
+    }
+}
+
+#[test]
+fn no_face_turns_past_the_limit_between_levels() {
+    let options = DecimateOptions::default();
+    let cos = options.max_normal_change.to_radians().cos();
+    for (name, m) in shapes() {
+        let mut pm = ProgressiveMesh::build(&m, &Creases::default(), &options).unwrap();
+        pm.seek(pm.max_level()).unwrap();
+        let mut finer = pm.level_mesh();
+        for level in (0..pm.max_level()).rev() {
+            pm.seek(level).unwrap();
+            let coarser = pm.level_mesh();
+            for f in coarser.faces() {
+                let n = coarser.face_area_vector(f);
+                assert!(n.length() > 0.0, "{name} level {level}: {f} has no area");
+                if finer.is_face(f) {
+                    let (a, b) = (n.normalize(), finer.face_normal(f));
+                    assert!(
+                        a.dot(b) >= cos - 1e-9,
+                        "{name} level {level}: {f} turned by {}°",
+                        a.dot(b).acos().to_degrees()
+                    );
+                }
+            }
+            finer = coarser;
+        }
+    }
+}
+
+#[test]
+fn the_error_never_grows_as_faces_come_back() {
+    for (name, m) in shapes() {
+        let pm =
+            ProgressiveMesh::build(&m, &Creases::default(), &DecimateOptions::default()).unwrap();
+        assert_eq!(pm.error_at(pm.max_level()), 0.0);
+        for level in 0..pm.max_level() {
+            assert!(
+                pm.error_at(level) >= pm.error_at(level + 1),
+                "{name} level {level}"
+            );
+            assert!(pm.face_counts()[level] < pm.face_counts()[level + 1]);
+        }
+        if name == "icosphere" || name == "torus" {
+            assert!(pm.error_at(0) > 0.0, "{name}: a curved shape has an error");
+        }
+    }
+}
+
+#[test]
+fn a_creased_cut_cube_decimated_to_12_triangles_keeps_its_8_corners_exactly() {
+    let m = cut_cube(16);
+    assert_eq!(m.face_count(), 6 * 256);
+    let creases = cube_edge_creases(&m);
+    assert_eq!(creases.edges.len(), 12 * 16);
+    let out = decimate(
+        &m,
+        &creases,
+        &DecimateOptions::default(),
+        DecimateTarget::Faces(12),
+    )
+    .unwrap();
+    out.validate().unwrap();
+    assert_eq!(
+        (out.vertex_count(), out.edge_count(), out.face_count()),
+        (8, 18, 12)
+    );
+    let mut corners: Vec<[i64; 3]> = out
+        .vertices()
+        .map(|v| {
+            let p = out.position(v);
+            assert!(p.abs() == DVec3::ONE, "{p} is not exactly a corner");
+            p.to_array().map(|c| c as i64)
+        })
+        .collect();
+    corners.sort();
+    corners.dedup();
+    assert_eq!(corners.len(), 8);
+    // The volume is the cube's: every face lies on a side.
+    assert!((out.volume() - 8.0).abs() < 1e-12);
+}
+
+#[test]
+fn borders_hold_their_shape_and_keep_borders_fixes_their_vertices() {
+    let grid = Primitive::Grid {
+        x_segments: 8,
+        z_segments: 8,
+        size: 2.0,
+    }
+    .build()
+    .unwrap();
+    // Bend the grid so that its interior has something to simplify.
+    let mut bent = grid.clone();
+    for v in grid.vertices() {
+        let p = grid.position(v);
+        bent.set_position(
+            v,
+            DVec3::new(p.x, 0.2 * (p.x * 2.0).sin() * (p.z * 2.0).cos(), p.z),
+        );
+    }
+    let on_square = |p: DVec3| (p.x.abs() - 1.0).abs() < 1e-12 || (p.z.abs() - 1.0).abs() < 1e-12;
+    let border: Vec<DVec3> = bent
+        .vertices()
+        .filter(|&v| bent.is_boundary_vertex(v))
+        .map(|v| bent.position(v))
+        .collect();
+    for keep in [false, true] {
+        let options = DecimateOptions {
+            keep_borders: keep,
+            ..DecimateOptions::default()
+        };
+        let mut pm = ProgressiveMesh::build(&bent, &Creases::default(), &options).unwrap();
+        pm.seek(0).unwrap();
+        let m = pm.mesh();
+        for v in m.vertices().filter(|&v| m.is_boundary_vertex(v)) {
+            let p = m.position(v);
+            assert!(
+                on_square(p),
+                "keep_borders {keep}: {p} left the border square"
+            );
+        }
+        let kept = m.vertices().filter(|&v| m.is_boundary_vertex(v)).count();
+        if keep {
+            assert_eq!(kept, border.len(), "every border vertex stays");
+            for v in m.vertices().filter(|&v| m.is_boundary_vertex(v)) {
+                assert!(
+                    border.contains(&m.position(v)),
+                    "border vertices do not move"
+                );
+            }
+        } else {
+            assert!(
+                kept < border.len(),
+                "border vertices slide along the border"
+            );
+            // The 4 corners of the square stay.
+            for c in [(-1.0, -1.0), (-1.0, 1.0), (1.0, -1.0), (1.0, 1.0)] {
+                assert!(m.vertices().any(|v| {
+                    let p = m.position(v);
+                    p.x == c.0 && p.z == c.1
+                }));
+            }
+        }
+    }
+}
+
+#[test]
+fn refused_inputs_and_targets_have_named_errors() {
+    let ico = Primitive::IcoSphere {
+        subdivisions: 1,
+        radius: 1.0,
+    }
+    .build()
+    .unwrap();
+    let o = DecimateOptions::default();
+    let c = Creases::default();
+    let err = decimate(&HalfEdgeMesh::new(), &c, &o, DecimateTarget::Ratio(0.5)).unwrap_err();
+    assert_eq!(err, DecimateError::NoFaces);
+    let err = decimate(&ico, &c, &o, DecimateTarget::Faces(2)).unwrap_err();
+    let DecimateError::BelowMinimum { target: 2, minimum } = err else {
+        panic!("{err:?}")
+    };
+    assert!(
+        minimum >= 4,
+        "a closed surface keeps at least a tetrahedron"
+    );
+    assert_eq!(
+        err.to_string(),
+        format!(
+            "2 faces is below the {minimum} this mesh can be simplified to (its topology, \
+             borders, creases and the fold-over limit allow no fewer)"
+        )
+    );
+    for r in [0.0, -1.0, 1.5, f64::NAN] {
+        let err = decimate(&ico, &c, &o, DecimateTarget::Ratio(r)).unwrap_err();
+        assert!(matches!(err, DecimateError::Ratio(_)), "{r}: {err:?}");
+    }
+    // A face with a ring (KEMR) is not a plain polygon.
+    let mut ringed = Primitive::Cube { size: 2.0 }.build().unwrap();
+    let top = ringed
+        .faces()
+        .find(|&f| ringed.face_normal(f).y > 0.9)
+        .unwrap();
+    let h = ringed.face_halfedges(top).next().unwrap();
+    let (e, w) = ringed
+        .make_edge_vertex(h, DVec3::new(0.0, 1.0, 0.0))
+        .unwrap();
+    let out = if ringed.target(e.halfedge(0)) == w {
+        e.halfedge(0)
+    } else {
+        e.halfedge(1)
+    };
+    ringed.kill_edge_make_ring(out).unwrap();
+    let err = ProgressiveMesh::build(&ringed, &c, &o).unwrap_err();
+    assert_eq!(err, DecimateError::NotPolygon { face: top });
+    assert!(err.to_string().contains("not a plain polygon"));
+    // A level that does not exist.
+    let mut pm = ProgressiveMesh::build(&ico, &c, &o).unwrap();
+    let max = pm.max_level();
+    assert_eq!(
+        pm.seek(max + 1),
+        Err(DecimateError::NoLevel {
+            level: max + 1,
+            max
+        })
+    );
+    assert_eq!(pm.level(), 0);
+}
+
+#[test]
+fn targets_pick_the_finest_level_within_them() {
+    let m = Primitive::IcoSphere {
+        subdivisions: 3,
+        radius: 1.0,
+    }
+    .build()
+    .unwrap();
+    let mut pm =
+        ProgressiveMesh::build(&m, &Creases::default(), &DecimateOptions::default()).unwrap();
+    assert_eq!(m.face_count(), 1280);
+    let level = pm.level_for(DecimateTarget::Ratio(0.5)).unwrap();
+    assert_eq!(pm.face_counts()[level], 640);
+    let level = pm.set_face_count(101).unwrap();
+    assert_eq!(
+        pm.mesh().face_count(),
+        100,
+        "closed triangle meshes lose 2 faces a level"
+    );
+    assert_eq!(pm.level(), level);
+    assert_eq!(
+        pm.level_for(DecimateTarget::Faces(1280)),
+        Ok(pm.max_level())
+    );
+    assert_eq!(pm.nearest_level(DecimateTarget::Faces(0)), 0);
+}
+
+#[test]
+fn the_record_survives_serde_and_replays_to_the_input() {
+    let m = Primitive::Torus {
+        major_segments: 10,
+        minor_segments: 6,
+        major_radius: 1.0,
+        minor_radius: 0.3,
+    }
+    .build()
+    .unwrap();
+    let input = triangulated(&m);
+    let mut pm =
+        ProgressiveMesh::build(&m, &Creases::default(), &DecimateOptions::default()).unwrap();
+    pm.seek(pm.max_level() / 3).unwrap();
+    let text = ron::to_string(&pm).unwrap();
+    let mut back: ProgressiveMesh = ron::from_str(&text).unwrap();
+    assert_eq!(back, pm);
+    assert_eq!(back.level(), 0, "a loaded record stands at its base");
+    assert_eq!(back.face_counts(), pm.face_counts());
+    back.seek(pm.level()).unwrap();
+    assert!(back.level_mesh().same_as(&pm.level_mesh()));
+    back.seek(back.max_level()).unwrap();
+    assert!(back.level_mesh().same_as(&input));
+    // A damaged record is refused by name, not by a panic.
+    let broken = text.replacen("capacity:(", "capacity:(0,", 1);
+    assert!(ron::from_str::<ProgressiveMesh>(&broken).is_err());
+}
+
+#[test]
+fn scrubbing_back_and_forth_keeps_the_working_mesh_small() {
+    let m = Primitive::IcoSphere {
+        subdivisions: 2,
+        radius: 1.0,
+    }
+    .build()
+    .unwrap();
+    let mut pm =
+        ProgressiveMesh::build(&m, &Creases::default(), &DecimateOptions::default()).unwrap();
+    let input = triangulated(&m);
+    for _ in 0..20 {
+        pm.seek(pm.max_level()).unwrap();
+        pm.seek(0).unwrap();
+    }
+    assert!(
+        pm.mesh().vertex_capacity() <= 3 * input.vertex_capacity() + 1024 + input.vertex_capacity()
+    );
+    pm.seek(pm.max_level()).unwrap();
+    assert!(pm.level_mesh().same_as(&input));
+}
+
+fn primitive(i: usize) -> HalfEdgeMesh {
+    match i {
+        0 => Primitive::Cube { size: 2.0 }.build().unwrap(),
+        1 => Primitive::IcoSphere {
+            subdivisions: 2,
+            radius: 1.0,
+        }
+        .build()
+        .unwrap(),
+        2 => Primitive::UvSphere {
+            segments: 10,
+            rings: 6,
+            radius: 1.0,
+        }
+        .build()
+        .unwrap(),
+        3 => Primitive::Cylinder {
+            segments: 8,
+            radius: 1.0,
+            depth: 2.0,
+        }
+        .build()
+        .unwrap(),
+        4 => Primitive::Cone {
+            segments: 8,
+            radius: 1.0,
+            depth: 2.0,
+        }
+        .build()
+        .unwrap(),
+        5 => Primitive::Torus {
+            major_segments: 10,
+            minor_segments: 6,
+            major_radius: 1.0,
+            minor_radius: 0.3,
+        }
+        .build()
+        .unwrap(),
+        _ => Primitive::Grid {
+            x_segments: 5,
+            z_segments: 4,
+            size: 2.0,
+        }
+        .build()
+        .unwrap(),
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(48))]
+    #[test]
+    fn random_targets_on_the_primitives_give_valid_levels(
+        which in 0usize..7,
+        ratios in prop::collection::vec(0.0f64..=1.0, 1..6),
+        keep_borders in any::<bool>(),
+        sharp in prop::option::of(10.0f64..90.0),
+    ) {
+        let m = primitive(which);
+        let s0 = m.stats();
+        let options = DecimateOptions { keep_borders, sharp_angle: sharp, ..DecimateOptions::default() };
+        let mut pm = ProgressiveMesh::build(&m, &Creases::default(), &options).unwrap();
+        for r in ratios {
+            let level = pm.nearest_level(DecimateTarget::Ratio(r));
+            pm.seek(level).unwrap();
+            let v = pm.mesh().validate();
+            prop_assert!(v.is_ok(), "level {}: {}", level, v.unwrap_err());
+            let s = pm.mesh().stats();
+            prop_assert_eq!(s.genus, s0.genus);
+            prop_assert_eq!(s.boundary_loops, s0.boundary_loops);
+            prop_assert_eq!(pm.mesh().face_count(), pm.face_counts()[level]);
+            let lm = pm.level_mesh();
+            prop_assert!(lm.validate().is_ok());
+        }
+        pm.seek(pm.max_level()).unwrap();
+        prop_assert!(pm.level_mesh().same_as(&triangulated(&m)));
+    }
+}
+
+#[test]
+fn seams_hold_as_a_line_of_edges() {
+    // A bent 8 × 8 grid with a seam along x = 0.
+    let grid = Primitive::Grid {
+        x_segments: 8,
+        z_segments: 8,
+        size: 2.0,
+    }
+    .build()
+    .unwrap();
+    let mut m = grid.clone();
+    for v in grid.vertices() {
+        let p = grid.position(v);
+        m.set_position(
+            v,
+            DVec3::new(p.x, 0.3 * (p.x * 1.5).cos() * (p.z * 2.0).sin(), p.z),
+        );
+    }
+    let seams = m
+        .edges()
+        .filter(|&e| m.edge_vertices(e).iter().all(|&v| m.position(v).x == 0.0))
+        .collect();
+    let options = DecimateOptions {
+        seams,
+        ..DecimateOptions::default()
+    };
+    let mut pm = ProgressiveMesh::build(&m, &Creases::default(), &options).unwrap();
+    pm.seek(0).unwrap();
+    let base = pm.mesh();
+    base.validate().unwrap();
+    // A path of edges on x = 0 still runs from z = −1 to z = 1.
+    let on = |v: hedra_geom::VertexId| base.position(v).x == 0.0;
+    let start = base
+        .vertices()
+        .find(|&v| on(v) && base.position(v).z == -1.0)
+        .unwrap();
+    let mut seen = vec![start];
+    let mut stack = vec![start];
+    while let Some(v) = stack.pop() {
+        for w in base.vertex_neighbors(v) {
+            if on(w) && !seen.contains(&w) {
+                seen.push(w);
+                stack.push(w);
+            }
+        }
+    }
+    assert!(
+        seen.iter().any(|&v| base.position(v).z == 1.0),
+        "the seam line holds"
+    );
+    assert!(base.face_count() < m.face_count());
+}
