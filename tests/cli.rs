@@ -822,7 +822,7 @@ fn info_reports_levels_and_export_lod_writes_one() {
         .filter(|l| l.starts_with("f "))
         .count();
     assert!(
-        faces <= 320 && faces >= 300,
+        (300..=320).contains(&faces),
         "{faces} faces, about a quarter of 1280"
     );
     let o = hedra(&[
