@@ -27,7 +27,7 @@ pub use elements::{EdgeSet, FaceSet, ProfileSet, VertexSet};
 pub use history::{History, NodeChange, Transaction};
 pub use modifiers::{ArrayModifier, EvaluationError, MeshModifier, MirrorModifier};
 pub use scene::{
-    CornerAttributes, Document, MeshContent, Node, NodeContent, NodeId, NodeTransform, Shading,
-    SubdivisionModifier, SurfaceShape,
+    CornerAttributes, CurveContent, Document, MeshContent, Node, NodeContent, NodeId,
+    NodeTransform, Shading, SubdivisionModifier, SurfaceShape,
 };
 pub use session::{Applied, Session};

@@ -22,7 +22,7 @@
 //! [`insert_point`](CurveKind::insert_point), …) returns a new value and
 //! leaves `self` untouched; a refused edit returns a named [`CurveError`].
 
-use glam::DVec3;
+use glam::{DMat4, DVec3};
 use serde::{Deserialize, Serialize};
 
 use super::bezier::bernstein;
@@ -1054,6 +1054,64 @@ impl CurveKind {
                 for &(i, p) in moves {
                     pts[i] = p;
                 }
+            }
+        }
+        out.check()?;
+        Ok(out)
+    }
+
+    /// The curve with its points mapped by the affine map `m`; tangents,
+    /// accelerations and clamped end derivatives by its linear part, a
+    /// fractal's normal by the inverse transpose. Exact for every kind
+    /// whose construction is affine-invariant (all but chord-length and
+    /// centripetal parameters under a non-uniform scale).
+    ///
+    /// # Errors
+    /// A map that makes a value non-finite.
+    pub fn transformed(&self, m: &DMat4) -> Result<CurveKind, CurveError> {
+        let p = |v: &[DVec3]| -> Vec<DVec3> { v.iter().map(|x| m.transform_point3(*x)).collect() };
+        let v = |v: &[DVec3]| -> Vec<DVec3> { v.iter().map(|x| m.transform_vector3(*x)).collect() };
+        let mut out = self.clone();
+        match &mut out {
+            CurveKind::Nurbs(c) => {
+                *c = NurbsCurve::new(
+                    c.degree(),
+                    c.knots().to_vec(),
+                    p(c.points()),
+                    c.weights().to_vec(),
+                )?;
+            }
+            CurveKind::CubicHermite { points, tangents } => {
+                *points = p(points);
+                *tangents = v(tangents);
+            }
+            CurveKind::QuinticHermite {
+                points,
+                tangents,
+                accelerations,
+            } => {
+                *points = p(points);
+                *tangents = v(tangents);
+                *accelerations = v(accelerations);
+            }
+            CurveKind::CubicSpline { points, ends, .. } => {
+                *points = p(points);
+                if let SplineEnds::Clamped { start, end } = ends {
+                    *start = m.transform_vector3(*start);
+                    *end = m.transform_vector3(*end);
+                }
+            }
+            CurveKind::Fractal { points, normal, .. } => {
+                *points = p(points);
+                *normal = m
+                    .inverse()
+                    .transpose()
+                    .transform_vector3(*normal)
+                    .normalize_or_zero();
+            }
+            other => {
+                let pts = other.points_mut().expect("not NURBS");
+                *pts = p(pts);
             }
         }
         out.check()?;
