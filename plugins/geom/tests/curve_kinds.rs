@@ -546,6 +546,19 @@ fn split_then_join_keeps_the_shape() {
 }
 
 #[test]
+fn a_nurbs_circle_splits_into_two_arcs() {
+    let circle = CurveKind::Nurbs(NurbsCurve::circle(DVec3::ZERO, 2.0));
+    assert!(circle.is_closed());
+    let (a, b) = circle.split(0.25).unwrap();
+    let (fa, fb) = (a.to_nurbs().unwrap().curve, b.to_nurbs().unwrap().curve);
+    for x in samples(&fa, 50).into_iter().chain(samples(&fb, 50)) {
+        let p = if x <= 0.25 { fa.point(x) } else { fb.point(x) };
+        assert!((p.length() - 2.0).abs() < 1e-12);
+    }
+    assert!((fa.point(0.25) - fb.point(0.25)).length() < 1e-12);
+}
+
+#[test]
 fn open_and_close() {
     let pb = poly_bezier();
     let closed = pb.set_closed(true).unwrap();

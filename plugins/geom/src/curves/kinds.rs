@@ -1641,7 +1641,7 @@ impl CurveKind {
         Ok(out)
     }
 
-    /// Splits an open curve at parameter `t` into two of the same kind
+    /// Splits an open curve (or any NURBS) at parameter `t` into two of the same kind
     /// that meet there: a point is inserted as by
     /// [`insert_point`](Self::insert_point) and the curve cut at it (exact
     /// for NURBS and poly-Bézier). Inverse: [`join`](Self::join).
@@ -1650,7 +1650,8 @@ impl CurveKind {
     /// A closed curve (open it first), `t` outside the open domain, a half
     /// with too few points.
     pub fn split(&self, t: f64) -> Result<(CurveKind, CurveKind), CurveError> {
-        if self.is_closed() {
+        // A NURBS curve whose ends meet (a circle) splits like any other.
+        if self.is_closed() && !matches!(self, CurveKind::Nurbs(_)) {
             return Err(CurveError::NotForKind {
                 operation: "splitting a closed curve (open it first)",
                 kind: self.name(),
