@@ -49,9 +49,10 @@ pub(crate) fn draw_curve_analysis(
     }
     let Some(id) = selection.active() else { return };
     let doc = &state.session.doc;
-    let Some(NodeContent::Curve(c)) = &previews.shown_shape(doc, id) else {
+    let Some(NodeContent::Curve(content)) = &previews.shown_shape(doc, id) else {
         return;
     };
+    let c = content.nurbs();
     let world = doc.world_matrix(id);
     let to_world = |p: DVec3| world.transform_point3(p).as_vec3();
     let (a, b) = c.domain();
