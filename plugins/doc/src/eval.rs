@@ -122,6 +122,7 @@ pub fn evaluate(doc: &Document, node: &NodeRef, params: &[f64]) -> Result<Evalua
     };
     match &n.content {
         NodeContent::Curve(c) => {
+            let c = c.nurbs();
             want(1)?;
             let t = params[0];
             inside(t, c.domain(), "t")?;

@@ -461,6 +461,7 @@ pub(crate) fn node_geometry(
             )
         }
         NodeContent::Curve(c) => {
+            let c = c.nurbs();
             let size = crate::render::extent(c.points());
             let params =
                 hedra_geom::surfaces::tessellate::curve_parameters(&**c, EXPORT_TOLERANCE * size);

@@ -31,8 +31,8 @@
 use crate::command::Command;
 use crate::history::{History, NodeChange, Transaction};
 use crate::scene::{
-    CornerAttributes, Document, DocumentError, MeshContent, Node, NodeContent, NodeId,
-    NodeTransform, Shading, SubdivisionModifier,
+    CornerAttributes, CurveContent, Document, DocumentError, MeshContent, Node, NodeContent,
+    NodeId, NodeTransform, Shading, SubdivisionModifier,
 };
 use crate::session::Session;
 use hedra_geom::subdivision::Creases;
@@ -187,6 +187,14 @@ pub enum InvalidScene {
         /// Which parameter, and why.
         problem: NodeProblem,
     },
+    /// A stored curve kind whose data its own command would refuse.
+    #[error("node {node}: {error}")]
+    Curve {
+        /// The node's id.
+        node: NodeId,
+        /// What is wrong with the curve.
+        error: hedra_geom::curves::CurveError,
+    },
 }
 
 /// A stored corner set whose lists do not pair up.
@@ -326,8 +334,11 @@ enum StoredContent {
         #[serde(default, skip_serializing_if = "Vec::is_empty")]
         decimations: Vec<crate::modifiers::DecimateRecord>,
     },
+    /// A NURBS curve node (every curve before curve kinds).
     Curve(hedra_geom::curves::NurbsCurve),
     Surface(crate::scene::SurfaceShape),
+    /// A curve node of any other kind; its NURBS form is recomputed on load.
+    CurveKind(hedra_geom::curves::CurveKind),
 }
 
 #[derive(Serialize, Deserialize)]
@@ -509,7 +520,10 @@ impl<'a> MeshPool<'a> {
             visible: n.visible,
             content: match &n.content {
                 NodeContent::Empty => StoredContent::Empty,
-                NodeContent::Curve(c) => StoredContent::Curve((**c).clone()),
+                NodeContent::Curve(c) => match c.kind() {
+                    hedra_geom::curves::CurveKind::Nurbs(n) => StoredContent::Curve(n.clone()),
+                    k => StoredContent::CurveKind(k.clone()),
+                },
                 NodeContent::Surface(sf) => StoredContent::Surface((**sf).clone()),
                 NodeContent::Mesh(m) => StoredContent::Mesh {
                     mesh: self.add(&m.mesh),
@@ -862,7 +876,10 @@ fn restore_node(
 ) -> Result<Node, InvalidScene> {
     let content = match sn.content {
         StoredContent::Empty => NodeContent::Empty,
-        StoredContent::Curve(c) => NodeContent::Curve(Arc::new(c)),
+        StoredContent::Curve(c) => NodeContent::Curve(Arc::new(CurveContent::from_nurbs(c))),
+        StoredContent::CurveKind(k) => NodeContent::Curve(Arc::new(
+            CurveContent::new(k).map_err(|error| InvalidScene::Curve { node: sn.id, error })?,
+        )),
         StoredContent::Surface(sf) => NodeContent::Surface(Arc::new(sf)),
         StoredContent::Mesh {
             mesh,

@@ -51,9 +51,10 @@ fn check_document(doc: &Document, when: &str) {
             NodeContent::Empty => {}
             NodeContent::Mesh(m) => check_mesh(&m.mesh, &what),
             NodeContent::Curve(c) => assert!(
-                c.points().iter().all(|p| p.is_finite())
-                    && c.weights().iter().all(|w| w.is_finite())
-                    && c.knots().iter().all(|k| k.is_finite()),
+                c.control_points().iter().all(|p| p.is_finite())
+                    && c.nurbs().points().iter().all(|p| p.is_finite())
+                    && c.nurbs().weights().iter().all(|w| w.is_finite())
+                    && c.nurbs().knots().iter().all(|k| k.is_finite()),
                 "{what}: non-finite curve data"
             ),
             NodeContent::Surface(s) => {

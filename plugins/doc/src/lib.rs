@@ -29,7 +29,7 @@ pub use modifiers::{
     ArrayModifier, DecimateModifier, DecimateRecord, EvaluationError, MeshModifier, MirrorModifier,
 };
 pub use scene::{
-    CornerAttributes, Document, MeshContent, Node, NodeContent, NodeId, NodeTransform, Shading,
-    SubdivisionModifier, SurfaceShape,
+    CornerAttributes, CurveContent, Document, MeshContent, Node, NodeContent, NodeId,
+    NodeTransform, Shading, SubdivisionModifier, SurfaceShape,
 };
 pub use session::{Applied, Session};

@@ -167,7 +167,8 @@ pub struct SubdivisionReport {
 /// A curve or surface node's shape.
 #[derive(Serialize)]
 pub struct ShapeReport {
-    /// "nurbs curve", "nurbs surface", "bezier triangle".
+    /// "nurbs curve" (or the curve kind: "catmull-rom curve", "koch curve", …),
+    /// "nurbs surface", "bezier triangle".
     pub kind: &'static str,
     /// One degree for curves and triangles, (u, v) for surfaces.
     pub degrees: Vec<usize>,
@@ -179,16 +180,42 @@ pub struct ShapeReport {
     pub polynomial: bool,
 }
 
+/// The report's name of a curve kind ("nurbs curve", "catmull-rom curve").
+fn curve_kind_label(kind: &hedra_geom::curves::CurveKind) -> &'static str {
+    use hedra_geom::curves::{CurveKind as K, FractalRule};
+    match kind {
+        K::Nurbs(_) => "nurbs curve",
+        K::Lagrange { .. } => "lagrange curve",
+        K::CubicHermite { .. } => "cubic hermite curve",
+        K::QuinticHermite { .. } => "quintic hermite curve",
+        K::CatmullRom { .. } => "catmull-rom curve",
+        K::KochanekBartels { .. } => "kochanek-bartels curve",
+        K::CubicSpline { .. } => "c2 cubic spline",
+        K::Chaikin { .. } => "chaikin curve",
+        K::PolyBezier { .. } => "poly-bezier curve",
+        K::Fractal {
+            rule: FractalRule::Koch,
+            ..
+        } => "koch curve",
+        K::Fractal {
+            rule: FractalRule::QuadraticKoch,
+            ..
+        } => "quadratic koch curve",
+    }
+}
+
 fn shape_report(content: &NodeContent) -> Option<ShapeReport> {
     use hedra_geom::curves::Curve;
     use hedra_geom::surfaces::Surface;
     match content {
-        NodeContent::Curve(c) => {
+        NodeContent::Curve(content) => {
+            let c = content.nurbs();
             let (a, b) = c.domain();
             Some(ShapeReport {
-                kind: "nurbs curve",
+                kind: curve_kind_label(content.kind()),
                 degrees: vec![c.degree()],
-                control_points: c.points().len(),
+                // The points `SetControlPoints` indexes: the kind's own.
+                control_points: content.control_points().len(),
                 domain: vec![a, b],
                 polynomial: c.is_polynomial(),
             })

@@ -4,7 +4,7 @@
 //! transforms, root first.
 
 use glam::{DMat4, DQuat, DVec2, DVec3};
-use hedra_geom::curves::NurbsCurve;
+use hedra_geom::curves::{CurveError, CurveKind, NurbsCurve};
 use hedra_geom::subdivision::{Creases, Options as SubdivisionOptions};
 use hedra_geom::surfaces::{BezierTriangle, NurbsSurface};
 use hedra_geom::{HalfEdgeId, HalfEdgeMesh, Primitive};
@@ -349,8 +349,10 @@ pub enum NodeContent {
     Empty,
     /// A polygon mesh.
     Mesh(MeshContent),
-    /// A free-form curve (NURBS; Bézier curves are clamped NURBS).
-    Curve(Arc<NurbsCurve>),
+    /// A free-form curve: its kind (NURBS, Catmull-Rom, poly-Bézier, Koch,
+    /// …) and the NURBS form everything draws and evaluates
+    /// ([`CurveContent::nurbs`]).
+    Curve(Arc<CurveContent>),
     /// A free-form surface.
     Surface(Arc<SurfaceShape>),
 }
@@ -369,6 +371,70 @@ impl NodeContent {
     pub fn mesh(&self) -> Option<&HalfEdgeMesh> {
         match self {
             NodeContent::Mesh(m) => Some(&m.mesh),
+            _ => None,
+        }
+    }
+}
+
+/// A curve node's content: the [`CurveKind`] the user defined and edits,
+/// and its NURBS form, computed once when the content is made (so it is
+/// always in step with the kind). Readers that draw, evaluate, export or
+/// revolve a curve use [`nurbs`](Self::nurbs); the control-point editor
+/// shows and moves [`control_points`](Self::control_points), the kind's
+/// defining points (`SetControlPoints` indexes them).
+#[derive(Clone, Debug, PartialEq)]
+pub struct CurveContent {
+    kind: CurveKind,
+    nurbs: Arc<NurbsCurve>,
+    tolerance: Option<f64>,
+}
+
+impl CurveContent {
+    /// The content of a curve of this kind, its NURBS form computed.
+    ///
+    /// # Errors
+    /// What [`CurveKind::check`] finds ("Lagrange needs 2 points or more").
+    pub fn new(kind: CurveKind) -> Result<Self, CurveError> {
+        let form = kind.to_nurbs()?;
+        Ok(CurveContent {
+            kind,
+            nurbs: Arc::new(form.curve),
+            tolerance: form.tolerance,
+        })
+    }
+    /// A NURBS curve node's content.
+    pub fn from_nurbs(curve: NurbsCurve) -> Self {
+        let nurbs = Arc::new(curve.clone());
+        CurveContent {
+            kind: CurveKind::Nurbs(curve),
+            nurbs,
+            tolerance: None,
+        }
+    }
+    /// The kind and its defining data.
+    pub fn kind(&self) -> &CurveKind {
+        &self.kind
+    }
+    /// The NURBS form: what is drawn, evaluated, exported.
+    pub fn nurbs(&self) -> &Arc<NurbsCurve> {
+        &self.nurbs
+    }
+    /// `None` when the NURBS form is exact; else its measured largest
+    /// distance from the kind's curve (high-degree Lagrange).
+    pub fn tolerance(&self) -> Option<f64> {
+        self.tolerance
+    }
+    /// The defining points a user edits: NURBS control points,
+    /// interpolation points, poly-Bézier anchors and handles, a Chaikin
+    /// polygon, a fractal's initiator.
+    pub fn control_points(&self) -> &[DVec3] {
+        self.kind.points()
+    }
+    /// The weights of the control points, for a NURBS curve; `None` for
+    /// the other kinds (they have none).
+    pub fn weights(&self) -> Option<&[f64]> {
+        match &self.kind {
+            CurveKind::Nurbs(c) => Some(c.weights()),
             _ => None,
         }
     }

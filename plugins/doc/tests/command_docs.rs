@@ -24,7 +24,7 @@ fn every_command_example_in_the_docs_runs() {
         .collect();
     kinds.sort();
     kinds.dedup();
-    assert_eq!(kinds.len(), 72, "{kinds:?}");
+    assert_eq!(kinds.len(), 82, "{kinds:?}");
     let mut session = hedra_doc::Session::new();
     hedra_doc::script::run(&mut session, &commands, Path::new("docs/commands.md"))
         .unwrap_or_else(|e| panic!("{e}"));
@@ -295,7 +295,7 @@ fn every_command_example_in_the_docs_runs() {
         .done()
         .iter()
         .map(|t| t.label.as_str())
-        .filter(|l| l.starts_with("Euler") || l.starts_with("Rip") || l.starts_with("Split"))
+        .filter(|l| l.starts_with("Euler") || l.starts_with("Rip") || l.starts_with("Split V"))
         .collect();
     assert_eq!(
         labels,
@@ -320,7 +320,7 @@ fn every_command_example_in_the_docs_runs() {
     // Curves and surfaces: edits keep their shapes where they promise to.
     use hedra_geom::curves::Curve;
     let curve = |name: &str| match &doc.find_by_name(name).unwrap().content {
-        hedra_doc::NodeContent::Curve(c) => c.clone(),
+        hedra_doc::NodeContent::Curve(c) => c.nurbs().clone(),
         _ => panic!("{name} is a curve"),
     };
     let wave = curve("Wave");
@@ -335,6 +335,49 @@ fn every_command_example_in_the_docs_runs() {
     assert!((profile.point(0.5) - hedra_geom::DVec3::new(0.7375, 0.8125, 0.0)).length() < 1e-12);
     let ring = curve("Ring");
     assert_eq!(ring.weights()[1], 3.0);
+    // Every curve kind: the examples below add one of each and edit them.
+    let kind = |name: &str| match &doc.find_by_name(name).unwrap().content {
+        hedra_doc::NodeContent::Curve(c) => c.clone(),
+        _ => panic!("{name} is a curve"),
+    };
+    use hedra_geom::curves::{CurveKind, Join};
+    let through = kind("Through");
+    assert!(matches!(through.kind(), CurveKind::Lagrange { .. }));
+    assert_eq!(through.control_points().len(), 3, "one point deleted");
+    let swing = kind("Swing");
+    let keys = swing.kind().key_parameters().unwrap();
+    for (t, p) in keys.iter().zip(swing.control_points()) {
+        assert!(
+            (swing.nurbs().point(*t) - *p).length() < 1e-12,
+            "through its points"
+        );
+    }
+    let path = kind("Path");
+    match path.kind() {
+        CurveKind::PolyBezier { points, joins, .. } => {
+            assert_eq!(
+                (points.len(), joins.as_slice()),
+                (10, &[Join::G1, Join::G1][..])
+            );
+            let (a, b, c) = (points[2], points[3], points[4]);
+            assert!(
+                (b - a).normalize().dot((c - b).normalize()) > 1.0 - 1e-12,
+                "G1"
+            );
+        }
+        k => panic!("{k:?}"),
+    }
+    assert_eq!(kind("Snowflake").nurbs().points().len(), 3 * 64 + 1);
+    assert!(matches!(kind("Sausage").kind(), CurveKind::Nurbs(_)));
+    assert_eq!(kind("Sausage").nurbs().points().len(), 65);
+    assert!(kind("Corners").kind().is_closed());
+    assert!(doc.find_by_name("Rope End").is_none(), "joined back");
+    assert_eq!(kind("Rope").control_points().len(), 7);
+    assert_eq!(
+        kind("Keys").control_points()[0],
+        hedra_geom::DVec3::new(-1.0, 1.0, 0.0)
+    );
+    assert_eq!(kind("Loop").tolerance(), None);
     match &doc.find_by_name("Ball").unwrap().content {
         // 9 × 5 points, a knot in v (× 6), the circle direction elevated
         // from degree 2 (four quarter arcs of 3 new points each: 13).

@@ -262,6 +262,7 @@ pub fn curve_near_cursor(
             continue;
         }
         let world = doc.world_matrix(node.id);
+        let c = c.nurbs();
         let (a, b) = c.domain();
         let screen: Vec<Option<Vec2>> = (0..=200)
             .map(|i| {

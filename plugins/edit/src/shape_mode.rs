@@ -342,8 +342,9 @@ fn knot_under_cursor(
 ) -> Option<Command> {
     use hedra_doc::command::ParameterDirection;
     match content {
-        NodeContent::Curve(c) => {
+        NodeContent::Curve(content) => {
             use hedra_geom::curves::Curve;
+            let c = content.nurbs();
             let (a, b) = c.domain();
             let (t, d) = (1..400)
                 .filter_map(|k| {
@@ -354,10 +355,20 @@ fn knot_under_cursor(
                     Some((t, s.distance(cursor)))
                 })
                 .min_by(|x, y| x.1.total_cmp(&y.1))?;
-            (d <= 12.0).then_some(Command::InsertKnot {
-                node: NodeRef::from(id),
-                at: t,
-                direction: ParameterDirection::U,
+            // A NURBS curve gets a knot; the other kinds a defining point
+            // where the curve is (a de Casteljau split for poly-Béziers).
+            let nurbs = matches!(content.kind(), hedra_geom::curves::CurveKind::Nurbs(_));
+            (d <= 12.0).then_some(if nurbs {
+                Command::InsertKnot {
+                    node: NodeRef::from(id),
+                    at: t,
+                    direction: ParameterDirection::U,
+                }
+            } else {
+                Command::InsertCurvePoint {
+                    node: NodeRef::from(id),
+                    at: t,
+                }
             })
         }
         NodeContent::Surface(s) => {

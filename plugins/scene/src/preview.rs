@@ -9,9 +9,9 @@
 //! result.
 
 use crate::*;
+use hedra_doc::CurveContent;
 use hedra_doc::NodeTransform;
 use hedra_doc::SurfaceShape;
-use hedra_geom::curves::NurbsCurve;
 use hedra_geom::subdivision::Creases;
 use std::collections::BTreeMap;
 use std::sync::Arc;
@@ -43,7 +43,7 @@ pub enum PreviewContent {
         creases: Option<Creases>,
     },
     /// A control-point tool's curve.
-    Curve(Arc<NurbsCurve>),
+    Curve(Arc<CurveContent>),
     /// A control-point tool's surface.
     Surface(Arc<SurfaceShape>),
 }

@@ -102,7 +102,7 @@ impl NodeMesh {
 /// A curve node's curve, mirrored from the document (shared). Written only
 /// by [`sync_entities`], when it differs.
 #[derive(Component, Clone, Debug)]
-pub struct NodeCurve(pub Arc<hedra_geom::curves::NurbsCurve>);
+pub struct NodeCurve(pub Arc<hedra_doc::CurveContent>);
 
 /// A surface node's surface, mirrored from the document (shared). Written
 /// only by [`sync_entities`], when it differs.

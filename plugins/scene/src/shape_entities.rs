@@ -90,7 +90,9 @@ pub fn control_points_of(
 /// Control points of a curve or surface (local space); none for meshes and empties.
 pub fn control_points(content: &NodeContent) -> Vec<DVec3> {
     match content {
-        NodeContent::Curve(c) => c.points().to_vec(),
+        // The kind's defining points (interpolation points, anchors and
+        // handles, NURBS control points): what SetControlPoints indexes.
+        NodeContent::Curve(c) => c.control_points().to_vec(),
         NodeContent::Surface(s) => s.control_points().to_vec(),
         _ => Vec::new(),
     }
@@ -99,7 +101,7 @@ pub fn control_points(content: &NodeContent) -> Vec<DVec3> {
 /// Weights of the control points, `None` for shapes without weights.
 pub fn control_weights(content: &NodeContent) -> Option<Vec<f64>> {
     match content {
-        NodeContent::Curve(c) => Some(c.weights().to_vec()),
+        NodeContent::Curve(c) => c.weights().map(<[f64]>::to_vec),
         NodeContent::Surface(s) => match &**s {
             SurfaceShape::Nurbs(n) => Some(n.weights().to_vec()),
             SurfaceShape::Triangle(_) => None,

@@ -98,7 +98,7 @@ fn find_closest(
     let NodeContent::Curve(c) = &doc.node(id)?.content else {
         return None;
     };
-    let curve = world_curve(c, doc.world_matrix(id))?;
+    let curve = world_curve(c.nurbs(), doc.world_matrix(id))?;
     let ray = cam
         .viewport_to_world(cam_t, window.cursor_position()?)
         .ok()?;
@@ -151,9 +151,10 @@ pub(crate) fn draw_curve_analysis(
     }
     let Some(id) = selection.active() else { return };
     let doc = &state.session.doc;
-    let Some(NodeContent::Curve(c)) = &previews.shown_shape(doc, id) else {
+    let Some(NodeContent::Curve(content)) = &previews.shown_shape(doc, id) else {
         return;
     };
+    let c = content.nurbs();
     let world = doc.world_matrix(id);
     let to_world = |p: DVec3| world.transform_point3(p).as_vec3();
     let (a, b) = c.domain();

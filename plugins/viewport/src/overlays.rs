@@ -158,11 +158,12 @@ pub(crate) fn update_edge_overlays(
 /// polygon (dim; brighter when selected).
 pub(crate) fn draw_curve(
     asset: &mut GizmoAsset,
-    curve: &hedra_geom::curves::NurbsCurve,
+    content: &hedra_doc::CurveContent,
     selected: bool,
     selection_color: Color,
 ) {
     use hedra_geom::curves::Curve;
+    let curve: &hedra_geom::curves::NurbsCurve = content.nurbs();
     let tol = hedra_scene::VIEW_TOLERANCE * hedra_scene::extent(curve.points());
     let params = hedra_geom::surfaces::tessellate::curve_parameters(curve, tol);
     let color = if selected {
@@ -177,7 +178,12 @@ pub(crate) fn draw_curve(
     } else {
         Color::srgba(0.6, 0.6, 0.65, 0.45)
     };
-    asset.linestrip(curve.points().iter().map(|p| p.as_vec3()), polygon);
+    // The kind's defining points: NURBS control polygon, poly-Bézier
+    // anchors and handles, interpolation points, a fractal's initiator.
+    asset.linestrip(
+        content.control_points().iter().map(|p| p.as_vec3()),
+        polygon,
+    );
 }
 
 /// The control net of a surface: rows and columns of a NURBS net, the
@@ -384,15 +390,16 @@ pub(crate) fn draw_shape_edit(
     let to_world = |p: DVec3| world.transform_point3(p).as_vec3();
     let net = Color::srgba(0.9, 0.9, 0.95, 0.85);
     match &content {
-        NodeContent::Curve(c) => {
+        NodeContent::Curve(content) => {
             use hedra_geom::curves::Curve;
+            let c = content.nurbs();
             let tol = hedra_scene::VIEW_TOLERANCE * hedra_scene::extent(c.points());
             let params = hedra_geom::surfaces::tessellate::curve_parameters(&**c, tol);
             gizmos.linestrip(
                 params.iter().map(|&t| to_world(c.point(t))),
                 Color::srgb(1.0, 0.78, 0.25),
             );
-            gizmos.linestrip(c.points().iter().map(|p| to_world(*p)), net);
+            gizmos.linestrip(content.control_points().iter().map(|p| to_world(*p)), net);
         }
         NodeContent::Surface(s) => {
             for [a, b] in control_net_segments(s) {

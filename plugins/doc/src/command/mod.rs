@@ -191,6 +191,12 @@ pub enum CommandError {
         /// The profile as the command named it.
         profile: NodeRef,
     },
+    /// A curve command names a node that is not a curve.
+    #[error("{node} is not a curve")]
+    NotACurve {
+        /// The node, as `'name' (#id)`.
+        node: String,
+    },
     /// A curve or surface command names a node that is neither.
     #[error("{node} is not a curve or surface")]
     NotAShape {

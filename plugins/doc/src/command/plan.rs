@@ -7,8 +7,10 @@ use super::{Command, CommandError, EditError, NodeRef};
 use crate::elements::ElementError;
 use crate::elements::{EdgeSet, FaceSet, VertexSet};
 use crate::history::NodeChange;
-use crate::scene::{Document, Node, NodeContent, NodeId, NodeTransform, SurfaceShape};
-use hedra_geom::curves::{CurveError, NurbsCurve};
+use crate::scene::{
+    CurveContent, Document, Node, NodeContent, NodeId, NodeTransform, SurfaceShape,
+};
+use hedra_geom::curves::{CurveError, CurveKind};
 use hedra_geom::subdivision::Creases;
 use hedra_geom::{EdgeId, FaceId, HalfEdgeMesh, ModelingError, VertexId};
 use std::sync::Arc;
@@ -188,17 +190,38 @@ impl Plan<'_> {
     pub(super) fn edit_shape(
         &mut self,
         r: &NodeRef,
-        curve: impl FnOnce(&mut NurbsCurve) -> Result<(), CurveError>,
+        curve: impl FnOnce(&CurveKind) -> Result<CurveKind, CurveError>,
         surface: impl FnOnce(&mut SurfaceShape) -> Result<(), CurveError>,
     ) -> Result<(), CommandError> {
         let mut n = self.node(r)?;
         let label = self.doc.label_of(n.id);
         let result = match &mut n.content {
-            NodeContent::Curve(c) => curve(Arc::make_mut(c)),
+            NodeContent::Curve(c) => curve(c.kind())
+                .and_then(CurveContent::new)
+                .map(|new| *c = Arc::new(new)),
             NodeContent::Surface(s) => surface(Arc::make_mut(s)),
             _ => return Err(CommandError::NotAShape { node: label }),
         };
         result.map_err(|error| CommandError::Curve { node: label, error })?;
+        self.set(n);
+        Ok(())
+    }
+
+    /// Edits a curve node's kind; a refused edit changes nothing.
+    pub(super) fn edit_curve(
+        &mut self,
+        r: &NodeRef,
+        curve: impl FnOnce(&CurveKind) -> Result<CurveKind, CurveError>,
+    ) -> Result<(), CommandError> {
+        let mut n = self.node(r)?;
+        let label = self.doc.label_of(n.id);
+        let NodeContent::Curve(c) = &mut n.content else {
+            return Err(CommandError::NotACurve { node: label });
+        };
+        let new = curve(c.kind())
+            .and_then(CurveContent::new)
+            .map_err(|error| CommandError::Curve { node: label, error })?;
+        *c = Arc::new(new);
         self.set(n);
         Ok(())
     }
@@ -356,6 +379,29 @@ impl Plan<'_> {
                 direction,
             } => self.insert_knot(node, *at, *direction),
             Command::ElevateDegree { node, direction } => self.elevate_degree(node, *direction),
+            Command::SetCurve { node, curve } => self.set_curve(node, curve),
+            Command::InsertCurvePoint { node, at } => {
+                self.edit_curve(node, |k| Ok(k.insert_point(*at)?.0))
+            }
+            Command::DeleteCurvePoints { node, points } => {
+                let points: Vec<usize> = points.iter().map(|&i| i as usize).collect();
+                self.edit_curve(node, |k| k.delete_points(&points))
+            }
+            Command::ExtrudeCurve { node, end, to } => {
+                self.edit_curve(node, |k| k.extrude(*end, *to))
+            }
+            Command::SetCurveClosed { node, closed } => {
+                self.edit_curve(node, |k| k.set_closed(*closed))
+            }
+            Command::ReverseCurve { node } => self.edit_curve(node, |k| k.reverse()),
+            Command::SplitCurve { node, at, name } => self.split_curve(node, *at, name),
+            Command::JoinCurves { first, second } => self.join_curves(first, second),
+            Command::SetCurveJoin { node, joint, join } => {
+                self.edit_curve(node, |k| k.set_join(*joint as usize, *join))
+            }
+            Command::ConvertCurveToNurbs { node } => {
+                self.edit_curve(node, |k| Ok(CurveKind::Nurbs(k.to_nurbs()?.curve)))
+            }
 
             // ----- subdivision and creases (creases.rs) -----
             Command::SetSubdivision { nodes, modifier } => self.set_subdivision(nodes, *modifier),

@@ -3,31 +3,33 @@
 
 use super::plan::Plan;
 use super::{CommandError, CurveSpec, NodeRef, ParameterDirection, SurfaceSpec};
-use crate::scene::{NodeContent, NodeTransform, SurfaceShape};
+use crate::scene::{CurveContent, NodeContent, NodeTransform, SurfaceShape};
 use glam::DVec3;
+use hedra_geom::curves::interpolating::Tbc;
 use hedra_geom::curves::nurbs::clamped_uniform_knots;
-use hedra_geom::curves::{CurveError, NurbsCurve};
+use hedra_geom::curves::{CurveError, CurveKind, Join, NurbsCurve};
 use hedra_geom::surfaces::{BezierTriangle, NurbsSurface};
 use std::sync::Arc;
 
-fn curve_from_spec(spec: &CurveSpec) -> Result<NurbsCurve, CurveError> {
-    match spec {
+/// The curve kind a spec describes, checked.
+pub(crate) fn curve_from_spec(spec: &CurveSpec) -> Result<CurveKind, CurveError> {
+    let kind = match spec {
         CurveSpec::Nurbs {
             degree,
             points,
             weights,
             knots,
-        } => NurbsCurve::new(
+        } => CurveKind::Nurbs(NurbsCurve::new(
             *degree,
             knots
                 .clone()
                 .unwrap_or_else(|| clamped_uniform_knots(*degree, points.len())),
             points.clone(),
             weights.clone().unwrap_or_else(|| vec![1.0; points.len()]),
-        ),
+        )?),
         CurveSpec::Bezier { points } => {
             let degree = points.len().saturating_sub(1).max(1);
-            NurbsCurve::clamped(degree, points.clone())
+            CurveKind::Nurbs(NurbsCurve::clamped(degree, points.clone())?)
         }
         CurveSpec::Circle { radius } => {
             if !(radius.is_finite() && *radius > 0.0) {
@@ -36,17 +38,138 @@ fn curve_from_spec(spec: &CurveSpec) -> Result<NurbsCurve, CurveError> {
                     value: *radius,
                 });
             }
-            Ok(NurbsCurve::circle(DVec3::ZERO, *radius))
+            CurveKind::Nurbs(NurbsCurve::circle(DVec3::ZERO, *radius))
         }
         CurveSpec::Closed {
             degree,
             points,
             weights,
-        } => NurbsCurve::periodic(
+        } => CurveKind::Nurbs(NurbsCurve::periodic(
             *degree,
             points.clone(),
             weights.clone().unwrap_or_else(|| vec![1.0; points.len()]),
-        ),
+        )?),
+        CurveSpec::Lagrange {
+            points,
+            parameterization,
+        } => CurveKind::Lagrange {
+            points: points.clone(),
+            parameterization: *parameterization,
+        },
+        CurveSpec::Hermite { points, tangents } => CurveKind::CubicHermite {
+            points: points.clone(),
+            tangents: tangents.clone(),
+        },
+        CurveSpec::QuinticHermite {
+            points,
+            tangents,
+            accelerations,
+        } => CurveKind::QuinticHermite {
+            points: points.clone(),
+            tangents: tangents.clone(),
+            accelerations: accelerations.clone(),
+        },
+        CurveSpec::CatmullRom {
+            points,
+            parameterization,
+            closed,
+        } => CurveKind::CatmullRom {
+            points: points.clone(),
+            parameterization: *parameterization,
+            closed: *closed,
+        },
+        CurveSpec::KochanekBartels {
+            points,
+            keys,
+            closed,
+        } => CurveKind::KochanekBartels {
+            points: points.clone(),
+            keys: keys
+                .clone()
+                .unwrap_or_else(|| vec![Tbc::default(); points.len()]),
+            closed: *closed,
+        },
+        CurveSpec::CubicSpline {
+            points,
+            parameterization,
+            ends,
+        } => CurveKind::CubicSpline {
+            points: points.clone(),
+            parameterization: *parameterization,
+            ends: *ends,
+        },
+        CurveSpec::Chaikin {
+            points,
+            level,
+            closed,
+        } => CurveKind::Chaikin {
+            points: points.clone(),
+            level: *level,
+            closed: *closed,
+        },
+        CurveSpec::PolyBezier {
+            points,
+            joins,
+            closed,
+        } => {
+            let segments = if *closed {
+                points.len() / 3
+            } else {
+                points.len().saturating_sub(1) / 3
+            };
+            let joints = if *closed {
+                segments
+            } else {
+                segments.saturating_sub(1)
+            };
+            let joins = joins.clone().unwrap_or_else(|| vec![Join::G1; joints]);
+            let plain = CurveKind::PolyBezier {
+                points: points.clone(),
+                joins: joins.clone(),
+                closed: *closed,
+            };
+            plain.check()?;
+            // Turn the handles to hold the joins.
+            let mut k = plain;
+            for (j, join) in joins.into_iter().enumerate() {
+                k = k.set_join(j, join)?;
+            }
+            k
+        }
+        CurveSpec::Fractal {
+            rule,
+            points,
+            level,
+            closed,
+            normal,
+        } => CurveKind::Fractal {
+            rule: *rule,
+            points: points.clone(),
+            level: *level,
+            closed: *closed,
+            normal: *normal,
+        },
+    };
+    kind.check()?;
+    Ok(kind)
+}
+
+/// Refuses an edit that only NURBS curves have (weights, knots, degree).
+fn nurbs_only(
+    kind: &CurveKind,
+    operation: &'static str,
+    edit: impl FnOnce(&mut NurbsCurve) -> Result<(), CurveError>,
+) -> Result<CurveKind, CurveError> {
+    match kind {
+        CurveKind::Nurbs(c) => {
+            let mut c = c.clone();
+            edit(&mut c)?;
+            Ok(CurveKind::Nurbs(c))
+        }
+        k => Err(CurveError::NotForKind {
+            operation,
+            kind: k.name(),
+        }),
     }
 }
 
@@ -72,7 +195,7 @@ impl Plan<'_> {
             Err(e) => return Err(e),
         };
         match self.current(id).map(|n| &n.content) {
-            Some(NodeContent::Curve(c)) => Ok((**c).clone()),
+            Some(NodeContent::Curve(c)) => Ok((**c.nurbs()).clone()),
             _ => Err(CommandError::ProfileNotACurve {
                 node: node.to_string(),
                 profile: r.clone(),
@@ -158,11 +281,112 @@ impl Plan<'_> {
         parent: &Option<NodeRef>,
         transform: NodeTransform,
     ) -> Result<(), CommandError> {
-        let c = curve_from_spec(curve).map_err(|error| CommandError::Curve {
-            node: format!("curve '{name}'"),
-            error,
-        })?;
+        let c = curve_from_spec(curve)
+            .and_then(CurveContent::new)
+            .map_err(|error| CommandError::Curve {
+                node: format!("curve '{name}'"),
+                error,
+            })?;
         self.add_node(name, parent, transform, NodeContent::Curve(Arc::new(c)))?;
+        Ok(())
+    }
+
+    /// Replaces a curve node's definition.
+    pub(super) fn set_curve(
+        &mut self,
+        node: &NodeRef,
+        curve: &CurveSpec,
+    ) -> Result<(), CommandError> {
+        self.edit_curve(node, |_| curve_from_spec(curve))
+    }
+
+    /// Splits a curve node at `at`: it keeps the first part; a new node
+    /// with its parent and transform gets the second.
+    pub(super) fn split_curve(
+        &mut self,
+        node: &NodeRef,
+        at: f64,
+        name: &Option<String>,
+    ) -> Result<(), CommandError> {
+        let n = self.node(node)?;
+        let label = self.doc.label_of(n.id);
+        let NodeContent::Curve(c) = &n.content else {
+            return Err(CommandError::NotACurve { node: label });
+        };
+        let curve_error = |error| CommandError::Curve {
+            node: label.clone(),
+            error,
+        };
+        let (first, second) = c.kind().split(at).map_err(curve_error)?;
+        let first = CurveContent::new(first).map_err(curve_error)?;
+        let second = CurveContent::new(second).map_err(curve_error)?;
+        let mut kept = n.clone();
+        kept.content = NodeContent::Curve(Arc::new(first));
+        self.set(kept);
+        let new_name = name.clone().unwrap_or_else(|| n.name.clone());
+        let id = self.add_node(
+            &new_name,
+            &None,
+            n.transform,
+            NodeContent::Curve(Arc::new(second)),
+        )?;
+        let mut new = self.current(id).cloned().expect("just added");
+        new.parent = n.parent;
+        new.visible = n.visible;
+        self.set(new);
+        Ok(())
+    }
+
+    /// Appends curve `second` to `first` (taken into `first`'s local
+    /// space) and deletes `second`.
+    pub(super) fn join_curves(
+        &mut self,
+        first: &NodeRef,
+        second: &NodeRef,
+    ) -> Result<(), CommandError> {
+        let a = self.node(first)?;
+        let b = self.node(second)?;
+        let label = self.doc.label_of(a.id);
+        if a.id == b.id {
+            return Err(CommandError::Curve {
+                node: label,
+                error: CurveError::NotForKind {
+                    operation: "joining a curve to itself (close it instead)",
+                    kind: "this",
+                },
+            });
+        }
+        let (NodeContent::Curve(ca), NodeContent::Curve(cb)) = (&a.content, &b.content) else {
+            let bad = if matches!(a.content, NodeContent::Curve(_)) {
+                b.id
+            } else {
+                a.id
+            };
+            return Err(CommandError::NotACurve {
+                node: self.doc.label_of(bad),
+            });
+        };
+        // `second`'s points in `first`'s local space.
+        let to_first = self.doc.world_matrix(a.id).inverse() * self.doc.world_matrix(b.id);
+        let joined = cb
+            .kind()
+            .transformed(&to_first)
+            .and_then(|b| ca.kind().join(&b))
+            .and_then(CurveContent::new)
+            .map_err(|error| CommandError::Curve { node: label, error })?;
+        let mut kept = a.clone();
+        kept.content = NodeContent::Curve(Arc::new(joined));
+        self.set(kept);
+        // Children of the deleted curve move to its parent, keeping their place.
+        for child in self.doc.children(b.id).map(|c| c.id).collect::<Vec<_>>() {
+            let mut c = self.current(child).cloned().expect("a child");
+            c.parent = b.parent;
+            c.transform = crate::scene::NodeTransform::from_matrix(
+                b.transform.to_matrix() * c.transform.to_matrix(),
+            );
+            self.set(c);
+        }
+        self.remove(b.id);
         Ok(())
     }
 
@@ -189,14 +413,10 @@ impl Plan<'_> {
         node: &NodeRef,
         points: &[(u32, DVec3)],
     ) -> Result<(), CommandError> {
+        let moves: Vec<(usize, DVec3)> = points.iter().map(|&(i, p)| (i as usize, p)).collect();
         self.edit_shape(
             node,
-            |c| {
-                for &(i, p) in points {
-                    c.set_point(i as usize, p)?;
-                }
-                Ok(())
-            },
+            |c| c.set_points(&moves),
             |s| {
                 for &(i, p) in points {
                     match s {
@@ -235,11 +455,13 @@ impl Plan<'_> {
     ) -> Result<(), CommandError> {
         self.edit_shape(
             node,
-            |c| {
-                for &(i, w) in weights {
-                    c.set_weight(i as usize, w)?;
-                }
-                Ok(())
+            |k| {
+                nurbs_only(k, "setting weights (convert it to NURBS first)", |c| {
+                    for &(i, w) in weights {
+                        c.set_weight(i as usize, w)?;
+                    }
+                    Ok(())
+                })
             },
             |s| match s {
                 SurfaceShape::Nurbs(n) => {
@@ -262,9 +484,11 @@ impl Plan<'_> {
     ) -> Result<(), CommandError> {
         self.edit_shape(
             node,
-            |c| {
-                *c = c.insert_knot(at)?;
-                Ok(())
+            |k| {
+                nurbs_only(k, "inserting a knot (insert a point instead)", |c| {
+                    *c = c.insert_knot(at)?;
+                    Ok(())
+                })
             },
             |s| match s {
                 SurfaceShape::Nurbs(n) => {
@@ -286,9 +510,11 @@ impl Plan<'_> {
     ) -> Result<(), CommandError> {
         self.edit_shape(
             node,
-            |c| {
-                *c = c.elevate_degree()?;
-                Ok(())
+            |k| {
+                nurbs_only(k, "elevating the degree (convert it to NURBS first)", |c| {
+                    *c = c.elevate_degree()?;
+                    Ok(())
+                })
             },
             |s| match s {
                 SurfaceShape::Triangle(t) => {

@@ -8,6 +8,8 @@ use crate::modifiers::MeshModifier;
 use crate::scene::{NodeId, NodeTransform, Shading, SubdivisionModifier};
 use glam::DVec3;
 use hedra_geom::Primitive;
+use hedra_geom::curves::interpolating::Tbc;
+use hedra_geom::curves::{CurveEnd, FractalRule, Join, Parameterization, SplineEnds};
 use hedra_geom::modeling::{BisectClear, MirrorAxis, TriangulateMethod};
 
 /// Serde: the default triangulation is not written.
@@ -64,6 +66,112 @@ pub enum CurveSpec {
         #[serde(default)]
         weights: Option<Vec<f64>>,
     },
+    /// The polynomial of degree n − 1 through n points (seed 000).
+    Lagrange {
+        /// The points it passes through (at least 2).
+        points: Vec<DVec3>,
+        /// Uniform (the default), chord-length or centripetal parameters.
+        #[serde(default)]
+        parameterization: Parameterization,
+    },
+    /// Cubic Hermite segments: points with their tangents (dp/dt), at
+    /// parameters 0, 1, 2, …
+    Hermite {
+        /// The points it passes through (at least 2).
+        points: Vec<DVec3>,
+        /// One tangent per point.
+        tangents: Vec<DVec3>,
+    },
+    /// Quintic Hermite segments (C2): points with first and second
+    /// derivatives (seed 002).
+    QuinticHermite {
+        /// The points it passes through (at least 2).
+        points: Vec<DVec3>,
+        /// One first derivative per point.
+        tangents: Vec<DVec3>,
+        /// One second derivative per point.
+        accelerations: Vec<DVec3>,
+    },
+    /// The Catmull-Rom spline through the points.
+    CatmullRom {
+        /// The points it passes through (at least 2; 3 closed).
+        points: Vec<DVec3>,
+        /// Uniform (the default), chord-length or centripetal parameters.
+        #[serde(default)]
+        parameterization: Parameterization,
+        /// A closed loop (default open).
+        #[serde(default)]
+        closed: bool,
+    },
+    /// The Kochanek-Bartels spline: tension, bias, continuity per point.
+    KochanekBartels {
+        /// The points it passes through (at least 2; 3 closed).
+        points: Vec<DVec3>,
+        /// One T/B/C key per point; `None`: all zero (Catmull-Rom).
+        #[serde(default)]
+        keys: Option<Vec<Tbc>>,
+        /// A closed loop (default open).
+        #[serde(default)]
+        closed: bool,
+    },
+    /// The interpolating C2 cubic spline (seed 004).
+    CubicSpline {
+        /// The points it passes through (at least 2; 3 closed).
+        points: Vec<DVec3>,
+        /// Uniform (the default), chord-length or centripetal parameters.
+        #[serde(default)]
+        parameterization: Parameterization,
+        /// `Natural` (the default), `Clamped(start:, end:)` or `Closed`.
+        #[serde(default)]
+        ends: SplineEnds,
+    },
+    /// Chaikin's corner cutting of a control polygon.
+    Chaikin {
+        /// The control polygon (at least 2; 3 closed).
+        points: Vec<DVec3>,
+        /// How many times the corners are cut.
+        level: u32,
+        /// A closed polygon (default open).
+        #[serde(default)]
+        closed: bool,
+    },
+    /// Cubic Bézier segments: anchors at 0, 3, 6, … with two handles
+    /// between; `3k + 1` points open, `3k` closed.
+    PolyBezier {
+        /// Anchors and handles in the node's local space.
+        points: Vec<DVec3>,
+        /// The continuity of each joint (`k − 1` open, `k` closed, joint
+        /// `j` at anchor `3(j + 1)` open, `3j` closed); `None`: all `G1`.
+        /// Handles are turned to hold them (the outgoing one moves).
+        #[serde(default)]
+        joins: Option<Vec<Join>>,
+        /// A closed chain (default open).
+        #[serde(default)]
+        closed: bool,
+    },
+    /// A fractal of the Koch family: the initiator's segments replaced
+    /// `level` times (seed 004). Two points make the Koch curve, a
+    /// clockwise triangle (seen from the normal) the Koch snowflake.
+    Fractal {
+        /// `Koch` (the default, D = log 4 / log 3) or `QuadraticKoch` (D = 1.5).
+        #[serde(default)]
+        rule: FractalRule,
+        /// The initiator polygon (at least 2; 3 closed).
+        points: Vec<DVec3>,
+        /// Replacement levels.
+        level: u32,
+        /// A closed initiator (default open).
+        #[serde(default)]
+        closed: bool,
+        /// The plane's normal, bumps to `normal × segment`; default +Z.
+        #[serde(default = "plus_z")]
+        normal: DVec3,
+    },
+}
+
+/// Serde default of a fractal's normal.
+fn plus_z() -> DVec3 {
+    DVec3::Z
 }
 
 /// A surface to add.
@@ -471,6 +579,92 @@ pub enum Command {
         /// For NURBS surfaces, which parameter (default `U`); ignored otherwise.
         #[serde(default)]
         direction: ParameterDirection,
+    },
+
+    /// Replaces a curve node's definition (kind, points, tangents, keys,
+    /// joins, level): what a curve's panel and its tangent handles send.
+    SetCurve {
+        /// A curve node.
+        node: NodeRef,
+        /// The new curve, in the node's local space.
+        curve: CurveSpec,
+    },
+    /// Inserts a defining point where the curve is at parameter `at` (of
+    /// the drawn NURBS form, as `hedra eval` takes it): a knot for NURBS,
+    /// a de Casteljau split for poly-Bézier (shape kept exactly), the
+    /// curve's point for interpolating kinds, a polygon point for Chaikin
+    /// and fractals.
+    InsertCurvePoint {
+        /// A curve node.
+        node: NodeRef,
+        /// The parameter, inside the open domain.
+        at: f64,
+    },
+    /// Deletes defining points (poly-Bézier: anchors, each with its handles).
+    DeleteCurvePoints {
+        /// A curve node.
+        node: NodeRef,
+        /// Indices as `SetControlPoints` counts them.
+        points: Vec<u32>,
+    },
+    /// Adds a point past one end of an open curve (Blender's E in curve
+    /// edit mode).
+    ExtrudeCurve {
+        /// A curve node.
+        node: NodeRef,
+        /// `End` (the default) or `Start`.
+        #[serde(default)]
+        end: CurveEnd,
+        /// The new point in the node's local space.
+        to: DVec3,
+    },
+    /// Opens or closes a curve (Blender's Alt+C).
+    SetCurveClosed {
+        /// A curve node.
+        node: NodeRef,
+        /// True to close.
+        closed: bool,
+    },
+    /// Reverses a curve's direction; the shape stays.
+    ReverseCurve {
+        /// A curve node.
+        node: NodeRef,
+    },
+    /// Splits an open curve at a parameter: the node keeps the first part,
+    /// a new node (same parent and transform) gets the second.
+    SplitCurve {
+        /// A curve node.
+        node: NodeRef,
+        /// The parameter (of the drawn NURBS form), inside the open domain.
+        at: f64,
+        /// The new node's name; `None`: the curve's name, made unique.
+        #[serde(default)]
+        name: Option<String>,
+    },
+    /// Appends `second` to the end of `first` (same kind, both open) and
+    /// deletes `second`; where their ends meet the point is shared, else a
+    /// straight piece bridges them.
+    JoinCurves {
+        /// The curve that stays.
+        first: NodeRef,
+        /// The curve appended (its points taken into `first`'s space) and deleted.
+        second: NodeRef,
+    },
+    /// Sets the continuity of a poly-Bézier joint and turns its outgoing
+    /// handle to hold it.
+    SetCurveJoin {
+        /// A poly-Bézier curve node.
+        node: NodeRef,
+        /// The joint (see [`CurveSpec::PolyBezier`]).
+        joint: u32,
+        /// `C0`, `C1` or `G1`.
+        join: Join,
+    },
+    /// Replaces a curve by its NURBS form (exact where the kind is
+    /// piecewise polynomial or a polyline).
+    ConvertCurveToNurbs {
+        /// A curve node.
+        node: NodeRef,
     },
 
     // ----- mesh editing (element positions in the node's local space) -----
@@ -1004,6 +1198,20 @@ impl Command {
             Command::SetWeights { .. } => "Set Weights".to_string(),
             Command::InsertKnot { at, .. } => format!("Insert Knot {at}"),
             Command::ElevateDegree { .. } => "Elevate Degree".to_string(),
+            Command::SetCurve { .. } => "Edit Curve".to_string(),
+            Command::InsertCurvePoint { .. } => "Insert Curve Point".to_string(),
+            Command::DeleteCurvePoints { points, .. } => match points.len() {
+                1 => "Delete Curve Point".to_string(),
+                n => format!("Delete {n} Curve Points"),
+            },
+            Command::ExtrudeCurve { .. } => "Extrude Curve".to_string(),
+            Command::SetCurveClosed { closed: true, .. } => "Close Curve".to_string(),
+            Command::SetCurveClosed { closed: false, .. } => "Open Curve".to_string(),
+            Command::ReverseCurve { .. } => "Reverse Curve".to_string(),
+            Command::SplitCurve { .. } => "Split Curve".to_string(),
+            Command::JoinCurves { .. } => "Join Curves".to_string(),
+            Command::SetCurveJoin { join, .. } => format!("Set Joint {join:?}"),
+            Command::ConvertCurveToNurbs { .. } => "Convert to NURBS".to_string(),
             Command::Duplicate { nodes } => format!("Duplicate {}", plural(nodes.len(), "node")),
             Command::MoveVertices { .. } | Command::SetVertexPositions { .. } => {
                 "Move Vertices".to_string()

@@ -271,7 +271,8 @@ impl Curve for QuinticHermite {
 }
 
 /// Tension, bias and continuity of one Kochanek-Bartels key, each in [−1, 1].
-#[derive(Copy, Clone, Debug, Default, PartialEq)]
+#[derive(Copy, Clone, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(default)]
 pub struct Tbc {
     /// Tension T: 1 shortens the tangents to zero, −1 doubles them.
     pub tension: f64,

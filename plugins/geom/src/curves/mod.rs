@@ -10,11 +10,13 @@ pub mod analysis;
 pub mod bezier;
 pub mod fast;
 pub mod interpolating;
+pub mod kinds;
 pub mod nurbs;
 
 use glam::DVec3;
 
 pub use bezier::Bezier;
+pub use kinds::{CurveEnd, CurveKind, FractalRule, Join, NurbsForm, Parameterization, SplineEnds};
 pub use nurbs::NurbsCurve;
 
 /// A parametric curve on a closed parameter interval.
@@ -102,6 +104,68 @@ pub enum CurveError {
         start: f64,
         /// End of the domain.
         end: f64,
+    },
+    /// A curve kind given fewer points than it needs.
+    #[error("{kind} needs {needed} points or more, got {got}")]
+    KindTooFewPoints {
+        /// The kind, as [`CurveKind::name`] spells it.
+        kind: &'static str,
+        /// The least number of points it takes.
+        needed: usize,
+        /// The number given.
+        got: usize,
+    },
+    /// An edit the curve's kind does not have (closing a Lagrange curve,
+    /// extruding a closed curve).
+    #[error("{operation} is not possible on a {kind} curve")]
+    NotForKind {
+        /// What was asked, as a phrase: `"closing"`, `"extruding a closed curve"`.
+        operation: &'static str,
+        /// The curve's kind.
+        kind: &'static str,
+    },
+    /// Two curves of different kinds to be joined.
+    #[error("a {first} curve cannot be joined to a {second} curve (convert both to NURBS first)")]
+    KindMismatch {
+        /// The first curve's kind.
+        first: &'static str,
+        /// The second curve's kind.
+        second: &'static str,
+    },
+    /// A poly-Bézier point that is a tangent handle where an anchor is needed.
+    #[error(
+        "point {index} is a handle of the poly-Bézier, not an anchor (anchors are every third point)"
+    )]
+    HandleNotAnchor {
+        /// The index given.
+        index: usize,
+    },
+    /// A poly-Bézier joint index past the end.
+    #[error("joint {index} does not exist (there are {count})")]
+    NoSuchJoint {
+        /// The index asked for.
+        index: usize,
+        /// The number of joints.
+        count: usize,
+    },
+    /// A subdivision or fractal level that would make too many points.
+    #[error("level {level} is too high (at most {max} for this curve)")]
+    LevelTooHigh {
+        /// The level asked for.
+        level: u32,
+        /// The highest level allowed for this curve.
+        max: u32,
+    },
+    /// Two neighbouring points at the same place where chord-length or
+    /// centripetal parameters need them apart.
+    #[error(
+        "points {index} and {next} coincide: chord-length and centripetal parameters need distinct neighbours"
+    )]
+    CoincidentPoints {
+        /// The first of the two.
+        index: usize,
+        /// The second (0 for the closing span of a closed curve).
+        next: usize,
     },
     /// Knot insertion at a knot whose multiplicity already equals the degree.
     #[error(

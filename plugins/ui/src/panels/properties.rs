@@ -224,6 +224,7 @@ fn curve_measures(
     let NodeContent::Curve(c) = content else {
         return;
     };
+    let c = c.nurbs();
     let doc = &model.state.session.doc;
     if let Some(world) = hedra_viewport::world_curve(c, doc.world_matrix(id)) {
         let (a, b) = world.domain();
@@ -291,7 +292,21 @@ pub(super) fn shape_panel(
     };
     let mut directions: Vec<(ParameterDirection, &str)> = Vec::new();
     match content {
-        NodeContent::Curve(c) => {
+        NodeContent::Curve(content)
+            if !matches!(content.kind(), hedra_geom::curves::CurveKind::Nurbs(_)) =>
+        {
+            // Other kinds: their name and points; the NURBS form they are drawn as.
+            let c = content.nurbs();
+            ui.label(format!(
+                "{}, {} points (drawn as NURBS of degree {}, {} control points)",
+                content.kind().name(),
+                content.control_points().len(),
+                c.degree(),
+                c.points().len(),
+            ));
+        }
+        NodeContent::Curve(content) => {
+            let c = content.nurbs();
             ui.label(format!(
                 "NURBS, degree {}, {} control points{}",
                 c.degree(),
