@@ -545,8 +545,8 @@ fn shift_a_cube_with_a_held_click_in_the_real_window() {
         xdotool mousemove 640 700; sleep 1.5
         xdotool keydown shift; sleep 0.2; press a; sleep 0.2; xdotool keyup shift; sleep 3
         # Cube's row in the menu as fitted above the bottom edge (it moves
-        # when the menu gains or loses rows).
-        xdotool mousemove 670 373; sleep 1.5
+        # when the menu's first page gains or loses rows).
+        xdotool mousemove 665 607; sleep 1.5
         xdotool mousedown 1; sleep 0.3; xdotool mouseup 1
         [ -n "$(waitfor 'work[.]hedra[.]ron [*]$')" ] || echo "the click changed nothing" >&2
         xdotool keydown ctrl; sleep 0.2; press s; sleep 0.2; xdotool keyup ctrl

@@ -1429,7 +1429,7 @@ fn draw_a_curve_by_clicks_on_the_grid() {
     user.shortcut(&[KeyCode::ShiftLeft], KeyCode::Tab);
     let center = user.viewport_center();
     user.open_add_menu_at(center);
-    user.click_on("Draw Curve");
+    user.choose_add("Draw Curve");
     assert!(user.app.world().resource::<hedra_edit::CurveDraw>().active);
     let wanted = [
         DVec3::new(-2.0, 0.0, 0.0),
@@ -1481,7 +1481,7 @@ fn a_drawn_point_snaps_onto_a_cube_corner_and_esc_cancels() {
     user.shortcut(&[KeyCode::ShiftLeft], KeyCode::Tab);
     let corner = Vec3::new(1.0, 1.0, 1.0);
     user.open_add_menu_at(user.viewport_center() + Vec2::new(200.0, 150.0));
-    user.click_on("Draw Curve");
+    user.choose_add("Draw Curve");
     let near = user.screen_of(corner) + Vec2::new(5.0, 4.0);
     user.glide_to(near, 3);
     user.click(near);
@@ -1727,4 +1727,41 @@ fn the_decimate_level_slider_scrubs_the_progressive_mesh() {
     let shown = mesh_content(&user).evaluated(0).unwrap().face_count();
     assert_eq!(shown, counts[0]);
     assert!(user.shows(&format!("level · {} faces", counts[0])));
+}
+
+/// Shift+A ▸ Curve ⏵ offers every curve kind of the lecture notes; each adds
+/// a curve node of that kind. The Koch curve of level 3 on a segment of
+/// length 4 is (4/3)³ times as long.
+#[test]
+fn every_curve_kind_is_in_the_add_menu() {
+    use hedra_geom::curves::Curve;
+    for item in [
+        "Lagrange",
+        "Cubic Hermite",
+        "Quintic Hermite",
+        "Catmull-Rom",
+        "Kochanek-Bartels",
+        "C2 Cubic Spline",
+        "Chaikin",
+        "Poly-Bézier",
+        "Koch Curve",
+        "Koch Snowflake",
+        "Quadratic Koch",
+    ] {
+        let mut user = User::new();
+        user.add(item);
+        let node = user.doc().nodes().next().unwrap();
+        let NodeContent::Curve(curve) = &node.content else {
+            panic!("{item} adds a curve")
+        };
+        if item == "Koch Curve" {
+            let c = curve.nurbs();
+            let (a, b) = c.domain();
+            let length = hedra_geom::curves::analysis::arc_length(&**c, a, b);
+            assert!(
+                (length - 4.0 * (4.0f64 / 3.0).powi(3)).abs() < 1e-9,
+                "{length}"
+            );
+        }
+    }
 }

@@ -341,12 +341,24 @@ impl User {
         assert!(self.shows("Cube"), "Shift+A shows the Add menu");
     }
 
+    /// A click on `item` of the open Add menu, through its Curve ▸ or
+    /// Surface ▸ submenu when it is in one.
+    pub fn choose_add(&mut self, item: &str) {
+        for submenu in ["Curve ⏵", "⏴ Back", "Surface ⏵"] {
+            if self.shows(item) {
+                break;
+            }
+            self.click_on(submenu);
+        }
+        self.click_on(item);
+    }
+
     /// Shift+A over the viewport's centre and a click on `item`.
     pub fn add(&mut self, item: &str) {
         let before = self.doc().nodes().count();
         let at = self.viewport_center();
         self.open_add_menu_at(at);
-        self.click_on(item);
+        self.choose_add(item);
         assert_eq!(
             self.doc().nodes().count(),
             before + 1,

@@ -40,6 +40,8 @@ pub struct UiState {
     pub add_menu_at: Option<egui::Pos2>,
     /// Shift+S snap menu position, while open.
     pub snap_menu_at: Option<egui::Pos2>,
+    /// The page the Shift+A menu shows (its Curve ▸ and Surface ▸ parts).
+    pub add_page: panels::AddPage,
     /// Z shading menu position, while open.
     pub shading_menu_at: Option<egui::Pos2>,
     /// Waiting for the user to decide about unsaved changes.
@@ -90,6 +92,7 @@ impl Default for UiState {
             add_menu_at: None,
             snap_menu_at: None,
             shading_menu_at: None,
+            add_page: Default::default(),
             confirm: None,
             after_save: None,
             path_prompt: None,

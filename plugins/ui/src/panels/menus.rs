@@ -169,7 +169,7 @@ pub(super) fn menu_bar(
         let at = *cursor;
         ui.menu_button("Add", |ui| {
             add_primitive_buttons(ui, events, at);
-            add_shape_buttons(ui, events, curve, at);
+            add_shape_buttons(ui, events, curve, at, None);
         });
         if let Some(node) = model.mode.node {
             // Spin turns about the view axis through the 3D cursor (Blender),

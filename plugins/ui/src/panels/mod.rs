@@ -29,8 +29,8 @@ mod status_bar;
 mod weight_labels;
 mod windows;
 
-pub use add_menu::ADD_MENU;
 use add_menu::*;
+pub use add_menu::{ADD_MENU, AddPage};
 use dialogs::*;
 use inspector::*;
 use menus::*;
