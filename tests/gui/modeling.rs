@@ -1762,6 +1762,10 @@ fn every_curve_kind_is_in_the_add_menu() {
                 (length - 4.0 * (4.0f64 / 3.0).powi(3)).abs() < 1e-9,
                 "{length}"
             );
+            assert!(
+                user.shows("level 3, Hausdorff dimension 1.2619"),
+                "log 4 / log 3 in the panel"
+            );
         }
     }
 }

@@ -304,6 +304,17 @@ pub(super) fn shape_panel(
                 c.degree(),
                 c.points().len(),
             ));
+            // The seed's Hausdorff dimension of a fractal, and how far an
+            // approximated NURBS form may stray.
+            if let hedra_geom::curves::CurveKind::Fractal { rule, level, .. } = content.kind() {
+                ui.label(format!(
+                    "level {level}, Hausdorff dimension {:.4}",
+                    rule.dimension()
+                ));
+            }
+            if let Some(t) = content.tolerance() {
+                ui.label(format!("NURBS form within {t:.2e} of the curve"));
+            }
         }
         NodeContent::Curve(content) => {
             let c = content.nurbs();
