@@ -1769,3 +1769,38 @@ fn every_curve_kind_is_in_the_add_menu() {
         }
     }
 }
+
+/// Control-point mode on a Catmull-Rom curve: X deletes the clicked point
+/// (the curve still passes through the others), Alt+C closes the curve;
+/// each one undo step.
+#[test]
+fn x_deletes_a_curve_point_and_alt_c_closes_the_curve() {
+    let mut user = User::new();
+    user.add("Catmull-Rom");
+    user.tap(KeyCode::Tab);
+    let (points, _) = shape_points_of_curve(&user);
+    assert_eq!(points.len(), 5);
+    let middle = user.screen_of(points[2].as_vec3());
+    user.click(middle);
+    let steps = user.undo_steps();
+    user.tap(KeyCode::KeyX);
+    let (left, closed) = shape_points_of_curve(&user);
+    assert_eq!(
+        left,
+        [points[0], points[1], points[3], points[4]],
+        "{}",
+        user.status()
+    );
+    assert!(!closed);
+    user.shortcut(&[KeyCode::AltLeft], KeyCode::KeyC);
+    assert!(shape_points_of_curve(&user).1, "closed");
+    assert_eq!(user.undo_steps(), steps + 2);
+}
+
+fn shape_points_of_curve(user: &User) -> (Vec<DVec3>, bool) {
+    let node = user.doc().nodes().next().unwrap();
+    let NodeContent::Curve(c) = &node.content else {
+        panic!("a curve")
+    };
+    (c.control_points().to_vec(), c.kind().is_closed())
+}

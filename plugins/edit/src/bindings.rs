@@ -195,6 +195,7 @@ pub enum Action {
     Weight,
     InsertKnot,
     InsertKnotV,
+    ToggleClosed,
     Confirm,
     Cancel,
     AxisX,
@@ -699,6 +700,18 @@ pub const BINDINGS: &[Binding] = &[
         Chord::key(K::KeyK),
         A::InsertKnot,
         "insert a knot where the pointer is (the shape stays)",
+    ),
+    bind(
+        ControlPoints,
+        Chord::key(K::KeyX),
+        A::Delete,
+        "delete the selected points of a curve (its shape kept where the kind allows)",
+    ),
+    bind(
+        ControlPoints,
+        Chord::alt(K::KeyC),
+        A::ToggleClosed,
+        "open or close the curve",
     ),
     bind(
         ControlPoints,

@@ -271,6 +271,28 @@ pub fn shape_select_and_shortcuts(
     } else if pressed(Action::SelectNone) {
         edit.selected = BTreeSet::new();
     }
+    // Curves: X deletes the selected points, Alt+C opens or closes.
+    if let NodeContent::Curve(curve) = &node.content {
+        if pressed(Action::Delete) {
+            if edit.selected.is_empty() {
+                status.error("Delete: select control points first");
+            } else {
+                requests.write(DocRequest::Execute(Command::DeleteCurvePoints {
+                    node: reference_of(id),
+                    points: edit.selected.iter().copied().collect(),
+                }));
+                edit.selected.clear();
+            }
+            return;
+        }
+        if pressed(Action::ToggleClosed) {
+            requests.write(DocRequest::Execute(Command::SetCurveClosed {
+                node: reference_of(id),
+                closed: !curve.kind().is_closed(),
+            }));
+            return;
+        }
+    }
     let in_v = pressed(Action::InsertKnotV);
     if in_v || pressed(Action::InsertKnot) {
         let Some(cursor) = window.cursor_position() else {
@@ -326,6 +348,11 @@ pub fn shape_select_and_shortcuts(
             .unwrap_or(start_cursor),
         readout: String::new(),
     });
+}
+
+/// A node as commands name it.
+fn reference_of(id: NodeId) -> hedra_doc::NodeRef {
+    hedra_doc::NodeRef::from(id)
 }
 
 /// The knot insertion for the point of the shape under the cursor: for a
