@@ -1804,3 +1804,36 @@ fn shape_points_of_curve(user: &User) -> (Vec<DVec3>, bool) {
     };
     (c.control_points().to_vec(), c.kind().is_closed())
 }
+
+/// Ctrl+click on a Catmull-Rom curve in control-point mode inserts a point
+/// there: one more point, on the curve, the others unchanged.
+#[test]
+fn ctrl_click_inserts_a_point_on_the_curve() {
+    use hedra_geom::curves::Curve;
+    let mut user = User::new();
+    user.add("Catmull-Rom");
+    user.tap(KeyCode::Tab);
+    let (points, _) = shape_points_of_curve(&user);
+    let node = user.doc().nodes().next().unwrap().clone();
+    let NodeContent::Curve(curve) = &node.content else {
+        panic!("a curve")
+    };
+    let nurbs = curve.nurbs().clone();
+    let (a, b) = nurbs.domain();
+    let on_curve = nurbs.point(a + (b - a) * 0.375);
+    let at = user.screen_of(on_curve.as_vec3());
+    let steps = user.undo_steps();
+    user.key_down(KeyCode::ControlLeft);
+    user.click(at);
+    user.key_up(KeyCode::ControlLeft);
+    let (after, _) = shape_points_of_curve(&user);
+    assert_eq!(after.len(), 6, "{}", user.status());
+    assert_eq!(user.undo_steps(), steps + 1);
+    let new: Vec<&DVec3> = after.iter().filter(|p| !points.contains(p)).collect();
+    assert_eq!(new.len(), 1, "the others unchanged: {after:?}");
+    assert!(
+        new[0].distance(on_curve) < 0.05,
+        "{} near {on_curve}",
+        new[0]
+    );
+}

@@ -232,6 +232,22 @@ pub fn shape_select_and_shortcuts(
         }
         return;
     }
+    // Ctrl+click on a curve inserts a point there (Blender's curve edit
+    // mode; the same insertion as K).
+    if gate.pointer_free
+        && buttons.just_pressed(MouseButton::Left)
+        && hedra_scene::modifiers::ctrl(&keys)
+        && matches!(node.content, NodeContent::Curve(_))
+        && let Some(c) = cursor
+    {
+        match knot_under_cursor(id, &node.content, world, c, (cam, cam_t), false) {
+            Some(cmd) => {
+                requests.write(DocRequest::Execute(cmd));
+            }
+            None => status.error("Insert a point: Ctrl+click on the curve itself"),
+        }
+        return;
+    }
     // A press on a point selects it; a press elsewhere starts a box, and a
     // release without dragging clears the selection (Shift keeps it).
     if gate.pointer_free
