@@ -382,38 +382,11 @@ impl PowerBasisCurve {
         }
         check_points(points)?;
         check_parameters(params, n)?;
-        let mut m: Vec<Vec<f64>> = params
+        let m: Vec<Vec<f64>> = params
             .iter()
             .map(|&t| (0..n).map(|k| t.powi(k as i32)).collect())
             .collect();
-        let mut rhs = points.to_vec();
-        for col in 0..n {
-            let pivot = (col..n)
-                .max_by(|&a, &b| m[a][col].abs().total_cmp(&m[b][col].abs()))
-                .expect("rows remain");
-            if m[pivot][col].abs() < 1e-300 {
-                return Err(CurveError::Singular);
-            }
-            m.swap(col, pivot);
-            rhs.swap(col, pivot);
-            for row in col + 1..n {
-                let f = m[row][col] / m[col][col];
-                let (above, below) = m.split_at_mut(row);
-                for (x, &y) in below[0][col..n].iter_mut().zip(&above[col][col..n]) {
-                    *x -= f * y;
-                }
-                let r = rhs[col];
-                rhs[row] -= f * r;
-            }
-        }
-        let mut coefficients = vec![DVec3::ZERO; n];
-        for row in (0..n).rev() {
-            let mut s = rhs[row];
-            for k in row + 1..n {
-                s -= m[row][k] * coefficients[k];
-            }
-            coefficients[row] = s / m[row][row];
-        }
+        let coefficients = solve_dense(m, points.to_vec())?;
         Ok(PowerBasisCurve {
             coefficients,
             domain: (params[0], params[n - 1]),
@@ -502,4 +475,41 @@ pub fn chaikin(points: &[DVec3], iterations: u32, closed: bool) -> Vec<DVec3> {
         p = next;
     }
     p
+}
+
+/// Solves the dense system `m x = rhs` by Gaussian elimination with
+/// partial pivoting.
+pub(crate) fn solve_dense(
+    mut m: Vec<Vec<f64>>,
+    mut rhs: Vec<DVec3>,
+) -> Result<Vec<DVec3>, CurveError> {
+    let n = rhs.len();
+    for col in 0..n {
+        let pivot = (col..n)
+            .max_by(|&a, &b| m[a][col].abs().total_cmp(&m[b][col].abs()))
+            .expect("rows remain");
+        if m[pivot][col].abs() < 1e-300 {
+            return Err(CurveError::Singular);
+        }
+        m.swap(col, pivot);
+        rhs.swap(col, pivot);
+        for row in col + 1..n {
+            let f = m[row][col] / m[col][col];
+            let (above, below) = m.split_at_mut(row);
+            for (x, y) in below[0][col..].iter_mut().zip(&above[col][col..]) {
+                *x -= f * y;
+            }
+            let r = rhs[col];
+            rhs[row] -= f * r;
+        }
+    }
+    let mut x = vec![DVec3::ZERO; n];
+    for row in (0..n).rev() {
+        let mut s = rhs[row];
+        for k in row + 1..n {
+            s -= m[row][k] * x[k];
+        }
+        x[row] = s / m[row][row];
+    }
+    Ok(x)
 }

@@ -26,7 +26,7 @@ use glam::{DMat4, DVec3};
 use serde::{Deserialize, Serialize};
 
 use super::bezier::bernstein;
-use super::interpolating::{HermiteSpline, Tbc, c2_cubic_spline, chaikin};
+use super::interpolating::{HermiteSpline, Tbc, c2_cubic_spline, chaikin, solve_dense};
 use super::nurbs::{NurbsCurve, clamped_uniform_knots};
 use super::{Curve, CurveError, check_points};
 
@@ -472,40 +472,6 @@ fn hermite_to_nurbs(h: &HermiteSpline) -> Result<NurbsCurve, CurveError> {
 /// A polyline as a degree-1 NURBS, uniform parameters on [0, 1].
 fn polyline(points: Vec<DVec3>) -> Result<NurbsCurve, CurveError> {
     NurbsCurve::clamped(1, points)
-}
-
-/// Solves the dense system `m x = rhs` by Gaussian elimination with
-/// partial pivoting.
-fn solve_dense(mut m: Vec<Vec<f64>>, mut rhs: Vec<DVec3>) -> Result<Vec<DVec3>, CurveError> {
-    let n = rhs.len();
-    for col in 0..n {
-        let pivot = (col..n)
-            .max_by(|&a, &b| m[a][col].abs().total_cmp(&m[b][col].abs()))
-            .expect("rows remain");
-        if m[pivot][col].abs() < 1e-300 {
-            return Err(CurveError::Singular);
-        }
-        m.swap(col, pivot);
-        rhs.swap(col, pivot);
-        for row in col + 1..n {
-            let f = m[row][col] / m[col][col];
-            let (above, below) = m.split_at_mut(row);
-            for (x, y) in below[0][col..].iter_mut().zip(&above[col][col..]) {
-                *x -= f * y;
-            }
-            let r = rhs[col];
-            rhs[row] -= f * r;
-        }
-    }
-    let mut x = vec![DVec3::ZERO; n];
-    for row in (0..n).rev() {
-        let mut s = rhs[row];
-        for k in row + 1..n {
-            s -= m[row][k] * x[k];
-        }
-        x[row] = s / m[row][row];
-    }
-    Ok(x)
 }
 
 /// The Lagrange polynomial through `points` at `params`, at `t`, by the
