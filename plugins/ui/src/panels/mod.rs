@@ -25,7 +25,9 @@ mod modifier_stack;
 mod outliner;
 mod pointer_menus;
 mod properties;
+mod shape_panel;
 mod status_bar;
+mod subdivision_panel;
 mod weight_labels;
 mod windows;
 
@@ -40,7 +42,9 @@ use outliner::*;
 use pointer_menus::*;
 pub use pointer_menus::{MERGE_MENU, SNAP_MENU};
 use properties::*;
+use shape_panel::*;
 use status_bar::*;
+use subdivision_panel::*;
 use weight_labels::*;
 use windows::*;
 

@@ -1,0 +1,284 @@
+//! The Properties panel's curve and surface section: kind, degree, knots,
+//! knot insertion, degree elevation, analysis overlays and measures.
+
+use super::*;
+
+/// A curve's length (world units), its division into equal arc lengths as
+/// a new polyline node, and the closest point to the pointer (seed 001's
+/// curve operations).
+fn curve_measures(
+    ui: &mut egui::Ui,
+    id: NodeId,
+    content: &NodeContent,
+    model: &Model,
+    state: &mut UiState,
+    analysis: &mut hedra_viewport::CurveAnalysis,
+    events: &mut Vec<UiEvent>,
+) {
+    use hedra_geom::curves::{
+        Curve,
+        analysis::{arc_length, equal_arc_length_parameters},
+    };
+    let NodeContent::Curve(c) = content else {
+        return;
+    };
+    let c = c.nurbs();
+    let doc = &model.state.session.doc;
+    if let Some(world) = hedra_viewport::world_curve(c, doc.world_matrix(id)) {
+        let (a, b) = world.domain();
+        ui.label(format!("Length {:.6}", arc_length(&world, a, b)));
+    }
+    ui.horizontal(|ui| {
+        ui.add(
+            egui::DragValue::new(&mut state.divide_count)
+                .range(2..=10_000)
+                .suffix(" points"),
+        );
+        if ui
+            .button("Divide into equal lengths")
+            .on_hover_text("A new polyline through points an equal arc length apart")
+            .clicked()
+        {
+            let node = doc.node(id);
+            let params = equal_arc_length_parameters(&**c, state.divide_count);
+            exec(
+                events,
+                Command::AddCurve {
+                    name: format!("{} divided", node.map_or("Curve", |n| n.name.as_str())),
+                    curve: hedra_doc::command::CurveSpec::Nurbs {
+                        degree: 1,
+                        points: c.points_at(&params),
+                        weights: None,
+                        knots: None,
+                    },
+                    parent: node.and_then(|n| n.parent).map(NodeRef::from),
+                    transform: node.map_or_else(NodeTransform::default, |n| n.transform),
+                },
+            );
+        }
+    });
+    ui.checkbox(&mut analysis.closest, "Closest point to the pointer");
+    if analysis.closest {
+        ui.label(match analysis.closest_found {
+            Some(p) => format!("t {:.6} · distance {:.6}", p.t, p.distance),
+            None => "point into the viewport".to_string(),
+        });
+    }
+}
+
+/// A curve's or surface's degree, knots and control points; in edit mode
+/// (Tab) the weight of the selected points; knot insertion and degree
+/// elevation.
+pub(super) fn shape_panel(
+    ui: &mut egui::Ui,
+    id: NodeId,
+    content: &NodeContent,
+    model: &Model,
+    state: &mut UiState,
+    events: &mut Vec<UiEvent>,
+    analysis: &mut (
+        hedra_viewport::CurveAnalysis,
+        hedra_viewport::SurfaceAnalysis,
+    ),
+) {
+    use hedra_doc::command::ParameterDirection;
+    let (analysis, surface_analysis) = (&mut analysis.0, &mut analysis.1);
+    use hedra_edit::shape_mode::control_weights;
+    let knots_text = |k: &[f64]| {
+        let text: Vec<String> = k.iter().map(|x| format!("{x:.3}")).collect();
+        text.join(" ")
+    };
+    let mut directions: Vec<(ParameterDirection, &str)> = Vec::new();
+    match content {
+        NodeContent::Curve(content)
+            if !matches!(content.kind(), hedra_geom::curves::CurveKind::Nurbs(_)) =>
+        {
+            // Other kinds: their name and points; the NURBS form they are drawn as.
+            let c = content.nurbs();
+            ui.label(format!(
+                "{}, {} points (drawn as NURBS of degree {}, {} control points)",
+                content.kind().name(),
+                content.control_points().len(),
+                c.degree(),
+                c.points().len(),
+            ));
+            // The seed's Hausdorff dimension of a fractal, and how far an
+            // approximated NURBS form may stray.
+            if let hedra_geom::curves::CurveKind::Fractal { rule, level, .. } = content.kind() {
+                ui.label(format!(
+                    "level {level}, Hausdorff dimension {:.4}",
+                    rule.dimension()
+                ));
+            }
+            if let Some(t) = content.tolerance() {
+                ui.label(format!("NURBS form within {t:.2e} of the curve"));
+            }
+        }
+        NodeContent::Curve(content) => {
+            let c = content.nurbs();
+            ui.label(format!(
+                "NURBS, degree {}, {} control points{}",
+                c.degree(),
+                c.points().len(),
+                if c.is_polynomial() { "" } else { ", rational" }
+            ));
+            ui.add(egui::Label::new(format!("knots {}", knots_text(c.knots()))).wrap());
+            directions.push((ParameterDirection::U, "Insert knot at"));
+        }
+        NodeContent::Surface(s) => match &**s {
+            hedra_doc::SurfaceShape::Nurbs(n) => {
+                let ((du, dv), (nu, nv)) = (n.degrees(), n.size());
+                ui.label(format!(
+                    "NURBS, degree {du} × {dv}, {nu} × {nv} control points"
+                ));
+                let (ku, kv) = n.knots();
+                ui.add(egui::Label::new(format!("knots u {}", knots_text(ku))).wrap());
+                ui.add(egui::Label::new(format!("knots v {}", knots_text(kv))).wrap());
+                directions.push((ParameterDirection::U, "Insert knot in u at"));
+                directions.push((ParameterDirection::V, "Insert knot in v at"));
+            }
+            hedra_doc::SurfaceShape::Triangle(t) => {
+                ui.label(format!(
+                    "Bézier triangle, degree {}, {} control points",
+                    t.degree,
+                    t.points.len()
+                ));
+            }
+        },
+        _ => return,
+    }
+    ui.horizontal(|ui| {
+        ui.add(
+            egui::DragValue::new(&mut state.knot_at)
+                .speed(0.01)
+                .range(0.0..=1.0)
+                .max_decimals(4),
+        );
+        for (direction, label) in &directions {
+            if ui
+                .button(*label)
+                .on_hover_text("Adds a control point; the shape does not move")
+                .clicked()
+            {
+                exec(
+                    events,
+                    Command::InsertKnot {
+                        node: id.into(),
+                        at: state.knot_at,
+                        direction: *direction,
+                    },
+                );
+            }
+        }
+    });
+    let elevations: &[(ParameterDirection, &str)] = match content {
+        NodeContent::Surface(s) if matches!(**s, hedra_doc::SurfaceShape::Nurbs(_)) => &[
+            (ParameterDirection::U, "Elevate degree in u"),
+            (ParameterDirection::V, "Elevate degree in v"),
+        ],
+        _ => &[(ParameterDirection::U, "Elevate degree")],
+    };
+    ui.horizontal(|ui| {
+        for (direction, label) in elevations {
+            if ui.button(*label).clicked() {
+                exec(
+                    events,
+                    Command::ElevateDegree {
+                        node: id.into(),
+                        direction: *direction,
+                    },
+                );
+            }
+        }
+    });
+    if matches!(content, NodeContent::Curve(_)) {
+        ui.separator();
+        ui.label(egui::RichText::new("Analysis").weak());
+        ui.horizontal(|ui| {
+            ui.checkbox(&mut analysis.comb, "Curvature comb");
+            ui.add_enabled(
+                analysis.comb,
+                egui::DragValue::new(&mut analysis.comb_scale)
+                    .speed(0.01)
+                    .range(0.001..=100.0)
+                    .prefix("× "),
+            );
+        });
+        ui.checkbox(&mut analysis.colour_by_curvature, "Colour by curvature");
+        ui.checkbox(&mut analysis.frame, "Frenet frame and osculating circle");
+        if analysis.frame {
+            ui.add(egui::Slider::new(&mut analysis.at, 0.0..=1.0).text("at"));
+        }
+        curve_measures(ui, id, content, model, state, analysis, events);
+    }
+    if matches!(content, NodeContent::Surface(s) if matches!(**s, hedra_doc::SurfaceShape::Nurbs(_)))
+    {
+        ui.separator();
+        ui.label(egui::RichText::new("Analysis").weak());
+        let a = surface_analysis;
+        ui.horizontal(|ui| {
+            ui.checkbox(&mut a.section, "Planar section");
+            for (axis, name) in ["X", "Y", "Z"].iter().enumerate() {
+                ui.selectable_value(&mut a.section_axis, axis, *name);
+            }
+        });
+        if a.section {
+            ui.add(egui::Slider::new(&mut a.section_at, 0.0..=1.0).text("plane at"));
+        }
+        ui.checkbox(&mut a.domain_point, "Moving domain point");
+        if a.domain_point {
+            ui.add(egui::Slider::new(&mut a.u, 0.0..=1.0).text("u"));
+            ui.add(egui::Slider::new(&mut a.v, 0.0..=1.0).text("v"));
+        }
+    }
+    if model.shape_edit.node != Some(id) {
+        ui.label("Tab edits the control points (G moves them, W drags their weight).");
+        return;
+    }
+    let selected: Vec<u32> = model.shape_edit.selected.iter().copied().collect();
+    let Some(weights) = control_weights(content) else {
+        ui.label(format!("{} control point(s) selected", selected.len()));
+        return;
+    };
+    if selected.is_empty() {
+        ui.label("Select control points to edit their weight.");
+        return;
+    }
+    let mean = selected.iter().map(|&i| weights[i as usize]).sum::<f64>() / selected.len() as f64;
+    let mut w = state.weight_edit.unwrap_or(mean);
+    ui.label(if selected.len() == 1 {
+        format!("Weight of point {}", selected[0])
+    } else {
+        format!("Weight of {} points", selected.len())
+    });
+    ui.horizontal(|ui| {
+        // Only changes the user made count: a logarithmic slider once
+        // reported its own rounding as a change and set every selected
+        // weight to their mean.
+        let field = ui
+            .add(
+                egui::DragValue::new(&mut w)
+                    .speed(0.01)
+                    .range(0.001..=1000.0)
+                    .max_decimals(4),
+            )
+            .on_hover_text("Larger pulls the shape towards the point; W drags it in the viewport");
+        let slider = ui.add(egui::Slider::new(&mut w, 0.01..=10.0).show_value(false));
+        let touched =
+            |r: &egui::Response| r.dragged() || r.has_focus() || r.clicked() || r.drag_stopped();
+        let edited = (field.changed() && touched(&field)) || (slider.changed() && touched(&slider));
+        if edited && (w - mean).abs() > 1e-12 {
+            state.weight_edit = Some(w);
+        }
+        let busy = field.dragged() || field.has_focus() || slider.dragged();
+        if !busy && let Some(value) = state.weight_edit.take() {
+            exec(
+                events,
+                Command::SetWeights {
+                    node: id.into(),
+                    weights: selected.iter().map(|&i| (i, value)).collect(),
+                },
+            );
+        }
+    });
+}
