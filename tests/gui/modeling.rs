@@ -663,11 +663,16 @@ fn bisect_cuts_along_a_dragged_line() {
 
 /// Opens the menu bar's Mesh menu (the properties panel has a Mesh button too).
 fn open_mesh_menu(user: &mut User) {
+    open_menu(user, "Mesh");
+}
+
+/// Opens the menu bar's menu `name` (the topmost widget with that text).
+fn open_menu(user: &mut User, name: &str) {
     let bar = user
-        .find_all("Mesh")
+        .find_all(name)
         .into_iter()
         .min_by(|a, b| a.min.y.total_cmp(&b.min.y));
-    let bar = bar.expect("a Mesh menu");
+    let bar = bar.unwrap_or_else(|| panic!("a {name} menu"));
     user.click(Vec2::new(bar.center().x, bar.center().y));
 }
 
@@ -1471,6 +1476,68 @@ fn draw_a_curve_by_clicks_on_the_grid() {
     assert!(!user.app.world().resource::<hedra_edit::CurveDraw>().active);
 }
 
+/// T while drawing steps through the kinds; a poly-Bézier is drawn through
+/// the clicks, and a drag from the middle click pulls its handles out (the
+/// joint smooth: the other handle mirrored). Another drawing starts with
+/// the kind drawn last.
+#[test]
+fn draw_a_poly_bezier_pulling_a_handle_out() {
+    use hedra_geom::curves::CurveKind;
+    let mut user = User::new();
+    user.tap(KeyCode::Numpad7);
+    user.shortcut(&[KeyCode::ShiftLeft], KeyCode::Tab);
+    let center = user.viewport_center();
+    user.open_add_menu_at(center);
+    user.choose_add("Draw Curve");
+    for _ in 0..5 {
+        user.tap(KeyCode::KeyT);
+    }
+    let kind = || user_draw_kind(&user);
+    assert_eq!(kind(), hedra_edit::DrawKind::PolyBezier);
+    assert!(user.status().contains("poly-Bézier"), "{}", user.status());
+    let [a, b, c] = [-2.0, 0.0, 2.0].map(|x| DVec3::new(x, 0.0, 0.0));
+    let at = |user: &mut User, p: DVec3| user.screen_of(p.as_vec3()) + Vec2::new(2.0, 2.0);
+    let pa = at(&mut user, a);
+    user.glide_to(pa, 2);
+    user.click(pa);
+    let (pb, pull) = (at(&mut user, b), at(&mut user, DVec3::new(1.0, 0.0, 0.0)));
+    user.glide_to(pb, 2);
+    user.drag(pb, pull, 6);
+    let pc = at(&mut user, c);
+    user.glide_to(pc, 2);
+    user.click(pc);
+    user.tap(KeyCode::Enter);
+    let node = user.doc().nodes().next().expect("a curve node").clone();
+    let NodeContent::Curve(curve) = &node.content else {
+        panic!("a curve")
+    };
+    let CurveKind::PolyBezier { points, .. } = curve.kind() else {
+        panic!("a poly-Bézier: {}", curve.kind().name())
+    };
+    assert_eq!(points.len(), 7);
+    assert_eq!(
+        [points[0], points[3], points[6]],
+        [a, b, c],
+        "anchors on the grid"
+    );
+    let handle = points[4] - points[3];
+    assert!(
+        handle.distance(DVec3::X) < 0.05,
+        "the pulled handle reaches the pointer: {handle}"
+    );
+    assert!(
+        (points[2] - (points[3] - handle)).length() < 1e-12,
+        "mirrored"
+    );
+    user.open_add_menu_at(center);
+    user.choose_add("Draw Curve");
+    assert_eq!(user_draw_kind(&user), hedra_edit::DrawKind::PolyBezier);
+}
+
+fn user_draw_kind(user: &User) -> hedra_edit::DrawKind {
+    user.app.world().resource::<hedra_edit::CurveDraw>().kind
+}
+
 /// Drawing snaps onto other objects too (Snap to Vertex): a click near the
 /// cube's corner puts the point exactly on it; Esc drops the drawing.
 #[test]
@@ -1836,4 +1903,129 @@ fn ctrl_click_inserts_a_point_on_the_curve() {
         "{} near {on_curve}",
         new[0]
     );
+}
+
+/// The selected control points of the curve being edited.
+fn selected_points(user: &User) -> Vec<u32> {
+    user.app
+        .world()
+        .resource::<hedra_edit::ShapeEdit>()
+        .selected
+        .iter()
+        .copied()
+        .collect()
+}
+
+/// The curves of the document, by name order of creation: their points.
+fn curves(user: &User) -> Vec<Vec<DVec3>> {
+    user.doc()
+        .nodes()
+        .filter_map(|n| match &n.content {
+            NodeContent::Curve(c) => Some(c.control_points().to_vec()),
+            _ => None,
+        })
+        .collect()
+}
+
+/// E on the last point of a Catmull-Rom curve adds a point that follows
+/// the pointer (X and a typed 1 put it exactly one unit along X), selects
+/// it, and a second E extrudes from it; one undo step each. E on a middle
+/// point explains itself and changes nothing.
+#[test]
+fn e_extrudes_a_curve_from_its_selected_end() {
+    let mut user = User::new();
+    user.add("Catmull-Rom");
+    user.tap(KeyCode::Tab);
+    let (points, _) = shape_points_of_curve(&user);
+    let middle = user.screen_of(points[2].as_vec3());
+    user.click(middle);
+    user.tap(KeyCode::KeyE);
+    assert!(
+        user.status().contains("select one end point"),
+        "{}",
+        user.status()
+    );
+    let end = user.screen_of(points[4].as_vec3());
+    user.click(end);
+    let steps = user.undo_steps();
+    user.tap(KeyCode::KeyE);
+    user.glide_to(end + Vec2::new(60.0, -20.0), 4);
+    user.tap(KeyCode::KeyX);
+    user.type_text("1");
+    user.tap(KeyCode::Enter);
+    let (after, _) = shape_points_of_curve(&user);
+    assert_eq!(after.len(), 6, "{}", user.status());
+    assert_eq!(&after[..5], &points[..]);
+    assert!(
+        (after[5] - (points[4] + DVec3::X)).length() < 1e-12,
+        "{}",
+        after[5]
+    );
+    assert_eq!(selected_points(&user), [5], "the new point is selected");
+    assert_eq!(user.undo_steps(), steps + 1);
+    user.tap(KeyCode::KeyE);
+    user.tap(KeyCode::KeyY);
+    user.type_text("2");
+    user.tap(KeyCode::Enter);
+    let (twice, _) = shape_points_of_curve(&user);
+    assert_eq!(twice.len(), 7);
+    assert!((twice[6] - (after[5] + 2.0 * DVec3::Y)).length() < 1e-12);
+    assert_eq!(user.undo_steps(), steps + 2);
+}
+
+/// Y on a selected middle point of a Catmull-Rom curve splits it there into
+/// two curves sharing that point; in object mode Ctrl+J with the first
+/// half active joins them back into the original five points.
+#[test]
+fn y_splits_a_curve_at_a_point_and_ctrl_j_joins_the_halves() {
+    let mut user = User::new();
+    user.add("Catmull-Rom");
+    user.tap(KeyCode::Tab);
+    let (points, _) = shape_points_of_curve(&user);
+    let middle = user.screen_of(points[2].as_vec3());
+    user.click(middle);
+    let steps = user.undo_steps();
+    user.tap(KeyCode::KeyY);
+    assert_eq!(
+        curves(&user),
+        [points[..3].to_vec(), points[2..].to_vec()],
+        "{}",
+        user.status()
+    );
+    assert_eq!(user.undo_steps(), steps + 1);
+    user.tap(KeyCode::Tab);
+    // The second half first, then the first half (Shift: it becomes active).
+    let second = user.screen_of(points[3].as_vec3());
+    let first = user.screen_of(points[1].as_vec3());
+    user.click(second);
+    user.key_down(KeyCode::ShiftLeft);
+    user.click(first);
+    user.key_up(KeyCode::ShiftLeft);
+    user.shortcut(&[KeyCode::ControlLeft], KeyCode::KeyJ);
+    assert_eq!(curves(&user), vec![points], "{}", user.status());
+    assert_eq!(user.undo_steps(), steps + 2);
+}
+
+/// The Curve menu of control-point mode: Reverse Direction reverses the
+/// points; Extrude starts the same tool as E.
+#[test]
+fn the_curve_menu_reverses_and_extrudes() {
+    let mut user = User::new();
+    user.add("Catmull-Rom");
+    user.tap(KeyCode::Tab);
+    let (points, _) = shape_points_of_curve(&user);
+    open_menu(&mut user, "Curve");
+    user.click_on("Reverse Direction");
+    let reversed: Vec<DVec3> = points.iter().rev().copied().collect();
+    assert_eq!(shape_points_of_curve(&user).0, reversed);
+    let first = user.screen_of(reversed[0].as_vec3());
+    user.click(first);
+    open_menu(&mut user, "Curve");
+    user.click_on("Extrude\tE");
+    user.tap(KeyCode::KeyZ);
+    user.type_text("3");
+    user.tap(KeyCode::Enter);
+    let (after, _) = shape_points_of_curve(&user);
+    assert_eq!(after.len(), 6, "{}", user.status());
+    assert!((after[0] - (reversed[0] + 3.0 * DVec3::Z)).length() < 1e-12);
 }

@@ -26,7 +26,7 @@ mod snapping;
 pub mod typing;
 
 pub use cursor::place_cursor;
-pub use curve_draw::{CurveDraw, construction_plane};
+pub use curve_draw::{CurveDraw, DrawKind, construction_plane};
 pub use mesh_mode::{
     BisectDrag, EditMode, ElementKind, ElementSelection, KnifeTool, MeshTool, MeshToolKind,
     start_bisect,
@@ -389,6 +389,7 @@ pub fn object_shortcuts(
     pivot_point: Res<PivotPoint>,
     cursor: Res<hedra_scene::Cursor3d>,
     draw: Res<CurveDraw>,
+    mut status: ResMut<hedra_scene::StatusMessage>,
 ) {
     if !gate.keyboard_free
         || tool.active.is_some()
@@ -432,6 +433,14 @@ pub fn object_shortcuts(
             nodes: selection.refs(),
         }));
     }
+    if pressed(Action::JoinCurves) {
+        match join_curves_command(doc, &selection) {
+            Ok(cmd) => {
+                requests.write(DocRequest::Execute(cmd));
+            }
+            Err(e) => status.error(e),
+        }
+    }
     if pressed(Action::Duplicate) && !selection.nodes.is_empty() {
         requests.write(DocRequest::Execute(Command::Duplicate {
             nodes: selection.refs(),
@@ -457,6 +466,39 @@ pub fn object_shortcuts(
                 }
             });
     }
+}
+
+/// Ctrl+J on two selected curves: the active one followed by the other
+/// (`Command::JoinCurves`); a message names what is missing otherwise.
+pub fn join_curves_command(
+    doc: &hedra_doc::Document,
+    selection: &Selection,
+) -> Result<Command, String> {
+    let is_curve = |id: NodeId| {
+        doc.node(id)
+            .is_some_and(|n| matches!(n.content, NodeContent::Curve(_)))
+    };
+    let curves: Vec<NodeId> = selection
+        .nodes
+        .iter()
+        .copied()
+        .filter(|&id| is_curve(id))
+        .collect();
+    let [a, b] = curves[..] else {
+        return Err(format!(
+            "Join: select two curves (the active one comes first); {} selected",
+            curves.len()
+        ));
+    };
+    let first = selection
+        .active()
+        .filter(|&id| id == a || id == b)
+        .unwrap_or(a);
+    let second = if first == a { b } else { a };
+    Ok(Command::JoinCurves {
+        first: first.into(),
+        second: second.into(),
+    })
 }
 
 /// What R and S turn and scale about (Blender's Pivot Point).

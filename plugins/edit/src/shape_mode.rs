@@ -14,6 +14,7 @@ use bevy::prelude::*;
 use bevy::window::PrimaryWindow;
 use glam::DVec3;
 use hedra_doc::{Command, NodeContent, NodeId, NodeRef, SurfaceShape};
+use hedra_geom::curves::CurveEnd;
 use hedra_scene::modifiers::{alt, shift};
 use hedra_scene::{DocRequest, DocState, InputGate, StatusMessage, ViewportCamera};
 
@@ -32,6 +33,9 @@ pub enum ShapeToolKind {
     Rotate,
     /// Scale the selected control points about the pivot (S).
     Scale,
+    /// Add a point beyond the selected end of a curve, following the
+    /// pointer like a move (E, Blender's curve extrude).
+    Extrude(CurveEnd),
 }
 
 /// A running shape tool.
@@ -93,9 +97,11 @@ pub fn shape_mode_keys(
     selection: Res<crate::Selection>,
     state: Res<DocState>,
     mesh_mode: Res<crate::EditMode>,
+    draw: Res<crate::CurveDraw>,
 ) {
     if !gate.keyboard_free
         || edit.tool.is_some()
+        || draw.active
         || mesh_mode.active()
         || !crate::bindings::pressed(&keys, KeyMode::Everywhere, Action::EditModeToggle)
     {
@@ -187,6 +193,7 @@ pub fn shape_select_and_shortcuts(
     gizmo: Option<Res<TransformGizmoState>>,
     pivot_point: Res<crate::PivotPoint>,
     cursor_3d: Res<hedra_scene::Cursor3d>,
+    mut requested: ResMut<crate::bindings::RequestedAction>,
 ) {
     let Some(id) = edit.node else {
         *b_box = false;
@@ -208,7 +215,11 @@ pub fn shape_select_and_shortcuts(
     let cursor = window.cursor_position();
     // B (Blender): a box from the cursor follows the mouse; a click adds
     // the points it holds; Esc or a right click cancels.
-    let pressed = |action| crate::bindings::pressed(&keys, KeyMode::ControlPoints, action);
+    // A chord, or the same action asked for from the Curve menu.
+    let asked = requested.0.take();
+    let pressed = |action| {
+        asked == Some(action) || crate::bindings::pressed(&keys, KeyMode::ControlPoints, action)
+    };
     if gate.keyboard_free
         && pressed(Action::BoxSelect)
         && let Some(c) = cursor
@@ -308,6 +319,30 @@ pub fn shape_select_and_shortcuts(
             }));
             return;
         }
+        if pressed(Action::SplitCurve) {
+            // At the one selected point the curve passes through, else at
+            // the curve under the pointer.
+            let on_curve = match edit.selected.iter().collect::<Vec<_>>()[..] {
+                [&i] => curve.kind().on_curve_parameter(i as usize),
+                _ => None,
+            };
+            let at = on_curve
+                .or_else(|| curve_parameter_under_cursor(curve, world, cursor?, (cam, cam_t)));
+            match at {
+                Some(at) => {
+                    requests.write(DocRequest::Execute(Command::SplitCurve {
+                        node: reference_of(id),
+                        at,
+                        name: None,
+                    }));
+                    edit.selected.clear();
+                }
+                None => status.error(
+                    "Split: select one point the curve passes through, or point at the curve",
+                ),
+            }
+            return;
+        }
     }
     let in_v = pressed(Action::InsertKnotV);
     if in_v || pressed(Action::InsertKnot) {
@@ -330,6 +365,14 @@ pub fn shape_select_and_shortcuts(
         Some(ShapeToolKind::Rotate)
     } else if pressed(Action::Scale) {
         Some(ShapeToolKind::Scale)
+    } else if pressed(Action::Extrude) {
+        match extruded_end(&node.content, &edit.selected) {
+            Ok(end) => Some(ShapeToolKind::Extrude(end)),
+            Err(e) => {
+                status.error(e);
+                return;
+            }
+        }
     } else {
         None
     };
@@ -371,6 +414,46 @@ fn reference_of(id: NodeId) -> hedra_doc::NodeRef {
     hedra_doc::NodeRef::from(id)
 }
 
+/// The end of an open curve E extrudes from: the one selected point must
+/// be its first or last defining point.
+fn extruded_end(content: &NodeContent, selected: &BTreeSet<u32>) -> Result<CurveEnd, &'static str> {
+    let NodeContent::Curve(curve) = content else {
+        return Err("Extrude: surfaces have no ends to extrude (curves only)");
+    };
+    if curve.kind().is_closed() {
+        return Err("Extrude: a closed curve has no end (Alt+C opens it)");
+    }
+    let last = curve.control_points().len() as u32 - 1;
+    match selected.iter().collect::<Vec<_>>()[..] {
+        [&0] => Ok(CurveEnd::Start),
+        [&i] if i == last => Ok(CurveEnd::End),
+        _ => Err("Extrude: select one end point of the curve (its first or last point)"),
+    }
+}
+
+/// The parameter of a curve's point nearest the cursor on screen (the
+/// nearest of 400 samples), when it is within 12 pixels.
+fn curve_parameter_under_cursor(
+    content: &hedra_doc::CurveContent,
+    world: glam::DMat4,
+    cursor: Vec2,
+    (cam, cam_t): (&Camera, &GlobalTransform),
+) -> Option<f64> {
+    use hedra_geom::curves::Curve;
+    let c = content.nurbs();
+    let (a, b) = c.domain();
+    let (t, d) = (1..400)
+        .filter_map(|k| {
+            let t = a + (b - a) * k as f64 / 400.0;
+            let s = cam
+                .world_to_viewport(cam_t, world.transform_point3(c.point(t)).as_vec3())
+                .ok()?;
+            Some((t, s.distance(cursor)))
+        })
+        .min_by(|x, y| x.1.total_cmp(&y.1))?;
+    (d <= 12.0).then_some(t)
+}
+
 /// The knot insertion for the point of the shape under the cursor: for a
 /// curve, the parameter of the nearest of 400 samples on screen (within 12
 /// pixels); for a NURBS surface, the parameter the cursor's ray hits (`in_v`
@@ -386,22 +469,11 @@ fn knot_under_cursor(
     use hedra_doc::command::ParameterDirection;
     match content {
         NodeContent::Curve(content) => {
-            use hedra_geom::curves::Curve;
-            let c = content.nurbs();
-            let (a, b) = c.domain();
-            let (t, d) = (1..400)
-                .filter_map(|k| {
-                    let t = a + (b - a) * k as f64 / 400.0;
-                    let s = cam
-                        .world_to_viewport(cam_t, world.transform_point3(c.point(t)).as_vec3())
-                        .ok()?;
-                    Some((t, s.distance(cursor)))
-                })
-                .min_by(|x, y| x.1.total_cmp(&y.1))?;
+            let t = curve_parameter_under_cursor(content, world, cursor, (cam, cam_t))?;
             // A NURBS curve gets a knot; the other kinds a defining point
             // where the curve is (a de Casteljau split for poly-Béziers).
             let nurbs = matches!(content.kind(), hedra_geom::curves::CurveKind::Nurbs(_));
-            (d <= 12.0).then_some(if nurbs {
+            Some(if nurbs {
                 Command::InsertKnot {
                     node: NodeRef::from(id),
                     at: t,
@@ -481,7 +553,7 @@ pub fn drive_shape_tool(
     let points = control_points(&node.content);
     let reference = NodeRef::from(id);
     let cmd = match tool.kind {
-        ShapeToolKind::Move => {
+        ShapeToolKind::Move | ShapeToolKind::Extrude(_) => {
             let view_dir = (cam_t.rotation() * Vec3::NEG_Z).as_dvec3();
             let ray_at = |p: Vec2| {
                 let r = cam.viewport_to_world(cam_t, p).ok()?;
@@ -519,45 +591,61 @@ pub fn drive_shape_tool(
                     &ray_at,
                 ),
             };
-            tool.readout = format!(
-                "Move control points ({:.4}, {:.4}, {:.4})",
-                world_delta.x, world_delta.y, world_delta.z
-            );
             let local = world.inverse().transform_vector3(world_delta);
-            let mut moved: Vec<(u32, DVec3)> = edit
-                .selected
-                .iter()
-                .map(|&i| (i, points[i as usize] + local))
-                .collect();
-            // Proportional editing: the other points by their falloff
-            // weights, from world distances.
-            if proportional.enabled {
-                proportional.adjust_radius(&keys, scroll.delta.y);
-                ring.0 = Some((tool.pivot, proportional.radius));
-                let world_points: Vec<DVec3> =
-                    points.iter().map(|&p| world.transform_point3(p)).collect();
-                let selected: Vec<usize> = edit.selected.iter().map(|&i| i as usize).collect();
-                let weights = hedra_geom::proportional::point_weights(
-                    &world_points,
-                    &selected,
-                    proportional.radius,
-                    proportional.falloff,
-                );
-                moved.extend(
-                    weights
-                        .into_iter()
-                        .map(|(i, w)| (i as u32, points[i] + local * w)),
-                );
+            if let ShapeToolKind::Extrude(end) = tool.kind {
+                let from = match end {
+                    CurveEnd::Start => points[0],
+                    CurveEnd::End => points[points.len() - 1],
+                };
                 tool.readout = format!(
-                    "{} · proportional {} radius {:.3} (wheel)",
-                    tool.readout,
-                    proportional.falloff.label(),
-                    proportional.radius
+                    "Extrude curve ({:.4}, {:.4}, {:.4})",
+                    world_delta.x, world_delta.y, world_delta.z
                 );
-            }
-            Command::SetControlPoints {
-                node: reference,
-                points: moved,
+                Command::ExtrudeCurve {
+                    node: reference,
+                    end,
+                    to: from + local,
+                }
+            } else {
+                tool.readout = format!(
+                    "Move control points ({:.4}, {:.4}, {:.4})",
+                    world_delta.x, world_delta.y, world_delta.z
+                );
+                let mut moved: Vec<(u32, DVec3)> = edit
+                    .selected
+                    .iter()
+                    .map(|&i| (i, points[i as usize] + local))
+                    .collect();
+                // Proportional editing: the other points by their falloff
+                // weights, from world distances.
+                if proportional.enabled {
+                    proportional.adjust_radius(&keys, scroll.delta.y);
+                    ring.0 = Some((tool.pivot, proportional.radius));
+                    let world_points: Vec<DVec3> =
+                        points.iter().map(|&p| world.transform_point3(p)).collect();
+                    let selected: Vec<usize> = edit.selected.iter().map(|&i| i as usize).collect();
+                    let weights = hedra_geom::proportional::point_weights(
+                        &world_points,
+                        &selected,
+                        proportional.radius,
+                        proportional.falloff,
+                    );
+                    moved.extend(
+                        weights
+                            .into_iter()
+                            .map(|(i, w)| (i as u32, points[i] + local * w)),
+                    );
+                    tool.readout = format!(
+                        "{} · proportional {} radius {:.3} (wheel)",
+                        tool.readout,
+                        proportional.falloff.label(),
+                        proportional.radius
+                    );
+                }
+                Command::SetControlPoints {
+                    node: reference,
+                    points: moved,
+                }
             }
         }
         ShapeToolKind::Rotate | ShapeToolKind::Scale => {
@@ -645,6 +733,16 @@ pub fn drive_shape_tool(
     if modal_keys.confirm() {
         match decided {
             Ok(_) => {
+                // The extruded point is selected, ready for the next E.
+                if let (ShapeToolKind::Extrude(end), Some(NodeContent::Curve(c))) =
+                    (tool.kind, &edit.preview)
+                {
+                    let new_point = match end {
+                        CurveEnd::Start => 0,
+                        CurveEnd::End => c.control_points().len() as u32 - 1,
+                    };
+                    edit.selected = BTreeSet::from([new_point]);
+                }
                 requests.write(DocRequest::Execute(cmd));
                 edit.preview = None;
                 edit.just_finished = true;

@@ -603,3 +603,26 @@ fn extrude_adds_a_point_at_either_end() {
         }
     }
 }
+
+#[test]
+fn splitting_at_a_point_on_the_curve_inserts_nothing() {
+    for kind in every_kind().into_iter().filter(|k| !k.is_closed()) {
+        // The middle point the curve passes through, if the kind has one.
+        let n = kind.points().len();
+        let Some((index, t)) = (1..n - 1).find_map(|i| Some((i, kind.on_curve_parameter(i)?)))
+        else {
+            continue;
+        };
+        assert_eq!(kind.point_at_parameter(t), Some(index), "{}", kind.name());
+        let (l, r) = kind.split(t).unwrap();
+        // The shared point is in both halves once; nothing else is added.
+        assert_eq!(
+            l.points().len() + r.points().len(),
+            n + 1,
+            "{}",
+            kind.name()
+        );
+        assert_eq!(l.points().last(), Some(&kind.points()[index]));
+        assert_eq!(r.points().first(), Some(&kind.points()[index]));
+    }
+}

@@ -11,6 +11,17 @@ use hedra_geom::curves::{CurveError, CurveKind, Join, NurbsCurve};
 use hedra_geom::surfaces::{BezierTriangle, NurbsSurface};
 use std::sync::Arc;
 
+impl CurveSpec {
+    /// The curve this spec describes, checked: what `AddCurve` would add
+    /// (for a tool's preview before the command).
+    ///
+    /// # Errors
+    /// What the kind's check finds ("Lagrange needs 2 points or more").
+    pub fn curve(&self) -> Result<CurveKind, CurveError> {
+        curve_from_spec(self)
+    }
+}
+
 /// The curve kind a spec describes, checked.
 pub(crate) fn curve_from_spec(spec: &CurveSpec) -> Result<CurveKind, CurveError> {
     let kind = match spec {

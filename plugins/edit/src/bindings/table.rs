@@ -178,6 +178,12 @@ pub const BINDINGS: &[Binding] = &[
     bind(Object, Chord::key(K::KeyX), A::Delete, "delete"),
     bind(Object, Chord::key(K::Delete), A::Delete, "delete"),
     bind(Object, Chord::key(K::KeyH), A::Hide, "hide the selection"),
+    bind(
+        Object,
+        Chord::ctrl(K::KeyJ),
+        A::JoinCurves,
+        "join two selected curves end to end (the active one first)",
+    ),
     bind(Object, Chord::alt(K::KeyH), A::Unhide, "unhide all"),
     bind(
         Object,
@@ -446,6 +452,18 @@ pub const BINDINGS: &[Binding] = &[
     ),
     bind(
         ControlPoints,
+        Chord::key(K::KeyE),
+        A::Extrude,
+        "extrude a new point from the selected end of a curve (it follows the pointer)",
+    ),
+    bind(
+        ControlPoints,
+        Chord::key(K::KeyY),
+        A::SplitCurve,
+        "split the curve at the selected point on it, else where the pointer is",
+    ),
+    bind(
+        ControlPoints,
         Chord::shift(K::KeyK),
         A::InsertKnotV,
         "insert a knot in v (surfaces)",
@@ -521,6 +539,12 @@ pub const BINDINGS: &[Binding] = &[
         Chord::key(K::KeyC),
         A::KnifeAngle,
         "knife: keep the next segment at a multiple of 45°",
+    ),
+    bind(
+        Tool,
+        Chord::key(K::KeyT),
+        A::NextCurveKind,
+        "drawing a curve: the next kind (NURBS, Catmull-Rom, C2 spline, Lagrange, Hermite, poly-Bézier)",
     ),
     bind(
         Tool,

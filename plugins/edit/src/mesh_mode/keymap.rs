@@ -18,8 +18,9 @@ pub fn edit_shortcuts(
     pivot_point: Res<crate::PivotPoint>,
     cursor_3d: Res<hedra_scene::Cursor3d>,
     mut requested: ResMut<crate::bindings::RequestedAction>,
+    shape_edit: Res<crate::ShapeEdit>,
 ) {
-    if !mode.active() {
+    if !mode.active() && !shape_edit.active() {
         // A menu's request outlives no edit mode.
         requested.0 = None;
     }

@@ -1221,6 +1221,31 @@ impl CurveKind {
         Ok((out, at))
     }
 
+    /// The parameter (of the NURBS form) at which the curve passes through
+    /// defining point `index`: an interpolating kind's key parameter, a
+    /// poly-Bézier anchor's joint (anchor `3k` at `k`). `None` for points
+    /// the curve does not pass through (NURBS control points, handles,
+    /// Chaikin and fractal polygons).
+    pub fn on_curve_parameter(&self, index: usize) -> Option<f64> {
+        match self {
+            CurveKind::PolyBezier { points, .. } => {
+                (index.is_multiple_of(3) && index < points.len()).then_some((index / 3) as f64)
+            }
+            _ if self.interpolates() => self.key_parameters().ok()?.get(index).copied(),
+            _ => None,
+        }
+    }
+
+    /// The defining point the curve passes through at parameter `t`
+    /// (within 1e-9 of its [`on_curve_parameter`](Self::on_curve_parameter)),
+    /// if there is one.
+    pub fn point_at_parameter(&self, t: f64) -> Option<usize> {
+        (0..self.points().len()).find(|&i| {
+            self.on_curve_parameter(i)
+                .is_some_and(|k| (k - t).abs() <= 1e-9 * k.abs().max(1.0))
+        })
+    }
+
     /// Deletes defining points. Poly-Bézier: anchors only, each with its
     /// two handles (the neighbouring segments merge into one). NURBS:
     /// clamped curves only; the knots become clamped uniform again and the
@@ -1627,7 +1652,14 @@ impl CurveKind {
             let (a, b) = c.split(t)?;
             return Ok((CurveKind::Nurbs(a), CurveKind::Nurbs(b)));
         }
-        let (with, k) = self.insert_point(t)?;
+        // At a point already on the curve (an interpolated point, a
+        // poly-Bézier anchor) the curve splits there; elsewhere a point is
+        // inserted first.
+        let last = self.points().len() - 1;
+        let (with, k) = match self.point_at_parameter(t) {
+            Some(k) if k > 0 && k < last => (self.clone(), k),
+            _ => self.insert_point(t)?,
+        };
         let (mut a, mut b) = (with.clone(), with);
         let keep = |v: &mut Vec<DVec3>, left: bool| {
             if left {

@@ -189,6 +189,14 @@ pub(super) fn menu_bar(
                 mesh_menu(ui, node, &model.mode, spin_axis, mesh.as_deref(), events)
             });
         }
+        if let Some(node) = model.shape_edit.node
+            && let Some(NodeContent::Curve(curve)) =
+                model.state.session.doc.node(node).map(|n| &n.content)
+        {
+            ui.menu_button("Curve", |ui| {
+                curve_menu(ui, node, curve, &model.shape_edit.selected, events)
+            });
+        }
         ui.menu_button("Object", |ui| {
             let sel = model.selection.refs();
             let any = !sel.is_empty();
@@ -224,6 +232,18 @@ pub(super) fn menu_bar(
                         visible: false,
                     },
                 );
+            }
+            let join = hedra_edit::join_curves_command(&model.state.session.doc, &model.selection);
+            if ui
+                .add_enabled(
+                    join.is_ok(),
+                    egui::Button::new(keyed_in(Object, "Join Curves", Action::JoinCurves)),
+                )
+                .on_disabled_hover_text("Select two curves: the active one comes first")
+                .clicked()
+                && let Ok(cmd) = join
+            {
+                exec(events, cmd);
             }
             if ui
                 .add_enabled(any, egui::Button::new("Clear Parent"))

@@ -17,6 +17,7 @@ use hedra_geom::Primitive;
 use hedra_scene::{DocRequest, DocState, InputGate, StatusMessage};
 
 mod add_menu;
+mod curve_menu;
 mod dialogs;
 mod inspector;
 mod menus;
@@ -33,6 +34,7 @@ mod windows;
 
 use add_menu::*;
 pub use add_menu::{ADD_MENU, AddPage};
+use curve_menu::*;
 use dialogs::*;
 use inspector::*;
 use menus::*;

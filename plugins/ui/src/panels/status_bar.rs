@@ -76,8 +76,20 @@ pub(super) fn status_bar(ui: &mut egui::Ui, model: &Model) {
                     );
                     ui.add(egui::Label::new(tool_hint()).truncate());
                 } else {
-                    ui.add(
-                        egui::Label::new(mode_hint(&[
+                    let hints: &[(_, &[A], &str)] = if matches!(node.content, NodeContent::Curve(_))
+                    {
+                        &[
+                            (ControlPoints, &[A::Move], "move"),
+                            (ControlPoints, &[A::Extrude], "extrude"),
+                            (ControlPoints, &[A::InsertKnot], "insert"),
+                            (ControlPoints, &[A::Delete], "delete"),
+                            (ControlPoints, &[A::SplitCurve], "split"),
+                            (ControlPoints, &[A::ToggleClosed], "open/close"),
+                            (ControlPoints, &[A::Weight], "weight"),
+                            (Everywhere, &[A::EditModeToggle], "exit"),
+                        ]
+                    } else {
+                        &[
                             (ControlPoints, &[A::SelectAll], "all"),
                             (ControlPoints, &[A::Move], "move"),
                             (ControlPoints, &[A::Rotate], "rotate"),
@@ -85,9 +97,9 @@ pub(super) fn status_bar(ui: &mut egui::Ui, model: &Model) {
                             (ControlPoints, &[A::Weight], "weight"),
                             (ControlPoints, &[A::InsertKnot], "insert knot"),
                             (Everywhere, &[A::EditModeToggle], "exit"),
-                        ]))
-                        .truncate(),
-                    );
+                        ]
+                    };
+                    ui.add(egui::Label::new(mode_hint(hints)).truncate());
                 }
             } else if let Some(node) = edit.node.and_then(|n| doc.node(n)) {
                 let kind = match edit.kind {
