@@ -2029,3 +2029,145 @@ fn the_curve_menu_reverses_and_extrudes() {
     assert_eq!(after.len(), 6, "{}", user.status());
     assert!((after[0] - (reversed[0] + 3.0 * DVec3::Z)).length() < 1e-12);
 }
+
+/// A cubic Hermite curve in control-point mode shows its tangents as
+/// handles; clicking a handle's end and moving it (G X 1) turns its key's
+/// tangent — the key stays, the handle ends exactly one unit further along
+/// X, and the key's other handle mirrors it. One undo step.
+#[test]
+fn a_hermite_tangent_handle_is_dragged_like_a_point() {
+    use hedra_geom::curves::CurveKind;
+    let mut user = User::new();
+    user.add("Cubic Hermite");
+    user.tap(KeyCode::Tab);
+    let kind = |user: &User| -> CurveKind {
+        let node = user.doc().nodes().next().unwrap();
+        let NodeContent::Curve(c) = &node.content else {
+            panic!("a curve")
+        };
+        c.kind().clone()
+    };
+    let before = kind(&user);
+    let keys = before.points().len();
+    let handles = before.tangent_handles();
+    assert_eq!(handles.len(), 2 * keys - 2);
+    assert_eq!(
+        user.control_point_entities().len(),
+        keys + handles.len(),
+        "each handle end is a point to pick"
+    );
+    // The middle key's outgoing handle.
+    let k = handles
+        .iter()
+        .position(|h| h.point == 1 && !h.incoming)
+        .unwrap();
+    let end = user.screen_of(handles[k].end.as_vec3());
+    user.click(end);
+    assert_eq!(selected_points(&user), [(keys + k) as u32]);
+    let steps = user.undo_steps();
+    user.tap(KeyCode::KeyG);
+    user.tap(KeyCode::KeyX);
+    user.type_text("1");
+    user.tap(KeyCode::Enter);
+    let after = kind(&user);
+    assert_eq!(after.points(), before.points(), "the keys stay");
+    let moved = after.tangent_handles();
+    assert!(
+        moved[k].end.distance(handles[k].end + DVec3::X) < 1e-12,
+        "{} {}",
+        moved[k].end,
+        user.status()
+    );
+    let key = after.points()[1];
+    assert!((moved[k - 1].end - key + (moved[k].end - key)).length() < 1e-12);
+    assert_eq!(user.undo_steps(), steps + 1);
+}
+
+/// The Properties panel edits a Kochanek-Bartels key's tension, bias and
+/// continuity: dragging T right on the selected middle key raises its
+/// tension (one undo step when let go); the other keys keep theirs.
+#[test]
+fn the_panel_sets_a_kochanek_bartels_key_tension() {
+    use hedra_geom::curves::CurveKind;
+    let mut user = User::new();
+    user.add("Kochanek-Bartels");
+    user.tap(KeyCode::Tab);
+    let (points, _) = shape_points_of_curve(&user);
+    let key = user.screen_of(points[2].as_vec3());
+    user.click(key);
+    user.frames(2);
+    let field = user
+        .widgets()
+        .iter()
+        .find(|w| w.text.starts_with("T "))
+        .expect("the tension field")
+        .rect;
+    let steps = user.undo_steps();
+    let from = Vec2::new(field.center().x, field.center().y);
+    user.drag(from, from + Vec2::new(30.0, 0.0), 6);
+    user.frames(3);
+    let node = user.doc().nodes().next().unwrap().clone();
+    let NodeContent::Curve(c) = &node.content else {
+        panic!("a curve")
+    };
+    let CurveKind::KochanekBartels { keys, .. } = c.kind() else {
+        panic!("still Kochanek-Bartels")
+    };
+    assert!(keys[2].tension > 0.05, "{:?} {}", keys[2], user.status());
+    for (i, k) in keys.iter().enumerate().filter(|(i, _)| *i != 2) {
+        assert_eq!(k.tension, 0.0, "key {i}");
+    }
+    assert_eq!(user.undo_steps(), steps + 1);
+}
+
+/// The panel shows the selected point's coordinates: dragging its X field
+/// moves only that point, only along X (one undo step); with two points
+/// the curve passes through selected it gives the span's arc length.
+#[test]
+fn the_panel_moves_a_point_by_its_coordinates_and_measures_a_span() {
+    let mut user = User::new();
+    user.add("Catmull-Rom");
+    user.tap(KeyCode::Tab);
+    let (points, _) = shape_points_of_curve(&user);
+    let at = user.screen_of(points[2].as_vec3());
+    user.click(at);
+    user.frames(2);
+    assert!(user.shows("Point 2"));
+    // The lowest X field: the point's (the object's location is above).
+    let field = user
+        .widgets()
+        .iter()
+        .filter(|w| w.text.starts_with("X "))
+        .max_by(|a, b| a.rect.min.y.total_cmp(&b.rect.min.y))
+        .expect("the X field")
+        .rect;
+    let steps = user.undo_steps();
+    let from = Vec2::new(field.center().x, field.center().y);
+    user.drag(from, from + Vec2::new(40.0, 0.0), 6);
+    user.frames(3);
+    let (after, _) = shape_points_of_curve(&user);
+    let moved = after[2] - points[2];
+    assert!(
+        moved.x > 0.05 && moved.y == 0.0 && moved.z == 0.0,
+        "{moved}"
+    );
+    for i in [0, 1, 3, 4] {
+        assert_eq!(after[i], points[i]);
+    }
+    assert_eq!(user.undo_steps(), steps + 1);
+    let other = user.screen_of(after[4].as_vec3());
+    user.key_down(KeyCode::ShiftLeft);
+    user.click(other);
+    user.key_up(KeyCode::ShiftLeft);
+    user.frames(2);
+    let node = user.doc().nodes().next().unwrap().clone();
+    let NodeContent::Curve(c) = &node.content else {
+        panic!("a curve")
+    };
+    let keys = c.kind().key_parameters().unwrap();
+    let length = hedra_geom::curves::analysis::arc_length(&**c.nurbs(), keys[2], keys[4]);
+    assert!(
+        user.shows(&format!("Span from point 2 to 4: length {length:.6}")),
+        "the span's length {length:.6} is shown"
+    );
+}

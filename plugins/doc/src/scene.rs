@@ -430,6 +430,12 @@ impl CurveContent {
     pub fn control_points(&self) -> &[DVec3] {
         self.kind.points()
     }
+    /// The points the control-point editor shows and moves: the defining
+    /// points, then a Hermite curve's tangent-handle ends
+    /// ([`CurveKind::edit_points`]); `SetControlPoints` indexes these.
+    pub fn edit_points(&self) -> Vec<DVec3> {
+        self.kind.edit_points()
+    }
     /// The weights of the control points, for a NURBS curve; `None` for
     /// the other kinds (they have none).
     pub fn weights(&self) -> Option<&[f64]> {

@@ -304,9 +304,16 @@ pub fn shape_select_and_shortcuts(
             if edit.selected.is_empty() {
                 status.error("Delete: select control points first");
             } else {
+                // Tangent handles go with their key, not on their own.
+                let keys = curve.control_points().len() as u32;
                 requests.write(DocRequest::Execute(Command::DeleteCurvePoints {
                     node: reference_of(id),
-                    points: edit.selected.iter().copied().collect(),
+                    points: edit
+                        .selected
+                        .iter()
+                        .copied()
+                        .filter(|&i| i < keys)
+                        .collect(),
                 }));
                 edit.selected.clear();
             }

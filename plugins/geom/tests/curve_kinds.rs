@@ -626,3 +626,60 @@ fn splitting_at_a_point_on_the_curve_inserts_nothing() {
         assert_eq!(r.points().first(), Some(&kind.points()[index]));
     }
 }
+
+#[test]
+fn tangent_handles_end_at_the_bezier_points_beside_each_key() {
+    for kind in every_kind() {
+        let handles = kind.tangent_handles();
+        let hermite_family = matches!(
+            kind,
+            CurveKind::CubicHermite { .. }
+                | CurveKind::QuinticHermite { .. }
+                | CurveKind::CatmullRom { .. }
+                | CurveKind::KochanekBartels { .. }
+                | CurveKind::CubicSpline { .. }
+        );
+        assert_eq!(!handles.is_empty(), hermite_family, "{}", kind.name());
+        if !hermite_family || kind.is_closed() {
+            continue;
+        }
+        let n = kind.points().len();
+        assert_eq!(handles.len(), 2 * n - 2, "{}", kind.name());
+        // The NURBS form's control points are the Bézier polygon: each
+        // handle's end is one of them (the control point beside its key).
+        let form = kind.to_nurbs().unwrap().curve;
+        for h in &handles {
+            let nearest = form
+                .points()
+                .iter()
+                .map(|c| c.distance(h.end))
+                .fold(f64::MAX, f64::min);
+            assert!(nearest < 1e-9, "{} handle {h:?}: {nearest}", kind.name());
+        }
+    }
+}
+
+#[test]
+fn dragging_a_hermite_handle_sets_its_tangent() {
+    for kind in every_kind().into_iter().filter(|k| k.handles_editable()) {
+        let n = kind.points().len();
+        let edit = kind.edit_points();
+        assert_eq!(edit.len(), n + 2 * n - 2, "{}", kind.name());
+        let k = 4; // key 2's outgoing handle (key 0 has only an outgoing one)
+        let handle = kind.tangent_handles()[k];
+        let target = handle.end + DVec3::new(0.3, -0.2, 0.1);
+        let moved = kind.set_points(&[(n + k, target)]).unwrap();
+        assert_eq!(moved.points(), kind.points(), "the keys stay");
+        let after = moved.tangent_handles()[k];
+        assert!(after.end.distance(target) < 1e-12, "{}", kind.name());
+        // The incoming handle of the same key mirrors it (one tangent).
+        let incoming = moved.tangent_handles()[k - 1];
+        assert_eq!(incoming.point, handle.point);
+        let p = moved.points()[handle.point];
+        assert!((incoming.end - p + (target - p)).length() < 1e-12);
+        // Moving the key carries its handles.
+        let shift = DVec3::new(0.0, 1.0, 0.0);
+        let carried = moved.set_points(&[(handle.point, p + shift)]).unwrap();
+        assert!(carried.tangent_handles()[k].end.distance(target + shift) < 1e-12);
+    }
+}

@@ -91,8 +91,9 @@ pub fn control_points_of(
 pub fn control_points(content: &NodeContent) -> Vec<DVec3> {
     match content {
         // The kind's defining points (interpolation points, anchors and
-        // handles, NURBS control points): what SetControlPoints indexes.
-        NodeContent::Curve(c) => c.control_points().to_vec(),
+        // handles, NURBS control points), then a Hermite curve's tangent
+        // handle ends: what SetControlPoints indexes.
+        NodeContent::Curve(c) => c.edit_points(),
         NodeContent::Surface(s) => s.control_points().to_vec(),
         _ => Vec::new(),
     }

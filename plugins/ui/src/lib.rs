@@ -71,6 +71,12 @@ pub struct UiState {
     pub decimate_level_edit: Option<usize>,
     /// Weight field being dragged (committed on release).
     pub weight_edit: Option<f64>,
+    /// Kochanek-Bartels tension, bias, continuity being dragged for the
+    /// selected keys (committed on release).
+    pub tbc_edit: Option<[f64; 3]>,
+    /// The selected control points' median being typed or dragged in the
+    /// panel (local space; committed on release).
+    pub point_edit: Option<glam::DVec3>,
     /// Where "Insert knot" inserts.
     pub knot_at: f64,
     /// How many equal arc lengths Curve ▸ Divide makes.
@@ -105,6 +111,8 @@ impl Default for UiState {
             decimate_counts: None,
             decimate_level_edit: None,
             weight_edit: None,
+            tbc_edit: None,
+            point_edit: None,
             knot_at: 0.5,
             divide_count: 10,
             viewport_rect: None,

@@ -400,6 +400,18 @@ pub(crate) fn draw_shape_edit(
                 Color::srgb(1.0, 0.78, 0.25),
             );
             gizmos.linestrip(content.control_points().iter().map(|p| to_world(*p)), net);
+            // Tangents as handles: dragged ones (Hermite) bright, derived
+            // ones (Catmull-Rom, Kochanek-Bartels, C2 spline) dim.
+            let kind = content.kind();
+            let handle = if kind.handles_editable() {
+                Color::srgb(0.45, 0.8, 1.0)
+            } else {
+                Color::srgba(0.45, 0.8, 1.0, 0.5)
+            };
+            let keys = kind.points();
+            for h in kind.tangent_handles() {
+                gizmos.line(to_world(keys[h.point]), to_world(h.end), handle);
+            }
         }
         NodeContent::Surface(s) => {
             for [a, b] in control_net_segments(s) {

@@ -284,6 +284,20 @@ pub enum CurveKind {
     },
 }
 
+/// A tangent drawn as a handle at a key of a Hermite-family curve: the
+/// segment from the key's point to `end`, which is the Bézier control point
+/// next to the key in the NURBS form (`p ± m·h/d` for tangent `m`, span
+/// length `h` and degree `d`), so the handles are the Bézier polygon.
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct TangentHandle {
+    /// The key's index among the defining points.
+    pub point: usize,
+    /// True for the incoming tangent (drawn backwards from the point).
+    pub incoming: bool,
+    /// The handle's far end.
+    pub end: DVec3,
+}
+
 /// The NURBS form of a curve kind.
 #[derive(Clone, Debug, PartialEq)]
 pub struct NurbsForm {
@@ -550,6 +564,84 @@ impl CurveKind {
             | CurveKind::PolyBezier { points, .. }
             | CurveKind::Fractal { points, .. } => points,
         }
+    }
+
+    /// The tangent handles of a Hermite-family kind (cubic and quintic
+    /// Hermite, Catmull-Rom, Kochanek-Bartels, C2 spline): at each key an
+    /// incoming one (but the first of an open curve) and an outgoing one
+    /// (but the last), in that order. Empty for the other kinds.
+    pub fn tangent_handles(&self) -> Vec<TangentHandle> {
+        let (keys, degree) = match self {
+            CurveKind::QuinticHermite {
+                points,
+                tangents,
+                accelerations: _,
+            } => (
+                HermiteSpline {
+                    params: (0..points.len()).map(|i| i as f64).collect(),
+                    points: points.clone(),
+                    tangents: tangents.clone(),
+                    incoming: tangents.clone(),
+                },
+                5.0,
+            ),
+            _ => match self.hermite() {
+                Ok(Some(h)) => (h, 3.0),
+                _ => return Vec::new(),
+            },
+        };
+        let n = self.points().len();
+        let closed = self.is_closed();
+        let t = &keys.params;
+        let mut out = Vec::with_capacity(2 * n);
+        for i in 0..n {
+            let p = keys.points[i];
+            if i > 0 || closed {
+                // The span before key i (for a closed curve's first key:
+                // the closing span, at the end of the parameters).
+                let (h, m) = if i == 0 {
+                    let last = t.len() - 1;
+                    (t[last] - t[last - 1], keys.incoming[last])
+                } else {
+                    (t[i] - t[i - 1], keys.incoming[i])
+                };
+                out.push(TangentHandle {
+                    point: i,
+                    incoming: true,
+                    end: p - m * h / degree,
+                });
+            }
+            if i + 1 < n || closed {
+                out.push(TangentHandle {
+                    point: i,
+                    incoming: false,
+                    end: p + keys.tangents[i] * (t[i + 1] - t[i]) / degree,
+                });
+            }
+        }
+        out
+    }
+
+    /// True when the tangent handles are defining data a user drags (cubic
+    /// and quintic Hermite); for the other Hermite kinds they are derived
+    /// from the points and shown only.
+    pub fn handles_editable(&self) -> bool {
+        matches!(
+            self,
+            CurveKind::CubicHermite { .. } | CurveKind::QuinticHermite { .. }
+        )
+    }
+
+    /// The points a user edits: the [defining points](Self::points), then
+    /// for the kinds with [editable handles](Self::handles_editable) the
+    /// ends of their [tangent handles](Self::tangent_handles), numbered on
+    /// after the points (what [`set_points`](Self::set_points) takes).
+    pub fn edit_points(&self) -> Vec<DVec3> {
+        let mut all = self.points().to_vec();
+        if self.handles_editable() {
+            all.extend(self.tangent_handles().iter().map(|h| h.end));
+        }
+        all
     }
 
     fn points_mut(&mut self) -> Option<&mut Vec<DVec3>> {
@@ -954,7 +1046,13 @@ impl CurveKind {
     /// [`CurveError::NoSuchPoint`], a non-finite position, or what
     /// [`check`](Self::check) finds in the result.
     pub fn set_points(&self, moves: &[(usize, DVec3)]) -> Result<CurveKind, CurveError> {
-        let count = self.points().len();
+        let points = self.points().len();
+        let handles = if self.handles_editable() {
+            self.tangent_handles()
+        } else {
+            Vec::new()
+        };
+        let count = points + handles.len();
         for &(index, p) in moves {
             if index >= count {
                 return Err(CurveError::NoSuchPoint { index, count });
@@ -1017,8 +1115,27 @@ impl CurveKind {
             }
             other => {
                 let pts = other.points_mut().expect("not NURBS");
-                for &(i, p) in moves {
+                for &(i, p) in moves.iter().filter(|m| m.0 < points) {
                     pts[i] = p;
+                }
+                let keys = pts.clone();
+                // A dragged handle sets its key's tangent, relative to
+                // the key's new position: m = (end − p)·d/h (uniform keys,
+                // h = 1), the incoming side negated.
+                let degree = if matches!(other, CurveKind::QuinticHermite { .. }) {
+                    5.0
+                } else {
+                    3.0
+                };
+                for &(i, end) in moves.iter().filter(|m| m.0 >= points) {
+                    let h = handles[i - points];
+                    let m = (end - keys[h.point]) * degree;
+                    let m = if h.incoming { -m } else { m };
+                    match other {
+                        CurveKind::CubicHermite { tangents, .. }
+                        | CurveKind::QuinticHermite { tangents, .. } => tangents[h.point] = m,
+                        _ => unreachable!("only Hermite handles are editable"),
+                    }
                 }
             }
         }

@@ -16,7 +16,9 @@ pub mod nurbs;
 use glam::DVec3;
 
 pub use bezier::Bezier;
-pub use kinds::{CurveEnd, CurveKind, FractalRule, Join, NurbsForm, Parameterization, SplineEnds};
+pub use kinds::{
+    CurveEnd, CurveKind, FractalRule, Join, NurbsForm, Parameterization, SplineEnds, TangentHandle,
+};
 pub use nurbs::NurbsCurve;
 
 /// A parametric curve on a closed parameter interval.

@@ -236,6 +236,11 @@ pub(super) fn shape_panel(
         return;
     }
     let selected: Vec<u32> = model.shape_edit.selected.iter().copied().collect();
+    point_coordinates(ui, id, content, &selected, state, events);
+    if let NodeContent::Curve(c) = content {
+        span_length(ui, c, model.state.session.doc.world_matrix(id), &selected);
+        key_tbc(ui, id, c.kind(), &selected, state, events);
+    }
     let Some(weights) = control_weights(content) else {
         ui.label(format!("{} control point(s) selected", selected.len()));
         return;
@@ -281,4 +286,175 @@ pub(super) fn shape_panel(
             );
         }
     });
+}
+
+/// Tension, bias and continuity of the selected keys of a Kochanek-Bartels
+/// curve (seed 001): the first selected key's values shown, a change sets
+/// all selected keys, one undo step when the drag ends.
+fn key_tbc(
+    ui: &mut egui::Ui,
+    id: NodeId,
+    kind: &hedra_geom::curves::CurveKind,
+    selected: &[u32],
+    state: &mut UiState,
+    events: &mut Vec<UiEvent>,
+) {
+    let hedra_geom::curves::CurveKind::KochanekBartels {
+        points,
+        keys,
+        closed,
+    } = kind
+    else {
+        return;
+    };
+    let chosen: Vec<usize> = selected
+        .iter()
+        .map(|&i| i as usize)
+        .filter(|&i| i < keys.len())
+        .collect();
+    let Some(&first) = chosen.first() else {
+        ui.label("Select keys to edit their tension, bias and continuity.");
+        return;
+    };
+    let k = keys[first];
+    let mut values = state.tbc_edit.unwrap_or([k.tension, k.bias, k.continuity]);
+    ui.label(if chosen.len() == 1 {
+        format!("Key {first}")
+    } else {
+        format!("{} keys", chosen.len())
+    });
+    let mut busy = false;
+    let mut edited = false;
+    ui.horizontal(|ui| {
+        for (value, name) in values.iter_mut().zip(["T ", "B ", "C "]) {
+            let r = ui.add(
+                egui::DragValue::new(value)
+                    .speed(0.01)
+                    .range(-1.0..=1.0)
+                    .max_decimals(3)
+                    .prefix(name),
+            );
+            edited |= r.changed();
+            busy |= r.dragged() || r.has_focus();
+        }
+    })
+    .response
+    .on_hover_text("Tension shortens the tangents, bias leans them, continuity ≠ 0 makes a corner");
+    if edited {
+        state.tbc_edit = Some(values);
+    }
+    if busy {
+        return;
+    }
+    let Some([tension, bias, continuity]) = state.tbc_edit.take() else {
+        return;
+    };
+    let mut keys = keys.clone();
+    for &i in &chosen {
+        keys[i] = hedra_geom::curves::interpolating::Tbc {
+            tension,
+            bias,
+            continuity,
+        };
+    }
+    exec(
+        events,
+        Command::SetCurve {
+            node: id.into(),
+            curve: hedra_doc::command::CurveSpec::KochanekBartels {
+                points: points.clone(),
+                keys: Some(keys),
+                closed: *closed,
+            },
+        },
+    );
+}
+
+/// The selected control points' median in the node's space, typed or
+/// dragged (Blender's N panel): a change moves every selected point by the
+/// same amount, one undo step when let go.
+fn point_coordinates(
+    ui: &mut egui::Ui,
+    id: NodeId,
+    content: &NodeContent,
+    selected: &[u32],
+    state: &mut UiState,
+    events: &mut Vec<UiEvent>,
+) {
+    let points = hedra_edit::shape_mode::control_points(content);
+    let chosen: Vec<u32> = selected
+        .iter()
+        .copied()
+        .filter(|&i| (i as usize) < points.len())
+        .collect();
+    if chosen.is_empty() {
+        return;
+    }
+    let median = chosen.iter().map(|&i| points[i as usize]).sum::<DVec3>() / chosen.len() as f64;
+    let mut at = state.point_edit.unwrap_or(median);
+    let (mut edited, mut busy) = (false, false);
+    ui.horizontal(|ui| {
+        ui.label(if chosen.len() == 1 {
+            format!("Point {}", chosen[0])
+        } else {
+            "Median".to_string()
+        });
+        for (value, name) in [&mut at.x, &mut at.y, &mut at.z]
+            .into_iter()
+            .zip(["X ", "Y ", "Z "])
+        {
+            let r = ui.add(
+                egui::DragValue::new(value)
+                    .speed(0.01)
+                    .max_decimals(6)
+                    .prefix(name),
+            );
+            edited |= r.changed();
+            busy |= r.dragged() || r.has_focus();
+        }
+    });
+    if edited {
+        state.point_edit = Some(at);
+    }
+    if busy {
+        return;
+    }
+    let Some(to) = state.point_edit.take() else {
+        return;
+    };
+    let delta = to - median;
+    if delta.length() > 0.0 {
+        exec(
+            events,
+            Command::SetControlPoints {
+                node: id.into(),
+                points: chosen
+                    .iter()
+                    .map(|&i| (i, points[i as usize] + delta))
+                    .collect(),
+            },
+        );
+    }
+}
+
+/// The arc length between two selected points the curve passes through
+/// (world units; Gauss–Legendre on the world curve, as the whole length).
+fn span_length(
+    ui: &mut egui::Ui,
+    content: &hedra_doc::CurveContent,
+    world: glam::DMat4,
+    selected: &[u32],
+) {
+    let [a, b] = selected[..] else { return };
+    let kind = content.kind();
+    let (Some(ta), Some(tb)) = (
+        kind.on_curve_parameter(a as usize),
+        kind.on_curve_parameter(b as usize),
+    ) else {
+        return;
+    };
+    if let Some(curve) = hedra_viewport::world_curve(content.nurbs(), world) {
+        let length = hedra_geom::curves::analysis::arc_length(&curve, ta.min(tb), ta.max(tb));
+        ui.label(format!("Span from point {a} to {b}: length {length:.6}"));
+    }
 }
