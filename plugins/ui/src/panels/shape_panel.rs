@@ -147,30 +147,33 @@ pub(super) fn shape_panel(
         },
         _ => return,
     }
-    ui.horizontal(|ui| {
-        ui.add(
-            egui::DragValue::new(&mut state.knot_at)
-                .speed(0.01)
-                .range(0.0..=1.0)
-                .max_decimals(4),
-        );
-        for (direction, label) in &directions {
-            if ui
-                .button(*label)
-                .on_hover_text("Adds a control point; the shape does not move")
-                .clicked()
-            {
-                exec(
-                    events,
-                    Command::InsertKnot {
-                        node: id.into(),
-                        at: state.knot_at,
-                        direction: *direction,
-                    },
-                );
+    // Knots only where the shape is a NURBS (other kinds insert points: K).
+    if !directions.is_empty() {
+        ui.horizontal(|ui| {
+            ui.add(
+                egui::DragValue::new(&mut state.knot_at)
+                    .speed(0.01)
+                    .range(0.0..=1.0)
+                    .max_decimals(4),
+            );
+            for (direction, label) in &directions {
+                if ui
+                    .button(*label)
+                    .on_hover_text("Adds a control point; the shape does not move")
+                    .clicked()
+                {
+                    exec(
+                        events,
+                        Command::InsertKnot {
+                            node: id.into(),
+                            at: state.knot_at,
+                            direction: *direction,
+                        },
+                    );
+                }
             }
-        }
-    });
+        });
+    }
     let elevations: &[(ParameterDirection, &str)] = match content {
         NodeContent::Surface(s) if matches!(**s, hedra_doc::SurfaceShape::Nurbs(_)) => &[
             (ParameterDirection::U, "Elevate degree in u"),
