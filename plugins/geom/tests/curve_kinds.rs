@@ -683,3 +683,34 @@ fn dragging_a_hermite_handle_sets_its_tangent() {
         assert!(carried.tangent_handles()[k].end.distance(target + shift) < 1e-12);
     }
 }
+
+#[test]
+fn auto_joints_follow_their_neighbouring_anchors() {
+    let pb = poly_bezier().set_join(1, Join::Auto).unwrap();
+    let handles_on_chord = |k: &CurveKind| {
+        let q = k.points();
+        let dir = (q[9] - q[3]).normalize();
+        assert!(((q[6] - q[5]).normalize() - dir).length() < 1e-12);
+        assert!(((q[7] - q[6]).normalize() - dir).length() < 1e-12);
+        assert!(((q[6] - q[5]).length() - (q[6] - q[3]).length() / 3.0).abs() < 1e-12);
+        assert!(((q[7] - q[6]).length() - (q[9] - q[6]).length() / 3.0).abs() < 1e-12);
+    };
+    handles_on_chord(&pb);
+    // A neighbouring anchor moves: the auto handles are placed again.
+    let moved = pb.set_points(&[(9, DVec3::new(7.0, 3.0, 1.0))]).unwrap();
+    handles_on_chord(&moved);
+    let CurveKind::PolyBezier { joins, .. } = &moved else {
+        panic!("poly-Bézier")
+    };
+    assert_eq!(joins[1], Join::Auto);
+    // Dragging one of its handles makes the joint aligned (G1), as Blender.
+    let to = moved.points()[7] + DVec3::new(0.0, 0.5, 0.0);
+    let dragged = moved.set_points(&[(7, to)]).unwrap();
+    let CurveKind::PolyBezier { joins, .. } = &dragged else {
+        panic!("poly-Bézier")
+    };
+    assert_eq!(joins[1], Join::G1);
+    let q = dragged.points();
+    assert_eq!(q[7], to);
+    assert!(((q[6] - q[5]).normalize() - (q[7] - q[6]).normalize()).length() < 1e-12);
+}

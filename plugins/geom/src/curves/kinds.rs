@@ -112,6 +112,12 @@ pub enum Join {
     /// free (Inkscape's smooth node).
     #[default]
     G1,
+    /// Handles placed from the neighbouring anchors and re-placed whenever
+    /// an anchor moves (Blender's "auto"): along the chord from the
+    /// previous anchor to the next, each a third of the distance to its
+    /// neighbour, so the joint is G1. Dragging one of its handles makes
+    /// the joint G1 (Blender turns it "aligned").
+    Auto,
 }
 
 /// A fractal replacement rule of the Koch family: every segment becomes
@@ -1103,6 +1109,22 @@ impl CurveKind {
                         enforce_join(points, join, hout, a, hin);
                     }
                 }
+                // Auto joints: a dragged handle makes the joint G1 (its
+                // partner was aligned above); else the handles follow the
+                // anchors.
+                for (j, join) in joins.iter_mut().enumerate() {
+                    if *join != Join::Auto {
+                        continue;
+                    }
+                    let (hin, a, hout) = joint_indices(j, n, *closed);
+                    let handle_dragged =
+                        (moved.contains(&hin) || moved.contains(&hout)) && !moved.contains(&a);
+                    if handle_dragged {
+                        *join = Join::G1;
+                    } else {
+                        auto_handles(points, hin, a, hout);
+                    }
+                }
                 // The free ends of an open chain carry their one handle.
                 if !*closed {
                     for (a, h) in [(0, 1), (n - 1, n - 2)] {
@@ -1227,7 +1249,11 @@ impl CurveKind {
         }
         joins[joint] = join;
         let (hin, a, hout) = joint_indices(joint, points.len(), *closed);
-        enforce_join(points, join, hin, a, hout);
+        if join == Join::Auto {
+            auto_handles(points, hin, a, hout);
+        } else {
+            enforce_join(points, join, hin, a, hout);
+        }
         Ok(out)
     }
 
@@ -1929,6 +1955,19 @@ fn joint_indices(j: usize, n: usize, closed: bool) -> (usize, usize, usize) {
     ((a + n - 1) % n, a, (a + 1) % n)
 }
 
+/// Places the handles of the auto joint at anchor `a` from its neighbouring
+/// anchors (three points away along the chain, modulo its length).
+fn auto_handles(points: &mut [DVec3], hin: usize, a: usize, hout: usize) {
+    let n = points.len();
+    let (prev, next) = (points[(a + n - 3) % n], points[(a + 3) % n]);
+    let Some(dir) = (next - prev).try_normalize() else {
+        return;
+    };
+    let p = points[a];
+    points[hin] = p - dir * (p - prev).length() / 3.0;
+    points[hout] = p + dir * (next - p).length() / 3.0;
+}
+
 /// Turns handle `other` about anchor `a` so the joint holds `join`, given
 /// the handle `fixed`.
 fn enforce_join(points: &mut [DVec3], join: Join, fixed: usize, a: usize, other: usize) {
@@ -1936,7 +1975,7 @@ fn enforce_join(points: &mut [DVec3], join: Join, fixed: usize, a: usize, other:
     match join {
         Join::C0 => {}
         Join::C1 => points[other] = points[a] + arm,
-        Join::G1 => {
+        Join::G1 | Join::Auto => {
             if let Some(dir) = arm.try_normalize() {
                 let len = (points[other] - points[a]).length();
                 points[other] = points[a] + dir * len;

@@ -101,6 +101,7 @@ pub(super) fn curve_menu(
             ("Corner (C0)", Join::C0),
             ("Smooth (C1)", Join::C1),
             ("Aligned (G1)", Join::G1),
+            ("Auto (follows the anchors)", Join::Auto),
         ] {
             if ui
                 .add_enabled(joint.is_some(), egui::Button::new(label))
