@@ -967,6 +967,14 @@ fn free_form_curve(
 ) -> Result<hedra_geom::NurbsCurve, String> {
     use hedra_geom::curves::Curve;
     let degree = f.degree.ok_or("no 'deg' before 'end'")?;
+    // Checked here, before anything computes `degree + 1`.
+    if degree == 0 || degree >= refs.len() {
+        return Err(format!(
+            "degree {degree} does not fit {} control points (degree 1 to {})",
+            refs.len(),
+            refs.len() - 1
+        ));
+    }
     let mut points = Vec::with_capacity(refs.len());
     let mut weights = Vec::with_capacity(refs.len());
     for &r in refs {
@@ -988,7 +996,7 @@ fn free_form_curve(
         // Bézier: segments of `degree` points sharing ends, breakpoints
         // from `parm u` (uniform when absent).
         _ => {
-            if degree == 0 || refs.len() < degree + 1 || !(refs.len() - 1).is_multiple_of(degree) {
+            if !(refs.len() - 1).is_multiple_of(degree) {
                 return Err(format!(
                     "a degree {degree} Bézier curve needs {degree}k + 1 points, got {}",
                     refs.len()

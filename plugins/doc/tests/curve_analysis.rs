@@ -478,4 +478,24 @@ end
         let e = obj_from_str(bad, "bad.obj").unwrap_err().to_string();
         assert_eq!(e, format!("bad.obj: {message}"));
     }
+    // Hostile records are refused by name, never a panic (the fuzz body's
+    // checks: errors name the file, curves are finite).
+    let hostile = [
+        "v 0 0 0\nv 1 0 0\ncstype bspline\ndeg 18446744073709551615\ncurv 0 1 1 2\nparm u 0 1\nend\n",
+        "v 0 0 0\nv 1 0 0\ncstype bezier\ndeg 18446744073709551615\ncurv 0 1 1 2\nend\n",
+        "v 0 0 0\nv 1 0 0\ncstype bezier\ndeg 0\ncurv 0 1 1 2\nend\n",
+        "v 0 0 0\nv 1 0 0\ncstype bspline\ndeg 1\ncurv 0 1 -3 2\nparm u 0 0 1 1\nend\n",
+        "v 0 0 0\nv 1 0 0\ncstype bspline\ndeg 1\ncurv nan 1 1 2\nparm u 0 0 1 1\nend\n",
+        "v 0 0 0\nv 1 0 0 inf\ncstype rat bspline\ndeg 1\ncurv 0 1 1 2\nparm u 0 0 1 1\nend\n",
+        "v 0 0 0\nv 1 0 0\ncstype bspline\ndeg 1\ncurv 0 1 1 2\nparm u 1 0 0 1\nend\n",
+        "cstype bspline\ndeg 1\ncurv 0 1\nend\nend\nparm u \\",
+    ];
+    for text in hostile {
+        hedra_doc::fuzz::obj(text.as_bytes());
+        assert!(obj_from_str(text, "h.obj").is_err(), "{text}");
+    }
+    assert_eq!(
+        obj_from_str(hostile[0], "h.obj").unwrap_err().to_string(),
+        "h.obj: line 5: free-form curve: degree 18446744073709551615 does not fit 2 control points (degree 1 to 1)"
+    );
 }
