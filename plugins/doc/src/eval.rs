@@ -1,9 +1,14 @@
 //! Exact geometry of a curve or surface node at a parameter, for `hedra
 //! eval`: point, derivatives, normal and curvature, in the node's local space.
+//! For a curve of any kind also the limits from both sides at the
+//! parameter (where two pieces meet they may differ), the continuity of
+//! the joint there, and every joint of the curve with its continuity
+//! ([`hedra_geom::curves::joints`]).
 
 use glam::DVec3;
 use hedra_geom::curves::Curve;
 use hedra_geom::curves::analysis::{curvature, frenet_frame};
+use hedra_geom::curves::joints::{Joint, JointTolerance, both_sides};
 use hedra_geom::surfaces::Surface;
 use serde::Serialize;
 
@@ -30,6 +35,99 @@ pub struct Evaluation {
     pub normal: Option<[f64; 3]>,
     /// Curves: κ; NURBS surfaces: [Gaussian K, mean H]; triangles: none.
     pub curvature: Vec<f64>,
+    /// Curves: the kind the user made ("Catmull-Rom", "NURBS", …).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub curve_kind: Option<&'static str>,
+    /// Curves whose NURBS form approximates the kind (high-degree
+    /// Lagrange): the form's measured largest distance from it. The
+    /// values above are the form's.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub approximation: Option<f64>,
+    /// Curves: the limits from both sides at the parameter.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub sides: Option<CurveSides>,
+    /// Curves: the joint at the parameter, when there is one.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub joint: Option<JointReport>,
+    /// Curves: every joint of the curve, in order (the closing joint of a
+    /// closed curve last).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub joints: Vec<JointReport>,
+}
+
+/// A curve's position and derivatives as the limit from one side.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct SideValues {
+    /// The point.
+    pub point: [f64; 3],
+    /// d/dt.
+    pub first_derivative: [f64; 3],
+    /// d²/dt².
+    pub second_derivative: [f64; 3],
+}
+
+/// The two one-sided limits of a curve at a parameter: `before` is the
+/// piece that ends there, `after` the one that starts there. An open
+/// curve has no `before` at its start and no `after` at its end; a closed
+/// one wraps around.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct CurveSides {
+    /// The incoming piece's values.
+    pub before: Option<SideValues>,
+    /// The outgoing piece's values.
+    pub after: Option<SideValues>,
+}
+
+/// One joint of a curve as `hedra eval` reports it.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct JointReport {
+    /// The parameter of the joint (a closed curve's closing joint: the
+    /// domain's start).
+    pub parameter: f64,
+    /// The point there, in the node's local space.
+    pub point: [f64; 3],
+    /// The knot's multiplicity in the NURBS form (0: the closing joint).
+    pub multiplicity: usize,
+    /// The joint where a closed curve's end meets its start.
+    pub closing: bool,
+    /// "C2", "C1 G2", "C1", "G2", "G1", "C0" or "gap".
+    pub continuity: &'static str,
+    /// Each test on its own: C0, C1, C2, G1, G2.
+    pub c0: bool,
+    /// First derivatives agree.
+    pub c1: bool,
+    /// Second derivatives agree too.
+    pub c2: bool,
+    /// Unit tangents agree.
+    pub g1: bool,
+    /// Curvature vectors agree too.
+    pub g2: bool,
+}
+
+impl From<&Joint> for JointReport {
+    fn from(j: &Joint) -> Self {
+        let c = j.continuity;
+        JointReport {
+            parameter: j.parameter,
+            point: a(j.position),
+            multiplicity: j.multiplicity,
+            closing: j.closing,
+            continuity: c.label(),
+            c0: c.c0,
+            c1: c.c1,
+            c2: c.c2,
+            g1: c.g1,
+            g2: c.g2,
+        }
+    }
+}
+
+fn side_values([p, d1, d2]: [DVec3; 3]) -> SideValues {
+    SideValues {
+        point: a(p),
+        first_derivative: a(d1),
+        second_derivative: a(d2),
+    }
 }
 
 /// Why a node could not be evaluated.
@@ -121,12 +219,25 @@ pub fn evaluate(doc: &Document, node: &NodeRef, params: &[f64]) -> Result<Evalua
         }
     };
     match &n.content {
-        NodeContent::Curve(c) => {
-            let c = c.nurbs();
+        NodeContent::Curve(content) => {
+            let c = content.nurbs();
             want(1)?;
             let t = params[0];
-            inside(t, c.domain(), "t")?;
+            let (start, end) = c.domain();
+            inside(t, (start, end), "t")?;
+            let t = t.clamp(start, end);
             let [p, d1, d2] = c.derivatives(t);
+            let kind = content.kind();
+            let closed = kind.is_closed();
+            let joints = kind.joints(c, &JointTolerance::default());
+            // The joint at t: an interior knot, or either end of a closed
+            // curve for its closing joint.
+            let near = |x: f64| (x - t).abs() <= 1e-12 * (end - start);
+            let joint = joints
+                .iter()
+                .find(|j| near(j.parameter) || (j.closing && near(end)))
+                .map(JointReport::from);
+            let (before, after) = both_sides(c, closed, t);
             Ok(Evaluation {
                 node: n.name.clone(),
                 kind: "curve",
@@ -136,6 +247,14 @@ pub fn evaluate(doc: &Document, node: &NodeRef, params: &[f64]) -> Result<Evalua
                 second_derivatives: vec![a(d2)],
                 normal: frenet_frame(&**c, t).map(|[_, normal, _]| a(normal)),
                 curvature: vec![curvature(&**c, t)],
+                curve_kind: Some(kind.name()),
+                approximation: content.tolerance(),
+                sides: Some(CurveSides {
+                    before: before.map(side_values),
+                    after: after.map(side_values),
+                }),
+                joint,
+                joints: joints.iter().map(JointReport::from).collect(),
             })
         }
         NodeContent::Surface(s) => {
@@ -171,6 +290,7 @@ pub fn evaluate(doc: &Document, node: &NodeRef, params: &[f64]) -> Result<Evalua
                         second_derivatives: vec![a(e.duu), a(e.duv), a(e.dvv)],
                         normal: (normal != DVec3::ZERO).then(|| a(normal)),
                         curvature,
+                        ..Evaluation::shape_only()
                     })
                 }
                 SurfaceShape::Triangle(t) => {
@@ -195,6 +315,7 @@ pub fn evaluate(doc: &Document, node: &NodeRef, params: &[f64]) -> Result<Evalua
                         second_derivatives: vec![],
                         normal: (normal != DVec3::ZERO).then(|| a(normal)),
                         curvature: vec![],
+                        ..Evaluation::shape_only()
                     })
                 }
             }
@@ -206,7 +327,29 @@ pub fn evaluate(doc: &Document, node: &NodeRef, params: &[f64]) -> Result<Evalua
     }
 }
 
+/// Joints [`Evaluation::to_text`] lists at most (JSON lists them all).
+pub const MAX_JOINT_LINES: usize = 20;
+
 impl Evaluation {
+    /// The curve-only fields empty, for surfaces and triangles.
+    fn shape_only() -> Evaluation {
+        Evaluation {
+            node: String::new(),
+            kind: "",
+            parameter: Vec::new(),
+            point: [0.0; 3],
+            first_derivatives: Vec::new(),
+            second_derivatives: Vec::new(),
+            normal: None,
+            curvature: Vec::new(),
+            curve_kind: None,
+            approximation: None,
+            sides: None,
+            joint: None,
+            joints: Vec::new(),
+        }
+    }
+
     /// Human-readable lines.
     pub fn to_text(&self) -> String {
         let v = |x: &[f64; 3]| format!("({:.9}, {:.9}, {:.9})", x[0], x[1], x[2]);
@@ -230,6 +373,41 @@ impl Evaluation {
             ("curve", [k]) => out += &format!("  curvature {k:.9}\n"),
             (_, [k, h]) => out += &format!("  Gaussian curvature {k:.9}, mean curvature {h:.9}\n"),
             _ => {}
+        }
+        if let Some(kind) = self.curve_kind {
+            out += &format!("  kind {kind}\n");
+        }
+        if let Some(e) = self.approximation {
+            out += &format!("  NURBS form within {e:.3e} of the curve\n");
+        }
+        if let Some(sides) = &self.sides {
+            for (name, side) in [("before", &sides.before), ("after", &sides.after)] {
+                match side {
+                    Some(s) => {
+                        out += &format!(
+                            "  {name}: point {}, first derivative {}, second derivative {}\n",
+                            v(&s.point),
+                            v(&s.first_derivative),
+                            v(&s.second_derivative)
+                        )
+                    }
+                    None => out += &format!("  {name}: none (an end of the curve)\n"),
+                }
+            }
+        }
+        if let Some(j) = &self.joint {
+            out += &format!("  joint here: {}\n", j.continuity);
+        }
+        if !self.joints.is_empty() {
+            out += &format!("  joints ({}):", self.joints.len());
+            for j in self.joints.iter().take(MAX_JOINT_LINES) {
+                let closing = if j.closing { " (closing)" } else { "" };
+                out += &format!(" t = {}{closing} {};", j.parameter, j.continuity);
+            }
+            if self.joints.len() > MAX_JOINT_LINES {
+                out += &format!(" … and {} more", self.joints.len() - MAX_JOINT_LINES);
+            }
+            out += "\n";
         }
         out
     }

@@ -39,6 +39,22 @@ pub const EXPORT_FORMATS: &[(&str, &str)] = &[
     ("glb", "binary glTF 2.0"),
 ];
 
+/// How OBJ holds curve nodes.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+pub enum CurveExport {
+    /// Every curve as an `l` polyline through points of it, tessellated to
+    /// a fraction of its size (what any OBJ reader understands).
+    #[default]
+    Polylines,
+    /// Every curve whose NURBS form is exact (every kind but a Lagrange
+    /// curve of more than 12 points) as an OBJ free-form B-spline record —
+    /// `cstype bspline` (`cstype rat bspline` with `v x y z w` weights when
+    /// rational), `deg`, `curv t₀ t₁ v…`, `parm u` with the whole knot
+    /// vector, `end` — control points in world space (an affine map keeps
+    /// a NURBS curve exact); an approximated one as a polyline.
+    FreeForm,
+}
+
 /// How to export.
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
 pub struct ExportOptions {
@@ -120,6 +136,22 @@ pub fn export_bytes(
     path: &Path,
     options: ExportOptions,
 ) -> Result<Vec<u8>, ExportError> {
+    export_bytes_with_curves(doc, path, options, CurveExport::Polylines)
+}
+
+/// [`export_bytes`] with a choice of how OBJ writes curves (the other
+/// formats tessellate them or leave them out as before). The reader,
+/// [`crate::import::obj_from_str`], turns free-form records back into
+/// NURBS curve nodes.
+///
+/// # Errors
+/// As [`export_bytes`].
+pub fn export_bytes_with_curves(
+    doc: &Document,
+    path: &Path,
+    options: ExportOptions,
+    curves: CurveExport,
+) -> Result<Vec<u8>, ExportError> {
     let shape = options.shape;
     let ext = path
         .extension()
@@ -128,8 +160,14 @@ pub fn export_bytes(
         .to_ascii_lowercase();
     // OBJ and STL of nothing would be empty files: say so instead.
     let items = |stl: bool| -> Result<Vec<ExportItem<'_>>, ExportError> {
-        let items = export_meshes(doc, shape)?;
-        let holds = |i: &ExportItem| !stl || !matches!(i.geometry, Geometry::Polyline(_));
+        let items = export_meshes(
+            doc,
+            shape,
+            if stl { CurveExport::Polylines } else { curves },
+        )?;
+        let holds = |i: &ExportItem| {
+            !stl || !matches!(i.geometry, Geometry::Polyline(_) | Geometry::FreeForm(_))
+        };
         if !items.iter().any(holds) {
             return Err(ExportError::NothingToExport {
                 path: path.to_path_buf(),
@@ -232,7 +270,7 @@ fn stl_triangles(items: &[ExportItem]) -> Vec<stl_io::Triangle> {
                 }
             }
             // STL holds only triangles: curves are left out.
-            Geometry::Polyline(_) => {}
+            Geometry::Polyline(_) | Geometry::FreeForm(_) => {}
         }
     }
     triangles
@@ -360,9 +398,51 @@ fn to_obj(items: &[ExportItem]) -> String {
                 out.push('\n');
                 base += points.len();
             }
+            Geometry::FreeForm(curve) => {
+                base += write_free_form(&mut out, curve, world, base);
+            }
         }
     }
     out
+}
+
+/// An OBJ free-form B-spline record of `curve` mapped by `world`, its
+/// control points numbered from `base`: `v` lines (with the weight when
+/// rational), `cstype`, `deg`, `curv` over the domain, `parm u` with every
+/// knot, `end`. Numbers are written exactly (shortest round-trip form).
+/// Returns the number of `v` lines written.
+fn write_free_form(
+    out: &mut String,
+    curve: &hedra_geom::NurbsCurve,
+    world: glam::DMat4,
+    base: usize,
+) -> usize {
+    let rational = !curve.is_polynomial();
+    for (p, w) in curve.points().iter().zip(curve.weights()) {
+        let p = world.transform_point3(*p);
+        if rational {
+            let _ = writeln!(out, "v {} {} {} {w}", p.x, p.y, p.z);
+        } else {
+            let _ = writeln!(out, "v {} {} {}", p.x, p.y, p.z);
+        }
+    }
+    let (a, b) = hedra_geom::curves::Curve::domain(curve);
+    let _ = writeln!(
+        out,
+        "cstype {}bspline\ndeg {}",
+        if rational { "rat " } else { "" },
+        curve.degree()
+    );
+    let _ = write!(out, "curv {a} {b}");
+    for i in 0..curve.points().len() {
+        let _ = write!(out, " {}", base + i);
+    }
+    out.push_str("\nparm u");
+    for k in curve.knots() {
+        let _ = write!(out, " {k}");
+    }
+    out.push_str("\nend\n");
+    curve.points().len()
 }
 
 /// What is written for one node.
@@ -373,6 +453,9 @@ pub(crate) enum Geometry<'a> {
     Triangles(Vec<DVec3>, Vec<DVec3>, Vec<[u32; 3]>),
     /// A tessellated curve.
     Polyline(Vec<DVec3>),
+    /// A curve written exactly as an OBJ free-form record (OBJ only; never
+    /// made by [`node_geometry`]).
+    FreeForm(std::sync::Arc<hedra_geom::NurbsCurve>),
 }
 
 /// A node, what to write for it and its world matrix.
@@ -395,13 +478,27 @@ const EXPORT_TOLERANCE: f64 = 1e-4;
 /// # Errors
 /// [`ExportError::Evaluation`] naming the node when its modifiers cannot
 /// be evaluated (Loop on a mesh with quads, a level too large).
-fn export_meshes(doc: &Document, shape: ExportShape) -> Result<Vec<ExportItem<'_>>, ExportError> {
+fn export_meshes(
+    doc: &Document,
+    shape: ExportShape,
+    curves: CurveExport,
+) -> Result<Vec<ExportItem<'_>>, ExportError> {
     let mut out = Vec::new();
     for node in doc.nodes() {
         if !is_visible(doc, node.id) {
             continue;
         }
-        if let Some(geometry) = node_geometry(node, shape)? {
+        let exact_curve = match &node.content {
+            NodeContent::Curve(c) if curves == CurveExport::FreeForm && c.tolerance().is_none() => {
+                Some(Geometry::FreeForm(c.nurbs().clone()))
+            }
+            _ => None,
+        };
+        let geometry = match exact_curve {
+            Some(g) => Some(g),
+            None => node_geometry(node, shape)?,
+        };
+        if let Some(geometry) = geometry {
             let corners = match (&node.content, &geometry) {
                 (NodeContent::Mesh(c), Geometry::Mesh(Cow::Borrowed(_)))
                     if !c.corners.is_empty() =>
@@ -435,7 +532,6 @@ pub(crate) fn node_geometry(
     node: &Node,
     shape: ExportShape,
 ) -> Result<Option<Geometry<'_>>, ExportError> {
-    use hedra_geom::curves::Curve;
     Ok(Some(match &node.content {
         NodeContent::Empty => return Ok(None),
         NodeContent::Mesh(content) => {
@@ -460,13 +556,7 @@ pub(crate) fn node_geometry(
                     })?,
             )
         }
-        NodeContent::Curve(c) => {
-            let c = c.nurbs();
-            let size = crate::render::extent(c.points());
-            let params =
-                hedra_geom::surfaces::tessellate::curve_parameters(&**c, EXPORT_TOLERANCE * size);
-            Geometry::Polyline(params.iter().map(|&t| c.point(t)).collect())
-        }
+        NodeContent::Curve(c) => Geometry::Polyline(curve_polyline(c.nurbs())),
         NodeContent::Surface(sf) => {
             let size = crate::render::extent(sf.control_points());
             let (positions, normals, tris) = sf.tessellate(EXPORT_TOLERANCE * size);
@@ -474,6 +564,15 @@ pub(crate) fn node_geometry(
             Geometry::Triangles(positions, normals, tris)
         }
     }))
+}
+
+/// Points along a curve for a polyline, within [`EXPORT_TOLERANCE`] of
+/// its size.
+pub(crate) fn curve_polyline(c: &hedra_geom::NurbsCurve) -> Vec<DVec3> {
+    use hedra_geom::curves::Curve;
+    let size = crate::render::extent(c.points());
+    let params = hedra_geom::surfaces::tessellate::curve_parameters(c, EXPORT_TOLERANCE * size);
+    params.iter().map(|&t| c.point(t)).collect()
 }
 
 /// A tessellation with coincident points merged (within `tolerance`: a

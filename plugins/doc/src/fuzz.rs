@@ -144,6 +144,18 @@ fn check_imported(result: Result<Vec<ImportedMesh>, ImportError>) {
             check_mesh(mesh, &what);
             assert!(mesh.face_count() > 0, "{what}: mesh without faces");
         }
+        if let Some(curve) = &m.curve {
+            use hedra_geom::curves::Curve;
+            assert!(m.mesh.is_none(), "{what}: both a mesh and a curve");
+            let (a, b) = curve.domain();
+            assert!(a < b, "{what}: an empty curve domain");
+            for t in [a, (a + b) / 2.0, b] {
+                assert!(
+                    curve.point(t).is_finite(),
+                    "{what}: a curve point not finite"
+                );
+            }
+        }
     }
 }
 

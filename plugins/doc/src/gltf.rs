@@ -303,6 +303,16 @@ pub fn to_gltf(doc: &Document, shape: ExportShape, binary: bool) -> Result<Vec<u
                         Vec::new(),
                         json::mesh::Mode::LineStrip,
                     ),
+                    // Not made for glTF (node_geometry tessellates curves).
+                    Geometry::FreeForm(c) => (
+                        crate::export::curve_polyline(c)
+                            .iter()
+                            .map(|x| x.as_vec3().to_array())
+                            .collect(),
+                        Vec::new(),
+                        Vec::new(),
+                        json::mesh::Mode::LineStrip,
+                    ),
                 };
                 let view = push_view(
                     &mut root,
@@ -673,6 +683,7 @@ pub fn gltf_from_bytes(
             face_numbers: crate::import::FaceNumbers::InNode,
             not_imported: Vec::new(),
             vertex_numbers: Vec::new(),
+            curve: None,
         });
         for child in node.children().collect::<Vec<_>>().into_iter().rev() {
             stack.push((child, Some(me)));

@@ -12,6 +12,12 @@
 //! an object holds groups, the object becomes a parent node (an empty, or a
 //! mesh of its faces outside any group) and each group a child mesh node.
 //! A group name that appears again later gives another node.
+//!
+//! OBJ free-form curves (`cstype [rat] bspline` or `bezier`, `deg`, `curv`,
+//! `parm u`, `end`, with weights from `v x y z w`) become NURBS curve
+//! nodes, named after the object or group they are in, trimmed to their
+//! `curv` range; other free-form types (Cardinal, Taylor, basis-matrix
+//! curves, surfaces, trimming curves) are left out with a note.
 
 use crate::history::{NodeChange, Transaction};
 use crate::scene::{
@@ -53,6 +59,9 @@ pub struct ImportedMesh {
     pub vertex_numbers: Vec<u32>,
     /// UVs and normals of the mesh's face corners that the file gave.
     pub corners: CornerAttributes,
+    /// A curve read from the file (an OBJ free-form B-spline or Bézier
+    /// curve): the node is a curve node, `mesh` is `None`.
+    pub curve: Option<hedra_geom::NurbsCurve>,
 }
 
 impl ImportedMesh {
@@ -70,6 +79,7 @@ impl ImportedMesh {
             not_imported: Vec::new(),
             vertex_numbers: Vec::new(),
             corners: CornerAttributes::default(),
+            curve: None,
         }
     }
 
@@ -87,6 +97,7 @@ impl ImportedMesh {
             not_imported: Vec::new(),
             vertex_numbers: Vec::new(),
             corners: CornerAttributes::default(),
+            curve: None,
         }
     }
 }
@@ -399,6 +410,16 @@ pub enum ObjError {
         /// The kind of element the index counts.
         element: ObjElement,
     },
+    /// A free-form curve record that cannot make a curve (a missing `deg`
+    /// or `parm`, knots that do not fit the points, a weight that is not
+    /// positive, a `curv` range outside the knots).
+    #[error("line {line}: free-form curve: {reason}")]
+    FreeFormCurve {
+        /// The line of its `curv` statement.
+        line: usize,
+        /// What is wrong.
+        reason: String,
+    },
     /// A positive index past the elements the whole file has.
     #[error(
         "line {line}: face refers to {} {index}, but the file has {total} {}",
@@ -588,6 +609,10 @@ pub fn obj_from_str(text: &str, path: &str) -> Result<Vec<ImportedMesh>, ImportE
         path: path.to_string(),
         error,
     })?;
+    let (curves, skipped_free_form) = obj_curves(text).map_err(|error| ImportError::Obj {
+        path: path.to_string(),
+        error,
+    })?;
     let (cleaned, polylines) = without_polylines(text);
     let text = cleaned.as_str();
     let options = tobj::LoadOptions {
@@ -759,6 +784,13 @@ pub fn obj_from_str(text: &str, path: &str) -> Result<Vec<ImportedMesh>, ImportE
             }
         }
     }
+    for (k, c) in curves.into_iter().enumerate() {
+        out.push(ImportedMesh {
+            mesh: None,
+            curve: Some(c.curve),
+            ..ImportedMesh::empty(c.name.unwrap_or_else(|| format!("Curve {}", k + 1)))
+        });
+    }
     if out.is_empty() {
         let path = path.to_string();
         return Err(match (nothing_kept, polylines) {
@@ -770,7 +802,12 @@ pub fn obj_from_str(text: &str, path: &str) -> Result<Vec<ImportedMesh>, ImportE
             (None, _) => ImportError::Empty { path },
         });
     }
-    if let Some(first) = out.iter_mut().find(|m| m.mesh.is_some()) {
+    // The notes go on the first mesh, else on the first curve.
+    let first = out
+        .iter()
+        .position(|m| m.mesh.is_some())
+        .or_else(|| out.iter().position(|m| m.curve.is_some()));
+    if let Some(first) = first.map(|i| &mut out[i]) {
         first.skipped_polylines = polylines;
         let materials = text
             .lines()
@@ -778,8 +815,229 @@ pub fn obj_from_str(text: &str, path: &str) -> Result<Vec<ImportedMesh>, ImportE
         if materials {
             first.not_imported = vec!["materials (mtllib, usemtl)".to_string()];
         }
+        if skipped_free_form > 0 {
+            first.not_imported.push(format!(
+                "{skipped_free_form} free-form record(s) other than B-spline and Bézier curves"
+            ));
+        }
     }
     Ok(out)
+}
+
+/// A free-form curve read from OBJ text, with the object or group it is in.
+struct ObjCurve {
+    name: Option<String>,
+    curve: hedra_geom::NurbsCurve,
+}
+
+/// The free-form state between `cstype` and `end`.
+#[derive(Default)]
+struct FreeForm {
+    rational: bool,
+    /// `bspline`, `bezier`, or another type (read, then left out).
+    kind: String,
+    degree: Option<usize>,
+    /// The `curv` line: its number, range and vertex references.
+    curv: Option<(usize, f64, f64, Vec<i64>)>,
+    knots: Option<Vec<f64>>,
+    /// A `surf`, `curv2` or another record Hedra does not read.
+    other: bool,
+}
+
+/// Reads the free-form curves of OBJ text: B-spline and Bézier curves
+/// (rational or not) become NURBS curves; a record of another type is
+/// counted. Lines ending in `\` continue on the next. Vertices number
+/// over the whole file, negative numbers back from the line.
+///
+/// # Errors
+/// [`ObjError::FreeFormCurve`] naming the `curv` line and what is wrong.
+fn obj_curves(text: &str) -> Result<(Vec<ObjCurve>, usize), ObjError> {
+    let mut vertices: Vec<(DVec3, f64)> = Vec::new();
+    let (mut object, mut group): (Option<String>, Option<String>) = (None, None);
+    let mut state = FreeForm::default();
+    let mut out = Vec::new();
+    let mut skipped = 0usize;
+    let mut joined = String::new();
+    let mut first_line = 0usize;
+    for (number, raw) in text.lines().enumerate() {
+        if joined.is_empty() {
+            first_line = number + 1;
+        }
+        if let Some(head) = raw.trim_end().strip_suffix('\\') {
+            joined.push_str(head);
+            joined.push(' ');
+            continue;
+        }
+        joined.push_str(raw);
+        let line = std::mem::take(&mut joined);
+        let number = first_line;
+        let mut words = line.split_whitespace();
+        let bad = |reason: String| ObjError::FreeFormCurve {
+            line: number,
+            reason,
+        };
+        let numbers = |words: std::str::SplitWhitespace| -> Result<Vec<f64>, ObjError> {
+            words
+                .map(|w| {
+                    w.parse::<f64>()
+                        .ok()
+                        .filter(|x| x.is_finite())
+                        .ok_or_else(|| bad(format!("'{w}' is not a finite number")))
+                })
+                .collect()
+        };
+        match words.next() {
+            Some("v") => {
+                let v: Vec<f64> = words.filter_map(|w| w.parse().ok()).collect();
+                if v.len() >= 3 {
+                    let w = if v.len() == 4 { v[3] } else { 1.0 };
+                    vertices.push((DVec3::new(v[0], v[1], v[2]), w));
+                }
+            }
+            Some("o") => {
+                object = Some(line.trim_start()[1..].trim().to_string()).filter(|n| !n.is_empty());
+                group = None;
+            }
+            Some("g") => {
+                group = Some(line.trim_start()[1..].trim().to_string()).filter(|n| !n.is_empty());
+            }
+            Some("cstype") => {
+                let rest: Vec<&str> = words.collect();
+                state = FreeForm {
+                    rational: rest.first() == Some(&"rat"),
+                    kind: rest.last().copied().unwrap_or("").to_string(),
+                    ..FreeForm::default()
+                };
+            }
+            Some("deg") => {
+                let d = words.next().and_then(|w| w.parse::<usize>().ok());
+                state.degree = Some(d.ok_or_else(|| bad("'deg' needs a whole number".into()))?);
+            }
+            Some("curv") => {
+                let all: Vec<&str> = words.collect();
+                if all.len() < 4 {
+                    return Err(bad("'curv' needs a range and two or more vertices".into()));
+                }
+                let range = numbers(all[..2].join(" ").split_whitespace())?;
+                let refs = all[2..]
+                    .iter()
+                    .map(|w| {
+                        w.parse::<i64>()
+                            .map_err(|_| bad(format!("'{w}' is not a vertex number")))
+                    })
+                    .collect::<Result<Vec<i64>, _>>()?;
+                state.curv = Some((number, range[0], range[1], refs));
+            }
+            Some("parm") if words.next() == Some("u") => {
+                state.knots = Some(numbers(words)?);
+            }
+            Some("surf" | "curv2") => state.other = true,
+            Some("end") => {
+                let done = std::mem::take(&mut state);
+                let Some((line, u0, u1, refs)) = done.curv.clone() else {
+                    if done.other {
+                        skipped += 1;
+                    }
+                    continue;
+                };
+                if done.other || !matches!(done.kind.as_str(), "bspline" | "bezier") {
+                    skipped += 1;
+                    continue;
+                }
+                let curve = free_form_curve(&done, &vertices, u0, u1, &refs)
+                    .map_err(|reason| ObjError::FreeFormCurve { line, reason })?;
+                out.push(ObjCurve {
+                    name: group.clone().or_else(|| object.clone()),
+                    curve,
+                });
+            }
+            _ => {}
+        }
+    }
+    Ok((out, skipped))
+}
+
+/// The NURBS curve of one free-form record, trimmed to `[u0, u1]`.
+fn free_form_curve(
+    f: &FreeForm,
+    vertices: &[(DVec3, f64)],
+    u0: f64,
+    u1: f64,
+    refs: &[i64],
+) -> Result<hedra_geom::NurbsCurve, String> {
+    use hedra_geom::curves::Curve;
+    let degree = f.degree.ok_or("no 'deg' before 'end'")?;
+    // Checked here, before anything computes `degree + 1`.
+    if degree == 0 || degree >= refs.len() {
+        return Err(format!(
+            "degree {degree} does not fit {} control points (degree 1 to {})",
+            refs.len(),
+            refs.len() - 1
+        ));
+    }
+    let mut points = Vec::with_capacity(refs.len());
+    let mut weights = Vec::with_capacity(refs.len());
+    for &r in refs {
+        let i = if r < 0 {
+            vertices.len() as i64 + r
+        } else {
+            r - 1
+        };
+        let &(p, w) = usize::try_from(i)
+            .ok()
+            .and_then(|i| vertices.get(i))
+            .ok_or_else(|| format!("vertex {r} does not exist ({} come before)", vertices.len()))?;
+        points.push(p);
+        weights.push(if f.rational { w } else { 1.0 });
+    }
+    let knots = match (f.kind.as_str(), &f.knots) {
+        ("bspline", Some(k)) => k.clone(),
+        ("bspline", None) => return Err("no 'parm u' knots".into()),
+        // Bézier: segments of `degree` points sharing ends, breakpoints
+        // from `parm u` (uniform when absent).
+        _ => {
+            if !(refs.len() - 1).is_multiple_of(degree) {
+                return Err(format!(
+                    "a degree {degree} Bézier curve needs {degree}k + 1 points, got {}",
+                    refs.len()
+                ));
+            }
+            let segments = (refs.len() - 1) / degree;
+            let breaks = f
+                .knots
+                .clone()
+                .unwrap_or_else(|| (0..=segments).map(|i| i as f64).collect());
+            if breaks.len() != segments + 1 {
+                return Err(format!(
+                    "{segments} Bézier segment(s) need {} 'parm u' values, got {}",
+                    segments + 1,
+                    breaks.len()
+                ));
+            }
+            let mut k = vec![breaks[0]; degree + 1];
+            for &b in &breaks[1..segments] {
+                k.extend(std::iter::repeat_n(b, degree));
+            }
+            k.extend(std::iter::repeat_n(breaks[segments], degree + 1));
+            k
+        }
+    };
+    let curve =
+        hedra_geom::NurbsCurve::new(degree, knots, points, weights).map_err(|e| e.to_string())?;
+    let (a, b) = curve.domain();
+    if !(u0 >= a && u1 <= b && u0 < u1) {
+        return Err(format!(
+            "the range [{u0}, {u1}] is not inside the knots' domain [{a}, {b}]"
+        ));
+    }
+    let mut curve = curve;
+    if u1 < b {
+        curve = curve.split(u1).map_err(|e| e.to_string())?.0;
+    }
+    if u0 > a {
+        curve = curve.split(u0).map_err(|e| e.to_string())?.1;
+    }
+    Ok(curve)
 }
 
 /// OBJ text without what tobj would misread, line numbers kept: polylines
@@ -1334,12 +1592,15 @@ impl Document {
                 parent,
                 transform: m.transform,
                 visible: true,
-                content: match &m.mesh {
-                    Some(mesh) => NodeContent::Mesh(MeshContent {
+                content: match (&m.mesh, &m.curve) {
+                    (Some(mesh), _) => NodeContent::Mesh(MeshContent {
                         corners: m.corners.clone(),
                         ..MeshContent::new(Arc::new(mesh.clone()))
                     }),
-                    None => NodeContent::Empty,
+                    (None, Some(curve)) => NodeContent::Curve(Arc::new(
+                        crate::scene::CurveContent::from_nurbs(curve.clone()),
+                    )),
+                    (None, None) => NodeContent::Empty,
                 },
             };
             changes.push(NodeChange {

@@ -162,7 +162,7 @@ pub fn equal_arc_length_parameters(curve: &dyn Curve, count: usize) -> Vec<f64> 
 }
 
 /// How smoothly a curve that ends where another starts joins it.
-#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub struct Continuity {
     /// Positions meet.
     pub c0: bool,

@@ -146,6 +146,160 @@ impl Bezier {
     }
 }
 
+/// Seed 003's basis matrix `M` of degree `n`: `[uⁿ, …, u, 1] · M =
+/// [Bₙⁿ(u), …, B₁ⁿ(u), B₀ⁿ(u)]`, so that a Bézier curve with control
+/// points `G = [bₙ, …, b₀]ᵀ` has power-basis coefficients `A = M G =
+/// [aₙ, …, a₀]ᵀ`, `r(u) = Σ aₖ uᵏ`. Both are in the seed's descending
+/// order: row r stands for `u^(n−r)`, column c for `b_(n−c)`. The entry is
+/// the coefficient of `uᵏ` in `Bᵢⁿ`, `C(n, i) C(n − i, k − i) (−1)^(k−i)`
+/// for k ≥ i. For n = 2 it is the seed's `[[1, −2, 1], [0, 2, −2], [0, 0,
+/// 1]]`. Inverse: [`power_to_bernstein_matrix`]. O(n²).
+pub fn bernstein_to_power_matrix(n: usize) -> Vec<Vec<f64>> {
+    (0..=n)
+        .map(|r| {
+            let k = n - r;
+            (0..=n)
+                .map(|c| {
+                    let i = n - c;
+                    if k < i {
+                        0.0
+                    } else {
+                        let sign = if (k - i).is_multiple_of(2) { 1.0 } else { -1.0 };
+                        sign * binomial(n, i) * binomial(n - i, k - i)
+                    }
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// `M⁻¹` of [`bernstein_to_power_matrix`]: `G = M⁻¹ A`, from power-basis
+/// coefficients `[aₙ, …, a₀]` to Bézier control points `[bₙ, …, b₀]`
+/// (seed 003's "báziskonverzió", `X = M₂⁻¹ M₁ G₁` with `M₁ = I`). The
+/// entry for `b_i` and `a_k` is `C(i, k) / C(n, k)` (k ≤ i), since `uᵏ =
+/// Σ_(i≥k) C(i, k) / C(n, k) Bᵢⁿ(u)`. For n = 2 it is the seed's `[[1, 1,
+/// 1], [0, ½, 1], [0, 0, 1]]`. O(n²).
+pub fn power_to_bernstein_matrix(n: usize) -> Vec<Vec<f64>> {
+    (0..=n)
+        .map(|r| {
+            let i = n - r;
+            (0..=n)
+                .map(|c| {
+                    let k = n - c;
+                    binomial(i, k) / binomial(n, k)
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// `M · G` for a matrix `M` and a column of values (points, weights).
+fn apply<T>(m: &[Vec<f64>], g: &[T]) -> Vec<T>
+where
+    T: Copy + std::iter::Sum<T> + std::ops::Mul<f64, Output = T>,
+{
+    m.iter()
+        .map(|row| row.iter().zip(g).map(|(&x, &v)| v * x).sum())
+        .collect()
+}
+
+/// One Bézier segment of a curve in seed 003's matrix form, `r(u) = uᵀ M
+/// G` with the segment's own parameter `u = (t − t₀)/(t₁ − t₀)` in [0, 1].
+/// A rational segment is `r(u) = (uᵀ A) / (uᵀ W)` with `A = M (w G)` and
+/// `W = M w`; a polynomial one has `W = [0, …, 0, 1]` and `A = M G`.
+/// Every list is in the seed's descending order (index 0 is degree n).
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct PowerBasisSegment {
+    /// The segment's interval `(t₀, t₁)` on the curve.
+    pub interval: (f64, f64),
+    /// `M` of the segment's degree ([`bernstein_to_power_matrix`]).
+    pub matrix: Vec<Vec<f64>>,
+    /// `G`: the control points `bₙ, …, b₀`.
+    pub control_points: Vec<DVec3>,
+    /// Their weights `wₙ, …, w₀` (all 1 when polynomial).
+    pub weights: Vec<f64>,
+    /// `A = M (w G)`: the coefficients `aₙ, …, a₀` of the numerator
+    /// (of `r(u)` itself when polynomial).
+    pub coefficients: Vec<DVec3>,
+    /// `W = M w`: the coefficients of the denominator `Σ wᵢ Bᵢⁿ(u)`.
+    pub weight_coefficients: Vec<f64>,
+}
+
+impl PowerBasisSegment {
+    /// The segment of Bézier control points `points` (b₀ first, as a curve
+    /// stores them) with `weights`, on `interval`. O(n²).
+    pub fn new(interval: (f64, f64), points: &[DVec3], weights: &[f64]) -> Self {
+        let n = points.len() - 1;
+        let matrix = bernstein_to_power_matrix(n);
+        let control_points: Vec<DVec3> = points.iter().rev().copied().collect();
+        let weights: Vec<f64> = weights.iter().rev().copied().collect();
+        let weighted: Vec<DVec3> = control_points
+            .iter()
+            .zip(&weights)
+            .map(|(&p, &w)| p * w)
+            .collect();
+        let coefficients = apply(&matrix, &weighted);
+        let weight_coefficients = apply(&matrix, &weights);
+        PowerBasisSegment {
+            interval,
+            matrix,
+            control_points,
+            weights,
+            coefficients,
+            weight_coefficients,
+        }
+    }
+
+    /// The point at the segment's own parameter `u` by Horner's rule on
+    /// the coefficients. O(n).
+    pub fn point(&self, u: f64) -> DVec3 {
+        let a = self
+            .coefficients
+            .iter()
+            .fold(DVec3::ZERO, |acc, &c| acc * u + c);
+        let w = self
+            .weight_coefficients
+            .iter()
+            .fold(0.0, |acc, &c| acc * u + c);
+        a / w
+    }
+
+    /// The control points back from the coefficients, `G = M⁻¹ A / M⁻¹ W`
+    /// ([`power_to_bernstein_matrix`]), in the seed's order `bₙ, …, b₀`;
+    /// the inverse of [`new`](Self::new) to rounding. O(n²).
+    pub fn control_points_from_coefficients(&self) -> Vec<DVec3> {
+        let inverse = power_to_bernstein_matrix(self.coefficients.len() - 1);
+        let weighted = apply(&inverse, &self.coefficients);
+        let weights = apply(&inverse, &self.weight_coefficients);
+        weighted
+            .iter()
+            .zip(&weights)
+            .map(|(&p, &w)| p / w)
+            .collect()
+    }
+}
+
+/// Every Bézier segment of `curve` ([`NurbsCurve::bezier_segments`]) in
+/// seed 003's matrix form. O(k p²) for k segments of degree p.
+///
+/// [`NurbsCurve::bezier_segments`]: super::NurbsCurve::bezier_segments
+///
+/// # Errors
+/// A knot insertion that fails.
+pub fn power_basis_segments(
+    curve: &super::NurbsCurve,
+) -> Result<Vec<PowerBasisSegment>, CurveError> {
+    Ok(curve
+        .bezier_segments()?
+        .into_iter()
+        .map(|(interval, pw)| {
+            let points: Vec<DVec3> = pw.iter().map(|h| h.truncate() / h.w).collect();
+            let weights: Vec<f64> = pw.iter().map(|h| h.w).collect();
+            PowerBasisSegment::new(interval, &points, &weights)
+        })
+        .collect())
+}
+
 impl Curve for Bezier {
     fn domain(&self) -> (f64, f64) {
         (0.0, 1.0)

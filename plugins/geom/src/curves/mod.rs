@@ -9,9 +9,12 @@
 pub mod analysis;
 pub mod bezier;
 pub mod fast;
+pub mod hull;
 pub mod interpolating;
+pub mod joints;
 pub mod kinds;
 pub mod nurbs;
+pub mod spans;
 
 use glam::DVec3;
 
@@ -19,7 +22,7 @@ pub use bezier::Bezier;
 pub use kinds::{
     CurveEnd, CurveKind, FractalRule, Join, NurbsForm, Parameterization, SplineEnds, TangentHandle,
 };
-pub use nurbs::NurbsCurve;
+pub use nurbs::{NurbsCurve, Side};
 
 /// A parametric curve on a closed parameter interval.
 pub trait Curve {

@@ -9,6 +9,15 @@ use glam::{DVec3, DVec4};
 
 use super::{Curve, CurveError, check_points};
 
+/// Which one-sided limit [`NurbsCurve::derivatives_on_side`] takes.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub enum Side {
+    /// The limit from below: the piece that ends at the parameter.
+    Before,
+    /// The limit from above: the piece that starts at the parameter.
+    After,
+}
+
 /// One rational Bézier segment of a NURBS curve: its parameter interval
 /// `(start, end)` and its homogeneous control points (`w·x, w·y, w·z, w`).
 pub type BezierSegment = ((f64, f64), Vec<DVec4>);
@@ -332,6 +341,74 @@ impl NurbsCurve {
             for (j, &b) in row.iter().enumerate() {
                 let i = span - p + j;
                 out[k] += b * homogeneous(self.points[i], self.weights[i]);
+            }
+        }
+        out
+    }
+
+    /// Position, first and second derivative at `t` as the limit from one
+    /// side: [`Side::Before`] evaluates the polynomial (rational) piece of
+    /// the knot span that ends at `t`, [`Side::After`] the one that starts
+    /// there. Away from knots both equal [`Curve::derivatives`]; at a knot
+    /// of multiplicity m they are the two one-sided limits whose agreement
+    /// is the curve's C^(p−m) continuity there. At the domain's start
+    /// `Before` gives the first span, at its end `After` the last (no
+    /// curve lies beyond). `t` is clamped to the domain. O(p²).
+    ///
+    /// Source: The NURBS Book, A2.3 on the chosen span and eq. 4.8.
+    pub fn derivatives_on_side(&self, t: f64, side: Side) -> [DVec3; 3] {
+        let (start, end) = self.domain();
+        let u = t.clamp(start, end);
+        let p = self.degree;
+        let span = match side {
+            Side::After => self.span(u),
+            Side::Before if u <= start => self.span(u),
+            Side::Before => {
+                // The span [k_i, k_{i+1}) with k_i < u ≤ k_{i+1}: not empty,
+                // and p ≤ i ≤ n because start < u ≤ end.
+                let i = self.knots.partition_point(|&k| k < u) - 1;
+                i.clamp(p, self.points.len() - 1)
+            }
+        };
+        let ders = basis_derivatives(&self.knots, span, u, p, 2);
+        let mut h = [DVec4::ZERO; 3];
+        for (k, row) in ders.iter().enumerate().take(3) {
+            for (j, &b) in row.iter().enumerate() {
+                let i = span - p + j;
+                h[k] += b * homogeneous(self.points[i], self.weights[i]);
+            }
+        }
+        let c0 = h[0].truncate() / h[0].w;
+        let c1 = (h[1].truncate() - h[1].w * c0) / h[0].w;
+        let c2 = (h[2].truncate() - 2.0 * h[1].w * c1 - h[2].w * c0) / h[0].w;
+        [c0, c1, c2]
+    }
+
+    /// The Greville abscissae: for each control point the average of the
+    /// `degree` knots after its first, `(k_{i+1} + … + k_{i+p}) / p`, the
+    /// parameter "under" the point (a poly-Bézier's anchor sits at its
+    /// joint's knot). Clamped to the domain (a periodic curve's wrapped
+    /// points lie past it). O(n p).
+    pub fn greville(&self) -> Vec<f64> {
+        let p = self.degree;
+        let (start, end) = self.domain();
+        (0..self.points.len())
+            .map(|i| {
+                let s: f64 = self.knots[i + 1..=i + p].iter().sum();
+                (s / p as f64).clamp(start, end)
+            })
+            .collect()
+    }
+
+    /// The distinct knot values strictly inside the domain with their
+    /// multiplicities, in order: where the pieces of the curve meet.
+    pub fn interior_knots(&self) -> Vec<(f64, usize)> {
+        let (start, end) = self.domain();
+        let mut out: Vec<(f64, usize)> = Vec::new();
+        for &k in self.knots.iter().filter(|&&k| k > start && k < end) {
+            match out.last_mut() {
+                Some((v, m)) if *v == k => *m += 1,
+                _ => out.push((k, 1)),
             }
         }
         out
