@@ -1,7 +1,9 @@
 //! Free-form surfaces: the bilinear patch, tensor-product Bézier and NURBS
 //! surfaces (with the usual constructors: plane, sphere, cylinder,
 //! revolution and extrusion of a curve), Bézier triangles, ray intersection
-//! for picking, fast grid evaluation of NURBS surfaces and tessellation.
+//! for picking, fast grid evaluation of NURBS surfaces and tessellation;
+//! patches made from curves (Coons, Gordon) and the triangle–quad G1 join
+//! ([`patches`]).
 //!
 //! Every surface evaluates its point and first and second partial
 //! derivatives through [`Surface`]; intersection and tessellation use only
@@ -12,6 +14,7 @@ pub mod fast;
 pub mod intersect;
 pub mod joins;
 pub mod nurbs;
+pub mod patches;
 pub mod tessellate;
 pub mod triangle;
 
