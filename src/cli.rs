@@ -134,6 +134,10 @@ pub enum Sub {
         /// their own target.
         #[arg(long, value_name = "RATIO")]
         lod: Option<f64>,
+        /// How OBJ writes curves: `polylines` (`l`, every reader) or `nurbs`
+        /// (exact free-form `cstype bspline`/`curv`/`parm` records).
+        #[arg(long, value_enum, default_value = "polylines")]
+        curves: ObjCurves,
     },
 }
 
@@ -315,6 +319,7 @@ pub fn run(sub: Sub) -> Result<(), CliError> {
             cage,
             ascii,
             lod,
+            curves,
         } => {
             let mut session = load(&file)?;
             if let Some(ratio) = lod {
@@ -329,12 +334,26 @@ pub fn run(sub: Sub) -> Result<(), CliError> {
                 shape,
                 ascii_stl: ascii,
             };
-            let bytes = hedra_doc::export::export_bytes(&session.doc, &output, options)
-                .map_err(|e| CliError(e.to_string()))?;
+            let curves = match curves {
+                ObjCurves::Polylines => hedra_doc::export::CurveExport::Polylines,
+                ObjCurves::Nurbs => hedra_doc::export::CurveExport::FreeForm,
+            };
+            let bytes =
+                hedra_doc::export::export_bytes_with_curves(&session.doc, &output, options, curves)
+                    .map_err(|e| CliError(e.to_string()))?;
             file::write_atomic_bytes(&output, &bytes)?;
         }
     }
     Ok(())
+}
+
+/// How `hedra export` writes curves into OBJ.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum ObjCurves {
+    /// `l` polylines through points of each curve.
+    Polylines,
+    /// Free-form NURBS records (exact).
+    Nurbs,
 }
 
 /// Every Decimate modifier of the scene set to `ratio` of its input's

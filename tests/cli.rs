@@ -855,3 +855,73 @@ fn info_reports_levels_and_export_lod_writes_one() {
         stderr(&o)
     );
 }
+
+/// `hedra export --curves nurbs` writes a curve as an exact OBJ free-form
+/// record (degree, control points with weights, knots), which imports back
+/// as the same NURBS; the default stays a polyline.
+#[test]
+fn export_curves_as_nurbs_records() {
+    let dir = tempfile::tempdir().unwrap();
+    let script_path = dir.path().join("circle.ron");
+    std::fs::write(
+        &script_path,
+        r#"[AddCurve(name: "Circle", curve: Circle(radius: 2.0), parent: None, transform: (translation: (1.0, 0.0, 0.0), rotation: (0.0, 0.0, 0.0, 1.0), scale: (1.0, 1.0, 1.0)))]"#,
+    )
+    .unwrap();
+    let scene = dir.path().join("circle.hedra.ron");
+    let o = hedra(&[
+        "run",
+        script_path.to_str().unwrap(),
+        "-o",
+        scene.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let obj = dir.path().join("circle.obj");
+    let export = |extra: &[&str]| {
+        let mut args = vec![
+            "export",
+            scene.to_str().unwrap(),
+            "-o",
+            obj.to_str().unwrap(),
+        ];
+        args.extend_from_slice(extra);
+        let o = hedra(&args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        std::fs::read_to_string(&obj).unwrap()
+    };
+    let plain = export(&[]);
+    assert!(plain.lines().any(|l| l.starts_with("l ")), "{plain}");
+    assert!(!plain.contains("cstype"));
+    let nurbs = export(&["--curves", "nurbs"]);
+    assert!(nurbs.contains("cstype rat bspline"), "{nurbs}");
+    assert!(nurbs.lines().any(|l| l == "deg 2"), "{nurbs}");
+    assert!(nurbs.lines().any(|l| l.starts_with("parm u ")), "{nurbs}");
+    // Every control point is a weighted `v x y z w` line, moved to x = 1.
+    let v: Vec<Vec<f64>> = nurbs
+        .lines()
+        .filter(|l| l.starts_with("v "))
+        .map(|l| {
+            l[2..]
+                .split_whitespace()
+                .map(|x| x.parse().unwrap())
+                .collect()
+        })
+        .collect();
+    assert_eq!(v.len(), 9, "the rational circle's nine control points");
+    assert!(v.iter().all(|p| p.len() == 4));
+    assert!(v.iter().any(|p| (p[0] - 3.0).abs() < 1e-12), "{v:?}");
+    let o = hedra(&[
+        "export",
+        scene.to_str().unwrap(),
+        "-o",
+        obj.to_str().unwrap(),
+        "--curves",
+        "bezier",
+    ]);
+    assert!(!o.status.success());
+    assert!(
+        stderr(&o).contains("polylines") && stderr(&o).contains("nurbs"),
+        "{}",
+        stderr(&o)
+    );
+}

@@ -34,6 +34,9 @@ pub struct UiState {
     /// The statistics overlay (View ▸ Statistics): counts of the scene and
     /// of the selection in the viewport's top left corner.
     pub show_statistics: bool,
+    /// OBJ export writes curves as free-form NURBS records (`curv`/`parm`)
+    /// instead of polylines (File ▸ Export).
+    pub obj_nurbs_curves: bool,
     /// The Preferences window is shown (Edit > Preferences…).
     pub show_preferences: bool,
     /// Shift+A menu position, while open.
@@ -77,6 +80,8 @@ pub struct UiState {
     /// The selected control points' median being typed or dragged in the
     /// panel (local space; committed on release).
     pub point_edit: Option<glam::DVec3>,
+    /// The segment whose power basis the curve panel shows.
+    pub power_segment: usize,
     /// Where "Insert knot" inserts.
     pub knot_at: f64,
     /// How many equal arc lengths Curve ▸ Divide makes.
@@ -113,6 +118,8 @@ impl Default for UiState {
             weight_edit: None,
             tbc_edit: None,
             point_edit: None,
+            obj_nurbs_curves: false,
+            power_segment: 0,
             knot_at: 0.5,
             divide_count: 10,
             viewport_rect: None,
@@ -437,10 +444,22 @@ pub fn begin_path(ui: &mut UiState, purpose: FilePurpose, state: &DocState) {
     }
 }
 
+impl UiState {
+    /// How OBJ export writes curves, as File ▸ Export's checkbox says.
+    pub fn obj_curve_export(&self) -> hedra_doc::export::CurveExport {
+        if self.obj_nurbs_curves {
+            hedra_doc::export::CurveExport::FreeForm
+        } else {
+            hedra_doc::export::CurveExport::Polylines
+        }
+    }
+}
+
 /// Applies a chosen path for its purpose.
 pub fn use_path(
     purpose: FilePurpose,
     path: std::path::PathBuf,
+    curves: hedra_doc::export::CurveExport,
     state: &DocState,
     requests: &mut MessageWriter<DocRequest>,
     status: &mut StatusMessage,
@@ -466,10 +485,11 @@ pub fn use_path(
             } else {
                 path
             };
-            let written = hedra_doc::export::export_bytes(
+            let written = hedra_doc::export::export_bytes_with_curves(
                 &state.session.doc,
                 &path,
                 hedra_doc::export::ExportOptions::default(),
+                curves,
             )
             .map_err(|e| e.to_string())
             .and_then(|b| {
@@ -499,7 +519,8 @@ fn poll_file_dialog(
     ui.dialog = None;
     if let Some(path) = result {
         ui.path_prompt = None;
-        use_path(purpose, path, &state, &mut requests, &mut status);
+        let curves = ui.obj_curve_export();
+        use_path(purpose, path, curves, &state, &mut requests, &mut status);
     }
     // `None`: cancelled, or the backend failed; the path prompt stays open.
 }

@@ -23,6 +23,11 @@ pub struct CurveAnalysis {
     pub closest: bool,
     /// What the closest-point probe found this frame (world space).
     pub closest_found: Option<ClosestPoint>,
+    /// The continuity of each joint (C0 … C2, G1, G2) labelled on the
+    /// canvas.
+    pub joints: bool,
+    /// The convex hull of each Bézier segment's control polygon.
+    pub hulls: bool,
 }
 
 /// The point of the active curve nearest the pointer (on the plane facing
@@ -56,6 +61,40 @@ pub fn world_curve(
         c.weights().to_vec(),
     )
     .ok()
+}
+
+/// The convex hull of each Bézier segment's control polygon (the curve
+/// stays inside it: seed 001), its outline in alternating colours.
+fn draw_segment_hulls(
+    c: &hedra_geom::NurbsCurve,
+    to_world: &dyn Fn(DVec3) -> Vec3,
+    gizmos: &mut Gizmos<AxisGizmos>,
+) {
+    use hedra_geom::curves::hull::{ControlHull, segment_hulls};
+    let Ok(hulls) = segment_hulls(c) else { return };
+    for (i, segment) in hulls.iter().enumerate() {
+        let colour = if i % 2 == 0 {
+            Color::srgba(0.55, 1.0, 0.55, 0.7)
+        } else {
+            Color::srgba(1.0, 0.6, 0.9, 0.7)
+        };
+        let mut closed_loop = |points: Vec<DVec3>| {
+            gizmos.linestrip(
+                points.iter().chain(points.first()).map(|&p| to_world(p)),
+                colour,
+            );
+        };
+        match &segment.hull {
+            ControlHull::Point(_) => {}
+            ControlHull::Segment([a, b]) => gizmos.line(to_world(*a), to_world(*b), colour),
+            ControlHull::Polygon { vertices, .. } => closed_loop(vertices.clone()),
+            ControlHull::Polyhedron { vertices, faces } => {
+                for face in faces {
+                    closed_loop(face.iter().map(|&v| vertices[v]).collect());
+                }
+            }
+        }
+    }
 }
 
 /// Finds the closest point of the active curve to the pointer each frame
@@ -130,6 +169,8 @@ impl Default for CurveAnalysis {
             at: 0.5,
             closest: false,
             closest_found: None,
+            joints: false,
+            hulls: false,
         }
     }
 }
@@ -146,7 +187,7 @@ pub(crate) fn draw_curve_analysis(
 ) {
     use hedra_geom::curves::Curve;
     use hedra_geom::curves::analysis::{curvature, frenet_frame, osculating_circle};
-    if !(analysis.comb || analysis.frame || analysis.colour_by_curvature) {
+    if !(analysis.comb || analysis.frame || analysis.colour_by_curvature || analysis.hulls) {
         return;
     }
     let Some(id) = selection.active() else { return };
@@ -170,6 +211,9 @@ pub(crate) fn draw_curve_analysis(
             let colour = Color::srgb(x, 0.2, 1.0 - x);
             gizmos.line(to_world(c.point(w[0])), to_world(c.point(w[1])), colour);
         }
+    }
+    if analysis.hulls {
+        draw_segment_hulls(c, &to_world, &mut gizmos);
     }
     if analysis.comb {
         let mut tips = Vec::with_capacity(ts.len());

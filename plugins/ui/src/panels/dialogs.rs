@@ -78,7 +78,8 @@ pub(super) fn dialogs(
                     if reading && !path.exists() {
                         model.status.error(format!("{}: no such file", path.display()));
                     } else {
-                        use_path(prompt.purpose, path, &model.state, &mut writers.requests, &mut model.status);
+                        let curves = state.obj_curve_export();
+                        use_path(prompt.purpose, path, curves, &model.state, &mut writers.requests, &mut model.status);
                         keep = false;
                     }
                 }

@@ -112,6 +112,11 @@ pub(super) fn menu_bar(
                 if ui.button("Wavefront OBJ (.obj)…").clicked() {
                     events.push(UiEvent::File(FileAction::ExportObj));
                 }
+                ui.checkbox(
+                    &mut state.obj_nurbs_curves,
+                    "OBJ: curves as NURBS (curv/parm)",
+                )
+                .on_hover_text("Exact free-form records other CAD programs read; off: polylines");
                 if ui.button("STL, triangulated (.stl)…").clicked() {
                     events.push(UiEvent::File(FileAction::ExportStl));
                 }

@@ -252,6 +252,13 @@ pub fn draw_ui(
             .map(|e| hedra_scene::control_points_of(*e, &control_points))
             .unwrap_or_default();
         weight_labels(&root.painter_at(free), &model, &points, cam, cam_t);
+        joint_labels(
+            &root.painter_at(free),
+            &model,
+            &writers.analysis,
+            cam,
+            cam_t,
+        );
     }
     if let Some((a, b)) = model.mode.box_select.or(model.shape_edit.box_select) {
         let rect = egui::Rect::from_two_pos(egui::pos2(a.x, a.y), egui::pos2(b.x, b.y));

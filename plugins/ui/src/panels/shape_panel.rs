@@ -209,10 +209,15 @@ pub(super) fn shape_panel(
         });
         ui.checkbox(&mut analysis.colour_by_curvature, "Colour by curvature");
         ui.checkbox(&mut analysis.frame, "Frenet frame and osculating circle");
+        ui.checkbox(&mut analysis.joints, "Continuity at the joints");
+        ui.checkbox(&mut analysis.hulls, "Convex hulls of the Bézier segments");
         if analysis.frame {
             ui.add(egui::Slider::new(&mut analysis.at, 0.0..=1.0).text("at"));
         }
         curve_measures(ui, id, content, model, state, analysis, events);
+        if let NodeContent::Curve(c) = content {
+            power_basis(ui, c, state);
+        }
     }
     if matches!(content, NodeContent::Surface(s) if matches!(**s, hedra_doc::SurfaceShape::Nurbs(_)))
     {
@@ -460,4 +465,60 @@ fn span_length(
         let length = hedra_geom::curves::analysis::arc_length(&curve, ta.min(tb), ta.max(tb));
         ui.label(format!("Span from point {a} to {b}: length {length:.6}"));
     }
+}
+
+/// Seed 003's power basis of one Bézier segment of the curve's NURBS form:
+/// the matrix `M` with `A = M·G` (`r(u) = Σ aᵢ uⁱ`, `u` from 0 to 1 over
+/// the segment) and the coefficients, as the seed prints them (highest
+/// power first).
+fn power_basis(ui: &mut egui::Ui, content: &hedra_doc::CurveContent, state: &mut UiState) {
+    let Ok(segments) = hedra_geom::curves::bezier::power_basis_segments(content.nurbs()) else {
+        return;
+    };
+    egui::CollapsingHeader::new("Power basis (Bézier → monomials)")
+        .id_salt("power basis")
+        .show(ui, |ui| {
+            let last = segments.len().saturating_sub(1);
+            state.power_segment = state.power_segment.min(last);
+            ui.add(
+                egui::Slider::new(&mut state.power_segment, 0..=last)
+                    .text(format!("segment of {}", segments.len())),
+            );
+            let s = &segments[state.power_segment];
+            let n = s.matrix.len() - 1;
+            ui.label(format!(
+                "t from {:.4} to {:.4}; r(u) = Σ aᵢ uⁱ, A = M·G",
+                s.interval.0, s.interval.1
+            ));
+            egui::Grid::new("power basis matrix")
+                .striped(true)
+                .show(ui, |ui| {
+                    ui.label("M");
+                    for j in 0..=n {
+                        ui.label(egui::RichText::new(format!("b{}", n - j)).weak());
+                    }
+                    ui.label(egui::RichText::new("a = ").weak());
+                    ui.end_row();
+                    for (i, row) in s.matrix.iter().enumerate() {
+                        ui.label(egui::RichText::new(format!("u^{}", n - i)).weak());
+                        for x in row {
+                            ui.label(format!("{x:.0}"));
+                        }
+                        let a = s.coefficients[i];
+                        ui.label(format!("({:.3}, {:.3}, {:.3})", a.x, a.y, a.z));
+                        ui.end_row();
+                    }
+                });
+            if s.weights.iter().any(|&w| (w - 1.0).abs() > 1e-12) {
+                let w: Vec<String> = s
+                    .weight_coefficients
+                    .iter()
+                    .map(|w| format!("{w:.3}"))
+                    .collect();
+                ui.label(format!(
+                    "rational: denominator coefficients {}",
+                    w.join(", ")
+                ));
+            }
+        });
 }

@@ -1,4 +1,5 @@
-//! Weight labels next to the control points in the viewport.
+//! Labels in the viewport: weights next to the control points, the
+//! continuity of a curve's joints.
 
 use super::*;
 
@@ -38,6 +39,49 @@ pub(super) fn weight_labels(
             egui::Align2::LEFT_BOTTOM,
             format!("{:.2}", p.weight),
             egui::FontId::proportional(if selected { 14.0 } else { 11.0 }),
+            color,
+        );
+    }
+}
+
+/// With Analysis ▸ Continuity at the joints on, each joint of the active
+/// curve labelled with what its two sides agree on (C0 … C2, G1, G2),
+/// measured from one-sided derivatives of the NURBS form.
+pub(super) fn joint_labels(
+    painter: &egui::Painter,
+    model: &Model,
+    analysis: &hedra_viewport::CurveAnalysis,
+    cam: &Camera,
+    cam_t: &GlobalTransform,
+) {
+    if !analysis.joints {
+        return;
+    }
+    let doc = &model.state.session.doc;
+    let Some(id) = model.selection.active() else {
+        return;
+    };
+    let Some(NodeContent::Curve(c)) = doc.node(id).map(|n| &n.content) else {
+        return;
+    };
+    let world = doc.world_matrix(id);
+    let tolerance = hedra_geom::curves::joints::JointTolerance::default();
+    for joint in c.kind().joints(c.nurbs(), &tolerance).iter().take(200) {
+        let Ok(s) = cam.world_to_viewport(cam_t, world.transform_point3(joint.position).as_vec3())
+        else {
+            continue;
+        };
+        let label = joint.continuity.label();
+        let color = match label {
+            "gap" | "C0" => egui::Color32::from_rgb(255, 110, 90),
+            "G1" => egui::Color32::from_rgb(255, 210, 90),
+            _ => egui::Color32::from_rgb(120, 230, 140),
+        };
+        painter.text(
+            egui::pos2(s.x, s.y + 10.0),
+            egui::Align2::CENTER_TOP,
+            label,
+            egui::FontId::proportional(12.0),
             color,
         );
     }
