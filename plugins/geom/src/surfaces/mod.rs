@@ -1,6 +1,7 @@
 //! Free-form surfaces: the bilinear patch, tensor-product Bézier and NURBS
 //! surfaces (with the usual constructors: plane, sphere, cylinder,
-//! revolution and extrusion of a curve), Bézier triangles, ray intersection
+//! revolution and extrusion of a curve), surfaces from curves (revolve
+//! about any axis, extrude, sweep, loft: [`sweeps`]), Bézier triangles, ray intersection
 //! for picking, fast grid evaluation of NURBS surfaces and tessellation.
 //!
 //! Every surface evaluates its point and first and second partial
@@ -12,6 +13,7 @@ pub mod fast;
 pub mod intersect;
 pub mod joins;
 pub mod nurbs;
+pub mod sweeps;
 pub mod tessellate;
 pub mod triangle;
 
