@@ -1341,6 +1341,7 @@ impl Document {
                     }),
                     None => NodeContent::Empty,
                 },
+                construction: None,
             };
             changes.push(NodeChange {
                 id,
