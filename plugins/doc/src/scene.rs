@@ -663,14 +663,15 @@ impl Document {
                 return Err(DocumentError::NonFiniteTransform { node, name });
             }
             if let Some(c) = &n.construction
-                && let Some(&&input) = c
-                    .recipe
-                    .inputs()
-                    .iter()
-                    .find(|i| !self.nodes.contains_key(i))
+                && let Some(&&input) = c.recipe.inputs().iter().find(|i| {
+                    !matches!(
+                        self.nodes.get(i).map(|n| &n.content),
+                        Some(NodeContent::Curve(_))
+                    )
+                })
             {
                 let (node, name) = named();
-                return Err(DocumentError::MissingInput { node, name, input });
+                return Err(DocumentError::BadInput { node, name, input });
             }
             // Faces with inner rings or without edges (Mäntylä's Euler
             // operators, `Command::Euler`) are allowed: the file stores
@@ -720,10 +721,10 @@ pub enum DocumentError {
         name: String,
     },
     /// A node made from curves names an input node that does not exist
-    /// (deleting an input freezes its dependents, so a document never
-    /// has one).
-    #[error("node {node} '{name}' is made from missing node {input}")]
-    MissingInput {
+    /// or is not a curve (deleting an input freezes its dependents, so a
+    /// document never has one).
+    #[error("node {node} '{name}' is made from node {input}, which is missing or not a curve")]
+    BadInput {
         /// The node's id.
         node: NodeId,
         /// The node's name.

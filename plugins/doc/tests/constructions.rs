@@ -625,3 +625,21 @@ fn every_recipe_saves_and_loads_with_its_links() {
     while back.redo().is_some() {}
     assert_eq!(back.doc, s.doc);
 }
+
+#[test]
+fn a_file_whose_construction_names_a_missing_input_is_refused_by_name() {
+    let s = torus_session();
+    let text = hedra_doc::file::to_string(&s);
+    let bad = text.replacen(
+        "recipe: Revolve(profile: 1,",
+        "recipe: Revolve(profile: 7,",
+        1,
+    );
+    assert_ne!(bad, text);
+    let err = hedra_doc::file::from_str(&bad, Path::new("bad.hedra.ron")).unwrap_err();
+    assert!(
+        err.to_string()
+            .ends_with("node #2 'Torus' is made from node #7, which is missing or not a curve"),
+        "{err}"
+    );
+}

@@ -317,6 +317,8 @@ fn end_gap(curve: &NurbsCurve) -> f64 {
 }
 
 /// True when the curve's ends meet (within `1e-9` of its size).
+///
+/// Complexity: O(control points).
 pub fn is_closed(curve: &NurbsCurve) -> bool {
     end_gap(curve) <= 1e-9 * size_of(curve.points())
 }
@@ -329,6 +331,8 @@ pub fn is_closed(curve: &NurbsCurve) -> bool {
 /// [`SweepError::OpenProfile`], [`SweepError::NotPlanar`] (a control
 /// point off the plane by more than `1e-9` of the profile's size) or
 /// [`SweepError::NoArea`].
+///
+/// Complexity: O(control points + 256 samples).
 pub fn profile_plane(curve: &NurbsCurve) -> Result<(DVec3, DVec3), SweepError> {
     let size = size_of(curve.points());
     let gap = end_gap(curve);
@@ -397,6 +401,8 @@ pub fn planar_cap(profile: &NurbsCurve) -> Result<NurbsSurface, SweepError> {
 /// parameters for a polyline (degree 1, so corners stay sharp), else
 /// `segments` equal steps of the domain; without the last one when the
 /// curve is closed. Returns them and whether the curve is closed.
+///
+/// Complexity: O(knots + segments).
 pub fn profile_parameters(curve: &NurbsCurve, segments: u32) -> (Vec<f64>, bool) {
     let closed = is_closed(curve);
     let (a, b) = curve.domain();
@@ -1031,6 +1037,8 @@ fn skin_rows(rows: &[NurbsCurve], q: usize, knots: Vec<f64>) -> Result<NurbsSurf
 /// The v parameters at which a loft made with `options` passes through its
 /// sections (empty for an open Loose loft, which passes through only its
 /// first and last).
+///
+/// Complexity: that of [`make_compatible`].
 pub fn loft_section_parameters(sections: &[NurbsCurve], options: LoftOptions) -> Vec<f64> {
     let Ok(curves) = make_compatible(sections) else {
         return Vec::new();
@@ -1277,6 +1285,8 @@ pub fn surface_mesh(
 /// The u parameters at which [`surface_mesh`] samples a sweep or loft of
 /// `profile` (its [`profile_parameters`] mapped onto [0, 1] as
 /// [`make_compatible`] maps its domain), and whether it is closed.
+///
+/// Complexity: as [`profile_parameters`].
 pub fn compatible_parameters(profile: &NurbsCurve, segments: u32) -> (Vec<f64>, bool) {
     let (params, closed) = profile_parameters(profile, segments);
     let (a, b) = profile.domain();
@@ -1288,6 +1298,8 @@ pub fn compatible_parameters(profile: &NurbsCurve, segments: u32) -> (Vec<f64>, 
 ///
 /// # Errors
 /// As [`profile_plane`].
+///
+/// Complexity: as [`profile_plane`], twice.
 pub fn check_end_caps(first: &NurbsCurve, last: &NurbsCurve) -> Result<(), SweepError> {
     check_caps(first)?;
     check_caps(last)
