@@ -352,6 +352,9 @@ struct StoredNode {
     #[serde(default = "visible_default")]
     visible: bool,
     content: StoredContent,
+    /// How the node was made from other nodes while it follows them.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    construction: Option<crate::construction::Construction>,
 }
 
 fn visible_default() -> bool {
@@ -537,6 +540,7 @@ impl<'a> MeshPool<'a> {
                     decimations: m.decimations.iter().map(|r| (**r).clone()).collect(),
                 },
             },
+            construction: n.construction.clone(),
         }
     }
     fn transaction(&mut self, t: &'a Transaction) -> StoredTransaction<&'a Command> {
@@ -959,6 +963,7 @@ fn restore_node(
         transform: sn.transform,
         visible: sn.visible,
         content,
+        construction: sn.construction,
     })
 }
 

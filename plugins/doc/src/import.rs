@@ -1602,6 +1602,7 @@ impl Document {
                     )),
                     (None, None) => NodeContent::Empty,
                 },
+                construction: None,
             };
             changes.push(NodeChange {
                 id,

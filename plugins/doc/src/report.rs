@@ -41,6 +41,21 @@ pub struct NodeReport {
     pub mesh: Option<MeshReport>,
     /// Curves and surfaces: degrees, control points, domain.
     pub shape: Option<ShapeReport>,
+    /// A node made from curves that follows them: what it is made of;
+    /// left out for other nodes.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub construction: Option<ConstructionReport>,
+}
+
+/// How a node follows the curves it was made from.
+#[derive(Serialize)]
+pub struct ConstructionReport {
+    /// `"Extrude"`, `"Revolve"`, `"Screw"`, `"Sweep"`, `"Sweep2"` or `"Loft"`.
+    pub recipe: &'static str,
+    /// The input nodes' ids, profile first (then rails or the sections in order).
+    pub inputs: Vec<u64>,
+    /// One line: the recipe, its inputs by name, its parameters, the output.
+    pub summary: String,
 }
 
 /// A transform as plain arrays.
@@ -373,6 +388,14 @@ impl SceneReport {
                     _ => None,
                 },
                 shape: shape_report(&n.content),
+                construction: n.construction.as_ref().map(|c| ConstructionReport {
+                    recipe: c.recipe.name(),
+                    inputs: c.recipe.inputs().iter().map(|i| i.0).collect(),
+                    summary: c.summary(&|id| {
+                        doc.node(id)
+                            .map_or_else(|| id.to_string(), |n| format!("'{}' ({id})", n.name))
+                    }),
+                }),
             })
             .collect();
         let h = &session.history;
@@ -426,6 +449,9 @@ impl SceneReport {
                     sh.domain,
                     if sh.polynomial { "" } else { ", rational" }
                 );
+            }
+            if let Some(c) = &n.construction {
+                let _ = writeln!(out, "    made by: {}", c.summary);
             }
             if let Some(m) = &n.mesh {
                 let _ = writeln!(

@@ -512,6 +512,10 @@ pub struct Node {
     pub visible: bool,
     /// What the node holds.
     pub content: NodeContent,
+    /// How the content was made from other nodes, while it follows them
+    /// (see [`crate::construction`]); `None` for ordinary nodes and once
+    /// applied (frozen).
+    pub construction: Option<crate::construction::Construction>,
 }
 
 /// The scene: the single source of truth for what the user made.
@@ -664,6 +668,17 @@ impl Document {
                 let (node, name) = named();
                 return Err(DocumentError::NonFiniteTransform { node, name });
             }
+            if let Some(c) = &n.construction
+                && let Some(&&input) = c.recipe.inputs().iter().find(|i| {
+                    !matches!(
+                        self.nodes.get(i).map(|n| &n.content),
+                        Some(NodeContent::Curve(_))
+                    )
+                })
+            {
+                let (node, name) = named();
+                return Err(DocumentError::BadInput { node, name, input });
+            }
             // Faces with inner rings or without edges (Mäntylä's Euler
             // operators, `Command::Euler`) are allowed: the file stores
             // them, rendering draws their outer loop's triangles only where
@@ -710,6 +725,18 @@ pub enum DocumentError {
         node: NodeId,
         /// The node's name.
         name: String,
+    },
+    /// A node made from curves names an input node that does not exist
+    /// or is not a curve (deleting an input freezes its dependents, so a
+    /// document never has one).
+    #[error("node {node} '{name}' is made from node {input}, which is missing or not a curve")]
+    BadInput {
+        /// The node's id.
+        node: NodeId,
+        /// The node's name.
+        name: String,
+        /// The missing input.
+        input: NodeId,
     },
     /// A node transform with a value that is not finite.
     #[error("node {node} '{name}' has a non-finite transform")]

@@ -24,7 +24,7 @@ fn every_command_example_in_the_docs_runs() {
         .collect();
     kinds.sort();
     kinds.dedup();
-    assert_eq!(kinds.len(), 82, "{kinds:?}");
+    assert_eq!(kinds.len(), 85, "{kinds:?}");
     let mut session = hedra_doc::Session::new();
     hedra_doc::script::run(&mut session, &commands, Path::new("docs/commands.md"))
         .unwrap_or_else(|e| panic!("{e}"));
@@ -384,4 +384,39 @@ fn every_command_example_in_the_docs_runs() {
         hedra_doc::NodeContent::Surface(s) => assert_eq!(s.control_points().len(), 13 * 6),
         _ => panic!("Ball is a surface"),
     }
+    // Surfaces and meshes from curves.
+    let made = |name: &str| doc.find_by_name(name).unwrap();
+    let donut = made("Doughnut").content.mesh().unwrap();
+    donut.validate().unwrap();
+    let stats = donut.stats();
+    assert!(stats.closed, "the 270° piece is capped");
+    assert_eq!(stats.genus, Some(0));
+    assert_eq!(donut.face_count(), 18 * 12 + 2);
+    let star = made("Star").content.mesh().unwrap();
+    assert_eq!((star.face_count(), star.stats().genus), (8 + 2, Some(0)));
+    assert!(made("Swept Tube").construction.is_none(), "applied");
+    assert!(made("Canopy").construction.is_some());
+    // The loft followed the waist ring's move: it passes through the
+    // moved circle (centre x = 32.3, radius 0.5, y = 1.5).
+    let hedra_doc::NodeContent::Surface(loft) = &made("Vase Loft").content else {
+        panic!("a surface")
+    };
+    let hedra_doc::SurfaceShape::Nurbs(loft) = &**loft else {
+        panic!("a NURBS surface")
+    };
+    let world_curve = |name: &str| {
+        let n = made(name);
+        curve(name).transformed(&doc.world_matrix(n.id)).unwrap()
+    };
+    let rings = ["Base Ring", "Waist Ring", "Top Ring"].map(world_curve);
+    let params = hedra_geom::surfaces::sweeps::loft_section_parameters(
+        &rings,
+        hedra_geom::surfaces::sweeps::LoftOptions::default(),
+    );
+    use hedra_geom::Surface;
+    let near_waist = (0..=40)
+        .map(|k| loft.point(k as f64 / 40.0, params[1]))
+        .map(|p| ((p.x - 32.3).hypot(p.z) - 0.5).abs().max((p.y - 1.5).abs()))
+        .fold(0.0, f64::max);
+    assert!(near_waist < 1e-9, "{near_waist}");
 }

@@ -1,7 +1,10 @@
 //! NURBS speed (issue 5): a cubic curve with 50 control points at 1,000,000
 //! parameters, a bicubic 20 × 20 surface on a 1000 × 1000 grid, and the
 //! tessellation of that surface to 0.001. (`bench/curvo-compare` runs the
-//! same cases against the `curvo` crate.)
+//! same cases against the `curvo` crate.) And what re-making a surface
+//! from curves costs while an input is dragged (issue 20): a torus by
+//! revolution (NURBS and a 64 × 32 mesh), a circle swept along a helix (24
+//! stations), a loft through four circles.
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use hedra_geom::DVec3;
@@ -86,9 +89,53 @@ fn nurbs(c: &mut Criterion) {
     g.finish();
 }
 
+fn sweeps(c: &mut Criterion) {
+    use hedra_geom::surfaces::sweeps::{
+        self, Axis, LoftOptions, SweepOptions, compatible_parameters,
+    };
+    use std::f64::consts::TAU;
+    let mut g = c.benchmark_group("sweeps");
+    g.sample_size(10);
+    let minor = NurbsCurve::circle(DVec3::new(2.0, 0.0, 0.0), 0.5);
+    let z = Axis {
+        origin: DVec3::ZERO,
+        direction: DVec3::Z,
+    };
+    g.bench_function("revolve_torus", |b| {
+        b.iter(|| sweeps::revolve(black_box(&minor), z, TAU, 0.0).unwrap())
+    });
+    g.bench_function("revolve_torus_mesh_64x32", |b| {
+        b.iter(|| sweeps::revolve_mesh(black_box(&minor), z, TAU, 0.0, 64, 32, false).unwrap())
+    });
+    let helix: Vec<DVec3> = (0..=100)
+        .map(|k| {
+            let t = 1.5 * TAU * k as f64 / 100.0;
+            DVec3::new(3.0 * t.cos(), 3.0 * t.sin(), 2.0 * t / TAU)
+        })
+        .collect();
+    let rail = NurbsCurve::clamped(3, helix).unwrap();
+    let profile = NurbsCurve::circle(DVec3::new(3.0, 0.0, 0.0), 0.4);
+    let options = SweepOptions::default();
+    g.bench_function("sweep_circle_along_helix_24", |b| {
+        b.iter(|| sweeps::sweep(black_box(&profile), &rail, options).unwrap())
+    });
+    let tube = sweeps::sweep(&profile, &rail, options).unwrap();
+    let (us, closed) = compatible_parameters(&profile, 24);
+    g.bench_function("sweep_mesh_24x64", |b| {
+        b.iter(|| sweeps::surface_mesh(black_box(&tube), &us, closed, 64, false, false).unwrap())
+    });
+    let rings: Vec<NurbsCurve> = (0..4)
+        .map(|k| NurbsCurve::circle(DVec3::new(0.0, k as f64, 0.0), 1.0 + 0.3 * k as f64))
+        .collect();
+    g.bench_function("loft_4_circles", |b| {
+        b.iter(|| sweeps::loft(black_box(&rings), LoftOptions::default()).unwrap())
+    });
+    g.finish();
+}
+
 // In a private module: criterion_group! makes a pub fn it cannot document.
 mod group {
     use super::*;
-    criterion_group!(benches, nurbs);
+    criterion_group!(benches, nurbs, sweeps);
 }
 criterion_main!(group::benches);

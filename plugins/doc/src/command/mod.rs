@@ -12,6 +12,7 @@
 //!   `creases` (creases and the subdivision modifier), `modifiers` (the
 //!   Mirror/Array modifier stack), `shapes` (curves and surfaces).
 
+mod constructions;
 mod creases;
 mod euler;
 mod mesh;
@@ -263,6 +264,23 @@ pub enum CommandError {
         /// How many modifiers run before subdivision.
         position: usize,
     },
+    /// A node made from curves could not be made (or made again after a
+    /// change of its inputs: the change is refused; apply the node first
+    /// to keep the change).
+    #[error("{node}: {error}")]
+    Construction {
+        /// The node made, as `'name' (#id)` (or `'name'` while being added).
+        node: String,
+        /// Why.
+        error: crate::construction::ConstructionError,
+    },
+    /// [`Command::SetConstruction`] or [`Command::ApplyConstruction`] on a
+    /// node that does not follow curves.
+    #[error("{node} was not made from curves (or has been applied)")]
+    NoConstruction {
+        /// The node, as `'name' (#id)`.
+        node: String,
+    },
     /// A subdivision level above [`subdivision::MAX_LEVEL`].
     #[error("subdivision level {0} is above the maximum of {max}", max = subdivision::MAX_LEVEL)]
     Level(u32),
@@ -314,13 +332,19 @@ impl Document {
             created_edges: Vec::new(),
         };
         plan.run(cmd)?;
+        let notes = plan.follow_constructions(cmd)?;
         if plan.changes.is_empty() {
             return Err(CommandError::Nothing("the command changes nothing"));
         }
+        let label = if notes.is_empty() {
+            cmd.label()
+        } else {
+            format!("{} ({})", cmd.label(), notes.join("; "))
+        };
         Ok(Decision {
             transaction: Transaction {
                 serial,
-                label: cmd.label(),
+                label,
                 command: Some(cmd.clone()),
                 changes: plan.changes,
                 next_id_before: self.next_node_id,

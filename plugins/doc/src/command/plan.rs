@@ -150,6 +150,7 @@ impl Plan<'_> {
             transform,
             visible: true,
             content,
+            construction: None,
         });
         Ok(id)
     }
@@ -402,6 +403,15 @@ impl Plan<'_> {
             Command::ConvertCurveToNurbs { node } => {
                 self.edit_curve(node, |k| Ok(CurveKind::Nurbs(k.to_nurbs()?.curve)))
             }
+
+            // ----- surfaces and meshes from curves (constructions.rs) -----
+            Command::MakeFromCurves { name, construction } => {
+                self.make_from_curves(name, construction)
+            }
+            Command::SetConstruction { node, construction } => {
+                self.set_construction(node, construction)
+            }
+            Command::ApplyConstruction { nodes } => self.apply_construction(nodes),
 
             // ----- subdivision and creases (creases.rs) -----
             Command::SetSubdivision { nodes, modifier } => self.set_subdivision(nodes, *modifier),

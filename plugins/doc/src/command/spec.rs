@@ -3,6 +3,7 @@
 //! the label each shows in the history panel. Its serde form is also the
 //! stored form of the history (see `file::stored_command`).
 
+use crate::construction::Construction;
 use crate::elements::{EdgeSet, FaceSet, ProfileSet, VertexSet};
 use crate::modifiers::MeshModifier;
 use crate::scene::{NodeId, NodeTransform, Shading, SubdivisionModifier};
@@ -667,6 +668,33 @@ pub enum Command {
         node: NodeRef,
     },
 
+    // ----- surfaces and meshes from curves, following them -----
+    /// Makes a node from curve nodes (extrude, revolve, sweep, two-rail
+    /// sweep, loft) that remembers them: it is made again, in the same undo
+    /// step, whenever a command changes one of them (see
+    /// [`crate::construction`]). The result is a NURBS surface or a mesh,
+    /// placed where its inputs are (world terms), at the top level.
+    MakeFromCurves {
+        /// The new node's name, made unique with a `.001`-style suffix when taken.
+        name: String,
+        /// What to make from which curves, and the output kind.
+        construction: Construction<NodeRef>,
+    },
+    /// Changes the recipe, inputs or output of a node made from curves; it
+    /// is made again.
+    SetConstruction {
+        /// A node made by [`Command::MakeFromCurves`] and not applied.
+        node: NodeRef,
+        /// The new construction.
+        construction: Construction<NodeRef>,
+    },
+    /// Freezes nodes made from curves: they keep their geometry and stop
+    /// following their inputs (Rhino's history off, Blender's Apply).
+    ApplyConstruction {
+        /// Nodes made by [`Command::MakeFromCurves`].
+        nodes: Vec<NodeRef>,
+    },
+
     // ----- mesh editing (element positions in the node's local space) -----
     /// Moves vertices by an offset.
     MoveVertices {
@@ -1212,6 +1240,13 @@ impl Command {
             Command::JoinCurves { .. } => "Join Curves".to_string(),
             Command::SetCurveJoin { join, .. } => format!("Set Joint {join:?}"),
             Command::ConvertCurveToNurbs { .. } => "Convert to NURBS".to_string(),
+            Command::MakeFromCurves { name, construction } => {
+                format!("{} '{name}'", construction.recipe.name())
+            }
+            Command::SetConstruction { construction, .. } => {
+                format!("Change {}", construction.recipe.name())
+            }
+            Command::ApplyConstruction { .. } => "Apply Construction".to_string(),
             Command::Duplicate { nodes } => format!("Duplicate {}", plural(nodes.len(), "node")),
             Command::MoveVertices { .. } | Command::SetVertexPositions { .. } => {
                 "Move Vertices".to_string()

@@ -236,6 +236,23 @@ impl NurbsCurve {
         Self::new(2, knots, points, weights).expect("the circle's data is valid")
     }
 
+    /// The curve under the affine map `m`: control points mapped, weights
+    /// and knots kept, which is exact for NURBS (affine invariance, The
+    /// NURBS Book §4.2). Its inverse is the map by `m.inverse()`.
+    ///
+    /// # Errors
+    /// A map that makes a control point non-finite.
+    ///
+    /// Complexity: O(points).
+    pub fn transformed(&self, m: &glam::DMat4) -> Result<NurbsCurve, CurveError> {
+        let points: Vec<DVec3> = self.points.iter().map(|p| m.transform_point3(*p)).collect();
+        check_points(&points)?;
+        Ok(NurbsCurve {
+            points,
+            ..self.clone()
+        })
+    }
+
     /// Polynomial degree p.
     pub fn degree(&self) -> usize {
         self.degree

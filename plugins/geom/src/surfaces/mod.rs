@@ -1,9 +1,10 @@
 //! Free-form surfaces: the bilinear patch, tensor-product Bézier and NURBS
 //! surfaces (with the usual constructors: plane, sphere, cylinder,
-//! revolution and extrusion of a curve), Bézier triangles, ray intersection
-//! for picking, fast grid evaluation of NURBS surfaces and tessellation;
-//! patches made from curves (Coons, Gordon) and the triangle–quad G1 join
-//! ([`patches`]).
+//! revolution and extrusion of a curve), surfaces from curves (revolve
+//! about any axis, extrude, sweep, loft: [`sweeps`]), Bézier triangles, ray
+//! intersection for picking, fast grid evaluation of NURBS surfaces and
+//! tessellation; patches made from curves (Coons, Gordon) and the
+//! triangle–quad G1 join ([`patches`]).
 //!
 //! Every surface evaluates its point and first and second partial
 //! derivatives through [`Surface`]; intersection and tessellation use only
@@ -15,6 +16,7 @@ pub mod intersect;
 pub mod joins;
 pub mod nurbs;
 pub mod patches;
+pub mod sweeps;
 pub mod tessellate;
 pub mod triangle;
 

@@ -1,0 +1,180 @@
+//! Commands that make surfaces and meshes from curves (extrude, revolve,
+//! sweep, two-rail sweep, loft), change and apply them, and the pass after
+//! every command that keeps such nodes following their inputs (see
+//! [`crate::construction`]).
+
+use super::plan::Plan;
+use super::{Command, CommandError, NodeRef};
+use crate::construction::{
+    Construction, ConstructionError, Made, content_of, input_of, same_geometry,
+};
+use crate::scene::{Node, NodeId, NodeTransform};
+
+impl Plan<'_> {
+    /// Makes a construction from the nodes as this plan sees them.
+    fn make(&self, c: &Construction) -> Result<Made, ConstructionError> {
+        let lookup = |id: NodeId| self.current(id);
+        c.make(&|id| input_of(&lookup, id))
+    }
+
+    fn resolve_construction(
+        &self,
+        c: &Construction<NodeRef>,
+    ) -> Result<Construction, CommandError> {
+        c.map_inputs(|r| self.resolve(r))
+    }
+
+    pub(super) fn make_from_curves(
+        &mut self,
+        name: &str,
+        construction: &Construction<NodeRef>,
+    ) -> Result<(), CommandError> {
+        let c = self.resolve_construction(construction)?;
+        let made = self.make(&c).map_err(|error| CommandError::Construction {
+            node: format!("'{name}'"),
+            error,
+        })?;
+        let id = self.add_node(name, &None, NodeTransform::IDENTITY, content_of(made, None))?;
+        let mut n = self.current(id).cloned().expect("just added");
+        n.construction = Some(c);
+        self.set(n);
+        Ok(())
+    }
+
+    pub(super) fn set_construction(
+        &mut self,
+        node: &NodeRef,
+        construction: &Construction<NodeRef>,
+    ) -> Result<(), CommandError> {
+        let mut n = self.node(node)?;
+        let label = self.doc.label_of(n.id);
+        if n.construction.is_none() {
+            return Err(CommandError::NoConstruction { node: label });
+        }
+        let c = self.resolve_construction(construction)?;
+        let made = self
+            .make(&c)
+            .map_err(|error| CommandError::Construction { node: label, error })?;
+        n.content = content_of(made, Some(&n.content));
+        n.construction = Some(c);
+        self.set(n);
+        Ok(())
+    }
+
+    pub(super) fn apply_construction(&mut self, nodes: &[NodeRef]) -> Result<(), CommandError> {
+        for r in nodes {
+            let mut n = self.node(r)?;
+            if n.construction.take().is_none() {
+                return Err(CommandError::NoConstruction {
+                    node: self.doc.label_of(n.id),
+                });
+            }
+            self.set(n);
+        }
+        Ok(())
+    }
+
+    /// True when `ancestor` is `id` or one of its parents, as this plan
+    /// sees the tree.
+    fn is_ancestor_here(&self, ancestor: NodeId, id: NodeId) -> bool {
+        let mut cur = Some(id);
+        let mut guard = self.doc.node_count() + self.changes.len() + 1;
+        while let Some(c) = cur {
+            if c == ancestor {
+                return true;
+            }
+            guard -= 1;
+            if guard == 0 {
+                return false;
+            }
+            cur = self.current(c).and_then(|n| n.parent);
+        }
+        false
+    }
+
+    fn freeze(&mut self, node: &Node) {
+        let mut n = node.clone();
+        n.construction = None;
+        self.set(n);
+    }
+
+    /// After `_cmd` is decided: results whose geometry it edited directly
+    /// are frozen, results whose inputs it deleted are frozen, and results
+    /// whose inputs (or their ancestors) it changed are made again, all in
+    /// this plan. Returns notes for the step's label ("froze 'Vase': its
+    /// input #3 was deleted").
+    ///
+    /// # Errors
+    /// [`CommandError::Construction`] when a dependent cannot be made
+    /// again with the change (the command is refused).
+    pub(super) fn follow_constructions(
+        &mut self,
+        _cmd: &Command,
+    ) -> Result<Vec<String>, CommandError> {
+        let mut notes = Vec::new();
+        let changed: Vec<NodeId> = self.changes.iter().map(|c| c.id).collect();
+        if changed.is_empty() {
+            return Ok(notes);
+        }
+        // Results edited directly: same construction, other geometry.
+        for change in self.changes.clone() {
+            let (Some(before), Some(after)) = (&change.before, &change.after) else {
+                continue;
+            };
+            let Some(c) = &after.construction else {
+                continue;
+            };
+            if before.construction.as_ref() == Some(c)
+                && !same_geometry(&before.content, &after.content)
+            {
+                self.freeze(after);
+                notes.push(format!("froze '{}': edited directly", after.name));
+            }
+        }
+        // Dependents of what changed.
+        let mut ids: Vec<NodeId> = self.doc.nodes.keys().copied().collect();
+        ids.extend(
+            self.changes
+                .iter()
+                .filter(|c| c.before.is_none())
+                .map(|c| c.id),
+        );
+        for id in ids {
+            let Some(n) = self.current(id).cloned() else {
+                continue;
+            };
+            let Some(c) = &n.construction else { continue };
+            let inputs: Vec<NodeId> = c.recipe.inputs().into_iter().copied().collect();
+            if let Some(gone) = inputs.iter().find(|&&i| self.current(i).is_none()) {
+                notes.push(format!("froze '{}': its input {gone} was deleted", n.name));
+                self.freeze(&n);
+                continue;
+            }
+            // Made by this very command (MakeFromCurves, SetConstruction).
+            let just_made = self
+                .changes
+                .iter()
+                .find(|ch| ch.id == id)
+                .is_some_and(|ch| {
+                    ch.before.as_ref().map(|b| &b.construction) != Some(&n.construction)
+                });
+            let affected = inputs
+                .iter()
+                .any(|&i| changed.iter().any(|&ch| self.is_ancestor_here(ch, i)));
+            if just_made || !affected {
+                continue;
+            }
+            let made = self.make(c).map_err(|error| CommandError::Construction {
+                node: self.doc.label_of(id),
+                error,
+            })?;
+            let content = content_of(made, Some(&n.content));
+            if !same_geometry(&content, &n.content) {
+                let mut m = n.clone();
+                m.content = content;
+                self.set(m);
+            }
+        }
+        Ok(notes)
+    }
+}
