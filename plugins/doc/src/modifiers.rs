@@ -284,7 +284,8 @@ impl Default for ArrayModifier {
 /// is built once per input and kept beside the stack
 /// ([`MeshContent::decimations`]), so changing the target or the level
 /// replays splits or collapses instead of simplifying again. The mesh is
-/// triangulated first (no quads are kept).
+/// triangulated first; with `keep_quads` each level shown is re-paired
+/// into quads where they fit ([`hedra_geom::progressive::join_quads`]).
 #[derive(Copy, Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct DecimateModifier {
     /// How far: a ratio of the faces (default 0.5) or a face count.
@@ -310,6 +311,11 @@ pub struct DecimateModifier {
     /// (default none).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub sharp_angle: Option<f64>,
+    /// Triangle pairs of the result joined into quads where they make a
+    /// good one, never across a kept crease, seam or sharp edge (default
+    /// off: triangles; files from before it load with it off).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub keep_quads: bool,
 }
 
 fn half() -> DecimateTarget {
@@ -325,6 +331,7 @@ impl Default for DecimateModifier {
             keep_creases: true,
             keep_uv_seams: true,
             sharp_angle: None,
+            keep_quads: false,
         }
     }
 }
@@ -354,6 +361,7 @@ impl DecimateModifier {
             keep_borders: self.keep_borders,
             keep_creases: self.keep_creases,
             sharp_angle: self.sharp_angle,
+            keep_quads: self.keep_quads,
             seams: if self.keep_uv_seams {
                 seams
             } else {
@@ -577,10 +585,11 @@ impl MeshContent {
     ) -> Result<Evaluated<'a>, EvaluationError> {
         for (k, m) in modifiers.iter().enumerate() {
             if let MeshModifier::Decimate(d) = m {
-                let (pm, level) = self.decimated(d, first_index + k, &current)?;
+                let (pm, level, options) = self.decimated(d, first_index + k, &current)?;
+                let creases = pm.level_creases(&current.creases);
                 current = Evaluated {
-                    mesh: Cow::Owned(pm.level_mesh()),
-                    creases: Cow::Owned(pm.level_creases(&current.creases)),
+                    mesh: Cow::Owned(pm.output_mesh(&creases, &options)),
+                    creases: Cow::Owned(creases),
                 };
                 debug_assert_eq!(pm.level(), level);
                 continue;
@@ -621,7 +630,7 @@ impl MeshContent {
         d: &DecimateModifier,
         index: usize,
         input: &Evaluated<'_>,
-    ) -> Result<(ProgressiveMesh, usize), EvaluationError> {
+    ) -> Result<(ProgressiveMesh, usize, DecimateOptions), EvaluationError> {
         let here = |error| EvaluationError::Decimate { index, error };
         let options = self.decimate_options(d, &input.mesh);
         let key = decimate_key(&input.mesh, &input.creases, &options);
@@ -631,7 +640,7 @@ impl MeshContent {
         };
         let level = d.level_on(&pm);
         pm.seek(level).map_err(here)?;
-        Ok((pm, level))
+        Ok((pm, level, options))
     }
 
     /// The progressive mesh of the Decimate modifier at stack `index`, at
@@ -665,7 +674,7 @@ impl MeshContent {
         } else {
             self.run_stack(&self.modifiers[..index], 0, self.start())?
         };
-        self.decimated(d, index, &input).map(|(pm, _)| Some(pm))
+        self.decimated(d, index, &input).map(|(pm, _, _)| Some(pm))
     }
 
     /// The face count of every level of the Decimate modifier at stack
@@ -746,9 +755,10 @@ impl MeshContent {
                         .seek(level)
                         .map_err(|error| EvaluationError::Decimate { index, error })?;
                 }
+                let creases = record.progressive.level_creases(&current.creases);
                 current = Evaluated {
-                    mesh: Cow::Owned(record.progressive.level_mesh()),
-                    creases: Cow::Owned(record.progressive.level_creases(&current.creases)),
+                    mesh: Cow::Owned(record.progressive.output_mesh(&creases, &options)),
+                    creases: Cow::Owned(creases),
                 };
                 records.push(record);
                 continue;
@@ -830,9 +840,9 @@ impl MeshContent {
                     creases: Cow::Borrowed(&out.creases),
                 };
                 // Seams are found on `out`'s cage, which is the input here.
-                let (pm, _) = out.decimated(d, index, &input)?;
-                let mesh = pm.level_mesh();
+                let (pm, _, options) = out.decimated(d, index, &input)?;
                 let creases = pm.level_creases(&out.creases);
+                let mesh = pm.output_mesh(&creases, &options);
                 out.corners = decimated_uvs(&out.mesh, &mesh, &out.corners);
                 out.creases = creases;
                 out.mesh = Arc::new(mesh);

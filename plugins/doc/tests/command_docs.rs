@@ -143,6 +143,10 @@ fn every_command_example_in_the_docs_runs() {
     let bagel = doc.find_by_name("Bagel").unwrap().content.mesh().unwrap();
     let s = bagel.stats();
     assert_eq!((s.faces, s.genus, s.closed), (48, Some(1), true));
+    let slab = doc.find_by_name("Slab").unwrap().content.mesh().unwrap();
+    slab.validate().unwrap();
+    assert_eq!(slab.face_count(), 64);
+    assert!(slab.faces().all(|f| slab.face_degree(f) == 4));
     let fin = doc.find_by_name("Fin").unwrap().content.mesh().unwrap();
     let s = fin.stats();
     assert_eq!((s.vertices, s.faces, s.boundary_loops), (12, 5, 1));

@@ -157,6 +157,7 @@ fn the_decimate_command_refuses_a_target_below_the_minimum_by_name() {
             keep_creases: true,
             keep_uv_seams: true,
             sharp_angle: None,
+            keep_quads: false,
         })
         .unwrap_err();
     let CommandError::Decimate {
@@ -183,11 +184,12 @@ fn the_decimate_command_refuses_a_target_below_the_minimum_by_name() {
     let sheet = content(&s, "Sheet");
     s.execute(&Command::Decimate {
         node: NodeRef::Name("Sheet".into()),
-        target: DecimateTarget::Ratio(0.3),
+        target: DecimateTarget::Ratio(0.4),
         keep_borders: true,
         keep_creases: true,
         keep_uv_seams: true,
         sharp_angle: None,
+        keep_quads: false,
     })
     .unwrap();
     let after = content(&s, "Sheet");

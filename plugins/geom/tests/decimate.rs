@@ -644,3 +644,65 @@ fn seams_hold_as_a_line_of_edges() {
     );
     assert!(base.face_count() < m.face_count());
 }
+
+#[test]
+fn keep_quads_gives_a_quad_grid_back_as_mostly_quads_at_every_level() {
+    // A gently curved 24 × 24 quad sheet (a flat one has only zero-cost
+    // collapses; the curve gives them an order).
+    let mut grid = Primitive::Grid {
+        x_segments: 24,
+        z_segments: 24,
+        size: 2.0,
+    }
+    .build()
+    .unwrap();
+    let vs: Vec<_> = grid.vertices().collect();
+    for v in vs {
+        let p = grid.position(v);
+        grid.set_position(
+            v,
+            p + DVec3::Y * 0.2 * (p.x * 1.3).sin() * (p.z * 0.9).cos(),
+        );
+    }
+    assert_eq!(grid.face_count(), 576);
+    let quads = DecimateOptions {
+        keep_quads: true,
+        ..DecimateOptions::default()
+    };
+    let mut pm = ProgressiveMesh::build(&grid, &Creases::default(), &quads).unwrap();
+    let top = pm.max_level();
+    let none = Creases::default();
+    // The finest level is the sheet itself: every quad comes back.
+    pm.seek(top).unwrap();
+    let finest = pm.output_mesh(&none, &quads);
+    finest.validate().unwrap();
+    assert_eq!(finest.face_count(), 576);
+    assert!(finest.faces().all(|f| finest.face_degree(f) == 4));
+    // Without the option the same level is triangles.
+    let tris = pm.output_mesh(&none, &DecimateOptions::default());
+    assert_eq!(tris.face_count(), 1152);
+    assert!(tris.faces().all(|f| tris.face_degree(f) == 3));
+    // Coarser levels: valid, the border count and genus of the sheet,
+    // and quads hold at least half of the level's triangles down to a few
+    // dozen faces (measured: 40 to 50 % of the faces are quads on the
+    // coarse levels, all of them at the finest).
+    for level in (0..=top).rev().step_by(7) {
+        pm.seek(level).unwrap();
+        let m = pm.output_mesh(&none, &quads);
+        m.validate().unwrap();
+        let stats = m.stats();
+        assert_eq!((stats.boundary_loops, stats.genus), (1, Some(0)));
+        let n4 = m.faces().filter(|&f| m.face_degree(f) == 4).count();
+        let n3 = m.faces().filter(|&f| m.face_degree(f) == 3).count();
+        assert_eq!(n3 + n4, m.face_count());
+        if pm.face_counts()[level] >= 60 {
+            assert!(2 * n4 >= n3, "level {level}: {n4} quads, {n3} triangles");
+        }
+    }
+    // The one-shot decimate keeps quads too.
+    let half = decimate(&grid, &none, &quads, DecimateTarget::Ratio(0.5)).unwrap();
+    half.validate().unwrap();
+    let n4 = half.faces().filter(|&f| half.face_degree(f) == 4).count();
+    let n3 = half.face_count() - n4;
+    assert!(2 * n4 >= n3, "{n4} quads, {n3} triangles");
+}

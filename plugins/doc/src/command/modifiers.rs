@@ -169,8 +169,8 @@ impl Plan<'_> {
             ProgressiveMesh::build(&content.mesh, &content.creases, &options).map_err(here)?;
         let level = pm.level_for(settings.target).map_err(here)?;
         pm.seek(level).map_err(here)?;
-        let mesh = pm.level_mesh();
         content.creases = pm.level_creases(&content.creases);
+        let mesh = pm.output_mesh(&content.creases, &options);
         content.corners = decimated_uvs(&content.mesh, &mesh, &content.corners);
         content.mesh = Arc::new(mesh);
         content.primitive = None;

@@ -453,6 +453,7 @@ impl Plan<'_> {
                 keep_creases,
                 keep_uv_seams,
                 sharp_angle,
+                keep_quads,
             } => self.decimate(
                 node,
                 crate::modifiers::DecimateModifier {
@@ -462,6 +463,7 @@ impl Plan<'_> {
                     keep_creases: *keep_creases,
                     keep_uv_seams: *keep_uv_seams,
                     sharp_angle: *sharp_angle,
+                    keep_quads: *keep_quads,
                 },
             ),
 

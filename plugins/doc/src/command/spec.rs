@@ -504,6 +504,11 @@ pub enum Command {
         /// Edges sharper than this many degrees hold (default none).
         #[serde(default)]
         sharp_angle: Option<f64>,
+        /// Triangle pairs of the result joined into quads where they fit
+        /// (default off: triangles; written only when on, so stored
+        /// commands from before it read and write unchanged).
+        #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+        keep_quads: bool,
     },
     /// Deletes nodes with their descendants. Undo brings them back with
     /// their ids and names.

@@ -867,9 +867,30 @@ impl HalfEdgeMesh {
         if self.vertex_neighbors(a).filter(|&n| n == b).count() > 1 {
             return Err(EulerError::SelfLoop { vertex: a });
         }
-        if self.vertex_neighbors(a).any(|n| {
-            n != b && Some(n) != vl && Some(n) != vr && self.vertex_neighbors(b).any(|m| m == n)
-        }) {
+        // b's neighbours on the stack (valences are small), so the link
+        // condition costs no allocation.
+        let mut near_b = [VertexId(NONE); 32];
+        let mut n_b = 0;
+        let mut many_b = false;
+        for n in self.vertex_neighbors(b) {
+            if n_b == near_b.len() {
+                many_b = true;
+                break;
+            }
+            near_b[n_b] = n;
+            n_b += 1;
+        }
+        let is_near_b = |n: VertexId| {
+            if many_b {
+                self.vertex_neighbors(b).any(|m| m == n)
+            } else {
+                near_b[..n_b].contains(&n)
+            }
+        };
+        if self
+            .vertex_neighbors(a)
+            .any(|n| n != b && Some(n) != vl && Some(n) != vr && is_near_b(n))
+        {
             return Err(EulerError::SharedNeighbours { a, b });
         }
         if self.is_boundary_vertex(a)
@@ -879,17 +900,24 @@ impl HalfEdgeMesh {
             return Err(EulerError::BoundaryEdge { edge: h.edge() });
         }
         // No interior vertex may drop below valence 3 (a tetrahedron would
-        // fold into two triangles glued along all their edges).
-        let mut merged: Vec<VertexId> = self
-            .vertex_neighbors(a)
-            .chain(self.vertex_neighbors(b))
-            .filter(|&n| n != a && n != b)
-            .collect();
-        merged.sort();
-        merged.dedup();
+        // fold into two triangles glued along all their edges): the two
+        // vertices' other neighbours must be at least three.
         let interior = |v: VertexId| !self.is_boundary_vertex(v);
-        if merged.len() < 3 && interior(a) && interior(b) {
-            return Err(EulerError::Degenerate);
+        if interior(a) && interior(b) {
+            let mut distinct = [VertexId(NONE); 3];
+            let mut found = 0;
+            for n in self.vertex_neighbors(a).chain(self.vertex_neighbors(b)) {
+                if n != a && n != b && !distinct[..found].contains(&n) {
+                    distinct[found] = n;
+                    found += 1;
+                    if found == 3 {
+                        break;
+                    }
+                }
+            }
+            if found < 3 {
+                return Err(EulerError::Degenerate);
+            }
         }
         if [vl, vr]
             .into_iter()
@@ -899,11 +927,30 @@ impl HalfEdgeMesh {
             return Err(EulerError::Degenerate);
         }
         let (tri_h, tri_t) = (vl.is_some(), vr.is_some());
-        let mut candidates: Vec<HalfEdgeId> = self.vertex_outgoing(a).filter(|&o| o != h).collect();
-        let moved: Vec<HalfEdgeId> = self.vertex_outgoing(b).filter(|&o| o != t).collect();
-        candidates.extend(&moved);
-        for &o in &moved {
-            self.set_origin(o, a);
+        // The kept vertex's stored half-edge afterwards: its first outgoing
+        // one (in fan order) that survives, else the first of those it
+        // takes over from `b`.
+        let (nh0, nt0) = (self.next(h), self.next(t));
+        let survivor = self
+            .vertex_outgoing(a)
+            .find(|&o| o != h && !(tri_t && o == nt0))
+            .or_else(|| {
+                self.vertex_outgoing(b)
+                    .find(|&o| o != t && !(tri_h && o == nh0))
+            });
+        // Move b's fan to a: origins only, so the fan walk (prev, twin)
+        // is unchanged while it runs.
+        if let Some(start) = self.vertex_halfedge(b) {
+            let mut o = start;
+            loop {
+                if o != t {
+                    self.set_origin(o, a);
+                }
+                o = self.prev(o).twin();
+                if o == start {
+                    break;
+                }
+            }
         }
         let (ph, nh, pt, nt) = (self.prev(h), self.next(h), self.prev(t), self.next(t));
         self.link(ph, nh);
@@ -934,10 +981,7 @@ impl HalfEdgeMesh {
             self.free_face(gone);
             self.fix_vertex_halfedge(apex_vertex, h1);
         }
-        if let Some(o) = candidates
-            .into_iter()
-            .find(|&o| self.is_halfedge(o) && self.origin(o) == a)
-        {
+        if let Some(o) = survivor {
             self.fix_vertex_halfedge(a, o);
         }
         Ok(a)

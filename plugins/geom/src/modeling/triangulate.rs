@@ -207,6 +207,18 @@ pub fn tris_to_quads(
     face_angle_limit: f64,
     shape_angle_limit: f64,
 ) -> Result<Vec<FaceId>, ModelingError> {
+    tris_to_quads_across(mesh, faces, face_angle_limit, shape_angle_limit, |_| true)
+}
+
+/// [`tris_to_quads`] joining only across the edges `joinable` accepts
+/// (Decimate's keep-quads leaves creases and seams standing).
+pub(crate) fn tris_to_quads_across(
+    mesh: &mut HalfEdgeMesh,
+    faces: &[FaceId],
+    face_angle_limit: f64,
+    shape_angle_limit: f64,
+    joinable: impl Fn(EdgeId) -> bool,
+) -> Result<Vec<FaceId>, ModelingError> {
     check_faces(mesh, faces)?;
     for (what, limit) in [
         ("face angle limit", face_angle_limit),
@@ -233,7 +245,7 @@ pub fn tris_to_quads(
             let Some(g) = mesh.face(h.twin()) else {
                 continue;
             };
-            if g == f || !triangles.contains(&g) || !seen.insert(e) {
+            if g == f || !triangles.contains(&g) || !seen.insert(e) || !joinable(e) {
                 continue;
             }
             if let Some(error) = join_error(mesh, e, face_angle_limit, shape_angle_limit) {

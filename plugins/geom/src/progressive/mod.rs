@@ -9,13 +9,16 @@
 //! the optimal placement and the boundary planes).
 //!
 //! [`ProgressiveMesh::build`] triangulates a copy of the input when it has
-//! larger faces (Hedra keeps no quads while decimating: each collapse
-//! removes the triangles beside its edge), computes a quadric per vertex
+//! larger faces (each collapse removes the triangles beside its edge;
+//! with [`DecimateOptions::keep_quads`] the levels shown are re-paired
+//! into quads afterwards, [`join_quads`]), computes a quadric per vertex
 //! (area-weighted face planes, plus strongly weighted planes through the
 //! feature edges, perpendicular to their faces: borders, creases, UV seams
 //! and edges sharper than the sharp-feature angle) and collapses edges
-//! cheapest first from a priority queue with lazy invalidation, until no
-//! collapse is allowed. Every collapse goes through the kernel's Euler
+//! cheapest first in passes (each pass costs every edge in memory order,
+//! radix-sorts the costs and collapses the cheap ones whose neighbourhood
+//! no earlier collapse of the pass changed), until no collapse is
+//! allowed. Every collapse goes through the kernel's Euler
 //! operator [`HalfEdgeMesh::collapse_edge_removing_triangles`] (with its
 //! link condition, so genus, shells and border count never change) and is
 //! refused when it would turn a face's normal by more than
@@ -48,8 +51,7 @@ use crate::subdivision::Creases;
 use crate::validate::ValidationError;
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
-use std::cmp::Reverse;
-use std::collections::{BTreeSet, BinaryHeap};
+use std::collections::BTreeSet;
 use std::sync::Arc;
 
 /// Weight of a feature plane against the area-weighted face planes, per
@@ -84,6 +86,12 @@ pub struct DecimateOptions {
     /// its corner UVs), kept as feature edges.
     #[serde(default, skip_serializing_if = "BTreeSet::is_empty")]
     pub seams: BTreeSet<EdgeId>,
+    /// Quads where they fit (default off: triangles). The collapses work
+    /// on triangles either way, so the progressive record does not
+    /// depend on it; each level shown is re-paired by
+    /// [`ProgressiveMesh::output_mesh`] (see [`join_quads`]).
+    #[serde(default)]
+    pub keep_quads: bool,
 }
 
 fn yes() -> bool {
@@ -101,6 +109,7 @@ impl Default for DecimateOptions {
             sharp_angle: None,
             max_normal_change: normal_limit(),
             seams: BTreeSet::new(),
+            keep_quads: false,
         }
     }
 }
@@ -330,20 +339,94 @@ impl TryFrom<Stored> for ProgressiveMesh {
     }
 }
 
-/// A heap entry packed in 8 bytes (half the cache misses of a wider
-/// one): the cost as `f32` bits (costs are never negative, so their bits
-/// order as the costs do) above the edge id; smallest first through
-/// `Reverse`, ties by edge id. The exact cost is computed again when the
-/// entry comes first.
-fn entry(cost: f32, e: EdgeId) -> Reverse<u64> {
-    Reverse(((cost.to_bits() as u64) << 32) | e.0 as u64)
-}
-fn entry_parts(x: Reverse<u64>) -> (f32, EdgeId) {
-    (f32::from_bits((x.0 >> 32) as u32), EdgeId(x.0 as u32))
+/// A pass's sort key packed in 8 bytes: the cost as `f32` bits (costs are
+/// never negative, so their bits order as the costs do) above the edge
+/// id. The exact cost is computed again when the edge's turn comes.
+fn entry(cost: f32, e: EdgeId) -> u64 {
+    ((cost.to_bits() as u64) << 32) | e.0 as u64
 }
 
-/// `queued` for an edge without a live heap entry.
-const NOT_QUEUED: u32 = u32::MAX;
+/// Cost bands of a pass, as upper bounds of the cost bits, cheapest
+/// first: [`PASS_BANDS`] bands of about equal size up to [`PASS_SLACK`]
+/// times the cost at [`PASS_QUANTILE`] of the keys (all keys when not
+/// `limited`). From a histogram of the costs' top 16 bits (sign, exponent
+/// and 7 mantissa bits: within 1 %), linear in the keys.
+fn cost_bands(keys: &[u64], hist: &mut [u32], limited: bool) -> Vec<u32> {
+    hist.fill(0);
+    for &k in keys {
+        hist[(k >> 48) as usize] += 1;
+    }
+    // The upper bound of the bucket where the running count passes `n`.
+    let bucket_top = |n: usize| -> u32 {
+        let mut sum = 0usize;
+        for (b, &c) in hist.iter().enumerate() {
+            sum += c as usize;
+            if sum > n {
+                return ((b as u32) << 16) | 0xffff;
+            }
+        }
+        u32::MAX
+    };
+    let limit = if limited {
+        let q = bucket_top((keys.len() as f64 * PASS_QUANTILE) as usize);
+        (f32::from_bits(q) * PASS_SLACK).to_bits()
+    } else {
+        u32::MAX
+    };
+    let eligible: usize = hist[..=(limit >> 16) as usize]
+        .iter()
+        .map(|&c| c as usize)
+        .sum();
+    let mut bands: Vec<u32> = (1..PASS_BANDS)
+        .map(|i| bucket_top(eligible * i / PASS_BANDS).min(limit))
+        .collect();
+    bands.push(limit);
+    bands.dedup();
+    bands
+}
+
+/// Each pass works through its cost bands one after the other, each in
+/// edge order (memory order, so that neighbouring collapses share cache
+/// lines): the sequence is cheapest first up to a band.
+const PASS_BANDS: usize = 4;
+
+/// A pass collapses edges up to this multiple of the cost at
+/// [`PASS_QUANTILE`] of its sorted keys (meshoptimizer takes 1.5 at about
+/// two thirds; a lower quantile keeps the sequence closer to cheapest
+/// first at the price of more passes).
+const PASS_SLACK: f32 = 1.5;
+/// See [`PASS_SLACK`].
+const PASS_QUANTILE: f64 = 0.5;
+
+/// Up to two collapses of one edge (one per direction), cheapest first:
+/// cost, the half-edge whose target goes, the position.
+#[derive(Copy, Clone)]
+struct Candidates {
+    items: [(f64, HalfEdgeId, DVec3); 2],
+    len: usize,
+}
+
+impl Default for Candidates {
+    fn default() -> Self {
+        Candidates {
+            items: [(0.0, HalfEdgeId(0), DVec3::ZERO); 2],
+            len: 0,
+        }
+    }
+}
+
+impl Candidates {
+    fn add(&mut self, c: (f64, HalfEdgeId, DVec3)) {
+        self.items[self.len] = c;
+        self.len += 1;
+    }
+    fn first(&self) -> Option<&(f64, HalfEdgeId, DVec3)> {
+        self.items[..self.len].first()
+    }
+    fn iter(&self) -> impl Iterator<Item = (f64, HalfEdgeId, DVec3)> + '_ {
+        self.items[..self.len].iter().copied()
+    }
+}
 
 /// The simplification's state while it builds the sequence.
 struct Simplifier<'a> {
@@ -352,19 +435,15 @@ struct Simplifier<'a> {
     creases: &'a Creases,
     quadrics: Vec<Quadric>,
     feature: Vec<bool>,
-    /// The cost bits of an edge's live heap entry ([`NOT_QUEUED`]: none);
-    /// other entries of the edge are stale.
-    queued: Vec<u32>,
-    heap: BinaryHeap<Reverse<u64>>,
     cos_limit: f64,
     /// Vertices on a feature edge or a border (a collapse passes the flag
     /// on to the kept vertex); the others have no feature edges to count.
     near_feature: Vec<bool>,
     /// Vertices with corner sharpness (with `keep_creases`): they stay.
     corner_sharp: Vec<bool>,
-    /// Edges whose collapses were refused in this pass (fold-over, link
-    /// condition), tried again in the next one.
-    refused: Vec<EdgeId>,
+    /// Vertices that a collapse of this pass moved: their edges wait for
+    /// the next pass, whose costs see the change.
+    locked: Vec<bool>,
 }
 
 impl Simplifier<'_> {
@@ -452,45 +531,27 @@ impl Simplifier<'_> {
 
     /// The allowed collapses of `e`, cheapest first. Away from features
     /// both directions have the same placement and cost, computed once.
-    fn candidates(&self, e: EdgeId) -> Vec<(f64, HalfEdgeId, DVec3)> {
+    fn candidates(&self, e: EdgeId) -> Candidates {
         let [a, b] = self.mesh.edge_vertices(e);
         let plain = |v: VertexId| !self.near_feature[v.index()] && !self.corner_sharp[v.index()];
+        let mut out = Candidates::default();
         if plain(a) && plain(b) {
             let h = e.halfedge(0);
-            return match self.candidate(h) {
-                Some((c, p)) => vec![(c, h, p), (c, h.twin(), p)],
-                None => Vec::new(),
-            };
+            if let Some((c, p)) = self.candidate(h) {
+                out.add((c, h, p));
+                out.add((c, h.twin(), p));
+            }
+            return out;
         }
-        let mut out: Vec<(f64, HalfEdgeId, DVec3)> = [e.halfedge(0), e.halfedge(1)]
-            .into_iter()
-            .filter_map(|h| self.candidate(h).map(|(c, p)| (c, h, p)))
-            .collect();
-        out.sort_by(|x, y| x.0.total_cmp(&y.0));
+        for h in [e.halfedge(0), e.halfedge(1)] {
+            if let Some((c, p)) = self.candidate(h) {
+                out.add((c, h, p));
+            }
+        }
+        if out.len == 2 && out.items[1].0 < out.items[0].0 {
+            out.items.swap(0, 1);
+        }
         out
-    }
-
-    /// Queues `e` at its current cost, unless it is queued at a lower one
-    /// already: that entry stays (lazy invalidation), and when it comes
-    /// first its cost is computed again and the edge queued anew if it
-    /// grew. Costs mostly grow as quadrics add up, so most changes cost no
-    /// heap operation.
-    fn push(&mut self, e: EdgeId) {
-        let Some(&(cost, _, _)) = self.candidates(e).first() else {
-            self.queued[e.index()] = NOT_QUEUED;
-            return;
-        };
-        let cost = cost as f32;
-        let q = self.queued[e.index()];
-        if q != NOT_QUEUED && f32::from_bits(q) <= cost {
-            return;
-        }
-        self.enqueue(e, cost);
-    }
-
-    fn enqueue(&mut self, e: EdgeId, cost: f32) {
-        self.queued[e.index()] = cost.to_bits();
-        self.heap.push(entry(cost, e));
     }
 
     /// The checks the Euler operator does not make: no triangle edge that
@@ -545,8 +606,9 @@ impl ProgressiveMesh {
     /// [`DecimateError::NoFaces`], [`DecimateError::Triangulate`]; the
     /// input is never changed.
     ///
-    /// Complexity: O(n log n) for n edges (a heap of edge collapses, each
-    /// touching one vertex's neighbourhood).
+    /// Complexity: O(n) per pass for n edges (costing, a radix sort and
+    /// the collapses, each touching one vertex's neighbourhood); the
+    /// number of passes grows as log n.
     pub fn build(
         mesh: &HalfEdgeMesh,
         creases: &Creases,
@@ -556,13 +618,11 @@ impl ProgressiveMesh {
         let mut s = Simplifier {
             quadrics: vec![Quadric::default(); input.vertex_capacity()],
             feature: vec![false; input.edge_capacity()],
-            queued: vec![NOT_QUEUED; input.edge_capacity()],
             near_feature: vec![false; input.vertex_capacity()],
             corner_sharp: (0..input.vertex_capacity() as u32)
                 .map(|v| options.keep_creases && creases.vertex(VertexId(v)) > 0.0)
                 .collect(),
-            refused: Vec::new(),
-            heap: BinaryHeap::new(),
+            locked: vec![false; input.vertex_capacity()],
             cos_limit: options.max_normal_change.to_radians().cos(),
             options,
             creases,
@@ -570,23 +630,8 @@ impl ProgressiveMesh {
         };
         s.init_quadrics();
         let n_faces = s.mesh.face_count();
-        let mut splits = Vec::new();
-        let mut next: Vec<EdgeId> = s.mesh.edges().collect();
-        // Passes until one collapses nothing: a collapse refused for its
-        // neighbourhood (a fold-over) may be allowed once that changed.
-        loop {
-            for e in next {
-                if s.mesh.is_edge(e) {
-                    s.push(e);
-                }
-            }
-            let before = splits.len();
-            s.run(&mut splits);
-            if splits.len() == before {
-                break;
-            }
-            next = std::mem::take(&mut s.refused);
-        }
+        let mut splits = Vec::with_capacity(s.mesh.vertex_count());
+        s.run(&mut splits);
         let capacity = [
             s.mesh.vertex_capacity(),
             s.mesh.edge_capacity(),
@@ -894,6 +939,25 @@ impl ProgressiveMesh {
         .expect("a level renumbers into the input's ids")
     }
 
+    /// The current level as a Decimate modifier shows it:
+    /// [`level_mesh`](Self::level_mesh), with triangle pairs joined into
+    /// quads by [`join_quads`] when `options.keep_quads`. `creases` are
+    /// the level's ([`level_creases`](Self::level_creases)); joins keep
+    /// the input's ids of everything they do not remove.
+    ///
+    /// Complexity: O(input ids + t log t).
+    pub fn output_mesh(&self, creases: &Creases, options: &DecimateOptions) -> HalfEdgeMesh {
+        let mut mesh = self.level_mesh();
+        if options.keep_quads {
+            let before = mesh.clone();
+            if join_quads(&mut mesh, creases, options).is_err() {
+                // A refused join leaves triangles; the level itself is valid.
+                mesh = before;
+            }
+        }
+        mesh
+    }
+
     /// After many moves the working mesh collects dead slots (each split
     /// takes fresh ids); rebuild it in the input's ids then.
     fn compact_if_grown(&mut self) -> Result<(), DecimateError> {
@@ -1032,37 +1096,74 @@ impl Simplifier<'_> {
         }
     }
 
-    /// Collapses from the heap until it is empty, appending the records.
+    /// Collapses in passes until none is possible, appending the records
+    /// (meshoptimizer's scheme, A. Kapoulkine, `simplifier.cpp`): each
+    /// pass computes every edge's cost in edge order (memory order, so
+    /// the costs stream through the cache), sorts the keys, and collapses
+    /// cheapest first up to [`PASS_SLACK`] times the cost at
+    /// [`PASS_QUANTILE`]; a collapse locks the kept vertex for the rest of
+    /// the pass (its quadric and position changed, so its edges' keys are
+    /// stale until the next pass costs them). Every other edge's key stays
+    /// exact (a cost reads only its two vertices), and the fold-over test
+    /// and the features are checked when the edge's turn comes, on the
+    /// mesh as it is then. A pass that collapses nothing is followed by
+    /// one without the cost limit; when that collapses nothing either,
+    /// no collapse is left (refusals depend on the neighbourhood, so each
+    /// pass tries every edge again).
     fn run(&mut self, out: &mut Vec<VertexSplit>) {
-        while let Some(x) = self.heap.pop() {
-            let (queued_cost, e) = entry_parts(x);
-            if !self.mesh.is_edge(e) || self.queued[e.index()] != queued_cost.to_bits() {
-                continue;
-            }
-            self.queued[e.index()] = NOT_QUEUED;
-            let candidates = self.candidates(e);
-            let Some(&(cost, _, _)) = candidates.first() else {
-                continue;
-            };
-            if cost as f32 > queued_cost {
-                // Its neighbourhood changed since it was queued: requeue.
-                self.enqueue(e, cost as f32);
-                continue;
-            }
-            let mut done = false;
-            for (cost, h, p) in candidates {
-                if !self.allowed(h, p) {
-                    continue;
-                }
-                if let Some(split) = self.collapse(h, p, cost) {
-                    out.push(split);
-                    done = true;
-                    break;
+        let mut keys: Vec<u64> = Vec::new();
+        let mut hist = vec![0u32; 1 << 16];
+        let mut touched: Vec<VertexId> = Vec::new();
+        let mut limited = true;
+        loop {
+            keys.clear();
+            for e in self.mesh.edges() {
+                if let Some(&(cost, _, _)) = self.candidates(e).first() {
+                    keys.push(entry(cost as f32, e));
                 }
             }
-            if !done {
-                self.refused.push(e);
+            if keys.is_empty() {
+                return;
             }
+            let bands = cost_bands(&keys, &mut hist, limited);
+            let before = out.len();
+            let mut lower = None;
+            for &upper in &bands {
+                for &k in &keys {
+                    let bits = (k >> 32) as u32;
+                    if bits > upper || lower.is_some_and(|l| bits <= l) {
+                        continue;
+                    }
+                    let e = EdgeId(k as u32);
+                    if !self.mesh.is_edge(e) {
+                        continue;
+                    }
+                    let [a, b] = self.mesh.edge_vertices(e);
+                    if self.locked[a.index()] || self.locked[b.index()] {
+                        continue;
+                    }
+                    for (cost, h, p) in self.candidates(e).iter() {
+                        if !self.allowed(h, p) {
+                            continue;
+                        }
+                        if let Some(split) = self.collapse(h, p, cost) {
+                            self.locked[split.kept.index()] = true;
+                            touched.push(split.kept);
+                            out.push(split);
+                            break;
+                        }
+                    }
+                }
+                lower = Some(upper);
+            }
+            for v in touched.drain(..) {
+                self.locked[v.index()] = false;
+            }
+            let progressed = out.len() > before;
+            if !progressed && !limited {
+                return;
+            }
+            limited = progressed;
         }
     }
 
@@ -1094,24 +1195,15 @@ impl Simplifier<'_> {
         };
         // The triangles' surviving edges take over the features of the
         // removed ones.
-        let transfers: Vec<(EdgeId, EdgeId)> = [left, right]
-            .into_iter()
-            .flatten()
-            .map(|(_, gone, keep)| (gone.edge(), keep))
-            .collect();
         self.mesh.collapse_edge_removing_triangles(h, p).ok()?;
-        for (gone, keep) in transfers {
-            if self.feature[gone.index()] {
+        for (_, gone, keep) in [left, right].into_iter().flatten() {
+            if self.feature[gone.edge().index()] {
                 self.feature[keep.index()] = true;
             }
         }
         let q = self.quadrics[a.index()] + self.quadrics[b.index()];
         self.quadrics[a.index()] = q;
         self.near_feature[a.index()] |= self.near_feature[b.index()];
-        let around: Vec<EdgeId> = self.mesh.vertex_outgoing(a).map(|o| o.edge()).collect();
-        for e in around {
-            self.push(e);
-        }
         Some(split)
     }
 }
@@ -1194,5 +1286,64 @@ pub fn decimate(
     let mut pm = ProgressiveMesh::build(mesh, creases, options)?;
     let level = pm.level_for(target)?;
     pm.seek(level)?;
-    Ok(pm.level_mesh())
+    Ok(pm.output_mesh(&pm.level_creases(creases), options))
+}
+
+/// Joins pairs of triangles of a decimated level into quads where they
+/// make a good one (Decimate's keep-quads): Blender's Tris to Quads
+/// ([`tris_to_quads`](crate::modeling::tris_to_quads)) with its default
+/// 40° limits on the faces' angle and on the corners' distance from a
+/// right angle, best pairs first, each through
+/// [`kill_edge_face`](HalfEdgeMesh::kill_edge_face). Never across a
+/// feature edge that the simplification kept: a crease of `creases`
+/// (when `options.keep_creases`), a seam of `options`, or an edge sharper
+/// than `options.sharp_angle`. Returns the quads made.
+///
+/// Why re-pairing rather than collapsing only along edges that keep
+/// quads: the quadric collapses stay those of the triangle mesh, so the
+/// progressive record, its error bound and the speed do not change, and
+/// every level is still a valid mesh (a KEF keeps it valid); a quad grid
+/// comes back as quads at the finest level (its own pairs are exact
+/// squares, the best joins) and stays mostly quads as it coarsens.
+///
+/// Inverse: none (triangulate the quads to go back to the level).
+///
+/// # Errors
+/// None in practice: only the join's own refusals
+/// ([`DecimateError::Triangulate`]), which a valid level never raises.
+///
+/// Complexity: O(t log t) for t triangles.
+pub fn join_quads(
+    mesh: &mut HalfEdgeMesh,
+    creases: &Creases,
+    options: &DecimateOptions,
+) -> Result<Vec<FaceId>, DecimateError> {
+    let triangles: Vec<FaceId> = mesh.faces().filter(|&f| mesh.face_degree(f) == 3).collect();
+    if triangles.is_empty() {
+        return Ok(Vec::new());
+    }
+    let cos_sharp = options.sharp_angle.map(|a| a.to_radians().cos());
+    let snapshot = mesh.clone();
+    let joinable = |e: EdgeId| {
+        if options.keep_creases && creases.edge(e) > 0.0 {
+            return false;
+        }
+        if options.seams.contains(&e) {
+            return false;
+        }
+        match (cos_sharp, snapshot.edge_faces(e)) {
+            (Some(c), [Some(f), Some(g)]) => {
+                snapshot.face_normal(f).dot(snapshot.face_normal(g)) >= c
+            }
+            _ => true,
+        }
+    };
+    crate::modeling::tris_to_quads_across(
+        mesh,
+        &triangles,
+        crate::modeling::DEFAULT_JOIN_LIMIT,
+        crate::modeling::DEFAULT_JOIN_LIMIT,
+        joinable,
+    )
+    .map_err(DecimateError::Triangulate)
 }
