@@ -1756,8 +1756,9 @@ fn a_tapered_crease_from_the_panel() {
 }
 
 /// Properties ▸ Modifiers ▸ Decimate on an icosphere: the level slider
-/// scrubs the progressive mesh; let go at the far left it sets the
-/// coarsest level (one undo step) and the drawn mesh has that many faces.
+/// scrubs the progressive mesh, the mesh following while it is dragged; let
+/// go at the far left it sets the coarsest level (one undo step for the
+/// whole drag) and the drawn mesh has that many faces.
 #[test]
 fn the_decimate_level_slider_scrubs_the_progressive_mesh() {
     let mut user = User::new();
@@ -1784,7 +1785,20 @@ fn the_decimate_level_slider_scrubs_the_progressive_mesh() {
     let steps = user.undo_steps();
     let from = Vec2::new(label.min.x - 50.0, label.center().y);
     let to = Vec2::new(label.min.x - 400.0, label.center().y);
-    user.drag(from, to, 8);
+    // Halfway through the drag the viewport already shows a coarser level.
+    let before = mesh_content(&user).evaluated(0).unwrap().face_count();
+    user.move_to(from);
+    user.button_down(MouseButton::Left);
+    user.glide_to(from.lerp(to, 0.5), 4);
+    let midway = mesh_content(&user).evaluated(0).unwrap().face_count();
+    assert!(
+        midway < before,
+        "the level follows the drag: {midway} of {before}"
+    );
+    assert_eq!(user.undo_steps(), steps + 1, "one step so far");
+    user.glide_to(to, 4);
+    user.button_up(MouseButton::Left);
+    user.frames(2);
     user.frames(3);
     assert_eq!(user.undo_steps(), steps + 1, "one step for the whole drag");
     let hedra_doc::MeshModifier::Decimate(d) = mesh_content(&user).modifiers[0] else {
@@ -2170,4 +2184,93 @@ fn the_panel_moves_a_point_by_its_coordinates_and_measures_a_span() {
         user.shows(&format!("Span from point 2 to 4: length {length:.6}")),
         "the span's length {length:.6} is shown"
     );
+}
+
+/// The surface node of the document made from curves, if any.
+fn made_from_curves(user: &User) -> Option<hedra_doc::Node> {
+    user.doc()
+        .nodes()
+        .find(|n| n.construction.is_some())
+        .cloned()
+}
+
+/// Object ▸ Surface from Curves ▸ Revolve on a Catmull-Rom curve makes a
+/// surface that remembers it; moving a point of the curve (G Y 1) shows the
+/// surface made again while the point moves, and the confirmed move
+/// re-makes it in the same undo step (undo puts both back). The panel's
+/// angle slider turns the revolution live and is one step when let go;
+/// Apply freezes it.
+#[test]
+fn a_revolved_surface_follows_its_profile_and_its_panel() {
+    use hedra_doc::construction::Recipe;
+    let mut user = User::new();
+    user.add("Catmull-Rom");
+    open_menu(&mut user, "Object");
+    user.click_on("Surface from Curves ⏵");
+    user.click_on("Revolve");
+    let surface = made_from_curves(&user).expect("a revolved surface");
+    assert!(matches!(
+        surface.construction.as_ref().unwrap().recipe,
+        Recipe::Revolve { .. }
+    ));
+    assert_eq!(surface.name, "Revolution");
+    let before = surface.content.clone();
+    // Edit the profile: its last point up by one.
+    let curve = user
+        .doc()
+        .nodes()
+        .find(|n| n.construction.is_none())
+        .unwrap()
+        .id;
+    user.app
+        .world_mut()
+        .resource_mut::<hedra_edit::Selection>()
+        .set([curve]);
+    user.tap(KeyCode::Tab);
+    let (points, _) = shape_points_of_curve(&user);
+    let end = user.screen_of(points[4].as_vec3());
+    user.click(end);
+    let steps = user.undo_steps();
+    user.tap(KeyCode::KeyG);
+    user.glide_to(end + Vec2::new(0.0, -30.0), 3);
+    let previewed = user
+        .app
+        .world()
+        .resource::<hedra_scene::Previews>()
+        .slot(hedra_scene::PreviewSource::ShapeTool)
+        .map(|p| p.contents.contains_key(&surface.id));
+    assert_eq!(previewed, Some(true), "the surface follows the drag");
+    user.tap(KeyCode::KeyY);
+    user.type_text("1");
+    user.tap(KeyCode::Enter);
+    assert_eq!(user.undo_steps(), steps + 1);
+    let after = made_from_curves(&user).unwrap();
+    assert_ne!(after.content, before, "made again from the moved profile");
+    user.shortcut(&[KeyCode::ControlLeft], KeyCode::KeyZ);
+    assert_eq!(made_from_curves(&user).unwrap().content, before);
+    // The panel: drag the angle slider left, let go.
+    user.tap(KeyCode::Tab);
+    user.app
+        .world_mut()
+        .resource_mut::<hedra_edit::Selection>()
+        .set([surface.id]);
+    user.frames(2);
+    let label = user.find_all("angle°")[0];
+    let steps = user.undo_steps();
+    let from = Vec2::new(label.min.x - 20.0, label.center().y);
+    user.drag(from, from - Vec2::new(80.0, 0.0), 6);
+    user.frames(3);
+    let Recipe::Revolve { degrees, .. } = made_from_curves(&user)
+        .unwrap()
+        .construction
+        .unwrap()
+        .recipe
+    else {
+        panic!("still a revolution")
+    };
+    assert!(degrees < 359.0, "{degrees}");
+    assert_eq!(user.undo_steps(), steps + 1, "one step for the whole drag");
+    user.click_on("Apply");
+    assert!(made_from_curves(&user).is_none(), "frozen");
+    assert_eq!(user.doc().nodes().count(), 2);
 }

@@ -341,12 +341,28 @@ pub fn drive_transform_tool(
         tool.just_finished = true;
         return;
     }
+    // Nodes made from a moved one (a revolution of a profile) follow it.
+    let doc = &state.session.doc;
+    let mut contents = std::collections::HashMap::new();
+    for (id, t) in &result {
+        if doc.dependents(*id).is_empty() {
+            continue;
+        }
+        if let Some(mut moved) = doc.node(*id).cloned() {
+            moved.transform = *t;
+            for (dependent, content) in doc.remade_dependents(&moved) {
+                if let Some(c) = hedra_scene::PreviewContent::of_shape(&content) {
+                    contents.insert(dependent, c);
+                }
+            }
+        }
+    }
     Previews::show(
         &mut previews,
         PreviewSource::TransformTool,
         ToolPreview {
             transforms: result.into_iter().collect(),
-            ..default()
+            contents,
         },
     );
     tool.active = Some(modal);

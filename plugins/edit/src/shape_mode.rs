@@ -70,6 +70,9 @@ pub struct ShapeEdit {
     pub tool: Option<ShapeTool>,
     /// The node's content as the running tool would leave it.
     pub preview: Option<NodeContent>,
+    /// Nodes made from this one (a surface revolved from the curve) as
+    /// they would be made again, shown with the preview.
+    pub dependents: Vec<(NodeId, NodeContent)>,
     /// Set on the frame a tool ended, so its confirming click selects nothing.
     pub just_finished: bool,
     /// The rectangle being dragged for box selection (window coordinates).
@@ -731,9 +734,16 @@ pub fn drive_shape_tool(
                 .find(|c| c.id == id)
                 .and_then(|c| c.after.as_ref())
                 .map(|n| n.content.clone());
+            edit.dependents = t
+                .changes
+                .iter()
+                .filter(|c| c.id != id)
+                .filter_map(|c| Some((c.id, c.after.as_ref()?.content.clone())))
+                .collect();
         }
         Err(e) => {
             edit.preview = None;
+            edit.dependents.clear();
             tool.readout = format!("{} — {e}", tool.readout);
         }
     }
@@ -780,7 +790,13 @@ pub fn publish_shape_preview(edit: Res<ShapeEdit>, mut previews: ResMut<hedra_sc
             &mut previews,
             PreviewSource::ShapeTool,
             ToolPreview {
-                contents: [(node, content)].into(),
+                contents: std::iter::once((node, content))
+                    .chain(
+                        edit.dependents
+                            .iter()
+                            .filter_map(|(id, c)| Some((*id, PreviewContent::of_shape(c)?))),
+                    )
+                    .collect(),
                 ..default()
             },
         ),

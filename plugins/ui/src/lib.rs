@@ -70,8 +70,9 @@ pub struct UiState {
     /// The face counts of the levels of the Decimate modifier last shown,
     /// keyed by what they depend on (node, index, cage, settings).
     pub decimate_counts: Option<(u64, Vec<usize>)>,
-    /// The level the Decimate slider is being dragged to (applied when let go).
-    pub decimate_level_edit: Option<usize>,
+    /// The Decimate slider is being dragged and its first step was sent
+    /// (later frames adjust that step).
+    pub decimate_dragging: bool,
     /// Weight field being dragged (committed on release).
     pub weight_edit: Option<f64>,
     /// Kochanek-Bartels tension, bias, continuity being dragged for the
@@ -82,6 +83,12 @@ pub struct UiState {
     pub point_edit: Option<glam::DVec3>,
     /// The segment whose power basis the curve panel shows.
     pub power_segment: usize,
+    /// A construction's fields being dragged (the node and the recipe as
+    /// edited; committed on release).
+    pub construction_edit: Option<(
+        hedra_doc::NodeId,
+        hedra_doc::construction::Construction<hedra_doc::NodeRef>,
+    )>,
     /// Where "Insert knot" inserts.
     pub knot_at: f64,
     /// How many equal arc lengths Curve ▸ Divide makes.
@@ -114,10 +121,11 @@ impl Default for UiState {
             crease_edit: None,
             taper: (0.0, 4.0, false),
             decimate_counts: None,
-            decimate_level_edit: None,
+            decimate_dragging: false,
             weight_edit: None,
             tbc_edit: None,
             point_edit: None,
+            construction_edit: None,
             obj_nurbs_curves: false,
             power_segment: 0,
             knot_at: 0.5,

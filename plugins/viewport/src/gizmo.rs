@@ -276,9 +276,24 @@ pub(crate) fn drive_gizmo_drag(
 
 /// What a gizmo command would show: the node's new transform or content.
 fn preview_of(doc: &hedra_doc::Document, node: NodeId, cmd: &Command) -> Option<ToolPreview> {
-    let after = doc.decide(cmd, 0).ok()?;
-    let after = after.changes.iter().find(|c| c.id == node)?.after.clone()?;
+    let decided = doc.decide(cmd, 0).ok()?;
+    let after = decided
+        .changes
+        .iter()
+        .find(|c| c.id == node)?
+        .after
+        .clone()?;
     let mut preview = ToolPreview::default();
+    // Nodes made from this one (a revolution of a dragged profile) follow.
+    for change in decided.changes.iter().filter(|c| c.id != node) {
+        if let Some(content) = change
+            .after
+            .as_ref()
+            .and_then(|n| PreviewContent::of_shape(&n.content))
+        {
+            preview.contents.insert(change.id, content);
+        }
+    }
     match cmd {
         Command::SetTransforms { .. } => {
             preview.transforms.insert(node, after.transform);

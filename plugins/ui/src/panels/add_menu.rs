@@ -303,8 +303,23 @@ pub(super) fn add_shape_buttons(
             ),
         ),
     ];
-    let revolve =
-        curve.map(|c| surface_cmd("Revolution", SurfaceSpec::Revolve { profile: c.into() }));
+    // A revolution that follows its curve (Object ▸ Surface from Curves
+    // has the other constructions).
+    let revolve = curve.map(|c| Command::MakeFromCurves {
+        name: "Revolution".into(),
+        construction: hedra_doc::construction::Construction {
+            recipe: hedra_doc::construction::Recipe::Revolve {
+                profile: c.into(),
+                origin: DVec3::ZERO,
+                axis: DVec3::Y,
+                degrees: 360.0,
+                pitch: 0.0,
+                space: Default::default(),
+                caps: false,
+            },
+            output: Default::default(),
+        },
+    });
     let curve_items = |ui: &mut egui::Ui, events: &mut Vec<UiEvent>| {
         if ui
             .button("Draw Curve")

@@ -17,6 +17,7 @@ use hedra_geom::Primitive;
 use hedra_scene::{DocRequest, DocState, InputGate, StatusMessage};
 
 mod add_menu;
+mod construction_panel;
 mod curve_menu;
 mod dialogs;
 mod inspector;
@@ -34,6 +35,7 @@ mod windows;
 
 use add_menu::*;
 pub use add_menu::{ADD_MENU, AddPage};
+use construction_panel::*;
 use curve_menu::*;
 use dialogs::*;
 use inspector::*;
@@ -76,6 +78,8 @@ enum UiEvent {
     Start(hedra_edit::bindings::Action),
     /// Add ▸ Draw Curve: start drawing a curve by clicks.
     DrawCurve,
+    /// A panel field being dragged: the node's content as it would become.
+    PreviewContent(NodeId, NodeContent),
 }
 
 #[derive(SystemParam)]
@@ -331,6 +335,18 @@ pub fn draw_ui(
                 model.selection.nodes.clear();
                 writers.curve_draw.start(&mut model.status);
             }
+            UiEvent::PreviewContent(id, content) => {
+                if let Some(c) = hedra_scene::PreviewContent::of_shape(&content) {
+                    hedra_scene::Previews::show(
+                        &mut tool_previews,
+                        hedra_scene::PreviewSource::Properties,
+                        hedra_scene::ToolPreview {
+                            contents: [(id, c)].into(),
+                            ..default()
+                        },
+                    )
+                }
+            }
             UiEvent::Preview(id, t) => hedra_scene::Previews::show(
                 &mut tool_previews,
                 hedra_scene::PreviewSource::Properties,
@@ -342,7 +358,7 @@ pub fn draw_ui(
         }
     }
     // A field let go: its command (sent above) replaces the preview.
-    if ui_state.transform_edit.is_none() {
+    if ui_state.transform_edit.is_none() && ui_state.construction_edit.is_none() {
         hedra_scene::Previews::clear(&mut tool_previews, hedra_scene::PreviewSource::Properties);
     }
     Ok(())

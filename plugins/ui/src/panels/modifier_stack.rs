@@ -106,20 +106,30 @@ pub(super) fn modifier_stack_panel(
                 }
             });
             let mut edited = *modifier;
-            match &mut edited {
-                MeshModifier::Mirror(m) => mirror_settings(ui, m),
-                MeshModifier::Array(a) => array_settings(ui, a),
+            let adjust = match &mut edited {
+                MeshModifier::Mirror(m) => {
+                    mirror_settings(ui, m);
+                    false
+                }
+                MeshModifier::Array(a) => {
+                    array_settings(ui, a);
+                    false
+                }
                 MeshModifier::Decimate(d) => decimate_settings(ui, id, index, content, d, state),
-            }
+            };
             if edited != *modifier {
-                exec(
-                    events,
-                    Command::SetModifier {
-                        node: node(),
-                        index,
-                        modifier: edited,
-                    },
-                );
+                let cmd = Command::SetModifier {
+                    node: node(),
+                    index,
+                    modifier: edited,
+                };
+                // A drag's later frames adjust its first step: the
+                // viewport follows every frame, one undo step in all.
+                events.push(UiEvent::Request(if adjust {
+                    DocRequest::AdjustLast(cmd)
+                } else {
+                    DocRequest::Execute(cmd)
+                }));
             }
         });
     }
@@ -149,8 +159,10 @@ pub(super) fn modifier_stack_panel(
 }
 
 /// Target, level slider and what holds, of a Decimate modifier. The level
-/// slider moves through the progressive mesh's levels; the level is set
-/// when the slider is let go (one undo step).
+/// slider moves through the progressive mesh's levels, the viewport
+/// following every frame (the stored record is replayed, never simplified
+/// again); the whole drag is one undo step. True when this frame's change
+/// continues a drag and should adjust the drag's step rather than add one.
 fn decimate_settings(
     ui: &mut egui::Ui,
     id: NodeId,
@@ -158,7 +170,7 @@ fn decimate_settings(
     content: &hedra_doc::MeshContent,
     d: &mut DecimateModifier,
     state: &mut UiState,
-) {
+) -> bool {
     use std::hash::{Hash, Hasher};
     let mut hasher = std::collections::hash_map::DefaultHasher::new();
     let settings = DecimateModifier { level: None, ..*d };
@@ -187,6 +199,7 @@ fn decimate_settings(
         .as_ref()
         .map(|(_, c)| c.clone())
         .unwrap_or_default();
+    let mut adjust_step = false;
     ui.horizontal(|ui| {
         let mut by_ratio = matches!(d.target, DecimateTarget::Ratio(_));
         ui.radio_value(&mut by_ratio, true, "Ratio");
@@ -215,7 +228,7 @@ fn decimate_settings(
                 counts.iter().rposition(|&c| c <= wanted).unwrap_or(0)
             })
             .min(counts.len() - 1);
-        let mut level = state.decimate_level_edit.unwrap_or(shown);
+        let mut level = shown;
         let faces = counts[level.min(counts.len() - 1)];
         let r = ui.add(
             egui::Slider::new(&mut level, 0..=counts.len() - 1)
@@ -224,19 +237,25 @@ fn decimate_settings(
         ui.label(
             egui::RichText::new(format!("{} levels, {least} to {most} faces", counts.len())).weak(),
         );
-        if r.dragged() || r.has_focus() {
-            state.decimate_level_edit = Some(level);
-        } else if let Some(l) = state.decimate_level_edit.take() {
-            d.level = Some(l);
-        } else if r.changed() {
+        let dragging = r.dragged() || r.has_focus();
+        let adjust = r.changed() && state.decimate_dragging;
+        if r.changed() {
             d.level = Some(level);
+            state.decimate_dragging = dragging;
         }
+        if !dragging {
+            state.decimate_dragging = false;
+        }
+        adjust_step = adjust;
     }
     ui.horizontal(|ui| {
         ui.checkbox(&mut d.keep_borders, "Keep borders");
         ui.checkbox(&mut d.keep_creases, "Keep creases");
         ui.checkbox(&mut d.keep_uv_seams, "Keep UV seams");
     });
+    ui.checkbox(&mut d.keep_quads, "Keep quads")
+        .on_hover_text("Each level shown with its triangle pairs joined into quads where they fit");
+    adjust_step
 }
 
 /// Axes, merge and clipping of a Mirror modifier.

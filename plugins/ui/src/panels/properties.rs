@@ -114,6 +114,11 @@ pub(super) fn properties(
             }
         });
 
+    if node.construction.is_some() {
+        egui::CollapsingHeader::new("Made from curves")
+            .default_open(true)
+            .show(ui, |ui| construction_panel(ui, node, doc, state, events));
+    }
     if matches!(
         node.content,
         NodeContent::Curve(_) | NodeContent::Surface(_)
