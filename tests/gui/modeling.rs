@@ -2274,3 +2274,30 @@ fn a_revolved_surface_follows_its_profile_and_its_panel() {
     assert!(made_from_curves(&user).is_none(), "frozen");
     assert_eq!(user.doc().nodes().count(), 2);
 }
+
+/// A poly-Bézier's aligned (G1) joint stays aligned while one of its
+/// handles is dragged: G on the incoming handle of the middle anchor moves
+/// it where the pointer goes, the outgoing handle turns to stay on the
+/// same line through the anchor and keeps its length; the anchor stays.
+#[test]
+fn a_g1_joint_stays_aligned_while_a_handle_is_dragged() {
+    let mut user = User::new();
+    user.add("Poly-Bézier");
+    user.tap(KeyCode::Tab);
+    let (before, _) = shape_points_of_curve(&user);
+    let handle = user.screen_of(before[2].as_vec3());
+    user.click(handle);
+    assert_eq!(selected_points(&user), [2]);
+    user.tap(KeyCode::KeyG);
+    for step in 1..=3 {
+        user.glide_to(handle + Vec2::new(10.0 * step as f32, 25.0 * step as f32), 2);
+    }
+    user.tap(KeyCode::Enter);
+    let (after, _) = shape_points_of_curve(&user);
+    assert_ne!(after[2], before[2], "{}", user.status());
+    assert_eq!(after[3], before[3], "the anchor stays");
+    let incoming = (after[3] - after[2]).normalize();
+    let outgoing = (after[4] - after[3]).normalize();
+    assert!((incoming - outgoing).length() < 1e-12, "{incoming} vs {outgoing}");
+    assert!(((after[4] - after[3]).length() - (before[4] - before[3]).length()).abs() < 1e-12);
+}
