@@ -2290,7 +2290,10 @@ fn a_g1_joint_stays_aligned_while_a_handle_is_dragged() {
     assert_eq!(selected_points(&user), [2]);
     user.tap(KeyCode::KeyG);
     for step in 1..=3 {
-        user.glide_to(handle + Vec2::new(10.0 * step as f32, 25.0 * step as f32), 2);
+        user.glide_to(
+            handle + Vec2::new(10.0 * step as f32, 25.0 * step as f32),
+            2,
+        );
     }
     user.tap(KeyCode::Enter);
     let (after, _) = shape_points_of_curve(&user);
@@ -2298,6 +2301,9 @@ fn a_g1_joint_stays_aligned_while_a_handle_is_dragged() {
     assert_eq!(after[3], before[3], "the anchor stays");
     let incoming = (after[3] - after[2]).normalize();
     let outgoing = (after[4] - after[3]).normalize();
-    assert!((incoming - outgoing).length() < 1e-12, "{incoming} vs {outgoing}");
+    assert!(
+        (incoming - outgoing).length() < 1e-12,
+        "{incoming} vs {outgoing}"
+    );
     assert!(((after[4] - after[3]).length() - (before[4] - before[3]).length()).abs() < 1e-12);
 }
