@@ -2307,3 +2307,68 @@ fn a_g1_joint_stays_aligned_while_a_handle_is_dragged() {
     );
     assert!(((after[4] - after[3]).length() - (before[4] - before[3]).length()).abs() < 1e-12);
 }
+
+/// Object ▸ Surface from Curves ▸ Loft through two circles (the second
+/// moved up with G Y 2) makes a NURBS surface through both, following
+/// them; Revolve's "View" button turns a revolution about the view axis
+/// through the 3D cursor, in world space.
+#[test]
+fn loft_two_circles_and_revolve_about_the_view() {
+    use hedra_doc::construction::{Recipe, Space};
+    use hedra_geom::surfaces::Surface;
+    let mut user = User::new();
+    user.add("NURBS Circle");
+    user.add("NURBS Circle");
+    user.tap(KeyCode::KeyG);
+    user.tap(KeyCode::KeyY);
+    user.type_text("2");
+    user.tap(KeyCode::Enter);
+    user.tap(KeyCode::KeyA);
+    open_menu(&mut user, "Object");
+    user.click_on("Surface from Curves ⏵");
+    user.click_on("Loft");
+    let loft = made_from_curves(&user).expect("a loft");
+    let Recipe::Loft { sections, .. } = &loft.construction.as_ref().unwrap().recipe else {
+        panic!("a loft")
+    };
+    assert_eq!(sections.len(), 2);
+    let NodeContent::Surface(s) = &loft.content else {
+        panic!("a surface")
+    };
+    let hedra_doc::SurfaceShape::Nurbs(n) = &**s else {
+        panic!("NURBS")
+    };
+    // Both ends are the unit circles (in the ground plane), at y = 0 and 2.
+    let ((u0, u1), (v0, v1)) = n.domain();
+    for (v, y) in [(v0, 0.0), (v1, 2.0)] {
+        for i in 0..=8 {
+            let p = n.point(u0 + (u1 - u0) * i as f64 / 8.0, v);
+            let radius = DVec3::new(p.x, 0.0, p.z).length();
+            assert!((p.y - y).abs() < 1e-9 && (radius - 1.0).abs() < 1e-9, "{p}");
+        }
+    }
+    // A revolution of the first circle about the view axis.
+    let first = user.doc().nodes().next().unwrap().id;
+    user.app
+        .world_mut()
+        .resource_mut::<hedra_edit::Selection>()
+        .set([first]);
+    open_menu(&mut user, "Object");
+    user.click_on("Surface from Curves ⏵");
+    user.click_on("Revolve");
+    user.tap(KeyCode::Numpad1);
+    user.frames(2);
+    user.click_on("View axis");
+    let revolution = user
+        .doc()
+        .nodes()
+        .find(|n| n.name == "Revolution")
+        .cloned()
+        .expect("a revolution");
+    let Recipe::Revolve { axis, space, .. } = revolution.construction.unwrap().recipe else {
+        panic!("a revolution")
+    };
+    assert_eq!(space, Space::World);
+    // The front view looks along −Z: the axis points back at the viewer.
+    assert!(axis.normalize().distance(DVec3::Z) < 1e-6, "{axis}");
+}

@@ -89,6 +89,9 @@ pub struct UiState {
         hedra_doc::NodeId,
         hedra_doc::construction::Construction<hedra_doc::NodeRef>,
     )>,
+    /// This frame's view axis (a point, the 3D cursor, and the direction
+    /// towards the viewer), for a revolution about the view.
+    pub view_axis: Option<(glam::DVec3, glam::DVec3)>,
     /// Where "Insert knot" inserts.
     pub knot_at: f64,
     /// How many equal arc lengths Curve ▸ Divide makes.
@@ -125,6 +128,7 @@ impl Default for UiState {
             weight_edit: None,
             tbc_edit: None,
             point_edit: None,
+            view_axis: None,
             construction_edit: None,
             obj_nurbs_curves: false,
             power_segment: 0,

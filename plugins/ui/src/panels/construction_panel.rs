@@ -144,7 +144,11 @@ fn busy(r: &egui::Response) -> bool {
 }
 
 /// The recipe's fields; true while one is being dragged or typed in.
-fn recipe_fields(ui: &mut egui::Ui, recipe: &mut Recipe<NodeRef>) -> bool {
+fn recipe_fields(
+    ui: &mut egui::Ui,
+    recipe: &mut Recipe<NodeRef>,
+    view_axis: Option<(DVec3, DVec3)>,
+) -> bool {
     let mut held = false;
     let mut vec3 = |ui: &mut egui::Ui, label: &str, v: &mut DVec3| {
         let r = super::properties::vec3_row(ui, label, v, 0.01);
@@ -184,6 +188,18 @@ fn recipe_fields(ui: &mut egui::Ui, recipe: &mut Recipe<NodeRef>) -> bool {
                     if ui.selectable_label(*axis == v, name).clicked() {
                         *axis = v;
                     }
+                }
+                if let Some((through, towards)) = view_axis
+                    && ui
+                        .button("View axis")
+                        .on_hover_text(
+                            "About the view direction through the 3D cursor (world space)",
+                        )
+                        .clicked()
+                {
+                    *origin = through;
+                    *axis = towards;
+                    *space = Space::World;
                 }
             });
             vec3(ui, "Axis direction", axis);
@@ -269,7 +285,7 @@ pub(super) fn construction_panel(
         Some((eid, c)) if *eid == id => c.clone(),
         _ => stored.clone(),
     };
-    let mut held = recipe_fields(ui, &mut edited.recipe);
+    let mut held = recipe_fields(ui, &mut edited.recipe, state.view_axis);
     ui.horizontal(|ui| {
         ui.label("Output");
         let mesh = matches!(edited.output, Output::Mesh { .. });

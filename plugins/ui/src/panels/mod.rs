@@ -154,6 +154,8 @@ pub fn draw_ui(
         .single()
         .ok()
         .map(|(_, t)| (t.rotation() * Vec3::NEG_Z).as_dvec3());
+    // The view axis through the 3D cursor, for "Revolve about the view".
+    ui_state.view_axis = view_direction.map(|d| (cursor, -d));
     egui::Panel::top("menu").show(&mut root, |ui| {
         let view = ViewChoices {
             view_direction,
