@@ -477,3 +477,112 @@ fn the_g1_join_sample_is_the_scripts_result() {
         Path::new("assets/samples/g1-join.hedra.ron").display()
     );
 }
+
+#[test]
+fn a_file_whose_join_names_a_missing_triangle_is_refused_by_name() {
+    let s = joined();
+    let text = hedra_doc::file::to_string(&s);
+    let bad = text.replacen(
+        "g1_join: Some((triangle: 1))",
+        "g1_join: Some((triangle: 9))",
+        1,
+    );
+    assert_ne!(bad, text);
+    let err = hedra_doc::file::from_str(&bad, Path::new("bad.hedra.ron")).unwrap_err();
+    assert!(
+        err.to_string().ends_with(
+            "node #2 'Patch' is joined to node #9, but they are not a Bézier patch and a Bézier triangle"
+        ),
+        "{err}"
+    );
+}
+
+/// Coons and Gordon nodes following their curves and a kept G1 join in one
+/// scene: saved and loaded back equal, the whole history undone and redone
+/// with the document valid at every step. `HEDRA_BLESS=1` writes it to the
+/// scene corpus (once; tests/scene_corpus.rs keeps loading it).
+#[test]
+fn patches_and_joins_save_and_load_with_their_links() {
+    use hedra_doc::command::CurveSpec;
+    use hedra_doc::construction::{Construction, Output, Recipe};
+    let mut s = joined();
+    let p = |x: f64, y: f64, z: f64| DVec3::new(x, y, z);
+    let curves = [
+        (
+            "A",
+            vec![p(10.0, 0.0, 0.0), p(11.0, 0.5, 0.0), p(12.0, 0.0, 0.0)],
+        ),
+        ("B", vec![p(12.0, 0.0, 0.0), p(12.0, 0.0, 2.0)]),
+        ("C", vec![p(10.0, 0.0, 2.0), p(12.0, 0.0, 2.0)]),
+        (
+            "D",
+            vec![p(10.0, 0.0, 2.0), p(10.3, 0.3, 1.0), p(10.0, 0.0, 0.0)],
+        ),
+        ("Mid U", vec![p(10.0, 0.0, 1.0), p(12.0, 0.0, 1.0)]),
+        ("Mid V", vec![p(11.0, 0.0, 0.0), p(11.0, 0.0, 2.0)]),
+    ];
+    for (n, points) in curves {
+        s.execute(&Command::AddCurve {
+            name: n.into(),
+            curve: CurveSpec::Bezier { points },
+            parent: None,
+            transform: NodeTransform::from_translation(DVec3::new(0.0, 3.0, 0.0)),
+        })
+        .unwrap();
+    }
+    s.execute(&Command::MakeFromCurves {
+        name: "Coons".into(),
+        construction: Construction {
+            recipe: Recipe::Coons {
+                boundaries: ["A", "B", "C", "D"].map(name),
+            },
+            output: Output::Nurbs,
+        },
+    })
+    .unwrap();
+    s.execute(&Command::MakeFromCurves {
+        name: "Gordon".into(),
+        construction: Construction {
+            recipe: Recipe::Gordon {
+                u_curves: ["C", "Mid U"].map(name).to_vec(),
+                v_curves: ["B", "Mid V"].map(name).to_vec(),
+            },
+            output: Output::Mesh {
+                segments: 4,
+                profile_segments: 4,
+            },
+        },
+    })
+    .unwrap();
+    s.execute(&Command::SetControlPoints {
+        node: name("A"),
+        points: vec![(1, DVec3::new(11.0, 1.0, 0.2))],
+    })
+    .unwrap_or_else(|e| panic!("{e}"));
+    let text = hedra_doc::file::to_string(&s);
+    if std::env::var_os("HEDRA_BLESS").is_some() {
+        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/corpus/scenes");
+        let path = dir.join("v2-patches.hedra.ron");
+        if !path.exists() {
+            std::fs::write(path, &text).unwrap();
+        }
+    }
+    let loaded = hedra_doc::file::from_str(&text, Path::new("p.hedra.ron")).unwrap();
+    assert!(loaded.warnings.is_empty(), "{:?}", loaded.warnings);
+    let mut back = loaded.session;
+    assert_eq!(back.doc, s.doc);
+    assert_eq!(back.doc.g1_joins().len(), 1);
+    assert_eq!(
+        back.doc
+            .nodes()
+            .filter(|n| n.construction.is_some())
+            .count(),
+        2
+    );
+    while back.undo().is_some() {
+        back.doc.check().unwrap();
+    }
+    assert_eq!(back.doc.node_count(), 0);
+    while back.redo().is_some() {}
+    assert_eq!(back.doc, s.doc);
+}
