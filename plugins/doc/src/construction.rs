@@ -1,7 +1,8 @@
 //! Nodes that remember their inputs (Rhino's record history): a surface or
 //! mesh node made from curve nodes by extrusion, revolution, sweep,
-//! two-rail sweep or loft keeps a [`Construction`] naming its input nodes
-//! and parameters, and is made again whenever an input changes.
+//! two-rail sweep, loft, a Coons patch or a Gordon surface keeps a
+//! [`Construction`] naming its input nodes and parameters, and is made
+//! again whenever an input changes.
 //!
 //! - The result is evaluated in world terms: each input curve is taken
 //!   through its node's world matrix, so the result lands where its inputs
@@ -28,6 +29,7 @@ use glam::{DMat4, DVec3};
 use hedra_geom::HalfEdgeMesh;
 use hedra_geom::curves::NurbsCurve;
 use hedra_geom::surfaces::NurbsSurface;
+use hedra_geom::surfaces::patches::{self, CoonsBoundaries, PatchError};
 use hedra_geom::surfaces::sweeps::{
     self, Axis, FrameKind, LoftOptions, SweepError, SweepOptions, Tightness,
 };
@@ -130,7 +132,31 @@ pub enum Recipe<N> {
         #[serde(default, skip_serializing_if = "is_default")]
         caps: bool,
     },
+    /// The bilinearly blended Coons patch bounded by four curves (Rhino's
+    /// EdgeSrf; seed 003's bilinear patch subtracted from two ruled
+    /// surfaces), exact NURBS: its four sides are the curves.
+    Coons {
+        /// The four boundary curve nodes, in any order and any direction,
+        /// as long as their ends close one loop within [`PATCH_TOLERANCE`]
+        /// ([`CoonsBoundaries::from_loop`]): the first runs along u at
+        /// v = 0 in its own direction.
+        boundaries: [N; 4],
+    },
+    /// The Gordon surface through a network of curves (Rhino's
+    /// NetworkSrf): every u-curve crosses every v-curve; the crossings are
+    /// found, the curves ordered and turned as the surface needs.
+    Gordon {
+        /// The curves running in u (at least 2), in any order.
+        u_curves: Vec<N>,
+        /// The curves running in v (at least 2), in any order.
+        v_curves: Vec<N>,
+    },
 }
+
+/// How far apart (in world units) the ends of Coons boundaries and the
+/// crossings of a Gordon network may be: curves meant to meet should meet
+/// exactly (snapped), this only absorbs rounding.
+pub const PATCH_TOLERANCE: f64 = 1e-6;
 
 fn is_default<T: Default + PartialEq>(value: &T) -> bool {
     *value == T::default()
@@ -188,6 +214,37 @@ pub enum ConstructionError {
         /// The node.
         input: NodeId,
     },
+    /// Coons boundaries that do not close a loop: the end of `first` is
+    /// `gap` from the nearest end of any other boundary, `second`'s.
+    #[error("Coons: the boundaries {first} and {second} miss each other by {gap} at a corner")]
+    CoonsGap {
+        /// The boundary whose end is farthest from any other's, as `'name'`.
+        first: String,
+        /// The boundary with the nearest end to it, as `'name'`.
+        second: String,
+        /// The distance between the two ends.
+        gap: f64,
+    },
+    /// A u-curve and a v-curve of a Gordon network that do not cross.
+    #[error(
+        "Gordon: the u-curve {u_curve} and the v-curve {v_curve} do not meet: they pass {distance} apart"
+    )]
+    GordonMiss {
+        /// The u-curve, as `'name'`.
+        u_curve: String,
+        /// The v-curve, as `'name'`.
+        v_curve: String,
+        /// Their least distance.
+        distance: f64,
+    },
+    /// The kernel refused a Coons patch or a Gordon surface.
+    #[error("{recipe}: {error}")]
+    Patch {
+        /// `"Coons"` or `"Gordon"`.
+        recipe: &'static str,
+        /// The kernel's reason.
+        error: PatchError,
+    },
     /// Caps asked for on a NURBS result (a surface node holds one patch).
     #[error("caps need mesh output (a surface node holds one patch; choose Mesh output)")]
     CapsNeedMesh,
@@ -213,10 +270,14 @@ impl<N> Recipe<N> {
             Recipe::Sweep { .. } => "Sweep",
             Recipe::Sweep2 { .. } => "Sweep2",
             Recipe::Loft { .. } => "Loft",
+            Recipe::Coons { .. } => "Coons",
+            Recipe::Gordon { .. } => "Gordon",
         }
     }
 
-    /// The input nodes, profile first (then rails, or the sections in order).
+    /// The input nodes, profile first (then rails, or the sections in
+    /// order; a Coons patch's boundaries, a Gordon network's u-curves then
+    /// v-curves).
     pub fn inputs(&self) -> Vec<&N> {
         match self {
             Recipe::Extrude { profile, .. } | Recipe::Revolve { profile, .. } => vec![profile],
@@ -227,6 +288,8 @@ impl<N> Recipe<N> {
                 ..
             } => vec![profile, a, b],
             Recipe::Loft { sections, .. } => sections.iter().collect(),
+            Recipe::Coons { boundaries } => boundaries.iter().collect(),
+            Recipe::Gordon { u_curves, v_curves } => u_curves.iter().chain(v_curves).collect(),
         }
     }
 
@@ -237,6 +300,7 @@ impl<N> Recipe<N> {
             | Recipe::Sweep { caps, .. }
             | Recipe::Sweep2 { caps, .. }
             | Recipe::Loft { caps, .. } => *caps,
+            Recipe::Coons { .. } | Recipe::Gordon { .. } => false,
         }
     }
 }
@@ -315,6 +379,15 @@ impl<N: Clone> Construction<N> {
                 tightness: *tightness,
                 caps: *caps,
             },
+            Recipe::Coons {
+                boundaries: [a, b, c, d],
+            } => Recipe::Coons {
+                boundaries: [f(a)?, f(b)?, f(c)?, f(d)?],
+            },
+            Recipe::Gordon { u_curves, v_curves } => Recipe::Gordon {
+                u_curves: u_curves.iter().map(&mut f).collect::<Result<_, E>>()?,
+                v_curves: v_curves.iter().map(&mut f).collect::<Result<_, E>>()?,
+            },
         };
         Ok(Construction {
             recipe,
@@ -338,6 +411,8 @@ pub struct Input {
     pub world: DMat4,
     /// The curve's NURBS form in the node's local space.
     pub curve: Arc<NurbsCurve>,
+    /// The node's name (errors name their inputs with it).
+    pub name: String,
 }
 
 impl Construction<NodeId> {
@@ -350,11 +425,17 @@ impl Construction<NodeId> {
         &self,
         input: &dyn Fn(NodeId) -> Option<Option<Input>>,
     ) -> Result<Made, ConstructionError> {
-        let fetch = |id: NodeId| -> Result<(NurbsCurve, DMat4), ConstructionError> {
+        let named = |id: NodeId| -> Result<(NurbsCurve, DMat4, String), ConstructionError> {
             let found = input(id).ok_or(ConstructionError::MissingInput { input: id })?;
-            let Input { world, curve } = found.ok_or(ConstructionError::NotACurve { input: id })?;
-            Ok((curve.transformed(&world).map_err(SweepError::from)?, world))
+            let Input { world, curve, name } =
+                found.ok_or(ConstructionError::NotACurve { input: id })?;
+            Ok((
+                curve.transformed(&world).map_err(SweepError::from)?,
+                world,
+                name,
+            ))
         };
+        let fetch = |id: NodeId| named(id).map(|(c, w, _)| (c, w));
         let inputs = self.recipe.inputs();
         for (k, a) in inputs.iter().enumerate() {
             let twice = inputs[..k].contains(a);
@@ -496,6 +577,58 @@ impl Construction<NodeId> {
                     }
                 }
             }
+            Recipe::Coons { boundaries } => {
+                let mut curves = Vec::with_capacity(4);
+                let mut names = Vec::with_capacity(4);
+                for &b in boundaries {
+                    let (c, _, name) = named(b)?;
+                    curves.push(c);
+                    names.push(name);
+                }
+                let four: [NurbsCurve; 4] = curves.clone().try_into().expect("four boundaries");
+                let patch = |error| ConstructionError::Patch {
+                    recipe: "Coons",
+                    error,
+                };
+                let loop_ =
+                    CoonsBoundaries::from_loop(four, PATCH_TOLERANCE).map_err(|e| match e {
+                        PatchError::NotALoop { .. } => coons_gap(&curves, &names),
+                        other => patch(other),
+                    })?;
+                let surface = patches::coons(&loop_, PATCH_TOLERANCE).map_err(patch)?;
+                patch_output(surface, mesh)?
+            }
+            Recipe::Gordon { u_curves, v_curves } => {
+                let fetch_all =
+                    |ids: &[NodeId]| -> Result<(Vec<NurbsCurve>, Vec<String>), ConstructionError> {
+                        let mut curves = Vec::with_capacity(ids.len());
+                        let mut names = Vec::with_capacity(ids.len());
+                        for &id in ids {
+                            let (c, _, name) = named(id)?;
+                            curves.push(c);
+                            names.push(name);
+                        }
+                        Ok((curves, names))
+                    };
+                let (us, u_names) = fetch_all(u_curves)?;
+                let (vs, v_names) = fetch_all(v_curves)?;
+                let g = patches::gordon(&us, &vs, None, PATCH_TOLERANCE).map_err(|e| match e {
+                    PatchError::CurvesDoNotMeet {
+                        u_curve,
+                        v_curve,
+                        distance,
+                    } => ConstructionError::GordonMiss {
+                        u_curve: format!("'{}'", u_names[u_curve]),
+                        v_curve: format!("'{}'", v_names[v_curve]),
+                        distance,
+                    },
+                    error => ConstructionError::Patch {
+                        recipe: "Gordon",
+                        error,
+                    },
+                })?;
+                patch_output(g.surface, mesh)?
+            }
         };
         Ok(made)
     }
@@ -524,6 +657,10 @@ impl Construction<NodeId> {
             Recipe::Loft {
                 closed, tightness, ..
             } => format!("{tightness:?}{}", if *closed { ", closed" } else { "" }),
+            Recipe::Coons { .. } => "bilinearly blended".to_string(),
+            Recipe::Gordon { u_curves, v_curves } => {
+                format!("{} × {} curves", u_curves.len(), v_curves.len())
+            }
         };
         let caps = if self.recipe.caps() { ", caps" } else { "" };
         format!(
@@ -531,6 +668,68 @@ impl Construction<NodeId> {
             self.recipe.name(),
             inputs.join(", ")
         )
+    }
+}
+
+/// A patch's NURBS surface, or its mesh: `profile_segments` quads along u,
+/// `segments` along v, on the domain [0, 1]² the patches have.
+fn patch_output(
+    surface: NurbsSurface,
+    mesh: Option<(u32, u32)>,
+) -> Result<Made, ConstructionError> {
+    Ok(match mesh {
+        None => Made::Surface(surface),
+        Some((n, m)) => {
+            if m == 0 || m > sweeps::MAX_SEGMENTS {
+                return Err(SweepError::Segments {
+                    what: "profile segments",
+                    min: 1,
+                    got: m,
+                }
+                .into());
+            }
+            let us: Vec<f64> = (0..=m).map(|i| f64::from(i) / f64::from(m)).collect();
+            Made::Mesh(sweeps::surface_mesh(&surface, &us, false, n, false, false)?)
+        }
+    })
+}
+
+/// Why four Coons boundaries do not close a loop, by name: the curve end
+/// farthest from every other curve's ends, the curve with the nearest end
+/// to it, and that distance. O(1).
+fn coons_gap(curves: &[NurbsCurve], names: &[String]) -> ConstructionError {
+    use hedra_geom::curves::Curve;
+    let ends = |c: &NurbsCurve| {
+        let (a, b) = c.domain();
+        [c.point(a), c.point(b)]
+    };
+    let mut worst: Option<(f64, usize, usize)> = None;
+    for (i, ci) in curves.iter().enumerate() {
+        for p in ends(ci) {
+            let mut nearest: Option<(f64, usize)> = None;
+            for (j, cj) in curves.iter().enumerate() {
+                if j == i {
+                    continue;
+                }
+                for q in ends(cj) {
+                    let d = p.distance(q);
+                    if nearest.is_none_or(|(nd, _)| d < nd) {
+                        nearest = Some((d, j));
+                    }
+                }
+            }
+            if let Some((d, j)) = nearest
+                && worst.is_none_or(|(wd, _, _)| d > wd)
+            {
+                worst = Some((d, i, j));
+            }
+        }
+    }
+    let (gap, i, j) = worst.unwrap_or((f64::NAN, 0, 1));
+    ConstructionError::CoonsGap {
+        first: format!("'{}'", names[i]),
+        second: format!("'{}'", names[j]),
+        gap,
     }
 }
 
@@ -609,6 +808,7 @@ pub(crate) fn input_of<'a>(
         NodeContent::Curve(c) => Some(Input {
             world: world_through(lookup, id),
             curve: c.nurbs().clone(),
+            name: n.name.clone(),
         }),
         _ => None,
     })

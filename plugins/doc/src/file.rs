@@ -355,6 +355,9 @@ struct StoredNode {
     /// How the node was made from other nodes while it follows them.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     construction: Option<crate::construction::Construction>,
+    /// On a patch kept G1 to a Bézier triangle: the triangle.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    g1_join: Option<crate::join::G1Join>,
 }
 
 fn visible_default() -> bool {
@@ -541,6 +544,7 @@ impl<'a> MeshPool<'a> {
                 },
             },
             construction: n.construction.clone(),
+            g1_join: n.g1_join,
         }
     }
     fn transaction(&mut self, t: &'a Transaction) -> StoredTransaction<&'a Command> {
@@ -964,6 +968,7 @@ fn restore_node(
         visible: sn.visible,
         content,
         construction: sn.construction,
+        g1_join: sn.g1_join,
     })
 }
 

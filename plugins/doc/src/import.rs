@@ -1603,6 +1603,7 @@ impl Document {
                     (None, None) => NodeContent::Empty,
                 },
                 construction: None,
+                g1_join: None,
             };
             changes.push(NodeChange {
                 id,

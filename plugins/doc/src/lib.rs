@@ -12,6 +12,7 @@ pub mod fuzz;
 pub mod gltf;
 pub mod history;
 pub mod import;
+pub mod join;
 pub mod modifiers;
 pub mod preview;
 pub mod recovery;

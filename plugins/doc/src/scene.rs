@@ -516,6 +516,9 @@ pub struct Node {
     /// (see [`crate::construction`]); `None` for ordinary nodes and once
     /// applied (frozen).
     pub construction: Option<crate::construction::Construction>,
+    /// On a Bézier patch node kept G1 to a Bézier triangle: the triangle
+    /// (see [`crate::join`]); `None` otherwise.
+    pub g1_join: Option<crate::join::G1Join>,
 }
 
 /// The scene: the single source of truth for what the user made.
@@ -679,6 +682,21 @@ impl Document {
                 let (node, name) = named();
                 return Err(DocumentError::BadInput { node, name, input });
             }
+            if let Some(j) = n.g1_join
+                && (self
+                    .nodes
+                    .get(&j.triangle)
+                    .and_then(|t| crate::join::triangle_of(&t.content))
+                    .is_none()
+                    || crate::join::patch_of(&n.content).is_none())
+            {
+                let (node, name) = named();
+                return Err(DocumentError::BadJoin {
+                    node,
+                    name,
+                    triangle: j.triangle,
+                });
+            }
             // Faces with inner rings or without edges (Mäntylä's Euler
             // operators, `Command::Euler`) are allowed: the file stores
             // them, rendering draws their outer loop's triangles only where
@@ -737,6 +755,19 @@ pub enum DocumentError {
         name: String,
         /// The missing input.
         input: NodeId,
+    },
+    /// A node kept G1 to a triangle that is missing or not a Bézier
+    /// triangle, or that is not a Bézier patch itself.
+    #[error(
+        "node {node} '{name}' is joined to node {triangle}, but they are not a Bézier patch and a Bézier triangle"
+    )]
+    BadJoin {
+        /// The patch node's id.
+        node: NodeId,
+        /// Its name.
+        name: String,
+        /// The triangle it names.
+        triangle: NodeId,
     },
     /// A node transform with a value that is not finite.
     #[error("node {node} '{name}' has a non-finite transform")]

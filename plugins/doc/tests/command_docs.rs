@@ -24,7 +24,7 @@ fn every_command_example_in_the_docs_runs() {
         .collect();
     kinds.sort();
     kinds.dedup();
-    assert_eq!(kinds.len(), 85, "{kinds:?}");
+    assert_eq!(kinds.len(), 87, "{kinds:?}");
     let mut session = hedra_doc::Session::new();
     hedra_doc::script::run(&mut session, &commands, Path::new("docs/commands.md"))
         .unwrap_or_else(|e| panic!("{e}"));
@@ -423,4 +423,34 @@ fn every_command_example_in_the_docs_runs() {
         .map(|p| ((p.x - 32.3).hypot(p.z) - 0.5).abs().max((p.y - 1.5).abs()))
         .fold(0.0, f64::max);
     assert!(near_waist < 1e-9, "{near_waist}");
+    // The Coons patch followed its moved south edge: its corner (0, 0) and
+    // the edge's middle, at u = 1/2 of a quadratic, are the curve's.
+    let hedra_doc::NodeContent::Surface(patch) = &made("Coons Patch").content else {
+        panic!("a surface")
+    };
+    let hedra_doc::SurfaceShape::Nurbs(patch) = &**patch else {
+        panic!("a NURBS surface")
+    };
+    let south = world_curve("South Edge");
+    assert!(patch.point(0.5, 0.0).distance(south.point(0.5)) < 1e-12);
+    assert!(patch.point(0.0, 0.0).distance(south.point(0.0)) < 1e-12);
+    // The G1 join was made, followed a shared drag, then broken.
+    assert!(doc.g1_joins().is_empty(), "broken");
+    let hedra_doc::NodeContent::Surface(g1) = &made("G1 Patch").content else {
+        panic!("a surface")
+    };
+    assert!(
+        g1.control_points()[3].distance(glam::DVec3::new(46.0, 0.5, 0.2)) < 1e-12,
+        "the patch's corner followed the triangle's edge point"
+    );
+    // The Gordon mesh: 8 × 8 quads through the ridge's top (41, 0.5, 1).
+    let network = made("Network").content.mesh().unwrap();
+    network.validate().unwrap();
+    assert_eq!(network.face_count(), 64);
+    assert!(network.vertices().any(|v| {
+        network
+            .position(v)
+            .distance(glam::DVec3::new(41.0, 0.5, 1.0))
+            < 1e-12
+    }));
 }

@@ -76,7 +76,7 @@ impl Plan<'_> {
 
     /// True when `ancestor` is `id` or one of its parents, as this plan
     /// sees the tree.
-    fn is_ancestor_here(&self, ancestor: NodeId, id: NodeId) -> bool {
+    pub(super) fn is_ancestor_here(&self, ancestor: NodeId, id: NodeId) -> bool {
         let mut cur = Some(id);
         let mut guard = self.doc.node_count() + self.changes.len() + 1;
         while let Some(c) = cur {

@@ -15,6 +15,7 @@
 mod constructions;
 mod creases;
 mod euler;
+mod joins;
 mod mesh;
 mod modifiers;
 mod nodes;
@@ -281,6 +282,23 @@ pub enum CommandError {
         /// The node, as `'name' (#id)`.
         node: String,
     },
+    /// A G1 join that cannot be made, or kept after a change (the change is
+    /// refused; break the join first to keep it).
+    #[error("G1 join of {quad} and {triangle}: {error}")]
+    Join {
+        /// The patch node, as `'name' (#id)`.
+        quad: String,
+        /// The triangle node, as `'name' (#id)`.
+        triangle: String,
+        /// Why.
+        error: crate::join::JoinError,
+    },
+    /// [`Command::BreakG1Join`] on a node in no join.
+    #[error("{node} is not in a G1 join")]
+    NotJoined {
+        /// The node, as `'name' (#id)`.
+        node: String,
+    },
     /// A subdivision level above [`subdivision::MAX_LEVEL`].
     #[error("subdivision level {0} is above the maximum of {max}", max = subdivision::MAX_LEVEL)]
     Level(u32),
@@ -332,7 +350,8 @@ impl Document {
             created_edges: Vec::new(),
         };
         plan.run(cmd)?;
-        let notes = plan.follow_constructions(cmd)?;
+        let mut notes = plan.follow_constructions(cmd)?;
+        notes.extend(plan.follow_joins(cmd)?);
         if plan.changes.is_empty() {
             return Err(CommandError::Nothing("the command changes nothing"));
         }

@@ -263,6 +263,9 @@ impl Plan<'_> {
                     n.parent.map(|p| map[&p])
                 };
                 n.name = self.unique_name(&n.name);
+                // A copy of a joined patch is not joined (it would share
+                // the triangle's edge with the original).
+                n.g1_join = None;
                 self.set(n);
             }
         }

@@ -151,6 +151,7 @@ impl Plan<'_> {
             visible: true,
             content,
             construction: None,
+            g1_join: None,
         });
         Ok(id)
     }
@@ -412,6 +413,8 @@ impl Plan<'_> {
                 self.set_construction(node, construction)
             }
             Command::ApplyConstruction { nodes } => self.apply_construction(nodes),
+            Command::MakeG1Join { triangle, quad } => self.make_g1_join(triangle, quad),
+            Command::BreakG1Join { node } => self.break_g1_join(node),
 
             // ----- subdivision and creases (creases.rs) -----
             Command::SetSubdivision { nodes, modifier } => self.set_subdivision(nodes, *modifier),

@@ -700,6 +700,27 @@ pub enum Command {
         nodes: Vec<NodeRef>,
     },
 
+    // ----- the G1 join of a Bézier triangle and a Bézier patch -----
+    /// Joins a Bézier triangle and a Bézier patch that share an edge (seed
+    /// 002's exercise): C0 (the lower degree along the edge elevated, the
+    /// patch's boundary row put on the triangle's edge), then G1 (the
+    /// patch's row next to the edge set so that the tangent planes agree),
+    /// in one undo step. The join is kept: later changes of either node are
+    /// followed in the same step (see [`crate::join`]).
+    MakeG1Join {
+        /// The Bézier triangle node (it leads).
+        triangle: NodeRef,
+        /// The Bézier patch node (a NURBS surface of one span, unit
+        /// weights); its points next to the edge are adjusted.
+        quad: NodeRef,
+    },
+    /// Ends the G1 joins a node is in (as the patch or the triangle): both
+    /// keep their shapes and move independently again.
+    BreakG1Join {
+        /// A joined patch or triangle node.
+        node: NodeRef,
+    },
+
     // ----- mesh editing (element positions in the node's local space) -----
     /// Moves vertices by an offset.
     MoveVertices {
@@ -1252,6 +1273,8 @@ impl Command {
                 format!("Change {}", construction.recipe.name())
             }
             Command::ApplyConstruction { .. } => "Apply Construction".to_string(),
+            Command::MakeG1Join { .. } => "Make G1 Join".to_string(),
+            Command::BreakG1Join { .. } => "Break G1 Join".to_string(),
             Command::Duplicate { nodes } => format!("Duplicate {}", plural(nodes.len(), "node")),
             Command::MoveVertices { .. } | Command::SetVertexPositions { .. } => {
                 "Move Vertices".to_string()
