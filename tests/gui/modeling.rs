@@ -2372,3 +2372,114 @@ fn loft_two_circles_and_revolve_about_the_view() {
     // The front view looks along −Z: the axis points back at the viewer.
     assert!(axis.normalize().distance(DVec3::Z) < 1e-6, "{axis}");
 }
+
+/// Seed 002's exercise in the app: a cubic Bézier triangle and a bicubic
+/// patch along its edge; Object ▸ Make G1 Join makes the normals agree
+/// along the joint (one undo step), and they keep agreeing while points of
+/// the patch are dragged with G in control-point mode — the dependent row
+/// follows (and is coloured apart: roles published by the document).
+#[test]
+fn make_g1_join_and_keep_it_while_dragging() {
+    let mut user = User::new();
+    for cmd in [
+        r#"AddSurface(name: "Triangle", surface: Triangle(degree: 3, points: [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (2.0, 0.0, 0.0), (3.0, 0.0, 0.0), (0.5, 0.3, -1.0), (1.5, 0.6, -1.0), (2.5, 0.3, -1.0), (1.0, 0.4, -2.0), (2.0, 0.4, -2.0), (1.5, 0.2, -3.0)]))"#,
+        r#"AddSurface(name: "Patch", surface: Bezier(nu: 4, nv: 4, points: [(0.0, 0.0, 0.0), (0.0, 0.2, 1.0), (0.0, 0.1, 2.0), (0.0, 0.0, 3.0), (1.0, 0.1, 0.0), (1.0, 0.5, 1.0), (1.0, 0.3, 2.0), (1.0, 0.0, 3.0), (2.0, -0.1, 0.0), (2.0, 0.5, 1.0), (2.0, 0.3, 2.0), (2.0, 0.0, 3.0), (3.0, 0.0, 0.0), (3.0, 0.2, 1.0), (3.0, 0.1, 2.0), (3.0, 0.0, 3.0)]))"#,
+    ] {
+        let cmd: hedra_doc::Command = ron::from_str(cmd).unwrap();
+        user.app
+            .world_mut()
+            .write_message(hedra_scene::DocRequest::Execute(cmd));
+        user.frames(2);
+    }
+    let id = |user: &User, name: &str| user.doc().nodes().find(|n| n.name == name).unwrap().id;
+    let (triangle, patch) = (id(&user, "Triangle"), id(&user, "Patch"));
+    user.app
+        .world_mut()
+        .resource_mut::<hedra_edit::Selection>()
+        .set([triangle, patch]);
+    let angle = |user: &User| {
+        user.doc()
+            .g1_report(patch)
+            .expect("joined")
+            .max_normal_angle
+    };
+    let steps = user.undo_steps();
+    open_menu(&mut user, "Object");
+    user.click_on("Make G1 Join");
+    assert_eq!(user.undo_steps(), steps + 1, "{}", user.status());
+    assert!(angle(&user) < 1e-9, "{}", angle(&user));
+    let roles = user.doc().g1_roles(patch).unwrap();
+    assert!(roles.contains(&hedra_geom::surfaces::patches::PointRole::Dependent));
+    let patch_points = |user: &User| {
+        hedra_edit::shape_mode::control_points(&user.doc().node(patch).unwrap().content)
+    };
+    // Drag a free point, a dependent one and a shared one of the patch.
+    user.tap(KeyCode::Tab);
+    for (k, index) in [14usize, 5, 8].into_iter().enumerate() {
+        let points = patch_points(&user);
+        let at = user.screen_of(points[index].as_vec3());
+        user.click(at);
+        user.tap(KeyCode::KeyG);
+        let off = Vec2::new(17.0 - 9.0 * k as f32, -23.0 + 11.0 * k as f32);
+        user.glide_to(at + off, 3);
+        user.tap(KeyCode::Enter);
+        let moved = patch_points(&user);
+        assert_ne!(moved, points, "point {index} moved: {}", user.status());
+        assert!(
+            angle(&user) < 1e-9,
+            "after dragging point {index}: {}",
+            angle(&user)
+        );
+    }
+}
+
+/// Object ▸ Surface from Curves ▸ Coons Patch on four curves closing a loop
+/// (selected with A) makes a patch whose corners are the loop's corners.
+#[test]
+fn coons_patch_from_four_selected_curves() {
+    use hedra_geom::surfaces::Surface;
+    let mut user = User::new();
+    let corners = [
+        DVec3::new(0.0, 0.0, 0.0),
+        DVec3::new(2.0, 0.0, 0.0),
+        DVec3::new(2.0, 0.5, 2.0),
+        DVec3::new(0.0, 0.0, 2.0),
+    ];
+    for i in 0..4 {
+        let (a, b) = (corners[i], corners[(i + 1) % 4]);
+        let mid = (a + b) / 2.0 + DVec3::Y * 0.3;
+        user.app
+            .world_mut()
+            .write_message(hedra_scene::DocRequest::Execute(
+                hedra_doc::Command::AddCurve {
+                    name: format!("Side {i}"),
+                    curve: hedra_doc::command::CurveSpec::Bezier {
+                        points: vec![a, mid, b],
+                    },
+                    parent: None,
+                    transform: Default::default(),
+                },
+            ));
+        user.frames(2);
+    }
+    user.tap(KeyCode::KeyA);
+    open_menu(&mut user, "Object");
+    user.click_on("Surface from Curves ⏵");
+    user.click_on("Coons Patch");
+    let patch = made_from_curves(&user).expect("a Coons patch");
+    let NodeContent::Surface(s) = &patch.content else {
+        panic!("a surface")
+    };
+    let hedra_doc::SurfaceShape::Nurbs(n) = &**s else {
+        panic!("NURBS")
+    };
+    let ((u0, u1), (v0, v1)) = n.domain();
+    for (u, v) in [(u0, v0), (u1, v0), (u1, v1), (u0, v1)] {
+        let p = n.point(u, v);
+        assert!(
+            corners.iter().any(|c| c.distance(p) < 1e-9),
+            "corner {p} {}",
+            user.status()
+        );
+    }
+}

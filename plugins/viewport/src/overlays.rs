@@ -424,15 +424,19 @@ pub(crate) fn draw_shape_edit(
     let Some(&entity) = entities.0.get(&node) else {
         return;
     };
+    // A G1 join's points: on the joint cyan, those that follow violet.
+    let roles = state.session.doc.g1_roles(node).unwrap_or_default();
     // The control-point entities: position and weight as the screen shows them.
     for point in hedra_scene::control_points_of(entity, &points) {
         let p = to_world(point.position);
         let w = point.weight as f32;
         let r = cam.translation().distance(p) * 0.005 * w.clamp(0.25, 4.0).sqrt();
-        let c = if edit.selected.contains(&point.index) {
-            Color::srgb(1.0, 0.55, 0.1)
-        } else {
-            Color::srgb(0.05, 0.05, 0.05)
+        use hedra_geom::surfaces::patches::PointRole;
+        let c = match roles.get(point.index as usize) {
+            _ if edit.selected.contains(&point.index) => Color::srgb(1.0, 0.55, 0.1),
+            Some(PointRole::Shared) => Color::srgb(0.2, 0.85, 1.0),
+            Some(PointRole::Dependent) => Color::srgb(0.75, 0.4, 1.0),
+            _ => Color::srgb(0.05, 0.05, 0.05),
         };
         gizmos
             .circle(Isometry3d::new(p, cam.rotation()), r, c)

@@ -54,7 +54,7 @@ pub(super) fn surface_from_curves_menu(
     let curves = selected_curves(doc, selection);
     let r = |id: &NodeId| NodeRef::from(*id);
     let one = (curves.len() == 1).then(|| curves[0]);
-    let items: [(&str, &str, Option<Recipe<NodeRef>>); 5] = [
+    let items: [(&str, &str, Option<Recipe<NodeRef>>); 7] = [
         (
             "Extrude",
             "select one curve: it is moved along its plane's normal",
@@ -109,6 +109,21 @@ pub(super) fn surface_from_curves_menu(
                 caps: false,
             }),
         ),
+        (
+            "Coons Patch",
+            "select four curves whose ends close one loop",
+            (curves.len() == 4).then(|| Recipe::Coons {
+                boundaries: [r(&curves[0]), r(&curves[1]), r(&curves[2]), r(&curves[3])],
+            }),
+        ),
+        (
+            "Gordon Surface",
+            "select a network: two curves or more each way, every one crossing the others",
+            gordon_network(doc, &curves).map(|(u, v)| Recipe::Gordon {
+                u_curves: u.iter().map(r).collect(),
+                v_curves: v.iter().map(r).collect(),
+            }),
+        ),
     ];
     for (label, needs, recipe) in items {
         let button = ui
@@ -122,6 +137,8 @@ pub(super) fn surface_from_curves_menu(
                 Recipe::Revolve { .. } => "Revolution",
                 Recipe::Sweep { .. } | Recipe::Sweep2 { .. } => "Sweep",
                 Recipe::Loft { .. } => "Loft",
+                Recipe::Coons { .. } => "Coons Patch",
+                Recipe::Gordon { .. } => "Gordon Surface",
             };
             exec(
                 events,
@@ -136,6 +153,132 @@ pub(super) fn surface_from_curves_menu(
             ui.close();
         }
     }
+}
+
+/// The selected curves split into a Gordon network's two families: those
+/// that cross the first curve run the other way, the rest run with it
+/// (crossing: their world polylines of 256 pieces come within 1 % of the
+/// network's size). `None` unless each family has two curves or more.
+fn gordon_network(doc: &Document, curves: &[NodeId]) -> Option<(Vec<NodeId>, Vec<NodeId>)> {
+    use hedra_geom::curves::Curve;
+    let polyline = |id: NodeId| -> Option<Vec<DVec3>> {
+        let NodeContent::Curve(c) = &doc.node(id)?.content else {
+            return None;
+        };
+        let world = doc.world_matrix(id);
+        let c = c.nurbs();
+        let (a, b) = c.domain();
+        Some(
+            (0..=256)
+                .map(|i| world.transform_point3(c.point(a + (b - a) * i as f64 / 256.0)))
+                .collect(),
+        )
+    };
+    let lines: Vec<Vec<DVec3>> = curves
+        .iter()
+        .map(|&id| polyline(id))
+        .collect::<Option<_>>()?;
+    let first = lines.first()?;
+    let size = first
+        .iter()
+        .chain(lines.iter().flatten())
+        .fold((DVec3::MAX, DVec3::MIN), |(lo, hi), p| {
+            (lo.min(*p), hi.max(*p))
+        });
+    let reach = (size.1 - size.0).length() * 1e-2 + 1e-9;
+    // The nearest approach of two polylines, vertex to segment.
+    let near = |a: &[DVec3], b: &[DVec3]| {
+        a.iter().any(|p| {
+            b.windows(2).any(|s| {
+                let d = s[1] - s[0];
+                let t = ((*p - s[0]).dot(d) / d.length_squared().max(1e-300)).clamp(0.0, 1.0);
+                p.distance(s[0] + d * t) < reach
+            })
+        })
+    };
+    let (mut u, mut v) = (vec![curves[0]], Vec::new());
+    for (id, line) in curves.iter().zip(&lines).skip(1) {
+        if near(first, line) {
+            v.push(*id);
+        } else {
+            u.push(*id);
+        }
+    }
+    (u.len() >= 2 && v.len() >= 2).then_some((u, v))
+}
+
+/// Object ▸ Make G1 Join: a selected Bézier triangle and a selected patch
+/// sharing an edge (seed 002's exercise); the join is kept while either is
+/// edited.
+pub(super) fn g1_join_items(
+    ui: &mut egui::Ui,
+    doc: &Document,
+    selection: &Selection,
+    events: &mut Vec<UiEvent>,
+) {
+    let is = |id: NodeId, triangle: bool| {
+        doc.node(id).is_some_and(|n| match &n.content {
+            NodeContent::Surface(s) => {
+                matches!(**s, hedra_doc::SurfaceShape::Triangle(_)) == triangle
+            }
+            _ => false,
+        })
+    };
+    let triangle = selection.nodes.iter().copied().find(|&id| is(id, true));
+    let quad = selection.nodes.iter().copied().find(|&id| is(id, false));
+    let pair = triangle.zip(quad).filter(|_| selection.nodes.len() == 2);
+    if ui
+        .add_enabled(pair.is_some(), egui::Button::new("Make G1 Join"))
+        .on_disabled_hover_text("Select a Bézier triangle and a Bézier patch that share an edge")
+        .clicked()
+        && let Some((t, q)) = pair
+    {
+        exec(
+            events,
+            Command::MakeG1Join {
+                triangle: t.into(),
+                quad: q.into(),
+            },
+        );
+        ui.close();
+    }
+    let joined = selection
+        .active()
+        .filter(|&id| doc.g1_joins().iter().any(|&(q, t)| q == id || t == id));
+    if ui
+        .add_enabled(joined.is_some(), egui::Button::new("Break G1 Join"))
+        .clicked()
+        && let Some(id) = joined
+    {
+        exec(events, Command::BreakG1Join { node: id.into() });
+        ui.close();
+    }
+}
+
+/// The G1 join a patch or triangle is in: the largest angle between the two
+/// patches' normals along the joint, and the point colours' meaning.
+pub(super) fn g1_join_panel(ui: &mut egui::Ui, doc: &Document, id: NodeId) {
+    let Some((quad, triangle)) = doc
+        .g1_joins()
+        .into_iter()
+        .find(|&(q, t)| q == id || t == id)
+    else {
+        return;
+    };
+    let name = |n: NodeId| doc.node(n).map_or(String::new(), |n| n.name.clone());
+    ui.separator();
+    ui.label(format!(
+        "G1 join of '{}' and '{}'",
+        name(triangle),
+        name(quad)
+    ));
+    if let Some(report) = doc.g1_report(quad) {
+        ui.label(format!(
+            "normals along the joint within {:.2e} rad, gap {:.2e}",
+            report.max_normal_angle, report.max_gap
+        ));
+    }
+    ui.label(egui::RichText::new("Points: cyan on the joint, violet follow to keep it G1").weak());
 }
 
 /// A field's response: whether it is still being dragged or typed in.
@@ -249,6 +392,12 @@ fn recipe_fields(
                 ui.selectable_value(tightness, Tightness::Normal, "smooth");
             });
             ui.checkbox(caps, "Caps (mesh output)");
+        }
+        Recipe::Coons { .. } => {
+            ui.label("Bilinearly blended from its four boundary curves (seed 003)");
+        }
+        Recipe::Gordon { .. } => {
+            ui.label("Through every curve of its network (Gordon 1971)");
         }
     }
     held

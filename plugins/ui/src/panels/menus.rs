@@ -241,6 +241,7 @@ pub(super) fn menu_bar(
             ui.menu_button("Surface from Curves", |ui| {
                 surface_from_curves_menu(ui, &model.state.session.doc, &model.selection, events)
             });
+            g1_join_items(ui, &model.state.session.doc, &model.selection, events);
             let join = hedra_edit::join_curves_command(&model.state.session.doc, &model.selection);
             if ui
                 .add_enabled(

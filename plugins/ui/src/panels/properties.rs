@@ -130,6 +130,7 @@ pub(super) fn properties(
         })
         .default_open(true)
         .show(ui, |ui| {
+            g1_join_panel(ui, doc, id);
             shape_panel(ui, id, &node.content, model, state, events, analysis)
         });
     }
