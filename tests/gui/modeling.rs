@@ -2483,3 +2483,34 @@ fn coons_patch_from_four_selected_curves() {
         );
     }
 }
+
+/// The curve panel's power basis of a cubic Bézier: seed 003's matrix
+/// (rows u³…u⁰, columns b3…b0; its first row 1 −3 3 −1) and a0, the
+/// curve's start point.
+#[test]
+fn the_curve_panel_shows_the_power_basis_matrix() {
+    let mut user = User::new();
+    user.add("Bézier Curve");
+    user.click_on("Power basis (Bézier to monomials)");
+    user.frames(2);
+    let (points, _) = shape_points_of_curve(&user);
+    let widgets = user.widgets();
+    let row = widgets
+        .iter()
+        .find(|w| w.text == "u^3")
+        .expect("the matrix")
+        .rect;
+    let mut cells: Vec<_> = widgets
+        .iter()
+        .filter(|w| (w.rect.center().y - row.center().y).abs() < 3.0 && w.rect.min.x > row.max.x)
+        .collect();
+    cells.sort_by(|a, b| a.rect.min.x.total_cmp(&b.rect.min.x));
+    let cells: Vec<&str> = cells.iter().map(|w| w.text.as_str()).collect();
+    assert_eq!(cells, ["1", "-3", "3", "-1"]);
+    let texts: Vec<String> = widgets.iter().map(|w| w.text.clone()).collect();
+    let p = points[0];
+    assert!(
+        user.shows(&format!("a0 = ({:.3}, {:.3}, {:.3})", p.x, p.y, p.z)),
+        "{texts:?}"
+    );
+}

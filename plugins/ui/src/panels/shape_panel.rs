@@ -475,7 +475,7 @@ fn power_basis(ui: &mut egui::Ui, content: &hedra_doc::CurveContent, state: &mut
     let Ok(segments) = hedra_geom::curves::bezier::power_basis_segments(content.nurbs()) else {
         return;
     };
-    egui::CollapsingHeader::new("Power basis (Bézier → monomials)")
+    egui::CollapsingHeader::new("Power basis (Bézier to monomials)")
         .id_salt("power basis")
         .show(ui, |ui| {
             let last = segments.len().saturating_sub(1);
@@ -487,7 +487,7 @@ fn power_basis(ui: &mut egui::Ui, content: &hedra_doc::CurveContent, state: &mut
             let s = &segments[state.power_segment];
             let n = s.matrix.len() - 1;
             ui.label(format!(
-                "t from {:.4} to {:.4}; r(u) = Σ aᵢ uⁱ, A = M·G",
+                "t from {:.4} to {:.4}; r(u) = a_n u^n + … + a_0, A = M·G",
                 s.interval.0, s.interval.1
             ));
             egui::Grid::new("power basis matrix")
@@ -497,18 +497,20 @@ fn power_basis(ui: &mut egui::Ui, content: &hedra_doc::CurveContent, state: &mut
                     for j in 0..=n {
                         ui.label(egui::RichText::new(format!("b{}", n - j)).weak());
                     }
-                    ui.label(egui::RichText::new("a = ").weak());
                     ui.end_row();
                     for (i, row) in s.matrix.iter().enumerate() {
                         ui.label(egui::RichText::new(format!("u^{}", n - i)).weak());
                         for x in row {
                             ui.label(format!("{x:.0}"));
                         }
-                        let a = s.coefficients[i];
-                        ui.label(format!("({:.3}, {:.3}, {:.3})", a.x, a.y, a.z));
                         ui.end_row();
                     }
                 });
+            // The coefficients below the matrix: a row beside it would
+            // widen the panel past the viewport.
+            for (i, a) in s.coefficients.iter().enumerate() {
+                ui.label(format!("a{} = ({:.3}, {:.3}, {:.3})", n - i, a.x, a.y, a.z));
+            }
             if s.weights.iter().any(|&w| (w - 1.0).abs() > 1e-12) {
                 let w: Vec<String> = s
                     .weight_coefficients
