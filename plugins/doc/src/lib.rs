@@ -3,6 +3,7 @@
 //! versioned `.hedra.ron` file and exports.
 
 pub mod command;
+pub mod csg;
 pub mod elements;
 pub mod eval;
 pub mod export;

@@ -41,6 +41,54 @@ pub struct NodeReport {
     pub mesh: Option<MeshReport>,
     /// Curves and surfaces: degrees, control points, domain.
     pub shape: Option<ShapeReport>,
+    /// CSG nodes: the operation, the operands and the evaluated solid.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub csg: Option<CsgReport>,
+}
+
+/// A CSG node: its boolean, its operands and its evaluated solid.
+#[derive(Serialize)]
+pub struct CsgReport {
+    /// "union", "intersection" or "difference".
+    pub op: &'static str,
+    /// The operands' ids, in order.
+    pub operands: Vec<u64>,
+    /// The solid's counts, or why there is none.
+    pub evaluated: EvaluatedReport,
+}
+
+fn csg_report(doc: &Document, id: crate::scene::NodeId) -> Option<CsgReport> {
+    let NodeContent::Csg(c) = &doc.node(id)?.content else {
+        return None;
+    };
+    let evaluated = match crate::csg::evaluate(doc, id) {
+        Ok(m) => {
+            let s = m.stats();
+            EvaluatedReport {
+                vertices: s.vertices,
+                edges: s.edges,
+                faces: s.faces,
+                boundary_loops: s.boundary_loops,
+                shells: s.shells,
+                genus: s.genus,
+                error: None,
+            }
+        }
+        Err(e) => EvaluatedReport {
+            vertices: 0,
+            edges: 0,
+            faces: 0,
+            boundary_loops: 0,
+            shells: 0,
+            genus: None,
+            error: Some(e.to_string()),
+        },
+    };
+    Some(CsgReport {
+        op: c.op.label(),
+        operands: crate::csg::operands(doc, id).iter().map(|o| o.0).collect(),
+        evaluated,
+    })
 }
 
 /// A transform as plain arrays.
@@ -373,6 +421,7 @@ impl SceneReport {
                     _ => None,
                 },
                 shape: shape_report(&n.content),
+                csg: csg_report(doc, n.id),
             })
             .collect();
         let h = &session.history;
@@ -426,6 +475,26 @@ impl SceneReport {
                     sh.domain,
                     if sh.polynomial { "" } else { ", rational" }
                 );
+            }
+            if let Some(c) = &n.csg {
+                let ops: Vec<String> = c.operands.iter().map(|o| format!("#{o}")).collect();
+                let e = &c.evaluated;
+                let _ = match &e.error {
+                    Some(err) => {
+                        writeln!(out, "    csg: {} of {}: error: {err}", c.op, ops.join(", "))
+                    }
+                    None => writeln!(
+                        out,
+                        "    csg: {} of {}: solid V {} E {} F {}, shells {}, genus {}",
+                        c.op,
+                        ops.join(", "),
+                        e.vertices,
+                        e.edges,
+                        e.faces,
+                        e.shells,
+                        e.genus.map_or("?".into(), |g| g.to_string()),
+                    ),
+                };
             }
             if let Some(m) = &n.mesh {
                 let _ = writeln!(

@@ -42,8 +42,8 @@ pub(super) fn merge(
     let next = |h: usize| if h % 3 == 2 { h - 2 } else { h + 1 };
     // Union-find: triangles of one source sharing an edge are one piece.
     let mut parent: Vec<u32> = (0..nt as u32).collect();
-    for h in 0..3 * nt {
-        let (t, u) = (h / 3, pairs[h] / 3);
+    for (h, &pair) in pairs.iter().enumerate().take(3 * nt) {
+        let (t, u) = (h / 3, pair / 3);
         if u < nt && sources[t] == sources[u] {
             let (a, b) = (find(&mut parent, t as u32), find(&mut parent, u as u32));
             if a != b {
