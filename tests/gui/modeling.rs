@@ -2514,3 +2514,67 @@ fn the_curve_panel_shows_the_power_basis_matrix() {
         "{texts:?}"
     );
 }
+
+/// Two overlapping cubes (the second moved G X 1): Ctrl+Numpad + unites
+/// them into the active one — one closed, valid mesh spanning x from −1 to
+/// 2, the other gone, one undo step that brings both back. Object ▸
+/// Boolean ▸ Live CSG Difference makes a CSG node whose solid is drawn.
+#[test]
+fn ctrl_numpad_plus_unites_two_cubes_and_a_live_csg_node_is_drawn() {
+    let mut user = User::new();
+    user.add("Cube");
+    user.add("Cube");
+    user.tap(KeyCode::KeyG);
+    user.tap(KeyCode::KeyX);
+    user.type_text("1");
+    user.tap(KeyCode::Enter);
+    user.tap(KeyCode::KeyA);
+    let steps = user.undo_steps();
+    user.shortcut(&[KeyCode::ControlLeft], KeyCode::NumpadAdd);
+    assert_eq!(user.doc().nodes().count(), 1, "{}", user.status());
+    let node = user.doc().nodes().next().unwrap().clone();
+    let NodeContent::Mesh(m) = &node.content else {
+        panic!("a mesh")
+    };
+    m.mesh.validate().unwrap();
+    let stats = m.mesh.stats();
+    assert!(stats.closed, "closed");
+    let world = user.doc().world_matrix(node.id);
+    let xs: Vec<f64> = m
+        .mesh
+        .vertices()
+        .map(|v| world.transform_point3(m.mesh.position(v)).x)
+        .collect();
+    let (lo, hi) = xs
+        .iter()
+        .fold((f64::MAX, f64::MIN), |(a, b), &x| (a.min(x), b.max(x)));
+    assert!(
+        (lo + 1.0).abs() < 1e-9 && (hi - 2.0).abs() < 1e-9,
+        "{lo} {hi}"
+    );
+    assert_eq!(user.undo_steps(), steps + 1);
+    user.shortcut(&[KeyCode::ControlLeft], KeyCode::KeyZ);
+    assert_eq!(user.doc().nodes().count(), 2);
+    // A live CSG node of both: drawn as its solid.
+    user.tap(KeyCode::KeyA);
+    open_menu(&mut user, "Object");
+    user.click_on("Boolean ⏵");
+    user.click_on("Live CSG Difference");
+    let csg = user
+        .doc()
+        .nodes()
+        .find(|n| matches!(n.content, NodeContent::Csg(_)))
+        .cloned()
+        .expect("a CSG node");
+    let solid = hedra_doc::csg::evaluate(user.doc(), csg.id).expect("a solid");
+    assert!(solid.stats().closed);
+    user.frames(3);
+    let entity = user.app.world().resource::<hedra_scene::NodeEntities>().0[&csg.id];
+    assert!(
+        user.app
+            .world()
+            .get::<hedra_scene::NodeMesh>(entity)
+            .is_some(),
+        "the CSG node draws its solid"
+    );
+}

@@ -67,6 +67,9 @@ pub struct ExportOptions {
 /// Why an export could not be made; nothing is written then.
 #[derive(Debug, thiserror::Error)]
 pub enum ExportError {
+    /// A visible CSG node has no solid (an open operand, an empty result).
+    #[error(transparent)]
+    Csg(Box<crate::csg::CsgError>),
     /// The scene has nothing the format can hold (no visible meshes or
     /// surfaces for STL; no visible meshes, curves or surfaces for OBJ).
     #[error("{}: nothing to export: the scene has no visible {}", path.display(), if *triangles_only {
@@ -485,7 +488,21 @@ fn export_meshes(
 ) -> Result<Vec<ExportItem<'_>>, ExportError> {
     let mut out = Vec::new();
     for node in doc.nodes() {
-        if !is_visible(doc, node.id) {
+        // A CSG node exports its solid; its operands are part of it.
+        if !is_visible(doc, node.id) || crate::csg::inside_csg(doc, node.id) {
+            continue;
+        }
+        if let NodeContent::Csg(_) = &node.content {
+            let solid =
+                crate::csg::evaluate(doc, node.id).map_err(|e| ExportError::Csg(Box::new(e)))?;
+            let world = doc.world_matrix(node.id);
+            out.push(ExportItem {
+                node,
+                geometry: Geometry::Mesh(Cow::Owned((*solid).clone())),
+                world,
+                mirrored: world.determinant() < 0.0,
+                corners: None,
+            });
             continue;
         }
         let exact_curve = match &node.content {
@@ -533,7 +550,8 @@ pub(crate) fn node_geometry(
     shape: ExportShape,
 ) -> Result<Option<Geometry<'_>>, ExportError> {
     Ok(Some(match &node.content {
-        NodeContent::Empty => return Ok(None),
+        // Evaluated with the document by `export_meshes`.
+        NodeContent::Empty | NodeContent::Csg(_) => return Ok(None),
         NodeContent::Mesh(content) => {
             if let Some(face) = content.mesh.first_non_polygon_face() {
                 return Err(ExportError::NotPolygon {

@@ -339,6 +339,8 @@ enum StoredContent {
     Surface(crate::scene::SurfaceShape),
     /// A curve node of any other kind; its NURBS form is recomputed on load.
     CurveKind(hedra_geom::curves::CurveKind),
+    /// A CSG node (issue 17): its operands are its children.
+    Csg(crate::csg::CsgContent),
 }
 
 #[derive(Serialize, Deserialize)]
@@ -526,6 +528,7 @@ impl<'a> MeshPool<'a> {
             visible: n.visible,
             content: match &n.content {
                 NodeContent::Empty => StoredContent::Empty,
+                NodeContent::Csg(c) => StoredContent::Csg(*c),
                 NodeContent::Curve(c) => match c.kind() {
                     hedra_geom::curves::CurveKind::Nurbs(n) => StoredContent::Curve(n.clone()),
                     k => StoredContent::CurveKind(k.clone()),
@@ -884,6 +887,7 @@ fn restore_node(
 ) -> Result<Node, InvalidScene> {
     let content = match sn.content {
         StoredContent::Empty => NodeContent::Empty,
+        StoredContent::Csg(c) => NodeContent::Csg(c),
         StoredContent::Curve(c) => NodeContent::Curve(Arc::new(CurveContent::from_nurbs(c))),
         StoredContent::CurveKind(k) => NodeContent::Curve(Arc::new(
             CurveContent::new(k).map_err(|error| InvalidScene::Curve { node: sn.id, error })?,

@@ -48,7 +48,7 @@ fn check_document(doc: &Document, when: &str) {
         let what = format!("{when}: node {} '{}'", n.id, n.name);
         check_transform(&n.transform, &what);
         match &n.content {
-            NodeContent::Empty => {}
+            NodeContent::Empty | NodeContent::Csg(_) => {}
             NodeContent::Mesh(m) => check_mesh(&m.mesh, &what),
             NodeContent::Curve(c) => assert!(
                 c.control_points().iter().all(|p| p.is_finite())

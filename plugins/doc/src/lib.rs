@@ -4,6 +4,7 @@
 
 pub mod command;
 pub mod construction;
+pub mod csg;
 pub mod elements;
 pub mod eval;
 pub mod export;

@@ -45,6 +45,9 @@ pub struct NodeReport {
     /// left out for other nodes.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub construction: Option<ConstructionReport>,
+    /// CSG nodes: the operation, the operands and the evaluated solid.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub csg: Option<CsgReport>,
 }
 
 /// How a node follows the curves it was made from.
@@ -56,6 +59,51 @@ pub struct ConstructionReport {
     pub inputs: Vec<u64>,
     /// One line: the recipe, its inputs by name, its parameters, the output.
     pub summary: String,
+}
+
+/// A CSG node: its boolean, its operands and its evaluated solid.
+#[derive(Serialize)]
+pub struct CsgReport {
+    /// "union", "intersection" or "difference".
+    pub op: &'static str,
+    /// The operands' ids, in order.
+    pub operands: Vec<u64>,
+    /// The solid's counts, or why there is none.
+    pub evaluated: EvaluatedReport,
+}
+
+fn csg_report(doc: &Document, id: crate::scene::NodeId) -> Option<CsgReport> {
+    let NodeContent::Csg(c) = &doc.node(id)?.content else {
+        return None;
+    };
+    let evaluated = match crate::csg::evaluate(doc, id) {
+        Ok(m) => {
+            let s = m.stats();
+            EvaluatedReport {
+                vertices: s.vertices,
+                edges: s.edges,
+                faces: s.faces,
+                boundary_loops: s.boundary_loops,
+                shells: s.shells,
+                genus: s.genus,
+                error: None,
+            }
+        }
+        Err(e) => EvaluatedReport {
+            vertices: 0,
+            edges: 0,
+            faces: 0,
+            boundary_loops: 0,
+            shells: 0,
+            genus: None,
+            error: Some(e.to_string()),
+        },
+    };
+    Some(CsgReport {
+        op: c.op.label(),
+        operands: crate::csg::operands(doc, id).iter().map(|o| o.0).collect(),
+        evaluated,
+    })
 }
 
 /// A transform as plain arrays.
@@ -396,6 +444,7 @@ impl SceneReport {
                             .map_or_else(|| id.to_string(), |n| format!("'{}' ({id})", n.name))
                     }),
                 }),
+                csg: csg_report(doc, n.id),
             })
             .collect();
         let h = &session.history;
@@ -452,6 +501,26 @@ impl SceneReport {
             }
             if let Some(c) = &n.construction {
                 let _ = writeln!(out, "    made by: {}", c.summary);
+            }
+            if let Some(c) = &n.csg {
+                let ops: Vec<String> = c.operands.iter().map(|o| format!("#{o}")).collect();
+                let e = &c.evaluated;
+                let _ = match &e.error {
+                    Some(err) => {
+                        writeln!(out, "    csg: {} of {}: error: {err}", c.op, ops.join(", "))
+                    }
+                    None => writeln!(
+                        out,
+                        "    csg: {} of {}: solid V {} E {} F {}, shells {}, genus {}",
+                        c.op,
+                        ops.join(", "),
+                        e.vertices,
+                        e.edges,
+                        e.faces,
+                        e.shells,
+                        e.genus.map_or("?".into(), |g| g.to_string()),
+                    ),
+                };
             }
             if let Some(m) = &n.mesh {
                 let _ = writeln!(

@@ -355,6 +355,9 @@ pub enum NodeContent {
     Curve(Arc<CurveContent>),
     /// A free-form surface.
     Surface(Arc<SurfaceShape>),
+    /// A CSG node: its children are its operands, combined by one boolean
+    /// (see [`crate::csg`]); its solid is evaluated, not stored.
+    Csg(crate::csg::CsgContent),
 }
 
 impl NodeContent {
@@ -365,6 +368,7 @@ impl NodeContent {
             NodeContent::Mesh(_) => "mesh",
             NodeContent::Curve(_) => "curve",
             NodeContent::Surface(_) => "surface",
+            NodeContent::Csg(_) => "csg",
         }
     }
     /// The mesh cage, for a mesh node.

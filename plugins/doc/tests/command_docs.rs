@@ -24,7 +24,7 @@ fn every_command_example_in_the_docs_runs() {
         .collect();
     kinds.sort();
     kinds.dedup();
-    assert_eq!(kinds.len(), 87, "{kinds:?}");
+    assert_eq!(kinds.len(), 91, "{kinds:?}");
     let mut session = hedra_doc::Session::new();
     hedra_doc::script::run(&mut session, &commands, Path::new("docs/commands.md"))
         .unwrap_or_else(|e| panic!("{e}"));
@@ -453,4 +453,40 @@ fn every_command_example_in_the_docs_runs() {
             .distance(glam::DVec3::new(41.0, 0.5, 1.0))
             < 1e-12
     }));
+}
+
+#[test]
+fn the_csg_examples_make_the_emblem_and_apply_a_boolean() {
+    let blocks = common::commands_md_blocks();
+    let script = format!("[\n{}\n]", blocks.join(",\n"));
+    let commands = hedra_doc::script::parse(&script, Path::new("docs/commands.md")).unwrap();
+    let mut session = hedra_doc::Session::new();
+    hedra_doc::script::run(&mut session, &commands, Path::new("docs/commands.md")).unwrap();
+    let doc = &session.doc;
+    let emblem = doc.find_by_name("Emblem").unwrap();
+    let solid = hedra_doc::csg::evaluate(doc, emblem.id).unwrap();
+    solid.validate().unwrap();
+    let s = solid.stats();
+    // Three rods through a rounded cube: genus 5 (V − E + F = 2 − 2g).
+    assert_eq!((s.shells, s.genus, s.closed), (1, Some(5), true));
+    // The operands are children of the CSG nodes, drawn through them.
+    let rounded = doc.find_by_name("Core").unwrap();
+    assert_eq!(rounded.parent, Some(emblem.id));
+    assert_eq!(hedra_doc::csg::operands(doc, emblem.id).len(), 4);
+    assert!(hedra_doc::csg::inside_csg(
+        doc,
+        doc.find_by_name("Emblem Ball").unwrap().id
+    ));
+    // Applied: a plain mesh, the operands gone; then the one-shot union.
+    let stamped = doc.find_by_name("Stamped").unwrap().content.mesh().unwrap();
+    stamped.validate().unwrap();
+    assert!(doc.find_by_name("Notch").is_none() && doc.find_by_name("Tool").is_none());
+    assert!(
+        (stamped.volume() - (0.875 + 1.0 - 0.25)).abs() < 1e-12,
+        "{}",
+        stamped.volume()
+    );
+    // Undo of the one-shot boolean brings the tool back.
+    session.undo().unwrap();
+    assert!(session.doc.find_by_name("Tool").is_some());
 }

@@ -441,6 +441,26 @@ pub fn object_shortcuts(
             Err(e) => status.error(e),
         }
     }
+    for (action, op) in [
+        (Action::BooleanUnion, hedra_geom::csg::BooleanOp::Union),
+        (
+            Action::BooleanDifference,
+            hedra_geom::csg::BooleanOp::Difference,
+        ),
+        (
+            Action::BooleanIntersection,
+            hedra_geom::csg::BooleanOp::Intersection,
+        ),
+    ] {
+        if pressed(action) {
+            match boolean_command(&selection, op) {
+                Some(cmd) => {
+                    requests.write(DocRequest::Execute(cmd));
+                }
+                None => status.error("Boolean: select two closed meshes (the active one is kept)"),
+            }
+        }
+    }
     if pressed(Action::Duplicate) && !selection.nodes.is_empty() {
         requests.write(DocRequest::Execute(Command::Duplicate {
             nodes: selection.refs(),
@@ -498,6 +518,24 @@ pub fn join_curves_command(
     Ok(Command::JoinCurves {
         first: first.into(),
         second: second.into(),
+    })
+}
+
+/// The one-shot boolean of the selection (Object ▸ Boolean, Ctrl+Numpad
+/// +, −, *): the active node with the other selected one; `None` unless
+/// exactly two are selected.
+pub fn boolean_command(selection: &Selection, op: hedra_geom::csg::BooleanOp) -> Option<Command> {
+    let [a, b] = selection.nodes[..] else {
+        return None;
+    };
+    let (kept, other) = match selection.active() {
+        Some(x) if x == a => (a, b),
+        _ => (b, a),
+    };
+    Some(Command::Boolean {
+        node: kept.into(),
+        other: other.into(),
+        op,
     })
 }
 

@@ -10,6 +10,7 @@
 //! subdivision, queries) uses the mesh's public API.
 
 pub mod build;
+pub mod csg;
 pub mod curves;
 pub mod ids;
 pub mod mesh;
@@ -35,6 +36,7 @@ pub use mesh::{euler, validate};
 
 // Mesh, ids and the errors of building, checking and editing it.
 pub use build::{BuildError, RepairReport};
+pub use csg::{BooleanError, BooleanOp};
 pub use euler::EulerError;
 pub use ids::{EdgeId, ElementId, ElementKind, FaceId, HalfEdgeId, VertexId};
 pub use mesh::{HalfEdgeMesh, LoopStart, MeshData, MeshDataError, MeshStats};

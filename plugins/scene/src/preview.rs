@@ -58,7 +58,7 @@ impl PreviewContent {
                 mesh: m.mesh.clone(),
                 creases: Some(m.creases.clone()),
             }),
-            NodeContent::Empty => None,
+            NodeContent::Empty | NodeContent::Csg(_) => None,
         }
     }
 

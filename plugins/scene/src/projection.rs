@@ -149,8 +149,9 @@ pub fn sync_entities(
     }
     *seen_revision = Some(state.revision);
     let doc = &state.session.doc;
+    // A CSG node's operands are drawn through its solid, not by themselves.
     let visibility = |node: &hedra_doc::Node| {
-        if node.visible {
+        if node.visible && !hedra_doc::csg::inside_csg(doc, node.id) {
             Visibility::Inherited
         } else {
             Visibility::Hidden
@@ -176,6 +177,8 @@ pub fn sync_entities(
     for node in doc.nodes() {
         let e = map.0[&node.id];
         let parent = node.parent.and_then(|p| map.0.get(&p).copied());
+        let content = drawn_content(doc, node);
+        let node_content = &*content;
         let old_parent = match existing.get_mut(e) {
             Ok((mut name, mut v, child_of, mesh, curve, surface, projected)) => {
                 if name.as_str() != node.name {
@@ -185,8 +188,8 @@ pub fn sync_entities(
                 if *v != wanted {
                     *v = wanted;
                 }
-                mirror_content(&mut commands.entity(e), &node.content, mesh, curve, surface);
-                let wanted = ProjectedMesh::of(&node.content);
+                mirror_content(&mut commands.entity(e), node_content, mesh, curve, surface);
+                let wanted = ProjectedMesh::of(node_content);
                 match (projected, wanted) {
                     (Some(mut p), Some(w)) => {
                         p.set_if_neq(w);
@@ -203,8 +206,8 @@ pub fn sync_entities(
             }
             Err(_) => {
                 // Spawned above: its components go in with the spawn.
-                mirror_content(&mut commands.entity(e), &node.content, None, None, None);
-                if let Some(w) = ProjectedMesh::of(&node.content) {
+                mirror_content(&mut commands.entity(e), node_content, None, None, None);
+                if let Some(w) = ProjectedMesh::of(node_content) {
                     commands.entity(e).insert(w);
                 }
                 None
@@ -233,6 +236,24 @@ pub fn sync_entities(
             commands.entity(e).remove::<ChildOf>();
             commands.entity(e).try_despawn();
         }
+    }
+}
+
+/// What a node draws: its content, or for a CSG node its evaluated solid as
+/// a mesh (nothing while it cannot be evaluated; `hedra info` and the
+/// panel say why).
+fn drawn_content<'a>(
+    doc: &hedra_doc::Document,
+    node: &'a hedra_doc::Node,
+) -> std::borrow::Cow<'a, NodeContent> {
+    match &node.content {
+        NodeContent::Csg(_) => {
+            std::borrow::Cow::Owned(match hedra_doc::csg::evaluate(doc, node.id) {
+                Ok(solid) => NodeContent::Mesh(hedra_doc::MeshContent::new(solid)),
+                Err(_) => NodeContent::Empty,
+            })
+        }
+        other => std::borrow::Cow::Borrowed(other),
     }
 }
 
@@ -277,7 +298,7 @@ fn mirror_content(
                 ec.insert(NodeSurface(s.clone()));
             }
         },
-        NodeContent::Empty => {}
+        NodeContent::Empty | NodeContent::Csg(_) => {}
     }
     if had_mesh && !matches!(content, NodeContent::Mesh(_)) {
         ec.remove::<NodeMesh>();
@@ -606,7 +627,7 @@ impl ProjectedMesh {
                 shading: Shading::Flat,
                 smooth: None,
             }),
-            NodeContent::Empty => None,
+            NodeContent::Empty | NodeContent::Csg(_) => None,
         }
     }
 }

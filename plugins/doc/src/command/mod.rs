@@ -14,6 +14,7 @@
 
 mod constructions;
 mod creases;
+mod csg;
 mod euler;
 mod joins;
 mod mesh;
@@ -105,6 +106,12 @@ pub enum EditError {
     Taper(#[from] hedra_geom::subdivision::TaperError),
 }
 
+impl From<crate::csg::CsgError> for CommandError {
+    fn from(e: crate::csg::CsgError) -> Self {
+        CommandError::Csg(Box::new(e))
+    }
+}
+
 /// Why a command was refused. The document is unchanged.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum CommandError {
@@ -193,6 +200,15 @@ pub enum CommandError {
         /// The profile as the command named it.
         profile: NodeRef,
     },
+    /// A CSG command names a node that is not a CSG node.
+    #[error("{node} is not a CSG node")]
+    NotACsg {
+        /// The node, as `'name' (#id)`.
+        node: String,
+    },
+    /// A CSG node or boolean has no solid; the error names the nodes.
+    #[error(transparent)]
+    Csg(Box<crate::csg::CsgError>),
     /// A curve command names a node that is not a curve.
     #[error("{node} is not a curve")]
     NotACurve {

@@ -359,6 +359,17 @@ impl Plan<'_> {
             Command::SetShading { nodes, shading } => self.set_shading(nodes, *shading),
             Command::Delete { nodes } => self.delete(nodes),
             Command::Duplicate { nodes } => self.duplicate(nodes),
+            // ----- CSG (csg.rs) -----
+            Command::AddCsg {
+                op,
+                name,
+                operands,
+                parent,
+                transform,
+            } => self.add_csg(*op, name, operands, parent, *transform),
+            Command::SetCsgOp { node, op } => self.set_csg_op(node, *op),
+            Command::ApplyCsg { node } => self.apply_csg(node),
+            Command::Boolean { node, other, op } => self.boolean(node, other, *op),
 
             // ----- curves and surfaces (shapes.rs) -----
             Command::AddCurve {

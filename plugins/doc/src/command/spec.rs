@@ -9,6 +9,7 @@ use crate::modifiers::MeshModifier;
 use crate::scene::{NodeId, NodeTransform, Shading, SubdivisionModifier};
 use glam::DVec3;
 use hedra_geom::Primitive;
+use hedra_geom::csg::BooleanOp;
 use hedra_geom::curves::interpolating::Tbc;
 use hedra_geom::curves::{CurveEnd, FractalRule, Join, Parameterization, SplineEnds};
 use hedra_geom::modeling::{BisectClear, MirrorAxis, TriangulateMethod};
@@ -521,6 +522,56 @@ pub enum Command {
     Duplicate {
         /// The nodes to copy; each copy has the original's parent.
         nodes: Vec<NodeRef>,
+    },
+
+    // ----- CSG (issue 17) -----
+    /// Adds a CSG node whose children are its operands (see
+    /// [`crate::csg`]): `operands` move under it keeping their world
+    /// placement. A difference is the first operand (in id order) minus the
+    /// others. Refused, naming the nodes, when the result would not
+    /// evaluate (an open operand, an empty result).
+    AddCsg {
+        /// `Union`, `Intersection` or `Difference`.
+        op: BooleanOp,
+        /// The node's name; `None`: the operation's ("Union"). Made unique
+        /// with a `.001`-style suffix when taken.
+        #[serde(default)]
+        name: Option<String>,
+        /// Nodes (meshes or CSG nodes) to move under it (default: none).
+        #[serde(default)]
+        operands: Vec<NodeRef>,
+        /// The new node's parent; `None` (the default): the top level.
+        #[serde(default)]
+        parent: Option<NodeRef>,
+        /// The new node's local transform (default: identity).
+        #[serde(default)]
+        transform: NodeTransform,
+    },
+    /// Sets a CSG node's operation; refused when the result would not
+    /// evaluate ("the intersection of Box and Ball is empty").
+    SetCsgOp {
+        /// A CSG node.
+        node: NodeRef,
+        /// The new operation.
+        op: BooleanOp,
+    },
+    /// Turns a CSG node into a plain mesh node holding its solid (same id,
+    /// name and place); its operands are deleted. One undo step.
+    ApplyCsg {
+        /// A CSG node with operands.
+        node: NodeRef,
+    },
+    /// A one-shot boolean (Blender's Boolean applied at once): `node`'s
+    /// mesh becomes `node` op `other` (in `node`'s space), and `other` is
+    /// deleted with its descendants. UVs and creases of `node`'s faces and
+    /// edges the cut did not touch are kept. One undo step.
+    Boolean {
+        /// The mesh node that is kept (the active object).
+        node: NodeRef,
+        /// A mesh or CSG node, deleted.
+        other: NodeRef,
+        /// `Union`, `Intersection` or `Difference` (`node` minus `other`).
+        op: BooleanOp,
     },
 
     // ----- curves and surfaces (control points in the node's local space) -----
@@ -1197,6 +1248,14 @@ fn all_vertices() -> VertexSet {
     VertexSet::All
 }
 
+fn op_title(op: BooleanOp) -> &'static str {
+    match op {
+        BooleanOp::Union => "Union",
+        BooleanOp::Intersection => "Intersection",
+        BooleanOp::Difference => "Difference",
+    }
+}
+
 fn is_default<T: Default + PartialEq>(value: &T) -> bool {
     *value == T::default()
 }
@@ -1276,6 +1335,10 @@ impl Command {
             Command::MakeG1Join { .. } => "Make G1 Join".to_string(),
             Command::BreakG1Join { .. } => "Break G1 Join".to_string(),
             Command::Duplicate { nodes } => format!("Duplicate {}", plural(nodes.len(), "node")),
+            Command::AddCsg { op, .. } => format!("Add CSG {}", op_title(*op)),
+            Command::SetCsgOp { op, .. } => format!("CSG {}", op_title(*op)),
+            Command::ApplyCsg { .. } => "Apply CSG".to_string(),
+            Command::Boolean { op, .. } => format!("Boolean {}", op_title(*op)),
             Command::MoveVertices { .. } | Command::SetVertexPositions { .. } => {
                 "Move Vertices".to_string()
             }

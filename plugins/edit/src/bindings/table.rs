@@ -180,6 +180,24 @@ pub const BINDINGS: &[Binding] = &[
     bind(Object, Chord::key(K::KeyH), A::Hide, "hide the selection"),
     bind(
         Object,
+        Chord::ctrl(K::NumpadAdd),
+        A::BooleanUnion,
+        "union of the two selected meshes (the active one kept)",
+    ),
+    bind(
+        Object,
+        Chord::ctrl(K::NumpadSubtract),
+        A::BooleanDifference,
+        "the active mesh minus the other selected one",
+    ),
+    bind(
+        Object,
+        Chord::ctrl(K::NumpadMultiply),
+        A::BooleanIntersection,
+        "intersection of the two selected meshes",
+    ),
+    bind(
+        Object,
         Chord::ctrl(K::KeyJ),
         A::JoinCurves,
         "join two selected curves end to end (the active one first)",

@@ -18,6 +18,7 @@ use hedra_scene::{DocRequest, DocState, InputGate, StatusMessage};
 
 mod add_menu;
 mod construction_panel;
+mod csg_menu;
 mod curve_menu;
 mod dialogs;
 mod inspector;
@@ -36,6 +37,7 @@ mod windows;
 use add_menu::*;
 pub use add_menu::{ADD_MENU, AddPage};
 use construction_panel::*;
+use csg_menu::*;
 use curve_menu::*;
 use dialogs::*;
 use inspector::*;

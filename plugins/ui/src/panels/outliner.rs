@@ -51,11 +51,13 @@ pub(super) fn outliner_row(
                 },
             );
         }
+        // Glyphs egui's default fonts have (∿, ◠ and ✛ drew as boxes).
         let icon = match node.content {
             NodeContent::Mesh(_) => "▣",
-            NodeContent::Curve(_) => "∿",
-            NodeContent::Surface(_) => "◠",
-            NodeContent::Empty => "✛",
+            NodeContent::Curve(_) => "〰",
+            NodeContent::Surface(_) => "🔳",
+            NodeContent::Empty => "✚",
+            NodeContent::Csg(_) => "➕",
         };
         if let Some(rename) = state.rename.as_mut().filter(|r| r.node == id) {
             let mut output = egui::TextEdit::singleline(&mut rename.text).show(ui);

@@ -114,6 +114,11 @@ pub(super) fn properties(
             }
         });
 
+    if matches!(node.content, NodeContent::Csg(_)) {
+        egui::CollapsingHeader::new("CSG")
+            .default_open(true)
+            .show(ui, |ui| csg_panel(ui, doc, node, events));
+    }
     if node.construction.is_some() {
         egui::CollapsingHeader::new("Made from curves")
             .default_open(true)

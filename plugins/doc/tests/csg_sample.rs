@@ -1,0 +1,157 @@
+//! The CSG emblem sample (issue 17): `tests/scripts/csg.ron` builds
+//! `assets/samples/csg.hedra.ron` (HEDRA_BLESS=1 writes it); the file
+//! loads back to the same tree, its solid is the emblem, `hedra info`'s
+//! report prints the tree and export writes the solid alone.
+
+use hedra_doc::export::{ExportOptions, export_bytes};
+use hedra_doc::report::SceneReport;
+use hedra_doc::{Command, NodeContent, Session, csg, file, script};
+use std::path::{Path, PathBuf};
+
+fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+fn built() -> Session {
+    let path = root().join("tests/scripts/csg.ron");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let commands = script::parse(&text, &path).unwrap();
+    let mut session = Session::new();
+    script::run(&mut session, &commands, &path).unwrap_or_else(|e| panic!("{e}"));
+    session
+}
+
+#[test]
+fn the_script_builds_the_sample_file() {
+    let session = built();
+    let text = file::to_string(&session);
+    let sample = root().join("assets/samples/csg.hedra.ron");
+    if std::env::var_os("HEDRA_BLESS").is_some() {
+        std::fs::write(&sample, &text).unwrap();
+    }
+    let stored = std::fs::read_to_string(&sample).expect("HEDRA_BLESS=1 writes the sample");
+    assert_eq!(
+        stored, text,
+        "assets/samples/csg.hedra.ron is made by tests/scripts/csg.ron"
+    );
+    let loaded = file::from_str(&stored, &sample).unwrap();
+    assert_eq!(
+        loaded.session.doc, session.doc,
+        "the tree loads back as saved"
+    );
+}
+
+#[test]
+fn the_emblem_is_a_genus_five_solid() {
+    let session = built();
+    let doc = &session.doc;
+    let emblem = doc.find_by_name("Emblem").unwrap();
+    assert!(matches!(emblem.content, NodeContent::Csg(_)));
+    let solid = csg::evaluate(doc, emblem.id).unwrap();
+    solid.validate().unwrap();
+    let s = solid.stats();
+    assert_eq!(
+        (s.shells, s.genus, s.closed, s.manifold),
+        (1, Some(5), true, true)
+    );
+    // Smaller than the rounded cube, larger than the cube minus the rods.
+    let core = csg::evaluate(doc, doc.find_by_name("Rounded Cube").unwrap().id).unwrap();
+    assert!(solid.volume() < core.volume() && core.volume() < 8.0);
+    // Cached: a second evaluation hands back the same solid.
+    let again = csg::evaluate(doc, emblem.id).unwrap();
+    assert!(std::sync::Arc::ptr_eq(&solid, &again));
+    // hedra info prints the tree.
+    let text = SceneReport::new(&session).to_text();
+    assert!(
+        text.contains("csg: difference of #3, #4, #5, #6: solid V"),
+        "{text}"
+    );
+    assert!(text.contains("genus 5"), "{text}");
+    // Export writes the solid only: one object, no operands.
+    let obj = export_bytes(doc, Path::new("emblem.obj"), ExportOptions::default()).unwrap();
+    let obj = String::from_utf8(obj).unwrap();
+    let objects: Vec<&str> = obj.lines().filter(|l| l.starts_with("o ")).collect();
+    assert_eq!(objects, ["o Emblem"]);
+    let faces = obj.lines().filter(|l| l.starts_with("f ")).count();
+    assert_eq!(faces, s.faces);
+}
+
+#[test]
+fn moving_one_cylinder_follows_and_undo_restores() {
+    let mut session = built();
+    let id = session.doc.find_by_name("Emblem").unwrap().id;
+    let before = csg::evaluate(&session.doc, id).unwrap();
+    session
+        .execute(&Command::Translate {
+            nodes: vec![hedra_doc::NodeRef::Name("Cylinder Z".into())],
+            offset: glam::DVec3::new(0.3, 0.0, 0.0),
+        })
+        .unwrap();
+    let moved = csg::evaluate(&session.doc, id).unwrap();
+    assert!(moved.volume() != before.volume());
+    assert_eq!(moved.stats().genus, Some(5));
+    session.undo();
+    let back = csg::evaluate(&session.doc, id).unwrap();
+    assert!(
+        std::sync::Arc::ptr_eq(&back, &before),
+        "the cache hands the old solid back"
+    );
+}
+
+#[test]
+fn refusals_name_the_nodes_and_change_nothing() {
+    let mut session = built();
+    let before = session.doc.clone();
+    // Move the sphere away: the intersection is empty.
+    session
+        .execute(&Command::Translate {
+            nodes: vec![hedra_doc::NodeRef::Name("Sphere".into())],
+            offset: glam::DVec3::new(10.0, 0.0, 0.0),
+        })
+        .unwrap();
+    let id = session.doc.find_by_name("Rounded Cube").unwrap().id;
+    let e = csg::evaluate(&session.doc, id).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "the intersection of Cube and Sphere is empty"
+    );
+    session.undo();
+    assert_eq!(session.doc, before);
+    // An open operand.
+    session
+        .execute(&Command::AddPrimitive {
+            primitive: hedra_geom::Primitive::Plane { size: 1.0 },
+            name: Some("Sheet".into()),
+            parent: None,
+            transform: Default::default(),
+        })
+        .unwrap();
+    let snapshot = session.doc.clone();
+    let e = session
+        .execute(&Command::AddCsg {
+            op: hedra_geom::csg::BooleanOp::Union,
+            name: Some("Bad".into()),
+            operands: vec![
+                hedra_doc::NodeRef::Name("Emblem".into()),
+                hedra_doc::NodeRef::Name("Sheet".into()),
+            ],
+            parent: None,
+            transform: Default::default(),
+        })
+        .unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "'Bad': operand 'Sheet' is open: 4 border edges (a boolean needs closed meshes)"
+    );
+    assert_eq!(session.doc, snapshot, "nothing changed");
+    // Setting an op that empties the result is refused too.
+    let e = session
+        .execute(&Command::SetCsgOp {
+            node: hedra_doc::NodeRef::Name("Emblem".into()),
+            op: hedra_geom::csg::BooleanOp::Intersection,
+        })
+        .map(|_| ())
+        .err();
+    // Rounded cube ∩ all three rods is the small core where they cross: not empty.
+    assert!(e.is_none());
+}

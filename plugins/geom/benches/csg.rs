@@ -1,0 +1,73 @@
+//! Mesh booleans (issue 17): the union of two offset UV spheres of about
+//! 160k triangles each, Hedra's whole call (half-edge meshes in and out,
+//! polygons merged back) against the engine alone on the same triangles
+//! (building its input from flat arrays, then the boolean; and the
+//! boolean alone). Goal: the conversions cost under 30 % of the boolean.
+
+use boolmesh::prelude::{Manifold, OpType, compute_boolean};
+use criterion::{Criterion, criterion_main};
+use hedra_geom::csg::{BooleanOp, boolean};
+use hedra_geom::{DVec3, HalfEdgeMesh, Primitive};
+use std::hint::black_box;
+
+/// The allocator the app uses (see `src/main.rs`).
+#[global_allocator]
+static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
+/// 400 × 200 quads and triangle fans: 159,200 triangles once triangulated.
+fn sphere(offset: DVec3) -> HalfEdgeMesh {
+    let mut m = Primitive::UvSphere {
+        segments: 400,
+        rings: 200,
+        radius: 1.0,
+    }
+    .build()
+    .unwrap();
+    for p in m.positions_mut() {
+        *p += offset;
+    }
+    m
+}
+
+fn flat(m: &HalfEdgeMesh) -> (Vec<f64>, Vec<usize>) {
+    let positions = m.positions().iter().flat_map(|p| [p.x, p.y, p.z]).collect();
+    let corners = m
+        .faces()
+        .flat_map(|f| hedra_geom::query::triangulate_face(m, f))
+        .flat_map(|t| t.map(|v| v.index()))
+        .collect();
+    (positions, corners)
+}
+
+fn bench(c: &mut Criterion) {
+    let a = sphere(DVec3::ZERO);
+    let b = sphere(DVec3::new(0.3, 0.2, 0.1));
+    let (pa, ia) = flat(&a);
+    let (pb, ib) = flat(&b);
+    assert_eq!(ia.len() / 3, 159_200);
+    let mut g = c.benchmark_group("csg");
+    g.sample_size(10);
+    g.bench_function("union_spheres_160k_hedra", |bench| {
+        bench.iter(|| black_box(boolean(&a, &b, BooleanOp::Union, 0.0).unwrap()))
+    });
+    g.bench_function("union_spheres_160k_engine_from_arrays", |bench| {
+        bench.iter(|| {
+            let ma = Manifold::new(&pa, &ia).unwrap();
+            let mb = Manifold::new(&pb, &ib).unwrap();
+            black_box(compute_boolean(&ma, &mb, OpType::Add).unwrap())
+        })
+    });
+    let ma = Manifold::new(&pa, &ia).unwrap();
+    let mb = Manifold::new(&pb, &ib).unwrap();
+    g.bench_function("union_spheres_160k_engine_boolean_only", |bench| {
+        bench.iter(|| black_box(compute_boolean(&ma, &mb, OpType::Add).unwrap()))
+    });
+    g.finish();
+}
+
+// The macro's `benches` function is Criterion's, not an API to document.
+#[allow(missing_docs)]
+mod group {
+    criterion::criterion_group!(benches, super::bench);
+}
+criterion_main!(group::benches);
