@@ -155,3 +155,49 @@ fn refusals_name_the_nodes_and_change_nothing() {
     // Rounded cube ∩ all three rods is the small core where they cross: not empty.
     assert!(e.is_none());
 }
+
+#[test]
+fn a_one_shot_boolean_keeps_creases_of_untouched_edges_and_undoes_in_one_step() {
+    let text = r#"[
+        AddPrimitive(primitive: Cube(size: 2.0), name: Some("Box")),
+        SetEdgeCrease(node: Name("Box"), edges: OfFaces(Facing(direction: (0.0, -1.0, 0.0), degrees: 1.0)), sharpness: 10.0),
+        AddPrimitive(primitive: Cube(size: 1.0), name: Some("Bite"), transform: (translation: (1.0, 1.0, 1.0))),
+        Boolean(node: Name("Box"), other: Name("Bite"), op: Difference),
+    ]"#;
+    let path = Path::new("test.ron");
+    let commands = script::parse(text, path).unwrap();
+    let mut session = Session::new();
+    script::run(&mut session, &commands, path).unwrap_or_else(|e| panic!("{e}"));
+    let doc = &session.doc;
+    assert!(
+        doc.find_by_name("Bite").is_none(),
+        "the other node is deleted"
+    );
+    let NodeContent::Mesh(m) = &doc.find_by_name("Box").unwrap().content else {
+        panic!("Box is a mesh");
+    };
+    m.mesh.validate().unwrap();
+    assert!((m.mesh.volume() - (8.0 - 0.125)).abs() < 1e-12);
+    // The bottom face's four edges are not touched by the bite at the top corner.
+    assert_eq!(m.creases.edges.len(), 4);
+    assert!(m.primitive.is_none());
+    // One undo step brings both nodes back as they were.
+    session.undo();
+    assert!(session.doc.find_by_name("Bite").is_some());
+    let NodeContent::Mesh(m) = &session.doc.find_by_name("Box").unwrap().content else {
+        panic!("Box is a mesh");
+    };
+    assert_eq!(m.mesh.face_count(), 6);
+    // The intersection of disjoint nodes is refused by name.
+    let far = r#"[
+        AddPrimitive(primitive: Cube(size: 1.0), name: Some("Far"), transform: (translation: (9.0, 0.0, 0.0))),
+        Boolean(node: Name("Box"), other: Name("Far"), op: Intersection),
+    ]"#;
+    let commands = script::parse(far, path).unwrap();
+    let e = script::run(&mut session, &commands, path).unwrap_err();
+    assert!(
+        e.to_string()
+            .contains("the intersection of Box and Far is empty"),
+        "{e}"
+    );
+}

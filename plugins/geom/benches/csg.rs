@@ -57,6 +57,19 @@ fn bench(c: &mut Criterion) {
             black_box(compute_boolean(&ma, &mb, OpType::Add).unwrap())
         })
     });
+    // The same with a face number on every corner, as Hedra passes them.
+    let va: Vec<f64> = (0..ia.len()).map(|c| (c / 3) as f64).collect();
+    let vb: Vec<f64> = (0..ib.len()).map(|c| (c / 3) as f64).collect();
+    g.bench_function(
+        "union_spheres_160k_engine_from_arrays_with_face_numbers",
+        |bench| {
+            bench.iter(|| {
+                let ma = Manifold::new_with_values(&pa, &ia, &va).unwrap();
+                let mb = Manifold::new_with_values(&pb, &ib, &vb).unwrap();
+                black_box(compute_boolean(&ma, &mb, OpType::Add).unwrap())
+            })
+        },
+    );
     let ma = Manifold::new(&pa, &ia).unwrap();
     let mb = Manifold::new(&pb, &ib).unwrap();
     g.bench_function("union_spheres_160k_engine_boolean_only", |bench| {
