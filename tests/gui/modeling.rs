@@ -2558,7 +2558,6 @@ fn ctrl_numpad_plus_unites_two_cubes_and_a_live_csg_node_is_drawn() {
     // A live CSG node of both: drawn as its solid.
     user.tap(KeyCode::KeyA);
     open_menu(&mut user, "Object");
-    user.click_on("Boolean ⏵");
     user.click_on("Live CSG Difference");
     let csg = user
         .doc()

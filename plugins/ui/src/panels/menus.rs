@@ -242,7 +242,10 @@ pub(super) fn menu_bar(
                 surface_from_curves_menu(ui, &model.state.session.doc, &model.selection, events)
             });
             g1_join_items(ui, &model.state.session.doc, &model.selection, events);
-            ui.menu_button("Boolean", |ui| boolean_menu(ui, &model.selection, events));
+            ui.separator();
+            ui.label(egui::RichText::new("Boolean").weak());
+            boolean_menu(ui, &model.selection, events);
+            ui.separator();
             let join = hedra_edit::join_curves_command(&model.state.session.doc, &model.selection);
             if ui
                 .add_enabled(
