@@ -1489,7 +1489,7 @@ fn draw_a_poly_bezier_pulling_a_handle_out() {
     let center = user.viewport_center();
     user.open_add_menu_at(center);
     user.choose_add("Draw Curve");
-    for _ in 0..5 {
+    for _ in 0..7 {
         user.tap(KeyCode::KeyT);
     }
     let kind = || user_draw_kind(&user);
@@ -2505,6 +2505,8 @@ fn the_curve_panel_shows_the_power_basis_matrix() {
         .filter(|w| (w.rect.center().y - row.center().y).abs() < 3.0 && w.rect.min.x > row.max.x)
         .collect();
     cells.sort_by(|a, b| a.rect.min.x.total_cmp(&b.rect.min.x));
+    // A widget may be reported twice (two passes in a frame): one per place.
+    cells.dedup_by(|a, b| a.rect == b.rect && a.text == b.text);
     let cells: Vec<&str> = cells.iter().map(|w| w.text.as_str()).collect();
     assert_eq!(cells, ["1", "-3", "3", "-1"]);
     let texts: Vec<String> = widgets.iter().map(|w| w.text.clone()).collect();

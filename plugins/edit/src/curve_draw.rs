@@ -27,12 +27,18 @@ pub enum DrawKind {
     Nurbs,
     /// A Catmull-Rom spline through the clicks.
     CatmullRom,
+    /// A Kochanek-Bartels spline through the clicks (tension, bias and
+    /// continuity 0 at first: the panel sets them per key).
+    KochanekBartels,
     /// The C2 cubic spline through the clicks (natural ends).
     CubicSpline,
     /// The Lagrange polynomial through the clicks.
     Lagrange,
     /// A cubic Hermite spline through the clicks; a drag gives the tangent.
     Hermite,
+    /// A quintic Hermite spline through the clicks; a drag gives the
+    /// tangent (accelerations 0).
+    QuinticHermite,
     /// A chain of cubic Bézier segments through the clicks; a drag pulls
     /// out both handles (a smooth C1 joint).
     PolyBezier,
@@ -40,12 +46,14 @@ pub enum DrawKind {
 
 impl DrawKind {
     /// Every kind, in T's order.
-    pub const ALL: [DrawKind; 6] = [
+    pub const ALL: [DrawKind; 8] = [
         DrawKind::Nurbs,
         DrawKind::CatmullRom,
+        DrawKind::KochanekBartels,
         DrawKind::CubicSpline,
         DrawKind::Lagrange,
         DrawKind::Hermite,
+        DrawKind::QuinticHermite,
         DrawKind::PolyBezier,
     ];
 
@@ -54,6 +62,8 @@ impl DrawKind {
         match self {
             DrawKind::Nurbs => "NURBS (control points)",
             DrawKind::CatmullRom => "Catmull-Rom",
+            DrawKind::KochanekBartels => "Kochanek-Bartels",
+            DrawKind::QuinticHermite => "quintic Hermite (drag: tangent)",
             DrawKind::CubicSpline => "C2 cubic spline",
             DrawKind::Lagrange => "Lagrange",
             DrawKind::Hermite => "cubic Hermite (drag: tangent)",
@@ -69,7 +79,10 @@ impl DrawKind {
 
     /// True when a drag from a click sets the point's tangent.
     pub fn takes_tangents(self) -> bool {
-        matches!(self, DrawKind::Hermite | DrawKind::PolyBezier)
+        matches!(
+            self,
+            DrawKind::Hermite | DrawKind::QuinticHermite | DrawKind::PolyBezier
+        )
     }
 
     /// The curve through (or controlled by) `points`, with the dragged
@@ -88,6 +101,20 @@ impl DrawKind {
                 points: local,
                 parameterization: Default::default(),
                 closed: false,
+            },
+            DrawKind::KochanekBartels => CurveSpec::KochanekBartels {
+                points: local,
+                keys: None,
+                closed: false,
+            },
+            DrawKind::QuinticHermite => CurveSpec::QuinticHermite {
+                // The Bézier handle of a quintic reaches a fifth of the
+                // tangent (unit parameter spans).
+                tangents: (0..points.len())
+                    .map(|i| handle_reach(points, handles, i) * 5.0)
+                    .collect(),
+                accelerations: vec![DVec3::ZERO; points.len()],
+                points: local,
             },
             DrawKind::CubicSpline => CurveSpec::CubicSpline {
                 points: local,
@@ -409,7 +436,7 @@ mod tests {
             }
             if kind.takes_tangents() {
                 // At the dragged point the curve runs along the drag.
-                let t = curve.on_curve_parameter(if kind == DrawKind::Hermite { 1 } else { 3 });
+                let t = curve.on_curve_parameter(if kind == DrawKind::PolyBezier { 3 } else { 1 });
                 let d = form.derivatives(t.unwrap())[1];
                 assert!(d.normalize().distance(DVec3::X) < 1e-9, "{kind:?}: {d}");
             }

@@ -562,7 +562,7 @@ pub const BINDINGS: &[Binding] = &[
         Tool,
         Chord::key(K::KeyT),
         A::NextCurveKind,
-        "drawing a curve: the next kind (NURBS, Catmull-Rom, C2 spline, Lagrange, Hermite, poly-Bézier)",
+        "drawing a curve: the next kind (NURBS, Catmull-Rom, Kochanek-Bartels, C2 spline, Lagrange, Hermite, quintic Hermite, poly-Bézier)",
     ),
     bind(
         Tool,
