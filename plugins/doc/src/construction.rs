@@ -511,19 +511,7 @@ impl Construction<NodeId> {
                     frame: *frame,
                     sections: *stations,
                 };
-                let surface = sweeps::sweep(&p, &r, options)?;
-                match mesh {
-                    None => Made::Surface(surface),
-                    Some((n, m)) => {
-                        if *caps {
-                            sweeps::check_end_caps(&p, &p)?;
-                        }
-                        let (us, closed) = sweeps::compatible_parameters(&p, m);
-                        Made::Mesh(sweeps::surface_mesh(
-                            &surface, &us, closed, n, false, *caps,
-                        )?)
-                    }
-                }
+                swept_output(sweeps::sweep(&p, &r, options)?, &p, mesh, *caps)?
             }
             Recipe::Sweep2 {
                 profile,
@@ -534,19 +522,7 @@ impl Construction<NodeId> {
                 let (p, _) = fetch(*profile)?;
                 let (a, _) = fetch(*a)?;
                 let (b, _) = fetch(*b)?;
-                let surface = sweeps::sweep2(&p, [&a, &b], *stations)?;
-                match mesh {
-                    None => Made::Surface(surface),
-                    Some((n, m)) => {
-                        if *caps {
-                            sweeps::check_end_caps(&p, &p)?;
-                        }
-                        let (us, closed) = sweeps::compatible_parameters(&p, m);
-                        Made::Mesh(sweeps::surface_mesh(
-                            &surface, &us, closed, n, false, *caps,
-                        )?)
-                    }
-                }
+                swept_output(sweeps::sweep2(&p, [&a, &b], *stations)?, &p, mesh, *caps)?
             }
             Recipe::Loft {
                 sections,
@@ -669,6 +645,27 @@ impl Construction<NodeId> {
             inputs.join(", ")
         )
     }
+}
+
+/// A sweep's NURBS surface, or its mesh: quads along the profile `p` (as
+/// many as `mesh`'s profile segments) by its segments along the rail, with
+/// end caps when asked (closed planar profiles).
+fn swept_output(
+    surface: NurbsSurface,
+    p: &NurbsCurve,
+    mesh: Option<(u32, u32)>,
+    caps: bool,
+) -> Result<Made, ConstructionError> {
+    Ok(match mesh {
+        None => Made::Surface(surface),
+        Some((n, m)) => {
+            if caps {
+                sweeps::check_end_caps(p, p)?;
+            }
+            let (us, closed) = sweeps::compatible_parameters(p, m);
+            Made::Mesh(sweeps::surface_mesh(&surface, &us, closed, n, false, caps)?)
+        }
+    })
 }
 
 /// A patch's NURBS surface, or its mesh: `profile_segments` quads along u,

@@ -76,29 +76,11 @@ fn csg_report(doc: &Document, id: crate::scene::NodeId) -> Option<CsgReport> {
     let NodeContent::Csg(c) = &doc.node(id)?.content else {
         return None;
     };
-    let evaluated = match crate::csg::evaluate(doc, id) {
-        Ok(m) => {
-            let s = m.stats();
-            EvaluatedReport {
-                vertices: s.vertices,
-                edges: s.edges,
-                faces: s.faces,
-                boundary_loops: s.boundary_loops,
-                shells: s.shells,
-                genus: s.genus,
-                error: None,
-            }
-        }
-        Err(e) => EvaluatedReport {
-            vertices: 0,
-            edges: 0,
-            faces: 0,
-            boundary_loops: 0,
-            shells: 0,
-            genus: None,
-            error: Some(e.to_string()),
-        },
-    };
+    let evaluated = EvaluatedReport::of(
+        crate::csg::evaluate(doc, id)
+            .as_deref()
+            .map_err(|e| e.to_string()),
+    );
     Some(CsgReport {
         op: c.op.label(),
         operands: crate::csg::operands(doc, id).iter().map(|o| o.0).collect(),
@@ -208,6 +190,35 @@ pub struct EvaluatedReport {
     pub genus: Option<i64>,
     /// Why the stack could not be evaluated (then the counts are 0).
     pub error: Option<String>,
+}
+
+impl EvaluatedReport {
+    /// The counts of an evaluated mesh, or zeros and why there is none.
+    fn of(result: Result<&hedra_geom::HalfEdgeMesh, String>) -> Self {
+        match result {
+            Ok(mesh) => {
+                let s = mesh.stats();
+                EvaluatedReport {
+                    vertices: s.vertices,
+                    edges: s.edges,
+                    faces: s.faces,
+                    boundary_loops: s.boundary_loops,
+                    shells: s.shells,
+                    genus: s.genus,
+                    error: None,
+                }
+            }
+            Err(error) => EvaluatedReport {
+                vertices: 0,
+                edges: 0,
+                faces: 0,
+                boundary_loops: 0,
+                shells: 0,
+                genus: None,
+                error: Some(error),
+            },
+        }
+    }
 }
 
 /// A mesh node's subdivision modifier.
@@ -378,29 +389,8 @@ fn mesh_report(content: &crate::scene::MeshContent) -> MeshReport {
             })
             .collect(),
         evaluated: content.has_stack_modifiers().then(|| {
-            match content.apply_stack(content.modifiers.len()) {
-                Ok(e) => {
-                    let s = e.mesh.stats();
-                    EvaluatedReport {
-                        vertices: s.vertices,
-                        edges: s.edges,
-                        faces: s.faces,
-                        boundary_loops: s.boundary_loops,
-                        shells: s.shells,
-                        genus: s.genus,
-                        error: None,
-                    }
-                }
-                Err(e) => EvaluatedReport {
-                    vertices: 0,
-                    edges: 0,
-                    faces: 0,
-                    boundary_loops: 0,
-                    shells: 0,
-                    genus: None,
-                    error: Some(e.to_string()),
-                },
-            }
+            let result = content.apply_stack(content.modifiers.len());
+            EvaluatedReport::of(result.as_ref().map(|e| &*e.mesh).map_err(|e| e.to_string()))
         }),
         primitive: content.primitive.as_ref().map(|p| p.kind().to_string()),
         vertices: s.vertices,

@@ -22,6 +22,7 @@ pub mod mesh_mode;
 pub mod modal;
 mod proportional;
 pub mod shape_mode;
+mod shape_tool;
 mod snapping;
 pub mod typing;
 
