@@ -2579,3 +2579,341 @@ fn ctrl_numpad_plus_unites_two_cubes_and_a_live_csg_node_is_drawn() {
         "the CSG node draws its solid"
     );
 }
+
+fn execute(user: &mut User, cmd: &str) {
+    let cmd: hedra_doc::Command = ron::from_str(cmd).unwrap();
+    user.app
+        .world_mut()
+        .write_message(hedra_scene::DocRequest::Execute(cmd));
+    user.frames(2);
+}
+
+fn node_named(user: &User, name: &str) -> Option<hedra_doc::Node> {
+    user.doc().nodes().find(|n| n.name == name).cloned()
+}
+
+/// A revolution's *Pick axis* button: two clicks in the top view (Ctrl
+/// held: whole grid steps) put the axis through both points, in world
+/// space, one undo step. Then *Caps at a partial angle* on the NURBS
+/// result makes two flat NURBS cap nodes under it, one at the profile and
+/// one where the turn ends.
+#[test]
+fn pick_a_revolve_axis_by_two_points_and_cap_its_nurbs_ends() {
+    use hedra_doc::construction::{Output, Recipe, Space};
+    use hedra_geom::surfaces::Surface;
+    let mut user = User::new();
+    user.add("NURBS Circle");
+    user.tap(KeyCode::KeyG);
+    user.tap(KeyCode::KeyX);
+    user.type_text("3");
+    user.tap(KeyCode::Enter);
+    open_menu(&mut user, "Object");
+    user.click_on("Surface from Curves ⏵");
+    user.click_on("Revolve");
+    let id = made_from_curves(&user).expect("a revolution").id;
+    user.tap(KeyCode::Numpad7);
+    user.frames(3);
+    let steps = user.undo_steps();
+    user.click_on("Pick axis");
+    assert!(user.status().contains("Pick axis"), "{}", user.status());
+    // Inside the ring's hole, so the clicks land on the ground plane.
+    for p in [Vec3::ZERO, Vec3::new(0.0, 0.0, -1.0)] {
+        let at = user.screen_of(p) + Vec2::new(3.0, -2.0);
+        user.move_to(at);
+        user.key_down(KeyCode::ControlLeft);
+        user.frames(2);
+        user.click(at);
+        user.key_up(KeyCode::ControlLeft);
+    }
+    user.frames(2);
+    assert_eq!(user.undo_steps(), steps + 1, "{}", user.status());
+    let made = user.doc().node(id).unwrap().construction.clone().unwrap();
+    let Recipe::Revolve {
+        origin,
+        axis,
+        space,
+        ..
+    } = made.recipe
+    else {
+        panic!("a revolution")
+    };
+    assert_eq!(space, Space::World);
+    assert!(origin.distance(DVec3::ZERO) < 1e-12, "{origin}");
+    assert!(axis.distance(DVec3::NEG_Z) < 1e-12, "{axis}");
+    // Half a turn, then the caps checkbox.
+    let mut half = made.map_inputs(|i| Ok::<_, ()>(hedra_doc::NodeRef::from(*i))).unwrap();
+    if let Recipe::Revolve { degrees, .. } = &mut half.recipe {
+        *degrees = 180.0;
+    }
+    assert_eq!(half.output, Output::Nurbs);
+    user.app
+        .world_mut()
+        .write_message(hedra_scene::DocRequest::Execute(hedra_doc::Command::SetConstruction {
+            node: id.into(),
+            construction: half,
+        }));
+    user.frames(3);
+    let steps = user.undo_steps();
+    user.click_on("Caps at a partial angle");
+    user.frames(2);
+    assert_eq!(user.undo_steps(), steps + 1, "{}", user.status());
+    let caps: Vec<hedra_doc::Node> = user
+        .doc()
+        .nodes()
+        .filter(|n| n.parent == Some(id))
+        .cloned()
+        .collect();
+    assert_eq!(caps.len(), 2, "{:?}", user.node_names());
+    // The start cap is the profile's disc: in the ground plane, within
+    // the unit circle about (3, 0, 0); the end cap its mirror about the axis.
+    for (cap, centre) in caps.iter().zip([DVec3::new(3.0, 0.0, 0.0), DVec3::new(-3.0, 0.0, 0.0)]) {
+        let NodeContent::Surface(s) = &cap.content else {
+            panic!("a surface")
+        };
+        let hedra_doc::SurfaceShape::Nurbs(n) = &**s else {
+            panic!("NURBS")
+        };
+        let ((u0, u1), (v0, v1)) = n.domain();
+        for i in 0..=6 {
+            for j in 0..=6 {
+                let p = n.point(u0 + (u1 - u0) * i as f64 / 6.0, v0 + (v1 - v0) * j as f64 / 6.0);
+                assert!(p.y.abs() < 1e-9, "{} {p}", cap.name);
+                assert!(p.distance(centre) <= 1.0 + 1e-9, "{} {p}", cap.name);
+            }
+        }
+    }
+    user.key_down(KeyCode::ControlLeft);
+    user.tap(KeyCode::KeyZ);
+    user.key_up(KeyCode::ControlLeft);
+    user.frames(2);
+    assert!(user.doc().nodes().all(|n| n.parent != Some(id)));
+}
+
+/// A sweep along an S-shaped rail with the Frenet frame: the panel says
+/// where the frame flips (the rail's inflection), the document reports the
+/// same station; the rotation-minimising frame reports none.
+#[test]
+fn a_frenet_sweep_shows_where_its_frame_flips() {
+    let mut user = User::new();
+    let rail: Vec<String> = (0..=40)
+        .map(|k| {
+            let t = k as f64 / 40.0;
+            format!("({:.6}, {:.6}, 0.0)", 4.0 * t, (std::f64::consts::TAU * t).sin())
+        })
+        .collect();
+    execute(
+        &mut user,
+        &format!("AddCurve(name: \"Rail\", curve: Nurbs(degree: 3, points: [{}]))", rail.join(", ")),
+    );
+    execute(&mut user, "AddCurve(name: \"Profile\", curve: Circle(radius: 0.2))");
+    execute(
+        &mut user,
+        "MakeFromCurves(name: \"Tube\", construction: (recipe: Sweep(profile: Name(\"Profile\"), rail: Name(\"Rail\"), frame: Frenet, stations: 21)))",
+    );
+    let tube = node_named(&user, "Tube").expect("a sweep").id;
+    let found = user.doc().sweep_frames(tube).expect("frames");
+    assert_eq!(found.flips.len(), 1, "{:?}", found.flips);
+    user.app
+        .world_mut()
+        .resource_mut::<hedra_edit::Selection>()
+        .set([tube]);
+    user.frames(3);
+    assert!(
+        user.shows("The frame flips at 1 station (ringed in the viewport): the profile turns half a turn there; the rotation-minimising frame does not flip"),
+        "the panel names the flip"
+    );
+    user.click_on("rotation-minimising");
+    user.frames(2);
+    assert!(user.doc().sweep_frames(tube).unwrap().flips.is_empty());
+    assert!(user.shows("Frames at 21 stations: no flip"));
+}
+
+/// The seed 002 sample (a Bézier triangle G1-joined to a bicubic patch):
+/// both selected, the panel's planar section and moving domain point are
+/// drawn on each of them — the section cuts both patches with one plane,
+/// meeting at the joint, and at the shared edge the two domain points'
+/// normals agree.
+#[test]
+fn the_g1_sample_shows_sections_and_the_domain_point_on_both_patches() {
+    let mut user = User::new();
+    let sample = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/samples/g1-join.hedra.ron");
+    user.app
+        .world_mut()
+        .write_message(hedra_ui::FileAction::OpenPath(sample));
+    for _ in 0..50 {
+        user.frames(2);
+        if user.doc().nodes().count() == 2 {
+            break;
+        }
+    }
+    let ids: Vec<hedra_doc::NodeId> = user.doc().nodes().map(|n| n.id).collect();
+    assert_eq!(ids.len(), 2, "the sample opened: {}", user.status());
+    user.app
+        .world_mut()
+        .resource_mut::<hedra_edit::Selection>()
+        .set(ids.clone());
+    user.frames(3);
+    user.click_on("Planar section");
+    user.click_on("Moving domain point");
+    user.frames(3);
+    let shown = user
+        .app
+        .world()
+        .resource::<hedra_viewport::SurfaceAnalysisShown>()
+        .clone();
+    assert_eq!(shown.sections.len(), 2);
+    for (id, cut) in &shown.sections {
+        assert!(cut.len() > 10, "the section crosses node {id}: {} segments", cut.len());
+    }
+    assert_eq!(shown.points.len(), 2);
+    // At (u, v) = (0, 0) both points are the joint's shared corner, and
+    // there the two patches' normals agree (G1).
+    let (mut a, mut b) = (shown.points[0], shown.points[1]);
+    assert!((a.2.length() - 1.0).abs() < 1e-9 && (b.2.length() - 1.0).abs() < 1e-9);
+    assert!(a.1.distance(b.1) > 1e-3, "u = v = 0.5 are different points");
+    {
+        let mut analysis = user
+            .app
+            .world_mut()
+            .resource_mut::<hedra_viewport::SurfaceAnalysis>();
+        analysis.u = 0.0;
+        analysis.v = 0.0;
+    }
+    user.frames(2);
+    let shown = user
+        .app
+        .world()
+        .resource::<hedra_viewport::SurfaceAnalysisShown>()
+        .clone();
+    (a, b) = (shown.points[0], shown.points[1]);
+    assert!(a.1.length() < 1e-12 && b.1.length() < 1e-12, "{:?} {:?}", a.1, b.1);
+    assert!(a.2.dot(b.2).abs() > 1.0 - 1e-9, "{:?} {:?}", a.2, b.2);
+}
+
+/// The CSG emblem built in the app (issue 17): a cube and a sphere (S 1.35)
+/// made a live intersection, three cylinders (S 0.55, two turned with R)
+/// taken from it as a live difference — a closed solid of genus 5. A click
+/// on the solid selects the CSG node (its operands appear as ghosts); a
+/// cylinder dragged with G changes the drawn solid while it moves (the
+/// preview is the re-evaluated solid), and the confirmed move is one undo
+/// step after which the document's solid is the previewed one. Dragging a
+/// cylinder out of the CSG node in the outliner makes it an object of its
+/// own again (the solid has one hole less).
+#[test]
+fn build_the_csg_emblem_in_the_app_and_drag_a_cylinder_through_it() {
+    let mut user = User::new();
+    user.add("Cube");
+    user.add("Sphere");
+    user.tap(KeyCode::KeyS);
+    user.type_text("1.35");
+    user.tap(KeyCode::Enter);
+    user.tap(KeyCode::KeyA);
+    open_menu(&mut user, "Object");
+    user.click_on("Live CSG Intersection");
+    let rounded = user
+        .doc()
+        .nodes()
+        .find(|n| matches!(n.content, NodeContent::Csg(_)))
+        .expect("the intersection")
+        .id;
+    let mut cylinders = Vec::new();
+    for turn in [None, Some(KeyCode::KeyX), Some(KeyCode::KeyZ)] {
+        user.add("Cylinder");
+        user.tap(KeyCode::KeyS);
+        user.type_text("0.55");
+        user.tap(KeyCode::Enter);
+        // Long enough to pass through: 1.5 times as long along its axis.
+        user.tap(KeyCode::KeyS);
+        user.tap(KeyCode::KeyY);
+        user.type_text("2.7");
+        user.tap(KeyCode::Enter);
+        if let Some(axis) = turn {
+            user.tap(KeyCode::KeyR);
+            user.tap(axis);
+            user.type_text("90");
+            user.tap(KeyCode::Enter);
+        }
+        cylinders.push(user.app.world().resource::<hedra_edit::Selection>().active().unwrap());
+    }
+    let mut operands = vec![rounded];
+    operands.extend(&cylinders);
+    user.app
+        .world_mut()
+        .resource_mut::<hedra_edit::Selection>()
+        .set(operands);
+    open_menu(&mut user, "Object");
+    user.click_on("Live CSG Difference");
+    let emblem = user
+        .doc()
+        .nodes()
+        .find(|n| matches!(n.content, NodeContent::Csg(_)) && n.id != rounded)
+        .expect("the difference")
+        .id;
+    let solid = hedra_doc::csg::evaluate(user.doc(), emblem).expect("a solid");
+    solid.validate().unwrap();
+    assert_eq!(solid.stats().genus, Some(5), "{:?}", solid.stats());
+    user.frames(3);
+    // A click on the solid (the middle of the cube's front face, between
+    // the holes) selects the emblem, not the hidden operand under it.
+    user.tap(KeyCode::Numpad1);
+    user.frames(3);
+    user.click(user.screen_of(Vec3::new(0.75, 0.75, 1.0)));
+    assert_eq!(
+        user.app.world().resource::<hedra_edit::Selection>().active(),
+        Some(emblem)
+    );
+    // Drag the Y cylinder along X: the drawn solid follows before Enter.
+    let cylinder = cylinders[0];
+    user.app
+        .world_mut()
+        .resource_mut::<hedra_edit::Selection>()
+        .set([cylinder]);
+    let steps = user.undo_steps();
+    user.tap(KeyCode::KeyG);
+    user.tap(KeyCode::KeyX);
+    user.type_text("0.3");
+    user.frames(3);
+    let preview = user
+        .app
+        .world()
+        .resource::<hedra_scene::Previews>()
+        .content(emblem)
+        .cloned();
+    let Some(hedra_scene::PreviewContent::Mesh { mesh: moving, .. }) = preview else {
+        panic!("the emblem's solid is re-evaluated during the drag")
+    };
+    assert!(!std::sync::Arc::ptr_eq(&moving, &solid));
+    let hole_x = |m: &hedra_geom::HalfEdgeMesh| {
+        // The Y hole's rim on the top face (y = 1): the mean x of its vertices.
+        let rim: Vec<f64> = m
+            .vertices()
+            .map(|v| m.position(v))
+            .filter(|p| (p.y - 1.0).abs() < 1e-9 && p.x.hypot(p.z) < 0.9)
+            .map(|p| p.x)
+            .collect();
+        rim.iter().sum::<f64>() / rim.len().max(1) as f64
+    };
+    assert!((hole_x(&moving) - 0.3).abs() < 0.05, "{}", hole_x(&moving));
+    assert!(hole_x(&solid).abs() < 0.05);
+    user.tap(KeyCode::Enter);
+    user.frames(2);
+    assert_eq!(user.undo_steps(), steps + 1);
+    let after = hedra_doc::csg::evaluate(user.doc(), emblem).unwrap();
+    assert_eq!(after.vertex_count(), moving.vertex_count());
+    assert!((hole_x(&after) - 0.3).abs() < 0.05);
+    // Out of the CSG node by the outliner: drag the cylinder's row onto
+    // the empty space below the tree.
+    let name = user.doc().node(cylinder).unwrap().name.clone();
+    let row = user.find(&name);
+    let below = user
+        .find_all(&user.doc().nodes().last().unwrap().name.clone())
+        .into_iter()
+        .map(|r| r.max.y)
+        .fold(row.y, f32::max)
+        + 60.0;
+    user.drag(row, Vec2::new(row.x, below), 8);
+    user.frames(3);
+    assert_eq!(user.doc().node(cylinder).unwrap().parent, None, "{}", user.status());
+    let fewer = hedra_doc::csg::evaluate(user.doc(), emblem).unwrap();
+    assert_eq!(fewer.stats().genus, Some(3), "one hole less");
+}

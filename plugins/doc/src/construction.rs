@@ -61,7 +61,8 @@ pub enum Recipe<N> {
         /// Where `direction` is given (default: the profile's space).
         #[serde(default, skip_serializing_if = "is_default")]
         space: Space,
-        /// N-gon caps on both ends (mesh output; closed planar profiles).
+        /// Caps on both ends (closed planar profiles): n-gons on a mesh,
+        /// flat NURBS cap nodes beside a surface.
         #[serde(default, skip_serializing_if = "is_default")]
         caps: bool,
     },
@@ -84,8 +85,8 @@ pub enum Recipe<N> {
         /// Where `origin` and `axis` are given (default: the profile's space).
         #[serde(default, skip_serializing_if = "is_default")]
         space: Space,
-        /// N-gon caps at both ends of a partial turn (mesh output; closed
-        /// planar profiles).
+        /// Caps at both ends of a partial turn (closed planar profiles):
+        /// n-gons on a mesh, flat NURBS cap nodes beside a surface.
         #[serde(default, skip_serializing_if = "is_default")]
         caps: bool,
     },
@@ -101,7 +102,8 @@ pub enum Recipe<N> {
         /// Copies of the profile placed along the rail and skinned (default 24).
         #[serde(default = "stations")]
         stations: u32,
-        /// N-gon caps on both ends (mesh output; closed planar profiles).
+        /// Caps on both ends (closed planar profiles): n-gons on a mesh,
+        /// flat NURBS cap nodes beside a surface.
         #[serde(default, skip_serializing_if = "is_default")]
         caps: bool,
     },
@@ -114,7 +116,8 @@ pub enum Recipe<N> {
         /// Copies of the profile placed along the rails (default 24).
         #[serde(default = "stations")]
         stations: u32,
-        /// N-gon caps on both ends (mesh output; closed planar profiles).
+        /// Caps on both ends (closed planar profiles): n-gons on a mesh,
+        /// flat NURBS cap nodes beside a surface.
         #[serde(default, skip_serializing_if = "is_default")]
         caps: bool,
     },
@@ -128,7 +131,8 @@ pub enum Recipe<N> {
         /// `Straight`, `Loose` or `Normal` (default).
         #[serde(default, skip_serializing_if = "is_default")]
         tightness: Tightness,
-        /// N-gon caps on the first and last section (open lofts, mesh output).
+        /// Caps on the first and last section (open lofts): n-gons on a
+        /// mesh, flat NURBS cap nodes beside a surface.
         #[serde(default, skip_serializing_if = "is_default")]
         caps: bool,
     },
@@ -177,6 +181,13 @@ pub enum Output {
     /// A NURBS surface node (exact where the kernel's construction is).
     #[default]
     Nurbs,
+    /// One of the flat NURBS caps closing the ends of the recipe's NURBS
+    /// surface ([`sweeps::end_caps`]): the node is a child of the surface's
+    /// node, made with it when its recipe asks for caps.
+    Cap {
+        /// Which end it closes.
+        end: CapEnd,
+    },
     /// A polygon mesh node of quads (n-gon caps).
     Mesh {
         /// Segments along the sweep (around a revolution, along an
@@ -186,6 +197,15 @@ pub enum Output {
         /// corners instead).
         profile_segments: u32,
     },
+}
+
+/// The end of a swept surface a cap closes.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub enum CapEnd {
+    /// Where the sweep starts (the profile itself for an extrusion).
+    Start,
+    /// Where it ends.
+    End,
 }
 
 /// A node's record of how it was made: the recipe with its input nodes,
@@ -245,9 +265,10 @@ pub enum ConstructionError {
         /// The kernel's reason.
         error: PatchError,
     },
-    /// Caps asked for on a NURBS result (a surface node holds one patch).
-    #[error("caps need mesh output (a surface node holds one patch; choose Mesh output)")]
-    CapsNeedMesh,
+    /// A cap asked of a surface that closes on itself (a full turn, a
+    /// sweep around a closed rail, a closed loft): it has no ends.
+    #[error("the surface closes on itself: it has no ends to cap")]
+    NoEnds,
     /// The same node given as two inputs where that makes no sense (a
     /// profile that is its own rail).
     #[error("input {input} is used twice")]
@@ -293,7 +314,17 @@ impl<N> Recipe<N> {
         }
     }
 
-    fn caps(&self) -> bool {
+    /// The parametric direction the recipe's NURBS surface is swept along
+    /// (where its ends are): u for a revolution, v for the others.
+    pub fn along(&self) -> sweeps::Along {
+        match self {
+            Recipe::Revolve { .. } => sweeps::Along::U,
+            _ => sweeps::Along::V,
+        }
+    }
+
+    /// True when the recipe asks for caps on its ends.
+    pub fn caps(&self) -> bool {
         match self {
             Recipe::Extrude { caps, .. }
             | Recipe::Revolve { caps, .. }
@@ -446,7 +477,22 @@ impl Construction<NodeId> {
             }
         }
         let mesh = match self.output {
-            Output::Nurbs if self.recipe.caps() => return Err(ConstructionError::CapsNeedMesh),
+            Output::Cap { end } => {
+                let surface = Construction {
+                    recipe: self.recipe.clone(),
+                    output: Output::Nurbs,
+                };
+                let Made::Surface(s) = surface.make(input)? else {
+                    unreachable!("NURBS output makes a surface")
+                };
+                let caps = sweeps::end_caps(&s, self.recipe.along())?;
+                let k = if end == CapEnd::Start { 0 } else { 1 };
+                return caps
+                    .into_iter()
+                    .nth(k)
+                    .map(Made::Surface)
+                    .ok_or(ConstructionError::NoEnds);
+            }
             Output::Nurbs => None,
             Output::Mesh {
                 segments,
@@ -619,6 +665,8 @@ impl Construction<NodeId> {
                 segments,
                 profile_segments,
             } => format!("mesh {segments}×{profile_segments}"),
+            Output::Cap { end: CapEnd::Start } => "NURBS cap at the start".to_string(),
+            Output::Cap { end: CapEnd::End } => "NURBS cap at the end".to_string(),
         };
         let params = match &self.recipe {
             Recipe::Extrude { direction, .. } => format!("by {direction}"),
@@ -659,11 +707,14 @@ fn swept_output(
     Ok(match mesh {
         None => Made::Surface(surface),
         Some((n, m)) => {
+            // A sweep around a closed rail has no ends to cap.
+            let closed_v = sweeps::is_closed_in_v(&surface);
+            let caps = caps && !closed_v;
             if caps {
                 sweeps::check_end_caps(p, p)?;
             }
             let (us, closed) = sweeps::compatible_parameters(p, m);
-            Made::Mesh(sweeps::surface_mesh(&surface, &us, closed, n, false, caps)?)
+            Made::Mesh(sweeps::surface_mesh(&surface, &us, closed, n, closed_v, caps)?)
         }
     })
 }
@@ -730,7 +781,39 @@ fn coons_gap(curves: &[NurbsCurve], names: &[String]) -> ConstructionError {
     }
 }
 
+/// The frames a sweep carries its profile in, for drawing and reporting.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SweepFrames {
+    /// The frame at each station, world space.
+    pub frames: Vec<sweeps::Frame>,
+    /// The stations where the frame flips ([`sweeps::frame_flips`]).
+    pub flips: Vec<usize>,
+}
+
 impl Document {
+    /// The frames of the sweep node `id` at its stations and where they
+    /// flip; `None` when `id` is not a sweep made from curves or its rail
+    /// gives no frames.
+    pub fn sweep_frames(&self, id: NodeId) -> Option<SweepFrames> {
+        let c = self.nodes.get(&id)?.construction.as_ref()?;
+        let Recipe::Sweep {
+            rail,
+            frame,
+            stations,
+            ..
+        } = &c.recipe
+        else {
+            return None;
+        };
+        let lookup = |i: NodeId| self.nodes.get(&i);
+        let Input { world, curve, .. } = input_of(&lookup, *rail)??;
+        let rail = curve.transformed(&world).ok()?;
+        let params = sweeps::stations(&rail, (*stations).max(2));
+        let frames = sweeps::rail_frames(&rail, &params, *frame).ok()?;
+        let flips = sweeps::frame_flips(&frames);
+        Some(SweepFrames { frames, flips })
+    }
+
     /// The nodes whose construction uses `id` as an input, in id order.
     pub fn dependents(&self, id: NodeId) -> Vec<NodeId> {
         self.nodes

@@ -611,6 +611,19 @@ impl Document {
         }
         m
     }
+    /// A copy of the document with some nodes replaced by these versions
+    /// of them (matched by id; others are ignored): what a running tool
+    /// would leave, for evaluating what depends on it (a CSG solid while
+    /// an operand is dragged). Contents are shared, not copied.
+    pub fn with_changed(&self, nodes: impl IntoIterator<Item = Node>) -> Document {
+        let mut doc = self.clone();
+        for n in nodes {
+            if let Some(slot) = doc.nodes.get_mut(&n.id) {
+                *slot = n;
+            }
+        }
+        doc
+    }
     /// The node's world transform, decomposed.
     pub fn world_transform(&self, id: NodeId) -> NodeTransform {
         NodeTransform::from_matrix(self.world_matrix(id))

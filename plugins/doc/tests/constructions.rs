@@ -315,7 +315,6 @@ fn apply_freezes_in_one_step_and_set_construction_remakes() {
 #[test]
 fn refusals_name_the_node_and_the_reason() {
     let mut s = torus_session();
-    // Caps on a NURBS result.
     let capped = Construction {
         recipe: Recipe::Extrude {
             profile: name("Profile"),
@@ -325,14 +324,6 @@ fn refusals_name_the_node_and_the_reason() {
         },
         output: Output::Nurbs,
     };
-    let err = make(&mut s, "Can", capped.clone()).unwrap_err();
-    assert_eq!(
-        err,
-        CommandError::Construction {
-            node: "'Can'".into(),
-            error: ConstructionError::CapsNeedMesh
-        }
-    );
     // A capped mesh extrusion follows the circle; bending the circle out of
     // its plane is refused, naming the dependent.
     make(
@@ -642,4 +633,134 @@ fn a_file_whose_construction_names_a_missing_input_is_refused_by_name() {
             .ends_with("node #2 'Torus' is made from node #7, which is missing or not a curve"),
         "{err}"
     );
+}
+
+fn surface_of(s: &Session, n: &str) -> hedra_geom::surfaces::NurbsSurface {
+    match &s.doc.find_by_name(n).unwrap().content {
+        NodeContent::Surface(sf) => match &**sf {
+            hedra_doc::SurfaceShape::Nurbs(x) => x.clone(),
+            _ => panic!("{n} is a triangle"),
+        },
+        c => panic!("{n} is a {}", c.kind()),
+    }
+}
+
+#[test]
+fn nurbs_caps_are_child_nodes_that_follow_the_profile_and_the_recipe() {
+    use hedra_geom::Surface;
+    let mut s = torus_session();
+    let can = Construction {
+        recipe: Recipe::Extrude {
+            profile: name("Profile"),
+            direction: DVec3::new(0.0, 2.0, 0.0),
+            space: Space::Profile,
+            caps: true,
+        },
+        output: Output::Nurbs,
+    };
+    make(&mut s, "Can", can.clone()).unwrap();
+    let can_id = s.doc.find_by_name("Can").unwrap().id;
+    for (cap, y) in [("Can cap start", 0.0), ("Can cap end", 2.0)] {
+        let node = s.doc.find_by_name(cap).unwrap();
+        assert_eq!(node.parent, Some(can_id));
+        let disc = surface_of(&s, cap);
+        let ((a, b), (c, d)) = disc.domain();
+        for i in 0..=10 {
+            for j in 0..=10 {
+                let p = disc.point(a + (b - a) * i as f64 / 10.0, c + (d - c) * j as f64 / 10.0);
+                assert!((p.y - y).abs() < 1e-12);
+                assert!(p.distance(DVec3::new(5.0, y, 0.0)) <= 0.5 + 1e-9);
+            }
+        }
+    }
+    // One undo step made all three.
+    assert_eq!(s.doc.node_count(), 5);
+    s.undo();
+    assert_eq!(s.doc.node_count(), 2);
+    s.redo();
+    // Moving the profile moves the caps with the surface, in one step.
+    s.execute(&Command::SetTransform {
+        node: name("Profile"),
+        transform: NodeTransform::from_translation(DVec3::new(5.0, 1.0, 0.0)),
+    })
+    .unwrap();
+    let top = surface_of(&s, "Can cap end");
+    assert!((top.points()[0].y - 3.0).abs() < 1e-12);
+    // Caps off: the cap nodes go; on again: they come back.
+    let mut open = can.clone();
+    if let Recipe::Extrude { caps, .. } = &mut open.recipe {
+        *caps = false;
+    }
+    s.execute(&Command::SetConstruction {
+        node: name("Can"),
+        construction: open,
+    })
+    .unwrap();
+    assert!(s.doc.find_by_name("Can cap start").is_none());
+    s.undo();
+    assert!(s.doc.find_by_name("Can cap start").is_some());
+    // A cap's recipe is its surface's: changing it there is refused.
+    let err = s
+        .execute(&Command::SetConstruction {
+            node: name("Can cap end"),
+            construction: can.clone(),
+        })
+        .unwrap_err();
+    assert!(err.to_string().contains("is a cap of 'Can'"), "{err}");
+    // A full revolution has no ends: caps asked of it make none.
+    let mut full = revolve("Profile");
+    if let Recipe::Revolve { caps, .. } = &mut full.recipe {
+        *caps = true;
+    }
+    make(&mut s, "Ring", full).unwrap();
+    assert!(s.doc.find_by_name("Ring cap start").is_none());
+    // A partial one gets two, and Apply freezes them with it.
+    let mut part = revolve("Profile");
+    if let Recipe::Revolve { caps, degrees, .. } = &mut part.recipe {
+        *caps = true;
+        *degrees = 120.0;
+    }
+    make(&mut s, "Arc", part).unwrap();
+    assert!(s.doc.find_by_name("Arc cap end").is_some());
+    s.execute(&Command::ApplyConstruction {
+        nodes: vec![name("Arc")],
+    })
+    .unwrap();
+    assert!(s.doc.find_by_name("Arc cap end").unwrap().construction.is_none());
+    // The file keeps the caps' link.
+    let text = hedra_doc::file::to_string(&s);
+    let back = hedra_doc::file::from_str(&text, Path::new("c.hedra.ron")).unwrap();
+    assert_eq!(
+        back.session.doc.find_by_name("Can cap end").unwrap().construction,
+        s.doc.find_by_name("Can cap end").unwrap().construction
+    );
+    // An open profile cannot be capped: refused, naming the node.
+    add_curve(
+        &mut s,
+        "Arc profile",
+        CurveSpec::Nurbs {
+            degree: 1,
+            points: vec![DVec3::ZERO, DVec3::X, DVec3::new(1.0, 1.0, 0.0)],
+            weights: None,
+            knots: None,
+        },
+        NodeTransform::IDENTITY,
+    );
+    let err = make(
+        &mut s,
+        "Sheet",
+        Construction {
+            recipe: Recipe::Extrude {
+                profile: name("Arc profile"),
+                direction: DVec3::Z,
+                space: Space::Profile,
+                caps: true,
+            },
+            output: Output::Nurbs,
+        },
+    )
+    .unwrap_err();
+    assert!(err.to_string().starts_with("'Sheet'"), "{err}");
+    assert!(err.to_string().contains("closed profile"), "{err}");
+    let _ = ConstructionError::NoEnds;
 }

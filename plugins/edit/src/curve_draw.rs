@@ -14,7 +14,8 @@ use bevy::prelude::*;
 use bevy::window::PrimaryWindow;
 use glam::DVec3;
 use hedra_doc::command::CurveSpec;
-use hedra_doc::{Command, NodeTransform};
+use hedra_doc::construction::{Recipe, Space};
+use hedra_doc::{Command, Document, NodeId, NodeRef, NodeTransform};
 use hedra_geom::curves::{Curve, Join};
 use hedra_scene::{DocRequest, DocState, InputGate, StatusMessage, ViewportCamera};
 
@@ -170,6 +171,8 @@ fn handle_reach(points: &[DVec3], handles: &[Option<DVec3>], i: usize) -> DVec3 
 }
 
 /// What the status line says while drawing.
+const AXIS_HELP: &str = "Pick axis: click a point of the axis, then a second one along it (Ctrl snaps, as in a move) · Esc cancels";
+
 fn draw_help(kind: DrawKind) -> String {
     format!(
         "Draw {}: click points (on a surface or the grid plane; snapping applies) · \
@@ -200,6 +203,9 @@ pub struct CurveDraw {
     pub hover: Option<DVec3>,
     /// The frame that ended the drawing (its click or key is spent).
     pub just_finished: bool,
+    /// Clicking the two points of a revolution's axis instead of a curve
+    /// (the *Pick axis* button of a revolution made from curves): the node.
+    pub axis_of: Option<NodeId>,
 }
 
 impl CurveDraw {
@@ -211,6 +217,18 @@ impl CurveDraw {
             ..default()
         };
         status.info(draw_help(self.kind));
+    }
+
+    /// Starts picking the axis of the revolution `node` by two clicked
+    /// points (snapped as a move is).
+    pub fn start_axis(&mut self, node: NodeId, status: &mut StatusMessage) {
+        *self = CurveDraw {
+            active: true,
+            kind: self.kind,
+            axis_of: Some(node),
+            ..default()
+        };
+        status.info(AXIS_HELP);
     }
 
     /// Ends the drawing, keeping the kind for the next one.
@@ -274,7 +292,7 @@ pub fn drive_curve_draw(
         draw.points.pop();
         draw.handles.pop();
     }
-    if tool_key(Action::NextCurveKind) {
+    if tool_key(Action::NextCurveKind) && draw.axis_of.is_none() {
         draw.kind = draw.kind.next();
         status.info(draw_help(draw.kind));
     }
@@ -342,6 +360,18 @@ pub fn drive_curve_draw(
             draw.held = None;
         }
     }
+    if let Some(node) = draw.axis_of {
+        draw.drawn.clear();
+        if let [from, to] = draw.points[..] {
+            draw.finish();
+            if let Some(cmd) = axis_command(&state.session.doc, node, from, to) {
+                requests.write(DocRequest::Execute(cmd));
+            } else {
+                status.error("Pick axis: the two points must differ");
+            }
+        }
+        return;
+    }
     let hovering = draw.held.is_none().then_some(draw.hover).flatten();
     let with_hover: Vec<DVec3> = draw.points.iter().chain(hovering.iter()).copied().collect();
     draw.drawn = preview(draw.kind, &with_hover, &draw.handles);
@@ -369,6 +399,33 @@ pub fn drive_curve_draw(
         parent: None,
         transform: NodeTransform::from_translation(origin),
     }));
+}
+
+/// The command that puts the axis of the revolution `node` through `from`
+/// and `to` (world space); `None` for two equal points or a node that is
+/// not a revolution made from curves.
+pub fn axis_command(doc: &Document, node: NodeId, from: DVec3, to: DVec3) -> Option<Command> {
+    let direction = (to - from).try_normalize()?;
+    let made = doc.node(node)?.construction.as_ref()?;
+    let mut c = made
+        .map_inputs(|i| Ok::<_, ()>(NodeRef::from(*i)))
+        .ok()?;
+    let Recipe::Revolve {
+        origin,
+        axis,
+        space,
+        ..
+    } = &mut c.recipe
+    else {
+        return None;
+    };
+    *origin = from;
+    *axis = direction;
+    *space = Space::World;
+    Some(Command::SetConstruction {
+        node: node.into(),
+        construction: c,
+    })
 }
 
 /// The curve `kind` makes of `points` as a polyline of 32 samples a span

@@ -27,7 +27,7 @@ mod snapping;
 pub mod typing;
 
 pub use cursor::place_cursor;
-pub use curve_draw::{CurveDraw, DrawKind, construction_plane};
+pub use curve_draw::{CurveDraw, DrawKind, axis_command, construction_plane};
 pub use mesh_mode::{
     BisectDrag, EditMode, ElementKind, ElementSelection, KnifeTool, MeshTool, MeshToolKind,
     start_bisect,
@@ -345,6 +345,22 @@ fn pick_objects(
         .cursor_position()
         .and_then(|c| curve_near_cursor(&state.session.doc, c, cam, cam_t))
         .or_else(|| pick_node(&state.session.doc, origin, dir).map(|(id, _)| id));
+    // A click on a CSG solid selects the CSG node; once it (or a part of
+    // it) is selected its operands are drawn as ghosts and clicks reach them.
+    let hit = hit.map(|id| {
+        let doc = &state.session.doc;
+        match outermost_csg(doc, id) {
+            Some(top)
+                if !selection
+                    .nodes
+                    .iter()
+                    .any(|&s| s == top || is_within(doc, s, top)) =>
+            {
+                top
+            }
+            _ => id,
+        }
+    });
     let shift = shift(&keys);
     match (hit, shift) {
         (Some(id), true) => selection.toggle(id),
@@ -352,6 +368,77 @@ fn pick_objects(
         (None, false) => selection.nodes.clear(),
         (None, true) => {}
     }
+}
+
+/// The outermost CSG node whose solid `id` is drawn through (`id` is one
+/// of its operands, or inside one), if any.
+pub fn outermost_csg(doc: &Document, id: NodeId) -> Option<NodeId> {
+    let mut top = None;
+    let mut cur = id;
+    let mut guard = doc.node_count() + 1;
+    while let Some(parent) = doc.node(cur).and_then(|n| n.parent) {
+        if hedra_doc::csg::csg_owner(doc, cur).is_some() {
+            top = Some(parent);
+        }
+        cur = parent;
+        guard -= 1;
+        if guard == 0 {
+            break;
+        }
+    }
+    top
+}
+
+/// The solids of the CSG nodes whose operands (or parts of them) move to
+/// the `moved` local transforms, evaluated as the move would leave them:
+/// the result follows every frame of a drag (unchanged branches come from
+/// the evaluation cache). A solid that cannot be made shows nothing new.
+pub fn csg_previews(
+    doc: &Document,
+    moved: &[(NodeId, NodeTransform)],
+) -> Vec<(NodeId, hedra_scene::PreviewContent)> {
+    let tops: std::collections::BTreeSet<NodeId> = moved
+        .iter()
+        .filter_map(|(id, _)| outermost_csg(doc, *id))
+        .collect();
+    if tops.is_empty() {
+        return Vec::new();
+    }
+    let changed = moved.iter().filter_map(|(id, t)| {
+        let mut n = doc.node(*id)?.clone();
+        n.transform = *t;
+        Some(n)
+    });
+    let preview = doc.with_changed(changed);
+    tops.into_iter()
+        .filter_map(|top| {
+            let solid = hedra_doc::csg::evaluate(&preview, top).ok()?;
+            Some((
+                top,
+                hedra_scene::PreviewContent::Mesh {
+                    mesh: solid,
+                    creases: None,
+                },
+            ))
+        })
+        .collect()
+}
+
+/// True when `ancestor` is a proper ancestor of `id`.
+pub fn is_within(doc: &Document, id: NodeId, ancestor: NodeId) -> bool {
+    let mut cur = doc.node(id).and_then(|n| n.parent);
+    let mut guard = doc.node_count() + 1;
+    while let Some(c) = cur {
+        if c == ancestor {
+            return true;
+        }
+        cur = doc.node(c).and_then(|n| n.parent);
+        guard -= 1;
+        if guard == 0 {
+            break;
+        }
+    }
+    false
 }
 
 /// Ctrl+Z / Ctrl+Shift+Z (and Ctrl+Y), in both modes, when no tool runs.

@@ -357,6 +357,7 @@ pub fn drive_transform_tool(
             }
         }
     }
+    contents.extend(crate::csg_previews(doc, &result));
     Previews::show(
         &mut previews,
         PreviewSource::TransformTool,

@@ -296,37 +296,71 @@ impl Default for SurfaceAnalysis {
     }
 }
 
-/// Draws the active NURBS surface's planar section (the plane's outline
-/// and the cut) and the moving domain point with its iso-parameter curves.
+/// What the surface analysis drew this frame, world space (for tests and
+/// readers of the overlay).
+#[derive(Resource, Debug, Clone, Default, PartialEq)]
+pub struct SurfaceAnalysisShown {
+    /// Each selected surface's planar-section segments.
+    pub sections: Vec<(NodeId, Vec<[DVec3; 2]>)>,
+    /// Each selected surface's moving domain point and unit normal there.
+    pub points: Vec<(NodeId, DVec3, DVec3)>,
+}
+
+/// The moving domain point's barycentric coordinates on a Bézier
+/// triangle for the panel's (u, v) fractions: u runs from the edge
+/// opposite the first corner to it, v shares the rest between the other
+/// two corners, so u = const and v = const are the iso-lines drawn.
+pub fn triangle_domain_point(u: f64, v: f64) -> DVec3 {
+    let (u, v) = (u.clamp(0.0, 1.0), v.clamp(0.0, 1.0));
+    DVec3::new(u, (1.0 - u) * v, (1.0 - u) * (1.0 - v))
+}
+
+/// Draws, for every selected surface (NURBS patches and Bézier triangles
+/// alike), the planar section — one plane through all of them in world
+/// space, so a section runs on across a joint — and the moving domain
+/// point with its two iso-parameter curves and its normal.
 pub(crate) fn draw_surface_analysis(
     analysis: Res<SurfaceAnalysis>,
     selection: Res<Selection>,
     state: Res<DocState>,
     mut gizmos: Gizmos<AxisGizmos>,
+    mut shown: ResMut<SurfaceAnalysisShown>,
     mut tessellated: Local<
-        Option<(
+        Vec<(
             std::sync::Arc<hedra_doc::SurfaceShape>,
             hedra_geom::surfaces::tessellate::SurfaceMesh,
         )>,
     >,
 ) {
     use hedra_geom::surfaces::Surface;
+    shown.sections.clear();
+    shown.points.clear();
     if !(analysis.section || analysis.domain_point) {
         return;
     }
-    let Some(id) = selection.active() else { return };
     let doc = &state.session.doc;
-    let Some(NodeContent::Surface(shape)) = doc.node(id).map(|n| &n.content) else {
+    let mut surfaces: Vec<(NodeId, std::sync::Arc<hedra_doc::SurfaceShape>, glam::DMat4)> =
+        selection
+            .nodes
+            .iter()
+            .filter_map(|&id| match doc.node(id).map(|n| &n.content) {
+                Some(NodeContent::Surface(shape)) => {
+                    Some((id, shape.clone(), doc.world_matrix(id)))
+                }
+                _ => None,
+            })
+            .collect();
+    surfaces.sort_by_key(|(id, ..)| *id);
+    if surfaces.is_empty() {
         return;
-    };
-    let hedra_doc::SurfaceShape::Nurbs(s) = &**shape else {
-        return;
-    };
-    let world = doc.world_matrix(id);
-    let to_world = |p: DVec3| world.transform_point3(p).as_vec3();
+    }
+    let world_points: Vec<DVec3> = surfaces
+        .iter()
+        .flat_map(|(_, s, m)| s.control_points().iter().map(|p| m.transform_point3(*p)))
+        .collect();
+    let size = hedra_scene::extent(&world_points);
     if analysis.section {
-        let (lo, hi) = s
-            .points()
+        let (lo, hi) = world_points
             .iter()
             .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), p| {
                 (lo.min(*p), hi.max(*p))
@@ -335,7 +369,7 @@ pub(crate) fn draw_surface_analysis(
         let normal = [DVec3::X, DVec3::Y, DVec3::Z][axis];
         let origin = lo.lerp(hi, analysis.section_at.clamp(0.0, 1.0)) * normal
             + (lo + hi) / 2.0 * (DVec3::ONE - normal);
-        // The plane: a square a little larger than the net.
+        // The plane: a square a little larger than the nets.
         let half = (hi - lo).max_element() * 0.6;
         let (a, b) = match axis {
             0 => (DVec3::Y, DVec3::Z),
@@ -349,46 +383,132 @@ pub(crate) fn draw_surface_analysis(
             (-1.0, 1.0),
             (-1.0, -1.0),
         ]
-        .map(|(x, y)| to_world(origin + half * (x * a + y * b)));
+        .map(|(x, y)| (origin + half * (x * a + y * b)).as_vec3());
         gizmos.linestrip(corners, Color::srgba(0.6, 0.8, 1.0, 0.6));
         // Tessellated once per shape, not every frame the section is drawn
-        // (the cache holds the shape, so its identity cannot be reused).
-        if tessellated
-            .as_ref()
-            .is_none_or(|(k, _)| !std::sync::Arc::ptr_eq(k, shape))
-        {
-            let tol = hedra_scene::VIEW_TOLERANCE * hedra_scene::extent(s.points());
-            let mesh = hedra_geom::surfaces::tessellate::tessellate_nurbs(s, tol);
-            *tessellated = Some((shape.clone(), mesh));
+        // (the cache holds the shapes, so their identity cannot be reused).
+        let fresh = tessellated.len() != surfaces.len()
+            || tessellated
+                .iter()
+                .zip(&surfaces)
+                .any(|((k, _), (_, s, _))| !std::sync::Arc::ptr_eq(k, s));
+        if fresh {
+            *tessellated = surfaces
+                .iter()
+                .map(|(_, s, _)| {
+                    let tol = hedra_scene::VIEW_TOLERANCE * hedra_scene::extent(s.control_points());
+                    let (positions, normals, triangles) = s.tessellate(tol);
+                    let params = vec![(0.0, 0.0); positions.len()];
+                    let mesh = hedra_geom::surfaces::tessellate::SurfaceMesh {
+                        positions,
+                        normals,
+                        params,
+                        triangles,
+                    };
+                    (s.clone(), mesh)
+                })
+                .collect();
         }
-        let (_, mesh) = tessellated.as_ref().expect("filled above");
-        for [p, q] in hedra_geom::surfaces::tessellate::plane_section(mesh, origin, normal) {
-            gizmos.line(to_world(p), to_world(q), Color::srgb(1.0, 0.3, 0.9));
+        for ((_, mesh), (id, _, world)) in tessellated.iter().zip(&surfaces) {
+            let mut placed = mesh.clone();
+            for p in &mut placed.positions {
+                *p = world.transform_point3(*p);
+            }
+            let cut = hedra_geom::surfaces::tessellate::plane_section(&placed, origin, normal);
+            for [p, q] in &cut {
+                gizmos.line(p.as_vec3(), q.as_vec3(), Color::srgb(1.0, 0.3, 0.9));
+            }
+            shown.sections.push((*id, cut));
         }
     }
     if analysis.domain_point {
-        let ((u0, u1), (v0, v1)) = s.domain();
-        let u = u0 + (u1 - u0) * analysis.u.clamp(0.0, 1.0);
-        let v = v0 + (v1 - v0) * analysis.v.clamp(0.0, 1.0);
-        let iso_u: Vec<Vec3> = (0..=100)
-            .map(|k| to_world(s.point(u, v0 + (v1 - v0) * k as f64 / 100.0)))
-            .collect();
-        let iso_v: Vec<Vec3> = (0..=100)
-            .map(|k| to_world(s.point(u0 + (u1 - u0) * k as f64 / 100.0, v)))
-            .collect();
-        gizmos.linestrip(iso_u, Color::srgb(1.0, 0.85, 0.3));
-        gizmos.linestrip(iso_v, Color::srgb(0.4, 1.0, 0.5));
-        let e = s.evaluate(u, v);
-        let size = hedra_scene::extent(s.points()) * 0.12;
-        gizmos.sphere(
-            Isometry3d::from_translation(to_world(e.p)),
-            (size * 0.1) as f32,
-            Color::WHITE,
-        );
-        gizmos.arrow(
-            to_world(e.p),
-            to_world(e.p + e.normal() * size),
-            Color::srgb(0.35, 0.5, 1.0),
-        );
+        let arrow = size * 0.12;
+        for (id, shape, world) in &surfaces {
+            let to_world = |p: DVec3| world.transform_point3(p).as_vec3();
+            let (iso_u, iso_v, p, n): (Vec<Vec3>, Vec<Vec3>, DVec3, DVec3) = match &**shape {
+                hedra_doc::SurfaceShape::Nurbs(s) => {
+                    let ((u0, u1), (v0, v1)) = s.domain();
+                    let u = u0 + (u1 - u0) * analysis.u.clamp(0.0, 1.0);
+                    let v = v0 + (v1 - v0) * analysis.v.clamp(0.0, 1.0);
+                    let e = s.evaluate(u, v);
+                    (
+                        (0..=100)
+                            .map(|k| to_world(s.point(u, v0 + (v1 - v0) * k as f64 / 100.0)))
+                            .collect(),
+                        (0..=100)
+                            .map(|k| to_world(s.point(u0 + (u1 - u0) * k as f64 / 100.0, v)))
+                            .collect(),
+                        e.p,
+                        e.normal(),
+                    )
+                }
+                hedra_doc::SurfaceShape::Triangle(t) => {
+                    let at = |u: f64, v: f64| t.evaluate(triangle_domain_point(u, v));
+                    let bary = triangle_domain_point(analysis.u, analysis.v);
+                    // The normal from two directional derivatives (seed 001).
+                    let du = t.directional_derivative(bary, DVec3::new(1.0, -0.5, -0.5));
+                    let dv = t.directional_derivative(bary, DVec3::new(0.0, 1.0, -1.0));
+                    (
+                        (0..=100)
+                            .map(|k| to_world(at(analysis.u, k as f64 / 100.0)))
+                            .collect(),
+                        (0..=100)
+                            .map(|k| to_world(at(k as f64 / 100.0, analysis.v)))
+                            .collect(),
+                        t.evaluate(bary),
+                        du.cross(dv).normalize_or_zero(),
+                    )
+                }
+            };
+            gizmos.linestrip(iso_u, Color::srgb(1.0, 0.85, 0.3));
+            gizmos.linestrip(iso_v, Color::srgb(0.4, 1.0, 0.5));
+            let normal = world.transform_vector3(n).normalize_or_zero();
+            shown.points.push((*id, world.transform_point3(p), normal));
+            gizmos.sphere(
+                Isometry3d::from_translation(to_world(p)),
+                (arrow * 0.1) as f32,
+                Color::WHITE,
+            );
+            gizmos.arrow(
+                to_world(p),
+                (world.transform_point3(p) + normal * arrow).as_vec3(),
+                Color::srgb(0.35, 0.5, 1.0),
+            );
+        }
+    }
+}
+
+/// The frames a selected sweep made from curves carries its profile in,
+/// at its stations: the first normal axis red, the second green, and a
+/// ring where the frame flips (the Frenet frame at an inflection of the
+/// rail: the profile turns half a turn there).
+pub(crate) fn draw_sweep_frames(
+    selection: Res<Selection>,
+    state: Res<DocState>,
+    mut gizmos: Gizmos<AxisGizmos>,
+) {
+    let Some(id) = selection.active() else { return };
+    let doc = &state.session.doc;
+    let Some(found) = doc.sweep_frames(id) else {
+        return;
+    };
+    let size = found
+        .frames
+        .windows(2)
+        .map(|w| w[0].origin.distance(w[1].origin))
+        .fold(0.0, f64::max)
+        .max(1e-3)
+        * 0.8;
+    for (k, f) in found.frames.iter().enumerate() {
+        let o = f.origin.as_vec3();
+        gizmos.line(o, (f.origin + f.normal * size).as_vec3(), Color::srgb(0.95, 0.3, 0.3));
+        gizmos.line(o, (f.origin + f.binormal * size).as_vec3(), Color::srgb(0.3, 0.9, 0.4));
+        if found.flips.contains(&k) {
+            gizmos.circle(
+                Isometry3d::new(o, Quat::from_rotation_arc(Vec3::Z, f.tangent.as_vec3())),
+                (size * 1.2) as f32,
+                Color::srgb(1.0, 0.2, 0.9),
+            );
+        }
     }
 }

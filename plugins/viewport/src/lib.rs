@@ -13,7 +13,7 @@ use bevy::core_pipeline::tonemapping::Tonemapping;
 use bevy::input::mouse::{AccumulatedMouseMotion, AccumulatedMouseScroll, MouseScrollUnit};
 use bevy::prelude::*;
 use glam::DVec3;
-use hedra_doc::{NodeContent, NodeTransform};
+use hedra_doc::{NodeContent, NodeId, NodeTransform};
 use hedra_edit::{EditMode, ElementKind, Selection, TransformTool};
 use hedra_scene::modifiers;
 use hedra_scene::{
@@ -48,6 +48,7 @@ impl Plugin for ViewportPlugin {
         app.configure_sets(Update, ViewportSystems.in_set(SceneSystems::View));
         app.init_resource::<CurveAnalysis>();
         app.init_resource::<SurfaceAnalysis>();
+        app.init_resource::<SurfaceAnalysisShown>();
         app.insert_resource(ClearColor(Color::srgb(0.23, 0.23, 0.25)))
             .insert_resource(GlobalAmbientLight {
                 brightness: 400.0,
@@ -117,6 +118,8 @@ impl Plugin for ViewportPlugin {
                     draw_curve_analysis,
                     closest_point_to_pointer,
                     draw_surface_analysis,
+                    draw_sweep_frames,
+                    draw_csg_ghosts,
                 )
                     .in_set(ViewportSystems),
             );

@@ -490,3 +490,61 @@ pub(crate) fn draw_edit_overlay(
         ElementKind::Edge => {}
     }
 }
+
+/// Most edges a CSG ghost draws per operand (denser operands are thinned:
+/// every k-th edge).
+const GHOST_EDGES: usize = 20_000;
+
+/// The operands of the selected CSG tree as wireframe ghosts (Blender's
+/// Boolean cutters shown as wire), while the CSG node or a part of it is
+/// selected: where each operand is on screen, following a drag (the
+/// entities' transforms carry the tools' previews).
+pub(crate) fn draw_csg_ghosts(
+    selection: Res<Selection>,
+    state: Res<DocState>,
+    map: Res<hedra_scene::NodeEntities>,
+    transforms: Query<&GlobalTransform>,
+    mut gizmos: Gizmos<CursorGizmos>,
+) {
+    let doc = &state.session.doc;
+    let mut tops: Vec<NodeId> = selection
+        .nodes
+        .iter()
+        .filter_map(|&id| {
+            hedra_edit::outermost_csg(doc, id)
+                .or_else(|| hedra_doc::csg::is_csg(doc, id).then_some(id))
+        })
+        .collect();
+    tops.sort();
+    tops.dedup();
+    for top in tops {
+        for id in doc.subtree(top) {
+            if id == top || !hedra_doc::csg::inside_csg(doc, id) {
+                continue;
+            }
+            let Some(NodeContent::Mesh(content)) = doc.node(id).map(|n| &n.content) else {
+                continue;
+            };
+            let Some(world) = map.0.get(&id).and_then(|e| transforms.get(*e).ok()) else {
+                continue;
+            };
+            let m = world.to_matrix();
+            let selected = selection.contains(id);
+            let color = if selected {
+                Color::srgba(1.0, 0.6, 0.2, 0.9)
+            } else {
+                Color::srgba(0.6, 0.75, 1.0, 0.45)
+            };
+            let mesh = &content.mesh;
+            let step = mesh.edge_count().div_ceil(GHOST_EDGES).max(1);
+            for e in mesh.edges().step_by(step) {
+                let [a, b] = mesh.edge_vertices(e);
+                gizmos.line(
+                    m.transform_point3(mesh.position(a).as_vec3()),
+                    m.transform_point3(mesh.position(b).as_vec3()),
+                    color,
+                );
+            }
+        }
+    }
+}

@@ -6,7 +6,7 @@
 use super::plan::Plan;
 use super::{Command, CommandError, NodeRef};
 use crate::construction::{
-    Construction, ConstructionError, Made, content_of, input_of, same_geometry,
+    CapEnd, Construction, ConstructionError, Made, Output, content_of, input_of, same_geometry,
 };
 use crate::scene::{Node, NodeId, NodeTransform};
 
@@ -36,8 +36,83 @@ impl Plan<'_> {
         })?;
         let id = self.add_node(name, &None, NodeTransform::IDENTITY, content_of(made, None))?;
         let mut n = self.current(id).cloned().expect("just added");
-        n.construction = Some(c);
+        n.construction = Some(c.clone());
         self.set(n);
+        self.sync_caps(id, &c)
+    }
+
+    /// The cap nodes of `id`: its children made as caps of a construction.
+    fn cap_children(&self, id: NodeId) -> Vec<Node> {
+        let mut ids: Vec<NodeId> = self.doc.nodes.keys().copied().collect();
+        ids.extend(self.changes.iter().map(|c| c.id));
+        ids.sort();
+        ids.dedup();
+        ids.into_iter()
+            .filter_map(|i| self.current(i))
+            .filter(|n| {
+                n.parent == Some(id)
+                    && n.construction
+                        .as_ref()
+                        .is_some_and(|c| matches!(c.output, Output::Cap { .. }))
+            })
+            .cloned()
+            .collect()
+    }
+
+    /// Keeps `id`'s cap nodes as its construction `c` asks: a NURBS result
+    /// whose recipe asks for caps gets a child node for each end it has
+    /// (named after it, made with the same recipe), kept in step when the
+    /// recipe changes; other results have none.
+    fn sync_caps(&mut self, id: NodeId, c: &Construction) -> Result<(), CommandError> {
+        let existing = self.cap_children(id);
+        let wanted = c.output == Output::Nurbs && c.recipe.caps();
+        let name = self.current(id).map(|n| n.name.clone()).unwrap_or_default();
+        for (end, label) in [(CapEnd::Start, "start"), (CapEnd::End, "end")] {
+            let cap = Construction {
+                recipe: c.recipe.clone(),
+                output: Output::Cap { end },
+            };
+            let made = if wanted {
+                match self.make(&cap) {
+                    Ok(made) => Some(made),
+                    // A surface without ends (a full turn) gets no caps.
+                    Err(ConstructionError::NoEnds) => None,
+                    Err(error) => {
+                        return Err(CommandError::Construction {
+                            node: format!("'{name}'"),
+                            error,
+                        });
+                    }
+                }
+            } else {
+                None
+            };
+            let old = existing
+                .iter()
+                .find(|n| n.construction.as_ref().map(|c| c.output) == Some(cap.output));
+            match (made, old) {
+                (Some(made), Some(old)) => {
+                    let mut n = old.clone();
+                    n.content = content_of(made, Some(&n.content));
+                    n.construction = Some(cap);
+                    self.set(n);
+                }
+                (Some(made), None) => {
+                    let cap_id = self.add_node(
+                        &format!("{name} cap {label}"),
+                        &None,
+                        NodeTransform::IDENTITY,
+                        content_of(made, None),
+                    )?;
+                    let mut n = self.current(cap_id).cloned().expect("just added");
+                    n.parent = Some(id);
+                    n.construction = Some(cap);
+                    self.set(n);
+                }
+                (None, Some(old)) => self.remove(old.id),
+                (None, None) => {}
+            }
+        }
         Ok(())
     }
 
@@ -48,17 +123,26 @@ impl Plan<'_> {
     ) -> Result<(), CommandError> {
         let mut n = self.node(node)?;
         let label = self.doc.label_of(n.id);
-        if n.construction.is_none() {
-            return Err(CommandError::NoConstruction { node: label });
+        match &n.construction {
+            None => return Err(CommandError::NoConstruction { node: label }),
+            Some(old) if matches!(old.output, Output::Cap { .. }) => {
+                let parent = n.parent.map(|p| self.doc.label_of(p)).unwrap_or_default();
+                return Err(CommandError::CapOfConstruction {
+                    node: label,
+                    parent,
+                });
+            }
+            Some(_) => {}
         }
         let c = self.resolve_construction(construction)?;
         let made = self
             .make(&c)
             .map_err(|error| CommandError::Construction { node: label, error })?;
         n.content = content_of(made, Some(&n.content));
-        n.construction = Some(c);
+        n.construction = Some(c.clone());
+        let id = n.id;
         self.set(n);
-        Ok(())
+        self.sync_caps(id, &c)
     }
 
     pub(super) fn apply_construction(&mut self, nodes: &[NodeRef]) -> Result<(), CommandError> {
@@ -68,6 +152,11 @@ impl Plan<'_> {
                 return Err(CommandError::NoConstruction {
                     node: self.doc.label_of(n.id),
                 });
+            }
+            // Its caps are frozen with it.
+            for mut cap in self.cap_children(n.id) {
+                cap.construction = None;
+                self.set(cap);
             }
             self.set(n);
         }

@@ -298,6 +298,15 @@ pub enum CommandError {
         /// The node, as `'name' (#id)`.
         node: String,
     },
+    /// [`Command::SetConstruction`] on a cap node: its recipe is its
+    /// surface's.
+    #[error("{node} is a cap of {parent}: change {parent} instead")]
+    CapOfConstruction {
+        /// The cap node, as `'name' (#id)`.
+        node: String,
+        /// The surface node it caps.
+        parent: String,
+    },
     /// A G1 join that cannot be made, or kept after a change (the change is
     /// refused; break the join first to keep it).
     #[error("G1 join of {quad} and {triangle}: {error}")]

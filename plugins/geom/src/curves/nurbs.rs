@@ -530,7 +530,7 @@ impl NurbsCurve {
     }
 
     /// The same curve run backwards on the same domain `[a, b]`: `t ↦ a + b − t`.
-    fn reversed(&self) -> NurbsCurve {
+    pub fn reversed(&self) -> NurbsCurve {
         let (a, b) = self.domain();
         NurbsCurve {
             degree: self.degree,

@@ -320,7 +320,7 @@ impl NurbsSurface {
     }
 
     /// The column of control points with fixed `j` as a curve in u.
-    fn column(&self, j: usize) -> NurbsCurve {
+    pub fn column(&self, j: usize) -> NurbsCurve {
         let pts = (0..self.nu).map(|i| self.points[i * self.nv + j]).collect();
         let w = (0..self.nu)
             .map(|i| self.weights[i * self.nv + j])
@@ -330,7 +330,7 @@ impl NurbsSurface {
     }
 
     /// The row of control points with fixed `i` as a curve in v.
-    fn row(&self, i: usize) -> NurbsCurve {
+    pub fn row(&self, i: usize) -> NurbsCurve {
         let r = i * self.nv..(i + 1) * self.nv;
         NurbsCurve::new(
             self.degree_v,

@@ -28,9 +28,9 @@
 use std::collections::HashMap;
 use std::f64::consts::{FRAC_PI_2, TAU};
 
-use glam::{DMat4, DVec3, DVec4};
+use glam::{DMat4, DQuat, DVec3, DVec4};
 
-use super::NurbsSurface;
+use super::{NurbsSurface, Surface};
 use crate::build::BuildError;
 use crate::curves::interpolating::solve_dense;
 use crate::curves::nurbs::basis_derivatives;
@@ -81,6 +81,12 @@ pub enum SweepError {
     /// points on a line).
     #[error("caps need a profile that encloses an area")]
     NoArea,
+    /// A NURBS cap asked for on a profile that is not star-shaped about its
+    /// centroid (the fan from it would fold over itself).
+    #[error(
+        "a NURBS cap needs a profile whose centre sees all of it (star-shaped); choose Mesh output, whose caps are n-gons"
+    )]
+    NotStarShaped,
     /// A loft with too few sections.
     #[error("{what} needs at least {needed} sections, got {got}")]
     TooFewSections {
@@ -386,7 +392,17 @@ pub fn profile_plane(curve: &NurbsCurve) -> Result<(DVec3, DVec3), SweepError> {
 ///
 /// Complexity: O(profile points + 256 samples).
 pub fn planar_cap(profile: &NurbsCurve) -> Result<NurbsSurface, SweepError> {
-    let (centroid, _) = profile_plane(profile)?;
+    let (centroid, normal) = profile_plane(profile)?;
+    // Star-shaped about the centroid: the ray from it turns one way only.
+    let (a, b) = profile.domain();
+    let samples: Vec<f64> = (0..=512).map(|k| a + (b - a) * k as f64 / 512.0).collect();
+    let ring = profile.points_at(&samples);
+    if ring
+        .windows(2)
+        .any(|w| (w[0] - centroid).cross(w[1] - centroid).dot(normal) <= 0.0)
+    {
+        return Err(SweepError::NotStarShaped);
+    }
     let rim = profile.points().iter().map(|_| centroid).collect();
     let inner = NurbsCurve::new(
         profile.degree(),
@@ -395,6 +411,63 @@ pub fn planar_cap(profile: &NurbsCurve) -> Result<NurbsSurface, SweepError> {
         profile.weights().to_vec(),
     )?;
     skin_rows(&[profile.clone(), inner], 1, clamped_knots(1, &[0.0, 1.0]))
+}
+
+/// The parametric direction a surface was swept along (its other
+/// direction runs along the profile).
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub enum Along {
+    /// Along u: a [`revolve`]'s turn.
+    U,
+    /// Along v: an [`extrude`], [`sweep`], [`sweep2`] or [`loft`].
+    V,
+}
+
+/// The flat NURBS caps ([`planar_cap`]) that close the two ends of
+/// `surface`, swept `along` one parametric direction: the start end's
+/// first, each facing away from the surface (its normal against the sweep
+/// at the start, with it at the end). None where the surface closes on
+/// itself in that direction (a full revolution, a sweep around a closed
+/// rail, a closed loft).
+///
+/// # Errors
+/// As [`planar_cap`] for an end that is open, not planar or not
+/// star-shaped.
+///
+/// Complexity: O(profile points + 512 samples) per end.
+pub fn end_caps(surface: &NurbsSurface, along: Along) -> Result<Vec<NurbsSurface>, SweepError> {
+    let (nu, nv) = surface.size();
+    let ((u0, u1), (v0, v1)) = surface.domain();
+    let closed_v = along == Along::V && is_closed_in_v(surface);
+    let (first, last) = match along {
+        Along::U => (surface.row(0), surface.row(nu - 1)),
+        Along::V => (surface.column(0), surface.column(nv - 1)),
+    };
+    if closed_v || same_curve(&first, &last) {
+        return Ok(Vec::new());
+    }
+    let mut caps = Vec::with_capacity(2);
+    for (end, curve) in [(0, first), (1, last)] {
+        let (a, b) = curve.domain();
+        let t = (a + b) / 2.0;
+        // The sweep's direction at the end, from the surface's partials.
+        let e = match (along, end) {
+            (Along::U, 0) => surface.evaluate(u0, t).du,
+            (Along::U, _) => surface.evaluate(u1, t).du,
+            (Along::V, 0) => surface.evaluate(t, v0).dv,
+            (Along::V, _) => surface.evaluate(t, v1).dv,
+        };
+        let outward = if end == 0 { -e } else { e };
+        let cap = planar_cap(&curve)?;
+        let ((cu0, cu1), (cv0, cv1)) = cap.domain();
+        let facing = cap.evaluate((cu0 + cu1) / 2.0, (cv0 + cv1) / 4.0).normal();
+        caps.push(if facing.dot(outward) < 0.0 {
+            planar_cap(&curve.reversed())?
+        } else {
+            cap
+        });
+    }
+    Ok(caps)
 }
 
 /// The parameters a mesh samples a profile at: the control points' own
@@ -479,12 +552,28 @@ impl Frame {
 /// Sub-steps of the double reflection between two stations.
 const RMF_SUBSTEPS: usize = 32;
 
+/// True when `rail` is closed and its tangent turns smoothly across the
+/// seam (the ends' unit tangents within 1e-6 of each other): then a frame
+/// carried once around it can be made to close up.
+///
+/// Complexity: O(control points).
+pub fn is_smoothly_closed(rail: &NurbsCurve) -> bool {
+    let (a, b) = rail.domain();
+    let t0 = rail.derivatives(a)[1].normalize_or_zero();
+    let t1 = rail.derivatives(b)[1].normalize_or_zero();
+    is_closed(rail) && t0 != DVec3::ZERO && t0.distance(t1) < 1e-6
+}
+
 /// The frames of `rail` at the increasing parameters `params`.
 ///
 /// The rotation-minimising frame is propagated by double reflection in
 /// `32` sub-steps per station interval from a normal chosen perpendicular
 /// to the first tangent; its error per step is O(h⁴) (Wang et al. 2008,
-/// §4). The Frenet frame is evaluated at each parameter.
+/// §4). On a smoothly closed rail ([`is_smoothly_closed`]) traversed from
+/// end to end the frame comes back turned by the rail's holonomy angle;
+/// that angle is spread over the rail in proportion to arc length (Wang
+/// et al. 2008, §6.3), so the last frame equals the first. The Frenet
+/// frame is evaluated at each parameter.
 ///
 /// # Errors
 /// [`SweepError::RailStops`] where the tangent vanishes,
@@ -533,11 +622,15 @@ pub fn rail_frames(
                 }
             };
             let mut frames = vec![frame(x, t, r)];
+            // Arc length (as the sub-steps' chords) at each station.
+            let mut lengths = vec![0.0];
+            let mut length = 0.0;
             for w in params.windows(2) {
                 for s in 1..=RMF_SUBSTEPS {
                     let u = w[0] + (w[1] - w[0]) * s as f64 / RMF_SUBSTEPS as f64;
                     let (x1, t1) = tangent_at(u)?;
                     let v1 = x1 - x;
+                    length += v1.length();
                     let c1 = v1.dot(v1);
                     if c1 > 0.0 {
                         let rl = r - v1 * (2.0 / c1) * v1.dot(r);
@@ -556,10 +649,44 @@ pub fn rail_frames(
                 let f = frame(x, t, r);
                 r = f.normal;
                 frames.push(f);
+                lengths.push(length);
+            }
+            let (a, b) = rail.domain();
+            let whole_rail = params.len() > 1 && params[0] <= a && params[params.len() - 1] >= b;
+            if whole_rail && length > 0.0 && is_smoothly_closed(rail) {
+                let (first, last) = (frames[0], frames[frames.len() - 1]);
+                // The angle about the tangent from the last normal to the first.
+                let twist = last
+                    .normal
+                    .cross(first.normal)
+                    .dot(last.tangent)
+                    .atan2(last.normal.dot(first.normal));
+                for (f, &l) in frames.iter_mut().zip(&lengths) {
+                    let turn = DQuat::from_axis_angle(f.tangent, twist * l / length);
+                    let normal = turn * f.normal;
+                    *f = frame(f.origin, f.tangent, normal);
+                }
             }
             Ok(frames)
         }
     }
+}
+
+/// The stations where a frame flips: its normal turns by more than 90°
+/// from the previous station's. The Frenet frame does this where the
+/// rail's curvature passes through zero (an inflection, seed 001: the
+/// principal normal always points to the centre of curvature), which twists
+/// a swept profile half a turn; the rotation-minimising frame never does
+/// between stations close enough together.
+///
+/// Complexity: O(frames).
+pub fn frame_flips(frames: &[Frame]) -> Vec<usize> {
+    frames
+        .windows(2)
+        .enumerate()
+        .filter(|(_, w)| w[0].normal.dot(w[1].normal) < 0.0)
+        .map(|(k, _)| k + 1)
+        .collect()
 }
 
 /// How a sweep is made.
@@ -587,7 +714,10 @@ impl Default for SweepOptions {
 /// `sections` equal parameter steps, and the copies are skinned (an
 /// interpolating [`loft`]). u runs along the profile, v along the rail.
 /// The surface passes exactly through every copy; between them it is the
-/// cubic interpolation of the copies. Inverse: none.
+/// cubic interpolation of the copies. On a smoothly closed rail whose
+/// frame closes up (always for the rotation-minimising frame, see
+/// [`rail_frames`]) the last copy is the first and the surface is closed
+/// (periodic) along the rail ([`is_closed_in_v`]). Inverse: none.
 ///
 /// # Errors
 /// As [`rail_frames`] and [`loft`]; [`SweepError::Segments`] for fewer
@@ -600,17 +730,47 @@ pub fn sweep(
     rail: &NurbsCurve,
     options: SweepOptions,
 ) -> Result<NurbsSurface, SweepError> {
-    let sections = sweep_sections(profile, rail, options)?;
+    let mut sections = sweep_sections(profile, rail, options)?;
+    let closed = sections.len() >= 4
+        && is_smoothly_closed(rail)
+        && same_curve(&sections[0], &sections[sections.len() - 1]);
+    if closed {
+        sections.pop();
+    }
     loft(
         &sections,
         LoftOptions {
-            closed: false,
+            closed,
             tightness: Tightness::Normal,
         },
     )
 }
 
-fn stations(curve: &NurbsCurve, sections: u32) -> Vec<f64> {
+/// True when two curves have the same control points (within `1e-9` of
+/// their size) and weights.
+fn same_curve(a: &NurbsCurve, b: &NurbsCurve) -> bool {
+    let tolerance = 1e-9 * size_of(a.points());
+    a.points().len() == b.points().len()
+        && a.points()
+            .iter()
+            .zip(b.points())
+            .all(|(p, q)| p.distance(*q) <= tolerance)
+        && a.weights()
+            .iter()
+            .zip(b.weights())
+            .all(|(w, v)| (w - v).abs() <= 1e-9 * w.abs())
+}
+
+/// True when `surface` is closed (periodic, unclamped knots) in v, as a
+/// closed [`loft`] and a [`sweep`] along a closed rail are.
+pub fn is_closed_in_v(surface: &NurbsSurface) -> bool {
+    let (_, kv) = surface.knots();
+    kv.len() > 1 && kv[0] != kv[1]
+}
+
+/// The rail parameters of a sweep's `sections` copies: equal steps over
+/// the rail's domain, both ends included.
+pub fn stations(curve: &NurbsCurve, sections: u32) -> Vec<f64> {
     let (a, b) = curve.domain();
     (0..sections)
         .map(|i| a + (b - a) * f64::from(i) / f64::from(sections - 1))
@@ -1627,6 +1787,91 @@ mod tests {
         }
     }
 
+    /// A smooth closed rail that is not planar (a saddle-shaped loop, a
+    /// periodic cubic B-spline), along which the plain double reflection
+    /// comes back twisted.
+    fn saddle_loop() -> NurbsCurve {
+        let pts: Vec<DVec3> = (0..12)
+            .map(|k| {
+                let t = TAU * k as f64 / 12.0;
+                DVec3::new(3.0 * t.cos(), 2.0 * t.sin(), 1.5 * (2.0 * t).sin())
+            })
+            .collect();
+        NurbsCurve::periodic(3, pts, vec![1.0; 12]).unwrap()
+    }
+
+    #[test]
+    fn the_rotation_minimising_frame_closes_up_on_a_closed_rail() {
+        let rail = saddle_loop();
+        assert!(is_smoothly_closed(&rail));
+        let (a, b) = rail.domain();
+        let params: Vec<f64> = (0..=60).map(|k| a + (b - a) * k as f64 / 60.0).collect();
+        let frames = rail_frames(&rail, &params, FrameKind::RotationMinimizing).unwrap();
+        let (first, last) = (frames[0], frames[60]);
+        assert!(first.normal.distance(last.normal) < 1e-9, "{first:?} {last:?}");
+        // Still a frame: orthonormal, normal across the tangent.
+        for f in &frames {
+            assert!(f.normal.dot(f.tangent).abs() < 1e-12);
+            assert!((f.normal.length() - 1.0).abs() < 1e-12);
+        }
+        // And the correction is needed: an open piece of the same loop
+        // (not the whole of it) is not corrected, and its frame at the
+        // seam differs from the start by the holonomy angle.
+        let part: Vec<f64> = params[..60].to_vec();
+        let open = rail_frames(&rail, &part, FrameKind::RotationMinimizing).unwrap();
+        let twist = open[59].normal.angle_between(frames[59].normal);
+        assert!(twist > 1e-3, "the saddle loop has holonomy: {twist}");
+    }
+
+    #[test]
+    fn a_sweep_around_a_closed_rail_is_closed_and_seamless() {
+        let rail = saddle_loop();
+        let (a, _) = rail.domain();
+        let [p0, d0, _] = rail.derivatives(a);
+        let profile = circle_in(p0, 0.3, d0);
+        let options = SweepOptions {
+            frame: FrameKind::RotationMinimizing,
+            sections: 30,
+        };
+        let tube = sweep(&profile, &rail, options).unwrap();
+        assert!(is_closed_in_v(&tube));
+        let (_, (v0, v1)) = tube.domain();
+        for i in 0..=20 {
+            let u = i as f64 / 20.0;
+            assert!(tube.point(u, v0).distance(tube.point(u, v1)) < 1e-9);
+        }
+        // As a mesh it is a closed torus-like tube, genus 1, no caps.
+        let (us, closed_u) = compatible_parameters(&profile, 16);
+        let mesh = surface_mesh(&tube, &us, closed_u, 30, true, false).unwrap();
+        mesh.validate().unwrap();
+        let stats = mesh.stats();
+        assert!(stats.closed);
+        assert_eq!(stats.genus, Some(1));
+    }
+
+    #[test]
+    fn the_frenet_frame_flips_at_an_inflection_and_the_rmf_does_not() {
+        // An S in the XY plane, rising a little in Z so the Frenet frame
+        // exists everywhere: its curvature changes sign once, in the middle.
+        let pts: Vec<DVec3> = (0..=40)
+            .map(|k| {
+                let t = k as f64 / 40.0;
+                DVec3::new(4.0 * t, (TAU * t).sin(), 0.0)
+            })
+            .collect();
+        let rail = NurbsCurve::clamped(3, pts).unwrap();
+        let (a, b) = rail.domain();
+        // Stations that avoid the inflection at the middle itself.
+        let params: Vec<f64> = (0..=20).map(|k| a + (b - a) * (k as f64 + 0.25) / 20.5).collect();
+        let frenet = rail_frames(&rail, &params, FrameKind::Frenet).unwrap();
+        let rmf = rail_frames(&rail, &params, FrameKind::RotationMinimizing).unwrap();
+        let flips = frame_flips(&frenet);
+        assert_eq!(flips.len(), 1, "{flips:?}");
+        let middle = rail.point(params[flips[0]]).x;
+        assert!((middle - 2.0).abs() < 0.3, "the flip is at the inflection: {middle}");
+        assert!(frame_flips(&rmf).is_empty());
+    }
+
     #[test]
     fn the_rotation_minimising_frame_does_not_twist_on_a_plane_curve() {
         // On a planar rail the RMF's normal keeps its angle to the plane.
@@ -1775,6 +2020,65 @@ mod tests {
             assert!(rel.dot(n).abs() < 1e-12);
             assert!((rel.length() - 2.0 * (1.0 - v)).abs() < 1e-9, "{u} {v}");
         }
+    }
+
+    #[test]
+    fn nurbs_end_caps_close_an_extrusion_and_a_partial_revolution_facing_out() {
+        let circle = circle_in(DVec3::new(2.0, 0.0, 0.0), 0.5, DVec3::Z);
+        let tube = extrude(&circle, DVec3::new(0.0, 0.0, 3.0)).unwrap();
+        let caps = end_caps(&tube, Along::V).unwrap();
+        assert_eq!(caps.len(), 2);
+        for (cap, z, outward) in [(&caps[0], 0.0, -DVec3::Z), (&caps[1], 3.0, DVec3::Z)] {
+            for (u, v) in grid_samples(cap, 10) {
+                let p = cap.point(u, v);
+                assert!((p.z - z).abs() < 1e-12);
+                assert!(p.distance(DVec3::new(2.0, 0.0, z)) <= 0.5 + 1e-9);
+                let n = cap.evaluate(u, v.min(0.9)).normal();
+                assert!(n.dot(outward) > 0.999, "{n}");
+            }
+            // The rim is the tube's end circle.
+            let ((a, b), (v0, _)) = cap.domain();
+            for k in 0..=16 {
+                let p = cap.point(a + (b - a) * k as f64 / 16.0, v0);
+                assert!((p.distance(DVec3::new(2.0, 0.0, z)) - 0.5).abs() < 1e-9);
+            }
+        }
+        // A partial revolution of the same circle about Y gets its two
+        // end discs; a full one (a torus) none.
+        let axis = Axis {
+            origin: DVec3::ZERO,
+            direction: DVec3::Y,
+        };
+        let part = revolve(&circle, axis, 1.5, 0.0).unwrap();
+        assert_eq!(end_caps(&part, Along::U).unwrap().len(), 2);
+        let torus = revolve(&circle, axis, TAU, 0.0).unwrap();
+        assert!(end_caps(&torus, Along::U).unwrap().is_empty());
+        // An open profile cannot be capped.
+        let arc = NurbsCurve::clamped(2, vec![DVec3::X, DVec3::new(1.0, 1.0, 0.0), DVec3::Y]).unwrap();
+        let sheet = extrude(&arc, DVec3::Z).unwrap();
+        assert!(matches!(
+            end_caps(&sheet, Along::V),
+            Err(SweepError::OpenProfile { .. })
+        ));
+    }
+
+    #[test]
+    fn a_nurbs_cap_refuses_a_profile_its_centre_does_not_see() {
+        // A C-shaped closed polygon: its centroid lies outside the notch's
+        // view of part of the outline.
+        let pts = vec![
+            DVec3::new(0.0, 0.0, 0.0),
+            DVec3::new(4.0, 0.0, 0.0),
+            DVec3::new(4.0, 1.0, 0.0),
+            DVec3::new(1.0, 1.0, 0.0),
+            DVec3::new(1.0, 3.0, 0.0),
+            DVec3::new(4.0, 3.0, 0.0),
+            DVec3::new(4.0, 4.0, 0.0),
+            DVec3::new(0.0, 4.0, 0.0),
+            DVec3::new(0.0, 0.0, 0.0),
+        ];
+        let c = NurbsCurve::clamped(1, pts).unwrap();
+        assert_eq!(planar_cap(&c), Err(SweepError::NotStarShaped));
     }
 
     #[test]

@@ -6,7 +6,7 @@
 //! freezes it.
 
 use super::*;
-use hedra_doc::construction::{Construction, Output, Recipe, Space};
+use hedra_doc::construction::{CapEnd, Construction, Output, Recipe, Space};
 use hedra_geom::surfaces::sweeps::{FrameKind, Tightness};
 
 /// The curves of the selection, in the order they were selected (the
@@ -282,6 +282,8 @@ pub(super) fn g1_join_panel(ui: &mut egui::Ui, doc: &Document, id: NodeId) {
 }
 
 /// A field's response: whether it is still being dragged or typed in.
+const CAPS_HELP: &str = "Close the ends (closed planar profiles): n-gons on a mesh; on a NURBS surface, flat NURBS cap nodes under it (profiles whose centre sees all of them)";
+
 fn busy(r: &egui::Response) -> bool {
     r.dragged() || r.has_focus()
 }
@@ -291,6 +293,7 @@ fn recipe_fields(
     ui: &mut egui::Ui,
     recipe: &mut Recipe<NodeRef>,
     view_axis: Option<(DVec3, DVec3)>,
+    pick_axis: &mut bool,
 ) -> bool {
     let mut held = false;
     let mut vec3 = |ui: &mut egui::Ui, label: &str, v: &mut DVec3| {
@@ -314,7 +317,8 @@ fn recipe_fields(
         } => {
             vec3(ui, "Direction", direction);
             space_choice(ui, space);
-            ui.checkbox(caps, "Caps (mesh output, closed planar profile)");
+            ui.checkbox(caps, "Caps (closed planar profile)")
+                .on_hover_text(CAPS_HELP);
         }
         Recipe::Revolve {
             origin,
@@ -344,6 +348,13 @@ fn recipe_fields(
                     *axis = towards;
                     *space = Space::World;
                 }
+                if ui
+                    .button("Pick axis")
+                    .on_hover_text("Click two points in the viewport: the axis runs through both (world space; snapping as in a move)")
+                    .clicked()
+                {
+                    *pick_axis = true;
+                }
             });
             vec3(ui, "Axis direction", axis);
             vec3(ui, "Axis through", origin);
@@ -356,7 +367,8 @@ fn recipe_fields(
                     .prefix("pitch per turn "),
             );
             held |= busy(&r);
-            ui.checkbox(caps, "Caps at a partial angle (mesh output)");
+            ui.checkbox(caps, "Caps at a partial angle")
+                .on_hover_text(CAPS_HELP);
         }
         Recipe::Sweep {
             frame,
@@ -371,12 +383,12 @@ fn recipe_fields(
             });
             let r = ui.add(egui::Slider::new(stations, 2..=200).text("stations"));
             held |= busy(&r);
-            ui.checkbox(caps, "Caps (mesh output)");
+            ui.checkbox(caps, "Caps").on_hover_text(CAPS_HELP);
         }
         Recipe::Sweep2 { stations, caps, .. } => {
             let r = ui.add(egui::Slider::new(stations, 2..=200).text("stations"));
             held |= busy(&r);
-            ui.checkbox(caps, "Caps (mesh output)");
+            ui.checkbox(caps, "Caps").on_hover_text(CAPS_HELP);
         }
         Recipe::Loft {
             closed,
@@ -391,7 +403,7 @@ fn recipe_fields(
                 ui.selectable_value(tightness, Tightness::Loose, "loose");
                 ui.selectable_value(tightness, Tightness::Normal, "smooth");
             });
-            ui.checkbox(caps, "Caps (mesh output)");
+            ui.checkbox(caps, "Caps").on_hover_text(CAPS_HELP);
         }
         Recipe::Coons { .. } => {
             ui.label("Bilinearly blended from its four boundary curves (seed 003)");
@@ -434,7 +446,38 @@ pub(super) fn construction_panel(
         Some((eid, c)) if *eid == id => c.clone(),
         _ => stored.clone(),
     };
-    let mut held = recipe_fields(ui, &mut edited.recipe, state.view_axis);
+    if let Output::Cap { end } = made.output {
+        let of = node
+            .parent
+            .and_then(|p| doc.node(p))
+            .map_or("its surface".to_string(), |p| format!("'{}'", p.name));
+        let end = if end == CapEnd::Start { "start" } else { "end" };
+        ui.label(format!("The flat cap at the {end} of {of}: change {of} to change it"));
+        if let Some(parent) = node.parent
+            && ui.button(format!("Select {of}")).clicked()
+        {
+            events.push(UiEvent::Select(parent, false));
+        }
+        return;
+    }
+    if let Some(found) = doc.sweep_frames(id) {
+        // The frames are drawn in the viewport (normal red, binormal green).
+        match found.flips.len() {
+            0 => ui.label(format!("Frames at {} stations: no flip", found.frames.len())),
+            n => ui.colored_label(
+                egui::Color32::from_rgb(255, 80, 220),
+                format!(
+                    "The frame flips at {n} station{} (ringed in the viewport): the profile turns half a turn there; the rotation-minimising frame does not flip",
+                    if n == 1 { "" } else { "s" }
+                ),
+            ),
+        };
+    }
+    let mut pick_axis = false;
+    let mut held = recipe_fields(ui, &mut edited.recipe, state.view_axis, &mut pick_axis);
+    if pick_axis {
+        events.push(UiEvent::PickAxis(id));
+    }
     ui.horizontal(|ui| {
         ui.label("Output");
         let mesh = matches!(edited.output, Output::Mesh { .. });
@@ -467,14 +510,13 @@ pub(super) fn construction_panel(
             // Live while dragged: the result as the command would make it.
             match doc.decide(&cmd, 0) {
                 Ok(t) => {
-                    if let Some(after) = t
+                    // The node and its caps, as the command would make them.
+                    let contents = t
                         .changes
                         .iter()
-                        .find(|c| c.id == id)
-                        .and_then(|c| c.after.as_ref())
-                    {
-                        events.push(UiEvent::PreviewContent(id, after.content.clone()));
-                    }
+                        .filter_map(|c| Some((c.id, c.after.as_ref()?.content.clone())))
+                        .collect();
+                    events.push(UiEvent::PreviewContents(contents));
                 }
                 Err(e) => {
                     ui.colored_label(egui::Color32::LIGHT_RED, e.to_string());

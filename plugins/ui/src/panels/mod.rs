@@ -80,8 +80,10 @@ enum UiEvent {
     Start(hedra_edit::bindings::Action),
     /// Add ▸ Draw Curve: start drawing a curve by clicks.
     DrawCurve,
-    /// A panel field being dragged: the node's content as it would become.
-    PreviewContent(NodeId, NodeContent),
+    /// A panel field being dragged: the nodes' contents as they would become.
+    PreviewContents(Vec<(NodeId, NodeContent)>),
+    /// The *Pick axis* button of a revolution: click its axis's two points.
+    PickAxis(NodeId),
 }
 
 #[derive(SystemParam)]
@@ -339,17 +341,27 @@ pub fn draw_ui(
                 model.selection.nodes.clear();
                 writers.curve_draw.start(&mut model.status);
             }
-            UiEvent::PreviewContent(id, content) => {
-                if let Some(c) = hedra_scene::PreviewContent::of_shape(&content) {
+            UiEvent::PreviewContents(contents) => {
+                let contents: std::collections::HashMap<_, _> = contents
+                    .iter()
+                    .filter_map(|(id, content)| {
+                        Some((*id, hedra_scene::PreviewContent::of_shape(content)?))
+                    })
+                    .collect();
+                if !contents.is_empty() {
                     hedra_scene::Previews::show(
                         &mut tool_previews,
                         hedra_scene::PreviewSource::Properties,
                         hedra_scene::ToolPreview {
-                            contents: [(id, c)].into(),
+                            contents: contents.into_iter().collect(),
                             ..default()
                         },
                     )
                 }
+            }
+            UiEvent::PickAxis(id) => {
+                model.selection.set([id]);
+                writers.curve_draw.start_axis(id, &mut model.status);
             }
             UiEvent::Preview(id, t) => hedra_scene::Previews::show(
                 &mut tool_previews,

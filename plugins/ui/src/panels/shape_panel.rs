@@ -219,10 +219,10 @@ pub(super) fn shape_panel(
             power_basis(ui, c, state);
         }
     }
-    if matches!(content, NodeContent::Surface(s) if matches!(**s, hedra_doc::SurfaceShape::Nurbs(_)))
-    {
+    if matches!(content, NodeContent::Surface(_)) {
         ui.separator();
-        ui.label(egui::RichText::new("Analysis").weak());
+        ui.label(egui::RichText::new("Analysis").weak())
+            .on_hover_text("Drawn on every selected surface: select both patches of a joint to see the section and the point on each");
         let a = surface_analysis;
         ui.horizontal(|ui| {
             ui.checkbox(&mut a.section, "Planar section");
