@@ -441,14 +441,16 @@ fn samples(tris: &[[DVec3; 3]], count: usize) -> Vec<DVec3> {
 /// Symmetric Hausdorff distance, sampled both ways.
 fn hausdorff(a: &[[DVec3; 3]], a_bvh: &Bvh, b: &[[DVec3; 3]], n: usize) -> f64 {
     let b_bvh = Bvh::new(b.to_vec());
-    let ab = samples(a, n)
-        .into_iter()
-        .map(|p| b_bvh.distance(p))
-        .fold(0.0, f64::max);
-    let ba = samples(b, n)
-        .into_iter()
-        .map(|p| a_bvh.distance(p))
-        .fold(0.0, f64::max);
+    let worst = |pts: Vec<DVec3>, bvh: &Bvh| {
+        pts.into_iter()
+            .map(|p| (bvh.distance(p), p))
+            .fold((0.0, DVec3::ZERO), |x, y| if y.0 > x.0 { y } else { x })
+    };
+    let (ab, pa) = worst(samples(a, n), &b_bvh);
+    let (ba, pb) = worst(samples(b, n), a_bvh);
+    if std::env::var("DC_WHERE").is_ok() {
+        eprintln!("  worst input->result {ab:.5} at {pa:.3}; result->input {ba:.5} at {pb:.3}");
+    }
     ab.max(ba)
 }
 
@@ -590,6 +592,20 @@ fn main() {
                     DVec3::new(p[0] as f64, p[1] as f64, p[2] as f64)
                 }))
                 .collect();
+            if std::env::var("DC_WHERE").is_ok() {
+                let hb = level_mesh.edges().filter(|&e| level_mesh.is_boundary_edge(e)).count();
+                let mut count = std::collections::HashMap::new();
+                for t in result.chunks(3) {
+                    for i in 0..3 {
+                        let key = |v: u32| { let p = vb[v as usize]; (p[0].to_bits(), p[1].to_bits(), p[2].to_bits()) };
+                        let (a, b) = (key(t[i]), key(t[(i + 1) % 3]));
+                        let k = if a < b { (a, b) } else { (b, a) };
+                        *count.entry(k).or_insert(0) += 1;
+                    }
+                }
+                let mb = count.values().filter(|&&c| c == 1).count();
+                eprintln!("  border edges: Hedra {hb}, meshopt {mb}");
+            }
             let mo_err = hausdorff(&tris_in, &input_bvh, &mo_tris, sample_count) / diagonal;
             println!(
                 "| {} | {} | {}% | {} | {} | {:.5} | {:.5} | {:.0} ms + {:.1} ms | {:.1} ms |",

@@ -58,5 +58,5 @@ pub use spin::{
     AXIS_TOLERANCE, FULL_TURN_TOLERANCE, MAX_SPIN_STEPS, SpinProfile, SpinResult, screw, spin,
 };
 pub use subdivide_edges::subdivide_edges;
-pub(crate) use triangulate::tris_to_quads_across;
+pub(crate) use triangulate::quad_pairing;
 pub use triangulate::{DEFAULT_JOIN_LIMIT, TriangulateMethod, triangulate_faces, tris_to_quads};

@@ -210,9 +210,8 @@ pub fn tris_to_quads(
     tris_to_quads_across(mesh, faces, face_angle_limit, shape_angle_limit, |_| true)
 }
 
-/// [`tris_to_quads`] joining only across the edges `joinable` accepts
-/// (Decimate's keep-quads leaves creases and seams standing).
-pub(crate) fn tris_to_quads_across(
+/// [`tris_to_quads`] joining only across the edges `joinable` accepts.
+fn tris_to_quads_across(
     mesh: &mut HalfEdgeMesh,
     faces: &[FaceId],
     face_angle_limit: f64,
@@ -270,6 +269,121 @@ pub(crate) fn tris_to_quads_across(
         quads.push(kept);
     }
     Ok(quads)
+}
+
+/// Pairs of the triangles `faces` to join into quads, as the edges between
+/// them, pairing as many triangles as it can: a maximal matching of the
+/// triangles across their shared edges, grown by augmenting paths.
+///
+/// Candidates are the edges [`tris_to_quads`] would join with
+/// `face_angle_limit` and `loose_shape_limit` (corners within that of a
+/// right angle, convex); those within `shape_angle_limit` (good quads)
+/// come before the others, each group in order of Blender's join error, and
+/// are taken greedily (best first, each triangle at most once). Then each
+/// unpaired triangle `a` looks for an alternating path `a–b, b=c, c–d`
+/// (`b` paired with `c`, `d` unpaired; Edmonds' augmenting path of length
+/// three): re-pairing `a` with `b` and `c` with `d` pairs two more
+/// triangles. Rounds repeat until none is found (at most four).
+///
+/// Nothing is joined: the caller kills the returned edges (each has a
+/// different pair of triangles on its sides).
+pub(crate) fn quad_pairing(
+    mesh: &HalfEdgeMesh,
+    faces: &[FaceId],
+    face_angle_limit: f64,
+    shape_angle_limit: f64,
+    loose_shape_limit: f64,
+    joinable: impl Fn(EdgeId) -> bool,
+) -> Vec<EdgeId> {
+    let n = mesh.face_capacity();
+    let mut is_tri = vec![false; n];
+    for &f in faces {
+        if mesh.is_face(f) && mesh.face_degree(f) == 3 && mesh.face_rings(f).is_empty() {
+            is_tri[f.index()] = true;
+        }
+    }
+    // Per triangle, its candidate edges: (error, edge, other triangle).
+    let mut around: Vec<Vec<(f64, EdgeId, FaceId)>> = vec![Vec::new(); n];
+    let mut candidates: Vec<(f64, EdgeId)> = Vec::new();
+    for &f in faces {
+        if !is_tri[f.index()] {
+            continue;
+        }
+        for h in mesh.face_halfedges(f) {
+            let e = h.edge();
+            let Some(g) = mesh.face(h.twin()) else {
+                continue;
+            };
+            // Each edge once: from its half-edge 0's face.
+            if g == f || !is_tri[g.index()] || h != e.halfedge(0) || !joinable(e) {
+                continue;
+            }
+            let Some(loose) = join_error(mesh, e, face_angle_limit, loose_shape_limit) else {
+                continue;
+            };
+            // Blender's error is below 2 + 4·π/2/(2π) = 3: good quads first.
+            let good = join_error(mesh, e, face_angle_limit, shape_angle_limit).is_some();
+            let error = if good { loose } else { loose + 3.0 };
+            candidates.push((error, e));
+            around[f.index()].push((error, e, g));
+            around[g.index()].push((error, e, f));
+        }
+    }
+    candidates.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+    // mate[f] = (edge, partner) of a paired triangle.
+    let mut mate: Vec<Option<(EdgeId, FaceId)>> = vec![None; n];
+    for &(_, e) in &candidates {
+        let [Some(a), Some(b)] = mesh.edge_faces(e) else {
+            continue;
+        };
+        if mate[a.index()].is_none() && mate[b.index()].is_none() {
+            mate[a.index()] = Some((e, b));
+            mate[b.index()] = Some((e, a));
+        }
+    }
+    for _ in 0..4 {
+        let mut grown = false;
+        for &a in faces {
+            if !is_tri[a.index()] || mate[a.index()].is_some() {
+                continue;
+            }
+            // The cheapest augmenting path a–b, c–d.
+            let mut best: Option<(f64, EdgeId, FaceId, EdgeId, FaceId, FaceId)> = None;
+            for &(ab, e_ab, b) in &around[a.index()] {
+                let Some((_, c)) = mate[b.index()] else {
+                    continue;
+                };
+                for &(cd, e_cd, d) in &around[c.index()] {
+                    if d == a || d == b || mate[d.index()].is_some() {
+                        continue;
+                    }
+                    if best.is_none_or(|x| ab + cd < x.0) {
+                        best = Some((ab + cd, e_ab, b, e_cd, c, d));
+                    }
+                }
+            }
+            if let Some((_, e_ab, b, e_cd, c, d)) = best {
+                mate[a.index()] = Some((e_ab, b));
+                mate[b.index()] = Some((e_ab, a));
+                mate[c.index()] = Some((e_cd, d));
+                mate[d.index()] = Some((e_cd, c));
+                grown = true;
+            }
+        }
+        if !grown {
+            break;
+        }
+    }
+    let mut edges: Vec<EdgeId> = faces
+        .iter()
+        .filter_map(|&f| match mate[f.index()] {
+            Some((e, g)) if is_tri[f.index()] && f.index() < g.index() => Some(e),
+            _ => None,
+        })
+        .collect();
+    edges.sort();
+    edges.dedup();
+    edges
 }
 
 /// The quad two triangles across `e` would make, corners in order, and

@@ -1,17 +1,21 @@
 //! Quadric error metrics (Garland and Heckbert, "Surface Simplification
 //! Using Quadric Error Metrics", SIGGRAPH 1997): the squared distance of a
-//! point to a set of planes as one symmetric 4×4 form.
+//! point to a set of planes as one symmetric 4×4 form, with the sum of the
+//! planes' weights so that the error can be read as a weighted mean
+//! (meshoptimizer's `quadricError`, A. Kapoulkine, `simplifier.cpp`).
 
 use glam::{DMat3, DVec3};
 
 /// A quadric `Q(p) = pᵀ A p + 2 bᵀ p + c` with `A` symmetric, stored as
 /// its ten distinct entries. The sum of the quadrics of planes `n·p + d = 0`
-/// measures the (weighted) sum of squared distances to them.
+/// measures the (weighted) sum of squared distances to them; `w` is the
+/// sum of their weights.
 #[derive(Copy, Clone, Debug, Default, PartialEq)]
 pub struct Quadric {
     a: [f64; 6],
     b: DVec3,
     c: f64,
+    w: f64,
 }
 
 impl Quadric {
@@ -32,6 +36,7 @@ impl Quadric {
             .map(|x| x * weight),
             b: n * (d * weight),
             c: d * d * weight,
+            w: weight,
         }
     }
 
@@ -44,6 +49,24 @@ impl Quadric {
             xz * p.x + yz * p.y + zz * p.z,
         );
         (p.dot(ap) + 2.0 * self.b.dot(p) + self.c).max(0.0)
+    }
+
+    /// The weighted mean of the squared distances at `p`: the error over
+    /// the sum of the weights (0 for the empty quadric). Unlike the sum, it
+    /// does not grow with the area a vertex stands for, so costs compare
+    /// as squared distances across the whole mesh (meshoptimizer divides
+    /// by the weight the same way).
+    pub fn mean_error(&self, p: DVec3) -> f64 {
+        if self.w > 0.0 {
+            self.error(p) / self.w
+        } else {
+            0.0
+        }
+    }
+
+    /// The sum of the planes' weights.
+    pub fn weight(&self) -> f64 {
+        self.w
     }
 
     /// The point of least error when `A` is well conditioned (its
@@ -80,5 +103,6 @@ impl std::ops::AddAssign for Quadric {
         }
         self.b += o.b;
         self.c += o.c;
+        self.w += o.w;
     }
 }
