@@ -2857,7 +2857,8 @@ fn build_the_csg_emblem_in_the_app_and_drag_a_cylinder_through_it() {
     // the holes) selects the emblem, not the hidden operand under it.
     user.tap(KeyCode::Numpad1);
     user.frames(3);
-    user.click(user.screen_of(Vec3::new(0.75, 0.75, 1.0)));
+    let on_face = user.screen_of(Vec3::new(0.75, 0.75, 1.0));
+    user.click(on_face);
     assert_eq!(
         user.app.world().resource::<hedra_edit::Selection>().active(),
         Some(emblem)
@@ -2916,4 +2917,68 @@ fn build_the_csg_emblem_in_the_app_and_drag_a_cylinder_through_it() {
     assert_eq!(user.doc().node(cylinder).unwrap().parent, None, "{}", user.status());
     let fewer = hedra_doc::csg::evaluate(user.doc(), emblem).unwrap();
     assert_eq!(fewer.stats().genus, Some(3), "one hole less");
+}
+
+/// A Decimate modifier on a big mesh (a 260×260 grid, 67,600 quads)
+/// builds its progressive record on a worker thread (issue 18): the
+/// status bar shows a progress bar while later requests wait, then the
+/// command lands as one undo step. Esc during a second build cancels it:
+/// nothing changes.
+#[test]
+fn a_big_decimate_builds_in_the_background_with_progress_and_cancel() {
+    let mut user = User::new();
+    execute(
+        &mut user,
+        "AddPrimitive(primitive: Grid(x_segments: 260, z_segments: 260, size: 4.0), name: Some(\"Big\"))",
+    );
+    let steps = user.undo_steps();
+    user.app
+        .world_mut()
+        .write_message(hedra_scene::DocRequest::Execute(
+            ron::from_str("AddModifier(node: Name(\"Big\"), modifier: Decimate(()))").unwrap(),
+        ));
+    user.frames(1);
+    let progress = user.app.world().resource::<hedra_scene::FileJobs>().progress();
+    let (label, _) = progress.expect("a background build");
+    assert!(label.contains("67600 faces"), "{label}");
+    assert_eq!(user.undo_steps(), steps, "the command waits for its record");
+    // Later requests wait in order: a rename lands after the modifier.
+    execute(&mut user, "Rename(node: Name(\"Big\"), name: \"Decimated\")");
+    for _ in 0..600 {
+        if user.app.world().resource::<hedra_scene::FileJobs>().progress().is_none() {
+            break;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(20));
+        user.frames(1);
+    }
+    user.frames(2);
+    assert_eq!(user.undo_steps(), steps + 2, "{}", user.status());
+    let node = node_named(&user, "Decimated").expect("renamed after the modifier");
+    let NodeContent::Mesh(m) = &node.content else {
+        panic!("a mesh")
+    };
+    assert_eq!(m.modifiers.len(), 1);
+    assert_eq!(m.decimations.len(), 1, "the record came from the worker");
+    // A second build (borders kept: another record), cancelled with Esc.
+    user.app
+        .world_mut()
+        .write_message(hedra_scene::DocRequest::Execute(
+            ron::from_str(
+                "SetModifier(node: Name(\"Decimated\"), index: 0, modifier: Decimate((keep_borders: true)))",
+            )
+            .unwrap(),
+        ));
+    user.frames(1);
+    assert!(user.app.world().resource::<hedra_scene::FileJobs>().progress().is_some());
+    user.tap(KeyCode::Escape);
+    for _ in 0..600 {
+        if user.app.world().resource::<hedra_scene::FileJobs>().progress().is_none() {
+            break;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(20));
+        user.frames(1);
+    }
+    user.frames(1);
+    assert!(user.status().contains("cancelled"), "{}", user.status());
+    assert_eq!(user.undo_steps(), steps + 2, "nothing changed");
 }

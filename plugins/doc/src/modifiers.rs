@@ -19,7 +19,9 @@ use hedra_geom::modeling::{
     ArrayOffset, CopiedMesh, MAX_ARRAY_COUNT, MirrorAxis, ModelingError, arrayed_copies,
     mirrored_copies,
 };
-use hedra_geom::progressive::{DecimateError, DecimateOptions, DecimateTarget, ProgressiveMesh};
+use hedra_geom::progressive::{
+    BuildJob, DecimateError, DecimateOptions, DecimateTarget, ProgressiveMesh,
+};
 use hedra_geom::subdivision::{Creases, Refiner, SubdivisionError};
 use hedra_geom::{EdgeId, HalfEdgeId, HalfEdgeMesh};
 use serde::{Deserialize, Serialize};
@@ -392,6 +394,69 @@ pub struct DecimateRecord {
     pub progressive: ProgressiveMesh,
 }
 
+/// A progressive record a command would build: its key and the build,
+/// with owned inputs, to run on a worker thread
+/// ([`BuildJob::run`] reports progress and can be cancelled).
+pub struct PendingDecimation {
+    /// The record's [`decimate_key`].
+    pub key: u64,
+    /// The build.
+    pub job: BuildJob,
+}
+
+thread_local! {
+    /// While [`decimations_needed`] runs on this thread: the builds noted.
+    static DEFERRED: std::cell::RefCell<Option<Vec<PendingDecimation>>> =
+        const { std::cell::RefCell::new(None) };
+}
+
+/// Records built ahead of the command that needs them, taken by it.
+static PREBUILT: std::sync::Mutex<Vec<Arc<DecimateRecord>>> = std::sync::Mutex::new(Vec::new());
+
+/// How many records built ahead are kept at most (the oldest go).
+const PREBUILT_KEPT: usize = 4;
+
+fn deferring() -> bool {
+    DEFERRED.with(|d| d.borrow().is_some())
+}
+
+fn defer(p: PendingDecimation) {
+    DEFERRED.with(|d| {
+        if let Some(list) = d.borrow_mut().as_mut() {
+            list.push(p);
+        }
+    });
+}
+
+fn take_prebuilt(key: u64) -> Option<Arc<DecimateRecord>> {
+    let mut kept = PREBUILT.lock().ok()?;
+    let at = kept.iter().position(|r| r.key == key)?;
+    Some(kept.remove(at))
+}
+
+/// Runs `dry_run` (deciding a command without applying it:
+/// [`Document::decide`](crate::Document::decide)) with Decimate builds
+/// deferred, and returns the progressive records it would have built —
+/// the first of a stack only, as later ones depend on its result. The app
+/// runs them on a worker thread with progress and cancel
+/// ([`prebuild`]), then executes the command, which finds them built.
+pub fn decimations_needed<T>(dry_run: impl FnOnce() -> T) -> Vec<PendingDecimation> {
+    DEFERRED.with(|d| *d.borrow_mut() = Some(Vec::new()));
+    let _ = dry_run();
+    DEFERRED.with(|d| d.borrow_mut().take().unwrap_or_default())
+}
+
+/// Keeps a record built ahead (by a worker) for the command that needs
+/// it: the next refresh whose input has `key` takes it instead of building.
+pub fn prebuild(key: u64, progressive: ProgressiveMesh) {
+    if let Ok(mut kept) = PREBUILT.lock() {
+        kept.retain(|r| r.key != key);
+        kept.push(Arc::new(DecimateRecord { key, progressive }));
+        let extra = kept.len().saturating_sub(PREBUILT_KEPT);
+        kept.drain(..extra);
+    }
+}
+
 /// A fingerprint (64-bit FNV-1a, the same in every build) of a mesh's
 /// records, its creases and decimation options: records whose key matches
 /// were built from exactly this input.
@@ -738,14 +803,32 @@ impl MeshContent {
                 let key = decimate_key(&current.mesh, &current.creases, &options);
                 let record = match self.decimations.iter().find(|r| r.key == key) {
                     Some(r) => r.clone(),
-                    None => {
-                        let pm = ProgressiveMesh::build(&current.mesh, &current.creases, &options)
-                            .map_err(|error| EvaluationError::Decimate { index, error })?;
-                        Arc::new(DecimateRecord {
-                            key,
-                            progressive: pm,
-                        })
-                    }
+                    None => match take_prebuilt(key) {
+                        Some(r) => r,
+                        None if deferring() => {
+                            // A dry run: note the build (later modifiers
+                            // depend on its result), build nothing.
+                            defer(PendingDecimation {
+                                key,
+                                job: BuildJob::new(
+                                    current.mesh.into_owned(),
+                                    current.creases.into_owned(),
+                                    options,
+                                ),
+                            });
+                            self.decimations = records;
+                            return Ok(());
+                        }
+                        None => {
+                            let pm =
+                                ProgressiveMesh::build(&current.mesh, &current.creases, &options)
+                                    .map_err(|error| EvaluationError::Decimate { index, error })?;
+                            Arc::new(DecimateRecord {
+                                key,
+                                progressive: pm,
+                            })
+                        }
+                    },
                 };
                 let mut record = record;
                 let level = d.level_on(&record.progressive);

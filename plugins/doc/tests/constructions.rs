@@ -679,9 +679,11 @@ fn nurbs_caps_are_child_nodes_that_follow_the_profile_and_the_recipe() {
     assert_eq!(s.doc.node_count(), 2);
     s.redo();
     // Moving the profile moves the caps with the surface, in one step.
-    s.execute(&Command::SetTransform {
-        node: name("Profile"),
-        transform: NodeTransform::from_translation(DVec3::new(5.0, 1.0, 0.0)),
+    s.execute(&Command::SetTransforms {
+        nodes: vec![(
+            name("Profile"),
+            NodeTransform::from_translation(DVec3::new(5.0, 1.0, 0.0)),
+        )],
     })
     .unwrap();
     let top = surface_of(&s, "Can cap end");

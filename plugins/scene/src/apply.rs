@@ -18,12 +18,28 @@ pub fn apply_requests(
         let result = finish_file_job(state, &mut status, done);
         report(state, &mut status, &mut changed, result);
     }
-    // Requests that waited for a file job, then this frame's.
-    let mut queue: VecDeque<DocRequest> = std::mem::take(&mut jobs.waiting);
+    // A finished Decimate build: its command runs first.
+    let mut first = None;
+    if jobs.decimation.as_ref().is_some_and(|j| j.is_finished()) {
+        let job = jobs.decimation.take().expect("checked above");
+        match job.finish() {
+            Ok(request) => first = Some(request),
+            Err(e) if e.contains("cancelled") => status.info(e),
+            Err(e) => status.error(e),
+        }
+    }
+    // Requests that waited for a job, then this frame's.
+    let mut queue: VecDeque<DocRequest> = first.into_iter().collect();
+    queue.extend(std::mem::take(&mut jobs.waiting));
     queue.extend(requests.read().cloned());
     while let Some(request) = queue.pop_front() {
         if jobs.must_wait(&request) {
             jobs.waiting.push_back(request);
+            continue;
+        }
+        // A command that builds a big progressive record waits for a worker.
+        if let Some(job) = crate::decimate_jobs::DecimateJob::start(&state.session.doc, &request) {
+            jobs.decimation = Some(job);
             continue;
         }
         let result = apply(state, &mut jobs, &mut status, &request);

@@ -51,13 +51,22 @@ pub(crate) enum FileJob {
 #[derive(Resource, Default)]
 pub struct FileJobs {
     pub(crate) running: Option<FileJob>,
+    /// A big Decimate build a command waits for ([`crate::decimate_jobs`]):
+    /// later requests wait too, in order.
+    pub(crate) decimation: Option<crate::decimate_jobs::DecimateJob>,
     pub(crate) waiting: VecDeque<DocRequest>,
 }
 
 impl FileJobs {
     /// True while a file is being opened or saved (or requests wait).
     pub fn busy(&self) -> bool {
-        self.running.is_some() || !self.waiting.is_empty()
+        self.running.is_some() || self.decimation.is_some() || !self.waiting.is_empty()
+    }
+
+    /// A running Decimate build's label and fraction done (the status bar's
+    /// progress bar; Esc cancels).
+    pub fn progress(&self) -> Option<(String, f32)> {
+        self.decimation.as_ref().map(|j| j.progress())
     }
 
     /// What the status bar shows while a job runs.
@@ -71,6 +80,9 @@ impl FileJobs {
 
     /// Whether `request` must wait for the running job.
     pub(crate) fn must_wait(&self, request: &DocRequest) -> bool {
+        if self.decimation.is_some() {
+            return true;
+        }
         match &self.running {
             None => !self.waiting.is_empty(),
             Some(FileJob::Open { .. }) => true,

@@ -30,12 +30,14 @@ use std::path::PathBuf;
 mod apply;
 mod file_jobs;
 mod preview;
+mod decimate_jobs;
 mod projection;
 mod render_mesh;
 mod shape_entities;
 mod smooth;
 
 pub use apply::*;
+pub use decimate_jobs::BACKGROUND_DECIMATE_FACES;
 pub use file_jobs::FileJobs;
 use file_jobs::FinishedFile;
 pub use preview::*;
@@ -377,6 +379,7 @@ impl Plugin for ScenePlugin {
             )
             .add_systems(Startup, (setup_material, setup_face_orientation))
             .add_systems(Update, apply_requests.in_set(SceneSystems::Apply))
+            .add_systems(Update, decimate_jobs::decimate_job_keys)
             .add_systems(
                 Update,
                 (

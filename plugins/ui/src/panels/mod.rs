@@ -115,6 +115,7 @@ pub struct Model<'w> {
     samples: Option<Res<'w, SamplesDir>>,
     mode: ResMut<'w, EditMode>,
     previews: Res<'w, hedra_scene::SmoothPreviews>,
+    jobs: Res<'w, hedra_scene::FileJobs>,
     shape_edit: Res<'w, hedra_edit::ShapeEdit>,
     shading: ResMut<'w, hedra_scene::ViewportShading>,
 }

@@ -37,7 +37,8 @@ pub(super) fn status_bar(ui: &mut egui::Ui, model: &Model) {
             egui::RichText::new(&s.text)
         };
         let most = ui.available_width() * 0.6;
-        let progress = model.previews.progress();
+        let mut progress = model.previews.progress();
+        progress.extend(model.jobs.progress());
         if progress.is_empty() {
             ui.scope(|ui| {
                 ui.set_max_width(most);
