@@ -757,3 +757,39 @@ fn the_fast_mesh_reader_and_the_ron_reader_agree() {
         other => panic!("{other:?}"),
     }
 }
+
+/// Damaged mesh lists (a byte changed, removed or the text cut short) are
+/// refused or read, never a panic, and what loads is sound
+/// (`fuzz::scene` checks it and its history).
+#[test]
+fn damaged_mesh_lists_never_panic() {
+    let (positions, polygons) = torus_polygons(6, 4);
+    let mut s = Session::new();
+    s.execute(&add_mesh("Ring", positions, polygons)).unwrap();
+    s.execute(&Command::DeleteFaces {
+        node: NodeRef::Name("Ring".into()),
+        faces: hedra_doc::FaceSet::Ids(vec![3]),
+    })
+    .unwrap();
+    let text = file::to_string(&s);
+    let end = text.find("\n    scene:").unwrap();
+    let bytes = text.as_bytes();
+    let replacements = b"09-,])([ e./#\"";
+    let mut seed: u64 = 0x2545_F491_4F6C_DD1D;
+    let mut next = |n: usize| {
+        seed = seed.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1);
+        (seed >> 33) as usize % n
+    };
+    for round in 0..600 {
+        let at = 40 + next(end - 40);
+        let mut damaged = bytes.to_vec();
+        match round % 3 {
+            0 => damaged[at] = replacements[next(replacements.len())],
+            1 => {
+                damaged.remove(at);
+            }
+            _ => damaged.truncate(at),
+        }
+        hedra_doc::fuzz::scene(&damaged);
+    }
+}
