@@ -4,7 +4,7 @@
 //! ```text
 //! (
 //!     format: "hedra-scene",
-//!     version: 2,
+//!     version: 3,
 //!     meshes: [ ... ],            // mesh pool, shared by nodes and history
 //!     corners: [ ... ],           // corner attribute pool (UVs, normals)
 //!     scene: (next_node_id: 4, nodes: [ ... ]),
@@ -23,8 +23,12 @@
 //! `.hedra.ron.bak`, and a rename puts the new file in place.
 //!
 //! Format versions: version 1 files are read as they are (version 2 only
-//! adds the corner pool and `corner_set` references); a newer build's file
-//! is refused by name. The commands in the history have a stored form of
+//! adds the corner pool and `corner_set` references); version 3 stores
+//! meshes as polygons plus the ids they cannot give (`file/mesh_text.rs`,
+//! `hedra_geom::PolygonData`) instead of every half-edge record, and an
+//! `AddMesh` command names the pool mesh it made. One reader takes every
+//! version (a mesh's form is told by its fields); a newer build's file is
+//! refused by name. The commands in the history have a stored form of
 //! their own, pinned per version ([`stored_command`]). `docs/file-format.md`
 //! describes the format for other tools.
 

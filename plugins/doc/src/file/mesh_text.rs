@@ -398,6 +398,7 @@ pub(super) struct Prepared<'a> {
 pub(super) fn prepare(text: &str) -> Prepared<'_> {
     let mut spans: Vec<(usize, usize, Vec<HalfEdgeMesh>, bool)> = Vec::new();
     let mut c = Cursor {
+        s: text,
         b: text.as_bytes(),
         i: 0,
     };
@@ -488,6 +489,8 @@ pub(super) fn prepare(text: &str) -> Prepared<'_> {
 
 /// A byte cursor over RON text, for exactly the grammar of mesh lists.
 struct Cursor<'a> {
+    /// The text, for slices that are already known to be UTF-8.
+    s: &'a str,
     b: &'a [u8],
     i: usize,
 }
@@ -554,7 +557,7 @@ impl<'a> Cursor<'a> {
             self.i += 1;
         }
         (self.i > start)
-            .then(|| std::str::from_utf8(&self.b[start..self.i]).ok())
+            .then(|| self.s.get(start..self.i))
             .flatten()
     }
 
@@ -603,7 +606,8 @@ impl<'a> Cursor<'a> {
         {
             self.i += 1;
         }
-        let s = std::str::from_utf8(&self.b[start..self.i]).ok()?;
+        // ASCII bytes were scanned: the slice is on character boundaries.
+        let s = self.s.get(start..self.i)?;
         match s {
             "NaN" => Some(f64::NAN),
             "-NaN" => Some(-f64::NAN),
