@@ -600,28 +600,28 @@ impl<'a> Cursor<'a> {
     fn f64(&mut self) -> Option<f64> {
         self.ws();
         let start = self.i;
-        while let Some(
-            b'0'..=b'9' | b'.' | b'-' | b'+' | b'e' | b'E' | b'N' | b'a' | b'i' | b'n' | b'f',
-        ) = self.peek()
-        {
+        let mut word = false;
+        loop {
+            match self.peek() {
+                Some(b'0'..=b'9' | b'.' | b'-' | b'+' | b'e' | b'E') => {}
+                Some(b'N' | b'a' | b'i' | b'n' | b'f') => word = true,
+                _ => break,
+            }
             self.i += 1;
         }
         // ASCII bytes were scanned: the slice is on character boundaries.
         let s = self.s.get(start..self.i)?;
+        if !word {
+            // Rust's grammar is RON's for plain decimals.
+            return s.parse().ok();
+        }
+        // The words RON writes; others Rust would take ("infinity") are not RON.
         match s {
             "NaN" => Some(f64::NAN),
             "-NaN" => Some(-f64::NAN),
             "inf" => Some(f64::INFINITY),
             "-inf" => Some(f64::NEG_INFINITY),
-            // Rust's grammar is RON's for plain decimals; words it would
-            // take that RON does not ("infinity") are refused above.
-            _ if s
-                .bytes()
-                .any(|b| b.is_ascii_alphabetic() && b != b'e' && b != b'E') =>
-            {
-                None
-            }
-            _ => s.parse().ok(),
+            _ => None,
         }
     }
 
