@@ -4,7 +4,7 @@
 //! ```text
 //! (
 //!     format: "hedra-scene",
-//!     version: 2,
+//!     version: 3,
 //!     meshes: [ ... ],            // mesh pool, shared by nodes and history
 //!     corners: [ ... ],           // corner attribute pool (UVs, normals)
 //!     scene: (next_node_id: 4, nodes: [ ... ]),
@@ -23,8 +23,12 @@
 //! `.hedra.ron.bak`, and a rename puts the new file in place.
 //!
 //! Format versions: version 1 files are read as they are (version 2 only
-//! adds the corner pool and `corner_set` references); a newer build's file
-//! is refused by name. The commands in the history have a stored form of
+//! adds the corner pool and `corner_set` references); version 3 stores
+//! meshes as polygons plus the ids they cannot give (`file/mesh_text.rs`,
+//! `hedra_geom::PolygonData`) instead of every half-edge record, and an
+//! `AddMesh` command names the pool mesh it made. One reader takes every
+//! version (a mesh's form is told by its fields); a newer build's file is
+//! refused by name. The commands in the history have a stored form of
 //! their own, pinned per version ([`stored_command`]). `docs/file-format.md`
 //! describes the format for other tools.
 
@@ -43,13 +47,15 @@ use std::collections::HashMap;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
+use stored_command::WriteCommand;
 
+mod mesh_text;
 pub mod stored_command;
 
 /// The format name written at the top of every scene file.
 pub const FORMAT_NAME: &str = "hedra-scene";
 /// The newest format version this build reads and the one it writes.
-pub const FORMAT_VERSION: u32 = 2;
+pub const FORMAT_VERSION: u32 = 3;
 /// The scene file extension.
 pub const EXTENSION: &str = "hedra.ron";
 
@@ -289,6 +295,12 @@ pub enum HistoryError {
         /// The step's label.
         label: String,
     },
+    /// A stored `AddMesh` names a mesh the pool does not have.
+    #[error("step '{label}': its command names a mesh that is not stored")]
+    MissingCommandMesh {
+        /// The step's label.
+        label: String,
+    },
     /// Step serial numbers do not increase, or reach the history's next serial.
     #[error("step serial numbers are out of order")]
     SerialsOutOfOrder,
@@ -387,7 +399,7 @@ struct StoredChange {
 /// ([`stored_command`]): reading parses the version's own shape and
 /// converts it to today's [`Command`].
 #[derive(Serialize, Deserialize)]
-struct StoredTransaction<C> {
+pub(super) struct StoredTransaction<C> {
     serial: u64,
     label: String,
     #[serde(default = "none")]
@@ -395,6 +407,20 @@ struct StoredTransaction<C> {
     changes: Vec<StoredChange>,
     next_id_before: u64,
     next_id_after: u64,
+}
+
+impl<C> StoredTransaction<C> {
+    /// The same step with its command converted.
+    fn map_command<D>(self, f: impl FnOnce(C) -> D) -> StoredTransaction<D> {
+        StoredTransaction {
+            serial: self.serial,
+            label: self.label,
+            command: self.command.map(f),
+            changes: self.changes,
+            next_id_before: self.next_id_before,
+            next_id_after: self.next_id_after,
+        }
+    }
 }
 
 /// One mesh's corner attributes, compactly: the half-edge ids that have a
@@ -453,10 +479,13 @@ impl StoredCorners {
     }
 }
 
+/// The history part. `M` is a stored mesh when reading; when writing the
+/// list is left empty and the meshes' text put in its place
+/// ([`mesh_text`]).
 #[derive(Serialize, Deserialize)]
-struct StoredHistory<C> {
+struct StoredHistory<C, M> {
     /// Meshes only the history uses; index `i` here is pool index `scene_meshes + i`.
-    meshes: Vec<HalfEdgeMesh>,
+    meshes: Vec<M>,
     /// Corner attributes only the history uses, numbered after the scene's.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     corners: Vec<StoredCorners>,
@@ -472,18 +501,19 @@ struct StoredHistory<C> {
 struct FileOut<'a> {
     format: &'static str,
     version: u32,
-    meshes: Vec<&'a HalfEdgeMesh>,
+    /// Left empty: the pool's text is put in its place.
+    meshes: Vec<()>,
     #[serde(skip_serializing_if = "Vec::is_empty")]
     corners: Vec<StoredCorners>,
     scene: StoredScene,
-    history: StoredHistory<&'a Command>,
+    history: StoredHistory<WriteCommand<'a>, ()>,
 }
 
 #[derive(Deserialize)]
 struct FileIn {
     format: String,
     version: u32,
-    meshes: Vec<HalfEdgeMesh>,
+    meshes: Vec<mesh_text::StoredMesh>,
     #[serde(default)]
     corners: Vec<StoredCorners>,
     scene: StoredScene,
@@ -550,22 +580,51 @@ impl<'a> MeshPool<'a> {
             g1_join: n.g1_join,
         }
     }
-    fn transaction(&mut self, t: &'a Transaction) -> StoredTransaction<&'a Command> {
+    fn transaction(&mut self, t: &'a Transaction) -> StoredTransaction<WriteCommand<'a>> {
+        let changes = t
+            .changes
+            .iter()
+            .map(|c| StoredChange {
+                id: c.id,
+                before: c.before.as_ref().map(|n| self.node(n)),
+                after: c.after.as_ref().map(|n| self.node(n)),
+            })
+            .collect();
         StoredTransaction {
             serial: t.serial,
             label: t.label.clone(),
-            command: t.command.as_ref(),
-            changes: t
-                .changes
-                .iter()
-                .map(|c| StoredChange {
-                    id: c.id,
-                    before: c.before.as_ref().map(|n| self.node(n)),
-                    after: c.after.as_ref().map(|n| self.node(n)),
-                })
-                .collect(),
+            command: t.command.as_ref().map(|c| self.command(c, t)),
+            changes,
             next_id_before: t.next_id_before,
             next_id_after: t.next_id_after,
+        }
+    }
+    /// A step's command; an `AddMesh` names the mesh it made when that mesh
+    /// is in the pool exactly as the command builds it.
+    fn command(&mut self, c: &'a Command, t: &'a Transaction) -> WriteCommand<'a> {
+        let Command::AddMesh {
+            positions,
+            polygons,
+            ..
+        } = c
+        else {
+            return WriteCommand::Command(c);
+        };
+        let made = t
+            .changes
+            .iter()
+            .find_map(|ch| match ch.after.as_ref().map(|n| &n.content) {
+                Some(NodeContent::Mesh(m)) if ch.before.is_none() => Some(&m.mesh),
+                _ => None,
+            });
+        match made {
+            Some(m) if stored_command::made_from(m, positions, polygons) => {
+                WriteCommand::PooledAddMesh {
+                    command: c,
+                    mesh: self.add(m),
+                }
+            }
+            _ => WriteCommand::Command(c),
         }
     }
 }
@@ -587,12 +646,6 @@ pub fn to_string(session: &Session) -> String {
     let h = &session.history;
     let done = h.done.iter().map(|t| pool.transaction(t)).collect();
     let undone = h.undone.iter().map(|t| pool.transaction(t)).collect();
-    let history_meshes = pool
-        .meshes
-        .split_off(scene_meshes)
-        .into_iter()
-        .cloned()
-        .collect();
     let history_corners = pool.corner_sets[scene_corners..]
         .iter()
         .map(|c| StoredCorners::of(c))
@@ -604,11 +657,11 @@ pub fn to_string(session: &Session) -> String {
     let file = FileOut {
         format: FORMAT_NAME,
         version: FORMAT_VERSION,
-        meshes: pool.meshes,
+        meshes: Vec::new(),
         corners,
         scene,
         history: StoredHistory {
-            meshes: history_meshes,
+            meshes: Vec::new(),
             corners: history_corners,
             done,
             undone,
@@ -620,9 +673,55 @@ pub fn to_string(session: &Session) -> String {
     let config = ron::ser::PrettyConfig::new()
         .depth_limit(3)
         .struct_names(false);
-    let mut text = ron::ser::to_string_pretty(&file, config).expect("scene data always serialises");
+    let rest = ron::ser::to_string_pretty(&file, config).expect("scene data always serialises");
+    // The mesh pools go where the empty lists are: the first `meshes` is
+    // the top level's (third field), the last `history` is the top level's.
+    let (scene_pool, history_pool) = pool.meshes.split_at(scene_meshes);
+    const TOP: &str = "\n    meshes: [],\n";
+    const HISTORY: &str = "\n    history: (\n        meshes: [],\n";
+    let top = rest.find(TOP).expect("the top level has its mesh list");
+    let history = rest.rfind(HISTORY).expect("the history has its mesh list");
+    let mut text = String::with_capacity(rest.len() + pool_size(&pool.meshes));
+    text.push_str(&rest[..top]);
+    text.push_str("\n    meshes: [");
+    for m in scene_pool {
+        text.push_str("\n        ");
+        mesh_text::write_mesh(
+            &mut text,
+            m,
+            mesh_text::Layout::Lines("            ", "        "),
+        );
+        text.push(',');
+    }
+    text.push_str(if scene_pool.is_empty() {
+        "],\n"
+    } else {
+        "\n    ],\n"
+    });
+    text.push_str(&rest[top + TOP.len()..history]);
+    text.push_str("\n    history: (\n        meshes: [");
+    for m in history_pool {
+        text.push_str("\n            ");
+        mesh_text::write_mesh(&mut text, m, mesh_text::Layout::OneLine);
+        text.push(',');
+    }
+    text.push_str(if history_pool.is_empty() {
+        "],\n"
+    } else {
+        "\n        ],\n"
+    });
+    text.push_str(&rest[history + HISTORY.len()..]);
     text.push('\n');
     text
+}
+
+/// Roughly how many bytes the meshes' text takes (a position up to ~64, a
+/// corner ~10), to reserve the text once.
+fn pool_size(meshes: &[&HalfEdgeMesh]) -> usize {
+    meshes
+        .iter()
+        .map(|m| m.vertex_capacity() * 64 + m.edge_capacity() * 20)
+        .sum()
 }
 
 fn io(path: &Path) -> impl FnOnce(std::io::Error) -> FileError + '_ {
@@ -803,6 +902,9 @@ fn parse_error(path: &Path, e: ron::error::SpannedError) -> FileError {
 
 fn read_scene(text: &str, path: &Path) -> Result<Loaded, FileError> {
     let mut warnings = Vec::new();
+    // The mesh lists are read by their own parser where it can.
+    let prepared = mesh_text::prepare(text);
+    let text: &str = &prepared.text;
     // `history: (…)` is read as `Some(raw)`; the history is parsed later on its own.
     let options =
         ron::Options::default().with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME);
@@ -838,7 +940,10 @@ fn read_scene(text: &str, path: &Path) -> Result<Loaded, FileError> {
         path: path.to_path_buf(),
         error: Box::new(error),
     };
-    let scene_pool: Vec<Arc<HalfEdgeMesh>> = file.meshes.into_iter().map(Arc::new).collect();
+    let scene_pool: Vec<Arc<HalfEdgeMesh>> = match prepared.scene_meshes {
+        Some(meshes) => meshes.into_iter().map(Arc::new).collect(),
+        None => file.meshes.into_iter().map(|m| Arc::new(m.0)).collect(),
+    };
     let scene_corners = restore_corners(file.corners).map_err(&invalid)?;
     let mut doc = Document::new();
     doc.next_node_id = file.scene.next_node_id;
@@ -856,7 +961,15 @@ fn read_scene(text: &str, path: &Path) -> Result<Loaded, FileError> {
         saved_serial: None,
     };
     if let Some(raw) = file.history {
-        match restore_history(&raw, file.version, scene_pool, scene_corners, &session.doc) {
+        let meshes = prepared.history_meshes;
+        match restore_history(
+            &raw,
+            file.version,
+            meshes,
+            scene_pool,
+            scene_corners,
+            &session.doc,
+        ) {
             Ok(h) => session.history = h,
             Err(why) => warnings.push(format!(
                 "the undo history is damaged ({why}); the scene opened without it"
@@ -979,6 +1092,7 @@ fn restore_node(
 fn restore_history(
     raw: &RawValue,
     version: u32,
+    meshes: Option<Vec<HalfEdgeMesh>>,
     mut pool: Vec<Arc<HalfEdgeMesh>>,
     mut corner_pool: Vec<CornerAttributes>,
     doc: &Document,
@@ -988,32 +1102,42 @@ fn restore_history(
         column: e.span.start.col,
         message: e.code.to_string(),
     })?;
-    pool.extend(stored.meshes.into_iter().map(Arc::new));
+    match meshes {
+        Some(meshes) => pool.extend(meshes.into_iter().map(Arc::new)),
+        None => pool.extend(stored.meshes.into_iter().map(|m| Arc::new(m.0))),
+    }
     corner_pool.extend(restore_corners(stored.corners)?);
-    let restore_tx = |t: StoredTransaction<Command>| -> Result<Transaction, InvalidScene> {
-        let mut changes = Vec::with_capacity(t.changes.len());
-        for c in t.changes {
-            changes.push(NodeChange {
-                id: c.id,
-                before: c
-                    .before
-                    .map(|n| restore_node(n, &pool, &corner_pool))
-                    .transpose()?,
-                after: c
-                    .after
-                    .map(|n| restore_node(n, &pool, &corner_pool))
-                    .transpose()?,
-            });
-        }
-        Ok(Transaction {
-            serial: t.serial,
-            label: t.label,
-            command: t.command,
-            changes,
-            next_id_before: t.next_id_before,
-            next_id_after: t.next_id_after,
-        })
-    };
+    let restore_tx =
+        |t: StoredTransaction<stored_command::ReadCommand>| -> Result<Transaction, HistoryError> {
+            let mut changes = Vec::with_capacity(t.changes.len());
+            for c in t.changes {
+                changes.push(NodeChange {
+                    id: c.id,
+                    before: c
+                        .before
+                        .map(|n| restore_node(n, &pool, &corner_pool))
+                        .transpose()?,
+                    after: c
+                        .after
+                        .map(|n| restore_node(n, &pool, &corner_pool))
+                        .transpose()?,
+                });
+            }
+            let command = match t.command {
+                Some(c) => Some(c.resolve(&pool).ok_or(HistoryError::MissingCommandMesh {
+                    label: t.label.clone(),
+                })?),
+                None => None,
+            };
+            Ok(Transaction {
+                serial: t.serial,
+                label: t.label,
+                command,
+                changes,
+                next_id_before: t.next_id_before,
+                next_id_after: t.next_id_after,
+            })
+        };
     let done = stored
         .done
         .into_iter()
@@ -1095,6 +1219,49 @@ fn restore_history(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The fast path reads both mesh lists of a file Hedra wrote (the
+    /// scene's and the history's), for files of every version.
+    #[test]
+    fn the_mesh_lists_are_read_by_the_fast_parser() {
+        let mut session = Session::new();
+        session
+            .execute(&Command::AddPrimitive {
+                primitive: Primitive::Cube { size: 1.0 },
+                name: Some("Box".into()),
+                parent: None,
+                transform: NodeTransform::IDENTITY,
+            })
+            .unwrap();
+        session
+            .execute(&Command::ExtrudeFaces {
+                node: crate::NodeRef::Name("Box".into()),
+                faces: crate::FaceSet::Ids(vec![1]),
+                distance: 0.5,
+            })
+            .unwrap();
+        let text = to_string(&session);
+        let prepared = mesh_text::prepare(&text);
+        assert_eq!(prepared.scene_meshes.map(|m| m.len()), Some(1));
+        assert_eq!(prepared.history_meshes.map(|m| m.len()), Some(1));
+        assert!(prepared.text.len() < 2000, "{}", prepared.text);
+        let corpus = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/corpus/scenes");
+        for name in [
+            "v1-chair.hedra.ron",
+            "v2-every-command.hedra.ron",
+            "v3-every-command.hedra.ron",
+        ] {
+            let text = std::fs::read_to_string(corpus.join(name)).unwrap();
+            let prepared = mesh_text::prepare(&text);
+            assert!(prepared.scene_meshes.is_some(), "{name}");
+            assert!(prepared.history_meshes.is_some(), "{name}");
+            assert_eq!(
+                prepared.text.lines().count(),
+                text.lines().count(),
+                "{name}"
+            );
+        }
+    }
 
     /// A mesh with an edge-less face (the kernel's MVFS) is stored and read
     /// back as it was: faces with rings or without edges are part of the

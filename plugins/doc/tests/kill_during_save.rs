@@ -40,7 +40,7 @@ fn scene(rows: u32) -> Session {
 #[ignore = "child process of killing_a_save_at_any_moment_leaves_the_old_or_the_new_file"]
 fn saver_child() {
     let target = std::env::var(CHILD_ENV).expect("run by the kill test");
-    let text = file::to_string(&scene(160));
+    let text = file::to_string(&scene(320));
     println!("ready");
     let mut line = String::new();
     std::io::stdin().read_line(&mut line).unwrap();
@@ -82,7 +82,7 @@ fn killing_a_save_at_any_moment_leaves_the_old_or_the_new_file() {
     let dir = tempfile::tempdir().unwrap();
     let target = dir.path().join("work.hedra.ron");
     let old_text = file::to_string(&scene(2));
-    let new_text = file::to_string(&scene(160));
+    let new_text = file::to_string(&scene(320));
     assert!(
         new_text.len() > 4_000_000,
         "the new file is large enough to take a while"

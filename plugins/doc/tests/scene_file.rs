@@ -69,7 +69,7 @@ fn save_load_save_gives_the_same_bytes_and_keeps_history() {
     assert!(!s.is_dirty());
     let first = std::fs::read_to_string(&path).unwrap();
     assert!(
-        first.starts_with("(\n    format: \"hedra-scene\",\n    version: 2,"),
+        first.starts_with("(\n    format: \"hedra-scene\",\n    version: 3,"),
         "{}",
         &first[..60]
     );
@@ -613,4 +613,183 @@ fn crease_tapers_are_saved_undone_and_refused_by_name() {
     assert_eq!(values, [3.0, 5.0]);
     back.undo().unwrap();
     assert!(creases(&back).is_empty());
+}
+
+/// The positions and polygons of a torus primitive, for `AddMesh`.
+fn torus_polygons(major: u32, minor: u32) -> (Vec<DVec3>, Vec<Vec<u32>>) {
+    let m = Primitive::Torus {
+        major_segments: major,
+        minor_segments: minor,
+        major_radius: 1.0,
+        minor_radius: 0.3,
+    }
+    .build()
+    .unwrap();
+    let positions = m.vertices().map(|v| m.position(v)).collect();
+    let polygons = m
+        .faces()
+        .map(|f| m.face_vertices(f).map(|v| v.0).collect())
+        .collect();
+    (positions, polygons)
+}
+
+fn add_mesh(name: &str, positions: Vec<DVec3>, polygons: Vec<Vec<u32>>) -> Command {
+    Command::AddMesh {
+        name: name.into(),
+        positions,
+        polygons,
+        parent: None,
+        transform: NodeTransform::IDENTITY,
+    }
+}
+
+/// Issue 16: a mesh made by `AddMesh` is stored once, not again in its
+/// command; the file with the step is hardly larger than the scene alone.
+#[test]
+fn a_mesh_made_by_add_mesh_is_stored_once() {
+    let (positions, polygons) = torus_polygons(60, 40);
+    let mut s = Session::new();
+    s.execute(&add_mesh("Ring", positions.clone(), polygons.clone()))
+        .unwrap();
+    let with_history = file::to_string(&s);
+    let scene_only = file::to_string(&Session {
+        doc: s.doc.clone(),
+        ..Session::new()
+    });
+    assert!(
+        (with_history.len() as f64) < 1.2 * scene_only.len() as f64,
+        "{} bytes with the AddMesh step, {} without",
+        with_history.len(),
+        scene_only.len()
+    );
+    assert!(with_history.contains("command: Some(AddMesh(name: \"Ring\", mesh: 0, "));
+    // The command reads back whole: the same positions and polygons.
+    let back = file::from_str(&with_history, Path::new("ring.hedra.ron")).unwrap();
+    assert!(back.warnings.is_empty(), "{:?}", back.warnings);
+    assert_eq!(back.session.history, s.history);
+    assert_eq!(
+        back.session.history.done()[0].command,
+        Some(add_mesh("Ring", positions, polygons))
+    );
+
+    // Edited afterwards, the step keeps the mesh it made (a second mesh),
+    // and the command still names it.
+    s.execute(&Command::MoveVertices {
+        node: NodeRef::Name("Ring".into()),
+        vertices: hedra_doc::VertexSet::Ids(vec![0, 1, 2]),
+        offset: DVec3::new(0.0, 0.5, 0.0),
+    })
+    .unwrap();
+    let text = file::to_string(&s);
+    assert!(text.contains("command: Some(AddMesh(name: \"Ring\", mesh: 1, "));
+    let back = file::from_str(&text, Path::new("ring.hedra.ron")).unwrap();
+    assert!(back.warnings.is_empty(), "{:?}", back.warnings);
+    assert_eq!(back.session.doc, s.doc);
+    assert_eq!(back.session.history, s.history);
+}
+
+/// A mesh stored as polygons keeps every id through edits: removed
+/// elements, new ones out of order, and the commands that name ids redo
+/// the same after a load.
+#[test]
+fn edited_meshes_keep_their_ids_through_a_save() {
+    let mut s = sample_session();
+    let cmds = [
+        Command::ExtrudeFaces {
+            node: NodeRef::Name("Top".into()),
+            faces: hedra_doc::FaceSet::Ids(vec![2, 4]),
+            distance: 0.3,
+        },
+        Command::DeleteFaces {
+            node: NodeRef::Name("Top".into()),
+            faces: hedra_doc::FaceSet::Ids(vec![0]),
+        },
+    ];
+    for c in &cmds {
+        s.execute(c).unwrap();
+    }
+    let text = file::to_string(&s);
+    assert!(
+        text.contains("dead_faces: ["),
+        "the edits left removed faces"
+    );
+    let back = file::from_str(&text, Path::new("edited.hedra.ron"))
+        .unwrap()
+        .session;
+    assert_eq!(back.doc, s.doc);
+    assert_eq!(back.history, s.history);
+    assert_eq!(file::to_string(&back), text, "saved again, the same bytes");
+}
+
+/// The mesh lists' own parser and the RON parser read the same meshes: a
+/// field the fast parser does not know sends the lists to the RON parser
+/// (which ignores it), and the scene and history are the same.
+#[test]
+fn the_fast_mesh_reader_and_the_ron_reader_agree() {
+    let (positions, polygons) = torus_polygons(12, 8);
+    let mut s = sample_session();
+    s.execute(&add_mesh("Ring", positions, polygons)).unwrap();
+    s.execute(&Command::DeleteFaces {
+        node: NodeRef::Name("Ring".into()),
+        faces: hedra_doc::FaceSet::Ids(vec![3, 4]),
+    })
+    .unwrap();
+    let text = file::to_string(&s);
+    let slow_text = text.replace("(positions: [", "(unknown: 0, positions: [");
+    let slow_text = slow_text.replace(
+        "\n            positions: [",
+        "\n            unknown: 0, positions: [",
+    );
+    assert_ne!(slow_text, text);
+    let fast = file::from_str(&text, Path::new("a.hedra.ron")).unwrap();
+    let slow = file::from_str(&slow_text, Path::new("a.hedra.ron")).unwrap();
+    assert!(fast.warnings.is_empty() && slow.warnings.is_empty());
+    assert_eq!(fast.session.doc, slow.session.doc);
+    assert_eq!(fast.session.history, slow.session.history);
+    assert_eq!(fast.session.doc, s.doc);
+    // A damaged mesh is an error with its place in the file either way.
+    let bad = text.replacen("faces: [[", "faces: [[9999, ", 1);
+    match file::from_str(&bad, Path::new("bad.hedra.ron")) {
+        Err(FileError::Parse { line, message, .. }) => {
+            assert!(line > 3, "{line}");
+            assert!(message.contains("id 9999"), "{message}");
+        }
+        other => panic!("{other:?}"),
+    }
+}
+
+/// Damaged mesh lists (a byte changed, removed or the text cut short) are
+/// refused or read, never a panic, and what loads is sound
+/// (`fuzz::scene` checks it and its history).
+#[test]
+fn damaged_mesh_lists_never_panic() {
+    let (positions, polygons) = torus_polygons(6, 4);
+    let mut s = Session::new();
+    s.execute(&add_mesh("Ring", positions, polygons)).unwrap();
+    s.execute(&Command::DeleteFaces {
+        node: NodeRef::Name("Ring".into()),
+        faces: hedra_doc::FaceSet::Ids(vec![3]),
+    })
+    .unwrap();
+    let text = file::to_string(&s);
+    let end = text.find("\n    scene:").unwrap();
+    let bytes = text.as_bytes();
+    let replacements = b"09-,])([ e./#\"";
+    let mut seed: u64 = 0x2545_F491_4F6C_DD1D;
+    let mut next = |n: usize| {
+        seed = seed.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1);
+        (seed >> 33) as usize % n
+    };
+    for round in 0..600 {
+        let at = 40 + next(end - 40);
+        let mut damaged = bytes.to_vec();
+        match round % 3 {
+            0 => damaged[at] = replacements[next(replacements.len())],
+            1 => {
+                damaged.remove(at);
+            }
+            _ => damaged.truncate(at),
+        }
+        hedra_doc::fuzz::scene(&damaged);
+    }
 }

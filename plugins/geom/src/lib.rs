@@ -39,7 +39,7 @@ pub use build::{BuildError, RepairReport};
 pub use csg::{BooleanError, BooleanOp};
 pub use euler::EulerError;
 pub use ids::{EdgeId, ElementId, ElementKind, FaceId, HalfEdgeId, VertexId};
-pub use mesh::{HalfEdgeMesh, LoopStart, MeshData, MeshDataError, MeshStats};
+pub use mesh::{HalfEdgeMesh, LoopStart, MeshData, MeshDataError, MeshStats, PolygonData};
 pub use modeling::{InvalidResult, MergePoint, MirrorAxis, ModelingError, NewFace};
 pub use primitives::{Primitive, PrimitiveError};
 pub use progressive::{DecimateError, DecimateOptions, DecimateTarget, ProgressiveMesh};

@@ -26,7 +26,9 @@
 //! - `construct`: the strict bulk build from polygons, one pass over the
 //!   corners instead of an operator per element;
 //! - `records`: [`MeshData`] in and out and dense renumbering, which copy
-//!   raw records.
+//!   raw records;
+//! - `polygon_form`: [`PolygonData`] in and out, the compact stored form
+//!   (polygons plus the ids a numbering rule cannot derive).
 //!
 //! [`validate`] reads the raw records (it must survive corrupted ones).
 //! One low-level writer is open to the rest of the crate: `free_vertex`
@@ -42,9 +44,11 @@ mod construct;
 pub mod cut;
 pub mod euler;
 mod orientation;
+mod polygon_form;
 mod records;
 pub mod validate;
 
+pub use polygon_form::PolygonData;
 pub use records::{MeshData, MeshDataError};
 
 use crate::ids::{EdgeId, FaceId, HalfEdgeId, NONE, VertexId};

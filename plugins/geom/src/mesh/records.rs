@@ -86,6 +86,10 @@ pub enum MeshDataError {
         /// The face.
         face: FaceId,
     },
+    /// The compact form's lists do not fit together (face starts out of
+    /// order, a corner named twice, an edge id left unused, …).
+    #[error("the polygon lists do not make a half-edge mesh")]
+    Layout,
     /// The records read back but break an invariant (the validator's report).
     #[error(transparent)]
     Invalid(#[from] ValidationError),
