@@ -714,7 +714,9 @@ fn swept_output(
                 sweeps::check_end_caps(p, p)?;
             }
             let (us, closed) = sweeps::compatible_parameters(p, m);
-            Made::Mesh(sweeps::surface_mesh(&surface, &us, closed, n, closed_v, caps)?)
+            Made::Mesh(sweeps::surface_mesh(
+                &surface, &us, closed, n, closed_v, caps,
+            )?)
         }
     })
 }

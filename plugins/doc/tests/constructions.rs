@@ -728,12 +728,22 @@ fn nurbs_caps_are_child_nodes_that_follow_the_profile_and_the_recipe() {
         nodes: vec![name("Arc")],
     })
     .unwrap();
-    assert!(s.doc.find_by_name("Arc cap end").unwrap().construction.is_none());
+    assert!(
+        s.doc
+            .find_by_name("Arc cap end")
+            .unwrap()
+            .construction
+            .is_none()
+    );
     // The file keeps the caps' link.
     let text = hedra_doc::file::to_string(&s);
     let back = hedra_doc::file::from_str(&text, Path::new("c.hedra.ron")).unwrap();
     assert_eq!(
-        back.session.doc.find_by_name("Can cap end").unwrap().construction,
+        back.session
+            .doc
+            .find_by_name("Can cap end")
+            .unwrap()
+            .construction,
         s.doc.find_by_name("Can cap end").unwrap().construction
     );
     // An open profile cannot be capped: refused, naming the node.

@@ -407,9 +407,7 @@ pub fn drive_curve_draw(
 pub fn axis_command(doc: &Document, node: NodeId, from: DVec3, to: DVec3) -> Option<Command> {
     let direction = (to - from).try_normalize()?;
     let made = doc.node(node)?.construction.as_ref()?;
-    let mut c = made
-        .map_inputs(|i| Ok::<_, ()>(NodeRef::from(*i)))
-        .ok()?;
+    let mut c = made.map_inputs(|i| Ok::<_, ()>(NodeRef::from(*i))).ok()?;
     let Recipe::Revolve {
         origin,
         axis,

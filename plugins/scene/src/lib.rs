@@ -28,9 +28,9 @@ use std::collections::HashMap;
 use std::path::PathBuf;
 
 mod apply;
+mod decimate_jobs;
 mod file_jobs;
 mod preview;
-mod decimate_jobs;
 mod projection;
 mod render_mesh;
 mod shape_entities;

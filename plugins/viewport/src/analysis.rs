@@ -501,8 +501,16 @@ pub(crate) fn draw_sweep_frames(
         * 0.8;
     for (k, f) in found.frames.iter().enumerate() {
         let o = f.origin.as_vec3();
-        gizmos.line(o, (f.origin + f.normal * size).as_vec3(), Color::srgb(0.95, 0.3, 0.3));
-        gizmos.line(o, (f.origin + f.binormal * size).as_vec3(), Color::srgb(0.3, 0.9, 0.4));
+        gizmos.line(
+            o,
+            (f.origin + f.normal * size).as_vec3(),
+            Color::srgb(0.95, 0.3, 0.3),
+        );
+        gizmos.line(
+            o,
+            (f.origin + f.binormal * size).as_vec3(),
+            Color::srgb(0.3, 0.9, 0.4),
+        );
         if found.flips.contains(&k) {
             gizmos.circle(
                 Isometry3d::new(o, Quat::from_rotation_arc(Vec3::Z, f.tangent.as_vec3())),

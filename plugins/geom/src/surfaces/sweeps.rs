@@ -1808,7 +1808,10 @@ mod tests {
         let params: Vec<f64> = (0..=60).map(|k| a + (b - a) * k as f64 / 60.0).collect();
         let frames = rail_frames(&rail, &params, FrameKind::RotationMinimizing).unwrap();
         let (first, last) = (frames[0], frames[60]);
-        assert!(first.normal.distance(last.normal) < 1e-9, "{first:?} {last:?}");
+        assert!(
+            first.normal.distance(last.normal) < 1e-9,
+            "{first:?} {last:?}"
+        );
         // Still a frame: orthonormal, normal across the tangent.
         for f in &frames {
             assert!(f.normal.dot(f.tangent).abs() < 1e-12);
@@ -1862,13 +1865,18 @@ mod tests {
         let rail = NurbsCurve::clamped(3, pts).unwrap();
         let (a, b) = rail.domain();
         // Stations that avoid the inflection at the middle itself.
-        let params: Vec<f64> = (0..=20).map(|k| a + (b - a) * (k as f64 + 0.25) / 20.5).collect();
+        let params: Vec<f64> = (0..=20)
+            .map(|k| a + (b - a) * (k as f64 + 0.25) / 20.5)
+            .collect();
         let frenet = rail_frames(&rail, &params, FrameKind::Frenet).unwrap();
         let rmf = rail_frames(&rail, &params, FrameKind::RotationMinimizing).unwrap();
         let flips = frame_flips(&frenet);
         assert_eq!(flips.len(), 1, "{flips:?}");
         let middle = rail.point(params[flips[0]]).x;
-        assert!((middle - 2.0).abs() < 0.3, "the flip is at the inflection: {middle}");
+        assert!(
+            (middle - 2.0).abs() < 0.3,
+            "the flip is at the inflection: {middle}"
+        );
         assert!(frame_flips(&rmf).is_empty());
     }
 
@@ -2054,7 +2062,8 @@ mod tests {
         let torus = revolve(&circle, axis, TAU, 0.0).unwrap();
         assert!(end_caps(&torus, Along::U).unwrap().is_empty());
         // An open profile cannot be capped.
-        let arc = NurbsCurve::clamped(2, vec![DVec3::X, DVec3::new(1.0, 1.0, 0.0), DVec3::Y]).unwrap();
+        let arc =
+            NurbsCurve::clamped(2, vec![DVec3::X, DVec3::new(1.0, 1.0, 0.0), DVec3::Y]).unwrap();
         let sheet = extrude(&arc, DVec3::Z).unwrap();
         assert!(matches!(
             end_caps(&sheet, Along::V),

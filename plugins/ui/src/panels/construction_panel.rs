@@ -452,7 +452,9 @@ pub(super) fn construction_panel(
             .and_then(|p| doc.node(p))
             .map_or("its surface".to_string(), |p| format!("'{}'", p.name));
         let end = if end == CapEnd::Start { "start" } else { "end" };
-        ui.label(format!("The flat cap at the {end} of {of}: change {of} to change it"));
+        ui.label(format!(
+            "The flat cap at the {end} of {of}: change {of} to change it"
+        ));
         if let Some(parent) = node.parent
             && ui.button(format!("Select {of}")).clicked()
         {
