@@ -143,7 +143,12 @@ impl StencilTable {
 
     /// Moves cage vertices (by [`Refiner::cage_positions`] index) and
     /// recomputes only the points they influence, level by level (what a
-    /// drag needs). Complexity: O(weights of the influenced rows).
+    /// drag needs). Where the moved vertices reach much of a level (a cage
+    /// of few faces, or many vertices moved), that level and the ones after
+    /// it are recomputed whole, in order, which is then cheaper than
+    /// visiting the points one by one: an update never costs much more than
+    /// [`apply`](Self::apply). Complexity: O(weights of the influenced rows),
+    /// at most O(nonzeros).
     pub fn update(&self, eval: &mut StencilEvaluation, moved: &[(u32, DVec3)]) {
         eval.serial = eval.serial.wrapping_add(1);
         if eval.serial == 0 {
@@ -156,21 +161,49 @@ impl StencilTable {
             eval.levels[0][v as usize] = p;
             dirty.push(v);
         }
+        let mut whole = false;
         for (k, rows) in self.steps.iter().enumerate() {
+            let (parents, rest) = eval.levels.split_at_mut(k + 1);
+            let (parent, child) = (&parents[k], &mut rest[0]);
+            let n = child.len();
             let (offsets, children) = &self.feeds[k];
+            if !whole {
+                // How many (parent, child) pairs the dirty points feed: the
+                // work of finding the dirty children, and an upper bound on
+                // their weights. Past a quarter of the level's weights,
+                // visiting them one by one (scattered) costs more than
+                // recomputing the level in order.
+                let reach: usize = dirty
+                    .iter()
+                    .map(|&d| (offsets[d as usize + 1] - offsets[d as usize]) as usize)
+                    .sum();
+                whole = 4 * reach > rows.columns.len();
+            }
+            if whole {
+                for (i, p) in child.iter_mut().enumerate() {
+                    *p = row(rows, parent, i);
+                }
+                continue;
+            }
+            let marks = &mut eval.marks[k + 1];
             let mut next = Vec::new();
             for &d in &dirty {
                 for &c in &children[offsets[d as usize] as usize..offsets[d as usize + 1] as usize]
                 {
-                    let mark = &mut eval.marks[k + 1][c as usize];
+                    let mark = &mut marks[c as usize];
                     if *mark != serial {
                         *mark = serial;
                         next.push(c);
                     }
                 }
             }
-            let (parents, rest) = eval.levels.split_at_mut(k + 1);
-            let (parent, child) = (&parents[k], &mut rest[0]);
+            // In index order, so the rows and points are read forwards.
+            if next.len() > n / 32 {
+                next.clear();
+                next.extend((0..n as u32).filter(|&c| marks[c as usize] == serial));
+            } else {
+                next.sort_unstable();
+            }
             for &c in &next {
                 child[c as usize] = row(rows, parent, c as usize);
             }
