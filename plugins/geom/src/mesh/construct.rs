@@ -12,8 +12,28 @@
 
 use super::{HalfEdgeMesh, HalfEdgeRecord};
 use crate::build::{BuildError, check_face};
-use crate::ids::{NONE, VertexId};
+use crate::ids::NONE;
 use glam::DVec3;
+
+/// Calls `visit(corner, from, to)` for each face's corners in order, with
+/// the corner's vertex and the vertex its edge runs to; stops at the first
+/// error.
+#[inline]
+fn each_corner(
+    face_offsets: &[u32],
+    corner_vertex: &[u32],
+    mut visit: impl FnMut(usize, u32, u32) -> Result<(), BuildError>,
+) -> Result<(), BuildError> {
+    for w in face_offsets.windows(2) {
+        let r = w[0] as usize..w[1] as usize;
+        let poly = &corner_vertex[r.clone()];
+        let last = poly.len() - 1;
+        for (k, c) in r.enumerate() {
+            visit(c, poly[k], poly[if k == last { 0 } else { k + 1 }])?;
+        }
+    }
+    Ok(())
+}
 
 impl HalfEdgeMesh {
     /// Builds a mesh from positions and polygons (vertex indices,
@@ -36,12 +56,12 @@ impl HalfEdgeMesh {
         if let Some(i) = positions.iter().position(|p| !p.is_finite()) {
             return Err(BuildError::NonFinitePosition { vertex: i as u32 });
         }
-        // Corners: corner c of a face goes from corner_vertex[c] to
-        // corner_to[c], the next corner's vertex.
+        // Corners: corner c of face f is corner_vertex[c], for c in
+        // face_offsets[f]..face_offsets[f + 1]; its edge runs to the next
+        // corner of the face.
         let mut face_offsets: Vec<u32> = Vec::with_capacity(polygons.len() + 1);
         face_offsets.push(0);
         let mut corner_vertex: Vec<u32> = Vec::new();
-        let mut corner_to: Vec<u32> = Vec::new();
         for (fi, poly) in polygons.iter().enumerate() {
             let poly = poly.as_ref();
             check_face(fi, poly, nv)?;
@@ -49,14 +69,11 @@ impl HalfEdgeMesh {
                 return Err(BuildError::TooLarge { what: "corners" });
             }
             corner_vertex.extend_from_slice(poly);
-            corner_to.extend_from_slice(&poly[1..]);
-            corner_to.push(poly[0]);
             face_offsets.push(corner_vertex.len() as u32);
         }
         let nc = corner_vertex.len();
-
         // Outgoing corners per vertex (compressed rows, each row in corner
-        // order), with each corner's far end beside it.
+        // order): the far end of each corner's edge, and the corner.
         let mut row = vec![0u32; nv + 2];
         for &v in &corner_vertex {
             row[v as usize + 2] += 1;
@@ -64,39 +81,32 @@ impl HalfEdgeMesh {
         for i in 2..row.len() {
             row[i] += row[i - 1];
         }
-        let mut out_corner = vec![0u32; nc];
-        let mut out_to = vec![0u32; nc];
-        for (c, (&v, &to)) in corner_vertex.iter().zip(&corner_to).enumerate() {
+        let mut out = vec![[0u32; 2]; nc];
+        each_corner(&face_offsets, &corner_vertex, |c, v, to| {
             let slot = &mut row[v as usize + 1];
-            out_corner[*slot as usize] = c as u32;
-            out_to[*slot as usize] = to;
+            out[*slot as usize] = [to, c as u32];
             *slot += 1;
-        }
+            Ok(())
+        })?;
         row.pop();
-        let range = |v: u32| row[v as usize] as usize..row[v as usize + 1] as usize;
+        let outgoing = |v: u32| &out[row[v as usize] as usize..row[v as usize + 1] as usize];
 
-        // Pair corners into edges, numbered in order of first use.
-        let mut corner_edge = vec![NONE; nc];
-        let mut edge_count = 0u32;
-        for c in 0..nc {
-            let (a, b) = (corner_vertex[c], corner_to[c]);
-            let same_dir = out_to[range(a)].iter().filter(|&&x| x == b).count();
-            let rb = range(b);
-            let mut twins = out_to[rb.clone()]
-                .iter()
-                .enumerate()
-                .filter(|(_, x)| **x == a);
-            let first_twin = twins.next().map(|(i, _)| out_corner[rb.start + i] as usize);
+        // Pair corners into edges, numbered in order of first use: the
+        // first corner of edge k gets half-edge 2k, its twin 2k + 1.
+        let mut corner_he = vec![NONE; nc];
+        let mut halfedge_count = 0u32;
+        each_corner(&face_offsets, &corner_vertex, |c, a, b| {
+            let same_dir = outgoing(a).iter().filter(|x| x[0] == b).count();
+            let mut twins = outgoing(b).iter().filter(|x| x[0] == a);
+            let first_twin = twins.next().map(|x| x[1] as usize);
             let twin_count = usize::from(first_twin.is_some()) + twins.count();
             if same_dir + twin_count > 2 || same_dir > 1 {
                 let face_of = |c: u32| face_offsets.partition_point(|&s| s <= c) - 1;
                 let faces_of = |from: u32, to: u32| -> Vec<usize> {
-                    let r = range(from);
-                    out_to[r.clone()]
+                    outgoing(from)
                         .iter()
-                        .zip(&out_corner[r])
-                        .filter(|(x, _)| **x == to)
-                        .map(|(_, &c)| face_of(c))
+                        .filter(|x| x[0] == to)
+                        .map(|x| face_of(x[1]))
                         .collect()
                 };
                 if same_dir + twin_count > 2 {
@@ -115,22 +125,22 @@ impl HalfEdgeMesh {
                     faces: faces_of(a, b),
                 });
             }
-            if corner_edge[c] != NONE {
-                continue;
+            if corner_he[c] == NONE {
+                corner_he[c] = halfedge_count;
+                if let Some(t) = first_twin {
+                    corner_he[t] = halfedge_count + 1;
+                }
+                halfedge_count += 2;
             }
-            corner_edge[c] = edge_count;
-            if let Some(t) = first_twin {
-                corner_edge[t] = edge_count;
-            }
-            edge_count += 1;
-        }
-        drop((corner_to, out_to, out_corner));
+            Ok(())
+        })?;
+        drop((row, out));
         let mesh = Self::assemble(
             positions.to_vec(),
             &face_offsets,
             &corner_vertex,
-            &corner_edge,
-            edge_count as usize,
+            &corner_he,
+            halfedge_count as usize,
         )?;
         mesh.check_fans(&corner_vertex)?;
         Ok(mesh)
@@ -188,12 +198,49 @@ impl HalfEdgeMesh {
         {
             return Err(BuildError::TooLarge { what: "corners" });
         }
+        // Half-edges by first use of each edge; the second corner of an
+        // edge must run the other way, and there is no third.
+        let mut edge_state = vec![[NONE; 3]; edge_count];
+        let mut corner_he = vec![NONE; corner_vertex.len()];
+        let mut halfedge_count = 0u32;
+        for (f, w) in face_offsets.windows(2).enumerate() {
+            let r = w[0] as usize..w[1] as usize;
+            let poly = &corner_vertex[r.clone()];
+            for (k, c) in r.enumerate() {
+                let (a, b) = (poly[k], poly[(k + 1) % poly.len()]);
+                let Some(state) = edge_state.get_mut(corner_edge[c] as usize) else {
+                    return Err(BuildError::TooLarge { what: "edges" });
+                };
+                let [h, from, to] = *state;
+                if h == NONE {
+                    *state = [halfedge_count, a, b];
+                    corner_he[c] = halfedge_count;
+                    halfedge_count += 2;
+                } else if from == NONE {
+                    return Err(BuildError::NonManifoldEdge {
+                        a: a.min(b),
+                        b: a.max(b),
+                        faces: vec![f],
+                    });
+                } else if (from, to) != (b, a) {
+                    return Err(BuildError::InconsistentOrientation {
+                        a,
+                        b,
+                        faces: vec![f],
+                    });
+                } else {
+                    *state = [h, NONE, NONE];
+                    corner_he[c] = h + 1;
+                }
+            }
+        }
+        drop(edge_state);
         let mesh = Self::assemble(
             positions,
             face_offsets,
             corner_vertex,
-            corner_edge,
-            edge_count,
+            &corner_he,
+            halfedge_count as usize,
         )?;
         if check_fans {
             mesh.check_fans(corner_vertex)?;
@@ -201,94 +248,58 @@ impl HalfEdgeMesh {
         Ok(mesh)
     }
 
-    /// The records from checked faces and finite positions, with each
-    /// corner's edge id given (see [`from_corner_edges`](Self::from_corner_edges)).
+    /// The records from checked faces and finite positions, given each
+    /// corner's half-edge (`corner_he`: the first corner of each edge has
+    /// the even one, its twin corner, if any, the odd one; `halfedge_count`
+    /// of them). Half-edges no corner has are the boundary.
     fn assemble(
         positions: Vec<DVec3>,
         face_offsets: &[u32],
         corner_vertex: &[u32],
-        corner_edge: &[u32],
-        edge_count: usize,
+        corner_he: &[u32],
+        halfedge_count: usize,
     ) -> Result<HalfEdgeMesh, BuildError> {
-        let nv = positions.len();
-        let nc = corner_vertex.len();
-        let nf = face_offsets.len().saturating_sub(1);
-        let mut edge_he = vec![NONE; edge_count];
-        let mut corner_he = vec![NONE; nc];
-        let mut paired = 0usize;
-        let mut halfedges: Vec<HalfEdgeRecord> = Vec::with_capacity(2 * edge_count);
-        for f in 0..nf {
-            let r = face_offsets[f] as usize..face_offsets[f + 1] as usize;
-            let poly = &corner_vertex[r.clone()];
-            let n = r.len();
-            for (k, c) in r.clone().enumerate() {
-                let a = poly[k];
-                let b = poly[if k + 1 == n { 0 } else { k + 1 }];
-                let e = corner_edge[c] as usize;
-                let Some(slot) = edge_he.get_mut(e) else {
-                    return Err(BuildError::TooLarge { what: "edges" });
-                };
-                if *slot == NONE {
-                    let h = halfedges.len() as u32;
-                    *slot = h;
-                    corner_he[c] = h;
-                    halfedges.push(HalfEdgeRecord {
-                        origin: a,
-                        next: NONE,
-                        prev: NONE,
-                        face: f as u32,
-                    });
-                    halfedges.push(HalfEdgeRecord {
-                        origin: b,
-                        next: NONE,
-                        prev: NONE,
-                        face: NONE,
-                    });
-                } else {
-                    let h = *slot as usize;
-                    let (first, twin) = (halfedges[h], halfedges[h + 1]);
-                    if twin.face != NONE || twin.origin != a || first.origin != b {
-                        let faces = vec![first.face as usize, f];
-                        return Err(if twin.face != NONE {
-                            BuildError::NonManifoldEdge {
-                                a: a.min(b),
-                                b: a.max(b),
-                                faces: vec![first.face as usize, twin.face as usize, f],
-                            }
-                        } else {
-                            BuildError::InconsistentOrientation { a, b, faces }
-                        });
-                    }
-                    halfedges[h + 1].face = f as u32;
-                    corner_he[c] = h as u32 + 1;
-                    paired += 1;
-                }
-            }
-            for k in 0..n {
-                let h = corner_he[r.start + k] as usize;
-                halfedges[h].next = corner_he[r.start + if k + 1 == n { 0 } else { k + 1 }];
-                halfedges[h].prev = corner_he[r.start + if k == 0 { n - 1 } else { k - 1 }];
-            }
-        }
-        if halfedges.len() >= NONE as usize {
+        if halfedge_count >= NONE as usize {
             return Err(BuildError::TooLarge { what: "half-edges" });
         }
-        // Boundary half-edges: each vertex may start at most one. A closed
-        // mesh (every edge paired) has none to look for.
+        let nv = positions.len();
+        let nf = face_offsets.len().saturating_sub(1);
+        let blank = HalfEdgeRecord {
+            origin: NONE,
+            next: NONE,
+            prev: NONE,
+            face: NONE,
+        };
+        let mut halfedges = vec![blank; halfedge_count];
+        for (f, w) in face_offsets.windows(2).enumerate() {
+            let r = w[0] as usize..w[1] as usize;
+            let hs = &corner_he[r.clone()];
+            let n = hs.len();
+            for (k, (&h, &v)) in hs.iter().zip(&corner_vertex[r]).enumerate() {
+                halfedges[h as usize] = HalfEdgeRecord {
+                    origin: v,
+                    next: hs[if k + 1 == n { 0 } else { k + 1 }],
+                    prev: hs[if k == 0 { n - 1 } else { k - 1 }],
+                    face: f as u32,
+                };
+            }
+        }
+        // Boundary half-edges (no corner has them; a closed mesh has none):
+        // each starts where its twin ends, and a vertex may start at most one.
         let mut vertex_out = vec![NONE; nv];
-        if 2 * paired != halfedges.len() {
-            for (h, record) in halfedges.iter().enumerate() {
-                if record.face == NONE {
-                    let o = &mut vertex_out[record.origin as usize];
+        if corner_vertex.len() != halfedge_count {
+            for h in 0..halfedge_count {
+                if halfedges[h].face == NONE {
+                    let origin = halfedges[halfedges[h ^ 1].next as usize].origin;
+                    halfedges[h].origin = origin;
+                    let o = &mut vertex_out[origin as usize];
                     if *o != NONE {
-                        return Err(BuildError::NonManifoldVertex {
-                            vertex: record.origin,
-                        });
+                        return Err(BuildError::NonManifoldVertex { vertex: origin });
                     }
                     *o = h as u32;
                 }
             }
-            for h in 0..halfedges.len() {
+            for h in 0..halfedge_count {
                 if halfedges[h].face == NONE {
                     let target = halfedges[h ^ 1].origin as usize;
                     let n = vertex_out[target];
@@ -298,13 +309,13 @@ impl HalfEdgeMesh {
             }
         }
         // Other vertices: the half-edge of their first corner.
-        for (&v, &h) in corner_vertex.iter().zip(&corner_he) {
+        for (&v, &h) in corner_vertex.iter().zip(corner_he) {
             let o = &mut vertex_out[v as usize];
             if *o == NONE {
                 *o = h;
             }
         }
-        let ne = halfedges.len() / 2;
+        let ne = halfedge_count / 2;
         Ok(HalfEdgeMesh {
             positions,
             vertex_out,
@@ -333,10 +344,27 @@ impl HalfEdgeMesh {
             degree[v as usize] += 1;
         }
         for (v, &corners) in degree.iter().enumerate() {
-            let v = VertexId(v as u32);
-            let deg = corners as usize + usize::from(self.is_boundary_vertex(v));
-            if deg > 0 && self.vertex_outgoing(v).take(deg + 1).count() != deg {
-                return Err(BuildError::NonManifoldVertex { vertex: v.0 });
+            let start = self.vertex_out[v];
+            if start == NONE {
+                if corners > 0 {
+                    return Err(BuildError::NonManifoldVertex { vertex: v as u32 });
+                }
+                continue;
+            }
+            // The fan around v: twin(prev(h)) from its outgoing half-edge,
+            // which must come back to the start after `degree` steps.
+            let boundary = self.halfedges[start as usize].face == NONE;
+            let deg = corners as usize + usize::from(boundary);
+            let (mut h, mut steps) = (start, 0);
+            loop {
+                h = self.halfedges[h as usize].prev ^ 1;
+                steps += 1;
+                if h == start || steps > deg {
+                    break;
+                }
+            }
+            if h != start || steps != deg {
+                return Err(BuildError::NonManifoldVertex { vertex: v as u32 });
             }
         }
         Ok(())

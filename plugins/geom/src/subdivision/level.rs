@@ -151,10 +151,15 @@ impl Level {
         }
         let mut level = Level {
             vertex_count: map.vertices.len(),
-            face_offsets: vec![0],
+            face_offsets: Vec::with_capacity(mesh.face_count() + 1),
+            face_vertices: Vec::with_capacity(2 * mesh.edge_count()),
+            face_edges: Vec::with_capacity(2 * mesh.edge_count()),
+            face_origin: Vec::with_capacity(mesh.face_count()),
             edge_vertices,
             ..Level::default()
         };
+        level.face_offsets.push(0);
+        map.faces.reserve(mesh.face_count());
         for f in mesh.faces() {
             for h in mesh.face_halfedges(f) {
                 level.face_vertices.push(vmap[mesh.origin(h).index()]);

@@ -7,6 +7,14 @@ use glam::DVec3;
 use super::rules::Sink;
 use super::{ChildPoint, Refiner, child_count, child_point, point_mask};
 
+// What the doc above promises.
+const _: () = {
+    const fn send_and_sync<T: Send + Sync>() {}
+    send_and_sync::<StencilTable>();
+    send_and_sync::<StencilEvaluation>();
+    send_and_sync::<Refiner>();
+};
+
 /// One level's weights: child point `i` is `Σ weights[k] · parent[columns[k]]`
 /// over `k` in `offsets[i]..offsets[i + 1]`.
 #[derive(Clone, Debug, Default)]
@@ -18,6 +26,25 @@ struct Rows {
 
 /// The weights of every level of a [`Refiner`], from the same masks as
 /// [`Refiner::refine`], with face points expanded into their vertices.
+///
+/// Built by [`Refiner::stencils`]. A table owns all it holds and is `Send`
+/// and `Sync` (as are [`Refiner`] and [`StencilEvaluation`]), so it can be
+/// built on a worker thread from an `Arc<Refiner>` when the topology
+/// changes and handed to the thread that drags:
+///
+/// ```
+/// use std::sync::Arc;
+/// use hedra_geom::Primitive;
+/// use hedra_geom::subdivision::{Creases, Options, Refiner};
+/// let cube = Primitive::Cube { size: 2.0 }.build()?;
+/// let refiner = Arc::new(Refiner::new(&cube, &Creases::default(), Options::default(), 2)?);
+/// let cage = refiner.cage_positions(&cube);
+/// let worker = Arc::clone(&refiner);
+/// let table = std::thread::spawn(move || worker.stencils()).join().unwrap();
+/// let (by_table, by_masks) = (table.apply(&cage), refiner.refine(&cage));
+/// assert!(by_table.iter().zip(&by_masks).all(|(a, b)| a.distance(*b) < 1e-12));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 #[derive(Clone, Debug, Default)]
 pub struct StencilTable {
     steps: Vec<Rows>,
