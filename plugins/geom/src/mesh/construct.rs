@@ -191,7 +191,13 @@ impl HalfEdgeMesh {
             let poly = corner_vertex
                 .get(w[0] as usize..w[1] as usize)
                 .unwrap_or_default();
-            check_face(f, poly, nv)?;
+            // Quads (every face of a Catmull-Clark level) checked in line.
+            let fine_quad = matches!(*poly, [a, b, c, d]
+                if a != b && a != c && a != d && b != c && b != d && c != d
+                    && (a.max(b).max(c).max(d) as usize) < nv);
+            if !fine_quad {
+                check_face(f, poly, nv)?;
+            }
         }
         if face_offsets.first().is_some_and(|&s| s != 0)
             || face_offsets.last().map_or(0, |&s| s as usize) != corner_vertex.len()

@@ -1073,12 +1073,19 @@ fn interpolate(
                         + 0.25 * face_points[f1 as usize];
                 }
                 Masks::Loop => {
-                    // The corner of triangle f that is not on e.
+                    // The corner of triangle f that is not on e (Loop
+                    // levels are all triangles: f's corners are 3f..3f+3).
                     let opposite = |f: u32| {
-                        let r = parent.face_corners(f);
-                        let fe = &parent.face_edges[r.clone()];
-                        let k = fe.iter().position(|&x| x as usize == e).unwrap_or(0);
-                        points[parent.face_vertices[r.start + (k + 2) % 3] as usize]
+                        let base = 3 * f as usize;
+                        let fe = &parent.face_edges[base..base + 3];
+                        let k = if fe[0] as usize == e {
+                            2
+                        } else if fe[1] as usize == e {
+                            0
+                        } else {
+                            1
+                        };
+                        points[parent.face_vertices[base + k] as usize]
                     };
                     return DVec3::ZERO
                         + 0.375 * pa
@@ -1129,10 +1136,19 @@ fn interpolate(
         }
         generic(face_points, ChildPoint::Vertex(v as u32))
     };
+    if !parallel {
+        // Each point written once, in order (no zero fill first).
+        let face_points: Vec<DVec3> = (0..nf).map(face).collect();
+        let mut out = Vec::with_capacity(child_count);
+        out.extend_from_slice(&face_points);
+        out.extend((0..ne).map(|e| edge(&face_points, e)));
+        out.extend((0..parent.vertex_count).map(|v| vertex(&face_points, v)));
+        return out;
+    }
     let mut out = vec![DVec3::ZERO; child_count];
     let (faces, rest) = out.split_at_mut(nf);
     let (edges, vertices) = rest.split_at_mut(ne);
-    if parallel {
+    {
         use rayon::prelude::*;
         faces
             .par_iter_mut()
@@ -1147,17 +1163,6 @@ fn interpolate(
             .par_iter_mut()
             .enumerate()
             .for_each(|(v, p)| *p = vertex(faces, v));
-    } else {
-        for (f, p) in faces.iter_mut().enumerate() {
-            *p = face(f);
-        }
-        let faces: &[DVec3] = faces;
-        for (e, p) in edges.iter_mut().enumerate() {
-            *p = edge(faces, e);
-        }
-        for (v, p) in vertices.iter_mut().enumerate() {
-            *p = vertex(faces, v);
-        }
     }
     out
 }

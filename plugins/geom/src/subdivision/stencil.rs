@@ -224,11 +224,12 @@ impl StencilTable {
                     }
                 }
             }
-            // In index order, so the rows and points are read forwards.
+            // Many points: in index order, so the rows and points are read
+            // forwards (a few hundred fit in the cache in any order).
             if next.len() > n / 32 {
                 next.clear();
                 next.extend((0..n as u32).filter(|&c| marks[c as usize] == serial));
-            } else {
+            } else if next.len() > 4096 {
                 next.sort_unstable();
             }
             for &c in &next {
