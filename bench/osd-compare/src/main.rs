@@ -1,7 +1,8 @@
-//! OpenSubdiv 3.x CPU uniform Catmull-Clark refinement timings on the meshes
-//! Hedra benchmarks (`plugins/geom/benches/subdivision.rs`):
-//! the cube (side 2) to level 7 and a 100x100 torus (R = 2, r = 0.5) to
-//! levels 1-3.
+//! OpenSubdiv 3.x CPU uniform refinement timings on the meshes Hedra
+//! benchmarks (`plugins/geom/benches/subdivision.rs`): Catmull-Clark of the
+//! cube (side 2) to level 7, a 100x100 torus (R = 2, r = 0.5) to levels 1-3
+//! and a 200x200 torus to level 1; Loop of the icosahedron to level 6. It
+//! also prints a STREAM-like copy bandwidth, the machine's memory floor.
 //!
 //! "full"        = TopologyRefiner from a TopologyDescriptor + refine_uniform(level)
 //!                 with full topology in the last level (as Hedra builds every
@@ -37,6 +38,7 @@ use std::time::Instant;
 
 struct Mesh {
     name: &'static str,
+    scheme: far::Scheme,
     positions: Vec<f32>,
     verts_per_face: Vec<u32>,
     indices: Vec<u32>,
@@ -64,6 +66,7 @@ fn cube() -> Mesh {
     ];
     Mesh {
         name: "cube",
+        scheme: far::Scheme::CatmullClark,
         positions,
         verts_per_face: vec![4; 6],
         indices,
@@ -72,7 +75,7 @@ fn cube() -> Mesh {
 
 /// Torus grid: `major` segments around the main axis (z), `minor` around the
 /// tube. `major * minor` vertices and quads, outward CCW faces.
-fn torus(major: u32, minor: u32, big_r: f32, small_r: f32) -> Mesh {
+fn torus(name: &'static str, major: u32, minor: u32, big_r: f32, small_r: f32) -> Mesh {
     let mut positions = Vec::with_capacity((major * minor * 3) as usize);
     for i in 0..major {
         let u = i as f32 / major as f32 * std::f32::consts::TAU;
@@ -90,11 +93,50 @@ fn torus(major: u32, minor: u32, big_r: f32, small_r: f32) -> Mesh {
         }
     }
     Mesh {
-        name: "torus_10k",
+        name,
+        scheme: far::Scheme::CatmullClark,
         positions,
         verts_per_face: vec![4; (major * minor) as usize],
         indices,
     }
+}
+
+/// The icosahedron (radius 1; 12 vertices, 20 triangles, outward CCW), for Loop.
+fn icosahedron() -> Mesh {
+    let t = (1.0 + 5f32.sqrt()) / 2.0;
+    let s = 1.0 / (1.0 + t * t).sqrt();
+    let (a, b) = (s, t * s);
+    let positions = vec![
+        -a, b, 0.0, a, b, 0.0, -a, -b, 0.0, a, -b, 0.0, //
+        0.0, -a, b, 0.0, a, b, 0.0, -a, -b, 0.0, a, -b, //
+        b, 0.0, -a, b, 0.0, a, -b, 0.0, -a, -b, 0.0, a,
+    ];
+    let indices = vec![
+        0, 11, 5, 0, 5, 1, 0, 1, 7, 0, 7, 10, 0, 10, 11, //
+        1, 5, 9, 5, 11, 4, 11, 10, 2, 10, 7, 6, 7, 1, 8, //
+        3, 9, 4, 3, 4, 2, 3, 2, 6, 3, 6, 8, 3, 8, 9, //
+        4, 9, 5, 2, 4, 11, 6, 2, 10, 8, 6, 7, 9, 8, 1,
+    ];
+    Mesh {
+        name: "icosahedron (Loop)",
+        scheme: far::Scheme::Loop,
+        positions,
+        verts_per_face: vec![3; 20],
+        indices,
+    }
+}
+
+/// A STREAM-like copy of `mb` megabytes of f64 (read + write); returns the
+/// best bandwidth in GB/s counting bytes read plus bytes written.
+fn stream_copy(mb: usize, runs: usize) -> f64 {
+    let n = mb * (1 << 20) / 8;
+    let src: Vec<f64> = (0..n).map(|i| i as f64).collect();
+    let mut dst = vec![0.0f64; n];
+    let (_, min) = time(runs, || {
+        dst.copy_from_slice(black_box(&src));
+        black_box(&mut dst);
+    });
+    (2 * n * 8) as f64 / (min * 1e-3) / 1e9
 }
 
 fn refiner(mesh: &Mesh, level: usize, full_topology_in_last_level: bool) -> TopologyRefiner {
@@ -103,7 +145,7 @@ fn refiner(mesh: &Mesh, level: usize, full_topology_in_last_level: bool) -> Topo
     let mut r = TopologyRefiner::new(
         desc,
         TopologyRefinerOptions {
-            scheme: far::Scheme::CatmullClark,
+            scheme: mesh.scheme,
             boundary_interpolation: Some(far::BoundaryInterpolation::EdgeOnly),
             ..Default::default()
         },
@@ -155,24 +197,33 @@ fn main() {
         .and_then(|s| s.parse().ok())
         .unwrap_or(1.0);
     let cube = cube();
-    let torus = torus(100, 100, 2.0, 0.5);
-    // (mesh, level, runs, Hedra single-thread "full" ms for reference)
-    let cases: [(&Mesh, usize, usize, f64); 4] = [
-        (&cube, 7, 50, 3.98),
-        (&torus, 1, 200, 1.36),
-        (&torus, 2, 100, 6.2),
-        (&torus, 3, 50, 32.9),
+    let torus_10k = torus("torus_10k", 100, 100, 2.0, 0.5);
+    let torus_40k = torus("torus_40k (200×200)", 200, 200, 2.0, 0.5);
+    let ico = icosahedron();
+    // (mesh, level, runs)
+    let cases: [(&Mesh, usize, usize); 6] = [
+        (&cube, 7, 50),
+        (&torus_10k, 1, 200),
+        (&torus_10k, 2, 100),
+        (&torus_10k, 3, 50),
+        (&torus_40k, 1, 100),
+        (&ico, 6, 100),
     ];
+    let runs = ((20.0 * scale).round() as usize).max(3);
+    println!(
+        "STREAM-like copy of 64 MB f64 (read + write), best of {runs}: {:.1} GB/s",
+        stream_copy(64, runs)
+    );
 
     println!(
         "OpenSubdiv 3.7.0 (opensubdiv-petite 0.3.1), f32 positions, single thread, allocator: {ALLOCATOR}"
     );
     println!(
-        "| case | faces (last level) | verts (last level) | runs | full | create refiner only | full, sparse last level | positions only | Hedra full (criterion) |"
+        "| case | faces (last level) | verts (last level) | runs | full | create refiner only | full, sparse last level | positions only |"
     );
-    println!("| | | | | median / min ms | median / min ms | median / min ms | median / min ms | ms |");
-    println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|");
-    for (mesh, level, runs, hedra) in cases {
+    println!("| | | | | median / min ms | median / min ms | median / min ms | median / min ms |");
+    println!("|---|---:|---:|---:|---:|---:|---:|---:|");
+    for (mesh, level, runs) in cases {
         let runs = ((runs as f64 * scale).round() as usize).max(3);
 
         // Sanity: face count at the last level.
@@ -182,7 +233,8 @@ fn main() {
         let verts = lvl.vertex_count();
         let expected = mesh.verts_per_face.len() * 4usize.pow(level as u32);
         assert_eq!(faces, expected, "{} level {level}: face count", mesh.name);
-        assert!(lvl.face_vertices_iter().all(|f| f.len() == 4));
+        let sides = mesh.verts_per_face[0] as usize;
+        assert!(lvl.face_vertices_iter().all(|f| f.len() == sides));
         let out = interpolate(&r, &mesh.positions, level);
         assert_eq!(out.len(), verts * 3);
         assert!(out.iter().all(|x| x.is_finite()));
@@ -203,7 +255,7 @@ fn main() {
         });
         let f = |(m, n): (f64, f64)| format!("{m:.3} / {n:.3}");
         println!(
-            "| {} level {level} | {faces} | {verts} | {runs} | {} | {} | {} | {} | {hedra} |",
+            "| {} level {level} | {faces} | {verts} | {runs} | {} | {} | {} | {} |",
             mesh.name,
             f(full),
             f(create),

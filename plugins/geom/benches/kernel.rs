@@ -2,6 +2,10 @@
 //! validate it, 100,000 random split/join operations, extrude 10,000 faces.
 
 use criterion::{BatchSize, Criterion, criterion_group, criterion_main};
+
+/// The allocator the app uses (see `src/main.rs`), as the other benches.
+#[global_allocator]
+static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 use hedra_geom::{DVec3, EdgeId, HalfEdgeMesh};
 use std::hint::black_box;
 

@@ -177,6 +177,7 @@ fn simple_loops(poly: &[u32]) -> Option<Vec<Vec<u32>>> {
     Some(loops)
 }
 
+#[inline]
 pub(crate) fn check_face(face: usize, poly: &[u32], vertex_count: usize) -> Result<(), BuildError> {
     if poly.len() < 3 {
         return Err(BuildError::TooFewSides {

@@ -487,6 +487,74 @@ fn levels_that_are_too_large_are_refused_before_allocating() {
     assert!(err.to_string().contains("more than the limit"), "{err}");
 }
 
+/// The refined mesh built the slow way: the shown faces through
+/// `from_polygons`, vertices numbered in order of first use and isolated
+/// ones after them (what `to_mesh` promises, ids included).
+fn polygons_mesh(r: &Refiner, points: &[DVec3]) -> HalfEdgeMesh {
+    let mut used = vec![u32::MAX; points.len()];
+    let mut kept = Vec::new();
+    let faces: Vec<Vec<u32>> = r
+        .faces()
+        .map(|f| {
+            f.iter()
+                .map(|&v| {
+                    if used[v as usize] == u32::MAX {
+                        used[v as usize] = kept.len() as u32;
+                        kept.push(points[v as usize]);
+                    }
+                    used[v as usize]
+                })
+                .collect()
+        })
+        .collect();
+    let mut in_edge = vec![false; points.len()];
+    for ([a, b], _) in r.edges() {
+        in_edge[a as usize] = true;
+        in_edge[b as usize] = true;
+    }
+    for (v, p) in points.iter().enumerate() {
+        if used[v] == u32::MAX && !in_edge[v] {
+            kept.push(*p);
+        }
+    }
+    HalfEdgeMesh::from_polygons(&kept, &faces).unwrap()
+}
+
+#[test]
+fn applied_meshes_equal_the_polygon_build_with_holes_and_boundaries() {
+    for (cage, scheme) in [
+        (0, Scheme::CatmullClark),
+        (1, Scheme::CatmullClark),
+        (2, Scheme::CatmullClark),
+        (3, Scheme::Loop),
+        (3, Scheme::CatmullClark),
+    ] {
+        for boundary in BoundaryInterpolation::ALL {
+            for hole in [None, Some(0), Some(2)] {
+                let mesh = cages().swap_remove(cage);
+                let mut creases = Creases::default();
+                if let Some(i) = hole {
+                    creases.set_hole(mesh.faces().nth(i).unwrap(), true);
+                }
+                let opts = Options {
+                    scheme,
+                    boundary,
+                    ..Options::default()
+                };
+                let (r, p) = refine(&mesh, &creases, opts, 2);
+                let (out, _) = r.to_mesh(&p).unwrap();
+                out.validate().unwrap();
+                assert_eq!(
+                    out,
+                    polygons_mesh(&r, &p),
+                    "cage {cage} {scheme:?} {boundary:?} hole {hole:?}"
+                );
+                assert_eq!(out.face_count(), r.faces().count());
+            }
+        }
+    }
+}
+
 fn cages() -> Vec<HalfEdgeMesh> {
     vec![
         cube(),
@@ -553,6 +621,7 @@ proptest! {
         }
         let (out, _) = r.to_mesh(&direct).unwrap();
         prop_assert!(out.validate().is_ok());
+        prop_assert!(out == polygons_mesh(&r, &direct), "to_mesh differs from from_polygons");
 
         // A drag: move some cage vertices and update incrementally; the
         // result equals refining the moved cage from scratch.

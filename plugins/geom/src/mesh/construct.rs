@@ -1,16 +1,39 @@
 //! Building a mesh's records in bulk from an indexed face set: the strict
-//! [`from_polygons`](HalfEdgeMesh::from_polygons). It writes the arrays
-//! directly (one pass per corner), which is why it lives inside the
-//! [`mesh`](super) module; the repairing build and compaction in
-//! [`crate::build`] go through it.
+//! [`from_polygons`](HalfEdgeMesh::from_polygons), and the build from
+//! polygons whose corners already name their edges (a subdivision level's
+//! tables). Both write the arrays directly (one pass per corner), which is
+//! why they live inside the [`mesh`](super) module; the repairing build and
+//! compaction in [`crate::build`] go through them.
 //!
 //! Twins are found with a compressed per-vertex list of outgoing corners
-//! instead of a hash map, so building is linear in the number of corners.
+//! (each with its far end beside it) instead of a hash map, so building is
+//! linear in the number of corners and the search reads one short
+//! contiguous list per corner.
 
 use super::{HalfEdgeMesh, HalfEdgeRecord};
 use crate::build::{BuildError, check_face};
-use crate::ids::{NONE, VertexId};
+use crate::ids::NONE;
 use glam::DVec3;
+
+/// Calls `visit(corner, from, to)` for each face's corners in order, with
+/// the corner's vertex and the vertex its edge runs to; stops at the first
+/// error.
+#[inline]
+fn each_corner(
+    face_offsets: &[u32],
+    corner_vertex: &[u32],
+    mut visit: impl FnMut(usize, u32, u32) -> Result<(), BuildError>,
+) -> Result<(), BuildError> {
+    for w in face_offsets.windows(2) {
+        let r = w[0] as usize..w[1] as usize;
+        let poly = &corner_vertex[r.clone()];
+        let last = poly.len() - 1;
+        for (k, c) in r.enumerate() {
+            visit(c, poly[k], poly[if k == last { 0 } else { k + 1 }])?;
+        }
+    }
+    Ok(())
+}
 
 impl HalfEdgeMesh {
     /// Builds a mesh from positions and polygons (vertex indices,
@@ -33,85 +56,57 @@ impl HalfEdgeMesh {
         if let Some(i) = positions.iter().position(|p| !p.is_finite()) {
             return Err(BuildError::NonFinitePosition { vertex: i as u32 });
         }
-        // Corners: corner c of face f goes from corner_from[c] to the next corner's vertex.
-        let mut face_start = Vec::with_capacity(polygons.len() + 1);
-        let mut corner_from: Vec<u32> = Vec::new();
-        let mut corner_face: Vec<u32> = Vec::new();
-        face_start.push(0usize);
+        // Corners: corner c of face f is corner_vertex[c], for c in
+        // face_offsets[f]..face_offsets[f + 1]; its edge runs to the next
+        // corner of the face.
+        let mut face_offsets: Vec<u32> = Vec::with_capacity(polygons.len() + 1);
+        face_offsets.push(0);
+        let mut corner_vertex: Vec<u32> = Vec::new();
         for (fi, poly) in polygons.iter().enumerate() {
             let poly = poly.as_ref();
             check_face(fi, poly, nv)?;
-            corner_from.extend_from_slice(poly);
-            corner_face.extend(std::iter::repeat_n(fi as u32, poly.len()));
-            face_start.push(corner_from.len());
-        }
-        let nc = corner_from.len();
-        if nc >= (NONE / 2) as usize {
-            return Err(BuildError::TooLarge { what: "corners" });
-        }
-        let next_corner = |c: usize| -> usize {
-            let f = corner_face[c] as usize;
-            if c + 1 == face_start[f + 1] {
-                face_start[f]
-            } else {
-                c + 1
+            if corner_vertex.len() + poly.len() >= (NONE / 2) as usize {
+                return Err(BuildError::TooLarge { what: "corners" });
             }
-        };
-        let prev_corner = |c: usize| -> usize {
-            let f = corner_face[c] as usize;
-            if c == face_start[f] {
-                face_start[f + 1] - 1
-            } else {
-                c - 1
-            }
-        };
-        let corner_to = |c: usize| corner_from[next_corner(c)];
+            corner_vertex.extend_from_slice(poly);
+            face_offsets.push(corner_vertex.len() as u32);
+        }
+        let nc = corner_vertex.len();
+        // Outgoing corners per vertex (compressed rows, each row in corner
+        // order): the far end of each corner's edge, and the corner.
+        let mut row = vec![0u32; nv + 2];
+        for &v in &corner_vertex {
+            row[v as usize + 2] += 1;
+        }
+        for i in 2..row.len() {
+            row[i] += row[i - 1];
+        }
+        let mut out = vec![[0u32; 2]; nc];
+        each_corner(&face_offsets, &corner_vertex, |c, v, to| {
+            let slot = &mut row[v as usize + 1];
+            out[*slot as usize] = [to, c as u32];
+            *slot += 1;
+            Ok(())
+        })?;
+        row.pop();
+        let outgoing = |v: u32| &out[row[v as usize] as usize..row[v as usize + 1] as usize];
 
-        // Outgoing corners per vertex (compressed rows).
-        let mut row = vec![0u32; nv + 1];
-        for &v in &corner_from {
-            row[v as usize + 1] += 1;
-        }
-        for i in 0..nv {
-            row[i + 1] += row[i];
-        }
-        let mut fill = row.clone();
-        let mut out_corner = vec![0u32; nc];
-        for (c, &v) in corner_from.iter().enumerate() {
-            out_corner[fill[v as usize] as usize] = c as u32;
-            fill[v as usize] += 1;
-        }
-        let outgoing = |v: u32| &out_corner[row[v as usize] as usize..row[v as usize + 1] as usize];
-
-        // Pair corners into edges.
+        // Pair corners into edges, numbered in order of first use: the
+        // first corner of edge k gets half-edge 2k, its twin 2k + 1.
         let mut corner_he = vec![NONE; nc];
-        let mut halfedges: Vec<HalfEdgeRecord> = Vec::with_capacity(nc + nc / 8);
-        let blank = HalfEdgeRecord {
-            origin: NONE,
-            next: NONE,
-            prev: NONE,
-            face: NONE,
-        };
-        for c in 0..nc {
-            let (a, b) = (corner_from[c], corner_to(c));
-            // Count without allocating: this loop runs once per corner.
-            let same_dir = outgoing(a)
-                .iter()
-                .filter(|&&x| corner_to(x as usize) == b)
-                .count();
-            let mut twins = outgoing(b)
-                .iter()
-                .map(|&x| x as usize)
-                .filter(|&x| corner_to(x) == a);
-            let first_twin = twins.next();
+        let mut halfedge_count = 0u32;
+        each_corner(&face_offsets, &corner_vertex, |c, a, b| {
+            let same_dir = outgoing(a).iter().filter(|x| x[0] == b).count();
+            let mut twins = outgoing(b).iter().filter(|x| x[0] == a);
+            let first_twin = twins.next().map(|x| x[1] as usize);
             let twin_count = usize::from(first_twin.is_some()) + twins.count();
             if same_dir + twin_count > 2 || same_dir > 1 {
+                let face_of = |c: u32| face_offsets.partition_point(|&s| s <= c) - 1;
                 let faces_of = |from: u32, to: u32| -> Vec<usize> {
                     outgoing(from)
                         .iter()
-                        .map(|&x| x as usize)
-                        .filter(|&x| corner_to(x) == to)
-                        .map(|x| corner_face[x] as usize)
+                        .filter(|x| x[0] == to)
+                        .map(|x| face_of(x[1]))
                         .collect()
                 };
                 if same_dir + twin_count > 2 {
@@ -130,91 +125,254 @@ impl HalfEdgeMesh {
                     faces: faces_of(a, b),
                 });
             }
-            if corner_he[c] != NONE {
-                continue;
-            }
-            let h = halfedges.len() as u32;
-            corner_he[c] = h;
-            halfedges.push(blank);
-            halfedges.push(blank);
-            halfedges[h as usize] = HalfEdgeRecord {
-                origin: a,
-                next: NONE,
-                prev: NONE,
-                face: corner_face[c],
-            };
-            if let Some(t) = first_twin {
-                corner_he[t] = h + 1;
-                halfedges[h as usize + 1] = HalfEdgeRecord {
-                    origin: b,
-                    next: NONE,
-                    prev: NONE,
-                    face: corner_face[t],
-                };
-            } else {
-                halfedges[h as usize + 1].origin = b;
-            }
-        }
-        if halfedges.len() >= NONE as usize {
-            return Err(BuildError::TooLarge { what: "half-edges" });
-        }
-        for c in 0..nc {
-            let h = corner_he[c] as usize;
-            halfedges[h].next = corner_he[next_corner(c)];
-            halfedges[h].prev = corner_he[prev_corner(c)];
-        }
-        // Boundary half-edges: each vertex may start at most one.
-        let mut boundary_out = vec![NONE; nv];
-        for (h, record) in halfedges.iter().enumerate() {
-            if record.face == NONE {
-                let o = record.origin as usize;
-                if boundary_out[o] != NONE {
-                    return Err(BuildError::NonManifoldVertex { vertex: o as u32 });
+            if corner_he[c] == NONE {
+                corner_he[c] = halfedge_count;
+                if let Some(t) = first_twin {
+                    corner_he[t] = halfedge_count + 1;
                 }
-                boundary_out[o] = h as u32;
+                halfedge_count += 2;
+            }
+            Ok(())
+        })?;
+        drop((row, out));
+        let mesh = Self::assemble(
+            positions.to_vec(),
+            &face_offsets,
+            &corner_vertex,
+            &corner_he,
+            halfedge_count as usize,
+        )?;
+        mesh.check_fans(&corner_vertex)?;
+        Ok(mesh)
+    }
+
+    /// Builds a mesh from polygons whose corners already name their edges
+    /// (a subdivision level's tables, where every edge is known from the
+    /// refinement), without searching for twins. Face `f` has the corners
+    /// `face_offsets[f]..face_offsets[f + 1]`; corner `c` is the vertex
+    /// `corner_vertex[c]` and starts the edge `corner_edge[c]` (an id below
+    /// `edge_count`) to the next corner of its face.
+    ///
+    /// The result is the mesh [`from_polygons`](Self::from_polygons) makes
+    /// of the same polygons, ids and all (vertex `i` is id `i`, edges in
+    /// order of first use, each edge's first corner giving its even
+    /// half-edge), provided that distinct edge ids never join the same two
+    /// vertices, which the caller guarantees. Everything else is checked as
+    /// `from_polygons` checks it, except that closed fans touching at a
+    /// vertex are found only when `check_fans` is set (a refinement of a
+    /// valid mesh cannot make them).
+    ///
+    /// # Errors
+    /// A malformed face, a non-finite position, an edge id out of range,
+    /// used by more than two corners ([`BuildError::NonManifoldEdge`]) or
+    /// twice in one direction ([`BuildError::InconsistentOrientation`]), a
+    /// vertex with two boundary fans ([`BuildError::NonManifoldVertex`]).
+    ///
+    /// Complexity: O(corners), a few linear passes and no hashing.
+    pub(crate) fn from_corner_edges(
+        positions: Vec<DVec3>,
+        face_offsets: &[u32],
+        corner_vertex: &[u32],
+        corner_edge: &[u32],
+        edge_count: usize,
+        check_fans: bool,
+    ) -> Result<HalfEdgeMesh, BuildError> {
+        let nv = positions.len();
+        if nv >= NONE as usize {
+            return Err(BuildError::TooLarge { what: "vertices" });
+        }
+        if corner_vertex.len() >= (NONE / 2) as usize || corner_edge.len() != corner_vertex.len() {
+            return Err(BuildError::TooLarge { what: "corners" });
+        }
+        if let Some(i) = positions.iter().position(|p| !p.is_finite()) {
+            return Err(BuildError::NonFinitePosition { vertex: i as u32 });
+        }
+        for (f, w) in face_offsets.windows(2).enumerate() {
+            let poly = corner_vertex
+                .get(w[0] as usize..w[1] as usize)
+                .unwrap_or_default();
+            // Quads (every face of a Catmull-Clark level) checked in line.
+            let fine_quad = matches!(*poly, [a, b, c, d]
+                if a != b && a != c && a != d && b != c && b != d && c != d
+                    && (a.max(b).max(c).max(d) as usize) < nv);
+            if !fine_quad {
+                check_face(f, poly, nv)?;
             }
         }
-        for h in 0..halfedges.len() {
-            if halfedges[h].face == NONE {
-                let target = halfedges[h ^ 1].origin as usize;
-                let n = boundary_out[target];
-                halfedges[h].next = n;
-                halfedges[n as usize].prev = h as u32;
+        if face_offsets.first().is_some_and(|&s| s != 0)
+            || face_offsets.last().map_or(0, |&s| s as usize) != corner_vertex.len()
+        {
+            return Err(BuildError::TooLarge { what: "corners" });
+        }
+        // Half-edges by first use of each edge; the second corner of an
+        // edge must run the other way, and there is no third.
+        let mut edge_state = vec![[NONE; 3]; edge_count];
+        let mut corner_he = vec![NONE; corner_vertex.len()];
+        let mut halfedge_count = 0u32;
+        for (f, w) in face_offsets.windows(2).enumerate() {
+            let r = w[0] as usize..w[1] as usize;
+            let poly = &corner_vertex[r.clone()];
+            for (k, c) in r.enumerate() {
+                let (a, b) = (poly[k], poly[(k + 1) % poly.len()]);
+                let Some(state) = edge_state.get_mut(corner_edge[c] as usize) else {
+                    return Err(BuildError::TooLarge { what: "edges" });
+                };
+                let [h, from, to] = *state;
+                if h == NONE {
+                    *state = [halfedge_count, a, b];
+                    corner_he[c] = halfedge_count;
+                    halfedge_count += 2;
+                } else if from == NONE {
+                    return Err(BuildError::NonManifoldEdge {
+                        a: a.min(b),
+                        b: a.max(b),
+                        faces: vec![f],
+                    });
+                } else if (from, to) != (b, a) {
+                    return Err(BuildError::InconsistentOrientation {
+                        a,
+                        b,
+                        faces: vec![f],
+                    });
+                } else {
+                    *state = [h, NONE, NONE];
+                    corner_he[c] = h + 1;
+                }
             }
         }
-        let mut vertex_out = boundary_out;
-        for (v, out) in vertex_out.iter_mut().enumerate() {
-            if *out == NONE
-                && let Some(&c) = outgoing(v as u32).first()
-            {
-                *out = corner_he[c as usize];
-            }
-        }
-        let ne = halfedges.len() / 2;
-        let mesh = HalfEdgeMesh {
-            positions: positions.to_vec(),
-            vertex_out,
-            halfedges,
-            face_halfedge: (0..polygons.len())
-                .map(|f| corner_he[face_start[f]])
-                .collect(),
-            vertex_dead: vec![false; nv],
-            edge_dead: vec![false; ne],
-            face_dead: vec![false; polygons.len()],
-            live_vertices: nv,
-            live_edges: ne,
-            live_faces: polygons.len(),
-            ..Default::default()
-        };
-        // Closed fans touching at a vertex (two cones tip to tip) pass the
-        // boundary test above; the fan walk finds them.
-        for v in 0..nv as u32 {
-            let deg = (row[v as usize + 1] - row[v as usize]) as usize
-                + usize::from(mesh.is_boundary_vertex(VertexId(v)));
-            if deg > 0 && mesh.vertex_outgoing(VertexId(v)).take(deg + 1).count() != deg {
-                return Err(BuildError::NonManifoldVertex { vertex: v });
-            }
+        drop(edge_state);
+        let mesh = Self::assemble(
+            positions,
+            face_offsets,
+            corner_vertex,
+            &corner_he,
+            halfedge_count as usize,
+        )?;
+        if check_fans {
+            mesh.check_fans(corner_vertex)?;
         }
         Ok(mesh)
+    }
+
+    /// The records from checked faces and finite positions, given each
+    /// corner's half-edge (`corner_he`: the first corner of each edge has
+    /// the even one, its twin corner, if any, the odd one; `halfedge_count`
+    /// of them). Half-edges no corner has are the boundary.
+    fn assemble(
+        positions: Vec<DVec3>,
+        face_offsets: &[u32],
+        corner_vertex: &[u32],
+        corner_he: &[u32],
+        halfedge_count: usize,
+    ) -> Result<HalfEdgeMesh, BuildError> {
+        if halfedge_count >= NONE as usize {
+            return Err(BuildError::TooLarge { what: "half-edges" });
+        }
+        let nv = positions.len();
+        let nf = face_offsets.len().saturating_sub(1);
+        let blank = HalfEdgeRecord {
+            origin: NONE,
+            next: NONE,
+            prev: NONE,
+            face: NONE,
+        };
+        let mut halfedges = vec![blank; halfedge_count];
+        for (f, w) in face_offsets.windows(2).enumerate() {
+            let r = w[0] as usize..w[1] as usize;
+            let hs = &corner_he[r.clone()];
+            let n = hs.len();
+            for (k, (&h, &v)) in hs.iter().zip(&corner_vertex[r]).enumerate() {
+                halfedges[h as usize] = HalfEdgeRecord {
+                    origin: v,
+                    next: hs[if k + 1 == n { 0 } else { k + 1 }],
+                    prev: hs[if k == 0 { n - 1 } else { k - 1 }],
+                    face: f as u32,
+                };
+            }
+        }
+        // Boundary half-edges (no corner has them; a closed mesh has none):
+        // each starts where its twin ends, and a vertex may start at most one.
+        let mut vertex_out = vec![NONE; nv];
+        if corner_vertex.len() != halfedge_count {
+            for h in 0..halfedge_count {
+                if halfedges[h].face == NONE {
+                    let origin = halfedges[halfedges[h ^ 1].next as usize].origin;
+                    halfedges[h].origin = origin;
+                    let o = &mut vertex_out[origin as usize];
+                    if *o != NONE {
+                        return Err(BuildError::NonManifoldVertex { vertex: origin });
+                    }
+                    *o = h as u32;
+                }
+            }
+            for h in 0..halfedge_count {
+                if halfedges[h].face == NONE {
+                    let target = halfedges[h ^ 1].origin as usize;
+                    let n = vertex_out[target];
+                    halfedges[h].next = n;
+                    halfedges[n as usize].prev = h as u32;
+                }
+            }
+        }
+        // Other vertices: the half-edge of their first corner.
+        for (&v, &h) in corner_vertex.iter().zip(corner_he) {
+            let o = &mut vertex_out[v as usize];
+            if *o == NONE {
+                *o = h;
+            }
+        }
+        let ne = halfedge_count / 2;
+        Ok(HalfEdgeMesh {
+            positions,
+            vertex_out,
+            face_halfedge: face_offsets[..nf]
+                .iter()
+                .map(|&c| corner_he[c as usize])
+                .collect(),
+            halfedges,
+            vertex_dead: vec![false; nv],
+            edge_dead: vec![false; ne],
+            face_dead: vec![false; nf],
+            live_vertices: nv,
+            live_edges: ne,
+            live_faces: nf,
+            ..Default::default()
+        })
+    }
+
+    /// Closed fans touching at a vertex (two cones tip to tip) pass the
+    /// boundary test of [`assemble`](Self::assemble); walking each vertex's
+    /// fan finds them: it must meet every corner at the vertex (and its
+    /// boundary half-edge).
+    fn check_fans(&self, corner_vertex: &[u32]) -> Result<(), BuildError> {
+        let mut degree = vec![0u32; self.positions.len()];
+        for &v in corner_vertex {
+            degree[v as usize] += 1;
+        }
+        for (v, &corners) in degree.iter().enumerate() {
+            let start = self.vertex_out[v];
+            if start == NONE {
+                if corners > 0 {
+                    return Err(BuildError::NonManifoldVertex { vertex: v as u32 });
+                }
+                continue;
+            }
+            // The fan around v: twin(prev(h)) from its outgoing half-edge,
+            // which must come back to the start after `degree` steps.
+            let boundary = self.halfedges[start as usize].face == NONE;
+            let deg = corners as usize + usize::from(boundary);
+            let (mut h, mut steps) = (start, 0);
+            loop {
+                h = self.halfedges[h as usize].prev ^ 1;
+                steps += 1;
+                if h == start || steps > deg {
+                    break;
+                }
+            }
+            if h != start || steps != deg {
+                return Err(BuildError::NonManifoldVertex { vertex: v as u32 });
+            }
+        }
+        Ok(())
     }
 }

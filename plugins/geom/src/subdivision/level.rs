@@ -38,14 +38,16 @@ pub(crate) struct Level {
 /// Tables derived from the face and edge lists.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Adjacency {
-    corner_face: Vec<u32>,
+    pub corner_face: Vec<u32>,
     /// The one or two faces of each edge; the second is [`NONE`] on a boundary.
-    edge_faces: Vec<[u32; 2]>,
-    vertex_edge_offsets: Vec<u32>,
-    vertex_edges: Vec<u32>,
-    vertex_corner_offsets: Vec<u32>,
-    /// Face corners at each vertex (a corner names its face through `corner_face`).
-    vertex_corners: Vec<u32>,
+    pub edge_faces: Vec<[u32; 2]>,
+    pub vertex_edge_offsets: Vec<u32>,
+    /// Each vertex's edges in increasing order.
+    pub vertex_edges: Vec<u32>,
+    pub vertex_corner_offsets: Vec<u32>,
+    /// Face corners at each vertex in increasing order (a corner names its
+    /// face through `corner_face`).
+    pub vertex_corners: Vec<u32>,
 }
 
 /// Dense numbering of a half-edge mesh's live elements, so that results can
@@ -67,7 +69,7 @@ impl Level {
     pub fn face_corners(&self, f: u32) -> std::ops::Range<usize> {
         self.face_offsets[f as usize] as usize..self.face_offsets[f as usize + 1] as usize
     }
-    fn adjacency(&self) -> &Adjacency {
+    pub(crate) fn adjacency(&self) -> &Adjacency {
         self.adjacency.get_or_init(|| Adjacency::new(self))
     }
     /// The face of corner `c`.
@@ -149,10 +151,15 @@ impl Level {
         }
         let mut level = Level {
             vertex_count: map.vertices.len(),
-            face_offsets: vec![0],
+            face_offsets: Vec::with_capacity(mesh.face_count() + 1),
+            face_vertices: Vec::with_capacity(2 * mesh.edge_count()),
+            face_edges: Vec::with_capacity(2 * mesh.edge_count()),
+            face_origin: Vec::with_capacity(mesh.face_count()),
             edge_vertices,
             ..Level::default()
         };
+        level.face_offsets.push(0);
+        map.faces.reserve(mesh.face_count());
         for f in mesh.faces() {
             for h in mesh.face_halfedges(f) {
                 level.face_vertices.push(vmap[mesh.origin(h).index()]);
@@ -250,15 +257,22 @@ impl Adjacency {
     /// Corner faces, edge faces and vertex adjacency from the face and edge lists.
     fn new(level: &Level) -> Adjacency {
         let nf = level.face_count();
-        let mut corner_face = Vec::with_capacity(level.face_vertices.len());
-        for f in 0..nf {
-            let n = (level.face_offsets[f + 1] - level.face_offsets[f]) as usize;
-            corner_face.extend(std::iter::repeat_n(f as u32, n));
-        }
+        let nc = level.face_vertices.len();
+        let corner_face: Vec<u32> = if level.all_faces_have(4) {
+            (0..nc as u32).map(|c| c / 4).collect()
+        } else if level.all_faces_have(3) {
+            (0..nc as u32).map(|c| c / 3).collect()
+        } else {
+            let mut corner_face = Vec::with_capacity(nc);
+            for f in 0..nf {
+                let n = (level.face_offsets[f + 1] - level.face_offsets[f]) as usize;
+                corner_face.extend(std::iter::repeat_n(f as u32, n));
+            }
+            corner_face
+        };
         let mut edge_faces = vec![[NONE, NONE]; level.edge_vertices.len()];
-        for (c, &e) in level.face_edges.iter().enumerate() {
+        for (&e, &f) in level.face_edges.iter().zip(&corner_face) {
             let slot = &mut edge_faces[e as usize];
-            let f = corner_face[c];
             if slot[0] == NONE {
                 slot[0] = f;
             } else {
@@ -266,35 +280,35 @@ impl Adjacency {
             }
         }
         let nv = level.vertex_count;
-        // Vertex → edges, by counting sort.
-        let mut vertex_edge_offsets = vec![0u32; nv + 1];
+        // Vertex → edges, by counting sort (each list in increasing order).
+        let mut vertex_edge_offsets = vec![0u32; nv + 2];
         for &[a, b] in &level.edge_vertices {
-            vertex_edge_offsets[a as usize + 1] += 1;
-            vertex_edge_offsets[b as usize + 1] += 1;
+            vertex_edge_offsets[a as usize + 2] += 1;
+            vertex_edge_offsets[b as usize + 2] += 1;
         }
         prefix_sum(&mut vertex_edge_offsets);
-        let mut fill = vertex_edge_offsets.clone();
         let mut vertex_edges = vec![0u32; 2 * level.edge_vertices.len()];
         for (e, &[a, b]) in level.edge_vertices.iter().enumerate() {
             for v in [a, b] {
-                let slot = &mut fill[v as usize];
+                let slot = &mut vertex_edge_offsets[v as usize + 1];
                 vertex_edges[*slot as usize] = e as u32;
                 *slot += 1;
             }
         }
-        // Vertex → corners.
-        let mut vertex_corner_offsets = vec![0u32; nv + 1];
+        vertex_edge_offsets.pop();
+        // Vertex → corners, likewise.
+        let mut vertex_corner_offsets = vec![0u32; nv + 2];
         for &v in &level.face_vertices {
-            vertex_corner_offsets[v as usize + 1] += 1;
+            vertex_corner_offsets[v as usize + 2] += 1;
         }
         prefix_sum(&mut vertex_corner_offsets);
-        let mut fill = vertex_corner_offsets.clone();
-        let mut vertex_corners = vec![0u32; level.face_vertices.len()];
+        let mut vertex_corners = vec![0u32; nc];
         for (c, &v) in level.face_vertices.iter().enumerate() {
-            let slot = &mut fill[v as usize];
+            let slot = &mut vertex_corner_offsets[v as usize + 1];
             vertex_corners[*slot as usize] = c as u32;
             *slot += 1;
         }
+        vertex_corner_offsets.pop();
         Adjacency {
             corner_face,
             edge_faces,

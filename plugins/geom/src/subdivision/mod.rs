@@ -777,22 +777,45 @@ impl Refiner {
         positions: &[DVec3],
     ) -> Result<(HalfEdgeMesh, Creases), crate::BuildError> {
         let last = self.last();
+        // Vertices are numbered in order of first use by the shown faces
+        // (then isolated ones), edges likewise: the numbering
+        // `from_polygons` gives the same faces, which files and tests rely
+        // on. The edges are the level's, so no twin has to be searched.
+        let all_shown = !self.hidden_cage_faces.contains(&true);
+        let mut face_offsets = Vec::new();
+        let mut corner_edges = Vec::new();
+        if !all_shown {
+            face_offsets.push(0);
+            for f in 0..last.face_count() {
+                if !self.is_face_hidden(f) {
+                    corner_edges.extend_from_slice(&last.face_edges[last.face_corners(f as u32)]);
+                    face_offsets.push(corner_edges.len() as u32);
+                }
+            }
+        }
+        let (face_offsets, corner_edges) = if all_shown {
+            (&last.face_offsets[..], &last.face_edges[..])
+        } else {
+            (&face_offsets[..], &corner_edges[..])
+        };
         let mut used = vec![u32::MAX; last.vertex_count];
-        let mut kept_positions = Vec::new();
-        let faces: Vec<Vec<u32>> = self
-            .faces()
-            .map(|f| {
-                f.iter()
-                    .map(|&v| {
-                        if used[v as usize] == u32::MAX {
-                            used[v as usize] = kept_positions.len() as u32;
-                            kept_positions.push(positions[v as usize]);
-                        }
-                        used[v as usize]
-                    })
-                    .collect()
-            })
-            .collect();
+        let mut kept_positions = Vec::with_capacity(last.vertex_count);
+        let mut corner_vertices = Vec::with_capacity(corner_edges.len());
+        let mut keep = |v: u32| {
+            let u = &mut used[v as usize];
+            if *u == u32::MAX {
+                *u = kept_positions.len() as u32;
+                kept_positions.push(positions[v as usize]);
+            }
+            *u
+        };
+        if all_shown {
+            corner_vertices.extend(last.face_vertices.iter().map(|&v| keep(v)));
+        } else {
+            for face in self.faces() {
+                corner_vertices.extend(face.iter().map(|&v| keep(v)));
+            }
+        }
         // Isolated vertices stay (they are in no face, so not yet kept).
         for v in 0..last.vertex_count {
             if used[v] == u32::MAX && last.vertex_edges(v as u32).is_empty() {
@@ -800,7 +823,16 @@ impl Refiner {
                 kept_positions.push(positions[v]);
             }
         }
-        let mesh = HalfEdgeMesh::from_polygons(&kept_positions, &faces)?;
+        // Only hiding faces could make a vertex's fans touch; a whole
+        // refinement of a valid mesh cannot.
+        let mesh = HalfEdgeMesh::from_corner_edges(
+            kept_positions,
+            face_offsets,
+            &corner_vertices,
+            corner_edges,
+            last.edge_count(),
+            !all_shown,
+        )?;
         let mut creases = Creases::default();
         for ([a, b], s) in self.edges() {
             let (a, b) = (used[a as usize], used[b as usize]);
@@ -981,7 +1013,162 @@ pub(crate) fn child_count(parent: &Level, split: Split) -> usize {
 
 /// One level's child positions: face points first (edge and vertex masks
 /// read them), then the rest.
+///
+/// Smooth edges and vertices of Catmull-Clark and Loop (no sharpness, not
+/// on a boundary: almost every point of a typical mesh) are computed here
+/// with their masks written out; every other point goes through
+/// [`point_mask`]. Both add the same terms in the same order, so the result
+/// is the same to the last bit either way (and the same as the stencils').
 fn interpolate(
+    parent: &Level,
+    split: Split,
+    options: Options,
+    points: &[DVec3],
+    parallel: bool,
+) -> Vec<DVec3> {
+    if split == Split::Dual {
+        return interpolate_generic(parent, split, options, points, parallel);
+    }
+    let masks = masks_for(options.scheme);
+    let nf = split.face_points(parent);
+    let ne = parent.edge_count();
+    let child_count = child_count(parent, split);
+    let adj = parent.adjacency();
+    // A level without any sharpness needs no per-point test of its edges.
+    let smooth_level = parent.edge_sharpness.iter().all(|&s| s == 0.0)
+        && parent.vertex_sharpness.iter().all(|&s| s == 0.0);
+    let betas: [f64; 16] = std::array::from_fn(rules::loop_beta);
+    let generic = |face_points: &[DVec3], point: ChildPoint| {
+        let mut sink = PointSink {
+            points,
+            face_points,
+            sum: DVec3::ZERO,
+        };
+        point_mask(parent, options, point, &mut sink);
+        sink.sum
+    };
+    // The face point (rules::face_mask).
+    let face = |f: usize| {
+        let r = parent.face_corners(f as u32);
+        let w = 1.0 / r.len() as f64;
+        parent.face_vertices[r]
+            .iter()
+            .fold(DVec3::ZERO, |sum, &v| sum + w * points[v as usize])
+    };
+    let triangle = |f: u32| parent.face_corners(f).len() == 3;
+    // The smooth edge masks of rules::edge_mask.
+    let edge = |face_points: &[DVec3], e: usize| {
+        let [a, b] = parent.edge_vertices[e];
+        let [f0, f1] = adj.edge_faces[e];
+        if parent.edge_sharpness[e] == 0.0 && f1 != level::NONE {
+            let (pa, pb) = (points[a as usize], points[b as usize]);
+            match masks {
+                Masks::CatmullClark
+                    if !(options.smooth_triangles && (triangle(f0) || triangle(f1))) =>
+                {
+                    return DVec3::ZERO
+                        + 0.25 * pa
+                        + 0.25 * pb
+                        + 0.25 * face_points[f0 as usize]
+                        + 0.25 * face_points[f1 as usize];
+                }
+                Masks::Loop => {
+                    // The corner of triangle f that is not on e (Loop
+                    // levels are all triangles: f's corners are 3f..3f+3).
+                    let opposite = |f: u32| {
+                        let base = 3 * f as usize;
+                        let fe = &parent.face_edges[base..base + 3];
+                        let k = if fe[0] as usize == e {
+                            2
+                        } else if fe[1] as usize == e {
+                            0
+                        } else {
+                            1
+                        };
+                        points[parent.face_vertices[base + k] as usize]
+                    };
+                    return DVec3::ZERO
+                        + 0.375 * pa
+                        + 0.375 * pb
+                        + 0.125 * opposite(f0)
+                        + 0.125 * opposite(f1);
+                }
+                _ => {}
+            }
+        }
+        generic(face_points, ChildPoint::Edge(e as u32))
+    };
+    // The smooth vertex masks of rules::smooth_vertex_mask (smooth vertices
+    // and darts: no corner sharpness, at most one sharp edge).
+    let vertex = |face_points: &[DVec3], v: usize| {
+        let edges = &adj.vertex_edges
+            [adj.vertex_edge_offsets[v] as usize..adj.vertex_edge_offsets[v + 1] as usize];
+        let smooth = smooth_level
+            || (parent.vertex_sharpness[v] <= 0.0
+                && edges
+                    .iter()
+                    .filter(|&&e| parent.edge_sharpness[e as usize] > 0.0)
+                    .count()
+                    <= 1);
+        if smooth && !edges.is_empty() && masks != Masks::Linear {
+            let n = edges.len() as f64;
+            let other = |e: u32| {
+                let [a, b] = parent.edge_vertices[e as usize];
+                points[(if a as usize == v { b } else { a }) as usize]
+            };
+            if masks == Masks::CatmullClark {
+                let corners = &adj.vertex_corners[adj.vertex_corner_offsets[v] as usize
+                    ..adj.vertex_corner_offsets[v + 1] as usize];
+                let w_edge = 1.0 / (n * n);
+                let w_face = 1.0 / (n * corners.len() as f64);
+                let sum = DVec3::ZERO + (n - 2.0) / n * points[v];
+                let sum = edges.iter().fold(sum, |sum, &e| sum + w_edge * other(e));
+                return corners.iter().fold(sum, |sum, &c| {
+                    sum + w_face * face_points[adj.corner_face[c as usize] as usize]
+                });
+            }
+            let beta = betas
+                .get(edges.len())
+                .copied()
+                .unwrap_or_else(|| rules::loop_beta(edges.len()));
+            let sum = DVec3::ZERO + (1.0 - n * beta) * points[v];
+            return edges.iter().fold(sum, |sum, &e| sum + beta * other(e));
+        }
+        generic(face_points, ChildPoint::Vertex(v as u32))
+    };
+    if !parallel {
+        // Each point written once, in order (no zero fill first).
+        let face_points: Vec<DVec3> = (0..nf).map(face).collect();
+        let mut out = Vec::with_capacity(child_count);
+        out.extend_from_slice(&face_points);
+        out.extend((0..ne).map(|e| edge(&face_points, e)));
+        out.extend((0..parent.vertex_count).map(|v| vertex(&face_points, v)));
+        return out;
+    }
+    let mut out = vec![DVec3::ZERO; child_count];
+    let (faces, rest) = out.split_at_mut(nf);
+    let (edges, vertices) = rest.split_at_mut(ne);
+    {
+        use rayon::prelude::*;
+        faces
+            .par_iter_mut()
+            .enumerate()
+            .for_each(|(f, p)| *p = face(f));
+        let faces: &[DVec3] = faces;
+        edges
+            .par_iter_mut()
+            .enumerate()
+            .for_each(|(e, p)| *p = edge(faces, e));
+        vertices
+            .par_iter_mut()
+            .enumerate()
+            .for_each(|(v, p)| *p = vertex(faces, v));
+    }
+    out
+}
+
+/// [`interpolate`] through [`point_mask`] for every point.
+fn interpolate_generic(
     parent: &Level,
     split: Split,
     options: Options,

@@ -43,35 +43,51 @@ pub(crate) fn refine_topology(parent: &Level, split: Split, method: CreaseMethod
 }
 
 /// Child edges `2e` and `2e + 1` are the halves of parent edge `e` (at its
-/// first and second end), with their sharpness.
+/// first and second end), with their sharpness; then `extra` edges of
+/// sharpness 0 the caller pushes. Vertex sharpness decrements.
 fn split_edges(
     parent: &Level,
     first_edge_point: u32,
     first_vertex_point: u32,
+    extra: usize,
     method: CreaseMethod,
     child: &mut Level,
 ) {
     let ne = parent.edge_count();
-    child.edge_vertices.reserve(2 * ne);
-    child.edge_sharpness.reserve(2 * ne);
+    child.edge_vertices.reserve_exact(2 * ne + extra);
     for (e, &[a, b]) in parent.edge_vertices.iter().enumerate() {
         let ep = first_edge_point + e as u32;
         child.edge_vertices.push([first_vertex_point + a, ep]);
         child.edge_vertices.push([ep, first_vertex_point + b]);
-        child
-            .edge_sharpness
-            .push(child_edge_sharpness(parent, e as u32, a, method));
-        child
-            .edge_sharpness
-            .push(child_edge_sharpness(parent, e as u32, b, method));
     }
-    child.vertex_sharpness = vec![0.0; first_vertex_point as usize];
-    child
-        .vertex_sharpness
-        .extend(parent.vertex_sharpness.iter().map(|&s| decrement(s)));
+    let total = 2 * ne + extra;
+    if parent.edge_sharpness.iter().all(|&s| s == 0.0) {
+        // Nothing sharp: every child edge is smooth (no per-edge rule).
+        child.edge_sharpness = vec![0.0; total];
+    } else {
+        child.edge_sharpness = Vec::with_capacity(total);
+        for (e, &[a, b]) in parent.edge_vertices.iter().enumerate() {
+            child
+                .edge_sharpness
+                .push(child_edge_sharpness(parent, e as u32, a, method));
+            child
+                .edge_sharpness
+                .push(child_edge_sharpness(parent, e as u32, b, method));
+        }
+        child.edge_sharpness.resize(total, 0.0);
+    }
+    if parent.vertex_sharpness.iter().all(|&s| s == 0.0) {
+        child.vertex_sharpness = vec![0.0; first_vertex_point as usize + parent.vertex_count];
+    } else {
+        child.vertex_sharpness = vec![0.0; first_vertex_point as usize];
+        child
+            .vertex_sharpness
+            .extend(parent.vertex_sharpness.iter().map(|&s| decrement(s)));
+    }
 }
 
 /// The child half of parent edge `e` that touches parent vertex `v`.
+#[inline]
 fn half(parent: &Level, e: u32, v: u32) -> u32 {
     2 * e + u32::from(parent.edge_vertices[e as usize][0] != v)
 }
@@ -87,40 +103,40 @@ fn split_quads(parent: &Level, method: CreaseMethod) -> Level {
         vertex_count: (nf + ne + nv) as usize,
         ..Level::default()
     };
-    split_edges(parent, nf, nf + ne, method, &mut child);
+    split_edges(parent, nf, nf + ne, corners, method, &mut child);
     // Edge 2E + c joins the edge point of corner c's edge to the face point.
     for f in 0..nf {
-        for c in parent.face_corners(f) {
-            child.edge_vertices.push([nf + parent.face_edges[c], f]);
+        for &e in &parent.face_edges[parent.face_corners(f)] {
+            child.edge_vertices.push([nf + e, f]);
         }
     }
-    child.edge_sharpness.resize(child.edge_vertices.len(), 0.0);
     child.face_offsets = (0..=corners as u32).map(|i| 4 * i).collect();
-    child.face_vertices.reserve(4 * corners);
-    child.face_edges.reserve(4 * corners);
-    child.face_origin.reserve(corners);
-    for f in 0..parent.face_count() {
-        let r = parent.face_corners(f as u32);
-        let origin = parent.face_origin[f];
-        for c in r.clone() {
-            let p = if c == r.start { r.end - 1 } else { c - 1 };
-            let (v, e, ep) = (
-                parent.face_vertices[c],
-                parent.face_edges[c],
-                parent.face_edges[p],
-            );
-            child
-                .face_vertices
-                .extend_from_slice(&[nf + ne + v, nf + e, f as u32, nf + ep]);
-            child.face_edges.extend_from_slice(&[
+    // Child face c (one per parent corner c): the corner's vertex point, the
+    // edge points of its edge and of the edge before, the face point.
+    let mut face_vertices = Vec::with_capacity(4 * corners);
+    let mut face_edges = Vec::with_capacity(4 * corners);
+    let mut face_origin = Vec::with_capacity(corners);
+    for f in 0..nf {
+        let r = parent.face_corners(f);
+        let (start, n) = (r.start, r.len());
+        let fv = &parent.face_vertices[r.clone()];
+        let fe = &parent.face_edges[r];
+        for k in 0..n {
+            let p = if k == 0 { n - 1 } else { k - 1 };
+            let (v, e, ep) = (fv[k], fe[k], fe[p]);
+            face_vertices.extend_from_slice(&[nf + ne + v, nf + e, f, nf + ep]);
+            face_edges.extend_from_slice(&[
                 half(parent, e, v),
-                2 * ne + c as u32,
-                2 * ne + p as u32,
+                2 * ne + (start + k) as u32,
+                2 * ne + (start + p) as u32,
                 half(parent, ep, v),
             ]);
-            child.face_origin.push(origin);
         }
+        face_origin.extend(std::iter::repeat_n(parent.face_origin[f as usize], n));
     }
+    child.face_vertices = face_vertices;
+    child.face_edges = face_edges;
+    child.face_origin = face_origin;
     child
 }
 
@@ -134,41 +150,64 @@ fn split_triangles(parent: &Level, method: CreaseMethod) -> Level {
         vertex_count: (ne + nv) as usize,
         ..Level::default()
     };
-    split_edges(parent, 0, ne, method, &mut child);
+    split_edges(parent, 0, ne, 3 * nf as usize, method, &mut child);
     // Edge 2E + 3f + i cuts off corner i: it joins the edge points of the
     // edges before and after that corner.
-    for f in 0..nf as usize {
-        let fe = &parent.face_edges[3 * f..3 * f + 3];
-        for i in 0..3 {
-            child.edge_vertices.push([fe[i], fe[(i + 2) % 3]]);
-            child.edge_sharpness.push(0.0);
-        }
+    for fe in parent.face_edges.chunks_exact(3) {
+        child
+            .edge_vertices
+            .extend_from_slice(&[[fe[0], fe[2]], [fe[1], fe[0]], [fe[2], fe[1]]]);
     }
     child.face_offsets = (0..=4 * nf).map(|i| 3 * i).collect();
-    child.face_vertices.reserve(12 * nf as usize);
-    child.face_edges.reserve(12 * nf as usize);
-    for f in 0..nf as usize {
-        let fv = &parent.face_vertices[3 * f..3 * f + 3];
-        let fe = &parent.face_edges[3 * f..3 * f + 3];
-        let inner = |i: usize| 2 * ne + 3 * f as u32 + i as u32;
-        for i in 0..3 {
-            let before = fe[(i + 2) % 3];
-            child
-                .face_vertices
-                .extend_from_slice(&[ne + fv[i], fe[i], before]);
-            child.face_edges.extend_from_slice(&[
-                half(parent, fe[i], fv[i]),
-                inner(i),
-                half(parent, before, fv[i]),
-            ]);
-        }
-        child.face_vertices.extend_from_slice(fe);
-        child
-            .face_edges
-            .extend_from_slice(&[inner(1), inner(2), inner(0)]);
-        let origin = parent.face_origin[f];
-        child.face_origin.extend_from_slice(&[origin; 4]);
+    let mut face_vertices = Vec::with_capacity(12 * nf as usize);
+    let mut face_edges = Vec::with_capacity(12 * nf as usize);
+    for (f, (fv, fe)) in parent
+        .face_vertices
+        .chunks_exact(3)
+        .zip(parent.face_edges.chunks_exact(3))
+        .enumerate()
+    {
+        let inner = |i: u32| 2 * ne + 3 * f as u32 + i;
+        let halves = [
+            half(parent, fe[0], fv[0]),
+            half(parent, fe[2], fv[0]),
+            half(parent, fe[1], fv[1]),
+            half(parent, fe[0], fv[1]),
+            half(parent, fe[2], fv[2]),
+            half(parent, fe[1], fv[2]),
+        ];
+        face_vertices.extend_from_slice(&[
+            ne + fv[0],
+            fe[0],
+            fe[2],
+            ne + fv[1],
+            fe[1],
+            fe[0],
+            ne + fv[2],
+            fe[2],
+            fe[1],
+            fe[0],
+            fe[1],
+            fe[2],
+        ]);
+        face_edges.extend_from_slice(&[
+            halves[0],
+            inner(0),
+            halves[1],
+            halves[2],
+            inner(1),
+            halves[3],
+            halves[4],
+            inner(2),
+            halves[5],
+            inner(1),
+            inner(2),
+            inner(0),
+        ]);
     }
+    child.face_vertices = face_vertices;
+    child.face_edges = face_edges;
+    child.face_origin = parent.face_origin.iter().flat_map(|&o| [o; 4]).collect();
     child
 }
 

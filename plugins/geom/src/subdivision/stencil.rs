@@ -7,6 +7,14 @@ use glam::DVec3;
 use super::rules::Sink;
 use super::{ChildPoint, Refiner, child_count, child_point, point_mask};
 
+// What the doc above promises.
+const _: () = {
+    const fn send_and_sync<T: Send + Sync>() {}
+    send_and_sync::<StencilTable>();
+    send_and_sync::<StencilEvaluation>();
+    send_and_sync::<Refiner>();
+};
+
 /// One level's weights: child point `i` is `Σ weights[k] · parent[columns[k]]`
 /// over `k` in `offsets[i]..offsets[i + 1]`.
 #[derive(Clone, Debug, Default)]
@@ -18,6 +26,25 @@ struct Rows {
 
 /// The weights of every level of a [`Refiner`], from the same masks as
 /// [`Refiner::refine`], with face points expanded into their vertices.
+///
+/// Built by [`Refiner::stencils`]. A table owns all it holds and is `Send`
+/// and `Sync` (as are [`Refiner`] and [`StencilEvaluation`]), so it can be
+/// built on a worker thread from an `Arc<Refiner>` when the topology
+/// changes and handed to the thread that drags:
+///
+/// ```
+/// use std::sync::Arc;
+/// use hedra_geom::Primitive;
+/// use hedra_geom::subdivision::{Creases, Options, Refiner};
+/// let cube = Primitive::Cube { size: 2.0 }.build()?;
+/// let refiner = Arc::new(Refiner::new(&cube, &Creases::default(), Options::default(), 2)?);
+/// let cage = refiner.cage_positions(&cube);
+/// let worker = Arc::clone(&refiner);
+/// let table = std::thread::spawn(move || worker.stencils()).join().unwrap();
+/// let (by_table, by_masks) = (table.apply(&cage), refiner.refine(&cage));
+/// assert!(by_table.iter().zip(&by_masks).all(|(a, b)| a.distance(*b) < 1e-12));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 #[derive(Clone, Debug, Default)]
 pub struct StencilTable {
     steps: Vec<Rows>,
@@ -143,7 +170,12 @@ impl StencilTable {
 
     /// Moves cage vertices (by [`Refiner::cage_positions`] index) and
     /// recomputes only the points they influence, level by level (what a
-    /// drag needs). Complexity: O(weights of the influenced rows).
+    /// drag needs). Where the moved vertices reach much of a level (a cage
+    /// of few faces, or many vertices moved), that level and the ones after
+    /// it are recomputed whole, in order, which is then cheaper than
+    /// visiting the points one by one: an update never costs much more than
+    /// [`apply`](Self::apply). Complexity: O(weights of the influenced rows),
+    /// at most O(nonzeros).
     pub fn update(&self, eval: &mut StencilEvaluation, moved: &[(u32, DVec3)]) {
         eval.serial = eval.serial.wrapping_add(1);
         if eval.serial == 0 {
@@ -156,21 +188,50 @@ impl StencilTable {
             eval.levels[0][v as usize] = p;
             dirty.push(v);
         }
+        let mut whole = false;
         for (k, rows) in self.steps.iter().enumerate() {
+            let (parents, rest) = eval.levels.split_at_mut(k + 1);
+            let (parent, child) = (&parents[k], &mut rest[0]);
+            let n = child.len();
             let (offsets, children) = &self.feeds[k];
+            if !whole {
+                // How many (parent, child) pairs the dirty points feed: the
+                // work of finding the dirty children, and an upper bound on
+                // their weights. Past a quarter of the level's weights,
+                // visiting them one by one (scattered) costs more than
+                // recomputing the level in order.
+                let reach: usize = dirty
+                    .iter()
+                    .map(|&d| (offsets[d as usize + 1] - offsets[d as usize]) as usize)
+                    .sum();
+                whole = 4 * reach > rows.columns.len();
+            }
+            if whole {
+                for (i, p) in child.iter_mut().enumerate() {
+                    *p = row(rows, parent, i);
+                }
+                continue;
+            }
+            let marks = &mut eval.marks[k + 1];
             let mut next = Vec::new();
             for &d in &dirty {
                 for &c in &children[offsets[d as usize] as usize..offsets[d as usize + 1] as usize]
                 {
-                    let mark = &mut eval.marks[k + 1][c as usize];
+                    let mark = &mut marks[c as usize];
                     if *mark != serial {
                         *mark = serial;
                         next.push(c);
                     }
                 }
             }
-            let (parents, rest) = eval.levels.split_at_mut(k + 1);
-            let (parent, child) = (&parents[k], &mut rest[0]);
+            // Many points: in index order, so the rows and points are read
+            // forwards (a few hundred fit in the cache in any order).
+            if next.len() > n / 32 {
+                next.clear();
+                next.extend((0..n as u32).filter(|&c| marks[c as usize] == serial));
+            } else if next.len() > 4096 {
+                next.sort_unstable();
+            }
             for &c in &next {
                 child[c as usize] = row(rows, parent, c as usize);
             }
