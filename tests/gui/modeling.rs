@@ -3062,3 +3062,49 @@ fn a_big_decimate_builds_in_the_background_with_progress_and_cancel() {
     assert!(user.status().contains("cancelled"), "{}", user.status());
     assert_eq!(user.undo_steps(), steps + 2, "nothing changed");
 }
+
+/// Issue 16, no hitch when a drag starts: giving a mesh a subdivision
+/// modifier (Ctrl+3) starts building its stencil table on a worker thread
+/// at once, so it is ready before the first vertex is dragged (it used to
+/// be built on the first drag frame); the drag then moves the smooth shape.
+#[test]
+fn the_stencils_of_a_smooth_preview_are_built_before_the_first_drag() {
+    let mut user = User::new();
+    execute(
+        &mut user,
+        "AddPrimitive(primitive: Torus(major_segments: 48, minor_segments: 24, major_radius: 1.0, minor_radius: 0.3), name: Some(\"Ring\"))",
+    );
+    let ring = node_named(&user, "Ring").unwrap().id;
+    user.app
+        .world_mut()
+        .resource_mut::<hedra_edit::Selection>()
+        .set([ring]);
+    user.shortcut(&[KeyCode::ControlLeft], KeyCode::Digit3);
+    user.frames(2);
+    let mut ready = false;
+    for _ in 0..500 {
+        user.frames(1);
+        if user
+            .app
+            .world()
+            .resource::<hedra_scene::SmoothPreviews>()
+            .stencils_ready(ring)
+        {
+            ready = true;
+            break;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(10));
+    }
+    assert!(ready, "the stencils were built without a drag");
+    user.tap(KeyCode::Tab);
+    user.tap(KeyCode::KeyA);
+    user.frames(2);
+    let before = user.render_positions();
+    user.tap(KeyCode::KeyG);
+    user.tap(KeyCode::KeyY);
+    user.type_text("1");
+    user.frames(2);
+    let moved = user.render_positions();
+    assert_ne!(before, moved, "the smooth shape follows the drag");
+    user.tap(KeyCode::Escape);
+}

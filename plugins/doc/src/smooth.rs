@@ -97,6 +97,11 @@ impl SmoothRefinement {
         })
     }
 
+    /// True when the stencils are there (a drag re-applies them).
+    pub fn has_stencils(&self) -> bool {
+        self.stencils.is_some()
+    }
+
     /// Installs stencils a [`stencil_job`](Self::stencil_job) of this
     /// refinement made; later [`points`](Self::points) calls update them.
     /// Stencils that exist already are kept.
@@ -123,7 +128,15 @@ impl SmoothRefinement {
     /// first call refines through the masks; later calls re-apply the
     /// stencils to the cage vertices that moved since the last call.
     pub fn points(&mut self, cage: &Arc<HalfEdgeMesh>) -> Vec<DVec3> {
-        let first = self.stencils.is_none() && Arc::ptr_eq(&self.cage, cage);
+        self.points_with(cage, true)
+    }
+
+    /// As [`points`](Self::points), but while `build_stencils` is false
+    /// (their [`stencil_job`](Self::stencil_job) runs elsewhere) a moved
+    /// cage is refined through the masks instead of building the stencils
+    /// on this frame.
+    pub fn points_with(&mut self, cage: &Arc<HalfEdgeMesh>, build_stencils: bool) -> Vec<DVec3> {
+        let first = self.stencils.is_none() && (!build_stencils || Arc::ptr_eq(&self.cage, cage));
         self.cage = cage.clone();
         let cage_points = self.refiner.cage_positions(cage);
         if first || self.refiner.face_count() > STENCIL_FACE_LIMIT {

@@ -11,7 +11,7 @@ use std::thread::JoinHandle;
 
 use crate::buffers_mesh;
 use bevy::prelude::*;
-use hedra_doc::smooth::SmoothRefinement;
+use hedra_doc::smooth::{PreparedStencils, SmoothRefinement};
 use hedra_doc::{NodeId, Shading, SubdivisionModifier};
 use hedra_geom::HalfEdgeMesh;
 use hedra_geom::subdivision::{Creases, Refiner};
@@ -63,6 +63,10 @@ pub struct FinishedJob {
 #[derive(Resource, Default)]
 pub struct SmoothPreviews {
     done: HashMap<NodeId, SmoothRefinement>,
+    /// Stencil tables being built on worker threads for the refinements in
+    /// `done` (started when a refinement is made, so the first drag frame
+    /// does not pay for them).
+    stencils: HashMap<NodeId, JoinHandle<PreparedStencils>>,
     jobs: HashMap<NodeId, Job>,
     /// Sources the user cancelled: not started again until they change.
     cancelled: HashMap<NodeId, JobKey>,
@@ -86,10 +90,18 @@ impl SmoothPreviews {
     /// Forgets nodes that no longer have a smooth preview.
     pub fn retain(&mut self, keep: impl Fn(NodeId) -> bool) {
         self.done.retain(|n, _| keep(*n));
+        self.stencils.retain(|n, _| keep(*n));
         self.cancelled.retain(|n, _| keep(*n));
         for (_, job) in self.jobs.extract_if(|n, _| !keep(*n)) {
             job.cancel.store(true, Ordering::Relaxed);
         }
+    }
+
+    /// True when `node`'s stencils are built (installed, or finished on
+    /// their worker and installed on the next frame that draws it).
+    pub fn stencils_ready(&self, node: NodeId) -> bool {
+        self.done.get(&node).is_some_and(|r| r.has_stencils())
+            || self.stencils.get(&node).is_some_and(|j| j.is_finished())
     }
 
     /// The background refinements running: a label and the fraction done.
@@ -193,7 +205,7 @@ impl SmoothPreviews {
             let cancelled = job.cancel.load(Ordering::Relaxed);
             let result = match job.handle.join() {
                 Ok(Ok((refinement, mesh))) => {
-                    self.done.insert(node, refinement);
+                    self.keep(node, refinement);
                     Ok(mesh)
                 }
                 Ok(Err(e)) => Err(e),
@@ -219,10 +231,39 @@ impl SmoothPreviews {
             .is_some_and(|r| r.fits(src.cage, src.creases, src.modifier));
         if !reuse {
             let r = SmoothRefinement::new(src.cage, src.creases, src.modifier)?;
-            self.done.insert(src.node, r);
+            self.keep(src.node, r);
         }
+        // Stencils built meanwhile are installed; while they are still
+        // being built, a drag frame refines through the masks.
+        let building = match self.stencils.remove(&src.node) {
+            Some(job) if job.is_finished() => {
+                if let (Ok(prepared), Some(r)) = (job.join(), self.done.get_mut(&src.node)) {
+                    r.set_stencils(prepared);
+                }
+                false
+            }
+            Some(job) => {
+                self.stencils.insert(src.node, job);
+                true
+            }
+            None => false,
+        };
         let r = self.done.get_mut(&src.node).expect("inserted above");
-        Ok(r.points(src.cage))
+        Ok(r.points_with(src.cage, !building))
+    }
+
+    /// Keeps a new refinement of `node` and starts building its stencils on
+    /// a worker thread (issue 16: no hitch when a drag starts).
+    fn keep(&mut self, node: NodeId, refinement: SmoothRefinement) {
+        match refinement.stencil_job() {
+            Some(job) => {
+                self.stencils.insert(node, std::thread::spawn(job));
+            }
+            None => {
+                self.stencils.remove(&node);
+            }
+        }
+        self.done.insert(node, refinement);
     }
 
     /// A triangle render mesh of the smooth shape.
