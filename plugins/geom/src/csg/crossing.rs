@@ -192,18 +192,14 @@ fn build(
     end: usize,
 ) -> u32 {
     let at = nodes.len();
-    let (lo, hi) = boxes[start..end].iter().fold(
-        (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
-        |(lo, hi), b| (lo.min(b.0), hi.max(b.1)),
-    );
     nodes.push(Node {
-        lo,
-        hi,
+        lo: DVec3::ZERO,
+        hi: DVec3::ZERO,
         start: start as u32,
         end: end as u32,
         right: u32::MAX,
     });
-    if end - start > LEAF {
+    let (lo, hi) = if end - start > LEAF {
         // Split where the highest differing bit of the Morton codes flips
         // (Karras, "Maximizing Parallelism in the Construction of BVHs,
         // Octrees, and k-d Trees", 2012), so each half is one block of
@@ -216,10 +212,19 @@ fn build(
             let high = |c: u32| c >> bit;
             start + codes[start..end].partition_point(|&c| high(c) == high(first))
         };
-        build(nodes, boxes, codes, start, mid);
+        let left = build(nodes, boxes, codes, start, mid) as usize;
         let right = build(nodes, boxes, codes, mid, end);
         nodes[at].right = right;
-    }
+        let (l, r) = (&nodes[left], &nodes[right as usize]);
+        (l.lo.min(r.lo), l.hi.max(r.hi))
+    } else {
+        boxes[start..end].iter().fold(
+            (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+            |(lo, hi), b| (lo.min(b.0), hi.max(b.1)),
+        )
+    };
+    nodes[at].lo = lo;
+    nodes[at].hi = hi;
     at as u32
 }
 

@@ -287,8 +287,15 @@ pub fn boolean_with_options(
     options: &BooleanOptions,
 ) -> Result<BooleanResult, BooleanError> {
     let input = stages::to_arrays(a, b)?;
-    stages::check_crossings(&input, options.check_crossings)?;
-    let out = stages::engine(&input, op, options.tolerance)?;
+    // The check runs beside the engine (a second core is free: the
+    // engine runs on one); a crossing operand explains an engine failure,
+    // so its error comes first.
+    let (out, crossings) = rayon::join(
+        || stages::engine(&input, op, options.tolerance),
+        || stages::check_crossings(&input, options.check_crossings),
+    );
+    crossings?;
+    let out = out?;
     let merged = stages::merge_back(&out, &input, [a, b]);
     stages::build(merged, [a, b])
 }
@@ -363,10 +370,9 @@ pub mod stages {
             let faces: Vec<u32> = t.triangle_face.iter().map(|f| f - base).collect();
             crossing::crossing_face_pairs(&t.points, &t.corners, &faces).len()
         };
-        // The two operands on two threads when there are cores to spare.
-        let (pairs_a, pairs_b) = rayon::join(
-            || count(&input.a, which[0], 0),
-            || count(&input.b, which[1], base),
+        let (pairs_a, pairs_b) = (
+            count(&input.a, which[0], 0),
+            count(&input.b, which[1], base),
         );
         for (face_pairs, operand) in [(pairs_a, Operand::A), (pairs_b, Operand::B)] {
             if face_pairs > 0 {
