@@ -138,6 +138,23 @@ fn bench(c: &mut Criterion) {
         b.iter(|| std::hint::black_box(csg::evaluate(&s.doc, emblem).unwrap()))
     });
     let mut step = 0u64;
+    // The command alone, without evaluating: what a frame costs besides
+    // the CSG.
+    {
+        let id = s.doc.find_by_name("Rod Z").unwrap().id;
+        let base = s.doc.node(id).unwrap().transform;
+        g.bench_function("emblem_10k_set_transform_only", |b| {
+            b.iter(|| {
+                step += 1;
+                let mut t = base;
+                t.translation.x += 1e-6 * step as f64;
+                s.execute(&Command::SetTransforms {
+                    nodes: vec![(NodeRef::Id(id.0), t)],
+                })
+                .unwrap();
+            })
+        });
+    }
     for (quality, prefix) in [
         (csg::Quality::Exact, "emblem_10k_move"),
         (csg::Quality::DRAG, "emblem_10k_preview_move"),

@@ -177,10 +177,11 @@ impl Quality {
     };
 }
 
-/// Triangles per operand in [`Quality::DRAG`]: the emblem's five operands
-/// at this size re-evaluate in well under 16 ms a frame (see
-/// `benches/csg.rs`).
-pub const PREVIEW_FACES: usize = 1000;
+/// Triangles per operand in [`Quality::DRAG`]: small enough that a drag
+/// frame of the emblem (one boolean on simplified operands) costs about
+/// the 16 ms budget on a 2-core machine (see `benches/csg.rs` and
+/// `docs/csg.md`), large enough that round operands still look round.
+pub const PREVIEW_FACES: usize = 300;
 
 /// The tolerance every CSG evaluation uses (the engine's own precision
 /// decides; slivers thinner than this are collapsed).
@@ -399,6 +400,16 @@ impl CsgTree {
             })?;
             inputs.push((o.name.clone(), key, placed));
         }
+        if matches!(quality, Quality::Preview { .. }) && inputs.len() > 2 {
+            // The operands after the first commute (A − B − C = A − C − B;
+            // union and intersection in any order): a preview folds the
+            // ones unchanged longest first, so the cached prefix covers all
+            // but the one being dragged, whichever it is, and a frame
+            // re-runs one boolean. Exact evaluation keeps the document's
+            // order, so its mesh does not depend on the cache's history.
+            let age = |key: u64| first_seen(key);
+            inputs[1..].sort_by_key(|x| age(x.1));
+        }
         let Some(first) = inputs.first() else {
             return Err(CsgError::NoOperands { node: label });
         };
@@ -455,6 +466,21 @@ impl CsgTree {
     }
 }
 
+/// When an operand fingerprint was first met (a counter), for ordering a
+/// preview's fold.
+fn first_seen(key: u64) -> u64 {
+    static SEEN: OnceLock<Mutex<(HashMap<u64, u64>, u64)>> = OnceLock::new();
+    let Ok(mut seen) = SEEN.get_or_init(|| Mutex::new((HashMap::new(), 0))).lock() else {
+        return 0;
+    };
+    if seen.0.len() >= 4096 {
+        seen.0.clear();
+    }
+    seen.1 += 1;
+    let next = seen.1;
+    *seen.0.entry(key).or_insert(next)
+}
+
 /// A mesh operand, checked (closed, manifold, not crossing itself: once
 /// per mesh, cached), and in a preview replaced by its simplified copy;
 /// with its fingerprint.
@@ -504,7 +530,7 @@ fn leaf(
 ///
 /// Complexity: O(n log n) for n triangles.
 pub fn preview_proxy(mesh: &HalfEdgeMesh, faces: usize) -> HalfEdgeMesh {
-    use hedra_geom::progressive::{DecimateOptions, DecimateTarget, decimate};
+    use hedra_geom::progressive::{DecimateOptions, DecimateTarget, ProgressiveMesh};
     let triangles: usize = mesh
         .faces()
         .map(|f| mesh.face_degree(f).saturating_sub(2))
@@ -513,10 +539,21 @@ pub fn preview_proxy(mesh: &HalfEdgeMesh, faces: usize) -> HalfEdgeMesh {
         return mesh.clone();
     }
     let options = DecimateOptions::default();
-    let target = DecimateTarget::Faces(faces);
-    match decimate(mesh, &hedra_geom::Creases::default(), &options, target) {
-        Ok(proxy) if hedra_geom::csg::check_operand(&proxy).is_ok() => proxy,
-        _ => mesh.clone(),
+    let creases = hedra_geom::Creases::default();
+    let Ok(mut pm) = ProgressiveMesh::build(mesh, &creases, &options) else {
+        return mesh.clone();
+    };
+    // Below the coarsest level (sharp edges hold a cube's grid vertices
+    // on its edges), the coarsest level.
+    let level = pm.level_for(DecimateTarget::Faces(faces)).unwrap_or(0);
+    if pm.seek(level).is_err() {
+        return mesh.clone();
+    }
+    let proxy = pm.output_mesh(&pm.level_creases(&creases), &options);
+    if hedra_geom::csg::check_operand(&proxy).is_ok() {
+        proxy
+    } else {
+        mesh.clone()
     }
 }
 

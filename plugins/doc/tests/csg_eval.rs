@@ -155,6 +155,17 @@ fn the_drag_preview_uses_simplified_operands_close_to_the_exact_solid() {
     // and the simplified operands are not made again.
     nudge(&mut s, "Rod Z", 0.02);
     assert_eq!(counted(&s, "Emblem", preview_quality).1, 1);
+    // Dragging the first rod: the preview folds it last from the second
+    // frame on, so each frame re-runs one boolean, not three.
+    nudge(&mut s, "Rod Y", 0.02);
+    counted(&s, "Emblem", preview_quality);
+    for _ in 0..3 {
+        nudge(&mut s, "Rod Y", 0.01);
+        let (frame, runs) = counted(&s, "Emblem", preview_quality);
+        assert_eq!(runs, 1);
+        check(&frame);
+        assert!((frame.volume() - vp).abs() < 0.03 * vp);
+    }
     // The proxy of a small mesh is the mesh itself.
     let cube = Primitive::Cube { size: 1.0 }.build().unwrap();
     assert_eq!(csg::preview_proxy(&cube, 400), cube);
@@ -165,6 +176,27 @@ fn the_drag_preview_uses_simplified_operands_close_to_the_exact_solid() {
     }
     .build()
     .unwrap();
+    // A finely divided cube simplifies too, as far as its sharp edges let
+    // it (the vertices on them stay on them).
+    let mut s2 = Session::new();
+    let (positions, polygons) = fine_cube(20);
+    s2.execute(&Command::AddMesh {
+        name: "Fine".into(),
+        positions,
+        polygons,
+        parent: None,
+        transform: NodeTransform::IDENTITY,
+    })
+    .unwrap();
+    let fine = s2.doc.find_by_name("Fine").unwrap();
+    let hedra_doc::NodeContent::Mesh(content) = &fine.content else {
+        panic!()
+    };
+    assert_eq!(content.mesh.face_count(), 2400);
+    let proxy = csg::preview_proxy(&content.mesh, 400);
+    assert!(proxy.face_count() <= 400, "{}", proxy.face_count());
+    check(&proxy);
+    assert!((proxy.volume() - 8.0).abs() < 1e-9, "{}", proxy.volume());
     let proxy = csg::preview_proxy(&sphere, 400);
     assert!(proxy.face_count() <= 400, "{}", proxy.face_count());
     check(&proxy);
@@ -239,4 +271,42 @@ fn a_tree_evaluates_on_a_worker_thread() {
         e.to_string(),
         "'Cube' has no operands (add meshes or CSG nodes under it)"
     );
+}
+
+/// A cube of side 2 with n × n quads on each face.
+fn fine_cube(n: u32) -> (Vec<DVec3>, Vec<Vec<u32>>) {
+    let mut positions = Vec::new();
+    let mut index = std::collections::HashMap::new();
+    let mut polygons = Vec::new();
+    let mut at = |p: DVec3, positions: &mut Vec<DVec3>| {
+        let key = (p * 1e6).round().as_i64vec3().to_array();
+        *index.entry(key).or_insert_with(|| {
+            positions.push(p);
+            positions.len() as u32 - 1
+        })
+    };
+    for axis in 0..3 {
+        for side in [-1.0, 1.0] {
+            let normal = DVec3::AXES[axis] * side;
+            let u = DVec3::AXES[(axis + 1) % 3];
+            let v = normal.cross(u);
+            let corner = |i: u32, j: u32| {
+                normal
+                    + u * (2.0 * i as f64 / n as f64 - 1.0)
+                    + v * (2.0 * j as f64 / n as f64 - 1.0)
+            };
+            for i in 0..n {
+                for j in 0..n {
+                    let q = [
+                        corner(i, j),
+                        corner(i + 1, j),
+                        corner(i + 1, j + 1),
+                        corner(i, j + 1),
+                    ];
+                    polygons.push(q.map(|p| at(p, &mut positions)).to_vec());
+                }
+            }
+        }
+    }
+    (positions, polygons)
 }
