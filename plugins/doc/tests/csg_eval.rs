@@ -250,6 +250,19 @@ fn a_self_intersecting_operand_is_refused_naming_the_node() {
         "'Merge': operand 'Twin' intersects itself: 6 pairs of its faces cross"
     );
     assert!(s.doc.find_by_name("Merge").is_none(), "nothing changed");
+    // The one-shot boolean names it the same way and changes nothing.
+    let e = s
+        .execute(&Command::Boolean {
+            node: name("Box"),
+            other: name("Twin"),
+            op: BooleanOp::Difference,
+        })
+        .unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "'Box': operand 'Twin' intersects itself: 6 pairs of its faces cross"
+    );
+    assert_eq!(s.doc.find_by_name("Box").map(|n| n.id), Some(id(&s, "Box")));
 }
 
 #[test]
