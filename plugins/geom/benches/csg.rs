@@ -2,11 +2,15 @@
 //! 160k triangles each, Hedra's whole call (half-edge meshes in and out,
 //! polygons merged back) against the engine alone on the same triangles
 //! (building its input from flat arrays, then the boolean; and the
-//! boolean alone). Goal: the conversions cost under 30 % of the boolean.
+//! boolean alone). Goal: Hedra's call within 1.5× of the engine's from
+//! the same arrays. The `stage_*` benches time the parts of Hedra's call
+//! one by one: triangulating into arrays, the self-intersection check,
+//! the engine (with face numbers), merging polygons back, building the
+//! half-edge mesh with vertex provenance.
 
 use boolmesh::prelude::{Manifold, OpType, compute_boolean};
 use criterion::{Criterion, criterion_main};
-use hedra_geom::csg::{BooleanOp, boolean};
+use hedra_geom::csg::{BooleanOp, boolean, stages};
 use hedra_geom::{DVec3, HalfEdgeMesh, Primitive};
 use std::hint::black_box;
 
@@ -74,6 +78,27 @@ fn bench(c: &mut Criterion) {
     let mb = Manifold::new(&pb, &ib).unwrap();
     g.bench_function("union_spheres_160k_engine_boolean_only", |bench| {
         bench.iter(|| black_box(compute_boolean(&ma, &mb, OpType::Add).unwrap()))
+    });
+    let input = stages::to_arrays(&a, &b).unwrap();
+    g.bench_function("stage_to_arrays", |bench| {
+        bench.iter(|| black_box(stages::to_arrays(&a, &b).unwrap()))
+    });
+    g.bench_function("stage_check_crossings", |bench| {
+        bench.iter(|| stages::check_crossings(black_box(&input), [true; 2]).unwrap())
+    });
+    g.bench_function("stage_engine", |bench| {
+        bench.iter(|| black_box(stages::engine(&input, BooleanOp::Union, 0.0).unwrap()))
+    });
+    let out = stages::engine(&input, BooleanOp::Union, 0.0).unwrap();
+    g.bench_function("stage_merge_back", |bench| {
+        bench.iter(|| black_box(stages::merge_back(&out, &input, [&a, &b])))
+    });
+    g.bench_function("stage_build", |bench| {
+        bench.iter_batched(
+            || stages::merge_back(&out, &input, [&a, &b]),
+            |merged| black_box(stages::build(merged, [&a, &b]).unwrap()),
+            criterion::BatchSize::LargeInput,
+        )
     });
     g.finish();
 }

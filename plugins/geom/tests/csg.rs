@@ -2,7 +2,10 @@
 //! degenerate cases that break naive booleans (each named), polygons merged
 //! back, named errors, and a property test over random primitive pairs.
 
-use hedra_geom::csg::{BooleanError, BooleanOp, Operand, boolean, boolean_with_sources};
+use hedra_geom::csg::{
+    BooleanError, BooleanOp, Operand, boolean, boolean_with_sources, check_operand,
+    self_intersections,
+};
 use hedra_geom::{DMat4, DQuat, DVec3, HalfEdgeMesh, Primitive};
 use proptest::prelude::*;
 
@@ -296,6 +299,97 @@ fn an_open_operand_is_refused_with_its_border_edge_count() {
             operand: Operand::A
         }
     );
+}
+
+/// One mesh of two shells: a unit cube and a copy moved by `offset`.
+fn two_shells(offset: DVec3) -> HalfEdgeMesh {
+    let (mut positions, mut polygons) = cube(1.0).to_polygons();
+    let (p2, f2) = at(cube(1.0), offset).to_polygons();
+    let base = positions.len() as u32;
+    positions.extend(p2);
+    polygons.extend(
+        f2.into_iter()
+            .map(|f| f.into_iter().map(|v| v + base).collect()),
+    );
+    HalfEdgeMesh::from_polygons(&positions, &polygons).unwrap()
+}
+
+#[test]
+fn a_self_intersecting_operand_is_refused_with_its_crossing_face_pairs() {
+    // Cubes [-0.5, 0.5]³ and that moved by (0.5, 0.3, 0.4) in one mesh:
+    // each of the first's +x, +y, +z faces crosses two of the second's
+    // −x, −y, −z faces (the two of the other axes): 6 pairs.
+    let twin = two_shells(DVec3::new(0.5, 0.3, 0.4));
+    twin.validate().unwrap();
+    let pairs = self_intersections(&twin);
+    assert_eq!(pairs.len(), 6, "{pairs:?}");
+    // Every pair is one face of each shell (ids 0..6 and 6..12).
+    assert!(pairs.iter().all(|(f, g)| f.index() < 6 && g.index() >= 6));
+    let e = boolean(&cube(3.0), &twin, BooleanOp::Union, 0.0).unwrap_err();
+    assert_eq!(
+        e,
+        BooleanError::SelfIntersecting {
+            operand: Operand::B,
+            face_pairs: 6
+        }
+    );
+    assert_eq!(
+        e.to_string(),
+        "the second operand intersects itself: 6 pairs of its faces cross"
+    );
+    assert_eq!(
+        check_operand(&twin).unwrap_err().to_string(),
+        "the first operand intersects itself: 6 pairs of its faces cross"
+    );
+    // Shells apart, or touching along a face without crossing: none.
+    assert!(self_intersections(&two_shells(DVec3::X * 2.0)).is_empty());
+    assert!(self_intersections(&two_shells(DVec3::X)).is_empty());
+    // One shell inside the other crosses nothing either (it is a solid
+    // with a cavity, not a crossing).
+    let (mut positions, mut polygons) = cube(3.0).to_polygons();
+    let (p2, f2) = cube(1.0).to_polygons();
+    let base = positions.len() as u32;
+    positions.extend(p2);
+    polygons.extend(
+        f2.into_iter()
+            .map(|f| f.into_iter().rev().map(|v| v + base).collect()),
+    );
+    let hollow = HalfEdgeMesh::from_polygons(&positions, &polygons).unwrap();
+    assert!(self_intersections(&hollow).is_empty());
+}
+
+#[test]
+fn smooth_primitives_and_boolean_results_do_not_intersect_themselves() {
+    let meshes = [
+        Primitive::UvSphere {
+            segments: 64,
+            rings: 32,
+            radius: 1.0,
+        },
+        Primitive::Torus {
+            major_segments: 48,
+            minor_segments: 24,
+            major_radius: 1.0,
+            minor_radius: 0.25,
+        },
+        Primitive::Cylinder {
+            segments: 64,
+            radius: 0.5,
+            depth: 2.0,
+        },
+        Primitive::Cube { size: 1.0 },
+    ];
+    for p in meshes {
+        let m = p.build().unwrap();
+        assert_eq!(self_intersections(&m), vec![], "{p:?}");
+        check_operand(&m).unwrap();
+    }
+    let cube_minus_rods = [DVec3::X, DVec3::Y, DVec3::Z]
+        .iter()
+        .fold(cube(1.0), |acc, &axis| {
+            run(&acc, &rod(axis), BooleanOp::Difference)
+        });
+    assert!(self_intersections(&cube_minus_rods).is_empty());
 }
 
 #[test]

@@ -172,6 +172,7 @@ impl Plan<'_> {
                 | BooleanError::NonManifold { operand, .. }
                 | BooleanError::NotPolygonal { operand, .. }
                 | BooleanError::NonFinite { operand }
+                | BooleanError::SelfIntersecting { operand, .. }
                 | BooleanError::EmptyOperand { operand } => CsgError::Operand {
                     node: format!("'{}'", a.name),
                     operand: if operand == Operand::A {

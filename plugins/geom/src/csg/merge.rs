@@ -9,11 +9,33 @@ use crate::ids::FaceId;
 use crate::mesh::HalfEdgeMesh;
 use glam::DVec3;
 
-/// The merged result: compacted positions, polygons and their sources.
-pub(super) struct Merged {
-    pub positions: Vec<DVec3>,
-    pub polygons: Vec<Vec<u32>>,
-    pub sources: Vec<FaceSource>,
+/// The merged result: compacted positions, polygons (flat) and their sources.
+pub struct Merged {
+    pub(super) positions: Vec<DVec3>,
+    /// Polygon `i` is `corners[starts[i]..starts[i + 1]]`.
+    corners: Vec<u32>,
+    starts: Vec<usize>,
+    pub(super) sources: Vec<FaceSource>,
+}
+
+impl Merged {
+    /// The polygons, as vertex number lists.
+    pub(super) fn polygons(&self) -> impl Iterator<Item = &[u32]> {
+        self.starts.windows(2).map(|w| &self.corners[w[0]..w[1]])
+    }
+
+    /// Appends a polygon of engine vertices, numbering them compactly in
+    /// order of first use (`index`: engine vertex to output vertex).
+    fn emit(&mut self, verts: impl Iterator<Item = usize>, index: &mut [u32], positions: &[DVec3]) {
+        for v in verts {
+            if index[v] == u32::MAX {
+                index[v] = self.positions.len() as u32;
+                self.positions.push(positions[v]);
+            }
+            self.corners.push(index[v]);
+        }
+        self.starts.push(self.corners.len());
+    }
 }
 
 fn find(parent: &mut [u32], mut i: u32) -> u32 {
@@ -29,7 +51,8 @@ fn find(parent: &mut [u32], mut i: u32) -> u32 {
 /// `tails[3t + (k + 1) % 3]`, its twin is `pairs[3t + k]`) by their source
 /// numbers `sources[t]`.
 ///
-/// Complexity: O(n α(n)) for n triangles.
+/// Complexity: O(n α(n)) for n triangles (no hashing: per-vertex marks
+/// stamped with the piece number).
 pub(super) fn merge(
     positions: &[DVec3],
     tails: &[usize],
@@ -44,105 +67,113 @@ pub(super) fn merge(
     let mut parent: Vec<u32> = (0..nt as u32).collect();
     for (h, &pair) in pairs.iter().enumerate().take(3 * nt) {
         let (t, u) = (h / 3, pair / 3);
-        if u < nt && sources[t] == sources[u] {
+        if u < nt && t < u && sources[t] == sources[u] {
             let (a, b) = (find(&mut parent, t as u32), find(&mut parent, u as u32));
             if a != b {
                 parent[a.max(b) as usize] = a.min(b);
             }
         }
     }
-    // Pieces in order of their first triangle.
-    let mut piece_of = vec![u32::MAX; nt];
-    let mut pieces: Vec<Vec<u32>> = Vec::new();
+    // Pieces numbered in order of their first triangle; their triangles
+    // listed together (a counting sort by piece).
+    let mut piece = vec![u32::MAX; nt];
+    let mut count: Vec<u32> = Vec::new();
     for t in 0..nt {
         let r = find(&mut parent, t as u32) as usize;
-        if piece_of[r] == u32::MAX {
-            piece_of[r] = pieces.len() as u32;
-            pieces.push(Vec::new());
+        if piece[r] == u32::MAX {
+            piece[r] = count.len() as u32;
+            count.push(0);
         }
-        pieces[piece_of[r] as usize].push(t as u32);
+        piece[t] = piece[r];
+        count[piece[t] as usize] += 1;
     }
-    let root = |t: usize, parent: &[u32]| {
-        let mut i = t as u32;
-        while parent[i as usize] != i {
-            i = parent[i as usize];
-        }
-        i
-    };
+    let mut first = Vec::with_capacity(count.len() + 1);
+    first.push(0usize);
+    for &c in &count {
+        first.push(first.last().unwrap() + c as usize);
+    }
+    let mut fill = first.clone();
+    let mut members = vec![0u32; nt];
+    for (t, &p) in piece.iter().enumerate() {
+        members[fill[p as usize]] = t as u32;
+        fill[p as usize] += 1;
+    }
+
     let mut index = vec![u32::MAX; positions.len()];
     let mut out = Merged {
-        positions: Vec::new(),
-        polygons: Vec::new(),
-        sources: Vec::new(),
+        positions: Vec::with_capacity(positions.len()),
+        corners: Vec::with_capacity(3 * nt),
+        starts: vec![0],
+        sources: Vec::with_capacity(count.len()),
     };
-    let mut emit = |verts: &mut dyn Iterator<Item = usize>, out: &mut Merged| {
-        let poly = verts
-            .map(|v| {
-                if index[v] == u32::MAX {
-                    index[v] = out.positions.len() as u32;
-                    out.positions.push(positions[v]);
-                }
-                index[v]
-            })
-            .collect();
-        out.polygons.push(poly);
-    };
-    let mut boundary_next: std::collections::HashMap<usize, usize> = Default::default();
-    let mut seen: std::collections::HashSet<usize> = Default::default();
-    for piece in &pieces {
-        let r = root(piece[0] as usize, &parent);
-        let (operand, face) = source_of(sources[piece[0] as usize]);
+    // Per engine vertex: the last piece that used it, the last piece whose
+    // boundary leaves it, and where that boundary goes.
+    let mut seen = vec![u32::MAX; positions.len()];
+    let mut leaves = vec![u32::MAX; positions.len()];
+    let mut boundary_next = vec![0usize; positions.len()];
+    let mut lp = Vec::new();
+    for (p, w) in first.windows(2).enumerate() {
+        let tris = &members[w[0]..w[1]];
+        let p32 = p as u32;
+        let (operand, face) = source_of(sources[tris[0] as usize]);
         // Boundary half-edges: twin in another piece.
-        boundary_next.clear();
-        seen.clear();
         let mut simple = true;
+        let mut vertices = 0usize;
         let mut boundary = 0usize;
         let mut start = usize::MAX;
-        for &t in piece {
+        for &t in tris {
             for h in 3 * t as usize..3 * t as usize + 3 {
-                seen.insert(tails[h]);
+                let v = tails[h];
+                if seen[v] != p32 {
+                    seen[v] = p32;
+                    vertices += 1;
+                }
                 let u = pairs[h] / 3;
-                if u >= nt || root(u, &parent) != r {
+                if u >= nt || piece[u] != p32 {
                     boundary += 1;
                     start = h;
-                    if boundary_next.insert(tails[h], tails[next(h)]).is_some() {
+                    if leaves[v] == p32 {
                         simple = false; // the boundary touches itself
                     }
+                    leaves[v] = p32;
+                    boundary_next[v] = tails[next(h)];
                 }
             }
         }
         // A disc: V − E + F = 1, one boundary loop through every boundary edge.
-        let edges = (3 * piece.len() + boundary) / 2;
+        let edges = (3 * tris.len() + boundary) / 2;
         let disc =
-            simple && boundary >= 3 && seen.len() as i64 - edges as i64 + piece.len() as i64 == 1;
-        let mut lp = Vec::new();
+            simple && boundary >= 3 && vertices as i64 - edges as i64 + tris.len() as i64 == 1;
+        lp.clear();
+        let mut closed = false;
         if disc {
             let first = tails[start];
             let mut v = first;
-            loop {
+            while lp.len() < boundary && leaves[v] == p32 {
                 lp.push(v);
-                v = boundary_next[&v];
-                if v == first || lp.len() > boundary {
+                v = boundary_next[v];
+                if v == first {
+                    closed = true;
                     break;
                 }
             }
         }
-        if disc && lp.len() == boundary {
+        if closed && lp.len() == boundary {
             let m = operands[operand as usize];
             let whole = lp.len() == m.face_degree(face)
                 && lp
                     .iter()
                     .all(|&v| m.face_vertices(face).any(|w| m.position(w) == positions[v]));
-            emit(&mut lp.into_iter(), &mut out);
+            out.emit(lp.iter().copied(), &mut index, positions);
             out.sources.push(FaceSource {
                 operand,
                 face,
                 whole,
             });
         } else {
-            for &t in piece {
+            for &t in tris {
                 let t = t as usize;
-                emit(&mut (3 * t..3 * t + 3).map(|h| tails[h]), &mut out);
+                out.emit((3 * t..3 * t + 3).map(|h| tails[h]), &mut index, positions);
                 out.sources.push(FaceSource {
                     operand,
                     face,
