@@ -588,3 +588,41 @@ fn shift_a_cube_with_a_held_click_in_the_real_window() {
         Some("Add Cube")
     );
 }
+
+#[test]
+fn csg_emblem_screenshot_shows_the_solid_and_ghosts_only_when_selected() {
+    // The emblem's solid is drawn lit (many grey shades in the middle of
+    // the viewport) and its operands are not: no cage lines of the cube,
+    // the sphere or the rods around it while nothing is selected. Their
+    // dark edge lines (0.05, 0.05, 0.07) outside the solid's silhouette
+    // would show as near-black pixels around it (measured with the bug:
+    // hundreds on the rods' ends above the solid).
+    let (pixels, w, h) = screenshot("csg.hedra.ron", &[]);
+    assert_eq!((w, h), (1280, 800));
+    let at = |x: u32, y: u32| pixels[(y * w + x) as usize];
+    let mut shades = std::collections::HashSet::new();
+    for y in 330..470 {
+        for x in 540..690 {
+            let [r, g, b] = at(x, y);
+            if r.abs_diff(g) < 8 && g.abs_diff(b) < 12 && r > 90 {
+                shades.insert(r);
+            }
+        }
+    }
+    assert!(
+        shades.len() > 40,
+        "the solid is shaded: {} shades",
+        shades.len()
+    );
+    // Above the solid, where the Y rod sticks out of it: background only.
+    let mut dark = 0;
+    for y in 270..300 {
+        for x in 560..670 {
+            let [r, g, b] = at(x, y);
+            if r < 30 && g < 30 && b < 35 {
+                dark += 1;
+            }
+        }
+    }
+    assert!(dark < 20, "{dark} dark pixels: operand cages are drawn");
+}

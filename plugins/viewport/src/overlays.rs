@@ -65,7 +65,10 @@ pub(crate) fn update_edge_overlays(
     for (entity, node, projected, children) in &nodes {
         let selected = selection.contains(node.0);
         let active = selection.active() == Some(node.0);
+        // A CSG operand is drawn through its CSG node's solid (and as a
+        // ghost while that is selected: `draw_csg_ghosts`), not by itself.
         let shown = hedra_edit::visible(doc, node.0)
+            && !hedra_doc::csg::inside_csg(doc, node.0)
             && mode.node != Some(node.0)
             && shape_edit.node != Some(node.0);
         let wanted = EdgeOverlay {
