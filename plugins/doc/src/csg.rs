@@ -629,3 +629,39 @@ fn fingerprint(m: &HalfEdgeMesh) -> u64 {
     }
     hasher.finish()
 }
+
+/// The outermost CSG node whose solid `id` is drawn through (`id` is one
+/// of its operands, or inside one), if any.
+pub fn outermost_csg(doc: &Document, id: NodeId) -> Option<NodeId> {
+    let mut top = None;
+    let mut cur = id;
+    let mut guard = doc.node_count() + 1;
+    while let Some(parent) = doc.node(cur).and_then(|n| n.parent) {
+        if csg_owner(doc, cur).is_some() {
+            top = Some(parent);
+        }
+        cur = parent;
+        guard -= 1;
+        if guard == 0 {
+            break;
+        }
+    }
+    top
+}
+
+/// True when `ancestor` is a proper ancestor of `id`.
+pub fn is_within(doc: &Document, id: NodeId, ancestor: NodeId) -> bool {
+    let mut cur = doc.node(id).and_then(|n| n.parent);
+    let mut guard = doc.node_count() + 1;
+    while let Some(c) = cur {
+        if c == ancestor {
+            return true;
+        }
+        cur = doc.node(c).and_then(|n| n.parent);
+        guard -= 1;
+        if guard == 0 {
+            break;
+        }
+    }
+    false
+}

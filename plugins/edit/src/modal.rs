@@ -357,7 +357,6 @@ pub fn drive_transform_tool(
             }
         }
     }
-    contents.extend(crate::csg_previews(doc, &result));
     Previews::show(
         &mut previews,
         PreviewSource::TransformTool,

@@ -379,6 +379,12 @@ impl Plugin for ScenePlugin {
             )
             .add_systems(Startup, (setup_material, setup_face_orientation))
             .add_systems(Update, apply_requests.in_set(SceneSystems::Apply))
+            .add_systems(
+                Update,
+                follow_csg_previews
+                    .in_set(SceneSystems::Apply)
+                    .after(apply_requests),
+            )
             .add_systems(Update, decimate_jobs::decimate_job_keys)
             .add_systems(
                 Update,

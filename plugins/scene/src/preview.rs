@@ -29,6 +29,9 @@ pub enum PreviewSource {
     Properties,
     /// The transform gizmo being dragged.
     Gizmo,
+    /// CSG solids re-evaluated from the other slots' operands
+    /// ([`crate::follow_csg_previews`]).
+    Csg,
 }
 
 /// A node's shape as a tool would leave it. Shared with the tool (`Arc`),
@@ -182,6 +185,15 @@ impl Previews {
         }
     }
 
+    /// Nodes that the tools other than `source` preview.
+    pub fn nodes_except(&self, source: PreviewSource) -> impl Iterator<Item = NodeId> + '_ {
+        self.slots
+            .iter()
+            .filter(move |(s, _)| **s != source)
+            .flat_map(|(_, p)| p.transforms.keys().chain(p.contents.keys()))
+            .copied()
+    }
+
     /// Nodes that any tool previews, transform or content.
     pub fn nodes(&self) -> impl Iterator<Item = NodeId> + '_ {
         self.slots
@@ -189,4 +201,87 @@ impl Previews {
             .flat_map(|s| s.transforms.keys().chain(s.contents.keys()))
             .copied()
     }
+}
+
+/// A CSG solid follows its operands while a tool moves or edits them (G/R/S,
+/// the gizmo, the transform fields, edit-mode tools on an operand): the
+/// outermost CSG node above each previewed node is evaluated as the
+/// previews would leave the document, from simplified copies of big
+/// operands ([`hedra_doc::csg::Quality::DRAG`]; the exact solid when the
+/// tool's command lands), and shown in the [`PreviewSource::Csg`] slot.
+/// Evaluated only when the previews change.
+pub fn follow_csg_previews(
+    state: Res<DocState>,
+    mut previews: ResMut<Previews>,
+    mut last: Local<Vec<(NodeId, Option<NodeTransform>, usize)>>,
+) {
+    let doc = &state.session.doc;
+    let mut ids: Vec<NodeId> = previews
+        .nodes_except(PreviewSource::Csg)
+        .filter(|&id| hedra_doc::csg::inside_csg(doc, id))
+        .collect();
+    ids.sort();
+    ids.dedup();
+    let key: Vec<(NodeId, Option<NodeTransform>, usize)> = ids
+        .iter()
+        .map(|&id| {
+            let mesh = match previews.content(id) {
+                Some(PreviewContent::Mesh { mesh, .. }) => Arc::as_ptr(mesh) as usize,
+                _ => 0,
+            };
+            (id, previews.transform(id).copied(), mesh)
+        })
+        .collect();
+    if key == *last && (!key.is_empty() || previews.slot(PreviewSource::Csg).is_none()) {
+        return;
+    }
+    *last = key;
+    if ids.is_empty() {
+        Previews::clear(&mut previews, PreviewSource::Csg);
+        return;
+    }
+    let changed: Vec<hedra_doc::Node> = ids
+        .iter()
+        .filter_map(|&id| {
+            let mut n = doc.node(id)?.clone();
+            if let Some(t) = previews.transform(id) {
+                n.transform = *t;
+            }
+            if let (Some(PreviewContent::Mesh { mesh, .. }), NodeContent::Mesh(c)) =
+                (previews.content(id), &mut n.content)
+            {
+                c.mesh = mesh.clone();
+            }
+            Some(n)
+        })
+        .collect();
+    let preview = doc.with_changed(changed);
+    let mut tops: Vec<NodeId> = ids
+        .iter()
+        .filter_map(|&id| hedra_doc::csg::outermost_csg(doc, id))
+        .collect();
+    tops.sort();
+    tops.dedup();
+    let contents = tops
+        .into_iter()
+        .filter_map(|top| {
+            let solid =
+                hedra_doc::csg::evaluate_with(&preview, top, hedra_doc::csg::Quality::DRAG).ok()?;
+            Some((
+                top,
+                PreviewContent::Mesh {
+                    mesh: solid,
+                    creases: None,
+                },
+            ))
+        })
+        .collect();
+    Previews::show(
+        &mut previews,
+        PreviewSource::Csg,
+        ToolPreview {
+            contents,
+            ..default()
+        },
+    );
 }
