@@ -39,6 +39,9 @@ impl DecimateJob {
         let DocRequest::Execute(cmd) = request else {
             return None;
         };
+        if !may_decimate(doc, cmd) {
+            return None;
+        }
         let needed: Vec<PendingDecimation> = decimations_needed(|| doc.decide(cmd, 0));
         let faces: usize = needed.iter().map(|p| p.job.mesh.face_count()).sum();
         if faces <= BACKGROUND_DECIMATE_FACES {
@@ -98,6 +101,25 @@ impl DecimateJob {
     pub(crate) fn is_finished(&self) -> bool {
         self.handle.is_finished()
     }
+}
+
+/// True when `cmd` may build a progressive record: it sets a Decimate
+/// modifier or decimates, or a mesh has one (an edit of it rebuilds the
+/// record). Other commands are not dry-run first.
+fn may_decimate(doc: &hedra_doc::Document, cmd: &hedra_doc::Command) -> bool {
+    use hedra_doc::{Command, MeshModifier};
+    matches!(
+        cmd,
+        Command::AddModifier {
+            modifier: MeshModifier::Decimate(_),
+            ..
+        } | Command::SetModifier {
+            modifier: MeshModifier::Decimate(_),
+            ..
+        } | Command::Decimate { .. }
+    ) || doc
+        .nodes()
+        .any(|n| matches!(&n.content, NodeContent::Mesh(c) if c.has_decimate()))
 }
 
 /// Esc cancels a running Decimate build.
