@@ -56,6 +56,11 @@ impl User {
         };
         user.frames(2);
         user.egui().enable_accesskit();
+        // A click is a press held for a few frames; frames are slow on a
+        // busy machine, and egui stops counting a press held longer than
+        // 0.8 s of wall time as a click.
+        user.egui()
+            .options_mut(|o| o.input_options.max_click_duration = 3600.0);
         user.frames(1);
         user.move_to(user.viewport_center());
         user
