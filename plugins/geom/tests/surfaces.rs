@@ -492,3 +492,92 @@ fn the_sphere_has_unit_normals_at_its_poles() {
     let mesh = hedra_geom::surfaces::tessellate::tessellate(&sphere, 0.01);
     assert!(mesh.normals.iter().all(|n| n.is_normalized()));
 }
+
+/// A clamped knot vector for `count` control points of degree `p` with
+/// uneven interior knots and, when there is room, one doubled knot.
+fn uneven_knots(p: usize, count: usize) -> Vec<f64> {
+    let interior = count - p - 1;
+    let mut inner: Vec<f64> = (1..=interior)
+        .map(|i| (i as f64 / (interior + 1) as f64).powf(1.3))
+        .collect();
+    if interior >= 3 && p >= 2 {
+        inner[interior / 2] = inner[interior / 2 - 1]; // a double knot
+    }
+    let mut knots = vec![0.0; p + 1];
+    knots.extend(inner);
+    knots.extend(vec![1.0; p + 1]);
+    knots
+}
+
+/// A rational surface of degrees `(p, q)` on uneven knots, a wavy net with
+/// weights from 0.3 to 2.
+fn wavy_rational(p: usize, q: usize, nu: usize, nv: usize) -> NurbsSurface {
+    let mut points = Vec::new();
+    let mut weights = Vec::new();
+    for i in 0..nu {
+        for j in 0..nv {
+            let (x, z) = (i as f64, j as f64);
+            points.push(DVec3::new(
+                x,
+                (0.7 * x).sin() * (0.4 * z).cos() + 0.1 * x * z,
+                z,
+            ));
+            weights.push(0.3 + 1.7 * ((i * 5 + j * 3) % 8) as f64 / 7.0);
+        }
+    }
+    NurbsSurface::new(
+        p,
+        q,
+        uneven_knots(p, nu),
+        uneven_knots(q, nv),
+        nu,
+        nv,
+        points,
+        weights,
+    )
+    .unwrap()
+}
+
+#[test]
+fn the_fast_grid_matches_point_by_point_evaluation_on_rational_surfaces() {
+    // Degrees with the unrolled v-loops (up to 5) and one above (the general
+    // loop); parameters at knots, at the domain's ends, between, and
+    // outside (clamped).
+    for (p, q) in [(3, 3), (2, 3), (3, 1), (1, 2), (3, 5), (4, 2), (2, 7)] {
+        let (nu, nv) = (p + 9, q + 11);
+        let s = uneven_knots(q, nv);
+        let surface = wavy_rational(p, q, nu, nv);
+        let mut us: Vec<f64> = (0..=37).map(|i| i as f64 / 37.0).collect();
+        us.insert(0, -0.25);
+        us.push(1.5);
+        let mut vs: Vec<f64> = (0..=53).map(|i| i as f64 / 53.0).collect();
+        vs.extend(s[q + 1..s.len() - q - 1].iter().copied());
+        vs.sort_by(f64::total_cmp);
+        for normals in [false, true] {
+            let (points, norms) = surface.grid(&us, &vs, normals);
+            assert_eq!(points.len(), us.len() * vs.len());
+            assert_eq!(norms.len(), if normals { points.len() } else { 0 });
+            for (a, &u) in us.iter().enumerate() {
+                for (b, &v) in vs.iter().enumerate() {
+                    let k = a * vs.len() + b;
+                    let e = surface.evaluate(u.clamp(0.0, 1.0), v.clamp(0.0, 1.0));
+                    let scale = e.p.length().max(1.0);
+                    assert!(
+                        close(points[k], e.p, 1e-12 * scale),
+                        "degrees ({p}, {q}) at ({u}, {v}): {} vs {}",
+                        points[k],
+                        e.p
+                    );
+                    if normals {
+                        assert!(
+                            close(norms[k], e.normal(), 1e-9),
+                            "normal, degrees ({p}, {q}) at ({u}, {v}): {} vs {}",
+                            norms[k],
+                            e.normal()
+                        );
+                    }
+                }
+            }
+        }
+    }
+}
