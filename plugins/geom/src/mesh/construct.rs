@@ -397,8 +397,12 @@ impl HalfEdgeMesh {
         // Boundary half-edges (no corner has them; a closed mesh has none):
         // each starts where its twin ends, and a vertex may start at most one.
         let mut vertex_out = vec![NONE; nv];
+        // Only odd half-edges can lack a corner; one pass finds them all and
+        // the linking pass reads only that list.
         if corner_vertex.len() != halfedge_count {
-            for h in 0..halfedge_count {
+            let mut boundary =
+                Vec::with_capacity(halfedge_count.saturating_sub(corner_vertex.len()));
+            for h in (1..halfedge_count).step_by(2) {
                 if halfedges[h].face == NONE {
                     let origin = halfedges[halfedges[h ^ 1].next as usize].origin;
                     halfedges[h].origin = origin;
@@ -407,15 +411,14 @@ impl HalfEdgeMesh {
                         return Err(BuildError::NonManifoldVertex { vertex: origin });
                     }
                     *o = h as u32;
+                    boundary.push(h);
                 }
             }
-            for h in 0..halfedge_count {
-                if halfedges[h].face == NONE {
-                    let target = halfedges[h ^ 1].origin as usize;
-                    let n = vertex_out[target];
-                    halfedges[h].next = n;
-                    halfedges[n as usize].prev = h as u32;
-                }
+            for h in boundary {
+                let target = halfedges[h ^ 1].origin as usize;
+                let n = vertex_out[target];
+                halfedges[h].next = n;
+                halfedges[n as usize].prev = h as u32;
             }
         }
         // Other vertices: the half-edge of their first corner.
