@@ -430,3 +430,40 @@ fn a_pinched_polygon_is_split_into_simple_faces() {
     assert_eq!(report.dropped_faces.len(), 1);
     assert!(report.split_faces.is_empty());
 }
+
+/// The error names the bad edge whose first corner comes first, even when
+/// a later edge's fault is the first one seen: edge 0-1 (faces 0, 1 and 5)
+/// only shows its third face at face 5, edge 5-6 (faces 2, 3 and 4) at
+/// face 2 already; and a mesh without faults builds with the same ids as
+/// before the fault was added.
+#[test]
+fn from_polygons_reports_the_first_bad_edge_in_corner_order() {
+    let p: Vec<DVec3> = (0..10)
+        .map(|i| DVec3::new(i as f64, (i * i) as f64, 0.0))
+        .collect();
+    let good = [vec![0, 1, 2], vec![1, 0, 3], vec![5, 6, 7], vec![6, 5, 8]];
+    let m = HalfEdgeMesh::from_polygons(&p, &good).unwrap();
+    m.validate().unwrap();
+    assert_eq!(m.edge_count(), 10);
+    let mut bad = good.to_vec();
+    bad.push(vec![6, 5, 9]);
+    bad.push(vec![0, 1, 4]);
+    assert_eq!(
+        HalfEdgeMesh::from_polygons(&p, &bad).unwrap_err(),
+        BuildError::NonManifoldEdge {
+            a: 0,
+            b: 1,
+            faces: vec![0, 1, 5]
+        }
+    );
+    // Without the third face on 0-1, edge 5-6 is named.
+    bad.pop();
+    assert_eq!(
+        HalfEdgeMesh::from_polygons(&p, &bad).unwrap_err(),
+        BuildError::NonManifoldEdge {
+            a: 5,
+            b: 6,
+            faces: vec![2, 3, 4]
+        }
+    );
+}

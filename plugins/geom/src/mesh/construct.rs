@@ -19,11 +19,11 @@ use glam::DVec3;
 /// the corner's vertex and the vertex its edge runs to; stops at the first
 /// error.
 #[inline]
-fn each_corner(
+fn each_corner<E>(
     face_offsets: &[u32],
     corner_vertex: &[u32],
-    mut visit: impl FnMut(usize, u32, u32) -> Result<(), BuildError>,
-) -> Result<(), BuildError> {
+    mut visit: impl FnMut(usize, u32, u32) -> Result<(), E>,
+) -> Result<(), E> {
     for w in face_offsets.windows(2) {
         let r = w[0] as usize..w[1] as usize;
         let poly = &corner_vertex[r.clone()];
@@ -33,6 +33,114 @@ fn each_corner(
         }
     }
     Ok(())
+}
+
+/// Each vertex's outgoing corners as compressed rows: `out[row[v]..row[v +
+/// 1]]` holds `[far end, corner]` for the corners at `v`, in corner order.
+#[derive(Clone, Copy)]
+struct Rows<'a> {
+    row: &'a [u32],
+    out: &'a [[u32; 2]],
+}
+
+impl Rows<'_> {
+    /// The outgoing corners of `v`.
+    #[inline]
+    fn outgoing(&self, v: u32) -> &[[u32; 2]] {
+        &self.out[self.row[v as usize] as usize..self.row[v as usize + 1] as usize]
+    }
+}
+
+/// Pairs corners into half-edges (the first corner of edge k, in corner
+/// order, gets 2k, its twin 2k + 1) when every edge is manifold and
+/// consistently oriented, returning the half-edge count; `None` as soon as
+/// some edge is not, without saying which (then
+/// [`pair_corners_checked`] finds the first).
+///
+/// Only a corner no earlier corner has claimed searches, and only the list
+/// of its far end `b` for corners running back to its own vertex `a`: it
+/// is the first corner of its edge, so a single unclaimed corner back is
+/// its twin. A second corner along `a → b` shows up later, either finding
+/// that twin claimed or, on a boundary edge, here, where the list of `a` is
+/// read for corners along `a → b` (boundary corners only). Each edge is thus
+/// searched once, from one list, instead of from both lists at every corner.
+fn pair_corners(
+    face_offsets: &[u32],
+    corner_vertex: &[u32],
+    rows: Rows,
+    corner_he: &mut [u32],
+) -> Option<u32> {
+    let mut halfedge_count = 0u32;
+    let paired = each_corner(face_offsets, corner_vertex, |c, a, b| {
+        if corner_he[c] != NONE {
+            return Ok(());
+        }
+        let mut twins = rows.outgoing(b).iter().filter(|x| x[0] == a);
+        match (twins.next(), twins.next()) {
+            (Some(&[_, t]), None) if corner_he[t as usize] == NONE => {
+                corner_he[t as usize] = halfedge_count + 1;
+            }
+            (None, _) if rows.outgoing(a).iter().filter(|x| x[0] == b).count() == 1 => {}
+            _ => return Err(()),
+        }
+        corner_he[c] = halfedge_count;
+        halfedge_count += 2;
+        Ok(())
+    });
+    paired.ok().map(|()| halfedge_count)
+}
+
+/// [`pair_corners`] checking both directions at every corner, so that the
+/// error names the first corner (in corner order) whose edge is in more
+/// than two faces ([`BuildError::NonManifoldEdge`]) or twice in one
+/// direction ([`BuildError::InconsistentOrientation`]).
+fn pair_corners_checked(
+    face_offsets: &[u32],
+    corner_vertex: &[u32],
+    rows: Rows,
+    corner_he: &mut [u32],
+) -> Result<u32, BuildError> {
+    let mut halfedge_count = 0u32;
+    each_corner(face_offsets, corner_vertex, |c, a, b| {
+        let same_dir = rows.outgoing(a).iter().filter(|x| x[0] == b).count();
+        let mut twins = rows.outgoing(b).iter().filter(|x| x[0] == a);
+        let first_twin = twins.next().map(|x| x[1] as usize);
+        let twin_count = usize::from(first_twin.is_some()) + twins.count();
+        if same_dir + twin_count > 2 || same_dir > 1 {
+            let face_of = |c: u32| face_offsets.partition_point(|&s| s <= c) - 1;
+            let faces_of = |from: u32, to: u32| -> Vec<usize> {
+                rows.outgoing(from)
+                    .iter()
+                    .filter(|x| x[0] == to)
+                    .map(|x| face_of(x[1]))
+                    .collect()
+            };
+            if same_dir + twin_count > 2 {
+                let mut faces = faces_of(a, b);
+                faces.extend(faces_of(b, a));
+                faces.sort_unstable();
+                return Err(BuildError::NonManifoldEdge {
+                    a: a.min(b),
+                    b: a.max(b),
+                    faces,
+                });
+            }
+            return Err(BuildError::InconsistentOrientation {
+                a,
+                b,
+                faces: faces_of(a, b),
+            });
+        }
+        if corner_he[c] == NONE {
+            corner_he[c] = halfedge_count;
+            if let Some(t) = first_twin {
+                corner_he[t] = halfedge_count + 1;
+            }
+            halfedge_count += 2;
+        }
+        Ok(())
+    })?;
+    Ok(halfedge_count)
 }
 
 impl HalfEdgeMesh {
@@ -45,6 +153,10 @@ impl HalfEdgeMesh {
     /// manifoldness or consistent orientation; nothing is built.
     ///
     /// Complexity: O(corners × valence).
+    ///
+    /// Each edge is searched once, in one list (see `pair_corners`); only
+    /// when some edge is bad are all corners checked again, to name the
+    /// first.
     pub fn from_polygons<P: AsRef<[u32]>>(
         positions: &[DVec3],
         polygons: &[P],
@@ -59,9 +171,12 @@ impl HalfEdgeMesh {
         // Corners: corner c of face f is corner_vertex[c], for c in
         // face_offsets[f]..face_offsets[f + 1]; its edge runs to the next
         // corner of the face.
+        // Exact capacity (one pass over the lengths) so the corner list is
+        // never regrown and copied.
+        let corner_total: usize = polygons.iter().map(|p| p.as_ref().len()).sum();
         let mut face_offsets: Vec<u32> = Vec::with_capacity(polygons.len() + 1);
         face_offsets.push(0);
-        let mut corner_vertex: Vec<u32> = Vec::new();
+        let mut corner_vertex: Vec<u32> = Vec::with_capacity(corner_total);
         for (fi, poly) in polygons.iter().enumerate() {
             let poly = poly.as_ref();
             check_face(fi, poly, nv)?;
@@ -82,59 +197,31 @@ impl HalfEdgeMesh {
             row[i] += row[i - 1];
         }
         let mut out = vec![[0u32; 2]; nc];
-        each_corner(&face_offsets, &corner_vertex, |c, v, to| {
+        let _ = each_corner(&face_offsets, &corner_vertex, |c, v, to| {
             let slot = &mut row[v as usize + 1];
             out[*slot as usize] = [to, c as u32];
             *slot += 1;
-            Ok(())
-        })?;
+            Ok::<(), ()>(())
+        });
         row.pop();
-        let outgoing = |v: u32| &out[row[v as usize] as usize..row[v as usize + 1] as usize];
+        let rows = Rows {
+            row: &row,
+            out: &out,
+        };
 
         // Pair corners into edges, numbered in order of first use: the
         // first corner of edge k gets half-edge 2k, its twin 2k + 1.
         let mut corner_he = vec![NONE; nc];
-        let mut halfedge_count = 0u32;
-        each_corner(&face_offsets, &corner_vertex, |c, a, b| {
-            let same_dir = outgoing(a).iter().filter(|x| x[0] == b).count();
-            let mut twins = outgoing(b).iter().filter(|x| x[0] == a);
-            let first_twin = twins.next().map(|x| x[1] as usize);
-            let twin_count = usize::from(first_twin.is_some()) + twins.count();
-            if same_dir + twin_count > 2 || same_dir > 1 {
-                let face_of = |c: u32| face_offsets.partition_point(|&s| s <= c) - 1;
-                let faces_of = |from: u32, to: u32| -> Vec<usize> {
-                    outgoing(from)
-                        .iter()
-                        .filter(|x| x[0] == to)
-                        .map(|x| face_of(x[1]))
-                        .collect()
-                };
-                if same_dir + twin_count > 2 {
-                    let mut faces = faces_of(a, b);
-                    faces.extend(faces_of(b, a));
-                    faces.sort_unstable();
-                    return Err(BuildError::NonManifoldEdge {
-                        a: a.min(b),
-                        b: a.max(b),
-                        faces,
-                    });
-                }
-                return Err(BuildError::InconsistentOrientation {
-                    a,
-                    b,
-                    faces: faces_of(a, b),
-                });
+        let paired = pair_corners(&face_offsets, &corner_vertex, rows, &mut corner_he);
+        let halfedge_count = match paired {
+            Some(count) => count,
+            None => {
+                // Some edge is bad: the full check names the first one.
+                corner_he.fill(NONE);
+                pair_corners_checked(&face_offsets, &corner_vertex, rows, &mut corner_he)?
             }
-            if corner_he[c] == NONE {
-                corner_he[c] = halfedge_count;
-                if let Some(t) = first_twin {
-                    corner_he[t] = halfedge_count + 1;
-                }
-                halfedge_count += 2;
-            }
-            Ok(())
-        })?;
-        drop((row, out));
+        };
+        drop(out);
         let mesh = Self::assemble(
             positions.to_vec(),
             &face_offsets,
@@ -142,7 +229,8 @@ impl HalfEdgeMesh {
             &corner_he,
             halfedge_count as usize,
         )?;
-        mesh.check_fans(&corner_vertex)?;
+        // Corners at each vertex: the length of its row.
+        mesh.check_fans(|v| row[v + 1] - row[v])?;
         Ok(mesh)
     }
 
@@ -249,7 +337,11 @@ impl HalfEdgeMesh {
             halfedge_count as usize,
         )?;
         if check_fans {
-            mesh.check_fans(corner_vertex)?;
+            let mut degree = vec![0u32; nv];
+            for &v in corner_vertex {
+                degree[v as usize] += 1;
+            }
+            mesh.check_fans(|v| degree[v])?;
         }
         Ok(mesh)
     }
@@ -276,25 +368,41 @@ impl HalfEdgeMesh {
             prev: NONE,
             face: NONE,
         };
-        let mut halfedges = vec![blank; halfedge_count];
+        // Edges are numbered in order of first use, so the even half-edges
+        // come in increasing order along the corners: each is appended with
+        // a blank twin after it (filled when the twin's corner comes, or
+        // left as boundary), and the array is written once, without a fill.
+        let mut halfedges = Vec::with_capacity(halfedge_count);
         for (f, w) in face_offsets.windows(2).enumerate() {
             let r = w[0] as usize..w[1] as usize;
             let hs = &corner_he[r.clone()];
             let n = hs.len();
             for (k, (&h, &v)) in hs.iter().zip(&corner_vertex[r]).enumerate() {
-                halfedges[h as usize] = HalfEdgeRecord {
+                let record = HalfEdgeRecord {
                     origin: v,
                     next: hs[if k + 1 == n { 0 } else { k + 1 }],
                     prev: hs[if k == 0 { n - 1 } else { k - 1 }],
                     face: f as u32,
                 };
+                if h as usize == halfedges.len() {
+                    halfedges.push(record);
+                    halfedges.push(blank);
+                } else {
+                    halfedges[h as usize] = record;
+                }
             }
         }
+        // Every even half-edge has a corner, so all were appended.
+        debug_assert_eq!(halfedges.len(), halfedge_count);
         // Boundary half-edges (no corner has them; a closed mesh has none):
         // each starts where its twin ends, and a vertex may start at most one.
         let mut vertex_out = vec![NONE; nv];
+        // Only odd half-edges can lack a corner; one pass finds them all and
+        // the linking pass reads only that list.
         if corner_vertex.len() != halfedge_count {
-            for h in 0..halfedge_count {
+            let mut boundary =
+                Vec::with_capacity(halfedge_count.saturating_sub(corner_vertex.len()));
+            for h in (1..halfedge_count).step_by(2) {
                 if halfedges[h].face == NONE {
                     let origin = halfedges[halfedges[h ^ 1].next as usize].origin;
                     halfedges[h].origin = origin;
@@ -303,15 +411,14 @@ impl HalfEdgeMesh {
                         return Err(BuildError::NonManifoldVertex { vertex: origin });
                     }
                     *o = h as u32;
+                    boundary.push(h);
                 }
             }
-            for h in 0..halfedge_count {
-                if halfedges[h].face == NONE {
-                    let target = halfedges[h ^ 1].origin as usize;
-                    let n = vertex_out[target];
-                    halfedges[h].next = n;
-                    halfedges[n as usize].prev = h as u32;
-                }
+            for h in boundary {
+                let target = halfedges[h ^ 1].origin as usize;
+                let n = vertex_out[target];
+                halfedges[h].next = n;
+                halfedges[n as usize].prev = h as u32;
             }
         }
         // Other vertices: the half-edge of their first corner.
@@ -343,13 +450,11 @@ impl HalfEdgeMesh {
     /// Closed fans touching at a vertex (two cones tip to tip) pass the
     /// boundary test of [`assemble`](Self::assemble); walking each vertex's
     /// fan finds them: it must meet every corner at the vertex (and its
-    /// boundary half-edge).
-    fn check_fans(&self, corner_vertex: &[u32]) -> Result<(), BuildError> {
-        let mut degree = vec![0u32; self.positions.len()];
-        for &v in corner_vertex {
-            degree[v as usize] += 1;
-        }
-        for (v, &corners) in degree.iter().enumerate() {
+    /// boundary half-edge). `corners_at(v)` is the number of corners at
+    /// vertex `v`.
+    fn check_fans(&self, corners_at: impl Fn(usize) -> u32) -> Result<(), BuildError> {
+        for v in 0..self.positions.len() {
+            let corners = corners_at(v);
             let start = self.vertex_out[v];
             if start == NONE {
                 if corners > 0 {
