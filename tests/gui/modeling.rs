@@ -2963,6 +2963,23 @@ fn build_the_csg_emblem_in_the_app_and_drag_a_cylinder_through_it() {
     assert_eq!(fewer.stats().genus, Some(3), "one hole less");
 }
 
+/// Draws frames until no background build runs (at most about 12 s).
+fn wait_for_background_jobs(user: &mut User) {
+    for _ in 0..600 {
+        if user
+            .app
+            .world()
+            .resource::<hedra_scene::FileJobs>()
+            .progress()
+            .is_none()
+        {
+            break;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(20));
+        user.frames(1);
+    }
+}
+
 /// A Decimate modifier on a big mesh (a 260×260 grid, 67,600 quads)
 /// builds its progressive record on a worker thread (issue 18): the
 /// status bar shows a progress bar while later requests wait, then the
@@ -2996,19 +3013,7 @@ fn a_big_decimate_builds_in_the_background_with_progress_and_cancel() {
         &mut user,
         "Rename(node: Name(\"Big\"), name: \"Decimated\")",
     );
-    for _ in 0..600 {
-        if user
-            .app
-            .world()
-            .resource::<hedra_scene::FileJobs>()
-            .progress()
-            .is_none()
-        {
-            break;
-        }
-        std::thread::sleep(std::time::Duration::from_millis(20));
-        user.frames(1);
-    }
+    wait_for_background_jobs(&mut user);
     user.frames(2);
     assert_eq!(user.undo_steps(), steps + 2, "{}", user.status());
     let node = node_named(&user, "Decimated").expect("renamed after the modifier");
@@ -3035,19 +3040,7 @@ fn a_big_decimate_builds_in_the_background_with_progress_and_cancel() {
             .is_some()
     );
     user.tap(KeyCode::Escape);
-    for _ in 0..600 {
-        if user
-            .app
-            .world()
-            .resource::<hedra_scene::FileJobs>()
-            .progress()
-            .is_none()
-        {
-            break;
-        }
-        std::thread::sleep(std::time::Duration::from_millis(20));
-        user.frames(1);
-    }
+    wait_for_background_jobs(&mut user);
     user.frames(1);
     assert!(user.status().contains("cancelled"), "{}", user.status());
     assert_eq!(user.undo_steps(), steps + 2, "nothing changed");
