@@ -234,116 +234,141 @@ impl HalfEdgeMesh {
         Ok(mesh)
     }
 
-    /// Builds a mesh from polygons whose corners already name their edges
-    /// (a subdivision level's tables, where every edge is known from the
-    /// refinement), without searching for twins. Face `f` has the corners
-    /// `face_offsets[f]..face_offsets[f + 1]`; corner `c` is the vertex
-    /// `corner_vertex[c]` and starts the edge `corner_edge[c]` (an id below
-    /// `edge_count`) to the next corner of its face.
+    /// Builds the mesh of a subdivision level's faces straight from the
+    /// level's tables ([`LevelFaces`]), in one pass over the corners: every
+    /// twin is known, so nothing is searched or sorted. Only faces with `shown(f)`
+    /// are kept, then the unused level vertices with `keep_unused(v)` (as
+    /// isolated vertices).
     ///
     /// The result is the mesh [`from_polygons`](Self::from_polygons) makes
-    /// of the same polygons, ids and all (vertex `i` is id `i`, edges in
-    /// order of first use, each edge's first corner giving its even
-    /// half-edge), provided that distinct edge ids never join the same two
-    /// vertices, which the caller guarantees. Everything else is checked as
-    /// `from_polygons` checks it, except that closed fans touching at a
-    /// vertex are found only when `check_fans` is set (a refinement of a
-    /// valid mesh cannot make them).
+    /// of the kept faces, ids and all: vertices and edges numbered in order
+    /// of first use, each edge's first corner giving its even half-edge.
+    /// Also returns, per level vertex and per level edge, its index in the
+    /// mesh ([`NONE`] when not kept).
+    ///
+    /// The caller guarantees what a refinement of a valid half-edge mesh
+    /// gives: well-formed faces, every edge used by at most two corners in
+    /// opposite directions, distinct edges joining distinct vertex pairs.
+    /// Closed fans touching at a vertex, which hiding faces can make, are
+    /// found when `check_fans` is set.
     ///
     /// # Errors
-    /// A malformed face, a non-finite position, an edge id out of range,
-    /// used by more than two corners ([`BuildError::NonManifoldEdge`]) or
-    /// twice in one direction ([`BuildError::InconsistentOrientation`]), a
-    /// vertex with two boundary fans ([`BuildError::NonManifoldVertex`]).
+    /// A non-finite position ([`BuildError::NonFinitePosition`], naming the
+    /// mesh vertex); with `check_fans`, a vertex with two fans
+    /// ([`BuildError::NonManifoldVertex`]); `TooLarge` past `u32` ids.
     ///
-    /// Complexity: O(corners), a few linear passes and no hashing.
-    pub(crate) fn from_corner_edges(
-        positions: Vec<DVec3>,
-        face_offsets: &[u32],
-        corner_vertex: &[u32],
-        corner_edge: &[u32],
-        edge_count: usize,
+    /// Complexity: O(corners), one pass plus one over the boundary.
+    pub(crate) fn from_level_faces(
+        positions: &[DVec3],
+        level: LevelFaces<'_>,
+        shown: impl Fn(usize) -> bool,
+        keep_unused: impl Fn(usize) -> bool,
         check_fans: bool,
-    ) -> Result<HalfEdgeMesh, BuildError> {
-        let nv = positions.len();
-        if nv >= NONE as usize {
-            return Err(BuildError::TooLarge { what: "vertices" });
-        }
-        if corner_vertex.len() >= (NONE / 2) as usize || corner_edge.len() != corner_vertex.len() {
+    ) -> Result<(HalfEdgeMesh, Vec<u32>, Vec<u32>), BuildError> {
+        let LevelFaces {
+            face_offsets,
+            corner_vertex,
+            corner_edge,
+            edge_count,
+        } = level;
+        if corner_vertex.len() >= (NONE / 2) as usize || positions.len() >= NONE as usize {
             return Err(BuildError::TooLarge { what: "corners" });
         }
-        if let Some(i) = positions.iter().position(|p| !p.is_finite()) {
-            return Err(BuildError::NonFinitePosition { vertex: i as u32 });
-        }
-        for (f, w) in face_offsets.windows(2).enumerate() {
-            let poly = corner_vertex
-                .get(w[0] as usize..w[1] as usize)
-                .unwrap_or_default();
-            // Quads (every face of a Catmull-Clark level) checked in line.
-            let fine_quad = matches!(*poly, [a, b, c, d]
-                if a != b && a != c && a != d && b != c && b != d && c != d
-                    && (a.max(b).max(c).max(d) as usize) < nv);
-            if !fine_quad {
-                check_face(f, poly, nv)?;
+        let nf_all = face_offsets.len().saturating_sub(1);
+        let mut b = LevelBuild {
+            positions,
+            vertex_map: vec![NONE; positions.len()],
+            edge_map: vec![NONE; edge_count],
+            kept_positions: Vec::with_capacity(positions.len()),
+            vertex_out: Vec::with_capacity(positions.len()),
+            halfedges: Vec::with_capacity(2 * edge_count),
+            face_halfedge: Vec::with_capacity(nf_all),
+            corners: 0,
+            long_face: Vec::new(),
+        };
+        // All quads or all triangles (every Catmull-Clark and Loop level):
+        // fixed-size faces, so the per-face loops unroll.
+        let uniform = |n: u32| {
+            face_offsets
+                .iter()
+                .enumerate()
+                .all(|(f, &o)| o == n * f as u32)
+        };
+        if uniform(4) {
+            let (vs, es) = (
+                corner_vertex.as_chunks::<4>().0,
+                corner_edge.as_chunks::<4>().0,
+            );
+            for (f, (v, e)) in vs.iter().zip(es).enumerate() {
+                if shown(f) {
+                    b.add_face(v, e);
+                }
             }
-        }
-        if face_offsets.first().is_some_and(|&s| s != 0)
-            || face_offsets.last().map_or(0, |&s| s as usize) != corner_vertex.len()
-        {
-            return Err(BuildError::TooLarge { what: "corners" });
-        }
-        // Half-edges by first use of each edge; the second corner of an
-        // edge must run the other way, and there is no third.
-        let mut edge_state = vec![[NONE; 3]; edge_count];
-        let mut corner_he = vec![NONE; corner_vertex.len()];
-        let mut halfedge_count = 0u32;
-        for (f, w) in face_offsets.windows(2).enumerate() {
-            let r = w[0] as usize..w[1] as usize;
-            let poly = &corner_vertex[r.clone()];
-            for (k, c) in r.enumerate() {
-                let (a, b) = (poly[k], poly[(k + 1) % poly.len()]);
-                let Some(state) = edge_state.get_mut(corner_edge[c] as usize) else {
-                    return Err(BuildError::TooLarge { what: "edges" });
-                };
-                let [h, from, to] = *state;
-                if h == NONE {
-                    *state = [halfedge_count, a, b];
-                    corner_he[c] = halfedge_count;
-                    halfedge_count += 2;
-                } else if from == NONE {
-                    return Err(BuildError::NonManifoldEdge {
-                        a: a.min(b),
-                        b: a.max(b),
-                        faces: vec![f],
-                    });
-                } else if (from, to) != (b, a) {
-                    return Err(BuildError::InconsistentOrientation {
-                        a,
-                        b,
-                        faces: vec![f],
-                    });
-                } else {
-                    *state = [h, NONE, NONE];
-                    corner_he[c] = h + 1;
+        } else if uniform(3) {
+            let (vs, es) = (
+                corner_vertex.as_chunks::<3>().0,
+                corner_edge.as_chunks::<3>().0,
+            );
+            for (f, (v, e)) in vs.iter().zip(es).enumerate() {
+                if shown(f) {
+                    b.add_face(v, e);
+                }
+            }
+        } else {
+            for f in 0..nf_all {
+                if shown(f) {
+                    let r = face_offsets[f] as usize..face_offsets[f + 1] as usize;
+                    b.add_face(&corner_vertex[r.clone()], &corner_edge[r]);
                 }
             }
         }
-        drop(edge_state);
-        let mesh = Self::assemble(
-            positions,
-            face_offsets,
-            corner_vertex,
-            &corner_he,
-            halfedge_count as usize,
-        )?;
+        let LevelBuild {
+            mut vertex_map,
+            edge_map,
+            mut kept_positions,
+            mut vertex_out,
+            mut halfedges,
+            face_halfedge,
+            corners,
+            ..
+        } = b;
+        for (v, u) in vertex_map.iter_mut().enumerate() {
+            if *u == NONE && keep_unused(v) {
+                *u = kept_positions.len() as u32;
+                kept_positions.push(positions[v]);
+                vertex_out.push(NONE);
+            }
+        }
+        if let Some(v) = kept_positions.iter().position(|p| !p.is_finite()) {
+            return Err(BuildError::NonFinitePosition { vertex: v as u32 });
+        }
+        let nv = kept_positions.len();
+        let nf = face_halfedge.len();
+        let ne = halfedges.len() / 2;
+        if corners != halfedges.len() {
+            link_boundary(&mut halfedges, &mut vertex_out, true)?;
+        }
+        let mesh = HalfEdgeMesh {
+            positions: kept_positions,
+            vertex_out,
+            face_halfedge,
+            halfedges,
+            vertex_dead: vec![false; nv],
+            edge_dead: vec![false; ne],
+            face_dead: vec![false; nf],
+            live_vertices: nv,
+            live_edges: ne,
+            live_faces: nf,
+            ..Default::default()
+        };
         if check_fans {
             let mut degree = vec![0u32; nv];
-            for &v in corner_vertex {
-                degree[v as usize] += 1;
+            for r in mesh.halfedges.iter().filter(|r| r.face != NONE) {
+                degree[r.origin as usize] += 1;
             }
             mesh.check_fans(|v| degree[v])?;
         }
-        Ok(mesh)
+        Ok((mesh, vertex_map, edge_map))
     }
 
     /// The records from checked faces and finite positions, given each
@@ -397,29 +422,8 @@ impl HalfEdgeMesh {
         // Boundary half-edges (no corner has them; a closed mesh has none):
         // each starts where its twin ends, and a vertex may start at most one.
         let mut vertex_out = vec![NONE; nv];
-        // Only odd half-edges can lack a corner; one pass finds them all and
-        // the linking pass reads only that list.
         if corner_vertex.len() != halfedge_count {
-            let mut boundary =
-                Vec::with_capacity(halfedge_count.saturating_sub(corner_vertex.len()));
-            for h in (1..halfedge_count).step_by(2) {
-                if halfedges[h].face == NONE {
-                    let origin = halfedges[halfedges[h ^ 1].next as usize].origin;
-                    halfedges[h].origin = origin;
-                    let o = &mut vertex_out[origin as usize];
-                    if *o != NONE {
-                        return Err(BuildError::NonManifoldVertex { vertex: origin });
-                    }
-                    *o = h as u32;
-                    boundary.push(h);
-                }
-            }
-            for h in boundary {
-                let target = halfedges[h ^ 1].origin as usize;
-                let n = vertex_out[target];
-                halfedges[h].next = n;
-                halfedges[n as usize].prev = h as u32;
-            }
+            link_boundary(&mut halfedges, &mut vertex_out, false)?;
         }
         // Other vertices: the half-edge of their first corner.
         for (&v, &h) in corner_vertex.iter().zip(corner_he) {
@@ -479,5 +483,124 @@ impl HalfEdgeMesh {
             }
         }
         Ok(())
+    }
+}
+
+/// Fills in the boundary half-edges: the odd half-edges no corner has (a
+/// closed mesh has none). Each starts where its twin ends, becomes its
+/// vertex's outgoing half-edge, and is linked to the boundary half-edge
+/// leaving its end. A vertex may start at most one: unless `replace` (the
+/// caller set every vertex's half-edge already and checks fans after), a
+/// vertex that has one is [`BuildError::NonManifoldVertex`].
+fn link_boundary(
+    halfedges: &mut [HalfEdgeRecord],
+    vertex_out: &mut [u32],
+    replace: bool,
+) -> Result<(), BuildError> {
+    let mut boundary = Vec::new();
+    for h in (1..halfedges.len()).step_by(2) {
+        if halfedges[h].face == NONE {
+            let origin = halfedges[halfedges[h ^ 1].next as usize].origin;
+            halfedges[h].origin = origin;
+            let o = &mut vertex_out[origin as usize];
+            if *o != NONE && !replace {
+                return Err(BuildError::NonManifoldVertex { vertex: origin });
+            }
+            *o = h as u32;
+            boundary.push(h);
+        }
+    }
+    for h in boundary {
+        let target = halfedges[h ^ 1].origin as usize;
+        let n = vertex_out[target];
+        halfedges[h].next = n;
+        halfedges[n as usize].prev = h as u32;
+    }
+    Ok(())
+}
+
+/// A subdivision level's faces: face `f` has the corners
+/// `face_offsets[f]..face_offsets[f + 1]`; corner `c` is the vertex
+/// `corner_vertex[c]` and starts the edge `corner_edge[c]` (below
+/// `edge_count`) to the next corner of its face.
+#[derive(Copy, Clone)]
+pub(crate) struct LevelFaces<'a> {
+    pub face_offsets: &'a [u32],
+    pub corner_vertex: &'a [u32],
+    pub corner_edge: &'a [u32],
+    pub edge_count: usize,
+}
+
+/// The state of [`HalfEdgeMesh::from_level_faces`] as it adds faces.
+struct LevelBuild<'a> {
+    positions: &'a [DVec3],
+    vertex_map: Vec<u32>,
+    edge_map: Vec<u32>,
+    kept_positions: Vec<DVec3>,
+    vertex_out: Vec<u32>,
+    halfedges: Vec<HalfEdgeRecord>,
+    face_halfedge: Vec<u32>,
+    corners: usize,
+    /// Half-edges of a face of more than eight sides.
+    long_face: Vec<u32>,
+}
+
+impl LevelBuild<'_> {
+    /// Adds the face with these corner vertices and edges (level numbers).
+    #[inline(always)]
+    fn add_face(&mut self, verts: &[u32], edges: &[u32]) {
+        let n = edges.len();
+        self.corners += n;
+        let mut short = [0u32; 8];
+        let hs: &mut [u32] = if n <= 8 {
+            &mut short[..n]
+        } else {
+            self.long_face.resize(n, 0);
+            &mut self.long_face
+        };
+        // Each corner's half-edge: the even one of a new edge (edges are
+        // numbered on first use), else its twin.
+        let mut next_new = self.halfedges.len() as u32;
+        for (h, &e) in hs.iter_mut().zip(edges) {
+            let m = &mut self.edge_map[e as usize];
+            if *m == NONE {
+                *m = next_new / 2;
+                *h = next_new;
+                next_new += 2;
+            } else {
+                *h = 2 * *m + 1;
+            }
+        }
+        let face = self.face_halfedge.len() as u32;
+        self.face_halfedge.push(hs[0]);
+        let blank = HalfEdgeRecord {
+            origin: NONE,
+            next: NONE,
+            prev: NONE,
+            face: NONE,
+        };
+        for (k, &v) in verts.iter().enumerate() {
+            let h = hs[k];
+            let u = &mut self.vertex_map[v as usize];
+            if *u == NONE {
+                *u = self.kept_positions.len() as u32;
+                self.kept_positions.push(self.positions[v as usize]);
+                self.vertex_out.push(h);
+            }
+            let record = HalfEdgeRecord {
+                origin: *u,
+                next: hs[if k + 1 == n { 0 } else { k + 1 }],
+                prev: hs[if k == 0 { n - 1 } else { k - 1 }],
+                face,
+            };
+            // New half-edges come in corner order: each is appended where
+            // its number says, with its blank twin after it.
+            if h as usize == self.halfedges.len() {
+                self.halfedges.push(record);
+                self.halfedges.push(blank);
+            } else {
+                self.halfedges[h as usize] = record;
+            }
+        }
     }
 }

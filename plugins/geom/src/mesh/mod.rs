@@ -41,6 +41,7 @@
 
 pub mod add_delete;
 mod construct;
+pub(crate) use construct::LevelFaces;
 pub mod cut;
 pub mod euler;
 mod orientation;

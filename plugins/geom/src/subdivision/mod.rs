@@ -777,72 +777,30 @@ impl Refiner {
         positions: &[DVec3],
     ) -> Result<(HalfEdgeMesh, Creases), crate::BuildError> {
         let last = self.last();
-        // Vertices are numbered in order of first use by the shown faces
-        // (then isolated ones), edges likewise: the numbering
+        // Vertices and edges are numbered in order of first use by the
+        // shown faces (then isolated vertices): the numbering
         // `from_polygons` gives the same faces, which files and tests rely
         // on. The edges are the level's, so no twin has to be searched.
         let all_shown = !self.hidden_cage_faces.contains(&true);
-        let mut face_offsets = Vec::new();
-        let mut corner_edges = Vec::new();
-        if !all_shown {
-            face_offsets.push(0);
-            for f in 0..last.face_count() {
-                if !self.is_face_hidden(f) {
-                    corner_edges.extend_from_slice(&last.face_edges[last.face_corners(f as u32)]);
-                    face_offsets.push(corner_edges.len() as u32);
-                }
-            }
-        }
-        let (face_offsets, corner_edges) = if all_shown {
-            (&last.face_offsets[..], &last.face_edges[..])
-        } else {
-            (&face_offsets[..], &corner_edges[..])
-        };
-        let mut used = vec![u32::MAX; last.vertex_count];
-        let mut kept_positions = Vec::with_capacity(last.vertex_count);
-        let mut corner_vertices = Vec::with_capacity(corner_edges.len());
-        let mut keep = |v: u32| {
-            let u = &mut used[v as usize];
-            if *u == u32::MAX {
-                *u = kept_positions.len() as u32;
-                kept_positions.push(positions[v as usize]);
-            }
-            *u
-        };
-        if all_shown {
-            corner_vertices.extend(last.face_vertices.iter().map(|&v| keep(v)));
-        } else {
-            for face in self.faces() {
-                corner_vertices.extend(face.iter().map(|&v| keep(v)));
-            }
-        }
-        // Isolated vertices stay (they are in no face, so not yet kept).
-        for v in 0..last.vertex_count {
-            if used[v] == u32::MAX && last.vertex_edges(v as u32).is_empty() {
-                used[v] = kept_positions.len() as u32;
-                kept_positions.push(positions[v]);
-            }
-        }
         // Only hiding faces could make a vertex's fans touch; a whole
         // refinement of a valid mesh cannot.
-        let mesh = HalfEdgeMesh::from_corner_edges(
-            kept_positions,
-            face_offsets,
-            &corner_vertices,
-            corner_edges,
-            last.edge_count(),
+        let (mesh, used, edge_map) = HalfEdgeMesh::from_level_faces(
+            positions,
+            crate::mesh::LevelFaces {
+                face_offsets: &last.face_offsets,
+                corner_vertex: &last.face_vertices,
+                corner_edge: &last.face_edges,
+                edge_count: last.edge_count(),
+            },
+            |f| all_shown || !self.is_face_hidden(f),
+            |v| last.vertex_edges(v as u32).is_empty(),
             !all_shown,
         )?;
         let mut creases = Creases::default();
-        for ([a, b], s) in self.edges() {
-            let (a, b) = (used[a as usize], used[b as usize]);
-            if s > 0.0
-                && a != u32::MAX
-                && b != u32::MAX
-                && let Some(e) = mesh.find_edge(VertexId(a), VertexId(b))
-                && !mesh.is_boundary_edge(e)
-            {
-                creases.set_edge(e, s as f64);
+        for (e, &s) in last.edge_sharpness.iter().enumerate() {
+            let m = edge_map[e];
+            if s > 0.0 && m != u32::MAX && !mesh.is_boundary_edge(EdgeId(m)) {
+                creases.set_edge(EdgeId(m), s as f64);
             }
         }
         for (v, &s) in last.vertex_sharpness.iter().enumerate() {
