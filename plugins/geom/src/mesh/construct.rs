@@ -266,6 +266,7 @@ impl HalfEdgeMesh {
         check_fans: bool,
     ) -> Result<(HalfEdgeMesh, Vec<u32>, Vec<u32>), BuildError> {
         let LevelFaces {
+            sides,
             face_offsets,
             corner_vertex,
             corner_edge,
@@ -274,7 +275,11 @@ impl HalfEdgeMesh {
         if corner_vertex.len() >= (NONE / 2) as usize || positions.len() >= NONE as usize {
             return Err(BuildError::TooLarge { what: "corners" });
         }
-        let nf_all = face_offsets.len().saturating_sub(1);
+        let nf_all = if sides > 0 {
+            corner_vertex.len() / sides as usize
+        } else {
+            face_offsets.len().saturating_sub(1)
+        };
         let mut b = LevelBuild {
             positions,
             vertex_map: vec![NONE; positions.len()],
@@ -288,13 +293,7 @@ impl HalfEdgeMesh {
         };
         // All quads or all triangles (every Catmull-Clark and Loop level):
         // fixed-size faces, so the per-face loops unroll.
-        let uniform = |n: u32| {
-            face_offsets
-                .iter()
-                .enumerate()
-                .all(|(f, &o)| o == n * f as u32)
-        };
-        if uniform(4) {
+        if sides == 4 {
             let (vs, es) = (
                 corner_vertex.as_chunks::<4>().0,
                 corner_edge.as_chunks::<4>().0,
@@ -304,7 +303,7 @@ impl HalfEdgeMesh {
                     b.add_face(v, e);
                 }
             }
-        } else if uniform(3) {
+        } else if sides == 3 {
             let (vs, es) = (
                 corner_vertex.as_chunks::<3>().0,
                 corner_edge.as_chunks::<3>().0,
@@ -312,6 +311,14 @@ impl HalfEdgeMesh {
             for (f, (v, e)) in vs.iter().zip(es).enumerate() {
                 if shown(f) {
                     b.add_face(v, e);
+                }
+            }
+        } else if sides > 0 {
+            let n = sides as usize;
+            for f in 0..nf_all {
+                if shown(f) {
+                    let r = n * f..n * (f + 1);
+                    b.add_face(&corner_vertex[r.clone()], &corner_edge[r]);
                 }
             }
         } else {
@@ -520,11 +527,13 @@ fn link_boundary(
 }
 
 /// A subdivision level's faces: face `f` has the corners
+/// `sides * f..sides * (f + 1)` when `sides` is not zero, else
 /// `face_offsets[f]..face_offsets[f + 1]`; corner `c` is the vertex
 /// `corner_vertex[c]` and starts the edge `corner_edge[c]` (below
 /// `edge_count`) to the next corner of its face.
 #[derive(Copy, Clone)]
 pub(crate) struct LevelFaces<'a> {
+    pub sides: u32,
     pub face_offsets: &'a [u32],
     pub corner_vertex: &'a [u32],
     pub corner_edge: &'a [u32],

@@ -4,7 +4,7 @@
 //! level of a hundred thousand faces refines in milliseconds.
 
 use std::collections::HashMap;
-use std::sync::OnceLock;
+use std::sync::{Arc, OnceLock};
 
 use super::rules::is_infinite;
 use super::{BoundaryInterpolation, Creases, INFINITE_SHARPNESS};
@@ -14,22 +14,36 @@ use crate::{EdgeId, FaceId, HalfEdgeMesh, VertexId};
 pub(crate) const NONE: u32 = u32::MAX;
 
 /// Connectivity and sharpness of one level. Corner `c` of face `f` (for
-/// `c` in `face_offsets[f]..face_offsets[f + 1]`) is the vertex
+/// `c` in [`face_corners(f)`](Self::face_corners)) is the vertex
 /// `face_vertices[c]`; `face_edges[c]` is the edge from that corner to the
 /// next one.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Level {
     pub vertex_count: usize,
+    /// When every face has this many sides (every refined Catmull-Clark or
+    /// Loop level), `face_offsets` is empty: face `f` has the corners
+    /// `sides * f..sides * (f + 1)`. Zero otherwise.
+    pub sides: u32,
+    /// Face `f` has the corners `face_offsets[f]..face_offsets[f + 1]`
+    /// (when `sides` is zero).
     pub face_offsets: Vec<u32>,
     pub face_vertices: Vec<u32>,
     pub face_edges: Vec<u32>,
     pub edge_vertices: Vec<[u32; 2]>,
-    /// Crease sharpness per edge (boundary edges are infinitely sharp).
+    /// Crease sharpness per edge (boundary edges are infinitely sharp);
+    /// empty when every edge is smooth (read it through
+    /// [`edge_sharp`](Self::edge_sharp)).
     pub edge_sharpness: Vec<f32>,
-    /// Corner sharpness per vertex.
+    /// Corner sharpness per vertex; empty when none is sharp (read it
+    /// through [`vertex_sharp`](Self::vertex_sharp)).
     pub vertex_sharpness: Vec<f32>,
-    /// For every face, the cage face (dense index) it descends from.
-    pub face_origin: Vec<u32>,
+    /// The cage face (dense index) each face descends from is
+    /// `face_origin[f >> origin_shift]`: a refinement of an all-quad or
+    /// all-triangle level splits face `f` into `4f..4f + 4`, so its
+    /// children share the parent's table with the shift raised by 2
+    /// (read it through [`face_origin`](Self::face_origin)).
+    pub face_origin: Arc<[u32]>,
+    pub origin_shift: u32,
     /// Derived on first use: the last level of a refinement often never
     /// needs it, and it is a third of the cost of a level.
     pub(crate) adjacency: OnceLock<Adjacency>,
@@ -38,6 +52,8 @@ pub(crate) struct Level {
 /// Tables derived from the face and edge lists.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Adjacency {
+    /// The face of each corner; empty when every face has the same number
+    /// of sides (read it through [`Level::corner_face`]).
     pub corner_face: Vec<u32>,
     /// The one or two faces of each edge; the second is [`NONE`] on a boundary.
     pub edge_faces: Vec<[u32; 2]>,
@@ -61,20 +77,42 @@ pub(crate) struct CageMap {
 
 impl Level {
     pub fn face_count(&self) -> usize {
-        self.face_offsets.len() - 1
+        if self.sides > 0 {
+            self.face_vertices.len() / self.sides as usize
+        } else {
+            self.face_offsets.len() - 1
+        }
     }
     pub fn edge_count(&self) -> usize {
         self.edge_vertices.len()
     }
+    #[inline]
     pub fn face_corners(&self, f: u32) -> std::ops::Range<usize> {
-        self.face_offsets[f as usize] as usize..self.face_offsets[f as usize + 1] as usize
+        if self.sides > 0 {
+            let n = self.sides as usize;
+            n * f as usize..n * (f as usize + 1)
+        } else {
+            self.face_offsets[f as usize] as usize..self.face_offsets[f as usize + 1] as usize
+        }
+    }
+    /// The cage face (dense index) face `f` descends from.
+    #[inline]
+    pub fn face_origin(&self, f: usize) -> u32 {
+        self.face_origin[f >> self.origin_shift]
     }
     pub(crate) fn adjacency(&self) -> &Adjacency {
         self.adjacency.get_or_init(|| Adjacency::new(self))
     }
     /// The face of corner `c`.
+    #[inline]
     pub fn corner_face(&self, c: usize) -> u32 {
-        self.adjacency().corner_face[c]
+        // Constant divisors, so no division instruction on the hot path.
+        match self.sides {
+            4 => (c / 4) as u32,
+            3 => (c / 3) as u32,
+            0 => self.adjacency().corner_face[c],
+            n => (c / n as usize) as u32,
+        }
     }
     /// The one or two faces of edge `e`; the second is [`NONE`] on a boundary.
     pub fn edge_faces(&self, e: u32) -> [u32; 2] {
@@ -113,9 +151,52 @@ impl Level {
         let r = self.face_corners(f);
         if c + 1 == r.end { r.start } else { c + 1 }
     }
+    /// Crease sharpness of edge `e`.
+    #[inline]
+    pub fn edge_sharp(&self, e: u32) -> f32 {
+        self.edge_sharpness.get(e as usize).copied().unwrap_or(0.0)
+    }
+    /// Corner sharpness of vertex `v`.
+    #[inline]
+    pub fn vertex_sharp(&self, v: u32) -> f32 {
+        self.vertex_sharpness
+            .get(v as usize)
+            .copied()
+            .unwrap_or(0.0)
+    }
+    /// True when no edge or vertex is sharp (and the level has no boundary).
+    pub fn is_smooth(&self) -> bool {
+        self.edge_sharpness.is_empty() && self.vertex_sharpness.is_empty()
+    }
+    /// Drops the sharpness tables when they hold only zeros, so that
+    /// smooth levels (most of them) carry none and their children skip
+    /// the crease rules.
+    pub(crate) fn drop_zero_sharpness(&mut self) {
+        if self.edge_sharpness.iter().all(|&s| s == 0.0) {
+            self.edge_sharpness = Vec::new();
+        }
+        if self.vertex_sharpness.iter().all(|&s| s == 0.0) {
+            self.vertex_sharpness = Vec::new();
+        }
+    }
+    /// Sets [`sides`](Self::sides) (and drops the offsets) when every face
+    /// has the same number of sides.
+    fn settle_face_sizes(&mut self) {
+        if self.sides == 0 && self.face_count() > 0 {
+            let n = self.face_offsets[1];
+            if self.all_faces_have(n) {
+                self.sides = n;
+                self.face_offsets = Vec::new();
+            }
+        }
+    }
     /// True when every face has `n` sides.
     pub fn all_faces_have(&self, n: u32) -> bool {
-        self.face_offsets.windows(2).all(|w| w[1] - w[0] == n)
+        if self.sides > 0 {
+            self.sides == n
+        } else {
+            self.face_offsets.windows(2).all(|w| w[1] - w[0] == n)
+        }
     }
 
     /// The level of a half-edge mesh's live faces and vertices (isolated
@@ -154,7 +235,6 @@ impl Level {
             face_offsets: Vec::with_capacity(mesh.face_count() + 1),
             face_vertices: Vec::with_capacity(2 * mesh.edge_count()),
             face_edges: Vec::with_capacity(2 * mesh.edge_count()),
-            face_origin: Vec::with_capacity(mesh.face_count()),
             edge_vertices,
             ..Level::default()
         };
@@ -166,9 +246,10 @@ impl Level {
                 level.face_edges.push(emap[h.edge().index()]);
             }
             level.face_offsets.push(level.face_vertices.len() as u32);
-            level.face_origin.push(map.faces.len() as u32);
             map.faces.push(f);
         }
+        level.face_origin = (0..map.faces.len() as u32).collect();
+        level.settle_face_sizes();
         let tapered;
         let edge_sharpness = if creases.tapers.is_empty() {
             &creases.edges
@@ -214,6 +295,7 @@ impl Level {
                 level.vertex_sharpness[v] = INFINITE_SHARPNESS;
             }
         }
+        level.drop_zero_sharpness();
         (level, map, hidden)
     }
 
@@ -224,7 +306,7 @@ impl Level {
         let mut level = Level {
             vertex_count,
             face_offsets: vec![0],
-            face_origin,
+            face_origin: face_origin.into(),
             ..Level::default()
         };
         let mut edge_of: HashMap<(u32, u32), u32> = HashMap::new();
@@ -242,6 +324,7 @@ impl Level {
             }
             level.face_offsets.push(level.face_vertices.len() as u32);
         }
+        level.settle_face_sizes();
         level.edge_sharpness = vec![0.0; level.edge_vertices.len()];
         level.vertex_sharpness = vec![0.0; vertex_count];
         for e in 0..level.edge_count() {
@@ -249,6 +332,7 @@ impl Level {
                 level.edge_sharpness[e] = INFINITE_SHARPNESS;
             }
         }
+        level.drop_zero_sharpness();
         level
     }
 }
@@ -258,10 +342,8 @@ impl Adjacency {
     fn new(level: &Level) -> Adjacency {
         let nf = level.face_count();
         let nc = level.face_vertices.len();
-        let corner_face: Vec<u32> = if level.all_faces_have(4) {
-            (0..nc as u32).map(|c| c / 4).collect()
-        } else if level.all_faces_have(3) {
-            (0..nc as u32).map(|c| c / 3).collect()
+        let corner_face: Vec<u32> = if level.sides > 0 {
+            Vec::new()
         } else {
             let mut corner_face = Vec::with_capacity(nc);
             for f in 0..nf {
@@ -271,7 +353,12 @@ impl Adjacency {
             corner_face
         };
         let mut edge_faces = vec![[NONE, NONE]; level.edge_vertices.len()];
-        for (&e, &f) in level.face_edges.iter().zip(&corner_face) {
+        for (c, &e) in level.face_edges.iter().enumerate() {
+            let f = if level.sides > 0 {
+                level.corner_face(c)
+            } else {
+                corner_face[c]
+            };
             let slot = &mut edge_faces[e as usize];
             if slot[0] == NONE {
                 slot[0] = f;

@@ -26,13 +26,13 @@ enum Kind {
 }
 
 fn kind(level: &Level, v: u32) -> Kind {
-    if level.vertex_sharpness[v as usize] > 0.0 {
+    if level.vertex_sharp(v) > 0.0 {
         return Kind::Corner;
     }
     let mut sharp = level
         .vertex_edges(v)
         .iter()
-        .filter(|&&e| level.edge_sharpness[e as usize] > 0.0);
+        .filter(|&&e| level.edge_sharp(e) > 0.0);
     match (sharp.next(), sharp.next(), sharp.next()) {
         (None, ..) | (Some(_), None, _) => Kind::Smooth,
         (Some(&a), Some(&b), None) => Kind::Crease(level.other_end(a, v), level.other_end(b, v)),

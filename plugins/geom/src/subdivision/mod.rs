@@ -663,7 +663,7 @@ impl Refiner {
     pub fn faces(&self) -> impl Iterator<Item = &[u32]> + '_ {
         let last = self.last();
         (0..last.face_count())
-            .filter(|&f| !self.hidden_cage_faces[last.face_origin[f] as usize])
+            .filter(|&f| !self.hidden_cage_faces[last.face_origin(f) as usize])
             .map(move |f| &last.face_vertices[last.face_corners(f as u32)])
     }
     /// Refined face `f` (of all [`face_count`](Self::face_count) faces,
@@ -676,7 +676,7 @@ impl Refiner {
     /// faces) is left out of the result: it descends from a hole, or from a
     /// face that boundary `None` leaves out.
     pub fn is_face_hidden(&self, f: usize) -> bool {
-        self.hidden_cage_faces[self.last().face_origin[f] as usize]
+        self.hidden_cage_faces[self.last().face_origin(f) as usize]
     }
     /// True when cage face `f` is left out of the result (a hole, or a face
     /// that boundary `None` leaves out); false for faces not in the cage.
@@ -690,18 +690,18 @@ impl Refiner {
     /// The cage face each shown refined face comes from, in [`faces`](Self::faces) order.
     pub fn face_origins(&self) -> impl Iterator<Item = FaceId> + '_ {
         let last = self.last();
-        last.face_origin
-            .iter()
-            .filter(|&&o| !self.hidden_cage_faces[o as usize])
-            .map(|&o| self.cage.faces[o as usize])
+        (0..last.face_count())
+            .map(|f| last.face_origin(f))
+            .filter(|&o| !self.hidden_cage_faces[o as usize])
+            .map(|o| self.cage.faces[o as usize])
     }
     /// The refined edges (vertex index pairs) with their remaining sharpness.
     pub fn edges(&self) -> impl Iterator<Item = ([u32; 2], f32)> + '_ {
         let last = self.last();
         last.edge_vertices
             .iter()
-            .copied()
-            .zip(last.edge_sharpness.iter().copied())
+            .enumerate()
+            .map(|(e, &ends)| (ends, last.edge_sharp(e as u32)))
     }
     /// The cage's positions in the order [`refine`](Self::refine) expects.
     pub fn cage_positions(&self, mesh: &HalfEdgeMesh) -> Vec<DVec3> {
@@ -787,6 +787,7 @@ impl Refiner {
         let (mesh, used, edge_map) = HalfEdgeMesh::from_level_faces(
             positions,
             crate::mesh::LevelFaces {
+                sides: last.sides,
                 face_offsets: &last.face_offsets,
                 corner_vertex: &last.face_vertices,
                 corner_edge: &last.face_edges,
@@ -993,8 +994,8 @@ fn interpolate(
     let child_count = child_count(parent, split);
     let adj = parent.adjacency();
     // A level without any sharpness needs no per-point test of its edges.
-    let smooth_level = parent.edge_sharpness.iter().all(|&s| s == 0.0)
-        && parent.vertex_sharpness.iter().all(|&s| s == 0.0);
+    let smooth_level = parent.is_smooth();
+    let all_quads = parent.sides == 4;
     let betas: [f64; 16] = std::array::from_fn(rules::loop_beta);
     let generic = |face_points: &[DVec3], point: ChildPoint| {
         let mut sink = PointSink {
@@ -1018,7 +1019,7 @@ fn interpolate(
     let edge = |face_points: &[DVec3], e: usize| {
         let [a, b] = parent.edge_vertices[e];
         let [f0, f1] = adj.edge_faces[e];
-        if parent.edge_sharpness[e] == 0.0 && f1 != level::NONE {
+        if parent.edge_sharp(e as u32) == 0.0 && f1 != level::NONE {
             let (pa, pb) = (points[a as usize], points[b as usize]);
             match masks {
                 Masks::CatmullClark
@@ -1062,10 +1063,10 @@ fn interpolate(
         let edges = &adj.vertex_edges
             [adj.vertex_edge_offsets[v] as usize..adj.vertex_edge_offsets[v + 1] as usize];
         let smooth = smooth_level
-            || (parent.vertex_sharpness[v] <= 0.0
+            || (parent.vertex_sharp(v as u32) <= 0.0
                 && edges
                     .iter()
-                    .filter(|&&e| parent.edge_sharpness[e as usize] > 0.0)
+                    .filter(|&&e| parent.edge_sharp(e) > 0.0)
                     .count()
                     <= 1);
         if smooth && !edges.is_empty() && masks != Masks::Linear {
@@ -1081,8 +1082,16 @@ fn interpolate(
                 let w_face = 1.0 / (n * corners.len() as f64);
                 let sum = DVec3::ZERO + (n - 2.0) / n * points[v];
                 let sum = edges.iter().fold(sum, |sum, &e| sum + w_edge * other(e));
+                // Quads (every level past the first): corner c is in face c / 4.
+                let face_of = |c: u32| {
+                    if all_quads {
+                        c / 4
+                    } else {
+                        parent.corner_face(c as usize)
+                    }
+                };
                 return corners.iter().fold(sum, |sum, &c| {
-                    sum + w_face * face_points[adj.corner_face[c as usize] as usize]
+                    sum + w_face * face_points[face_of(c) as usize]
                 });
             }
             let beta = betas

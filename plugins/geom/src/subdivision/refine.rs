@@ -61,10 +61,8 @@ fn split_edges(
         child.edge_vertices.push([ep, first_vertex_point + b]);
     }
     let total = 2 * ne + extra;
-    if parent.edge_sharpness.iter().all(|&s| s == 0.0) {
-        // Nothing sharp: every child edge is smooth (no per-edge rule).
-        child.edge_sharpness = vec![0.0; total];
-    } else {
+    // A smooth parent has smooth children: no tables (Level::is_smooth).
+    if !parent.edge_sharpness.is_empty() {
         child.edge_sharpness = Vec::with_capacity(total);
         for (e, &[a, b]) in parent.edge_vertices.iter().enumerate() {
             child
@@ -76,14 +74,13 @@ fn split_edges(
         }
         child.edge_sharpness.resize(total, 0.0);
     }
-    if parent.vertex_sharpness.iter().all(|&s| s == 0.0) {
-        child.vertex_sharpness = vec![0.0; first_vertex_point as usize + parent.vertex_count];
-    } else {
+    if !parent.vertex_sharpness.is_empty() {
         child.vertex_sharpness = vec![0.0; first_vertex_point as usize];
         child
             .vertex_sharpness
             .extend(parent.vertex_sharpness.iter().map(|&s| decrement(s)));
     }
+    child.drop_zero_sharpness();
 }
 
 /// The child half of parent edge `e` that touches parent vertex `v`.
@@ -110,12 +107,11 @@ fn split_quads(parent: &Level, method: CreaseMethod) -> Level {
             child.edge_vertices.push([nf + e, f]);
         }
     }
-    child.face_offsets = (0..=corners as u32).map(|i| 4 * i).collect();
+    child.sides = 4;
     // Child face c (one per parent corner c): the corner's vertex point, the
     // edge points of its edge and of the edge before, the face point.
     let mut face_vertices = Vec::with_capacity(4 * corners);
     let mut face_edges = Vec::with_capacity(4 * corners);
-    let mut face_origin = Vec::with_capacity(corners);
     for f in 0..nf {
         let r = parent.face_corners(f);
         let (start, n) = (r.start, r.len());
@@ -132,12 +128,26 @@ fn split_quads(parent: &Level, method: CreaseMethod) -> Level {
                 half(parent, ep, v),
             ]);
         }
-        face_origin.extend(std::iter::repeat_n(parent.face_origin[f as usize], n));
     }
     child.face_vertices = face_vertices;
     child.face_edges = face_edges;
-    child.face_origin = face_origin;
+    (child.face_origin, child.origin_shift) = corner_origins(parent);
     child
+}
+
+/// The child level's face origins when each parent corner is a child face
+/// (Catmull-Clark): an all-quad parent's children `4f..4f + 4` share its
+/// table one shift further; otherwise each child face gets its parent's
+/// origin.
+fn corner_origins(parent: &Level) -> (std::sync::Arc<[u32]>, u32) {
+    if parent.sides == 4 {
+        (parent.face_origin.clone(), parent.origin_shift + 2)
+    } else {
+        let origins = (0..parent.face_vertices.len())
+            .map(|c| parent.face_origin(parent.corner_face(c) as usize))
+            .collect();
+        (origins, 0)
+    }
 }
 
 fn split_triangles(parent: &Level, method: CreaseMethod) -> Level {
@@ -158,7 +168,7 @@ fn split_triangles(parent: &Level, method: CreaseMethod) -> Level {
             .edge_vertices
             .extend_from_slice(&[[fe[0], fe[2]], [fe[1], fe[0]], [fe[2], fe[1]]]);
     }
-    child.face_offsets = (0..=4 * nf).map(|i| 3 * i).collect();
+    child.sides = 3;
     let mut face_vertices = Vec::with_capacity(12 * nf as usize);
     let mut face_edges = Vec::with_capacity(12 * nf as usize);
     for (f, (fv, fe)) in parent
@@ -207,7 +217,8 @@ fn split_triangles(parent: &Level, method: CreaseMethod) -> Level {
     }
     child.face_vertices = face_vertices;
     child.face_edges = face_edges;
-    child.face_origin = parent.face_origin.iter().flat_map(|&o| [o; 4]).collect();
+    // Triangle f's quarters are 4f..4f + 4: the parent's table, one shift on.
+    (child.face_origin, child.origin_shift) = (parent.face_origin.clone(), parent.origin_shift + 2);
     child
 }
 
@@ -220,7 +231,7 @@ fn doo_sabin_topology(parent: &Level) -> Level {
     let mut origin = Vec::new();
     for f in 0..parent.face_count() as u32 {
         faces.push(parent.face_corners(f).map(|c| c as u32).collect());
-        origin.push(parent.face_origin[f as usize]);
+        origin.push(parent.face_origin(f as usize));
     }
     for e in 0..parent.edge_count() as u32 {
         let [f0, f1] = parent.edge_faces(e);
@@ -240,7 +251,7 @@ fn doo_sabin_topology(parent: &Level) -> Level {
             parent.next_corner(c1) as u32,
             c1 as u32,
         ]);
-        origin.push(parent.face_origin[f0 as usize]);
+        origin.push(parent.face_origin(f0 as usize));
     }
     for v in 0..parent.vertex_count as u32 {
         let interior = parent
@@ -269,7 +280,7 @@ fn doo_sabin_topology(parent: &Level) -> Level {
             }
             ring.push(c as u32);
         }
-        origin.push(parent.face_origin[parent.corner_face(start as usize) as usize]);
+        origin.push(parent.face_origin(parent.corner_face(start as usize) as usize));
         faces.push(ring);
     }
     Level::from_polygons(parent.face_vertices.len(), &faces, origin)

@@ -51,14 +51,14 @@ pub(crate) fn decrement(s: f32) -> f32 {
 /// Sharpness of the child edge of `e` that touches `v`. Uniform: `s − 1`.
 /// Chaikin: `¾ s + ¼ (mean of the other semi-sharp edges at v)`, then − 1.
 pub(crate) fn child_edge_sharpness(level: &Level, e: u32, v: u32, method: CreaseMethod) -> f32 {
-    let mut s = level.edge_sharpness[e as usize];
+    let mut s = level.edge_sharp(e);
     if s <= 0.0 || is_infinite(s) {
         return s;
     }
     if method == CreaseMethod::Chaikin {
         let (mut sum, mut count) = (0.0f32, 0u32);
         for &other in level.vertex_edges(v) {
-            let so = level.edge_sharpness[other as usize];
+            let so = level.edge_sharp(other);
             if other != e && so > 0.0 && !is_infinite(so) {
                 sum += so;
                 count += 1;
@@ -116,7 +116,7 @@ pub(crate) fn edge_mask(
     sink: &mut impl Sink,
 ) {
     let [a, b] = level.edge_vertices[e as usize];
-    let s = level.edge_sharpness[e as usize] as f64;
+    let s = level.edge_sharp(e) as f64;
     let sharp = if masks == Masks::Linear || level.is_boundary_edge(e) {
         1.0
     } else {
@@ -186,8 +186,8 @@ pub(crate) fn vertex_mask(
         return;
     }
     let edges = level.vertex_edges(v);
-    let sharpness = |e: &u32| level.edge_sharpness[*e as usize];
-    let vs = level.vertex_sharpness[v as usize];
+    let sharpness = |e: &u32| level.edge_sharp(*e);
+    let vs = level.vertex_sharp(v);
     let parent_rule = rule(vs, edges.iter().filter(|e| sharpness(e) > 0.0).count());
     if parent_rule <= Rule::Dart {
         smooth_vertex_mask(level, v, masks, 1.0, sink);
@@ -208,8 +208,8 @@ pub(crate) fn vertex_mask(
                 child_sharp[child_sharp_count] = e;
             }
             child_sharp_count += 1;
-        } else if level.edge_sharpness[e as usize] > 0.0 {
-            ran_out_sum += level.edge_sharpness[e as usize];
+        } else if level.edge_sharp(e) > 0.0 {
+            ran_out_sum += level.edge_sharp(e);
             ran_out_count += 1;
         }
     }
