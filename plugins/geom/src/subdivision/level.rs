@@ -44,26 +44,58 @@ pub(crate) struct Level {
     /// (read it through [`face_origin`](Self::face_origin)).
     pub face_origin: Arc<[u32]>,
     pub origin_shift: u32,
-    /// Derived on first use: the last level of a refinement often never
-    /// needs it, and it is a third of the cost of a level.
-    pub(crate) adjacency: OnceLock<Adjacency>,
+    /// Tables derived from the face and edge lists on first use, each on
+    /// its own: the last level of a refinement often needs none, and Loop
+    /// never needs the vertices' corners.
+    pub(crate) adjacency: Adjacency,
 }
 
 /// Tables derived from the face and edge lists.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Adjacency {
-    /// The face of each corner; empty when every face has the same number
-    /// of sides (read it through [`Level::corner_face`]).
-    pub corner_face: Vec<u32>,
-    /// The one or two faces of each edge; the second is [`NONE`] on a boundary.
-    pub edge_faces: Vec<[u32; 2]>,
-    pub vertex_edge_offsets: Vec<u32>,
+    /// The face of each corner, for levels whose faces differ in size
+    /// (read it through [`Level::corner_face`]).
+    corner_face: OnceLock<Vec<u32>>,
+    /// The one or two face corners that start each edge, in increasing
+    /// order; the second is [`NONE`] on a boundary.
+    edge_corners: OnceLock<Vec<[u32; 2]>>,
     /// Each vertex's edges in increasing order.
-    pub vertex_edges: Vec<u32>,
-    pub vertex_corner_offsets: Vec<u32>,
-    /// Face corners at each vertex in increasing order (a corner names its
-    /// face through `corner_face`).
-    pub vertex_corners: Vec<u32>,
+    vertex_edges: OnceLock<Lists>,
+    /// Face corners at each vertex in increasing order.
+    vertex_corners: OnceLock<Lists>,
+}
+
+/// One list per vertex, packed: list `v` is `items[offsets[v]..offsets[v + 1]]`.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub(crate) struct Lists {
+    pub offsets: Vec<u32>,
+    pub items: Vec<u32>,
+}
+
+impl Lists {
+    #[inline]
+    pub fn get(&self, v: usize) -> &[u32] {
+        &self.items[self.offsets[v] as usize..self.offsets[v + 1] as usize]
+    }
+
+    /// Lists of `count` vertices by counting sort: `count_into(offsets)`
+    /// adds each list's length at `offsets[v + 2]`, `fill(offsets, items)`
+    /// writes each item at `offsets[v + 1]` (then raises it) in increasing
+    /// item order, so each list stays in increasing order.
+    fn gather(
+        count: usize,
+        len: usize,
+        count_into: impl FnOnce(&mut [u32]),
+        fill: impl FnOnce(&mut [u32], &mut [u32]),
+    ) -> Lists {
+        let mut offsets = vec![0u32; count + 2];
+        count_into(&mut offsets);
+        prefix_sum(&mut offsets);
+        let mut items = vec![0u32; len];
+        fill(&mut offsets, &mut items);
+        offsets.pop();
+        Lists { offsets, items }
+    }
 }
 
 /// Dense numbering of a half-edge mesh's live elements, so that results can
@@ -100,9 +132,6 @@ impl Level {
     pub fn face_origin(&self, f: usize) -> u32 {
         self.face_origin[f >> self.origin_shift]
     }
-    pub(crate) fn adjacency(&self) -> &Adjacency {
-        self.adjacency.get_or_init(|| Adjacency::new(self))
-    }
     /// The face of corner `c`.
     #[inline]
     pub fn corner_face(&self, c: usize) -> u32 {
@@ -110,26 +139,113 @@ impl Level {
         match self.sides {
             4 => (c / 4) as u32,
             3 => (c / 3) as u32,
-            0 => self.adjacency().corner_face[c],
+            0 => self
+                .adjacency
+                .corner_face
+                .get_or_init(|| self.corner_face_table())[c],
             n => (c / n as usize) as u32,
         }
     }
+    /// The one or two face corners starting each edge, in increasing order
+    /// (the second is [`NONE`] on a boundary).
+    pub(crate) fn edge_corner_table(&self) -> &[[u32; 2]] {
+        self.adjacency.edge_corners.get_or_init(|| {
+            let mut edge_corners = vec![[NONE, NONE]; self.edge_vertices.len()];
+            for (c, &e) in self.face_edges.iter().enumerate() {
+                let slot = &mut edge_corners[e as usize];
+                slot[usize::from(slot[0] != NONE)] = c as u32;
+            }
+            edge_corners
+        })
+    }
+    /// Every vertex's edges, in increasing order.
+    pub(crate) fn vertex_edge_lists(&self) -> &Lists {
+        self.adjacency.vertex_edges.get_or_init(|| {
+            Lists::gather(
+                self.vertex_count,
+                2 * self.edge_count(),
+                |offsets| {
+                    for &[a, b] in &self.edge_vertices {
+                        offsets[a as usize + 2] += 1;
+                        offsets[b as usize + 2] += 1;
+                    }
+                },
+                |offsets, items| {
+                    for (e, &[a, b]) in self.edge_vertices.iter().enumerate() {
+                        for v in [a, b] {
+                            let slot = &mut offsets[v as usize + 1];
+                            items[*slot as usize] = e as u32;
+                            *slot += 1;
+                        }
+                    }
+                },
+            )
+        })
+    }
+    /// Every vertex's face corners, in increasing order.
+    pub(crate) fn vertex_corner_lists(&self) -> &Lists {
+        self.adjacency.vertex_corners.get_or_init(|| {
+            Lists::gather(
+                self.vertex_count,
+                self.face_vertices.len(),
+                |offsets| {
+                    for &v in &self.face_vertices {
+                        offsets[v as usize + 2] += 1;
+                    }
+                },
+                |offsets, items| {
+                    for (c, &v) in self.face_vertices.iter().enumerate() {
+                        let slot = &mut offsets[v as usize + 1];
+                        items[*slot as usize] = c as u32;
+                        *slot += 1;
+                    }
+                },
+            )
+        })
+    }
+    /// Sets the derived tables, when the refinement that made this level
+    /// knows them without a search (see `refine::split_quads`).
+    pub(crate) fn set_adjacency(
+        &mut self,
+        edge_corners: Vec<[u32; 2]>,
+        vertex_edges: Lists,
+        vertex_corners: Lists,
+    ) {
+        self.adjacency = Adjacency {
+            corner_face: OnceLock::new(),
+            edge_corners: edge_corners.into(),
+            vertex_edges: vertex_edges.into(),
+            vertex_corners: vertex_corners.into(),
+        };
+    }
+    fn corner_face_table(&self) -> Vec<u32> {
+        let mut corner_face = Vec::with_capacity(self.face_vertices.len());
+        for f in 0..self.face_count() {
+            corner_face.extend(std::iter::repeat_n(
+                f as u32,
+                self.face_corners(f as u32).len(),
+            ));
+        }
+        corner_face
+    }
     /// The one or two faces of edge `e`; the second is [`NONE`] on a boundary.
     pub fn edge_faces(&self, e: u32) -> [u32; 2] {
-        self.adjacency().edge_faces[e as usize]
+        let [c0, c1] = self.edge_corner_table()[e as usize];
+        [
+            self.corner_face(c0 as usize),
+            if c1 == NONE {
+                NONE
+            } else {
+                self.corner_face(c1 as usize)
+            },
+        ]
     }
     pub fn vertex_edges(&self, v: u32) -> &[u32] {
-        let a = self.adjacency();
-        let r = a.vertex_edge_offsets[v as usize] as usize
-            ..a.vertex_edge_offsets[v as usize + 1] as usize;
-        &a.vertex_edges[r]
+        self.vertex_edge_lists().get(v as usize)
     }
     /// Face corners at vertex `v`.
     pub fn vertex_corners(&self, v: u32) -> &[u32] {
-        let a = self.adjacency();
-        let r = a.vertex_corner_offsets[v as usize] as usize
-            ..a.vertex_corner_offsets[v as usize + 1] as usize;
-        &a.vertex_corners[r]
+        self.vertex_corner_lists().get(v as usize)
     }
     /// The other end of edge `e` seen from `v`.
     pub fn other_end(&self, e: u32, v: u32) -> u32 {
@@ -137,7 +253,7 @@ impl Level {
         if a == v { b } else { a }
     }
     pub fn is_boundary_edge(&self, e: u32) -> bool {
-        self.edge_faces(e)[1] == NONE
+        self.edge_corner_table()[e as usize][1] == NONE
     }
     /// Corner before `c` in its face.
     pub fn prev_corner(&self, c: usize) -> usize {
@@ -334,76 +450,6 @@ impl Level {
         }
         level.drop_zero_sharpness();
         level
-    }
-}
-
-impl Adjacency {
-    /// Corner faces, edge faces and vertex adjacency from the face and edge lists.
-    fn new(level: &Level) -> Adjacency {
-        let nf = level.face_count();
-        let nc = level.face_vertices.len();
-        let corner_face: Vec<u32> = if level.sides > 0 {
-            Vec::new()
-        } else {
-            let mut corner_face = Vec::with_capacity(nc);
-            for f in 0..nf {
-                let n = (level.face_offsets[f + 1] - level.face_offsets[f]) as usize;
-                corner_face.extend(std::iter::repeat_n(f as u32, n));
-            }
-            corner_face
-        };
-        let mut edge_faces = vec![[NONE, NONE]; level.edge_vertices.len()];
-        for (c, &e) in level.face_edges.iter().enumerate() {
-            let f = if level.sides > 0 {
-                level.corner_face(c)
-            } else {
-                corner_face[c]
-            };
-            let slot = &mut edge_faces[e as usize];
-            if slot[0] == NONE {
-                slot[0] = f;
-            } else {
-                slot[1] = f;
-            }
-        }
-        let nv = level.vertex_count;
-        // Vertex → edges, by counting sort (each list in increasing order).
-        let mut vertex_edge_offsets = vec![0u32; nv + 2];
-        for &[a, b] in &level.edge_vertices {
-            vertex_edge_offsets[a as usize + 2] += 1;
-            vertex_edge_offsets[b as usize + 2] += 1;
-        }
-        prefix_sum(&mut vertex_edge_offsets);
-        let mut vertex_edges = vec![0u32; 2 * level.edge_vertices.len()];
-        for (e, &[a, b]) in level.edge_vertices.iter().enumerate() {
-            for v in [a, b] {
-                let slot = &mut vertex_edge_offsets[v as usize + 1];
-                vertex_edges[*slot as usize] = e as u32;
-                *slot += 1;
-            }
-        }
-        vertex_edge_offsets.pop();
-        // Vertex → corners, likewise.
-        let mut vertex_corner_offsets = vec![0u32; nv + 2];
-        for &v in &level.face_vertices {
-            vertex_corner_offsets[v as usize + 2] += 1;
-        }
-        prefix_sum(&mut vertex_corner_offsets);
-        let mut vertex_corners = vec![0u32; nc];
-        for (c, &v) in level.face_vertices.iter().enumerate() {
-            let slot = &mut vertex_corner_offsets[v as usize + 1];
-            vertex_corners[*slot as usize] = c as u32;
-            *slot += 1;
-        }
-        vertex_corner_offsets.pop();
-        Adjacency {
-            corner_face,
-            edge_faces,
-            vertex_edge_offsets,
-            vertex_edges,
-            vertex_corner_offsets,
-            vertex_corners,
-        }
     }
 }
 

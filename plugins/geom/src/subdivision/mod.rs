@@ -625,6 +625,7 @@ impl Refiner {
                 all.last().expect("cage level"),
                 split,
                 options.crease_method,
+                level < levels,
             );
             all.push(child);
             if !go_on(level) {
@@ -992,7 +993,10 @@ fn interpolate(
     let nf = split.face_points(parent);
     let ne = parent.edge_count();
     let child_count = child_count(parent, split);
-    let adj = parent.adjacency();
+    let edge_corners = parent.edge_corner_table();
+    let vertex_edges = parent.vertex_edge_lists();
+    // Only Catmull-Clark's vertex mask reads the faces around a vertex.
+    let vertex_corners = (masks == Masks::CatmullClark).then(|| parent.vertex_corner_lists());
     // A level without any sharpness needs no per-point test of its edges.
     let smooth_level = parent.is_smooth();
     let all_quads = parent.sides == 4;
@@ -1018,8 +1022,16 @@ fn interpolate(
     // The smooth edge masks of rules::edge_mask.
     let edge = |face_points: &[DVec3], e: usize| {
         let [a, b] = parent.edge_vertices[e];
-        let [f0, f1] = adj.edge_faces[e];
-        if parent.edge_sharp(e as u32) == 0.0 && f1 != level::NONE {
+        let [c0, c1] = edge_corners[e];
+        if parent.edge_sharp(e as u32) == 0.0 && c1 != level::NONE {
+            let (f0, f1) = if all_quads {
+                (c0 / 4, c1 / 4)
+            } else {
+                (
+                    parent.corner_face(c0 as usize),
+                    parent.corner_face(c1 as usize),
+                )
+            };
             let (pa, pb) = (points[a as usize], points[b as usize]);
             match masks {
                 Masks::CatmullClark
@@ -1032,25 +1044,19 @@ fn interpolate(
                         + 0.25 * face_points[f1 as usize];
                 }
                 Masks::Loop => {
-                    // The corner of triangle f that is not on e (Loop
-                    // levels are all triangles: f's corners are 3f..3f+3).
-                    let opposite = |f: u32| {
-                        let base = 3 * f as usize;
-                        let fe = &parent.face_edges[base..base + 3];
-                        let k = if fe[0] as usize == e {
-                            2
-                        } else if fe[1] as usize == e {
-                            0
-                        } else {
-                            1
-                        };
-                        points[parent.face_vertices[base + k] as usize]
+                    // The vertex of corner c's triangle that is not on
+                    // the edge c starts: the corner before c (Loop levels
+                    // are all triangles: corner c is in 3 (c / 3)..).
+                    let opposite = |c: u32| {
+                        let base = c - c % 3;
+                        let before = base + (c - base + 2) % 3;
+                        points[parent.face_vertices[before as usize] as usize]
                     };
                     return DVec3::ZERO
                         + 0.375 * pa
                         + 0.375 * pb
-                        + 0.125 * opposite(f0)
-                        + 0.125 * opposite(f1);
+                        + 0.125 * opposite(c0)
+                        + 0.125 * opposite(c1);
                 }
                 _ => {}
             }
@@ -1060,8 +1066,7 @@ fn interpolate(
     // The smooth vertex masks of rules::smooth_vertex_mask (smooth vertices
     // and darts: no corner sharpness, at most one sharp edge).
     let vertex = |face_points: &[DVec3], v: usize| {
-        let edges = &adj.vertex_edges
-            [adj.vertex_edge_offsets[v] as usize..adj.vertex_edge_offsets[v + 1] as usize];
+        let edges = vertex_edges.get(v);
         let smooth = smooth_level
             || (parent.vertex_sharp(v as u32) <= 0.0
                 && edges
@@ -1075,9 +1080,8 @@ fn interpolate(
                 let [a, b] = parent.edge_vertices[e as usize];
                 points[(if a as usize == v { b } else { a }) as usize]
             };
-            if masks == Masks::CatmullClark {
-                let corners = &adj.vertex_corners[adj.vertex_corner_offsets[v] as usize
-                    ..adj.vertex_corner_offsets[v + 1] as usize];
+            if let Some(vertex_corners) = vertex_corners {
+                let corners = vertex_corners.get(v);
                 let w_edge = 1.0 / (n * n);
                 let w_face = 1.0 / (n * corners.len() as f64);
                 let sum = DVec3::ZERO + (n - 2.0) / n * points[v];

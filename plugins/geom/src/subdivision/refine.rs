@@ -9,7 +9,7 @@
 use std::f64::consts::TAU;
 
 use super::CreaseMethod;
-use super::level::{Level, NONE};
+use super::level::{Level, Lists, NONE};
 use super::rules::{child_edge_sharpness, decrement};
 
 /// How faces are split.
@@ -33,10 +33,23 @@ impl Split {
     }
 }
 
-/// The child level of `parent`.
-pub(crate) fn refine_topology(parent: &Level, split: Split, method: CreaseMethod) -> Level {
+/// The child level of `parent`. With `with_adjacency` (the child will be
+/// refined in turn), the child's derived tables are set too where the
+/// split makes them known without a search.
+pub(crate) fn refine_topology(
+    parent: &Level,
+    split: Split,
+    method: CreaseMethod,
+    with_adjacency: bool,
+) -> Level {
     match split {
-        Split::Quads => split_quads(parent, method),
+        Split::Quads => {
+            let mut child = split_quads(parent, method);
+            if with_adjacency {
+                quad_child_adjacency(parent, &mut child);
+            }
+            child
+        }
         Split::Triangles => split_triangles(parent, method),
         Split::Dual => doo_sabin_topology(parent),
     }
@@ -222,6 +235,100 @@ fn split_triangles(parent: &Level, method: CreaseMethod) -> Level {
     child
 }
 
+/// The derived tables of `child = split_quads(parent)`, read off the
+/// parent's in the numbering above instead of searched for (as
+/// OpenSubdiv's `Vtr::QuadRefinement` populates its child relations).
+/// Child face `c` (parent corner `c`, at vertex `v`, after corner `p`, in
+/// face `f`) has the corners `4c..4c + 4` at VP(v), EP(e_c), FP(f),
+/// EP(e_p), starting the edges half(e_c, v), `2E + c`, `2E + p`,
+/// half(e_p, v). Lists come out in increasing order, as the counting sort
+/// of `Level` gives them.
+fn quad_child_adjacency(parent: &Level, child: &mut Level) {
+    let (nf, ne) = (parent.face_count(), parent.edge_count());
+    let corners = parent.face_vertices.len();
+    let edge_corners = parent.edge_corner_table();
+    let vertex_edges = parent.vertex_edge_lists();
+    let vertex_corners = parent.vertex_corner_lists();
+    let next = |c: u32| parent.next_corner(c as usize) as u32;
+    let sorted = |a: u32, b: u32| if a < b { [a, b] } else { [b, a] };
+
+    // Edge corners: the halves of each parent edge, then the inner edges.
+    let mut child_edge_corners = Vec::with_capacity(2 * ne + corners);
+    for (e, &[c0, c1]) in edge_corners.iter().enumerate() {
+        let v0 = parent.face_vertices[c0 as usize];
+        let n0 = next(c0);
+        // (half at v0, half at the other end)
+        let (at_v0, at_other) = if c1 == NONE {
+            ([4 * c0, NONE], [4 * n0 + 3, NONE])
+        } else {
+            (sorted(4 * c0, 4 * next(c1) + 3), sorted(4 * c1, 4 * n0 + 3))
+        };
+        if parent.edge_vertices[e][0] == v0 {
+            child_edge_corners.extend_from_slice(&[at_v0, at_other]);
+        } else {
+            child_edge_corners.extend_from_slice(&[at_other, at_v0]);
+        }
+    }
+    for c in 0..corners as u32 {
+        child_edge_corners.push(sorted(4 * c + 1, 4 * next(c) + 2));
+    }
+
+    // Vertex lists: face points, edge points, vertex points.
+    let face_start = |f: usize| parent.face_corners(f as u32).start as u32;
+    let mut edge_offsets = Vec::with_capacity(child.vertex_count + 1);
+    let mut corner_offsets = Vec::with_capacity(child.vertex_count + 1);
+    edge_offsets.extend((0..nf).map(face_start));
+    corner_offsets.extend((0..nf).map(face_start));
+    let (mut edge_end, mut corner_end) = (corners as u32, corners as u32);
+    let mut edge_items = Vec::with_capacity(2 * child.edge_vertices.len());
+    let mut corner_items = Vec::with_capacity(4 * corners);
+    edge_items.extend((0..corners as u32).map(|c| 2 * ne as u32 + c));
+    corner_items.extend((0..corners as u32).map(|c| 4 * c + 2));
+    for (e, &[c0, c1]) in edge_corners.iter().enumerate() {
+        edge_offsets.push(edge_end);
+        corner_offsets.push(corner_end);
+        let e = e as u32;
+        let inner = 2 * ne as u32;
+        if c1 == NONE {
+            edge_items.extend_from_slice(&[2 * e, 2 * e + 1, inner + c0]);
+            corner_items.extend_from_slice(&sorted(4 * c0 + 1, 4 * next(c0) + 3));
+            edge_end += 3;
+            corner_end += 2;
+        } else {
+            edge_items.extend_from_slice(&[2 * e, 2 * e + 1, inner + c0, inner + c1]);
+            let mut around = [4 * c0 + 1, 4 * next(c0) + 3, 4 * c1 + 1, 4 * next(c1) + 3];
+            around.sort_unstable();
+            corner_items.extend_from_slice(&around);
+            edge_end += 4;
+            corner_end += 4;
+        }
+    }
+    for v in 0..parent.vertex_count {
+        edge_offsets.push(edge_end + vertex_edges.offsets[v]);
+        corner_offsets.push(corner_end + vertex_corners.offsets[v]);
+        edge_items.extend(
+            vertex_edges
+                .get(v)
+                .iter()
+                .map(|&e| 2 * e + u32::from(parent.edge_vertices[e as usize][0] != v as u32)),
+        );
+        corner_items.extend(vertex_corners.get(v).iter().map(|&c| 4 * c));
+    }
+    edge_offsets.push(edge_items.len() as u32);
+    corner_offsets.push(corner_items.len() as u32);
+    child.set_adjacency(
+        child_edge_corners,
+        Lists {
+            offsets: edge_offsets,
+            items: edge_items,
+        },
+        Lists {
+            offsets: corner_offsets,
+            items: corner_items,
+        },
+    );
+}
+
 /// Doo-Sabin's child faces (seed 001, slides 116–118): one per face (its new
 /// corner points), one per interior edge (the four corner points at its
 /// ends) and one per interior vertex (the corner points around it). Child
@@ -297,5 +404,70 @@ pub(crate) fn doo_sabin_weight(n: usize, i: usize, j: usize) -> f64 {
     } else {
         let k = (i as f64 - j as f64) / n_f;
         (3.0 + 2.0 * (TAU * k).cos()) / (4.0 * n_f)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Primitive;
+    use crate::subdivision::{BoundaryInterpolation, Creases};
+
+    /// The tables `quad_child_adjacency` reads off the parent are the ones
+    /// counted from the child's own faces, on closed and open cages with
+    /// triangles, quads and n-gons, two levels deep.
+    #[test]
+    fn derived_quad_adjacency_equals_counted() {
+        let cages = [
+            Primitive::Cube { size: 2.0 },
+            Primitive::Grid {
+                x_segments: 3,
+                z_segments: 2,
+                size: 2.0,
+            },
+            Primitive::Cone {
+                segments: 5,
+                radius: 1.0,
+                depth: 2.0,
+            },
+            Primitive::Cylinder {
+                segments: 7,
+                radius: 1.0,
+                depth: 2.0,
+            },
+        ];
+        for cage in cages {
+            let mesh = cage.build().unwrap();
+            let (mut parent, _, _) = Level::from_mesh(
+                &mesh,
+                &Creases::default(),
+                BoundaryInterpolation::EdgesOnly,
+                false,
+            );
+            for level in 1..=2 {
+                let child = refine_topology(&parent, Split::Quads, CreaseMethod::Uniform, true);
+                let counted = Level {
+                    adjacency: Default::default(),
+                    ..child.clone()
+                };
+                let what = format!("{cage:?} level {level}");
+                assert_eq!(
+                    child.edge_corner_table(),
+                    counted.edge_corner_table(),
+                    "{what}"
+                );
+                assert_eq!(
+                    child.vertex_edge_lists(),
+                    counted.vertex_edge_lists(),
+                    "{what}"
+                );
+                assert_eq!(
+                    child.vertex_corner_lists(),
+                    counted.vertex_corner_lists(),
+                    "{what}"
+                );
+                parent = child;
+            }
+        }
     }
 }
