@@ -343,6 +343,38 @@ impl HalfEdgeMesh {
 
     // ----- loops and rings ---------------------------------------------------
 
+    /// Appends every live face's corners, in face id order, each face from
+    /// its first half-edge: the raw vertex and edge id of each corner, and
+    /// after each face the number of corners so far. One walk of the
+    /// records for bulk conversions (subdivision cages). Faces with inner
+    /// rings give their outer loop only; faces without edges give none.
+    pub(crate) fn append_face_corners(
+        &self,
+        face_offsets: &mut Vec<u32>,
+        corner_vertex: &mut Vec<u32>,
+        corner_edge: &mut Vec<u32>,
+    ) {
+        for (f, &start) in self.face_halfedge.iter().enumerate() {
+            if self.face_dead[f] {
+                continue;
+            }
+            if start != NONE {
+                let mut h = start;
+                // A valid loop closes within the half-edge count.
+                for _ in 0..self.halfedges.len() {
+                    let r = &self.halfedges[h as usize];
+                    corner_vertex.push(r.origin);
+                    corner_edge.push(h / 2);
+                    h = r.next;
+                    if h == start {
+                        break;
+                    }
+                }
+            }
+            face_offsets.push(corner_vertex.len() as u32);
+        }
+    }
+
     /// True when some face has an inner ring.
     pub fn has_rings(&self) -> bool {
         !self.face_rings.is_empty()

@@ -300,7 +300,7 @@ impl Level {
     fn settle_face_sizes(&mut self) {
         if self.sides == 0 && self.face_count() > 0 {
             let n = self.face_offsets[1];
-            if self.all_faces_have(n) {
+            if n > 0 && self.all_faces_have(n) {
                 self.sides = n;
                 self.face_offsets = Vec::new();
             }
@@ -332,20 +332,48 @@ impl Level {
         boundary: BoundaryInterpolation,
         hide_boundary: bool,
     ) -> (Level, CageMap, Vec<bool>) {
-        let mut map = CageMap::default();
-        let mut vmap = vec![NONE; mesh.vertex_capacity()];
-        for v in mesh.vertices() {
-            vmap[v.index()] = map.vertices.len() as u32;
-            map.vertices.push(v);
-        }
-        let mut emap = vec![NONE; mesh.edge_capacity()];
-        let mut edge_vertices = Vec::with_capacity(mesh.edge_count());
-        for e in mesh.edges() {
-            emap[e.index()] = map.edges.len() as u32;
-            map.edges.push(e);
-            let [a, b] = mesh.edge_vertices(e);
-            edge_vertices.push([vmap[a.index()], vmap[b.index()]]);
-        }
+        let mut map = CageMap {
+            vertices: mesh.vertices().collect(),
+            edges: mesh.edges().collect(),
+            faces: Vec::new(),
+        };
+        // Dense indices of raw ids; the same when nothing is dead.
+        let compact = map.vertices.len() == mesh.vertex_capacity()
+            && map.edges.len() == mesh.edge_capacity()
+            && mesh.face_count() == mesh.face_capacity();
+        let dense = |ids: &mut dyn Iterator<Item = usize>, capacity: usize| {
+            let mut to_dense = vec![NONE; capacity];
+            for (i, id) in ids.enumerate() {
+                to_dense[id] = i as u32;
+            }
+            to_dense
+        };
+        let (vmap, emap) = if compact {
+            (Vec::new(), Vec::new())
+        } else {
+            (
+                dense(
+                    &mut map.vertices.iter().map(|v| v.index()),
+                    mesh.vertex_capacity(),
+                ),
+                dense(
+                    &mut map.edges.iter().map(|e| e.index()),
+                    mesh.edge_capacity(),
+                ),
+            )
+        };
+        let vertex_index = |v: VertexId| {
+            if compact {
+                v.index() as u32
+            } else {
+                vmap[v.index()]
+            }
+        };
+        let edge_vertices: Vec<[u32; 2]> = map
+            .edges
+            .iter()
+            .map(|&e| mesh.edge_vertices(e).map(vertex_index))
+            .collect();
         let mut level = Level {
             vertex_count: map.vertices.len(),
             face_offsets: Vec::with_capacity(mesh.face_count() + 1),
@@ -355,15 +383,21 @@ impl Level {
             ..Level::default()
         };
         level.face_offsets.push(0);
-        map.faces.reserve(mesh.face_count());
-        for f in mesh.faces() {
-            for h in mesh.face_halfedges(f) {
-                level.face_vertices.push(vmap[mesh.origin(h).index()]);
-                level.face_edges.push(emap[h.edge().index()]);
+        mesh.append_face_corners(
+            &mut level.face_offsets,
+            &mut level.face_vertices,
+            &mut level.face_edges,
+        );
+        // Raw ids to dense indices (the same when nothing is dead).
+        if !compact {
+            for v in &mut level.face_vertices {
+                *v = vmap[*v as usize];
             }
-            level.face_offsets.push(level.face_vertices.len() as u32);
-            map.faces.push(f);
+            for e in &mut level.face_edges {
+                *e = emap[*e as usize];
+            }
         }
+        map.faces = mesh.faces().collect();
         level.face_origin = (0..map.faces.len() as u32).collect();
         level.settle_face_sizes();
         let tapered;

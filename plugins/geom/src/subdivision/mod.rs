@@ -1012,6 +1012,15 @@ fn interpolate(
     };
     // The face point (rules::face_mask).
     let face = |f: usize| {
+        if all_quads {
+            // The fold below written out (same terms, same order).
+            let q = &parent.face_vertices[4 * f..4 * f + 4];
+            return DVec3::ZERO
+                + 0.25 * points[q[0] as usize]
+                + 0.25 * points[q[1] as usize]
+                + 0.25 * points[q[2] as usize]
+                + 0.25 * points[q[3] as usize];
+        }
         let r = parent.face_corners(f as u32);
         let w = 1.0 / r.len() as f64;
         parent.face_vertices[r]
