@@ -209,13 +209,13 @@ impl Level {
         &mut self,
         edge_corners: Vec<[u32; 2]>,
         vertex_edges: Lists,
-        vertex_corners: Lists,
+        vertex_corners: Option<Lists>,
     ) {
         self.adjacency = Adjacency {
             corner_face: OnceLock::new(),
             edge_corners: edge_corners.into(),
             vertex_edges: vertex_edges.into(),
-            vertex_corners: vertex_corners.into(),
+            vertex_corners: vertex_corners.map_or_else(OnceLock::new, OnceLock::from),
         };
     }
     fn corner_face_table(&self) -> Vec<u32> {
@@ -256,16 +256,24 @@ impl Level {
         self.edge_corner_table()[e as usize][1] == NONE
     }
     /// Corner before `c` in its face.
+    #[inline]
     pub fn prev_corner(&self, c: usize) -> usize {
-        let f = self.corner_face(c);
-        let r = self.face_corners(f);
+        let r = self.corner_range(c);
         if c == r.start { r.end - 1 } else { c - 1 }
     }
     /// Corner after `c` in its face.
+    #[inline]
     pub fn next_corner(&self, c: usize) -> usize {
-        let f = self.corner_face(c);
-        let r = self.face_corners(f);
+        let r = self.corner_range(c);
         if c + 1 == r.end { r.start } else { c + 1 }
+    }
+    /// The corners of corner `c`'s face.
+    #[inline]
+    fn corner_range(&self, c: usize) -> std::ops::Range<usize> {
+        match self.sides {
+            4 => (c & !3)..(c & !3) + 4,
+            _ => self.face_corners(self.corner_face(c)),
+        }
     }
     /// Crease sharpness of edge `e`.
     #[inline]

@@ -50,7 +50,13 @@ pub(crate) fn refine_topology(
             }
             child
         }
-        Split::Triangles => split_triangles(parent, method),
+        Split::Triangles => {
+            let mut child = split_triangles(parent, method);
+            if with_adjacency {
+                triangle_child_adjacency(parent, &mut child);
+            }
+            child
+        }
         Split::Dual => doo_sabin_topology(parent),
     }
 }
@@ -322,11 +328,82 @@ fn quad_child_adjacency(parent: &Level, child: &mut Level) {
             offsets: edge_offsets,
             items: edge_items,
         },
-        Lists {
+        Some(Lists {
             offsets: corner_offsets,
             items: corner_items,
-        },
+        }),
     );
+}
+
+/// The derived tables of `child = split_triangles(parent)` (edge corners
+/// and vertex edges; Loop's masks need no vertex corners), read off the
+/// parent's as [`quad_child_adjacency`] does. Triangle `f`'s children
+/// `4f..4f + 4` have the corners `12f..12f + 12`: child `4f + k` is
+/// VP(v_k), EP(e_k), EP(e_{k-1}) with the edges half(e_k, v_k), inner
+/// `2E + 3f + k`, half(e_{k-1}, v_k); child `4f + 3` is EP(e0), EP(e1),
+/// EP(e2) with the inner edges 1, 2, 0. So the half of parent corner `c`'s
+/// edge at its start is started by corner 0 of child `4f + k`, the half at
+/// its end by corner 2 of the child at `next(c)`, and EP(e_c) touches the
+/// inner edges `2E + c` and `2E + next(c)`.
+fn triangle_child_adjacency(parent: &Level, child: &mut Level) {
+    let ne = parent.edge_count();
+    let edge_corners = parent.edge_corner_table();
+    let vertex_edges = parent.vertex_edge_lists();
+    let next = |c: u32| parent.next_corner(c as usize) as u32;
+    let sorted = |a: u32, b: u32| if a < b { [a, b] } else { [b, a] };
+    let inner = 2 * ne as u32;
+    // Child corner `pos` of child face 4f + k, where c = 3f + k.
+    let child_corner = |c: u32, pos: u32| 4 * c - c % 3 + pos;
+    let start = |c: u32| child_corner(c, 0);
+    let end = |c: u32| child_corner(next(c), 2);
+
+    let mut child_edge_corners = Vec::with_capacity(child.edge_vertices.len());
+    for (e, &[c0, c1]) in edge_corners.iter().enumerate() {
+        let v0 = parent.face_vertices[c0 as usize];
+        let (at_v0, at_other) = if c1 == NONE {
+            ([start(c0), NONE], [end(c0), NONE])
+        } else {
+            (sorted(start(c0), end(c1)), sorted(start(c1), end(c0)))
+        };
+        if parent.edge_vertices[e][0] == v0 {
+            child_edge_corners.extend_from_slice(&[at_v0, at_other]);
+        } else {
+            child_edge_corners.extend_from_slice(&[at_other, at_v0]);
+        }
+    }
+    for f in 0..parent.face_count() as u32 {
+        let q = 12 * f;
+        child_edge_corners.extend_from_slice(&[[q + 1, q + 11], [q + 4, q + 9], [q + 7, q + 10]]);
+    }
+
+    let mut offsets = Vec::with_capacity(child.vertex_count + 1);
+    let mut items = Vec::with_capacity(2 * child.edge_vertices.len());
+    for (e, &[c0, c1]) in edge_corners.iter().enumerate() {
+        offsets.push(items.len() as u32);
+        let e = e as u32;
+        if c1 == NONE {
+            let mut around = [2 * e, 2 * e + 1, inner + c0, inner + next(c0)];
+            around[2..].sort_unstable();
+            items.extend_from_slice(&around);
+        } else {
+            let mut around = [inner + c0, inner + next(c0), inner + c1, inner + next(c1)];
+            around.sort_unstable();
+            items.extend_from_slice(&[2 * e, 2 * e + 1]);
+            items.extend_from_slice(&around);
+        }
+    }
+    let vertex_start = items.len() as u32;
+    for v in 0..parent.vertex_count {
+        offsets.push(vertex_start + vertex_edges.offsets[v]);
+        items.extend(
+            vertex_edges
+                .get(v)
+                .iter()
+                .map(|&e| 2 * e + u32::from(parent.edge_vertices[e as usize][0] != v as u32)),
+        );
+    }
+    offsets.push(items.len() as u32);
+    child.set_adjacency(child_edge_corners, Lists { offsets, items }, None);
 }
 
 /// Doo-Sabin's child faces (seed 001, slides 116–118): one per face (its new
@@ -451,6 +528,59 @@ mod tests {
                     ..child.clone()
                 };
                 let what = format!("{cage:?} level {level}");
+                assert_eq!(
+                    child.edge_corner_table(),
+                    counted.edge_corner_table(),
+                    "{what}"
+                );
+                assert_eq!(
+                    child.vertex_edge_lists(),
+                    counted.vertex_edge_lists(),
+                    "{what}"
+                );
+                assert_eq!(
+                    child.vertex_corner_lists(),
+                    counted.vertex_corner_lists(),
+                    "{what}"
+                );
+                parent = child;
+            }
+        }
+    }
+
+    /// Likewise for the triangle split (Loop), on a closed icosahedron and
+    /// an open fan of triangles.
+    #[test]
+    fn derived_triangle_adjacency_equals_counted() {
+        let ico = Primitive::IcoSphere {
+            subdivisions: 0,
+            radius: 1.0,
+        }
+        .build()
+        .unwrap();
+        let positions: Vec<crate::DVec3> = (0..5)
+            .map(|i| crate::DVec3::new(f64::from(i).cos(), f64::from(i).sin(), 0.0))
+            .chain([crate::DVec3::ZERO])
+            .collect();
+        let fan = crate::HalfEdgeMesh::from_polygons(
+            &positions,
+            &[[5, 0, 1], [5, 1, 2], [5, 2, 3], [5, 3, 4]],
+        )
+        .unwrap();
+        for (name, mesh) in [("icosahedron", ico), ("fan", fan)] {
+            let (mut parent, _, _) = Level::from_mesh(
+                &mesh,
+                &Creases::default(),
+                BoundaryInterpolation::EdgesOnly,
+                false,
+            );
+            for level in 1..=2 {
+                let child = refine_topology(&parent, Split::Triangles, CreaseMethod::Uniform, true);
+                let counted = Level {
+                    adjacency: Default::default(),
+                    ..child.clone()
+                };
+                let what = format!("{name} level {level}");
                 assert_eq!(
                     child.edge_corner_table(),
                     counted.edge_corner_table(),
