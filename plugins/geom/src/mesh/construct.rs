@@ -350,24 +350,10 @@ impl HalfEdgeMesh {
             return Err(BuildError::NonFinitePosition { vertex: v as u32 });
         }
         let nv = kept_positions.len();
-        let nf = face_halfedge.len();
-        let ne = halfedges.len() / 2;
         if corners != halfedges.len() {
             link_boundary(&mut halfedges, &mut vertex_out, true)?;
         }
-        let mesh = HalfEdgeMesh {
-            positions: kept_positions,
-            vertex_out,
-            face_halfedge,
-            halfedges,
-            vertex_dead: vec![false; nv],
-            edge_dead: vec![false; ne],
-            face_dead: vec![false; nf],
-            live_vertices: nv,
-            live_edges: ne,
-            live_faces: nf,
-            ..Default::default()
-        };
+        let mesh = HalfEdgeMesh::all_live(kept_positions, vertex_out, halfedges, face_halfedge);
         if check_fans {
             let mut degree = vec![0u32; nv];
             for r in mesh.halfedges.iter().filter(|r| r.face != NONE) {
@@ -439,15 +425,31 @@ impl HalfEdgeMesh {
                 *o = h;
             }
         }
-        let ne = halfedge_count / 2;
-        Ok(HalfEdgeMesh {
+        let face_halfedge = face_offsets[..nf]
+            .iter()
+            .map(|&c| corner_he[c as usize])
+            .collect();
+        Ok(HalfEdgeMesh::all_live(
             positions,
             vertex_out,
-            face_halfedge: face_offsets[..nf]
-                .iter()
-                .map(|&c| corner_he[c as usize])
-                .collect(),
             halfedges,
+            face_halfedge,
+        ))
+    }
+
+    /// A mesh of these records with every element live and no inner rings.
+    pub(super) fn all_live(
+        positions: Vec<DVec3>,
+        vertex_out: Vec<u32>,
+        halfedges: Vec<HalfEdgeRecord>,
+        face_halfedge: Vec<u32>,
+    ) -> HalfEdgeMesh {
+        let (nv, ne, nf) = (positions.len(), halfedges.len() / 2, face_halfedge.len());
+        HalfEdgeMesh {
+            positions,
+            vertex_out,
+            halfedges,
+            face_halfedge,
             vertex_dead: vec![false; nv],
             edge_dead: vec![false; ne],
             face_dead: vec![false; nf],
@@ -455,7 +457,7 @@ impl HalfEdgeMesh {
             live_edges: ne,
             live_faces: nf,
             ..Default::default()
-        })
+        }
     }
 
     /// Closed fans touching at a vertex (two cones tip to tip) pass the

@@ -261,26 +261,16 @@ impl HalfEdgeMesh {
             LoopStart::HalfEdge(h) => LoopStart::HalfEdge(HalfEdgeId(hmap(h.0))),
             LoopStart::Vertex(v) => LoopStart::Vertex(VertexId(vmap[v.index()])),
         };
-        let nv = positions.len();
-        let (ne, nf) = (self.edge_count(), self.face_count());
+        let vertex_out = self
+            .vertices()
+            .filter(|v| vmap[v.index()] != NONE)
+            .map(|v| hmap(self.vertex_out[v.index()]))
+            .collect();
+        let face_halfedge = self
+            .faces()
+            .map(|f| hmap(self.face_halfedge[f.index()]))
+            .collect();
         HalfEdgeMesh {
-            vertex_out: self
-                .vertices()
-                .filter(|v| vmap[v.index()] != NONE)
-                .map(|v| hmap(self.vertex_out[v.index()]))
-                .collect(),
-            positions,
-            halfedges,
-            face_halfedge: self
-                .faces()
-                .map(|f| hmap(self.face_halfedge[f.index()]))
-                .collect(),
-            vertex_dead: vec![false; nv],
-            edge_dead: vec![false; ne],
-            face_dead: vec![false; nf],
-            live_vertices: nv,
-            live_edges: ne,
-            live_faces: nf,
             face_rings: self
                 .face_rings
                 .iter()
@@ -291,6 +281,7 @@ impl HalfEdgeMesh {
                 .iter()
                 .map(|(f, v)| (FaceId(fmap[f.index()]), VertexId(vmap[v.index()])))
                 .collect(),
+            ..HalfEdgeMesh::all_live(positions, vertex_out, halfedges, face_halfedge)
         }
     }
 }

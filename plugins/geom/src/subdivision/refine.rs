@@ -316,7 +316,7 @@ fn quad_child_adjacency(parent: &Level, child: &mut Level) {
             vertex_edges
                 .get(v)
                 .iter()
-                .map(|&e| 2 * e + u32::from(parent.edge_vertices[e as usize][0] != v as u32)),
+                .map(|&e| half(parent, e, v as u32)),
         );
         corner_items.extend(vertex_corners.get(v).iter().map(|&c| 4 * c));
     }
@@ -399,7 +399,7 @@ fn triangle_child_adjacency(parent: &Level, child: &mut Level) {
             vertex_edges
                 .get(v)
                 .iter()
-                .map(|&e| 2 * e + u32::from(parent.edge_vertices[e as usize][0] != v as u32)),
+                .map(|&e| half(parent, e, v as u32)),
         );
     }
     offsets.push(items.len() as u32);
@@ -515,36 +515,7 @@ mod tests {
         ];
         for cage in cages {
             let mesh = cage.build().unwrap();
-            let (mut parent, _, _) = Level::from_mesh(
-                &mesh,
-                &Creases::default(),
-                BoundaryInterpolation::EdgesOnly,
-                false,
-            );
-            for level in 1..=2 {
-                let child = refine_topology(&parent, Split::Quads, CreaseMethod::Uniform, true);
-                let counted = Level {
-                    adjacency: Default::default(),
-                    ..child.clone()
-                };
-                let what = format!("{cage:?} level {level}");
-                assert_eq!(
-                    child.edge_corner_table(),
-                    counted.edge_corner_table(),
-                    "{what}"
-                );
-                assert_eq!(
-                    child.vertex_edge_lists(),
-                    counted.vertex_edge_lists(),
-                    "{what}"
-                );
-                assert_eq!(
-                    child.vertex_corner_lists(),
-                    counted.vertex_corner_lists(),
-                    "{what}"
-                );
-                parent = child;
-            }
+            assert_derived_tables(&mesh, Split::Quads, &format!("{cage:?}"));
         }
     }
 
@@ -568,36 +539,42 @@ mod tests {
         )
         .unwrap();
         for (name, mesh) in [("icosahedron", ico), ("fan", fan)] {
-            let (mut parent, _, _) = Level::from_mesh(
-                &mesh,
-                &Creases::default(),
-                BoundaryInterpolation::EdgesOnly,
-                false,
+            assert_derived_tables(&mesh, Split::Triangles, name);
+        }
+    }
+
+    /// Refines `mesh` two levels with `split`, deriving each child's tables
+    /// from its parent, and checks them against tables counted afresh.
+    fn assert_derived_tables(mesh: &crate::HalfEdgeMesh, split: Split, name: &str) {
+        let (mut parent, _, _) = Level::from_mesh(
+            mesh,
+            &Creases::default(),
+            BoundaryInterpolation::EdgesOnly,
+            false,
+        );
+        for level in 1..=2 {
+            let child = refine_topology(&parent, split, CreaseMethod::Uniform, true);
+            let counted = Level {
+                adjacency: Default::default(),
+                ..child.clone()
+            };
+            let what = format!("{name} level {level}");
+            assert_eq!(
+                child.edge_corner_table(),
+                counted.edge_corner_table(),
+                "{what}"
             );
-            for level in 1..=2 {
-                let child = refine_topology(&parent, Split::Triangles, CreaseMethod::Uniform, true);
-                let counted = Level {
-                    adjacency: Default::default(),
-                    ..child.clone()
-                };
-                let what = format!("{name} level {level}");
-                assert_eq!(
-                    child.edge_corner_table(),
-                    counted.edge_corner_table(),
-                    "{what}"
-                );
-                assert_eq!(
-                    child.vertex_edge_lists(),
-                    counted.vertex_edge_lists(),
-                    "{what}"
-                );
-                assert_eq!(
-                    child.vertex_corner_lists(),
-                    counted.vertex_corner_lists(),
-                    "{what}"
-                );
-                parent = child;
-            }
+            assert_eq!(
+                child.vertex_edge_lists(),
+                counted.vertex_edge_lists(),
+                "{what}"
+            );
+            assert_eq!(
+                child.vertex_corner_lists(),
+                counted.vertex_corner_lists(),
+                "{what}"
+            );
+            parent = child;
         }
     }
 }
