@@ -293,39 +293,16 @@ impl HalfEdgeMesh {
         };
         // All quads or all triangles (every Catmull-Clark and Loop level):
         // fixed-size faces, so the per-face loops unroll.
-        if sides == 4 {
-            let (vs, es) = (
-                corner_vertex.as_chunks::<4>().0,
-                corner_edge.as_chunks::<4>().0,
-            );
-            for (f, (v, e)) in vs.iter().zip(es).enumerate() {
-                if shown(f) {
-                    b.add_face(v, e);
-                }
-            }
-        } else if sides == 3 {
-            let (vs, es) = (
-                corner_vertex.as_chunks::<3>().0,
-                corner_edge.as_chunks::<3>().0,
-            );
-            for (f, (v, e)) in vs.iter().zip(es).enumerate() {
-                if shown(f) {
-                    b.add_face(v, e);
-                }
-            }
-        } else if sides > 0 {
-            let n = sides as usize;
-            for f in 0..nf_all {
-                if shown(f) {
-                    let r = n * f..n * (f + 1);
-                    b.add_face(&corner_vertex[r.clone()], &corner_edge[r]);
-                }
-            }
-        } else {
-            for f in 0..nf_all {
-                if shown(f) {
-                    let r = face_offsets[f] as usize..face_offsets[f + 1] as usize;
-                    b.add_face(&corner_vertex[r.clone()], &corner_edge[r]);
+        match sides {
+            4 => b.add_fixed_faces::<4>(corner_vertex, corner_edge, &shown),
+            3 => b.add_fixed_faces::<3>(corner_vertex, corner_edge, &shown),
+            _ => {
+                let corners = |f: usize| match sides as usize {
+                    0 => face_offsets[f] as usize..face_offsets[f + 1] as usize,
+                    n => n * f..n * (f + 1),
+                };
+                for f in (0..nf_all).filter(|&f| shown(f)) {
+                    b.add_face(&corner_vertex[corners(f)], &corner_edge[corners(f)]);
                 }
             }
         }
@@ -557,6 +534,22 @@ struct LevelBuild<'a> {
 }
 
 impl LevelBuild<'_> {
+    /// Adds the shown faces of a level whose faces all have `N` corners
+    /// (fixed size, so the per-face loops unroll).
+    fn add_fixed_faces<const N: usize>(
+        &mut self,
+        corner_vertex: &[u32],
+        corner_edge: &[u32],
+        shown: &impl Fn(usize) -> bool,
+    ) {
+        let faces = corner_vertex.as_chunks::<N>().0.iter();
+        for (f, (v, e)) in faces.zip(corner_edge.as_chunks::<N>().0).enumerate() {
+            if shown(f) {
+                self.add_face(v, e);
+            }
+        }
+    }
+
     /// Adds the face with these corner vertices and edges (level numbers).
     #[inline(always)]
     fn add_face(&mut self, verts: &[u32], edges: &[u32]) {

@@ -259,22 +259,15 @@ fn quad_child_adjacency(parent: &Level, child: &mut Level) {
     let sorted = |a: u32, b: u32| if a < b { [a, b] } else { [b, a] };
 
     // Edge corners: the halves of each parent edge, then the inner edges.
+    // Child face c's corner 0 starts the half of e_c at c's vertex; the
+    // half at its far end is started by corner 3 of child face next(c).
     let mut child_edge_corners = Vec::with_capacity(2 * ne + corners);
-    for (e, &[c0, c1]) in edge_corners.iter().enumerate() {
-        let v0 = parent.face_vertices[c0 as usize];
-        let n0 = next(c0);
-        // (half at v0, half at the other end)
-        let (at_v0, at_other) = if c1 == NONE {
-            ([4 * c0, NONE], [4 * n0 + 3, NONE])
-        } else {
-            (sorted(4 * c0, 4 * next(c1) + 3), sorted(4 * c1, 4 * n0 + 3))
-        };
-        if parent.edge_vertices[e][0] == v0 {
-            child_edge_corners.extend_from_slice(&[at_v0, at_other]);
-        } else {
-            child_edge_corners.extend_from_slice(&[at_other, at_v0]);
-        }
-    }
+    push_half_corners(
+        parent,
+        |c| 4 * c,
+        |c| 4 * next(c) + 3,
+        &mut child_edge_corners,
+    );
     for c in 0..corners as u32 {
         child_edge_corners.push(sorted(4 * c + 1, 4 * next(c) + 2));
     }
@@ -312,12 +305,7 @@ fn quad_child_adjacency(parent: &Level, child: &mut Level) {
     for v in 0..parent.vertex_count {
         edge_offsets.push(edge_end + vertex_edges.offsets[v]);
         corner_offsets.push(corner_end + vertex_corners.offsets[v]);
-        edge_items.extend(
-            vertex_edges
-                .get(v)
-                .iter()
-                .map(|&e| half(parent, e, v as u32)),
-        );
+        push_vertex_point_edges(parent, v, &mut edge_items);
         corner_items.extend(vertex_corners.get(v).iter().map(|&c| 4 * c));
     }
     edge_offsets.push(edge_items.len() as u32);
@@ -350,7 +338,6 @@ fn triangle_child_adjacency(parent: &Level, child: &mut Level) {
     let edge_corners = parent.edge_corner_table();
     let vertex_edges = parent.vertex_edge_lists();
     let next = |c: u32| parent.next_corner(c as usize) as u32;
-    let sorted = |a: u32, b: u32| if a < b { [a, b] } else { [b, a] };
     let inner = 2 * ne as u32;
     // Child corner `pos` of child face 4f + k, where c = 3f + k.
     let child_corner = |c: u32, pos: u32| 4 * c - c % 3 + pos;
@@ -358,19 +345,7 @@ fn triangle_child_adjacency(parent: &Level, child: &mut Level) {
     let end = |c: u32| child_corner(next(c), 2);
 
     let mut child_edge_corners = Vec::with_capacity(child.edge_vertices.len());
-    for (e, &[c0, c1]) in edge_corners.iter().enumerate() {
-        let v0 = parent.face_vertices[c0 as usize];
-        let (at_v0, at_other) = if c1 == NONE {
-            ([start(c0), NONE], [end(c0), NONE])
-        } else {
-            (sorted(start(c0), end(c1)), sorted(start(c1), end(c0)))
-        };
-        if parent.edge_vertices[e][0] == v0 {
-            child_edge_corners.extend_from_slice(&[at_v0, at_other]);
-        } else {
-            child_edge_corners.extend_from_slice(&[at_other, at_v0]);
-        }
-    }
+    push_half_corners(parent, start, end, &mut child_edge_corners);
     for f in 0..parent.face_count() as u32 {
         let q = 12 * f;
         child_edge_corners.extend_from_slice(&[[q + 1, q + 11], [q + 4, q + 9], [q + 7, q + 10]]);
@@ -395,15 +370,43 @@ fn triangle_child_adjacency(parent: &Level, child: &mut Level) {
     let vertex_start = items.len() as u32;
     for v in 0..parent.vertex_count {
         offsets.push(vertex_start + vertex_edges.offsets[v]);
-        items.extend(
-            vertex_edges
-                .get(v)
-                .iter()
-                .map(|&e| half(parent, e, v as u32)),
-        );
+        push_vertex_point_edges(parent, v, &mut items);
     }
     offsets.push(items.len() as u32);
     child.set_adjacency(child_edge_corners, Lists { offsets, items }, None);
+}
+
+/// Pushes the starting child corners of the two halves of every parent
+/// edge (child edges `2e`, `2e + 1`), in increasing order; `start(c)` is
+/// the child corner that starts the half of corner `c`'s edge at `c`'s
+/// vertex, `end(c)` the one that starts the half at its far end.
+fn push_half_corners(
+    parent: &Level,
+    start: impl Fn(u32) -> u32,
+    end: impl Fn(u32) -> u32,
+    out: &mut Vec<[u32; 2]>,
+) {
+    let sorted = |a: u32, b: u32| if a < b { [a, b] } else { [b, a] };
+    for (e, &[c0, c1]) in parent.edge_corner_table().iter().enumerate() {
+        // c1 runs the other way: its start is c0's far end.
+        let (at_c0, at_c1) = if c1 == NONE {
+            ([start(c0), NONE], [end(c0), NONE])
+        } else {
+            (sorted(start(c0), end(c1)), sorted(start(c1), end(c0)))
+        };
+        if parent.edge_vertices[e][0] == parent.face_vertices[c0 as usize] {
+            out.extend_from_slice(&[at_c0, at_c1]);
+        } else {
+            out.extend_from_slice(&[at_c1, at_c0]);
+        }
+    }
+}
+
+/// Pushes the edges of parent vertex `v`'s vertex point: the half of each
+/// of its edges at `v`, in increasing order.
+fn push_vertex_point_edges(parent: &Level, v: usize, out: &mut Vec<u32>) {
+    let edges = parent.vertex_edge_lists().get(v);
+    out.extend(edges.iter().map(|&e| half(parent, e, v as u32)));
 }
 
 /// Doo-Sabin's child faces (seed 001, slides 116–118): one per face (its new
