@@ -171,3 +171,70 @@ fn split_vertices_are_named_as_the_file_numbers_them() {
         ]
     );
 }
+
+/// assimp's `concave_polygon.obj` (issue 31, item 16): one face that walks
+/// round a ring's outer edge, across, round the inner edge backwards and
+/// back. Imported and exported, its faces all face the file's normal (+X)
+/// and cover the ring once: area 0.245, where the outer disc (1.72) and
+/// the hole made into a face facing the other way (1.48) gave 3.196 and a
+/// mean normal of 0.
+#[test]
+fn a_keyhole_face_exports_as_its_ring() {
+    use hedra_doc::export::{ExportOptions, export_bytes};
+    use hedra_doc::import::import_file;
+    let path = std::path::Path::new("/usr/share/assimp/models/OBJ/concave_polygon.obj");
+    assert!(
+        path.exists(),
+        "run scripts/setup (it installs assimp-testmodels)"
+    );
+    let meshes = import_file(path).unwrap();
+    let mut s = hedra_doc::Session::new();
+    s.import(&meshes, "Import");
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("ring.obj");
+    let text =
+        String::from_utf8(export_bytes(&s.doc, &out, ExportOptions::default()).unwrap()).unwrap();
+    // Read the export's polygons back from the text.
+    let v: Vec<glam::DVec3> = text
+        .lines()
+        .filter_map(|l| l.strip_prefix("v "))
+        .map(|l| {
+            let x: Vec<f64> = l.split(' ').map(|w| w.parse().unwrap()).collect();
+            glam::DVec3::new(x[0], x[1], x[2])
+        })
+        .collect();
+    let (mut total, mut unsigned, mut faces) = (glam::DVec3::ZERO, 0.0, 0);
+    for l in text.lines().filter_map(|l| l.strip_prefix("f ")) {
+        let corners: Vec<glam::DVec3> = l
+            .split(' ')
+            .map(|w| v[w.split('/').next().unwrap().parse::<usize>().unwrap() - 1])
+            .collect();
+        let mut area = glam::DVec3::ZERO;
+        for (i, p) in corners.iter().enumerate() {
+            area += 0.5 * p.cross(corners[(i + 1) % corners.len()]);
+        }
+        assert!(
+            area.normalize().dot(glam::DVec3::X) > 0.999,
+            "a face facing {area}, not the file's +X"
+        );
+        total += area;
+        unsigned += area.length();
+        faces += 1;
+    }
+    assert!(faces >= 2, "{faces} faces");
+    assert!(
+        (total.length() - 0.245).abs() < 0.001,
+        "area {}",
+        total.length()
+    );
+    assert!(
+        (unsigned - total.length()).abs() < 1e-9,
+        "faces overlap: {unsigned}"
+    );
+    // The import summary says what was done.
+    let notes = describe_repairs(&meshes);
+    assert!(
+        notes.iter().any(|n| n.contains("visits a corner twice")),
+        "{notes:?}"
+    );
+}

@@ -177,6 +177,224 @@ fn simple_loops(poly: &[u32]) -> Option<Vec<Vec<u32>>> {
     Some(loops)
 }
 
+/// The loops of a polygon split by [`simple_loops`], with every loop that
+/// runs against the outline inside a loop that runs with it (a hole, as a
+/// keyhole outline walks its inner ring backwards) cut out of that loop:
+/// two bridges from the outer loop to the hole split the ring between them
+/// into two simple loops that keep the outline's orientation, and together
+/// cover the outline's area (outer minus hole) once. Without this the hole
+/// became a face of its own over the outer one, facing the other way.
+///
+/// Orientation and areas are measured in the plane of the whole polygon's
+/// Newell normal. Loops are returned unchanged when the polygon has no
+/// area, or no pair of bridges inside the ring can be found.
+///
+/// Complexity: O(h · n²) for n corners and h holes in the worst case; a
+/// bridge is usually found among the first candidates.
+fn keep_outline(positions: &[DVec3], poly: &[u32], loops: Vec<Vec<u32>>) -> Vec<Vec<u32>> {
+    let mut normal = DVec3::ZERO;
+    for (i, &a) in poly.iter().enumerate() {
+        let b = poly[(i + 1) % poly.len()];
+        normal += positions[a as usize].cross(positions[b as usize]);
+    }
+    let Some(n) = normal.try_normalize() else {
+        return loops;
+    };
+    let u = n.any_orthonormal_vector();
+    let w = n.cross(u);
+    let flat = |v: u32| {
+        let p = positions[v as usize];
+        glam::DVec2::new(p.dot(u), p.dot(w))
+    };
+    let area = |l: &[u32]| {
+        let mut a = 0.0;
+        for (i, &x) in l.iter().enumerate() {
+            a += flat(x).perp_dot(flat(l[(i + 1) % l.len()]));
+        }
+        0.5 * a
+    };
+    let (mut outers, mut holes): (Vec<Vec<u32>>, Vec<Vec<u32>>) =
+        loops.into_iter().partition(|l| area(l) >= 0.0);
+    if holes.is_empty() || outers.is_empty() {
+        outers.extend(holes);
+        return outers;
+    }
+    let mut kept_holes = Vec::new();
+    while let Some(hole) = holes.pop() {
+        let inside = outers.iter().position(|o| {
+            hole.iter()
+                .find(|v| !o.contains(v))
+                .is_some_and(|&v| point_in_loop(flat(v), o, &flat))
+        });
+        let Some(k) = inside else {
+            kept_holes.push(hole);
+            continue;
+        };
+        // Every other loop's edges are obstacles for the bridges.
+        let others: Vec<&Vec<u32>> = holes.iter().chain(&kept_holes).collect();
+        match bridge_split(&outers[k], &hole, &others, &flat) {
+            Some((a, b)) if area(&a) > 0.0 && area(&b) > 0.0 => {
+                outers[k] = a;
+                outers.push(b);
+            }
+            _ => kept_holes.push(hole),
+        }
+    }
+    outers.extend(kept_holes);
+    outers
+}
+
+/// Even-odd test of a point against a loop in the plane.
+fn point_in_loop(p: glam::DVec2, l: &[u32], flat: &impl Fn(u32) -> glam::DVec2) -> bool {
+    let mut inside = false;
+    for (i, &a) in l.iter().enumerate() {
+        let (a, b) = (flat(a), flat(l[(i + 1) % l.len()]));
+        if (a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) / (b.y - a.y) * (b.x - a.x) {
+            inside = !inside;
+        }
+    }
+    inside
+}
+
+/// True when segments pq and rs cross at a point inside both (touching
+/// ends and collinear overlaps count as crossing, to stay on the safe side).
+fn segments_meet(p: glam::DVec2, q: glam::DVec2, r: glam::DVec2, s: glam::DVec2) -> bool {
+    let side = |a: glam::DVec2, b: glam::DVec2, c: glam::DVec2| (b - a).perp_dot(c - a);
+    let (d1, d2) = (side(r, s, p), side(r, s, q));
+    let (d3, d4) = (side(p, q, r), side(p, q, s));
+    if ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0))
+        && ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0))
+    {
+        return true;
+    }
+    let on = |a: glam::DVec2, b: glam::DVec2, c: glam::DVec2, d: f64| {
+        d == 0.0 && c.cmpge(a.min(b)).all() && c.cmple(a.max(b)).all()
+    };
+    on(r, s, p, d1) || on(r, s, q, d2) || on(p, q, r, d3) || on(p, q, s, d4)
+}
+
+/// Two loops `outer` (with the outline) and `hole` (against it, inside
+/// `outer`) joined by two bridges into two simple loops that run with the
+/// outline: `outer` from the first bridge's end to the second's, across,
+/// `hole` back to the first bridge, and the rest the other way round. A
+/// vertex the two loops share is a bridge of no length. `None` when no
+/// two bridges lie inside the ring without crossing anything.
+fn bridge_split(
+    outer: &[u32],
+    hole: &[u32],
+    others: &[&Vec<u32>],
+    flat: &impl Fn(u32) -> glam::DVec2,
+) -> Option<(Vec<u32>, Vec<u32>)> {
+    let loops: Vec<&[u32]> = [outer, hole]
+        .into_iter()
+        .chain(others.iter().map(|l| l.as_slice()))
+        .collect();
+    // A bridge from outer corner i to hole corner j: inside the ring, and
+    // crossing no edge that does not end at one of its ends.
+    let valid = |i: usize, j: usize| {
+        let (a, b) = (outer[i], hole[j]);
+        if a == b {
+            return true;
+        }
+        let (p, q) = (flat(a), flat(b));
+        if p == q {
+            return false;
+        }
+        for l in &loops {
+            for (k, &x) in l.iter().enumerate() {
+                let y = l[(k + 1) % l.len()];
+                if [x, y].iter().any(|&v| v == a || v == b) {
+                    continue;
+                }
+                if segments_meet(p, q, flat(x), flat(y)) {
+                    return false;
+                }
+            }
+        }
+        let middle = 0.5 * (p + q);
+        loops
+            .iter()
+            .filter(|l| point_in_loop(middle, l, flat))
+            .count()
+            % 2
+            == 1
+    };
+    let (no, nh) = (outer.len(), hole.len());
+    let by_distance = |j: usize| {
+        let mut order: Vec<usize> = (0..no).collect();
+        let h = flat(hole[j]);
+        order.sort_by(|&x, &y| {
+            h.distance_squared(flat(outer[x]))
+                .total_cmp(&h.distance_squared(flat(outer[y])))
+        });
+        order
+    };
+    // The first bridge: a shared vertex, else the shortest valid one from
+    // the hole's corner nearest the outer loop.
+    let first = (0..nh)
+        .find_map(|j| outer.iter().position(|&v| v == hole[j]).map(|i| (i, j)))
+        .or_else(|| {
+            let mut js: Vec<usize> = (0..nh).collect();
+            let gap = |j: usize| {
+                outer
+                    .iter()
+                    .map(|&v| flat(v).distance_squared(flat(hole[j])))
+                    .fold(f64::INFINITY, f64::min)
+            };
+            js.sort_by(|&x, &y| gap(x).total_cmp(&gap(y)));
+            js.into_iter().find_map(|j| {
+                by_distance(j)
+                    .into_iter()
+                    .find(|&i| valid(i, j))
+                    .map(|i| (i, j))
+            })
+        })?;
+    let (i1, j1) = first;
+    // The second: from the hole's corner farthest round from the first,
+    // not sharing an end with the first, not crossing it.
+    let mut js: Vec<usize> = (1..nh).map(|d| (j1 + d) % nh).collect();
+    js.sort_by_key(|&j| ((j + nh - j1) % nh).abs_diff(nh / 2));
+    let (p1, q1) = (flat(outer[i1]), flat(hole[j1]));
+    let (i2, j2) = js.into_iter().find_map(|j| {
+        by_distance(j)
+            .into_iter()
+            .find(|&i| {
+                i != i1
+                    && hole[j] != outer[i1]
+                    && outer[i] != hole[j1]
+                    && valid(i, j)
+                    && (outer[i1] == hole[j1]
+                        || outer[i] == hole[j]
+                        || !segments_meet(p1, q1, flat(outer[i]), flat(hole[j])))
+            })
+            .map(|i| (i, j))
+    })?;
+    let run = |l: &[u32], from: usize, to: usize| {
+        let mut out = vec![l[from]];
+        let mut k = from;
+        while k != to {
+            k = (k + 1) % l.len();
+            out.push(l[k]);
+        }
+        out
+    };
+    let join = |mut a: Vec<u32>, b: Vec<u32>| {
+        for v in b {
+            if a.last() != Some(&v) {
+                a.push(v);
+            }
+        }
+        while a.len() > 1 && a.first() == a.last() {
+            a.pop();
+        }
+        a
+    };
+    let one = join(run(outer, i1, i2), run(hole, j2, j1));
+    let two = join(run(outer, i2, i1), run(hole, j1, j2));
+    let simple = |l: &[u32]| l.len() >= 3 && l.iter().enumerate().all(|(k, v)| !l[..k].contains(v));
+    (simple(&one) && simple(&two)).then_some((one, two))
+}
+
 #[inline]
 pub(crate) fn check_face(face: usize, poly: &[u32], vertex_count: usize) -> Result<(), BuildError> {
     if poly.len() < 3 {
@@ -235,6 +453,7 @@ impl HalfEdgeMesh {
                     if !loops.is_empty()
                         && poly.iter().all(|&v| (v as usize) < positions.len()) =>
                 {
+                    let loops = keep_outline(positions, poly, loops);
                     report.split_faces.push((fi, loops.len()));
                     pieces.extend(loops.into_iter().map(|l| (fi, l)));
                 }

@@ -467,3 +467,55 @@ fn from_polygons_reports_the_first_bad_edge_in_corner_order() {
         }
     );
 }
+
+/// A keyhole polygon (issue 31, item 16): an outline that walks round a
+/// square, across to an inner square, round that backwards and back, as
+/// exporters write a face with a hole. It must become faces that all face
+/// the outline's way and cover the ring (outer minus hole) once: before,
+/// the inner square became a face of its own over the outer square, facing
+/// the other way (area 16 + 4 instead of 12, normals cancelling).
+#[test]
+fn a_keyhole_polygon_keeps_its_outline_orientation_and_area() {
+    use glam::DMat3;
+    use hedra_geom::{DVec3, HalfEdgeMesh};
+    let square = |r: f64| [(-r, -r), (r, -r), (r, r), (-r, r)].map(|(x, y)| DVec3::new(x, y, 0.0));
+    // In the z = 0 plane and turned into a tilted plane: the same result.
+    for turn in [
+        DMat3::IDENTITY,
+        DMat3::from_euler(glam::EulerRot::XYZ, 0.7, -0.4, 1.9),
+    ] {
+        let positions: Vec<DVec3> = square(2.0)
+            .into_iter()
+            .chain(square(1.0))
+            .map(|p| turn * p + DVec3::new(3.0, -1.0, 0.5))
+            .collect();
+        let normal = turn * DVec3::Z;
+        // Bridged at a corner pair (0-4): the ring, 16 - 4. Pinched at a
+        // shared vertex (the hole's corner 4 replaced by the outline's 0,
+        // making the hole (-2,-2) (1,-1) (1,1) (-1,1) of area 6): 16 - 6.
+        for poly in [
+            vec![0u32, 1, 2, 3, 0, 4, 7, 6, 5, 4],
+            vec![1u32, 2, 3, 0, 7, 6, 5, 0],
+        ] {
+            let (m, report) = HalfEdgeMesh::from_polygons_repaired(&positions, &[&poly]).unwrap();
+            m.validate().unwrap();
+            assert!(report.dropped_faces.is_empty(), "{poly:?}: {report}");
+            assert_eq!(report.split_faces, [(0, m.face_count())], "{poly:?}");
+            let want = if poly.len() == 10 { 12.0 } else { 10.0 };
+            let mut total = DVec3::ZERO;
+            for f in m.faces() {
+                let a = m.face_area_vector(f);
+                assert!(
+                    a.normalize().dot(normal) > 1.0 - 1e-9,
+                    "{poly:?}: a face facing {a} against the outline's {normal}"
+                );
+                total += a;
+            }
+            assert!(
+                (total.length() - want).abs() < 1e-9,
+                "{poly:?}: area {} instead of {want}",
+                total.length()
+            );
+        }
+    }
+}
