@@ -12,6 +12,7 @@
 use crate::scene::{CornerAttributes, Document, Node, NodeContent};
 use glam::DVec3;
 use hedra_geom::HalfEdgeMesh;
+use hedra_geom::subdivision::Creases;
 use std::borrow::Cow;
 use std::collections::HashMap;
 use std::fmt::Write;
@@ -549,6 +550,20 @@ pub(crate) fn node_geometry(
     node: &Node,
     shape: ExportShape,
 ) -> Result<Option<Geometry<'_>>, ExportError> {
+    Ok(node_geometry_creased(node, shape)?.map(|(geometry, _)| geometry))
+}
+
+/// [`node_geometry`] with the creases of what is written (a mesh's, after
+/// its modifiers and subdivision; none for other content), so that smooth
+/// normals can be split along infinitely sharp creases.
+///
+/// # Errors
+/// As [`node_geometry`].
+pub(crate) fn node_geometry_creased(
+    node: &Node,
+    shape: ExportShape,
+) -> Result<Option<(Geometry<'_>, Cow<'_, Creases>)>, ExportError> {
+    let no_creases = || Cow::Owned(Creases::default());
     Ok(Some(match &node.content {
         // Evaluated with the document by `export_meshes`.
         NodeContent::Empty | NodeContent::Csg(_) => return Ok(None),
@@ -560,26 +575,30 @@ pub(crate) fn node_geometry(
                 });
             }
             let level = match shape {
-                ExportShape::Cage => return Ok(Some(Geometry::Mesh(Cow::Borrowed(&content.mesh)))),
+                ExportShape::Cage => {
+                    return Ok(Some((
+                        Geometry::Mesh(Cow::Borrowed(&content.mesh)),
+                        Cow::Borrowed(&content.creases),
+                    )));
+                }
                 ExportShape::Evaluated => content.subdivision.map_or(0, |m| m.export_level),
                 ExportShape::Subdivided(level) => level,
             };
             // The stack modifiers, then (or among them) subdivision at `level`.
-            Geometry::Mesh(
-                content
-                    .evaluated(level)
-                    .map_err(|error| ExportError::Evaluation {
-                        node: node.name.clone(),
-                        error,
-                    })?,
-            )
+            let evaluated = content
+                .evaluate(level)
+                .map_err(|error| ExportError::Evaluation {
+                    node: node.name.clone(),
+                    error,
+                })?;
+            (Geometry::Mesh(evaluated.mesh), evaluated.creases)
         }
-        NodeContent::Curve(c) => Geometry::Polyline(curve_polyline(c.nurbs())),
+        NodeContent::Curve(c) => (Geometry::Polyline(curve_polyline(c.nurbs())), no_creases()),
         NodeContent::Surface(sf) => {
             let size = crate::render::extent(sf.control_points());
             let (positions, normals, tris) = sf.tessellate(EXPORT_TOLERANCE * size);
             let (positions, normals, tris) = welded(&positions, &normals, &tris, 1e-9 * size);
-            Geometry::Triangles(positions, normals, tris)
+            (Geometry::Triangles(positions, normals, tris), no_creases())
         }
     }))
 }

@@ -22,9 +22,10 @@ use hedra_geom::HalfEdgeMesh;
 use json::validation::Checked::Valid;
 use json::validation::USize64;
 
-use crate::export::{ExportError, ExportShape, Geometry, is_visible, node_geometry};
+use crate::export::{ExportError, ExportShape, Geometry, is_visible, node_geometry_creased};
 use crate::import::{ImportError, ImportedMesh, corner_attributes};
 use crate::scene::{CornerAttributes, Document, NodeContent, NodeId, NodeTransform, Shading};
+use hedra_geom::subdivision::Creases;
 
 /// Appends `data` to the buffer (4-byte aligned) and returns its view.
 fn push_view(
@@ -132,8 +133,14 @@ fn neighbours_normal(m: &HalfEdgeMesh, f: hedra_geom::FaceId) -> DVec3 {
 }
 
 /// Triangles of a half-edge mesh with normals: each face's own corners and
-/// normal when flat, shared vertices with area-weighted normals when smooth.
-fn mesh_triangles(m: &HalfEdgeMesh, shading: Shading) -> (Vec<[f32; 3]>, Vec<[f32; 3]>, Vec<u32>) {
+/// normal when flat, shared vertices with area-weighted normals when smooth,
+/// split along the infinitely sharp creases of `creases` (one vertex per
+/// side, with its side's normal, as the viewport draws them).
+fn mesh_triangles(
+    m: &HalfEdgeMesh,
+    shading: Shading,
+    creases: &Creases,
+) -> (Vec<[f32; 3]>, Vec<[f32; 3]>, Vec<u32>) {
     let (mut positions, mut normals, mut indices) = (Vec::new(), Vec::new(), Vec::new());
     let a = |p: DVec3| p.as_vec3().to_array();
     match shading {
@@ -168,10 +175,24 @@ fn mesh_triangles(m: &HalfEdgeMesh, shading: Shading) -> (Vec<[f32; 3]>, Vec<[f3
                     m.vertex_faces(v).map(|f| neighbours_normal(m, f)).sum()
                 })));
             }
-            for f in m.faces() {
-                for tri in hedra_geom::query::triangulate_face(m, f) {
-                    indices.extend(tri.map(|v| index[v.index()]));
+            let split = crate::render::mesh_sharp_split(m, creases, &index);
+            split.apply(&mut positions, &mut normals);
+            // A fan of zero area has no normal; glTF needs a unit one.
+            for &(v, n) in &split.normals {
+                if n == DVec3::ZERO {
+                    normals[v as usize] = [0.0, 1.0, 0.0];
                 }
+            }
+            let mut corner = 0usize;
+            for f in m.faces() {
+                let corners: Vec<hedra_geom::VertexId> = m.face_vertices(f).collect();
+                for tri in hedra_geom::query::triangulate_face(m, f) {
+                    indices.extend(tri.map(|v| {
+                        let k = corners.iter().position(|c| *c == v).unwrap_or(0);
+                        split.vertex(corner + k, index[v.index()])
+                    }));
+                }
+                corner += corners.len();
             }
         }
     }
@@ -247,9 +268,9 @@ pub fn to_gltf(doc: &Document, shape: ExportShape, binary: bool) -> Result<Vec<u
     let mut index_of: HashMap<NodeId, json::Index<json::Node>> = HashMap::new();
     let visible: Vec<&crate::scene::Node> = doc.nodes().filter(|n| is_visible(doc, n.id)).collect();
     for node in &visible {
-        let mesh = match node_geometry(node, shape)? {
+        let mesh = match node_geometry_creased(node, shape)? {
             None => None,
-            Some(geometry) => {
+            Some((geometry, creases)) => {
                 let (shading, corners) = match &node.content {
                     NodeContent::Mesh(c) => (c.shading, Some(&c.corners)),
                     _ => (Shading::Smooth, None),
@@ -266,7 +287,7 @@ pub fn to_gltf(doc: &Document, shape: ExportShape, binary: bool) -> Result<Vec<u
                         (p, n, i, json::mesh::Mode::Triangles)
                     }
                     Geometry::Mesh(m) => {
-                        let (p, n, i) = mesh_triangles(m, shading);
+                        let (p, n, i) = mesh_triangles(m, shading, &creases);
                         (p, n, i, json::mesh::Mode::Triangles)
                     }
                     Geometry::Triangles(p, n, tris) => {

@@ -5,7 +5,7 @@
 
 use crate::scene::Shading;
 use hedra_geom::query::triangulate_outer_loop;
-use hedra_geom::{FaceId, HalfEdgeMesh, VertexId};
+use hedra_geom::{DVec3, FaceId, HalfEdgeMesh, VertexId};
 
 /// Positions, normals and triangle indices for the GPU (f32, as rendered).
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -31,6 +31,18 @@ pub struct RenderBuffers {
 ///
 /// Complexity: O(corners), O(n²) only inside concave n-gons (ear clipping).
 pub fn render_buffers(mesh: &HalfEdgeMesh, shading: Shading) -> RenderBuffers {
+    render_buffers_creased(mesh, shading, &hedra_geom::subdivision::Creases::default())
+}
+
+/// [`render_buffers`] with smooth normals split along the infinitely sharp
+/// creases of `creases` ([`split_sharp_corners`]): a vertex on such a crease
+/// gets one render vertex per side, appended after the shared ones, each
+/// with the normal of its side's faces. Flat shading is unchanged.
+pub fn render_buffers_creased(
+    mesh: &HalfEdgeMesh,
+    shading: Shading,
+    creases: &hedra_geom::subdivision::Creases,
+) -> RenderBuffers {
     let mut b = RenderBuffers::default();
     match shading {
         Shading::Flat => {
@@ -62,14 +74,234 @@ pub fn render_buffers(mesh: &HalfEdgeMesh, shading: Shading) -> RenderBuffers {
                 b.positions.push(mesh.position(v).as_vec3().to_array());
                 b.normals.push(mesh.vertex_normal(v).as_vec3().to_array());
             }
+            let split = mesh_sharp_split(mesh, creases, &index);
+            split.apply(&mut b.positions, &mut b.normals);
+            let mut corner = 0usize;
             for f in mesh.faces() {
+                let corners: Vec<VertexId> = mesh.face_vertices(f).collect();
+                let render = |v: &VertexId| {
+                    let k = corners.iter().position(|c| c == v).unwrap_or(0);
+                    split.vertex(corner + k, index[v.index()])
+                };
                 for tri in triangulate_outer_loop(mesh, f) {
-                    b.indices.extend(tri.iter().map(|v| index[v.index()]));
+                    b.indices.extend(tri.iter().map(render));
                 }
+                corner += corners.len();
             }
         }
     }
     b
+}
+
+/// [`split_sharp_corners`] of a half-edge mesh's faces (outer loops, in id
+/// order) along its infinitely sharp creases; `index` maps vertex ids to
+/// their ranks. Nothing when no crease is infinitely sharp.
+pub(crate) fn mesh_sharp_split(
+    mesh: &HalfEdgeMesh,
+    creases: &hedra_geom::subdivision::Creases,
+    index: &[u32],
+) -> SharpSplit {
+    let sharp = sharp_edges(mesh, creases, index);
+    if sharp.is_empty() {
+        return SharpSplit::default();
+    }
+    let polygons: Vec<Vec<u32>> = mesh
+        .faces()
+        .map(|f| mesh.face_vertices(f).map(|v| index[v.index()]).collect())
+        .collect();
+    let faces: Vec<&[u32]> = polygons.iter().map(Vec::as_slice).collect();
+    let points: Vec<DVec3> = mesh.vertices().map(|v| mesh.position(v)).collect();
+    split_sharp_corners(&faces, &points, &sharp)
+}
+
+/// Smooth-shaded corners split along sharp edges, as Blender splits
+/// normals at sharp edges: around a vertex on a sharp edge, the faces
+/// between two sharp edges (a fan) share one render vertex and one normal,
+/// the area-weighted normal of that fan's faces, so the shading does not
+/// blend across the edge. Made by [`split_sharp_corners`].
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct SharpSplit {
+    /// The render vertex of each face corner, faces in order, corners in
+    /// order. Empty when nothing is split: then corner `k` of a face is
+    /// its own vertex.
+    pub corner_vertex: Vec<u32>,
+    /// The source vertex of each added render vertex (numbered from the
+    /// vertex count on, in order).
+    pub copies: Vec<u32>,
+    /// The normal of every render vertex of a split vertex (its original
+    /// index and its copies), replacing its smooth normal.
+    pub normals: Vec<(u32, DVec3)>,
+}
+
+impl SharpSplit {
+    /// The render vertex of corner `corner` (counted over all faces) whose
+    /// vertex is `vertex`.
+    #[inline]
+    pub fn vertex(&self, corner: usize, vertex: u32) -> u32 {
+        self.corner_vertex.get(corner).copied().unwrap_or(vertex)
+    }
+
+    /// Appends the copies' positions and normals to smooth attributes
+    /// (one per vertex) and sets the split vertices' normals.
+    pub fn apply(&self, positions: &mut Vec<[f32; 3]>, normals: &mut Vec<[f32; 3]>) {
+        for &v in &self.copies {
+            positions.push(positions[v as usize]);
+            normals.push(normals[v as usize]);
+        }
+        for &(v, n) in &self.normals {
+            normals[v as usize] = n.as_vec3().to_array();
+        }
+    }
+}
+
+/// Splits the corners of polygons `faces` (vertex indices below
+/// `points.len()`) at every vertex on an edge of `sharp` (vertex pairs, either
+/// order) into fans: corners of a vertex that share a non-sharp edge share a
+/// render vertex. A vertex whose corners form a single fan (a crease's end,
+/// a dart, a boundary vertex) is left alone, keeping its smooth normal.
+///
+/// Complexity: O(corners) plus O(valence²) per vertex on a sharp edge.
+pub fn split_sharp_corners(
+    faces: &[&[u32]],
+    points: &[DVec3],
+    sharp: &std::collections::HashSet<(u32, u32)>,
+) -> SharpSplit {
+    let key = |a: u32, b: u32| (a.min(b), a.max(b));
+    let mut on_sharp = vec![false; points.len()];
+    for &(a, b) in sharp {
+        for v in [a, b] {
+            if let Some(flag) = on_sharp.get_mut(v as usize) {
+                *flag = true;
+            }
+        }
+    }
+    // (vertex, corner, face) of every corner at a vertex on a sharp edge.
+    let mut corners: Vec<(u32, usize, usize)> = Vec::new();
+    let mut at = 0usize;
+    for (f, face) in faces.iter().enumerate() {
+        for (k, &v) in face.iter().enumerate() {
+            if on_sharp.get(v as usize) == Some(&true) {
+                corners.push((v, at + k, f));
+            }
+        }
+        at += face.len();
+    }
+    let total = at;
+    if corners.is_empty() {
+        return SharpSplit::default();
+    }
+    corners.sort_unstable();
+    // Each face's Newell area vector, made once for the faces that need it.
+    let area = |f: usize| {
+        let face = faces[f];
+        let mut n = DVec3::ZERO;
+        for (i, &a) in face.iter().enumerate() {
+            let b = face[(i + 1) % face.len()];
+            n += points[a as usize].cross(points[b as usize]);
+        }
+        n
+    };
+    // The two neighbours of each corner along its face.
+    let mut face_start = Vec::with_capacity(faces.len());
+    let mut sum = 0usize;
+    for face in faces {
+        face_start.push(sum);
+        sum += face.len();
+    }
+    let neighbours = |corner: usize, f: usize| {
+        let face = faces[f];
+        let k = corner - face_start[f];
+        let n = face.len();
+        [face[(k + 1) % n], face[(k + n - 1) % n]]
+    };
+    let mut out = SharpSplit::default();
+    let mut next = points.len() as u32;
+    let mut start = 0;
+    while start < corners.len() {
+        let v = corners[start].0;
+        let end = start + corners[start..].iter().take_while(|c| c.0 == v).count();
+        let group = &corners[start..end];
+        start = end;
+        // Union-find over the vertex's corners: joined across soft edges.
+        let mut parent: Vec<usize> = (0..group.len()).collect();
+        fn find(parent: &mut [usize], mut x: usize) -> usize {
+            while parent[x] != x {
+                parent[x] = parent[parent[x]];
+                x = parent[x];
+            }
+            x
+        }
+        let mut first_at: Vec<(u32, usize)> = Vec::new();
+        for (i, &(_, corner, f)) in group.iter().enumerate() {
+            for w in neighbours(corner, f) {
+                if sharp.contains(&key(v, w)) {
+                    continue;
+                }
+                match first_at.iter().find(|(x, _)| *x == w) {
+                    Some(&(_, j)) => {
+                        let (a, b) = (find(&mut parent, i), find(&mut parent, j));
+                        parent[a] = b;
+                    }
+                    None => first_at.push((w, i)),
+                }
+            }
+        }
+        let roots: Vec<usize> = (0..group.len()).map(|i| find(&mut parent, i)).collect();
+        let mut fans: Vec<usize> = roots.clone();
+        fans.sort_unstable();
+        fans.dedup();
+        if fans.len() < 2 {
+            continue;
+        }
+        if out.corner_vertex.is_empty() {
+            out.corner_vertex = Vec::with_capacity(total);
+            for face in faces {
+                out.corner_vertex.extend_from_slice(face);
+            }
+        }
+        // The fan of the vertex's first corner keeps the vertex itself.
+        let keep = roots[0];
+        for fan in fans {
+            let index = if fan == keep {
+                v
+            } else {
+                out.copies.push(v);
+                next += 1;
+                next - 1
+            };
+            let mut normal = DVec3::ZERO;
+            for (i, &(_, corner, f)) in group.iter().enumerate() {
+                if roots[i] == fan {
+                    out.corner_vertex[corner] = index;
+                    normal += area(f);
+                }
+            }
+            out.normals.push((index, normal.normalize_or_zero()));
+        }
+    }
+    out
+}
+
+/// The infinitely sharp, non-boundary edges of `mesh` under `creases`
+/// (sharpness at or above [`INFINITE_SHARPNESS`]) as pairs of vertex ranks
+/// (the order of `mesh.vertices()`), for [`split_sharp_corners`].
+///
+/// [`INFINITE_SHARPNESS`]: hedra_geom::subdivision::INFINITE_SHARPNESS
+pub fn sharp_edges(
+    mesh: &HalfEdgeMesh,
+    creases: &hedra_geom::subdivision::Creases,
+    rank: &[u32],
+) -> std::collections::HashSet<(u32, u32)> {
+    let infinite = f64::from(hedra_geom::subdivision::INFINITE_SHARPNESS);
+    creases
+        .edge_sharpness()
+        .into_iter()
+        .filter(|&(e, s)| s >= infinite && mesh.is_edge(e) && !mesh.is_boundary_edge(e))
+        .map(|(e, _)| {
+            let [a, b] = mesh.edge_vertices(e).map(|v| rank[v.index()]);
+            (a.min(b), a.max(b))
+        })
+        .collect()
 }
 
 /// Rewrites, in buffers made by [`render_buffers`] from `old`, only the

@@ -4,10 +4,13 @@
 //! a drag recomputes only what the moved vertices influence), and the
 //! render buffers of the refined faces (normals, triangles).
 
-use crate::render::RenderBuffers;
+use crate::render::{RenderBuffers, SharpSplit, split_sharp_corners};
 use crate::{Shading, SubdivisionModifier};
-use hedra_geom::subdivision::{Creases, Refiner, StencilEvaluation, StencilTable, limit_normals};
+use hedra_geom::subdivision::{
+    Creases, INFINITE_SHARPNESS, Refiner, StencilEvaluation, StencilTable, limit_normals,
+};
 use hedra_geom::{DVec3, HalfEdgeMesh};
+use std::collections::HashSet;
 use std::sync::Arc;
 
 /// Above this many refined faces a drag refines positions through the
@@ -178,13 +181,19 @@ impl SmoothRefinement {
 /// triangles (refined faces are small and convex).
 pub fn refined_buffers(refiner: &Refiner, points: &[DVec3], shading: Shading) -> RenderBuffers {
     let (positions, normals) = refined_attributes(refiner, points, shading);
+    let split = match shading {
+        Shading::Smooth => refined_sharp_split(refiner, points),
+        Shading::Flat => SharpSplit::default(),
+    };
     let mut indices = Vec::new();
     let mut corner = 0u32;
     for face in refiner.faces() {
         for i in 1..face.len().saturating_sub(1) {
             let tri = [0, i, i + 1];
             match shading {
-                Shading::Smooth => indices.extend(tri.map(|k| face[k])),
+                Shading::Smooth => {
+                    indices.extend(tri.map(|k| split.vertex(corner as usize + k, face[k])))
+                }
                 Shading::Flat => indices.extend(tri.map(|k| corner + k as u32)),
             }
         }
@@ -208,10 +217,10 @@ pub fn refined_attributes(
         Shading::Smooth => {
             let normals =
                 limit_normals(refiner, points).unwrap_or_else(|_| area_normals(refiner, points));
-            (
-                points.iter().map(f32s).collect(),
-                normals.iter().map(f32s).collect(),
-            )
+            let mut positions: Vec<[f32; 3]> = points.iter().map(f32s).collect();
+            let mut normals: Vec<[f32; 3]> = normals.iter().map(f32s).collect();
+            refined_sharp_split(refiner, points).apply(&mut positions, &mut normals);
+            (positions, normals)
         }
         Shading::Flat => {
             let mut positions = Vec::new();
@@ -226,6 +235,24 @@ pub fn refined_attributes(
             (positions, normals)
         }
     }
+}
+
+/// The refined faces' corners split along the edges that are still
+/// infinitely sharp at the last level (a crease of sharpness 10 or more;
+/// boundary edges end fans anyway): each side of such a crease gets its
+/// own render vertices, appended after the refined points, with the
+/// normal of that side's faces, so the shading does not round the crease.
+fn refined_sharp_split(refiner: &Refiner, points: &[DVec3]) -> SharpSplit {
+    let sharp: HashSet<(u32, u32)> = refiner
+        .edges()
+        .filter(|&(_, s)| s >= INFINITE_SHARPNESS)
+        .map(|([a, b], _)| (a.min(b), a.max(b)))
+        .collect();
+    if sharp.is_empty() {
+        return SharpSplit::default();
+    }
+    let faces: Vec<&[u32]> = refiner.faces().collect();
+    split_sharp_corners(&faces, points, &sharp)
 }
 
 /// Newell's normal of a polygon (Newell 1972; unit, or zero when degenerate).
