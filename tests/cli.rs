@@ -753,7 +753,7 @@ fn import_refuses_a_gltf_buffer_outside_the_files_folder() {
     assert_eq!(
         stderr(&o).trim(),
         format!(
-            "hedra: error: {}: buffer 0 refers to '/etc/passwd', outside the file's folder; refused",
+            "hedra: error: {}: buffers[0] refers to '/etc/passwd', outside the file's folder; refused",
             gltf.display()
         )
     );

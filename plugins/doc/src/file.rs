@@ -766,15 +766,33 @@ fn write_atomic_impl(path: &Path, bytes: &[u8], keep_backup: bool) -> Result<(),
         path: path.to_path_buf(),
         source: std::io::Error::new(std::io::ErrorKind::InvalidInput, "not a file name"),
     })?;
+    // Messages name the file asked for and its folder, never the
+    // temporary file, which the user did not ask for and never sees.
+    let in_folder = |source: std::io::Error| FileError::Io {
+        path: path.to_path_buf(),
+        source: std::io::Error::new(
+            source.kind(),
+            format!("cannot write in folder '{}': {source}", dir.display()),
+        ),
+    };
+    if !dir.is_dir() {
+        return Err(FileError::Io {
+            path: path.to_path_buf(),
+            source: std::io::Error::new(
+                std::io::ErrorKind::NotFound,
+                format!("folder '{}' does not exist", dir.display()),
+            ),
+        });
+    }
     let tmp = dir.join(format!(
         ".{}.tmp-{}",
         name.to_string_lossy(),
         std::process::id()
     ));
     let result = (|| {
-        let mut f = std::fs::File::create(&tmp).map_err(io(&tmp))?;
-        f.write_all(bytes).map_err(io(&tmp))?;
-        f.sync_all().map_err(io(&tmp))?;
+        let mut f = std::fs::File::create(&tmp).map_err(in_folder)?;
+        f.write_all(bytes).map_err(in_folder)?;
+        f.sync_all().map_err(in_folder)?;
         drop(f);
         if keep_backup && path.exists() {
             let mut bak = path.as_os_str().to_owned();

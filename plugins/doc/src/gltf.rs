@@ -537,29 +537,29 @@ pub fn gltf_from_bytes(
             gltf::buffer::Source::Uri(uri) if uri.starts_with("data:") => {
                 let encoded = uri.split_once(";base64,").map(|(_, d)| d).ok_or_else(|| {
                     err(format!(
-                        "buffer {}: a data URI that is not base64",
+                        "buffers[{}]: a data URI that is not base64",
                         buffer.index()
                     ))
                 })?;
                 base64::engine::general_purpose::STANDARD
                     .decode(encoded)
-                    .map_err(|e| err(format!("buffer {}: bad base64 ({e})", buffer.index())))?
+                    .map_err(|e| err(format!("buffers[{}]: bad base64 ({e})", buffer.index())))?
             }
             // Another file: only inside this file's folder (crate::reference).
             gltf::buffer::Source::Uri(uri) => {
                 let folder = base.ok_or_else(|| {
                     err(format!(
-                        "buffer {} refers to '{uri}', which cannot be found",
+                        "buffers[{}] refers to '{uri}', which cannot be found",
                         buffer.index()
                     ))
                 })?;
                 crate::reference::read_inside(folder, uri, buffer.length() as u64)
-                    .map_err(|e| err(format!("buffer {} {e}", buffer.index())))?
+                    .map_err(|e| err(format!("buffers[{}] {e}", buffer.index())))?
             }
         };
         if data.len() < buffer.length() {
             return Err(err(format!(
-                "buffer {} has {} bytes, the file says {}",
+                "buffers[{}] has {} bytes, the file says {}",
                 buffer.index(),
                 data.len(),
                 buffer.length()
@@ -588,7 +588,7 @@ pub fn gltf_from_bytes(
     while let Some((node, parent)) = stack.pop() {
         if std::mem::replace(&mut reached[node.index()], true) {
             return Err(err(format!(
-                "node {} is reached twice (a cycle, or a node with two parents); glTF nodes must form trees",
+                "nodes[{}] is reached twice (a cycle, or a node with two parents); glTF nodes must form trees",
                 node.index()
             )));
         }
@@ -604,7 +604,7 @@ pub fn gltf_from_bytes(
             && transform.scale.is_finite())
         {
             return Err(err(format!(
-                "node {}: its transform is not finite (translation {t:?}, rotation {r:?}, scale {s:?})",
+                "nodes[{}]: its transform is not finite (translation {t:?}, rotation {r:?}, scale {s:?})",
                 node.index()
             )));
         }
@@ -659,7 +659,7 @@ pub fn gltf_from_bytes(
                     .read_tex_coords(0)
                     .map(|t| {
                         t.into_f32()
-                            .map(|[u, v]| DVec2::new(f64::from(u), 1.0 - f64::from(v)))
+                            .map(|[u, v]| DVec2::new(short(u), short(1.0 - v)))
                             .collect()
                     })
                     .unwrap_or_default();
@@ -701,7 +701,8 @@ pub fn gltf_from_bytes(
             transform,
             skipped_primitives: skipped,
             skipped_polylines: 0,
-            face_numbers: crate::import::FaceNumbers::InNode,
+            // The node's triangles, counted from 1 over its primitives.
+            face_numbers: crate::import::FaceNumbers::Triangles { offset: 0 },
             not_imported: Vec::new(),
             vertex_numbers: Vec::new(),
             curve: None,
@@ -741,6 +742,13 @@ pub fn gltf_from_bytes(
     Ok(out)
 }
 
+/// An f32 of the file as the shortest decimal that reads back as it (what
+/// the file's writer meant: 0.1, not 0.10000000149011612), so scenes store
+/// imported UVs in a few digits.
+fn short(x: f32) -> f64 {
+    x.to_string().parse().unwrap_or(f64::from(x))
+}
+
 /// The version of a glTF 1.x file ("1.0"), once the 2.0 reader failed on
 /// it: a GLB header of version 1, or JSON whose `asset.version`
 /// starts with 1 or that keeps `accessors` as a map (glTF 1 keys its
@@ -759,8 +767,11 @@ fn gltf1_version(bytes: &[u8]) -> Option<String> {
 
 /// Why a glTF file is refused before its meshes are read: what the `gltf`
 /// crate would read out of bounds, panic on or silently read wrong.
-/// Indices (mesh, primitive, accessor, buffer view, buffer) count from 0 as
-/// in the file's JSON.
+/// glTF objects are named by their place in the file's JSON, counted from
+/// 0 as there and written as the `gltf` crate's own messages write them
+/// (`nodes[2]`, `meshes[0].primitives[1]`, `accessors[6]`, `bufferViews[3]`,
+/// `buffers[0]`), so they cannot be taken for counts (a triangle, a line
+/// and a face are counted from 1).
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum GltfError {
     /// A GLB header whose total length is less than the 12-byte header.
@@ -773,7 +784,7 @@ pub enum GltfError {
     },
     /// A primitive attribute naming an accessor past the file's list.
     #[error(
-        "not a readable glTF file (mesh {mesh}, primitive {primitive}: an attribute uses accessor {accessor}, but the file has {accessors})"
+        "not a readable glTF file (meshes[{mesh}].primitives[{primitive}]: an attribute uses accessors[{accessor}], but the file has {accessors} accessors)"
     )]
     AccessorPastList {
         /// The mesh's index.
@@ -784,6 +795,22 @@ pub enum GltfError {
         accessor: usize,
         /// How many accessors the file has.
         accessors: usize,
+    },
+    /// The file requires extensions Hedra does not read (`extensionsRequired`):
+    /// Draco or meshopt compressed meshes, quantized attributes. Said once,
+    /// before the `gltf` crate lists every accessor it cannot read.
+    #[error(
+        "needs the glTF extension(s) {}, which Hedra does not read{}",
+        .extensions.join(", "),
+        if .extensions.iter().any(|e| e.contains("compression")) {
+            " (compressed meshes): export it again without mesh compression"
+        } else {
+            ""
+        }
+    )]
+    ExtensionsRequired {
+        /// The required extensions, as the file names them.
+        extensions: Vec<String>,
     },
     /// An accessor of a triangle primitive that Hedra would read (its
     /// positions, normals, first UVs or indices) is unusable.
@@ -803,7 +830,7 @@ pub enum AccessorError {
     /// (positions and normals are `VEC3` floats; UVs `VEC2` floats or
     /// normalised bytes or shorts; indices unsigned scalars).
     #[error(
-        "accessor {accessor} has {dimensions:?} {data_type:?} elements, which this attribute cannot have"
+        "accessors[{accessor}] has {dimensions:?} {data_type:?} elements, which this attribute cannot have"
     )]
     Layout {
         /// The accessor's index.
@@ -814,27 +841,27 @@ pub enum AccessorError {
         data_type: gltf::accessor::DataType,
     },
     /// A sparse accessor.
-    #[error("accessor {accessor} is sparse, which is not supported")]
+    #[error("accessors[{accessor}] is sparse, which is not supported")]
     Sparse {
         /// The accessor's index.
         accessor: usize,
     },
     /// An accessor with a count of zero.
-    #[error("accessor {accessor} has no elements")]
+    #[error("accessors[{accessor}] has no elements")]
     NoElements {
         /// The accessor's index.
         accessor: usize,
     },
     /// An accessor without a buffer view (all zeros, which Hedra does not
     /// read).
-    #[error("accessor {accessor} has no buffer view")]
+    #[error("accessors[{accessor}] has no buffer view")]
     NoBufferView {
         /// The accessor's index.
         accessor: usize,
     },
     /// A buffer view's byte stride shorter than the accessor's elements.
     #[error(
-        "buffer view {view} has a stride of {stride} bytes, less than accessor {accessor}'s {size}-byte elements"
+        "bufferViews[{view}] has a stride of {stride} bytes, less than accessors[{accessor}]'s {size}-byte elements"
     )]
     StrideShort {
         /// The buffer view's index.
@@ -848,7 +875,7 @@ pub enum AccessorError {
     },
     /// An accessor reaching past the end of its buffer view.
     #[error(
-        "accessor {accessor} ({count} elements of {size} bytes) needs {needed} bytes, but buffer view {view} has {length}"
+        "accessors[{accessor}] ({count} elements of {size} bytes) needs {needed} bytes, but bufferViews[{view}] has {length}"
     )]
     PastView {
         /// The accessor's index.
@@ -866,7 +893,7 @@ pub enum AccessorError {
     },
     /// A buffer view reaching past the end of its buffer's data.
     #[error(
-        "buffer view {view} (bytes {start}..{end}) lies outside buffer {buffer} of {have} bytes"
+        "bufferViews[{view}] (bytes {start}..{end}) lies outside buffers[{buffer}] of {have} bytes"
     )]
     ViewOutsideBuffer {
         /// The buffer view's index.
@@ -883,8 +910,9 @@ pub enum AccessorError {
 }
 
 /// What `gltf` reads or validates without checking: a GLB length shorter
-/// than its header, and (gltf-json 1.4 panics) a primitive's `POSITION`
-/// naming an accessor past the list.
+/// than its header, required extensions (which `gltf` reports as one
+/// "Missing data" per accessor they hold), and (gltf-json 1.4 panics) a
+/// primitive's `POSITION` naming an accessor past the list.
 /// Files that do not even parse are left to `gltf` to report.
 fn check_before_validation(bytes: &[u8]) -> Result<(), GltfError> {
     // `gltf` subtracts the 12-byte header from the stated length unchecked.
@@ -905,6 +933,11 @@ fn check_before_validation(bytes: &[u8]) -> Result<(), GltfError> {
     let Ok(root) = json::Root::from_slice(&text) else {
         return Ok(());
     };
+    if !root.extensions_required.is_empty() {
+        return Err(GltfError::ExtensionsRequired {
+            extensions: root.extensions_required.clone(),
+        });
+    }
     for (m, mesh) in root.meshes.iter().enumerate() {
         for (p, primitive) in mesh.primitives.iter().enumerate() {
             for accessor in primitive.attributes.values() {

@@ -14,7 +14,7 @@ use std::path::{Path, PathBuf};
 use thiserror::Error;
 
 /// Why a reference was not followed. The message completes
-/// "`<file>: buffer 0 `…".
+/// "`<file>: buffers[0] `…".
 #[derive(Debug, Error, Clone, PartialEq, Eq)]
 pub enum ReferenceError {
     /// Absolute, a URI scheme or drive letter, `..` past the folder, or a

@@ -279,7 +279,7 @@ fn gltf_accessor_count_larger_than_its_buffer() {
         None,
         "big.gltf",
     ));
-    assert_mentions(&e, &["big.gltf", "accessor 0", "1000000000", "36"]);
+    assert_mentions(&e, &["big.gltf", "accessors[0]", "1000000000", "36"]);
 }
 
 // ----- seeds ----------------------------------------------------------------
@@ -359,5 +359,5 @@ fn gltf_node_cycles_and_bad_position_accessors_are_refused() {
     }
     let name = "position_accessor_index_past_accessors_panics_gltf_json_validation.gltf";
     let e = error_of(gltf_from_bytes(&read(name), None, "bad.gltf"));
-    assert_mentions(&e, &["bad.gltf", "mesh 1", "accessor 6", "has 6"]);
+    assert_mentions(&e, &["bad.gltf", "meshes[1]", "accessors[6]", "has 6"]);
 }

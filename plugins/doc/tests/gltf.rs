@@ -138,7 +138,7 @@ fn bad_gltf_files_are_refused_by_name() {
         (
             "missing.gltf",
             br#"{"asset":{"version":"2.0"},"buffers":[{"byteLength":12,"uri":"nowhere.bin"}],"scenes":[{"nodes":[]}],"scene":0}"#,
-            "buffer 0 refers to 'nowhere.bin', which cannot be found next to the file",
+            "buffers[0] refers to 'nowhere.bin', which cannot be found next to the file",
         ),
     ];
     for (name, bytes, expected) in cases {

@@ -62,7 +62,7 @@ fn every_hostile_reference_of_the_corpus_is_refused_by_name() {
             .unwrap_err();
         assert_eq!(
             error.to_string(),
-            format!("scene.gltf: buffer 0 refers to '{uri}', outside the file's folder; refused"),
+            format!("scene.gltf: buffers[0] refers to '{uri}', outside the file's folder; refused"),
             "{name}"
         );
         forms.push(form.to_string());
@@ -143,7 +143,7 @@ fn the_refusal_names_the_file_the_buffer_and_the_reference() {
         assert_eq!(
             error.to_string(),
             format!(
-                "{}: buffer 0 refers to '{uri}', outside the file's folder; refused",
+                "{}: buffers[0] refers to '{uri}', outside the file's folder; refused",
                 file.display()
             )
         );
@@ -194,7 +194,7 @@ fn a_buffer_file_larger_than_declared_is_not_read() {
     assert_eq!(
         import_file(&file).map(|m| m.len()).unwrap_err().to_string(),
         format!(
-            "{}: buffer 0 refers to 'big.bin', a file of 1048576 bytes where 36 are declared; not read",
+            "{}: buffers[0] refers to 'big.bin', a file of 1048576 bytes where 36 are declared; not read",
             file.display()
         )
     );
@@ -211,7 +211,7 @@ fn a_missing_buffer_file_is_named() {
     assert_eq!(
         import_file(&file).map(|m| m.len()).unwrap_err().to_string(),
         format!(
-            "{}: buffer 0 refers to 'gone.bin', which cannot be found next to the file",
+            "{}: buffers[0] refers to 'gone.bin', which cannot be found next to the file",
             file.display()
         )
     );
