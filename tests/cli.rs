@@ -262,32 +262,110 @@ fn export_writes_world_space_obj_with_ngons() {
     assert_eq!(f.iter().filter(|&&n| n == 4).count(), 6);
 }
 
+/// A binary STL read straight from its bytes as the format defines them
+/// (an 80-byte header, a little-endian u32 triangle count, then per
+/// triangle a normal, three corners (f32 × 3 each) and a u16), not with
+/// `stl_io`, the crate Hedra writes STL with: a reader sharing the writer's
+/// mistakes would pass them. Returns (normal, corners) per triangle.
+fn read_binary_stl(bytes: &[u8]) -> Vec<([f32; 3], [[f32; 3]; 3])> {
+    assert!(
+        bytes.len() >= 84,
+        "{} bytes: shorter than the header",
+        bytes.len()
+    );
+    // Readers take a file whose header starts with "solid" for ASCII STL.
+    assert!(
+        !bytes.starts_with(b"solid"),
+        "a binary STL header must not start with 'solid'"
+    );
+    let count = u32::from_le_bytes([bytes[80], bytes[81], bytes[82], bytes[83]]) as usize;
+    assert_eq!(
+        bytes.len(),
+        84 + 50 * count,
+        "{count} triangles of 50 bytes after the header"
+    );
+    let f =
+        |at: usize| f32::from_le_bytes([bytes[at], bytes[at + 1], bytes[at + 2], bytes[at + 3]]);
+    let xyz = |at: usize| [f(at), f(at + 4), f(at + 8)];
+    (0..count)
+        .map(|t| {
+            let at = 84 + 50 * t;
+            (xyz(at), [xyz(at + 12), xyz(at + 24), xyz(at + 36)])
+        })
+        .collect()
+}
+
 #[test]
 fn export_writes_binary_stl_that_an_stl_reader_loads() {
     let dir = tempfile::tempdir().unwrap();
     let stl = exported_cylinder(dir.path(), "stl");
-    let mesh = stl_io::read_stl(&mut std::fs::File::open(&stl).unwrap()).unwrap();
+    let triangles = read_binary_stl(&std::fs::read(&stl).unwrap());
     // Two hexagon caps of 4 triangles each and 6 side quads of 2.
-    assert_eq!(mesh.faces.len(), 2 * 4 + 6 * 2);
-    assert_eq!(mesh.vertices.len(), 12, "the reader welds shared corners");
-    mesh.validate()
-        .expect("closed, consistently oriented, no zero-area faces");
-    for v in &mesh.vertices {
-        assert!((v[0] - 10.0).abs() <= 1.0 + 1e-5, "world space: {v:?}");
+    assert_eq!(triangles.len(), 2 * 4 + 6 * 2);
+    // Corners welded by their exact bits: the 12 points of the cylinder.
+    let mut points: Vec<[u32; 3]> = Vec::new();
+    let mut index = |p: [f32; 3]| {
+        let key = p.map(f32::to_bits);
+        match points.iter().position(|q| *q == key) {
+            Some(i) => i,
+            None => {
+                points.push(key);
+                points.len() - 1
+            }
+        }
+    };
+    let faces: Vec<[usize; 3]> = triangles.iter().map(|(_, c)| c.map(&mut index)).collect();
+    assert_eq!(
+        points.len(),
+        12,
+        "shared corners are written with the same bits"
+    );
+    // Closed and consistently oriented: every directed edge once, and its
+    // reverse once.
+    let mut directed: Vec<(usize, usize)> = faces
+        .iter()
+        .flat_map(|t| [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])])
+        .collect();
+    directed.sort();
+    let before = directed.len();
+    directed.dedup();
+    assert_eq!(
+        directed.len(),
+        before,
+        "a directed edge used twice: orientation flips"
+    );
+    for &(a, b) in &directed {
+        assert!(
+            directed.binary_search(&(b, a)).is_ok(),
+            "edge {a}-{b} is open"
+        );
     }
-    for t in &mesh.faces {
-        let c = t.vertices.iter().fold([0.0f32; 3], |acc, &i| {
-            let p = mesh.vertices[i];
-            [
-                acc[0] + p[0] / 3.0,
-                acc[1] + p[1] / 3.0,
-                acc[2] + p[2] / 3.0,
-            ]
-        });
-        let n = t.normal;
+    for p in &points {
+        assert!(
+            (f32::from_bits(p[0]) - 10.0).abs() <= 1.0 + 1e-5,
+            "world space: {p:?}"
+        );
+    }
+    for (n, c) in &triangles {
+        let sub = |a: [f32; 3], b: [f32; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+        let (u, v) = (sub(c[1], c[0]), sub(c[2], c[0]));
+        let cross = [
+            u[1] * v[2] - u[2] * v[1],
+            u[2] * v[0] - u[0] * v[2],
+            u[0] * v[1] - u[1] * v[0],
+        ];
+        let area2 = (cross[0] * cross[0] + cross[1] * cross[1] + cross[2] * cross[2]).sqrt();
+        assert!(area2 > 1e-6, "a zero-area triangle: {c:?}");
+        // The stored normal is the corners' (counter-clockwise) normal and
+        // points away from the cylinder's axis or caps' middle.
         let length = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
-        let outward = n[0] * (c[0] - 10.0) + n[1] * c[1] + n[2] * c[2];
-        assert!((length - 1.0).abs() < 1e-5 && outward > 0.0, "{t:?}");
+        let agree = (n[0] * cross[0] + n[1] * cross[1] + n[2] * cross[2]) / area2;
+        let centre = [0, 1, 2].map(|k| (c[0][k] + c[1][k] + c[2][k]) / 3.0);
+        let outward = n[0] * (centre[0] - 10.0) + n[1] * centre[1] + n[2] * centre[2];
+        assert!(
+            (length - 1.0).abs() < 1e-5 && agree > 1.0 - 1e-5 && outward > 0.0,
+            "{n:?} {c:?}"
+        );
     }
 }
 

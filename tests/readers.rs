@@ -214,10 +214,56 @@ fn the_khronos_validator_passes_every_gltf_and_glb_export() {
     );
 }
 
+/// Faces and the bounds of the vertices they use, `[xmin, xmax, ymin,
+/// ymax, zmin, zmax]`, of each file as trimesh loads it (as one mesh, node
+/// transforms applied); `None` where trimesh cannot load it. One Python run
+/// for all.
+fn trimesh_face_bounds(files: &[&Path]) -> Vec<Option<(usize, [f64; 6])>> {
+    let script = "import sys, trimesh\n\
+        for f in sys.argv[1:]:\n\
+        \x20   try:\n\
+        \x20       m = trimesh.load(f, force='mesh', process=False)\n\
+        \x20   except Exception:\n\
+        \x20       print('unreadable')\n\
+        \x20       continue\n\
+        \x20   faces = getattr(m, 'faces', None)\n\
+        \x20   if faces is None or len(faces) == 0:\n\
+        \x20       print(0, 0, 0, 0, 0, 0, 0)\n\
+        \x20       continue\n\
+        \x20   v = m.vertices[faces.reshape(-1)]\n\
+        \x20   (lo, hi) = (v.min(axis=0), v.max(axis=0))\n\
+        \x20   print(len(faces), lo[0], hi[0], lo[1], hi[1], lo[2], hi[2])";
+    let o = Command::new("python3")
+        .arg("-c")
+        .arg(script)
+        .args(files)
+        .output()
+        .expect("python3 runs");
+    assert!(
+        o.status.success(),
+        "trimesh: {}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let rows: Vec<Option<(usize, [f64; 6])>> = String::from_utf8_lossy(&o.stdout)
+        .lines()
+        .map(|l| {
+            let x: Vec<f64> = l
+                .split_whitespace()
+                .map(|x| x.parse().ok())
+                .collect::<Option<_>>()?;
+            Some((x[0] as usize, [x[1], x[2], x[3], x[4], x[5], x[6]]))
+        })
+        .collect();
+    assert_eq!(rows.len(), files.len(), "one line per file");
+    rows
+}
+
 /// assimp's test models (installed by `scripts/setup`), imported by Hedra
 /// and exported again, are read by trimesh: every OBJ, STL and GLB export
-/// loads, with the bounds Hedra reports (`hedra info --json`), and the
-/// Khronos validator passes every GLB.
+/// loads, and the vertices its faces use span the box that trimesh reads
+/// from the original file itself (not one Hedra reports, nor another of
+/// Hedra's exports: the independent reader is the reference). The Khronos
+/// validator passes every GLB.
 #[test]
 fn trimesh_and_the_validator_read_the_exports_of_real_files() {
     require_python_readers();
@@ -282,63 +328,73 @@ fn trimesh_and_the_validator_read_the_exports_of_real_files() {
         }
     }
     assert!(exports.len() > 100, "{} exports", exports.len());
-    // One Python run for all: vertex count and bounds of each file.
-    let script = "import sys, trimesh\n\
-        for f in sys.argv[1:]:\n\
-        \x20   m = trimesh.load(f, force='mesh', process=False)\n\
-        \x20   if m.bounds is None:\n\
-        \x20       print(0, 0, 0, 0, 0, 0, 0)\n\
-        \x20       continue\n\
-        \x20   (lo, hi) = m.bounds\n\
-        \x20   print(len(m.vertices), lo[0], hi[0], lo[1], hi[1], lo[2], hi[2])";
-    let o = Command::new("python3")
-        .arg("-c")
-        .arg(script)
-        .args(exports.iter().map(|(_, out)| out))
-        .output()
-        .expect("python3 runs");
-    assert!(
-        o.status.success(),
-        "trimesh: {}",
-        String::from_utf8_lossy(&o.stderr)
-    );
-    let rows: Vec<Vec<f64>> = String::from_utf8_lossy(&o.stdout)
-        .lines()
-        .map(|l| l.split_whitespace().map(|x| x.parse().unwrap()).collect())
+    // The inputs (in order, once each), then the exports, in one run.
+    let mut sources: Vec<&Path> = exports.iter().map(|(input, _)| input.as_path()).collect();
+    sources.dedup();
+    let files: Vec<&Path> = sources
+        .iter()
+        .copied()
+        .chain(exports.iter().map(|(_, out)| out.as_path()))
         .collect();
-    assert_eq!(rows.len(), exports.len());
-    // The three exports of one model agree on the bounds.
-    let mut by_input: std::collections::BTreeMap<&Path, Vec<&Vec<f64>>> = Default::default();
-    for ((input, out), row) in exports.iter().zip(&rows) {
+    let rows = trimesh_face_bounds(&files);
+    let (read_sources, read_exports) = rows.split_at(sources.len());
+    let source_row: std::collections::BTreeMap<&Path, &Option<(usize, [f64; 6])>> =
+        sources.iter().copied().zip(read_sources).collect();
+    let mut compared = 0;
+    let mut unread: std::collections::BTreeSet<String> = Default::default();
+    for ((input, out), row) in exports.iter().zip(read_exports) {
+        let &Some((faces, got)) = row else {
+            panic!(
+                "trimesh cannot load {} (exported from {})",
+                out.display(),
+                input.display()
+            );
+        };
         // A scene of empties (points and lines left out) exports to GLB
         // only, as nodes without meshes.
         let alone = exports.iter().filter(|(i, _)| i == input).count() == 1;
         assert!(
-            row[0] > 0.0 || alone,
-            "{} ({}): no vertices",
+            faces > 0 || alone,
+            "{} ({}): no faces",
             input.display(),
             out.display()
         );
-        if row[0] > 0.0 {
-            by_input.entry(input.as_path()).or_default().push(row);
+        if faces == 0 {
+            continue;
         }
-    }
-    for (input, rows) in by_input {
-        let first = rows[0];
-        let size = (1..=5)
-            .step_by(2)
-            .map(|k| first[k + 1] - first[k])
-            .fold(1.0, f64::max);
-        for row in &rows[1..] {
-            for k in 1..7 {
-                assert!(
-                    (row[k] - first[k]).abs() <= 1e-4 * size,
-                    "{}: bounds differ between exports: {first:?} vs {row:?}",
-                    input.display()
-                );
+        match source_row[input.as_path()] {
+            &Some((n, want)) if n > 0 => {
+                let size = (0..3)
+                    .map(|k| want[2 * k + 1] - want[2 * k])
+                    .fold(1.0, f64::max);
+                for k in 0..6 {
+                    assert!(
+                        (got[k] - want[k]).abs() <= 1e-4 * size,
+                        "{}: trimesh reads the box {got:?} from Hedra's {}, but {want:?} from the file itself",
+                        input.display(),
+                        out.display()
+                    );
+                }
+                compared += 1;
+            }
+            _ => {
+                unread.insert(input.file_name().unwrap().to_string_lossy().into_owned());
             }
         }
     }
+    // Not a check that can pass by skipping: all but the files below are
+    // compared (141 exports with trimesh 5.2.0).
+    assert!(
+        compared > 130,
+        "only {compared} exports compared with their source"
+    );
+    // trimesh 5.2 reads no faces from glTF triangle fans (mode 6), which
+    // Hedra imports as triangles: nothing to compare those exports with.
+    assert_eq!(
+        unread.into_iter().collect::<Vec<_>>(),
+        ["Mesh_PrimitiveMode_05.gltf", "Mesh_PrimitiveMode_12.gltf"],
+        "sources trimesh reads without faces although Hedra's exports have some"
+    );
     let root = std::path::PathBuf::from(std::env::var_os("CARGO_MANIFEST_DIR").unwrap());
     let o = Command::new("node")
         .arg(root.join("scripts/gltf-validator/validate.mjs"))

@@ -227,11 +227,28 @@ fn precondition_failures_are_named_and_change_nothing() {
     }
     .build()
     .unwrap();
+    let original = ico.clone();
+    let ends = ico.edge_vertices(EdgeId(0));
     let v = ico.split_edge(EdgeId(0), DVec3::ZERO).unwrap();
-    let before = ico.clone();
-    // Both faces next to the split edge are triangles-with-a-midpoint (4 sides): joining is fine.
-    assert!(ico.join_edges(v).is_ok());
-    let _ = before;
+    let split = ico.clone();
+    // Both faces next to the split edge are triangles-with-a-midpoint (4 sides): joining is fine,
+    // and undoes the split: edge 0 (the smaller id) spans both ends again.
+    assert_eq!(ico.join_edges(v), Ok(EdgeId(0)));
+    assert_ne!(ico, split);
+    ico.validate().unwrap();
+    assert!(!ico.is_vertex(v));
+    assert_eq!(ico.edge_vertices(EdgeId(0)), ends);
+    assert_eq!(
+        (ico.vertex_count(), ico.edge_count(), ico.face_count()),
+        (
+            original.vertex_count(),
+            original.edge_count(),
+            original.face_count()
+        )
+    );
+    for u in original.vertices() {
+        assert_eq!(ico.position(u), original.position(u));
+    }
     assert_eq!(
         m0.clone().make_edge_face(hs[0], hs[0]),
         Err(EulerError::Degenerate)

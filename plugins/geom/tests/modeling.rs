@@ -877,7 +877,8 @@ fn chamfering_at_valence_four_vertices_patches_the_ends() {
     );
     assert_eq!(faces.len(), 3);
     assert!(m.stats().closed);
-    let _ = e0;
+    // Still a sphere (V − E + F = 2): the edges follow, seven more.
+    assert_eq!(counts(&m).1, e0 + 7);
 
     // Two edges in line through a valence-4 vertex (part of a ring): no
     // patch where they meet, only at the two far ends.

@@ -6,8 +6,7 @@
 
 use hedra_geom::subdivision::{Creases, Options, Refiner, SubdivisionError};
 use hedra_geom::{
-    DVec3, EdgeId, EulerError, FaceId, HalfEdgeId, HalfEdgeMesh, LoopStart, MeshData, Primitive,
-    VertexId,
+    DVec3, EulerError, FaceId, HalfEdgeId, HalfEdgeMesh, LoopStart, MeshData, Primitive, VertexId,
 };
 
 fn cube() -> HalfEdgeMesh {
@@ -642,14 +641,20 @@ fn precondition_failures_are_named_and_change_nothing() {
     assert!(m.join_edges(v).is_err());
     assert_eq!(m, m1);
     // A wire cannot become a hole (a boundary of two edges).
-    let (e, _) = m
+    let (e, w) = m
         .make_edge_vertex_lone(v, DVec3::new(2.0, 2.0, 2.0))
         .unwrap();
+    // The wire runs from the lone vertex to the new one, inside face f.
+    let mut ends = m.edge_vertices(e);
+    ends.sort();
+    let mut want = [v, w];
+    want.sort();
+    assert_eq!(ends, want);
+    assert_eq!(m.position(w), DVec3::new(2.0, 2.0, 2.0));
+    assert_eq!(m.edge_faces(e), [Some(f), Some(f)]);
     let m2 = m.clone();
     assert_eq!(m.make_hole(f), Err(EulerError::Degenerate));
     assert_eq!(m, m2);
-    let _ = e;
-    let _ = EdgeId(0);
 }
 
 #[test]
