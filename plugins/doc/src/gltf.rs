@@ -176,11 +176,14 @@ fn mesh_triangles(
                 })));
             }
             let split = crate::render::mesh_sharp_split(m, creases, &index);
-            split.apply(&mut positions, &mut normals);
-            // A fan of zero area has no normal; glTF needs a unit one.
-            for &(v, n) in &split.normals {
-                if n == DVec3::ZERO {
-                    normals[v as usize] = [0.0, 1.0, 0.0];
+            if !split.is_empty() {
+                let points: Vec<DVec3> = m.vertices().map(|v| m.position(v)).collect();
+                split.apply(&points, &mut positions, &mut normals);
+                // A fan of zero area has no normal; glTF needs a unit one.
+                for (v, n) in split.normals(&points) {
+                    if n == DVec3::ZERO {
+                        normals[v as usize] = [0.0, 1.0, 0.0];
+                    }
                 }
             }
             let mut corner = 0usize;

@@ -75,7 +75,10 @@ pub fn render_buffers_creased(
                 b.normals.push(mesh.vertex_normal(v).as_vec3().to_array());
             }
             let split = mesh_sharp_split(mesh, creases, &index);
-            split.apply(&mut b.positions, &mut b.normals);
+            if !split.is_empty() {
+                let points: Vec<DVec3> = mesh.vertices().map(|v| mesh.position(v)).collect();
+                split.apply(&points, &mut b.positions, &mut b.normals);
+            }
             let mut corner = 0usize;
             for f in mesh.faces() {
                 let corners: Vec<VertexId> = mesh.face_vertices(f).collect();
@@ -110,15 +113,15 @@ pub(crate) fn mesh_sharp_split(
         .map(|f| mesh.face_vertices(f).map(|v| index[v.index()]).collect())
         .collect();
     let faces: Vec<&[u32]> = polygons.iter().map(Vec::as_slice).collect();
-    let points: Vec<DVec3> = mesh.vertices().map(|v| mesh.position(v)).collect();
-    split_sharp_corners(&faces, &points, &sharp)
+    split_sharp_corners(&faces, mesh.vertex_count(), &sharp)
 }
 
 /// Smooth-shaded corners split along sharp edges, as Blender splits
 /// normals at sharp edges: around a vertex on a sharp edge, the faces
 /// between two sharp edges (a fan) share one render vertex and one normal,
 /// the area-weighted normal of that fan's faces, so the shading does not
-/// blend across the edge. Made by [`split_sharp_corners`].
+/// blend across the edge. Made by [`split_sharp_corners`] from the
+/// connectivity alone, so it is kept while only positions change.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct SharpSplit {
     /// The render vertex of each face corner, faces in order, corners in
@@ -128,12 +131,19 @@ pub struct SharpSplit {
     /// The source vertex of each added render vertex (numbered from the
     /// vertex count on, in order).
     pub copies: Vec<u32>,
-    /// The normal of every render vertex of a split vertex (its original
-    /// index and its copies), replacing its smooth normal.
-    pub normals: Vec<(u32, DVec3)>,
+    /// Each render vertex of a split vertex (its original index and its
+    /// copies) with the end of its fan's faces in `fan_polygons`.
+    fans: Vec<(u32, usize)>,
+    /// The vertex lists of the fans' faces, each after its length.
+    fan_polygons: Vec<u32>,
 }
 
 impl SharpSplit {
+    /// True when nothing is split.
+    pub fn is_empty(&self) -> bool {
+        self.fans.is_empty()
+    }
+
     /// The render vertex of corner `corner` (counted over all faces) whose
     /// vertex is `vertex`.
     #[inline]
@@ -141,33 +151,66 @@ impl SharpSplit {
         self.corner_vertex.get(corner).copied().unwrap_or(vertex)
     }
 
+    /// The unit normal of every render vertex of a split vertex at
+    /// `points`: the sum of its fan's faces' Newell area vectors,
+    /// normalised (zero for a fan without area).
+    pub fn normals(&self, points: &[DVec3]) -> Vec<(u32, DVec3)> {
+        let mut at = 0;
+        self.fans
+            .iter()
+            .map(|&(v, end)| {
+                let mut n = DVec3::ZERO;
+                while at < end {
+                    let len = self.fan_polygons[at] as usize;
+                    let face = &self.fan_polygons[at + 1..at + 1 + len];
+                    for (i, &a) in face.iter().enumerate() {
+                        let b = face[(i + 1) % len];
+                        n += points[a as usize].cross(points[b as usize]);
+                    }
+                    at += 1 + len;
+                }
+                (v, n.normalize_or_zero())
+            })
+            .collect()
+    }
+
     /// Appends the copies' positions and normals to smooth attributes
-    /// (one per vertex) and sets the split vertices' normals.
-    pub fn apply(&self, positions: &mut Vec<[f32; 3]>, normals: &mut Vec<[f32; 3]>) {
+    /// (one per vertex of `points`) and sets the split vertices' normals
+    /// from their fans at `points`.
+    pub fn apply(
+        &self,
+        points: &[DVec3],
+        positions: &mut Vec<[f32; 3]>,
+        normals: &mut Vec<[f32; 3]>,
+    ) {
+        if self.is_empty() {
+            return;
+        }
         for &v in &self.copies {
             positions.push(positions[v as usize]);
             normals.push(normals[v as usize]);
         }
-        for &(v, n) in &self.normals {
+        for (v, n) in self.normals(points) {
             normals[v as usize] = n.as_vec3().to_array();
         }
     }
 }
 
 /// Splits the corners of polygons `faces` (vertex indices below
-/// `points.len()`) at every vertex on an edge of `sharp` (vertex pairs, either
-/// order) into fans: corners of a vertex that share a non-sharp edge share a
-/// render vertex. A vertex whose corners form a single fan (a crease's end,
-/// a dart, a boundary vertex) is left alone, keeping its smooth normal.
+/// `vertex_count`) at every vertex on an edge of `sharp` (vertex pairs,
+/// smaller first) into fans: corners of a vertex that share a non-sharp
+/// edge share a render vertex. A vertex whose corners form a single fan (a
+/// crease's end, a dart, a boundary vertex) is left alone, keeping its
+/// smooth normal.
 ///
 /// Complexity: O(corners) plus O(valence²) per vertex on a sharp edge.
 pub fn split_sharp_corners(
     faces: &[&[u32]],
-    points: &[DVec3],
+    vertex_count: usize,
     sharp: &std::collections::HashSet<(u32, u32)>,
 ) -> SharpSplit {
     let key = |a: u32, b: u32| (a.min(b), a.max(b));
-    let mut on_sharp = vec![false; points.len()];
+    let mut on_sharp = vec![false; vertex_count];
     for &(a, b) in sharp {
         for v in [a, b] {
             if let Some(flag) = on_sharp.get_mut(v as usize) {
@@ -191,16 +234,6 @@ pub fn split_sharp_corners(
         return SharpSplit::default();
     }
     corners.sort_unstable();
-    // Each face's Newell area vector, made once for the faces that need it.
-    let area = |f: usize| {
-        let face = faces[f];
-        let mut n = DVec3::ZERO;
-        for (i, &a) in face.iter().enumerate() {
-            let b = face[(i + 1) % face.len()];
-            n += points[a as usize].cross(points[b as usize]);
-        }
-        n
-    };
     // The two neighbours of each corner along its face.
     let mut face_start = Vec::with_capacity(faces.len());
     let mut sum = 0usize;
@@ -215,7 +248,7 @@ pub fn split_sharp_corners(
         [face[(k + 1) % n], face[(k + n - 1) % n]]
     };
     let mut out = SharpSplit::default();
-    let mut next = points.len() as u32;
+    let mut next = vertex_count as u32;
     let mut start = 0;
     while start < corners.len() {
         let v = corners[start].0;
@@ -269,14 +302,14 @@ pub fn split_sharp_corners(
                 next += 1;
                 next - 1
             };
-            let mut normal = DVec3::ZERO;
             for (i, &(_, corner, f)) in group.iter().enumerate() {
                 if roots[i] == fan {
                     out.corner_vertex[corner] = index;
-                    normal += area(f);
+                    out.fan_polygons.push(faces[f].len() as u32);
+                    out.fan_polygons.extend_from_slice(faces[f]);
                 }
             }
-            out.normals.push((index, normal.normalize_or_zero()));
+            out.fans.push((index, out.fan_polygons.len()));
         }
     }
     out

@@ -12,6 +12,7 @@ use hedra_geom::subdivision::{
 use hedra_geom::{DVec3, HalfEdgeMesh};
 use std::collections::HashSet;
 use std::sync::Arc;
+use std::sync::OnceLock;
 
 /// Above this many refined faces a drag refines positions through the
 /// masks each frame instead of keeping stencils (whose weights would take
@@ -29,6 +30,9 @@ pub struct SmoothRefinement {
     /// ([`stencil_job`](SmoothRefinement::stencil_job)): the weights and
     /// every level's points.
     stencils: Option<(StencilTable, StencilEvaluation)>,
+    /// The refined corners split along infinitely sharp creases, made on
+    /// first use and kept while only positions change.
+    sharp: OnceLock<SharpSplit>,
 }
 
 /// A stencil table with the evaluation of the cage it was built for, made
@@ -79,6 +83,7 @@ impl SmoothRefinement {
             modifier: *modifier,
             refiner: Arc::new(refiner),
             stencils: None,
+            sharp: OnceLock::new(),
         }
     }
 
@@ -166,12 +171,23 @@ impl SmoothRefinement {
 
     /// Render buffers of the refined faces at `points`.
     pub fn buffers(&self, points: &[DVec3], shading: Shading) -> RenderBuffers {
-        refined_buffers(&self.refiner, points, shading)
+        buffers_with(&self.refiner, points, shading, self.sharp_split(shading))
     }
 
     /// Positions and normals only (the triangles stay while positions move).
     pub fn attributes(&self, points: &[DVec3], shading: Shading) -> (Vec<[f32; 3]>, Vec<[f32; 3]>) {
-        refined_attributes(&self.refiner, points, shading)
+        attributes_with(&self.refiner, points, shading, self.sharp_split(shading))
+    }
+
+    /// The kept split for smooth shading (none for flat).
+    fn sharp_split(&self, shading: Shading) -> &SharpSplit {
+        static NONE: OnceLock<SharpSplit> = OnceLock::new();
+        match shading {
+            Shading::Smooth => self
+                .sharp
+                .get_or_init(|| refined_sharp_split(&self.refiner)),
+            Shading::Flat => NONE.get_or_init(SharpSplit::default),
+        }
     }
 }
 
@@ -180,11 +196,21 @@ impl SmoothRefinement {
 /// face corners with the face's Newell normal when flat; each face a fan of
 /// triangles (refined faces are small and convex).
 pub fn refined_buffers(refiner: &Refiner, points: &[DVec3], shading: Shading) -> RenderBuffers {
-    let (positions, normals) = refined_attributes(refiner, points, shading);
     let split = match shading {
-        Shading::Smooth => refined_sharp_split(refiner, points),
+        Shading::Smooth => refined_sharp_split(refiner),
         Shading::Flat => SharpSplit::default(),
     };
+    buffers_with(refiner, points, shading, &split)
+}
+
+/// [`refined_buffers`] with the split made already.
+fn buffers_with(
+    refiner: &Refiner,
+    points: &[DVec3],
+    shading: Shading,
+    split: &SharpSplit,
+) -> RenderBuffers {
+    let (positions, normals) = attributes_with(refiner, points, shading, split);
     let mut indices = Vec::new();
     let mut corner = 0u32;
     for face in refiner.faces() {
@@ -212,6 +238,20 @@ pub fn refined_attributes(
     points: &[DVec3],
     shading: Shading,
 ) -> (Vec<[f32; 3]>, Vec<[f32; 3]>) {
+    let split = match shading {
+        Shading::Smooth => refined_sharp_split(refiner),
+        Shading::Flat => SharpSplit::default(),
+    };
+    attributes_with(refiner, points, shading, &split)
+}
+
+/// [`refined_attributes`] with the split made already.
+fn attributes_with(
+    refiner: &Refiner,
+    points: &[DVec3],
+    shading: Shading,
+    split: &SharpSplit,
+) -> (Vec<[f32; 3]>, Vec<[f32; 3]>) {
     let f32s = |p: &DVec3| p.as_vec3().to_array();
     match shading {
         Shading::Smooth => {
@@ -219,7 +259,7 @@ pub fn refined_attributes(
                 limit_normals(refiner, points).unwrap_or_else(|_| area_normals(refiner, points));
             let mut positions: Vec<[f32; 3]> = points.iter().map(f32s).collect();
             let mut normals: Vec<[f32; 3]> = normals.iter().map(f32s).collect();
-            refined_sharp_split(refiner, points).apply(&mut positions, &mut normals);
+            split.apply(points, &mut positions, &mut normals);
             (positions, normals)
         }
         Shading::Flat => {
@@ -242,7 +282,7 @@ pub fn refined_attributes(
 /// boundary edges end fans anyway): each side of such a crease gets its
 /// own render vertices, appended after the refined points, with the
 /// normal of that side's faces, so the shading does not round the crease.
-fn refined_sharp_split(refiner: &Refiner, points: &[DVec3]) -> SharpSplit {
+fn refined_sharp_split(refiner: &Refiner) -> SharpSplit {
     let sharp: HashSet<(u32, u32)> = refiner
         .edges()
         .filter(|&(_, s)| s >= INFINITE_SHARPNESS)
@@ -252,7 +292,7 @@ fn refined_sharp_split(refiner: &Refiner, points: &[DVec3]) -> SharpSplit {
         return SharpSplit::default();
     }
     let faces: Vec<&[u32]> = refiner.faces().collect();
-    split_sharp_corners(&faces, points, &sharp)
+    split_sharp_corners(&faces, refiner.vertex_count(), &sharp)
 }
 
 /// Newell's normal of a polygon (Newell 1972; unit, or zero when degenerate).
