@@ -531,22 +531,15 @@ pub struct SurfaceGrid {
     pub vs: Vec<f64>,
 }
 
-/// The grid the viewport tessellates a NURBS surface on: cells from
-/// [`hedra_geom::surfaces::tessellate::cells_for_tolerance`] at
-/// [`VIEW_TOLERANCE`] of the surface's size, evenly spaced over its domain.
+/// The grid the viewport tessellates a NURBS surface on:
+/// [`hedra_geom::surfaces::tessellate::surface_parameters`] at
+/// [`VIEW_TOLERANCE`] of the surface's size (every knot a grid line, the
+/// lines between spread by curvature), the grid the export uses at its
+/// own tolerance.
 pub fn surface_grid(surface: &hedra_geom::surfaces::NurbsSurface) -> SurfaceGrid {
-    use hedra_geom::surfaces::Surface;
     let tol = VIEW_TOLERANCE * extent(surface.points());
-    let (cu, cv) = hedra_geom::surfaces::tessellate::cells_for_tolerance(surface, tol);
-    let ((u0, u1), (v0, v1)) = surface.domain();
-    SurfaceGrid {
-        us: (0..=cu)
-            .map(|i| u0 + (u1 - u0) * i as f64 / cu as f64)
-            .collect(),
-        vs: (0..=cv)
-            .map(|j| v0 + (v1 - v0) * j as f64 / cv as f64)
-            .collect(),
-    }
+    let (us, vs) = hedra_geom::surfaces::tessellate::surface_parameters(surface, tol);
+    SurfaceGrid { us, vs }
 }
 
 /// A tile of a NURBS surface's render grid: the grid cells of one knot
@@ -750,8 +743,8 @@ mod tests {
         let ((u0, u1), (v0, v1)) = plane.domain();
         assert_eq!((grid.us.first(), grid.us.last()), (Some(&u0), Some(&u1)));
         assert_eq!((grid.vs.first(), grid.vs.last()), (Some(&v0), Some(&v1)));
-        assert!(grid.us.windows(2).all(|w| w[0] < w[1]));
-        // A sphere bends: many more cells, evenly spaced.
+        assert_eq!((grid.us.len(), grid.vs.len()), (2, 2), "{grid:?}");
+        // A sphere bends: many more cells, increasing, every knot a line.
         let sphere = NurbsSurface::sphere(hedra_geom::DVec3::ZERO, 1.0);
         let round = surface_grid(&sphere);
         assert!(
@@ -760,13 +753,11 @@ mod tests {
             round.us.len(),
             round.vs.len()
         );
-        let step = round.us[1] - round.us[0];
-        assert!(
-            round
-                .us
-                .windows(2)
-                .all(|w| ((w[1] - w[0]) - step).abs() < 1e-12)
-        );
+        assert!(round.us.windows(2).all(|w| w[0] < w[1]));
+        assert!(round.vs.windows(2).all(|w| w[0] < w[1]));
+        let (ku, kv) = sphere.knots();
+        assert!(ku.iter().all(|k| round.us.contains(k)), "{:?}", round.us);
+        assert!(kv.iter().all(|k| round.vs.contains(k)), "{:?}", round.vs);
     }
 
     fn wavy_sheet() -> hedra_geom::surfaces::NurbsSurface {

@@ -244,11 +244,16 @@ fn high_degree_lagrange_is_approximated_with_a_stated_tolerance() {
     let form = kind.to_nurbs().unwrap();
     let tol = form.tolerance.expect("approximated");
     let t: Vec<f64> = (0..20).map(|i| i as f64).collect();
-    let worst = samples(&form.curve, 1000)
+    // 20,000 samples, not aligned with the spline's 608 intervals: the
+    // stated tolerance holds everywhere (to rounding) and is not a loose
+    // bound either (the samples come within a few percent of it).
+    let worst = samples(&form.curve, 19_999)
         .into_iter()
         .map(|x| (form.curve.point(x) - lagrange_point(&t, &p, x)).length())
         .fold(0.0, f64::max);
-    assert!(worst <= 2.0 * tol + 1e-9, "worst {worst} vs stated {tol}");
+    assert!(tol > 0.0);
+    assert!(worst <= tol * (1.0 + 1e-9), "worst {worst} vs stated {tol}");
+    assert!(worst >= 0.95 * tol, "worst {worst} vs stated {tol}");
     for (i, &x) in t.iter().enumerate() {
         assert!((form.curve.point(x) - p[i]).length() < 1e-9);
     }

@@ -420,10 +420,31 @@ proptest! {
         let knots = hedra_geom::curves::nurbs::clamped_uniform_knots(degree, pts.len());
         let c = NurbsCurve::new(degree, knots, pts, weights).unwrap();
         let mut r = c.clone();
-        for u in inserts {
-            if let Ok(next) = r.insert_knot(u) { r = next; }
+        let mut inserted = 0;
+        for &u in &inserts {
+            // The one refusal allowed: a knot already `degree` times there
+            // (a repeated draw on a degree-1 curve). Anything else fails.
+            match r.insert_knot(u) {
+                Ok(next) => {
+                    r = next;
+                    inserted += 1;
+                }
+                Err(CurveError::FullMultiplicity { multiplicity, .. }) => {
+                    prop_assert_eq!(multiplicity, degree);
+                }
+                Err(e) => prop_assert!(false, "inserting {} failed: {}", u, e),
+            }
+        }
+        // Something was inserted, and it is there: the test compares two
+        // different curves, not one with itself.
+        prop_assert!(inserted >= 1);
+        prop_assert_eq!(r.knots().len(), c.knots().len() + inserted);
+        prop_assert_eq!(r.points().len(), c.points().len() + inserted);
+        for &u in &inserts {
+            prop_assert!(r.knots().contains(&u), "{} not in the knots", u);
         }
         let e = c.elevate_degree().unwrap();
+        prop_assert_eq!(e.degree(), degree + 1);
         for t in samples(&c, 40) {
             prop_assert!(close(c.point(t), r.point(t), 1e-10));
             prop_assert!(close(c.point(t), e.point(t), 1e-10));

@@ -200,18 +200,48 @@ fn a_corner_vertex_stays_put_and_fractional_corners_move_partly() {
 
 #[test]
 fn chaikin_creases_fade_differently_from_uniform_ones() {
+    // Two crease edges of sharpness 3 and 1 meeting at a cube corner v.
     let mesh = cube();
-    let mut creases = Creases::default();
     let mut edges = mesh.edges();
-    let (e0, e1) = (edges.next().unwrap(), edges.next().unwrap());
+    let e0 = edges.next().unwrap();
+    let [a, b] = mesh.edge_vertices(e0);
+    let e1 = mesh
+        .edges()
+        .find(|&e| e != e0 && mesh.edge_vertices(e).contains(&a))
+        .unwrap();
+    assert!(!mesh.edge_vertices(e1).contains(&b));
+    let mut creases = Creases::default();
     creases.set_edge(e0, 3.0);
     creases.set_edge(e1, 1.0);
-    let uniform = refine(&mesh, &creases, Options::default(), 3).1;
     let chaikin_opts = Options {
         crease_method: CreaseMethod::Chaikin,
         ..Options::default()
     };
+    // The sharpness of the child edges, worked out by hand from the rules
+    // (OpenSubdiv's Sdc `Crease::SubdivideEdgeSharpnessesAroundVertex`):
+    // uniform `s − 1`; Chaikin `¾ s + ¼ (mean of the other semi-sharp
+    // edges at the end) − 1`, floored at 0.
+    let sharp = |opts: Options, levels: u32| {
+        let r = Refiner::new(&mesh, &creases, opts, levels).unwrap();
+        let mut s: Vec<f32> = r.edges().map(|(_, s)| s).filter(|&s| s > 0.0).collect();
+        s.sort_by(f32::total_cmp);
+        s
+    };
+    // Level 1. Uniform: 3 → 2, 2; 1 → 0, 0. Chaikin: e0 at v ¾·3 + ¼·1 − 1
+    // = 1.5, at its other end 3 − 1 = 2; e1 at v ¾·1 + ¼·3 − 1 = 0.5, at
+    // its other end 0.
+    assert_eq!(sharp(Options::default(), 1), vec![2.0, 2.0]);
+    assert_eq!(sharp(chaikin_opts, 1), vec![0.5, 1.5, 2.0]);
+    // Level 2. Uniform: 1 four times. Chaikin: the 1.5 edge at v (beside
+    // 0.5) ¾·1.5 + ¼·0.5 − 1 = 0.25, at e0's middle (beside 2)
+    // ¾·1.5 + ¼·2 − 1 = 0.625; the 2 edge there ¾·2 + ¼·1.5 − 1 = 0.875,
+    // at its far end 1; the 0.5 edge fades to 0 at both ends.
+    assert_eq!(sharp(Options::default(), 2), vec![1.0; 4]);
+    assert_eq!(sharp(chaikin_opts, 2), vec![0.25, 0.625, 0.875, 1.0]);
+    // And the surfaces differ (only the sharpness rule does).
+    let uniform = refine(&mesh, &creases, Options::default(), 3).1;
     let chaikin = refine(&mesh, &creases, chaikin_opts, 3).1;
+    assert_eq!(uniform.len(), chaikin.len());
     let moved = uniform
         .iter()
         .zip(&chaikin)

@@ -261,32 +261,101 @@ fn a_ray_picks_the_exact_surface_point() {
     );
 }
 
+/// The distance from the origin to the triangle `abc` (its closest point
+/// by Voronoi regions, Ericson, *Real-Time Collision Detection*, §5.1.5).
+fn origin_distance(a: DVec3, b: DVec3, c: DVec3) -> f64 {
+    let p = DVec3::ZERO;
+    let (ab, ac, ap) = (b - a, c - a, p - a);
+    let (d1, d2) = (ab.dot(ap), ac.dot(ap));
+    if d1 <= 0.0 && d2 <= 0.0 {
+        return a.length();
+    }
+    let bp = p - b;
+    let (d3, d4) = (ab.dot(bp), ac.dot(bp));
+    if d3 >= 0.0 && d4 <= d3 {
+        return b.length();
+    }
+    let vc = d1 * d4 - d3 * d2;
+    if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
+        return (a + ab * (d1 / (d1 - d3))).length();
+    }
+    let cp = p - c;
+    let (d5, d6) = (ab.dot(cp), ac.dot(cp));
+    if d6 >= 0.0 && d5 <= d6 {
+        return c.length();
+    }
+    let vb = d5 * d2 - d1 * d6;
+    if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
+        return (a + ac * (d2 / (d2 - d6))).length();
+    }
+    let va = d3 * d6 - d5 * d4;
+    if va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0 {
+        return (b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)))).length();
+    }
+    let denom = va + vb + vc;
+    if denom.abs() < 1e-300 {
+        return a.length().min(b.length()).min(c.length());
+    }
+    (a + ab * (vb / denom) + ac * (vc / denom)).length()
+}
+
+/// The unit sphere's tessellation against the sphere, exactly and both
+/// ways. Every triangle lies inside (no point further than 1 from the
+/// centre) and its deepest point, its point nearest the centre, is at most
+/// `tol` inside: so the mesh is within `tol` of the sphere. And the
+/// triangles' solid angles (Van Oosterom & Strackee, IEEE Trans. Biomed.
+/// Eng. 30(2), 1983) add up to 4π, so their radial projection covers the
+/// sphere: every point of the sphere is the projection of a mesh point at
+/// most `tol` below it, and the sphere is within `tol` of the mesh.
 #[test]
 fn tessellation_stays_within_its_tolerance() {
     let s = NurbsSurface::sphere(DVec3::ZERO, 1.0);
-    for tol in [1e-2, 1e-3] {
+    for tol in [1e-2, 1e-3, 1e-4] {
         let m = tessellate(&s, tol);
-        // Every triangle's centroid is within the tolerance of the sphere.
-        let worst = m
-            .triangles
-            .iter()
-            .map(|t| {
-                let c = t.iter().map(|&i| m.positions[i as usize]).sum::<DVec3>() / 3.0;
-                1.0 - c.length()
-            })
-            .fold(0.0, f64::max);
-        assert!(worst < 2.0 * tol, "tolerance {tol}: {worst}");
-    }
-    let circle = NurbsCurve::circle(DVec3::ZERO, 1.0);
-    let ts = curve_parameters(&circle, 1e-4);
-    for w in ts.windows(2) {
-        use hedra_geom::curves::Curve;
-        let mid = (circle.point(w[0]) + circle.point(w[1])) / 2.0;
+        let (mut deepest, mut solid_angle) = (0.0f64, 0.0f64);
+        for t in &m.triangles {
+            let [a, b, c] = t.map(|i| m.positions[i as usize]);
+            for p in [a, b, c] {
+                assert!((p.length() - 1.0).abs() < 1e-12, "a corner off the sphere");
+            }
+            deepest = deepest.max(1.0 - origin_distance(a, b, c));
+            let (la, lb, lc) = (a.length(), b.length(), c.length());
+            let num = a.dot(b.cross(c));
+            let den = la * lb * lc + a.dot(b) * lc + a.dot(c) * lb + b.dot(c) * la;
+            solid_angle += 2.0 * num.atan2(den);
+        }
         assert!(
-            1.0 - mid.length() < 2e-4,
-            "chord error {}",
-            1.0 - mid.length()
+            deepest <= tol,
+            "tolerance {tol}: a triangle is {deepest} deep"
         );
+        // And not needlessly fine: some triangle uses a good part of it.
+        assert!(
+            deepest >= 0.25 * tol,
+            "tolerance {tol}: only {deepest} deep"
+        );
+        let four_pi = 4.0 * std::f64::consts::PI;
+        assert!(
+            (solid_angle.abs() - four_pi).abs() < 1e-9,
+            "tolerance {tol}: the triangles cover {solid_angle} sr, not 4π"
+        );
+    }
+    // A circle's chords: every chord is inside, its middle (its deepest
+    // point) at most tol inside, and the chords cover every angle.
+    let circle = NurbsCurve::circle(DVec3::ZERO, 1.0);
+    for tol in [1e-2, 1e-4] {
+        let ts = curve_parameters(&circle, tol);
+        let mut turned = 0.0;
+        for w in ts.windows(2) {
+            use hedra_geom::curves::Curve;
+            let (a, b) = (circle.point(w[0]), circle.point(w[1]));
+            let sag = 1.0 - ((a + b) / 2.0).length();
+            assert!(
+                (0.0..=tol).contains(&sag),
+                "tolerance {tol}: chord error {sag}"
+            );
+            turned += a.angle_between(b);
+        }
+        assert!((turned - std::f64::consts::TAU).abs() < 1e-9, "{turned}");
     }
 }
 

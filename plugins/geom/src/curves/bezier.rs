@@ -310,4 +310,7 @@ impl Curve for Bezier {
         let d2 = d1.hodograph();
         [self.de_casteljau(t), d1.de_casteljau(t), d2.de_casteljau(t)]
     }
+    fn piece_degree(&self) -> Option<usize> {
+        Some(self.points.len().saturating_sub(1).max(1))
+    }
 }

@@ -268,6 +268,9 @@ impl Curve for QuinticHermite {
         ];
         quintic_basis(t).map(|b| b.iter().zip(&data).map(|(w, p)| *w * *p).sum())
     }
+    fn piece_degree(&self) -> Option<usize> {
+        Some(5)
+    }
 }
 
 /// Tension, bias and continuity of one Kochanek-Bartels key, each in [−1, 1].
@@ -287,6 +290,14 @@ pub struct Tbc {
 impl Curve for HermiteSpline {
     fn domain(&self) -> (f64, f64) {
         (self.params[0], self.params[self.params.len() - 1])
+    }
+    /// The keys: one cubic per interval between two (a corner where the
+    /// incoming and outgoing tangents differ).
+    fn breakpoints(&self) -> Vec<f64> {
+        self.params.clone()
+    }
+    fn piece_degree(&self) -> Option<usize> {
+        Some(3)
     }
     fn derivatives(&self, t: f64) -> [DVec3; 3] {
         let (i, s) = locate(&self.params, t);
@@ -410,6 +421,9 @@ impl Curve for PowerBasisCurve {
         }
         out
     }
+    fn piece_degree(&self) -> Option<usize> {
+        Some(self.coefficients.len().saturating_sub(1).max(1))
+    }
 }
 
 /// A polyline through points at parameters (linear interpolation).
@@ -441,6 +455,13 @@ impl Polyline {
 impl Curve for Polyline {
     fn domain(&self) -> (f64, f64) {
         (self.params[0], self.params[self.params.len() - 1])
+    }
+    /// Every vertex.
+    fn breakpoints(&self) -> Vec<f64> {
+        self.params.clone()
+    }
+    fn piece_degree(&self) -> Option<usize> {
+        Some(1)
     }
     fn derivatives(&self, t: f64) -> [DVec3; 3] {
         let (i, s) = locate(&self.params, t);

@@ -34,6 +34,25 @@ pub trait Curve {
     fn point(&self, t: f64) -> DVec3 {
         self.derivatives(t)[0]
     }
+    /// The parameters where the curve's pieces meet, with the domain's two
+    /// ends: increasing, distinct, first and last the domain's. Between two
+    /// neighbours the curve is one polynomial (or rational) piece, smooth;
+    /// at them it may have a corner (a NURBS knot of full multiplicity, a
+    /// poly-Bézier C0 joint, a polyline's vertex). Tessellation samples
+    /// every one of them ([`crate::surfaces::tessellate::curve_parameters`]).
+    /// The default is one piece: the domain's ends.
+    fn breakpoints(&self) -> Vec<f64> {
+        let (a, b) = self.domain();
+        if b > a { vec![a, b] } else { vec![a] }
+    }
+    /// The polynomial degree of every piece between two
+    /// [`breakpoints`](Self::breakpoints), when the curve knows it; a rational
+    /// piece reports the degree of its numerator and denominator. `Some(1)`
+    /// means every piece is a straight segment, so the breakpoints alone
+    /// are the exact polyline. `None` (the default): unknown.
+    fn piece_degree(&self) -> Option<usize> {
+        None
+    }
 }
 
 /// Why a curve cannot be made or changed.

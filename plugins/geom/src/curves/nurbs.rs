@@ -714,6 +714,25 @@ impl Curve for NurbsCurve {
         let c2 = (a2.truncate() - 2.0 * a1.w * c1 - a2.w * c0) / a0.w;
         [c0, c1, c2]
     }
+
+    /// The domain's ends and every distinct knot between them
+    /// ([`interior_knots`](Self::interior_knots)): the curve is one rational
+    /// polynomial piece on each knot span and only `C^(p−k)` at a knot of
+    /// multiplicity k, so a knot of multiplicity `p` may be a corner (The
+    /// NURBS Book, property P2.5 of the basis functions).
+    fn breakpoints(&self) -> Vec<f64> {
+        let (start, end) = self.domain();
+        let mut out = vec![start];
+        out.extend(self.interior_knots().into_iter().map(|(k, _)| k));
+        out.push(end);
+        out
+    }
+
+    /// The degree `p`: a degree-1 NURBS (rational or not) is a polyline
+    /// through its control points, one segment per knot span.
+    fn piece_degree(&self) -> Option<usize> {
+        Some(self.degree)
+    }
 }
 
 /// Knots `[0; p+1], 1/(n−p), 2/(n−p), …, [1; p+1]` for `n` points.

@@ -60,6 +60,24 @@ pub trait Surface {
     fn point(&self, u: f64, v: f64) -> DVec3 {
         self.evaluate(u, v).p
     }
+    /// The parameters where the surface's patches meet, in u and in v, with
+    /// the domain's ends: increasing, distinct. Between two neighbours in
+    /// each direction the surface is one smooth (rational) polynomial
+    /// patch; along them it may fold. Tessellation keeps every one as a
+    /// grid line ([`tessellate::surface_parameters`]). The default is one
+    /// patch: the domain's ends.
+    fn breakpoints(&self) -> (Vec<f64>, Vec<f64>) {
+        let ((u0, u1), (v0, v1)) = self.domain();
+        (vec![u0, u1], vec![v0, v1])
+    }
+    /// The points at every `(u, v)` of `us × vs`, row-major by u (point
+    /// `(i, j)` at `i * vs.len() + j`). The default evaluates each; a NURBS
+    /// surface shares the basis work along rows and columns.
+    fn grid_points(&self, us: &[f64], vs: &[f64]) -> Vec<DVec3> {
+        us.iter()
+            .flat_map(|&u| vs.iter().map(move |&v| self.point(u, v)))
+            .collect()
+    }
     /// `S_u × S_v` normalised at `(u, v)`; zero where the derivatives are
     /// parallel (see [`unit_normal`](Self::unit_normal) for poles).
     fn normal(&self, u: f64, v: f64) -> DVec3 {

@@ -490,6 +490,28 @@ impl Surface for NurbsSurface {
         )
     }
 
+    /// The domain's ends and the distinct knots between them, in each
+    /// direction (one rational patch per pair of knot spans).
+    fn breakpoints(&self) -> (Vec<f64>, Vec<f64>) {
+        let ((u0, u1), (v0, v1)) = self.domain();
+        let distinct = |knots: &[f64], a: f64, b: f64| {
+            let mut out = vec![a];
+            out.extend(knots.iter().copied().filter(|&k| k > a && k < b));
+            out.dedup();
+            out.push(b);
+            out
+        };
+        (
+            distinct(&self.knots_u, u0, u1),
+            distinct(&self.knots_v, v0, v1),
+        )
+    }
+
+    /// Through the fast grid evaluator ([`NurbsSurface::grid`]).
+    fn grid_points(&self, us: &[f64], vs: &[f64]) -> Vec<DVec3> {
+        self.grid(us, vs, false).0
+    }
+
     /// Homogeneous derivatives `A^(k,l)` from the two bases, then the
     /// rational quotient rule (The NURBS Book eq. 4.20).
     fn evaluate(&self, u: f64, v: f64) -> SurfacePoint {
