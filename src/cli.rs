@@ -163,6 +163,13 @@ fn save(session: &mut Session, path: &Path) -> Result<(), FileError> {
     file::save(session, path)
 }
 
+/// Refuses an output that is one of the command's input files (before
+/// anything is read).
+fn refuse_overwrite(output: &Path, inputs: &[Option<&Path>]) -> Result<(), CliError> {
+    hedra_doc::input::refuse_overwrite(output, inputs.iter().flatten().copied())?;
+    Ok(())
+}
+
 /// Runs a headless subcommand.
 ///
 /// # Errors
@@ -225,7 +232,8 @@ pub fn run(sub: Sub) -> Result<(), CliError> {
             input,
             output,
         } => {
-            let text = std::fs::read_to_string(&script_path)
+            refuse_overwrite(&output, &[Some(&script_path), input.as_deref()])?;
+            let text = hedra_doc::input::read_to_string(&script_path)
                 .map_err(|e| CliError(format!("{}: {e}", script_path.display())))?;
             let commands = script::parse(&text, &script_path)?;
             let mut session = match input {
@@ -248,6 +256,7 @@ pub fn run(sub: Sub) -> Result<(), CliError> {
             steps,
             output,
         } => {
+            refuse_overwrite(&output, &[Some(&file)])?;
             let mut session = load(&file)?;
             let available = session.history.done().len();
             if steps > available {
@@ -266,6 +275,7 @@ pub fn run(sub: Sub) -> Result<(), CliError> {
             steps,
             output,
         } => {
+            refuse_overwrite(&output, &[Some(&file)])?;
             let mut session = load(&file)?;
             let available = session.history.undone().len();
             if steps > available {
@@ -284,6 +294,7 @@ pub fn run(sub: Sub) -> Result<(), CliError> {
             input,
             output,
         } => {
+            refuse_overwrite(&output, &[Some(&file), input.as_deref()])?;
             let meshes = hedra_doc::import::import_file(&file)?;
             // A summary as the warning, then its details.
             for (i, note) in hedra_doc::import::describe_repairs(&meshes)
@@ -321,6 +332,7 @@ pub fn run(sub: Sub) -> Result<(), CliError> {
             lod,
             curves,
         } => {
+            refuse_overwrite(&output, &[Some(&file)])?;
             let mut session = load(&file)?;
             if let Some(ratio) = lod {
                 set_decimate_ratio(&mut session, ratio)?;

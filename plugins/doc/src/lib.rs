@@ -13,6 +13,7 @@ pub mod fuzz;
 pub mod gltf;
 pub mod history;
 pub mod import;
+pub mod input;
 pub mod join;
 pub mod modifiers;
 pub mod preview;
