@@ -481,21 +481,29 @@ const EXPORT_TOLERANCE: f64 = 1e-4;
 /// # Errors
 /// [`ExportError::Evaluation`] naming the node when its modifiers cannot
 /// be evaluated (Loop on a mesh with quads, a level too large).
+///
+/// Complexity: O(N) for the hierarchy (world matrices and visibility are
+/// computed once per node, top down: [`Document::hierarchy`]), plus each
+/// node's geometry.
 fn export_meshes(
     doc: &Document,
     shape: ExportShape,
     curves: CurveExport,
 ) -> Result<Vec<ExportItem<'_>>, ExportError> {
+    let tree = doc.hierarchy();
     let mut out = Vec::new();
     for node in doc.nodes() {
         // A CSG node exports its solid; its operands are part of it.
-        if !is_visible(doc, node.id) || crate::csg::inside_csg(doc, node.id) {
+        let Some(facts) = tree.facts(node.id) else {
+            continue;
+        };
+        if !facts.visible || facts.inside_csg {
             continue;
         }
         if let NodeContent::Csg(_) = &node.content {
             let solid =
                 crate::csg::evaluate(doc, node.id).map_err(|e| ExportError::Csg(Box::new(e)))?;
-            let world = doc.world_matrix(node.id);
+            let world = facts.world;
             out.push(ExportItem {
                 node,
                 geometry: Geometry::Mesh(Cow::Owned((*solid).clone())),
@@ -524,7 +532,7 @@ fn export_meshes(
                 }
                 _ => None,
             };
-            let world = doc.world_matrix(node.id);
+            let world = facts.world;
             out.push(ExportItem {
                 node,
                 geometry,
@@ -627,6 +635,8 @@ fn welded(
 
 /// True when the node and every ancestor are visible (false for an
 /// unknown id).
+///
+/// Complexity: O(depth); for many nodes use [`Document::hierarchy`].
 pub fn is_visible(doc: &Document, id: crate::scene::NodeId) -> bool {
     let mut cur = Some(id);
     let mut guard = doc.node_count() + 1;

@@ -22,7 +22,7 @@ use hedra_geom::HalfEdgeMesh;
 use json::validation::Checked::Valid;
 use json::validation::USize64;
 
-use crate::export::{ExportError, ExportShape, Geometry, is_visible, node_geometry};
+use crate::export::{ExportError, ExportShape, Geometry, node_geometry};
 use crate::import::{ImportError, ImportedMesh, corner_attributes};
 use crate::scene::{CornerAttributes, Document, NodeContent, NodeId, NodeTransform, Shading};
 
@@ -245,7 +245,11 @@ pub fn to_gltf(doc: &Document, shape: ExportShape, binary: bool) -> Result<Vec<u
     };
     let mut bin: Vec<u8> = Vec::new();
     let mut index_of: HashMap<NodeId, json::Index<json::Node>> = HashMap::new();
-    let visible: Vec<&crate::scene::Node> = doc.nodes().filter(|n| is_visible(doc, n.id)).collect();
+    // Visibility is found top down once (world transforms are not
+    // needed: glTF keeps the hierarchy).
+    let tree = doc.hierarchy();
+    let visible: Vec<&crate::scene::Node> =
+        doc.nodes().filter(|n| tree.is_visible(n.id)).collect();
     for node in &visible {
         let mesh = match node_geometry(node, shape)? {
             None => None,

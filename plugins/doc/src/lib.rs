@@ -33,7 +33,7 @@ pub use modifiers::{
     ArrayModifier, DecimateModifier, DecimateRecord, EvaluationError, MeshModifier, MirrorModifier,
 };
 pub use scene::{
-    CornerAttributes, CurveContent, Document, MeshContent, Node, NodeContent, NodeId,
-    NodeTransform, Shading, SubdivisionModifier, SurfaceShape,
+    CornerAttributes, CurveContent, Document, Hierarchy, MeshContent, Node, NodeContent, NodeFacts,
+    NodeId, NodeTransform, Shading, SubdivisionModifier, SurfaceShape,
 };
 pub use session::{Applied, Session};

@@ -409,8 +409,12 @@ fn mesh_report(content: &crate::scene::MeshContent) -> MeshReport {
 
 impl SceneReport {
     /// The report of a session's document and history.
+    ///
+    /// Complexity: O(N) for the hierarchy (world transforms computed once
+    /// per node, top down), plus each node's counts.
     pub fn new(session: &Session) -> Self {
         let doc: &Document = &session.doc;
+        let tree = doc.hierarchy();
         let nodes = doc
             .nodes()
             .map(|n| NodeReport {
@@ -420,7 +424,9 @@ impl SceneReport {
                 parent: n.parent.map(|p| p.0),
                 visible: n.visible,
                 local: transform(&n.transform),
-                world: transform(&doc.world_transform(n.id)),
+                world: transform(&crate::scene::NodeTransform::from_matrix(
+                    tree.world_matrix(n.id),
+                )),
                 mesh: match &n.content {
                     NodeContent::Mesh(m) => Some(mesh_report(m)),
                     _ => None,
