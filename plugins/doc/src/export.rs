@@ -500,19 +500,6 @@ fn export_meshes(
         if !facts.visible || facts.inside_csg {
             continue;
         }
-        if let NodeContent::Csg(_) = &node.content {
-            let solid =
-                crate::csg::evaluate(doc, node.id).map_err(|e| ExportError::Csg(Box::new(e)))?;
-            let world = facts.world;
-            out.push(ExportItem {
-                node,
-                geometry: Geometry::Mesh(Cow::Owned((*solid).clone())),
-                world,
-                mirrored: world.determinant() < 0.0,
-                corners: None,
-            });
-            continue;
-        }
         let exact_curve = match &node.content {
             NodeContent::Curve(c) if curves == CurveExport::FreeForm && c.tolerance().is_none() => {
                 Some(Geometry::FreeForm(c.nurbs().clone()))
@@ -521,7 +508,7 @@ fn export_meshes(
         };
         let geometry = match exact_curve {
             Some(g) => Some(g),
-            None => node_geometry(node, shape)?,
+            None => export_geometry(doc, node, shape)?,
         };
         if let Some(geometry) = geometry {
             let corners = match (&node.content, &geometry) {
@@ -543,6 +530,28 @@ fn export_meshes(
         }
     }
     Ok(out)
+}
+
+/// What every export format writes for `node`, in its own (local) space:
+/// a CSG node's solid, else [`node_geometry`]. OBJ, STL and glTF all call
+/// this, so that they write the same shape (issue 31, item 13: glTF wrote
+/// a CSG node's operands).
+///
+/// # Errors
+/// [`ExportError::Csg`] when a CSG node has no solid; as [`node_geometry`].
+pub(crate) fn export_geometry<'a>(
+    doc: &Document,
+    node: &'a Node,
+    shape: ExportShape,
+) -> Result<Option<Geometry<'a>>, ExportError> {
+    match &node.content {
+        NodeContent::Csg(_) => {
+            let solid =
+                crate::csg::evaluate(doc, node.id).map_err(|e| ExportError::Csg(Box::new(e)))?;
+            Ok(Some(Geometry::Mesh(Cow::Owned((*solid).clone()))))
+        }
+        _ => node_geometry(node, shape),
+    }
 }
 
 /// What a node exports as, in its own (local) space: its mesh in the
