@@ -314,8 +314,10 @@ pub struct DecimateModifier {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub sharp_angle: Option<f64>,
     /// Triangle pairs of the result joined into quads where they make a
-    /// good one, never across a kept crease, seam or sharp edge (default
-    /// off: triangles; files from before it load with it off).
+    /// good one, never across a kept crease, seam or sharp edge, and never
+    /// a quad folded more than 40° across either diagonal
+    /// ([`hedra_geom::modeling::quad_fold`]) (default off: triangles;
+    /// files from before it load with it off).
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub keep_quads: bool,
 }
