@@ -7,7 +7,7 @@ use clap::{Parser, Subcommand};
 use hedra_doc::export::ExportShape;
 use hedra_doc::file::{self, FileError};
 use hedra_doc::report::SceneReport;
-use hedra_doc::{Command, Session, script};
+use hedra_doc::{Session, script};
 use std::path::{Path, PathBuf};
 
 /// Hedra: polygon, subdivision and NURBS modeling. Without a subcommand,
@@ -335,7 +335,7 @@ pub fn run(sub: Sub) -> Result<(), CliError> {
             refuse_overwrite(&output, &[Some(&file)])?;
             let mut session = load(&file)?;
             if let Some(ratio) = lod {
-                set_decimate_ratio(&mut session, ratio)?;
+                hedra_doc::modifiers::set_decimate_ratio(&mut session, ratio)?;
             }
             let shape = match (subdivide, cage) {
                 (Some(level), _) => ExportShape::Subdivided(level),
@@ -366,51 +366,6 @@ pub enum ObjCurves {
     Polylines,
     /// Free-form NURBS records (exact).
     Nurbs,
-}
-
-/// Every Decimate modifier of the scene set to `ratio` of its input's
-/// faces (`hedra export --lod`), in memory only.
-fn set_decimate_ratio(session: &mut Session, ratio: f64) -> Result<(), CliError> {
-    if !(ratio > 0.0 && ratio <= 1.0) {
-        return Err(CliError(format!(
-            "--lod {ratio}: the ratio must be above 0 and at most 1"
-        )));
-    }
-    let changes: Vec<Command> = session
-        .doc
-        .nodes()
-        .filter_map(|n| match &n.content {
-            hedra_doc::NodeContent::Mesh(content) => Some((n.id, content)),
-            _ => None,
-        })
-        .flat_map(|(id, content)| {
-            content
-                .modifiers
-                .iter()
-                .enumerate()
-                .filter_map(move |(index, m)| match m {
-                    hedra_doc::MeshModifier::Decimate(d) => Some(Command::SetModifier {
-                        node: id.into(),
-                        index,
-                        modifier: hedra_doc::MeshModifier::Decimate(hedra_doc::DecimateModifier {
-                            target: hedra_geom::progressive::DecimateTarget::Ratio(ratio),
-                            level: None,
-                            ..*d
-                        }),
-                    }),
-                    _ => None,
-                })
-        })
-        .collect();
-    if changes.is_empty() {
-        return Err(CliError(
-            "--lod: the scene has no Decimate modifier (add one in Properties ▸ Modifiers)".into(),
-        ));
-    }
-    for cmd in &changes {
-        session.execute(cmd)?;
-    }
-    Ok(())
 }
 
 /// Writes a report to standard output. When the reader has gone away (`hedra
