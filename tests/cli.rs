@@ -1075,6 +1075,59 @@ fn a_fifo_or_a_folder_as_input_is_refused_without_blocking() {
     }
 }
 
+/// Issue 31, item 18: `info` counts what `export` writes (a cube smoothed
+/// three levels before a Decimate at 10 %: 76 faces, where info said 4),
+/// and `export --lod` at the ratio the Decimate already has works.
+#[test]
+fn info_counts_what_export_writes_and_lod_at_the_same_ratio_works() {
+    let dir = tempfile::tempdir().unwrap();
+    let script_path = dir.path().join("cube.ron");
+    std::fs::write(
+        &script_path,
+        r#"[
+            AddPrimitive(primitive: Cube(size: 2.0), name: Some("Cube")),
+            SetSubdivision(nodes: [Name("Cube")], modifier: Some((viewport_level: 3, export_level: 3, stack_position: Some(0)))),
+            AddModifier(node: Name("Cube"), modifier: Decimate((target: Ratio(0.1)))),
+        ]"#,
+    )
+    .unwrap();
+    let scene = dir.path().join("cube.hedra.ron");
+    let o = hedra(&[
+        "run",
+        script_path.to_str().unwrap(),
+        "-o",
+        scene.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let j = info_json(&scene);
+    let export = &j["nodes"][0]["export"];
+    assert_eq!(export["faces"], 76, "{j}");
+    let obj = dir.path().join("cube.obj");
+    for lod in [None, Some("0.1")] {
+        let mut args = vec![
+            "export",
+            scene.to_str().unwrap(),
+            "-o",
+            obj.to_str().unwrap(),
+        ];
+        if let Some(r) = lod {
+            args.extend(["--lod", r]);
+        }
+        let o = hedra(&args);
+        assert!(o.status.success(), "{args:?}: {}", stderr(&o));
+        let text = std::fs::read_to_string(&obj).unwrap();
+        let count = |p: &str| text.lines().filter(|l| l.starts_with(p)).count() as u64;
+        assert_eq!(count("f "), export["faces"].as_u64().unwrap(), "{args:?}");
+        assert_eq!(
+            count("v "),
+            export["vertices"].as_u64().unwrap(),
+            "{args:?}"
+        );
+    }
+    let text = String::from_utf8(hedra(&["info", scene.to_str().unwrap()]).stdout).unwrap();
+    assert!(text.contains(" F 76 (76 triangles)"), "{text}");
+}
+
 /// Issue 31, item 13: `export` of the CSG sample writes the emblem solid
 /// (1,568 triangles within ±1) to glTF and GLB as to OBJ and STL, with
 /// `--cage` and `--subdivide 2` too.

@@ -535,7 +535,7 @@ fn export_meshes(
 /// What every export format writes for `node`, in its own (local) space:
 /// a CSG node's solid, else [`node_geometry`]. OBJ, STL and glTF all call
 /// this, so that they write the same shape (issue 31, item 13: glTF wrote
-/// a CSG node's operands).
+/// a CSG node's operands), and so does [`written_counts`].
 ///
 /// # Errors
 /// [`ExportError::Csg`] when a CSG node has no solid; as [`node_geometry`].
@@ -552,6 +552,67 @@ pub(crate) fn export_geometry<'a>(
         }
         _ => node_geometry(node, shape),
     }
+}
+
+/// What an export writes for one node, counted on the geometry the
+/// writers write ([`export_geometry`]).
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, serde::Serialize)]
+pub struct WrittenCounts {
+    /// Vertices: OBJ `v` lines of the node's mesh, surface or polyline.
+    pub vertices: usize,
+    /// Polygons as OBJ writes them (`f` lines; n-gons kept).
+    pub faces: usize,
+    /// Triangles as STL and glTF write them (every face triangulated).
+    pub triangles: usize,
+}
+
+impl Geometry<'_> {
+    /// The counts of what is written for this geometry.
+    fn counts(&self) -> WrittenCounts {
+        match self {
+            Geometry::Mesh(m) => WrittenCounts {
+                vertices: m.vertex_count(),
+                faces: m.face_count(),
+                triangles: m
+                    .faces()
+                    .map(|f| hedra_geom::query::triangulate_face(m, f).len())
+                    .sum(),
+            },
+            Geometry::Triangles(p, _, t) => WrittenCounts {
+                vertices: p.len(),
+                faces: t.len(),
+                triangles: t.len(),
+            },
+            Geometry::Polyline(p) => WrittenCounts {
+                vertices: p.len(),
+                ..WrittenCounts::default()
+            },
+            Geometry::FreeForm(c) => WrittenCounts {
+                vertices: c.points().len(),
+                ..WrittenCounts::default()
+            },
+        }
+    }
+}
+
+/// What an export of `doc` in `shape` writes for node `id` when it is
+/// visible: its vertices, OBJ faces and STL/glTF triangles, from the same
+/// geometry the writers write. `hedra info` reports these (issue 31, item
+/// 18: it counted the stack without the subdivision that comes before a
+/// Decimate). `None` for a node that writes nothing (an empty, an
+/// unknown id).
+///
+/// # Errors
+/// As [`export_bytes`]: the node's shape cannot be evaluated.
+pub fn written_counts(
+    doc: &Document,
+    id: crate::scene::NodeId,
+    shape: ExportShape,
+) -> Result<Option<WrittenCounts>, ExportError> {
+    let Some(node) = doc.node(id) else {
+        return Ok(None);
+    };
+    Ok(export_geometry(doc, node, shape)?.map(|g| g.counts()))
 }
 
 /// What a node exports as, in its own (local) space: its mesh in the

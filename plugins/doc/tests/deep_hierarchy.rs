@@ -145,6 +145,12 @@ fn a_10000_deep_gltf_chain_imports_reports_and_exports() {
     let report = SceneReport::new(&session);
     let reported = report.nodes.iter().find(|n| n.id == tip.id.0).unwrap();
     assert_eq!(DVec3::from_array(reported.world.translation), got);
+    let export = reported.export.as_ref().unwrap();
+    // glTF holds triangles: the cube comes back as 12.
+    assert_eq!(
+        (export.vertices, export.faces, export.triangles),
+        (8, 12, 12)
+    );
 
     for name in ["x.obj", "x.stl"] {
         let bytes = export_bytes(&session.doc, Path::new(name), ExportOptions::default()).unwrap();
