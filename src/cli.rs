@@ -232,7 +232,7 @@ pub fn run(sub: Sub) -> Result<(), CliError> {
             input,
             output,
         } => {
-            refuse_overwrite(&output, &[Some(&script_path), input.as_deref()])?;
+            refuse_overwrite(&output, &[Some(script_path.as_path()), input.as_deref()])?;
             let text = hedra_doc::input::read_to_string(&script_path)
                 .map_err(|e| CliError(format!("{}: {e}", script_path.display())))?;
             let commands = script::parse(&text, &script_path)?;
@@ -256,7 +256,7 @@ pub fn run(sub: Sub) -> Result<(), CliError> {
             steps,
             output,
         } => {
-            refuse_overwrite(&output, &[Some(&file)])?;
+            refuse_overwrite(&output, &[Some(file.as_path())])?;
             let mut session = load(&file)?;
             let available = session.history.done().len();
             if steps > available {
@@ -275,7 +275,7 @@ pub fn run(sub: Sub) -> Result<(), CliError> {
             steps,
             output,
         } => {
-            refuse_overwrite(&output, &[Some(&file)])?;
+            refuse_overwrite(&output, &[Some(file.as_path())])?;
             let mut session = load(&file)?;
             let available = session.history.undone().len();
             if steps > available {
@@ -294,7 +294,7 @@ pub fn run(sub: Sub) -> Result<(), CliError> {
             input,
             output,
         } => {
-            refuse_overwrite(&output, &[Some(&file), input.as_deref()])?;
+            refuse_overwrite(&output, &[Some(file.as_path()), input.as_deref()])?;
             let meshes = hedra_doc::import::import_file(&file)?;
             // A summary as the warning, then its details.
             for (i, note) in hedra_doc::import::describe_repairs(&meshes)
@@ -332,7 +332,7 @@ pub fn run(sub: Sub) -> Result<(), CliError> {
             lod,
             curves,
         } => {
-            refuse_overwrite(&output, &[Some(&file)])?;
+            refuse_overwrite(&output, &[Some(file.as_path())])?;
             let mut session = load(&file)?;
             if let Some(ratio) = lod {
                 hedra_doc::modifiers::set_decimate_ratio(&mut session, ratio)?;
