@@ -7,6 +7,13 @@
 //! 110 s); they are now computed once per node, top down, so every step
 //! grows linearly with the depth.
 //!
+//! Measured on the shared 2-core machine (release, under load), before →
+//! after: 2,000 deep: open 52 → 30 ms, info 62 → 16 ms, OBJ export 144 →
+//! 1.9 ms; 10,000 deep: open 205 ms, info 84 ms, OBJ export 17 ms, GLB
+//! import 334 ms. A 10,000-deep chain imported from GLB and saved (its
+//! history holds every node): open 3.8 s → 0.55 s, info 2.3 s → 43 ms, OBJ
+//! export 7.4 s → 11 ms.
+//!
 //! `cargo bench -p hedra_doc --bench deep_scene -- FILTER`
 
 use criterion::{BenchmarkId, Criterion, criterion_main};
