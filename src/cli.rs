@@ -7,7 +7,7 @@ use clap::{Parser, Subcommand};
 use hedra_doc::export::ExportShape;
 use hedra_doc::file::{self, FileError};
 use hedra_doc::report::SceneReport;
-use hedra_doc::{Command, Session, script};
+use hedra_doc::{Session, script};
 use std::path::{Path, PathBuf};
 
 /// Hedra: polygon, subdivision and NURBS modeling. Without a subcommand,
@@ -163,6 +163,13 @@ fn save(session: &mut Session, path: &Path) -> Result<(), FileError> {
     file::save(session, path)
 }
 
+/// Refuses an output that is one of the command's input files (before
+/// anything is read).
+fn refuse_overwrite(output: &Path, inputs: &[Option<&Path>]) -> Result<(), CliError> {
+    hedra_doc::input::refuse_overwrite(output, inputs.iter().flatten().copied())?;
+    Ok(())
+}
+
 /// Runs a headless subcommand.
 ///
 /// # Errors
@@ -225,7 +232,8 @@ pub fn run(sub: Sub) -> Result<(), CliError> {
             input,
             output,
         } => {
-            let text = std::fs::read_to_string(&script_path)
+            refuse_overwrite(&output, &[Some(script_path.as_path()), input.as_deref()])?;
+            let text = hedra_doc::input::read_to_string(&script_path)
                 .map_err(|e| CliError(format!("{}: {e}", script_path.display())))?;
             let commands = script::parse(&text, &script_path)?;
             let mut session = match input {
@@ -248,6 +256,7 @@ pub fn run(sub: Sub) -> Result<(), CliError> {
             steps,
             output,
         } => {
+            refuse_overwrite(&output, &[Some(file.as_path())])?;
             let mut session = load(&file)?;
             let available = session.history.done().len();
             if steps > available {
@@ -266,6 +275,7 @@ pub fn run(sub: Sub) -> Result<(), CliError> {
             steps,
             output,
         } => {
+            refuse_overwrite(&output, &[Some(file.as_path())])?;
             let mut session = load(&file)?;
             let available = session.history.undone().len();
             if steps > available {
@@ -284,6 +294,7 @@ pub fn run(sub: Sub) -> Result<(), CliError> {
             input,
             output,
         } => {
+            refuse_overwrite(&output, &[Some(file.as_path()), input.as_deref()])?;
             let meshes = hedra_doc::import::import_file(&file)?;
             // A summary as the warning, then its details.
             for (i, note) in hedra_doc::import::describe_repairs(&meshes)
@@ -321,9 +332,10 @@ pub fn run(sub: Sub) -> Result<(), CliError> {
             lod,
             curves,
         } => {
+            refuse_overwrite(&output, &[Some(file.as_path())])?;
             let mut session = load(&file)?;
             if let Some(ratio) = lod {
-                set_decimate_ratio(&mut session, ratio)?;
+                hedra_doc::modifiers::set_decimate_ratio(&mut session, ratio)?;
             }
             let shape = match (subdivide, cage) {
                 (Some(level), _) => ExportShape::Subdivided(level),
@@ -354,51 +366,6 @@ pub enum ObjCurves {
     Polylines,
     /// Free-form NURBS records (exact).
     Nurbs,
-}
-
-/// Every Decimate modifier of the scene set to `ratio` of its input's
-/// faces (`hedra export --lod`), in memory only.
-fn set_decimate_ratio(session: &mut Session, ratio: f64) -> Result<(), CliError> {
-    if !(ratio > 0.0 && ratio <= 1.0) {
-        return Err(CliError(format!(
-            "--lod {ratio}: the ratio must be above 0 and at most 1"
-        )));
-    }
-    let changes: Vec<Command> = session
-        .doc
-        .nodes()
-        .filter_map(|n| match &n.content {
-            hedra_doc::NodeContent::Mesh(content) => Some((n.id, content)),
-            _ => None,
-        })
-        .flat_map(|(id, content)| {
-            content
-                .modifiers
-                .iter()
-                .enumerate()
-                .filter_map(move |(index, m)| match m {
-                    hedra_doc::MeshModifier::Decimate(d) => Some(Command::SetModifier {
-                        node: id.into(),
-                        index,
-                        modifier: hedra_doc::MeshModifier::Decimate(hedra_doc::DecimateModifier {
-                            target: hedra_geom::progressive::DecimateTarget::Ratio(ratio),
-                            level: None,
-                            ..*d
-                        }),
-                    }),
-                    _ => None,
-                })
-        })
-        .collect();
-    if changes.is_empty() {
-        return Err(CliError(
-            "--lod: the scene has no Decimate modifier (add one in Properties ▸ Modifiers)".into(),
-        ));
-    }
-    for cmd in &changes {
-        session.execute(cmd)?;
-    }
-    Ok(())
 }
 
 /// Writes a report to standard output. When the reader has gone away (`hedra

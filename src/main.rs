@@ -40,7 +40,7 @@ fn main() -> ExitCode {
                 }
             };
             let run = match cli.run.as_deref().map(|p| {
-                std::fs::read_to_string(p)
+                hedra::doc::input::read_to_string(p)
                     .map_err(|e| format!("{}: {e}", p.display()))
                     .and_then(|t| hedra::doc::script::parse(&t, p).map_err(|e| e.to_string()))
             }) {

@@ -1003,3 +1003,249 @@ fn export_curves_as_nurbs_records() {
         stderr(&o)
     );
 }
+
+/// Issue 31, item 17: no command writes over a file it reads (`import
+/// x.obj -o x.obj` replaced the mesh with a scene, keeping it only as
+/// `.bak`), by the same path, another spelling of it or a link; the input
+/// is left byte for byte, with no `.bak` beside it.
+#[test]
+fn no_command_writes_over_its_input() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = |n: &str| dir.path().join(n);
+    let obj = d("x.obj");
+    let obj_text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    std::fs::write(&obj, obj_text).unwrap();
+    let scene = build_hierarchy(dir.path());
+    let scene_text = std::fs::read_to_string(&scene).unwrap();
+    let script_path = d("s.ron");
+    std::fs::write(&script_path, "[]").unwrap();
+    let (o, s, r) = (
+        obj.to_str().unwrap(),
+        scene.to_str().unwrap(),
+        script_path.to_str().unwrap(),
+    );
+    let dotted = dir.path().join(".").join("rig.hedra.ron");
+    let dotted = dotted.to_str().unwrap();
+    let refused: Vec<(Vec<&str>, &str)> = vec![
+        (vec!["import", o, "-o", o], o),
+        (vec!["import", o, "--input", s, "-o", s], s),
+        (vec!["export", s, "-o", s], s),
+        (vec!["export", s, "-o", dotted], dotted),
+        (vec!["run", r, "-o", r], r),
+        (vec!["run", r, "--input", s, "-o", s], s),
+        (vec!["undo", s, "-o", s], s),
+        (vec!["redo", s, "-o", s], s),
+    ];
+    for (args, output) in refused {
+        let out = hedra(&args);
+        let err = stderr(&out);
+        assert_eq!(out.status.code(), Some(1), "{args:?} was not refused");
+        assert!(
+            err.contains(&format!("{output}: this is the input file"))
+                && err.contains("choose another output file"),
+            "{args:?}: {err}"
+        );
+        assert_eq!(err.trim_end().lines().count(), 1, "one line: {err:?}");
+    }
+    assert_eq!(std::fs::read_to_string(&obj).unwrap(), obj_text);
+    assert_eq!(std::fs::read_to_string(&scene).unwrap(), scene_text);
+    assert_eq!(std::fs::read_to_string(&script_path).unwrap(), "[]");
+    for f in [&obj, &scene, &script_path] {
+        let mut bak = f.as_os_str().to_owned();
+        bak.push(".bak");
+        assert!(!Path::new(&bak).exists(), "{} has a .bak", f.display());
+    }
+    // A hard link to the input is the input.
+    #[cfg(unix)]
+    {
+        let link = d("link.obj");
+        std::fs::hard_link(&obj, &link).unwrap();
+        let out = hedra(&["import", o, "-o", link.to_str().unwrap()]);
+        assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
+        assert_eq!(std::fs::read_to_string(&obj).unwrap(), obj_text);
+    }
+    // Another output is fine.
+    let out = hedra(&["import", o, "-o", d("x.hedra.ron").to_str().unwrap()]);
+    assert!(out.status.success(), "{}", stderr(&out));
+}
+
+/// Issue 31, item 17: a FIFO (or a folder) as the input is refused by
+/// name before it is read, where `info` used to block forever. Each
+/// command runs with a 20 s limit so that a regression fails instead of
+/// hanging the suite.
+#[cfg(unix)]
+#[test]
+fn a_fifo_or_a_folder_as_input_is_refused_without_blocking() {
+    use std::time::{Duration, Instant};
+    let dir = tempfile::tempdir().unwrap();
+    let d = |n: &str| dir.path().join(n);
+    let run_limited = |args: &[&str]| -> Output {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_hedra"))
+            .args(args)
+            .stdout(std::process::Stdio::piped())
+            .stderr(std::process::Stdio::piped())
+            .spawn()
+            .unwrap();
+        let start = Instant::now();
+        while child.try_wait().unwrap().is_none() {
+            if start.elapsed() > Duration::from_secs(20) {
+                child.kill().unwrap();
+                panic!("{args:?} blocked on its input");
+            }
+            std::thread::sleep(Duration::from_millis(50));
+        }
+        child.wait_with_output().unwrap()
+    };
+    for name in ["pipe.hedra.ron", "pipe.obj", "pipe.ron"] {
+        let status = Command::new("mkfifo").arg(d(name)).status().unwrap();
+        assert!(status.success());
+    }
+    std::fs::create_dir(d("folder.obj")).unwrap();
+    let out = d("out.hedra.ron");
+    let o = out.to_str().unwrap();
+    let pipe_scene = d("pipe.hedra.ron");
+    let pipe_obj = d("pipe.obj");
+    let pipe_script = d("pipe.ron");
+    let folder = d("folder.obj");
+    let x_obj = d("x.obj");
+    let cases: Vec<(Vec<&str>, &Path, &str)> = vec![
+        (
+            vec!["info", pipe_scene.to_str().unwrap()],
+            pipe_scene.as_path(),
+            "FIFO",
+        ),
+        (
+            vec![
+                "export",
+                pipe_scene.to_str().unwrap(),
+                "-o",
+                x_obj.to_str().unwrap(),
+            ],
+            pipe_scene.as_path(),
+            "FIFO",
+        ),
+        (
+            vec!["import", pipe_obj.to_str().unwrap(), "-o", o],
+            pipe_obj.as_path(),
+            "FIFO",
+        ),
+        (
+            vec!["run", pipe_script.to_str().unwrap(), "-o", o],
+            pipe_script.as_path(),
+            "FIFO",
+        ),
+        (
+            vec!["import", folder.to_str().unwrap(), "-o", o],
+            folder.as_path(),
+            "is a folder",
+        ),
+    ];
+    for (args, path, what) in cases {
+        let result = run_limited(&args);
+        let err = stderr(&result);
+        assert_eq!(result.status.code(), Some(1), "{args:?}: {err}");
+        assert!(
+            err.contains(&path.display().to_string()) && err.contains(what),
+            "{args:?}: {err}"
+        );
+        assert!(err.contains("not a regular file"), "{args:?}: {err}");
+        assert!(!out.exists());
+    }
+}
+
+/// Issue 31, item 18: `info` counts what `export` writes (a cube smoothed
+/// three levels before a Decimate at 10 %: 76 faces, where info said 4),
+/// and `export --lod` at the ratio the Decimate already has works.
+#[test]
+fn info_counts_what_export_writes_and_lod_at_the_same_ratio_works() {
+    let dir = tempfile::tempdir().unwrap();
+    let script_path = dir.path().join("cube.ron");
+    std::fs::write(
+        &script_path,
+        r#"[
+            AddPrimitive(primitive: Cube(size: 2.0), name: Some("Cube")),
+            SetSubdivision(nodes: [Name("Cube")], modifier: Some((viewport_level: 3, export_level: 3, stack_position: Some(0)))),
+            AddModifier(node: Name("Cube"), modifier: Decimate((target: Ratio(0.1)))),
+        ]"#,
+    )
+    .unwrap();
+    let scene = dir.path().join("cube.hedra.ron");
+    let o = hedra(&[
+        "run",
+        script_path.to_str().unwrap(),
+        "-o",
+        scene.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let j = info_json(&scene);
+    let export = &j["nodes"][0]["export"];
+    assert_eq!(export["faces"], 76, "{j}");
+    let obj = dir.path().join("cube.obj");
+    for lod in [None, Some("0.1")] {
+        let mut args = vec![
+            "export",
+            scene.to_str().unwrap(),
+            "-o",
+            obj.to_str().unwrap(),
+        ];
+        if let Some(r) = lod {
+            args.extend(["--lod", r]);
+        }
+        let o = hedra(&args);
+        assert!(o.status.success(), "{args:?}: {}", stderr(&o));
+        let text = std::fs::read_to_string(&obj).unwrap();
+        let count = |p: &str| text.lines().filter(|l| l.starts_with(p)).count() as u64;
+        assert_eq!(count("f "), export["faces"].as_u64().unwrap(), "{args:?}");
+        assert_eq!(
+            count("v "),
+            export["vertices"].as_u64().unwrap(),
+            "{args:?}"
+        );
+    }
+    let text = String::from_utf8(hedra(&["info", scene.to_str().unwrap()]).stdout).unwrap();
+    assert!(text.contains(" F 76 (76 triangles)"), "{text}");
+}
+
+/// Issue 31, item 13: `export` of the CSG sample writes the emblem solid
+/// (1,568 triangles within ±1) to glTF and GLB as to OBJ and STL, with
+/// `--cage` and `--subdivide 2` too.
+#[test]
+fn export_writes_the_csg_solid_to_every_format() {
+    let dir = tempfile::tempdir().unwrap();
+    let sample =
+        std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("assets/samples/csg.hedra.ron");
+    for extra in [&[][..], &["--cage"][..], &["--subdivide", "2"][..]] {
+        for ext in ["obj", "stl", "gltf", "glb"] {
+            let out = dir.path().join(format!("emblem.{ext}"));
+            let mut args = vec![
+                "export",
+                sample.to_str().unwrap(),
+                "-o",
+                out.to_str().unwrap(),
+            ];
+            args.extend_from_slice(extra);
+            let o = hedra(&args);
+            assert!(o.status.success(), "{args:?}: {}", stderr(&o));
+            let bytes = std::fs::read(&out).unwrap();
+            let triangles = match ext {
+                // OBJ: each face a fan of (corners − 2) triangles.
+                "obj" => String::from_utf8(bytes)
+                    .unwrap()
+                    .lines()
+                    .filter(|l| l.starts_with("f "))
+                    .map(|l| l.split_whitespace().count() - 3)
+                    .sum::<usize>(),
+                // Binary STL: the count after the 80-byte header.
+                "stl" => u32::from_le_bytes(bytes[80..84].try_into().unwrap()) as usize,
+                // glTF: read back by the importer the window uses.
+                _ => hedra_doc::import::import_file(&out)
+                    .unwrap()
+                    .iter()
+                    .filter_map(|m| m.mesh.as_ref())
+                    .map(|m| m.faces().map(|f| m.face_degree(f) - 2).sum::<usize>())
+                    .sum(),
+            };
+            assert_eq!(triangles, 1568, "{args:?}");
+        }
+    }
+}

@@ -482,28 +482,23 @@ const EXPORT_TOLERANCE: f64 = 1e-4;
 /// # Errors
 /// [`ExportError::Evaluation`] naming the node when its modifiers cannot
 /// be evaluated (Loop on a mesh with quads, a level too large).
+///
+/// Complexity: O(N) for the hierarchy (world matrices and visibility are
+/// computed once per node, top down: [`Document::hierarchy`]), plus each
+/// node's geometry.
 fn export_meshes(
     doc: &Document,
     shape: ExportShape,
     curves: CurveExport,
 ) -> Result<Vec<ExportItem<'_>>, ExportError> {
+    let tree = doc.hierarchy();
     let mut out = Vec::new();
     for node in doc.nodes() {
         // A CSG node exports its solid; its operands are part of it.
-        if !is_visible(doc, node.id) || crate::csg::inside_csg(doc, node.id) {
+        let Some(facts) = tree.facts(node.id) else {
             continue;
-        }
-        if let NodeContent::Csg(_) = &node.content {
-            let solid =
-                crate::csg::evaluate(doc, node.id).map_err(|e| ExportError::Csg(Box::new(e)))?;
-            let world = doc.world_matrix(node.id);
-            out.push(ExportItem {
-                node,
-                geometry: Geometry::Mesh(Cow::Owned((*solid).clone())),
-                world,
-                mirrored: world.determinant() < 0.0,
-                corners: None,
-            });
+        };
+        if !facts.visible || facts.inside_csg {
             continue;
         }
         let exact_curve = match &node.content {
@@ -514,7 +509,7 @@ fn export_meshes(
         };
         let geometry = match exact_curve {
             Some(g) => Some(g),
-            None => node_geometry(node, shape)?,
+            None => export_geometry(doc, node, shape)?,
         };
         if let Some(geometry) = geometry {
             let corners = match (&node.content, &geometry) {
@@ -525,7 +520,7 @@ fn export_meshes(
                 }
                 _ => None,
             };
-            let world = doc.world_matrix(node.id);
+            let world = facts.world;
             out.push(ExportItem {
                 node,
                 geometry,
@@ -538,28 +533,117 @@ fn export_meshes(
     Ok(out)
 }
 
+/// What every export format writes for `node`, in its own (local) space:
+/// a CSG node's solid, else [`node_geometry`]. OBJ, STL and glTF all call
+/// this, so that they write the same shape (issue 31, item 13: glTF wrote
+/// a CSG node's operands), and so does [`written_counts`].
+///
+/// # Errors
+/// [`ExportError::Csg`] when a CSG node has no solid; as [`node_geometry`].
+pub(crate) fn export_geometry<'a>(
+    doc: &Document,
+    node: &'a Node,
+    shape: ExportShape,
+) -> Result<Option<Geometry<'a>>, ExportError> {
+    Ok(export_geometry_creased(doc, node, shape)?.map(|(geometry, _)| geometry))
+}
+
+/// [`export_geometry`] with the creases of what is written (none for a
+/// CSG solid), for splitting smooth normals along infinitely sharp ones.
+///
+/// # Errors
+/// As [`export_geometry`].
+pub(crate) fn export_geometry_creased<'a>(
+    doc: &Document,
+    node: &'a Node,
+    shape: ExportShape,
+) -> Result<Option<(Geometry<'a>, Cow<'a, Creases>)>, ExportError> {
+    match &node.content {
+        NodeContent::Csg(_) => {
+            let solid =
+                crate::csg::evaluate(doc, node.id).map_err(|e| ExportError::Csg(Box::new(e)))?;
+            Ok(Some((
+                Geometry::Mesh(Cow::Owned((*solid).clone())),
+                Cow::Owned(Creases::default()),
+            )))
+        }
+        _ => node_geometry(node, shape),
+    }
+}
+
+/// What an export writes for one node, counted on the geometry the
+/// writers write ([`export_geometry`]).
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, serde::Serialize)]
+pub struct WrittenCounts {
+    /// Vertices: OBJ `v` lines of the node's mesh, surface or polyline.
+    pub vertices: usize,
+    /// Polygons as OBJ writes them (`f` lines; n-gons kept).
+    pub faces: usize,
+    /// Triangles as STL and glTF write them (every face triangulated).
+    pub triangles: usize,
+}
+
+impl Geometry<'_> {
+    /// The counts of what is written for this geometry.
+    fn counts(&self) -> WrittenCounts {
+        match self {
+            Geometry::Mesh(m) => WrittenCounts {
+                vertices: m.vertex_count(),
+                faces: m.face_count(),
+                triangles: m
+                    .faces()
+                    .map(|f| hedra_geom::query::triangulate_face(m, f).len())
+                    .sum(),
+            },
+            Geometry::Triangles(p, _, t) => WrittenCounts {
+                vertices: p.len(),
+                faces: t.len(),
+                triangles: t.len(),
+            },
+            Geometry::Polyline(p) => WrittenCounts {
+                vertices: p.len(),
+                ..WrittenCounts::default()
+            },
+            Geometry::FreeForm(c) => WrittenCounts {
+                vertices: c.points().len(),
+                ..WrittenCounts::default()
+            },
+        }
+    }
+}
+
+/// What an export of `doc` in `shape` writes for node `id` when it is
+/// visible: its vertices, OBJ faces and STL/glTF triangles, from the same
+/// geometry the writers write. `hedra info` reports these (issue 31, item
+/// 18: it counted the stack without the subdivision that comes before a
+/// Decimate). `None` for a node that writes nothing (an empty, an
+/// unknown id).
+///
+/// # Errors
+/// As [`export_bytes`]: the node's shape cannot be evaluated.
+pub fn written_counts(
+    doc: &Document,
+    id: crate::scene::NodeId,
+    shape: ExportShape,
+) -> Result<Option<WrittenCounts>, ExportError> {
+    let Some(node) = doc.node(id) else {
+        return Ok(None);
+    };
+    Ok(export_geometry(doc, node, shape)?.map(|g| g.counts()))
+}
+
 /// What a node exports as, in its own (local) space: its mesh in the
 /// requested shape, its surface tessellated, its curve as a polyline;
-/// `None` for empties.
+/// `None` for empties and CSG nodes ([`export_geometry`] evaluates those).
+/// With the creases of what is written (a mesh's, after its modifiers and
+/// subdivision; none for other content), so that smooth normals can be
+/// split along infinitely sharp creases.
 ///
 /// # Errors
 /// [`ExportError::Evaluation`] naming the node when its modifier stack or
 /// subdivision cannot be evaluated. [`ExportError::NotPolygon`] for a mesh
 /// with a face with rings or without edges.
 pub(crate) fn node_geometry(
-    node: &Node,
-    shape: ExportShape,
-) -> Result<Option<Geometry<'_>>, ExportError> {
-    Ok(node_geometry_creased(node, shape)?.map(|(geometry, _)| geometry))
-}
-
-/// [`node_geometry`] with the creases of what is written (a mesh's, after
-/// its modifiers and subdivision; none for other content), so that smooth
-/// normals can be split along infinitely sharp creases.
-///
-/// # Errors
-/// As [`node_geometry`].
-pub(crate) fn node_geometry_creased(
     node: &Node,
     shape: ExportShape,
 ) -> Result<Option<(Geometry<'_>, Cow<'_, Creases>)>, ExportError> {
@@ -646,6 +730,8 @@ fn welded(
 
 /// True when the node and every ancestor are visible (false for an
 /// unknown id).
+///
+/// Complexity: O(depth); for many nodes use [`Document::hierarchy`].
 pub fn is_visible(doc: &Document, id: crate::scene::NodeId) -> bool {
     let mut cur = Some(id);
     let mut guard = doc.node_count() + 1;

@@ -852,7 +852,7 @@ pub fn save(session: &mut Session, path: &Path) -> Result<(), FileError> {
 /// # Errors
 /// A [`FileError`] naming the file, and the line and column of a syntax error.
 pub fn load(path: &Path) -> Result<Loaded, FileError> {
-    let bytes = std::fs::read(path).map_err(io(path))?;
+    let bytes = crate::input::read(path).map_err(io(path))?;
     let text = String::from_utf8(bytes).map_err(|e| FileError::NotAScene {
         path: path.to_path_buf(),
         reason: e.into(),

@@ -22,7 +22,7 @@ use hedra_geom::HalfEdgeMesh;
 use json::validation::Checked::Valid;
 use json::validation::USize64;
 
-use crate::export::{ExportError, ExportShape, Geometry, is_visible, node_geometry_creased};
+use crate::export::{ExportError, ExportShape, Geometry, export_geometry_creased};
 use crate::import::{ImportError, ImportedMesh, corner_attributes};
 use crate::scene::{CornerAttributes, Document, NodeContent, NodeId, NodeTransform, Shading};
 use hedra_geom::subdivision::Creases;
@@ -269,13 +269,22 @@ pub fn to_gltf(doc: &Document, shape: ExportShape, binary: bool) -> Result<Vec<u
     };
     let mut bin: Vec<u8> = Vec::new();
     let mut index_of: HashMap<NodeId, json::Index<json::Node>> = HashMap::new();
-    let visible: Vec<&crate::scene::Node> = doc.nodes().filter(|n| is_visible(doc, n.id)).collect();
+    // Visible nodes, without CSG operands (their CSG node writes its
+    // solid), parents before children; world transforms are not needed
+    // (glTF keeps the hierarchy), visibility is found top down once.
+    let tree = doc.hierarchy();
+    let visible: Vec<&crate::scene::Node> = doc
+        .nodes()
+        .filter(|n| tree.is_visible(n.id) && !tree.inside_csg(n.id))
+        .collect();
     for node in &visible {
-        let mesh = match node_geometry_creased(node, shape)? {
+        let mesh = match export_geometry_creased(doc, node, shape)? {
             None => None,
             Some((geometry, creases)) => {
                 let (shading, corners) = match &node.content {
                     NodeContent::Mesh(c) => (c.shading, Some(&c.corners)),
+                    // A CSG solid is drawn flat, as the viewport draws it.
+                    NodeContent::Csg(_) => (Shading::Flat, None),
                     _ => (Shading::Smooth, None),
                 };
                 let mut uvs: Vec<[f32; 2]> = Vec::new();

@@ -1431,14 +1431,14 @@ pub fn import_file(path: &Path) -> Result<Vec<ImportedMesh>, ImportError> {
         .to_ascii_lowercase();
     match ext.as_str() {
         "obj" => {
-            let bytes = std::fs::read(path).map_err(|e| ImportError::Read {
+            let bytes = crate::input::read(path).map_err(|e| ImportError::Read {
                 path: shown.clone(),
                 message: e.to_string(),
             })?;
             obj_from_str(&obj_text(&bytes), &shown)
         }
         "stl" => {
-            let bytes = std::fs::read(path).map_err(|e| ImportError::Read {
+            let bytes = crate::input::read(path).map_err(|e| ImportError::Read {
                 path: shown.clone(),
                 message: e.to_string(),
             })?;
@@ -1448,7 +1448,7 @@ pub fn import_file(path: &Path) -> Result<Vec<ImportedMesh>, ImportError> {
             stl_from_bytes(&bytes, &name, &shown)
         }
         "gltf" | "glb" => {
-            let bytes = std::fs::read(path).map_err(|e| ImportError::Read {
+            let bytes = crate::input::read(path).map_err(|e| ImportError::Read {
                 path: shown.clone(),
                 message: e.to_string(),
             })?;

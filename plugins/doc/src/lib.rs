@@ -13,6 +13,7 @@ pub mod fuzz;
 pub mod gltf;
 pub mod history;
 pub mod import;
+pub mod input;
 pub mod join;
 pub mod modifiers;
 pub mod preview;
@@ -32,7 +33,7 @@ pub use modifiers::{
     ArrayModifier, DecimateModifier, DecimateRecord, EvaluationError, MeshModifier, MirrorModifier,
 };
 pub use scene::{
-    CornerAttributes, CurveContent, Document, MeshContent, Node, NodeContent, NodeId,
-    NodeTransform, Shading, SubdivisionModifier, SurfaceShape,
+    CornerAttributes, CurveContent, Document, Hierarchy, MeshContent, Node, NodeContent, NodeFacts,
+    NodeId, NodeTransform, Shading, SubdivisionModifier, SurfaceShape,
 };
 pub use session::{Applied, Session};

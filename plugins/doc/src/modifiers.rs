@@ -314,8 +314,10 @@ pub struct DecimateModifier {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub sharp_angle: Option<f64>,
     /// Triangle pairs of the result joined into quads where they make a
-    /// good one, never across a kept crease, seam or sharp edge (default
-    /// off: triangles; files from before it load with it off).
+    /// good one, never across a kept crease, seam or sharp edge, and never
+    /// a quad folded more than 40° across either diagonal
+    /// ([`hedra_geom::modeling::quad_fold`]) (default off: triangles;
+    /// files from before it load with it off).
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub keep_quads: bool,
 }
@@ -1024,4 +1026,67 @@ impl fmt::Display for MeshModifier {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(&self.summary())
     }
+}
+
+/// Why [`set_decimate_ratio`] changed nothing.
+#[derive(Debug, thiserror::Error)]
+pub enum LodError {
+    /// A ratio outside (0, 1].
+    #[error("--lod {0}: the ratio must be above 0 and at most 1")]
+    Ratio(f64),
+    /// No mesh of the scene has a Decimate modifier.
+    #[error("--lod: the scene has no Decimate modifier (add one in Properties ▸ Modifiers)")]
+    NoDecimate,
+    /// A modifier change was refused (its message as the command gives it).
+    #[error(transparent)]
+    Command(#[from] crate::CommandError),
+}
+
+/// Sets every Decimate modifier of the session's meshes to `ratio` of its
+/// input's faces, its level slider cleared (`hedra export --lod`), each
+/// change an undo step. A modifier that already shows exactly that is
+/// left as it is: it is not an error that there is nothing to change
+/// (issue 31, item 18: `--lod R` failed with "nothing to do" when a
+/// Decimate already targeted R). Returns how many modifiers changed.
+///
+/// # Errors
+/// [`LodError::Ratio`] for a ratio outside (0, 1]; [`LodError::NoDecimate`]
+/// when no mesh has a Decimate modifier; [`LodError::Command`] when a
+/// change is refused.
+pub fn set_decimate_ratio(session: &mut crate::Session, ratio: f64) -> Result<usize, LodError> {
+    if !(ratio > 0.0 && ratio <= 1.0) {
+        return Err(LodError::Ratio(ratio));
+    }
+    let mut found = false;
+    let mut changes = Vec::new();
+    for node in session.doc.nodes() {
+        let crate::NodeContent::Mesh(content) = &node.content else {
+            continue;
+        };
+        for (index, m) in content.modifiers.iter().enumerate() {
+            let MeshModifier::Decimate(d) = m else {
+                continue;
+            };
+            found = true;
+            let wanted = DecimateModifier {
+                target: DecimateTarget::Ratio(ratio),
+                level: None,
+                ..*d
+            };
+            if wanted != *d {
+                changes.push(crate::Command::SetModifier {
+                    node: node.id.into(),
+                    index,
+                    modifier: MeshModifier::Decimate(wanted),
+                });
+            }
+        }
+    }
+    if !found {
+        return Err(LodError::NoDecimate);
+    }
+    for cmd in &changes {
+        session.execute(cmd)?;
+    }
+    Ok(changes.len())
 }

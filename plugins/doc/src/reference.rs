@@ -120,10 +120,18 @@ pub fn resolve_inside(folder: &Path, reference: &str) -> Result<PathBuf, Referen
     if !file.starts_with(&folder) {
         return Err(outside());
     }
-    if !file.is_file() {
+    if file.is_dir() {
         return Err(missing());
     }
-    Ok(file)
+    // A FIFO or a device would block the read: refused without opening it.
+    match crate::input::check(&file) {
+        Ok(()) => Ok(file),
+        Err(e) if e.kind() == std::io::ErrorKind::InvalidInput => Err(ReferenceError::Unreadable {
+            reference: reference.to_string(),
+            message: e.to_string(),
+        }),
+        Err(_) => Err(missing()),
+    }
 }
 
 /// Reads the file that `reference` names inside `folder`, refusing one

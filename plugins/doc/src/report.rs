@@ -48,6 +48,54 @@ pub struct NodeReport {
     /// CSG nodes: the operation, the operands and the evaluated solid.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub csg: Option<CsgReport>,
+    /// Mesh and CSG nodes: what `hedra export` writes for the node (when
+    /// visible) with the default shape, counted on the very geometry the
+    /// export writes ([`crate::export::written_counts`]); left out for
+    /// other nodes.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub export: Option<ExportReport>,
+}
+
+/// What `hedra export` writes for a node.
+#[derive(Serialize)]
+pub struct ExportReport {
+    /// Vertices (OBJ `v` lines).
+    pub vertices: usize,
+    /// Polygons as OBJ writes them (`f` lines, n-gons kept).
+    pub faces: usize,
+    /// Triangles as STL and glTF write them.
+    pub triangles: usize,
+    /// Why the node cannot be exported (then the counts are 0).
+    pub error: Option<String>,
+}
+
+impl ExportReport {
+    /// The report of a mesh or CSG node; `None` for other kinds.
+    fn of(doc: &Document, node: &crate::scene::Node) -> Option<Self> {
+        if !matches!(node.content, NodeContent::Mesh(_) | NodeContent::Csg(_)) {
+            return None;
+        }
+        Some(
+            match crate::export::written_counts(doc, node.id, crate::export::ExportShape::Evaluated)
+            {
+                Ok(c) => {
+                    let c = c.unwrap_or_default();
+                    ExportReport {
+                        vertices: c.vertices,
+                        faces: c.faces,
+                        triangles: c.triangles,
+                        error: None,
+                    }
+                }
+                Err(e) => ExportReport {
+                    vertices: 0,
+                    faces: 0,
+                    triangles: 0,
+                    error: Some(e.to_string()),
+                },
+            },
+        )
+    }
 }
 
 /// How a node follows the curves it was made from.
@@ -136,8 +184,10 @@ pub struct MeshReport {
     /// The modifier stack (Mirror, Array), in order; left out when empty.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub modifiers: Vec<ModifierReport>,
-    /// The cage with the stack applied (no subdivision); `None` (left out)
-    /// without stack modifiers.
+    /// The cage with the stack modifiers that come before subdivision
+    /// applied (all of them by default): what subdivision refines. `None`
+    /// (left out) without stack modifiers. What export writes is
+    /// [`NodeReport::export`].
     #[serde(skip_serializing_if = "Option::is_none")]
     pub evaluated: Option<EvaluatedReport>,
     /// Face corners (the sum of the faces' sides).
@@ -388,8 +438,13 @@ fn mesh_report(content: &crate::scene::MeshContent) -> MeshReport {
                     }),
             })
             .collect(),
+        // The stack up to subdivision's place: what subdivision refines
+        // (all of it by default). With subdivision placed before some
+        // modifiers, the whole stack without it is a shape nothing shows
+        // (issue 31, item 18: a Decimate at 10 % of the bare cube, F 4,
+        // where export writes 76 faces); `export` counts what is written.
         evaluated: content.has_stack_modifiers().then(|| {
-            let result = content.apply_stack(content.modifiers.len());
+            let result = content.apply_stack(content.subdivision_position());
             EvaluatedReport::of(result.as_ref().map(|e| &*e.mesh).map_err(|e| e.to_string()))
         }),
         primitive: content.primitive.as_ref().map(|p| p.kind().to_string()),
@@ -409,8 +464,12 @@ fn mesh_report(content: &crate::scene::MeshContent) -> MeshReport {
 
 impl SceneReport {
     /// The report of a session's document and history.
+    ///
+    /// Complexity: O(N) for the hierarchy (world transforms computed once
+    /// per node, top down), plus each node's counts.
     pub fn new(session: &Session) -> Self {
         let doc: &Document = &session.doc;
+        let tree = doc.hierarchy();
         let nodes = doc
             .nodes()
             .map(|n| NodeReport {
@@ -420,7 +479,9 @@ impl SceneReport {
                 parent: n.parent.map(|p| p.0),
                 visible: n.visible,
                 local: transform(&n.transform),
-                world: transform(&doc.world_transform(n.id)),
+                world: transform(&crate::scene::NodeTransform::from_matrix(
+                    tree.world_matrix(n.id),
+                )),
                 mesh: match &n.content {
                     NodeContent::Mesh(m) => Some(mesh_report(m)),
                     _ => None,
@@ -435,6 +496,7 @@ impl SceneReport {
                     }),
                 }),
                 csg: csg_report(doc, n.id),
+                export: ExportReport::of(doc, n),
             })
             .collect();
         let h = &session.history;
@@ -509,6 +571,16 @@ impl SceneReport {
                         e.faces,
                         e.shells,
                         e.genus.map_or("?".into(), |g| g.to_string()),
+                    ),
+                };
+            }
+            if let Some(e) = &n.export {
+                let _ = match &e.error {
+                    Some(err) => writeln!(out, "    export: error: {err}"),
+                    None => writeln!(
+                        out,
+                        "    export: V {} F {} ({} triangles)",
+                        e.vertices, e.faces, e.triangles
                     ),
                 };
             }

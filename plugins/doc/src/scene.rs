@@ -9,7 +9,7 @@ use hedra_geom::subdivision::{Creases, Options as SubdivisionOptions};
 use hedra_geom::surfaces::{BezierTriangle, NurbsSurface};
 use hedra_geom::{HalfEdgeId, HalfEdgeMesh, Primitive};
 use serde::{Deserialize, Serialize};
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, HashMap, HashSet};
 use std::fmt;
 use std::sync::Arc;
 
@@ -568,16 +568,89 @@ impl Document {
     pub fn children(&self, id: NodeId) -> impl Iterator<Item = &Node> {
         self.nodes.values().filter(move |n| n.parent == Some(id))
     }
-    /// The node and all its descendants, parents before children.
+    /// The node and all its descendants, parents before children
+    /// (breadth first, children in id order).
+    ///
+    /// Complexity: O(N) for the whole document (one pass finds every
+    /// node's children), however deep the tree.
     pub fn subtree(&self, id: NodeId) -> Vec<NodeId> {
+        let children = self.children_by_parent();
         let mut out = vec![id];
         let mut i = 0;
         while i < out.len() {
             let p = out[i];
-            out.extend(self.children(p).map(|c| c.id));
+            if let Some(c) = children.get(&p) {
+                out.extend(c);
+            }
             i += 1;
         }
         out
+    }
+
+    /// Every parent's children, in id order, found in one pass.
+    fn children_by_parent(&self) -> HashMap<NodeId, Vec<NodeId>> {
+        let mut children: HashMap<NodeId, Vec<NodeId>> = HashMap::new();
+        for n in self.nodes.values() {
+            if let Some(p) = n.parent {
+                children.entry(p).or_default().push(n.id);
+            }
+        }
+        children
+    }
+
+    /// What every node gets from its ancestors (world matrix, visibility,
+    /// being drawn through a CSG solid), computed once per node, parents
+    /// before children. Use it instead of [`world_matrix`](Self::world_matrix),
+    /// [`crate::export::is_visible`] or [`crate::csg::inside_csg`] per node
+    /// when visiting many nodes: each of those walks up to the root, which
+    /// costs O(depth) per node and O(N²) on a deep chain.
+    ///
+    /// Complexity: O(N) for N nodes, however deep; no recursion (a chain
+    /// of 10,000 nodes needs no deep stack).
+    pub fn hierarchy(&self) -> Hierarchy {
+        let children = self.children_by_parent();
+        let mut facts: HashMap<NodeId, NodeFacts> = HashMap::with_capacity(self.nodes.len());
+        let mut order = Vec::with_capacity(self.nodes.len());
+        let is_csg = |id: NodeId| {
+            matches!(
+                self.nodes.get(&id).map(|n| &n.content),
+                Some(NodeContent::Csg(_))
+            )
+        };
+        // Depth first, roots in id order and children in id order.
+        let mut stack: Vec<NodeId> = self.roots().map(|n| n.id).collect();
+        stack.reverse();
+        while let Some(id) = stack.pop() {
+            let Some(node) = self.nodes.get(&id) else {
+                continue;
+            };
+            let local = node.transform.to_matrix();
+            let parent = node.parent.and_then(|p| Some((p, *facts.get(&p)?)));
+            let here = match parent {
+                None => NodeFacts {
+                    world: DMat4::IDENTITY * local,
+                    visible: node.visible,
+                    inside_csg: false,
+                    depth: 0,
+                },
+                Some((p, up)) => NodeFacts {
+                    world: up.world * local,
+                    visible: up.visible && node.visible,
+                    inside_csg: up.inside_csg || is_csg(p),
+                    depth: up.depth + 1,
+                },
+            };
+            facts.insert(id, here);
+            order.push(id);
+            if let Some(c) = children.get(&id) {
+                stack.extend(c.iter().rev());
+            }
+        }
+        Hierarchy {
+            order,
+            facts,
+            children,
+        }
     }
     /// True when `ancestor` is `id` or one of its parents.
     pub fn is_ancestor(&self, ancestor: NodeId, id: NodeId) -> bool {
@@ -595,21 +668,28 @@ impl Document {
         }
         false
     }
-    /// The node's world matrix: parents' local matrices composed root first.
+    /// The node's world matrix: parents' local matrices composed root first
+    /// (in the order [`hierarchy`](Self::hierarchy) composes them, so both
+    /// give the same bits).
+    ///
+    /// Complexity: O(depth); for many nodes use [`hierarchy`](Self::hierarchy).
     pub fn world_matrix(&self, id: NodeId) -> DMat4 {
-        let mut m = DMat4::IDENTITY;
+        let mut chain = Vec::new();
         let mut cur = Some(id);
         let mut guard = self.nodes.len() + 1;
         while let Some(c) = cur {
             let Some(n) = self.nodes.get(&c) else { break };
-            m = n.transform.to_matrix() * m;
+            chain.push(n);
             cur = n.parent;
             guard -= 1;
             if guard == 0 {
                 break;
             }
         }
-        m
+        chain
+            .iter()
+            .rev()
+            .fold(DMat4::IDENTITY, |m, n| m * n.transform.to_matrix())
     }
     /// A copy of the document with some nodes replaced by these versions
     /// of them (matched by id; others are ignored): what a running tool
@@ -652,7 +732,11 @@ impl Document {
     ///
     /// # Errors
     /// The first [`DocumentError`] found, naming the node.
+    ///
+    /// Complexity: O(N) (parent cycles are found in one walk, not by
+    /// walking up from every node).
     pub fn check(&self) -> Result<(), DocumentError> {
+        let in_cycle = self.nodes_in_parent_cycles();
         for (id, n) in &self.nodes {
             if *id != n.id {
                 return Err(DocumentError::WrongKey {
@@ -676,7 +760,7 @@ impl Document {
                         parent: p,
                     });
                 }
-                if self.is_ancestor(*id, p) {
+                if in_cycle.contains(id) {
                     let (node, name) = named();
                     return Err(DocumentError::OwnAncestor { node, name });
                 }
@@ -721,6 +805,97 @@ impl Document {
             // refuse them by name.
         }
         Ok(())
+    }
+}
+
+impl Document {
+    /// The nodes that are their own ancestor (on a cycle of parents), each
+    /// node visited once: a walk up from every node not yet seen stops at
+    /// a node already seen, a root or a missing parent.
+    fn nodes_in_parent_cycles(&self) -> HashSet<NodeId> {
+        // 1: on the walk under way; 2: walked before.
+        let mut state: HashMap<NodeId, u8> = HashMap::with_capacity(self.nodes.len());
+        let mut in_cycle = HashSet::new();
+        for &start in self.nodes.keys() {
+            let mut path = Vec::new();
+            let mut cur = Some(start);
+            while let Some(c) = cur {
+                match state.get(&c) {
+                    Some(2) => break,
+                    Some(_) => {
+                        // Back on this walk: the nodes from `c` on form a cycle.
+                        let at = path.iter().position(|&p| p == c).unwrap_or(0);
+                        in_cycle.extend(path[at..].iter().copied());
+                        break;
+                    }
+                    None => {}
+                }
+                let Some(n) = self.nodes.get(&c) else { break };
+                state.insert(c, 1);
+                path.push(c);
+                cur = n.parent;
+            }
+            for p in path {
+                state.insert(p, 2);
+            }
+        }
+        in_cycle
+    }
+}
+
+/// What a node gets from its ancestors, from [`Document::hierarchy`].
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct NodeFacts {
+    /// The world matrix: the local matrices of the root, …, the parent and
+    /// the node composed (the same bits as [`Document::world_matrix`]).
+    pub world: DMat4,
+    /// The node and every ancestor are visible.
+    pub visible: bool,
+    /// The node or an ancestor is a CSG operand (drawn and exported through
+    /// a CSG node's solid), as [`crate::csg::inside_csg`] says.
+    pub inside_csg: bool,
+    /// Ancestors above the node (0 for a root).
+    pub depth: usize,
+}
+
+/// Every node's [`NodeFacts`] and children, from [`Document::hierarchy`].
+/// A snapshot: it does not follow later changes of the document.
+#[derive(Clone, Debug, Default)]
+pub struct Hierarchy {
+    order: Vec<NodeId>,
+    facts: HashMap<NodeId, NodeFacts>,
+    children: HashMap<NodeId, Vec<NodeId>>,
+}
+
+impl Hierarchy {
+    /// The facts of node `id`; `None` for a node that is not in the
+    /// document or not under a root (on a cycle of parents, which
+    /// [`Document::check`] refuses).
+    pub fn facts(&self, id: NodeId) -> Option<&NodeFacts> {
+        self.facts.get(&id)
+    }
+    /// The world matrix of node `id` (the identity for an unknown node).
+    pub fn world_matrix(&self, id: NodeId) -> DMat4 {
+        self.facts.get(&id).map_or(DMat4::IDENTITY, |f| f.world)
+    }
+    /// True when the node and all its ancestors are visible (false for an
+    /// unknown node), as [`crate::export::is_visible`] says.
+    pub fn is_visible(&self, id: NodeId) -> bool {
+        self.facts.get(&id).is_some_and(|f| f.visible)
+    }
+    /// True when the node or an ancestor is a CSG operand, as
+    /// [`crate::csg::inside_csg`] says.
+    pub fn inside_csg(&self, id: NodeId) -> bool {
+        self.facts.get(&id).is_some_and(|f| f.inside_csg)
+    }
+    /// The node's children, in id order.
+    pub fn children(&self, id: NodeId) -> &[NodeId] {
+        self.children.get(&id).map_or(&[], Vec::as_slice)
+    }
+    /// Every node under a root, parents before children: depth first,
+    /// roots and children in id order.
+    pub fn order(&self) -> &[NodeId] {
+        &self.order
     }
 }
 

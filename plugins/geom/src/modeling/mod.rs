@@ -59,4 +59,6 @@ pub use spin::{
 };
 pub use subdivide_edges::subdivide_edges;
 pub(crate) use triangulate::quad_pairing;
-pub use triangulate::{DEFAULT_JOIN_LIMIT, TriangulateMethod, triangulate_faces, tris_to_quads};
+pub use triangulate::{
+    DEFAULT_JOIN_LIMIT, TriangulateMethod, quad_fold, triangulate_faces, tris_to_quads,
+};

@@ -191,7 +191,8 @@ pub const DEFAULT_JOIN_LIMIT: f64 = 40.0 * PI / 180.0;
 /// best pairs first (Blender's Tris to Quads), and returns the quads.
 ///
 /// A pair is a candidate when the angle between the two triangles' normals
-/// is at most `face_angle_limit`, every corner of the quad they make is
+/// is at most `face_angle_limit` (and so is the quad's fold across its
+/// other diagonal, [`quad_fold`]), every corner of the quad they make is
 /// within `shape_angle_limit` of a right angle, and the quad is convex.
 /// Candidates are taken in order of the error Blender uses: the normal
 /// angle over π/2 plus the corners' summed distance from π/2 over 2π; each
@@ -386,6 +387,26 @@ pub(crate) fn quad_pairing(
     edges
 }
 
+/// How far a quad `[p0, p1, p2, p3]` is from flat: the larger of the
+/// angles between the normals of the two triangles it splits into along
+/// either diagonal (0 for a planar convex quad; π for a degenerate one,
+/// whose triangles have no normal). The measure keep-quads Decimate and
+/// Tris to Quads hold to their face angle limit.
+pub fn quad_fold(quad: [glam::DVec3; 4]) -> f64 {
+    let normal = |a: glam::DVec3, b: glam::DVec3, c: glam::DVec3| (b - a).cross(c - a);
+    let fold = |n: glam::DVec3, m: glam::DVec3| {
+        let angle = n.angle_between(m);
+        if angle.is_nan() || n.length_squared() == 0.0 || m.length_squared() == 0.0 {
+            PI
+        } else {
+            angle
+        }
+    };
+    let [p0, p1, p2, p3] = quad;
+    // Along p0–p2: (p0, p1, p2) and (p0, p2, p3); along p1–p3: (p1, p2, p3) and (p1, p3, p0).
+    fold(normal(p0, p1, p2), normal(p0, p2, p3)).max(fold(normal(p1, p2, p3), normal(p1, p3, p0)))
+}
+
 /// The quad two triangles across `e` would make, corners in order, and
 /// Blender's join error, or `None` when the pair is outside the limits.
 fn join_error(mesh: &HalfEdgeMesh, e: EdgeId, face_limit: f64, shape_limit: f64) -> Option<f64> {
@@ -400,6 +421,13 @@ fn join_error(mesh: &HalfEdgeMesh, e: EdgeId, face_limit: f64, shape_limit: f64)
     let normal_angle = mesh.face_normal(f).angle_between(mesh.face_normal(g));
     // NaN (a degenerate triangle) never joins.
     if normal_angle.is_nan() || normal_angle > face_limit {
+        return None;
+    }
+    // The quad folds along its other diagonal too (the one another
+    // reader's triangulation may split it along): a long, thin pair can be
+    // nearly flat across the shared edge and folded far more across the
+    // other diagonal. Both folds stay within the limit (issue 31, item 18).
+    if quad_fold(quad) > face_limit {
         return None;
     }
     let normal = (quad[2] - quad[0]).cross(quad[3] - quad[1]);

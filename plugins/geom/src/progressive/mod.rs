@@ -1469,7 +1469,10 @@ pub fn decimate(
 /// many as it can (Decimate's keep-quads): the good pairs of Blender's
 /// Tris to Quads first ([`tris_to_quads`](crate::modeling::tris_to_quads)
 /// with its default 40° limits on the faces' angle and on the corners'
-/// distance from a right angle, best first), then pairs with corners up to
+/// distance from a right angle, best first; the faces' angle is the quad's
+/// fold across either diagonal, [`quad_fold`](crate::modeling::quad_fold),
+/// so that a reader splitting the quad the other way sees the same limit),
+/// then pairs with corners up to
 /// [`LOOSE_JOIN_LIMIT`] from a right angle for the triangles left over,
 /// and augmenting paths that re-pair two joined triangles so that two
 /// more join (a maximum matching of the triangles, nearly). Each join is
