@@ -133,7 +133,7 @@ pub fn gui_app(options: GuiOptions) -> App {
             if !*sent && stop.load(std::sync::atomic::Ordering::Relaxed) {
                 *sent = true;
                 warn!("Hedra was asked to stop by a signal; saving unsaved work for recovery");
-                exit.write(AppExit::error());
+                exit.write(AppExit::from_code(hedra_doc::recovery::STOPPED_EXIT_CODE));
             }
         },
     );

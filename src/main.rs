@@ -61,7 +61,7 @@ fn main() -> ExitCode {
             };
             match hedra::gui_app(options).run() {
                 bevy::app::AppExit::Success => ExitCode::SUCCESS,
-                bevy::app::AppExit::Error(_) => ExitCode::FAILURE,
+                bevy::app::AppExit::Error(code) => ExitCode::from(code.get()),
             }
         }
     }

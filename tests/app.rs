@@ -273,9 +273,9 @@ fn patching_positions_gives_the_same_render_mesh_as_rebuilding() {
                 new.position(v) * 1.2 + hedra_geom::DVec3::new(0.1, 0.0, 0.0),
             );
         }
-        let mut patched = render_mesh(&old, shading);
+        let mut patched = render_mesh(&old, shading, &Default::default());
         assert!(update_render_positions(&mut patched, &old, &new, shading));
-        let rebuilt = render_mesh(&new, shading);
+        let rebuilt = render_mesh(&new, shading, &Default::default());
         for a in [Mesh::ATTRIBUTE_POSITION, Mesh::ATTRIBUTE_NORMAL] {
             let (p, r) = (attr(&patched, a), attr(&rebuilt, a));
             assert_eq!(p.len(), r.len());
@@ -289,7 +289,7 @@ fn patching_positions_gives_the_same_render_mesh_as_rebuilding() {
         // A change of connectivity is refused: the caller rebuilds.
         let mut cut = old.clone();
         hedra_geom::modeling::subdivide_edges(&mut cut, &[hedra_geom::EdgeId(0)], 1).unwrap();
-        let mut m = render_mesh(&old, shading);
+        let mut m = render_mesh(&old, shading, &Default::default());
         assert!(!update_render_positions(&mut m, &old, &cut, shading));
     }
 }
@@ -983,4 +983,42 @@ fn an_error_exit_saves_the_work_and_a_normal_exit_cleans_up() {
             assert!(offered.is_empty() && !emergency.exists());
         }
     }
+}
+
+/// An infinitely sharp crease splits the normals of a smooth-shaded cage
+/// too, not only of its subdivided surface (issue 31, item 9): a cube with
+/// its top loop sharp is drawn with 12 render vertices (each top corner
+/// once for the top, once for the sides), 8 again when the crease goes.
+#[test]
+fn a_sharp_crease_splits_the_cage_normals_on_screen() {
+    let mut app = hedra::headless_app();
+    app.update();
+    send(
+        &mut app,
+        DocRequest::Execute(Command::AddPrimitive {
+            primitive: Primitive::Cube { size: 2.0 },
+            name: Some("Box".into()),
+            parent: None,
+            transform: NodeTransform::IDENTITY,
+        }),
+    );
+    let render_vertices = |app: &mut App| {
+        let entity = node_entities(app)[0].0;
+        let handle = app.world().get::<Mesh3d>(entity).unwrap().0.clone();
+        let meshes = app.world().resource::<Assets<Mesh>>();
+        meshes.get(&handle).unwrap().count_vertices()
+    };
+    assert_eq!(render_vertices(&mut app), 8, "smooth: corners shared");
+    let crease = |sharpness: f64| -> Command {
+        let text = format!(
+            "[SetEdgeCrease(node: Name(\"Box\"), edges: OfFaces(Facing(direction: (0.0, 1.0, 0.0), degrees: 1.0)), sharpness: {sharpness:?})]"
+        );
+        hedra_doc::script::parse(&text, std::path::Path::new("crease.ron"))
+            .unwrap()
+            .remove(0)
+    };
+    send(&mut app, DocRequest::Execute(crease(10.0)));
+    assert_eq!(render_vertices(&mut app), 12, "the sharp rim splits");
+    send(&mut app, DocRequest::Execute(crease(0.0)));
+    assert_eq!(render_vertices(&mut app), 8);
 }

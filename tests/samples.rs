@@ -494,12 +494,21 @@ fn a_terminated_session_writes_an_emergency_save() {
     unsafe { libc::kill(pid, libc::SIGTERM) };
     let status = runner.wait().unwrap();
     assert!(!status.success(), "an error exit");
-    assert!(scene.has(".emergency.meta.ron"), "emergency save written");
+    assert!(scene.has(".stopped.meta.ron"), "recovery point written");
     let offered = hedra::doc::recovery::pending(&recovery_dir);
     let emergency = offered
         .iter()
-        .find(|e| e.meta.kind == hedra::doc::recovery::RecoveryKind::Emergency)
-        .expect("the emergency point is offered");
+        .find(|e| e.meta.kind == hedra::doc::recovery::RecoveryKind::Stopped)
+        .expect("the point written on the signal is offered");
+    let offer = emergency.describe(emergency.meta.saved_unix_ms);
+    assert!(
+        offer.contains("stopped") && !offer.contains("crashed"),
+        "{offer}"
+    );
+    assert_eq!(
+        status.code(),
+        Some(i32::from(hedra::doc::recovery::STOPPED_EXIT_CODE))
+    );
     let s = hedra::doc::recovery::recover(emergency).unwrap().session;
     assert!(s.doc.find_by_name("Unsaved").is_some());
 }
@@ -558,17 +567,7 @@ fn shift_a_cube_with_a_held_click_in_the_real_window() {
         kill "$watchdog" 2>/dev/null
         exit "$status"
     "#;
-    let log = dir.path().join("app.log");
-    let out = std::process::Command::new("xvfb-run")
-        .args(["-a", "-s", "-screen 0 1280x800x24", "sh", "-c", script])
-        .env("HEDRA", env!("CARGO_BIN_EXE_hedra"))
-        .env("WORK", &work)
-        .env("LOG", &log)
-        .env("WGPU_BACKEND", "vulkan")
-        .env("HEDRA_CONFIG_DIR", dir.path().join("config"))
-        .output()
-        .expect("xvfb-run and xdotool are installed (scripts/setup installs them)");
-    let app_log = std::fs::read_to_string(&log).unwrap_or_default();
+    let (out, app_log) = drive_real_window(script, &work, dir.path());
     assert!(
         out.status.success(),
         "Ctrl+Q after Ctrl+S quits cleanly: {}\n{app_log}",
@@ -586,6 +585,85 @@ fn shift_a_cube_with_a_held_click_in_the_real_window() {
     assert_eq!(
         saved.history.done().last().map(|t| t.label.as_str()),
         Some("Add Cube")
+    );
+}
+
+/// Runs `script` (sh, with xdotool) under Xvfb with `$HEDRA` the app,
+/// `$WORK` the scene and `$LOG` the app's log; returns the script's output
+/// and the app's log.
+fn drive_real_window(
+    script: &str,
+    work: &std::path::Path,
+    dir: &std::path::Path,
+) -> (std::process::Output, String) {
+    let log = dir.join("app.log");
+    let out = std::process::Command::new("xvfb-run")
+        .args(["-a", "-s", "-screen 0 1280x800x24", "sh", "-c", script])
+        .env("HEDRA", env!("CARGO_BIN_EXE_hedra"))
+        .env("WORK", work)
+        .env("LOG", &log)
+        .env("WGPU_BACKEND", "vulkan")
+        .env("HEDRA_CONFIG_DIR", dir.join("config"))
+        .output()
+        .expect("xvfb-run and xdotool are installed (scripts/setup installs them)");
+    (out, std::fs::read_to_string(&log).unwrap_or_default())
+}
+
+/// G X, then `21` typed by xdotool with 1 ms between the keys (both land
+/// in one frame of the software renderer), Enter, Ctrl+S, Ctrl+Q in the
+/// real window: the cube is saved moved by exactly 21 (issue 31: the keys
+/// were read in key-code order, and it moved by 12).
+#[test]
+fn numbers_typed_fast_in_the_real_window_keep_their_order() {
+    let dir = tempfile::tempdir().unwrap();
+    let work = dir.path().join("work.hedra.ron");
+    let mut session = hedra::doc::Session::new();
+    session
+        .execute(&hedra::doc::Command::AddPrimitive {
+            primitive: hedra::geom::Primitive::Cube { size: 2.0 },
+            name: Some("Cube".into()),
+            parent: None,
+            transform: Default::default(),
+        })
+        .unwrap();
+    hedra::doc::file::save(&mut session, &work).unwrap();
+    let script = r#"
+        set -u
+        "$HEDRA" "$WORK" > "$LOG" 2>&1 &
+        app=$!
+        waitfor() { timeout 60 xdotool search --sync --onlyvisible --name "$1" | head -1; }
+        win=$(waitfor 'work[.]hedra[.]ron$')
+        [ -n "$win" ] || { echo "the window never showed the file" >&2; exit 3; }
+        sleep 2
+        xdotool windowfocus --sync "$win"; sleep 0.5
+        press() { xdotool keydown "$1"; sleep 0.3; xdotool keyup "$1"; sleep 0.5; }
+        xdotool mousemove 640 400; sleep 1.5
+        press a; press g; xdotool mousemove 660 410; sleep 1; press x
+        xdotool type --delay 1 21; sleep 1
+        press Return
+        [ -n "$(waitfor 'work[.]hedra[.]ron [*]$')" ] || echo "the move changed nothing" >&2
+        xdotool keydown ctrl; sleep 0.2; press s; sleep 0.2; xdotool keyup ctrl
+        [ -n "$(waitfor 'work[.]hedra[.]ron$')" ] || echo "Ctrl+S did not save" >&2
+        (sleep 60; kill "$app") >/dev/null 2>&1 &
+        watchdog=$!
+        xdotool keydown ctrl; sleep 0.2; press q; sleep 0.2; xdotool keyup ctrl
+        wait "$app"; status=$?
+        kill "$watchdog" 2>/dev/null
+        exit "$status"
+    "#;
+    let (out, app_log) = drive_real_window(script, &work, dir.path());
+    assert!(
+        out.status.success(),
+        "{}\n{app_log}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let saved = hedra::doc::file::load(&work).unwrap().session;
+    let cube = saved.doc.find_by_name("Cube").expect("the cube");
+    assert_eq!(
+        cube.transform.translation,
+        hedra::geom::DVec3::new(21.0, 0.0, 0.0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
     );
 }
 

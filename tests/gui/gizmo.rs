@@ -88,11 +88,27 @@ fn dragging_the_gizmo_moves_an_object_in_one_step_and_keeps_the_rest_exact() {
         "the object follows the drag on screen: {:?}",
         first_entity_transform(&user)
     );
+    // The Location field follows the drag too.
+    let x = first_entity_transform(&user).translation.x;
+    let shown: Vec<f32> = user
+        .widgets()
+        .iter()
+        .filter_map(|w| w.text.strip_prefix("X ")?.parse().ok())
+        .collect();
+    assert!(
+        shown.iter().any(|v| (v - x).abs() < 1e-3),
+        "Location X shows {x} during the drag: {shown:?}"
+    );
     user.button_up(MouseButton::Left);
     user.frames(2);
     let t = first_node_transform(&user);
     assert_eq!(user.undo_steps(), steps + 1, "one undo step");
     assert!(t.translation.x > 0.2, "moved along X: {t:?}");
+    assert_eq!(
+        t.translation.x,
+        format!("{:.4}", t.translation.x).parse::<f64>().unwrap(),
+        "lands on the 4 decimals the Location field shows, not f32 noise"
+    );
     assert_eq!((t.translation.y, t.translation.z), (0.0, 0.0));
     assert_eq!(t.rotation, exact.rotation, "rotation stays exact");
     assert_eq!(t.scale, exact.scale, "scale stays exact");

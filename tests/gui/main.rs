@@ -5,6 +5,7 @@
 
 mod gizmo;
 mod modeling;
+mod slow_machine;
 mod user;
 mod writers;
 
@@ -329,6 +330,14 @@ fn the_statistics_overlay_counts_the_scene_and_the_selection() {
     ] {
         assert!(user.shows(line), "{line}");
     }
+    // Smoothed to level 2 (Ctrl+2): what is shown is counted, not the cage
+    // (issue 31: level 4 still counted 6 faces).
+    user.shortcut(&[KeyCode::ControlLeft], KeyCode::Digit2);
+    for line in ["Vertices 98", "Edges 192", "Faces 96", "Triangles 192"] {
+        assert!(user.shows(line), "{line} at level 2");
+    }
+    user.shortcut(&[KeyCode::ControlLeft], KeyCode::Digit0);
+    assert!(user.shows("Faces 6"), "Ctrl+0: the cage again");
     user.move_to(user.viewport_center());
     user.tap(KeyCode::Tab);
     user.tap(KeyCode::Digit3);

@@ -155,6 +155,32 @@ fn bevel_an_edge_with_the_mouse_and_the_wheel() {
     user.first_mesh().validate().unwrap();
 }
 
+/// Bevel keeps a selection (the bevel face, shown as its edges in edge
+/// mode) and Ctrl+Z gives the bevelled edge back selected (issue 31: the
+/// selection was cleared and undo left it empty).
+#[test]
+fn bevel_selects_its_face_and_undo_restores_the_edge() {
+    let mut user = cube_in_edit_mode(KeyCode::Digit2);
+    let edge = screen(&mut user, 0.0, 1.0, 1.0);
+    user.click(edge);
+    let picked = user.edit_mode().selection.edges.clone();
+    assert_eq!(picked.len(), 1);
+    user.shortcut(&[KeyCode::ControlLeft], KeyCode::KeyB);
+    user.glide_to(edge + Vec2::new(40.0, 0.0), 5);
+    user.click(edge + Vec2::new(40.0, 0.0));
+    assert_eq!(user.mesh_counts().2, 7, "one bevel face: {}", user.status());
+    let selection = &user.edit_mode().selection;
+    assert_eq!(selection.faces.len(), 1, "the bevel face is selected");
+    assert_eq!(selection.edges.len(), 4, "shown as its four edges");
+    user.shortcut(&[KeyCode::ControlLeft], KeyCode::KeyZ);
+    assert_eq!(user.mesh_counts(), (8, 12, 6));
+    assert_eq!(
+        user.edit_mode().selection.edges,
+        picked,
+        "undo gives the edge back selected"
+    );
+}
+
 fn user_preview_counts(user: &User) -> (usize, usize, usize) {
     let m = user
         .edit_mode()
@@ -659,6 +685,35 @@ fn bisect_cuts_along_a_dragged_line() {
     user.drag(left, right, 6);
     assert_eq!(user.undo_steps(), steps);
     assert_eq!(user.mesh_counts(), (8, 12, 6));
+}
+
+/// Face mode, Mesh ▸ Loop Cut (it was greyed out there though Ctrl+R
+/// works): the tool starts on an edge of the selected face, follows the
+/// pointer onto a side edge, and a click cuts the ring around the sides.
+#[test]
+fn the_mesh_menus_loop_cut_works_in_face_mode() {
+    let mut user = cube_in_edit_mode(KeyCode::Digit3);
+    let top = screen(&mut user, 0.0, 1.0, 0.0);
+    user.click(top);
+    assert_eq!(selected_faces(&user), 1);
+    open_mesh_menu(&mut user);
+    let item = user
+        .widgets()
+        .iter()
+        .find(|w| w.text.starts_with("Loop Cut\t"))
+        .map(|w| Vec2::new(w.rect.center().x, w.rect.center().y))
+        .expect("Mesh ▸ Loop Cut is shown");
+    user.click(item);
+    assert!(
+        user.edit_mode().tool.is_some(),
+        "the loop cut runs: {}",
+        user.status()
+    );
+    let side_edge = screen(&mut user, 1.0, 0.0, 1.0);
+    user.glide_to(side_edge, 4);
+    user.click(side_edge);
+    assert_eq!(user.mesh_counts(), (12, 20, 10), "{}", user.status());
+    user.first_mesh().validate().unwrap();
 }
 
 /// Opens the menu bar's Mesh menu (the properties panel has a Mesh button too).

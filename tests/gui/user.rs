@@ -56,11 +56,6 @@ impl User {
         };
         user.frames(2);
         user.egui().enable_accesskit();
-        // A click is a press held for a few frames; frames are slow on a
-        // busy machine, and egui stops counting a press held longer than
-        // 0.8 s of wall time as a click.
-        user.egui()
-            .options_mut(|o| o.input_options.max_click_duration = 3600.0);
         user.frames(1);
         user.move_to(user.viewport_center());
         user
@@ -132,19 +127,7 @@ impl User {
     }
 
     fn key(&mut self, key_code: KeyCode, state: ButtonState) {
-        let (logical_key, text) = logical(key_code);
-        let window = self.window;
-        self.write(
-            KeyboardInput {
-                key_code,
-                logical_key,
-                state,
-                text: text.filter(|_| state.is_pressed()).map(Into::into),
-                repeat: false,
-                window,
-            },
-            WindowEvent::KeyboardInput,
-        );
+        self.key_event(key_code, state);
         self.frame();
     }
 
@@ -174,20 +157,25 @@ impl User {
         self.shortcut(&[], key);
     }
 
-    /// Types digits, '.', '-' (typed values of the modal tools).
-    pub fn type_text(&mut self, text: &str) {
-        for c in text.chars() {
-            let key = match c {
-                '0'..='9' => DIGITS[c as usize - '0' as usize],
-                '.' => KeyCode::Period,
-                '-' => KeyCode::Minus,
-                other => panic!("type_text: no key for '{other}'"),
-            };
-            self.tap(key);
-        }
+    /// Writes one key event without advancing a frame.
+    fn key_event(&mut self, key_code: KeyCode, state: ButtonState) {
+        let (logical_key, text) = logical(key_code);
+        let window = self.window;
+        self.write(
+            KeyboardInput {
+                key_code,
+                logical_key,
+                state,
+                text: text.filter(|_| state.is_pressed()).map(Into::into),
+                repeat: false,
+                window,
+            },
+            WindowEvent::KeyboardInput,
+        );
     }
 
-    fn button(&mut self, button: MouseButton, state: ButtonState) {
+    /// Writes one mouse-button event without advancing a frame.
+    fn button_event(&mut self, button: MouseButton, state: ButtonState) {
         let window = self.window;
         self.write(
             MouseButtonInput {
@@ -197,6 +185,102 @@ impl User {
             },
             WindowEvent::MouseButtonInput,
         );
+    }
+
+    /// A slow frame: every key of `keys` pressed and released, in order,
+    /// all arriving before the next frame (as typing does on a machine that
+    /// draws a frame a second).
+    pub fn taps_in_one_frame(&mut self, keys: &[KeyCode]) {
+        for &k in keys {
+            self.key_event(k, ButtonState::Pressed);
+            self.key_event(k, ButtonState::Released);
+        }
+        self.frames(2);
+    }
+
+    /// `text` typed within one slow frame (digits, '.', '-').
+    pub fn type_in_one_frame(&mut self, text: &str) {
+        let keys: Vec<KeyCode> = text.chars().map(key_of).collect();
+        self.taps_in_one_frame(&keys);
+    }
+
+    /// A chord within one slow frame: `modifiers` down, `key` pressed and
+    /// released, `modifiers` up, all before the next frame.
+    pub fn chord_in_one_frame(&mut self, modifiers: &[KeyCode], key: KeyCode) {
+        for &m in modifiers {
+            self.key_event(m, ButtonState::Pressed);
+        }
+        self.key_event(key, ButtonState::Pressed);
+        self.key_event(key, ButtonState::Released);
+        for &m in modifiers.iter().rev() {
+            self.key_event(m, ButtonState::Released);
+        }
+        self.frames(2);
+    }
+
+    /// A click at `at` with `modifier` held, where the modifier goes down
+    /// and up within the same slow frame as the click.
+    pub fn modified_click_in_one_frame(&mut self, modifier: KeyCode, at: Vec2) {
+        self.move_to(at);
+        self.key_event(modifier, ButtonState::Pressed);
+        self.button_event(MouseButton::Left, ButtonState::Pressed);
+        self.button_event(MouseButton::Left, ButtonState::Released);
+        self.key_event(modifier, ButtonState::Released);
+        self.frames(3);
+    }
+
+    /// The pointer moves to `at` and clicks there, all within one slow
+    /// frame (no frame sees the pointer at `at` before the click).
+    pub fn move_and_click_in_one_frame(&mut self, at: Vec2) {
+        let from = self.cursor();
+        let mut window = self.app.world_mut().get_mut::<Window>(self.window).unwrap();
+        let scale = window.resolution.scale_factor();
+        window.set_physical_cursor_position(Some((at * scale).as_dvec2()));
+        let window = self.window;
+        self.write(
+            CursorMoved {
+                window,
+                position: at,
+                delta: Some(at - from),
+            },
+            WindowEvent::CursorMoved,
+        );
+        self.button_event(MouseButton::Left, ButtonState::Pressed);
+        self.button_event(MouseButton::Left, ButtonState::Released);
+        self.frames(3);
+    }
+
+    /// A click whose button stays down `seconds` of wall time (over a few
+    /// frames), as a person's click on a loaded machine.
+    pub fn click_held_seconds(&mut self, at: Vec2, seconds: f64) {
+        self.move_to(at);
+        self.button_down(MouseButton::Left);
+        std::thread::sleep(std::time::Duration::from_secs_f64(seconds));
+        self.frame();
+        self.button_up(MouseButton::Left);
+        self.frames(2);
+    }
+
+    /// Drags with `button` from `from` to `to` in `steps` frames, the
+    /// pointer moving by absolute positions only (no raw device motion, as
+    /// tablets, remote desktops and xdotool give it).
+    pub fn drag_with(&mut self, button: MouseButton, from: Vec2, to: Vec2, steps: usize) {
+        self.move_to(from);
+        self.button_down(button);
+        self.glide_to(to, steps);
+        self.button_up(button);
+        self.frames(2);
+    }
+
+    /// Types digits, '.', '-' (typed values of the modal tools).
+    pub fn type_text(&mut self, text: &str) {
+        for c in text.chars() {
+            self.tap(key_of(c));
+        }
+    }
+
+    fn button(&mut self, button: MouseButton, state: ButtonState) {
+        self.button_event(button, state);
         self.frame();
     }
 
@@ -221,16 +305,8 @@ impl User {
     /// A synthetic click: press and release within one frame.
     pub fn click_instant(&mut self, at: Vec2) {
         self.move_to(at);
-        let window = self.window;
         for state in [ButtonState::Pressed, ButtonState::Released] {
-            self.write(
-                MouseButtonInput {
-                    button: MouseButton::Left,
-                    state,
-                    window,
-                },
-                WindowEvent::MouseButtonInput,
-            );
+            self.button_event(MouseButton::Left, state);
         }
         self.frames(3);
     }
@@ -528,40 +604,53 @@ const DIGITS: [KeyCode; 10] = [
     KeyCode::Digit9,
 ];
 
+/// The key that types `c` (digits, '.', '-', lower-case letters, '/').
+pub fn key_of(c: char) -> KeyCode {
+    match c {
+        '0'..='9' => DIGITS[c as usize - '0' as usize],
+        '.' => KeyCode::Period,
+        '-' => KeyCode::Minus,
+        '/' => KeyCode::Slash,
+        'a'..='z' => LETTER_CODES[c as usize - 'a' as usize],
+        other => panic!("no key for '{other}'"),
+    }
+}
+
+const LETTER_CODES: [KeyCode; 26] = [
+    KeyCode::KeyA,
+    KeyCode::KeyB,
+    KeyCode::KeyC,
+    KeyCode::KeyD,
+    KeyCode::KeyE,
+    KeyCode::KeyF,
+    KeyCode::KeyG,
+    KeyCode::KeyH,
+    KeyCode::KeyI,
+    KeyCode::KeyJ,
+    KeyCode::KeyK,
+    KeyCode::KeyL,
+    KeyCode::KeyM,
+    KeyCode::KeyN,
+    KeyCode::KeyO,
+    KeyCode::KeyP,
+    KeyCode::KeyQ,
+    KeyCode::KeyR,
+    KeyCode::KeyS,
+    KeyCode::KeyT,
+    KeyCode::KeyU,
+    KeyCode::KeyV,
+    KeyCode::KeyW,
+    KeyCode::KeyX,
+    KeyCode::KeyY,
+    KeyCode::KeyZ,
+];
+
 /// The logical key and text a US keyboard gives for `code`.
 fn logical(code: KeyCode) -> (Key, Option<&'static str>) {
     let character = |c: &'static str| (Key::Character(c.into()), Some(c));
     const LETTERS: &str = "abcdefghijklmnopqrstuvwxyz";
     const NUMBERS: &str = "0123456789";
-    let letter_codes = [
-        KeyCode::KeyA,
-        KeyCode::KeyB,
-        KeyCode::KeyC,
-        KeyCode::KeyD,
-        KeyCode::KeyE,
-        KeyCode::KeyF,
-        KeyCode::KeyG,
-        KeyCode::KeyH,
-        KeyCode::KeyI,
-        KeyCode::KeyJ,
-        KeyCode::KeyK,
-        KeyCode::KeyL,
-        KeyCode::KeyM,
-        KeyCode::KeyN,
-        KeyCode::KeyO,
-        KeyCode::KeyP,
-        KeyCode::KeyQ,
-        KeyCode::KeyR,
-        KeyCode::KeyS,
-        KeyCode::KeyT,
-        KeyCode::KeyU,
-        KeyCode::KeyV,
-        KeyCode::KeyW,
-        KeyCode::KeyX,
-        KeyCode::KeyY,
-        KeyCode::KeyZ,
-    ];
-    if let Some(i) = letter_codes.iter().position(|&k| k == code) {
+    if let Some(i) = LETTER_CODES.iter().position(|&k| k == code) {
         return character(&LETTERS[i..=i]);
     }
     if let Some(i) = DIGITS.iter().position(|&k| k == code) {
@@ -570,6 +659,7 @@ fn logical(code: KeyCode) -> (Key, Option<&'static str>) {
     match code {
         KeyCode::Period | KeyCode::NumpadDecimal => character("."),
         KeyCode::Minus | KeyCode::NumpadSubtract => character("-"),
+        KeyCode::Slash => character("/"),
         KeyCode::NumpadAdd => character("+"),
         KeyCode::Enter | KeyCode::NumpadEnter => (Key::Enter, None),
         KeyCode::Escape => (Key::Escape, None),

@@ -44,13 +44,22 @@ pub enum RecoveryKind {
     Autosave,
     /// Written when the app went down (panic or render error).
     Emergency,
+    /// Written when the app was asked to stop by a signal (a logout,
+    /// `kill`, Ctrl+C in its terminal) with unsaved work.
+    Stopped,
 }
+
+/// The exit code of an app stopped by a signal with unsaved work (128 +
+/// SIGTERM, as shells report it): the exit that writes a
+/// [`RecoveryKind::Stopped`] point rather than an emergency one.
+pub const STOPPED_EXIT_CODE: u8 = 143;
 
 impl RecoveryKind {
     fn tag(self) -> &'static str {
         match self {
             RecoveryKind::Autosave => "autosave",
             RecoveryKind::Emergency => "emergency",
+            RecoveryKind::Stopped => "stopped",
         }
     }
 }
@@ -100,6 +109,7 @@ impl RecoveryEntry {
         let why = match self.meta.kind {
             RecoveryKind::Autosave => "autosaved",
             RecoveryKind::Emergency => "saved when Hedra crashed",
+            RecoveryKind::Stopped => "saved when Hedra was stopped (a logout or kill)",
         };
         let last = self
             .meta
@@ -203,7 +213,11 @@ impl RecoveryPoint {
     /// Removes this document's recovery points (after a save, or when the
     /// user discards the changes).
     pub fn remove(&self) {
-        for kind in [RecoveryKind::Autosave, RecoveryKind::Emergency] {
+        for kind in [
+            RecoveryKind::Autosave,
+            RecoveryKind::Emergency,
+            RecoveryKind::Stopped,
+        ] {
             let (scene, meta) = self.paths(kind);
             let _ = std::fs::remove_file(meta);
             let _ = std::fs::remove_file(scene);

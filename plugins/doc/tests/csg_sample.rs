@@ -201,3 +201,43 @@ fn a_one_shot_boolean_keeps_creases_of_untouched_edges_and_undoes_in_one_step() 
         "{e}"
     );
 }
+
+/// Switching a CSG node's operation renames it when it still carries the
+/// default name of the old one ("Union" → "Difference", "Union.001" →
+/// "Difference.001" or the next free one); a name the user gave stays;
+/// undo brings the old name back (issue 31).
+#[test]
+fn switching_the_operation_renames_only_a_default_name() {
+    let text = r#"[
+        AddPrimitive(primitive: Cube(size: 2.0), name: Some("A")),
+        AddPrimitive(primitive: UvSphere(segments: 16, rings: 8, radius: 1.2), name: Some("B")),
+        AddCsg(op: Union, operands: [Name("A"), Name("B")]),
+        AddPrimitive(primitive: Cube(size: 2.0), name: Some("C")),
+        AddPrimitive(primitive: UvSphere(segments: 16, rings: 8, radius: 1.2), name: Some("D")),
+        AddCsg(op: Union, name: Some("Bracket"), operands: [Name("C"), Name("D")]),
+    ]"#;
+    let path = Path::new("test.ron");
+    let commands = script::parse(text, path).unwrap();
+    let mut session = Session::new();
+    script::run(&mut session, &commands, path).unwrap_or_else(|e| panic!("{e}"));
+    assert!(session.doc.find_by_name("Union").is_some());
+    for (node, expected) in [("Union", "Difference"), ("Bracket", "Bracket")] {
+        session
+            .execute(&Command::SetCsgOp {
+                node: hedra_doc::NodeRef::Name(node.into()),
+                op: hedra_geom::csg::BooleanOp::Difference,
+            })
+            .unwrap();
+        assert!(
+            session.doc.find_by_name(expected).is_some(),
+            "{node} is now called {expected}"
+        );
+    }
+    assert!(session.doc.find_by_name("Union").is_none());
+    session.undo();
+    session.undo();
+    assert!(
+        session.doc.find_by_name("Union").is_some(),
+        "undo renames back"
+    );
+}

@@ -98,14 +98,15 @@ fn a_point_older_than_its_file_is_stale_and_removed() {
 }
 
 #[test]
-fn points_of_a_running_hedra_are_not_offered_and_remove_clears_both_kinds() {
+fn points_of_a_running_hedra_are_not_offered_and_remove_clears_every_kind() {
     let dir = tempfile::tempdir().unwrap();
     let session = edited_session();
     let point = RecoveryPoint::new(dir.path(), Some(Path::new("/nonexistent/a.hedra.ron")));
     point.write(&session, RecoveryKind::Autosave).unwrap();
     point.write(&session, RecoveryKind::Emergency).unwrap();
+    point.write(&session, RecoveryKind::Stopped).unwrap();
     assert!(recovery::pending_with(dir.path(), &|_| true).is_empty());
-    assert_eq!(recovery::pending_with(dir.path(), &nobody_runs).len(), 2);
+    assert_eq!(recovery::pending_with(dir.path(), &nobody_runs).len(), 3);
     point.remove();
     assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
 }
@@ -165,5 +166,22 @@ fn damaged_or_partial_points_are_skipped_without_error() {
     assert!(
         err.contains("c-") && err.contains(".autosave.hedra.ron"),
         "{err}"
+    );
+}
+
+/// A point written on a signal (logout, kill) says so: the offer does not
+/// claim Hedra crashed (issue 31).
+#[test]
+fn a_point_written_on_a_signal_says_stopped_not_crashed() {
+    let dir = tempfile::tempdir().unwrap();
+    let session = edited_session();
+    let point = RecoveryPoint::new(dir.path(), Some(Path::new("/nonexistent/c.hedra.ron")));
+    point.write(&session, RecoveryKind::Stopped).unwrap();
+    let entry = recovery::pending_with(dir.path(), &nobody_runs).remove(0);
+    assert_eq!(entry.meta.kind, RecoveryKind::Stopped);
+    let offer = entry.describe(entry.meta.saved_unix_ms);
+    assert!(
+        offer.contains("stopped") && !offer.contains("crashed"),
+        "{offer}"
     );
 }

@@ -99,6 +99,7 @@ impl Plugin for EditPlugin {
             .init_resource::<bindings::RequestedAction>()
             .init_resource::<PivotPoint>()
             .init_resource::<ProportionalRing>()
+            .init_resource::<AxisLock>()
             .init_resource::<ShapeEdit>()
             .init_resource::<CurveDraw>()
             .configure_sets(Update, EditSystems.in_set(SceneSystems::Tools))
@@ -142,6 +143,7 @@ impl Plugin for EditPlugin {
                     shape_mode::shape_select_and_shortcuts,
                     shape_mode::publish_shape_preview,
                     curve_draw::drive_curve_draw,
+                    publish_axis_lock,
                 )
                     .chain()
                     .after(mesh_mode::publish_mesh_preview)
@@ -173,6 +175,34 @@ pub fn follow_document_changes(
     if selection.nodes.iter().any(|id| doc.node(*id).is_none()) {
         selection.nodes.retain(|id| doc.node(*id).is_some());
     }
+}
+
+/// The axis a running move, rotate or scale is locked to (X, Y or Z) and
+/// the pivot it passes through, for drawing the constraint line as Blender
+/// does; `None` while no tool runs or its axis is free.
+#[derive(Resource, Debug, Clone, Copy, Default, PartialEq)]
+pub struct AxisLock(pub Option<(DVec3, Axis)>);
+
+/// Publishes [`AxisLock`] from whichever tool runs (object G/R/S, a mesh
+/// tool, a control-point tool), after they have read this frame's keys.
+fn publish_axis_lock(
+    tool: Res<TransformTool>,
+    mode: Res<EditMode>,
+    shape_edit: Res<ShapeEdit>,
+    mut lock: ResMut<AxisLock>,
+) {
+    let now = tool
+        .active
+        .as_ref()
+        .and_then(|t| Some((t.pivot(), t.axis?)))
+        .or_else(|| mode.tool.as_ref().and_then(|t| Some((t.pivot(), t.axis?))))
+        .or_else(|| {
+            shape_edit
+                .tool
+                .as_ref()
+                .and_then(|t| Some((t.pivot, t.axis?)))
+        });
+    lock.set_if_neq(AxisLock(now));
 }
 
 /// Clears what the running tools drew last frame (the snap target and the

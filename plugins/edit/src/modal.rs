@@ -34,6 +34,16 @@ pub enum Axis {
 }
 
 impl Axis {
+    /// How the status bar names it: Hedra is Y-up (Blender is Z-up), so Y
+    /// says so.
+    pub fn label(self) -> &'static str {
+        match self {
+            Axis::X => "X",
+            Axis::Y => "Y (up)",
+            Axis::Z => "Z",
+        }
+    }
+
     /// The axis as a world-space unit vector.
     pub fn vector(self) -> DVec3 {
         match self {
@@ -82,6 +92,11 @@ pub struct ModalTransform {
 }
 
 impl ModalTransform {
+    /// The world point the tool moves, turns or scales about.
+    pub fn pivot(&self) -> DVec3 {
+        self.pivot
+    }
+
     /// Starts a tool on the selected nodes; `None` without a selection or cursor.
     pub fn start(
         kind: TransformKind,
@@ -162,7 +177,9 @@ impl ModalTransform {
         snapping: Option<&crate::Snapping>,
         snap: crate::MoveSnap,
     ) -> Vec<(NodeId, NodeTransform)> {
-        let axis_name = self.axis.map_or(String::new(), |a| format!(" {a:?}"));
+        let axis_name = self
+            .axis
+            .map_or(String::new(), |a| format!(" {}", a.label()));
         match self.kind {
             TransformKind::Grab => {
                 let delta = if let Some(v) = self.typed.value() {
@@ -247,6 +264,7 @@ impl ModalTransform {
 pub fn drive_transform_tool(
     mut tool: ResMut<TransformTool>,
     keys: Res<ButtonInput<KeyCode>>,
+    strokes: Res<hedra_scene::Strokes>,
     buttons: Res<ButtonInput<MouseButton>>,
     window: Single<&Window, With<PrimaryWindow>>,
     camera: Single<(&Camera, &GlobalTransform), With<ViewportCamera>>,
@@ -285,7 +303,7 @@ pub fn drive_transform_tool(
         return;
     }
     modal_keys.toggle_axis(&mut modal.axis);
-    modal.typed.read(&keys, true);
+    modal.typed.read(&strokes, true);
     let cursor = window.cursor_position().unwrap_or(modal.start_cursor);
     let view_dir = (cam_t.rotation() * Vec3::NEG_Z).as_dvec3();
     let ray_at = |p: Vec2| {

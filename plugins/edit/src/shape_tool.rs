@@ -59,6 +59,7 @@ pub struct ShapeTool {
 #[allow(clippy::too_many_arguments)]
 pub fn drive_shape_tool(
     keys: Res<ButtonInput<KeyCode>>,
+    strokes: Res<hedra_scene::Strokes>,
     buttons: Res<ButtonInput<MouseButton>>,
     mut edit: ResMut<ShapeEdit>,
     state: Res<DocState>,
@@ -92,7 +93,7 @@ pub fn drive_shape_tool(
     if tool.kind != ShapeToolKind::Weight {
         modal_keys.toggle_axis(&mut tool.axis);
     }
-    tool.typed.read(&keys, true);
+    tool.typed.read(&strokes, true);
     let cursor = window.cursor_position().unwrap_or(tool.start_cursor);
     let world = state.session.doc.world_matrix(id);
     let (cam, cam_t) = *camera;

@@ -35,6 +35,7 @@ mod projection;
 mod render_mesh;
 mod shape_entities;
 mod smooth;
+mod strokes;
 
 pub use apply::*;
 pub use decimate_jobs::BACKGROUND_DECIMATE_FACES;
@@ -45,6 +46,7 @@ pub use projection::*;
 pub use render_mesh::*;
 pub use shape_entities::*;
 pub use smooth::{SmoothPreviews, SmoothSource};
+pub use strokes::{HeldModifiers, Stroke, Strokes, record_strokes};
 
 /// The open document, where it lives on disk, and a change counter.
 #[derive(Resource, Default)]
@@ -365,6 +367,8 @@ impl Plugin for ScenePlugin {
             .init_resource::<ViewportShading>()
             .init_resource::<QuadView>()
             .init_resource::<Cursor3d>()
+            .init_resource::<Strokes>()
+            .add_systems(PreUpdate, record_strokes.after(bevy::input::InputSystems))
             .add_message::<DocRequest>()
             .add_message::<DocChanged>()
             .configure_sets(

@@ -346,6 +346,9 @@ pub struct OnScreen {
     shading: Shading,
     smooth: Option<(hedra_doc::SubdivisionModifier, u64)>,
     modifiers: Vec<hedra_doc::MeshModifier>,
+    /// The creases drawn with (infinitely sharp ones split the normals of
+    /// the cage too).
+    creases: u64,
 }
 
 impl OnScreen {
@@ -472,16 +475,19 @@ impl Projector<'_, '_, '_, '_> {
             _ => (&content.mesh, &content.creases, false),
         };
         let modifier = content.active_modifier();
+        let fingerprint = creases_fingerprint(creases);
         let wanted = OnScreen {
             mesh: cage.clone(),
             shading: content.shading,
-            smooth: modifier.map(|m| (m, creases_fingerprint(creases))),
+            smooth: modifier.map(|m| (m, fingerprint)),
             modifiers: content.modifiers.clone(),
+            creases: fingerprint,
         };
         let same_look = on_screen.is_some_and(|o| {
             o.shading == wanted.shading
                 && o.smooth.map(|s| s.0) == modifier
                 && o.modifiers == wanted.modifiers
+                && o.creases == wanted.creases
         });
         if same_look && on_screen.is_some_and(|o| o.shows_mesh(cage) && o.smooth == wanted.smooth) {
             return;
@@ -511,7 +517,7 @@ impl Projector<'_, '_, '_, '_> {
         drop(render);
         if !patched {
             let built = match &modifier {
-                None => render_mesh(cage, content.shading),
+                None => render_mesh(cage, content.shading, creases),
                 Some(m) => {
                     let src = SmoothSource {
                         node,
@@ -527,12 +533,12 @@ impl Projector<'_, '_, '_, '_> {
                         if !is_preview {
                             self.smooth.start_background(&src, name);
                         }
-                        render_mesh(cage, content.shading)
+                        render_mesh(cage, content.shading, creases)
                     } else {
                         self.smooth.render_mesh(&src).unwrap_or_else(|message| {
                             self.status
                                 .error(format!("'{name}': subdivision not shown: {message}"));
-                            render_mesh(cage, content.shading)
+                            render_mesh(cage, content.shading, creases)
                         })
                     }
                 }
@@ -563,16 +569,16 @@ impl Projector<'_, '_, '_, '_> {
         let stacked = match full.smooth_cage() {
             Ok(Some(stacked)) => stacked,
             // Subdivision runs before a stack modifier: evaluate it all.
-            Ok(None) => match full.evaluated(modifier.map_or(0, |m| m.viewport_level)) {
-                Ok(mesh) => return render_mesh(&mesh, shading),
-                Err(e) => return self.cage_instead(name, &e, cage, shading),
+            Ok(None) => match full.evaluate(modifier.map_or(0, |m| m.viewport_level)) {
+                Ok(e) => return render_mesh(&e.mesh, shading, &e.creases),
+                Err(e) => return self.cage_instead(name, &e, cage, creases, shading),
             },
-            Err(e) => return self.cage_instead(name, &e, cage, shading),
+            Err(e) => return self.cage_instead(name, &e, cage, creases, shading),
         };
         let stacked_creases = stacked.creases.into_owned();
         let stacked = Arc::new(stacked.mesh.into_owned());
         let Some(m) = modifier else {
-            return render_mesh(&stacked, shading);
+            return render_mesh(&stacked, shading, &stacked_creases);
         };
         self.smooth
             .render_mesh(&SmoothSource {
@@ -585,7 +591,7 @@ impl Projector<'_, '_, '_, '_> {
             .unwrap_or_else(|message| {
                 self.status
                     .error(format!("'{name}': subdivision not shown: {message}"));
-                render_mesh(&stacked, shading)
+                render_mesh(&stacked, shading, &stacked_creases)
             })
     }
 
@@ -596,11 +602,12 @@ impl Projector<'_, '_, '_, '_> {
         name: &str,
         error: &hedra_doc::EvaluationError,
         cage: &HalfEdgeMesh,
+        creases: &hedra_geom::subdivision::Creases,
         shading: Shading,
     ) -> Mesh {
         self.status
             .error(format!("'{name}': modifiers not shown: {error}"));
-        render_mesh(cage, shading)
+        render_mesh(cage, shading, creases)
     }
 }
 

@@ -6,10 +6,17 @@ use crate::*;
 pub use hedra_doc::render::{SurfaceGrid, VIEW_TOLERANCE, extent, surface_grid};
 
 /// A triangle render mesh of a half-edge mesh (the buffers of
-/// [`hedra_doc::render::render_buffers`]: flat shading gives each face its
-/// own corners, smooth shading shares them).
-pub fn render_mesh(mesh: &HalfEdgeMesh, shading: Shading) -> Mesh {
-    buffers_mesh(hedra_doc::render::render_buffers(mesh, shading))
+/// [`hedra_doc::render::render_buffers_creased`]: flat shading gives each
+/// face its own corners, smooth shading shares them except across
+/// infinitely sharp creases, where each side keeps its own normal).
+pub fn render_mesh(
+    mesh: &HalfEdgeMesh,
+    shading: Shading,
+    creases: &hedra_geom::subdivision::Creases,
+) -> Mesh {
+    buffers_mesh(hedra_doc::render::render_buffers_creased(
+        mesh, shading, creases,
+    ))
 }
 
 /// A Bevy triangle mesh of render buffers, kept in the main world too (the

@@ -77,6 +77,9 @@ pub struct PathPrompt {
     /// The path as typed so far (pre-filled with a suggestion when saving or
     /// exporting).
     pub text: String,
+    /// Whether the text field has been given the keyboard (it takes it
+    /// once, when the prompt opens).
+    pub focused: bool,
 }
 
 /// A native file dialog running on the IO pool (it blocks its thread).

@@ -15,6 +15,7 @@ use hedra_doc::{Command, NodeId, NodeTransform};
 use hedra_edit::{Selection, TransformTool};
 use hedra_scene::{DocRequest, DocState, InputGate, StatusMessage, ViewportCamera};
 
+pub mod egui_input;
 pub mod files;
 mod panels;
 pub use panels::{ADD_MENU, MERGE_MENU, SNAP_MENU};
@@ -34,6 +35,9 @@ pub struct UiState {
     /// The statistics overlay (View ▸ Statistics): counts of the scene and
     /// of the selection in the viewport's top left corner.
     pub show_statistics: bool,
+    /// The object-mode statistics of the shown meshes (vertices, edges,
+    /// faces, triangles) and the document revision they were counted at.
+    pub shown_counts: Option<(u64, [usize; 4])>,
     /// OBJ export writes curves as free-form NURBS records (`curv`/`parm`)
     /// instead of polylines (File ▸ Export).
     pub obj_nurbs_curves: bool,
@@ -109,6 +113,7 @@ impl Default for UiState {
             show_properties: true,
             show_history: false,
             show_statistics: false,
+            shown_counts: None,
             show_preferences: false,
             add_menu_at: None,
             snap_menu_at: None,
@@ -201,7 +206,26 @@ impl Plugin for UiPlugin {
             .init_resource::<UiState>()
             .insert_resource(Preferences::load())
             .add_message::<FileAction>()
+            // egui's new glyphs reach its font texture in
+            // `PostProcessOutput`; the render world only uploads a changed
+            // image it hears of from `AssetEventSystems`. Run in the other
+            // order, the frame that first shows new text draws it with
+            // holes (a whole frame without panels when the atlas grows).
+            .configure_sets(
+                PostUpdate,
+                bevy_egui::EguiPostUpdateSet::PostProcessOutput
+                    .before(bevy::asset::AssetEventSystems),
+            )
             .add_systems(Startup, spawn_ui_camera)
+            .add_systems(
+                PreUpdate,
+                (
+                    egui_input::allow_long_clicks,
+                    egui_input::refresh_pointer_gate.after(bevy::input::InputSystems),
+                    egui_input::write_egui_input_in_order
+                        .in_set(bevy_egui::EguiInputSet::ReadBevyMessages),
+                ),
+            )
             .configure_sets(Update, UiSystems.in_set(hedra_scene::SceneSystems::Tools))
             .add_systems(EguiPrimaryContextPass, panels::draw_ui)
             .add_systems(
@@ -232,6 +256,7 @@ pub struct UiSystems;
 /// the area between the panels.
 fn spawn_ui_camera(mut commands: Commands, mut settings: ResMut<EguiGlobalSettings>) {
     settings.auto_create_primary_context = false;
+    egui_input::take_over_egui_input(&mut settings);
     commands.spawn((
         PrimaryEguiContext,
         Camera2d,
@@ -450,7 +475,11 @@ pub fn begin_path(ui: &mut UiState, purpose: FilePurpose, state: &DocState) {
             .display()
             .to_string(),
     };
-    ui.path_prompt = Some(files::PathPrompt { purpose, text });
+    ui.path_prompt = Some(files::PathPrompt {
+        purpose,
+        text,
+        focused: false,
+    });
     if ui.dialog_backend && ui.dialog.is_none() {
         ui.dialog = Some(files::spawn_dialog(purpose, start_dir));
     }

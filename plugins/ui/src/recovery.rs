@@ -255,8 +255,20 @@ fn apply_history_limits(
 /// render error) writes the last committed document as an emergency
 /// recovery point instead, offered on the next start.
 fn on_exit(mut exits: MessageReader<AppExit>, mut rec: ResMut<Recovery>) {
-    let Some(error) = exits.read().map(AppExit::is_error).reduce(|a, b| a || b) else {
+    let exits: Vec<AppExit> = exits.read().cloned().collect();
+    if exits.is_empty() {
         return;
+    }
+    let error = exits.iter().any(AppExit::is_error);
+    // A signal's exit says so: the recovery offer then says "stopped", not
+    // "crashed".
+    let stopped = exits.iter().any(|e| {
+        matches!(e, AppExit::Error(code) if code.get() == hedra_doc::recovery::STOPPED_EXIT_CODE)
+    });
+    let kind = if stopped {
+        RecoveryKind::Stopped
+    } else {
+        RecoveryKind::Emergency
     };
     if let Some(job) = rec.writing.take() {
         let _ = job.join();
@@ -265,7 +277,7 @@ fn on_exit(mut exits: MessageReader<AppExit>, mut rec: ResMut<Recovery>) {
     let snapshot = rec.snapshot.lock().ok().and_then(|mut g| g.take());
     if error {
         if let Some((session, point)) = snapshot {
-            match point.write(&session, RecoveryKind::Emergency) {
+            match point.write(&session, kind) {
                 Ok(path) => error!(
                     "Hedra is quitting on an error; your work was saved to {} and is offered on the next start",
                     path.display()

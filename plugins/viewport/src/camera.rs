@@ -1,6 +1,7 @@
 //! The orbit camera (Blender-style turntable), framing the selection or everything.
 
 use crate::*;
+use bevy::window::PrimaryWindow;
 
 /// Orbit camera state (Blender-style: turntable around a focus point).
 #[derive(Component, Debug, Clone, Copy, PartialEq)]
@@ -107,10 +108,12 @@ pub(crate) fn overlay_cameras_keep_the_picture(
 pub(crate) fn camera_controls(
     buttons: Res<ButtonInput<MouseButton>>,
     keys: Res<ButtonInput<KeyCode>>,
-    motion: Res<AccumulatedMouseMotion>,
     scroll: Res<AccumulatedMouseScroll>,
     gate: Res<InputGate>,
     tool: Res<TransformTool>,
+    (mode, shape_edit): (Res<hedra_edit::EditMode>, Res<hedra_edit::ShapeEdit>),
+    window: Single<&Window, With<PrimaryWindow>>,
+    mut last_cursor: Local<Option<Vec2>>,
     mut dragging: Local<bool>,
     mut projected: Local<Option<(bool, Option<f32>)>>,
     mut camera: Single<(&mut OrbitCamera, &mut Transform, &mut Projection), With<ViewportCamera>>,
@@ -130,7 +133,15 @@ pub(crate) fn camera_controls(
     if !drag_button {
         *dragging = false;
     }
-    let delta = motion.delta;
+    // Orbit and pan follow the pointer's position, not raw device motion:
+    // tablets, remote desktops and synthetic input move the pointer to
+    // absolute positions and send no motion at all.
+    let cursor = window.cursor_position();
+    let delta = match (cursor, *last_cursor) {
+        (Some(now), Some(before)) => now - before,
+        _ => Vec2::ZERO,
+    };
+    *last_cursor = cursor;
     if *dragging && delta != Vec2::ZERO {
         if shift {
             let scale = orbit.distance * 0.0015;
@@ -145,7 +156,10 @@ pub(crate) fn camera_controls(
                 (orbit.pitch - delta.y * 0.008).clamp(-FRAC_PI_2 + 0.001, FRAC_PI_2 - 0.001);
         }
     }
-    if gate.pointer_free && scroll.delta.y != 0.0 {
+    // A running tool owns the wheel (loop cut's count, the proportional
+    // radius): the view does not zoom under it.
+    let tool_running = hedra_edit::modal_tool_running(&tool, &mode, &shape_edit);
+    if gate.pointer_free && !tool_running && scroll.delta.y != 0.0 {
         let lines = match scroll.unit {
             MouseScrollUnit::Line => scroll.delta.y,
             MouseScrollUnit::Pixel => scroll.delta.y / 40.0,

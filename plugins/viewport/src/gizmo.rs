@@ -140,7 +140,15 @@ impl GizmoTarget {
                 // The proxy's change as a world-space matrix, carried into
                 // the node's local space.
                 let affine = |t: &Transform| t.to_matrix().as_dmat4();
-                let change = affine(now) * affine(start).inverse();
+                let mut change = affine(now) * affine(start).inverse();
+                // A plain move goes by a delta on the shown decimals.
+                if now.rotation == start.rotation && now.scale == start.scale {
+                    change = DMat4::from_translation(
+                        (now.translation - start.translation)
+                            .as_dvec3()
+                            .map(shown_value),
+                    );
+                }
                 let local = world.inverse() * change * *world;
                 let moved: Vec<(u32, DVec3)> = points
                     .iter()
@@ -313,13 +321,45 @@ fn preview_of(doc: &hedra_doc::Document, node: NodeId, cmd: &Command) -> Option<
 /// exact value, so moving an object does not round its rotation and scale;
 /// a moved translation gains the f32 delta, a turned rotation the f32 turn,
 /// a scaled axis the f32 ratio.
+/// `x` rounded to the 4 decimals the Properties fields show (the nearest
+/// f64 to that decimal: 1.8033, not 1.80330002…).
+pub(crate) fn shown_value(x: f64) -> f64 {
+    (x * 1e4).round() / 1e4
+}
+
 pub(crate) fn dragged_transform(doc: &NodeTransform, dragged: &Transform) -> NodeTransform {
     let before = Transform {
         translation: doc.translation.as_vec3(),
         rotation: doc.rotation.as_quat(),
         scale: doc.scale.as_vec3(),
     };
-    let translation = doc.translation + (dragged.translation - before.translation).as_dvec3();
+    // A dragged coordinate lands on the value the Location field shows
+    // (4 decimals), not on f32 noise (1.803330898284912); the others stay
+    // exact.
+    let moved = |now: f32, was: f32, exact: f64| {
+        if now == was {
+            exact
+        } else {
+            shown_value(exact + f64::from(now - was))
+        }
+    };
+    let translation = DVec3::new(
+        moved(
+            dragged.translation.x,
+            before.translation.x,
+            doc.translation.x,
+        ),
+        moved(
+            dragged.translation.y,
+            before.translation.y,
+            doc.translation.y,
+        ),
+        moved(
+            dragged.translation.z,
+            before.translation.z,
+            doc.translation.z,
+        ),
+    );
     let rotation = if dragged.rotation == before.rotation {
         doc.rotation
     } else {
@@ -381,7 +421,7 @@ mod tests {
         assert_eq!(t.rotation, doc().rotation);
         assert_eq!(t.scale, doc().scale);
         assert_eq!((t.translation.y, t.translation.z), (0.2, 1.0 / 3.0));
-        assert!((t.translation.x - 2.1).abs() < 1e-6);
+        assert_eq!(t.translation.x, 2.1, "lands on the shown decimal");
     }
 
     #[test]

@@ -88,6 +88,29 @@ pub(crate) fn draw_proportional_ring(
         .resolution(64);
 }
 
+/// The axis a running G/R/S is locked to: a line through the pivot along
+/// it, in the axis's colour (X red, Y green, Z blue), across the view, as
+/// Blender draws it.
+pub(crate) fn draw_axis_lock(
+    lock: Res<hedra_edit::AxisLock>,
+    camera: Single<&GlobalTransform, With<ViewportCamera>>,
+    mut gizmos: Gizmos<CursorGizmos>,
+) {
+    let Some((pivot, axis)) = lock.0 else {
+        return;
+    };
+    let color = match axis {
+        hedra_edit::Axis::X => Color::srgb(0.95, 0.3, 0.35),
+        hedra_edit::Axis::Y => Color::srgb(0.45, 0.85, 0.2),
+        hedra_edit::Axis::Z => Color::srgb(0.25, 0.55, 1.0),
+    };
+    let pivot = pivot.as_vec3();
+    // Long enough to leave the view from any distance it is seen at.
+    let reach = camera.translation().distance(pivot).max(1.0) * 1000.0;
+    let direction = axis.vector().as_vec3() * reach;
+    gizmos.line(pivot - direction, pivot + direction, color);
+}
+
 /// The knife's path while it runs: its points ringed and joined, the last
 /// segment to where the pointer would add the next point.
 /// The curve being drawn (Add ▸ Draw Curve): its control polygon dim, the

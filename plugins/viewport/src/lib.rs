@@ -10,7 +10,7 @@
 #![allow(clippy::too_many_arguments, clippy::type_complexity)]
 
 use bevy::core_pipeline::tonemapping::Tonemapping;
-use bevy::input::mouse::{AccumulatedMouseMotion, AccumulatedMouseScroll, MouseScrollUnit};
+use bevy::input::mouse::{AccumulatedMouseScroll, MouseScrollUnit};
 use bevy::prelude::*;
 use glam::DVec3;
 use hedra_doc::{NodeContent, NodeId, NodeTransform};
@@ -101,6 +101,7 @@ impl Plugin for ViewportPlugin {
                     draw_cursor,
                     draw_snap_target,
                     draw_proportional_ring,
+                    draw_axis_lock,
                     draw_knife_path,
                     draw_curve_drawing,
                 )

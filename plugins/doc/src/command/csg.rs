@@ -57,11 +57,9 @@ impl Plan<'_> {
         parent: &Option<NodeRef>,
         transform: NodeTransform,
     ) -> Result<(), CommandError> {
-        let label = name.clone().unwrap_or_else(|| match op {
-            BooleanOp::Union => "Union".to_string(),
-            BooleanOp::Intersection => "Intersection".to_string(),
-            BooleanOp::Difference => "Difference".to_string(),
-        });
+        let label = name
+            .clone()
+            .unwrap_or_else(|| default_csg_name(op).to_string());
         let id = self.add_node(
             &label,
             parent,
@@ -94,6 +92,17 @@ impl Plan<'_> {
     pub(super) fn set_csg_op(&mut self, node: &NodeRef, op: BooleanOp) -> Result<(), CommandError> {
         let (mut n, _) = self.csg_node(node)?;
         let id = n.id;
+        // A node still called after its operation ("Union", "Union.001")
+        // is renamed for the new one; a name the user gave stays.
+        if let NodeContent::Csg(CsgContent { op: old }) = n.content {
+            let stem = match n.name.rsplit_once('.') {
+                Some((b, s)) if s.len() == 3 && s.chars().all(|c| c.is_ascii_digit()) => b,
+                _ => n.name.as_str(),
+            };
+            if old != op && stem == default_csg_name(old) {
+                n.name = self.unique_name(default_csg_name(op));
+            }
+        }
         n.content = NodeContent::Csg(CsgContent { op });
         self.set(n);
         self.check_csg(id)
@@ -227,5 +236,14 @@ impl Plan<'_> {
             self.remove(x);
         }
         Ok(())
+    }
+}
+
+/// The name a CSG node gets when the user gives none: its operation.
+fn default_csg_name(op: BooleanOp) -> &'static str {
+    match op {
+        BooleanOp::Union => "Union",
+        BooleanOp::Intersection => "Intersection",
+        BooleanOp::Difference => "Difference",
     }
 }

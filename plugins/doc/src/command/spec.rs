@@ -548,7 +548,9 @@ pub enum Command {
         transform: NodeTransform,
     },
     /// Sets a CSG node's operation; refused when the result would not
-    /// evaluate ("the intersection of Box and Ball is empty").
+    /// evaluate ("the intersection of Box and Ball is empty"). A node
+    /// still named after its old operation ("Union", "Union.001") takes
+    /// the new one's name; a name the user gave stays.
     SetCsgOp {
         /// A CSG node.
         node: NodeRef,

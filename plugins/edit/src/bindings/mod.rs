@@ -145,15 +145,17 @@ pub fn key_label(key: KeyCode) -> String {
         KeyCode::NumpadDecimal => "Numpad .".into(),
         KeyCode::NumpadEnter => "Numpad Enter".into(),
         KeyCode::Period => ".".into(),
-        KeyCode::Numpad1 => "Numpad 1".into(),
-        KeyCode::Numpad3 => "Numpad 3".into(),
-        KeyCode::Numpad5 => "Numpad 5".into(),
-        KeyCode::Numpad7 => "Numpad 7".into(),
-        _ => debug
-            .strip_prefix("Key")
-            .or_else(|| debug.strip_prefix("Digit"))
-            .unwrap_or(&debug)
-            .to_string(),
+        KeyCode::NumpadMultiply => "Numpad *".into(),
+        KeyCode::NumpadDivide => "Numpad /".into(),
+        // Numpad digits read "Numpad 1", as printed beside the other keys.
+        _ => match debug.strip_prefix("Numpad") {
+            Some(rest) if rest.len() == 1 => format!("Numpad {rest}"),
+            _ => debug
+                .strip_prefix("Key")
+                .or_else(|| debug.strip_prefix("Digit"))
+                .unwrap_or(&debug)
+                .to_string(),
+        },
     }
 }
 
@@ -417,6 +419,13 @@ mod tests {
         assert_eq!(Chord::ctrl_shift(K::KeyB).label(), "Ctrl+Shift+B");
         assert_eq!(chord_label(Edit, A::Delete), "X, Delete");
         assert_eq!(chord_label(Edit, A::GrowSelection), "Ctrl+Numpad +, Ctrl+=");
+        assert_eq!(
+            chord_label(Object, A::BooleanIntersection),
+            "Ctrl+Numpad *",
+            "read like Numpad +, not NumpadMultiply"
+        );
+        assert_eq!(key_label(K::Numpad9), "Numpad 9");
+        assert_eq!(key_label(K::NumpadDivide), "Numpad /");
         let rows = bindings_of(Edit);
         assert_eq!(
             rows.iter()

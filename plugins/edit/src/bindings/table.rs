@@ -518,7 +518,7 @@ pub const BINDINGS: &[Binding] = &[
         A::AxisX,
         "only along X (again: free)",
     ),
-    bind(Tool, Chord::any(K::KeyY), A::AxisY, "only along Y"),
+    bind(Tool, Chord::any(K::KeyY), A::AxisY, "only along Y (up)"),
     bind(Tool, Chord::any(K::KeyZ), A::AxisZ, "only along Z"),
     bind(
         Tool,

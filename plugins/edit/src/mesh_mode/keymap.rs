@@ -75,7 +75,12 @@ pub fn edit_shortcuts(
         let edge = match element_under_cursor(ElementKind::Edge, &mesh, world, &window, cam, cam_t)
         {
             Some(ElementHit::Edge(e)) => Some(e),
-            _ => mode.selection.edges.iter().next().copied(),
+            // Else the selected edge, or an edge of the selected face (face
+            // mode; the ring then follows the pointer onto the one wanted).
+            _ => mode.selection.edges.iter().next().copied().or_else(|| {
+                let f = *mode.selection.faces.iter().next()?;
+                mesh.face_halfedges(f).next().map(|h| h.edge())
+            }),
         };
         match edge {
             Some(e) => {

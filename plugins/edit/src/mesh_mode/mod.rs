@@ -137,6 +137,56 @@ impl ElementSelection {
     }
 }
 
+/// The element selection as it was before each step of the history, so
+/// that undoing a step gives its selection back (a bevel removes the
+/// selected edges; Ctrl+Z brings them back selected), as Blender and
+/// Wings do.
+#[derive(Default)]
+pub struct SelectionMemory {
+    /// The history's last step when last seen.
+    top: Option<u64>,
+    /// (edited node, the last step before a step was added) → the
+    /// selection then; the oldest are dropped past [`Self::KEPT`].
+    before: Vec<((NodeId, Option<u64>), ElementSelection)>,
+}
+
+impl SelectionMemory {
+    /// How many steps' selections are kept.
+    const KEPT: usize = 256;
+
+    /// Follows the history to `top`: a new step remembers the selection as
+    /// it was before it (`before` when the tool changed it on confirming,
+    /// else `selection`); going back to a step that has a remembered
+    /// selection restores it.
+    pub fn follow(
+        &mut self,
+        node: NodeId,
+        top: Option<u64>,
+        before: Option<&ElementSelection>,
+        selection: &mut ElementSelection,
+    ) {
+        if top == self.top {
+            return;
+        }
+        let added = match (top, self.top) {
+            (Some(now), Some(before)) => now > before,
+            (Some(_), None) => true,
+            (None, _) => false,
+        };
+        let key = (node, self.top);
+        if added {
+            self.before.retain(|(k, _)| *k != key);
+            self.before.push((key, before.unwrap_or(selection).clone()));
+            if self.before.len() > Self::KEPT {
+                self.before.remove(0);
+            }
+        } else if let Some((_, kept)) = self.before.iter().find(|(k, _)| *k == (node, top)) {
+            *selection = kept.clone();
+        }
+        self.top = top;
+    }
+}
+
 /// The modal mesh tools.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 pub enum MeshToolKind {
@@ -209,6 +259,14 @@ pub struct MeshTool {
     pub readout: String,
 }
 
+impl MeshTool {
+    /// The world point the tool works about (G/R/S move, turn and scale
+    /// about it).
+    pub fn pivot(&self) -> DVec3 {
+        self.pivot
+    }
+}
+
 /// Edit-mode state: the edited node, element mode, selection, running tool.
 #[derive(Resource, Default, Debug)]
 pub struct EditMode {
@@ -230,6 +288,10 @@ pub struct EditMode {
     pub just_finished: bool,
     /// The rectangle being dragged for box selection (window coordinates).
     pub box_select: Option<(Vec2, Vec2)>,
+    /// The selection as it was when a tool confirmed a step and then
+    /// changed the selection (an extrude selects its caps): what undoing
+    /// the step gives back ([`SelectionMemory`]).
+    pub selection_before_step: Option<ElementSelection>,
 }
 
 impl EditMode {
@@ -276,6 +338,10 @@ pub fn mode_keys(
                 Some(n) if matches!(n.content, NodeContent::Mesh(_)) => {
                     mode.node = Some(n.id);
                     mode.selection = ElementSelection::default();
+                    // An earlier "select a mesh to edit" is answered now.
+                    if status.is_error {
+                        status.info(format!("Editing '{}'", n.name));
+                    }
                 }
                 // Curves and surfaces have their own edit mode (shape_mode).
                 Some(n) if matches!(n.content, NodeContent::Curve(_) | NodeContent::Surface(_)) => {
@@ -315,9 +381,16 @@ pub fn follow_changes(
     mut changes: MessageReader<DocChanged>,
     mut mode: ResMut<EditMode>,
     state: Res<DocState>,
+    mut memory: Local<SelectionMemory>,
 ) {
     if changes.read().count() == 0 {
         return;
+    }
+    let top = state.session.history.done().last().map(|t| t.serial);
+    let before = mode.selection_before_step.take();
+    if let Some(node) = mode.node {
+        let mode = &mut *mode;
+        memory.follow(node, top, before.as_ref(), &mut mode.selection);
     }
     match edited_mesh(&state, &mode) {
         Some(m) => mode.selection.retain_live(&m),

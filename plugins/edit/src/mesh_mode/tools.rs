@@ -359,6 +359,7 @@ pub(super) struct CachedWeights {
 pub fn drive_mesh_tool(
     mut mode: ResMut<EditMode>,
     keys: Res<ButtonInput<KeyCode>>,
+    strokes: Res<hedra_scene::Strokes>,
     buttons: Res<ButtonInput<MouseButton>>,
     scroll: Res<bevy::input::mouse::AccumulatedMouseScroll>,
     window: Single<&Window, With<PrimaryWindow>>,
@@ -404,7 +405,7 @@ pub fn drive_mesh_tool(
     }
     // Loop cut and bevel: minus, plus and the wheel change the count of cuts or segments.
     let loop_cut = matches!(tool.kind, MeshToolKind::LoopCut | MeshToolKind::Bevel);
-    tool.typed.read(&keys, !loop_cut);
+    tool.typed.read(&strokes, !loop_cut);
     if loop_cut {
         let less = crate::bindings::pressed(&keys, KeyMode::Tool, Action::FewerCuts)
             || scroll.delta.y < 0.0;
@@ -419,6 +420,13 @@ pub fn drive_mesh_tool(
     let (cam, cam_t) = *camera;
     let cursor = window.cursor_position().unwrap_or(tool.start_cursor);
     let world = state.session.doc.world_matrix(node_id);
+    // Loop cut follows the edge under the pointer, as Blender's does.
+    if tool.kind == MeshToolKind::LoopCut
+        && let Some(ElementHit::Edge(e)) =
+            element_under_cursor(ElementKind::Edge, &mesh, world, &window, cam, cam_t)
+    {
+        tool.edge = Some(e);
+    }
     let view_dir = (cam_t.rotation() * Vec3::NEG_Z).as_dvec3();
     // World size of one pixel at the pivot, so drags feel the same at any zoom.
     let dist = cam_t
@@ -552,11 +560,27 @@ pub fn drive_mesh_tool(
     if modal_keys.confirm() {
         // A region extrude or inset selects the faces it made (the caps, the
         // inner faces), as Blender keeps them selected.
-        if matches!(tool.kind, MeshToolKind::Extrude | MeshToolKind::Inset)
-            && mode.preview.is_some()
+        // A bevel selects the faces it made, so the selection survives the
+        // edges it replaces (and undo gives the edges back selected).
+        if matches!(
+            tool.kind,
+            MeshToolKind::Extrude | MeshToolKind::Inset | MeshToolKind::Bevel
+        ) && mode.preview.is_some()
             && !tool.created_faces.is_empty()
         {
+            mode.selection_before_step = Some(mode.selection.clone());
             mode.selection.faces = tool.created_faces.iter().copied().collect();
+            // In edge mode the new faces show as their edges.
+            if mode.kind == ElementKind::Edge
+                && let Some(after) = &mode.preview
+            {
+                mode.selection.edges = tool
+                    .created_faces
+                    .iter()
+                    .filter(|f| after.is_face(**f))
+                    .flat_map(|&f| after.face_halfedges(f).map(|h| h.edge()))
+                    .collect();
+            }
         }
         mode.preview = None;
         mode.just_finished = true;

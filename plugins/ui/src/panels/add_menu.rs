@@ -404,7 +404,15 @@ pub(super) fn add_menu(
         return;
     };
     let page = &mut state.add_page;
-    let close = cursor_menu(ctx, ADD_MENU, pos, |ui| {
+    // Each page is its own area: egui keeps an area's width and wraps new
+    // content to it, so the wider Curve and Surface pages would wrap to the
+    // first page's width ("Koch Snowflak/e") and be fitted to the window
+    // by its height.
+    let id = match *page {
+        AddPage::Main => ADD_MENU.to_string(),
+        other => format!("{ADD_MENU}-{other:?}"),
+    };
+    let close = cursor_menu(ctx, &id, pos, |ui| {
         ui.label(egui::RichText::new("Add").strong());
         ui.separator();
         let before = events.len();

@@ -61,7 +61,17 @@ pub(super) fn dialogs(
                 ui.label("A file dialog is open; you can also type the path here:");
             }
             let resp = ui.add(egui::TextEdit::singleline(&mut prompt.text).desired_width(420.0));
+            // The field takes the keyboard as the prompt opens: what is
+            // typed next is the path, not shortcuts.
+            if !prompt.focused {
+                resp.request_focus();
+                prompt.focused = true;
+            }
             let enter = resp.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
+            if ui.input(|i| i.key_pressed(egui::Key::Escape)) {
+                keep = false;
+                state.after_save = None;
+            }
             ui.horizontal(|ui| {
                 let reading = matches!(prompt.purpose, FilePurpose::Open | FilePurpose::ImportObj);
                 let verb = match prompt.purpose {

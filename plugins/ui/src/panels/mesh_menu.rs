@@ -164,16 +164,16 @@ pub(super) fn mesh_menu(
     }
     ui.separator();
     ui.label(egui::RichText::new("Edges").weak());
-    item(
-        ui,
-        &keyed("Loop Cut", Action::LoopCut),
-        sel.edges.len() == 1,
-        &|| Command::LoopCut {
-            node: n.clone(),
-            edge: edges(),
-            cuts: 1,
-        },
-    );
+    // The interactive tool, as Ctrl+R: the ring follows the pointer, the
+    // wheel sets the cuts, a click places them (any selection mode).
+    if ui
+        .button(keyed("Loop Cut", Action::LoopCut))
+        .on_hover_text("Point at an edge ring; the wheel or +/- sets the cuts; click to cut")
+        .clicked()
+    {
+        tool_to_start = Some(Action::LoopCut);
+        ui.close();
+    }
     item(ui, "Subdivide", has_e, &|| Command::SubdivideEdges {
         node: n.clone(),
         edges: edges(),

@@ -221,7 +221,12 @@ pub fn draw_ui(
             .show(&mut root, |ui| {
                 egui::ScrollArea::vertical().show(ui, |ui| {
                     let mut analysis = (writers.analysis.clone(), writers.surface_analysis.clone());
-                    properties(ui, &model, &mut ui_state, &mut events, &mut analysis);
+                    // A running gizmo drag or G shows in the fields as it goes.
+                    let shown = model
+                        .selection
+                        .active()
+                        .and_then(|id| tool_previews.transform(id).copied());
+                    properties(ui, &model, shown, &mut ui_state, &mut events, &mut analysis);
                     if analysis.0 != *writers.analysis {
                         *writers.analysis = analysis.0;
                     }
@@ -288,10 +293,10 @@ pub fn draw_ui(
     }
 
     if ui_state.show_history {
-        history_window(&ctx, &model, &mut ui_state, &mut events);
+        history_window(&ctx, free, &model, &mut ui_state, &mut events);
     }
     if ui_state.show_statistics {
-        statistics_overlay(&ctx, free, &model);
+        statistics_overlay(&ctx, free, &model, &mut ui_state);
     }
     adjust_last_window(&ctx, free, &model, &mut events);
     let mut key_help = *writers.key_help;
@@ -315,7 +320,11 @@ pub fn draw_ui(
     {
         ctx.memory_mut(|m| m.surrender_focus(id));
     }
-    gate.keyboard_free = !ctx.egui_wants_keyboard_input();
+    // No shortcut runs while a text field has the keyboard or a dialog
+    // that is typed into is open (the path prompt, unsaved changes).
+    gate.keyboard_free = !ctx.egui_wants_keyboard_input()
+        && ui_state.path_prompt.is_none()
+        && ui_state.confirm.is_none();
 
     // Apply what the panels decided.
     for e in events {

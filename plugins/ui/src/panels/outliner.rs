@@ -10,8 +10,12 @@ pub(super) fn outliner(
     events: &mut Vec<UiEvent>,
 ) {
     egui::ScrollArea::vertical().show(ui, |ui| {
-        for root in doc.roots() {
-            outliner_row(ui, doc, root.id, 0, selection, state, events);
+        // The tree in one top-down walk (a recursion that scanned every
+        // node for each one's children took seconds on a 2,000-deep scene).
+        let tree = doc.hierarchy();
+        for &id in tree.order() {
+            let depth = tree.facts(id).map_or(0, |f| f.depth);
+            outliner_row(ui, doc, id, depth, selection, state, events);
         }
         // Dropping a node on the empty area below the tree moves it to the top level.
         let rest = ui.available_size().max(egui::vec2(10.0, 40.0));
@@ -40,7 +44,7 @@ pub(super) fn outliner_row(
 ) {
     let Some(node) = doc.node(id) else { return };
     ui.horizontal(|ui| {
-        ui.add_space(depth as f32 * 14.0);
+        ui.add_space(indent(depth));
         let eye = if node.visible { "👁" } else { "–" };
         if ui.small_button(eye).on_hover_text("Show / hide").clicked() {
             exec(
@@ -103,7 +107,10 @@ pub(super) fn outliner_row(
             ui.add(egui::Button::selectable(selected, text).sense(egui::Sense::click_and_drag()));
         resp.dnd_set_drag_payload(id);
         if resp.clicked() {
-            let additive = ui.input(|i| i.modifiers.shift || i.modifiers.ctrl);
+            // The click's own modifiers: under lag Shift may be let go
+            // before the frame that reads the click.
+            let held = crate::egui_input::click_modifiers(ui);
+            let additive = held.shift || held.ctrl;
             events.push(UiEvent::Select(id, additive));
         }
         if resp.double_clicked() {
@@ -157,7 +164,13 @@ pub(super) fn outliner_row(
             }
         });
     });
-    for child in doc.children(id) {
-        outliner_row(ui, doc, child.id, depth + 1, selection, state, events);
-    }
 }
+
+/// How far a row is indented: 14 px a level, up to [`MAX_INDENT_LEVELS`]
+/// (a deep chain would push its rows out of the panel).
+fn indent(depth: usize) -> f32 {
+    depth.min(MAX_INDENT_LEVELS) as f32 * 14.0
+}
+
+/// Levels past which rows are not indented further.
+const MAX_INDENT_LEVELS: usize = 16;

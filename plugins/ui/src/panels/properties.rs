@@ -38,6 +38,7 @@ pub(super) fn vec3_row(
 pub(super) fn properties(
     ui: &mut egui::Ui,
     model: &Model,
+    previewed_transform: Option<NodeTransform>,
     state: &mut UiState,
     events: &mut Vec<UiEvent>,
     analysis: &mut (
@@ -66,7 +67,7 @@ pub(super) fn properties(
         .show(ui, |ui| {
             let mut t = match &state.transform_edit {
                 Some((eid, t)) if *eid == id => *t,
-                _ => node.transform,
+                _ => previewed_transform.unwrap_or(node.transform),
             };
             let (ex, ey, ez) = t.rotation.to_euler(EulerRot::XYZ);
             let mut euler = DVec3::new(ex.to_degrees(), ey.to_degrees(), ez.to_degrees());

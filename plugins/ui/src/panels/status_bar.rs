@@ -36,7 +36,11 @@ pub(super) fn status_bar(ui: &mut egui::Ui, model: &Model) {
         } else {
             egui::RichText::new(&s.text)
         };
-        let most = ui.available_width() * 0.6;
+        // While a tool runs its readout matters more than an old message.
+        let tool_runs = model.tool.active.is_some()
+            || model.mode.tool.is_some()
+            || model.shape_edit.tool.is_some();
+        let most = ui.available_width() * if tool_runs { 0.3 } else { 0.6 };
         let mut progress = model.previews.progress();
         progress.extend(model.jobs.progress());
         if progress.is_empty() {
@@ -71,9 +75,12 @@ pub(super) fn status_bar(ui: &mut egui::Ui, model: &Model) {
                 ui.label(format!("{}: {} selected", node.name, se.selected.len()));
                 ui.separator();
                 if let Some(t) = &se.tool {
-                    ui.label(
-                        egui::RichText::new(&t.readout)
-                            .color(egui::Color32::from_rgb(255, 200, 80)),
+                    ui.add(
+                        egui::Label::new(
+                            egui::RichText::new(&t.readout)
+                                .color(egui::Color32::from_rgb(255, 200, 80)),
+                        )
+                        .truncate(),
                     );
                     ui.add(egui::Label::new(tool_hint()).truncate());
                 } else {
@@ -114,19 +121,35 @@ pub(super) fn status_bar(ui: &mut egui::Ui, model: &Model) {
                         .color(egui::Color32::from_rgb(255, 170, 80)),
                 );
                 ui.separator();
+                // The current kind's count, out of the mesh's: the same
+                // figure View ▸ Statistics gives for that kind.
                 let s = &edit.selection;
-                ui.label(format!(
-                    "{}: {} vertices, {} edges, {} faces selected",
-                    node.name,
-                    s.vertices.len(),
-                    s.edges.len(),
-                    s.faces.len()
-                ));
+                let mesh = match &node.content {
+                    NodeContent::Mesh(c) => Some(&c.mesh),
+                    _ => None,
+                };
+                let (selected, total, what) = match edit.kind {
+                    ElementKind::Vertex => (
+                        s.vertices.len(),
+                        mesh.map_or(0, |m| m.vertex_count()),
+                        "vertices",
+                    ),
+                    ElementKind::Edge => {
+                        (s.edges.len(), mesh.map_or(0, |m| m.edge_count()), "edges")
+                    }
+                    ElementKind::Face => {
+                        (s.faces.len(), mesh.map_or(0, |m| m.face_count()), "faces")
+                    }
+                };
+                ui.label(format!("{}: {selected}/{total} {what} selected", node.name));
                 ui.separator();
                 if let Some(t) = &edit.tool {
-                    ui.label(
-                        egui::RichText::new(&t.readout)
-                            .color(egui::Color32::from_rgb(255, 200, 80)),
+                    ui.add(
+                        egui::Label::new(
+                            egui::RichText::new(&t.readout)
+                                .color(egui::Color32::from_rgb(255, 200, 80)),
+                        )
+                        .truncate(),
                     );
                     ui.add(egui::Label::new(tool_hint()).truncate());
                 } else {
@@ -165,9 +188,12 @@ pub(super) fn status_bar(ui: &mut egui::Ui, model: &Model) {
                 };
                 ui.separator();
                 if let Some(m) = &model.tool.active {
-                    ui.label(
-                        egui::RichText::new(&m.readout)
-                            .color(egui::Color32::from_rgb(255, 200, 80)),
+                    ui.add(
+                        egui::Label::new(
+                            egui::RichText::new(&m.readout)
+                                .color(egui::Color32::from_rgb(255, 200, 80)),
+                        )
+                        .truncate(),
                     );
                     ui.add(egui::Label::new(tool_hint()).truncate());
                 } else {

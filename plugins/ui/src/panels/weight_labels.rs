@@ -23,7 +23,11 @@ pub(super) fn weight_labels(
         return;
     }
     let world = doc.world_matrix(id);
-    for p in points {
+    // Selected points first: their labels win where labels would overlap.
+    let mut ordered: Vec<&hedra_scene::ControlPoint> = points.iter().collect();
+    ordered.sort_by_key(|p| !edit.selected.contains(&p.index));
+    let mut placed: Vec<egui::Rect> = Vec::new();
+    for p in ordered {
         let Ok(s) = cam.world_to_viewport(cam_t, world.transform_point3(p.position).as_vec3())
         else {
             continue;
@@ -32,15 +36,26 @@ pub(super) fn weight_labels(
         let color = if selected {
             egui::Color32::from_rgb(255, 170, 80)
         } else {
-            egui::Color32::from_gray(200)
+            egui::Color32::from_gray(235)
         };
-        painter.text(
-            egui::pos2(s.x + 8.0, s.y - 8.0),
-            egui::Align2::LEFT_BOTTOM,
+        let galley = painter.layout_no_wrap(
             format!("{:.2}", p.weight),
-            egui::FontId::proportional(if selected { 14.0 } else { 11.0 }),
+            egui::FontId::proportional(if selected { 14.0 } else { 12.0 }),
             color,
         );
+        let rect = egui::Rect::from_min_size(
+            egui::pos2(s.x + 8.0, s.y - 8.0 - galley.size().y),
+            galley.size(),
+        )
+        .expand2(egui::vec2(3.0, 1.0));
+        // A label that would cover one already drawn is left out.
+        if placed.iter().any(|r| r.intersects(rect)) {
+            continue;
+        }
+        placed.push(rect);
+        // A dark plate keeps the label readable on a pale surface.
+        painter.rect_filled(rect, 3.0, egui::Color32::from_black_alpha(170));
+        painter.galley(rect.min + egui::vec2(3.0, 1.0), galley, color);
     }
 }
 

@@ -288,14 +288,19 @@ pub(super) fn number_row(
 
 pub(super) fn history_window(
     ctx: &egui::Context,
+    viewport: egui::Rect,
     model: &Model,
     state: &mut UiState,
     events: &mut Vec<UiEvent>,
 ) {
     let h = &model.state.session.history;
+    // Opens in the viewport's top right corner, off the outliner and the
+    // properties.
     egui::Window::new("Undo History")
         .open(&mut state.show_history)
         .default_width(240.0)
+        .default_pos(viewport.right_top() + egui::vec2(-260.0, 10.0))
+        .constrain_to(viewport)
         .show(ctx, |ui| {
             ui.label(crate::recovery::history_summary(h));
             ui.separator();
@@ -325,8 +330,23 @@ pub(super) fn history_window(
 /// object mode the selected and total objects and the vertices, edges,
 /// faces and triangles of the visible meshes' cages; in edit mode the
 /// selected and total elements of the edited mesh.
-pub(super) fn statistics_overlay(ctx: &egui::Context, viewport: egui::Rect, model: &Model) {
-    let lines = statistics_lines(&model.state.session.doc, &model.selection, &model.mode);
+pub(super) fn statistics_overlay(
+    ctx: &egui::Context,
+    viewport: egui::Rect,
+    model: &Model,
+    state: &mut UiState,
+) {
+    let revision = model.state.revision;
+    let doc = &model.state.session.doc;
+    let shown = match state.shown_counts {
+        Some((r, counts)) if r == revision => counts,
+        _ => {
+            let counts = shown_counts(doc);
+            state.shown_counts = Some((revision, counts));
+            counts
+        }
+    };
+    let lines = statistics_lines(doc, &model.selection, &model.mode, shown);
     egui::Area::new("statistics".into())
         .fixed_pos(viewport.left_top() + egui::vec2(10.0, 8.0))
         .interactable(false)
@@ -338,7 +358,50 @@ pub(super) fn statistics_overlay(ctx: &egui::Context, viewport: egui::Rect, mode
 }
 
 /// The overlay's lines (see [`statistics_overlay`]).
-fn statistics_lines(doc: &Document, selection: &Selection, mode: &EditMode) -> Vec<String> {
+/// Vertices, edges, faces and triangles of the visible meshes as the
+/// viewport shows them: the modifier stack applied and subdivision at its
+/// viewport level (a cube at level 4 counts 1,536 faces, not the cage's 6);
+/// a CSG node counts its solid.
+fn shown_counts(doc: &Document) -> [usize; 4] {
+    let triangles = |m: &hedra_geom::HalfEdgeMesh| -> usize {
+        m.faces().map(|f| m.face_degree(f).saturating_sub(2)).sum()
+    };
+    let mut counts = [0; 4];
+    let mut add = |m: &hedra_geom::HalfEdgeMesh| {
+        counts[0] += m.vertex_count();
+        counts[1] += m.edge_count();
+        counts[2] += m.face_count();
+        counts[3] += triangles(m);
+    };
+    for n in doc.nodes().filter(|n| hedra_edit::visible(doc, n.id)) {
+        // Operands are drawn through their CSG node's solid.
+        if hedra_doc::csg::outermost_csg(doc, n.id).is_some() {
+            continue;
+        }
+        match &n.content {
+            NodeContent::Mesh(c) => {
+                let level = c.subdivision.map_or(0, |s| s.viewport_level);
+                if let Ok(m) = c.evaluated(level) {
+                    add(&m);
+                }
+            }
+            NodeContent::Csg(_) => {
+                if let Ok(solid) = hedra_doc::csg::evaluate(doc, n.id) {
+                    add(&solid);
+                }
+            }
+            _ => {}
+        }
+    }
+    counts
+}
+
+fn statistics_lines(
+    doc: &Document,
+    selection: &Selection,
+    mode: &EditMode,
+    shown: [usize; 4],
+) -> Vec<String> {
     let triangles = |m: &hedra_geom::HalfEdgeMesh| -> usize {
         m.faces().map(|f| m.face_degree(f).saturating_sub(2)).sum()
     };
@@ -380,15 +443,7 @@ fn statistics_lines(doc: &Document, selection: &Selection, mode: &EditMode) -> V
         .filter(|n| hedra_edit::visible(doc, n.id))
         .collect();
     let selected = visible.iter().filter(|n| selection.contains(n.id)).count();
-    let (mut v, mut e, mut f, mut t) = (0, 0, 0, 0);
-    for n in &visible {
-        if let NodeContent::Mesh(c) = &n.content {
-            v += c.mesh.vertex_count();
-            e += c.mesh.edge_count();
-            f += c.mesh.face_count();
-            t += triangles(&c.mesh);
-        }
-    }
+    let [v, e, f, t] = shown;
     vec![
         format!("Objects {selected}/{}", visible.len()),
         format!("Vertices {v}"),
