@@ -1008,6 +1008,13 @@ fn a_sharp_crease_splits_the_cage_normals_on_screen() {
         let meshes = app.world().resource::<Assets<Mesh>>();
         meshes.get(&handle).unwrap().count_vertices()
     };
+    send(
+        &mut app,
+        DocRequest::Execute(Command::SetShading {
+            nodes: vec![NodeRef::Name("Box".into())],
+            shading: hedra_doc::Shading::Smooth,
+        }),
+    );
     assert_eq!(render_vertices(&mut app), 8, "smooth: corners shared");
     let crease = |sharpness: f64| -> Command {
         let text = format!(

@@ -343,3 +343,47 @@ fn the_add_menus_curve_page_has_its_own_width_and_fits_the_window() {
         koch[0]
     );
 }
+
+#[path = "../../plugins/doc/tests/deep/mod.rs"]
+mod deep;
+
+/// A 2,000-deep chain of nodes opens in the window (issue 31, item 14: the
+/// outliner and projection walked the tree once per node, minutes at this
+/// depth): the tip is drawn where the chain puts it and its outliner row is
+/// shown. The time it took is printed (speed is the bench's, not a test's).
+#[test]
+fn a_two_thousand_deep_scene_opens_and_draws_its_tip() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("deep.hedra.ron");
+    std::fs::write(&path, deep::chain_text(2000)).unwrap();
+    let mut user = User::new();
+    let start = std::time::Instant::now();
+    user.app
+        .world_mut()
+        .write_message(hedra_scene::DocRequest::Open(path));
+    for _ in 0..200 {
+        user.frame();
+        if user.doc().nodes().count() == 2000 {
+            break;
+        }
+    }
+    user.frames(2);
+    eprintln!("2,000-deep scene open and drawn in {:?}", start.elapsed());
+    let frame = std::time::Instant::now();
+    user.frame();
+    eprintln!("one frame of it: {:?}", frame.elapsed());
+    assert_eq!(user.doc().nodes().count(), 2000, "{}", user.status());
+    let tip = user.doc().find_by_name("Tip").unwrap().id;
+    let entity = user.app.world().resource::<hedra_scene::NodeEntities>().0[&tip];
+    let at = user
+        .app
+        .world()
+        .get::<GlobalTransform>(entity)
+        .unwrap()
+        .translation();
+    let expected = deep::chain_position(1999).as_vec3();
+    assert!(
+        (at - expected).length() < 1e-3 * expected.length().max(1.0),
+        "the tip is drawn at {at}, the chain puts it at {expected}"
+    );
+}

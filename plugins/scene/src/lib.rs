@@ -368,6 +368,10 @@ impl Plugin for ScenePlugin {
             .init_resource::<QuadView>()
             .init_resource::<Cursor3d>()
             .init_resource::<Strokes>()
+            // Present without a window too (the headless app), where no
+            // window or input plugin adds them.
+            .add_message::<bevy::window::WindowEvent>()
+            .add_message::<bevy::input::keyboard::KeyboardFocusLost>()
             .add_systems(PreUpdate, record_strokes.after(bevy::input::InputSystems))
             .add_message::<DocRequest>()
             .add_message::<DocChanged>()

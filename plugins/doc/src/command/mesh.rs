@@ -363,9 +363,14 @@ impl Plan<'_> {
         width: f64,
         segments: u32,
     ) -> Result<(), CommandError> {
+        // The bevel's strips and corner patches become the created faces
+        // (the tool selects them).
+        let mut made = Vec::new();
         self.on_edges(node, edges, |m, es| {
-            modeling::bevel_edges(m, es, width, segments).map(drop)
-        })
+            modeling::bevel_edges(m, es, width, segments).map(|f| made = f)
+        })?;
+        self.created_faces = made;
+        Ok(())
     }
 
     pub(super) fn bevel_vertices(

@@ -405,9 +405,10 @@ impl Document {
 pub struct Decision {
     /// The transaction to apply and push on the history.
     pub transaction: Transaction,
-    /// The faces a region extrude makes (its caps) or a region inset makes
-    /// (the inner faces), in the order of the command's faces; empty for
-    /// other commands. Not part of the history: only tools use it.
+    /// The faces a region extrude makes (its caps), a region inset makes
+    /// (the inner faces) or an edge bevel makes (its strips, then its corner
+    /// patches), in the order of the command's elements; empty for other
+    /// commands. Not part of the history: only tools use it.
     pub created_faces: Vec<FaceId>,
     /// The edges a knife cut makes or runs along, in path order (Blender
     /// selects them after the cut); empty for other commands. Not part of

@@ -3,7 +3,7 @@
 
 #![allow(dead_code)]
 
-use glam::DVec3;
+use hedra_geom::DVec3;
 use std::fmt::Write;
 
 /// Each node's local transform: a quarter turn about +Y and a step of

@@ -388,9 +388,14 @@ pub fn follow_changes(
     }
     let top = state.session.history.done().last().map(|t| t.serial);
     let before = mode.selection_before_step.take();
-    if let Some(node) = mode.node {
-        let mode = &mut *mode;
-        memory.follow(node, top, before.as_ref(), &mut mode.selection);
+    match mode.node {
+        Some(node) => {
+            let mode = &mut *mode;
+            memory.follow(node, top, before.as_ref(), &mut mode.selection);
+        }
+        // Steps made outside edit mode are not remembered, but the memory
+        // must know where the history stands.
+        None => memory.top = top,
     }
     match edited_mesh(&state, &mode) {
         Some(m) => mode.selection.retain_live(&m),
