@@ -537,8 +537,8 @@ fn shift_a_cube_with_a_held_click_in_the_real_window() {
         .doc
         .nodes()
         .count();
-    // The Add menu opened at y = 700 moves up to fit the 800 px window: its
-    // top lands at y = 330 and Cube, its second item, at y ≈ 394.
+    // The Add menu opened at y = 700 moves up to fit above the status bar
+    // (the viewport ends at y ≈ 778): Cube, its second row, lands at y ≈ 585.
     let script = r#"
         set -u
         "$HEDRA" "$WORK" > "$LOG" 2>&1 &
@@ -553,9 +553,9 @@ fn shift_a_cube_with_a_held_click_in_the_real_window() {
         press() { xdotool keydown "$1"; sleep 0.3; xdotool keyup "$1"; }
         xdotool mousemove 640 700; sleep 1.5
         xdotool keydown shift; sleep 0.2; press a; sleep 0.2; xdotool keyup shift; sleep 3
-        # Cube's row in the menu as fitted above the bottom edge (it moves
+        # Cube's row in the menu as fitted above the status bar (it moves
         # when the menu's first page gains or loses rows).
-        xdotool mousemove 665 607; sleep 1.5
+        xdotool mousemove 665 585; sleep 1.5
         xdotool mousedown 1; sleep 0.3; xdotool mouseup 1
         [ -n "$(waitfor 'work[.]hedra[.]ron [*]$')" ] || echo "the click changed nothing" >&2
         xdotool keydown ctrl; sleep 0.2; press s; sleep 0.2; xdotool keyup ctrl

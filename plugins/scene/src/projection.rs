@@ -149,9 +149,11 @@ pub fn sync_entities(
     }
     *seen_revision = Some(state.revision);
     let doc = &state.session.doc;
-    // A CSG node's operands are drawn through its solid, not by themselves.
+    // A CSG node's operands are drawn through its solid, not by themselves
+    // (found for every node in one walk down the tree).
+    let tree = doc.hierarchy();
     let visibility = |node: &hedra_doc::Node| {
-        if node.visible && !hedra_doc::csg::inside_csg(doc, node.id) {
+        if node.visible && !tree.inside_csg(node.id) {
             Visibility::Inherited
         } else {
             Visibility::Hidden

@@ -22,26 +22,31 @@ pub(super) fn topology_inspector(
         // Its own horizontal scroll keeps the wide table from pushing the
         // panel (and with it the viewport) wider when something is picked.
         egui::ScrollArea::horizontal().id_salt(salt).show(ui, |ui| {
-            egui::Grid::new(salt).striped(true).show(ui, |ui| {
-                for t in ["half-edge", "vertex", "twin", "next", "prev", "face"] {
-                    ui.label(egui::RichText::new(t).strong());
-                }
-                ui.end_row();
-                for &h in hs {
-                    let r = halfedge_record(m, h);
-                    for t in [
-                        r.halfedge.to_string(),
-                        r.origin.to_string(),
-                        r.twin.to_string(),
-                        r.next.to_string(),
-                        r.prev.to_string(),
-                        opt(r.face),
-                    ] {
-                        ui.label(t);
+            // Short headings and tight spacing: all six columns fit the
+            // panel's default width (the face column was off to the right).
+            egui::Grid::new(salt)
+                .striped(true)
+                .spacing([6.0, 2.0])
+                .show(ui, |ui| {
+                    for t in ["h", "from", "twin", "next", "prev", "face"] {
+                        ui.label(egui::RichText::new(t).strong());
                     }
                     ui.end_row();
-                }
-            });
+                    for &h in hs {
+                        let r = halfedge_record(m, h);
+                        for t in [
+                            r.halfedge.to_string(),
+                            r.origin.to_string(),
+                            r.twin.to_string(),
+                            r.next.to_string(),
+                            r.prev.to_string(),
+                            opt(r.face),
+                        ] {
+                            ui.label(t);
+                        }
+                        ui.end_row();
+                    }
+                });
         });
     };
     // The selection can briefly name elements of the next mesh (a tool that

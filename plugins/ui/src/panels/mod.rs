@@ -238,6 +238,7 @@ pub fn draw_ui(
     }
     let free = root.available_rect_before_wrap();
     ui_state.viewport_rect = Some(free);
+    ctx.data_mut(|d| d.insert_temp(egui::Id::new(pointer_menus::VIEWPORT_RECT), free));
     if quad_view {
         // Quad view's quarters are named in their corners.
         let painter = root.painter_at(free);

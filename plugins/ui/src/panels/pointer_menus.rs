@@ -180,6 +180,10 @@ pub(super) fn merge_menu(ctx: &egui::Context, model: &mut Model, events: &mut Ve
 /// area to fit, the area's response keeps the unmoved rect, so a press on
 /// an item of a menu opened near the bottom counted as outside and closed
 /// the menu before the release could click the item (issue 11).
+/// The egui memory key under which `draw_ui` leaves this frame's viewport
+/// rect for the menus that open at the pointer.
+pub(super) const VIEWPORT_RECT: &str = "hedra-viewport-rect";
+
 pub(super) fn cursor_menu(
     ctx: &egui::Context,
     id: &str,
@@ -187,7 +191,11 @@ pub(super) fn cursor_menu(
     items: impl FnOnce(&mut egui::Ui) -> bool,
 ) -> bool {
     let id = egui::Id::new(id);
-    let screen = ctx.content_rect();
+    // Fitted into the viewport, so that a menu opened low stays above the
+    // status bar and off the side panels.
+    let screen = ctx
+        .data(|d| d.get_temp::<egui::Rect>(egui::Id::new(VIEWPORT_RECT)))
+        .unwrap_or_else(|| ctx.content_rect());
     let size = ctx
         .memory(|m| m.area_rect(id))
         .map_or(egui::Vec2::ZERO, |r| r.size());

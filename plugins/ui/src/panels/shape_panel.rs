@@ -148,8 +148,10 @@ pub(super) fn shape_panel(
         _ => return,
     }
     // Knots only where the shape is a NURBS (other kinds insert points: K).
+    // Rows of buttons wrap: a row wider than the panel would widen it (the
+    // viewport jumped) or be clipped ("Insert knot in v at").
     if !directions.is_empty() {
-        ui.horizontal(|ui| {
+        ui.horizontal_wrapped(|ui| {
             ui.add(
                 egui::DragValue::new(&mut state.knot_at)
                     .speed(0.01)
@@ -181,7 +183,7 @@ pub(super) fn shape_panel(
         ],
         _ => &[(ParameterDirection::U, "Elevate degree")],
     };
-    ui.horizontal(|ui| {
+    ui.horizontal_wrapped(|ui| {
         for (direction, label) in elevations {
             if ui.button(*label).clicked() {
                 exec(

@@ -10,7 +10,7 @@ use hedra_edit::bindings::{
 /// What the status bar says while a modal tool runs, from the keymap.
 fn tool_hint() -> String {
     hints(&[
-        (Tool, &[A::AxisX, A::AxisY, A::AxisZ], "constrain"),
+        (Tool, &[A::AxisX, A::AxisY, A::AxisZ], "constrain (Y is up)"),
         (Tool, &[A::Confirm], "(or click) confirm"),
         (Tool, &[A::Cancel], "(or right-click) cancel"),
     ]) + " · type a value"
