@@ -98,7 +98,15 @@ pub fn windowless_gui_app(recovery_dir: PathBuf) -> App {
 /// The windowed modeling app.
 pub fn gui_app(options: GuiOptions) -> App {
     let mut app = App::new();
-    app.add_plugins(DefaultPlugins.set(main_window()))
+    // Pipelines compile before the frame that first needs them: a new
+    // cube is drawn in the frame it appears, not left out (only its cage
+    // lines shown) until a background compile finishes, seconds later on
+    // the software renderer.
+    let render = bevy::render::RenderPlugin {
+        synchronous_pipeline_compilation: true,
+        ..default()
+    };
+    app.add_plugins(DefaultPlugins.set(main_window()).set(render))
         .add_plugins(HedraPlugins)
         .insert_resource(hedra_ui::SamplesDir(assets_dir().join("samples")));
     // Open the file, then run `--run`'s commands on it, in this order.

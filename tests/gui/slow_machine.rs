@@ -388,3 +388,47 @@ fn a_two_thousand_deep_scene_opens_and_draws_its_tip() {
         "the tip is drawn at {at}, the chain puts it at {expected}"
     );
 }
+
+/// The first frame that has the new cube has it selected too (it was drawn
+/// unselected for a frame, a second or two on the software renderer, until
+/// the next frame's tools read what the command created).
+#[test]
+fn a_new_cube_is_selected_in_the_frame_that_adds_it() {
+    let mut user = User::new();
+    let at = user.viewport_center();
+    user.open_add_menu_at(at);
+    let cube = user.find("Cube");
+    user.move_to(cube);
+    user.button_down(MouseButton::Left);
+    user.button_up(MouseButton::Left);
+    for _ in 0..10 {
+        if let Some(id) = user.doc().nodes().next().map(|n| n.id) {
+            let selected = &user.app.world().resource::<hedra_edit::Selection>().nodes;
+            assert_eq!(selected, &[id], "selected in the frame that added it");
+            return;
+        }
+        user.frame();
+    }
+    panic!("no cube was added: {}", user.status());
+}
+
+/// A click on a panel button leaves the keyboard to the viewport: Tab
+/// enters edit mode right after (a clicked button kept egui's focus, and
+/// with it every shortcut blocked; the recovery window's Recover did this).
+#[test]
+fn a_clicked_button_does_not_keep_the_keyboard() {
+    let mut user = User::new();
+    user.add("Cube");
+    user.click_on("Smooth");
+    let shading = match &user.doc().nodes().next().unwrap().content {
+        hedra_doc::NodeContent::Mesh(c) => c.shading,
+        _ => unreachable!(),
+    };
+    assert_eq!(shading, hedra_doc::Shading::Smooth);
+    user.move_to(user.viewport_center());
+    user.tap(KeyCode::Tab);
+    assert!(user.edit_mode().node.is_some(), "Tab entered edit mode");
+    user.tap(KeyCode::Tab);
+    user.tap(KeyCode::Tab);
+    assert!(user.edit_mode().node.is_some(), "and keeps toggling it");
+}

@@ -103,15 +103,18 @@ impl Plugin for EditPlugin {
             .init_resource::<ShapeEdit>()
             .init_resource::<CurveDraw>()
             .configure_sets(Update, EditSystems.in_set(SceneSystems::Tools))
+            // What a command created is selected in the frame that applied
+            // it, so that frame already draws it selected.
+            .add_systems(
+                Update,
+                follow_document_changes
+                    .in_set(SceneSystems::Apply)
+                    .after(hedra_scene::apply_requests),
+            )
             .add_systems(
                 Update,
                 (
-                    (
-                        follow_document_changes,
-                        mesh_mode::follow_changes,
-                        mesh_mode::mode_keys,
-                    )
-                        .chain(),
+                    (mesh_mode::follow_changes, mesh_mode::mode_keys).chain(),
                     snapping_keys,
                     proportional_keys,
                     bindings::key_help_keys,

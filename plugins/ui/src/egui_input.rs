@@ -75,7 +75,12 @@ pub(crate) fn write_egui_input_in_order(
     mut focus_lost: MessageReader<KeyboardFocusLost>,
     mut held: Local<HeldModifiers>,
     mut context: Query<
-        (Entity, &EguiZoomFactor, &mut EguiContextPointerPosition),
+        (
+            Entity,
+            &EguiZoomFactor,
+            &mut EguiContextPointerPosition,
+            &mut EguiContext,
+        ),
         With<PrimaryEguiContext>,
     >,
     mut egui_events: MessageWriter<EguiInputEvent>,
@@ -83,10 +88,13 @@ pub(crate) fn write_egui_input_in_order(
     if focus_lost.read().count() > 0 {
         *held = HeldModifiers::default();
     }
-    let Ok((context, zoom, mut pointer)) = context.single_mut() else {
+    let Ok((context, zoom, mut pointer, mut egui_context)) = context.single_mut() else {
         window_events.clear();
         return;
     };
+    // Tab is the viewport's (edit mode) unless a text field has the
+    // keyboard: given to egui, it would move the focus to a button.
+    let typing = egui_context.get_mut().text_edit_focused();
     let mut write = |event| {
         egui_events.write(EguiInputEvent { context, event });
     };
@@ -122,6 +130,9 @@ pub(crate) fn write_egui_input_in_order(
                     }
                 }
                 let physical_key = helpers::bevy_to_egui_physical_key(&input.key_code);
+                if input.key_code == KeyCode::Tab && !typing {
+                    continue;
+                }
                 if let Some(key) = helpers::bevy_to_egui_key(&input.logical_key).or(physical_key) {
                     write(egui::Event::Key {
                         key,

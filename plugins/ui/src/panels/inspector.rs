@@ -27,6 +27,7 @@ pub(super) fn topology_inspector(
             egui::Grid::new(salt)
                 .striped(true)
                 .spacing([6.0, 2.0])
+                .min_col_width(24.0)
                 .show(ui, |ui| {
                     for t in ["h", "from", "twin", "next", "prev", "face"] {
                         ui.label(egui::RichText::new(t).strong());

@@ -135,8 +135,6 @@ pub fn draw_ui(
 ) -> Result {
     let ctx = contexts.ctx_mut()?.clone();
     let mut events: Vec<UiEvent> = Vec::new();
-    // Tab belongs to the viewport (edit mode) unless a field is being edited.
-    let focus_before = ctx.memory(|m| m.focused());
     let mut root = egui::Ui::new(
         ctx.clone(),
         "hedra-root".into(),
@@ -315,17 +313,18 @@ pub fn draw_ui(
     gate.pointer_free = cursor.is_some_and(|c| free.contains(c))
         && !ctx.egui_is_using_pointer()
         && !ctx.is_pointer_over_egui();
-    if focus_before.is_none()
-        && ctx.input(|i| i.key_pressed(egui::Key::Tab))
-        && let Some(id) = ctx.memory(|m| m.focused())
+    // Only text fields keep the keyboard. A clicked button would keep
+    // egui's focus: every shortcut blocked until a click elsewhere, and
+    // Enter or Space (a tool's confirm) would press it again.
+    if let Some(id) = ctx.memory(|m| m.focused())
+        && !ctx.text_edit_focused()
     {
         ctx.memory_mut(|m| m.surrender_focus(id));
     }
     // No shortcut runs while a text field has the keyboard or a dialog
     // that is typed into is open (the path prompt, unsaved changes).
-    gate.keyboard_free = !ctx.egui_wants_keyboard_input()
-        && ui_state.path_prompt.is_none()
-        && ui_state.confirm.is_none();
+    gate.keyboard_free =
+        !ctx.text_edit_focused() && ui_state.path_prompt.is_none() && ui_state.confirm.is_none();
 
     // Apply what the panels decided.
     for e in events {
