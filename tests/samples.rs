@@ -539,35 +539,15 @@ fn shift_a_cube_with_a_held_click_in_the_real_window() {
         .count();
     // The Add menu opened at y = 700 moves up to fit above the status bar
     // (the viewport ends at y ≈ 778): Cube, its second row, lands at y ≈ 585.
-    let script = r#"
-        set -u
-        "$HEDRA" "$WORK" > "$LOG" 2>&1 &
-        app=$!
-        # The title names the file once the app runs with it open, gets a
-        # '*' when the scene changes and loses it when it is saved.
-        waitfor() { timeout 60 xdotool search --sync --onlyvisible --name "$1" | head -1; }
-        win=$(waitfor 'work[.]hedra[.]ron$')
-        [ -n "$win" ] || { echo "the window never showed the file" >&2; exit 3; }
-        sleep 2
-        xdotool windowfocus --sync "$win"; sleep 0.5
-        press() { xdotool keydown "$1"; sleep 0.3; xdotool keyup "$1"; }
+    let actions = r#"
         xdotool mousemove 640 700; sleep 1.5
         xdotool keydown shift; sleep 0.2; press a; sleep 0.2; xdotool keyup shift; sleep 3
         # Cube's row in the menu as fitted above the status bar (it moves
         # when the menu's first page gains or loses rows).
         xdotool mousemove 665 585; sleep 1.5
         xdotool mousedown 1; sleep 0.3; xdotool mouseup 1
-        [ -n "$(waitfor 'work[.]hedra[.]ron [*]$')" ] || echo "the click changed nothing" >&2
-        xdotool keydown ctrl; sleep 0.2; press s; sleep 0.2; xdotool keyup ctrl
-        [ -n "$(waitfor 'work[.]hedra[.]ron$')" ] || echo "Ctrl+S did not save" >&2
-        (sleep 60; kill "$app") >/dev/null 2>&1 &
-        watchdog=$!
-        xdotool keydown ctrl; sleep 0.2; press q; sleep 0.2; xdotool keyup ctrl
-        wait "$app"; status=$?
-        kill "$watchdog" 2>/dev/null
-        exit "$status"
     "#;
-    let (out, app_log) = drive_real_window(script, &work, dir.path());
+    let (out, app_log) = drive_real_window(actions, &work, dir.path());
     assert!(
         out.status.success(),
         "Ctrl+Q after Ctrl+S quits cleanly: {}\n{app_log}",
@@ -588,17 +568,44 @@ fn shift_a_cube_with_a_held_click_in_the_real_window() {
     );
 }
 
-/// Runs `script` (sh, with xdotool) under Xvfb with `$HEDRA` the app,
-/// `$WORK` the scene and `$LOG` the app's log; returns the script's output
-/// and the app's log.
+/// Runs `actions` (sh, with xdotool and `press KEY`) in the real window
+/// under Xvfb: the app is started on `work` and focused first; after the
+/// actions the script waits for the title's '*' (the scene changed), saves
+/// with Ctrl+S and quits with Ctrl+Q, and exits with the app's status.
+/// Returns the script's output and the app's log.
 fn drive_real_window(
-    script: &str,
+    actions: &str,
     work: &std::path::Path,
     dir: &std::path::Path,
 ) -> (std::process::Output, String) {
+    const START: &str = r#"
+        set -u
+        "$HEDRA" "$WORK" > "$LOG" 2>&1 &
+        app=$!
+        # The title names the file once the app runs with it open, gets a
+        # '*' when the scene changes and loses it when it is saved.
+        waitfor() { timeout 60 xdotool search --sync --onlyvisible --name "$1" | head -1; }
+        win=$(waitfor 'work[.]hedra[.]ron$')
+        [ -n "$win" ] || { echo "the window never showed the file" >&2; exit 3; }
+        sleep 2
+        xdotool windowfocus --sync "$win"; sleep 0.5
+        press() { xdotool keydown "$1"; sleep 0.3; xdotool keyup "$1"; sleep 0.3; }
+    "#;
+    const SAVE_AND_QUIT: &str = r#"
+        [ -n "$(waitfor 'work[.]hedra[.]ron [*]$')" ] || echo "the actions changed nothing" >&2
+        xdotool keydown ctrl; sleep 0.2; press s; sleep 0.2; xdotool keyup ctrl
+        [ -n "$(waitfor 'work[.]hedra[.]ron$')" ] || echo "Ctrl+S did not save" >&2
+        (sleep 60; kill "$app") >/dev/null 2>&1 &
+        watchdog=$!
+        xdotool keydown ctrl; sleep 0.2; press q; sleep 0.2; xdotool keyup ctrl
+        wait "$app"; status=$?
+        kill "$watchdog" 2>/dev/null
+        exit "$status"
+    "#;
+    let script = format!("{START}{actions}{SAVE_AND_QUIT}");
     let log = dir.join("app.log");
     let out = std::process::Command::new("xvfb-run")
-        .args(["-a", "-s", "-screen 0 1280x800x24", "sh", "-c", script])
+        .args(["-a", "-s", "-screen 0 1280x800x24", "sh", "-c", &script])
         .env("HEDRA", env!("CARGO_BIN_EXE_hedra"))
         .env("WORK", work)
         .env("LOG", &log)
@@ -627,31 +634,13 @@ fn numbers_typed_fast_in_the_real_window_keep_their_order() {
         })
         .unwrap();
     hedra::doc::file::save(&mut session, &work).unwrap();
-    let script = r#"
-        set -u
-        "$HEDRA" "$WORK" > "$LOG" 2>&1 &
-        app=$!
-        waitfor() { timeout 60 xdotool search --sync --onlyvisible --name "$1" | head -1; }
-        win=$(waitfor 'work[.]hedra[.]ron$')
-        [ -n "$win" ] || { echo "the window never showed the file" >&2; exit 3; }
-        sleep 2
-        xdotool windowfocus --sync "$win"; sleep 0.5
-        press() { xdotool keydown "$1"; sleep 0.3; xdotool keyup "$1"; sleep 0.5; }
+    let actions = r#"
         xdotool mousemove 640 400; sleep 1.5
         press a; press g; xdotool mousemove 660 410; sleep 1; press x
         xdotool type --delay 1 21; sleep 1
         press Return
-        [ -n "$(waitfor 'work[.]hedra[.]ron [*]$')" ] || echo "the move changed nothing" >&2
-        xdotool keydown ctrl; sleep 0.2; press s; sleep 0.2; xdotool keyup ctrl
-        [ -n "$(waitfor 'work[.]hedra[.]ron$')" ] || echo "Ctrl+S did not save" >&2
-        (sleep 60; kill "$app") >/dev/null 2>&1 &
-        watchdog=$!
-        xdotool keydown ctrl; sleep 0.2; press q; sleep 0.2; xdotool keyup ctrl
-        wait "$app"; status=$?
-        kill "$watchdog" 2>/dev/null
-        exit "$status"
     "#;
-    let (out, app_log) = drive_real_window(script, &work, dir.path());
+    let (out, app_log) = drive_real_window(actions, &work, dir.path());
     assert!(
         out.status.success(),
         "{}\n{app_log}",
