@@ -300,6 +300,12 @@ fn cancel_in_a_dialog_clicked_in_one_frame_keeps_the_selection() {
     let mut user = User::new();
     user.add("Cube");
     let cube = user.doc().nodes().next().unwrap().id;
+    // Out of the way: behind the dialog's buttons is empty space, where a
+    // click that reached the viewport would deselect.
+    user.tap(KeyCode::KeyG);
+    user.tap(KeyCode::KeyX);
+    user.type_text("40");
+    user.tap(KeyCode::Enter);
     user.shortcut(&[KeyCode::ControlLeft], KeyCode::KeyN);
     assert!(user.shows("Don't Save"));
     let cancel = user.find("Cancel");
