@@ -38,7 +38,7 @@ impl TypedNumber {
     /// arrive in one frame on a slow machine: `2` then `1` is 21, and `100`
     /// keeps both zeros); with `minus_toggles`, Minus flips the sign.
     pub fn read(&mut self, strokes: &Strokes, minus_toggles: bool) {
-        for (key, _) in strokes.key_presses() {
+        for key in strokes.key_presses() {
             self.type_key(key, minus_toggles);
         }
     }

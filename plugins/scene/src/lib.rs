@@ -46,7 +46,7 @@ pub use projection::*;
 pub use render_mesh::*;
 pub use shape_entities::*;
 pub use smooth::{SmoothPreviews, SmoothSource};
-pub use strokes::{HeldModifiers, Stroke, Strokes, record_strokes};
+pub use strokes::{Strokes, record_strokes};
 
 /// The open document, where it lives on disk, and a change counter.
 #[derive(Resource, Default)]
@@ -368,10 +368,6 @@ impl Plugin for ScenePlugin {
             .init_resource::<QuadView>()
             .init_resource::<Cursor3d>()
             .init_resource::<Strokes>()
-            // Present without a window too (the headless app), where no
-            // window or input plugin adds them.
-            .add_message::<bevy::window::WindowEvent>()
-            .add_message::<bevy::input::keyboard::KeyboardFocusLost>()
             .add_systems(PreUpdate, record_strokes.after(bevy::input::InputSystems))
             .add_message::<DocRequest>()
             .add_message::<DocChanged>()

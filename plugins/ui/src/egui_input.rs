@@ -7,8 +7,7 @@
 //! text field typed "a". Its pointer, button and keyboard writers are turned
 //! off ([`take_over_egui_input`]) and [`write_egui_input_in_order`] does their
 //! work from the one ordered `WindowEvent` stream, following the modifiers
-//! event by event ([`hedra_scene::HeldModifiers`], as the viewport's
-//! [`hedra_scene::Strokes`] do).
+//! event by event ([`HeldModifiers`]).
 //!
 //! Menus and buttons activate on release over the item however long the
 //! press was, as on every desktop: egui counts a press held longer than
@@ -16,14 +15,45 @@
 //! person's click that long.
 
 use bevy::input::ButtonState;
-use bevy::input::keyboard::{Key, KeyboardFocusLost};
+use bevy::input::keyboard::{Key, KeyboardFocusLost, KeyboardInput};
 use bevy::prelude::*;
 use bevy::window::WindowEvent;
 use bevy_egui::input::{EguiContextPointerPosition, EguiInputEvent};
 use bevy_egui::{
     EguiContext, EguiGlobalSettings, EguiZoomFactor, PrimaryEguiContext, egui, helpers,
 };
-use hedra_scene::HeldModifiers;
+
+/// Which modifier keys are held.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(crate) struct HeldModifiers {
+    /// Ctrl (or the Super/Command key).
+    pub ctrl: bool,
+    /// Shift.
+    pub shift: bool,
+    /// Alt (Option on macOS).
+    pub alt: bool,
+}
+
+impl HeldModifiers {
+    /// Follows one keyboard event: a modifier's press or release changes
+    /// what is held; other keys leave it as it is.
+    fn follow(&mut self, event: &KeyboardInput) {
+        let down = event.state == ButtonState::Pressed;
+        match (&event.logical_key, event.key_code) {
+            (Key::Shift, _) | (_, KeyCode::ShiftLeft | KeyCode::ShiftRight) => self.shift = down,
+            (Key::Control | Key::Super | Key::Meta, _)
+            | (
+                _,
+                KeyCode::ControlLeft
+                | KeyCode::ControlRight
+                | KeyCode::SuperLeft
+                | KeyCode::SuperRight,
+            ) => self.ctrl = down,
+            (Key::Alt, _) | (_, KeyCode::AltLeft | KeyCode::AltRight) => self.alt = down,
+            _ => {}
+        }
+    }
+}
 
 /// How long a press may be held and still click: an hour, that is any
 /// press a person makes (egui's default is 0.8 s).
@@ -168,32 +198,31 @@ pub fn click_modifiers(ui: &egui::Ui) -> egui::Modifiers {
     })
 }
 
-/// At the start of a frame, whether the pointer is free for the viewport
-/// where it is *now*: over the 3D area between the panels, not over a
-/// window, menu or dialog egui drew last frame, and egui not dragging.
-/// (`draw_ui` decides it at the end of the frame from where the pointer was
-/// then; on a slow frame the pointer may have moved onto a dialog's button
-/// and clicked in one go, and the click reached the viewport too: Cancel in
-/// "Unsaved changes" cleared the selection.)
+/// The one writer of [`hedra_scene::InputGate::pointer_free`]: at the start
+/// of a frame, whether the pointer is free for the viewport where it is
+/// *now*: over the 3D area between the panels, not over a window, menu or
+/// dialog egui drew last frame, and egui not dragging. (Decided at the end
+/// of the frame before, a slow frame's move onto a dialog's button and
+/// click reached the viewport too: Cancel in "Unsaved changes" cleared the
+/// selection.)
 pub(crate) fn refresh_pointer_gate(
     window: Single<&Window, With<bevy::window::PrimaryWindow>>,
     mut contexts: Query<&mut EguiContext, With<PrimaryEguiContext>>,
     ui: Res<crate::UiState>,
     mut gate: ResMut<hedra_scene::InputGate>,
 ) {
-    let (Some(cursor), Some(viewport), Ok(mut context)) = (
-        window.cursor_position(),
-        ui.viewport_rect,
-        contexts.single_mut(),
-    ) else {
+    // Before the panels are first laid out there is nothing to decide by.
+    let (Some(viewport), Ok(mut context)) = (ui.viewport_rect, contexts.single_mut()) else {
         return;
     };
     let ctx = context.get_mut();
-    let at = egui::pos2(cursor.x, cursor.y);
-    let over_window = ctx
-        .layer_id_at(at)
-        .is_some_and(|layer| layer.order != egui::Order::Background);
-    let free = viewport.contains(at) && !over_window && !ctx.egui_is_using_pointer();
+    let free = window.cursor_position().is_some_and(|cursor| {
+        let at = egui::pos2(cursor.x, cursor.y);
+        let over_window = ctx
+            .layer_id_at(at)
+            .is_some_and(|layer| layer.order != egui::Order::Background);
+        viewport.contains(at) && !over_window && !ctx.egui_is_using_pointer()
+    });
     if gate.pointer_free != free {
         gate.pointer_free = free;
     }

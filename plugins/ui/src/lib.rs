@@ -38,6 +38,8 @@ pub struct UiState {
     /// The object-mode statistics of the shown meshes (vertices, edges,
     /// faces, triangles) and the document revision they were counted at.
     pub shown_counts: Option<(u64, [usize; 4])>,
+    /// The outliner's tree and the document revision it was walked at.
+    pub outliner_tree: Option<(u64, hedra_doc::Hierarchy)>,
     /// OBJ export writes curves as free-form NURBS records (`curv`/`parm`)
     /// instead of polylines (File ▸ Export).
     pub obj_nurbs_curves: bool,
@@ -114,6 +116,7 @@ impl Default for UiState {
             show_history: false,
             show_statistics: false,
             shown_counts: None,
+            outliner_tree: None,
             show_preferences: false,
             add_menu_at: None,
             snap_menu_at: None,

@@ -130,7 +130,6 @@ pub fn draw_ui(
     mut tool_previews: ResMut<hedra_scene::Previews>,
     control_points: Query<(&hedra_scene::ControlPoint, &ChildOf)>,
     entities: Res<hedra_scene::NodeEntities>,
-    window: Single<&Window, With<bevy::window::PrimaryWindow>>,
     camera: Query<(&Camera, &GlobalTransform), With<hedra_scene::ViewportCamera>>,
 ) -> Result {
     let ctx = contexts.ctx_mut()?.clone();
@@ -209,7 +208,15 @@ pub fn draw_ui(
             .show(&mut root, |ui| {
                 ui.heading("Outliner");
                 ui.separator();
-                outliner(ui, doc, &model.selection, &mut ui_state, &mut events);
+                let revision = model.state.revision;
+                outliner(
+                    ui,
+                    doc,
+                    revision,
+                    &model.selection,
+                    &mut ui_state,
+                    &mut events,
+                );
             });
     }
     if ui_state.show_properties {
@@ -308,11 +315,8 @@ pub fn draw_ui(
     merge_menu(&ctx, &mut model, &mut events);
     dialogs(&ctx, &mut ui_state, &mut model, &mut writers);
 
-    // Viewport input is free when the pointer is over the 3D area and egui is not busy.
-    let cursor = window.cursor_position().map(|c| egui::pos2(c.x, c.y));
-    gate.pointer_free = cursor.is_some_and(|c| free.contains(c))
-        && !ctx.egui_is_using_pointer()
-        && !ctx.is_pointer_over_egui();
+    // Whether the pointer is the viewport's is decided at the start of the
+    // next frame, from where it is then (`egui_input::refresh_pointer_gate`).
     // Only text fields keep the keyboard. A clicked button would keep
     // egui's focus: every shortcut blocked until a click elsewhere, and
     // Enter or Space (a tool's confirm) would press it again.

@@ -5,18 +5,24 @@ use super::*;
 pub(super) fn outliner(
     ui: &mut egui::Ui,
     doc: &Document,
+    revision: u64,
     selection: &Selection,
     state: &mut UiState,
     events: &mut Vec<UiEvent>,
 ) {
     egui::ScrollArea::vertical().show(ui, |ui| {
-        // The tree in one top-down walk (a recursion that scanned every
-        // node for each one's children took seconds on a 2,000-deep scene).
-        let tree = doc.hierarchy();
+        // The tree from one top-down walk, made again only when the
+        // document changes (a recursion that scanned every node for each
+        // one's children took seconds a frame on a 2,000-deep scene).
+        let tree = match state.outliner_tree.take() {
+            Some((seen, tree)) if seen == revision => tree,
+            _ => doc.hierarchy(),
+        };
         for &id in tree.order() {
             let depth = tree.facts(id).map_or(0, |f| f.depth);
             outliner_row(ui, doc, id, depth, selection, state, events);
         }
+        state.outliner_tree = Some((revision, tree));
         // Dropping a node on the empty area below the tree moves it to the top level.
         let rest = ui.available_size().max(egui::vec2(10.0, 40.0));
         let (_, resp) = ui.allocate_exact_size(rest, egui::Sense::hover());
