@@ -357,15 +357,17 @@ pub(super) fn statistics_overlay(
         });
 }
 
-/// The overlay's lines (see [`statistics_overlay`]).
+/// Triangles of `m`'s faces when fanned (an n-gon makes n - 2).
+fn triangles(m: &hedra_geom::HalfEdgeMesh) -> usize {
+    m.faces().map(|f| m.face_degree(f).saturating_sub(2)).sum()
+}
+
 /// Vertices, edges, faces and triangles of the visible meshes as the
 /// viewport shows them: the modifier stack applied and subdivision at its
 /// viewport level (a cube at level 4 counts 1,536 faces, not the cage's 6);
 /// a CSG node counts its solid.
 fn shown_counts(doc: &Document) -> [usize; 4] {
-    let triangles = |m: &hedra_geom::HalfEdgeMesh| -> usize {
-        m.faces().map(|f| m.face_degree(f).saturating_sub(2)).sum()
-    };
+    let tree = doc.hierarchy();
     let mut counts = [0; 4];
     let mut add = |m: &hedra_geom::HalfEdgeMesh| {
         counts[0] += m.vertex_count();
@@ -373,11 +375,11 @@ fn shown_counts(doc: &Document) -> [usize; 4] {
         counts[2] += m.face_count();
         counts[3] += triangles(m);
     };
-    for n in doc.nodes().filter(|n| hedra_edit::visible(doc, n.id)) {
-        // Operands are drawn through their CSG node's solid.
-        if hedra_doc::csg::outermost_csg(doc, n.id).is_some() {
-            continue;
-        }
+    // Operands are drawn through their CSG node's solid.
+    for n in doc
+        .nodes()
+        .filter(|n| tree.is_visible(n.id) && !tree.inside_csg(n.id))
+    {
         match &n.content {
             NodeContent::Mesh(c) => {
                 let level = c.subdivision.map_or(0, |s| s.viewport_level);
@@ -396,15 +398,13 @@ fn shown_counts(doc: &Document) -> [usize; 4] {
     counts
 }
 
+/// The overlay's lines (see [`statistics_overlay`]).
 fn statistics_lines(
     doc: &Document,
     selection: &Selection,
     mode: &EditMode,
     shown: [usize; 4],
 ) -> Vec<String> {
-    let triangles = |m: &hedra_geom::HalfEdgeMesh| -> usize {
-        m.faces().map(|f| m.face_degree(f).saturating_sub(2)).sum()
-    };
     if let Some(node) = mode.node
         && let Some(NodeContent::Mesh(c)) = doc.node(node).map(|n| &n.content)
     {
