@@ -718,6 +718,7 @@ pub fn gltf_from_bytes(
             not_imported: Vec::new(),
             vertex_numbers: Vec::new(),
             curve: None,
+            content: None,
         });
         for child in node.children().collect::<Vec<_>>().into_iter().rev() {
             stack.push((child, Some(me)));

@@ -62,6 +62,11 @@ pub struct ImportedMesh {
     /// A curve read from the file (an OBJ free-form B-spline or Bézier
     /// curve): the node is a curve node, `mesh` is `None`.
     pub curve: Option<hedra_geom::NurbsCurve>,
+    /// The node's whole content as a richer format reads it (USD: a mesh
+    /// with its subdivision modifier and creases, a NURBS surface or
+    /// curve; STEP: a B-spline surface or curve). When set it is used as
+    /// it is and `mesh`, `corners` and `curve` are not read.
+    pub content: Option<NodeContent>,
 }
 
 impl ImportedMesh {
@@ -80,11 +85,13 @@ impl ImportedMesh {
             vertex_numbers: Vec::new(),
             corners: CornerAttributes::default(),
             curve: None,
+            content: None,
         }
     }
 
-    /// A top-level grouping node without a mesh.
-    fn empty(name: String) -> Self {
+    /// A top-level grouping node without a mesh (the base that other
+    /// importers fill in with `..ImportedMesh::empty(name)`).
+    pub(crate) fn empty(name: String) -> Self {
         ImportedMesh {
             name,
             mesh: None,
@@ -98,6 +105,7 @@ impl ImportedMesh {
             vertex_numbers: Vec::new(),
             corners: CornerAttributes::default(),
             curve: None,
+            content: None,
         }
     }
 }
@@ -1700,6 +1708,7 @@ impl Document {
                 transform: m.transform,
                 visible: true,
                 content: match (&m.mesh, &m.curve) {
+                    _ if m.content.is_some() => m.content.clone().unwrap_or(NodeContent::Empty),
                     (Some(mesh), _) => NodeContent::Mesh(MeshContent {
                         corners: m.corners.clone(),
                         ..MeshContent::new(Arc::new(mesh.clone()))
