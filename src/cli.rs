@@ -345,15 +345,17 @@ pub fn run(sub: Sub) -> Result<(), CliError> {
             let options = hedra_doc::export::ExportOptions {
                 shape,
                 ascii_stl: ascii,
+                curves: match curves {
+                    ObjCurves::Polylines => hedra_doc::export::CurveExport::Polylines,
+                    ObjCurves::Nurbs => hedra_doc::export::CurveExport::FreeForm,
+                },
             };
-            let curves = match curves {
-                ObjCurves::Polylines => hedra_doc::export::CurveExport::Polylines,
-                ObjCurves::Nurbs => hedra_doc::export::CurveExport::FreeForm,
-            };
-            let bytes =
-                hedra_doc::export::export_bytes_with_curves(&session.doc, &output, options, curves)
-                    .map_err(|e| CliError(e.to_string()))?;
-            file::write_atomic_bytes(&output, &bytes)?;
+            let exported = hedra_doc::export::export_file(&session.doc, &output, options)
+                .map_err(|e| CliError(e.to_string()))?;
+            file::write_atomic_bytes(&output, &exported.bytes)?;
+            for note in &exported.notes {
+                eprintln!("hedra: note: {}: {note}", output.display());
+            }
         }
     }
     Ok(())

@@ -29,9 +29,16 @@ impl PluginGroup for HedraPlugins {
     }
 }
 
-/// Where the bundled assets (sample scenes) are.
+/// Where the bundled assets (sample scenes) are: the checkout's `assets`
+/// folder. Under cargo (`cargo run`, the tests) the folder cargo names at
+/// run time, since a binary built in another checkout that shares the
+/// target directory would otherwise read that checkout's files.
 pub fn assets_dir() -> PathBuf {
-    PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/assets"))
+    std::env::var_os("CARGO_MANIFEST_DIR")
+        .map(PathBuf::from)
+        .filter(|dir| dir.join("assets").is_dir())
+        .unwrap_or_else(|| PathBuf::from(env!("CARGO_MANIFEST_DIR")))
+        .join("assets")
 }
 
 /// How the window starts.

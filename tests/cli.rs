@@ -1212,8 +1212,10 @@ fn info_counts_what_export_writes_and_lod_at_the_same_ratio_works() {
 #[test]
 fn export_writes_the_csg_solid_to_every_format() {
     let dir = tempfile::tempdir().unwrap();
-    let sample =
-        std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("assets/samples/csg.hedra.ron");
+    let sample = std::path::PathBuf::from(
+        std::env::var("CARGO_MANIFEST_DIR").expect("cargo sets CARGO_MANIFEST_DIR"),
+    )
+    .join("assets/samples/csg.hedra.ron");
     for extra in [&[][..], &["--cage"][..], &["--subdivide", "2"][..]] {
         for ext in ["obj", "stl", "gltf", "glb"] {
             let out = dir.path().join(format!("emblem.{ext}"));

@@ -2811,8 +2811,10 @@ fn a_frenet_sweep_shows_where_its_frame_flips() {
 #[test]
 fn the_g1_sample_shows_sections_and_the_domain_point_on_both_patches() {
     let mut user = User::new();
-    let sample =
-        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/samples/g1-join.hedra.ron");
+    let sample = std::path::Path::new(
+        &std::env::var("CARGO_MANIFEST_DIR").expect("cargo sets CARGO_MANIFEST_DIR"),
+    )
+    .join("assets/samples/g1-join.hedra.ron");
     user.app
         .world_mut()
         .write_message(hedra_ui::FileAction::OpenPath(sample));

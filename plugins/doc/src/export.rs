@@ -32,13 +32,57 @@ pub enum ExportShape {
     Subdivided(u32),
 }
 
-/// The formats [`export_bytes`] writes, by file extension.
-pub const EXPORT_FORMATS: &[(&str, &str)] = &[
-    ("obj", "Wavefront OBJ"),
-    ("stl", "STL"),
-    ("gltf", "glTF 2.0"),
-    ("glb", "binary glTF 2.0"),
-];
+/// A format File ▸ Export and `hedra export` write: the one place that
+/// names each format, its extensions and its menu label.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub enum ExportFormat {
+    /// Wavefront OBJ: polygons as they are, curves as polylines or NURBS records.
+    Obj,
+    /// STL, triangulated (binary, or text with [`ExportOptions::ascii_stl`]).
+    Stl,
+    /// glTF 2.0 with the hierarchy (`.glb` binary, `.gltf` text).
+    Gltf,
+}
+
+impl ExportFormat {
+    /// Every export format, in menu order.
+    pub const ALL: [ExportFormat; 3] = [ExportFormat::Obj, ExportFormat::Stl, ExportFormat::Gltf];
+
+    /// The format's name ("Wavefront OBJ").
+    pub fn name(self) -> &'static str {
+        match self {
+            ExportFormat::Obj => "Wavefront OBJ",
+            ExportFormat::Stl => "STL",
+            ExportFormat::Gltf => "glTF 2.0",
+        }
+    }
+
+    /// The extensions that pick the format; the first is the one offered.
+    pub fn extensions(self) -> &'static [&'static str] {
+        match self {
+            ExportFormat::Obj => &["obj"],
+            ExportFormat::Stl => &["stl"],
+            ExportFormat::Gltf => &["glb", "gltf"],
+        }
+    }
+
+    /// What File ▸ Export shows for it.
+    pub fn menu_label(self) -> &'static str {
+        match self {
+            ExportFormat::Obj => "Wavefront OBJ (.obj)…",
+            ExportFormat::Stl => "STL, triangulated (.stl)…",
+            ExportFormat::Gltf => "glTF 2.0 binary, with the hierarchy (.glb)…",
+        }
+    }
+
+    /// The format a file name's extension picks (any case).
+    pub fn of_path(path: &Path) -> Option<ExportFormat> {
+        let ext = path.extension()?.to_str()?.to_ascii_lowercase();
+        ExportFormat::ALL
+            .into_iter()
+            .find(|f| f.extensions().contains(&ext.as_str()))
+    }
+}
 
 /// How OBJ holds curve nodes.
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
@@ -63,6 +107,19 @@ pub struct ExportOptions {
     pub shape: ExportShape,
     /// Write STL as text instead of binary.
     pub ascii_stl: bool,
+    /// How OBJ writes curve nodes (the other formats tessellate them or
+    /// leave them out).
+    pub curves: CurveExport,
+}
+
+/// A written export: the file's bytes and what the user should know about
+/// them (what a format could not hold and how it was written instead).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Exported {
+    /// The file's contents.
+    pub bytes: Vec<u8>,
+    /// One line per thing the user should know, naming the node.
+    pub notes: Vec<String>,
 }
 
 /// Why an export could not be made; nothing is written then.
@@ -122,40 +179,41 @@ pub enum ExportError {
 
 /// The export extensions as the error lists them: `.obj, .stl, ...`.
 fn supported_formats() -> String {
-    EXPORT_FORMATS
+    ExportFormat::ALL
         .iter()
-        .map(|(e, _)| format!(".{e}"))
+        .flat_map(|f| f.extensions())
+        .map(|e| format!(".{e}"))
         .collect::<Vec<_>>()
         .join(", ")
 }
 
-/// The document in the format that `path`'s extension names.
+/// The document in the format that `path`'s extension names (the bytes of
+/// [`export_file`]).
 ///
 /// # Errors
-/// [`ExportError`] naming the file when the extension is not an export
-/// format or the scene holds nothing the format can, or naming the node
-/// whose subdivision failed.
+/// As [`export_file`].
 pub fn export_bytes(
     doc: &Document,
     path: &Path,
     options: ExportOptions,
 ) -> Result<Vec<u8>, ExportError> {
-    export_bytes_with_curves(doc, path, options, CurveExport::Polylines)
+    export_file(doc, path, options).map(|e| e.bytes)
 }
 
-/// [`export_bytes`] with a choice of how OBJ writes curves (the other
-/// formats tessellate them or leave them out as before). The reader,
-/// [`crate::import::obj_from_str`], turns free-form records back into
-/// NURBS curve nodes.
+/// The document in the format that `path`'s extension names, with the notes
+/// the user should see. The readers ([`crate::import::import_file`]) turn
+/// what Hedra writes back into nodes.
 ///
 /// # Errors
-/// As [`export_bytes`].
-pub fn export_bytes_with_curves(
+/// [`ExportError`] naming the file when the extension is not an export
+/// format or the scene holds nothing the format can, or naming the node
+/// whose subdivision failed.
+pub fn export_file(
     doc: &Document,
     path: &Path,
     options: ExportOptions,
-    curves: CurveExport,
-) -> Result<Vec<u8>, ExportError> {
+) -> Result<Exported, ExportError> {
+    let curves = options.curves;
     let shape = options.shape;
     let ext = path
         .extension()
@@ -180,17 +238,23 @@ pub fn export_bytes_with_curves(
         }
         Ok(items)
     };
-    match ext.as_str() {
-        "obj" => Ok(to_obj(&items(false)?).into_bytes()),
-        "stl" if options.ascii_stl => Ok(to_ascii_stl(&items(true)?).into_bytes()),
-        "stl" => Ok(to_stl(&items(true)?)),
-        "gltf" => crate::gltf::to_gltf(doc, shape, false),
-        "glb" => crate::gltf::to_gltf(doc, shape, true),
-        other => Err(ExportError::UnsupportedFormat {
-            path: path.to_path_buf(),
-            extension: other.to_string(),
-        }),
-    }
+    let bytes = match ext.as_str() {
+        "obj" => to_obj(&items(false)?).into_bytes(),
+        "stl" if options.ascii_stl => to_ascii_stl(&items(true)?).into_bytes(),
+        "stl" => to_stl(&items(true)?),
+        "gltf" => crate::gltf::to_gltf(doc, shape, false)?,
+        "glb" => crate::gltf::to_gltf(doc, shape, true)?,
+        other => {
+            return Err(ExportError::UnsupportedFormat {
+                path: path.to_path_buf(),
+                extension: other.to_string(),
+            });
+        }
+    };
+    Ok(Exported {
+        bytes,
+        notes: Vec::new(),
+    })
 }
 
 /// The visible meshes as binary STL (written by `stl_io`): every face

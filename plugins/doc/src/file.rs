@@ -1263,7 +1263,9 @@ mod tests {
         assert_eq!(prepared.scene_meshes.map(|m| m.len()), Some(1));
         assert_eq!(prepared.history_meshes.map(|m| m.len()), Some(1));
         assert!(prepared.text.len() < 2000, "{}", prepared.text);
-        let corpus = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/corpus/scenes");
+        let corpus =
+            Path::new(&std::env::var("CARGO_MANIFEST_DIR").expect("cargo sets CARGO_MANIFEST_DIR"))
+                .join("tests/corpus/scenes");
         for name in [
             "v1-chair.hedra.ron",
             "v2-every-command.hedra.ron",

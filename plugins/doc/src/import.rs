@@ -1426,6 +1426,9 @@ fn obj_text(bytes: &[u8]) -> String {
     }
 }
 
+/// The extensions [`import_file`] reads, in the order menus list them.
+pub const IMPORT_FORMATS: &[&str] = &["obj", "stl", "gltf", "glb"];
+
 /// Reads a file by its extension.
 ///
 /// # Errors

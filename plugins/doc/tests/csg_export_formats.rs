@@ -22,7 +22,16 @@ fn sample(name: &str) -> Document {
 /// The triangles each format writes for `doc`, by format name.
 fn every_format(doc: &Document, shape: ExportShape) -> Vec<(&'static str, Vec<Triangle>)> {
     let bytes = |name: &str, ascii_stl: bool| {
-        export_bytes(doc, Path::new(name), ExportOptions { shape, ascii_stl }).unwrap()
+        export_bytes(
+            doc,
+            Path::new(name),
+            ExportOptions {
+                shape,
+                ascii_stl,
+                ..ExportOptions::default()
+            },
+        )
+        .unwrap()
     };
     let text = |b: Vec<u8>| String::from_utf8(b).unwrap();
     let gltf = |b: Vec<u8>| {

@@ -4,7 +4,7 @@
 use glam::DVec3;
 use hedra_doc::command::CurveSpec;
 use hedra_doc::eval::{Evaluation, evaluate};
-use hedra_doc::export::{CurveExport, ExportOptions, export_bytes, export_bytes_with_curves};
+use hedra_doc::export::{CurveExport, ExportOptions, export_bytes};
 use hedra_doc::import::{describe_repairs, obj_from_str};
 use hedra_doc::{Command, NodeContent, NodeRef, NodeTransform, Session};
 use hedra_geom::curves::interpolating::Tbc;
@@ -325,13 +325,11 @@ fn obj_free_form_curves_round_trip_exactly() {
     .unwrap();
     assert!(curve_of(&s, "Long").tolerance().is_some());
     let path = Path::new("curves.obj");
-    let bytes = export_bytes_with_curves(
-        &s.doc,
-        path,
-        ExportOptions::default(),
-        CurveExport::FreeForm,
-    )
-    .unwrap();
+    let options = ExportOptions {
+        curves: CurveExport::FreeForm,
+        ..ExportOptions::default()
+    };
+    let bytes = export_bytes(&s.doc, path, options).unwrap();
     let text = String::from_utf8(bytes).unwrap();
     let count = |key: &str| {
         text.lines()

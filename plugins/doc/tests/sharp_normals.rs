@@ -16,7 +16,9 @@ use std::path::PathBuf;
 use std::sync::Arc;
 
 fn jar() -> Session {
-    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../assets/samples/jar.hedra.ron");
+    let path =
+        PathBuf::from(std::env::var("CARGO_MANIFEST_DIR").expect("cargo sets CARGO_MANIFEST_DIR"))
+            .join("../../assets/samples/jar.hedra.ron");
     file::load(&path).unwrap().session
 }
 

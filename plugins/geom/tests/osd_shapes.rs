@@ -67,8 +67,11 @@ struct Stored {
     points: Vec<DVec3>,
 }
 
-fn shapes_dir() -> &'static Path {
-    Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/tests/osd_shapes"))
+/// Read at run time, not compile time: a test binary built in another
+/// checkout sharing the target directory must read this checkout's files.
+fn shapes_dir() -> std::path::PathBuf {
+    Path::new(&std::env::var("CARGO_MANIFEST_DIR").expect("cargo sets CARGO_MANIFEST_DIR"))
+        .join("tests/osd_shapes")
 }
 
 /// `t name ni/nf/ns ints… floats… strings…` (OpenSubdiv's `Shape::tag`).

@@ -3,6 +3,7 @@
 
 use bevy::prelude::*;
 use bevy::tasks::{IoTaskPool, Task, futures::check_ready};
+use hedra_doc::export::ExportFormat;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
@@ -14,44 +15,36 @@ pub enum FilePurpose {
     /// Save the scene under a new path (the scene extension is added when
     /// missing).
     SaveAs,
-    /// Import meshes as new nodes: OBJ, STL or glTF/GLB, despite the name.
-    ImportObj,
-    /// Export the scene, offering .obj (Wavefront OBJ). As for every export,
-    /// the extension of the path finally chosen picks the format.
-    ExportObj,
-    /// Export the scene, offering .stl (binary STL).
-    ExportStl,
-    /// Export the scene, offering .glb (binary glTF 2.0; .gltf is accepted).
-    ExportGlb,
+    /// Import a file's nodes into the scene (every format of
+    /// [`hedra_doc::import::IMPORT_FORMATS`]).
+    Import,
+    /// Export the scene, offering this format. The extension of the path
+    /// finally chosen picks the format.
+    Export(ExportFormat),
 }
 
 impl FilePurpose {
     /// The title of the dialog and of the path prompt ("Open Scene", …).
-    pub fn title(self) -> &'static str {
+    pub fn title(self) -> String {
         match self {
-            FilePurpose::Open => "Open Scene",
-            FilePurpose::SaveAs => "Save Scene As",
-            FilePurpose::ImportObj => "Import OBJ, STL or glTF",
-            FilePurpose::ExportObj => "Export OBJ",
-            FilePurpose::ExportStl => "Export STL",
-            FilePurpose::ExportGlb => "Export glTF",
+            FilePurpose::Open => "Open Scene".to_string(),
+            FilePurpose::SaveAs => "Save Scene As".to_string(),
+            FilePurpose::Import => "Import".to_string(),
+            FilePurpose::Export(format) => format!("Export {}", format.name()),
         }
     }
-    /// The file name offered for an export.
-    pub fn export_file_name(self) -> &'static str {
+    /// The file name offered for an export ("export.obj").
+    pub fn export_file_name(self) -> String {
         match self {
-            FilePurpose::ExportStl => "export.stl",
-            FilePurpose::ExportGlb => "export.glb",
-            _ => "export.obj",
+            FilePurpose::Export(format) => format!("export.{}", format.extensions()[0]),
+            _ => "export.obj".to_string(),
         }
     }
     fn filter(self) -> (&'static str, &'static [&'static str]) {
         match self {
             FilePurpose::Open | FilePurpose::SaveAs => ("Hedra scene", &["ron"]),
-            FilePurpose::ImportObj => ("OBJ, STL or glTF", &["obj", "stl", "gltf", "glb"]),
-            FilePurpose::ExportObj => ("Wavefront OBJ", &["obj"]),
-            FilePurpose::ExportStl => ("STL", &["stl"]),
-            FilePurpose::ExportGlb => ("glTF 2.0", &["glb", "gltf"]),
+            FilePurpose::Import => ("Files Hedra imports", hedra_doc::import::IMPORT_FORMATS),
+            FilePurpose::Export(format) => (format.name(), format.extensions()),
         }
     }
 }
@@ -110,11 +103,9 @@ pub fn spawn_dialog(purpose: FilePurpose, start_dir: Option<PathBuf>) -> DialogT
             d = d.set_directory(dir);
         }
         match purpose {
-            FilePurpose::Open | FilePurpose::ImportObj => d.pick_file(),
+            FilePurpose::Open | FilePurpose::Import => d.pick_file(),
             FilePurpose::SaveAs => d.set_file_name("untitled.hedra.ron").save_file(),
-            FilePurpose::ExportObj | FilePurpose::ExportStl | FilePurpose::ExportGlb => {
-                d.set_file_name(purpose.export_file_name()).save_file()
-            }
+            FilePurpose::Export(_) => d.set_file_name(purpose.export_file_name()).save_file(),
         }
     });
     DialogTask { purpose, task }

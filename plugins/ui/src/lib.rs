@@ -40,9 +40,9 @@ pub struct UiState {
     pub shown_counts: Option<(u64, [usize; 4])>,
     /// The outliner's tree and the document revision it was walked at.
     pub outliner_tree: Option<(u64, hedra_doc::Hierarchy)>,
-    /// OBJ export writes curves as free-form NURBS records (`curv`/`parm`)
-    /// instead of polylines (File ▸ Export).
-    pub obj_nurbs_curves: bool,
+    /// How File ▸ Export writes (its checkboxes: OBJ curves as NURBS
+    /// records, …); the shape is always the evaluated one.
+    pub export_options: hedra_doc::export::ExportOptions,
     /// The Preferences window is shown (Edit > Preferences…).
     pub show_preferences: bool,
     /// Shift+A menu position, while open.
@@ -138,7 +138,7 @@ impl Default for UiState {
             point_edit: None,
             view_axis: None,
             construction_edit: None,
-            obj_nurbs_curves: false,
+            export_options: hedra_doc::export::ExportOptions::default(),
             power_segment: 0,
             knot_at: 0.5,
             divide_count: 10,
@@ -186,15 +186,11 @@ pub enum FileAction {
     Save,
     /// Save under a path chosen in the file dialog or path prompt (Ctrl+Shift+S).
     SaveAs,
-    /// Import meshes (OBJ, STL or glTF/GLB) from a file chosen in the file
-    /// dialog or path prompt.
-    ImportObj,
-    /// Export to a path chosen in the file dialog or path prompt, offering OBJ.
-    ExportObj,
-    /// Export to a path chosen in the file dialog or path prompt, offering STL.
-    ExportStl,
-    /// Export to a path chosen in the file dialog or path prompt, offering GLB.
-    ExportGlb,
+    /// Import a file chosen in the file dialog or path prompt.
+    Import,
+    /// Export to a path chosen in the file dialog or path prompt, offering
+    /// this format.
+    Export(hedra_doc::export::ExportFormat),
     /// Quit (Ctrl+Q or closing the window), after asking about unsaved changes.
     Quit,
 }
@@ -408,17 +404,12 @@ fn handle_file_actions(
                 begin_path(&mut ui, FilePurpose::SaveAs, &state);
                 None
             }
-            FileAction::ExportObj | FileAction::ExportStl | FileAction::ExportGlb => {
-                let purpose = match action {
-                    FileAction::ExportStl => FilePurpose::ExportStl,
-                    FileAction::ExportGlb => FilePurpose::ExportGlb,
-                    _ => FilePurpose::ExportObj,
-                };
-                begin_path(&mut ui, purpose, &state);
+            FileAction::Export(format) => {
+                begin_path(&mut ui, FilePurpose::Export(*format), &state);
                 None
             }
-            FileAction::ImportObj => {
-                begin_path(&mut ui, FilePurpose::ImportObj, &state);
+            FileAction::Import => {
+                begin_path(&mut ui, FilePurpose::Import, &state);
                 None
             }
         };
@@ -458,7 +449,7 @@ pub fn begin_path(ui: &mut UiState, purpose: FilePurpose, state: &DocState) {
         .and_then(|p| p.parent().map(|d| d.to_path_buf()))
         .or_else(|| std::env::current_dir().ok());
     let text = match purpose {
-        FilePurpose::Open | FilePurpose::ImportObj => String::new(),
+        FilePurpose::Open | FilePurpose::Import => String::new(),
         FilePurpose::SaveAs => state
             .path
             .as_ref()
@@ -471,7 +462,7 @@ pub fn begin_path(ui: &mut UiState, purpose: FilePurpose, state: &DocState) {
                     .display()
                     .to_string()
             }),
-        FilePurpose::ExportObj | FilePurpose::ExportStl | FilePurpose::ExportGlb => start_dir
+        FilePurpose::Export(_) => start_dir
             .clone()
             .unwrap_or_default()
             .join(purpose.export_file_name())
@@ -488,22 +479,11 @@ pub fn begin_path(ui: &mut UiState, purpose: FilePurpose, state: &DocState) {
     }
 }
 
-impl UiState {
-    /// How OBJ export writes curves, as File ▸ Export's checkbox says.
-    pub fn obj_curve_export(&self) -> hedra_doc::export::CurveExport {
-        if self.obj_nurbs_curves {
-            hedra_doc::export::CurveExport::FreeForm
-        } else {
-            hedra_doc::export::CurveExport::Polylines
-        }
-    }
-}
-
 /// Applies a chosen path for its purpose.
 pub fn use_path(
     purpose: FilePurpose,
     path: std::path::PathBuf,
-    curves: hedra_doc::export::CurveExport,
+    options: hedra_doc::export::ExportOptions,
     state: &DocState,
     requests: &mut MessageWriter<DocRequest>,
     status: &mut StatusMessage,
@@ -515,32 +495,35 @@ pub fn use_path(
         FilePurpose::SaveAs => {
             requests.write(DocRequest::Save(files::with_scene_extension(path)));
         }
-        FilePurpose::ImportObj => {
+        FilePurpose::Import => {
             requests.write(DocRequest::Import(path));
         }
-        FilePurpose::ExportObj | FilePurpose::ExportStl | FilePurpose::ExportGlb => {
+        FilePurpose::Export(format) => {
             // No extension given: the one of the format chosen.
             let path = if path.extension().is_none() {
-                path.with_extension(
-                    std::path::Path::new(purpose.export_file_name())
-                        .extension()
-                        .expect("export names have extensions"),
-                )
+                path.with_extension(format.extensions()[0])
             } else {
                 path
             };
-            let written = hedra_doc::export::export_bytes_with_curves(
-                &state.session.doc,
-                &path,
-                hedra_doc::export::ExportOptions::default(),
-                curves,
-            )
-            .map_err(|e| e.to_string())
-            .and_then(|b| {
-                hedra_doc::file::write_atomic_bytes(&path, &b).map_err(|e| e.to_string())
-            });
+            let written = hedra_doc::export::export_file(&state.session.doc, &path, options)
+                .map_err(|e| e.to_string())
+                .and_then(|exported| {
+                    hedra_doc::file::write_atomic_bytes(&path, &exported.bytes)
+                        .map(|()| exported.notes)
+                        .map_err(|e| e.to_string())
+                });
             match written {
-                Ok(()) => status.info(format!("Exported {}", path.display())),
+                Ok(notes) => {
+                    status.info(format!("Exported {}", path.display()));
+                    // What the format could not hold, to acknowledge.
+                    let name = path.file_name().map_or_else(
+                        || path.display().to_string(),
+                        |n| n.to_string_lossy().into_owned(),
+                    );
+                    status
+                        .warnings
+                        .extend(notes.into_iter().map(|n| format!("{name}: {n}")));
+                }
                 Err(e) => status.error(format!("Export failed: {e}")),
             }
         }
@@ -563,8 +546,14 @@ fn poll_file_dialog(
     ui.dialog = None;
     if let Some(path) = result {
         ui.path_prompt = None;
-        let curves = ui.obj_curve_export();
-        use_path(purpose, path, curves, &state, &mut requests, &mut status);
+        use_path(
+            purpose,
+            path,
+            ui.export_options,
+            &state,
+            &mut requests,
+            &mut status,
+        );
     }
     // `None`: cancelled, or the backend failed; the path prompt stays open.
 }
@@ -589,15 +578,20 @@ fn on_file_dropped(
             let name = path_buf.to_string_lossy().to_ascii_lowercase();
             if name.ends_with(".ron") {
                 actions.write(FileAction::OpenPath(path_buf.clone()));
-            } else if [".obj", ".stl", ".gltf", ".glb"]
+            } else if hedra_doc::import::IMPORT_FORMATS
                 .iter()
-                .any(|e| name.ends_with(e))
+                .any(|e| name.ends_with(&format!(".{e}")))
             {
                 requests.write(DocRequest::Import(path_buf.clone()));
             } else {
                 status.error(format!(
-                    "{}: Hedra opens .hedra.ron scenes and imports .obj, .stl, .gltf and .glb files",
-                    path_buf.display()
+                    "{}: Hedra opens .hedra.ron scenes and imports {} files",
+                    path_buf.display(),
+                    hedra_doc::import::IMPORT_FORMATS
+                        .iter()
+                        .map(|e| format!(".{e}"))
+                        .collect::<Vec<_>>()
+                        .join(", ")
                 ));
             }
         }

@@ -73,13 +73,11 @@ pub(super) fn dialogs(
                 state.after_save = None;
             }
             ui.horizontal(|ui| {
-                let reading = matches!(prompt.purpose, FilePurpose::Open | FilePurpose::ImportObj);
+                let reading = matches!(prompt.purpose, FilePurpose::Open | FilePurpose::Import);
                 let verb = match prompt.purpose {
                     FilePurpose::Open => "Open",
-                    FilePurpose::ImportObj => "Import",
-                    FilePurpose::ExportObj | FilePurpose::ExportStl | FilePurpose::ExportGlb => {
-                        "Export"
-                    }
+                    FilePurpose::Import => "Import",
+                    FilePurpose::Export(_) => "Export",
                     FilePurpose::SaveAs => "Save",
                 };
                 let ok = ui.button(verb).clicked() || enter;
@@ -88,8 +86,7 @@ pub(super) fn dialogs(
                     if reading && !path.exists() {
                         model.status.error(format!("{}: no such file", path.display()));
                     } else {
-                        let curves = state.obj_curve_export();
-                        use_path(prompt.purpose, path, curves, &model.state, &mut writers.requests, &mut model.status);
+                        use_path(prompt.purpose, path, state.export_options, &model.state, &mut writers.requests, &mut model.status);
                         keep = false;
                     }
                 }

@@ -100,32 +100,25 @@ pub(super) fn menu_bar(
                 events.push(UiEvent::File(FileAction::SaveAs));
             }
             ui.separator();
-            ui.menu_button("Import", |ui| {
-                if ui
-                    .button("OBJ, STL or glTF (.obj, .stl, .gltf, .glb)…")
-                    .clicked()
-                {
-                    events.push(UiEvent::File(FileAction::ImportObj));
-                }
-            });
+            let import_label = format!(
+                "Import ({})…",
+                hedra_doc::import::IMPORT_FORMATS
+                    .iter()
+                    .map(|e| format!(".{e}"))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            );
+            if ui.button(import_label).clicked() {
+                events.push(UiEvent::File(FileAction::Import));
+            }
             ui.menu_button("Export", |ui| {
-                if ui.button("Wavefront OBJ (.obj)…").clicked() {
-                    events.push(UiEvent::File(FileAction::ExportObj));
+                for format in hedra_doc::export::ExportFormat::ALL {
+                    if ui.button(format.menu_label()).clicked() {
+                        events.push(UiEvent::File(FileAction::Export(format)));
+                    }
                 }
-                ui.checkbox(
-                    &mut state.obj_nurbs_curves,
-                    "OBJ: curves as NURBS (curv/parm)",
-                )
-                .on_hover_text("Exact free-form records other CAD programs read; off: polylines");
-                if ui.button("STL, triangulated (.stl)…").clicked() {
-                    events.push(UiEvent::File(FileAction::ExportStl));
-                }
-                if ui
-                    .button("glTF 2.0 binary, with the hierarchy (.glb)…")
-                    .clicked()
-                {
-                    events.push(UiEvent::File(FileAction::ExportGlb));
-                }
+                ui.separator();
+                export_option_checkboxes(ui, &mut state.export_options);
             });
             ui.separator();
             if ui
@@ -418,4 +411,21 @@ pub(super) fn menu_bar(
             }
         });
     });
+}
+
+/// File ▸ Export's options, kept for the session: how OBJ writes curves.
+fn export_option_checkboxes(ui: &mut egui::Ui, options: &mut hedra_doc::export::ExportOptions) {
+    use hedra_doc::export::CurveExport;
+    let mut nurbs = options.curves == CurveExport::FreeForm;
+    if ui
+        .checkbox(&mut nurbs, "OBJ: curves as NURBS (curv/parm)")
+        .on_hover_text("Exact free-form records other CAD programs read; off: polylines")
+        .changed()
+    {
+        options.curves = if nurbs {
+            CurveExport::FreeForm
+        } else {
+            CurveExport::Polylines
+        };
+    }
 }
