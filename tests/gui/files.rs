@@ -1,0 +1,109 @@
+//! File ▸ Export and dropping a file on the window, as a person uses them:
+//! the menu, the path prompt pre-filled beside the open scene, Enter; then
+//! the written file dropped back onto the window.
+
+use crate::user::User;
+use bevy::prelude::*;
+use hedra_doc::export::ExportFormat;
+
+/// Opens `path` as File ▸ Open would and waits for its nodes.
+fn open_scene(user: &mut User, path: std::path::PathBuf, nodes: usize) {
+    user.app
+        .world_mut()
+        .write_message(hedra_scene::DocRequest::Open(path));
+    for _ in 0..100 {
+        user.frame();
+        if user.doc().nodes().count() == nodes {
+            break;
+        }
+    }
+    assert_eq!(user.doc().nodes().count(), nodes, "{}", user.status());
+}
+
+/// The text of the open path prompt, if one is open.
+fn prompt(user: &User) -> Option<String> {
+    user.app
+        .world()
+        .resource::<hedra_ui::UiState>()
+        .path_prompt
+        .as_ref()
+        .map(|p| p.text.clone())
+}
+
+/// Every format of File ▸ Export: its menu item opens the prompt with
+/// `export.<ext>` beside the scene, Enter writes the file there, and the
+/// status line says so. Dropping each written file on the window imports
+/// its nodes as one undo step.
+#[test]
+fn file_export_writes_every_format_and_a_dropped_export_comes_back() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = dir.path().join("shapes.hedra.ron");
+    let sample = std::path::Path::new(
+        &std::env::var("CARGO_MANIFEST_DIR").expect("cargo sets CARGO_MANIFEST_DIR"),
+    )
+    .join("assets/samples/shapes.hedra.ron");
+    std::fs::copy(&sample, &scene).unwrap();
+    let nodes = hedra_doc::file::load(&scene)
+        .unwrap()
+        .session
+        .doc
+        .nodes()
+        .count();
+    let mut user = User::new();
+    open_scene(&mut user, scene, nodes);
+    for format in ExportFormat::ALL {
+        let written = dir
+            .path()
+            .join(format!("export.{}", format.extensions()[0]));
+        user.click_on("File");
+        let export = user.find("Export ⏵");
+        user.move_to(export);
+        user.frames(2);
+        user.click_on(format.menu_label());
+        assert_eq!(
+            prompt(&user),
+            Some(written.display().to_string()),
+            "{format:?}: the prompt offers export.{} beside the scene",
+            format.extensions()[0]
+        );
+        user.tap(KeyCode::Enter);
+        user.frames(2);
+        assert_eq!(prompt(&user), None, "{format:?}: Enter closes the prompt");
+        assert!(
+            user.status()
+                .contains(&format!("Exported {}", written.display())),
+            "{format:?}: {}",
+            user.status()
+        );
+        let bytes = std::fs::read(&written).unwrap();
+        assert!(bytes.len() > 100, "{format:?}: {} bytes", bytes.len());
+        assert_eq!(
+            hedra_doc::export::ExportFormat::of_path(&written),
+            Some(format)
+        );
+
+        let (before, steps) = (user.doc().nodes().count(), user.undo_steps());
+        let window = user
+            .app
+            .world_mut()
+            .query_filtered::<Entity, With<bevy::window::PrimaryWindow>>()
+            .single(user.app.world())
+            .unwrap();
+        user.app
+            .world_mut()
+            .write_message(bevy::window::FileDragAndDrop::DroppedFile {
+                window,
+                path_buf: written.clone(),
+            });
+        user.frames(3);
+        assert!(
+            user.doc().nodes().count() > before,
+            "{format:?}: dropping {} imported nothing: {}",
+            written.display(),
+            user.status()
+        );
+        assert_eq!(user.undo_steps(), steps + 1, "{format:?}: one undo step");
+        user.shortcut(&[KeyCode::ControlLeft], KeyCode::KeyZ);
+        assert_eq!(user.doc().nodes().count(), before, "{format:?}: undone");
+    }
+}
