@@ -38,6 +38,7 @@ pub const EXPORT_FORMATS: &[(&str, &str)] = &[
     ("stl", "STL"),
     ("gltf", "glTF 2.0"),
     ("glb", "binary glTF 2.0"),
+    ("usda", "OpenUSD text"),
 ];
 
 /// How OBJ holds curve nodes.
@@ -186,6 +187,8 @@ pub fn export_bytes_with_curves(
         "stl" => Ok(to_stl(&items(true)?)),
         "gltf" => crate::gltf::to_gltf(doc, shape, false),
         "glb" => crate::gltf::to_gltf(doc, shape, true),
+        // The export report's notes: `crate::usd::to_usd` gives them.
+        "usda" => crate::usd::to_usd(doc, path, shape).map(|(bytes, _notes)| bytes),
         other => Err(ExportError::UnsupportedFormat {
             path: path.to_path_buf(),
             extension: other.to_string(),

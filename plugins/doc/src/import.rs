@@ -1462,6 +1462,7 @@ pub fn import_file(path: &Path) -> Result<Vec<ImportedMesh>, ImportError> {
             })?;
             crate::gltf::gltf_from_bytes(&bytes, path.parent(), &shown)
         }
+        "usda" | "usdc" | "usdz" | "usd" => crate::usd::usd_from_path(path),
         "" => Err(ImportError::NoExtension { path: shown }),
         other => Err(ImportError::Unsupported {
             path: shown,
