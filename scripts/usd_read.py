@@ -52,6 +52,9 @@ CURVES = ["curveVertexCounts", "order", "knots", "ranges", "points", "pointWeigh
 
 def describe(prim):
     out = {"path": str(prim.GetPath()), "type": str(prim.GetTypeName())}
+    name = prim.GetAttribute("hedra:name")
+    if name and name.HasAuthoredValue():
+        out["hedra_name"] = name.Get()
     xf = UsdGeom.Xformable(prim)
     if xf:
         m = xf.GetLocalTransformation(Usd.TimeCode.Default())

@@ -67,6 +67,8 @@ pub struct ImportedMesh {
     /// curve; STEP: a B-spline surface or curve). When set it is used as
     /// it is and `mesh`, `corners` and `curve` are not read.
     pub content: Option<NodeContent>,
+    /// The file hides the node (USD `visibility = "invisible"`).
+    pub hidden: bool,
 }
 
 impl ImportedMesh {
@@ -86,6 +88,7 @@ impl ImportedMesh {
             corners: CornerAttributes::default(),
             curve: None,
             content: None,
+            hidden: false,
         }
     }
 
@@ -106,6 +109,7 @@ impl ImportedMesh {
             corners: CornerAttributes::default(),
             curve: None,
             content: None,
+            hidden: false,
         }
     }
 }
@@ -1707,7 +1711,7 @@ impl Document {
                 name,
                 parent,
                 transform: m.transform,
-                visible: true,
+                visible: !m.hidden,
                 content: match (&m.mesh, &m.curve) {
                     _ if m.content.is_some() => m.content.clone().unwrap_or(NodeContent::Empty),
                     (Some(mesh), _) => NodeContent::Mesh(MeshContent {

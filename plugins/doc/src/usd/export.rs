@@ -146,8 +146,17 @@ fn indent(depth: usize) -> String {
     "    ".repeat(depth)
 }
 
-/// A USD string literal.
+/// A USD string literal. Written without escapes where it can be
+/// (`"…"`, else `'…'` for text with double quotes, such as JSON): openusd
+/// 0.6, which Hedra reads with, keeps escapes in the value.
 pub(crate) fn quoted(s: &str) -> String {
+    let plain = |q: char| !s.contains(q) && !s.contains('\\') && !s.chars().any(char::is_control);
+    if plain('"') {
+        return format!("\"{s}\"");
+    }
+    if plain('\'') {
+        return format!("'{s}'");
+    }
     let mut out = String::with_capacity(s.len() + 2);
     out.push('"');
     for c in s.chars() {
@@ -361,8 +370,8 @@ impl Writer {
                     prim.attr("double[] pointWeights", list(curve.weights(), num));
                 }
                 if !matches!(c.kind(), hedra_geom::curves::CurveKind::Nurbs(_)) {
-                    let json = serde_json::to_string(c.kind()).unwrap_or_default();
-                    prim.attr(&format!("custom string {HEDRA}curveKind"), quoted(&json));
+                    let text = ron::to_string(c.kind()).unwrap_or_default();
+                    prim.attr(&format!("custom string {HEDRA}curveKind"), quoted(&text));
                 }
                 if let Some(t) = c.tolerance() {
                     self.note(
@@ -416,10 +425,10 @@ impl Writer {
                             "normal3f[] normals = {} (\n        interpolation = \"vertex\"\n    )",
                             list(&ns, p3f)
                         ));
-                        let json = serde_json::to_string(t).unwrap_or_default();
+                        let text = ron::to_string(t).unwrap_or_default();
                         prim.attr(
                             &format!("custom string {HEDRA}bezierTriangle"),
-                            quoted(&json),
+                            quoted(&text),
                         );
                         self.note(
                             node,

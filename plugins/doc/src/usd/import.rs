@@ -342,9 +342,11 @@ fn push_node(
         .or_else(|| prim.path().name().map(str::to_string))
         .unwrap_or_else(|| "USD".into());
     let transform = transform(prim, skipped)?;
+    let hidden = get_token(prim, "visibility")?.as_deref() == Some("invisible");
     out.push(ImportedMesh {
         parent,
         transform,
+        hidden,
         content: Some(content),
         ..ImportedMesh::empty(name)
     });
@@ -824,7 +826,7 @@ fn mesh(prim: &usd::Prim, skipped: &mut Skipped) -> R<Geometry> {
         }
     };
     if let Some(json) = get_string(prim, "hedra:bezierTriangle")?
-        && let Ok(t) = serde_json::from_str::<hedra_geom::surfaces::BezierTriangle>(&json)
+        && let Ok(t) = ron::from_str::<hedra_geom::surfaces::BezierTriangle>(&json)
     {
         return Ok(Geometry::One(
             NodeContent::Surface(Arc::new(SurfaceShape::Triangle(t))),
@@ -956,7 +958,7 @@ fn curves(prim: &usd::Prim) -> R<Geometry> {
     }
     if out.len() == 1
         && let Some(json) = get_string(prim, "hedra:curveKind")?
-        && let Ok(kind) = serde_json::from_str::<hedra_geom::curves::CurveKind>(&json)
+        && let Ok(kind) = ron::from_str::<hedra_geom::curves::CurveKind>(&json)
         && let Ok(content) = CurveContent::new(kind)
     {
         return Ok(Geometry::One(
