@@ -755,3 +755,271 @@ fn the_export_report_names_what_usd_cannot_hold() {
         hedra_doc::usd::to_usd(&csg, Path::new("x.usdc"), ExportShape::Evaluated).unwrap_err();
     assert!(err.to_string().contains("'.usdc'"), "{err}");
 }
+
+/// A file written by usd-core itself: an Xform hierarchy (rotateXYZ and
+/// scale ops), a subdivided mesh with a per-crease sharpness, a corner and
+/// a hole, a NurbsPatch, a material and a SkelRoot with a Skeleton.
+const PXR_WRITER: &str = r#"
+import sys
+from pxr import Usd, UsdGeom, UsdShade, UsdSkel, Gf, Sdf, Vt
+stage = Usd.Stage.CreateNew(sys.argv[1])
+UsdGeom.SetStageUpAxis(stage, UsdGeom.Tokens.y)
+root = UsdGeom.Xform.Define(stage, "/World")
+stage.SetDefaultPrim(root.GetPrim())
+arm = UsdGeom.Xform.Define(stage, "/World/Arm")
+arm.AddTranslateOp().Set(Gf.Vec3d(1, 2, 3))
+arm.AddRotateXYZOp().Set(Gf.Vec3f(0, 90, 0))
+arm.AddScaleOp().Set(Gf.Vec3f(2, 2, 2))
+mesh = UsdGeom.Mesh.Define(stage, "/World/Arm/Box")
+# A 2x1 strip of quads: points 0..5.
+mesh.CreatePointsAttr([(0,0,0),(1,0,0),(2,0,0),(0,1,0),(1,1,0),(2,1,0)])
+mesh.CreateFaceVertexCountsAttr([4, 4])
+mesh.CreateFaceVertexIndicesAttr([0,1,4,3, 1,2,5,4])
+mesh.CreateSubdivisionSchemeAttr("catmullClark")
+mesh.CreateInterpolateBoundaryAttr("edgeOnly")
+mesh.CreateCreaseIndicesAttr([1, 4, 0, 1, 2])
+mesh.CreateCreaseLengthsAttr([2, 3])
+mesh.CreateCreaseSharpnessesAttr([2.5, 1.0])
+mesh.CreateCornerIndicesAttr([5])
+mesh.CreateCornerSharpnessesAttr([4.0])
+mesh.CreateHoleIndicesAttr([1])
+patch = UsdGeom.NurbsPatch.Define(stage, "/World/Sheet")
+patch.CreateUVertexCountAttr(2)
+patch.CreateVVertexCountAttr(3)
+patch.CreateUOrderAttr(2)
+patch.CreateVOrderAttr(3)
+patch.CreateUKnotsAttr([0, 0, 1, 1])
+patch.CreateVKnotsAttr([0, 0, 0, 1, 1, 1])
+# u varies fastest.
+patch.CreatePointsAttr([(0,0,0),(1,0,0),(0,1,1),(1,1,1),(0,2,0),(1,2,0)])
+patch.CreatePointWeightsAttr([1, 1, 2, 2, 1, 1])
+material = UsdShade.Material.Define(stage, "/World/Looks/Red")
+UsdShade.MaterialBindingAPI.Apply(mesh.GetPrim()).Bind(material)
+skel_root = UsdSkel.Root.Define(stage, "/World/Rig")
+UsdSkel.Skeleton.Define(stage, "/World/Rig/Skel")
+stage.GetRootLayer().Save()
+"#;
+
+#[test]
+fn a_file_written_by_usd_core_imports_with_its_subdivision_tags_and_names_what_is_not_read() {
+    require_pxr();
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("pxr.usda");
+    let o = Command::new("python3")
+        .args(["-c", PXR_WRITER])
+        .arg(&file)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let (doc, report) = import(&file);
+    let names: Vec<&str> = doc.nodes().map(|n| n.name.as_str()).collect();
+    // The material's Scope is an empty node; the material is not read.
+    assert_eq!(names, ["World", "Arm", "Box", "Sheet", "Looks", "Rig"]);
+    let arm = doc.find_by_name("Arm").unwrap();
+    // translate · rotateY(90°) · scale 2.
+    let m = arm.transform.to_matrix();
+    let want = glam::DMat4::from_translation(DVec3::new(1.0, 2.0, 3.0))
+        * glam::DMat4::from_rotation_y(90f64.to_radians())
+        * glam::DMat4::from_scale(DVec3::splat(2.0));
+    assert!(m.abs_diff_eq(want, 1e-6), "{m} vs {want}");
+    let b = doc.find_by_name("Box").unwrap();
+    assert_eq!(doc.node(b.parent.unwrap()).unwrap().name, "Arm");
+    let NodeContent::Mesh(c) = &b.content else {
+        panic!("Box is a mesh");
+    };
+    let s = c.subdivision.expect("a subdivision modifier");
+    assert_eq!(s.options.scheme, Scheme::CatmullClark);
+    assert_eq!(s.options.boundary, BoundaryInterpolation::EdgesOnly);
+    let ix = indexed(&c.mesh, &c.creases, None);
+    assert_eq!(ix.faces, [vec![0, 1, 4, 3], vec![1, 2, 5, 4]]);
+    // Per-crease sharpness: 2.5 on edge 1–4, 1.0 on both edges of 0–1–2.
+    let edges: BTreeMap<(usize, usize), f64> = ix
+        .edges
+        .iter()
+        .map(|(e, s)| (*e, f64::from_bits(*s)))
+        .collect();
+    assert_eq!(
+        edges,
+        BTreeMap::from([((1, 4), 2.5), ((0, 1), 1.0), ((1, 2), 1.0)])
+    );
+    assert_eq!(
+        ix.corners,
+        BTreeMap::from([(5, 4.0f64.to_bits())]),
+        "corner"
+    );
+    assert_eq!(ix.holes, [1], "hole");
+    let sheet = doc.find_by_name("Sheet").unwrap();
+    let NodeContent::Surface(sf) = &sheet.content else {
+        panic!("Sheet is a surface");
+    };
+    let SurfaceShape::Nurbs(sf) = sf.as_ref() else {
+        panic!("a NURBS surface");
+    };
+    assert_eq!(sf.degrees(), (1, 2));
+    assert_eq!(sf.size(), (2, 3));
+    // Hedra's i·nv + j: point (u 1, v 1) is USD's 1·1 + 2 = 3rd.
+    assert_eq!(sf.points()[4], DVec3::new(1.0, 1.0, 1.0));
+    assert_eq!(sf.weights()[4], 2.0);
+    let report = report.join("\n");
+    assert!(report.contains("1 × materials"), "{report}");
+    assert!(report.contains("skinning"), "{report}");
+}
+
+/// Imports `text` written as `name` in a fresh folder (with `others`
+/// beside it) and returns the error.
+fn refused(name: &str, text: &str, others: &[(&str, &str)]) -> String {
+    let dir = tempfile::tempdir().unwrap();
+    let inner = dir.path().join("in");
+    std::fs::create_dir(&inner).unwrap();
+    for (n, t) in others {
+        std::fs::write(dir.path().join(n), t).unwrap();
+        std::fs::write(inner.join(n), t).unwrap();
+    }
+    let file = inner.join(name);
+    std::fs::write(&file, text).unwrap();
+    match hedra_doc::import::import_file(&file) {
+        Ok(nodes) => panic!("{name} imported {} node(s)", nodes.len()),
+        Err(e) => {
+            let e = e.to_string();
+            assert!(
+                e.contains(&file.display().to_string()),
+                "names the file: {e}"
+            );
+            e
+        }
+    }
+}
+
+const OUTSIDE: &str = "#usda 1.0\ndef Xform \"Secret\"\n{\n}\n";
+
+#[test]
+fn references_payloads_and_sublayers_outside_the_folder_are_refused_by_name() {
+    let e = refused(
+        "a.usda",
+        "#usda 1.0\ndef Xform \"A\" (\n    references = @../outside.usda@\n)\n{\n}\n",
+        &[("outside.usda", OUTSIDE)],
+    );
+    assert!(
+        e.contains("'../outside.usda', outside the file's folder"),
+        "{e}"
+    );
+    let e = refused(
+        "b.usda",
+        "#usda 1.0\ndef Xform \"B\" (\n    payload = @/etc/hostname@\n)\n{\n}\n",
+        &[],
+    );
+    assert!(
+        e.contains("'/etc/hostname', outside the file's folder"),
+        "{e}"
+    );
+    let e = refused(
+        "c.usda",
+        "#usda 1.0\n(\n    subLayers = [@../outside.usda@]\n)\n",
+        &[("outside.usda", OUTSIDE)],
+    );
+    assert!(e.contains("outside the file's folder"), "{e}");
+}
+
+#[test]
+fn a_reference_inside_the_folder_is_read() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("part.usda"),
+        "#usda 1.0\n(\n    defaultPrim = \"Part\"\n)\ndef Xform \"Part\"\n{\n    def Xform \"Inner\"\n    {\n    }\n}\n",
+    )
+    .unwrap();
+    let file = dir.path().join("main.usda");
+    std::fs::write(
+        &file,
+        "#usda 1.0\ndef Xform \"Main\" (\n    references = @./part.usda@\n)\n{\n}\n",
+    )
+    .unwrap();
+    let (doc, _) = import(&file);
+    let names: Vec<&str> = doc.nodes().map(|n| n.name.as_str()).collect();
+    assert_eq!(names, ["Main", "Inner"]);
+}
+
+#[test]
+fn hostile_usd_files_give_clear_errors() {
+    let mesh = |body: &str| format!("#usda 1.0\ndef Mesh \"M\"\n{{\n{body}\n}}\n");
+    let points = "    point3f[] points = [(0,0,0), (1,0,0), (0,1,0)]";
+    // Counts far past the indices.
+    let e = refused(
+        "huge.usda",
+        &mesh(&format!(
+            "{points}\n    int[] faceVertexCounts = [2000000000]\n    int[] faceVertexIndices = [0, 1, 2]"
+        )),
+        &[],
+    );
+    assert!(e.contains("prim /M: faceVertexCounts:"), "{e}");
+    // An index past the points.
+    let e = refused(
+        "index.usda",
+        &mesh(&format!(
+            "{points}\n    int[] faceVertexCounts = [3]\n    int[] faceVertexIndices = [0, 1, 7]"
+        )),
+        &[],
+    );
+    assert!(e.contains("faceVertexIndices: index 7 in face 0"), "{e}");
+    // Wrong types.
+    let e = refused(
+        "type.usda",
+        &mesh("    string points = \"many\"\n    int[] faceVertexCounts = [3]"),
+        &[],
+    );
+    assert!(e.contains("prim /M: points"), "{e}");
+    let e = refused(
+        "scheme.usda",
+        &mesh(&format!(
+            "{points}\n    int[] faceVertexCounts = [3]\n    int[] faceVertexIndices = [0, 1, 2]\n    uniform token subdivisionScheme = \"fractal\""
+        )),
+        &[],
+    );
+    assert!(
+        e.contains("subdivisionScheme: 'fractal' is not a USD scheme"),
+        "{e}"
+    );
+    let e = refused(
+        "crease.usda",
+        &mesh(&format!(
+            "{points}\n    int[] faceVertexCounts = [3]\n    int[] faceVertexIndices = [0, 1, 2]\n    int[] creaseIndices = [0, 1]\n    int[] creaseLengths = [5]\n    float[] creaseSharpnesses = [1]"
+        )),
+        &[],
+    );
+    assert!(e.contains("creaseLengths"), "{e}");
+    let e = refused(
+        "patch.usda",
+        "#usda 1.0\ndef NurbsPatch \"P\"\n{\n    int uVertexCount = 1000000\n    int vVertexCount = 1000000\n    int uOrder = 2\n    int vOrder = 2\n    point3f[] points = [(0,0,0)]\n}\n",
+        &[],
+    );
+    assert!(
+        e.contains("prim /P: points: 1 points for 1000000 × 1000000"),
+        "{e}"
+    );
+    // Garbage bytes as a binary crate file, and an empty text file.
+    let e = refused("junk.usdc", "PXR-USDC\u{1}\u{2}garbage", &[]);
+    assert!(e.contains("USD"), "{e}");
+    let e = refused("empty.usda", "#usda 1.0\n", &[]);
+    assert!(e.contains("contains no"), "{e}");
+}
+
+#[test]
+fn sublayer_cycles_end() {
+    let dir = tempfile::tempdir().unwrap();
+    let a = dir.path().join("a.usda");
+    std::fs::write(
+        &a,
+        "#usda 1.0\n(\n    subLayers = [@./b.usda@]\n)\ndef Xform \"A\"\n{\n}\n",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.path().join("b.usda"),
+        "#usda 1.0\n(\n    subLayers = [@./a.usda@]\n)\ndef Xform \"B\" (\n    references = @./a.usda@\n)\n{\n}\n",
+    )
+    .unwrap();
+    // Either read (the cycle cut) or refused by name; never a hang or a crash.
+    match hedra_doc::import::import_file(&a) {
+        Ok(nodes) => assert!(nodes.iter().any(|n| n.name == "A")),
+        Err(e) => assert!(e.to_string().contains("a.usda"), "{e}"),
+    }
+}

@@ -77,9 +77,6 @@ pub enum UsdError {
 /// The resolver that keeps every asset inside the folder.
 struct FolderResolver {
     folder: PathBuf,
-    /// The opened file, as given to the stage (the one absolute path
-    /// allowed).
-    root: String,
     inner: ar::DefaultResolver,
     refused: Arc<Mutex<Vec<UsdError>>>,
     opened: Arc<Mutex<usize>>,
@@ -91,31 +88,49 @@ impl FolderResolver {
             r.push(e);
         }
     }
-    /// The physical file of a resolved path (a package's outer file).
+    /// True when the file of a path (a package's outer file) is inside
+    /// the folder: its canonical path when it exists, else the path with
+    /// `.` and `..` taken out.
     fn inside(&self, path: &Path) -> bool {
         let s = path.to_string_lossy();
         let outer = if ar::is_package_relative_path(&s) {
-            ar::split_package_relative_path_outer(&s).map(|(p, _)| PathBuf::from(p))
+            match ar::split_package_relative_path_outer(&s) {
+                Some((p, _)) => PathBuf::from(p),
+                None => return false,
+            }
         } else {
-            Some(path.to_path_buf())
+            path.to_path_buf()
         };
-        outer
-            .and_then(|p| p.canonicalize().ok())
-            .is_some_and(|p| p.starts_with(&self.folder))
+        let real = outer.canonicalize().unwrap_or_else(|_| {
+            let mut out = PathBuf::new();
+            for c in outer.components() {
+                match c {
+                    std::path::Component::ParentDir => {
+                        out.pop();
+                    }
+                    std::path::Component::CurDir => {}
+                    c => out.push(c),
+                }
+            }
+            out
+        });
+        real.is_absolute() && real.starts_with(&self.folder)
     }
 }
 
 impl ar::Resolver for FolderResolver {
     fn create_identifier(&self, asset_path: &str, anchor: Option<&ar::ResolvedPath>) -> String {
-        let p = Path::new(asset_path);
-        let foreign = p.is_absolute() || asset_path.contains("://") || asset_path.starts_with('\\');
-        if foreign && asset_path != self.root {
+        if asset_path.is_empty() {
+            return String::new();
+        }
+        let id = self.inner.create_identifier(asset_path, anchor);
+        if asset_path.contains("://") || !self.inside(Path::new(&id)) {
             self.refuse(UsdError::Outside {
                 asset: asset_path.to_string(),
             });
             return String::new();
         }
-        self.inner.create_identifier(asset_path, anchor)
+        id
     }
     fn resolve(&self, asset_path: &str) -> Option<ar::ResolvedPath> {
         let resolved = self.inner.resolve(asset_path)?;
@@ -172,7 +187,6 @@ pub fn usd_from_path(path: &Path) -> Result<Vec<ImportedMesh>, ImportError> {
     let file_str = file.to_string_lossy().into_owned();
     let resolver = FolderResolver {
         folder,
-        root: file_str.clone(),
         inner: ar::DefaultResolver::new(),
         refused: refused.clone(),
         opened: Arc::new(Mutex::new(0)),
