@@ -316,6 +316,10 @@ fn written_mesh(c: &MeshContent) -> (HalfEdgeMesh, Creases, Option<SubdivisionMo
     }
 }
 
+/// A taper by bits: start, end, each edge (as vertex indices) with its
+/// fraction.
+type Taper = (u64, u64, Vec<((usize, usize), u64)>);
+
 /// A mesh and its tags by vertex and face index (as USD numbers them).
 #[derive(Debug, PartialEq)]
 struct Indexed {
@@ -324,7 +328,7 @@ struct Indexed {
     /// Edge (lower index, higher index) → sharpness, plain creases.
     edges: BTreeMap<(usize, usize), u64>,
     /// Each taper: start, end, and its edges with their fractions.
-    tapers: Vec<(u64, u64, Vec<((usize, usize), u64)>)>,
+    tapers: Vec<Taper>,
     corners: BTreeMap<usize, u64>,
     holes: Vec<usize>,
     uvs: Vec<Vec<Option<[u64; 2]>>>,
@@ -413,7 +417,7 @@ fn close(a: f64, b: f64, what: &str) {
 /// Equal within 1e-12 (relative above 1): JSON numbers pass through
 /// Python's and serde_json's decimal forms.
 fn same(read: &[f64], want: &[f64], what: &str) {
-    assert_eq!(read.len(), want.len(), "{what}: count");
+    assert_eq!(read.len(), want.len(), &format!("{what}: count"));
     for (k, (a, b)) in read.iter().zip(want).enumerate() {
         close(*a, *b, &format!("{what}[{k}]"));
     }
@@ -472,7 +476,11 @@ fn compare_with_pxr(scene: &str, doc: &Document, json: &Value) {
                 let (m, creases, sub) = written_mesh(c);
                 let ix = indexed(&m, &creases, None);
                 let points: Vec<DVec3> = m.vertices().map(|v| m.position(v)).collect();
-                same(&floats(&g["points"]), &f32s(&points), "{what}: points");
+                same(
+                    &floats(&g["points"]),
+                    &f32s(&points),
+                    &format!("{what}: points"),
+                );
                 let counts: Vec<i64> = ix.faces.iter().map(|f| f.len() as i64).collect();
                 assert_eq!(ints(&g["faceVertexCounts"]), counts, "{what}: counts");
                 let flat: Vec<i64> = ix.faces.iter().flatten().map(|&i| i as i64).collect();
@@ -569,7 +577,7 @@ fn compare_with_pxr(scene: &str, doc: &Document, json: &Value) {
                         .flatten()
                         .map(|uv| uv.unwrap().map(|b| f64::from_bits(b) as f32 as f64))
                         .collect();
-                    same(&got.concat(), &want.concat(), "{what}: UVs");
+                    same(&got.concat(), &want.concat(), &format!("{what}: UVs"));
                 }
             }
             NodeContent::Surface(s) => {
@@ -584,14 +592,18 @@ fn compare_with_pxr(scene: &str, doc: &Document, json: &Value) {
                         assert_eq!(g["vOrder"], dv as i64 + 1, "{what}");
                         assert_eq!(g["uVertexCount"], nu as i64, "{what}");
                         assert_eq!(g["vVertexCount"], nv as i64, "{what}");
-                        same(&floats(&g["uKnots"]), &ku, "{what}: u knots");
-                        same(&floats(&g["vKnots"]), &kv, "{what}: v knots");
+                        same(&floats(&g["uKnots"]), ku, &format!("{what}: u knots"));
+                        same(&floats(&g["vKnots"]), kv, &format!("{what}: v knots"));
                         assert_eq!(floats(&g["uRange"]), [ku[du], ku[nu]], "{what}");
                         // USD: u varies fastest.
                         let points: Vec<DVec3> = (0..nv)
                             .flat_map(|j| (0..nu).map(move |i| sf.points()[i * nv + j]))
                             .collect();
-                        same(&floats(&g["points"]), &f32s(&points), "{what}: points");
+                        same(
+                            &floats(&g["points"]),
+                            &f32s(&points),
+                            &format!("{what}: points"),
+                        );
                         let w: Vec<f64> = (0..nv)
                             .flat_map(|j| (0..nu).map(move |i| sf.weights()[i * nv + j]))
                             .collect();
@@ -599,7 +611,7 @@ fn compare_with_pxr(scene: &str, doc: &Document, json: &Value) {
                         if read.is_empty() {
                             assert!(w.iter().all(|&x| x == 1.0), "{what}: weights");
                         } else {
-                            same(&read, &w, "{what}: weights");
+                            same(&read, &w, &format!("{what}: weights"));
                         }
                     }
                     SurfaceShape::Triangle(_) => {
@@ -615,13 +627,17 @@ fn compare_with_pxr(scene: &str, doc: &Document, json: &Value) {
                 let n = c.nurbs();
                 assert_eq!(ints(&g["order"]), [n.degree() as i64 + 1], "{what}");
                 assert_eq!(ints(&g["curveVertexCounts"]), [n.points().len() as i64]);
-                same(&floats(&g["knots"]), &n.knots(), "{what}: knots");
-                same(&floats(&g["points"]), &f32s(n.points()), "{what}: points");
+                same(&floats(&g["knots"]), n.knots(), &format!("{what}: knots"));
+                same(
+                    &floats(&g["points"]),
+                    &f32s(n.points()),
+                    &format!("{what}: points"),
+                );
                 let read = floats(&g["pointWeights"]);
                 if read.is_empty() {
                     assert!(n.is_polynomial(), "{what}: weights");
                 } else {
-                    same(&read, n.weights(), "{what}: weights");
+                    same(&read, n.weights(), &format!("{what}: weights"));
                 }
             }
             NodeContent::Csg(_) => {

@@ -370,13 +370,13 @@ fn push_node(
 /// What a geometry prim holds: one content, or (NurbsCurves with several
 /// curves) one per curve.
 enum Geometry {
-    One(NodeContent, hedra_geom::RepairReport),
+    One(Box<(NodeContent, hedra_geom::RepairReport)>),
     Curves(Vec<NurbsCurve>),
 }
 
 fn single(g: Geometry, prim: &usd::Prim) -> R<(NodeContent, hedra_geom::RepairReport)> {
     match g {
-        Geometry::One(c, r) => Ok((c, r)),
+        Geometry::One(one) => Ok(*one),
         Geometry::Curves(mut cs) if cs.len() == 1 => Ok((
             NodeContent::Curve(Arc::new(CurveContent::from_nurbs(cs.remove(0)))),
             Default::default(),
@@ -396,7 +396,8 @@ fn push_geometry(
     skipped: &mut Skipped,
 ) -> R<usize> {
     match g {
-        Geometry::One(content, report) => {
+        Geometry::One(one) => {
+            let (content, report) = *one;
             let i = push_node(out, prim, parent, content, skipped)?;
             out[i].report = report;
             Ok(i)
@@ -842,10 +843,10 @@ fn mesh(prim: &usd::Prim, skipped: &mut Skipped) -> R<Geometry> {
     if let Some(json) = get_string(prim, "hedra:bezierTriangle")?
         && let Ok(t) = ron::from_str::<hedra_geom::surfaces::BezierTriangle>(&json)
     {
-        return Ok(Geometry::One(
+        return Ok(Geometry::One(Box::new((
             NodeContent::Surface(Arc::new(SurfaceShape::Triangle(t))),
             Default::default(),
-        ));
+        ))));
     }
     let content = MeshContent {
         shading,
@@ -854,7 +855,10 @@ fn mesh(prim: &usd::Prim, skipped: &mut Skipped) -> R<Geometry> {
         corners,
         ..MeshContent::new(Arc::new(mesh))
     };
-    Ok(Geometry::One(NodeContent::Mesh(content), report))
+    Ok(Geometry::One(Box::new((
+        NodeContent::Mesh(content),
+        report,
+    ))))
 }
 
 fn patch(prim: &usd::Prim, skipped: &mut Skipped) -> R<Geometry> {
@@ -910,10 +914,10 @@ fn patch(prim: &usd::Prim, skipped: &mut Skipped) -> R<Geometry> {
     }
     let sf = NurbsSurface::new(du, dv, ku, kv, nu, nv, ps, ws)
         .map_err(|e| prim_error(prim, format!("not a NURBS surface Hedra can hold: {e}")))?;
-    Ok(Geometry::One(
+    Ok(Geometry::One(Box::new((
         NodeContent::Surface(Arc::new(SurfaceShape::Nurbs(sf))),
         Default::default(),
-    ))
+    ))))
 }
 
 fn curves(prim: &usd::Prim) -> R<Geometry> {
@@ -975,10 +979,10 @@ fn curves(prim: &usd::Prim) -> R<Geometry> {
         && let Ok(kind) = ron::from_str::<hedra_geom::curves::CurveKind>(&json)
         && let Ok(content) = CurveContent::new(kind)
     {
-        return Ok(Geometry::One(
+        return Ok(Geometry::One(Box::new((
             NodeContent::Curve(Arc::new(content)),
             Default::default(),
-        ));
+        ))));
     }
     Ok(Geometry::Curves(out))
 }
