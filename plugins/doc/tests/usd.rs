@@ -417,7 +417,7 @@ fn close(a: f64, b: f64, what: &str) {
 /// Equal within 1e-12 (relative above 1): JSON numbers pass through
 /// Python's and serde_json's decimal forms.
 fn same(read: &[f64], want: &[f64], what: &str) {
-    assert_eq!(read.len(), want.len(), &format!("{what}: count"));
+    assert_eq!(read.len(), want.len(), "{what}: count");
     for (k, (a, b)) in read.iter().zip(want).enumerate() {
         close(*a, *b, &format!("{what}[{k}]"));
     }
