@@ -1039,3 +1039,45 @@ fn sublayer_cycles_end() {
         Err(e) => assert!(e.to_string().contains("a.usda"), "{e}"),
     }
 }
+
+#[test]
+fn deep_nesting_is_refused_without_a_crash() {
+    let deep = |n: usize| {
+        let mut t = String::from("#usda 1.0\n");
+        for i in 0..n {
+            t.push_str(&format!("def Xform \"N{i}\" {{\n"));
+        }
+        t.push_str(&"}".repeat(n));
+        t
+    };
+    let e = refused("deep.usda", &deep(5000), &[]);
+    assert!(e.contains("nested deeper than 1000"), "{e}");
+    // 900 levels are read (on the reader's own large stack).
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("ok.usda");
+    std::fs::write(&file, deep(900)).unwrap();
+    assert_eq!(hedra_doc::import::import_file(&file).unwrap().len(), 900);
+}
+
+#[cfg(unix)]
+#[test]
+fn a_link_out_of_the_folder_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let inner = dir.path().join("in");
+    std::fs::create_dir(&inner).unwrap();
+    std::fs::write(dir.path().join("secret.usda"), OUTSIDE).unwrap();
+    std::os::unix::fs::symlink(dir.path().join("secret.usda"), inner.join("link.usda")).unwrap();
+    let file = inner.join("main.usda");
+    std::fs::write(
+        &file,
+        "#usda 1.0\ndef Xform \"Main\" (\n    references = @./link.usda@\n)\n{\n}\n",
+    )
+    .unwrap();
+    let e = hedra_doc::import::import_file(&file)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("link.usda") && e.contains("outside the file's folder"),
+        "{e}"
+    );
+}

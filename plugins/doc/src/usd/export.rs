@@ -142,8 +142,10 @@ fn prim_name(name: &str, taken: &HashSet<String>) -> String {
     out
 }
 
+/// Indentation for a prim at `depth`, capped (USD does not read it; a
+/// chain of 10,000 nodes would otherwise grow the file quadratically).
 fn indent(depth: usize) -> String {
-    "    ".repeat(depth)
+    "    ".repeat(depth.min(16))
 }
 
 /// A USD string literal. Written without escapes where it can be

@@ -36,6 +36,46 @@ use std::sync::{Arc, Mutex};
 /// and payloads).
 pub const MAX_LAYERS: usize = 256;
 
+/// The USD reader thread's stack: openusd recurses per nesting level.
+const READER_STACK: usize = 256 << 20;
+
+/// The deepest `{` nesting of USD text, outside strings and comments.
+fn text_depth(bytes: &[u8]) -> usize {
+    let (mut depth, mut deepest, mut i) = (0usize, 0usize, 0usize);
+    while i < bytes.len() {
+        match bytes[i] {
+            b'#' => {
+                while i < bytes.len() && bytes[i] != b'\n' {
+                    i += 1;
+                }
+            }
+            q @ (b'"' | b'\'') => {
+                let triple = bytes.get(i..i + 3) == Some(&[q, q, q][..]);
+                i += if triple { 3 } else { 1 };
+                while i < bytes.len() {
+                    if bytes[i] == b'\\' {
+                        i += 2;
+                        continue;
+                    }
+                    if bytes[i] == q && (!triple || bytes.get(i..i + 3) == Some(&[q, q, q][..])) {
+                        i += if triple { 2 } else { 0 };
+                        break;
+                    }
+                    i += 1;
+                }
+            }
+            b'{' | b'(' | b'[' => {
+                depth += 1;
+                deepest = deepest.max(depth);
+            }
+            b'}' | b')' | b']' => depth = depth.saturating_sub(1),
+            _ => {}
+        }
+        i += 1;
+    }
+    deepest
+}
+
 /// Why a USD file could not be read, naming the prim and attribute.
 #[derive(Debug, thiserror::Error)]
 pub enum UsdError {
@@ -191,15 +231,32 @@ pub fn usd_from_path(path: &Path) -> Result<Vec<ImportedMesh>, ImportError> {
         refused: refused.clone(),
         opened: Arc::new(Mutex::new(0)),
     };
-    // The crate is young: a panic on a hostile file is an error, not a crash.
-    let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-        let stage = usd::Stage::builder()
-            .resolver(resolver)
-            .open(&file_str)
-            .map_err(|e| UsdError::Open(format!("{e:#}")))?;
-        read_stage(&stage)
-    }))
-    .unwrap_or_else(|_| Err(UsdError::Open("the USD reader failed on this file".into())));
+    // Text nested deeper than Hedra reads is refused before the crate
+    // parses it (its parser and composition recurse per level).
+    if let Ok(bytes) = crate::input::read(&file)
+        && bytes.starts_with(b"#usda")
+        && text_depth(&bytes) > MAX_DEPTH + 2
+    {
+        return Err(error(UsdError::TooLarge));
+    }
+    // The crate is young: it runs on its own thread with a large stack, and
+    // a panic on a hostile file is an error, not a crash.
+    let result = std::thread::Builder::new()
+        .name("usd import".into())
+        .stack_size(READER_STACK)
+        .spawn(move || {
+            let stage = usd::Stage::builder()
+                .resolver(resolver)
+                .open(&file_str)
+                .map_err(|e| UsdError::Open(format!("{e:#}")))?;
+            read_stage(&stage)
+        })
+        .map_err(|e| UsdError::Open(format!("cannot start the reader: {e}")))
+        .and_then(|h| {
+            h.join().unwrap_or_else(|_| {
+                Err(UsdError::Open("the USD reader failed on this file".into()))
+            })
+        });
     if let Some(e) = refused.lock().ok().and_then(|mut r| r.drain(..).next()) {
         return Err(error(e));
     }
