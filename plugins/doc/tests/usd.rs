@@ -1081,3 +1081,32 @@ fn a_link_out_of_the_folder_is_refused() {
         "{e}"
     );
 }
+
+/// usd-core turns an export into a binary crate file (`.usdc`) and a
+/// package (`.usdz`); both import back equal.
+#[test]
+fn usdc_and_usdz_written_by_usd_core_come_back_equal() {
+    require_pxr();
+    let dir = tempfile::tempdir().unwrap();
+    let doc = every_kind();
+    let text = dir.path().join("every.usda");
+    export(&doc, &text);
+    let script = "import sys\n\
+        from pxr import Sdf, UsdUtils\n\
+        assert Sdf.Layer.FindOrOpen(sys.argv[1]).Export(sys.argv[2])\n\
+        assert UsdUtils.CreateNewUsdzPackage(sys.argv[2], sys.argv[3])";
+    let crate_file = dir.path().join("every.usdc");
+    let package = dir.path().join("every.usdz");
+    let o = Command::new("python3")
+        .args(["-c", script])
+        .args([&text, &crate_file, &package])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(std::fs::read(&crate_file).unwrap().starts_with(b"PXR-USDC"));
+    for file in [crate_file, package] {
+        let (back, report) = import(&file);
+        assert!(report.is_empty(), "{}: {report:?}", file.display());
+        compare_round_trip(&file.display().to_string(), &doc, &back);
+    }
+}
