@@ -42,11 +42,19 @@ pub enum ExportFormat {
     Stl,
     /// glTF 2.0 with the hierarchy (`.glb` binary, `.gltf` text).
     Gltf,
+    /// OpenUSD text: the hierarchy, subdivision cages with their creases
+    /// kept live, NURBS surfaces and curves ([`crate::usd`]).
+    Usd,
 }
 
 impl ExportFormat {
     /// Every export format, in menu order.
-    pub const ALL: [ExportFormat; 3] = [ExportFormat::Obj, ExportFormat::Stl, ExportFormat::Gltf];
+    pub const ALL: [ExportFormat; 4] = [
+        ExportFormat::Obj,
+        ExportFormat::Stl,
+        ExportFormat::Gltf,
+        ExportFormat::Usd,
+    ];
 
     /// The format's name ("Wavefront OBJ").
     pub fn name(self) -> &'static str {
@@ -54,6 +62,7 @@ impl ExportFormat {
             ExportFormat::Obj => "Wavefront OBJ",
             ExportFormat::Stl => "STL",
             ExportFormat::Gltf => "glTF 2.0",
+            ExportFormat::Usd => "OpenUSD",
         }
     }
 
@@ -63,6 +72,7 @@ impl ExportFormat {
             ExportFormat::Obj => &["obj"],
             ExportFormat::Stl => &["stl"],
             ExportFormat::Gltf => &["glb", "gltf"],
+            ExportFormat::Usd => &["usda"],
         }
     }
 
@@ -72,6 +82,7 @@ impl ExportFormat {
             ExportFormat::Obj => "Wavefront OBJ (.obj)…",
             ExportFormat::Stl => "STL, triangulated (.stl)…",
             ExportFormat::Gltf => "glTF 2.0 binary, with the hierarchy (.glb)…",
+            ExportFormat::Usd => "OpenUSD, subdivision and NURBS kept (.usda)…",
         }
     }
 
@@ -244,6 +255,10 @@ pub fn export_file(
         "stl" => to_stl(&items(true)?),
         "gltf" => crate::gltf::to_gltf(doc, shape, false)?,
         "glb" => crate::gltf::to_gltf(doc, shape, true)?,
+        "usda" => {
+            let (bytes, notes) = crate::usd::to_usd(doc, path, shape)?;
+            return Ok(Exported { bytes, notes });
+        }
         other => {
             return Err(ExportError::UnsupportedFormat {
                 path: path.to_path_buf(),

@@ -719,6 +719,7 @@ pub fn gltf_from_bytes(
             vertex_numbers: Vec::new(),
             curve: None,
             content: None,
+            hidden: false,
         });
         for child in node.children().collect::<Vec<_>>().into_iter().rev() {
             stack.push((child, Some(me)));

@@ -67,6 +67,8 @@ pub struct ImportedMesh {
     /// curve; STEP: a B-spline surface or curve). When set it is used as
     /// it is and `mesh`, `corners` and `curve` are not read.
     pub content: Option<NodeContent>,
+    /// The file hides the node (USD `visibility = "invisible"`).
+    pub hidden: bool,
 }
 
 impl ImportedMesh {
@@ -86,6 +88,7 @@ impl ImportedMesh {
             corners: CornerAttributes::default(),
             curve: None,
             content: None,
+            hidden: false,
         }
     }
 
@@ -106,6 +109,7 @@ impl ImportedMesh {
             corners: CornerAttributes::default(),
             curve: None,
             content: None,
+            hidden: false,
         }
     }
 }
@@ -269,7 +273,7 @@ pub enum ImportError {
         message: String,
     },
     /// An extension Hedra does not import.
-    #[error("{path}: unsupported format '.{ext}' (supported: .obj, .stl, .gltf, .glb)")]
+    #[error("{path}: unsupported format '.{ext}' (supported: {})", supported_imports())]
     Unsupported {
         /// The file, as the caller named it.
         path: String,
@@ -277,7 +281,8 @@ pub enum ImportError {
         ext: String,
     },
     #[error(
-        "{path}: the file name has no extension to tell its format (supported: .obj, .stl, .gltf, .glb)"
+        "{path}: the file name has no extension to tell its format (supported: {})",
+        supported_imports()
     )]
     /// A file name without an extension.
     NoExtension {
@@ -1427,7 +1432,16 @@ fn obj_text(bytes: &[u8]) -> String {
 }
 
 /// The extensions [`import_file`] reads, in the order menus list them.
-pub const IMPORT_FORMATS: &[&str] = &["obj", "stl", "gltf", "glb"];
+pub const IMPORT_FORMATS: &[&str] = &["obj", "stl", "gltf", "glb", "usda", "usdc", "usdz", "usd"];
+
+/// The import extensions as messages list them: `.obj, .stl, ...`.
+pub fn supported_imports() -> String {
+    IMPORT_FORMATS
+        .iter()
+        .map(|e| format!(".{e}"))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
 
 /// Reads a file by its extension.
 ///
@@ -1465,6 +1479,7 @@ pub fn import_file(path: &Path) -> Result<Vec<ImportedMesh>, ImportError> {
             })?;
             crate::gltf::gltf_from_bytes(&bytes, path.parent(), &shown)
         }
+        "usda" | "usdc" | "usdz" | "usd" => crate::usd::usd_from_path(path),
         "" => Err(ImportError::NoExtension { path: shown }),
         other => Err(ImportError::Unsupported {
             path: shown,
@@ -1709,7 +1724,7 @@ impl Document {
                 name,
                 parent,
                 transform: m.transform,
-                visible: true,
+                visible: !m.hidden,
                 content: match (&m.mesh, &m.curve) {
                     _ if m.content.is_some() => m.content.clone().unwrap_or(NodeContent::Empty),
                     (Some(mesh), _) => NodeContent::Mesh(MeshContent {

@@ -100,15 +100,14 @@ pub(super) fn menu_bar(
                 events.push(UiEvent::File(FileAction::SaveAs));
             }
             ui.separator();
-            let import_label = format!(
-                "Import ({})…",
-                hedra_doc::import::IMPORT_FORMATS
-                    .iter()
-                    .map(|e| format!(".{e}"))
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            );
-            if ui.button(import_label).clicked() {
+            if ui
+                .button("Import…")
+                .on_hover_text(format!(
+                    "Add a file's nodes to the scene: {}",
+                    hedra_doc::import::supported_imports()
+                ))
+                .clicked()
+            {
                 events.push(UiEvent::File(FileAction::Import));
             }
             ui.menu_button("Export", |ui| {
