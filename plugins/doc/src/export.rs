@@ -38,6 +38,8 @@ pub const EXPORT_FORMATS: &[(&str, &str)] = &[
     ("stl", "STL"),
     ("gltf", "glTF 2.0"),
     ("glb", "binary glTF 2.0"),
+    ("step", "STEP AP214 (NURBS)"),
+    ("stp", "STEP AP214 (NURBS)"),
 ];
 
 /// How OBJ holds curve nodes.
@@ -186,6 +188,12 @@ pub fn export_bytes_with_curves(
         "stl" => Ok(to_stl(&items(true)?)),
         "gltf" => crate::gltf::to_gltf(doc, shape, false),
         "glb" => crate::gltf::to_gltf(doc, shape, true),
+        "step" | "stp" => {
+            let name = path
+                .file_name()
+                .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
+            crate::step::to_step(doc, crate::step::StepOptions::default(), &name).map(|(b, _)| b)
+        }
         other => Err(ExportError::UnsupportedFormat {
             path: path.to_path_buf(),
             extension: other.to_string(),

@@ -269,7 +269,7 @@ pub enum ImportError {
         message: String,
     },
     /// An extension Hedra does not import.
-    #[error("{path}: unsupported format '.{ext}' (supported: .obj, .stl, .gltf, .glb)")]
+    #[error("{path}: unsupported format '.{ext}' (supported: .obj, .stl, .gltf, .glb, .step, .stp)")]
     Unsupported {
         /// The file, as the caller named it.
         path: String,
@@ -277,7 +277,7 @@ pub enum ImportError {
         ext: String,
     },
     #[error(
-        "{path}: the file name has no extension to tell its format (supported: .obj, .stl, .gltf, .glb)"
+        "{path}: the file name has no extension to tell its format (supported: .obj, .stl, .gltf, .glb, .step, .stp)"
     )]
     /// A file name without an extension.
     NoExtension {
@@ -1454,6 +1454,13 @@ pub fn import_file(path: &Path) -> Result<Vec<ImportedMesh>, ImportError> {
                 .file_stem()
                 .map_or_else(|| "STL".to_string(), |s| s.to_string_lossy().into_owned());
             stl_from_bytes(&bytes, &name, &shown)
+        }
+        "step" | "stp" => {
+            let bytes = crate::input::read(path).map_err(|e| ImportError::Read {
+                path: shown.clone(),
+                message: e.to_string(),
+            })?;
+            crate::step::step_from_bytes(&bytes, &shown)
         }
         "gltf" | "glb" => {
             let bytes = crate::input::read(path).map_err(|e| ImportError::Read {

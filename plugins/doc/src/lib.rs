@@ -25,6 +25,7 @@ pub mod scene;
 pub mod script;
 pub mod session;
 pub mod smooth;
+pub mod step;
 
 pub use command::{Command, CommandError, NodeRef};
 pub use elements::{EdgeSet, FaceSet, ProfileSet, VertexSet};
