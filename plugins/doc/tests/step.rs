@@ -1,0 +1,365 @@
+//! STEP exports read by OpenCASCADE (cadquery-ocp, `scripts/step_read.py`,
+//! installed by `scripts/setup` from `scripts/requirements.txt`): every
+//! export reads, its shape checker finds it valid, and the surfaces and
+//! curves it evaluates on a grid of parameters equal Hedra's world-space
+//! evaluation to 1e-9 m, in metres and in millimetres. Then Hedra reads the
+//! file back and gets the same control points, weights, knots, degrees and
+//! names. Without OCP the tests fail, naming the module.
+
+use glam::{DMat4, DVec3};
+use hedra_doc::step::{StepOptions, StepUnits, step_from_bytes, to_step, triangle_as_patch};
+use hedra_doc::{Command, Document, NodeContent, NodeTransform, Session, SurfaceShape};
+use hedra_geom::curves::Curve;
+use hedra_geom::surfaces::Surface;
+use hedra_geom::{NurbsCurve, NurbsSurface};
+use serde_json::Value;
+use std::path::{Path, PathBuf};
+use std::process::Command as Process;
+
+/// Fractions of each parameter's range the comparisons evaluate at
+/// (uneven, so that curves that agree at their knots, such as a Hermite
+/// and a Lagrange curve through the same points, are told apart).
+const FRACTIONS: [f64; 7] = [0.0, 0.137, 0.29, 0.5, 0.713, 0.88, 1.0];
+
+fn repo() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+/// Fails, naming the module, when python3 cannot import OpenCASCADE.
+fn require_ocp() {
+    let ok = Process::new("python3")
+        .args(["-c", "import OCP.STEPControl"])
+        .output()
+        .is_ok_and(|o| o.status.success());
+    assert!(
+        ok,
+        "python3 cannot import 'OCP' (cadquery-ocp-novtk): run scripts/setup (it installs scripts/requirements.txt)"
+    );
+}
+
+/// What OpenCASCADE reads from `file`.
+fn ocp(file: &Path) -> Value {
+    let o = Process::new("python3")
+        .arg(repo().join("scripts/step_read.py"))
+        .arg(file)
+        .arg(FRACTIONS.map(|f| f.to_string()).join(","))
+        .output()
+        .expect("python3 runs");
+    assert!(
+        o.status.success(),
+        "step_read.py failed on {}: {}",
+        file.display(),
+        String::from_utf8_lossy(&o.stderr)
+    );
+    serde_json::from_slice(&o.stdout).expect("step_read.py prints JSON")
+}
+
+fn v3(v: &Value) -> DVec3 {
+    DVec3::new(
+        v[0].as_f64().unwrap(),
+        v[1].as_f64().unwrap(),
+        v[2].as_f64().unwrap(),
+    )
+}
+
+fn load(path: &Path) -> Document {
+    hedra_doc::file::load(path)
+        .unwrap_or_else(|e| panic!("{e}"))
+        .session
+        .doc
+}
+
+/// A visible surface or curve node as it should come out: its name and
+/// its NURBS form in world space (a triangle as its collapsed patch).
+enum Expected {
+    Surface(String, NurbsSurface, bool),
+    Curve(String, NurbsCurve),
+}
+
+fn world_surface(s: &NurbsSurface, m: DMat4) -> NurbsSurface {
+    let (du, dv) = s.degrees();
+    let (ku, kv) = s.knots();
+    let (nu, nv) = s.size();
+    NurbsSurface::new(
+        du,
+        dv,
+        ku.to_vec(),
+        kv.to_vec(),
+        nu,
+        nv,
+        s.points().iter().map(|p| m.transform_point3(*p)).collect(),
+        s.weights().to_vec(),
+    )
+    .unwrap()
+}
+
+fn expected(doc: &Document) -> Vec<Expected> {
+    let tree = doc.hierarchy();
+    let mut out = Vec::new();
+    for &id in tree.order() {
+        let node = doc.node(id).unwrap();
+        let facts = tree.facts(id).unwrap();
+        if !facts.visible || facts.inside_csg {
+            continue;
+        }
+        match &node.content {
+            NodeContent::Surface(s) => {
+                let (local, triangle) = match &**s {
+                    SurfaceShape::Nurbs(s) => (s.clone(), false),
+                    SurfaceShape::Triangle(t) => (triangle_as_patch(t), true),
+                };
+                out.push(Expected::Surface(
+                    node.name.clone(),
+                    world_surface(&local, facts.world),
+                    triangle,
+                ))
+            }
+            NodeContent::Curve(c) => out.push(Expected::Curve(
+                node.name.clone(),
+                c.nurbs().transformed(&facts.world).unwrap(),
+            )),
+            _ => {}
+        }
+    }
+    out
+}
+
+/// Hedra's own world-space points of node `name` on the grid, evaluated
+/// through the document (`hedra eval`'s evaluation, in local space, then
+/// the world matrix): a triangle at (u, v) = (s, (1 − s) t).
+fn hedra_surface_points(doc: &Document, name: &str) -> Vec<DVec3> {
+    let node = doc.find_by_name(name).unwrap();
+    let world = doc.world_matrix(node.id);
+    let NodeContent::Surface(shape) = &node.content else {
+        unreachable!()
+    };
+    let mut out = Vec::new();
+    for fs in FRACTIONS {
+        for ft in FRACTIONS {
+            let params = match &**shape {
+                SurfaceShape::Nurbs(s) => {
+                    let ((u0, u1), (v0, v1)) = s.domain();
+                    [u0 + fs * (u1 - u0), v0 + ft * (v1 - v0)]
+                }
+                SurfaceShape::Triangle(_) => [fs, (1.0 - fs) * ft],
+            };
+            let e = hedra_doc::eval::evaluate(
+                doc,
+                &hedra_doc::NodeRef::Name(name.to_string()),
+                &params,
+            )
+            .unwrap();
+            out.push(world.transform_point3(DVec3::from_array(e.point)));
+        }
+    }
+    out
+}
+
+fn hedra_curve_points(doc: &Document, name: &str) -> Vec<DVec3> {
+    let node = doc.find_by_name(name).unwrap();
+    let world = doc.world_matrix(node.id);
+    let NodeContent::Curve(c) = &node.content else {
+        unreachable!()
+    };
+    let (a, b) = c.nurbs().domain();
+    FRACTIONS
+        .iter()
+        .map(|f| {
+            let t = a + (b - a) * f;
+            let e = hedra_doc::eval::evaluate(
+                doc,
+                &hedra_doc::NodeRef::Name(name.to_string()),
+                &[t],
+            )
+            .unwrap();
+            world.transform_point3(DVec3::from_array(e.point))
+        })
+        .collect()
+}
+
+fn points_of(v: &Value) -> Vec<DVec3> {
+    v["points"]
+        .as_array()
+        .map(|a| a.iter().map(v3).collect())
+        .unwrap_or_default()
+}
+
+fn close(a: &[DVec3], b: &[DVec3], tolerance: f64) -> bool {
+    a.len() == b.len() && a.iter().zip(b).all(|(p, q)| p.distance(*q) <= tolerance)
+}
+
+fn knots_equal(a: &[f64], b: &[Value]) -> bool {
+    a.len() == b.len()
+        && a.iter()
+            .zip(b)
+            .all(|(x, y)| (x - y.as_f64().unwrap()).abs() <= 1e-12 * x.abs().max(1.0))
+}
+
+/// Exports `doc` in `units`, has OpenCASCADE read it and compares; reads
+/// it back with Hedra and compares. Returns OpenCASCADE's answer.
+fn check_round_trip(label: &str, doc: &Document, units: StepUnits, dir: &Path) -> Value {
+    let (bytes, _notes) = to_step(
+        doc,
+        StepOptions {
+            units,
+            meshes: false,
+        },
+        &format!("{label}.step"),
+    )
+    .unwrap_or_else(|e| panic!("{label}: {e}"));
+    let file = dir.join(format!("{label}-{units:?}.step"));
+    std::fs::write(&file, &bytes).unwrap();
+    let read = ocp(&file);
+    assert_eq!(read["read"], true, "{label}: OpenCASCADE cannot read {}", file.display());
+    assert_eq!(read["valid"], true, "{label} {units:?}: the shape checker finds the shape invalid");
+    let unit = read["length_unit"][0].as_str().unwrap_or("").to_string();
+    match units {
+        StepUnits::Metres => assert_eq!(unit, "metre", "{label}"),
+        StepUnits::Millimetres => assert_eq!(unit, "millimetre", "{label}"),
+    }
+    let expected = expected(doc);
+    let faces = read["faces"].as_array().unwrap();
+    let curves = read["curves"].as_array().unwrap();
+    let surfaces = expected
+        .iter()
+        .filter(|e| matches!(e, Expected::Surface(..)))
+        .count();
+    assert_eq!(faces.len(), surfaces, "{label}: one face per surface node");
+    let ncurves = expected.len() - surfaces;
+    assert_eq!(curves.len(), ncurves, "{label}: one curve per curve node");
+    for e in &expected {
+        match e {
+            Expected::Surface(name, s, triangle) => {
+                let ours = hedra_surface_points(doc, name);
+                let face = faces
+                    .iter()
+                    .find(|f| close(&points_of(f), &ours, 1e-9))
+                    .unwrap_or_else(|| {
+                        panic!(
+                            "{label} {units:?}: no face of OpenCASCADE's has the points of '{name}' (first {:?}, theirs {:?})",
+                            ours[0],
+                            faces.iter().map(|f| points_of(f).first().copied()).collect::<Vec<_>>()
+                        )
+                    });
+                assert_eq!(face["valid"], true, "{label}: face '{name}'");
+                let (du, dv) = s.degrees();
+                assert_eq!(face["degrees"], serde_json::json!([du, dv]), "{label}: '{name}'");
+                // OpenCASCADE makes a closed direction periodic (the
+                // same points, other poles and knots): compare the data
+                // where it did not.
+                let (ku, kv) = s.knots();
+                let periodic = [0, 1].map(|k| face["periodic"][k] == true);
+                if !periodic[0] {
+                    assert!(knots_equal(ku, face["knots_u"].as_array().unwrap()), "{label}: '{name}' u knots");
+                }
+                if !periodic[1] {
+                    assert!(knots_equal(kv, face["knots_v"].as_array().unwrap()), "{label}: '{name}' v knots");
+                }
+                if periodic == [false, false] {
+                    let poles: Vec<DVec3> = face["poles"].as_array().unwrap().iter().map(v3).collect();
+                    assert!(close(&poles, s.points(), 1e-9), "{label}: '{name}' poles");
+                }
+                // OpenCASCADE calls weights within 1e-9 of each other
+                // polynomial.
+                if s.weights().iter().any(|&w| (w - 1.0).abs() > 1e-6) {
+                    assert_eq!(face["rational"], true, "{label}: '{name}'");
+                }
+                let _ = triangle;
+            }
+            Expected::Curve(name, c) => {
+                let ours = hedra_curve_points(doc, name);
+                let curve = curves
+                    .iter()
+                    .find(|f| close(&points_of(f), &ours, 1e-9))
+                    .unwrap_or_else(|| panic!("{label} {units:?}: no curve of OpenCASCADE's has the points of '{name}'"));
+                assert_eq!(curve["degree"], c.degree(), "{label}: '{name}'");
+                if curve["periodic"] != true {
+                    assert!(knots_equal(c.knots(), curve["knots"].as_array().unwrap()), "{label}: '{name}' knots");
+                }
+            }
+        }
+    }
+    // Back into Hedra: the same nodes, in world space, in metres.
+    let imported = step_from_bytes(&bytes, &file.display().to_string())
+        .unwrap_or_else(|e| panic!("{label}: {e}"));
+    assert_eq!(imported.len(), expected.len(), "{label}: one node per surface and curve");
+    let scale = match units {
+        StepUnits::Metres => 0.0,
+        StepUnits::Millimetres => 1e-12,
+    };
+    for e in &expected {
+        let name = match e {
+            Expected::Surface(n, ..) | Expected::Curve(n, _) => n,
+        };
+        let node = imported
+            .iter()
+            .find(|m| &m.name == name)
+            .unwrap_or_else(|| panic!("{label}: '{name}' did not come back"));
+        let same = |a: &[DVec3], b: &[DVec3]| {
+            a.len() == b.len()
+                && a.iter()
+                    .zip(b)
+                    .all(|(p, q)| p.distance(*q) <= scale * p.length().max(1.0))
+        };
+        match (e, &node.content) {
+            (Expected::Surface(_, s, _), Some(NodeContent::Surface(got))) => {
+                let SurfaceShape::Nurbs(got) = &**got else {
+                    panic!("{label}: '{name}' came back as a triangle")
+                };
+                assert_eq!(got.degrees(), s.degrees(), "{label}: '{name}'");
+                assert_eq!(got.size(), s.size(), "{label}: '{name}'");
+                assert_eq!(got.knots(), s.knots(), "{label}: '{name}'");
+                assert_eq!(got.weights(), s.weights(), "{label}: '{name}'");
+                assert!(same(got.points(), s.points()), "{label}: '{name}' control points");
+            }
+            (Expected::Curve(_, c), Some(NodeContent::Curve(got))) => {
+                let got = got.nurbs();
+                assert_eq!(got.degree(), c.degree(), "{label}: '{name}'");
+                assert_eq!(got.knots(), c.knots(), "{label}: '{name}'");
+                assert_eq!(got.weights(), c.weights(), "{label}: '{name}'");
+                assert!(same(got.points(), c.points()), "{label}: '{name}' control points");
+            }
+            _ => panic!("{label}: '{name}' came back as another kind"),
+        }
+    }
+    read
+}
+
+fn scenes() -> Vec<(String, PathBuf)> {
+    let mut out = Vec::new();
+    for s in ["shapes", "g1-join"] {
+        out.push((s.to_string(), repo().join(format!("assets/samples/{s}.hedra.ron"))));
+    }
+    for s in ["v2-curve-kinds", "v2-constructions", "v2-patches", "v3-every-command"] {
+        out.push((
+            s.to_string(),
+            Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("tests/corpus/scenes/{s}.hedra.ron")),
+        ));
+    }
+    out
+}
+
+#[test]
+fn opencascade_reads_every_nurbs_scene_and_evaluates_it_as_hedra_does_and_hedra_reads_it_back() {
+    require_ocp();
+    let dir = tempfile::tempdir().unwrap();
+    let dir = debug_dir(&dir);
+    for (label, path) in scenes() {
+        let doc = load(&path);
+        for units in [StepUnits::Metres, StepUnits::Millimetres] {
+            check_round_trip(&label, &doc, units, &dir);
+        }
+    }
+}
+
+/// The folder the exports go to: `HEDRA_STEP_DIR` when set (to look at
+/// them), else the temporary one.
+fn debug_dir(temp: &tempfile::TempDir) -> PathBuf {
+    match std::env::var_os("HEDRA_STEP_DIR") {
+        Some(d) => {
+            std::fs::create_dir_all(&d).unwrap();
+            PathBuf::from(d)
+        }
+        None => temp.path().to_path_buf(),
+    }
+}
