@@ -363,3 +363,227 @@ fn debug_dir(temp: &tempfile::TempDir) -> PathBuf {
         None => temp.path().to_path_buf(),
     }
 }
+
+/// The six faces of the cube [−½, ½]³ as bicubic Bézier patches (the
+/// bilinear face with its points spread evenly), `S_u × S_v` outward, or
+/// inward with each patch's u and v swapped.
+fn cube_faces(outward: bool) -> Vec<Vec<DVec3>> {
+    let c = |x: f64, y: f64, z: f64| DVec3::new(x, y, z) - DVec3::splat(0.5);
+    // Corners (u0v0, u0v1, u1v0, u1v1), S_u × S_v outward.
+    let faces = [
+        [c(0., 0., 0.), c(1., 0., 0.), c(0., 1., 0.), c(1., 1., 0.)],
+        [c(0., 0., 1.), c(0., 1., 1.), c(1., 0., 1.), c(1., 1., 1.)],
+        [c(0., 0., 0.), c(0., 0., 1.), c(1., 0., 0.), c(1., 0., 1.)],
+        [c(0., 1., 0.), c(1., 1., 0.), c(0., 1., 1.), c(1., 1., 1.)],
+        [c(0., 0., 0.), c(0., 1., 0.), c(0., 0., 1.), c(0., 1., 1.)],
+        [c(1., 0., 0.), c(1., 0., 1.), c(1., 1., 0.), c(1., 1., 1.)],
+    ];
+    faces
+        .iter()
+        .map(|[a, b, d, e]| {
+            let mut points = Vec::new();
+            for i in 0..4 {
+                for j in 0..4 {
+                    let (s, t) = (i as f64 / 3.0, j as f64 / 3.0);
+                    let (s, t) = if outward { (s, t) } else { (t, s) };
+                    points.push(a.lerp(*d, s).lerp(b.lerp(*e, s), t));
+                }
+            }
+            points
+        })
+        .collect()
+}
+
+/// A scene: the cube's six patches as nodes under a parent scaled by 2,
+/// turned and moved (world volume 8), and a sphere of radius 1.5.
+fn solids_scene(outward: bool) -> Document {
+    let mut s = Session::new();
+    s.execute(&Command::AddEmpty {
+        name: "Rig".into(),
+        parent: None,
+        transform: NodeTransform {
+            translation: DVec3::new(3.0, -1.0, 2.0),
+            rotation: glam::DQuat::from_euler(glam::EulerRot::XYZ, 0.3, -0.7, 1.1),
+            scale: DVec3::splat(2.0),
+        },
+    })
+    .unwrap();
+    for (k, points) in cube_faces(outward).into_iter().enumerate() {
+        s.execute(&Command::AddSurface {
+            name: format!("Side {k}"),
+            surface: hedra_doc::command::SurfaceSpec::Bezier {
+                nu: 4,
+                nv: 4,
+                points,
+            },
+            parent: Some(hedra_doc::NodeRef::Name("Rig".into())),
+            transform: NodeTransform::IDENTITY,
+        })
+        .unwrap();
+    }
+    s.execute(&Command::AddSurface {
+        name: "Ball".into(),
+        surface: hedra_doc::command::SurfaceSpec::Sphere { radius: 1.5 },
+        parent: None,
+        transform: NodeTransform::from_translation(DVec3::new(-5.0, 0.0, 0.0)),
+    })
+    .unwrap();
+    s.doc
+}
+
+#[test]
+fn patches_that_close_up_are_written_as_valid_solids_of_the_right_volume() {
+    require_ocp();
+    let dir = tempfile::tempdir().unwrap();
+    let dir = debug_dir(&dir);
+    for outward in [true, false] {
+        let doc = solids_scene(outward);
+        for units in [StepUnits::Metres, StepUnits::Millimetres] {
+            let label = format!("solids-{}", if outward { "out" } else { "in" });
+            let read = check_round_trip(&label, &doc, units, &dir);
+            let bytes = std::fs::read(dir.join(format!("{label}-{units:?}.step"))).unwrap();
+            let text = String::from_utf8(bytes).unwrap();
+            // The cube's six faces share 12 edges and 8 vertices; the
+            // ball adds its seam and the seam's two end points.
+            assert_eq!(text.matches("EDGE_CURVE(").count(), 13, "{label}");
+            assert_eq!(text.matches("VERTEX_POINT(").count(), 10, "{label}");
+            assert_eq!(text.matches("MANIFOLD_SOLID_BREP(").count(), 2, "{label}");
+            assert_eq!(read["closed_shells"], 2, "{label}");
+            let mut volumes: Vec<f64> = read["solids"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|s| {
+                    assert_eq!(s["valid"], true, "{label}: a solid is invalid");
+                    s["volume"].as_f64().unwrap()
+                })
+                .collect();
+            volumes.sort_by(f64::total_cmp);
+            let ball = 4.0 / 3.0 * std::f64::consts::PI * 1.5f64.powi(3);
+            assert_eq!(volumes.len(), 2, "{label}");
+            assert!((volumes[0] - 8.0).abs() < 1e-6, "{label}: cube volume {}", volumes[0]);
+            assert!((volumes[1] - ball).abs() < 1e-6 * ball, "{label}: ball volume {}", volumes[1]);
+        }
+    }
+}
+
+#[test]
+fn meshes_are_left_out_with_a_note_or_written_as_faceted_shells() {
+    require_ocp();
+    let dir = tempfile::tempdir().unwrap();
+    let dir = debug_dir(&dir);
+    let doc = load(
+        &Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/corpus/scenes/v3-every-command.hedra.ron"),
+    );
+    let meshes = doc
+        .nodes()
+        .filter(|n| matches!(n.content, NodeContent::Mesh(_)) && doc.hierarchy().is_visible(n.id))
+        .count();
+    assert!(meshes > 0);
+    let (_, notes) = to_step(&doc, StepOptions::default(), "every.step").unwrap();
+    assert!(
+        notes.iter().any(|n| n.starts_with(&format!("{meshes} mesh node(s) left out"))),
+        "{notes:?}"
+    );
+    // A scene of meshes alone is nothing to export without them.
+    let chair = load(&repo().join("assets/samples/chair.hedra.ron"));
+    let e = to_step(&chair, StepOptions::default(), "chair.step").unwrap_err();
+    assert!(e.to_string().contains("nothing to export"), "{e}");
+    let (bytes, _) = to_step(
+        &chair,
+        StepOptions {
+            units: StepUnits::Millimetres,
+            meshes: true,
+        },
+        "chair.step",
+    )
+    .unwrap();
+    let file = dir.join("chair-faceted.step");
+    std::fs::write(&file, bytes).unwrap();
+    let read = ocp(&file);
+    assert_eq!(read["valid"], true);
+    let triangles: usize = chair
+        .nodes()
+        .map(|n| {
+            hedra_doc::export::written_counts(&chair, n.id, hedra_doc::export::ExportShape::Evaluated)
+                .unwrap()
+                .map_or(0, |c| c.triangles)
+        })
+        .sum();
+    assert_eq!(read["faces"].as_array().unwrap().len(), triangles);
+}
+
+/// A minimal file around `data` (instance lines).
+fn file_with(data: &str) -> String {
+    format!("ISO-10303-21;\nHEADER;\nFILE_SCHEMA(('AUTOMOTIVE_DESIGN'));\nENDSEC;\nDATA;\n{data}ENDSEC;\nEND-ISO-10303-21;\n")
+}
+
+/// A good curve set holding one cubic through 4 points (lines 6 to 11).
+const GOOD: &str = "#1=CARTESIAN_POINT('',(0.,0.,0.));\n#2=CARTESIAN_POINT('',(1.,0.,0.));\n#3=CARTESIAN_POINT('',(2.,1.,0.));\n#4=CARTESIAN_POINT('',(3.,1.,0.));\n#5=B_SPLINE_CURVE_WITH_KNOTS('C',3,(#1,#2,#3,#4),.UNSPECIFIED.,.F.,.F.,(4,4),(0.,1.),.UNSPECIFIED.);\n#6=GEOMETRIC_CURVE_SET('',(#5));\n";
+
+fn import_error(data: &str) -> String {
+    match step_from_bytes(file_with(data).as_bytes(), "bad.step") {
+        Ok(nodes) => panic!("imported {} node(s) from a bad file", nodes.len()),
+        Err(e) => e.to_string(),
+    }
+}
+
+#[test]
+fn hostile_files_give_clear_errors_naming_the_file_the_line_and_the_instance() {
+    // The good file reads.
+    let nodes = step_from_bytes(file_with(GOOD).as_bytes(), "good.step").unwrap();
+    assert_eq!(nodes.len(), 1);
+    assert_eq!(nodes[0].name, "C");
+    let cases: Vec<(String, &str)> = vec![
+        // A dangling reference.
+        (GOOD.replace("(#1,#2,#3,#4)", "(#1,#2,#3,#99)"), "line 10, #5: refers to #99, which the file does not define"),
+        // A reference of the wrong type.
+        (
+            format!("{}#7=DIRECTION('',(1.,0.,0.));\n", GOOD.replace("(#1,#2,#3,#4)", "(#1,#2,#3,#7)")),
+            "line 10, #5: #7 is a DIRECTION, where a CARTESIAN_POINT was expected",
+        ),
+        // A huge multiplicity: refused before anything is allocated.
+        (GOOD.replace("(4,4),(0.,1.)", "(4,4000000000000),(0.,1.)"), "line 10, #5: the knot multiplicities add up to 4000000000004"),
+        // A cycle.
+        (GOOD.replace("#6=GEOMETRIC_CURVE_SET('',(#5));", "#6=GEOMETRIC_CURVE_SET('',(#5,#7));\n#7=GEOMETRIC_CURVE_SET('',(#6));"), "a cycle of references: #6 → #7 → #6"),
+        // Wrong counts.
+        (GOOD.replace("(4,4),(0.,1.)", "(4,4),(0.,0.5,1.)"), "line 10, #5: 2 knot multiplicities for 3 knots"),
+        (GOOD.replace("'C',3,", "'C',99,"), "line 10, #5: degree 99"),
+        (GOOD.replace("(0.,0.,0.)", "(0.,0.)"), "line 6, #1: a point of 2 coordinate(s)"),
+        (GOOD.replace("(0.,1.),.UN", "(1.,0.),.UN"), "line 10, #5: not a valid B-spline curve"),
+        // Truncated.
+        (GOOD[..GOOD.len() - 20].to_string(), "bad.step: line"),
+        // A huge number.
+        (GOOD.replace("(1.,0.,0.)", "(1.E400,0.,0.)"), "line 7, #2: '1.E400' is not a finite number"),
+    ];
+    for (data, want) in cases {
+        let e = import_error(&data);
+        assert!(e.starts_with("bad.step: "), "{e}");
+        assert!(e.contains(want), "expected '{want}' in: {e}");
+    }
+    // Not a STEP file at all, and an empty one.
+    let e = step_from_bytes(b"solid x\nendsolid x\n", "bad.step").unwrap_err().to_string();
+    assert!(e.contains("not a STEP file"), "{e}");
+    let e = step_from_bytes(b"", "bad.step").unwrap_err().to_string();
+    assert!(e.starts_with("bad.step: "), "{e}");
+    let e = import_error("#1=CARTESIAN_POINT('',(0.,0.,0.));\n");
+    assert!(e.contains("no B-spline surface or curve"), "{e}");
+}
+
+#[test]
+fn a_trimmed_face_comes_in_as_its_underlying_surface_and_the_report_says_so() {
+    // One bilinear face bounded by a loop of two edges inside it.
+    let data = "#1=CARTESIAN_POINT('',(0.,0.,0.));\n#2=CARTESIAN_POINT('',(0.,1.,0.));\n#3=CARTESIAN_POINT('',(1.,0.,0.));\n#4=CARTESIAN_POINT('',(1.,1.,0.));\n\
+#5=B_SPLINE_SURFACE_WITH_KNOTS('S',1,1,((#1,#2),(#3,#4)),.UNSPECIFIED.,.F.,.F.,.F.,(2,2),(2,2),(0.,1.),(0.,1.),.UNSPECIFIED.);\n\
+#6=CARTESIAN_POINT('',(0.25,0.25,0.));\n#7=CARTESIAN_POINT('',(0.75,0.75,0.));\n#8=VERTEX_POINT('',#6);\n#9=VERTEX_POINT('',#7);\n\
+#10=EDGE_CURVE('',#8,#9,#5,.T.);\n#11=ORIENTED_EDGE('',*,*,#10,.T.);\n#12=ORIENTED_EDGE('',*,*,#10,.F.);\n#13=EDGE_LOOP('',(#11,#12));\n\
+#14=FACE_OUTER_BOUND('',#13,.T.);\n#15=ADVANCED_FACE('Trimmed',(#14),#5,.T.);\n";
+    let nodes = step_from_bytes(file_with(data).as_bytes(), "t.step").unwrap();
+    assert_eq!(nodes.len(), 1);
+    assert_eq!(nodes[0].name, "Trimmed");
+    let notes = hedra_doc::import::describe_repairs(&nodes).join("\n");
+    assert!(
+        notes.contains("1 trimmed face(s) imported as their whole underlying surface"),
+        "{notes}"
+    );
+}

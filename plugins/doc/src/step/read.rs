@@ -124,11 +124,26 @@ impl Reader<'_> {
         }
     }
 
+    /// The record `name` of instance `id`, which `from` refers to; an
+    /// error at `from` when `id` is undefined or of another type.
+    fn typed(&self, from: u64, id: u64, name: &str) -> R<&Record> {
+        let i = self.get(from, id)?;
+        match i.records.iter().find(|r| r.name == name) {
+            Some(r) => Ok(r),
+            None => at(
+                from,
+                format!(
+                    "#{id} is a {}, where a {name} was expected",
+                    i.records.iter().map(|r| r.name.as_str()).collect::<Vec<_>>().join(" + ")
+                ),
+            ),
+        }
+    }
+
     /// A 3D `CARTESIAN_POINT`, in metres.
     fn point(&self, from: u64, p: &Param) -> R<DVec3> {
         let id = self.reference(from, p, "a control point")?;
-        self.get(from, id)?;
-        let r = self.record(id, "CARTESIAN_POINT")?;
+        let r = self.typed(from, id, "CARTESIAN_POINT")?;
         let c = self.list(id, self.param(id, r, 1)?, "the coordinates")?;
         if c.len() != 3 {
             return at(id, format!("a point of {} coordinate(s); Hedra reads 3D points", c.len()));
