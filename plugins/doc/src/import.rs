@@ -269,7 +269,9 @@ pub enum ImportError {
         message: String,
     },
     /// An extension Hedra does not import.
-    #[error("{path}: unsupported format '.{ext}' (supported: .obj, .stl, .gltf, .glb, .step, .stp)")]
+    #[error(
+        "{path}: unsupported format '.{ext}' (supported: .obj, .stl, .gltf, .glb, .step, .stp)"
+    )]
     Unsupported {
         /// The file, as the caller named it.
         path: String,

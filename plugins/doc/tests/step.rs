@@ -166,12 +166,9 @@ fn hedra_curve_points(doc: &Document, name: &str) -> Vec<DVec3> {
         .iter()
         .map(|f| {
             let t = a + (b - a) * f;
-            let e = hedra_doc::eval::evaluate(
-                doc,
-                &hedra_doc::NodeRef::Name(name.to_string()),
-                &[t],
-            )
-            .unwrap();
+            let e =
+                hedra_doc::eval::evaluate(doc, &hedra_doc::NodeRef::Name(name.to_string()), &[t])
+                    .unwrap();
             world.transform_point3(DVec3::from_array(e.point))
         })
         .collect()
@@ -210,8 +207,16 @@ fn check_round_trip(label: &str, doc: &Document, units: StepUnits, dir: &Path) -
     let file = dir.join(format!("{label}-{units:?}.step"));
     std::fs::write(&file, &bytes).unwrap();
     let read = ocp(&file);
-    assert_eq!(read["read"], true, "{label}: OpenCASCADE cannot read {}", file.display());
-    assert_eq!(read["valid"], true, "{label} {units:?}: the shape checker finds the shape invalid");
+    assert_eq!(
+        read["read"],
+        true,
+        "{label}: OpenCASCADE cannot read {}",
+        file.display()
+    );
+    assert_eq!(
+        read["valid"], true,
+        "{label} {units:?}: the shape checker finds the shape invalid"
+    );
     let unit = read["length_unit"][0].as_str().unwrap_or("").to_string();
     match units {
         StepUnits::Metres => assert_eq!(unit, "metre", "{label}"),
@@ -243,20 +248,31 @@ fn check_round_trip(label: &str, doc: &Document, units: StepUnits, dir: &Path) -
                     });
                 assert_eq!(face["valid"], true, "{label}: face '{name}'");
                 let (du, dv) = s.degrees();
-                assert_eq!(face["degrees"], serde_json::json!([du, dv]), "{label}: '{name}'");
+                assert_eq!(
+                    face["degrees"],
+                    serde_json::json!([du, dv]),
+                    "{label}: '{name}'"
+                );
                 // OpenCASCADE makes a closed direction periodic (the
                 // same points, other poles and knots): compare the data
                 // where it did not.
                 let (ku, kv) = s.knots();
                 let periodic = [0, 1].map(|k| face["periodic"][k] == true);
                 if !periodic[0] {
-                    assert!(knots_equal(ku, face["knots_u"].as_array().unwrap()), "{label}: '{name}' u knots");
+                    assert!(
+                        knots_equal(ku, face["knots_u"].as_array().unwrap()),
+                        "{label}: '{name}' u knots"
+                    );
                 }
                 if !periodic[1] {
-                    assert!(knots_equal(kv, face["knots_v"].as_array().unwrap()), "{label}: '{name}' v knots");
+                    assert!(
+                        knots_equal(kv, face["knots_v"].as_array().unwrap()),
+                        "{label}: '{name}' v knots"
+                    );
                 }
                 if periodic == [false, false] {
-                    let poles: Vec<DVec3> = face["poles"].as_array().unwrap().iter().map(v3).collect();
+                    let poles: Vec<DVec3> =
+                        face["poles"].as_array().unwrap().iter().map(v3).collect();
                     assert!(close(&poles, s.points(), 1e-9), "{label}: '{name}' poles");
                 }
                 // OpenCASCADE calls weights within 1e-9 of each other
@@ -274,7 +290,10 @@ fn check_round_trip(label: &str, doc: &Document, units: StepUnits, dir: &Path) -
                     .unwrap_or_else(|| panic!("{label} {units:?}: no curve of OpenCASCADE's has the points of '{name}'"));
                 assert_eq!(curve["degree"], c.degree(), "{label}: '{name}'");
                 if curve["periodic"] != true {
-                    assert!(knots_equal(c.knots(), curve["knots"].as_array().unwrap()), "{label}: '{name}' knots");
+                    assert!(
+                        knots_equal(c.knots(), curve["knots"].as_array().unwrap()),
+                        "{label}: '{name}' knots"
+                    );
                 }
             }
         }
@@ -282,7 +301,11 @@ fn check_round_trip(label: &str, doc: &Document, units: StepUnits, dir: &Path) -
     // Back into Hedra: the same nodes, in world space, in metres.
     let imported = step_from_bytes(&bytes, &file.display().to_string())
         .unwrap_or_else(|e| panic!("{label}: {e}"));
-    assert_eq!(imported.len(), expected.len(), "{label}: one node per surface and curve");
+    assert_eq!(
+        imported.len(),
+        expected.len(),
+        "{label}: one node per surface and curve"
+    );
     let scale = match units {
         StepUnits::Metres => 0.0,
         StepUnits::Millimetres => 1e-12,
@@ -310,14 +333,20 @@ fn check_round_trip(label: &str, doc: &Document, units: StepUnits, dir: &Path) -
                 assert_eq!(got.size(), s.size(), "{label}: '{name}'");
                 assert_eq!(got.knots(), s.knots(), "{label}: '{name}'");
                 assert_eq!(got.weights(), s.weights(), "{label}: '{name}'");
-                assert!(same(got.points(), s.points()), "{label}: '{name}' control points");
+                assert!(
+                    same(got.points(), s.points()),
+                    "{label}: '{name}' control points"
+                );
             }
             (Expected::Curve(_, c), Some(NodeContent::Curve(got))) => {
                 let got = got.nurbs();
                 assert_eq!(got.degree(), c.degree(), "{label}: '{name}'");
                 assert_eq!(got.knots(), c.knots(), "{label}: '{name}'");
                 assert_eq!(got.weights(), c.weights(), "{label}: '{name}'");
-                assert!(same(got.points(), c.points()), "{label}: '{name}' control points");
+                assert!(
+                    same(got.points(), c.points()),
+                    "{label}: '{name}' control points"
+                );
             }
             _ => panic!("{label}: '{name}' came back as another kind"),
         }
@@ -328,12 +357,21 @@ fn check_round_trip(label: &str, doc: &Document, units: StepUnits, dir: &Path) -
 fn scenes() -> Vec<(String, PathBuf)> {
     let mut out = Vec::new();
     for s in ["shapes", "g1-join"] {
-        out.push((s.to_string(), repo().join(format!("assets/samples/{s}.hedra.ron"))));
-    }
-    for s in ["v2-curve-kinds", "v2-constructions", "v2-patches", "v3-every-command"] {
         out.push((
             s.to_string(),
-            Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("tests/corpus/scenes/{s}.hedra.ron")),
+            repo().join(format!("assets/samples/{s}.hedra.ron")),
+        ));
+    }
+    for s in [
+        "v2-curve-kinds",
+        "v2-constructions",
+        "v2-patches",
+        "v3-every-command",
+    ] {
+        out.push((
+            s.to_string(),
+            Path::new(env!("CARGO_MANIFEST_DIR"))
+                .join(format!("tests/corpus/scenes/{s}.hedra.ron")),
         ));
     }
     out
@@ -461,8 +499,16 @@ fn patches_that_close_up_are_written_as_valid_solids_of_the_right_volume() {
             volumes.sort_by(f64::total_cmp);
             let ball = 4.0 / 3.0 * std::f64::consts::PI * 1.5f64.powi(3);
             assert_eq!(volumes.len(), 2, "{label}");
-            assert!((volumes[0] - 8.0).abs() < 1e-6, "{label}: cube volume {}", volumes[0]);
-            assert!((volumes[1] - ball).abs() < 1e-6 * ball, "{label}: ball volume {}", volumes[1]);
+            assert!(
+                (volumes[0] - 8.0).abs() < 1e-6,
+                "{label}: cube volume {}",
+                volumes[0]
+            );
+            assert!(
+                (volumes[1] - ball).abs() < 1e-6 * ball,
+                "{label}: ball volume {}",
+                volumes[1]
+            );
         }
     }
 }
@@ -473,7 +519,8 @@ fn meshes_are_left_out_with_a_note_or_written_as_faceted_shells() {
     let dir = tempfile::tempdir().unwrap();
     let dir = debug_dir(&dir);
     let doc = load(
-        &Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/corpus/scenes/v3-every-command.hedra.ron"),
+        &Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("tests/corpus/scenes/v3-every-command.hedra.ron"),
     );
     let meshes = doc
         .nodes()
@@ -482,7 +529,9 @@ fn meshes_are_left_out_with_a_note_or_written_as_faceted_shells() {
     assert!(meshes > 0);
     let (_, notes) = to_step(&doc, StepOptions::default(), "every.step").unwrap();
     assert!(
-        notes.iter().any(|n| n.starts_with(&format!("{meshes} mesh node(s) left out"))),
+        notes
+            .iter()
+            .any(|n| n.starts_with(&format!("{meshes} mesh node(s) left out"))),
         "{notes:?}"
     );
     // A scene of meshes alone is nothing to export without them.
@@ -505,9 +554,13 @@ fn meshes_are_left_out_with_a_note_or_written_as_faceted_shells() {
     let triangles: usize = chair
         .nodes()
         .map(|n| {
-            hedra_doc::export::written_counts(&chair, n.id, hedra_doc::export::ExportShape::Evaluated)
-                .unwrap()
-                .map_or(0, |c| c.triangles)
+            hedra_doc::export::written_counts(
+                &chair,
+                n.id,
+                hedra_doc::export::ExportShape::Evaluated,
+            )
+            .unwrap()
+            .map_or(0, |c| c.triangles)
         })
         .sum();
     assert_eq!(read["faces"].as_array().unwrap().len(), triangles);
@@ -515,7 +568,9 @@ fn meshes_are_left_out_with_a_note_or_written_as_faceted_shells() {
 
 /// A minimal file around `data` (instance lines).
 fn file_with(data: &str) -> String {
-    format!("ISO-10303-21;\nHEADER;\nFILE_SCHEMA(('AUTOMOTIVE_DESIGN'));\nENDSEC;\nDATA;\n{data}ENDSEC;\nEND-ISO-10303-21;\n")
+    format!(
+        "ISO-10303-21;\nHEADER;\nFILE_SCHEMA(('AUTOMOTIVE_DESIGN'));\nENDSEC;\nDATA;\n{data}ENDSEC;\nEND-ISO-10303-21;\n"
+    )
 }
 
 /// A good curve set holding one cubic through 4 points (lines 6 to 11).
@@ -536,25 +591,52 @@ fn hostile_files_give_clear_errors_naming_the_file_the_line_and_the_instance() {
     assert_eq!(nodes[0].name, "C");
     let cases: Vec<(String, &str)> = vec![
         // A dangling reference.
-        (GOOD.replace("(#1,#2,#3,#4)", "(#1,#2,#3,#99)"), "line 10, #5: refers to #99, which the file does not define"),
+        (
+            GOOD.replace("(#1,#2,#3,#4)", "(#1,#2,#3,#99)"),
+            "line 10, #5: refers to #99, which the file does not define",
+        ),
         // A reference of the wrong type.
         (
-            format!("{}#7=DIRECTION('',(1.,0.,0.));\n", GOOD.replace("(#1,#2,#3,#4)", "(#1,#2,#3,#7)")),
+            format!(
+                "{}#7=DIRECTION('',(1.,0.,0.));\n",
+                GOOD.replace("(#1,#2,#3,#4)", "(#1,#2,#3,#7)")
+            ),
             "line 10, #5: #7 is a DIRECTION, where a CARTESIAN_POINT was expected",
         ),
         // A huge multiplicity: refused before anything is allocated.
-        (GOOD.replace("(4,4),(0.,1.)", "(4,4000000000000),(0.,1.)"), "line 10, #5: the knot multiplicities add up to 4000000000004"),
+        (
+            GOOD.replace("(4,4),(0.,1.)", "(4,4000000000000),(0.,1.)"),
+            "line 10, #5: the knot multiplicities add up to 4000000000004",
+        ),
         // A cycle.
-        (GOOD.replace("#6=GEOMETRIC_CURVE_SET('',(#5));", "#6=GEOMETRIC_CURVE_SET('',(#5,#7));\n#7=GEOMETRIC_CURVE_SET('',(#6));"), "a cycle of references: #6 → #7 → #6"),
+        (
+            GOOD.replace(
+                "#6=GEOMETRIC_CURVE_SET('',(#5));",
+                "#6=GEOMETRIC_CURVE_SET('',(#5,#7));\n#7=GEOMETRIC_CURVE_SET('',(#6));",
+            ),
+            "a cycle of references: #6 → #7 → #6",
+        ),
         // Wrong counts.
-        (GOOD.replace("(4,4),(0.,1.)", "(4,4),(0.,0.5,1.)"), "line 10, #5: 2 knot multiplicities for 3 knots"),
+        (
+            GOOD.replace("(4,4),(0.,1.)", "(4,4),(0.,0.5,1.)"),
+            "line 10, #5: 2 knot multiplicities for 3 knots",
+        ),
         (GOOD.replace("'C',3,", "'C',99,"), "line 10, #5: degree 99"),
-        (GOOD.replace("(0.,0.,0.)", "(0.,0.)"), "line 6, #1: a point of 2 coordinate(s)"),
-        (GOOD.replace("(0.,1.),.UN", "(1.,0.),.UN"), "line 10, #5: not a valid B-spline curve"),
+        (
+            GOOD.replace("(0.,0.,0.)", "(0.,0.)"),
+            "line 6, #1: a point of 2 coordinate(s)",
+        ),
+        (
+            GOOD.replace("(0.,1.),.UN", "(1.,0.),.UN"),
+            "line 10, #5: not a valid B-spline curve",
+        ),
         // Truncated.
         (GOOD[..GOOD.len() - 20].to_string(), "bad.step: line"),
         // A huge number.
-        (GOOD.replace("(1.,0.,0.)", "(1.E400,0.,0.)"), "line 7, #2: '1.E400' is not a finite number"),
+        (
+            GOOD.replace("(1.,0.,0.)", "(1.E400,0.,0.)"),
+            "line 7, #2: '1.E400' is not a finite number",
+        ),
     ];
     for (data, want) in cases {
         let e = import_error(&data);
@@ -562,7 +644,9 @@ fn hostile_files_give_clear_errors_naming_the_file_the_line_and_the_instance() {
         assert!(e.contains(want), "expected '{want}' in: {e}");
     }
     // Not a STEP file at all, and an empty one.
-    let e = step_from_bytes(b"solid x\nendsolid x\n", "bad.step").unwrap_err().to_string();
+    let e = step_from_bytes(b"solid x\nendsolid x\n", "bad.step")
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("not a STEP file"), "{e}");
     let e = step_from_bytes(b"", "bad.step").unwrap_err().to_string();
     assert!(e.starts_with("bad.step: "), "{e}");

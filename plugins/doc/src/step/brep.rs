@@ -167,8 +167,12 @@ struct Edge {
 /// outward, by the divergence theorem on an n × n grid of triangles.
 fn signed_volume(s: &NurbsSurface, n: usize) -> f64 {
     let ((u0, u1), (v0, v1)) = s.domain();
-    let us: Vec<f64> = (0..=n).map(|i| u0 + (u1 - u0) * i as f64 / n as f64).collect();
-    let vs: Vec<f64> = (0..=n).map(|i| v0 + (v1 - v0) * i as f64 / n as f64).collect();
+    let us: Vec<f64> = (0..=n)
+        .map(|i| u0 + (u1 - u0) * i as f64 / n as f64)
+        .collect();
+    let vs: Vec<f64> = (0..=n)
+        .map(|i| v0 + (v1 - v0) * i as f64 / n as f64)
+        .collect();
     let g = s.grid_points(&us, &vs);
     let p = |i: usize, j: usize| g[i * (n + 1) + j];
     let mut v = 0.0;
@@ -217,14 +221,16 @@ pub fn write_shells(w: &mut StepWriter, patches: &[Patch], tolerance: f64) -> Ve
             );
             let key = (start.min(end), start.max(end));
             let same = |e: &Edge| -> Option<bool> {
-                let forward = e.start == start && e.end == end
+                let forward = e.start == start
+                    && e.end == end
                     && SAMPLES
                         .iter()
                         .all(|&f| at(&e.curve, f).distance(at(c, f)) <= tolerance);
                 if forward {
                     return Some(true);
                 }
-                let backward = e.start == end && e.end == start
+                let backward = e.start == end
+                    && e.end == start
                     && SAMPLES
                         .iter()
                         .all(|&f| at(&e.curve, 1.0 - f).distance(at(c, f)) <= tolerance);
@@ -394,7 +400,11 @@ mod tests {
         assert_eq!(shells.len(), 1);
         assert!(shells[0].closed);
         assert_eq!(shells[0].edges, 12);
-        assert!((shells[0].volume - 1.0).abs() < 1e-9, "{}", shells[0].volume);
+        assert!(
+            (shells[0].volume - 1.0).abs() < 1e-9,
+            "{}",
+            shells[0].volume
+        );
         let text = String::from_utf8(w.finish("x", "y")).unwrap();
         assert_eq!(text.matches("VERTEX_POINT").count(), 8);
         assert_eq!(text.matches("EDGE_CURVE").count(), 12);

@@ -174,9 +174,7 @@ pub fn to_step(
                             tris.push(if mirrored { [a, c, b] } else { [a, b, c] });
                         }
                     }
-                    let closed = mesh
-                        .halfedges()
-                        .all(|h| mesh.face(h).is_some());
+                    let closed = mesh.halfedges().all(|h| mesh.face(h).is_some());
                     meshes.push((node.name.clone(), tris, closed));
                 }
             }
@@ -202,7 +200,9 @@ pub fn to_step(
             .iter()
             .map(|(name, c)| r(w.bspline_curve(name, c)))
             .collect();
-        items.push(r(w.add(&format!("GEOMETRIC_CURVE_SET('Curves',{})", list(ids)))));
+        items.push(r(
+            w.add(&format!("GEOMETRIC_CURVE_SET('Curves',{})", list(ids)))
+        ));
     }
     for (name, tris, closed) in &meshes {
         items.push(r(write_faceted(&mut w, name, tris, *closed, tolerance)));
@@ -216,7 +216,9 @@ pub fn to_step(
     let product = std::path::Path::new(file_name)
         .file_stem()
         .and_then(|s| s.to_str())
-        .map_or("Hedra", |s| s.trim_end_matches(".step").trim_end_matches(".stp"));
+        .map_or("Hedra", |s| {
+            s.trim_end_matches(".step").trim_end_matches(".stp")
+        });
     w.product(product, rep);
     let mut notes = Vec::new();
     if left_meshes > 0 {
@@ -278,9 +280,9 @@ fn write_faceted(
         let plane = w.add(&format!("PLANE('',#{plane_at})"));
         let lp = w.add(&format!("POLY_LOOP('',{})", list(corners)));
         let bound = w.add(&format!("FACE_OUTER_BOUND('',#{lp},.T.)"));
-        faces.push(r(w.add(&format!(
-            "FACE_SURFACE('',(#{bound}),#{plane},.T.)"
-        ))));
+        faces.push(r(
+            w.add(&format!("FACE_SURFACE('',(#{bound}),#{plane},.T.)"))
+        ));
     }
     if closed {
         let shell = w.add(&format!("CLOSED_SHELL({},{})", string(name), list(faces)));

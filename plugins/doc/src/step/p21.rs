@@ -219,7 +219,9 @@ impl<'a> Lexer<'a> {
             b'+' | b'-' | b'.' | b'0'..=b'9' => self.number(),
             b'!' | b'A'..=b'Z' | b'a'..=b'z' | b'_' => {
                 let word = self
-                    .take_while(|c| c.is_ascii_alphanumeric() || c == b'_' || c == b'-' || c == b'!')
+                    .take_while(|c| {
+                        c.is_ascii_alphanumeric() || c == b'_' || c == b'-' || c == b'!'
+                    })
                     .to_ascii_uppercase();
                 Ok(Token::Keyword(word))
             }
@@ -240,9 +242,8 @@ impl<'a> Lexer<'a> {
     }
 
     fn number(&mut self) -> Result<Token, SyntaxError> {
-        let text = self.take_while(|c| {
-            c.is_ascii_digit() || matches!(c, b'+' | b'-' | b'.' | b'E' | b'e')
-        });
+        let text = self
+            .take_while(|c| c.is_ascii_digit() || matches!(c, b'+' | b'-' | b'.' | b'E' | b'e'));
         if !text.contains(['.', 'E', 'e']) {
             return text
                 .parse::<i64>()
@@ -321,7 +322,11 @@ fn decode_string(s: &str) -> String {
                 let u16s: Vec<u16> = units.iter().map(|&u| u as u16).collect();
                 text.push_str(&String::from_utf16_lossy(&u16s));
             } else {
-                text.extend(units.iter().map(|&u| char::from_u32(u).unwrap_or('\u{fffd}')));
+                text.extend(
+                    units
+                        .iter()
+                        .map(|&u| char::from_u32(u).unwrap_or('\u{fffd}')),
+                );
             }
             Some((text, end + 4))
         };
@@ -608,7 +613,9 @@ pub fn parse(text: &[u8]) -> Result<Exchange, SyntaxError> {
                     );
                     ex.order.push(id);
                 }
-                Token::End => return Err(p.err("the file ends inside the DATA section (no ENDSEC)")),
+                Token::End => {
+                    return Err(p.err("the file ends inside the DATA section (no ENDSEC)"));
+                }
                 other => {
                     return Err(p.err(format!(
                         "expected an instance '#n = …' or ENDSEC, found {}",
@@ -735,7 +742,9 @@ mod tests {
     fn errors_name_the_line_and_the_instance() {
         let e = parse(b"ISO-10303-21;\nHEADER;\nENDSEC;\nDATA;\n#1=A(1,2);\n#2=B(1,,2);\nENDSEC;END-ISO-10303-21;").unwrap_err();
         assert_eq!((e.line, e.entity), (6, Some(2)), "{e}");
-        let e = parse(b"ISO-10303-21;HEADER;ENDSEC;DATA;\n#1=A(1);\n#1=A(2);ENDSEC;END-ISO-10303-21;").unwrap_err();
+        let e =
+            parse(b"ISO-10303-21;HEADER;ENDSEC;DATA;\n#1=A(1);\n#1=A(2);ENDSEC;END-ISO-10303-21;")
+                .unwrap_err();
         assert!(e.to_string().contains("#1 is defined twice"), "{e}");
         let e = parse(b"ISO-10303-21;HEADER;ENDSEC;DATA;\n#1=A(1);\n#2=A((((((((((((((((((((1))))))))))))))))))));").unwrap_err();
         assert!(e.to_string().contains("nest more than"), "{e}");
@@ -745,7 +754,8 @@ mod tests {
         assert!(e.to_string().contains("no ENDSEC"), "{e}");
         let e = parse(b"solid x\n").unwrap_err();
         assert!(e.to_string().contains("not a STEP file"), "{e}");
-        let e = parse(b"ISO-10303-21;HEADER;ENDSEC;DATA;#1=A(1E999);ENDSEC;END-ISO-10303-21;").unwrap_err();
+        let e = parse(b"ISO-10303-21;HEADER;ENDSEC;DATA;#1=A(1E999);ENDSEC;END-ISO-10303-21;")
+            .unwrap_err();
         assert!(e.to_string().contains("finite"), "{e}");
     }
 

@@ -48,17 +48,24 @@ struct Reader<'a> {
 }
 
 fn is_bspline_surface(i: &Instance) -> bool {
-    i.records.iter().any(|r| r.name == "B_SPLINE_SURFACE_WITH_KNOTS")
+    i.records
+        .iter()
+        .any(|r| r.name == "B_SPLINE_SURFACE_WITH_KNOTS")
 }
 fn is_bspline_curve(i: &Instance) -> bool {
-    i.records.iter().any(|r| r.name == "B_SPLINE_CURVE_WITH_KNOTS")
+    i.records
+        .iter()
+        .any(|r| r.name == "B_SPLINE_CURVE_WITH_KNOTS")
 }
 
 impl Reader<'_> {
     fn get(&self, from: u64, id: u64) -> R<&Instance> {
         match self.ex.instances.get(&id) {
             Some(i) => Ok(i),
-            None => at(from, format!("refers to #{id}, which the file does not define")),
+            None => at(
+                from,
+                format!("refers to #{id}, which the file does not define"),
+            ),
         }
     }
 
@@ -71,7 +78,11 @@ impl Reader<'_> {
                 id,
                 format!(
                     "is {}, where {name} was expected",
-                    i.records.iter().map(|r| r.name.as_str()).collect::<Vec<_>>().join(" + ")
+                    i.records
+                        .iter()
+                        .map(|r| r.name.as_str())
+                        .collect::<Vec<_>>()
+                        .join(" + ")
                 ),
             ),
         }
@@ -82,7 +93,11 @@ impl Reader<'_> {
             Some(p) => Ok(p),
             None => at(
                 id,
-                format!("{} has {} parameter(s), fewer than expected", r.name, r.params.len()),
+                format!(
+                    "{} has {} parameter(s), fewer than expected",
+                    r.name,
+                    r.params.len()
+                ),
             ),
         }
     }
@@ -134,7 +149,11 @@ impl Reader<'_> {
                 from,
                 format!(
                     "#{id} is a {}, where a {name} was expected",
-                    i.records.iter().map(|r| r.name.as_str()).collect::<Vec<_>>().join(" + ")
+                    i.records
+                        .iter()
+                        .map(|r| r.name.as_str())
+                        .collect::<Vec<_>>()
+                        .join(" + ")
                 ),
             ),
         }
@@ -146,7 +165,13 @@ impl Reader<'_> {
         let r = self.typed(from, id, "CARTESIAN_POINT")?;
         let c = self.list(id, self.param(id, r, 1)?, "the coordinates")?;
         if c.len() != 3 {
-            return at(id, format!("a point of {} coordinate(s); Hedra reads 3D points", c.len()));
+            return at(
+                id,
+                format!(
+                    "a point of {} coordinate(s); Hedra reads 3D points",
+                    c.len()
+                ),
+            );
         }
         let v = [
             self.real(id, &c[0], "x")?,
@@ -184,7 +209,9 @@ impl Reader<'_> {
         if total != needed as i64 {
             return at(
                 id,
-                format!("the knot multiplicities add up to {total}, but {needed} knots are needed (control points + degree + 1)"),
+                format!(
+                    "the knot multiplicities add up to {total}, but {needed} knots are needed (control points + degree + 1)"
+                ),
             );
         }
         let mut out = Vec::with_capacity(needed);
@@ -198,7 +225,10 @@ impl Reader<'_> {
     fn degree(&self, id: u64, p: &Param) -> R<usize> {
         let d = self.int(id, p, "the degree")?;
         if !(1..=MAX_DEGREE).contains(&d) {
-            return at(id, format!("degree {d} (Hedra reads degrees 1 to {MAX_DEGREE})"));
+            return at(
+                id,
+                format!("degree {d} (Hedra reads degrees 1 to {MAX_DEGREE})"),
+            );
         }
         Ok(d as usize)
     }
@@ -209,7 +239,10 @@ impl Reader<'_> {
         let (name, degree, points, mults, knots) = if i.complex {
             let b = self.record(id, "B_SPLINE_CURVE")?;
             let k = self.record(id, "B_SPLINE_CURVE_WITH_KNOTS")?;
-            let name = self.record(id, "REPRESENTATION_ITEM").map(|r| self.name(r)).unwrap_or_default();
+            let name = self
+                .record(id, "REPRESENTATION_ITEM")
+                .map(|r| self.name(r))
+                .unwrap_or_default();
             (
                 name,
                 self.param(id, b, 0)?,
@@ -235,9 +268,14 @@ impl Reader<'_> {
             Ok(r) => {
                 let w = self.list(id, self.param(id, r, 0)?, "the weights")?;
                 if w.len() != points.len() {
-                    return at(id, format!("{} weights for {} control points", w.len(), points.len()));
+                    return at(
+                        id,
+                        format!("{} weights for {} control points", w.len(), points.len()),
+                    );
                 }
-                w.iter().map(|x| self.real(id, x, "a weight")).collect::<R<Vec<f64>>>()?
+                w.iter()
+                    .map(|x| self.real(id, x, "a weight"))
+                    .collect::<R<Vec<f64>>>()?
             }
             Err(_) => vec![1.0; points.len()],
         };
@@ -253,19 +291,34 @@ impl Reader<'_> {
         let (name, du, dv, rows, knots) = if i.complex {
             let b = self.record(id, "B_SPLINE_SURFACE")?;
             let k = self.record(id, "B_SPLINE_SURFACE_WITH_KNOTS")?;
-            let name = self.record(id, "REPRESENTATION_ITEM").map(|r| self.name(r)).unwrap_or_default();
+            let name = self
+                .record(id, "REPRESENTATION_ITEM")
+                .map(|r| self.name(r))
+                .unwrap_or_default();
             let knots = [0, 1, 2, 3]
                 .map(|n| self.param(id, k, n))
                 .into_iter()
                 .collect::<R<Vec<_>>>()?;
-            (name, self.param(id, b, 0)?, self.param(id, b, 1)?, self.param(id, b, 2)?, knots)
+            (
+                name,
+                self.param(id, b, 0)?,
+                self.param(id, b, 1)?,
+                self.param(id, b, 2)?,
+                knots,
+            )
         } else {
             let k = self.record(id, "B_SPLINE_SURFACE_WITH_KNOTS")?;
             let knots = [8, 9, 10, 11]
                 .map(|n| self.param(id, k, n))
                 .into_iter()
                 .collect::<R<Vec<_>>>()?;
-            (self.name(k), self.param(id, k, 1)?, self.param(id, k, 2)?, self.param(id, k, 3)?, knots)
+            (
+                self.name(k),
+                self.param(id, k, 1)?,
+                self.param(id, k, 2)?,
+                self.param(id, k, 3)?,
+                knots,
+            )
         };
         let (du, dv) = (self.degree(id, du)?, self.degree(id, dv)?);
         let rows = self.list(id, rows, "the control points")?;
@@ -278,7 +331,10 @@ impl Reader<'_> {
         for row in rows {
             let row = self.list(id, row, "a row of control points")?;
             if row.len() != nv {
-                return at(id, format!("rows of {} and {} control points", nv, row.len()));
+                return at(
+                    id,
+                    format!("rows of {} and {} control points", nv, row.len()),
+                );
             }
             for p in row {
                 points.push(self.point(id, p)?);
@@ -291,12 +347,21 @@ impl Reader<'_> {
                 let w = self.list(id, self.param(id, r, 0)?, "the weights")?;
                 let mut out = Vec::with_capacity(points.len());
                 if w.len() != nu {
-                    return at(id, format!("{} rows of weights for {nu} rows of control points", w.len()));
+                    return at(
+                        id,
+                        format!(
+                            "{} rows of weights for {nu} rows of control points",
+                            w.len()
+                        ),
+                    );
                 }
                 for row in w {
                     let row = self.list(id, row, "a row of weights")?;
                     if row.len() != nv {
-                        return at(id, format!("a row of {} weights for {nv} control points", row.len()));
+                        return at(
+                            id,
+                            format!("a row of {} weights for {nv} control points", row.len()),
+                        );
                     }
                     for x in row {
                         out.push(self.real(id, x, "a weight")?);
@@ -317,7 +382,11 @@ impl Reader<'_> {
     fn length_unit(&self) -> R<f64> {
         for &id in &self.ex.order {
             let i = &self.ex.instances[&id];
-            let Some(units) = i.records.iter().find(|r| r.name == "GLOBAL_UNIT_ASSIGNED_CONTEXT") else {
+            let Some(units) = i
+                .records
+                .iter()
+                .find(|r| r.name == "GLOBAL_UNIT_ASSIGNED_CONTEXT")
+            else {
                 continue;
             };
             let list = self.list(id, self.param(id, units, 0)?, "the units")?;
@@ -355,7 +424,11 @@ impl Reader<'_> {
             };
             return Ok(factor);
         }
-        if let Some(c) = unit.records.iter().find(|r| r.name == "CONVERSION_BASED_UNIT") {
+        if let Some(c) = unit
+            .records
+            .iter()
+            .find(|r| r.name == "CONVERSION_BASED_UNIT")
+        {
             let m = self.reference(id, self.param(id, c, 1)?, "the conversion factor")?;
             let measure = self.get(id, m)?;
             let Some(r) = measure.records.first() else {
@@ -369,7 +442,10 @@ impl Reader<'_> {
             }
             return Ok(scale);
         }
-        at(id, "a length unit that is neither an SI_UNIT nor a CONVERSION_BASED_UNIT")
+        at(
+            id,
+            "a length unit that is neither an SI_UNIT nor a CONVERSION_BASED_UNIT",
+        )
     }
 
     /// True when every vertex of the face's bounds lies on a corner or
@@ -406,7 +482,12 @@ impl Reader<'_> {
         let _ = face;
         for b in bounds {
             let Some((_, bound)) = deref(b) else { continue };
-            let Some(lp) = bound.records.first().and_then(|r| r.params.get(1)).and_then(deref) else {
+            let Some(lp) = bound
+                .records
+                .first()
+                .and_then(|r| r.params.get(1))
+                .and_then(deref)
+            else {
                 continue;
             };
             let Some(edges) = lp.1.records.first().and_then(|r| r.params.get(1)) else {
@@ -415,14 +496,26 @@ impl Reader<'_> {
             let Param::List(edges) = edges else { continue };
             for oe in edges {
                 let Some((_, oe)) = deref(oe) else { continue };
-                let Some(edge) = oe.records.first().and_then(|r| r.params.get(3)).and_then(deref) else {
+                let Some(edge) = oe
+                    .records
+                    .first()
+                    .and_then(|r| r.params.get(3))
+                    .and_then(deref)
+                else {
                     continue;
                 };
                 for k in [1, 2] {
-                    let Some(vertex) = edge.1.records.first().and_then(|r| r.params.get(k)).and_then(deref) else {
+                    let Some(vertex) = edge
+                        .1
+                        .records
+                        .first()
+                        .and_then(|r| r.params.get(k))
+                        .and_then(deref)
+                    else {
                         continue;
                     };
-                    if let Some(Param::Ref(p)) = vertex.1.records.first().and_then(|r| r.params.get(1))
+                    if let Some(Param::Ref(p)) =
+                        vertex.1.records.first().and_then(|r| r.params.get(1))
                         && let Ok(p) = self.point(vertex.0, &Param::Ref(*p))
                     {
                         out.push(p);
@@ -452,7 +545,10 @@ pub fn step_from_bytes(bytes: &[u8], path: &str) -> Result<Vec<ImportedMesh>, Im
         let line = ex.instances.get(&e.id).map_or(0, |i| i.line);
         fail(format!("line {line}, #{}: {}", e.id, e.message))
     };
-    let mut reader = Reader { ex: &ex, scale: 1.0 };
+    let mut reader = Reader {
+        ex: &ex,
+        scale: 1.0,
+    };
     reader.scale = reader.length_unit().map_err(named)?;
     let mut out = Vec::new();
     let mut done: HashSet<u64> = HashSet::new();
@@ -467,9 +563,15 @@ pub fn step_from_bytes(bytes: &[u8], path: &str) -> Result<Vec<ImportedMesh>, Im
         else {
             continue;
         };
-        let bounds = reader.list(id, reader.param(id, face, 1).map_err(named)?, "the bounds").map_err(named)?;
+        let bounds = reader
+            .list(id, reader.param(id, face, 1).map_err(named)?, "the bounds")
+            .map_err(named)?;
         let geometry = reader
-            .reference(id, reader.param(id, face, 2).map_err(named)?, "the face geometry")
+            .reference(
+                id,
+                reader.param(id, face, 2).map_err(named)?,
+                "the face geometry",
+            )
             .map_err(named)?;
         let surface = reader.get(id, geometry).map_err(named)?;
         if !is_bspline_surface(surface) {
@@ -536,10 +638,16 @@ pub fn step_from_bytes(bytes: &[u8], path: &str) -> Result<Vec<ImportedMesh>, Im
                     name
                 };
                 out.push(ImportedMesh {
-                    content: Some(NodeContent::Curve(Arc::new(CurveContent::from_nurbs(curve)))),
+                    content: Some(NodeContent::Curve(Arc::new(CurveContent::from_nurbs(
+                        curve,
+                    )))),
                     ..ImportedMesh::empty(name)
                 });
-            } else if kind.ends_with("CURVE") || kind == "LINE" || kind == "CIRCLE" || kind == "ELLIPSE" {
+            } else if kind.ends_with("CURVE")
+                || kind == "LINE"
+                || kind == "CIRCLE"
+                || kind == "ELLIPSE"
+            {
                 *skipped_curves.entry(kind.to_string()).or_default() += 1;
             }
         }
@@ -557,7 +665,9 @@ pub fn step_from_bytes(bytes: &[u8], path: &str) -> Result<Vec<ImportedMesh>, Im
         ));
     }
     for (kind, n) in other_faces {
-        notes.push(format!("{n} face(s) on a {kind} (Hedra reads B-spline surfaces)"));
+        notes.push(format!(
+            "{n} face(s) on a {kind} (Hedra reads B-spline surfaces)"
+        ));
     }
     if faceted > 0 {
         notes.push(format!("{faceted} planar facet(s) of faceted shells"));

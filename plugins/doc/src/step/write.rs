@@ -198,7 +198,8 @@ impl StepWriter {
     /// The AP214 product structure around the shape representation
     /// `representation`: one part named `name`.
     pub fn product(&mut self, name: &str, representation: u64) {
-        let app = self.add("APPLICATION_CONTEXT('core data for automotive mechanical design processes')");
+        let app =
+            self.add("APPLICATION_CONTEXT('core data for automotive mechanical design processes')");
         self.add(&format!(
             "APPLICATION_PROTOCOL_DEFINITION('international standard','automotive_design',2000,#{app})"
         ));
@@ -208,9 +209,7 @@ impl StepWriter {
         self.add(&format!(
             "PRODUCT_RELATED_PRODUCT_CATEGORY('part',$,(#{product}))"
         ));
-        let formation = self.add(&format!(
-            "PRODUCT_DEFINITION_FORMATION('','',#{product})"
-        ));
+        let formation = self.add(&format!("PRODUCT_DEFINITION_FORMATION('','',#{product})"));
         let pdc = self.add(&format!(
             "PRODUCT_DEFINITION_CONTEXT('part definition',#{app},'design')"
         ));
@@ -228,18 +227,16 @@ impl StepWriter {
     pub fn finish(self, file_name: &str, description: &str) -> Vec<u8> {
         let mut out = String::with_capacity(self.data.len() + 1024);
         out.push_str("ISO-10303-21;\nHEADER;\n");
-        let _ = writeln!(
-            out,
-            "FILE_DESCRIPTION(({}),'2;1');",
-            string(description)
-        );
+        let _ = writeln!(out, "FILE_DESCRIPTION(({}),'2;1');", string(description));
         let _ = writeln!(
             out,
             "FILE_NAME({},'',(''),(''),{},'Hedra','');",
             string(file_name),
             string(&format!("Hedra {}", env!("CARGO_PKG_VERSION")))
         );
-        out.push_str("FILE_SCHEMA(('AUTOMOTIVE_DESIGN { 1 0 10303 214 1 1 1 1 }'));\nENDSEC;\nDATA;\n");
+        out.push_str(
+            "FILE_SCHEMA(('AUTOMOTIVE_DESIGN { 1 0 10303 214 1 1 1 1 }'));\nENDSEC;\nDATA;\n",
+        );
         out.push_str(&self.data);
         out.push_str("ENDSEC;\nEND-ISO-10303-21;\n");
         out.into_bytes()
@@ -252,10 +249,20 @@ mod tests {
 
     #[test]
     fn reals_have_a_point_and_read_back_exactly() {
-        for x in [0.0, -0.0, 1.0, -2.5, 1e-7, 1.234e300, 0.1 + 0.2, f64::MIN_POSITIVE] {
+        for x in [
+            0.0,
+            -0.0,
+            1.0,
+            -2.5,
+            1e-7,
+            1.234e300,
+            0.1 + 0.2,
+            f64::MIN_POSITIVE,
+        ] {
             let s = real(x);
             assert!(s.contains('.'), "{s}");
-            let text = format!("ISO-10303-21;HEADER;ENDSEC;DATA;#1=A({s});ENDSEC;END-ISO-10303-21;");
+            let text =
+                format!("ISO-10303-21;HEADER;ENDSEC;DATA;#1=A({s});ENDSEC;END-ISO-10303-21;");
             let ex = super::super::p21::parse(text.as_bytes()).unwrap();
             assert_eq!(
                 ex.instances[&1].records[0].params[0],
