@@ -671,3 +671,172 @@ fn a_trimmed_face_comes_in_as_its_underlying_surface_and_the_report_says_so() {
         "{notes}"
     );
 }
+
+/// OpenCASCADE writes, in millimetres: a box, a cylinder and a sphere
+/// turned into B-spline faces (`BRepBuilderAPI_NurbsConvert`), and a
+/// free rational cubic edge.
+const OCP_WRITER: &str = r#"import sys
+from OCP.BRepPrimAPI import BRepPrimAPI_MakeBox, BRepPrimAPI_MakeCylinder, BRepPrimAPI_MakeSphere
+from OCP.BRepBuilderAPI import BRepBuilderAPI_NurbsConvert, BRepBuilderAPI_MakeEdge
+from OCP.STEPControl import STEPControl_Writer, STEPControl_AsIs
+from OCP.gp import gp_Pnt
+from OCP.OCP.collections import Array1_gp_Pnt as TColgp_Array1OfPnt, Array1_double as TColStd_Array1OfReal, Array1_int as TColStd_Array1OfInteger
+from OCP.Geom import Geom_BSplineCurve
+from OCP.BRep import BRep_Builder
+from OCP.TopoDS import TopoDS_Compound
+b = BRep_Builder(); comp = TopoDS_Compound(); b.MakeCompound(comp)
+box = BRepPrimAPI_MakeBox(gp_Pnt(10, 0, 0), 20.0, 30.0, 40.0).Shape()
+cyl = BRepPrimAPI_MakeCylinder(5.0, 12.0).Shape()
+sph = BRepPrimAPI_MakeSphere(gp_Pnt(-30, 0, 0), 7.0).Shape()
+for s in (box, cyl, sph):
+    b.Add(comp, BRepBuilderAPI_NurbsConvert(s, True).Shape())
+poles = TColgp_Array1OfPnt(1, 4)
+for i, p in enumerate([(0, 0, 50), (10, 5, 50), (20, -5, 55), (30, 0, 50)]):
+    poles.SetValue(i + 1, gp_Pnt(*p))
+w = TColStd_Array1OfReal(1, 4)
+for i, x in enumerate([1, 2, 0.5, 1]): w.SetValue(i + 1, x)
+k = TColStd_Array1OfReal(1, 2); k.SetValue(1, 0); k.SetValue(2, 1)
+m = TColStd_Array1OfInteger(1, 2); m.SetValue(1, 4); m.SetValue(2, 4)
+curve = Geom_BSplineCurve(poles, w, k, m, 3)
+b.Add(comp, BRepBuilderAPI_MakeEdge(curve).Edge())
+wr = STEPControl_Writer()
+wr.Transfer(comp, STEPControl_AsIs)
+wr.Write(sys.argv[1])
+"#;
+
+#[test]
+fn hedra_reads_what_opencascade_writes_with_the_same_surfaces_and_curves() {
+    require_ocp();
+    let dir = tempfile::tempdir().unwrap();
+    let dir = debug_dir(&dir);
+    let file = dir.join("occ-written.step");
+    let o = Process::new("python3")
+        .args(["-c", OCP_WRITER])
+        .arg(&file)
+        .output()
+        .expect("python3 runs");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let read = ocp(&file);
+    let nodes = hedra_doc::import::import_file(&file).unwrap_or_else(|e| panic!("{e}"));
+    let faces = read["faces"].as_array().unwrap();
+    let curves = read["curves"].as_array().unwrap();
+    let surfaces: Vec<&NurbsSurface> = nodes
+        .iter()
+        .filter_map(|n| match &n.content {
+            Some(NodeContent::Surface(s)) => match &**s {
+                SurfaceShape::Nurbs(s) => Some(s),
+                SurfaceShape::Triangle(_) => None,
+            },
+            _ => None,
+        })
+        .collect();
+    // Box 6, cylinder 3, sphere 1.
+    assert_eq!(surfaces.len(), 10);
+    assert_eq!(faces.len(), 10);
+    for face in faces {
+        let theirs = points_of(face);
+        let found = surfaces.iter().any(|s| {
+            let ((u0, u1), (v0, v1)) = s.domain();
+            let ours: Vec<DVec3> = FRACTIONS
+                .iter()
+                .flat_map(|&fu| {
+                    FRACTIONS.map(|fv| s.evaluate(u0 + fu * (u1 - u0), v0 + fv * (v1 - v0)).p)
+                })
+                .collect();
+            close(&ours, &theirs, 1e-9)
+        });
+        assert!(
+            found,
+            "no imported surface has the points of {:?}",
+            theirs.first()
+        );
+    }
+    let hedra_curves: Vec<NurbsCurve> = nodes
+        .iter()
+        .filter_map(|n| match &n.content {
+            Some(NodeContent::Curve(c)) => Some((**c.nurbs()).clone()),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(hedra_curves.len(), 1);
+    assert_eq!(curves.len(), 1);
+    let c = &hedra_curves[0];
+    assert!(!c.is_polynomial(), "the weights came through");
+    let (a, b) = c.domain();
+    let ours: Vec<DVec3> = FRACTIONS.iter().map(|f| c.point(a + f * (b - a))).collect();
+    assert!(close(&ours, &points_of(&curves[0]), 1e-9));
+    // Millimetres became metres: the box is 0.02 × 0.03 × 0.04 m.
+    assert!(
+        surfaces
+            .iter()
+            .any(|s| s.points().iter().any(|p| (p.x - 0.03).abs() < 1e-12))
+    );
+    let notes = hedra_doc::import::describe_repairs(&nodes).join("\n");
+    assert!(
+        notes.contains("trimmed face(s)"),
+        "the cylinder's discs are trimmed planes: {notes}"
+    );
+}
+
+#[test]
+fn a_curve_trimmed_at_parameters_comes_in_cut_there_and_reversed_when_its_sense_disagrees() {
+    let basis = step_from_bytes(file_with(GOOD).as_bytes(), "good.step").unwrap();
+    let Some(NodeContent::Curve(basis)) = &basis[0].content else {
+        panic!("a curve")
+    };
+    let basis = basis.nurbs().clone();
+    // Against the basis (.F.), the first trim is the later parameter.
+    for (sense, t1, t2) in [("T", 0.25, 0.75), ("F", 0.75, 0.25)] {
+        let data = GOOD.replace(
+            "#6=GEOMETRIC_CURVE_SET('',(#5));",
+            &format!("#6=GEOMETRIC_CURVE_SET('',(#7));\n#7=TRIMMED_CURVE('Cut',#5,(PARAMETER_VALUE({t1})),(PARAMETER_VALUE({t2})),.{sense}.,.PARAMETER.);"),
+        );
+        let nodes = step_from_bytes(file_with(&data).as_bytes(), "t.step").unwrap();
+        assert_eq!(nodes.len(), 1);
+        assert_eq!(nodes[0].name, "Cut");
+        let Some(NodeContent::Curve(c)) = &nodes[0].content else {
+            panic!("a curve")
+        };
+        let c = c.nurbs();
+        let (a, b) = c.domain();
+        let ends = if sense == "T" {
+            [0.25, 0.75]
+        } else {
+            [0.75, 0.25]
+        };
+        assert!(c.point(a).distance(basis.point(ends[0])) < 1e-12, "{sense}");
+        assert!(c.point(b).distance(basis.point(ends[1])) < 1e-12, "{sense}");
+        assert!(
+            c.point((a + b) / 2.0).distance(basis.point(0.5)) < 1e-12,
+            "{sense}"
+        );
+    }
+}
+
+#[test]
+fn step_and_stp_paths_export_and_import_through_the_common_entry_points() {
+    let doc = load(&repo().join("assets/samples/g1-join.hedra.ron"));
+    let dir = tempfile::tempdir().unwrap();
+    for ext in ["step", "stp", "STEP"] {
+        let path = dir.path().join(format!("join.{ext}"));
+        let bytes = hedra_doc::export::export_bytes(
+            &doc,
+            &path,
+            hedra_doc::export::ExportOptions::default(),
+        )
+        .unwrap();
+        assert!(bytes.starts_with(b"ISO-10303-21;"));
+        std::fs::write(&path, bytes).unwrap();
+        let nodes = hedra_doc::import::import_file(&path).unwrap();
+        assert_eq!(nodes.len(), expected(&doc).len(), "{ext}");
+        // Imported into a session, they are surface and curve nodes.
+        let mut s = Session::new();
+        s.import(&nodes, "Import");
+        assert_eq!(s.doc.node_count(), nodes.len());
+        assert!(
+            s.doc
+                .nodes()
+                .all(|n| matches!(n.content, NodeContent::Surface(_) | NodeContent::Curve(_)))
+        );
+    }
+}

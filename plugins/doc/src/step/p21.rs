@@ -311,7 +311,7 @@ fn decode_string(s: &str) -> String {
         let hex_run = |r: &str, width: usize| -> Option<(String, usize)> {
             let end = r.find("\\X0\\")?;
             let body = &r[..end];
-            if body.len() % width != 0 || !body.bytes().all(|c| c.is_ascii_hexdigit()) {
+            if !body.len().is_multiple_of(width) || !body.bytes().all(|c| c.is_ascii_hexdigit()) {
                 return None;
             }
             let mut text = String::new();

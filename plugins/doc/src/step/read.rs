@@ -7,7 +7,8 @@
 //! whose bounds do not run along its surface's natural boundary is
 //! trimmed: it comes in as its whole underlying surface, and the report
 //! says so. Curves: the B-spline curves of `GEOMETRIC_CURVE_SET`s,
-//! `GEOMETRIC_SET`s and representations' items, one curve node each.
+//! `GEOMETRIC_SET`s and representations' items, one curve node each,
+//! and `TRIMMED_CURVE`s on B-spline curves, cut to their parameters.
 //! Coordinates are converted from the file's length unit to metres.
 //!
 //! Every reference is checked for its type, every count against what is
@@ -18,6 +19,7 @@ use super::p21::{Exchange, Instance, Param, Record, parse};
 use crate::import::{ImportError, ImportedMesh};
 use crate::scene::{CurveContent, NodeContent, SurfaceShape};
 use glam::DVec3;
+use hedra_geom::curves::Curve;
 use hedra_geom::surfaces::Surface;
 use hedra_geom::{NurbsCurve, NurbsSurface};
 use std::collections::{BTreeMap, HashSet};
@@ -283,6 +285,63 @@ impl Reader<'_> {
             Ok(c) => Ok((name, c)),
             Err(e) => at(id, format!("not a valid B-spline curve: {e}")),
         }
+    }
+
+    /// A `TRIMMED_CURVE` on a B-spline curve: the basis cut to the trim
+    /// parameters (`PARAMETER_VALUE`s), reversed when its sense disagrees;
+    /// the whole basis when the trims are points only (then `true`: the
+    /// trim was not applied).
+    fn trimmed(&self, id: u64) -> R<(String, NurbsCurve, bool)> {
+        let r = self.record(id, "TRIMMED_CURVE")?;
+        let basis = self.reference(id, self.param(id, r, 1)?, "the basis curve")?;
+        if !is_bspline_curve(self.get(id, basis)?) {
+            return at(id, format!("#{basis} is not a B-spline curve"));
+        }
+        let (basis_name, curve) = self.curve(basis)?;
+        let name = Some(self.name(r))
+            .filter(|n| !n.is_empty())
+            .unwrap_or(basis_name);
+        let trim = |k: usize| -> R<Option<f64>> {
+            let list = self.list(id, self.param(id, r, k)?, "a trim")?;
+            for t in list {
+                if let Param::Typed(kind, v) = t
+                    && kind == "PARAMETER_VALUE"
+                {
+                    return self.real(id, v, "a trim parameter").map(Some);
+                }
+            }
+            Ok(None)
+        };
+        let sense = !matches!(r.params.get(4), Some(Param::Enum(e)) if e == "F");
+        let (Some(a), Some(b)) = (trim(2)?, trim(3)?) else {
+            return Ok((name, curve, true));
+        };
+        let (lo, hi) = curve.domain();
+        let (a, b) = if sense { (a, b) } else { (b, a) };
+        if !(lo - 1e-12..=hi + 1e-12).contains(&a)
+            || !(lo - 1e-12..=hi + 1e-12).contains(&b)
+            || a >= b
+        {
+            return at(
+                id,
+                format!("trims {a} and {b} outside the basis curve's domain [{lo}, {hi}]"),
+            );
+        }
+        let span = hi - lo;
+        let mut c = curve;
+        if a > lo + 1e-12 * span {
+            c = match c.split(a) {
+                Ok((_, after)) => after,
+                Err(e) => return at(id, format!("cannot trim at {a}: {e}")),
+            };
+        }
+        if b < hi - 1e-12 * span {
+            c = match c.split(b) {
+                Ok((before, _)) => before,
+                Err(e) => return at(id, format!("cannot trim at {b}: {e}")),
+            };
+        }
+        Ok((name, if sense { c } else { c.reversed() }, false))
     }
 
     /// A B-spline surface, simple or complex (rational).
@@ -612,6 +671,7 @@ pub fn step_from_bytes(bytes: &[u8], path: &str) -> Result<Vec<ImportedMesh>, Im
     }
     // Curves: the items of curve sets, geometric sets and representations.
     let mut skipped_curves: BTreeMap<String, usize> = BTreeMap::new();
+    let mut untrimmed_curves = 0usize;
     for &id in &ex.order {
         let i = &ex.instances[&id];
         let Some(set) = i.records.iter().find(|r| {
@@ -627,11 +687,19 @@ pub fn step_from_bytes(bytes: &[u8], path: &str) -> Result<Vec<ImportedMesh>, Im
             let Param::Ref(c) = item else { continue };
             let target = reader.get(id, *c).map_err(named)?;
             let kind = target.records.first().map_or("", |r| r.name.as_str());
-            if is_bspline_curve(target) {
+            let trimmed_bspline = kind == "TRIMMED_CURVE"
+                && matches!(target.records[0].params.get(1), Some(Param::Ref(b)) if ex.instances.get(b).is_some_and(is_bspline_curve));
+            if is_bspline_curve(target) || trimmed_bspline {
                 if !done.insert(*c) {
                     continue;
                 }
-                let (name, curve) = reader.curve(*c).map_err(named)?;
+                let (name, curve) = if trimmed_bspline {
+                    let (name, curve, whole) = reader.trimmed(*c).map_err(named)?;
+                    untrimmed_curves += usize::from(whole);
+                    (name, curve)
+                } else {
+                    reader.curve(*c).map_err(named)?
+                };
                 let name = if name.is_empty() {
                     format!("Curve {}", out.len() + 1)
                 } else {
@@ -671,6 +739,11 @@ pub fn step_from_bytes(bytes: &[u8], path: &str) -> Result<Vec<ImportedMesh>, Im
     }
     if faceted > 0 {
         notes.push(format!("{faceted} planar facet(s) of faceted shells"));
+    }
+    if untrimmed_curves > 0 {
+        notes.push(format!(
+            "the trims of {untrimmed_curves} curve(s) trimmed at points (their whole B-spline was imported)"
+        ));
     }
     for (kind, n) in skipped_curves {
         notes.push(format!("{n} {kind} curve(s)"));
