@@ -114,6 +114,19 @@ pub enum ExportError {
         /// The first such face.
         face: hedra_geom::FaceId,
     },
+    /// A STEP export of a scene whose only visible content is meshes,
+    /// which STEP gets only as faceted shells, when asked for
+    /// ([`crate::step::StepOptions::meshes`]).
+    #[error(
+        "{}: nothing to export: STEP holds NURBS surfaces and curves, and the scene has none; its {meshes} visible mesh node(s) are written as faceted shells only when asked (--step-meshes)",
+        path.display()
+    )]
+    StepMeshesOnly {
+        /// The file asked for.
+        path: PathBuf,
+        /// The visible mesh and CSG nodes left out.
+        meshes: usize,
+    },
     /// serde_json could not write the glTF document.
     #[error("cannot write glTF: {0}")]
     GltfJson(String),

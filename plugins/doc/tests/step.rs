@@ -537,7 +537,10 @@ fn meshes_are_left_out_with_a_note_or_written_as_faceted_shells() {
     // A scene of meshes alone is nothing to export without them.
     let chair = load(&repo().join("assets/samples/chair.hedra.ron"));
     let e = to_step(&chair, StepOptions::default(), "chair.step").unwrap_err();
-    assert!(e.to_string().contains("nothing to export"), "{e}");
+    assert!(
+        e.to_string().ends_with("chair.step: nothing to export: STEP holds NURBS surfaces and curves, and the scene has none; its 1 visible mesh node(s) are written as faceted shells only when asked (--step-meshes)"),
+        "{e}"
+    );
     let (bytes, _) = to_step(
         &chair,
         StepOptions {
@@ -650,6 +653,12 @@ fn hostile_files_give_clear_errors_naming_the_file_the_line_and_the_instance() {
     assert!(e.contains("not a STEP file"), "{e}");
     let e = step_from_bytes(b"", "bad.step").unwrap_err().to_string();
     assert!(e.starts_with("bad.step: "), "{e}");
+    // A face on a point.
+    let e = import_error(&format!("{GOOD}#7=ADVANCED_FACE('F',(),#1,.T.);\n"));
+    assert!(
+        e.contains("line 12, #7: #1 is a CARTESIAN_POINT, where a surface was expected"),
+        "{e}"
+    );
     let e = import_error("#1=CARTESIAN_POINT('',(0.,0.,0.));\n");
     assert!(e.contains("no B-spline surface or curve"), "{e}");
 }

@@ -115,8 +115,9 @@ fn surface_transformed(s: &NurbsSurface, m: &DMat4) -> Option<NurbsSurface> {
 /// were written).
 ///
 /// # Errors
-/// [`ExportError::NothingToExport`] when no visible node has a surface,
-/// a curve (or, with `options.meshes`, a mesh); as
+/// [`ExportError::StepMeshesOnly`] when the visible nodes are meshes only
+/// and `options.meshes` is off; [`ExportError::NothingToExport`] when no
+/// visible node has a surface, a curve or a mesh; as
 /// [`crate::export::export_bytes`] for a mesh whose shape cannot be made.
 pub fn to_step(
     doc: &Document,
@@ -182,6 +183,12 @@ pub fn to_step(
         }
     }
     if surfaces.is_empty() && curves.is_empty() && meshes.is_empty() {
+        if left_meshes > 0 {
+            return Err(ExportError::StepMeshesOnly {
+                path: file_name.into(),
+                meshes: left_meshes,
+            });
+        }
         return Err(ExportError::NothingToExport {
             path: file_name.into(),
             triangles_only: false,

@@ -470,6 +470,10 @@ impl Parser<'_> {
     }
 
     fn param(&mut self, depth: usize) -> Result<Param, SyntaxError> {
+        // Typed values nest too (`A(A(A(…)))`): the same limit.
+        if depth > MAX_DEPTH {
+            return Err(self.err(format!("values nest more than {MAX_DEPTH} deep")));
+        }
         if *self.peek()? == Token::Open {
             return Ok(Param::List(self.list(depth + 1)?));
         }
@@ -747,6 +751,13 @@ mod tests {
                 .unwrap_err();
         assert!(e.to_string().contains("#1 is defined twice"), "{e}");
         let e = parse(b"ISO-10303-21;HEADER;ENDSEC;DATA;\n#1=A(1);\n#2=A((((((((((((((((((((1))))))))))))))))))));").unwrap_err();
+        assert!(e.to_string().contains("nest more than"), "{e}");
+        let deep = format!(
+            "ISO-10303-21;HEADER;ENDSEC;DATA;\n#1=A({}1{});",
+            "B(".repeat(100_000),
+            ")".repeat(100_000)
+        );
+        let e = parse(deep.as_bytes()).unwrap_err();
         assert!(e.to_string().contains("nest more than"), "{e}");
         let e = parse(b"ISO-10303-21;HEADER;ENDSEC;DATA;\n#1=A(1);\n#2=A('abc").unwrap_err();
         assert!(e.to_string().contains("never closed"), "{e}");

@@ -635,6 +635,16 @@ pub fn step_from_bytes(bytes: &[u8], path: &str) -> Result<Vec<ImportedMesh>, Im
         let surface = reader.get(id, geometry).map_err(named)?;
         if !is_bspline_surface(surface) {
             let kind = surface.records.first().map_or("?", |r| r.name.as_str());
+            let a_surface = surface
+                .records
+                .iter()
+                .any(|r| r.name.ends_with("SURFACE") || r.name == "PLANE");
+            if !a_surface {
+                return Err(named(At {
+                    id,
+                    message: format!("#{geometry} is a {kind}, where a surface was expected"),
+                }));
+            }
             if kind == "PLANE" && face.name == "FACE_SURFACE" {
                 faceted += 1;
             } else {
