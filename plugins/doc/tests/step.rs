@@ -670,7 +670,7 @@ fn hedra_reads_what_opencascade_writes_with_the_same_surfaces_and_curves() {
     );
     let notes = hedra_doc::import::describe_repairs(&nodes).join("\n");
     assert!(
-        notes.contains("trimmed face(s)"),
+        notes.contains("not imported: the trims of 2 face(s)"),
         "the cylinder's discs are trimmed planes: {notes}"
     );
 }

@@ -113,7 +113,9 @@ fn a_trimmed_face_comes_in_as_its_underlying_surface_and_the_report_says_so() {
     assert_eq!(nodes[0].name, "Trimmed");
     let notes = hedra_doc::import::describe_repairs(&nodes).join("\n");
     assert!(
-        notes.contains("1 trimmed face(s) imported as their whole underlying surface"),
+        notes.contains(
+            "not imported: the trims of 1 face(s) (their whole underlying surfaces were imported)"
+        ),
         "{notes}"
     );
 }

@@ -126,9 +126,8 @@ pub fn to_step(
 ) -> Result<(Vec<u8>, Vec<String>), ExportError> {
     let scale = options.units.per_metre();
     let unit = DMat4::from_scale(DVec3::splat(scale));
-    let tolerance = TOLERANCE_METRES * scale;
     let tree = doc.hierarchy();
-    let mut w = StepWriter::new();
+    let w = StepWriter::new();
     let mut surfaces: Vec<(String, NurbsSurface)> = Vec::new();
     let mut curves: Vec<(String, NurbsCurve)> = Vec::new();
     let mut meshes: Vec<(String, Vec<[DVec3; 3]>, bool)> = Vec::new();
@@ -194,39 +193,12 @@ pub fn to_step(
             triangles_only: false,
         });
     }
-    let context = w.context(options.units, tolerance);
-    let mut items = Vec::new();
-    let patches: Vec<brep::Patch> = surfaces
-        .iter()
-        .map(|(name, s)| brep::Patch { name, surface: s })
-        .collect();
-    let shells = brep::write_shells(&mut w, &patches, tolerance);
-    items.extend(shells.iter().map(|s| r(s.item)));
-    if !curves.is_empty() {
-        let ids: Vec<String> = curves
-            .iter()
-            .map(|(name, c)| r(w.bspline_curve(name, c)))
-            .collect();
-        items.push(r(
-            w.add(&format!("GEOMETRIC_CURVE_SET('Curves',{})", list(ids)))
-        ));
-    }
-    for (name, tris, closed) in &meshes {
-        items.push(r(write_faceted(&mut w, name, tris, *closed, tolerance)));
-    }
-    let origin = w.placement(DVec3::ZERO, DVec3::Z, DVec3::X);
-    items.push(r(origin));
-    let rep = w.add(&format!(
-        "SHAPE_REPRESENTATION('Hedra',{},#{context})",
-        list(items)
-    ));
-    let product = std::path::Path::new(file_name)
-        .file_stem()
-        .and_then(|s| s.to_str())
-        .map_or("Hedra", |s| {
-            s.trim_end_matches(".step").trim_end_matches(".stp")
-        });
-    w.product(product, rep);
+    let written = Written {
+        surfaces: &surfaces,
+        curves: &curves,
+        meshes: &meshes,
+    };
+    let (w, shells) = write_file(w, &written, options.units, file_name);
     let mut notes = Vec::new();
     if left_meshes > 0 {
         notes.push(format!(
@@ -256,6 +228,85 @@ pub fn to_step(
     };
     let description = format!("Hedra scene: NURBS surfaces and curves, lengths in {unit}");
     Ok((w.finish(file_name, &description), notes))
+}
+
+/// What goes into a file, in its units.
+struct Written<'a> {
+    surfaces: &'a [(String, NurbsSurface)],
+    curves: &'a [(String, NurbsCurve)],
+    meshes: &'a [(String, Vec<[DVec3; 3]>, bool)],
+}
+
+/// Writes the context, the shells and solids of the surfaces, the curve
+/// set, the faceted meshes, the representation and the product.
+fn write_file(
+    mut w: StepWriter,
+    written: &Written,
+    units: StepUnits,
+    file_name: &str,
+) -> (StepWriter, Vec<brep::WrittenShell>) {
+    let tolerance = TOLERANCE_METRES * units.per_metre();
+    let context = w.context(units, tolerance);
+    let mut items = Vec::new();
+    let patches: Vec<brep::Patch> = written
+        .surfaces
+        .iter()
+        .map(|(name, s)| brep::Patch { name, surface: s })
+        .collect();
+    let shells = brep::write_shells(&mut w, &patches, tolerance);
+    items.extend(shells.iter().map(|s| r(s.item)));
+    if !written.curves.is_empty() {
+        let ids: Vec<String> = written
+            .curves
+            .iter()
+            .map(|(name, c)| r(w.bspline_curve(name, c)))
+            .collect();
+        items.push(r(
+            w.add(&format!("GEOMETRIC_CURVE_SET('Curves',{})", list(ids)))
+        ));
+    }
+    for (name, tris, closed) in written.meshes {
+        items.push(r(write_faceted(&mut w, name, tris, *closed, tolerance)));
+    }
+    let origin = w.placement(DVec3::ZERO, DVec3::Z, DVec3::X);
+    items.push(r(origin));
+    let rep = w.add(&format!(
+        "SHAPE_REPRESENTATION('Hedra',{},#{context})",
+        list(items)
+    ));
+    let product = std::path::Path::new(file_name)
+        .file_stem()
+        .and_then(|s| s.to_str())
+        .map_or("Hedra", |s| {
+            s.trim_end_matches(".step").trim_end_matches(".stp")
+        });
+    w.product(product, rep);
+    (w, shells)
+}
+
+/// A STEP file of `patches` alone (coordinates in metres), each a face
+/// named after its patch, grouped into open shells and closed solids by
+/// the edges they share ([`brep::write_shells`]): the entry for code that
+/// makes its own patches (a subdivision surface's, one solid when they
+/// close up). Returns the file and what was written per shell (closed,
+/// volume in the file's unit cubed, edge count).
+pub fn patches_to_step(
+    patches: &[brep::Patch],
+    units: StepUnits,
+    file_name: &str,
+) -> (Vec<u8>, Vec<brep::WrittenShell>) {
+    let unit = DMat4::from_scale(DVec3::splat(units.per_metre()));
+    let surfaces: Vec<(String, NurbsSurface)> = patches
+        .iter()
+        .filter_map(|p| Some((p.name.to_string(), surface_transformed(p.surface, &unit)?)))
+        .collect();
+    let written = Written {
+        surfaces: &surfaces,
+        curves: &[],
+        meshes: &[],
+    };
+    let (w, shells) = write_file(StepWriter::new(), &written, units, file_name);
+    (w.finish(file_name, "Hedra NURBS patches"), shells)
 }
 
 /// A mesh's triangles as planar faces (`FACE_SURFACE` on a `PLANE`,
@@ -307,6 +358,32 @@ fn write_faceted(
 mod tests {
     use super::*;
     use hedra_geom::surfaces::Surface;
+
+    #[test]
+    fn patches_alone_make_a_file_with_one_solid_when_they_close_up() {
+        let ball = NurbsSurface::sphere(DVec3::ZERO, 0.5);
+        let (bytes, shells) = patches_to_step(
+            &[brep::Patch {
+                name: "Ball",
+                surface: &ball,
+            }],
+            StepUnits::Millimetres,
+            "ball.step",
+        );
+        assert_eq!(shells.len(), 1);
+        assert!(shells[0].closed);
+        // Radius 500 mm; the grid of 24 × 24 points measures within 3 %.
+        let v = 4.0 / 3.0 * std::f64::consts::PI * 500f64.powi(3);
+        assert!(
+            (shells[0].volume - v).abs() < 0.03 * v,
+            "{}",
+            shells[0].volume
+        );
+        let text = String::from_utf8(bytes).unwrap();
+        assert!(text.contains("MANIFOLD_SOLID_BREP('Ball'"));
+        assert!(text.contains("SI_UNIT(.MILLI.,.METRE.)"));
+        assert!(text.contains("PRODUCT('ball','ball'"));
+    }
 
     #[test]
     fn a_triangle_as_a_collapsed_patch_has_the_same_points() {

@@ -739,7 +739,7 @@ pub fn step_from_bytes(bytes: &[u8], path: &str) -> Result<Vec<ImportedMesh>, Im
     let mut notes = Vec::new();
     if trimmed > 0 {
         notes.push(format!(
-            "{trimmed} trimmed face(s) imported as their whole underlying surface"
+            "the trims of {trimmed} face(s) (their whole underlying surfaces were imported)"
         ));
     }
     for (kind, n) in other_faces {
@@ -752,7 +752,7 @@ pub fn step_from_bytes(bytes: &[u8], path: &str) -> Result<Vec<ImportedMesh>, Im
     }
     if untrimmed_curves > 0 {
         notes.push(format!(
-            "the trims of {untrimmed_curves} curve(s) trimmed at points (their whole B-spline was imported)"
+            "the trims of {untrimmed_curves} curve(s) trimmed at points (their whole B-splines were imported)"
         ));
     }
     for (kind, n) in skipped_curves {
