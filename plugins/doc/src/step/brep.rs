@@ -112,6 +112,32 @@ fn sides(s: &NurbsSurface) -> [Side; 4] {
     ]
 }
 
+/// The surface's four boundary curves (v = v0, u = u1, v = v1, u = u0),
+/// exact.
+pub(crate) fn boundary_curves(s: &NurbsSurface) -> [NurbsCurve; 4] {
+    sides(s).map(|side| side.curve)
+}
+
+/// The distance from `p` to the curve `c`: the nearest of 65 samples,
+/// refined by Newton's method on `(C(t) − p) · C'(t) = 0`.
+pub(crate) fn distance_to_curve(c: &NurbsCurve, p: DVec3) -> f64 {
+    let (a, b) = c.domain();
+    let mut t = (0..=64)
+        .map(|k| a + (b - a) * k as f64 / 64.0)
+        .min_by(|x, y| c.point(*x).distance(p).total_cmp(&c.point(*y).distance(p)))
+        .unwrap_or(a);
+    for _ in 0..12 {
+        let [q, d1, d2] = c.derivatives(t);
+        let f = (q - p).dot(d1);
+        let df = d1.dot(d1) + (q - p).dot(d2);
+        if df.abs() < 1e-300 {
+            break;
+        }
+        t = (t - f / df).clamp(a, b);
+    }
+    c.point(t).distance(p)
+}
+
 /// Fractions of a curve's domain at which two curves are compared.
 const SAMPLES: [f64; 5] = [0.13, 0.31, 0.5, 0.71, 0.89];
 

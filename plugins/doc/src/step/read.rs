@@ -20,7 +20,6 @@ use crate::import::{ImportError, ImportedMesh};
 use crate::scene::{CurveContent, NodeContent, SurfaceShape};
 use glam::DVec3;
 use hedra_geom::curves::Curve;
-use hedra_geom::surfaces::Surface;
 use hedra_geom::{NurbsCurve, NurbsSurface};
 use std::collections::{BTreeMap, HashSet};
 use std::sync::Arc;
@@ -507,30 +506,22 @@ impl Reader<'_> {
         )
     }
 
-    /// True when every vertex of the face's bounds lies on a corner or
-    /// side of the surface's domain, checked at the corners and on the
-    /// boundary curves' points: an untrimmed face.
+    /// True when every vertex of the face's bounds, and three points
+    /// inside each edge whose curve is a B-spline, lies on one of the
+    /// surface's four boundary curves (within 1e-6 of the surface's
+    /// size): an untrimmed face.
     fn untrimmed(&self, face: u64, bounds: &[Param], s: &NurbsSurface) -> bool {
-        let ((u0, u1), (v0, v1)) = s.domain();
         let size = crate::render::extent(s.points()).max(1e-12);
-        let mut boundary = Vec::new();
-        for k in 0..=16 {
-            let f = k as f64 / 16.0;
-            for (u, v) in [
-                (u0 + f * (u1 - u0), v0),
-                (u0 + f * (u1 - u0), v1),
-                (u0, v0 + f * (v1 - v0)),
-                (u1, v0 + f * (v1 - v0)),
-            ] {
-                boundary.push(s.evaluate(u, v).p);
-            }
-        }
+        let sides = super::brep::boundary_curves(s);
         let mut vertices = Vec::new();
         self.collect_vertices(face, bounds, &mut vertices);
-        vertices
-            .iter()
-            .all(|p| boundary.iter().any(|b| b.distance(*p) <= 1e-6 * size))
-            && !vertices.is_empty()
+        // No vertex found (bounds of a kind not read here): no evidence
+        // of a trim.
+        vertices.iter().all(|p| {
+            sides
+                .iter()
+                .any(|c| super::brep::distance_to_curve(c, *p) <= 1e-6 * size)
+        })
     }
 
     fn collect_vertices(&self, face: u64, bounds: &[Param], out: &mut Vec<DVec3>) {
@@ -552,6 +543,14 @@ impl Reader<'_> {
             let Some(edges) = lp.1.records.first().and_then(|r| r.params.get(1)) else {
                 continue;
             };
+            // A VERTEX_LOOP: one vertex (a closed surface's pole).
+            if let Some((v, vertex)) = deref(edges)
+                && let Some(Param::Ref(p)) = vertex.records.first().and_then(|r| r.params.get(1))
+                && let Ok(p) = self.point(v, &Param::Ref(*p))
+            {
+                out.push(p);
+                continue;
+            }
             let Param::List(edges) = edges else { continue };
             for oe in edges {
                 let Some((_, oe)) = deref(oe) else { continue };
@@ -563,6 +562,34 @@ impl Reader<'_> {
                 else {
                     continue;
                 };
+                // Points inside the edge, where its curve is a B-spline
+                // (itself, or the 3D curve of a SURFACE_CURVE or
+                // SEAM_CURVE): a circle can touch a square's side at its
+                // one vertex.
+                let mut curve = edge
+                    .1
+                    .records
+                    .first()
+                    .and_then(|r| r.params.get(3))
+                    .and_then(deref);
+                if let Some((_, c)) = curve
+                    && c.records.first().is_some_and(|r| {
+                        r.name.ends_with("SURFACE_CURVE") || r.name == "SEAM_CURVE"
+                    })
+                {
+                    curve = c
+                        .records
+                        .first()
+                        .and_then(|r| r.params.get(1))
+                        .and_then(deref);
+                }
+                if let Some((cid, c)) = curve
+                    && is_bspline_curve(c)
+                    && let Ok((_, c)) = self.curve(cid)
+                {
+                    let (a, b) = c.domain();
+                    out.extend([0.25, 0.5, 0.75].map(|f| c.point(a + f * (b - a))));
+                }
                 for k in [1, 2] {
                     let Some(vertex) = edge
                         .1
