@@ -306,6 +306,10 @@ fn check_round_trip(label: &str, doc: &Document, units: StepUnits, dir: &Path) -
         expected.len(),
         "{label}: one node per surface and curve"
     );
+    // Hedra's faces are bounded by their natural boundaries: none is
+    // taken for trimmed.
+    let notes = hedra_doc::import::describe_repairs(&imported).join("\n");
+    assert!(!notes.contains("trims"), "{label}: {notes}");
     let scale = match units {
         StepUnits::Metres => 0.0,
         StepUnits::Millimetres => 1e-12,
