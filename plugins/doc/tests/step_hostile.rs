@@ -154,3 +154,51 @@ fn a_curve_trimmed_at_parameters_comes_in_cut_there_and_reversed_when_its_sense_
         );
     }
 }
+
+/// A real export to damage: the shapes sample (surfaces, a solid, curves).
+fn sample_export() -> Vec<u8> {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../assets/samples/shapes.hedra.ron");
+    let doc = hedra_doc::file::load(&path).unwrap().session.doc;
+    hedra_doc::step::to_step(&doc, hedra_doc::step::StepOptions::default(), "s.step")
+        .unwrap()
+        .0
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(300))]
+
+    /// Truncated or with bytes replaced by Part 21's own punctuation, an
+    /// export never makes the reader panic: it reads (every number
+    /// finite) or gives an error naming the file.
+    #[test]
+    fn damaged_exports_read_or_fail_with_a_named_error_never_panic(
+        cut in 0.0f64..1.0,
+        edits in proptest::collection::vec((0.0f64..1.0, proptest::sample::select(b"#()',;.$*=0915E-/\\".to_vec())), 0..12),
+    ) {
+        let mut bytes = sample_export();
+        for (at, b) in edits {
+            let k = ((bytes.len() - 1) as f64 * at) as usize;
+            bytes[k] = b;
+        }
+        if cut < 0.5 {
+            bytes.truncate((bytes.len() as f64 * cut * 2.0) as usize);
+        }
+        match step_from_bytes(&bytes, "damaged.step") {
+            Ok(nodes) => {
+                for n in nodes {
+                    match n.content {
+                        Some(NodeContent::Surface(s)) => {
+                            proptest::prop_assert!(s.control_points().iter().all(|p| p.is_finite()));
+                        }
+                        Some(NodeContent::Curve(c)) => {
+                            proptest::prop_assert!(c.nurbs().points().iter().all(|p| p.is_finite()));
+                        }
+                        other => proptest::prop_assert!(false, "unexpected content {other:?}"),
+                    }
+                }
+            }
+            Err(e) => proptest::prop_assert!(e.to_string().starts_with("damaged.step: "), "{e}"),
+        }
+    }
+}
