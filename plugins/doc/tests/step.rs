@@ -571,6 +571,47 @@ fn meshes_are_left_out_with_a_note_or_written_as_faceted_shells() {
         })
         .sum();
     assert_eq!(read["faces"].as_array().unwrap().len(), triangles);
+    // Back into Hedra: one mesh node per mesh, named after it, with its
+    // triangles and its world-space points (millimetres back to metres).
+    let imported = hedra_doc::import::import_file(&file).unwrap();
+    let tree = chair.hierarchy();
+    let meshes: Vec<&hedra_doc::Node> = chair
+        .nodes()
+        .filter(|n| matches!(n.content, NodeContent::Mesh(_)) && tree.is_visible(n.id))
+        .collect();
+    assert_eq!(imported.len(), meshes.len());
+    for node in meshes {
+        let got = imported
+            .iter()
+            .find(|m| m.name == node.name)
+            .unwrap_or_else(|| panic!("'{}' did not come back", node.name));
+        let mesh = got.mesh.as_ref().expect("a mesh");
+        let counts = hedra_doc::export::written_counts(
+            &chair,
+            node.id,
+            hedra_doc::export::ExportShape::Evaluated,
+        )
+        .unwrap()
+        .unwrap();
+        assert_eq!(mesh.face_count(), counts.triangles, "'{}'", node.name);
+        assert!(got.report.is_clean(), "'{}': {:?}", node.name, got.report);
+        let world = tree.world_matrix(node.id);
+        let NodeContent::Mesh(m) = &node.content else {
+            unreachable!()
+        };
+        let evaluated = m
+            .evaluate(m.subdivision.map_or(0, |s| s.export_level))
+            .unwrap();
+        for v in evaluated.mesh.vertices() {
+            let want = world.transform_point3(evaluated.mesh.position(v));
+            assert!(
+                mesh.vertices()
+                    .any(|w| mesh.position(w).distance(want) <= 1e-12 * want.length().max(1.0)),
+                "'{}': {want} did not come back",
+                node.name
+            );
+        }
+    }
 }
 
 /// OpenCASCADE writes, in millimetres: a box, a cylinder and a sphere

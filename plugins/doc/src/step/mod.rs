@@ -130,7 +130,7 @@ pub fn to_step(
     let w = StepWriter::new();
     let mut surfaces: Vec<(String, NurbsSurface)> = Vec::new();
     let mut curves: Vec<(String, NurbsCurve)> = Vec::new();
-    let mut meshes: Vec<(String, Vec<[DVec3; 3]>, bool)> = Vec::new();
+    let mut meshes: Vec<FacetedMesh> = Vec::new();
     let (mut triangles, mut left_meshes, mut approximate) = (0usize, 0usize, Vec::new());
     for &id in tree.order() {
         let (Some(node), Some(facts)) = (doc.node(id), tree.facts(id)) else {
@@ -170,12 +170,21 @@ pub fn to_step(
                     let mirrored = m.determinant() < 0.0;
                     for f in mesh.faces() {
                         for t in hedra_geom::query::triangulate_face(&mesh, f) {
-                            let [a, b, c] = t.map(|v| m.transform_point3(mesh.position(v)));
+                            let [a, b, c] = t.map(|v| v.index() as u32);
                             tris.push(if mirrored { [a, c, b] } else { [a, b, c] });
                         }
                     }
-                    let closed = mesh.halfedges().all(|h| mesh.face(h).is_some());
-                    meshes.push((node.name.clone(), tris, closed));
+                    // Indexed by vertex id: vertices at one place stay apart.
+                    let mut positions = vec![DVec3::ZERO; mesh.vertex_capacity()];
+                    for v in mesh.vertices() {
+                        positions[v.index()] = m.transform_point3(mesh.position(v));
+                    }
+                    meshes.push(FacetedMesh {
+                        name: node.name.clone(),
+                        positions,
+                        triangles: tris,
+                        closed: mesh.halfedges().all(|h| mesh.face(h).is_some()),
+                    });
                 }
             }
             NodeContent::Empty => {}
@@ -230,11 +239,20 @@ pub fn to_step(
     Ok((w.finish(file_name, &description), notes))
 }
 
+/// A mesh to write as a faceted shell: world positions by vertex index
+/// (in the file's unit), triangles, and whether it is closed.
+struct FacetedMesh {
+    name: String,
+    positions: Vec<DVec3>,
+    triangles: Vec<[u32; 3]>,
+    closed: bool,
+}
+
 /// What goes into a file, in its units.
 struct Written<'a> {
     surfaces: &'a [(String, NurbsSurface)],
     curves: &'a [(String, NurbsCurve)],
-    meshes: &'a [(String, Vec<[DVec3; 3]>, bool)],
+    meshes: &'a [FacetedMesh],
 }
 
 /// Writes the context, the shells and solids of the surfaces, the curve
@@ -265,8 +283,8 @@ fn write_file(
             w.add(&format!("GEOMETRIC_CURVE_SET('Curves',{})", list(ids)))
         ));
     }
-    for (name, tris, closed) in written.meshes {
-        items.push(r(write_faceted(&mut w, name, tris, *closed, tolerance)));
+    for mesh in written.meshes {
+        items.push(r(write_faceted(&mut w, mesh)));
     }
     let origin = w.placement(DVec3::ZERO, DVec3::Z, DVec3::X);
     items.push(r(origin));
@@ -310,31 +328,27 @@ pub fn patches_to_step(
 }
 
 /// A mesh's triangles as planar faces (`FACE_SURFACE` on a `PLANE`,
-/// bounded by a `POLY_LOOP`) with shared points: a `FACETED_BREP` when
-/// the mesh is closed, else a `SHELL_BASED_SURFACE_MODEL`.
-fn write_faceted(
-    w: &mut StepWriter,
-    name: &str,
-    tris: &[[DVec3; 3]],
-    closed: bool,
-    tolerance: f64,
-) -> u64 {
-    let mut ids: std::collections::HashMap<[i64; 3], u64> = Default::default();
-    let mut faces = Vec::with_capacity(tris.len());
-    for t in tris {
-        let n = (t[1] - t[0]).cross(t[2] - t[0]);
-        let Some(n) = n.try_normalize() else {
+/// bounded by a `POLY_LOOP`), one `CARTESIAN_POINT` per vertex (vertices
+/// at one place stay apart, so the mesh comes back with its connectivity):
+/// a `FACETED_BREP` when the mesh is closed, else a
+/// `SHELL_BASED_SURFACE_MODEL`. Triangles of zero area are left out.
+fn write_faceted(w: &mut StepWriter, mesh: &FacetedMesh) -> u64 {
+    let mut ids: std::collections::HashMap<u32, u64> = Default::default();
+    let mut faces = Vec::with_capacity(mesh.triangles.len());
+    for t in &mesh.triangles {
+        let [a, b, c] = t.map(|k| mesh.positions[k as usize]);
+        let Some(n) = (b - a).cross(c - a).try_normalize() else {
             continue;
         };
         let corners: Vec<String> = t
             .iter()
-            .map(|&p| {
-                let key = (p / tolerance).round().as_i64vec3().to_array();
-                r(*ids.entry(key).or_insert_with(|| w.point(p)))
+            .map(|&k| {
+                r(*ids
+                    .entry(k)
+                    .or_insert_with(|| w.point(mesh.positions[k as usize])))
             })
             .collect();
-        let x = (t[1] - t[0]).normalize();
-        let plane_at = w.placement(t[0], n, x);
+        let plane_at = w.placement(a, n, (b - a).normalize());
         let plane = w.add(&format!("PLANE('',#{plane_at})"));
         let lp = w.add(&format!("POLY_LOOP('',{})", list(corners)));
         let bound = w.add(&format!("FACE_OUTER_BOUND('',#{lp},.T.)"));
@@ -342,6 +356,7 @@ fn write_faceted(
             w.add(&format!("FACE_SURFACE('',(#{bound}),#{plane},.T.)"))
         ));
     }
+    let (name, closed) = (&mesh.name, mesh.closed);
     if closed {
         let shell = w.add(&format!("CLOSED_SHELL({},{})", string(name), list(faces)));
         w.add(&format!("FACETED_BREP({},#{shell})", string(name)))

@@ -343,6 +343,106 @@ impl Reader<'_> {
         Ok((name, if sense { c } else { c.reversed() }, false))
     }
 
+    /// The polygon of a `POLY_LOOP` face (`FACE_SURFACE` or
+    /// `ADVANCED_FACE` whose only bound is one), as point instance ids in
+    /// the order that faces out; `None` for another kind of face.
+    fn poly_face(&self, id: u64) -> R<Option<Vec<u64>>> {
+        let i = self.get(id, id)?;
+        let Some(face) = i
+            .records
+            .iter()
+            .find(|r| r.name == "FACE_SURFACE" || r.name == "ADVANCED_FACE")
+        else {
+            return at(id, "a shell's face that is not a face");
+        };
+        let bounds = self.list(id, self.param(id, face, 1)?, "the bounds")?;
+        let [bound] = bounds else {
+            return Ok(None);
+        };
+        let b = self.reference(id, bound, "a bound")?;
+        let Some(br) = self.get(id, b)?.records.first() else {
+            return Ok(None);
+        };
+        let lp = self.reference(b, self.param(b, br, 1)?, "the loop")?;
+        let Ok(poly) = self.typed(b, lp, "POLY_LOOP") else {
+            return Ok(None);
+        };
+        let mut points: Vec<u64> = self
+            .list(lp, self.param(lp, poly, 1)?, "the polygon")?
+            .iter()
+            .map(|p| self.reference(lp, p, "a polygon corner"))
+            .collect::<R<_>>()?;
+        let flipped = |p: Option<&Param>| matches!(p, Some(Param::Enum(e)) if e == "F");
+        if flipped(br.params.get(2)) != flipped(face.params.get(3)) {
+            points.reverse();
+        }
+        Ok(Some(points))
+    }
+
+    /// A `FACETED_BREP`, or a `SHELL_BASED_SURFACE_MODEL` of `POLY_LOOP`
+    /// faces, as a mesh node named after it (its faces are added to
+    /// `done`); `None` for any other instance.
+    fn faceted(&self, id: u64, done: &mut HashSet<u64>) -> R<Option<ImportedMesh>> {
+        let i = self.get(id, id)?;
+        let Some(r) = i.records.first() else {
+            return Ok(None);
+        };
+        let shells: Vec<u64> = match r.name.as_str() {
+            "FACETED_BREP" => vec![self.reference(id, self.param(id, r, 1)?, "the shell")?],
+            "SHELL_BASED_SURFACE_MODEL" => self
+                .list(id, self.param(id, r, 1)?, "the shells")?
+                .iter()
+                .map(|x| self.reference(id, x, "a shell"))
+                .collect::<R<_>>()?,
+            _ => return Ok(None),
+        };
+        let mut index: std::collections::HashMap<u64, u32> = Default::default();
+        let (mut positions, mut polygons, mut faces) = (Vec::new(), Vec::new(), Vec::new());
+        for shell in shells {
+            let sr = self.get(id, shell)?.records.first().ok_or(At {
+                id: shell,
+                message: "an empty shell".into(),
+            })?;
+            for f in self.list(shell, self.param(shell, sr, 1)?, "the faces")? {
+                let f = self.reference(shell, f, "a face")?;
+                let Some(corners) = self.poly_face(f)? else {
+                    continue;
+                };
+                let mut polygon = Vec::with_capacity(corners.len());
+                for c in corners {
+                    let k = match index.get(&c) {
+                        Some(&k) => k,
+                        None => {
+                            positions.push(self.point(f, &Param::Ref(c))?);
+                            index.insert(c, positions.len() as u32 - 1);
+                            positions.len() as u32 - 1
+                        }
+                    };
+                    polygon.push(k);
+                }
+                polygons.push(polygon);
+                faces.push(f);
+            }
+        }
+        if polygons.is_empty() {
+            return Ok(None);
+        }
+        let (mesh, report) =
+            match hedra_geom::HalfEdgeMesh::from_polygons_repaired(&positions, &polygons) {
+                Ok(m) => m,
+                Err(e) => return at(id, format!("its facets make no mesh: {e}")),
+            };
+        done.extend(faces);
+        let name = Some(self.name(r))
+            .filter(|n| !n.is_empty())
+            .unwrap_or_else(|| format!("Mesh #{id}"));
+        Ok(Some(ImportedMesh {
+            mesh: Some(mesh),
+            report,
+            ..ImportedMesh::empty(name)
+        }))
+    }
+
     /// A B-spline surface, simple or complex (rational).
     fn surface(&self, id: u64) -> R<(String, NurbsSurface)> {
         let i = self.get(id, id)?;
@@ -640,7 +740,16 @@ pub fn step_from_bytes(bytes: &[u8], path: &str) -> Result<Vec<ImportedMesh>, Im
     let mut done: HashSet<u64> = HashSet::new();
     let mut other_faces: BTreeMap<String, usize> = BTreeMap::new();
     let (mut trimmed, mut faceted) = (0usize, 0usize);
+    // Faceted shells (POLY_LOOP faces) as mesh nodes; their faces are done.
     for &id in &ex.order {
+        if let Some(mesh) = reader.faceted(id, &mut done).map_err(named)? {
+            out.push(mesh);
+        }
+    }
+    for &id in &ex.order {
+        if done.contains(&id) {
+            continue;
+        }
         let i = &ex.instances[&id];
         let Some(face) = i
             .records
