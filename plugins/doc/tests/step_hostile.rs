@@ -155,14 +155,18 @@ fn a_curve_trimmed_at_parameters_comes_in_cut_there_and_reversed_when_its_sense_
     }
 }
 
-/// A real export to damage: the shapes sample (surfaces, a solid, curves).
-fn sample_export() -> Vec<u8> {
+/// A real export to damage: the shapes sample (surfaces, a solid,
+/// curves), or the chair's meshes as faceted shells.
+fn sample_export(chair: bool) -> Vec<u8> {
+    let name = if chair { "chair" } else { "shapes" };
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../assets/samples/shapes.hedra.ron");
+        .join(format!("../../assets/samples/{name}.hedra.ron"));
     let doc = hedra_doc::file::load(&path).unwrap().session.doc;
-    hedra_doc::step::to_step(&doc, hedra_doc::step::StepOptions::default(), "s.step")
-        .unwrap()
-        .0
+    let options = hedra_doc::step::StepOptions {
+        meshes: chair,
+        ..Default::default()
+    };
+    hedra_doc::step::to_step(&doc, options, "s.step").unwrap().0
 }
 
 proptest::proptest! {
@@ -173,10 +177,11 @@ proptest::proptest! {
     /// finite) or gives an error naming the file.
     #[test]
     fn damaged_exports_read_or_fail_with_a_named_error_never_panic(
+        chair in proptest::bool::ANY,
         cut in 0.0f64..1.0,
         edits in proptest::collection::vec((0.0f64..1.0, proptest::sample::select(b"#()',;.$*=0915E-/\\".to_vec())), 0..12),
     ) {
-        let mut bytes = sample_export();
+        let mut bytes = sample_export(chair);
         for (at, b) in edits {
             let k = ((bytes.len() - 1) as f64 * at) as usize;
             bytes[k] = b;
@@ -193,6 +198,14 @@ proptest::proptest! {
                         }
                         Some(NodeContent::Curve(c)) => {
                             proptest::prop_assert!(c.nurbs().points().iter().all(|p| p.is_finite()));
+                        }
+                        None => {
+                            let m = n.mesh.as_ref();
+                            proptest::prop_assert!(m.is_some(), "a node without content");
+                            if let Some(m) = m {
+                                proptest::prop_assert!(m.vertices().all(|v| m.position(v).is_finite()));
+                                proptest::prop_assert!(m.validate().is_ok());
+                            }
                         }
                         other => proptest::prop_assert!(false, "unexpected content {other:?}"),
                     }
