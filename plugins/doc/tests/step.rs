@@ -747,3 +747,61 @@ fn step_and_stp_paths_export_and_import_through_the_common_entry_points() {
         );
     }
 }
+
+#[test]
+fn every_sample_with_its_meshes_reads_in_opencascade_and_comes_back_node_for_node() {
+    require_ocp();
+    let dir = tempfile::tempdir().unwrap();
+    let dir = debug_dir(&dir);
+    let mut samples: Vec<PathBuf> = std::fs::read_dir(repo().join("assets/samples"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.to_string_lossy().ends_with(".hedra.ron"))
+        .collect();
+    samples.sort();
+    assert!(samples.len() >= 7);
+    for path in samples {
+        let label = path
+            .file_name()
+            .unwrap()
+            .to_string_lossy()
+            .replace(".hedra.ron", "");
+        let doc = load(&path);
+        let (bytes, _) = to_step(
+            &doc,
+            StepOptions {
+                units: StepUnits::Metres,
+                meshes: true,
+            },
+            &format!("{label}.step"),
+        )
+        .unwrap_or_else(|e| panic!("{label}: {e}"));
+        let file = dir.join(format!("{label}-all.step"));
+        std::fs::write(&file, &bytes).unwrap();
+        let read = ocp(&file);
+        assert_eq!(
+            read["valid"], true,
+            "{label}: the shape checker finds it invalid"
+        );
+        // What was written: surfaces, curves, and each visible mesh or CSG
+        // solid (not inside a CSG node).
+        let tree = doc.hierarchy();
+        let written: Vec<&str> = doc
+            .nodes()
+            .filter(|n| {
+                let f = tree.facts(n.id).unwrap();
+                f.visible && !f.inside_csg && !matches!(n.content, NodeContent::Empty)
+            })
+            .map(|n| n.name.as_str())
+            .collect();
+        let imported = step_from_bytes(&bytes, &label).unwrap_or_else(|e| panic!("{e}"));
+        let mut names: Vec<&str> = imported.iter().map(|m| m.name.as_str()).collect();
+        let mut want = written.clone();
+        names.sort_unstable();
+        want.sort_unstable();
+        assert_eq!(
+            names, want,
+            "{label}: every written node comes back, by name"
+        );
+    }
+}
