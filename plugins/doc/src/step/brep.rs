@@ -3,7 +3,8 @@
 //! (a boundary that collapses to a point, a pole, is left out of the
 //! loop); edges whose curves coincide (within a tolerance) are one
 //! `EDGE_CURVE` shared by the faces that meet there, and their end points
-//! one `VERTEX_POINT`. Patches joined through shared edges form one shell:
+//! one `VERTEX_POINT` (an edge bounds at most two faces, which run along
+//! it in opposite directions). Patches joined through shared edges form one shell:
 //! a `CLOSED_SHELL` in a `MANIFOLD_SOLID_BREP` when every edge is used
 //! exactly twice, once in each direction (watertight and orientable), else
 //! an `OPEN_SHELL` in a `SHELL_BASED_SURFACE_MODEL`.
@@ -262,12 +263,19 @@ pub fn write_shells(w: &mut StepWriter, patches: &[Patch], tolerance: f64) -> Ve
                         .all(|&f| at(&e.curve, 1.0 - f).distance(at(c, f)) <= tolerance);
                 backward.then_some(false)
             };
-            let found = by_ends
-                .get(&key)
-                .and_then(|list| list.iter().find_map(|&k| same(&edges[k]).map(|s| (k, s))));
+            // An edge is shared only by a use in the direction it does not
+            // have yet: two faces that run along it the same way (turned
+            // against each other), or a third face, get an edge of their
+            // own, so every edge bounds at most two faces, one each way.
+            let found = by_ends.get(&key).and_then(|list| {
+                list.iter().find_map(|&k| {
+                    let along = same(&edges[k])? == side.forward;
+                    (edges[k].uses[usize::from(!along)] == 0).then_some((k, along))
+                })
+            });
             // `along`: the loop runs along the edge's curve.
             let (k, along) = match found {
-                Some((k, same_direction)) => (k, same_direction == side.forward),
+                Some(found) => found,
                 None => {
                     edges.push(Edge {
                         start,
@@ -439,6 +447,47 @@ mod tests {
         let mut w = StepWriter::new();
         let shells = write_shells(&mut w, &list[..5], 1e-9);
         assert!(!shells[0].closed);
+    }
+
+    #[test]
+    fn faces_turned_against_each_other_or_a_third_face_get_edges_of_their_own() {
+        let patches = cube_patches();
+        // The bottom face with u and v swapped runs its edges the other way.
+        let s = &patches[0];
+        let p = s.points();
+        let turned = NurbsSurface::from_bezier(2, 2, vec![p[0], p[2], p[1], p[3]]).unwrap();
+        let mut list: Vec<Patch> = patches[1..]
+            .iter()
+            .map(|s| Patch {
+                name: "Cube",
+                surface: s,
+            })
+            .collect();
+        list.push(Patch {
+            name: "Turned",
+            surface: &turned,
+        });
+        let mut w = StepWriter::new();
+        let shells = write_shells(&mut w, &list, 1e-9);
+        assert_eq!(shells.len(), 2, "the turned face shares no edge");
+        assert!(shells.iter().all(|s| !s.closed));
+        assert_eq!(shells.iter().map(|s| s.edges).sum::<usize>(), 12 + 4);
+        // A third face on an edge of the whole cube.
+        let mut list: Vec<Patch> = patches
+            .iter()
+            .map(|s| Patch {
+                name: "Cube",
+                surface: s,
+            })
+            .collect();
+        list.push(Patch {
+            name: "Fin",
+            surface: &patches[0],
+        });
+        let mut w = StepWriter::new();
+        let shells = write_shells(&mut w, &list, 1e-9);
+        assert!(shells[0].closed, "the cube still closes");
+        assert_eq!(shells.len(), 2);
     }
 
     #[test]
