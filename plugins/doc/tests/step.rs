@@ -436,9 +436,10 @@ fn cube_faces(outward: bool) -> Vec<Vec<DVec3>> {
         .collect()
 }
 
-/// A scene: the cube's six patches as nodes under a parent scaled by 2,
-/// turned and moved (world volume 8), and a sphere of radius 1.5.
-fn solids_scene(outward: bool) -> Document {
+/// A scene: the cube's six patches as nodes under a parent scaled by 2
+/// (by −2 along x when `mirrored`), turned and moved (world volume 8), and
+/// a sphere of radius 1.5.
+fn solids_scene(outward: bool, mirrored: bool) -> Document {
     let mut s = Session::new();
     s.execute(&Command::AddEmpty {
         name: "Rig".into(),
@@ -446,7 +447,8 @@ fn solids_scene(outward: bool) -> Document {
         transform: NodeTransform {
             translation: DVec3::new(3.0, -1.0, 2.0),
             rotation: glam::DQuat::from_euler(glam::EulerRot::XYZ, 0.3, -0.7, 1.1),
-            scale: DVec3::splat(2.0),
+            // Mirrored: the cube's patches turn inside out in the world.
+            scale: DVec3::new(if mirrored { -2.0 } else { 2.0 }, 2.0, 2.0),
         },
     })
     .unwrap();
@@ -478,10 +480,14 @@ fn patches_that_close_up_are_written_as_valid_solids_of_the_right_volume() {
     require_ocp();
     let dir = tempfile::tempdir().unwrap();
     let dir = debug_dir(&dir);
-    for outward in [true, false] {
-        let doc = solids_scene(outward);
+    for (outward, mirrored) in [(true, false), (false, false), (true, true)] {
+        let doc = solids_scene(outward, mirrored);
         for units in [StepUnits::Metres, StepUnits::Millimetres] {
-            let label = format!("solids-{}", if outward { "out" } else { "in" });
+            let label = format!(
+                "solids-{}{}",
+                if outward { "out" } else { "in" },
+                if mirrored { "-mirrored" } else { "" }
+            );
             let read = check_round_trip(&label, &doc, units, &dir);
             let bytes = std::fs::read(dir.join(format!("{label}-{units:?}.step"))).unwrap();
             let text = String::from_utf8(bytes).unwrap();
