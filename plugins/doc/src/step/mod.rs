@@ -16,6 +16,7 @@
 //! curves of curve sets become surface and curve nodes, in metres.
 
 pub mod brep;
+mod faces;
 pub mod p21;
 pub mod read;
 pub mod write;

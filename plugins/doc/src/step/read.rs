@@ -28,24 +28,24 @@ use std::sync::Arc;
 pub const MAX_DEGREE: i64 = 32;
 
 /// A mapping error at an instance.
-struct At {
-    id: u64,
-    message: String,
+pub(super) struct At {
+    pub(super) id: u64,
+    pub(super) message: String,
 }
 
-type R<T> = Result<T, At>;
+pub(super) type R<T> = Result<T, At>;
 
-fn at<T>(id: u64, message: impl Into<String>) -> R<T> {
+pub(super) fn at<T>(id: u64, message: impl Into<String>) -> R<T> {
     Err(At {
         id,
         message: message.into(),
     })
 }
 
-struct Reader<'a> {
-    ex: &'a Exchange,
+pub(super) struct Reader<'a> {
+    pub(super) ex: &'a Exchange,
     /// Metres per file length unit.
-    scale: f64,
+    pub(super) scale: f64,
 }
 
 fn is_bspline_surface(i: &Instance) -> bool {
@@ -53,14 +53,14 @@ fn is_bspline_surface(i: &Instance) -> bool {
         .iter()
         .any(|r| r.name == "B_SPLINE_SURFACE_WITH_KNOTS")
 }
-fn is_bspline_curve(i: &Instance) -> bool {
+pub(super) fn is_bspline_curve(i: &Instance) -> bool {
     i.records
         .iter()
         .any(|r| r.name == "B_SPLINE_CURVE_WITH_KNOTS")
 }
 
 impl Reader<'_> {
-    fn get(&self, from: u64, id: u64) -> R<&Instance> {
+    pub(super) fn get(&self, from: u64, id: u64) -> R<&Instance> {
         match self.ex.instances.get(&id) {
             Some(i) => Ok(i),
             None => at(
@@ -71,7 +71,7 @@ impl Reader<'_> {
     }
 
     /// The record named `name` of instance `id`.
-    fn record(&self, id: u64, name: &str) -> R<&Record> {
+    pub(super) fn record(&self, id: u64, name: &str) -> R<&Record> {
         let i = self.get(id, id)?;
         match i.records.iter().find(|r| r.name == name) {
             Some(r) => Ok(r),
@@ -89,7 +89,7 @@ impl Reader<'_> {
         }
     }
 
-    fn param<'p>(&self, id: u64, r: &'p Record, k: usize) -> R<&'p Param> {
+    pub(super) fn param<'p>(&self, id: u64, r: &'p Record, k: usize) -> R<&'p Param> {
         match r.params.get(k) {
             Some(p) => Ok(p),
             None => at(
@@ -103,28 +103,28 @@ impl Reader<'_> {
         }
     }
 
-    fn reference(&self, id: u64, p: &Param, what: &str) -> R<u64> {
+    pub(super) fn reference(&self, id: u64, p: &Param, what: &str) -> R<u64> {
         match p {
             Param::Ref(x) => Ok(*x),
             _ => at(id, format!("{what} is not a reference")),
         }
     }
 
-    fn list<'p>(&self, id: u64, p: &'p Param, what: &str) -> R<&'p [Param]> {
+    pub(super) fn list<'p>(&self, id: u64, p: &'p Param, what: &str) -> R<&'p [Param]> {
         match p {
             Param::List(l) => Ok(l),
             _ => at(id, format!("{what} is not a list")),
         }
     }
 
-    fn int(&self, id: u64, p: &Param, what: &str) -> R<i64> {
+    pub(super) fn int(&self, id: u64, p: &Param, what: &str) -> R<i64> {
         match p {
             Param::Int(i) => Ok(*i),
             _ => at(id, format!("{what} is not an integer")),
         }
     }
 
-    fn real(&self, id: u64, p: &Param, what: &str) -> R<f64> {
+    pub(super) fn real(&self, id: u64, p: &Param, what: &str) -> R<f64> {
         match p {
             Param::Real(x) => Ok(*x),
             Param::Int(i) => Ok(*i as f64),
@@ -133,7 +133,7 @@ impl Reader<'_> {
         }
     }
 
-    fn name(&self, r: &Record) -> String {
+    pub(super) fn name(&self, r: &Record) -> String {
         match r.params.first() {
             Some(Param::Str(s)) => s.clone(),
             _ => String::new(),
@@ -142,7 +142,7 @@ impl Reader<'_> {
 
     /// The record `name` of instance `id`, which `from` refers to; an
     /// error at `from` when `id` is undefined or of another type.
-    fn typed(&self, from: u64, id: u64, name: &str) -> R<&Record> {
+    pub(super) fn typed(&self, from: u64, id: u64, name: &str) -> R<&Record> {
         let i = self.get(from, id)?;
         match i.records.iter().find(|r| r.name == name) {
             Some(r) => Ok(r),
@@ -161,7 +161,7 @@ impl Reader<'_> {
     }
 
     /// A 3D `CARTESIAN_POINT`, in metres.
-    fn point(&self, from: u64, p: &Param) -> R<DVec3> {
+    pub(super) fn point(&self, from: u64, p: &Param) -> R<DVec3> {
         let id = self.reference(from, p, "a control point")?;
         let r = self.typed(from, id, "CARTESIAN_POINT")?;
         let c = self.list(id, self.param(id, r, 1)?, "the coordinates")?;
@@ -184,7 +184,13 @@ impl Reader<'_> {
 
     /// Knots expanded from values and multiplicities, checked to give
     /// exactly `needed` knots before they are expanded.
-    fn knots(&self, id: u64, mults: &Param, values: &Param, needed: usize) -> R<Vec<f64>> {
+    pub(super) fn knots(
+        &self,
+        id: u64,
+        mults: &Param,
+        values: &Param,
+        needed: usize,
+    ) -> R<Vec<f64>> {
         let mults = self.list(id, mults, "the knot multiplicities")?;
         let values = self.list(id, values, "the knots")?;
         if mults.len() != values.len() {
@@ -223,7 +229,7 @@ impl Reader<'_> {
         Ok(out)
     }
 
-    fn degree(&self, id: u64, p: &Param) -> R<usize> {
+    pub(super) fn degree(&self, id: u64, p: &Param) -> R<usize> {
         let d = self.int(id, p, "the degree")?;
         if !(1..=MAX_DEGREE).contains(&d) {
             return at(
@@ -235,7 +241,7 @@ impl Reader<'_> {
     }
 
     /// A B-spline curve, simple or complex (rational).
-    fn curve(&self, id: u64) -> R<(String, NurbsCurve)> {
+    pub(super) fn curve(&self, id: u64) -> R<(String, NurbsCurve)> {
         let i = self.get(id, id)?;
         let (name, degree, points, mults, knots) = if i.complex {
             let b = self.record(id, "B_SPLINE_CURVE")?;
@@ -290,7 +296,7 @@ impl Reader<'_> {
     /// parameters (`PARAMETER_VALUE`s), reversed when its sense disagrees;
     /// the whole basis when the trims are points only (then `true`: the
     /// trim was not applied).
-    fn trimmed(&self, id: u64) -> R<(String, NurbsCurve, bool)> {
+    pub(super) fn trimmed(&self, id: u64) -> R<(String, NurbsCurve, bool)> {
         let r = self.record(id, "TRIMMED_CURVE")?;
         let basis = self.reference(id, self.param(id, r, 1)?, "the basis curve")?;
         if !is_bspline_curve(self.get(id, basis)?) {
@@ -343,108 +349,8 @@ impl Reader<'_> {
         Ok((name, if sense { c } else { c.reversed() }, false))
     }
 
-    /// The polygon of a `POLY_LOOP` face (`FACE_SURFACE` or
-    /// `ADVANCED_FACE` whose only bound is one), as point instance ids in
-    /// the order that faces out; `None` for another kind of face.
-    fn poly_face(&self, id: u64) -> R<Option<Vec<u64>>> {
-        let i = self.get(id, id)?;
-        let Some(face) = i
-            .records
-            .iter()
-            .find(|r| r.name == "FACE_SURFACE" || r.name == "ADVANCED_FACE")
-        else {
-            return at(id, "a shell's face that is not a face");
-        };
-        let bounds = self.list(id, self.param(id, face, 1)?, "the bounds")?;
-        let [bound] = bounds else {
-            return Ok(None);
-        };
-        let b = self.reference(id, bound, "a bound")?;
-        let Some(br) = self.get(id, b)?.records.first() else {
-            return Ok(None);
-        };
-        let lp = self.reference(b, self.param(b, br, 1)?, "the loop")?;
-        let Ok(poly) = self.typed(b, lp, "POLY_LOOP") else {
-            return Ok(None);
-        };
-        let mut points: Vec<u64> = self
-            .list(lp, self.param(lp, poly, 1)?, "the polygon")?
-            .iter()
-            .map(|p| self.reference(lp, p, "a polygon corner"))
-            .collect::<R<_>>()?;
-        let flipped = |p: Option<&Param>| matches!(p, Some(Param::Enum(e)) if e == "F");
-        if flipped(br.params.get(2)) != flipped(face.params.get(3)) {
-            points.reverse();
-        }
-        Ok(Some(points))
-    }
-
-    /// A `FACETED_BREP`, or a `SHELL_BASED_SURFACE_MODEL` of `POLY_LOOP`
-    /// faces, as a mesh node named after it (its faces are added to
-    /// `done`); `None` for any other instance.
-    fn faceted(&self, id: u64, done: &mut HashSet<u64>) -> R<Option<ImportedMesh>> {
-        let i = self.get(id, id)?;
-        let Some(r) = i.records.first() else {
-            return Ok(None);
-        };
-        let shells: Vec<u64> = match r.name.as_str() {
-            "FACETED_BREP" => vec![self.reference(id, self.param(id, r, 1)?, "the shell")?],
-            "SHELL_BASED_SURFACE_MODEL" => self
-                .list(id, self.param(id, r, 1)?, "the shells")?
-                .iter()
-                .map(|x| self.reference(id, x, "a shell"))
-                .collect::<R<_>>()?,
-            _ => return Ok(None),
-        };
-        let mut index: std::collections::HashMap<u64, u32> = Default::default();
-        let (mut positions, mut polygons, mut faces) = (Vec::new(), Vec::new(), Vec::new());
-        for shell in shells {
-            let sr = self.get(id, shell)?.records.first().ok_or(At {
-                id: shell,
-                message: "an empty shell".into(),
-            })?;
-            for f in self.list(shell, self.param(shell, sr, 1)?, "the faces")? {
-                let f = self.reference(shell, f, "a face")?;
-                let Some(corners) = self.poly_face(f)? else {
-                    continue;
-                };
-                let mut polygon = Vec::with_capacity(corners.len());
-                for c in corners {
-                    let k = match index.get(&c) {
-                        Some(&k) => k,
-                        None => {
-                            positions.push(self.point(f, &Param::Ref(c))?);
-                            index.insert(c, positions.len() as u32 - 1);
-                            positions.len() as u32 - 1
-                        }
-                    };
-                    polygon.push(k);
-                }
-                polygons.push(polygon);
-                faces.push(f);
-            }
-        }
-        if polygons.is_empty() {
-            return Ok(None);
-        }
-        let (mesh, report) =
-            match hedra_geom::HalfEdgeMesh::from_polygons_repaired(&positions, &polygons) {
-                Ok(m) => m,
-                Err(e) => return at(id, format!("its facets make no mesh: {e}")),
-            };
-        done.extend(faces);
-        let name = Some(self.name(r))
-            .filter(|n| !n.is_empty())
-            .unwrap_or_else(|| format!("Mesh #{id}"));
-        Ok(Some(ImportedMesh {
-            mesh: Some(mesh),
-            report,
-            ..ImportedMesh::empty(name)
-        }))
-    }
-
     /// A B-spline surface, simple or complex (rational).
-    fn surface(&self, id: u64) -> R<(String, NurbsSurface)> {
+    pub(super) fn surface(&self, id: u64) -> R<(String, NurbsSurface)> {
         let i = self.get(id, id)?;
         let (name, du, dv, rows, knots) = if i.complex {
             let b = self.record(id, "B_SPLINE_SURFACE")?;
@@ -537,7 +443,7 @@ impl Reader<'_> {
 
     /// Metres per length unit of the file: the `LENGTH_UNIT` of the first
     /// context that assigns units (metres when none does).
-    fn length_unit(&self) -> R<f64> {
+    pub(super) fn length_unit(&self) -> R<f64> {
         for &id in &self.ex.order {
             let i = &self.ex.instances[&id];
             let Some(units) = i
@@ -560,7 +466,7 @@ impl Reader<'_> {
         Ok(1.0)
     }
 
-    fn unit_scale(&self, id: u64, depth: usize) -> R<f64> {
+    pub(super) fn unit_scale(&self, id: u64, depth: usize) -> R<f64> {
         if depth > 4 {
             return at(id, "a chain of unit conversions more than 4 deep");
         }
@@ -604,111 +510,6 @@ impl Reader<'_> {
             id,
             "a length unit that is neither an SI_UNIT nor a CONVERSION_BASED_UNIT",
         )
-    }
-
-    /// True when every vertex of the face's bounds, and three points
-    /// inside each edge whose curve is a B-spline, lies on one of the
-    /// surface's four boundary curves (within 1e-6 of the surface's
-    /// size): an untrimmed face.
-    fn untrimmed(&self, face: u64, bounds: &[Param], s: &NurbsSurface) -> bool {
-        let size = crate::render::extent(s.points()).max(1e-12);
-        let sides = super::brep::boundary_curves(s);
-        let mut vertices = Vec::new();
-        self.collect_vertices(face, bounds, &mut vertices);
-        // No vertex found (bounds of a kind not read here): no evidence
-        // of a trim.
-        vertices.iter().all(|p| {
-            sides
-                .iter()
-                .any(|c| super::brep::distance_to_curve(c, *p) <= 1e-6 * size)
-        })
-    }
-
-    fn collect_vertices(&self, face: u64, bounds: &[Param], out: &mut Vec<DVec3>) {
-        let deref = |p: &Param| match p {
-            Param::Ref(x) => self.ex.instances.get(x).map(|i| (*x, i)),
-            _ => None,
-        };
-        let _ = face;
-        for b in bounds {
-            let Some((_, bound)) = deref(b) else { continue };
-            let Some(lp) = bound
-                .records
-                .first()
-                .and_then(|r| r.params.get(1))
-                .and_then(deref)
-            else {
-                continue;
-            };
-            let Some(edges) = lp.1.records.first().and_then(|r| r.params.get(1)) else {
-                continue;
-            };
-            // A VERTEX_LOOP: one vertex (a closed surface's pole).
-            if let Some((v, vertex)) = deref(edges)
-                && let Some(Param::Ref(p)) = vertex.records.first().and_then(|r| r.params.get(1))
-                && let Ok(p) = self.point(v, &Param::Ref(*p))
-            {
-                out.push(p);
-                continue;
-            }
-            let Param::List(edges) = edges else { continue };
-            for oe in edges {
-                let Some((_, oe)) = deref(oe) else { continue };
-                let Some(edge) = oe
-                    .records
-                    .first()
-                    .and_then(|r| r.params.get(3))
-                    .and_then(deref)
-                else {
-                    continue;
-                };
-                // Points inside the edge, where its curve is a B-spline
-                // (itself, or the 3D curve of a SURFACE_CURVE or
-                // SEAM_CURVE): a circle can touch a square's side at its
-                // one vertex.
-                let mut curve = edge
-                    .1
-                    .records
-                    .first()
-                    .and_then(|r| r.params.get(3))
-                    .and_then(deref);
-                if let Some((_, c)) = curve
-                    && c.records.first().is_some_and(|r| {
-                        r.name.ends_with("SURFACE_CURVE") || r.name == "SEAM_CURVE"
-                    })
-                {
-                    curve = c
-                        .records
-                        .first()
-                        .and_then(|r| r.params.get(1))
-                        .and_then(deref);
-                }
-                if let Some((cid, c)) = curve
-                    && is_bspline_curve(c)
-                    && let Ok((_, c)) = self.curve(cid)
-                {
-                    let (a, b) = c.domain();
-                    out.extend([0.25, 0.5, 0.75].map(|f| c.point(a + f * (b - a))));
-                }
-                for k in [1, 2] {
-                    let Some(vertex) = edge
-                        .1
-                        .records
-                        .first()
-                        .and_then(|r| r.params.get(k))
-                        .and_then(deref)
-                    else {
-                        continue;
-                    };
-                    if let Some(Param::Ref(p)) =
-                        vertex.1.records.first().and_then(|r| r.params.get(1))
-                        && let Ok(p) = self.point(vertex.0, &Param::Ref(*p))
-                    {
-                        out.push(p);
-                    }
-                }
-            }
-        }
     }
 }
 
