@@ -100,9 +100,9 @@ pub enum Sub {
         #[arg(short, long)]
         output: PathBuf,
     },
-    /// Import meshes (OBJ with UVs and normals, binary or ASCII STL, glTF/GLB) as new nodes of a new scene (or of --input) and save it.
+    /// Import a file's nodes (OBJ with UVs and normals, binary or ASCII STL, glTF/GLB, USD with subdivision and NURBS, STEP B-spline curves and surfaces) into a new scene (or --input) and save it.
     Import {
-        /// The mesh file to import (.obj, .stl, .gltf or .glb).
+        /// The file to import (.obj, .stl, .gltf, .glb, .usda, .usdc, .usdz, .usd, .step or .stp).
         file: PathBuf,
         /// Start from this scene instead of an empty one.
         #[arg(long)]
@@ -111,13 +111,16 @@ pub enum Sub {
         #[arg(short, long)]
         output: PathBuf,
     },
-    /// Write the scene's visible meshes in world space (.obj keeps n-gons,
-    /// .stl is triangulated). Meshes with a subdivision modifier are written
-    /// smooth, at the modifier's export level.
+    /// Write the scene in the format the output's extension names: .obj
+    /// keeps n-gons, .stl is triangulated, .glb/.gltf keep the hierarchy
+    /// (meshes with a subdivision modifier written smooth, at its export
+    /// level); .usda keeps the hierarchy, subdivision cages with their
+    /// creases live and NURBS exact; .step/.stp writes NURBS surfaces and
+    /// curves for CAD. What a format could not hold is printed as notes.
     Export {
         /// The scene (.hedra.ron) to read.
         file: PathBuf,
-        /// The file to write; its extension picks the format (.obj, .stl, .gltf or .glb).
+        /// The file to write; its extension picks the format (.obj, .stl, .gltf, .glb, .usda, .step or .stp).
         #[arg(short, long)]
         output: PathBuf,
         /// Subdivide every mesh this many levels (0–10) instead.
@@ -138,6 +141,14 @@ pub enum Sub {
         /// (exact free-form `cstype bspline`/`curv`/`parm` records).
         #[arg(long, value_enum, default_value = "polylines")]
         curves: ObjCurves,
+        /// STEP's length unit, stated in the file: `m` (Hedra's units as
+        /// they are) or `mm` (× 1000).
+        #[arg(long, value_enum, default_value = "m")]
+        step_units: StepUnitsArg,
+        /// STEP: write visible meshes and CSG solids as faceted shells
+        /// (otherwise STEP holds the NURBS surfaces and curves only).
+        #[arg(long)]
+        step_meshes: bool,
     },
 }
 
@@ -331,6 +342,8 @@ pub fn run(sub: Sub) -> Result<(), CliError> {
             ascii,
             lod,
             curves,
+            step_units,
+            step_meshes,
         } => {
             refuse_overwrite(&output, &[Some(file.as_path())])?;
             let mut session = load(&file)?;
@@ -348,6 +361,13 @@ pub fn run(sub: Sub) -> Result<(), CliError> {
                 curves: match curves {
                     ObjCurves::Polylines => hedra_doc::export::CurveExport::Polylines,
                     ObjCurves::Nurbs => hedra_doc::export::CurveExport::FreeForm,
+                },
+                step: hedra_doc::step::StepOptions {
+                    units: match step_units {
+                        StepUnitsArg::M => hedra_doc::step::StepUnits::Metres,
+                        StepUnitsArg::Mm => hedra_doc::step::StepUnits::Millimetres,
+                    },
+                    meshes: step_meshes,
                 },
             };
             let exported = hedra_doc::export::export_file(&session.doc, &output, options)
@@ -368,6 +388,15 @@ pub enum ObjCurves {
     Polylines,
     /// Free-form NURBS records (exact).
     Nurbs,
+}
+
+/// The length unit `hedra export --step-units` writes STEP in.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum StepUnitsArg {
+    /// Metres: Hedra's numbers as they are.
+    M,
+    /// Millimetres: every length × 1000.
+    Mm,
 }
 
 /// Writes a report to standard output. When the reader has gone away (`hedra

@@ -552,7 +552,7 @@ fn import_turns_obj_objects_into_nodes_and_reports_repairs() {
             dir.path().join("n.hedra.ron").to_str().unwrap(),
         ],
         &dir.path().join("n.hedra.ron"),
-        "unsupported format '.fbx' (supported: .obj, .stl, .gltf, .glb, .usda, .usdc, .usdz, .usd)",
+        "unsupported format '.fbx' (supported: .obj, .stl, .gltf, .glb, .usda, .usdc, .usdz, .usd, .step, .stp)",
     );
 }
 

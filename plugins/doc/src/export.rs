@@ -45,15 +45,19 @@ pub enum ExportFormat {
     /// OpenUSD text: the hierarchy, subdivision cages with their creases
     /// kept live, NURBS surfaces and curves ([`crate::usd`]).
     Usd,
+    /// STEP AP214: NURBS surfaces and curves for CAD, closed shells as
+    /// solids ([`crate::step`]).
+    Step,
 }
 
 impl ExportFormat {
     /// Every export format, in menu order.
-    pub const ALL: [ExportFormat; 4] = [
+    pub const ALL: [ExportFormat; 5] = [
         ExportFormat::Obj,
         ExportFormat::Stl,
         ExportFormat::Gltf,
         ExportFormat::Usd,
+        ExportFormat::Step,
     ];
 
     /// The format's name ("Wavefront OBJ").
@@ -63,6 +67,7 @@ impl ExportFormat {
             ExportFormat::Stl => "STL",
             ExportFormat::Gltf => "glTF 2.0",
             ExportFormat::Usd => "OpenUSD",
+            ExportFormat::Step => "STEP",
         }
     }
 
@@ -73,6 +78,7 @@ impl ExportFormat {
             ExportFormat::Stl => &["stl"],
             ExportFormat::Gltf => &["glb", "gltf"],
             ExportFormat::Usd => &["usda"],
+            ExportFormat::Step => &["step", "stp"],
         }
     }
 
@@ -83,6 +89,7 @@ impl ExportFormat {
             ExportFormat::Stl => "STL, triangulated (.stl)…",
             ExportFormat::Gltf => "glTF 2.0 binary, with the hierarchy (.glb)…",
             ExportFormat::Usd => "OpenUSD, subdivision and NURBS kept (.usda)…",
+            ExportFormat::Step => "STEP, NURBS for CAD (.step)…",
         }
     }
 
@@ -121,6 +128,8 @@ pub struct ExportOptions {
     /// How OBJ writes curve nodes (the other formats tessellate them or
     /// leave them out).
     pub curves: CurveExport,
+    /// STEP's length unit and whether meshes go in as faceted shells.
+    pub step: crate::step::StepOptions,
 }
 
 /// A written export: the file's bytes and what the user should know about
@@ -179,6 +188,19 @@ pub enum ExportError {
         node: String,
         /// The first such face.
         face: hedra_geom::FaceId,
+    },
+    /// A STEP export of a scene whose only visible content is meshes,
+    /// which STEP gets only as faceted shells, when asked for
+    /// ([`crate::step::StepOptions::meshes`]).
+    #[error(
+        "{}: nothing to export: STEP holds NURBS surfaces and curves, and the scene has none; its {meshes} visible mesh node(s) are written as faceted shells only when asked (--step-meshes)",
+        path.display()
+    )]
+    StepMeshesOnly {
+        /// The file asked for.
+        path: PathBuf,
+        /// The visible mesh and CSG nodes left out.
+        meshes: usize,
     },
     /// serde_json could not write the glTF document.
     #[error("cannot write glTF: {0}")]
@@ -257,6 +279,13 @@ pub fn export_file(
         "glb" => crate::gltf::to_gltf(doc, shape, true)?,
         "usda" => {
             let (bytes, notes) = crate::usd::to_usd(doc, path, shape)?;
+            return Ok(Exported { bytes, notes });
+        }
+        "step" | "stp" => {
+            let name = path
+                .file_name()
+                .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
+            let (bytes, notes) = crate::step::to_step(doc, options.step, &name)?;
             return Ok(Exported { bytes, notes });
         }
         other => {

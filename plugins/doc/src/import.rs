@@ -273,7 +273,10 @@ pub enum ImportError {
         message: String,
     },
     /// An extension Hedra does not import.
-    #[error("{path}: unsupported format '.{ext}' (supported: {})", supported_imports())]
+    #[error(
+        "{path}: unsupported format '.{ext}' (supported: {})",
+        supported_imports()
+    )]
     Unsupported {
         /// The file, as the caller named it.
         path: String,
@@ -1432,7 +1435,9 @@ fn obj_text(bytes: &[u8]) -> String {
 }
 
 /// The extensions [`import_file`] reads, in the order menus list them.
-pub const IMPORT_FORMATS: &[&str] = &["obj", "stl", "gltf", "glb", "usda", "usdc", "usdz", "usd"];
+pub const IMPORT_FORMATS: &[&str] = &[
+    "obj", "stl", "gltf", "glb", "usda", "usdc", "usdz", "usd", "step", "stp",
+];
 
 /// The import extensions as messages list them: `.obj, .stl, ...`.
 pub fn supported_imports() -> String {
@@ -1471,6 +1476,13 @@ pub fn import_file(path: &Path) -> Result<Vec<ImportedMesh>, ImportError> {
                 .file_stem()
                 .map_or_else(|| "STL".to_string(), |s| s.to_string_lossy().into_owned());
             stl_from_bytes(&bytes, &name, &shown)
+        }
+        "step" | "stp" => {
+            let bytes = crate::input::read(path).map_err(|e| ImportError::Read {
+                path: shown.clone(),
+                message: e.to_string(),
+            })?;
+            crate::step::step_from_bytes(&bytes, &shown)
         }
         "gltf" | "glb" => {
             let bytes = crate::input::read(path).map_err(|e| ImportError::Read {

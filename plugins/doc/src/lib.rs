@@ -25,6 +25,7 @@ pub mod scene;
 pub mod script;
 pub mod session;
 pub mod smooth;
+pub mod step;
 pub mod usd;
 
 pub use command::{Command, CommandError, NodeRef};

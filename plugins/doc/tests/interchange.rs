@@ -15,7 +15,7 @@ fn a_file_without_an_extension_is_refused_with_a_reason() {
     std::fs::write(&path, "v 0 0 0\n").unwrap();
     let e = import_file(&path).unwrap_err().to_string();
     assert!(
-        e.ends_with("model: the file name has no extension to tell its format (supported: .obj, .stl, .gltf, .glb, .usda, .usdc, .usdz, .usd)"),
+        e.ends_with("model: the file name has no extension to tell its format (supported: .obj, .stl, .gltf, .glb, .usda, .usdc, .usdz, .usd, .step, .stp)"),
         "{e}"
     );
 }

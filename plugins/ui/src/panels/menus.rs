@@ -412,8 +412,24 @@ pub(super) fn menu_bar(
     });
 }
 
-/// File ▸ Export's options, kept for the session: how OBJ writes curves.
+/// File ▸ Export's options, kept for the session: how OBJ writes curves,
+/// STEP's unit and whether STEP takes meshes.
 fn export_option_checkboxes(ui: &mut egui::Ui, options: &mut hedra_doc::export::ExportOptions) {
+    use hedra_doc::step::StepUnits;
+    let mut millimetres = options.step.units == StepUnits::Millimetres;
+    if ui
+        .checkbox(&mut millimetres, "STEP: millimetres")
+        .on_hover_text("Lengths × 1000, stated in the file; off: metres, Hedra's units as they are")
+        .changed()
+    {
+        options.step.units = if millimetres {
+            StepUnits::Millimetres
+        } else {
+            StepUnits::Metres
+        };
+    }
+    ui.checkbox(&mut options.step.meshes, "STEP: meshes as faceted shells")
+        .on_hover_text("Off: STEP holds the NURBS surfaces and curves, and the report counts the meshes left out");
     use hedra_doc::export::CurveExport;
     let mut nurbs = options.curves == CurveExport::FreeForm;
     if ui
