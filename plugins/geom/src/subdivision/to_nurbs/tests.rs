@@ -1,0 +1,305 @@
+#![allow(clippy::needless_range_loop)] // corner indices are the point
+
+use super::*;
+use crate::primitives::Primitive;
+use crate::subdivision::BoundaryInterpolation;
+use crate::surfaces::Surface;
+
+fn torus(major: u32, minor: u32) -> HalfEdgeMesh {
+    Primitive::Torus {
+        major_segments: major,
+        minor_segments: minor,
+        major_radius: 1.0,
+        minor_radius: 0.3,
+    }
+    .build()
+    .unwrap()
+}
+
+fn cube() -> HalfEdgeMesh {
+    Primitive::Cube { size: 2.0 }.build().unwrap()
+}
+
+fn grid(n: u32) -> HalfEdgeMesh {
+    let mut mesh = Primitive::Grid {
+        x_segments: n,
+        z_segments: n,
+        size: 2.0,
+    }
+    .build()
+    .unwrap();
+    // Give the plane some relief so that a wrong patch cannot match by luck.
+    let moves: Vec<_> = mesh
+        .vertices()
+        .map(|v| {
+            let p = mesh.position(v);
+            (
+                v,
+                p + DVec3::Y * (0.3 * (2.0 * p.x).sin() * (1.5 * p.z).cos()),
+            )
+        })
+        .collect();
+    for (v, p) in moves {
+        mesh.set_position(v, p);
+    }
+    mesh
+}
+
+/// Every shared edge: its two sides' patches agree along it, and the
+/// shared curve is that boundary.
+fn assert_watertight(c: &NurbsConversion, bound: f64) {
+    assert!(c.report.max_gap <= bound, "gap {}", c.report.max_gap);
+}
+
+#[test]
+fn a_torus_is_one_exact_surface_equal_to_the_limit() {
+    let mesh = torus(12, 8);
+    let c = convert_at(&mesh, &Creases::default(), Options::default(), 0, 3).unwrap();
+    assert_eq!(c.level, 0);
+    assert_eq!(
+        c.counts(),
+        (1, 0),
+        "one packed surface for an all-regular torus"
+    );
+    let s = &c.patches[0].surface;
+    let mut size = [s.size().0, s.size().1];
+    size.sort();
+    assert_eq!(size, [8 + 3, 12 + 3]);
+    assert!(
+        c.report.max_distance_exact < 1e-12,
+        "{}",
+        c.report.max_distance_exact
+    );
+    assert_eq!(c.report.samples, 12 * 8 * 81);
+    assert_watertight(&c, 1e-12);
+    // to_nurbs stops at once: nothing to approximate.
+    let d = to_nurbs(
+        &mesh,
+        &Creases::default(),
+        Options::default(),
+        &ToNurbsOptions::relative(&mesh, 1e-4),
+    )
+    .unwrap();
+    assert_eq!((d.level, d.counts()), (0, (1, 0)));
+}
+
+#[test]
+fn regular_patches_match_the_limit_at_their_corners() {
+    // Corners of every face of a twisted torus against snap_to_limit.
+    let mut mesh = torus(6, 5);
+    let moves: Vec<_> = mesh
+        .vertices()
+        .map(|v| {
+            (
+                v,
+                mesh.position(v) * DVec3::new(1.0, 1.3, 0.8) + DVec3::X * 0.1 * v.0 as f64 % 0.3,
+            )
+        })
+        .collect();
+    for (v, p) in moves {
+        mesh.set_position(v, p);
+    }
+    let c = convert_at(&mesh, &Creases::default(), Options::default(), 0, 1).unwrap();
+    let snapped: HashMap<_, _> =
+        crate::subdivision::snap_to_limit(&mesh, &Creases::default(), Options::default())
+            .unwrap()
+            .into_iter()
+            .collect();
+    let refiner = Refiner::new(&mesh, &Creases::default(), Options::default(), 0).unwrap();
+    let lv = refiner.levels.last().unwrap();
+    let mut checked = 0;
+    for (f, p) in c.placements.iter().enumerate() {
+        let p = p.unwrap();
+        for k in 0..4 {
+            let v = lv.face_vertices[lv.face_corners(f as u32).start + k];
+            let (u, w) = measure_to_patch(p, CORNERS[k]);
+            let at = c.patches[p.patch].surface.point(u, w);
+            let id = refiner.cage_vertices()[v as usize];
+            assert!(
+                at.distance(snapped[&id]) < 1e-12,
+                "{}",
+                at.distance(snapped[&id])
+            );
+            checked += 1;
+        }
+    }
+    assert_eq!(checked, 30 * 4);
+}
+
+const CORNERS: [(f64, f64); 4] = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)];
+
+fn measure_to_patch(p: FacePlacement, (mut s, mut t): (f64, f64)) -> (f64, f64) {
+    for _ in 0..p.rot {
+        (s, t) = (t, 1.0 - s);
+    }
+    (p.offset.0 as f64 + s, p.offset.1 as f64 + t)
+}
+
+#[test]
+fn a_plane_grid_with_sharp_corners_is_one_exact_surface() {
+    let mesh = grid(6);
+    let options = Options {
+        boundary: BoundaryInterpolation::EdgesAndCorners,
+        ..Options::default()
+    };
+    let c = convert_at(&mesh, &Creases::default(), options, 0, 3).unwrap();
+    assert_eq!(c.counts(), (1, 0));
+    assert!(
+        c.report.max_distance_exact < 1e-12,
+        "{}",
+        c.report.max_distance_exact
+    );
+    // Open: the 24 boundary edges have one face each.
+    assert_eq!(c.edges.iter().filter(|e| e.faces.len() == 1).count(), 24);
+}
+
+#[test]
+fn a_plane_grid_with_round_corners_approximates_only_the_corner_faces() {
+    let mesh = grid(6);
+    let c = convert_at(&mesh, &Creases::default(), Options::default(), 2, 2).unwrap();
+    // Level 2: 24 × 24 faces; the four faces at the round corners are
+    // irregular (a valence-2 boundary vertex under Edges only).
+    assert_eq!(c.counts().1, 4);
+    assert!(c.report.max_distance_exact < 1e-12);
+    assert_watertight(&c, 1e-12);
+}
+
+#[test]
+fn a_cube_converts_within_tolerance_and_watertight() {
+    let mesh = cube();
+    let to = ToNurbsOptions::relative(&mesh, 1e-4);
+    let c = to_nurbs(&mesh, &Creases::default(), Options::default(), &to).unwrap();
+    let (exact, approx) = c.counts();
+    // Eight valence-3 corners, three faces each.
+    assert_eq!(approx, 24);
+    assert!(exact >= 1);
+    assert!(
+        c.report.max_distance_exact < 1e-12,
+        "{}",
+        c.report.max_distance_exact
+    );
+    assert_watertight(&c, 1e-12);
+    // Closed: every edge has two faces.
+    assert!(c.edges.iter().all(|e| e.faces.len() == 2));
+    eprintln!(
+        "cube: level {} patches {:?} report {:?}",
+        c.level,
+        c.counts(),
+        c.report
+    );
+}
+
+#[test]
+fn bezier_patches_share_their_boundary_points_bit_for_bit() {
+    let mesh = cube();
+    let c = convert_at(&mesh, &Creases::default(), Options::default(), 2, 1).unwrap();
+    let refiner = Refiner::new(&mesh, &Creases::default(), Options::default(), 2).unwrap();
+    let lv = refiner.levels.last().unwrap();
+    let mut compared = 0;
+    for e in &c.edges {
+        let sides: Vec<_> = e
+            .faces
+            .iter()
+            .map(|&f| (f, c.placements[f as usize].unwrap()))
+            .filter(|(_, p)| c.patches[p.patch].kind == PatchKind::Approximate)
+            .collect();
+        for &(f, p) in &sides {
+            let net = c.patches[p.patch].surface.points();
+            let k = (0..4)
+                .find(|&k| lv.face_vertices[lv.face_corners(f).start + k] == e.ends[0])
+                .unwrap();
+            let forward = lv.face_vertices[lv.face_corners(f).start + (k + 1) % 4] == e.ends[1];
+            let (kk, order): (usize, [usize; 4]) = if forward {
+                (k, [0, 1, 2, 3])
+            } else {
+                ((k + 3) % 4, [3, 2, 1, 0])
+            };
+            for t in 0..4 {
+                let (i, j) = edge_point(kk, t);
+                assert_eq!(
+                    net[i * 4 + j],
+                    e.curve[order[t]],
+                    "edge {:?} face {f}",
+                    e.ends
+                );
+            }
+            compared += 1;
+        }
+    }
+    assert!(compared >= 48, "{compared}");
+}
+
+#[test]
+#[ignore = "prints figures"]
+fn figures() {
+    let mesh = cube();
+    for level in 2..=5 {
+        let c = convert_at(&mesh, &Creases::default(), Options::default(), level, 2).unwrap();
+        eprintln!("cube level {level}: {:?} {:?}", c.counts(), c.report);
+    }
+}
+
+#[test]
+fn higher_levels_approximate_better() {
+    let mesh = cube();
+    let a = convert_at(&mesh, &Creases::default(), Options::default(), 2, 2).unwrap();
+    let b = convert_at(&mesh, &Creases::default(), Options::default(), 4, 2).unwrap();
+    assert!(
+        b.report.max_distance < a.report.max_distance / 2.0,
+        "{:?} {:?}",
+        a.report,
+        b.report
+    );
+    assert!(
+        b.report.max_angle_degrees < a.report.max_angle_degrees,
+        "{:?} {:?}",
+        a.report,
+        b.report
+    );
+}
+
+#[test]
+fn an_infinitely_sharp_crease_is_a_patch_boundary() {
+    let mesh = cube();
+    let mut creases = Creases::default();
+    for e in mesh.edges() {
+        creases.set_edge(e, 10.0);
+    }
+    let c = convert_at(&mesh, &creases, Options::default(), 2, 2).unwrap();
+    // Every cube edge creased: each face is a regular corner-bounded grid.
+    assert_eq!(c.counts().1, 0, "{:?}", c.counts());
+    assert!(c.report.max_distance_exact < 1e-12, "{:?}", c.report);
+    assert_watertight(&c, 1e-12);
+    assert_eq!(c.edges.iter().filter(|e| e.sharp).count(), 12 * 4);
+    // One packed surface per cube face, meeting along the creases.
+    assert_eq!(c.counts(), (6, 0));
+    // The same at the cage level: to_nurbs needs no refinement at all.
+    let d = to_nurbs(
+        &mesh,
+        &creases,
+        Options::default(),
+        &ToNurbsOptions::relative(&mesh, 1e-4),
+    )
+    .unwrap();
+    assert_eq!((d.level, d.counts()), (0, (6, 0)));
+    assert!(d.report.max_distance_exact < 1e-12, "{:?}", d.report);
+}
+
+#[test]
+fn other_schemes_are_refused() {
+    let options = Options {
+        scheme: Scheme::Loop,
+        ..Options::default()
+    };
+    let err = to_nurbs(
+        &cube(),
+        &Creases::default(),
+        options,
+        &ToNurbsOptions::relative(&cube(), 1e-4),
+    )
+    .unwrap_err();
+    assert_eq!(
+        err.to_string(),
+        "only Catmull-Clark surfaces convert to NURBS, not Loop"
+    );
+}
