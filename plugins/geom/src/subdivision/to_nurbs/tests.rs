@@ -181,6 +181,11 @@ fn a_cube_converts_within_tolerance_and_watertight() {
     assert_watertight(&c, 1e-12);
     // Closed: every edge has two faces.
     assert!(c.edges.iter().all(|e| e.faces.len() == 2));
+    // Within the tolerance and the angle, at level 4 (measured: 2.9e-4 of
+    // the allowed 3.5e-4, 0.09°).
+    assert_eq!(c.level, 4);
+    assert!(c.report.max_distance <= to.tolerance, "{:?}", c.report);
+    assert!(c.report.max_angle_degrees <= 0.5, "{:?}", c.report);
     eprintln!(
         "cube: level {} patches {:?} report {:?}",
         c.level,
@@ -236,6 +241,23 @@ fn figures() {
     for level in 2..=5 {
         let c = convert_at(&mesh, &Creases::default(), Options::default(), level, 2).unwrap();
         eprintln!("cube level {level}: {:?} {:?}", c.counts(), c.report);
+    }
+    for segments in [5, 6, 8] {
+        let mesh = Primitive::UvSphere {
+            segments,
+            rings: 4,
+            radius: 1.0,
+        }
+        .build()
+        .unwrap();
+        for level in 2..=4 {
+            let c = convert_at(&mesh, &Creases::default(), Options::default(), level, 2).unwrap();
+            eprintln!(
+                "sphere valence {segments} level {level}: {:?} {:?}",
+                c.counts(),
+                c.report
+            );
+        }
     }
 }
 
@@ -302,4 +324,53 @@ fn other_schemes_are_refused() {
         err.to_string(),
         "only Catmull-Clark surfaces convert to NURBS, not Loop"
     );
+}
+
+#[test]
+fn a_sphere_with_triangle_fans_and_semi_sharp_creases_converts_within_tolerance() {
+    let mesh = Primitive::UvSphere {
+        segments: 5,
+        rings: 4,
+        radius: 1.0,
+    }
+    .build()
+    .unwrap();
+    let mut creases = Creases::default();
+    // A semi-sharp equator: used up after two levels.
+    for e in mesh.edges() {
+        let [a, b] = mesh.edge_vertices(e);
+        if mesh.position(a).y.abs() < 1e-9 && mesh.position(b).y.abs() < 1e-9 {
+            creases.set_edge(e, 1.5);
+        }
+    }
+    assert_eq!(creases.edges.len(), 5);
+    let to = ToNurbsOptions::relative(&mesh, 1e-3);
+    let c = to_nurbs(&mesh, &creases, Options::default(), &to).unwrap();
+    assert!(c.within(&to), "{:?}", c.report);
+    assert_eq!(c.level, 3);
+    // Two valence-5 poles (5 approximated faces each) and the 10 pole
+    // triangles' centres, valence 3 after the first level (3 faces each).
+    assert_eq!(c.counts().1, 2 * 5 + 10 * 3, "{:?}", c.counts());
+    assert!(c.report.max_distance_exact < 1e-12, "{:?}", c.report);
+    assert_watertight(&c, 1e-12);
+    assert!(c.edges.iter().all(|e| e.faces.len() == 2));
+}
+
+#[test]
+fn high_valence_stops_at_the_maximum_level_and_says_so() {
+    let mesh = Primitive::UvSphere {
+        segments: 8,
+        rings: 4,
+        radius: 1.0,
+    }
+    .build()
+    .unwrap();
+    let to = ToNurbsOptions {
+        max_level: 3,
+        ..ToNurbsOptions::relative(&mesh, 1e-4)
+    };
+    let c = to_nurbs(&mesh, &Creases::default(), Options::default(), &to).unwrap();
+    assert_eq!(c.level, 3);
+    assert!(!c.within(&to), "{:?}", c.report);
+    assert!(c.report.max_angle_degrees > 0.5, "{:?}", c.report);
 }
