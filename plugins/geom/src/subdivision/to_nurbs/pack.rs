@@ -50,9 +50,66 @@ fn up(level: &Level, p: Placed) -> Option<Placed> {
     Some(placed_at(level, t, 0))
 }
 
+/// The quad across local edge 3 (the `u = 0` side), in the same orientation.
+fn left(level: &Level, p: Placed) -> Option<Placed> {
+    let c = corner(level, p, 3);
+    if level.edge_sharp(level.face_edges[c]) > 0.0 {
+        return None;
+    }
+    // The twin corner is at p's local corner 0: the neighbour's local 1.
+    Some(placed_at(level, twin_corner(level, c)?, 1))
+}
+
+/// The quad across local edge 0 (the `v = 0` side), in the same orientation.
+fn down(level: &Level, p: Placed) -> Option<Placed> {
+    let c = corner(level, p, 0);
+    if level.edge_sharp(level.face_edges[c]) > 0.0 {
+        return None;
+    }
+    // The twin corner is at p's local corner 1: the neighbour's local 2.
+    Some(placed_at(level, twin_corner(level, c)?, 2))
+}
+
+/// The rectangle grown from `start`: a row to the right as long as it goes,
+/// then rows upwards while the whole row fits. `free(g)` says whether face
+/// `g` may join.
+fn grow(level: &Level, start: Placed, free: &dyn Fn(u32) -> bool) -> Vec<Vec<Placed>> {
+    let mut taken: HashSet<u32> = HashSet::from([start.0]);
+    let mut row = vec![start];
+    while let Some(next) = right(level, *row.last().expect("non-empty"))
+        && free(next.0)
+        && !taken.contains(&next.0)
+    {
+        taken.insert(next.0);
+        row.push(next);
+    }
+    let mut rows = vec![row];
+    'grow: loop {
+        let below = rows.last().expect("non-empty");
+        let mut new: Vec<Placed> = Vec::with_capacity(below.len());
+        for (a, &p) in below.iter().enumerate() {
+            let Some(q) = up(level, p) else {
+                break 'grow;
+            };
+            if !free(q.0) || taken.contains(&q.0) || new.iter().any(|&(g, _)| g == q.0) {
+                break 'grow;
+            }
+            // The row must be a row: each face right of the previous one.
+            if a > 0 && right(level, new[a - 1]) != Some(q) {
+                break 'grow;
+            }
+            new.push(q);
+        }
+        taken.extend(new.iter().map(|&(g, _)| g));
+        rows.push(new);
+    }
+    rows
+}
+
 /// Greedy maximal rectangles of the faces `usable` says may join: from the
-/// first free face in index order, a row to the right as long as it goes,
-/// then rows upwards while the whole row fits. Returns each rectangle as
+/// first free face in index order, in each of its four orientations, walk
+/// left and down to a corner of the free region, grow a rectangle there
+/// ([`grow`]), and keep the largest of the four. Returns each rectangle as
 /// rows (`rect[b][a]` is the face at `(a, b)`).
 pub(crate) fn rectangles(level: &Level, usable: &[bool]) -> Vec<Vec<Vec<Placed>>> {
     let mut used = vec![false; usable.len()];
@@ -61,41 +118,42 @@ pub(crate) fn rectangles(level: &Level, usable: &[bool]) -> Vec<Vec<Vec<Placed>>
         if !usable[f as usize] || used[f as usize] {
             continue;
         }
-        let mut taken: HashSet<u32> = HashSet::from([f]);
-        let free = |g: u32, taken: &HashSet<u32>, used: &[bool]| {
-            usable[g as usize] && !used[g as usize] && !taken.contains(&g)
-        };
-        let mut row = vec![(f, 0)];
-        while let Some(next) = right(level, *row.last().expect("non-empty"))
-            && free(next.0, &taken, &used)
-        {
-            taken.insert(next.0);
-            row.push(next);
-        }
-        let mut rows = vec![row];
-        'grow: loop {
-            let below = rows.last().expect("non-empty");
-            let mut new = Vec::with_capacity(below.len());
-            for (a, &p) in below.iter().enumerate() {
-                let Some(q) = up(level, p) else {
-                    break 'grow;
-                };
-                if !free(q.0, &taken, &used) || new.iter().any(|&(g, _)| g == q.0) {
-                    break 'grow;
+        let free = |g: u32| usable[g as usize] && !used[g as usize];
+        let mut best: Option<Vec<Vec<Placed>>> = None;
+        for rot in 0..4 {
+            let mut p = (f, rot);
+            let mut seen = HashSet::from([f]);
+            loop {
+                let before = p;
+                while let Some(q) = left(level, p)
+                    && free(q.0)
+                    && seen.insert(q.0)
+                {
+                    p = q;
                 }
-                // The row must be a row: each face right of the previous one.
-                if a > 0 && right(level, new[a - 1]) != Some(q) {
-                    break 'grow;
+                while let Some(q) = down(level, p)
+                    && free(q.0)
+                    && seen.insert(q.0)
+                {
+                    p = q;
                 }
-                new.push(q);
+                if p == before {
+                    break;
+                }
             }
-            taken.extend(new.iter().map(|&(g, _)| g));
-            rows.push(new);
+            let rect = grow(level, p, &free);
+            let area = |r: &Vec<Vec<Placed>>| r.len() * r[0].len();
+            if best.as_ref().is_none_or(|b| area(&rect) > area(b)) {
+                best = Some(rect);
+            }
         }
-        for &g in &taken {
-            used[g as usize] = true;
+        let rect = best.expect("four tries");
+        for row in &rect {
+            for &(g, _) in row {
+                used[g as usize] = true;
+            }
         }
-        out.push(rows);
+        out.push(rect);
     }
     out
 }
