@@ -23,8 +23,11 @@ pub struct Report {
     /// at the samples (model units).
     pub max_distance: f64,
     /// Largest distance between an exact patch and the limit surface
-    /// (rounding only).
+    /// (rounding only); 0 when only the approximate patches were measured
+    /// (`exact_measured` false).
     pub max_distance_exact: f64,
+    /// Whether the exact patches were sampled too.
+    pub exact_measured: bool,
     /// Largest normal angle across a smooth edge between two different
     /// patches (degrees); sharp creases and boundaries are not counted.
     pub max_angle_degrees: f64,
@@ -58,10 +61,11 @@ fn directed(level: &Level) -> HashMap<(u32, u32), usize> {
 
 /// The vertices of face `f`'s grid after `levels` more steps:
 /// `grid[i][j]` at native face coordinates `(i, j) / 2^levels`.
-fn face_grids(levels: &[Level], faces: usize) -> Vec<Vec<Vec<u32>>> {
+fn face_grids(levels: &[Level], faces: &[u32]) -> Vec<Vec<Vec<u32>>> {
     let first = &levels[0];
-    let mut grids: Vec<Vec<Vec<u32>>> = (0..faces as u32)
-        .map(|f| {
+    let mut grids: Vec<Vec<Vec<u32>>> = faces
+        .iter()
+        .map(|&f| {
             let c = first.face_corners(f).start;
             let v = |k: usize| first.face_vertices[c + k];
             vec![vec![v(0), v(3)], vec![v(1), v(2)]]
@@ -99,7 +103,9 @@ fn face_grids(levels: &[Level], faces: usize) -> Vec<Vec<Vec<u32>>> {
 }
 
 /// Measures `conversion` (made from `mesh`, `creases`, `options`) with
-/// `2^samples` intervals per face edge.
+/// `2^samples` intervals per face edge: every face with `exact`, else only
+/// the approximated faces, their neighbours and the edges between them
+/// (exact patches are exact by construction; sampling them is for tests).
 ///
 /// # Errors
 /// As [`Refiner::new`] for the sampling level.
@@ -109,16 +115,36 @@ pub fn measure(
     options: Options,
     conversion: &NurbsConversion,
     samples: u32,
+    exact: bool,
 ) -> Result<Report, SubdivisionError> {
     let k = conversion.level as usize;
     let fine = Refiner::new(mesh, creases, options, conversion.level + samples)?;
     let points = fine.refine(&fine.cage_positions(mesh));
     let limit = limit_positions(&fine, &points)?;
-    let grids = face_grids(&fine.levels[k..], conversion.placements.len());
-    let mut report = Report::default();
+    let approximate = |f: u32| {
+        conversion.placements[f as usize]
+            .is_some_and(|p| conversion.patches[p.patch].kind == PatchKind::Approximate)
+    };
+    let edges: Vec<&super::SharedEdge> = conversion
+        .edges
+        .iter()
+        .filter(|e| exact || e.faces.iter().any(|&f| approximate(f)))
+        .collect();
+    let mut faces: Vec<u32> = if exact {
+        (0..conversion.placements.len() as u32).collect()
+    } else {
+        edges.iter().flat_map(|e| e.faces.iter().copied()).collect()
+    };
+    faces.sort_unstable();
+    faces.dedup();
+    let grids = face_grids(&fine.levels[k..], &faces);
+    let mut report = Report {
+        exact_measured: exact,
+        ..Report::default()
+    };
     let n = 1usize << samples;
-    for (f, placement) in conversion.placements.iter().enumerate() {
-        let Some(placement) = *placement else {
+    for (slot, &f) in faces.iter().enumerate() {
+        let Some(placement) = conversion.placements[f as usize] else {
             continue;
         };
         let patch = &conversion.patches[placement.patch];
@@ -129,7 +155,7 @@ pub fn measure(
                 let d = patch
                     .surface
                     .point(u, v)
-                    .distance(limit[grids[f][i][j] as usize]);
+                    .distance(limit[grids[slot][i][j] as usize]);
                 let max = match patch.kind {
                     PatchKind::Exact => &mut report.max_distance_exact,
                     PatchKind::Approximate => &mut report.max_distance,
@@ -147,7 +173,7 @@ pub fn measure(
             .expect("a vertex of the face")
     };
     let steps = 2 * n;
-    for edge in &conversion.edges {
+    for edge in edges {
         let [f, g] = match edge.faces[..] {
             [f, g] => [f, g],
             _ => continue,

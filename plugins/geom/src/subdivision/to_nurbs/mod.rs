@@ -79,6 +79,9 @@ pub struct ToNurbsOptions {
     /// Sample density of the measurement: `2^samples` intervals per level-`k`
     /// face edge.
     pub samples: u32,
+    /// Sample the exact patches too (they equal the limit surface by
+    /// construction; tests check it, conversions need not).
+    pub measure_exact: bool,
 }
 
 impl ToNurbsOptions {
@@ -100,6 +103,7 @@ impl ToNurbsOptions {
             max_angle_degrees: 0.5,
             max_level: 5,
             samples: 2,
+            measure_exact: false,
         }
     }
 }
@@ -258,7 +262,7 @@ pub fn to_nurbs(
         .max_level
         .clamp(level, MAX_LEVEL - to.samples.min(MAX_LEVEL));
     loop {
-        let conversion = convert_at(mesh, creases, options, level, to.samples)?;
+        let conversion = convert_with(mesh, creases, options, level, to.samples, to.measure_exact)?;
         let irregular = conversion.counts().1;
         if irregular == 0 {
             return Ok(conversion);
@@ -271,8 +275,8 @@ pub fn to_nurbs(
     }
 }
 
-/// The conversion at one refinement level, measured at `2^samples`
-/// intervals per face edge.
+/// The conversion at one refinement level, every patch measured at
+/// `2^samples` intervals per face edge.
 ///
 /// # Errors
 /// As [`to_nurbs`].
@@ -282,6 +286,17 @@ pub fn convert_at(
     options: Options,
     level: u32,
     samples: u32,
+) -> Result<NurbsConversion, ToNurbsError> {
+    convert_with(mesh, creases, options, level, samples, true)
+}
+
+fn convert_with(
+    mesh: &HalfEdgeMesh,
+    creases: &Creases,
+    options: Options,
+    level: u32,
+    samples: u32,
+    exact: bool,
 ) -> Result<NurbsConversion, ToNurbsError> {
     let quads = mesh.faces().all(|f| mesh.face_degree(f) == 4);
     let level = level.max(u32::from(!quads));
@@ -293,7 +308,7 @@ pub fn convert_at(
     let finer_points = finer.refine(&finer.cage_positions(mesh));
     let finer_limit = limit_positions(&finer, &finer_points)?;
     let mut conversion = build(&refiner, &points, &finer_limit);
-    conversion.report = measure::measure(mesh, creases, options, &conversion, samples)?;
+    conversion.report = measure::measure(mesh, creases, options, &conversion, samples, exact)?;
     Ok(conversion)
 }
 

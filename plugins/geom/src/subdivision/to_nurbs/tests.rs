@@ -77,7 +77,10 @@ fn a_torus_is_one_exact_surface_equal_to_the_limit() {
         &mesh,
         &Creases::default(),
         Options::default(),
-        &ToNurbsOptions::relative(&mesh, 1e-4),
+        &ToNurbsOptions {
+            measure_exact: true,
+            ..ToNurbsOptions::relative(&mesh, 1e-4)
+        },
     )
     .unwrap();
     assert_eq!((d.level, d.counts()), (0, (1, 0)));
@@ -167,7 +170,10 @@ fn a_plane_grid_with_round_corners_approximates_only_the_corner_faces() {
 #[test]
 fn a_cube_converts_within_tolerance_and_watertight() {
     let mesh = cube();
-    let to = ToNurbsOptions::relative(&mesh, 1e-4);
+    let to = ToNurbsOptions {
+        measure_exact: true,
+        ..ToNurbsOptions::relative(&mesh, 1e-4)
+    };
     let c = to_nurbs(&mesh, &Creases::default(), Options::default(), &to).unwrap();
     let (exact, approx) = c.counts();
     // Eight valence-3 corners, three faces each; the regular rest packs
@@ -301,7 +307,10 @@ fn an_infinitely_sharp_crease_is_a_patch_boundary() {
         &mesh,
         &creases,
         Options::default(),
-        &ToNurbsOptions::relative(&mesh, 1e-4),
+        &ToNurbsOptions {
+            measure_exact: true,
+            ..ToNurbsOptions::relative(&mesh, 1e-4)
+        },
     )
     .unwrap();
     assert_eq!((d.level, d.counts()), (0, (6, 0)));
@@ -345,7 +354,10 @@ fn a_sphere_with_triangle_fans_and_semi_sharp_creases_converts_within_tolerance(
         }
     }
     assert_eq!(creases.edges.len(), 5);
-    let to = ToNurbsOptions::relative(&mesh, 1e-3);
+    let to = ToNurbsOptions {
+        measure_exact: true,
+        ..ToNurbsOptions::relative(&mesh, 1e-3)
+    };
     let c = to_nurbs(&mesh, &creases, Options::default(), &to).unwrap();
     assert!(c.within(&to), "{:?}", c.report);
     assert_eq!(c.level, 3);
@@ -374,4 +386,15 @@ fn high_valence_stops_at_the_maximum_level_and_says_so() {
     assert_eq!(c.level, 3);
     assert!(!c.within(&to), "{:?}", c.report);
     assert!(c.report.max_angle_degrees > 0.5, "{:?}", c.report);
+}
+
+#[test]
+fn measuring_only_the_approximations_gives_the_same_figures() {
+    let mesh = cube();
+    let all = convert_at(&mesh, &Creases::default(), Options::default(), 3, 2).unwrap();
+    let some = convert_with(&mesh, &Creases::default(), Options::default(), 3, 2, false).unwrap();
+    assert_eq!(all.report.max_distance, some.report.max_distance);
+    assert_eq!(all.report.max_angle_degrees, some.report.max_angle_degrees);
+    assert!(!some.report.exact_measured && all.report.exact_measured);
+    assert!(some.report.samples < all.report.samples / 2);
 }
