@@ -23,8 +23,8 @@ pub struct Report {
     /// at the samples (model units).
     pub max_distance: f64,
     /// Largest distance between an exact patch and the limit surface
-    /// (rounding only); 0 when only the approximate patches were measured
-    /// (`exact_measured` false).
+    /// (rounding only); when only the approximate patches were measured
+    /// (`exact_measured` false), over the exact faces next to them only.
     pub max_distance_exact: f64,
     /// Whether the exact patches were sampled too.
     pub exact_measured: bool,
