@@ -398,3 +398,68 @@ fn measuring_only_the_approximations_gives_the_same_figures() {
     assert!(!some.report.exact_measured && all.report.exact_measured);
     assert!(some.report.samples < all.report.samples / 2);
 }
+
+/// The volume the patches enclose, `(1/3) ∮ p · n dA`, by 6-point
+/// Gauss-Legendre quadrature on every knot span.
+fn patch_volume(c: &NurbsConversion) -> f64 {
+    const X: [f64; 6] = [
+        -0.932_469_514_203_152,
+        -0.661_209_386_466_264_5,
+        -0.238_619_186_083_196_9,
+        0.238_619_186_083_196_9,
+        0.661_209_386_466_264_5,
+        0.932_469_514_203_152,
+    ];
+    const W: [f64; 6] = [
+        0.171_324_492_379_170_3,
+        0.360_761_573_048_138_6,
+        0.467_913_934_572_691,
+        0.467_913_934_572_691,
+        0.360_761_573_048_138_6,
+        0.171_324_492_379_170_3,
+    ];
+    let mut volume = 0.0;
+    for p in &c.patches {
+        let (us, vs) = p.surface.breakpoints();
+        for a in us.windows(2) {
+            for b in vs.windows(2) {
+                let (hu, hv) = ((a[1] - a[0]) / 2.0, (b[1] - b[0]) / 2.0);
+                for (xi, wi) in X.iter().zip(W) {
+                    for (xj, wj) in X.iter().zip(W) {
+                        let s = p
+                            .surface
+                            .evaluate(a[0] + hu * (1.0 + xi), b[0] + hv * (1.0 + xj));
+                        volume += wi * wj * hu * hv * s.p.dot(s.du.cross(s.dv)) / 3.0;
+                    }
+                }
+            }
+        }
+    }
+    volume
+}
+
+/// The limit surface's volume: polyhedra through limit points at levels 5
+/// and 6, extrapolated (their error falls as 4^-level).
+fn limit_volume(mesh: &HalfEdgeMesh) -> f64 {
+    let at = |level| {
+        let r = Refiner::new(mesh, &Creases::default(), Options::default(), level).unwrap();
+        let points = r.refine(&r.cage_positions(mesh));
+        let limit = limit_positions(&r, &points).unwrap();
+        r.to_mesh(&limit).unwrap().0.volume()
+    };
+    let (v5, v6) = (at(5), at(6));
+    (4.0 * v6 - v5) / 3.0
+}
+
+#[test]
+fn a_closed_cage_gives_patches_enclosing_the_limit_volume() {
+    let mesh = cube();
+    let to = ToNurbsOptions::relative(&mesh, 1e-4);
+    let c = to_nurbs(&mesh, &Creases::default(), Options::default(), &to).unwrap();
+    let (patches, limit) = (patch_volume(&c), limit_volume(&mesh));
+    eprintln!("cube volume: patches {patches}, limit {limit}");
+    assert!(
+        ((patches - limit) / limit).abs() < 1e-5,
+        "{patches} {limit}"
+    );
+}
