@@ -54,7 +54,7 @@ use std::collections::HashMap;
 
 use glam::DVec3;
 
-use super::level::{Level, NONE};
+use super::level::Level;
 use super::rules::is_infinite;
 use super::{
     Creases, INFINITE_SHARPNESS, MAX_LEVEL, Options, Refiner, Scheme, SubdivisionError,
@@ -257,12 +257,24 @@ pub fn to_nurbs(
     if mesh.face_count() == 0 {
         return Err(ToNurbsError::Empty);
     }
-    let mut level = first_level(mesh, creases);
-    let max = to
-        .max_level
-        .clamp(level, MAX_LEVEL - to.samples.min(MAX_LEVEL));
+    // The measurement refines `samples` levels further, and a level one
+    // further for the edge middles: neither may pass MAX_LEVEL.
+    let ceiling = MAX_LEVEL.saturating_sub(to.samples.max(1));
+    let max = to.max_level.min(ceiling);
+    let mut level = first_level(mesh, creases).min(max);
+    let mut previous: Option<NurbsConversion> = None;
     loop {
-        let conversion = convert_with(mesh, creases, options, level, to.samples, to.measure_exact)?;
+        let conversion =
+            match convert_with(mesh, creases, options, level, to.samples, to.measure_exact) {
+                Ok(c) => c,
+                // A level too large to refine: keep the last one that was not.
+                Err(ToNurbsError::Subdivision(SubdivisionError::TooManyFaces { .. }))
+                    if previous.is_some() =>
+                {
+                    return Ok(previous.expect("checked"));
+                }
+                Err(e) => return Err(e),
+            };
         let irregular = conversion.counts().1;
         if irregular == 0 {
             return Ok(conversion);
@@ -271,6 +283,7 @@ pub fn to_nurbs(
         if good || level >= max {
             return Ok(conversion);
         }
+        previous = Some(conversion);
         level += 1;
     }
 }
@@ -449,7 +462,6 @@ fn build(refiner: &Refiner, points: &[DVec3], finer_limit: &[DVec3]) -> NurbsCon
             rot: 0,
         });
     }
-    let _ = NONE;
     NurbsConversion {
         level: refiner.level_count(),
         patches,

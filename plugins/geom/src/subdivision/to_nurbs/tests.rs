@@ -463,3 +463,20 @@ fn a_closed_cage_gives_patches_enclosing_the_limit_volume() {
         "{patches} {limit}"
     );
 }
+
+#[test]
+fn a_crease_sharper_than_the_levels_allowed_does_not_panic() {
+    let mesh = cube();
+    let mut creases = Creases::default();
+    let e = mesh.edges().next().unwrap();
+    creases.set_edge(e, 9.5);
+    let to = ToNurbsOptions {
+        max_level: 3,
+        ..ToNurbsOptions::relative(&mesh, 1e-4)
+    };
+    let c = to_nurbs(&mesh, &creases, Options::default(), &to).unwrap();
+    // Level 3: the crease is still semi-sharp there, so its faces are approximated.
+    assert_eq!(c.level, 3);
+    assert!(c.counts().1 > 24);
+    assert_watertight(&c, 1e-12);
+}
