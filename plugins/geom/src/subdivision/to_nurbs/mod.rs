@@ -184,11 +184,46 @@ pub struct NurbsConversion {
     pub placements: Vec<Option<FacePlacement>>,
     /// Every edge of the conversion level with a shown face, and its curve.
     pub edges: Vec<SharedEdge>,
+    /// Per face of the conversion level (`None` when not shown): its four
+    /// edges in face order (edge `k` from corner `k` to `k + 1`), as an index
+    /// into [`edges`](Self::edges) and whether it runs the curve's way.
+    pub face_edges: Vec<Option<[(usize, bool); 4]>>,
     /// The measured figures of the approximation.
     pub report: measure::Report,
 }
 
 impl NurbsConversion {
+    /// The boundary of patch `patch` as four sides, counter-clockwise in
+    /// its parameters: `v = 0` (u rising), `u = max` (v rising), `v = max`
+    /// (u falling), `u = 0` (v falling). Each side is the chain of shared
+    /// edges along it, as an index into [`edges`](Self::edges) and whether
+    /// the curve runs the side's way. This is what a B-rep writer needs:
+    /// every patch is one face whose loop is these edges, and each edge
+    /// between two patches appears on exactly two sides (once each way on an
+    /// oriented closed surface).
+    pub fn sides(&self, patch: usize) -> [Vec<(usize, bool)>; 4] {
+        let mut at: HashMap<(usize, usize), (usize, usize)> = HashMap::new();
+        for (f, p) in self.placements.iter().enumerate() {
+            if let Some(p) = p
+                && p.patch == patch
+            {
+                at.insert(p.offset, (f, p.rot));
+            }
+        }
+        let w = at.keys().map(|&(a, _)| a + 1).max().unwrap_or(0);
+        let h = at.keys().map(|&(_, b)| b + 1).max().unwrap_or(0);
+        let edge = |a: usize, b: usize, local: usize| {
+            let (f, rot) = at[&(a, b)];
+            self.face_edges[f].expect("a placed face is shown")[(rot + local) % 4]
+        };
+        [
+            (0..w).map(|a| edge(a, 0, 0)).collect(),
+            (0..h).map(|b| edge(w - 1, b, 1)).collect(),
+            (0..w).rev().map(|a| edge(a, h - 1, 2)).collect(),
+            (0..h).rev().map(|b| edge(0, b, 3)).collect(),
+        ]
+    }
+
     /// Number of exact (packed) and approximate patches.
     pub fn counts(&self) -> (usize, usize) {
         let exact = self
@@ -381,18 +416,23 @@ fn build(refiner: &Refiner, points: &[DVec3], finer_limit: &[DVec3]) -> NurbsCon
     let mut edge_index: HashMap<u32, usize> = HashMap::new();
     let mut edges: Vec<SharedEdge> = Vec::new();
     let mut rows: Vec<Option<[[Option<DVec3>; 4]; 4]>> = vec![None; faces];
+    let mut face_edges: Vec<Option<[(usize, bool); 4]>> = vec![None; faces];
     for f in 0..faces as u32 {
         if !shown[f as usize] {
             continue;
         }
         let g = face_grid(lv, &classes, points, f, 0);
-        for k in 0..4 {
+        let mut mine = [(0, true); 4];
+        for (k, slot) in mine.iter_mut().enumerate() {
             let c = lv.face_corners(f).start + k;
             let e = lv.face_edges[c];
+            let forward = lv.edge_vertices[e as usize][0] == lv.face_vertices[c];
             if let Some(&i) = edge_index.get(&e) {
                 edges[i].faces.push(f);
+                *slot = (i, forward);
                 continue;
             }
+            *slot = (edges.len(), forward);
             let (a, b) = (lv.face_vertices[c], lv.face_vertices[lv.next_corner(c)]);
             // The Bézier row along local edge k, from corner k to k + 1.
             let row: [DVec3; 4] = std::array::from_fn(|t| {
@@ -428,6 +468,7 @@ fn build(refiner: &Refiner, points: &[DVec3], finer_limit: &[DVec3]) -> NurbsCon
             });
         }
         rows[f as usize] = Some(g);
+        face_edges[f as usize] = Some(mine);
     }
     // Approximate: one Bézier patch per shown irregular face.
     for f in 0..faces as u32 {
@@ -467,6 +508,7 @@ fn build(refiner: &Refiner, points: &[DVec3], finer_limit: &[DVec3]) -> NurbsCon
         patches,
         placements,
         edges,
+        face_edges,
         report: measure::Report::default(),
     }
 }

@@ -480,3 +480,72 @@ fn a_crease_sharper_than_the_levels_allowed_does_not_panic() {
     assert!(c.counts().1 > 24);
     assert_watertight(&c, 1e-12);
 }
+
+/// Every patch's sides are chains of shared edges that close into a loop,
+/// follow the edge curves, and use each edge between patches twice.
+fn assert_sides(c: &NurbsConversion) {
+    let mut uses = vec![0usize; c.edges.len()];
+    for (p, patch) in c.patches.iter().enumerate() {
+        let sides = c.sides(p);
+        let ((u0, u1), (v0, v1)) = patch.surface.domain();
+        let mut chain = Vec::new();
+        for (k, side) in sides.iter().enumerate() {
+            for (n, &(e, forward)) in side.iter().enumerate() {
+                uses[e] += 1;
+                let ends = c.edges[e].ends;
+                chain.push(if forward { ends } else { [ends[1], ends[0]] });
+                for step in 0..=4 {
+                    let t = step as f64 / 4.0;
+                    let along = n as f64 + t;
+                    let (u, v) = match k {
+                        0 => (u0 + along, v0),
+                        1 => (u1, v0 + along),
+                        2 => (u1 - along, v1),
+                        _ => (u0, v1 - along),
+                    };
+                    let curve =
+                        measure::bezier3(&c.edges[e].curve, if forward { t } else { 1.0 - t });
+                    let d = patch.surface.point(u, v).distance(curve);
+                    assert!(d < 1e-12, "patch {p} side {k} edge {e}: {d}");
+                }
+            }
+        }
+        for (i, pair) in chain.iter().enumerate() {
+            assert_eq!(
+                pair[1],
+                chain[(i + 1) % chain.len()][0],
+                "patch {p}: the loop breaks"
+            );
+        }
+    }
+    for (e, edge) in c.edges.iter().enumerate() {
+        let patches: Vec<_> = edge
+            .faces
+            .iter()
+            .map(|&f| c.placements[f as usize].unwrap().patch)
+            .collect();
+        // Inside one patch an edge is on no side, unless it is the seam of
+        // a patch that wraps around (a torus): then on two, as in a B-rep.
+        let ok = match patches[..] {
+            [a, b] if a == b => uses[e] == 0 || uses[e] == 2,
+            [_, _] => uses[e] == 2,
+            _ => uses[e] == 1,
+        };
+        assert!(ok, "edge {e}: {} uses, patches {patches:?}", uses[e]);
+    }
+}
+
+#[test]
+fn patch_sides_are_closed_loops_of_shared_edges() {
+    let mesh = cube();
+    assert_sides(&convert_at(&mesh, &Creases::default(), Options::default(), 3, 1).unwrap());
+    assert_sides(
+        &convert_at(&torus(12, 8), &Creases::default(), Options::default(), 0, 1).unwrap(),
+    );
+    assert_sides(&convert_at(&grid(6), &Creases::default(), Options::default(), 2, 1).unwrap());
+    let mut creases = Creases::default();
+    for e in mesh.edges() {
+        creases.set_edge(e, 10.0);
+    }
+    assert_sides(&convert_at(&mesh, &creases, Options::default(), 1, 1).unwrap());
+}
