@@ -435,13 +435,17 @@ fn build(refiner: &Refiner, points: &[DVec3], finer_limit: &[DVec3]) -> NurbsCon
             *slot = (edges.len(), forward);
             let (a, b) = (lv.face_vertices[c], lv.face_vertices[lv.next_corner(c)]);
             // The Bézier row along local edge k, from corner k to k + 1.
-            let row: [DVec3; 4] = std::array::from_fn(|t| {
+            let (pa, pb) = (limit[a as usize], limit[b as usize]);
+            // A point the grid cannot give (no face across the edge: never
+            // at level 1 and up, where every face is a quad) falls back to
+            // the chord between the limit points.
+            let curve: [DVec3; 4] = std::array::from_fn(|t| {
                 let (i, j) = edge_point(k, t);
-                bezier_point(&g, i, j).unwrap_or(DVec3::NAN)
+                bezier_point(&g, i, j).unwrap_or(pa + (pb - pa) * (t as f64 / 3.0))
             });
-            let mut curve = row;
-            curve[0] = limit[a as usize];
-            curve[3] = limit[b as usize];
+            let mut curve = curve;
+            curve[0] = pa;
+            curve[3] = pb;
             // Beside a smooth irregular end, the inner point is set so that
             // the curve passes through the exact limit point at the edge's
             // middle (the limit of its edge point one level down, child
