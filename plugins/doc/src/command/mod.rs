@@ -26,6 +26,9 @@ mod spec;
 mod to_nurbs;
 
 pub use spec::{Command, Corner, CurveSpec, EulerOp, NodeRef, ParameterDirection, SurfaceSpec};
+/// The default tolerance of [`Command::ConvertSubdivisionToNurbs`], a
+/// fraction of the cage's bounding-box diagonal.
+pub use to_nurbs::DEFAULT_TOLERANCE as DEFAULT_NURBS_TOLERANCE;
 
 use crate::elements::{EdgeSet, ElementError, VertexSet};
 use crate::history::Transaction;

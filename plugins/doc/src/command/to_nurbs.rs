@@ -3,36 +3,38 @@
 
 use std::sync::Arc;
 
-use hedra_geom::subdivision::to_nurbs::{ToNurbsOptions, to_nurbs};
+use hedra_geom::subdivision::to_nurbs::{NurbsConversion, ToNurbsOptions, to_nurbs};
 
 use super::CommandError;
 use super::NodeRef;
 use super::plan::Plan;
-use crate::scene::{NodeContent, SurfaceShape};
+use crate::scene::{MeshContent, NodeContent, SurfaceShape};
 
 /// The default tolerance: this fraction of the cage's bounding-box diagonal.
 pub const DEFAULT_TOLERANCE: f64 = 1e-4;
 
-impl Plan<'_> {
-    pub(super) fn convert_subdivision_to_nurbs(
-        &mut self,
-        node: &NodeRef,
-        tolerance: Option<f64>,
-        keep_cage: bool,
-    ) -> Result<(), CommandError> {
-        let fraction = tolerance.unwrap_or(DEFAULT_TOLERANCE);
+impl MeshContent {
+    /// The NURBS patches of this mesh's Catmull-Clark limit surface (what
+    /// [`Command::ConvertSubdivisionToNurbs`](crate::Command::ConvertSubdivisionToNurbs)
+    /// adds), within `fraction` of the cage's bounding-box diagonal, with the
+    /// shared edge curves and patch loops (`NurbsConversion::sides`) a
+    /// B-rep writer needs and the measured figures (`report`, `within`), for
+    /// a STEP export of the node or a status line. `node` names the node in
+    /// errors.
+    ///
+    /// # Errors
+    /// [`CommandError::Tolerance`], [`CommandError::NoSubdivision`],
+    /// [`CommandError::Modifier`] or [`CommandError::ModifierAfterSubdivision`]
+    /// for the stack, [`CommandError::ToNurbs`] from the kernel.
+    pub fn limit_nurbs(&self, fraction: f64, node: &str) -> Result<NurbsConversion, CommandError> {
         if !(fraction.is_finite() && fraction > 0.0) {
             return Err(CommandError::Tolerance(fraction));
         }
-        let mut cage = self.node(node)?;
-        let label = self.doc.label_of(cage.id);
-        let NodeContent::Mesh(content) = &cage.content else {
-            return Err(CommandError::NotAMesh { node: label });
-        };
-        let Some(modifier) = content.subdivision else {
+        let label = node.to_string();
+        let Some(modifier) = self.subdivision else {
             return Err(CommandError::NoSubdivision { node: label });
         };
-        let input = content
+        let input = self
             .smooth_cage()
             .map_err(|error| CommandError::Modifier {
                 node: label.clone(),
@@ -42,11 +44,25 @@ impl Plan<'_> {
                 node: label.clone(),
             })?;
         let options = ToNurbsOptions::relative(&input.mesh, fraction);
-        let conversion = to_nurbs(&input.mesh, &input.creases, modifier.options, &options)
-            .map_err(|error| CommandError::ToNurbs {
-                node: label.clone(),
-                error,
-            })?;
+        to_nurbs(&input.mesh, &input.creases, modifier.options, &options)
+            .map_err(|error| CommandError::ToNurbs { node: label, error })
+    }
+}
+
+impl Plan<'_> {
+    pub(super) fn convert_subdivision_to_nurbs(
+        &mut self,
+        node: &NodeRef,
+        tolerance: Option<f64>,
+        keep_cage: bool,
+    ) -> Result<(), CommandError> {
+        let fraction = tolerance.unwrap_or(DEFAULT_TOLERANCE);
+        let mut cage = self.node(node)?;
+        let label = self.doc.label_of(cage.id);
+        let NodeContent::Mesh(content) = &cage.content else {
+            return Err(CommandError::NotAMesh { node: label });
+        };
+        let conversion = content.limit_nurbs(fraction, &label)?;
         let parent = cage.parent.map(|p| NodeRef::Id(p.0));
         let group = self.add_node(
             &format!("{} NURBS", cage.name),
@@ -149,6 +165,21 @@ mod tests {
         assert!(s.doc.find_by_name("Box").is_none());
         let group = s.doc.find_by_name("Box NURBS").unwrap().id;
         assert_eq!(s.doc.find_by_name("Handle").unwrap().parent, Some(group));
+    }
+
+    #[test]
+    fn the_conversion_is_available_without_a_command() {
+        let mut s = Session::new();
+        smooth_cube(&mut s, "Box");
+        let NodeContent::Mesh(content) = &s.doc.find_by_name("Box").unwrap().content else {
+            panic!("a mesh");
+        };
+        let c = content
+            .limit_nurbs(crate::command::DEFAULT_NURBS_TOLERANCE, "Box")
+            .unwrap();
+        assert!(c.report.max_distance > 0.0);
+        assert_eq!((c.level, c.counts()), (4, (7, 24)));
+        assert_eq!(c.sides(0).len(), 4);
     }
 
     #[test]
