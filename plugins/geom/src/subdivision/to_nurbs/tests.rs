@@ -257,8 +257,16 @@ fn figures() {
         }
         .build()
         .unwrap();
-        for level in 2..=4 {
-            let c = convert_at(&mesh, &Creases::default(), Options::default(), level, 2).unwrap();
+        for level in 3..=5 {
+            let c = convert_with(
+                &mesh,
+                &Creases::default(),
+                Options::default(),
+                level,
+                2,
+                false,
+            )
+            .unwrap();
             eprintln!(
                 "sphere valence {segments} level {level}: {:?} {:?}",
                 c.counts(),
