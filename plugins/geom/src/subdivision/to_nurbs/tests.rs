@@ -557,3 +557,19 @@ fn patch_sides_are_closed_loops_of_shared_edges() {
     }
     assert_sides(&convert_at(&mesh, &creases, Options::default(), 1, 1).unwrap());
 }
+
+#[test]
+fn a_cube_subdivided_once_converts_at_level_two() {
+    let (cage, creases) =
+        Refiner::subdivide(&cube(), &Creases::default(), Options::default(), 1).unwrap();
+    assert_eq!(cage.face_count(), 24);
+    let c = convert_at(&cage, &creases, Options::default(), 2, 2).unwrap();
+    // 384 faces: the 24 at the eight valence-3 corners are approximated,
+    // the other 360 pack into bands.
+    let (exact, approx) = c.counts();
+    assert_eq!(approx, 24);
+    assert!(exact <= 12, "{exact}");
+    assert!(c.report.max_distance_exact < 1e-12, "{:?}", c.report);
+    assert_watertight(&c, 1e-12);
+    assert_sides(&c);
+}
