@@ -119,24 +119,36 @@ pub(crate) fn boundary_curves(s: &NurbsSurface) -> [NurbsCurve; 4] {
     sides(s).map(|side| side.curve)
 }
 
-/// The distance from `p` to the curve `c`: the nearest of 65 samples,
-/// refined by Newton's method on `(C(t) − p) · C'(t) = 0`.
-pub(crate) fn distance_to_curve(c: &NurbsCurve, p: DVec3) -> f64 {
+/// The parameter of the point of `c` nearest to `p` and its distance:
+/// the nearest of 8 samples per control point (at least 65), refined by
+/// Newton's method on `(C(t) − p) · C'(t) = 0`.
+pub(crate) fn project_to_curve(c: &NurbsCurve, p: DVec3) -> (f64, f64) {
     let (a, b) = c.domain();
-    let mut t = (0..=64)
-        .map(|k| a + (b - a) * k as f64 / 64.0)
+    let n = (8 * c.points().len()).max(64);
+    let mut t = (0..=n)
+        .map(|k| a + (b - a) * k as f64 / n as f64)
         .min_by(|x, y| c.point(*x).distance(p).total_cmp(&c.point(*y).distance(p)))
         .unwrap_or(a);
-    for _ in 0..12 {
+    for _ in 0..16 {
         let [q, d1, d2] = c.derivatives(t);
         let f = (q - p).dot(d1);
         let df = d1.dot(d1) + (q - p).dot(d2);
         if df.abs() < 1e-300 {
             break;
         }
-        t = (t - f / df).clamp(a, b);
+        let next = (t - f / df).clamp(a, b);
+        let done = (next - t).abs() <= 1e-15 * (b - a);
+        t = next;
+        if done {
+            break;
+        }
     }
-    c.point(t).distance(p)
+    (t, c.point(t).distance(p))
+}
+
+/// The distance from `p` to the curve `c` ([`project_to_curve`]).
+pub(crate) fn distance_to_curve(c: &NurbsCurve, p: DVec3) -> f64 {
+    project_to_curve(c, p).1
 }
 
 /// Fractions of a curve's domain at which two curves are compared.
@@ -212,6 +224,101 @@ fn signed_volume(s: &NurbsSurface, n: usize) -> f64 {
     v / 6.0
 }
 
+/// Whether curves `e` and `c` are one curve (their end points are
+/// already known to match, in the same direction or, `reversed`, in the
+/// opposite one): their points at five fractions of their domains agree
+/// within `tolerance` (the same parametrisation up to a linear map), or,
+/// when they do not, five points of each lie within `tolerance` of the
+/// other (one curve parametrised differently: a piece of a long boundary
+/// against a short one). A closed curve (one vertex at both ends) is
+/// compared by fractions only, which tells its direction.
+fn coincide(e: &NurbsCurve, c: &NurbsCurve, reversed: bool, tolerance: f64) -> bool {
+    let g = |f: f64| if reversed { 1.0 - f } else { f };
+    if SAMPLES
+        .iter()
+        .all(|&f| at(e, g(f)).distance(at(c, f)) <= tolerance)
+    {
+        return true;
+    }
+    let (e0, e1) = e.domain();
+    let (c0, c1) = c.domain();
+    let closed = e.point(e0).distance(e.point(e1)) <= tolerance
+        || c.point(c0).distance(c.point(c1)) <= tolerance;
+    !closed
+        && SAMPLES.iter().all(|&f| {
+            distance_to_curve(e, at(c, f)) <= tolerance
+                && distance_to_curve(c, at(e, f)) <= tolerance
+        })
+}
+
+/// Whether `p` lies in the box of `c`'s control points grown by
+/// `tolerance` (a curve with positive weights lies in the convex hull of
+/// its control points).
+fn near_hull(c: &NurbsCurve, p: DVec3, tolerance: f64) -> bool {
+    let (lo, hi) = c.points().iter().fold(
+        (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+        |(lo, hi), q| (lo.min(*q), hi.max(*q)),
+    );
+    p.cmpge(lo - tolerance).all() && p.cmple(hi + tolerance).all()
+}
+
+/// The side curve `c` (from vertex `start` to `end`) cut at every vertex
+/// that lies on it within the tolerance, other than its ends (the corners
+/// of other patches on it: a long boundary along several short ones, a
+/// T-junction), in order along the curve: each piece exact (knot
+/// insertion, [`NurbsCurve::split`]) with its end vertices. A parameter
+/// within 1e-9 of the domain's length of a knot is moved onto it (no
+/// sliver spans); a vertex whose parameter does not fall strictly inside
+/// the piece left to cut is passed over.
+fn split_at_vertices(
+    c: &NurbsCurve,
+    start: usize,
+    end: usize,
+    vertices: &Vertices,
+) -> Vec<(NurbsCurve, usize, usize)> {
+    let tolerance = vertices.tolerance;
+    let (a, b) = c.domain();
+    let mut cuts: Vec<(f64, usize)> = vertices
+        .points
+        .iter()
+        .enumerate()
+        .filter(|&(k, p)| k != start && k != end && near_hull(c, *p, tolerance))
+        .filter_map(|(k, p)| {
+            let (t, d) = project_to_curve(c, *p);
+            (d <= tolerance && t > a && t < b).then_some((t, k))
+        })
+        .collect();
+    if !SPLIT_SIDES || cuts.is_empty() {
+        return vec![(c.clone(), start, end)];
+    }
+    cuts.sort_by(|x, y| x.0.total_cmp(&y.0));
+    let mut pieces = Vec::with_capacity(cuts.len() + 1);
+    let (mut rest, mut from) = (c.clone(), start);
+    for (t, k) in cuts {
+        let t = c
+            .knots()
+            .iter()
+            .copied()
+            .find(|&u| (u - t).abs() <= 1e-9 * (b - a))
+            .unwrap_or(t);
+        let (r0, r1) = rest.domain();
+        if !(t > r0 && t < r1) {
+            continue;
+        }
+        let Ok((left, right)) = rest.split(t) else {
+            continue;
+        };
+        pieces.push((left, from, k));
+        (rest, from) = (right, k);
+    }
+    pieces.push((rest, from, end));
+    pieces
+}
+
+/// Cut sides at the corners of other patches on them (off only to show,
+/// in a test, that whole-curve matching leaves such shells open).
+const SPLIT_SIDES: bool = true;
+
 /// Writes `patches` as faces with shared edges and vertices, grouped into
 /// shells by the edges they share (see the module's description). Edges
 /// coincide when their end points are within `tolerance` and so are their
@@ -229,12 +336,11 @@ pub fn write_shells(w: &mut StepWriter, patches: &[Patch], tolerance: f64) -> Ve
         points: Vec::new(),
         cells: HashMap::new(),
     };
-    let mut edges: Vec<Edge> = Vec::new();
-    let mut by_ends: HashMap<(usize, usize), Vec<usize>> = HashMap::new();
-    // Per patch, its loop: (edge, along the edge's direction).
-    let mut loops: Vec<Vec<(usize, bool)>> = Vec::with_capacity(patches.len());
-    for (pi, patch) in patches.iter().enumerate() {
-        let mut lp = Vec::new();
+    // Every side that is not a pole, with its end vertices: all the
+    // patches' corners are known before any side is split at them.
+    let mut patch_sides: Vec<Vec<(Side, usize, usize)>> = Vec::with_capacity(patches.len());
+    for patch in patches {
+        let mut list = Vec::new();
         for side in sides(patch.surface) {
             let c = &side.curve;
             let first = c.points()[0];
@@ -246,50 +352,63 @@ pub fn write_shells(w: &mut StepWriter, patches: &[Patch], tolerance: f64) -> Ve
                 vertices.find_or_add(c.point(a)),
                 vertices.find_or_add(c.point(b)),
             );
-            let key = (start.min(end), start.max(end));
-            let same = |e: &Edge| -> Option<bool> {
-                let forward = e.start == start
-                    && e.end == end
-                    && SAMPLES
-                        .iter()
-                        .all(|&f| at(&e.curve, f).distance(at(c, f)) <= tolerance);
-                if forward {
-                    return Some(true);
-                }
-                let backward = e.start == end
-                    && e.end == start
-                    && SAMPLES
-                        .iter()
-                        .all(|&f| at(&e.curve, 1.0 - f).distance(at(c, f)) <= tolerance);
-                backward.then_some(false)
+            list.push((side, start, end));
+        }
+        patch_sides.push(list);
+    }
+    let mut edges: Vec<Edge> = Vec::new();
+    let mut by_ends: HashMap<(usize, usize), Vec<usize>> = HashMap::new();
+    // Per patch, its loop: (edge, along the edge's direction).
+    let mut loops: Vec<Vec<(usize, bool)>> = Vec::with_capacity(patches.len());
+    for (pi, list) in patch_sides.iter().enumerate() {
+        let mut lp = Vec::new();
+        for (side, start, end) in list {
+            let pieces = split_at_vertices(&side.curve, *start, *end, &vertices);
+            let ordered: Vec<&(NurbsCurve, usize, usize)> = if side.forward {
+                pieces.iter().collect()
+            } else {
+                pieces.iter().rev().collect()
             };
-            // An edge is shared only by a use in the direction it does not
-            // have yet: two faces that run along it the same way (turned
-            // against each other), or a third face, get an edge of their
-            // own, so every edge bounds at most two faces, one each way.
-            let found = by_ends.get(&key).and_then(|list| {
-                list.iter().find_map(|&k| {
-                    let along = same(&edges[k])? == side.forward;
-                    (edges[k].uses[usize::from(!along)] == 0).then_some((k, along))
-                })
-            });
-            // `along`: the loop runs along the edge's curve.
-            let (k, along) = match found {
-                Some(found) => found,
-                None => {
-                    edges.push(Edge {
-                        start,
-                        end,
-                        curve: c.clone(),
-                        uses: [0, 0],
-                        patch: pi,
-                    });
-                    by_ends.entry(key).or_default().push(edges.len() - 1);
-                    (edges.len() - 1, side.forward)
-                }
-            };
-            edges[k].uses[usize::from(!along)] += 1;
-            lp.push((k, along));
+            for (c, start, end) in ordered {
+                let (start, end) = (*start, *end);
+                let key = (start.min(end), start.max(end));
+                let same = |e: &Edge| -> Option<bool> {
+                    if e.start == start && e.end == end && coincide(&e.curve, c, false, tolerance) {
+                        return Some(true);
+                    }
+                    let backward =
+                        e.start == end && e.end == start && coincide(&e.curve, c, true, tolerance);
+                    backward.then_some(false)
+                };
+                // An edge is shared only by a use in the direction it does
+                // not have yet: two faces that run along it the same way
+                // (turned against each other), or a third face, get an edge
+                // of their own, so every edge bounds at most two faces, one
+                // each way.
+                let found = by_ends.get(&key).and_then(|list| {
+                    list.iter().find_map(|&k| {
+                        let along = same(&edges[k])? == side.forward;
+                        (edges[k].uses[usize::from(!along)] == 0).then_some((k, along))
+                    })
+                });
+                // `along`: the loop runs along the edge's curve.
+                let (k, along) = match found {
+                    Some(found) => found,
+                    None => {
+                        edges.push(Edge {
+                            start,
+                            end,
+                            curve: c.clone(),
+                            uses: [0, 0],
+                            patch: pi,
+                        });
+                        by_ends.entry(key).or_default().push(edges.len() - 1);
+                        (edges.len() - 1, side.forward)
+                    }
+                };
+                edges[k].uses[usize::from(!along)] += 1;
+                lp.push((k, along));
+            }
         }
         loops.push(lp);
     }
@@ -488,6 +607,65 @@ mod tests {
         let shells = write_shells(&mut w, &list, 1e-9);
         assert!(shells[0].closed, "the cube still closes");
         assert_eq!(shells.len(), 2);
+    }
+
+    #[test]
+    fn a_side_along_two_smaller_faces_is_cut_at_their_corner_and_closes_the_shell() {
+        // The cube with its top face (z = 1) in two halves, x < 0.5 and
+        // x > 0.5: the whole sides y = 0 and y = 1 run along both halves,
+        // so their top boundaries are cut at (0.5, 0, 1) and (0.5, 1, 1).
+        let mut patches = cube_patches();
+        let c = |x: f64, y: f64| DVec3::new(x, y, 1.0);
+        let top = |x0: f64, x1: f64| {
+            // Cubic in x (a long side's cut is not at a knot), linear in y.
+            let mut points = Vec::new();
+            for i in 0..4 {
+                let x = x0 + (x1 - x0) * i as f64 / 3.0;
+                points.extend([c(x, 0.0), c(x, 1.0)]);
+            }
+            NurbsSurface::from_bezier(4, 2, points).unwrap()
+        };
+        patches[1] = top(0.0, 0.5);
+        patches.push(top(0.5, 1.0));
+        let list: Vec<Patch> = patches
+            .iter()
+            .map(|s| Patch {
+                name: "Cube",
+                surface: s,
+            })
+            .collect();
+        let mut w = StepWriter::new();
+        let shells = write_shells(&mut w, &list, 1e-9);
+        assert_eq!(shells.len(), 1);
+        assert!(shells[0].closed, "the cut sides close the shell");
+        // 12 cube edges, two of them cut in two, and the seam between the halves.
+        assert_eq!(shells[0].edges, 12 + 2 + 1);
+        assert!((shells[0].volume - 1.0).abs() < 1e-9);
+        let text = String::from_utf8(w.finish("x", "y")).unwrap();
+        assert_eq!(text.matches("VERTEX_POINT").count(), 10);
+        // The faces y = 0 and y = 1 have five edges in their loops.
+        assert_eq!(text.matches("ADVANCED_FACE").count(), 7);
+    }
+
+    #[test]
+    fn a_vertex_near_a_side_but_off_it_does_not_cut_it() {
+        let c = NurbsCurve::clamped(1, vec![DVec3::ZERO, DVec3::X]).unwrap();
+        let mut v = Vertices {
+            tolerance: 1e-7,
+            points: Vec::new(),
+            cells: HashMap::new(),
+        };
+        let (a, b) = (v.find_or_add(DVec3::ZERO), v.find_or_add(DVec3::X));
+        v.find_or_add(DVec3::new(0.3, 2e-7, 0.0));
+        assert_eq!(split_at_vertices(&c, a, b, &v).len(), 1);
+        let k = v.find_or_add(DVec3::new(0.6, 5e-8, 0.0));
+        let pieces = split_at_vertices(&c, a, b, &v);
+        assert_eq!(pieces.len(), 2);
+        assert_eq!(
+            (pieces[0].1, pieces[0].2, pieces[1].1, pieces[1].2),
+            (a, k, k, b)
+        );
+        assert!((pieces[0].0.point(pieces[0].0.domain().1).x - 0.6).abs() < 1e-12);
     }
 
     #[test]
