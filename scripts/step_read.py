@@ -16,7 +16,10 @@ what it understood, as JSON, for plugins/doc/tests/step.rs:
 - "curves": the same for every edge outside a face (curve sets), at
   t = t0 + i/N (t1 - t0) over the edge's range;
 - "solids": volume (GProp) and validity of each solid; "shells" and
-  "closed_shells": counts.
+  "closed_shells": counts;
+- "edges": distinct edges bounding faces, and "free_edges": those that
+  bound only one face (none on a closed solid; a seam counts as one edge
+  used twice by its face).
 """
 import json
 import sys
@@ -31,7 +34,10 @@ from OCP.IFSelect import IFSelect_RetDone
 from OCP.STEPControl import STEPControl_Reader
 from OCP.OCP.collections import Sequence_TCollection_AsciiString
 from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_SHELL, TopAbs_SOLID
-from OCP.TopExp import TopExp_Explorer
+from OCP.TopExp import TopExp, TopExp_Explorer
+from OCP.OCP.collections import (
+    IndexedDataMap_TopoDS_Shape_List_TopoDS_Shape_TopTools_ShapeMapHasher as EdgeFaces,
+)
 from OCP.TopoDS import TopoDS
 
 
@@ -147,6 +153,17 @@ def main():
         e.Next()
     out["shells"] = shells
     out["closed_shells"] = closed
+    edge_faces = EdgeFaces()
+    TopExp.MapShapesAndAncestors_s(shape, TopAbs_EDGE, TopAbs_FACE, edge_faces)
+    out["edges"] = edge_faces.Extent()
+    out["free_edges"] = sum(
+        1
+        for i in range(1, edge_faces.Extent() + 1)
+        if edge_faces.FindFromIndex(i).Extent() == 1
+        and not BRep_Tool.IsClosed_s(
+            TopoDS.Edge(edge_faces.FindKey(i)), TopoDS.Face(edge_faces.FindFromIndex(i).First())
+        )
+    )
     print(json.dumps(out))
 
 
