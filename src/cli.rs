@@ -368,6 +368,8 @@ pub fn run(sub: Sub) -> Result<(), CliError> {
                         StepUnitsArg::Mm => hedra_doc::step::StepUnits::Millimetres,
                     },
                     meshes: step_meshes,
+                    // TODO(wire): a --step-subdivision-nurbs flag.
+                    subdivision_as_nurbs: false,
                 },
             };
             let exported = hedra_doc::export::export_file(&session.doc, &output, options)

@@ -200,6 +200,7 @@ fn check_round_trip(label: &str, doc: &Document, units: StepUnits, dir: &Path) -
         StepOptions {
             units,
             meshes: false,
+            subdivision_as_nurbs: false,
         },
         &format!("{label}.step"),
     )
@@ -556,6 +557,7 @@ fn meshes_are_left_out_with_a_note_or_written_as_faceted_shells() {
         StepOptions {
             units: StepUnits::Millimetres,
             meshes: true,
+            subdivision_as_nurbs: false,
         },
         "chair.step",
     )
@@ -778,6 +780,7 @@ fn every_sample_with_its_meshes_reads_in_opencascade_and_comes_back_node_for_nod
             StepOptions {
                 units: StepUnits::Metres,
                 meshes: true,
+                subdivision_as_nurbs: false,
             },
             &format!("{label}.step"),
         )

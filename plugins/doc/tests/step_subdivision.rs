@@ -79,24 +79,51 @@ fn limit_volume(session: &Session, name: &str) -> (f64, f64) {
     (e2 * scale, (e2 - e1).abs() * scale)
 }
 
-/// Builds the cage with `setup`, converts it, exports the document and
-/// checks what OpenCASCADE reads; returns the figures for the message.
-fn check(label: &str, setup: &[&str]) -> String {
+/// How the cage reaches the STEP file.
+#[derive(Clone, Copy, PartialEq)]
+enum Route {
+    /// `ConvertSubdivisionToNurbs`, then the surface nodes are exported.
+    Command,
+    /// The mesh node is exported with `StepOptions::subdivision_as_nurbs`.
+    Option,
+}
+
+/// Builds the cage with `setup`, converts it (`route`), exports the
+/// document and checks what OpenCASCADE reads, with the Euler
+/// characteristic V − E + F = 2 − 2 `genus` of the written topology;
+/// returns the figures for the message.
+fn check(label: &str, setup: &[&str], route: Route, genus: i64) -> String {
     let mut s = Session::new();
     for text in setup {
         run(&mut s, text);
     }
     let (reference, correction) = limit_volume(&s, "Cage");
-    run(
-        &mut s,
-        "ConvertSubdivisionToNurbs(node: Name(\"Cage\"), keep_cage: false)",
-    );
-    let patches = s
-        .doc
-        .nodes()
-        .filter(|n| matches!(n.content, NodeContent::Surface(_)))
-        .count();
-    let (bytes, notes) = to_step(&s.doc, StepOptions::default(), "cage.step").unwrap();
+    let options = StepOptions {
+        subdivision_as_nurbs: route == Route::Option,
+        ..StepOptions::default()
+    };
+    if route == Route::Command {
+        run(
+            &mut s,
+            "ConvertSubdivisionToNurbs(node: Name(\"Cage\"), keep_cage: false)",
+        );
+    }
+    let (bytes, notes) = to_step(&s.doc, options, "cage.step").unwrap();
+    let patches = match route {
+        Route::Command => s
+            .doc
+            .nodes()
+            .filter(|n| matches!(n.content, NodeContent::Surface(_)))
+            .count(),
+        Route::Option => {
+            // The note gives the patch count.
+            let note = notes
+                .iter()
+                .find(|n| n.starts_with("'Cage' written as its limit surface: "))
+                .unwrap_or_else(|| panic!("{label}: {notes:?}"));
+            note.split(' ').nth(6).unwrap().parse().unwrap()
+        }
+    };
     let dir = tempfile::tempdir().unwrap();
     let file = match std::env::var_os("HEDRA_STEP_DEBUG") {
         Some(d) => Path::new(&d).join(format!("{label}.step")),
@@ -119,6 +146,17 @@ fn check(label: &str, setup: &[&str]) -> String {
     assert_eq!(read["free_edges"], 0, "{label}: free edges");
     let faces = read["faces"].as_array().unwrap().len();
     assert_eq!(faces, patches, "{label}: a face per patch");
+    let edges = text.matches("EDGE_CURVE(").count();
+    let vertices = text.matches("VERTEX_POINT(").count();
+    assert_eq!(
+        read["edges"], edges,
+        "{label}: OpenCASCADE's edges are the file's"
+    );
+    assert_eq!(
+        vertices as i64 - edges as i64 + faces as i64,
+        2 - 2 * genus,
+        "{label}: V − E + F with {vertices} vertices, {edges} edges, {faces} faces"
+    );
     let solids = read["solids"].as_array().unwrap();
     assert_eq!(solids.len(), 1, "{label}");
     assert_eq!(solids[0]["valid"], true, "{label}");
@@ -133,8 +171,7 @@ fn check(label: &str, setup: &[&str]) -> String {
         "{label}: OpenCASCADE's volume {volume} against the limit's {reference}: {error:.2e}"
     );
     format!(
-        "{label}: {patches} faces, {} edges, volume {volume:.9} vs limit {reference:.9} (±{correction:.1e}): {error:.2e} relative",
-        read["edges"]
+        "{label}: {patches} faces, {edges} edges, {vertices} vertices, volume {volume:.9} vs limit {reference:.9} (±{correction:.1e}): {error:.2e} relative"
     )
 }
 
@@ -146,8 +183,45 @@ fn a_converted_cube_cage_exports_as_one_valid_solid_of_the_limit_volume() {
             "AddPrimitive(primitive: Cube(size: 2.0), name: \"Cage\")",
             "SetSubdivision(nodes: [Name(\"Cage\")], modifier: Some(()))",
         ],
+        Route::Command,
+        0,
     );
     eprintln!("{figures}");
+}
+
+#[test]
+fn a_mesh_with_its_modifier_exports_as_its_limit_solid_on_request() {
+    let setup = [
+        "AddPrimitive(primitive: Cube(size: 2.0), name: \"Cage\")",
+        "SetSubdivision(nodes: [Name(\"Cage\")], modifier: Some(()))",
+        "Translate(nodes: [Name(\"Cage\")], offset: (1.0, -2.0, 0.5))",
+        "Scale(nodes: [Name(\"Cage\")], factor: (1.5, 1.0, 0.5))",
+    ];
+    let figures = check("cube-option", &setup, Route::Option, 0);
+    eprintln!("{figures}");
+    // Without the option the mesh is left out, and the note says how to
+    // write it.
+    let mut s = Session::new();
+    for text in setup {
+        run(&mut s, text);
+    }
+    let err = to_step(&s.doc, StepOptions::default(), "cage.step").unwrap_err();
+    assert!(err.to_string().contains("mesh"), "{err}");
+    run(
+        &mut s,
+        "AddPrimitive(primitive: Cube(size: 2.0), name: \"Plain\")",
+    );
+    run(
+        &mut s,
+        "AddSurface(name: \"Sheet\", surface: Sphere(radius: 1.0))",
+    );
+    let (_, notes) = to_step(&s.doc, StepOptions::default(), "cage.step").unwrap();
+    assert!(
+        notes
+            .iter()
+            .any(|n| n.starts_with("1 of them have a subdivision modifier")),
+        "{notes:?}"
+    );
 }
 
 #[test]
@@ -159,6 +233,8 @@ fn a_cube_subdivided_once_and_a_creased_cube_export_as_valid_solids() {
             "ApplySubdivision(node: Name(\"Cage\"), levels: Some(1))",
             "SetSubdivision(nodes: [Name(\"Cage\")], modifier: Some(()))",
         ],
+        Route::Command,
+        0,
     );
     let creased = check(
         "cube-creased",
@@ -167,6 +243,8 @@ fn a_cube_subdivided_once_and_a_creased_cube_export_as_valid_solids() {
             "SetSubdivision(nodes: [Name(\"Cage\")], modifier: Some(()))",
             "SetEdgeCrease(node: Name(\"Cage\"), edges: OfFaces(Facing(direction: (0.0, 1.0, 0.0), degrees: 1.0)), sharpness: 10.0)",
         ],
+        Route::Command,
+        0,
     );
     eprintln!("{once}\n{creased}");
 }
@@ -179,6 +257,8 @@ fn a_converted_torus_cage_exports_as_one_valid_solid() {
             "AddPrimitive(primitive: Torus(major_segments: 12, minor_segments: 8, major_radius: 2.0, minor_radius: 0.7), name: \"Cage\")",
             "SetSubdivision(nodes: [Name(\"Cage\")], modifier: Some(()))",
         ],
+        Route::Command,
+        1,
     );
     eprintln!("{figures}");
 }

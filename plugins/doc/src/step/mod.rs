@@ -57,6 +57,14 @@ pub struct StepOptions {
     /// Write visible meshes (and CSG solids) as faceted shells; otherwise
     /// they are left out and the report says so.
     pub meshes: bool,
+    /// Write a visible mesh with a Catmull-Clark subdivision modifier as
+    /// the NURBS patches of its limit surface
+    /// ([`MeshContent::limit_nurbs`](crate::scene::MeshContent::limit_nurbs)
+    /// at [`DEFAULT_NURBS_TOLERANCE`](crate::command::DEFAULT_NURBS_TOLERANCE)),
+    /// one solid when the cage is closed, instead of as a mesh (or not at
+    /// all); the notes give the patch counts and the measured distance and
+    /// angle. A mesh whose conversion is refused is treated as any mesh.
+    pub subdivision_as_nurbs: bool,
 }
 
 /// Distance within which points of the file are one (edges shared,
@@ -133,6 +141,9 @@ pub fn to_step(
     let mut curves: Vec<(String, NurbsCurve)> = Vec::new();
     let mut meshes: Vec<FacetedMesh> = Vec::new();
     let (mut triangles, mut left_meshes, mut approximate) = (0usize, 0usize, Vec::new());
+    // Notes on meshes written as their limit surface, and the meshes left
+    // out that could have been.
+    let (mut converted, mut left_subdivision) = (Vec::new(), 0usize);
     for &id in tree.order() {
         let (Some(node), Some(facts)) = (doc.node(id), tree.facts(id)) else {
             continue;
@@ -141,6 +152,33 @@ pub fn to_step(
             continue;
         }
         let m = unit * facts.world;
+        if let NodeContent::Mesh(content) = &node.content
+            && options.subdivision_as_nurbs
+            && content.subdivision.is_some()
+        {
+            match content.limit_nurbs(crate::command::DEFAULT_NURBS_TOLERANCE, &node.name) {
+                Ok(c) => {
+                    let (exact, approximated) = c.counts();
+                    for (k, p) in c.patches.iter().enumerate() {
+                        if let Some(s) = surface_transformed(&p.surface, &m) {
+                            surfaces.push((format!("{} {}", node.name, k + 1), s));
+                        }
+                    }
+                    converted.push(format!(
+                        "'{}' written as its limit surface: {} NURBS patches ({exact} exact, {approximated} approximated) within {:.1e} m and {:.2}° of it (in the node's own coordinates)",
+                        node.name,
+                        c.patches.len(),
+                        c.report.max_distance,
+                        c.report.max_angle_degrees
+                    ));
+                    continue;
+                }
+                Err(e) => converted.push(format!(
+                    "'{}' not converted to NURBS ({e}); written as a mesh would be",
+                    node.name
+                )),
+            }
+        }
         match &node.content {
             NodeContent::Surface(shape) => {
                 let local = match &**shape {
@@ -162,7 +200,11 @@ pub fn to_step(
                     curves.push((node.name.clone(), curve));
                 }
             }
-            NodeContent::Mesh(_) | NodeContent::Csg(_) if !options.meshes => left_meshes += 1,
+            NodeContent::Mesh(content) if !options.meshes => {
+                left_meshes += 1;
+                left_subdivision += usize::from(content.subdivision.is_some());
+            }
+            NodeContent::Csg(_) if !options.meshes => left_meshes += 1,
             NodeContent::Mesh(_) | NodeContent::Csg(_) => {
                 if let Some(Geometry::Mesh(mesh)) =
                     crate::export::export_geometry(doc, node, ExportShape::Evaluated)?
@@ -209,10 +251,15 @@ pub fn to_step(
         meshes: &meshes,
     };
     let (w, shells) = write_file(w, &written, options.units, file_name);
-    let mut notes = Vec::new();
+    let mut notes = converted;
     if left_meshes > 0 {
         notes.push(format!(
             "{left_meshes} mesh node(s) left out; pass --step-meshes to write them as faceted shells"
+        ));
+    }
+    if left_subdivision > 0 && !options.subdivision_as_nurbs {
+        notes.push(format!(
+            "{left_subdivision} of them have a subdivision modifier; pass --step-subdivision-nurbs to write their limit surfaces as NURBS solids"
         ));
     }
     if triangles > 0 {
