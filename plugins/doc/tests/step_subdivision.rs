@@ -121,6 +121,7 @@ fn check(label: &str, setup: &[&str], route: Route, genus: i64) -> String {
                 .iter()
                 .find(|n| n.starts_with("'Cage' written as its limit surface: "))
                 .unwrap_or_else(|| panic!("{label}: {notes:?}"));
+            eprintln!("{label}: {note}");
             note.split(' ').nth(6).unwrap().parse().unwrap()
         }
     };
