@@ -1,7 +1,9 @@
 //! Boundary representation of NURBS patches: each patch becomes an
 //! `ADVANCED_FACE` bounded by one `EDGE_LOOP` of its four iso-boundaries
 //! (a boundary that collapses to a point, a pole, is left out of the
-//! loop); edges whose curves coincide (within a tolerance) are one
+//! loop), each cut at the corners of other patches that lie on it (a long
+//! side beside several short ones, a T-junction: the loop then has more
+//! than four edges); edges whose curves coincide (within a tolerance) are one
 //! `EDGE_CURVE` shared by the faces that meet there, and their end points
 //! one `VERTEX_POINT` (an edge bounds at most two faces, which run along
 //! it in opposite directions). Patches joined through shared edges form one shell:
@@ -323,13 +325,17 @@ const SPLIT_SIDES: bool = true;
 /// shells by the edges they share (see the module's description). Edges
 /// coincide when their end points are within `tolerance` and so are their
 /// points at five fractions of their domains (in the same or the
-/// opposite direction); a side whose control points all lie within
+/// opposite direction) or, failing that, five points of each are within
+/// `tolerance` of the other (`coincide`); each side is first cut at the
+/// patch corners lying on it (`split_at_vertices`); a side whose control points all lie within
 /// `tolerance` of its first is a pole and has no edge.
 ///
 /// Returns the shells in the order of their first patch.
 ///
 /// Complexity: O(patches × control points) for the boundaries, vertices
-/// merged through a grid in about O(1) each.
+/// merged through a grid in about O(1) each; cutting sides tests every
+/// vertex against every side's control-point box, O(sides × vertices),
+/// projecting only those inside it.
 pub fn write_shells(w: &mut StepWriter, patches: &[Patch], tolerance: f64) -> Vec<WrittenShell> {
     let mut vertices = Vertices {
         tolerance,
