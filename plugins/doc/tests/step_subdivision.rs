@@ -263,3 +263,25 @@ fn a_converted_torus_cage_exports_as_one_valid_solid() {
     );
     eprintln!("{figures}");
 }
+
+#[test]
+fn cages_with_triangles_and_polygons_export_as_valid_solids() {
+    // Triangle fans at a UV sphere's poles, hexagon caps on a cylinder,
+    // and all triangles (678 patches): irregular faces everywhere.
+    for (label, primitive) in [
+        ("uv-sphere", "UvSphere(segments: 8, rings: 5, radius: 1.0)"),
+        ("cylinder", "Cylinder(segments: 6, depth: 2.0, radius: 1.0)"),
+        ("ico-sphere", "IcoSphere(subdivisions: 1, radius: 1.0)"),
+    ] {
+        let figures = check(
+            label,
+            &[
+                &format!("AddPrimitive(primitive: {primitive}, name: \"Cage\")"),
+                "SetSubdivision(nodes: [Name(\"Cage\")], modifier: Some(()))",
+            ],
+            Route::Command,
+            0,
+        );
+        eprintln!("{figures}");
+    }
+}
