@@ -24,7 +24,7 @@ fn every_command_example_in_the_docs_runs() {
         .collect();
     kinds.sort();
     kinds.dedup();
-    assert_eq!(kinds.len(), 91, "{kinds:?}");
+    assert_eq!(kinds.len(), 92, "{kinds:?}");
     let mut session = hedra_doc::Session::new();
     hedra_doc::script::run(&mut session, &commands, Path::new("docs/commands.md"))
         .unwrap_or_else(|e| panic!("{e}"));
@@ -35,6 +35,22 @@ fn every_command_example_in_the_docs_runs() {
     );
     assert!(doc.find_by_name("Box.001").is_none());
     assert_eq!(session.history.done().len(), commands.len());
+    // ConvertSubdivisionToNurbs: the soap's cage is hidden beside its
+    // group of patches (24 approximated faces at its 8 corners, and the
+    // packed regular rest); the lifebuoy's cage is gone, one exact surface left.
+    let soap = doc.find_by_name("Soap").unwrap();
+    assert!(!soap.visible);
+    let group = doc.find_by_name("Soap NURBS").unwrap();
+    assert_eq!(group.content.kind(), "empty");
+    let patches = doc.children(group.id).count();
+    assert!(patches > 24, "{patches}");
+    assert!(
+        doc.children(group.id)
+            .all(|n| matches!(n.content, hedra_doc::NodeContent::Surface(_)))
+    );
+    assert!(doc.find_by_name("Lifebuoy").is_none());
+    let ring = doc.find_by_name("Lifebuoy NURBS").unwrap();
+    assert_eq!(doc.children(ring.id).count(), 1);
     // The mesh examples leave a valid block: 2 loop cuts, an extrusion and an inset on the top.
     let half = doc.find_by_name("Half").unwrap().content.mesh().unwrap();
     let (lo, hi) = half.bounds().unwrap();

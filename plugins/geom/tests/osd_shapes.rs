@@ -355,3 +355,50 @@ fn catmark_edgenone_shows_the_faces_opensubdiv_shows() {
     let osd = stored.iter().find(|s| s.level == 2).unwrap();
     assert_eq!(osd.hidden.iter().filter(|&&h| !h).count(), 208);
 }
+
+#[test]
+fn every_catmull_clark_shape_converts_to_watertight_nurbs() {
+    use hedra_geom::subdivision::to_nurbs::convert_at;
+    let mut names: Vec<String> = std::fs::read_dir(shapes_dir())
+        .unwrap()
+        .filter_map(|e| {
+            let name = e.unwrap().file_name().into_string().unwrap();
+            name.strip_suffix(".obj")
+                .filter(|n| n.starts_with("catmark"))
+                .map(str::to_string)
+        })
+        .collect();
+    names.sort();
+    let mut converted = 0;
+    for name in &names {
+        let Ok(shape) = load(name) else { continue };
+        if shape.mesh.face_count() > 2000 {
+            continue;
+        }
+        let (lo, hi) = shape.mesh.bounds().unwrap();
+        let size = (hi - lo).length();
+        let c = convert_at(&shape.mesh, &shape.creases, shape.options, 2, 1)
+            .unwrap_or_else(|e| panic!("{name}: {e}"));
+        let finite = c
+            .patches
+            .iter()
+            .all(|p| p.surface.points().iter().all(|q| q.is_finite()));
+        assert!(finite, "{name}: a control point is not finite");
+        assert!(
+            c.report.max_gap <= 1e-12 * size,
+            "{name}: gap {:?}",
+            c.report
+        );
+        assert!(
+            c.report.max_distance_exact <= 1e-12 * size,
+            "{name}: exact patches off the limit {:?}",
+            c.report
+        );
+        converted += 1;
+    }
+    eprintln!(
+        "{converted} of {} Catmull-Clark shapes converted",
+        names.len()
+    );
+    assert!(converted >= 78, "{converted}");
+}

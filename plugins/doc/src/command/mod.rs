@@ -23,8 +23,12 @@ mod nodes;
 mod plan;
 mod shapes;
 mod spec;
+mod to_nurbs;
 
 pub use spec::{Command, Corner, CurveSpec, EulerOp, NodeRef, ParameterDirection, SurfaceSpec};
+/// The default tolerance of [`Command::ConvertSubdivisionToNurbs`], a
+/// fraction of the cage's bounding-box diagonal.
+pub use to_nurbs::DEFAULT_TOLERANCE as DEFAULT_NURBS_TOLERANCE;
 
 use crate::elements::{EdgeSet, ElementError, VertexSet};
 use crate::history::Transaction;
@@ -228,6 +232,34 @@ pub enum CommandError {
         node: String,
         /// The kernel's reason.
         error: subdivision::SubdivisionError,
+    },
+    /// [`Command::ConvertSubdivisionToNurbs`] on a mesh without a
+    /// subdivision modifier.
+    #[error("{node} has no subdivision modifier to convert")]
+    NoSubdivision {
+        /// The node, as `'name' (#id)`.
+        node: String,
+    },
+    /// [`Command::ConvertSubdivisionToNurbs`] on a node whose stack runs a
+    /// modifier after subdivision: the shown surface is not a limit surface.
+    #[error(
+        "{node}: a modifier runs after subdivision; apply it or move subdivision last to convert"
+    )]
+    ModifierAfterSubdivision {
+        /// The node, as `'name' (#id)`.
+        node: String,
+    },
+    /// A conversion tolerance that is not a positive finite fraction.
+    #[error("the tolerance must be a positive fraction of the size, not {0}")]
+    Tolerance(f64),
+    /// Converting the limit surface to NURBS failed (not Catmull-Clark, a
+    /// face with an inner ring, …).
+    #[error("{node}: {error}")]
+    ToNurbs {
+        /// The node, as `'name' (#id)`.
+        node: String,
+        /// The kernel's reason.
+        error: subdivision::to_nurbs::ToNurbsError,
     },
     /// A crease sharpness outside 0 to 10 (or not finite).
     #[error("sharpness must be between 0 and {INFINITE_SHARPNESS} (infinitely sharp), not {0}")]

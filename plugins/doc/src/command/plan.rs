@@ -449,6 +449,11 @@ impl Plan<'_> {
             } => self.set_crease_taper(node, edges, from, *start, *end),
             Command::SetFaceHole { node, faces, hole } => self.set_face_hole(node, faces, *hole),
             Command::SnapToLimit { node } => self.snap_to_limit(node),
+            Command::ConvertSubdivisionToNurbs {
+                node,
+                tolerance,
+                keep_cage,
+            } => self.convert_subdivision_to_nurbs(node, *tolerance, *keep_cage),
 
             // ----- the modifier stack (modifiers.rs) -----
             Command::AddModifier { node, modifier } => self.add_modifier(node, modifier),

@@ -428,6 +428,25 @@ pub enum Command {
         #[serde(default)]
         levels: Option<u32>,
     },
+    /// Converts the Catmull-Clark limit surface of a mesh node with a
+    /// subdivision modifier into NURBS surfaces (Rhino's SubD ▸ ToNURBS;
+    /// `hedra_geom::subdivision::to_nurbs`): a new empty node named after
+    /// the cage with " NURBS", with the cage's parent and transform, holds
+    /// one NURBS surface node per patch (a packed rectangle of regular faces,
+    /// exact; or one approximated irregular face). The cage is hidden
+    /// (`keep_cage: true`, the default) or deleted (its children move to the
+    /// new group). Undo restores the cage as it was.
+    ConvertSubdivisionToNurbs {
+        /// A mesh node with a Catmull-Clark subdivision modifier.
+        node: NodeRef,
+        /// Largest distance from the limit surface, as a fraction of the
+        /// cage's bounding-box diagonal; `None`: 1e-4.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        tolerance: Option<f64>,
+        /// Keep the cage, hidden (true), or delete it (false).
+        #[serde(default = "crate::scene::yes")]
+        keep_cage: bool,
+    },
     /// Adds a modifier (Mirror, Array) at the end of a mesh node's stack
     /// (Blender's Add Modifier). A subdivision modifier at its default
     /// place stays last. Refused when the stack would not evaluate (a
@@ -1305,6 +1324,7 @@ impl Command {
             Command::SetFaceHole { hole: true, .. } => "Make Hole".to_string(),
             Command::SetFaceHole { hole: false, .. } => "Clear Hole".to_string(),
             Command::SnapToLimit { .. } => "Snap to Limit Surface".to_string(),
+            Command::ConvertSubdivisionToNurbs { .. } => "Convert to NURBS".to_string(),
             Command::AddCurve { name, .. } => format!("Add Curve '{name}'"),
             Command::AddSurface { name, .. } => format!("Add Surface '{name}'"),
             Command::SetControlPoints { points, .. } => {

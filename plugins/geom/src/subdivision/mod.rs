@@ -22,6 +22,7 @@ mod limit;
 mod refine;
 mod rules;
 mod stencil;
+pub mod to_nurbs;
 
 use std::collections::{BTreeMap, BTreeSet};
 

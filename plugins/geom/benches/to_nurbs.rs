@@ -1,0 +1,80 @@
+//! Catmull-Clark to NURBS (issue 33) on cages of about a thousand faces:
+//! a box linearly split to 1,536 quads (eight valence-3 corners, so the
+//! conversion refines until the approximated corner patches meet 1e-4 of
+//! the diagonal and 0.5°), and a 1,000-quad torus (all regular: one exact
+//! surface at level 0). Each run includes the measurement against the limit
+//! surface, which dominates. The figures of each conversion are printed
+//! once before timing.
+
+use criterion::{Criterion, criterion_group, criterion_main};
+
+/// The allocator the app uses (see `src/main.rs`).
+#[global_allocator]
+static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
+use hedra_geom::subdivision::to_nurbs::{ToNurbsOptions, to_nurbs};
+use hedra_geom::subdivision::{Creases, Options, Refiner, Scheme};
+use hedra_geom::{HalfEdgeMesh, Primitive};
+use std::hint::black_box;
+
+fn split_box() -> HalfEdgeMesh {
+    let cube = Primitive::Cube { size: 2.0 }.build().unwrap();
+    let linear = Options {
+        scheme: Scheme::Linear,
+        ..Options::default()
+    };
+    Refiner::subdivide(&cube, &Creases::default(), linear, 4)
+        .unwrap()
+        .0
+}
+
+fn torus() -> HalfEdgeMesh {
+    Primitive::Torus {
+        major_segments: 40,
+        minor_segments: 25,
+        major_radius: 2.0,
+        minor_radius: 0.5,
+    }
+    .build()
+    .unwrap()
+}
+
+fn bench(c: &mut Criterion) {
+    let mut group = c.benchmark_group("to_nurbs");
+    group.sample_size(10);
+    for (name, mesh) in [
+        ("box 1536 quads", split_box()),
+        ("torus 1000 quads", torus()),
+    ] {
+        let to = ToNurbsOptions::relative(&mesh, 1e-4);
+        let start = std::time::Instant::now();
+        let once = to_nurbs(&mesh, &Creases::default(), Options::default(), &to).unwrap();
+        eprintln!(
+            "{name}: {} faces, level {}, (exact, approximate) patches {:?}, {:?}, within: {}, {:.3} s",
+            mesh.face_count(),
+            once.level,
+            once.counts(),
+            once.report,
+            once.within(&to),
+            start.elapsed().as_secs_f64()
+        );
+        group.bench_function(name, |b| {
+            b.iter(|| {
+                to_nurbs(
+                    black_box(&mesh),
+                    &Creases::default(),
+                    Options::default(),
+                    &to,
+                )
+                .unwrap()
+            })
+        });
+    }
+    group.finish();
+}
+
+// In a private module: criterion_group! makes a pub fn it cannot document.
+mod group {
+    use super::*;
+    criterion_group!(benches, bench);
+}
+criterion_main!(group::benches);
