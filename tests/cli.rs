@@ -1251,3 +1251,159 @@ fn export_writes_the_csg_solid_to_every_format() {
         }
     }
 }
+
+fn sample(name: &str) -> PathBuf {
+    PathBuf::from(std::env::var("CARGO_MANIFEST_DIR").expect("cargo sets CARGO_MANIFEST_DIR"))
+        .join("assets/samples")
+        .join(name)
+}
+
+/// Issue 32 from the command line: the jar (a creased Catmull-Clark cage)
+/// goes out to USD and back in with its subdivision modifier and creases,
+/// as `info` reports them; the shapes sample goes to STEP in millimetres
+/// and back with its surfaces and curves, the export notes saying what
+/// STEP left out.
+#[test]
+fn usd_and_step_round_trips_through_the_command_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let jar = sample("jar.hedra.ron");
+    let usda = dir.path().join("jar.usda");
+    let o = hedra(&[
+        "export",
+        jar.to_str().unwrap(),
+        "-o",
+        usda.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = std::fs::read_to_string(&usda).unwrap();
+    assert!(
+        text.starts_with("#usda 1.0"),
+        "{}",
+        &text[..40.min(text.len())]
+    );
+    assert!(text.contains("subdivisionScheme = \"catmullClark\""));
+    let back = dir.path().join("jar-back.hedra.ron");
+    let o = hedra(&[
+        "import",
+        usda.to_str().unwrap(),
+        "-o",
+        back.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let before = String::from_utf8(hedra(&["info", jar.to_str().unwrap()]).stdout).unwrap();
+    let after = String::from_utf8(hedra(&["info", back.to_str().unwrap()]).stdout).unwrap();
+    // Every mesh line (counts, validity) and subdivision/crease line of the
+    // jar is in the imported scene's report.
+    for line in before.lines().filter(|l| {
+        let l = l.trim_start();
+        l.starts_with("mesh:") || l.starts_with("subdivision:") || l.starts_with("creases:")
+    }) {
+        assert!(
+            after.contains(line.trim()),
+            "missing after the round trip: {line}\n{after}"
+        );
+    }
+
+    let shapes = sample("shapes.hedra.ron");
+    let step = dir.path().join("shapes.step");
+    let o = hedra(&[
+        "export",
+        shapes.to_str().unwrap(),
+        "-o",
+        step.to_str().unwrap(),
+        "--step-units",
+        "mm",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = std::fs::read_to_string(&step).unwrap();
+    assert!(text.starts_with("ISO-10303-21;"));
+    assert!(
+        text.contains("SI_UNIT(.MILLI.,.METRE.)"),
+        "millimetres stated"
+    );
+    let back = dir.path().join("shapes-back.hedra.ron");
+    let o = hedra(&[
+        "import",
+        step.to_str().unwrap(),
+        "-o",
+        back.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let count = |file: &Path, kind: &str| {
+        info_json(file)["nodes"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter(|n| n["kind"] == kind && n["visible"] != false)
+            .count()
+    };
+    for kind in ["surface", "curve"] {
+        assert!(count(&shapes, kind) > 0);
+        assert_eq!(count(&back, kind), count(&shapes, kind), "{kind} nodes");
+    }
+}
+
+/// A scene of meshes only has nothing STEP holds without --step-meshes:
+/// a clear error, exit 1, no file; with it, faceted shells and no error.
+#[test]
+fn step_export_of_meshes_needs_step_meshes() {
+    let dir = tempfile::tempdir().unwrap();
+    let chair = sample("chair.hedra.ron");
+    let step = dir.path().join("chair.step");
+    let o = hedra(&[
+        "export",
+        chair.to_str().unwrap(),
+        "-o",
+        step.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(stderr(&o).contains("--step-meshes"), "{}", stderr(&o));
+    assert!(!step.exists());
+    let o = hedra(&[
+        "export",
+        chair.to_str().unwrap(),
+        "-o",
+        step.to_str().unwrap(),
+        "--step-meshes",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        std::fs::read_to_string(&step)
+            .unwrap()
+            .contains("FACETED_BREP")
+    );
+}
+
+/// A USD file that references a file outside its folder is refused by
+/// name, exit 1, and no scene is written.
+#[test]
+fn usd_import_refuses_a_reference_outside_the_folder() {
+    let dir = tempfile::tempdir().unwrap();
+    let inner = dir.path().join("inner");
+    std::fs::create_dir(&inner).unwrap();
+    std::fs::write(
+        dir.path().join("secret.usda"),
+        "#usda 1.0\ndef Xform \"S\" {}\n",
+    )
+    .unwrap();
+    let file = inner.join("scene.usda");
+    std::fs::write(
+        &file,
+        "#usda 1.0\ndef Xform \"A\" (\n    references = @../secret.usda@\n)\n{\n}\n",
+    )
+    .unwrap();
+    let out = dir.path().join("out.hedra.ron");
+    let o = hedra(&[
+        "import",
+        file.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let e = stderr(&o);
+    assert!(
+        e.contains("scene.usda") && e.contains("../secret.usda"),
+        "{e}"
+    );
+    assert!(!out.exists());
+}

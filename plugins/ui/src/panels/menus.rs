@@ -234,6 +234,9 @@ pub(super) fn menu_bar(
                 surface_from_curves_menu(ui, &model.state.session.doc, &model.selection, events)
             });
             g1_join_items(ui, &model.state.session.doc, &model.selection, events);
+            ui.menu_button("Convert", |ui| {
+                convert_items(ui, &model.state.session.doc, &model.selection, events)
+            });
             ui.separator();
             ui.label(egui::RichText::new("Boolean").weak());
             boolean_menu(ui, &model.selection, events);
@@ -442,5 +445,48 @@ fn export_option_checkboxes(ui: &mut egui::Ui, options: &mut hedra_doc::export::
         } else {
             CurveExport::Polylines
         };
+    }
+}
+
+/// Object ▸ Convert: To NURBS turns the active mesh's Catmull-Clark limit
+/// surface into NURBS surfaces (the cage kept, hidden; Adjust Last sets
+/// the tolerance and whether the cage is kept).
+fn convert_items(
+    ui: &mut egui::Ui,
+    doc: &hedra_doc::Document,
+    selection: &hedra_edit::Selection,
+    events: &mut Vec<UiEvent>,
+) {
+    use hedra_geom::subdivision::Scheme;
+    let active = selection.active().and_then(|id| doc.node(id));
+    let why_not = match active.map(|n| &n.content) {
+        None => Some("Select a mesh with a Catmull-Clark subdivision modifier"),
+        Some(hedra_doc::NodeContent::Mesh(m)) => match &m.subdivision {
+            None => Some("The active mesh has no subdivision modifier (Ctrl+1 adds one)"),
+            Some(s) if s.options.scheme != Scheme::CatmullClark => {
+                Some("Only a Catmull-Clark limit surface converts to NURBS")
+            }
+            Some(_) => None,
+        },
+        Some(_) => Some("The active object is not a mesh"),
+    };
+    if ui
+        .add_enabled(why_not.is_none(), egui::Button::new("To NURBS"))
+        .on_hover_text(
+            "The smooth surface as NURBS patches: exact B-spline surfaces where the cage is regular, \
+             fitted patches within 1e-4 of the size elsewhere; the cage is kept, hidden",
+        )
+        .on_disabled_hover_text(why_not.unwrap_or_default())
+        .clicked()
+        && let Some(node) = active
+    {
+        exec(
+            events,
+            Command::ConvertSubdivisionToNurbs {
+                node: hedra_doc::NodeRef::Id(node.id.0),
+                tolerance: None,
+                keep_cage: true,
+            },
+        );
     }
 }

@@ -107,6 +107,7 @@ pub(super) fn adjust_last_window(
             | Command::Triangulate { .. }
             | Command::Spin { .. }
             | Command::Screw { .. }
+            | Command::ConvertSubdivisionToNurbs { .. }
     );
     if !editable {
         return;
@@ -125,6 +126,27 @@ pub(super) fn adjust_last_window(
                 } => {
                     let w = number_row(ui, "Width", width, 0.005, 0.0001..=1e6);
                     w | count_row(ui, "Segments", segments, 1..=32)
+                }
+                Command::ConvertSubdivisionToNurbs {
+                    tolerance,
+                    keep_cage,
+                    ..
+                } => {
+                    let mut fraction =
+                        tolerance.unwrap_or(hedra_doc::command::DEFAULT_NURBS_TOLERANCE);
+                    let before = (fraction, *keep_cage);
+                    ui.horizontal(|ui| {
+                        ui.label("Tolerance (of the size)");
+                        ui.add(
+                            egui::DragValue::new(&mut fraction)
+                                .speed(1e-5)
+                                .range(1e-7..=0.1)
+                                .max_decimals(7),
+                        )
+                    });
+                    ui.checkbox(keep_cage, "Keep the cage (hidden)");
+                    *tolerance = Some(fraction);
+                    (fraction, *keep_cage) != before
                 }
                 Command::SlideEdges { factor, .. } => {
                     number_row(ui, "Factor", factor, 0.01, -1.0..=1.0)
