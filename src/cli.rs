@@ -149,6 +149,11 @@ pub enum Sub {
         /// (otherwise STEP holds the NURBS surfaces and curves only).
         #[arg(long)]
         step_meshes: bool,
+        /// STEP: write meshes with a Catmull-Clark modifier as their limit
+        /// surface in NURBS patches (one closed solid for a closed cage),
+        /// as Object ▸ Convert ▸ To NURBS makes them.
+        #[arg(long)]
+        step_subdivision_nurbs: bool,
     },
 }
 
@@ -344,6 +349,7 @@ pub fn run(sub: Sub) -> Result<(), CliError> {
             curves,
             step_units,
             step_meshes,
+            step_subdivision_nurbs,
         } => {
             refuse_overwrite(&output, &[Some(file.as_path())])?;
             let mut session = load(&file)?;
@@ -368,8 +374,7 @@ pub fn run(sub: Sub) -> Result<(), CliError> {
                         StepUnitsArg::Mm => hedra_doc::step::StepUnits::Millimetres,
                     },
                     meshes: step_meshes,
-                    // TODO(wire): a --step-subdivision-nurbs flag.
-                    subdivision_as_nurbs: false,
+                    subdivision_as_nurbs: step_subdivision_nurbs,
                 },
             };
             let exported = hedra_doc::export::export_file(&session.doc, &output, options)

@@ -1407,3 +1407,29 @@ fn usd_import_refuses_a_reference_outside_the_folder() {
     );
     assert!(!out.exists());
 }
+
+/// `--step-subdivision-nurbs`: the cup (a closed, creased Catmull-Clark
+/// cage) goes to STEP as its limit surface in NURBS patches, one closed
+/// solid, and the note says how many patches and how close they are.
+#[test]
+fn step_export_writes_a_subdivision_cage_as_a_nurbs_solid() {
+    let dir = tempfile::tempdir().unwrap();
+    let cup = sample("cup.hedra.ron");
+    let step = dir.path().join("cup.step");
+    let o = hedra(&[
+        "export",
+        cup.to_str().unwrap(),
+        "-o",
+        step.to_str().unwrap(),
+        "--step-subdivision-nurbs",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = std::fs::read_to_string(&step).unwrap();
+    assert_eq!(text.matches("MANIFOLD_SOLID_BREP").count(), 1, "one solid");
+    assert!(!text.contains("OPEN_SHELL"));
+    let e = stderr(&o);
+    assert!(
+        e.contains("hedra: note:") && e.contains("NURBS patches"),
+        "{e}"
+    );
+}

@@ -431,6 +431,13 @@ fn export_option_checkboxes(ui: &mut egui::Ui, options: &mut hedra_doc::export::
             StepUnits::Metres
         };
     }
+    ui.checkbox(
+        &mut options.step.subdivision_as_nurbs,
+        "STEP: subdivision meshes as NURBS solids",
+    )
+    .on_hover_text(
+        "Catmull-Clark meshes as their limit surface in NURBS patches, a closed cage as one solid",
+    );
     ui.checkbox(&mut options.step.meshes, "STEP: meshes as faceted shells")
         .on_hover_text("Off: STEP holds the NURBS surfaces and curves, and the report counts the meshes left out");
     use hedra_doc::export::CurveExport;
