@@ -52,6 +52,12 @@ pub enum Sub {
         /// Also print each mesh's half-edge and winged-edge tables.
         #[arg(long)]
         topology: bool,
+        /// Also convert each mesh with a Catmull-Clark modifier to NURBS
+        /// (as Object ▸ Convert ▸ To NURBS would, at the default tolerance)
+        /// and print the patches, how many are exact, and the largest
+        /// distance and normal angle measured.
+        #[arg(long)]
+        to_nurbs: bool,
     },
     /// Print the exact point, derivatives, normal and curvature of a curve
     /// or surface node at a parameter (local space).
@@ -226,6 +232,7 @@ pub fn run(sub: Sub) -> Result<(), CliError> {
             file,
             json,
             topology,
+            to_nurbs,
         } => {
             let session = load(&file)?;
             let report = SceneReport::new(&session);
@@ -240,6 +247,28 @@ pub fn run(sub: Sub) -> Result<(), CliError> {
                         emit(&format!("topology of #{} {}:\n", node.id.0, node.name))?;
                         emit(&hedra_geom::topology::tables(mesh))?;
                     }
+                }
+            }
+            if to_nurbs {
+                let catmull_clark = |m: &hedra_doc::MeshContent| {
+                    m.subdivision.as_ref().is_some_and(|s| {
+                        s.options.scheme == hedra_geom::subdivision::Scheme::CatmullClark
+                    })
+                };
+                for node in session.doc.nodes() {
+                    let hedra_doc::NodeContent::Mesh(m) = &node.content else {
+                        continue;
+                    };
+                    if !catmull_clark(m) {
+                        continue;
+                    }
+                    let line = match m
+                        .limit_nurbs(hedra_doc::command::DEFAULT_NURBS_TOLERANCE, &node.name)
+                    {
+                        Ok(c) => hedra_doc::command::nurbs_conversion_summary(&c),
+                        Err(e) => format!("not convertible: {e}"),
+                    };
+                    emit(&format!("to NURBS #{} {}: {line}\n", node.id.0, node.name))?;
                 }
             }
         }

@@ -1433,3 +1433,43 @@ fn step_export_writes_a_subdivision_cage_as_a_nurbs_solid() {
         "{e}"
     );
 }
+
+/// `info --to-nurbs` reports what Object ▸ Convert ▸ To NURBS would make of
+/// each Catmull-Clark mesh: the cup's patches, how many exact, and the
+/// measured distance and angle; the history's step of a conversion made by
+/// `run` says the same.
+#[test]
+fn info_reports_the_nurbs_conversion_figures() {
+    let dir = tempfile::tempdir().unwrap();
+    let cup = sample("cup.hedra.ron");
+    let o = hedra(&["info", cup.to_str().unwrap(), "--to-nurbs"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = String::from_utf8(o.stdout).unwrap();
+    let line = text
+        .lines()
+        .find(|l| l.starts_with("to NURBS #1 Cup: "))
+        .unwrap_or_else(|| panic!("no conversion line:\n{text}"));
+    assert!(
+        line.contains(" exact, ") && line.contains("largest angle"),
+        "{line}"
+    );
+
+    let script = dir.path().join("convert.ron");
+    std::fs::write(&script, "[ConvertSubdivisionToNurbs(node: Name(\"Cup\"))]").unwrap();
+    let out = dir.path().join("converted.hedra.ron");
+    let o = hedra(&[
+        "run",
+        script.to_str().unwrap(),
+        "--input",
+        cup.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let figures = line.trim_start_matches("to NURBS #1 Cup: ");
+    let saved = std::fs::read_to_string(&out).unwrap();
+    assert!(
+        saved.contains(&format!("Convert to NURBS ({figures})")),
+        "the undo step's label carries the figures: {figures}"
+    );
+}

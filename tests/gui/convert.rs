@@ -44,6 +44,18 @@ fn convert_to_nurbs_from_the_object_menu_then_adjust_last_and_undo() {
 
     // Adjust Last: not keeping the cage deletes it, still one step.
     assert!(user.shows("Adjust Last: Convert to NURBS"));
+    // The measured figures, in the status line and the window.
+    assert!(
+        user.status().contains("NURBS patches ("),
+        "{}",
+        user.status()
+    );
+    assert!(
+        user.widgets()
+            .iter()
+            .any(|w| w.text.contains(" exact, ") && w.text.contains("largest angle")),
+        "Adjust Last shows the figures"
+    );
     user.click_on("Keep the cage (hidden)");
     user.frames(2);
     assert!(

@@ -29,6 +29,7 @@ pub use spec::{Command, Corner, CurveSpec, EulerOp, NodeRef, ParameterDirection,
 /// The default tolerance of [`Command::ConvertSubdivisionToNurbs`], a
 /// fraction of the cage's bounding-box diagonal.
 pub use to_nurbs::DEFAULT_TOLERANCE as DEFAULT_NURBS_TOLERANCE;
+pub use to_nurbs::conversion_summary as nurbs_conversion_summary;
 
 use crate::elements::{EdgeSet, ElementError, VertexSet};
 use crate::history::Transaction;
@@ -405,9 +406,11 @@ impl Document {
             changes: Vec::new(),
             created_faces: Vec::new(),
             created_edges: Vec::new(),
+            notes: Vec::new(),
         };
         plan.run(cmd)?;
-        let mut notes = plan.follow_constructions(cmd)?;
+        let mut notes = std::mem::take(&mut plan.notes);
+        notes.extend(plan.follow_constructions(cmd)?);
         notes.extend(plan.follow_joins(cmd)?);
         if plan.changes.is_empty() {
             return Err(CommandError::Nothing("the command changes nothing"));

@@ -49,6 +49,9 @@ pub(super) struct Plan<'a> {
     pub(super) created_faces: Vec<FaceId>,
     /// See [`Decision::created_edges`](super::Decision::created_edges).
     pub(super) created_edges: Vec<EdgeId>,
+    /// What the user should read in the step's label besides its name
+    /// (a conversion's measured figures).
+    pub(super) notes: Vec<String>,
 }
 
 impl Plan<'_> {

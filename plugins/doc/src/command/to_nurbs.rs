@@ -13,6 +13,21 @@ use crate::scene::{MeshContent, NodeContent, SurfaceShape};
 /// The default tolerance: this fraction of the cage's bounding-box diagonal.
 pub const DEFAULT_TOLERANCE: f64 = 1e-4;
 
+/// A conversion's result in one line, as the undo step's label, `hedra
+/// info --to-nurbs` and the STEP export's note give it: the patches, how
+/// many are exact, and the largest distance from the limit surface and
+/// normal angle across patch edges as measured (model units).
+pub fn conversion_summary(c: &NurbsConversion) -> String {
+    let (exact, approximated) = c.counts();
+    format!(
+        "{} NURBS patches ({exact} exact, {approximated} approximated; level {}), largest distance {:.1e}, largest angle {:.2}°",
+        c.patches.len(),
+        c.level,
+        c.report.max_distance,
+        c.report.max_angle_degrees
+    )
+}
+
 impl MeshContent {
     /// The NURBS patches of this mesh's Catmull-Clark limit surface (what
     /// [`Command::ConvertSubdivisionToNurbs`](crate::Command::ConvertSubdivisionToNurbs)
@@ -63,6 +78,7 @@ impl Plan<'_> {
             return Err(CommandError::NotAMesh { node: label });
         };
         let conversion = content.limit_nurbs(fraction, &label)?;
+        self.notes.push(conversion_summary(&conversion));
         let parent = cage.parent.map(|p| NodeRef::Id(p.0));
         let group = self.add_node(
             &format!("{} NURBS", cage.name),

@@ -158,18 +158,15 @@ pub fn to_step(
         {
             match content.limit_nurbs(crate::command::DEFAULT_NURBS_TOLERANCE, &node.name) {
                 Ok(c) => {
-                    let (exact, approximated) = c.counts();
                     for (k, p) in c.patches.iter().enumerate() {
                         if let Some(s) = surface_transformed(&p.surface, &m) {
                             surfaces.push((format!("{} {}", node.name, k + 1), s));
                         }
                     }
                     converted.push(format!(
-                        "'{}' written as its limit surface: {} NURBS patches ({exact} exact, {approximated} approximated) within {:.1e} m and {:.2}° of it (in the node's own coordinates)",
+                        "'{}' written as its limit surface: {} (in the node's own coordinates)",
                         node.name,
-                        c.patches.len(),
-                        c.report.max_distance,
-                        c.report.max_angle_degrees
+                        crate::command::nurbs_conversion_summary(&c)
                     ));
                     continue;
                 }

@@ -112,13 +112,26 @@ pub(super) fn adjust_last_window(
     if !editable {
         return;
     }
-    egui::Window::new(format!("Adjust Last: {}", last.label))
+    // The title names the command; what the step's label adds (a
+    // conversion's measured figures) is shown inside.
+    let name = command.label();
+    let notes = last
+        .label
+        .strip_prefix(name.as_str())
+        .map(|rest| rest.trim().trim_start_matches('(').trim_end_matches(')'))
+        .unwrap_or_default()
+        .to_string();
+    egui::Window::new(format!("Adjust Last: {name}"))
         .id("adjust-last".into())
         .collapsible(true)
         .resizable(false)
         .pivot(egui::Align2::LEFT_BOTTOM)
         .fixed_pos(viewport.left_bottom() + egui::vec2(8.0, -8.0))
         .show(ctx, |ui| {
+            if !notes.is_empty() {
+                ui.set_max_width(360.0);
+                ui.label(egui::RichText::new(&notes).weak());
+            }
             let changed = match &mut edited {
                 Command::AddPrimitive { primitive, .. } => primitive_editor(ui, primitive),
                 Command::BevelEdges {
