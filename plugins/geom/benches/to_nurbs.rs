@@ -1,8 +1,8 @@
-//! Catmull-Clark to NURBS (issue 33) on cages of about a thousand faces:
-//! a box linearly split to 1,536 quads (eight valence-3 corners, so the
-//! conversion refines until the approximated corner patches meet 1e-4 of
-//! the diagonal and 0.5°), and a 1,000-quad torus (all regular: one exact
-//! surface at level 0). Each run includes the measurement against the limit
+//! Catmull-Clark to NURBS (issue 33) on cages of about a thousand and ten
+//! thousand faces: a box linearly split to 1,536 and 6,144 quads (eight
+//! valence-3 corners, so the conversion refines until the approximated
+//! corner patches meet 1e-4 of the diagonal and 0.5°), and tori of 1,000
+//! and 10,000 quads (all regular: one exact surface at level 0). Each run includes the measurement against the limit
 //! surface, which dominates. The figures of each conversion are printed
 //! once before timing.
 
@@ -16,15 +16,29 @@ use hedra_geom::subdivision::{Creases, Options, Refiner, Scheme};
 use hedra_geom::{HalfEdgeMesh, Primitive};
 use std::hint::black_box;
 
-fn split_box() -> HalfEdgeMesh {
+/// A cube cut `levels` times into quads (6·4^levels faces), eight
+/// valence-3 vertices: the packed regular regions and the fitted corners.
+fn split_box(levels: u32) -> HalfEdgeMesh {
     let cube = Primitive::Cube { size: 2.0 }.build().unwrap();
     let linear = Options {
         scheme: Scheme::Linear,
         ..Options::default()
     };
-    Refiner::subdivide(&cube, &Creases::default(), linear, 4)
+    Refiner::subdivide(&cube, &Creases::default(), linear, levels)
         .unwrap()
         .0
+}
+
+/// A 100 × 100 torus: 10,000 regular quads, one exact surface.
+fn big_torus() -> HalfEdgeMesh {
+    Primitive::Torus {
+        major_segments: 100,
+        minor_segments: 100,
+        major_radius: 2.0,
+        minor_radius: 0.5,
+    }
+    .build()
+    .unwrap()
 }
 
 fn torus() -> HalfEdgeMesh {
@@ -42,8 +56,10 @@ fn bench(c: &mut Criterion) {
     let mut group = c.benchmark_group("to_nurbs");
     group.sample_size(10);
     for (name, mesh) in [
-        ("box 1536 quads", split_box()),
+        ("box 1536 quads", split_box(4)),
         ("torus 1000 quads", torus()),
+        ("box 6144 quads", split_box(5)),
+        ("torus 10000 quads", big_torus()),
     ] {
         let to = ToNurbsOptions::relative(&mesh, 1e-4);
         let start = std::time::Instant::now();
