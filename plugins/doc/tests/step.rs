@@ -22,7 +22,8 @@ use std::process::Command as Process;
 const FRACTIONS: [f64; 7] = [0.0, 0.137, 0.29, 0.5, 0.713, 0.88, 1.0];
 
 fn repo() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+    Path::new(&std::env::var("CARGO_MANIFEST_DIR").expect("cargo sets CARGO_MANIFEST_DIR"))
+        .join("../..")
 }
 
 /// Fails, naming the module, when python3 cannot import OpenCASCADE.
@@ -77,20 +78,7 @@ enum Expected {
 }
 
 fn world_surface(s: &NurbsSurface, m: DMat4) -> NurbsSurface {
-    let (du, dv) = s.degrees();
-    let (ku, kv) = s.knots();
-    let (nu, nv) = s.size();
-    NurbsSurface::new(
-        du,
-        dv,
-        ku.to_vec(),
-        kv.to_vec(),
-        nu,
-        nv,
-        s.points().iter().map(|p| m.transform_point3(*p)).collect(),
-        s.weights().to_vec(),
-    )
-    .unwrap()
+    s.transformed(&m).unwrap()
 }
 
 fn expected(doc: &Document) -> Vec<Expected> {
@@ -375,7 +363,7 @@ fn scenes() -> Vec<(String, PathBuf)> {
     ] {
         out.push((
             s.to_string(),
-            Path::new(env!("CARGO_MANIFEST_DIR"))
+            Path::new(&std::env::var("CARGO_MANIFEST_DIR").expect("cargo sets CARGO_MANIFEST_DIR"))
                 .join(format!("tests/corpus/scenes/{s}.hedra.ron")),
         ));
     }
@@ -530,7 +518,7 @@ fn meshes_are_left_out_with_a_note_or_written_as_faceted_shells() {
     let dir = tempfile::tempdir().unwrap();
     let dir = debug_dir(&dir);
     let doc = load(
-        &Path::new(env!("CARGO_MANIFEST_DIR"))
+        &Path::new(&std::env::var("CARGO_MANIFEST_DIR").expect("cargo sets CARGO_MANIFEST_DIR"))
             .join("tests/corpus/scenes/v3-every-command.hedra.ron"),
     );
     let meshes = doc

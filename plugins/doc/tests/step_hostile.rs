@@ -159,8 +159,10 @@ fn a_curve_trimmed_at_parameters_comes_in_cut_there_and_reversed_when_its_sense_
 /// curves), or the chair's meshes as faceted shells.
 fn sample_export(chair: bool) -> Vec<u8> {
     let name = if chair { "chair" } else { "shapes" };
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join(format!("../../assets/samples/{name}.hedra.ron"));
+    let path = std::path::Path::new(
+        &std::env::var("CARGO_MANIFEST_DIR").expect("cargo sets CARGO_MANIFEST_DIR"),
+    )
+    .join(format!("../../assets/samples/{name}.hedra.ron"));
     let doc = hedra_doc::file::load(&path).unwrap().session.doc;
     let options = hedra_doc::step::StepOptions {
         meshes: chair,

@@ -36,7 +36,9 @@ fn ocp(file: &Path) -> Value {
         ok,
         "python3 cannot import 'OCP' (cadquery-ocp-novtk): run scripts/setup (it installs scripts/requirements.txt)"
     );
-    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scripts/step_read.py");
+    let script =
+        Path::new(&std::env::var("CARGO_MANIFEST_DIR").expect("cargo sets CARGO_MANIFEST_DIR"))
+            .join("../../scripts/step_read.py");
     let o = Process::new("python3")
         .arg(script)
         .arg(file)

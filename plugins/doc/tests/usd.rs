@@ -25,7 +25,8 @@ use std::process::Command;
 use std::sync::Arc;
 
 fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+    Path::new(&std::env::var("CARGO_MANIFEST_DIR").expect("cargo sets CARGO_MANIFEST_DIR"))
+        .join("../..")
 }
 
 /// Fails, naming the module, when python3 cannot import pxr.
@@ -85,8 +86,10 @@ fn scenes() -> Vec<(String, Document)> {
         out.push((
             s.to_string(),
             load(
-                &Path::new(env!("CARGO_MANIFEST_DIR"))
-                    .join(format!("tests/corpus/scenes/{s}.hedra.ron")),
+                &Path::new(
+                    &std::env::var("CARGO_MANIFEST_DIR").expect("cargo sets CARGO_MANIFEST_DIR"),
+                )
+                .join(format!("tests/corpus/scenes/{s}.hedra.ron")),
             ),
         ));
     }

@@ -163,7 +163,14 @@ mod tests {
                 .all(|n| matches!(n.content, NodeContent::Surface(_)))
         );
         assert!(!s.doc.find_by_name("Box").unwrap().visible);
-        assert_eq!(s.undo().as_deref(), Some("Convert to NURBS"));
+        // The undo step's label carries the conversion's figures.
+        let label = s.undo().unwrap();
+        assert!(
+            label.starts_with(
+                "Convert to NURBS (31 NURBS patches (7 exact, 24 approximated; level 3)"
+            ),
+            "{label}"
+        );
         assert_eq!(s.doc.nodes.len(), before);
         assert!(s.doc.find_by_name("Box").unwrap().visible);
     }

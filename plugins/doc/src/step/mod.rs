@@ -103,20 +103,7 @@ pub fn triangle_as_patch(t: &BezierTriangle) -> NurbsSurface {
 
 /// A NURBS surface with its control points mapped by `m` (exact).
 fn surface_transformed(s: &NurbsSurface, m: &DMat4) -> Option<NurbsSurface> {
-    let (du, dv) = s.degrees();
-    let (ku, kv) = s.knots();
-    let (nu, nv) = s.size();
-    NurbsSurface::new(
-        du,
-        dv,
-        ku.to_vec(),
-        kv.to_vec(),
-        nu,
-        nv,
-        s.points().iter().map(|p| m.transform_point3(*p)).collect(),
-        s.weights().to_vec(),
-    )
-    .ok()
+    s.transformed(m).ok()
 }
 
 /// The document as a STEP file named `file_name` (in the header), with

@@ -124,6 +124,23 @@ impl NurbsSurface {
         })
     }
 
+    /// The surface with its control points mapped by the affine map `m`,
+    /// weights and knots kept, which is exact for NURBS (affine invariance,
+    /// The NURBS Book §4.2); as [`NurbsCurve::transformed`].
+    ///
+    /// # Errors
+    /// A map that makes a control point non-finite.
+    ///
+    /// Complexity: O(points).
+    pub fn transformed(&self, m: &glam::DMat4) -> Result<NurbsSurface, CurveError> {
+        let points: Vec<DVec3> = self.points.iter().map(|p| m.transform_point3(*p)).collect();
+        check_points(&points)?;
+        Ok(NurbsSurface {
+            points,
+            ..self.clone()
+        })
+    }
+
     /// `(degree in u, degree in v)`.
     pub fn degrees(&self) -> (usize, usize) {
         (self.degree_u, self.degree_v)
