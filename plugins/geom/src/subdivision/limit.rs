@@ -57,19 +57,16 @@ fn check(refiner: &Refiner) -> Result<(), SubdivisionError> {
     }
 }
 
-/// The ring of one smooth vertex in order around it: for each face corner at
-/// `v`, the next vertex along the face and (for quads) the diagonal one.
-fn ring(level: &Level, v: u32) -> Option<Vec<(u32, u32)>> {
+/// The corners at `v` of the faces around it, in order: face `i`'s corner
+/// at `v` starts the edge from `v` that face `i` shares with face `i - 1`
+/// (the walk crosses each face's edge into `v`). `None` at a boundary.
+pub(crate) fn ring_corners(level: &Level, v: u32) -> Option<Vec<usize>> {
     let corners = level.vertex_corners(v);
     let start = *corners.first()? as usize;
     let mut out = Vec::with_capacity(corners.len());
     let mut c = start;
     loop {
-        let next = level.next_corner(c);
-        out.push((
-            level.face_vertices[next],
-            level.face_vertices[level.next_corner(next)],
-        ));
+        out.push(c);
         let e = level.face_edges[level.prev_corner(c)];
         let [f0, f1] = level.edge_faces(e);
         let g = if f0 == level.corner_face(c) { f1 } else { f0 };
@@ -86,6 +83,57 @@ fn ring(level: &Level, v: u32) -> Option<Vec<(u32, u32)>> {
             return None;
         }
     }
+}
+
+/// The ring of one smooth vertex in order around it: for each face corner at
+/// `v` ([`ring_corners`]), the next vertex along the face and (for quads) the
+/// diagonal one.
+fn ring(level: &Level, v: u32) -> Option<Vec<(u32, u32)>> {
+    Some(
+        ring_corners(level, v)?
+            .into_iter()
+            .map(|c| {
+                let next = level.next_corner(c);
+                (
+                    level.face_vertices[next],
+                    level.face_vertices[level.next_corner(next)],
+                )
+            })
+            .collect(),
+    )
+}
+
+/// The Catmull-Clark tangent masks at a smooth vertex whose ring is `ring`
+/// ([`ring`]: edge neighbour and diagonal per face, in order): `(t1, t2)`,
+/// both scaled alike, so that the limit tangent along the ring's edge `i`
+/// is `cos(2πi/n) t1 + sin(2πi/n) t2` (Halstead et al. 1993, §A).
+pub(crate) fn catmull_clark_tangents(points: &[DVec3], ring: &[(u32, u32)]) -> (DVec3, DVec3) {
+    let n = ring.len() as f64;
+    let (mut t1, mut t2) = (DVec3::ZERO, DVec3::ZERO);
+    let a_n = 1.0 + (TAU / n).cos() + (PI / n).cos() * (2.0 * (9.0 + (TAU / n).cos())).sqrt();
+    for (i, &(e, d)) in ring.iter().enumerate() {
+        let (angle, next_angle) = (TAU * i as f64 / n, TAU * (i + 1) as f64 / n);
+        let (e, d) = (points[e as usize], points[d as usize]);
+        t1 += a_n * angle.cos() * e + (angle.cos() + next_angle.cos()) * d;
+        t2 += a_n * angle.sin() * e + (angle.sin() + next_angle.sin()) * d;
+    }
+    (t1, t2)
+}
+
+/// [`catmull_clark_tangents`] of smooth vertex `v` of `level`, with the
+/// corners of its ring ([`ring_corners`]); `None` when `v` is not smooth
+/// or not interior.
+pub(crate) fn vertex_tangents(
+    level: &Level,
+    points: &[DVec3],
+    v: u32,
+) -> Option<(Vec<usize>, DVec3, DVec3)> {
+    let Kind::Smooth = kind(level, v) else {
+        return None;
+    };
+    let ring = ring(level, v)?;
+    let (t1, t2) = catmull_clark_tangents(points, &ring);
+    Some((ring_corners(level, v)?, t1, t2))
 }
 
 /// Limit positions of the refiner's last level, given that level's points.
@@ -169,21 +217,19 @@ pub fn limit_normals(refiner: &Refiner, points: &[DVec3]) -> Result<Vec<DVec3>, 
             let Some(ring) = ring(level, v) else {
                 return fallback;
             };
-            let n = ring.len() as f64;
-            let (mut t1, mut t2) = (DVec3::ZERO, DVec3::ZERO);
-            let a_n =
-                1.0 + (TAU / n).cos() + (PI / n).cos() * (2.0 * (9.0 + (TAU / n).cos())).sqrt();
-            for (i, &(e, d)) in ring.iter().enumerate() {
-                let (angle, next_angle) = (TAU * i as f64 / n, TAU * (i + 1) as f64 / n);
-                let (e, d) = (points[e as usize], points[d as usize]);
-                if catmull_clark {
-                    t1 += a_n * angle.cos() * e + (angle.cos() + next_angle.cos()) * d;
-                    t2 += a_n * angle.sin() * e + (angle.sin() + next_angle.sin()) * d;
-                } else {
-                    t1 += angle.cos() * e;
-                    t2 += angle.sin() * e;
-                }
-            }
+            let (t1, t2) = if catmull_clark {
+                catmull_clark_tangents(points, &ring)
+            } else {
+                let n = ring.len() as f64;
+                ring.iter().enumerate().fold(
+                    (DVec3::ZERO, DVec3::ZERO),
+                    |(t1, t2), (i, &(e, _))| {
+                        let angle = TAU * i as f64 / n;
+                        let e = points[e as usize];
+                        (t1 + angle.cos() * e, t2 + angle.sin() * e)
+                    },
+                )
+            };
             let normal = t1.cross(t2).normalize_or_zero();
             if normal == DVec3::ZERO {
                 fallback

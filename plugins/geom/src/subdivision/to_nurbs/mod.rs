@@ -49,6 +49,7 @@
 mod grid;
 pub mod measure;
 mod pack;
+mod star;
 
 use std::collections::HashMap;
 
@@ -489,6 +490,12 @@ fn build(refiner: &Refiner, points: &[DVec3], finer_limit: &[DVec3]) -> NurbsCon
         rows[f as usize] = Some(g);
         face_edges[f as usize] = Some(mine);
     }
+    // Tangent continuity around smooth extraordinary vertices.
+    let mut twists: HashMap<u32, Vec<((usize, usize), DVec3)>> = HashMap::new();
+    for (f, at, point) in star::smooth_stars(lv, &classes, points, &limit, &mut edges, &edge_index)
+    {
+        twists.entry(f).or_default().push((at, point));
+    }
     // Approximate: one Bézier patch per shown irregular face.
     for f in 0..faces as u32 {
         if !shown[f as usize] || regular[f as usize] {
@@ -508,6 +515,9 @@ fn build(refiner: &Refiner, points: &[DVec3], finer_limit: &[DVec3]) -> NurbsCon
                 let (i, j) = edge_point(k, t);
                 net[i][j] = shared.curve[if forward { t } else { 3 - t }];
             }
+        }
+        for &((i, j), point) in twists.get(&f).into_iter().flatten() {
+            net[i][j] = point;
         }
         let flat: Vec<DVec3> = net.iter().flatten().copied().collect();
         patches.push(ConvertedPatch {
