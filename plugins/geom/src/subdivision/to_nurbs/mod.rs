@@ -491,11 +491,7 @@ fn build(refiner: &Refiner, points: &[DVec3], finer_limit: &[DVec3]) -> NurbsCon
         face_edges[f as usize] = Some(mine);
     }
     // Tangent continuity around smooth extraordinary vertices.
-    let mut twists: HashMap<u32, Vec<((usize, usize), DVec3)>> = HashMap::new();
-    for (f, at, point) in star::smooth_stars(lv, &classes, points, &limit, &mut edges, &edge_index)
-    {
-        twists.entry(f).or_default().push((at, point));
-    }
+    let twists = star::smooth_stars(lv, &classes, points, &limit, &mut edges, &edge_index);
     // Approximate: one Bézier patch per shown irregular face.
     for f in 0..faces as u32 {
         if !shown[f as usize] || regular[f as usize] {

@@ -58,9 +58,9 @@ use super::grid::{CORNER, VertexClass, bezier_point, face_grid};
 /// The smallest valence the construction is used at (see the table above).
 pub(super) const MIN_VALENCE: usize = 8;
 
-/// A patch control point replaced: face of the level, Bézier net index
-/// `(i, j)` in the face's own frame, the point.
-pub(super) type NetOverride = (u32, (usize, usize), DVec3);
+/// Patch control points replaced, per face of the level: Bézier net index
+/// `(i, j)` in the face's own frame, and the point.
+pub(super) type Twists = HashMap<u32, Vec<((usize, usize), DVec3)>>;
 
 /// Makes the edge points beside every smooth extraordinary vertex satisfy
 /// the `k = 0` condition (in `edges`, in place) and returns the twists that
@@ -72,8 +72,8 @@ pub(super) fn smooth_stars(
     limit: &[DVec3],
     edges: &mut [SharedEdge],
     edge_index: &HashMap<u32, usize>,
-) -> Vec<NetOverride> {
-    let mut twists = Vec::new();
+) -> Twists {
+    let mut twists = Twists::new();
     for v in 0..lv.vertex_count as u32 {
         if classes[v as usize] != (VertexClass::Irregular { smooth: true }) {
             continue;
@@ -154,7 +154,10 @@ pub(super) fn smooth_stars(
             .map(|i| rhs[i] - old[(i + n - 1) % n] - old[i])
             .collect();
         for (i, delta) in solve_ring(&change).into_iter().enumerate() {
-            twists.push((at[i].0, at[i].1, old[i] + delta));
+            twists
+                .entry(at[i].0)
+                .or_default()
+                .push((at[i].1, old[i] + delta));
         }
     }
     twists
@@ -165,9 +168,9 @@ pub(super) fn smooth_stars(
 /// the alternating vector `(−1)^i`, which no `x` reaches, is dropped first.
 fn solve_ring(b: &[DVec3]) -> Vec<DVec3> {
     let n = b.len();
-    let sign = |i: usize| if i % 2 == 0 { 1.0 } else { -1.0 };
+    let sign = |i: usize| if i.is_multiple_of(2) { 1.0 } else { -1.0 };
     let mut b = b.to_vec();
-    if n % 2 == 0 {
+    if n.is_multiple_of(2) {
         let alternating = (0..n).map(|i| sign(i) * b[i]).sum::<DVec3>() / n as f64;
         for (i, bi) in b.iter_mut().enumerate() {
             *bi -= sign(i) * alternating;
@@ -178,7 +181,7 @@ fn solve_ring(b: &[DVec3]) -> Vec<DVec3> {
     for i in 1..n {
         a[i] = b[i] - a[i - 1];
     }
-    let x0 = if n % 2 == 1 {
+    let x0 = if !n.is_multiple_of(2) {
         // Closing equation x_{n−1} + x₀ = b₀ with x_{n−1} = a_{n−1} + x₀.
         (b[0] - a[n - 1]) / 2.0
     } else {
@@ -215,13 +218,13 @@ mod tests {
         let got = solve_ring(&b);
         assert!(residual(&got, &b) < 1e-12);
         // ... by the solution without an alternating part.
-        let alternating: DVec3 = (0..6)
-            .map(|i| if i % 2 == 0 { got[i] } else { -got[i] })
+        let alternating: DVec3 = (0..6usize)
+            .map(|i| if i.is_multiple_of(2) { got[i] } else { -got[i] })
             .sum();
         assert!(alternating.length() < 1e-12);
         // An alternating right-hand side is out of reach: nothing changes.
-        let b: Vec<DVec3> = (0..6)
-            .map(|i| DVec3::X * if i % 2 == 0 { 1.0 } else { -1.0 })
+        let b: Vec<DVec3> = (0..6usize)
+            .map(|i| DVec3::X * if i.is_multiple_of(2) { 1.0 } else { -1.0 })
             .collect();
         assert!(solve_ring(&b).iter().all(|x| x.length() < 1e-12));
     }
