@@ -14,13 +14,14 @@ use super::super::{Creases, Options, Refiner, SubdivisionError, limit_positions}
 use super::grid::CORNER;
 use super::{FacePlacement, NurbsConversion, PatchKind};
 use crate::HalfEdgeMesh;
-use crate::surfaces::Surface;
+use crate::surfaces::{NurbsSurface, Surface};
 
 /// Measured figures of a conversion.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Report {
-    /// Largest distance between an approximate patch and the limit surface
-    /// at the samples (model units).
+    /// Largest distance of the limit surface from the approximate patches:
+    /// from each limit sample to the nearest point of its face's patch
+    /// (model units).
     pub max_distance: f64,
     /// Largest distance between an exact patch and the limit surface
     /// (rounding only); when only the approximate patches were measured
@@ -152,15 +153,19 @@ pub fn measure(
             for j in 0..=n {
                 let st = (i as f64 / n as f64, j as f64 / n as f64);
                 let (u, v) = to_patch(placement, st);
-                let d = patch
-                    .surface
-                    .point(u, v)
-                    .distance(limit[grids[slot][i][j] as usize]);
-                let max = match patch.kind {
-                    PatchKind::Exact => &mut report.max_distance_exact,
-                    PatchKind::Approximate => &mut report.max_distance,
-                };
-                *max = max.max(d);
+                let exact = limit[grids[slot][i][j] as usize];
+                match patch.kind {
+                    // Exact patches equal the limit surface parameter for
+                    // parameter: compared at the same (u, v).
+                    PatchKind::Exact => {
+                        let d = patch.surface.point(u, v).distance(exact);
+                        report.max_distance_exact = report.max_distance_exact.max(d);
+                    }
+                    PatchKind::Approximate => {
+                        let d = distance_to_patch(&patch.surface, (u, v), exact);
+                        report.max_distance = report.max_distance.max(d);
+                    }
+                }
                 report.samples += 1;
             }
         }
@@ -213,6 +218,36 @@ pub fn measure(
         }
     }
     Ok(report)
+}
+
+/// Distance from `q` to the nearest point of `surface` (a patch on
+/// `[0, 1]²`), found by Gauss–Newton steps from `start` (the parameters
+/// where `q` lies on the limit surface), clamped to the patch; never more
+/// than the distance at `start`. This is the distance from the limit
+/// surface, not between points of equal parameters: a patch that lies on
+/// the limit surface but is parametrised a little differently (as the
+/// flat middle of an n-gon, where the two differ only along the surface)
+/// is at distance 0.
+fn distance_to_patch(surface: &NurbsSurface, start: (f64, f64), q: DVec3) -> f64 {
+    let (mut u, mut v) = start;
+    let mut best = surface.point(u, v).distance(q);
+    for _ in 0..8 {
+        let e = surface.evaluate(u, v);
+        let r = q - e.p;
+        let (a, b, c) = (e.du.dot(e.du), e.du.dot(e.dv), e.dv.dot(e.dv));
+        let det = a * c - b * b;
+        if !(det.abs() > 1e-300) {
+            break;
+        }
+        let (gu, gv) = (e.du.dot(r), e.dv.dot(r));
+        let (step_u, step_v) = ((c * gu - b * gv) / det, (a * gv - b * gu) / det);
+        (u, v) = ((u + step_u).clamp(0.0, 1.0), (v + step_v).clamp(0.0, 1.0));
+        best = best.min(surface.point(u, v).distance(q));
+        if step_u.abs() + step_v.abs() < 1e-14 {
+            break;
+        }
+    }
+    best
 }
 
 /// A cubic Bézier curve's point at `t` (de Casteljau).

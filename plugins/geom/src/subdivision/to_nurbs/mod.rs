@@ -27,15 +27,19 @@
 //!   projected into the vertex's exact limit tangent plane
 //!   ([`limit_normals`], Halstead et al.'s tangent masks), so that all
 //!   patches around it share that tangent plane. (Fitting the middle
-//!   lowers the largest distance by 40 % on a cube; moving the inner point
-//!   beside the vertex to fit the face's centre as well made the normal
-//!   angles worse and the distance no better, so it is not done.) This is
-//!   not exactly G1 along the edges out of the extraordinary vertex (no
-//!   bicubic construction is, in general); the mismatch and the distance to
-//!   the limit surface fall as `k` grows, and both are measured
-//!   ([`measure`]): `k` is raised until the distance is within the
-//!   tolerance and the normal angle across edges within the limit, or
-//!   [`ToNurbsOptions::max_level`] is reached.
+//!   lowered the largest distance between points of equal parameters by
+//!   40 % on a cube; moving the inner point beside the vertex to fit the
+//!   face's centre as well made the normal angles worse and the distance no
+//!   better, so it is not done.) Around a smooth vertex of valence 6 or
+//!   more, the tangent points and the patches' inner points at the vertex
+//!   follow the vertex-enclosure construction instead (`star.rs`), which
+//!   makes the normals agree to first order there. Neither is exactly G1
+//!   along the edges out of the extraordinary vertex (no bicubic
+//!   construction joined C1 to the regular patches is, in general); the
+//!   mismatch and the distance from the limit surface fall as `k` grows,
+//!   and both are measured ([`measure`]): `k` is raised until the distance
+//!   is within the tolerance and the normal angle across edges within the
+//!   limit, or [`ToNurbsOptions::max_level`] is reached.
 //! - **Watertight.** Each edge's boundary curve is computed once (its
 //!   cubic Bézier control points in [`NurbsConversion::edges`]); Bézier
 //!   patches copy them bit for bit, and packed B-spline surfaces equal them
@@ -237,11 +241,11 @@ impl NurbsConversion {
 
     /// True when the measured figures meet `options`' tolerance and angle.
     /// [`to_nurbs`] can stop short of them at
-    /// [`ToNurbsOptions::max_level`]: the error falls by about the
-    /// subdominant eigenvalue of the subdivision matrix per level (measured:
-    /// ×0.41 at valence 3, ×0.55 at 5, ×0.57 at 6, ×0.59 at 8; the angle by
-    /// ×0.4, ×0.6, ×0.65, ×0.73), so vertices of valence 6 and more need
-    /// more levels than valence 3 and 5 do.
+    /// [`ToNurbsOptions::max_level`]: per level the distance falls by
+    /// about ×0.17 at valence 3, ×0.32 at 5, ×0.37 at 6, ×0.44 at 8 and
+    /// ×0.51 at 12, the angle by ×0.39, ×0.59, ×0.44, ×0.6 and ×0.83
+    /// (measured on a cube and UV-sphere poles), so a vertex of valence 12
+    /// needs more levels than the default maximum of 5.
     pub fn within(&self, options: &ToNurbsOptions) -> bool {
         self.report.max_distance <= options.tolerance
             && self.report.max_angle_degrees <= options.max_angle_degrees

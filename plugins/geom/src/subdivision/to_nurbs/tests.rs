@@ -188,9 +188,9 @@ fn a_cube_converts_within_tolerance_and_watertight() {
     assert_watertight(&c, 1e-12);
     // Closed: every edge has two faces.
     assert!(c.edges.iter().all(|e| e.faces.len() == 2));
-    // Within the tolerance and the angle, at level 4 (measured: 2.9e-4 of
-    // the allowed 3.5e-4, 0.09°).
-    assert_eq!(c.level, 4);
+    // Within the tolerance and the angle at level 3 (measured: 8.6e-5 of
+    // the allowed 3.5e-4, 0.24°; level 2 has 0.62°).
+    assert_eq!(c.level, 3);
     assert!(c.report.max_distance <= to.tolerance, "{:?}", c.report);
     assert!(c.report.max_angle_degrees <= 0.5, "{:?}", c.report);
     eprintln!(
@@ -249,7 +249,7 @@ fn figures() {
         let c = convert_at(&mesh, &Creases::default(), Options::default(), level, 2).unwrap();
         eprintln!("cube level {level}: {:?} {:?}", c.counts(), c.report);
     }
-    for segments in [5, 6, 8] {
+    for segments in [5, 6, 8, 12] {
         let mesh = Primitive::UvSphere {
             segments,
             rings: 4,
@@ -663,6 +663,6 @@ fn a_valence_twelve_vertex_converts_with_small_normal_angles() {
     let mesh = pole(12);
     let c = convert_at(&mesh, &Creases::default(), Options::default(), 4, 2).unwrap();
     assert!(c.report.max_angle_degrees < 1.2, "{:?}", c.report);
-    assert!(c.report.max_distance < 6e-3, "{:?}", c.report);
+    assert!(c.report.max_distance < 2.5e-3, "{:?}", c.report);
     assert!(c.report.max_gap < 1e-12, "{:?}", c.report);
 }
