@@ -99,6 +99,9 @@ pub fn windowless_gui_app(recovery_dir: PathBuf) -> App {
 
 /// The windowed modeling app.
 pub fn gui_app(options: GuiOptions) -> App {
+    // The window does not walk the whole mesh after every edit in a debug
+    // build (the tests do); HEDRA_VALIDATE_EDITS=1 turns the check on.
+    hedra_doc::command::set_validate_edits(std::env::var_os("HEDRA_VALIDATE_EDITS").is_some());
     let mut app = App::new();
     // Pipelines compile before the frame that first needs them: a new
     // cube is drawn in the frame it appears, not left out (only its cage

@@ -123,6 +123,7 @@ fn screenshot(sample: &str, extra: &[&str]) -> (Vec<[u8; 3]>, u32, u32) {
         .arg(&shot)
         .args(["--frames", "40"])
         .env("WGPU_BACKEND", "vulkan")
+        .env("HEDRA_VALIDATE_EDITS", "1")
         .env("HEDRA_CONFIG_DIR", dir.path())
         .output()
         .expect("xvfb-run is installed (scripts/setup installs it)");
@@ -399,6 +400,7 @@ fn a_killed_session_is_offered_back_on_the_next_start() {
         .arg(work)
         .args(args)
         .env("WGPU_BACKEND", "vulkan")
+        .env("HEDRA_VALIDATE_EDITS", "1")
         .env("HEDRA_CONFIG_DIR", config)
         .process_group(0);
         c
@@ -477,6 +479,7 @@ fn a_terminated_session_writes_an_emergency_save() {
         .arg("--run")
         .arg(script)
         .env("WGPU_BACKEND", "vulkan")
+        .env("HEDRA_VALIDATE_EDITS", "1")
         .env("HEDRA_CONFIG_DIR", config)
         .stdout(std::process::Stdio::null())
         .stderr(std::process::Stdio::null())
@@ -610,6 +613,7 @@ fn drive_real_window(
         .env("WORK", work)
         .env("LOG", &log)
         .env("WGPU_BACKEND", "vulkan")
+        .env("HEDRA_VALIDATE_EDITS", "1")
         .env("HEDRA_CONFIG_DIR", dir.join("config"))
         .output()
         .expect("xvfb-run and xdotool are installed (scripts/setup installs them)");

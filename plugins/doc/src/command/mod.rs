@@ -25,6 +25,7 @@ mod shapes;
 mod spec;
 mod to_nurbs;
 
+pub use plan::set_validate_edits;
 pub use spec::{Command, Corner, CurveSpec, EulerOp, NodeRef, ParameterDirection, SurfaceSpec};
 /// The default tolerance of [`Command::ConvertSubdivisionToNurbs`], a
 /// fraction of the cage's bounding-box diagonal.

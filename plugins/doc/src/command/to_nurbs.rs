@@ -201,7 +201,7 @@ mod tests {
             .limit_nurbs(crate::command::DEFAULT_NURBS_TOLERANCE, "Box")
             .unwrap();
         assert!(c.report.max_distance > 0.0);
-        assert_eq!((c.level, c.counts()), (4, (7, 24)));
+        assert_eq!((c.level, c.counts()), (3, (7, 24)));
         assert_eq!(c.sides(0).len(), 4);
     }
 
