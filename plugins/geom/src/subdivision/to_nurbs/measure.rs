@@ -236,7 +236,7 @@ fn distance_to_patch(surface: &NurbsSurface, start: (f64, f64), q: DVec3) -> f64
         let r = q - e.p;
         let (a, b, c) = (e.du.dot(e.du), e.du.dot(e.dv), e.dv.dot(e.dv));
         let det = a * c - b * b;
-        if !(det.abs() > 1e-300) {
+        if det.is_nan() || det.abs() <= 1e-300 {
             break;
         }
         let (gu, gv) = (e.du.dot(r), e.dv.dot(r));
