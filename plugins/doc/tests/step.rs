@@ -21,9 +21,12 @@ use std::process::Command as Process;
 /// and a Lagrange curve through the same points, are told apart).
 const FRACTIONS: [f64; 7] = [0.0, 0.137, 0.29, 0.5, 0.713, 0.88, 1.0];
 
+fn manifest_dir() -> PathBuf {
+    PathBuf::from(std::env::var("CARGO_MANIFEST_DIR").expect("cargo sets CARGO_MANIFEST_DIR"))
+}
+
 fn repo() -> PathBuf {
-    Path::new(&std::env::var("CARGO_MANIFEST_DIR").expect("cargo sets CARGO_MANIFEST_DIR"))
-        .join("../..")
+    manifest_dir().join("../..")
 }
 
 /// Fails, naming the module, when python3 cannot import OpenCASCADE.
@@ -363,8 +366,7 @@ fn scenes() -> Vec<(String, PathBuf)> {
     ] {
         out.push((
             s.to_string(),
-            Path::new(&std::env::var("CARGO_MANIFEST_DIR").expect("cargo sets CARGO_MANIFEST_DIR"))
-                .join(format!("tests/corpus/scenes/{s}.hedra.ron")),
+            manifest_dir().join(format!("tests/corpus/scenes/{s}.hedra.ron")),
         ));
     }
     out
@@ -517,10 +519,7 @@ fn meshes_are_left_out_with_a_note_or_written_as_faceted_shells() {
     require_ocp();
     let dir = tempfile::tempdir().unwrap();
     let dir = debug_dir(&dir);
-    let doc = load(
-        &Path::new(&std::env::var("CARGO_MANIFEST_DIR").expect("cargo sets CARGO_MANIFEST_DIR"))
-            .join("tests/corpus/scenes/v3-every-command.hedra.ron"),
-    );
+    let doc = load(&manifest_dir().join("tests/corpus/scenes/v3-every-command.hedra.ron"));
     let meshes = doc
         .nodes()
         .filter(|n| matches!(n.content, NodeContent::Mesh(_)) && doc.hierarchy().is_visible(n.id))

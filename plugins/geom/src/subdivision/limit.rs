@@ -89,18 +89,21 @@ pub(crate) fn ring_corners(level: &Level, v: u32) -> Option<Vec<usize>> {
 /// `v` ([`ring_corners`]), the next vertex along the face and (for quads) the
 /// diagonal one.
 fn ring(level: &Level, v: u32) -> Option<Vec<(u32, u32)>> {
-    Some(
-        ring_corners(level, v)?
-            .into_iter()
-            .map(|c| {
-                let next = level.next_corner(c);
-                (
-                    level.face_vertices[next],
-                    level.face_vertices[level.next_corner(next)],
-                )
-            })
-            .collect(),
-    )
+    Some(ring_of(level, &ring_corners(level, v)?))
+}
+
+/// [`ring`] from the ring's corners.
+fn ring_of(level: &Level, corners: &[usize]) -> Vec<(u32, u32)> {
+    corners
+        .iter()
+        .map(|&c| {
+            let next = level.next_corner(c);
+            (
+                level.face_vertices[next],
+                level.face_vertices[level.next_corner(next)],
+            )
+        })
+        .collect()
 }
 
 /// The Catmull-Clark tangent masks at a smooth vertex whose ring is `ring`
@@ -131,9 +134,9 @@ pub(crate) fn vertex_tangents(
     let Kind::Smooth = kind(level, v) else {
         return None;
     };
-    let ring = ring(level, v)?;
-    let (t1, t2) = catmull_clark_tangents(points, &ring);
-    Some((ring_corners(level, v)?, t1, t2))
+    let corners = ring_corners(level, v)?;
+    let (t1, t2) = catmull_clark_tangents(points, &ring_of(level, &corners));
+    Some((corners, t1, t2))
 }
 
 /// Limit positions of the refiner's last level, given that level's points.

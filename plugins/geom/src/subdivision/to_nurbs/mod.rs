@@ -495,7 +495,7 @@ fn build(refiner: &Refiner, points: &[DVec3], finer_limit: &[DVec3]) -> NurbsCon
         face_edges[f as usize] = Some(mine);
     }
     // Tangent continuity around smooth extraordinary vertices.
-    let twists = star::smooth_stars(lv, &classes, points, &limit, &mut edges, &edge_index);
+    let twists = star::smooth_stars(lv, &classes, points, &rows, &limit, &mut edges, &edge_index);
     // Approximate: one Bézier patch per shown irregular face.
     for f in 0..faces as u32 {
         if !shown[f as usize] || regular[f as usize] {

@@ -58,6 +58,9 @@ use super::grid::{CORNER, VertexClass, bezier_point, face_grid};
 /// The smallest valence the construction is used at (see the table above).
 pub(super) const MIN_VALENCE: usize = 6;
 
+/// A face's 4×4 control grid ([`super::grid::face_grid`], seen from corner 0).
+type Grid = [[Option<DVec3>; 4]; 4];
+
 /// Patch control points replaced, per face of the level: Bézier net index
 /// `(i, j)` in the face's own frame, and the point.
 pub(super) type Twists = HashMap<u32, Vec<((usize, usize), DVec3)>>;
@@ -69,6 +72,7 @@ pub(super) fn smooth_stars(
     lv: &Level,
     classes: &[VertexClass],
     points: &[DVec3],
+    grids: &[Option<Grid>],
     limit: &[DVec3],
     edges: &mut [SharedEdge],
     edge_index: &HashMap<u32, usize>,
@@ -145,8 +149,10 @@ pub(super) fn smooth_stars(
         let old: Vec<DVec3> = at
             .iter()
             .map(|&(f, (i, j))| {
-                bezier_point(&face_grid(lv, classes, points, f, 0), i, j)
-                    .expect("inner points need only the face")
+                // Shown faces' grids are made already; a hidden one's here.
+                let grid =
+                    grids[f as usize].unwrap_or_else(|| face_grid(lv, classes, points, f, 0));
+                bezier_point(&grid, i, j).expect("inner points need only the face")
             })
             .collect();
         // Edge i lies between faces i - 1 and i.
