@@ -1,0 +1,274 @@
+//! One collapse and what decides it: the quadrics, feature edges and
+//! corners that hold, the candidate positions and their costs, the
+//! fold-over check, and the collapse itself with its vertex split.
+
+use super::{CORNER_TURN, FEATURE_WEIGHT, Quadric, Simplifier, VertexSplit};
+use crate::ids::{EdgeId, HalfEdgeId, VertexId};
+use glam::DVec3;
+
+/// Up to two collapses of one edge (one per direction), cheapest first:
+/// cost, the half-edge whose target goes, the position.
+#[derive(Copy, Clone)]
+pub(super) struct Candidates {
+    items: [(f64, HalfEdgeId, DVec3); 2],
+    len: usize,
+}
+
+impl Default for Candidates {
+    fn default() -> Self {
+        Candidates {
+            items: [(0.0, HalfEdgeId(0), DVec3::ZERO); 2],
+            len: 0,
+        }
+    }
+}
+
+impl Candidates {
+    fn add(&mut self, c: (f64, HalfEdgeId, DVec3)) {
+        self.items[self.len] = c;
+        self.len += 1;
+    }
+    pub(super) fn first(&self) -> Option<&(f64, HalfEdgeId, DVec3)> {
+        self.items[..self.len].first()
+    }
+    pub(super) fn iter(&self) -> impl Iterator<Item = (f64, HalfEdgeId, DVec3)> + '_ {
+        self.items[..self.len].iter().copied()
+    }
+}
+
+impl Simplifier<'_> {
+    fn is_feature(&self, e: EdgeId) -> bool {
+        self.feature[e.index()] || self.mesh.is_boundary_edge(e)
+    }
+    /// Number of feature edges at `v`, and whether `v` is a corner of
+    /// the features: one or three or more feature edges, or two that turn
+    /// by more than [`CORNER_TURN`].
+    fn feature_degree(&self, v: VertexId) -> (usize, bool) {
+        if !self.near_feature[v.index()] {
+            return (0, false);
+        }
+        let m = &self.mesh;
+        let mut ends = [DVec3::ZERO; 2];
+        let mut n = 0;
+        for h in m.vertex_outgoing(v) {
+            if self.is_feature(h.edge()) {
+                if n < 2 {
+                    ends[n] = m.position(m.target(h));
+                }
+                n += 1;
+            }
+        }
+        let corner = match n {
+            0 => false,
+            2 => {
+                let p = m.position(v);
+                let (x, y) = (
+                    (p - ends[0]).normalize_or_zero(),
+                    (ends[1] - p).normalize_or_zero(),
+                );
+                x.dot(y) < CORNER_TURN.cos()
+            }
+            _ => true,
+        };
+        (n, corner)
+    }
+    fn fixed(&self, v: VertexId, corner: bool) -> bool {
+        corner
+            || (self.options.keep_borders && self.mesh.is_boundary_vertex(v))
+            || self.corner_sharp[v.index()]
+    }
+    /// The position and error of collapsing `h` (its target into its
+    /// origin), or `None` when the features forbid it.
+    fn candidate(&self, h: HalfEdgeId) -> Option<(f64, DVec3)> {
+        let m = &self.mesh;
+        let (a, b) = (m.origin(h), m.target(h));
+        let ((da, corner_a), (db, corner_b)) = (self.feature_degree(a), self.feature_degree(b));
+        if self.fixed(b, corner_b) {
+            return None;
+        }
+        let on_feature = self.is_feature(h.edge());
+        if db == 2 && !on_feature {
+            return None;
+        }
+        let q = self.quadrics[a.index()] + self.quadrics[b.index()];
+        let (pa, pb) = (m.position(a), m.position(b));
+        if self.fixed(a, corner_a) || (da > 0 && db == 0) {
+            return Some((q.mean_error(pa), pa));
+        }
+        let mid = (pa + pb) * 0.5;
+        let mut best = (q.error(pa), pa);
+        let optimum = q.minimizer().map(|p| {
+            if db == 2 {
+                // Sliding along a feature line: stay on the edge.
+                let d = pb - pa;
+                pa + d * ((p - pa).dot(d) / d.length_squared()).clamp(0.0, 1.0)
+            } else {
+                p
+            }
+        });
+        let reach = 2.0 * pa.distance(pb);
+        let optimum = optimum.filter(|p| p.distance(mid) <= reach);
+        for p in [Some(pb), Some(mid), optimum].into_iter().flatten() {
+            let e = q.error(p);
+            // Endpoints win ties, so exact positions (corners) stay exact.
+            if e < best.0 * (1.0 - 1e-9) {
+                best = (e, p);
+            }
+        }
+        // The choice above compares one quadric's sums; the cost compares
+        // collapses everywhere, as a mean squared distance.
+        let w = q.weight();
+        Some((if w > 0.0 { best.0 / w } else { 0.0 }, best.1))
+    }
+    /// The allowed collapses of `e`, cheapest first. Away from features
+    /// both directions have the same placement and cost, computed once.
+    pub(super) fn candidates(&self, e: EdgeId) -> Candidates {
+        let [a, b] = self.mesh.edge_vertices(e);
+        let plain = |v: VertexId| !self.near_feature[v.index()] && !self.corner_sharp[v.index()];
+        let mut out = Candidates::default();
+        if plain(a) && plain(b) {
+            let h = e.halfedge(0);
+            if let Some((c, p)) = self.candidate(h) {
+                out.add((c, h, p));
+                out.add((c, h.twin(), p));
+            }
+            return out;
+        }
+        for h in [e.halfedge(0), e.halfedge(1)] {
+            if let Some((c, p)) = self.candidate(h) {
+                out.add((c, h, p));
+            }
+        }
+        if out.len == 2 && out.items[1].0 < out.items[0].0 {
+            out.items.swap(0, 1);
+        }
+        out
+    }
+    /// The checks the Euler operator does not make: no triangle edge that
+    /// the collapse removes may be a border (its vertex split could not
+    /// rebuild the triangle), and no face may turn by more than the limit
+    /// or degenerate.
+    pub(super) fn allowed(&self, h: HalfEdgeId, p: DVec3) -> bool {
+        let m = &self.mesh;
+        let t = h.twin();
+        for x in [h, t] {
+            if m.face(x).is_some() && m.is_boundary_edge(m.next(x).edge()) {
+                return false;
+            }
+        }
+        let (a, b) = (m.origin(h), m.target(h));
+        let (fl, fr) = (m.face(h), m.face(t));
+        for v in [a, b] {
+            for o in m.vertex_outgoing(v) {
+                let Some(f) = m.face(o) else { continue };
+                if Some(f) == fl || Some(f) == fr {
+                    continue;
+                }
+                let x = m.position(m.target(o));
+                let y = m.position(m.target(m.next(o)));
+                let q = m.position(v);
+                let before = (x - q).cross(y - q);
+                let after = (x - p).cross(y - p);
+                let scale = before.length();
+                let turned = after.length();
+                if turned <= 1e-12 * scale.max(1e-300) || turned == 0.0 {
+                    return false;
+                }
+                if before.dot(after) < self.cos_limit * scale * turned {
+                    return false;
+                }
+            }
+        }
+        true
+    }
+}
+
+impl Simplifier<'_> {
+    pub(super) fn init_quadrics(&mut self) {
+        let m = &self.mesh;
+        let cos_sharp = self.options.sharp_angle.map(|a| a.to_radians().cos());
+        for f in m.faces() {
+            let n = m.face_area_vector(f);
+            let area = n.length();
+            if area <= 0.0 {
+                continue;
+            }
+            let q = Quadric::plane(
+                n / area,
+                m.position(m.face_vertices(f).next().unwrap()),
+                // √area (meshoptimizer's `quadricFromTriangle`): the
+                // weights are lengths, like the feature planes'.
+                area.sqrt(),
+            );
+            for v in m.face_vertices(f) {
+                self.quadrics[v.index()] += q;
+            }
+        }
+        for e in m.edges() {
+            let crease = self.options.keep_creases && self.creases.edge(e) > 0.0;
+            let seam = self.options.seams.contains(&e);
+            let sharp = match (cos_sharp, m.edge_faces(e)) {
+                (Some(c), [Some(f), Some(g)]) => m.face_normal(f).dot(m.face_normal(g)) < c,
+                _ => false,
+            };
+            self.feature[e.index()] = crease || seam || sharp;
+            if !(self.feature[e.index()] || m.is_boundary_edge(e)) {
+                continue;
+            }
+            let [a, b] = m.edge_vertices(e);
+            self.near_feature[a.index()] = true;
+            self.near_feature[b.index()] = true;
+            let (pa, pb) = (m.position(a), m.position(b));
+            let dir = pb - pa;
+            let len = dir.length();
+            for f in m.edge_faces(e).into_iter().flatten() {
+                let n = dir.cross(m.face_normal(f)).normalize_or_zero();
+                if n == DVec3::ZERO {
+                    continue;
+                }
+                let q = Quadric::plane(n, pa, FEATURE_WEIGHT * len);
+                self.quadrics[a.index()] += q;
+                self.quadrics[b.index()] += q;
+            }
+        }
+    }
+    /// One collapse through the Euler operator, with its record; `None`
+    /// when the operator refuses (the mesh is then unchanged).
+    pub(super) fn collapse(&mut self, h: HalfEdgeId, p: DVec3, cost: f64) -> Option<VertexSplit> {
+        let m = &self.mesh;
+        let t = h.twin();
+        let (a, b) = (m.origin(h), m.target(h));
+        let tri = |x: HalfEdgeId| m.face(x).is_some() && m.next(m.next(m.next(x))) == x;
+        let left = tri(h).then(|| (m.face(h).unwrap(), m.next(h), m.prev(h).edge()));
+        let right = tri(t).then(|| (m.face(t).unwrap(), m.next(t), m.prev(t).edge()));
+        let last = match left {
+            Some((_, nh, _)) => m.next(nh.twin()),
+            None => m.next(h),
+        };
+        let split = VertexSplit {
+            edge: h,
+            kept: a,
+            removed: b,
+            first: m.prev(t).twin(),
+            last,
+            left,
+            right,
+            position: p,
+            kept_position: m.position(a),
+            removed_position: m.position(b),
+            error: cost,
+        };
+        // The triangles' surviving edges take over the features of the
+        // removed ones.
+        self.mesh.collapse_edge_removing_triangles(h, p).ok()?;
+        for (_, gone, keep) in [left, right].into_iter().flatten() {
+            if self.feature[gone.edge().index()] {
+                self.feature[keep.index()] = true;
+            }
+        }
+        let q = self.quadrics[a.index()] + self.quadrics[b.index()];
+        self.quadrics[a.index()] = q;
+        self.near_feature[a.index()] |= self.near_feature[b.index()];
+        Some(split)
+    }
+}
