@@ -41,7 +41,7 @@ impl ProgressiveMesh {
     /// 0.001 above the last and 1 as the last call when the build
     /// succeeds; reads `cancel` a few hundred times per pass of the
     /// simplification (every few milliseconds) and stops when it is set.
-    /// The input is borrowed and never changed; see [`BuildJob`] for a
+    /// The input is borrowed and never changed; see [`BuildJob`](super::BuildJob) for a
     /// build that owns its inputs and moves to a worker thread.
     ///
     /// # Errors

@@ -1,7 +1,8 @@
 //! Surfaces from curves (seed 004's 2.5D modeling, Rhino's ExtrudeCrv,
 //! Revolve, Sweep1, Sweep2 and Loft, Blender's Spin and Screw): each as an
 //! exact or stated-accuracy NURBS surface, and as a polygon mesh of quads
-//! with n-gon caps built through [`HalfEdgeMesh::from_polygons`].
+//! with n-gon caps built through
+//! [`HalfEdgeMesh::from_polygons`](crate::mesh::HalfEdgeMesh::from_polygons).
 //!
 //! - [`revolve`]: a curve turned about any axis by any angle, with the
 //!   exact rational circle construction (Piegl & Tiller, *The NURBS Book*,

@@ -96,9 +96,10 @@ pub fn planar_cap(profile: &NurbsCurve) -> Result<NurbsSurface, SweepError> {
 /// direction runs along the profile).
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 pub enum Along {
-    /// Along u: a [`revolve`]'s turn.
+    /// Along u: a [`revolve`](super::revolve)'s turn.
     U,
-    /// Along v: an [`extrude`], [`sweep`], [`sweep2`] or [`loft`].
+    /// Along v: an [`extrude`](super::extrude), [`sweep`](super::sweep),
+    /// [`sweep2`](super::sweep2) or [`loft`](super::loft).
     V,
 }
 

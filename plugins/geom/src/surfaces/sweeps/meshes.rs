@@ -104,7 +104,7 @@ pub(super) fn signed_volume(positions: &[DVec3], polygons: &[Vec<u32>]) -> f64 {
         .sum()
 }
 
-/// The mesh of [`revolve`]: the profile sampled at
+/// The mesh of [`revolve`](super::revolve): the profile sampled at
 /// [`profile_parameters`] and turned in `segments` equal steps of the angle
 /// (each point on its exact circle or helix). A full turn without pitch
 /// closes around; otherwise `caps` puts an n-gon on the profile at both
@@ -113,8 +113,8 @@ pub(super) fn signed_volume(positions: &[DVec3], polygons: &[Vec<u32>]) -> f64 {
 /// none.
 ///
 /// # Errors
-/// As [`revolve`]; [`SweepError::Segments`]; the caps' errors
-/// ([`profile_plane`]); [`SweepError::Mesh`] for a profile that crosses
+/// As [`revolve`](super::revolve); [`SweepError::Segments`]; the caps' errors
+/// ([`profile_plane`](super::profile_plane)); [`SweepError::Mesh`] for a profile that crosses
 /// itself or the axis so the quads are not manifold.
 ///
 /// Complexity: O(segments × profile segments).
@@ -157,13 +157,13 @@ pub fn revolve_mesh(
     grid_mesh(&points, nu, nv, closed_u, closed_v, caps, false)
 }
 
-/// The mesh of [`extrude`]: the profile sampled at
+/// The mesh of [`extrude`](super::extrude): the profile sampled at
 /// [`profile_parameters`] and moved in `segments` equal steps along the
 /// vector, with n-gon caps at both ends when `caps` (closed planar
 /// profiles only; the capped mesh is closed, genus 0). Inverse: none.
 ///
 /// # Errors
-/// As [`extrude`]; [`SweepError::Segments`]; the caps' errors.
+/// As [`extrude`](super::extrude); [`SweepError::Segments`]; the caps' errors.
 ///
 /// Complexity: O(segments × profile segments).
 pub fn extrude_mesh(
@@ -231,7 +231,7 @@ pub fn surface_mesh(
 
 /// The u parameters at which [`surface_mesh`] samples a sweep or loft of
 /// `profile` (its [`profile_parameters`] mapped onto [0, 1] as
-/// [`make_compatible`] maps its domain), and whether it is closed.
+/// [`make_compatible`](super::make_compatible) maps its domain), and whether it is closed.
 ///
 /// Complexity: as [`profile_parameters`].
 pub fn compatible_parameters(profile: &NurbsCurve, segments: u32) -> (Vec<f64>, bool) {
