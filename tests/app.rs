@@ -152,7 +152,7 @@ fn changing_shading_or_primitive_rebuilds_only_that_render_mesh() {
         );
     }
     let ents = node_entities(&mut app);
-    let before_b = *app.world().get::<ProjectedMesh>(ents[1].0).unwrap();
+    let before_b = app.world().get::<ProjectedMesh>(ents[1].0).unwrap().clone();
     send(
         &mut app,
         DocRequest::Execute(Command::SetShading {

@@ -566,7 +566,7 @@ fn known_fingerprint(mesh: &Arc<HalfEdgeMesh>) -> u64 {
     type Memo = HashMap<usize, (Weak<HalfEdgeMesh>, u64)>;
     static MEMO: OnceLock<Mutex<Memo>> = OnceLock::new();
     let memo = MEMO.get_or_init(|| Mutex::new(HashMap::new()));
-    let at = Arc::as_ptr(mesh) as usize;
+    let at = Arc::as_ptr(mesh).addr();
     if let Ok(m) = memo.lock()
         && let Some((weak, key)) = m.get(&at)
         && std::ptr::eq(weak.as_ptr(), Arc::as_ptr(mesh))

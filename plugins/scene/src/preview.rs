@@ -9,6 +9,7 @@
 //! result.
 
 use crate::*;
+use by_address::ByAddress;
 use hedra_doc::CurveContent;
 use hedra_doc::NodeTransform;
 use hedra_doc::SurfaceShape;
@@ -203,6 +204,14 @@ impl Previews {
     }
 }
 
+/// What a CSG preview was made from, per operand: its node, previewed
+/// transform and previewed mesh (held, compared by identity).
+type CsgOperandKey = (
+    NodeId,
+    Option<NodeTransform>,
+    Option<ByAddress<Arc<HalfEdgeMesh>>>,
+);
+
 /// A CSG solid follows its operands while a tool moves or edits them (G/R/S,
 /// the gizmo, the transform fields, edit-mode tools on an operand): the
 /// outermost CSG node above each previewed node is evaluated as the
@@ -213,7 +222,7 @@ impl Previews {
 pub fn follow_csg_previews(
     state: Res<DocState>,
     mut previews: ResMut<Previews>,
-    mut last: Local<Vec<(NodeId, Option<NodeTransform>, usize)>>,
+    mut last: Local<Vec<CsgOperandKey>>,
 ) {
     let doc = &state.session.doc;
     let mut ids: Vec<NodeId> = previews
@@ -222,12 +231,12 @@ pub fn follow_csg_previews(
         .collect();
     ids.sort();
     ids.dedup();
-    let key: Vec<(NodeId, Option<NodeTransform>, usize)> = ids
+    let key: Vec<CsgOperandKey> = ids
         .iter()
         .map(|&id| {
             let mesh = match previews.content(id) {
-                Some(PreviewContent::Mesh { mesh, .. }) => Arc::as_ptr(mesh) as usize,
-                _ => 0,
+                Some(PreviewContent::Mesh { mesh, .. }) => Some(ByAddress(mesh.clone())),
+                _ => None,
             };
             (id, previews.transform(id).copied(), mesh)
         })

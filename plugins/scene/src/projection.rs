@@ -1,6 +1,7 @@
 //! The document mirrored as entities: one per node, with its transform, hierarchy, visibility and render mesh.
 
 use crate::*;
+use by_address::ByAddress;
 use std::sync::Arc;
 
 /// The document node an entity mirrors.
@@ -10,15 +11,38 @@ pub struct NodeEntity(pub NodeId);
 /// Which document content (by identity), shading and subdivision a node
 /// shows when no tool previews it; the overlays key on it. Written only by
 /// [`sync_entities`].
-#[derive(Component, Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Component, Clone, Debug, PartialEq, Eq)]
 pub struct ProjectedMesh {
-    /// The identity of the content's shared geometry (the address of its
-    /// `Arc`), so a changed mesh, curve or surface gives a different value.
-    pub source: usize,
+    /// The content's shared geometry, compared by identity: a changed
+    /// mesh, curve or surface is a new `Arc`, so it gives a different value.
+    pub source: ContentSource,
     /// The content's shading (curves count as flat, surfaces as smooth).
     pub shading: Shading,
     /// The modifier and a fingerprint of the creases, for smooth previews.
     pub smooth: Option<(hedra_doc::SubdivisionModifier, u64)>,
+}
+
+/// The shared geometry of a node's content, held (so its address cannot be
+/// reused by another value while this is kept) and compared by address.
+#[derive(Clone, PartialEq, Eq)]
+pub enum ContentSource {
+    /// A mesh's cage.
+    Mesh(ByAddress<Arc<HalfEdgeMesh>>),
+    /// A curve.
+    Curve(ByAddress<Arc<hedra_doc::CurveContent>>),
+    /// A surface.
+    Surface(ByAddress<Arc<hedra_doc::SurfaceShape>>),
+}
+
+impl std::fmt::Debug for ContentSource {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        // The address only: the content itself can be a million faces.
+        match self {
+            ContentSource::Mesh(m) => write!(f, "Mesh({:p})", Arc::as_ptr(m)),
+            ContentSource::Curve(c) => write!(f, "Curve({:p})", Arc::as_ptr(c)),
+            ContentSource::Surface(s) => write!(f, "Surface({:p})", Arc::as_ptr(s)),
+        }
+    }
 }
 
 /// A fingerprint of crease values, to notice when they change.
@@ -621,18 +645,18 @@ impl ProjectedMesh {
             NodeContent::Mesh(c) => {
                 let modifier = active_modifier(c);
                 Some(ProjectedMesh {
-                    source: Arc::as_ptr(&c.mesh) as usize,
+                    source: ContentSource::Mesh(ByAddress(c.mesh.clone())),
                     shading: c.shading,
                     smooth: modifier.map(|m| (m, creases_fingerprint(&c.creases))),
                 })
             }
             NodeContent::Surface(s) => Some(ProjectedMesh {
-                source: Arc::as_ptr(s) as *const u8 as usize,
+                source: ContentSource::Surface(ByAddress(s.clone())),
                 shading: Shading::Smooth,
                 smooth: None,
             }),
             NodeContent::Curve(c) => Some(ProjectedMesh {
-                source: Arc::as_ptr(c) as *const u8 as usize,
+                source: ContentSource::Curve(ByAddress(c.clone())),
                 shading: Shading::Flat,
                 smooth: None,
             }),
@@ -691,4 +715,27 @@ pub fn update_render_positions(
     render.insert_attribute(Mesh::ATTRIBUTE_POSITION, positions);
     render.insert_attribute(Mesh::ATTRIBUTE_NORMAL, normals);
     patched
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use hedra_doc::MeshContent;
+    use hedra_geom::Primitive;
+
+    /// A mesh replaced by another of the same size often gets the freed
+    /// mesh's address; the projection must still see a change (it held
+    /// the address alone before, and could miss it).
+    #[test]
+    fn a_replaced_mesh_is_a_new_source_even_at_the_same_address() {
+        let cube = || Arc::new(Primitive::Cube { size: 1.0 }.build().unwrap());
+        let first = NodeContent::Mesh(MeshContent::new(cube()));
+        let before = ProjectedMesh::of(&first).unwrap();
+        drop(first);
+        let second = NodeContent::Mesh(MeshContent::new(cube()));
+        let after = ProjectedMesh::of(&second).unwrap();
+        assert_ne!(before, after);
+        // The same content projects equal, so nothing is rebuilt for it.
+        assert_eq!(after, ProjectedMesh::of(&second).unwrap());
+    }
 }

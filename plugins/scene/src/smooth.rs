@@ -4,6 +4,7 @@
 //! normals, triangles), large refinements made on worker threads with a
 //! progress bar, and the render meshes made from them.
 
+use by_address::ByAddress;
 use std::collections::HashMap;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, AtomicU32, Ordering};
@@ -32,9 +33,10 @@ struct Job {
 }
 
 /// Identity of a smooth preview's source.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, PartialEq)]
 struct JobKey {
-    cage: usize,
+    /// The cage, held and compared by identity.
+    cage: ByAddress<Arc<HalfEdgeMesh>>,
     creases: Creases,
     modifier: SubdivisionModifier,
     shading: Shading,
@@ -43,7 +45,7 @@ struct JobKey {
 impl JobKey {
     fn of(src: &SmoothSource) -> JobKey {
         JobKey {
-            cage: Arc::as_ptr(src.cage) as usize,
+            cage: ByAddress(src.cage.clone()),
             creases: src.creases.clone(),
             modifier: *src.modifier,
             shading: src.shading,

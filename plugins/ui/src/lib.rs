@@ -23,6 +23,14 @@ pub mod recovery;
 
 pub use files::{FilePurpose, Pending, Preferences, SamplesDir};
 
+/// What the Decimate modifier's level counts depend on: the cage (held,
+/// compared by identity) and a hash of the node, the modifier's index and
+/// its settings.
+pub type DecimateCountsKey = (
+    by_address::ByAddress<std::sync::Arc<hedra_geom::HalfEdgeMesh>>,
+    u64,
+);
+
 /// Everything the panels remember between frames.
 #[derive(Resource)]
 pub struct UiState {
@@ -75,7 +83,7 @@ pub struct UiState {
     pub taper: (f64, f64, bool),
     /// The face counts of the levels of the Decimate modifier last shown,
     /// keyed by what they depend on (node, index, cage, settings).
-    pub decimate_counts: Option<(u64, Vec<usize>)>,
+    pub decimate_counts: Option<(DecimateCountsKey, Vec<usize>)>,
     /// The Decimate slider is being dragged and its first step was sent
     /// (later frames adjust that step).
     pub decimate_dragging: bool,

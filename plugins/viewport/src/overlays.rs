@@ -1,6 +1,7 @@
 //! Edge overlays of meshes (selection highlighted), curves, control nets and the edit-mode overlay.
 
 use crate::*;
+use by_address::ByAddress;
 use hedra_doc::{Document, NodeId};
 use hedra_geom::HalfEdgeMesh;
 use hedra_geom::subdivision::Creases;
@@ -26,7 +27,7 @@ pub(crate) fn shown_mesh<'a>(
 }
 
 /// Overlay child entity showing a mesh node's edges, and what it was built for.
-#[derive(Component, Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Component, Debug, Clone, PartialEq, Eq)]
 pub struct EdgeOverlay {
     /// The projected content the lines were built from (a change rebuilds them).
     pub source: ProjectedMesh,
@@ -72,7 +73,7 @@ pub(crate) fn update_edge_overlays(
             && mode.node != Some(node.0)
             && shape_edit.node != Some(node.0);
         let wanted = EdgeOverlay {
-            source: *projected,
+            source: projected.clone(),
             selected,
             active,
             shown,
@@ -251,7 +252,7 @@ pub(crate) fn update_edit_edges(
     previews: Res<Previews>,
     mut assets: ResMut<Assets<GizmoAsset>>,
     mut overlay: Local<Option<(Entity, Handle<GizmoAsset>)>>,
-    mut built: Local<Option<u64>>,
+    mut built: Local<Option<(ByAddress<Arc<HalfEdgeMesh>>, u64)>>,
     mut transforms: Query<&mut Transform, With<EditEdges>>,
 ) {
     use std::hash::{Hash, Hasher};
@@ -262,14 +263,14 @@ pub(crate) fn update_edit_edges(
         let mut h = std::collections::hash_map::DefaultHasher::new();
         (
             mode.node,
-            std::sync::Arc::as_ptr(m) as usize,
             &mode.selection,
             mode.kind as u8,
             state.revision,
             hedra_scene::creases_fingerprint(creases),
         )
             .hash(&mut h);
-        h.finish()
+        // The mesh is held in the key, so its address cannot be reused.
+        (ByAddress(m.clone()), h.finish())
     });
     // The overlay follows the node's world transform every frame (the
     // entity spawned on the first frame has no Transform to set yet).

@@ -21,8 +21,9 @@ use std::sync::Arc;
 struct MeshPool<'a> {
     index: HashMap<*const HalfEdgeMesh, usize>,
     meshes: Vec<&'a HalfEdgeMesh>,
-    /// Corner attributes by the identity of their two shared maps.
-    corner_index: HashMap<(usize, usize), usize>,
+    /// Corner attributes by the identity of their two shared maps (their
+    /// addresses are stable: the pool borrows them for the whole save).
+    corner_index: HashMap<(*const (), *const ()), usize>,
     corner_sets: Vec<&'a CornerAttributes>,
 }
 
@@ -35,8 +36,8 @@ impl<'a> MeshPool<'a> {
     }
     fn add_corners(&mut self, c: &'a CornerAttributes) -> usize {
         let key = (
-            Arc::as_ptr(&c.uvs) as usize,
-            Arc::as_ptr(&c.normals) as usize,
+            Arc::as_ptr(&c.uvs).cast::<()>(),
+            Arc::as_ptr(&c.normals).cast::<()>(),
         );
         *self.corner_index.entry(key).or_insert_with(|| {
             self.corner_sets.push(c);

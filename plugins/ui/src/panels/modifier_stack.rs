@@ -174,14 +174,10 @@ fn decimate_settings(
     use std::hash::{Hash, Hasher};
     let mut hasher = std::collections::hash_map::DefaultHasher::new();
     let settings = DecimateModifier { level: None, ..*d };
-    (
-        id,
-        index,
-        std::sync::Arc::as_ptr(&content.mesh) as usize,
-        format!("{settings:?}"),
-    )
-        .hash(&mut hasher);
-    let key = hasher.finish();
+    (id, index, format!("{settings:?}")).hash(&mut hasher);
+    // The cage is held in the key (compared by identity), so a freed cage's
+    // address cannot be taken for the same one.
+    let key = (by_address::ByAddress(content.mesh.clone()), hasher.finish());
     if state
         .decimate_counts
         .as_ref()
