@@ -19,10 +19,14 @@ pub const DEFAULT_TOLERANCE: f64 = 1e-4;
 /// normal angle across patch edges as measured (model units).
 pub fn conversion_summary(c: &NurbsConversion) -> String {
     let (exact, approximated) = c.counts();
+    let levels = if c.deepest_level > c.level {
+        format!("levels {}–{}", c.level, c.deepest_level)
+    } else {
+        format!("level {}", c.level)
+    };
     format!(
-        "{} NURBS patches ({exact} exact, {approximated} approximated; level {}), largest distance {:.1e}, largest angle {:.2}°",
+        "{} NURBS patches ({exact} exact, {approximated} approximated; {levels}), largest distance {:.1e}, largest angle {:.2}°",
         c.patches.len(),
-        c.level,
         c.report.max_distance,
         c.report.max_angle_degrees
     )
@@ -153,10 +157,11 @@ mod tests {
         .unwrap();
         let group = s.doc.find_by_name("Box NURBS").unwrap();
         let patches: Vec<_> = s.doc.children(group.id).collect();
-        // Level 3 (level 2 is within 1e-3 of the size but its normals are
-        // 0.6° apart): 24 approximated corner faces and 7 packed rectangles
-        // (bands of regular faces run around the cube).
-        assert_eq!(patches.len(), 24 + 7);
+        // Level 2 (7 packed rectangles: bands of regular faces run around
+        // the cube) with the corners at level 3 (level 2 is within 1e-3 of
+        // the size but its normals are 0.6° apart): 24 approximated corner
+        // faces and 3 exact rectangles of the ring around each corner.
+        assert_eq!(patches.len(), 7 + 8 * 3 + 24);
         assert!(
             patches
                 .iter()
@@ -167,7 +172,7 @@ mod tests {
         let label = s.undo().unwrap();
         assert!(
             label.starts_with(
-                "Convert to NURBS (31 NURBS patches (7 exact, 24 approximated; level 3)"
+                "Convert to NURBS (55 NURBS patches (31 exact, 24 approximated; levels 2–3)"
             ),
             "{label}"
         );
@@ -201,7 +206,8 @@ mod tests {
             .limit_nurbs(crate::command::DEFAULT_NURBS_TOLERANCE, "Box")
             .unwrap();
         assert!(c.report.max_distance > 0.0);
-        assert_eq!((c.level, c.counts()), (3, (7, 24)));
+        // Level 2, the eight corners' stars refined once more on their own.
+        assert_eq!((c.level, c.deepest_level, c.counts()), (2, 3, (31, 24)));
         assert_eq!(c.sides(0).len(), 4);
     }
 

@@ -39,6 +39,18 @@ pub struct Report {
     pub samples: usize,
 }
 
+impl Report {
+    /// Takes in the figures of another part of the same conversion (a
+    /// region refined on its own): the largest of each, the samples added.
+    pub fn merge(&mut self, other: &Report) {
+        self.max_distance = self.max_distance.max(other.max_distance);
+        self.max_distance_exact = self.max_distance_exact.max(other.max_distance_exact);
+        self.max_angle_degrees = self.max_angle_degrees.max(other.max_angle_degrees);
+        self.max_gap = self.max_gap.max(other.max_gap);
+        self.samples += other.samples;
+    }
+}
+
 /// Native face coordinates `(s, t)` in the frame of `placement`.
 fn to_patch(placement: FacePlacement, (mut s, mut t): (f64, f64)) -> (f64, f64) {
     for _ in 0..placement.rot {

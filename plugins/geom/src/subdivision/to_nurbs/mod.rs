@@ -36,10 +36,17 @@
 //!   makes the normals agree to first order there. Neither is exactly G1
 //!   along the edges out of the extraordinary vertex (no bicubic
 //!   construction joined C1 to the regular patches is, in general); the
-//!   mismatch and the distance from the limit surface fall as `k` grows,
-//!   and both are measured ([`measure`]): `k` is raised until the distance
-//!   is within the tolerance and the normal angle across edges within the
-//!   limit, or [`ToNurbsOptions::max_level`] is reached.
+//!   mismatch and the distance from the limit surface fall with each
+//!   further level, and both are measured ([`measure`]).
+//! - **Refined only where needed.** The cage is refined to `k = 2` (more
+//!   only for semi-sharp creases, or for irregular faces that belong to no
+//!   single extraordinary vertex); from there each extraordinary vertex's
+//!   star of faces is refined on its own, one level at a time, until its
+//!   distance is within the tolerance and its normal angle within the limit,
+//!   or [`ToNurbsOptions::max_level`] is reached (`local.rs`, after
+//!   Nießner et al.'s feature-adaptive refinement, 2012). Each level adds
+//!   `3n` exact patches around a vertex of valence `n`; a valence-12 vertex
+//!   needs about level 8.
 //! - **Watertight.** Each edge's boundary curve is computed once (its
 //!   cubic Bézier control points in [`NurbsConversion::edges`]); Bézier
 //!   patches copy them bit for bit, and packed B-spline surfaces equal them
@@ -51,6 +58,7 @@
 //!   refinement is).
 
 mod grid;
+mod local;
 pub mod measure;
 mod pack;
 mod star;
@@ -69,6 +77,10 @@ use crate::surfaces::NurbsSurface;
 use crate::{FaceId, HalfEdgeMesh};
 use grid::{VertexClass, bezier_point, classify, face_grid, full};
 
+/// The highest level the whole cage is refined to; beyond it only the
+/// stars of extraordinary vertices are (`local.rs`).
+const UNIFORM_MAX_LEVEL: u32 = 5;
+
 /// How closely to convert.
 #[derive(Copy, Clone, Debug, PartialEq)]
 pub struct ToNurbsOptions {
@@ -79,7 +91,9 @@ pub struct ToNurbsOptions {
     /// Largest normal angle allowed across a smooth patch edge, in degrees.
     pub max_angle_degrees: f64,
     /// Highest refinement level tried before giving up on the tolerance
-    /// (the result is then the one of this level, with its measured figures).
+    /// (the result is then the one of this level, with its measured
+    /// figures). The whole cage is refined to at most level 5; beyond
+    /// that only around extraordinary vertices.
     pub max_level: u32,
     /// Sample density of the measurement: `2^samples` intervals per level-`k`
     /// face edge.
@@ -91,7 +105,7 @@ pub struct ToNurbsOptions {
 
 impl ToNurbsOptions {
     /// The default tolerance: `fraction` (1e-4 by default) of the cage's
-    /// bounding-box diagonal; 0.5° normal angle; up to level 5.
+    /// bounding-box diagonal; 0.5° normal angle; up to level 12.
     pub fn relative(mesh: &HalfEdgeMesh, fraction: f64) -> Self {
         let (mut lo, mut hi) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
         for v in mesh.vertices() {
@@ -106,7 +120,7 @@ impl ToNurbsOptions {
         ToNurbsOptions {
             tolerance: fraction * diagonal,
             max_angle_degrees: 0.5,
-            max_level: 5,
+            max_level: 12,
             samples: 2,
             measure_exact: false,
         }
@@ -180,9 +194,18 @@ pub struct SharedEdge {
 /// The result of [`to_nurbs`].
 #[derive(Clone, Debug)]
 pub struct NurbsConversion {
-    /// The refinement level the patches were made at.
+    /// The refinement level the patches were made at; patches around
+    /// extraordinary vertices may be finer (refined on their own, up to
+    /// [`deepest_level`](Self::deepest_level)).
     pub level: u32,
-    /// The patches: exact ones first, then one per irregular face.
+    /// The finest level of any patch (`level` when no star was refined).
+    pub deepest_level: u32,
+    /// The patches: the exact ones of [`level`](Self::level) first, then
+    /// one per irregular face left at that level, then those of the stars
+    /// refined on their own (exact rings, then one per irregular face).
+    /// [`placements`](Self::placements), [`edges`](Self::edges),
+    /// [`face_edges`](Self::face_edges) and [`sides`](Self::sides) describe
+    /// the patches of `level` only.
     pub patches: Vec<ConvertedPatch>,
     /// Per face of the conversion level: its patch, or `None` for a face
     /// left out (a hole, boundary rule None).
@@ -205,7 +228,9 @@ impl NurbsConversion {
     /// the curve runs the side's way. This is what a B-rep writer needs:
     /// every patch is one face whose loop is these edges, and each edge
     /// between two patches appears on exactly two sides (once each way on an
-    /// oriented closed surface).
+    /// oriented closed surface). A patch of a star refined on its own has
+    /// no placement at `level`: its four sides are empty (the STEP writer
+    /// takes every patch's boundary from its surface instead).
     pub fn sides(&self, patch: usize) -> [Vec<(usize, bool)>; 4] {
         let mut at: HashMap<(usize, usize), (usize, usize)> = HashMap::new();
         for (f, p) in self.placements.iter().enumerate() {
@@ -244,8 +269,8 @@ impl NurbsConversion {
     /// [`ToNurbsOptions::max_level`]: per level the distance falls by
     /// about ×0.17 at valence 3, ×0.32 at 5, ×0.37 at 6, ×0.44 at 8 and
     /// ×0.51 at 12, the angle by ×0.39, ×0.59, ×0.44, ×0.6 and ×0.83
-    /// (measured on a cube and UV-sphere poles), so a vertex of valence 12
-    /// needs more levels than the default maximum of 5.
+    /// (measured on a cube and UV-sphere poles), so the default tolerance
+    /// and 0.5° are met by level 3 at valence 3 and level 8 at valence 12.
     pub fn within(&self, options: &ToNurbsOptions) -> bool {
         self.report.max_distance <= options.tolerance
             && self.report.max_angle_degrees <= options.max_angle_degrees
@@ -270,17 +295,19 @@ fn first_level(mesh: &HalfEdgeMesh, creases: &Creases) -> u32 {
 /// Converts the Catmull-Clark limit surface of `mesh` with `creases` and
 /// `options` to NURBS patches (see the module documentation for the method
 /// and its sources). An all-regular cage converts at level 0 in one
-/// measurement pass; otherwise levels are tried from the first that makes
-/// all faces quads (and uses up semi-sharp creases), at least 2 when there
-/// are irregular faces, until [`ToNurbsOptions::tolerance`] and
-/// [`ToNurbsOptions::max_angle_degrees`] hold or `max_level` is reached.
+/// measurement pass; otherwise the cage is refined to the first level that
+/// makes all faces quads and uses up semi-sharp creases, at least 2, and the
+/// stars of extraordinary vertices further on their own until
+/// [`ToNurbsOptions::tolerance`] and [`ToNurbsOptions::max_angle_degrees`]
+/// hold or `max_level` is reached.
 ///
-/// Complexity: O(faces · 4^(level + samples)) for the measurement, which
-/// dominates.
+/// Complexity: O(faces · 4^(level + samples)) for the measurement of the
+/// uniform level, plus about the same work per star and extra level.
 ///
 /// # Example
 /// A smoothed cube: its eight valence-3 corners give 24 approximated
-/// patches, the rest packs into 7 exact B-spline surfaces.
+/// patches at level 3; the rest of level 2 packs into 7 exact B-spline
+/// surfaces, and the corners' refined rings into 24 more.
 /// ```
 /// use hedra_geom::Primitive;
 /// use hedra_geom::subdivision::{Creases, Options};
@@ -288,7 +315,8 @@ fn first_level(mesh: &HalfEdgeMesh, creases: &Creases) -> u32 {
 /// let cube = Primitive::Cube { size: 2.0 }.build()?;
 /// let to = ToNurbsOptions::relative(&cube, 1e-4);
 /// let c = to_nurbs(&cube, &Creases::default(), Options::default(), &to)?;
-/// assert_eq!(c.counts(), (7, 24));
+/// assert_eq!(c.counts(), (31, 24));
+/// assert_eq!((c.level, c.deepest_level), (2, 3));
 /// assert!(c.within(&to) && c.report.max_gap < 1e-12);
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
@@ -313,33 +341,83 @@ pub fn to_nurbs(
         return Err(ToNurbsError::Empty);
     }
     // The measurement refines `samples` levels further, and a level one
-    // further for the edge middles: neither may pass MAX_LEVEL.
+    // further for the edge middles: neither may pass MAX_LEVEL. Beyond
+    // level 2 only faces that are neither regular nor in a star make the
+    // whole cage finer; stars are refined on their own (`local.rs`).
     let ceiling = MAX_LEVEL.saturating_sub(to.samples.max(1));
-    let max = to.max_level.min(ceiling);
-    let mut level = first_level(mesh, creases).min(max);
+    let uniform_max = to.max_level.min(ceiling).min(UNIFORM_MAX_LEVEL);
+    let mut level = first_level(mesh, creases).min(uniform_max);
     let mut previous: Option<NurbsConversion> = None;
     loop {
-        let conversion =
-            match convert_with(mesh, creases, options, level, to.samples, to.measure_exact) {
-                Ok(c) => c,
-                // A level too large to refine: keep the last one that was not.
-                Err(ToNurbsError::Subdivision(SubdivisionError::TooManyFaces { .. }))
-                    if previous.is_some() =>
-                {
-                    return Ok(previous.expect("checked"));
+        let prepared = match Prepared::new(mesh, creases, options, level) {
+            Ok(p) => p,
+            // A level too large to refine: keep the last one that was not.
+            Err(SubdivisionError::TooManyFaces { .. }) if previous.is_some() => {
+                return Ok(previous.expect("checked"));
+            }
+            Err(e) => return Err(e.into()),
+        };
+        let stars = if level >= 2 {
+            local::stars(&prepared)
+        } else {
+            Vec::new()
+        };
+        // Each star is cut out with the rings around it; a star that cannot
+        // be (a cut-out that is not manifold) stays in the level.
+        let cuts: Vec<(local::Star, local::CutOut)> = stars
+            .into_iter()
+            .filter_map(|star| {
+                let cut = local::cut_out(&prepared, star.vertex, local::RINGS)?;
+                Some((star, cut))
+            })
+            .collect();
+        let mut keep = prepared.all_shown();
+        for (star, _) in &cuts {
+            for &f in &star.faces {
+                keep[f as usize] = false;
+            }
+        }
+        let mut conversion = convert_prepared(
+            mesh,
+            creases,
+            options,
+            &prepared,
+            &keep,
+            to.samples,
+            to.measure_exact,
+        )?;
+        let others_done = conversion.counts().1 == 0 || (level >= 2 && conversion.within(to));
+        if !(others_done || level >= uniform_max) {
+            previous = Some(conversion);
+            level += 1;
+            continue;
+        }
+        for (star, cut) in &cuts {
+            let faces: Vec<u32> = (0..cut.level_faces.len() as u32)
+                .filter(|&i| star.faces.contains(&cut.level_faces[i as usize]))
+                .collect();
+            let part = local::convert_star(
+                cut,
+                cut.vertices[&star.vertex],
+                &faces,
+                options,
+                to,
+                conversion.level,
+            )?;
+            conversion.report.merge(&part.report);
+            conversion.deepest_level = conversion.deepest_level.max(part.deepest);
+            let lv = prepared.level();
+            for mut patch in part.patches {
+                for f in &mut patch.cage_faces {
+                    let at = cut.level_faces[f.0 as usize];
+                    *f = prepared.refiner.cage.faces[lv.face_origin(at as usize) as usize];
                 }
-                Err(e) => return Err(e),
-            };
-        let irregular = conversion.counts().1;
-        if irregular == 0 {
-            return Ok(conversion);
+                patch.cage_faces.sort();
+                patch.cage_faces.dedup();
+                conversion.patches.push(patch);
+            }
         }
-        let good = level >= 2 && conversion.within(to);
-        if good || level >= max {
-            return Ok(conversion);
-        }
-        previous = Some(conversion);
-        level += 1;
+        return Ok(conversion);
     }
 }
 
@@ -366,36 +444,111 @@ fn convert_with(
     samples: u32,
     exact: bool,
 ) -> Result<NurbsConversion, ToNurbsError> {
-    let quads = mesh.faces().all(|f| mesh.face_degree(f) == 4);
-    let level = level.max(u32::from(!quads));
-    let refiner = Refiner::new(mesh, creases, options, level)?;
-    let points = refiner.refine(&refiner.cage_positions(mesh));
+    let prepared = Prepared::new(mesh, creases, options, level)?;
+    let keep = prepared.all_shown();
+    convert_prepared(mesh, creases, options, &prepared, &keep, samples, exact)
+}
+
+/// A conversion level, refined, with its faces sorted out.
+pub(super) struct Prepared {
+    /// The refinement to the level.
+    pub refiner: Refiner,
+    /// The level's points.
+    pub points: Vec<DVec3>,
+    /// Every vertex's class.
+    pub classes: Vec<VertexClass>,
+    /// Per face: not a hole (nor hidden by the boundary rule).
+    pub shown: Vec<bool>,
+    /// Per face: shown, every corner regular and its 4×4 grid full, so that
+    /// its limit surface is the bicubic B-spline patch of that grid.
+    pub regular: Vec<bool>,
+}
+
+impl Prepared {
+    /// Refines `mesh` to `level` (at least 1 when a face is not a quad).
+    pub fn new(
+        mesh: &HalfEdgeMesh,
+        creases: &Creases,
+        options: Options,
+        level: u32,
+    ) -> Result<Prepared, SubdivisionError> {
+        let quads = mesh.faces().all(|f| mesh.face_degree(f) == 4);
+        let refiner = Refiner::new(mesh, creases, options, level.max(u32::from(!quads)))?;
+        let points = refiner.refine(&refiner.cage_positions(mesh));
+        let lv = refiner.levels.last().expect("cage level");
+        let faces = lv.face_count();
+        let classes = classify(lv);
+        let shown: Vec<bool> = (0..faces).map(|f| !refiner.is_face_hidden(f)).collect();
+        let face_vertex = |f: u32, i: usize| lv.face_vertices[lv.face_corners(f).start + i];
+        let regular: Vec<bool> = (0..faces as u32)
+            .map(|f| {
+                shown[f as usize]
+                    && (0..4).all(|i| classes[face_vertex(f, i) as usize].is_regular())
+                    && full(&face_grid(lv, &classes, &points, f, 0)).is_some()
+            })
+            .collect();
+        Ok(Prepared {
+            refiner,
+            points,
+            classes,
+            shown,
+            regular,
+        })
+    }
+
+    /// The level the patches are made at.
+    pub fn level(&self) -> &Level {
+        self.refiner.levels.last().expect("cage level")
+    }
+
+    /// Every shown face.
+    pub fn all_shown(&self) -> Vec<bool> {
+        self.shown.clone()
+    }
+}
+
+/// The patches of the faces `keep` (shown faces of the prepared level) and
+/// the curves of every shown face's edges, measured; the other faces get
+/// no placement.
+pub(super) fn convert_prepared(
+    mesh: &HalfEdgeMesh,
+    creases: &Creases,
+    options: Options,
+    prepared: &Prepared,
+    keep: &[bool],
+    samples: u32,
+    exact: bool,
+) -> Result<NurbsConversion, ToNurbsError> {
     // Limit positions one level down: at every edge's middle (child vertex
     // `faces + e` is edge e's point).
-    let finer = Refiner::new(mesh, creases, options, level + 1)?;
+    let finer = Refiner::new(mesh, creases, options, prepared.refiner.level_count() + 1)?;
     let finer_points = finer.refine(&finer.cage_positions(mesh));
     let finer_limit = limit_positions(&finer, &finer_points)?;
-    let mut conversion = build(&refiner, &points, &finer_limit);
-    conversion.report = measure::measure(mesh, creases, options, &conversion, samples, exact)?;
+    let mut conversion = build(prepared, keep, &finer_limit);
+    if exact || conversion.counts().1 > 0 {
+        conversion.report = measure::measure(mesh, creases, options, &conversion, samples, exact)?;
+    } else {
+        conversion.report.exact_measured = false;
+    }
     Ok(conversion)
 }
 
-/// The patches of the refiner's last level (every face a quad).
-fn build(refiner: &Refiner, points: &[DVec3], finer_limit: &[DVec3]) -> NurbsConversion {
-    let lv: &Level = refiner.levels.last().expect("cage level");
+/// The patches of the prepared level's faces `keep` (every face a quad).
+fn build(prepared: &Prepared, keep: &[bool], finer_limit: &[DVec3]) -> NurbsConversion {
+    let Prepared {
+        refiner,
+        points,
+        classes,
+        shown,
+        regular,
+    } = prepared;
+    let (points, classes, shown) = (points.as_slice(), classes.as_slice(), shown.as_slice());
+    let lv: &Level = prepared.level();
     let faces = lv.face_count();
-    let classes = classify(lv);
     let limit = limit_positions(refiner, points).expect("an all-quad Catmull-Clark level");
     let normals = limit_normals(refiner, points).expect("an all-quad Catmull-Clark level");
-    let shown: Vec<bool> = (0..faces).map(|f| !refiner.is_face_hidden(f)).collect();
-    let face_vertex = |f: u32, i: usize| lv.face_vertices[lv.face_corners(f).start + i];
-    let regular: Vec<bool> = (0..faces as u32)
-        .map(|f| {
-            shown[f as usize]
-                && (0..4).all(|i| classes[face_vertex(f, i) as usize].is_regular())
-                && full(&face_grid(lv, &classes, points, f, 0)).is_some()
-        })
-        .collect();
+    let kept = |f: usize| shown[f] && keep[f];
+    let regular: Vec<bool> = (0..faces).map(|f| regular[f] && kept(f)).collect();
     let cage_face = |f: u32| refiner.cage.faces[lv.face_origin(f as usize) as usize];
     let mut patches = Vec::new();
     let mut placements = vec![None; faces];
@@ -406,7 +559,7 @@ fn build(refiner: &Refiner, points: &[DVec3], finer_limit: &[DVec3]) -> NurbsCon
         let mut cage_faces = Vec::new();
         for (b, row) in rect.iter().enumerate() {
             for (a, &(f, rot)) in row.iter().enumerate() {
-                let g = face_grid(lv, &classes, points, f, rot);
+                let g = face_grid(lv, classes, points, f, rot);
                 for (i, column) in g.iter().enumerate() {
                     for (j, p) in column.iter().enumerate() {
                         big[a + i][b + j].get_or_insert(p.expect("regular grids are full"));
@@ -441,7 +594,7 @@ fn build(refiner: &Refiner, points: &[DVec3], finer_limit: &[DVec3]) -> NurbsCon
         if !shown[f as usize] {
             continue;
         }
-        let g = face_grid(lv, &classes, points, f, 0);
+        let g = face_grid(lv, classes, points, f, 0);
         let mut mine = [(0, true); 4];
         for (k, slot) in mine.iter_mut().enumerate() {
             let c = lv.face_corners(f).start + k;
@@ -495,10 +648,10 @@ fn build(refiner: &Refiner, points: &[DVec3], finer_limit: &[DVec3]) -> NurbsCon
         face_edges[f as usize] = Some(mine);
     }
     // Tangent continuity around smooth extraordinary vertices.
-    let twists = star::smooth_stars(lv, &classes, points, &rows, &limit, &mut edges, &edge_index);
+    let twists = star::smooth_stars(lv, classes, points, &rows, &limit, &mut edges, &edge_index);
     // Approximate: one Bézier patch per shown irregular face.
     for f in 0..faces as u32 {
-        if !shown[f as usize] || regular[f as usize] {
+        if !kept(f as usize) || regular[f as usize] {
             continue;
         }
         let g = rows[f as usize].expect("grid of a shown face");
@@ -534,6 +687,7 @@ fn build(refiner: &Refiner, points: &[DVec3], finer_limit: &[DVec3]) -> NurbsCon
     }
     NurbsConversion {
         level: refiner.level_count(),
+        deepest_level: refiner.level_count(),
         patches,
         placements,
         edges,
