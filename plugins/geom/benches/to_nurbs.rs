@@ -72,6 +72,15 @@ fn bench(c: &mut Criterion) {
             .unwrap(),
         ),
         ("torus 10000 quads", big_torus()),
+        (
+            "ico-sphere 5120 triangles",
+            Primitive::IcoSphere {
+                subdivisions: 4,
+                radius: 1.0,
+            }
+            .build()
+            .unwrap(),
+        ),
     ] {
         let to = ToNurbsOptions::relative(&mesh, 1e-4);
         let start = std::time::Instant::now();

@@ -15,9 +15,13 @@
 //! Each step works on a small cage of its own: the faces within
 //! [`RINGS`] rings of `v`, cut out of the level with their points, creases
 //! and holes. Catmull-Clark points depend only on the one-ring, so the
-//! cut-out's refinement equals the whole mesh's refinement except within
-//! about two of its rings of the cut (its border), and the star, its
-//! neighbours' grids and the measurement samples lie inside that.
+//! cut-out's refinement equals the whole mesh's except near the cut (its
+//! border): one step changes only the points on the border (the boundary
+//! rules), and each further step spreads the change by one ring of the
+//! finer level, half a ring of the cut-out's, so never more than one ring of
+//! it deep. The star, its neighbours' grids and the measurement samples lie
+//! inside that (a test compares with the whole cage refined: two rings
+//! already give the same patches).
 //!
 //! **Watertight.** A coarse exact patch beside a refined star meets two
 //! finer exact patches along each of its edges (a T-junction); the limit
@@ -36,10 +40,10 @@ use super::{ConvertedPatch, PatchKind, Prepared, ToNurbsError, ToNurbsOptions, c
 use crate::{FaceId, HalfEdgeMesh, VertexId};
 
 /// How many rings of faces around the extraordinary vertex each step cuts
-/// out. The star is ring 1, its neighbours' grids reach ring 3, and the
-/// refinement of the cut-out is exact to within about two rings of its
-/// border.
-pub(super) const RINGS: usize = 5;
+/// out: the star is ring 1, and the refinement of the cut-out equals the
+/// whole cage's but within one ring of its border; one ring more than the
+/// two that a test shows enough.
+pub(super) const RINGS: usize = 3;
 
 /// The faces of an extraordinary vertex that are converted apart.
 #[derive(Clone, Debug)]
@@ -210,7 +214,7 @@ pub(super) fn convert_star(
             }
         }
     }
-    let now = convert_prepared(mesh, creases, options, &here, &keep, to.samples, false)?;
+    let (now, _) = convert_prepared(mesh, creases, options, &here, &keep, to.samples, false)?;
     let star_patch = |p: usize| {
         now.placements
             .iter()
@@ -247,7 +251,7 @@ pub(super) fn convert_star(
     let Some(next_cut) = cut_out(&finer, child, RINGS) else {
         return Ok(as_is);
     };
-    let exact = convert_prepared(
+    let (exact, _) = convert_prepared(
         mesh,
         creases,
         options,

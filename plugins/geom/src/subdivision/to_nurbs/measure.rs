@@ -130,6 +130,29 @@ pub fn measure(
     samples: u32,
     exact: bool,
 ) -> Result<Report, SubdivisionError> {
+    Ok(measure_faces(mesh, creases, options, conversion, samples, exact)?.0)
+}
+
+/// The largest figures measured on each face of the conversion level (0
+/// where nothing was measured).
+#[derive(Clone, Debug, Default)]
+pub(super) struct FaceFigures {
+    /// Largest distance of the limit surface from the face's approximate
+    /// patch.
+    pub distance: Vec<f64>,
+    /// Largest normal angle across the face's smooth edges (degrees).
+    pub angle: Vec<f64>,
+}
+
+/// [`measure`], with the figures of each face.
+pub(super) fn measure_faces(
+    mesh: &HalfEdgeMesh,
+    creases: &Creases,
+    options: Options,
+    conversion: &NurbsConversion,
+    samples: u32,
+    exact: bool,
+) -> Result<(Report, FaceFigures), SubdivisionError> {
     let k = conversion.level as usize;
     let fine = Refiner::new(mesh, creases, options, conversion.level + samples)?;
     let points = fine.refine(&fine.cage_positions(mesh));
@@ -155,6 +178,11 @@ pub fn measure(
         exact_measured: exact,
         ..Report::default()
     };
+    let count = conversion.placements.len();
+    let mut figures = FaceFigures {
+        distance: vec![0.0; count],
+        angle: vec![0.0; count],
+    };
     let n = 1usize << samples;
     for (slot, &f) in faces.iter().enumerate() {
         let Some(placement) = conversion.placements[f as usize] else {
@@ -176,6 +204,7 @@ pub fn measure(
                     PatchKind::Approximate => {
                         let d = distance_to_patch(&patch.surface, (u, v), exact);
                         report.max_distance = report.max_distance.max(d);
+                        figures.distance[f as usize] = figures.distance[f as usize].max(d);
                     }
                 }
                 report.samples += 1;
@@ -227,9 +256,12 @@ pub fn measure(
             }
             let angle = nx.angle_between(ny).to_degrees();
             report.max_angle_degrees = report.max_angle_degrees.max(angle);
+            for face in [f, g] {
+                figures.angle[face as usize] = figures.angle[face as usize].max(angle);
+            }
         }
     }
-    Ok(report)
+    Ok((report, figures))
 }
 
 /// Distance from `q` to the nearest point of `surface` (a patch on

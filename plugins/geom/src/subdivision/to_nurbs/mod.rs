@@ -357,35 +357,69 @@ pub fn to_nurbs(
             }
             Err(e) => return Err(e.into()),
         };
+        // The stars of extraordinary vertices are cut out with the rings
+        // around them and refined on their own, as far as each needs (a star
+        // whose cut-out is not manifold stays in the level). With many stars
+        // (their cut-outs larger than the level) the whole level is first
+        // converted and measured face by face, and only the stars that miss
+        // the tolerance or the angle are cut out; with few, every star is
+        // cut out and measured there, which spares measuring the level.
         let stars = if level >= 2 {
             local::stars(&prepared)
         } else {
             Vec::new()
         };
-        // Each star is cut out with the rings around it; a star that cannot
-        // be (a cut-out that is not manifold) stays in the level.
+        let shown = prepared.all_shown();
+        let cut_out_faces: usize = stars
+            .iter()
+            .map(|s| s.faces.len() * local::RINGS * local::RINGS)
+            .sum();
+        let measure_first = cut_out_faces > prepared.level().face_count();
+        let convert = |keep: &[bool]| {
+            convert_prepared(
+                mesh,
+                creases,
+                options,
+                &prepared,
+                keep,
+                to.samples,
+                to.measure_exact,
+            )
+        };
+        let everything = if measure_first || stars.is_empty() {
+            Some(convert(&shown)?)
+        } else {
+            None
+        };
+        let misses = |star: &local::Star| {
+            let Some((_, figures)) = &everything else {
+                return true;
+            };
+            star.faces.iter().any(|&f| {
+                figures.distance[f as usize] > to.tolerance
+                    || figures.angle[f as usize] > to.max_angle_degrees
+            })
+        };
         let cuts: Vec<(local::Star, local::CutOut)> = stars
             .into_iter()
+            .filter(misses)
             .filter_map(|star| {
                 let cut = local::cut_out(&prepared, star.vertex, local::RINGS)?;
                 Some((star, cut))
             })
             .collect();
-        let mut keep = prepared.all_shown();
-        for (star, _) in &cuts {
-            for &f in &star.faces {
-                keep[f as usize] = false;
+        let mut conversion = match everything {
+            Some((all, _)) if cuts.is_empty() => all,
+            _ => {
+                let mut keep = shown;
+                for (star, _) in &cuts {
+                    for &f in &star.faces {
+                        keep[f as usize] = false;
+                    }
+                }
+                convert(&keep)?.0
             }
-        }
-        let mut conversion = convert_prepared(
-            mesh,
-            creases,
-            options,
-            &prepared,
-            &keep,
-            to.samples,
-            to.measure_exact,
-        )?;
+        };
         let others_done = conversion.counts().1 == 0 || (level >= 2 && conversion.within(to));
         if !(others_done || level >= uniform_max) {
             previous = Some(conversion);
@@ -446,11 +480,11 @@ fn convert_with(
 ) -> Result<NurbsConversion, ToNurbsError> {
     let prepared = Prepared::new(mesh, creases, options, level)?;
     let keep = prepared.all_shown();
-    convert_prepared(mesh, creases, options, &prepared, &keep, samples, exact)
+    Ok(convert_prepared(mesh, creases, options, &prepared, &keep, samples, exact)?.0)
 }
 
 /// A conversion level, refined, with its faces sorted out.
-pub(super) struct Prepared {
+struct Prepared {
     /// The refinement to the level.
     pub refiner: Refiner,
     /// The level's points.
@@ -462,6 +496,9 @@ pub(super) struct Prepared {
     /// Per face: shown, every corner regular and its 4×4 grid full, so that
     /// its limit surface is the bicubic B-spline patch of that grid.
     pub regular: Vec<bool>,
+    /// Limit positions one level down: at every edge's middle (child vertex
+    /// `faces + e` is edge e's point).
+    pub finer_limit: Vec<DVec3>,
 }
 
 impl Prepared {
@@ -487,12 +524,16 @@ impl Prepared {
                     && full(&face_grid(lv, &classes, &points, f, 0)).is_some()
             })
             .collect();
+        let finer = Refiner::new(mesh, creases, options, refiner.level_count() + 1)?;
+        let finer_points = finer.refine(&finer.cage_positions(mesh));
+        let finer_limit = limit_positions(&finer, &finer_points)?;
         Ok(Prepared {
             refiner,
             points,
             classes,
             shown,
             regular,
+            finer_limit,
         })
     }
 
@@ -510,7 +551,7 @@ impl Prepared {
 /// The patches of the faces `keep` (shown faces of the prepared level) and
 /// the curves of every shown face's edges, measured; the other faces get
 /// no placement.
-pub(super) fn convert_prepared(
+fn convert_prepared(
     mesh: &HalfEdgeMesh,
     creases: &Creases,
     options: Options,
@@ -518,19 +559,16 @@ pub(super) fn convert_prepared(
     keep: &[bool],
     samples: u32,
     exact: bool,
-) -> Result<NurbsConversion, ToNurbsError> {
-    // Limit positions one level down: at every edge's middle (child vertex
-    // `faces + e` is edge e's point).
-    let finer = Refiner::new(mesh, creases, options, prepared.refiner.level_count() + 1)?;
-    let finer_points = finer.refine(&finer.cage_positions(mesh));
-    let finer_limit = limit_positions(&finer, &finer_points)?;
-    let mut conversion = build(prepared, keep, &finer_limit);
+) -> Result<(NurbsConversion, measure::FaceFigures), ToNurbsError> {
+    let mut conversion = build(prepared, keep, &prepared.finer_limit);
+    let mut figures = measure::FaceFigures::default();
     if exact || conversion.counts().1 > 0 {
-        conversion.report = measure::measure(mesh, creases, options, &conversion, samples, exact)?;
+        (conversion.report, figures) =
+            measure::measure_faces(mesh, creases, options, &conversion, samples, exact)?;
     } else {
         conversion.report.exact_measured = false;
     }
-    Ok(conversion)
+    Ok((conversion, figures))
 }
 
 /// The patches of the prepared level's faces `keep` (every face a quad).
@@ -541,6 +579,7 @@ fn build(prepared: &Prepared, keep: &[bool], finer_limit: &[DVec3]) -> NurbsConv
         classes,
         shown,
         regular,
+        ..
     } = prepared;
     let (points, classes, shown) = (points.as_slice(), classes.as_slice(), shown.as_slice());
     let lv: &Level = prepared.level();

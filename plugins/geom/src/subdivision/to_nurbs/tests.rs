@@ -671,18 +671,46 @@ fn a_valence_twelve_vertex_converts_with_small_normal_angles() {
 
 /// The approximate patches of a star refined on its own (cut out of level
 /// 2 with its rings, `local.rs`) are those of the whole cage refined to
-/// level 3, point for point, and measure the same.
+/// level 3, point for point, and measure the same: on a cube (few faces:
+/// the level is measured first, then the corners cut out) and on a cube
+/// split twice into 96 quads (many faces: every corner is cut out and
+/// measured there).
 #[test]
 fn a_star_refined_on_its_own_equals_the_whole_cage_refined() {
-    let mesh = cube();
+    let linear = Options {
+        scheme: Scheme::Linear,
+        ..Options::default()
+    };
+    let split = Refiner::subdivide(&cube(), &Creases::default(), linear, 2)
+        .unwrap()
+        .0;
+    assert_eq!(split.face_count(), 96);
+    for mesh in [cube(), split] {
+        star_equals_uniform(&mesh, 1e-4, 3);
+    }
+    // Two levels on their own: the second cut out of the first's cut-out.
+    star_equals_uniform(&cube(), 1e-5, 4);
+}
+
+/// Converts `mesh` to `fraction` of its diagonal, which takes the corner
+/// stars to level `deepest`, and compares with the uniform conversion
+/// there.
+fn star_equals_uniform(mesh: &HalfEdgeMesh, fraction: f64, deepest: u32) {
     let to = ToNurbsOptions {
         measure_exact: true,
-        ..ToNurbsOptions::relative(&mesh, 1e-4)
+        ..ToNurbsOptions::relative(mesh, fraction)
     };
-    let local = to_nurbs(&mesh, &Creases::default(), Options::default(), &to).unwrap();
-    assert_eq!((local.level, local.deepest_level), (2, 3));
-    let uniform =
-        convert_with(&mesh, &Creases::default(), Options::default(), 3, 2, false).unwrap();
+    let local = to_nurbs(mesh, &Creases::default(), Options::default(), &to).unwrap();
+    assert_eq!((local.level, local.deepest_level), (2, deepest));
+    let uniform = convert_with(
+        mesh,
+        &Creases::default(),
+        Options::default(),
+        deepest,
+        2,
+        false,
+    )
+    .unwrap();
     let approximate = |c: &NurbsConversion| -> Vec<(Vec<FaceId>, Vec<DVec3>)> {
         c.patches
             .iter()
