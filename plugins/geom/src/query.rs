@@ -52,16 +52,37 @@ pub fn triangulate_outer_loop(mesh: &HalfEdgeMesh, f: FaceId) -> Vec<[VertexId; 
             DVec2::new(p.dot(u), p.dot(v))
         })
         .collect();
+    // An ear at a vertex of only two edges would be clipped by both faces
+    // that share those edges: the same triangle twice, and four triangles
+    // on the diagonal (issue 35). A nearly flat ear is a sliver without
+    // area. Either is taken only when no other ear is left.
+    let shared = |i: usize| mesh.vertex_valence(verts[i]) == 2;
+    let turn = |a: usize, b: usize, c: usize| {
+        let (e, f) = (pts[b] - pts[a], pts[c] - pts[b]);
+        (cross2(e, f), e.length() * f.length())
+    };
     if n == 4 {
+        let good_ear = |a: usize, b: usize, c: usize| {
+            let (cross, lengths) = turn(a, b, c);
+            cross > FLAT_SINE * lengths && !shared(b)
+        };
         // Split along the diagonal that keeps both triangles counter-clockwise,
-        // preferring the shorter one.
+        // preferring one whose ears are good, then the shorter one.
         let ccw = |a: usize, b: usize, c: usize| cross2(pts[b] - pts[a], pts[c] - pts[a]) > 0.0;
         let d02 = ccw(0, 1, 2) && ccw(0, 2, 3);
         let d13 = ccw(1, 2, 3) && ccw(1, 3, 0);
-        let use13 = match (d02, d13) {
-            (true, true) => pts[1].distance_squared(pts[3]) < pts[0].distance_squared(pts[2]),
+        let good02 = d02 && good_ear(0, 1, 2) && good_ear(2, 3, 0);
+        let good13 = d13 && good_ear(1, 2, 3) && good_ear(3, 0, 1);
+        let shorter13 = pts[1].distance_squared(pts[3]) < pts[0].distance_squared(pts[2]);
+        let use13 = match (good02, good13) {
+            (true, true) => shorter13,
             (false, true) => true,
-            _ => false,
+            (true, false) => false,
+            (false, false) => match (d02, d13) {
+                (true, true) => shorter13,
+                (false, true) => true,
+                _ => false,
+            },
         };
         return if use13 {
             vec![
@@ -81,21 +102,34 @@ pub fn triangulate_outer_loop(mesh: &HalfEdgeMesh, f: FaceId) -> Vec<[VertexId; 
     while idx.len() > 3 && guard > 0 {
         guard -= 1;
         let m = idx.len();
-        let ear = (0..m).find(|&i| {
-            let (a, b, c) = (idx[(i + m - 1) % m], idx[i], idx[(i + 1) % m]);
-            if cross2(pts[b] - pts[a], pts[c] - pts[b]) <= 0.0 {
-                return false; // reflex or flat corner
-            }
-            !idx.iter()
-                .any(|&p| p != a && p != b && p != c && in_triangle(pts[p], pts[a], pts[b], pts[c]))
-        });
+        let at = |i: usize| idx[i % m];
+        // A vertex of two edges whose neighbours in what is left are still
+        // its neighbours in the face: its ear is the triangle the other face
+        // on those edges may clip too.
+        let pristine = |i: usize| {
+            let (a, b, c) = (at(i + m - 1), at(i), at(i + 1));
+            shared(b) && a == (b + n - 1) % n && c == (b + 1) % n
+        };
+        let is_ear = |i: usize| {
+            let (a, b, c) = (at(i + m - 1), at(i), at(i + 1));
+            cross2(pts[b] - pts[a], pts[c] - pts[b]) > 0.0
+                && !idx.iter().any(|&p| {
+                    p != a && p != b && p != c && in_triangle(pts[p], pts[a], pts[b], pts[c])
+                })
+        };
+        let good = |i: usize| {
+            let (a, b, c) = (at(i + m - 1), at(i), at(i + 1));
+            let (cross, lengths) = turn(a, b, c);
+            cross > FLAT_SINE * lengths && !pristine(i) && is_ear(i)
+        };
+        // First an ear beside such a vertex (it then gets a diagonal of its
+        // own), then any good ear, then any ear at all.
+        let ear = (0..m)
+            .find(|&i| (pristine(i + m - 1) || pristine(i + 1)) && good(i))
+            .or_else(|| (0..m).find(|&i| good(i)))
+            .or_else(|| (0..m).find(|&i| is_ear(i)));
         let Some(i) = ear else { break };
-        let m = idx.len();
-        out.push([
-            verts[idx[(i + m - 1) % m]],
-            verts[idx[i]],
-            verts[idx[(i + 1) % m]],
-        ]);
+        out.push([verts[at(i + m - 1)], verts[at(i)], verts[at(i + 1)]]);
         idx.remove(i);
     }
     if idx.len() == 3 {
@@ -108,6 +142,10 @@ pub fn triangulate_outer_loop(mesh: &HalfEdgeMesh, f: FaceId) -> Vec<[VertexId; 
         out
     }
 }
+
+/// The sine of the turn below which a polygon corner counts as flat: its
+/// ear would be a sliver without area.
+const FLAT_SINE: f64 = 1e-9;
 
 fn fan(verts: &[VertexId]) -> Vec<[VertexId; 3]> {
     (1..verts.len() - 1)

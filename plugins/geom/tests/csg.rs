@@ -46,7 +46,41 @@ fn run(a: &HalfEdgeMesh, b: &HalfEdgeMesh, op: BooleanOp) -> HalfEdgeMesh {
     let stats = m.stats();
     assert!(stats.closed, "{op}: result is open");
     assert!(stats.manifold, "{op}: result is not manifold");
+    assert_triangles_are_manifold(&m, &op.to_string());
     m
+}
+
+/// The triangles every exporter and the viewport draw for `m`
+/// (`query::triangulate_face` per face) form a closed 2-manifold: no
+/// triangle without area, every edge in exactly two triangles, once each
+/// way.
+fn assert_triangles_are_manifold(m: &HalfEdgeMesh, what: &str) {
+    use std::collections::HashMap;
+    let mut uses: HashMap<(u32, u32), i32> = HashMap::new();
+    let mut directed: HashMap<(u32, u32), u32> = HashMap::new();
+    for f in m.faces() {
+        for t in hedra_geom::query::triangulate_face(m, f) {
+            let [a, b, c] = t.map(|v| m.position(v));
+            let area = (b - a).cross(c - a).length() / 2.0;
+            assert!(area > 0.0, "{what}: a triangle of face {f:?} has no area: {t:?}");
+            for k in 0..3 {
+                let (p, q) = (t[k].0, t[(k + 1) % 3].0);
+                *uses.entry((p.min(q), p.max(q))).or_default() += 1;
+                *directed.entry((p, q)).or_default() += 1;
+            }
+        }
+    }
+    let bad: Vec<_> = uses.iter().filter(|(_, n)| **n != 2).collect();
+    assert!(
+        bad.is_empty(),
+        "{what}: {} edges not in exactly two triangles, e.g. {:?}",
+        bad.len(),
+        &bad[..bad.len().min(4)]
+    );
+    assert!(
+        directed.values().all(|&n| n == 1),
+        "{what}: an edge runs the same way in two triangles"
+    );
 }
 
 fn close(a: f64, b: f64) -> bool {
@@ -446,6 +480,7 @@ fn volume_of(a: &HalfEdgeMesh, b: &HalfEdgeMesh, op: BooleanOp) -> f64 {
         Ok(m) => {
             m.validate().unwrap();
             assert!(m.stats().closed, "{op} open");
+            assert_triangles_are_manifold(&m, &op.to_string());
             m.volume()
         }
         Err(BooleanError::EmptyResult { .. }) => 0.0,
@@ -471,5 +506,99 @@ proptest! {
         let scale = va + vb;
         prop_assert!((u + i - va - vb).abs() <= 1e-9 * scale, "∪ + ∩: {} vs {}", u + i, va + vb);
         prop_assert!((d + i - va).abs() <= 1e-9 * scale, "(A − B) + (A ∩ B): {} vs {}", d + i, va);
+    }
+}
+
+fn uv_sphere() -> HalfEdgeMesh {
+    Primitive::UvSphere {
+        segments: 32,
+        rings: 16,
+        radius: 1.0,
+    }
+    .build()
+    .unwrap()
+}
+
+/// Issue 35's repro: a sphere minus the same sphere turned by about 1e-4
+/// rad. The merged polygons of the result share chains with nearly
+/// collinear degree-2 vertices; ear clipping took the flat ear at such a
+/// vertex in both polygons, so two coincident triangles of area 1.4e-13 put
+/// 1 to 64 edges into four triangles (the exported STL was not watertight).
+#[test]
+fn a_sphere_minus_a_nearly_coincident_sphere_triangulates_watertight() {
+    let a = uv_sphere();
+    let turn = DQuat::from_xyzw(
+        2.4628014712012152e-05,
+        8.209338237337385e-05,
+        1.641867647467477e-05,
+        0.9999999961922823,
+    );
+    let b = moved(uv_sphere(), DMat4::from_quat(turn));
+    for op in [BooleanOp::Difference, BooleanOp::Union, BooleanOp::Intersection] {
+        let m = run(&a, &b, op);
+        assert!(m.face_count() > 0, "{op}");
+    }
+}
+
+/// `Triangulate` (every method) on `m`: valid, and no triangle without
+/// area.
+fn assert_triangulate_keeps_area(m: &HalfEdgeMesh, what: &str) {
+    use hedra_geom::modeling::{TriangulateMethod, triangulate_faces};
+    for method in [
+        TriangulateMethod::Clip,
+        TriangulateMethod::Beauty,
+        TriangulateMethod::Fan,
+    ] {
+        let mut t = m.clone();
+        let faces: Vec<_> = t.faces().collect();
+        triangulate_faces(&mut t, &faces, method).unwrap();
+        t.validate().unwrap();
+        for f in t.faces() {
+            let [a, b, c]: [DVec3; 3] = t
+                .face_vertices(f)
+                .map(|v| t.position(v))
+                .collect::<Vec<_>>()
+                .try_into()
+                .unwrap_or_else(|v: Vec<DVec3>| panic!("{what} {method:?}: a face of {}", v.len()));
+            let area = (b - a).cross(c - a).length() / 2.0;
+            assert!(area > 0.0, "{what} {method:?}: face {f:?} has no area");
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+    /// Near-coincident operands (the same primitive turned by 1e-7 to 1e-3
+    /// rad and moved as little): every result triangulates into a closed
+    /// 2-manifold without slivers of no area, for the exporters and for
+    /// `Triangulate`.
+    #[test]
+    fn near_coincident_results_triangulate_watertight(
+        kind in 0u8..4,
+        axis in prop::array::uniform3(-1.0f64..1.0),
+        exponent in -7.0f64..-3.0,
+        shift in prop::array::uniform3(-1.0f64..1.0),
+    ) {
+        let axis = DVec3::from(axis);
+        prop_assume!(axis.length() > 0.1);
+        let small = 10f64.powf(exponent);
+        let a = primitive(kind);
+        let matrix = DMat4::from_rotation_translation(
+            DQuat::from_axis_angle(axis.normalize(), small),
+            DVec3::from(shift) * small,
+        );
+        let b = moved(primitive(kind), matrix);
+        for op in [BooleanOp::Difference, BooleanOp::Union, BooleanOp::Intersection] {
+            match boolean(&a, &b, op, 0.0) {
+                Ok(m) => {
+                    m.validate().unwrap();
+                    let what = format!("{op} kind {kind} at {small:e}");
+                    assert_triangles_are_manifold(&m, &what);
+                    assert_triangulate_keeps_area(&m, &what);
+                }
+                Err(BooleanError::EmptyResult { .. }) => {}
+                Err(e) => panic!("{op}: {e}"),
+            }
+        }
     }
 }
