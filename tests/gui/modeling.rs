@@ -3148,3 +3148,69 @@ fn the_stencils_of_a_smooth_preview_are_built_before_the_first_drag() {
     assert_ne!(before, moved, "the smooth shape follows the drag");
     user.tap(KeyCode::Escape);
 }
+
+/// A live intersection whose operands are dragged apart is an empty solid
+/// (issue 35): drawn as nothing while G runs and after Enter, its panel
+/// says so, nothing is an error, and undo brings the solid back.
+#[test]
+fn dragging_the_operands_of_a_live_intersection_apart_leaves_an_empty_solid() {
+    let mut user = User::new();
+    user.add("Cube");
+    user.add("Cube");
+    user.tap(KeyCode::KeyA);
+    open_menu(&mut user, "Object");
+    user.click_on("Live CSG Intersection");
+    let csg = user
+        .doc()
+        .nodes()
+        .find(|n| matches!(n.content, NodeContent::Csg(_)))
+        .expect("the intersection")
+        .id;
+    user.frames(3);
+    let entity = user.app.world().resource::<hedra_scene::NodeEntities>().0[&csg];
+    let drawn = |user: &User| user.app.world().get::<Mesh3d>(entity).is_some();
+    assert!(drawn(&user), "the solid is drawn");
+    // Drag the second cube out along X by typing 5.
+    let second = user
+        .doc()
+        .nodes()
+        .filter(|n| n.parent == Some(csg))
+        .map(|n| n.id)
+        .max()
+        .unwrap();
+    user.app
+        .world_mut()
+        .resource_mut::<hedra_edit::Selection>()
+        .set([second]);
+    let steps = user.undo_steps();
+    user.tap(KeyCode::KeyG);
+    user.tap(KeyCode::KeyX);
+    user.type_text("5");
+    user.frames(3);
+    assert!(
+        !drawn(&user),
+        "nothing is drawn while the operands are apart"
+    );
+    user.tap(KeyCode::Enter);
+    user.frames(3);
+    assert_eq!(user.undo_steps(), steps + 1);
+    let solid = hedra_doc::csg::evaluate(user.doc(), csg).expect("an empty solid, not an error");
+    assert_eq!(solid.face_count(), 0);
+    assert!(!drawn(&user));
+    user.app
+        .world_mut()
+        .resource_mut::<hedra_edit::Selection>()
+        .set([csg]);
+    user.frames(2);
+    assert!(
+        user.shows(
+            "Solid: empty (V 0 E 0 F 0): the operands do not overlap as the operation needs"
+        ),
+        "the panel says so"
+    );
+    user.shortcut(&[KeyCode::ControlLeft], KeyCode::KeyZ);
+    user.frames(3);
+    assert!(drawn(&user), "undo brings the solid back");
+    let solid = hedra_doc::csg::evaluate(user.doc(), csg).unwrap();
+    assert!((solid.volume() - 8.0).abs() < 1e-9, "{}", solid.volume());
+}

@@ -71,7 +71,9 @@ pub enum CsgError {
         /// Why.
         error: Box<crate::modifiers::EvaluationError>,
     },
-    /// The result is empty ("the intersection of Box and Ball is empty").
+    /// The result is empty ("the intersection of Box and Ball is empty"):
+    /// from the one-shot Boolean and Apply, which would leave a mesh without
+    /// faces; a CSG node's own solid is then an empty solid instead.
     #[error("the {op} of {operands} is empty")]
     Empty {
         /// The operation.
@@ -222,7 +224,7 @@ pub fn operands(doc: &Document, id: NodeId) -> Vec<NodeId> {
 }
 
 /// "A", "A and B", "A, B and C".
-fn names(list: &[String]) -> String {
+pub(crate) fn names(list: &[String]) -> String {
     match list {
         [] => String::new(),
         [a] => a.clone(),
@@ -231,11 +233,13 @@ fn names(list: &[String]) -> String {
 }
 
 /// The solid of CSG node `id` in its own space, from the cache when its
-/// inputs have not changed.
+/// inputs have not changed. An empty result (operands moved apart under an
+/// intersection, a difference that removes everything) is an empty solid,
+/// a mesh without faces, as Manifold returns one: drawn and exported as
+/// nothing, never an error.
 ///
 /// # Errors
-/// [`CsgError`] naming the node and the operand at fault, or the operands
-/// of an empty result.
+/// [`CsgError`] naming the node and the operand at fault.
 ///
 /// Complexity: O(n) to fingerprint operand meshes not seen before (O(1)
 /// for those already seen); each boolean step that is not cached costs
@@ -427,19 +431,23 @@ impl CsgTree {
             let mut h = std::collections::hash_map::DefaultHasher::new();
             (key, *k, op).hash(&mut h);
             key = h.finish();
+            if let Some(result) = with_empty(op, &acc, solid) {
+                acc = result;
+                continue;
+            }
             let a = acc.clone();
             acc = cached(key, || {
                 BOOLEANS.with(|b| b.set(b.get() + 1));
                 boolean_with_options(&a, solid, op, &options)
                     .map(|r| Arc::new(r.mesh))
+                    .or_else(|error| match error {
+                        BooleanError::EmptyResult { .. } => Ok(Arc::new(HalfEdgeMesh::new())),
+                        error => Err(error),
+                    })
                     .map_err(|error| {
                         let so_far: Vec<String> =
                             inputs[..=i].iter().map(|x| x.0.clone()).collect();
                         match error {
-                            BooleanError::EmptyResult { op } => CsgError::Empty {
-                                op,
-                                operands: names(&so_far),
-                            },
                             BooleanError::Open { operand, .. }
                             | BooleanError::NonManifold { operand, .. }
                             | BooleanError::NotPolygonal { operand, .. }
@@ -464,6 +472,20 @@ impl CsgTree {
         }
         Ok((acc, key))
     }
+}
+
+/// The result of `a op b` when either is an empty solid (no faces): the
+/// boolean engine takes no empty operand. `None` when both have faces.
+fn with_empty(op: BooleanOp, a: &Solid, b: &Solid) -> Option<Solid> {
+    let (a_empty, b_empty) = (a.face_count() == 0, b.face_count() == 0);
+    if !(a_empty || b_empty) {
+        return None;
+    }
+    Some(match op {
+        BooleanOp::Union if a_empty => b.clone(),
+        BooleanOp::Union | BooleanOp::Difference => a.clone(),
+        BooleanOp::Intersection => Arc::new(HalfEdgeMesh::new()),
+    })
 }
 
 /// When an operand fingerprint was first met (a counter), for ordering a

@@ -278,14 +278,16 @@ pub fn export_file(
         "gltf" => crate::gltf::to_gltf(doc, shape, false)?,
         "glb" => crate::gltf::to_gltf(doc, shape, true)?,
         "usda" => {
-            let (bytes, notes) = crate::usd::to_usd(doc, path, shape)?;
+            let (bytes, mut notes) = crate::usd::to_usd(doc, path, shape)?;
+            notes.extend(empty_solid_notes(doc));
             return Ok(Exported { bytes, notes });
         }
         "step" | "stp" => {
             let name = path
                 .file_name()
                 .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
-            let (bytes, notes) = crate::step::to_step(doc, options.step, &name)?;
+            let (bytes, mut notes) = crate::step::to_step(doc, options.step, &name)?;
+            notes.extend(empty_solid_notes(doc));
             return Ok(Exported { bytes, notes });
         }
         other => {
@@ -297,8 +299,20 @@ pub fn export_file(
     };
     Ok(Exported {
         bytes,
-        notes: Vec::new(),
+        notes: empty_solid_notes(doc),
     })
+}
+
+/// A note for each visible CSG node whose solid is empty, which an export
+/// leaves out.
+fn empty_solid_notes(doc: &Document) -> Vec<String> {
+    let tree = doc.hierarchy();
+    doc.nodes()
+        .filter(|n| matches!(n.content, NodeContent::Csg(_)))
+        .filter(|n| tree.is_visible(n.id) && !tree.inside_csg(n.id))
+        .filter(|n| crate::csg::evaluate(doc, n.id).is_ok_and(|s| s.face_count() == 0))
+        .map(|n| format!("'{}' is an empty solid (its operands do not overlap as its operation needs): nothing is written for it", n.name))
+        .collect()
 }
 
 /// The visible meshes as binary STL (written by `stl_io`): every face
@@ -670,6 +684,10 @@ pub(crate) fn export_geometry_creased<'a>(
         NodeContent::Csg(_) => {
             let solid =
                 crate::csg::evaluate(doc, node.id).map_err(|e| ExportError::Csg(Box::new(e)))?;
+            if solid.face_count() == 0 {
+                // An empty solid: nothing to write ([`empty_solid_notes`]).
+                return Ok(None);
+            }
             Ok(Some((
                 Geometry::Mesh(Cow::Owned((*solid).clone())),
                 Cow::Owned(Creases::default()),

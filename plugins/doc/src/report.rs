@@ -561,6 +561,12 @@ impl SceneReport {
                     Some(err) => {
                         writeln!(out, "    csg: {} of {}: error: {err}", c.op, ops.join(", "))
                     }
+                    None if e.faces == 0 => writeln!(
+                        out,
+                        "    csg: {} of {}: empty solid (V 0 E 0 F 0)",
+                        c.op,
+                        ops.join(", ")
+                    ),
                     None => writeln!(
                         out,
                         "    csg: {} of {}: solid V {} E {} F {}, shells {}, genus {}",

@@ -323,3 +323,92 @@ fn fine_cube(n: u32) -> (Vec<DVec3>, Vec<Vec<u32>>) {
     }
     (positions, polygons)
 }
+
+/// An empty result is an empty solid that takes part like any other
+/// (issue 35): a nested intersection of parts moved apart is empty; a union
+/// with it is the other operand, a difference minus it the first operand,
+/// an intersection with it empty, and moving the part back brings the
+/// solid back. Manifold gives the same (an empty manifold).
+#[test]
+fn an_empty_nested_result_is_an_empty_solid_in_the_tree() {
+    let mut s = Session::new();
+    add_primitive(&mut s, "A", Primitive::Cube { size: 1.0 }, DQuat::IDENTITY);
+    add_primitive(&mut s, "B", Primitive::Cube { size: 1.0 }, DQuat::IDENTITY);
+    s.execute(&Command::Translate {
+        nodes: vec![name("B")],
+        offset: DVec3::new(5.0, 0.0, 0.0),
+    })
+    .unwrap();
+    s.execute(&Command::AddCsg {
+        op: BooleanOp::Intersection,
+        name: Some("Nothing".into()),
+        operands: vec![name("A"), name("B")],
+        parent: None,
+        transform: NodeTransform::IDENTITY,
+    })
+    .unwrap();
+    let id = |s: &Session, n: &str| s.doc.find_by_name(n).unwrap().id;
+    let nothing = csg::evaluate(&s.doc, id(&s, "Nothing")).unwrap();
+    assert_eq!(nothing.face_count(), 0);
+    add_primitive(&mut s, "C", Primitive::Cube { size: 2.0 }, DQuat::IDENTITY);
+    for (op, faces) in [
+        (BooleanOp::Union, 6),
+        (BooleanOp::Difference, 0),
+        (BooleanOp::Intersection, 0),
+    ] {
+        // The nested node first, then the cube: nothing ∪ C = C,
+        // nothing − C = nothing, nothing ∩ C = nothing.
+        let label = format!("{op}");
+        s.execute(&Command::AddCsg {
+            op,
+            name: Some(label.clone()),
+            operands: vec![name("Nothing"), name("C")],
+            parent: None,
+            transform: NodeTransform::IDENTITY,
+        })
+        .unwrap();
+        let solid = csg::evaluate(&s.doc, id(&s, &label)).unwrap();
+        assert_eq!(solid.face_count(), faces, "{op}");
+        if faces > 0 {
+            assert!((solid.volume() - 8.0).abs() < 1e-12, "{op}");
+        }
+        s.undo();
+    }
+    // C minus an empty solid made after it (operands go in id order) is C.
+    add_primitive(&mut s, "E", Primitive::Cube { size: 1.0 }, DQuat::IDENTITY);
+    add_primitive(&mut s, "F", Primitive::Cube { size: 1.0 }, DQuat::IDENTITY);
+    s.execute(&Command::Translate {
+        nodes: vec![name("F")],
+        offset: DVec3::new(0.0, 7.0, 0.0),
+    })
+    .unwrap();
+    s.execute(&Command::AddCsg {
+        op: BooleanOp::Intersection,
+        name: Some("Nothing Too".into()),
+        operands: vec![name("E"), name("F")],
+        parent: None,
+        transform: NodeTransform::IDENTITY,
+    })
+    .unwrap();
+    s.execute(&Command::AddCsg {
+        op: BooleanOp::Difference,
+        name: Some("Minus".into()),
+        operands: vec![name("C"), name("Nothing Too")],
+        parent: None,
+        transform: NodeTransform::IDENTITY,
+    })
+    .unwrap();
+    let minus = csg::evaluate(&s.doc, id(&s, "Minus")).unwrap();
+    assert!((minus.volume() - 8.0).abs() < 1e-12, "{}", minus.volume());
+    for _ in 0..5 {
+        s.undo();
+    }
+    // B moved back over A: the intersection is a solid again.
+    s.execute(&Command::Translate {
+        nodes: vec![name("B")],
+        offset: DVec3::new(-4.5, 0.0, 0.0),
+    })
+    .unwrap();
+    let half = csg::evaluate(&s.doc, id(&s, "Nothing")).unwrap();
+    assert!((half.volume() - 0.5).abs() < 1e-12, "{}", half.volume());
+}

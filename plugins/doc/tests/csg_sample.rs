@@ -103,7 +103,9 @@ fn moving_one_cylinder_follows_and_undo_restores() {
 fn refusals_name_the_nodes_and_change_nothing() {
     let mut session = built();
     let before = session.doc.clone();
-    // Move the sphere away: the intersection is empty.
+    // Move the sphere away: the intersection is an empty solid, not an
+    // error (issue 35), and the emblem above it (the rounded cube minus the
+    // rods) is empty too. Apply refuses to make a mesh without faces.
     session
         .execute(&Command::Translate {
             nodes: vec![hedra_doc::NodeRef::Name("Sphere".into())],
@@ -111,11 +113,59 @@ fn refusals_name_the_nodes_and_change_nothing() {
         })
         .unwrap();
     let id = session.doc.find_by_name("Rounded Cube").unwrap().id;
-    let e = csg::evaluate(&session.doc, id).unwrap_err();
+    let empty = csg::evaluate(&session.doc, id).unwrap();
+    assert_eq!((empty.face_count(), empty.vertex_count()), (0, 0));
+    let emblem = session.doc.find_by_name("Emblem").unwrap().id;
+    assert_eq!(csg::evaluate(&session.doc, emblem).unwrap().face_count(), 0);
+    let e = session
+        .execute(&Command::ApplyCsg {
+            node: hedra_doc::NodeRef::Name("Rounded Cube".into()),
+        })
+        .unwrap_err();
     assert_eq!(
         e.to_string(),
         "the intersection of Cube and Sphere is empty"
     );
+    // Exported as nothing, with a note; the report counts 0 faces.
+    let exported = hedra_doc::export::export_file(
+        &session.doc,
+        Path::new("emblem.obj"),
+        ExportOptions::default(),
+    );
+    match exported {
+        Err(e) => assert!(e.to_string().contains("nothing"), "{e}"),
+        Ok(x) => panic!("an OBJ of nothing: {} bytes, {:?}", x.bytes.len(), x.notes),
+    }
+    session
+        .execute(&Command::AddPrimitive {
+            primitive: hedra_geom::Primitive::Cube { size: 1.0 },
+            name: Some("Spare".into()),
+            parent: None,
+            transform: Default::default(),
+        })
+        .unwrap();
+    let exported = hedra_doc::export::export_file(
+        &session.doc,
+        Path::new("emblem.obj"),
+        ExportOptions::default(),
+    )
+    .unwrap();
+    let text = String::from_utf8(exported.bytes).unwrap();
+    assert_eq!(text.lines().filter(|l| l.starts_with("f ")).count(), 6);
+    assert!(
+        exported
+            .notes
+            .iter()
+            .any(|n| n.starts_with("'Emblem' is an empty solid")),
+        "{:?}",
+        exported.notes
+    );
+    let text = SceneReport::new(&session).to_text();
+    assert!(
+        text.contains("csg: intersection of #1, #2: empty solid (V 0 E 0 F 0)"),
+        "{text}"
+    );
+    session.undo();
     session.undo();
     assert_eq!(session.doc, before);
     // An open operand.
@@ -241,4 +291,40 @@ fn switching_the_operation_renames_only_a_default_name() {
         session.doc.find_by_name("Union").is_some(),
         "undo renames back"
     );
+}
+
+/// Issue 35's repro through the document: a sphere minus the same sphere
+/// turned by about 1e-4 rad (a one-shot Boolean), exported to STL, is
+/// watertight: read back (`stl_io` welds equal corners), every edge is in
+/// exactly two triangles and no triangle is without area. Before, 1 to 64
+/// edges were in four triangles.
+#[test]
+fn a_near_coincident_difference_exports_a_watertight_stl() {
+    let text = r#"[
+        AddPrimitive(primitive: UvSphere(segments: 32, rings: 16, radius: 1.0), name: Some("A")),
+        AddPrimitive(primitive: UvSphere(segments: 32, rings: 16, radius: 1.0), name: Some("B"),
+            transform: (rotation: (2.4628014712012152e-05, 8.209338237337385e-05, 1.641867647467477e-05, 0.9999999961922823))),
+        Boolean(node: Name("A"), other: Name("B"), op: Difference),
+    ]"#;
+    let path = Path::new("test.ron");
+    let commands = script::parse(text, path).unwrap();
+    let mut session = Session::new();
+    script::run(&mut session, &commands, path).unwrap_or_else(|e| panic!("{e}"));
+    let bytes = export_bytes(&session.doc, Path::new("d.stl"), ExportOptions::default()).unwrap();
+    let stl = stl_io::read_stl(&mut std::io::Cursor::new(bytes)).unwrap();
+    let mut uses: std::collections::HashMap<(usize, usize), usize> = Default::default();
+    for face in &stl.faces {
+        let [a, b, c] = face.vertices;
+        let p = |i: usize| glam::DVec3::from(stl.vertices[i].0.map(f64::from));
+        assert!(
+            (p(b) - p(a)).cross(p(c) - p(a)).length() > 0.0,
+            "a triangle without area"
+        );
+        for (x, y) in [(a, b), (b, c), (c, a)] {
+            *uses.entry((x.min(y), x.max(y))).or_default() += 1;
+        }
+    }
+    assert!(stl.faces.len() > 1000, "{}", stl.faces.len());
+    let bad = uses.values().filter(|&&n| n != 2).count();
+    assert_eq!(bad, 0, "edges not in exactly two triangles");
 }

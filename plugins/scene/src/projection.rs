@@ -673,6 +673,13 @@ pub(crate) fn set_render_mesh(
     render: Mesh,
     material: Option<&MeshMaterial>,
 ) {
+    if render.count_vertices() == 0 {
+        // Nothing to draw (an empty CSG solid, a mesh whose faces were all
+        // deleted): Bevy's mesh allocator keeps no slab for an empty mesh
+        // and reports a use-after-free when one is drawn.
+        ec.remove::<Mesh3d>();
+        return;
+    }
     match mesh3d.filter(|m| meshes.contains(&m.0)) {
         Some(m) => {
             if let Some(mut existing) = meshes.get_mut(&m.0) {

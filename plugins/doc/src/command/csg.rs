@@ -109,9 +109,20 @@ impl Plan<'_> {
     }
 
     pub(super) fn apply_csg(&mut self, node: &NodeRef) -> Result<(), CommandError> {
-        let (mut n, _) = self.csg_node(node)?;
+        let (mut n, content) = self.csg_node(node)?;
         let d = self.planned_doc();
         let solid = csg::evaluate(&d, n.id)?;
+        if solid.face_count() == 0 {
+            // An empty solid would become a mesh without faces.
+            let operands: Vec<String> = csg::operands(&d, n.id)
+                .iter()
+                .filter_map(|&o| d.node(o).map(|x| x.name.clone()))
+                .collect();
+            return Err(CommandError::from(CsgError::Empty {
+                op: content.op,
+                operands: csg::names(&operands),
+            }));
+        }
         for o in csg::operands(&d, n.id) {
             for x in d.subtree(o).into_iter().rev() {
                 self.remove(x);

@@ -95,6 +95,11 @@ pub(super) fn csg_panel(
         .collect();
     ui.label(format!("Operands (its children): {}", names.join(", ")));
     match hedra_doc::csg::evaluate(doc, node.id) {
+        Ok(solid) if solid.face_count() == 0 => {
+            ui.label(
+                "Solid: empty (V 0 E 0 F 0): the operands do not overlap as the operation needs",
+            );
+        }
         Ok(solid) => {
             let s = solid.stats();
             ui.label(format!(
