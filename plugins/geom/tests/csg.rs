@@ -62,7 +62,10 @@ fn assert_triangles_are_manifold(m: &HalfEdgeMesh, what: &str) {
         for t in hedra_geom::query::triangulate_face(m, f) {
             let [a, b, c] = t.map(|v| m.position(v));
             let area = (b - a).cross(c - a).length() / 2.0;
-            assert!(area > 0.0, "{what}: a triangle of face {f:?} has no area: {t:?}");
+            assert!(
+                area > 0.0,
+                "{what}: a triangle of face {f:?} has no area: {t:?}"
+            );
             for k in 0..3 {
                 let (p, q) = (t[k].0, t[(k + 1) % 3].0);
                 *uses.entry((p.min(q), p.max(q))).or_default() += 1;
@@ -534,7 +537,11 @@ fn a_sphere_minus_a_nearly_coincident_sphere_triangulates_watertight() {
         0.9999999961922823,
     );
     let b = moved(uv_sphere(), DMat4::from_quat(turn));
-    for op in [BooleanOp::Difference, BooleanOp::Union, BooleanOp::Intersection] {
+    for op in [
+        BooleanOp::Difference,
+        BooleanOp::Union,
+        BooleanOp::Intersection,
+    ] {
         let m = run(&a, &b, op);
         assert!(m.face_count() > 0, "{op}");
     }
