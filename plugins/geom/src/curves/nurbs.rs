@@ -667,14 +667,87 @@ impl NurbsCurve {
             .collect())
     }
 
-    /// The same curve with degree one higher: each Bézier segment is
-    /// elevated in homogeneous coordinates and the segments are joined
-    /// again (interior knots get multiplicity `degree + 1`). An unclamped
-    /// curve comes back clamped, with the same shape on its domain.
+    /// The same curve with degree one higher, in the smallest knot vector
+    /// that holds it: each interior knot of multiplicity `m` gets `m + 1`,
+    /// so the curve keeps its continuity `C^(p−m)` there and stays that
+    /// smooth when its points are moved afterwards (openNURBS's
+    /// `IncreaseDegree` gives the same knots; a test compares). Each Bézier
+    /// segment is elevated in homogeneous coordinates (The NURBS Book,
+    /// eq. 5.36), and the joined segments are expressed in the smaller
+    /// knot vector ([`respan`](Self::respan)). An unclamped curve comes
+    /// back clamped, with the same shape on its domain.
     ///
     /// # Errors
     /// A knot insertion that fails.
     pub fn elevate_degree(&self) -> Result<NurbsCurve, CurveError> {
+        let joined = self.elevate_segments()?;
+        let (start, end) = self.domain();
+        let q = self.degree + 1;
+        let mut knots = vec![start; q + 1];
+        for (k, m) in self.interior_knots() {
+            knots.extend(std::iter::repeat_n(k, (m + 1).min(q)));
+        }
+        knots.extend(std::iter::repeat_n(end, q + 1));
+        joined.respan(knots)
+    }
+
+    /// The same curve in the knot vector `knots` of its degree and domain,
+    /// which must hold it (a vector with the curve's own knots among its
+    /// knots, or one the curve's continuity allows): the homogeneous
+    /// control points interpolate the curve at the Greville abscissae of
+    /// `knots`, which meets the Schoenberg–Whitney condition; the
+    /// collocation matrix is banded and totally positive, so elimination
+    /// without pivoting is stable (de Boor, *A Practical Guide to Splines*,
+    /// ch. XIII). Exact up to rounding when the curve is in the space.
+    ///
+    /// Complexity: O(n · p²) for n points.
+    fn respan(&self, knots: Vec<f64>) -> Result<NurbsCurve, CurveError> {
+        let q = self.degree;
+        let n = knots.len() - q - 1;
+        let probe = NurbsCurve::new(q, knots.clone(), vec![DVec3::ZERO; n], vec![1.0; n])?;
+        // Band storage: row i keeps columns i − w ..= i + w.
+        let w = 2 * q;
+        let mut band = vec![vec![0.0; 2 * w + 1]; n];
+        let mut rhs = vec![DVec4::ZERO; n];
+        for i in 0..n {
+            let tau = knots[i + 1..=i + q].iter().sum::<f64>() / q as f64;
+            let span = probe.span(tau);
+            let basis = &basis_derivatives(&knots, span, tau, q, 0)[0];
+            for (j, b) in basis.iter().enumerate() {
+                let column = span - q + j;
+                band[i][column + w - i] = *b;
+            }
+            rhs[i] = self.homogeneous_derivatives(tau, 0)[0];
+        }
+        for k in 0..n {
+            let row = band[k].clone();
+            let (pivot, r) = (row[w], rhs[k]);
+            for i in k + 1..n.min(k + w + 1) {
+                let f = band[i][k + w - i] / pivot;
+                if f == 0.0 {
+                    continue;
+                }
+                for j in k..n.min(k + w + 1) {
+                    band[i][j + w - i] -= f * row[j + w - k];
+                }
+                rhs[i] -= f * r;
+            }
+        }
+        let mut pw = vec![DVec4::ZERO; n];
+        for k in (0..n).rev() {
+            let mut sum = rhs[k];
+            for j in k + 1..n.min(k + w + 1) {
+                sum -= band[k][j + w - k] * pw[j];
+            }
+            pw[k] = sum / band[k][w];
+        }
+        let (points, weights) = pw.into_iter().map(from_homogeneous).unzip();
+        NurbsCurve::new(q, knots, points, weights)
+    }
+
+    /// The curve one degree higher as joined Bézier segments (interior
+    /// knots of multiplicity `degree + 1`).
+    fn elevate_segments(&self) -> Result<NurbsCurve, CurveError> {
         let segments = self.bezier_segments()?;
         let p = self.degree;
         let q = p + 1;
