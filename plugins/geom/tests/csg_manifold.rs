@@ -10,9 +10,8 @@
 use hedra_geom::csg::{BooleanError, BooleanOp, boolean};
 use hedra_geom::{DMat4, DQuat, DVec3, HalfEdgeMesh, Primitive};
 use serde_json::{Value, json};
-use std::io::Write;
-use std::path::Path;
-use std::process::{Command, Stdio};
+
+mod reference;
 
 /// One boolean to compare.
 struct Case {
@@ -227,26 +226,10 @@ fn manifold(cases: &[Case]) -> Vec<Value> {
             })
         })
         .collect();
-    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scripts/manifold_boolean.py");
-    let mut child = Command::new("python3")
-        .arg(&script)
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("python3 runs");
-    let mut stdin = child.stdin.take().unwrap();
-    let text = serde_json::to_vec(&input).unwrap();
-    let writer = std::thread::spawn(move || stdin.write_all(&text));
-    let out = child.wait_with_output().unwrap();
-    writer.join().unwrap().unwrap();
-    assert!(
-        out.status.success(),
-        "{} failed (run scripts/setup: it installs manifold3d from scripts/requirements.txt): {}",
-        script.display(),
-        String::from_utf8_lossy(&out.stderr)
-    );
-    serde_json::from_slice(&out.stdout).expect("the script prints JSON")
+    match reference::run("manifold_boolean.py", "manifold3d", &Value::Array(input)) {
+        Value::Array(results) => results,
+        other => panic!("a list of results, not {other}"),
+    }
 }
 
 #[test]

@@ -14,9 +14,8 @@ use hedra_geom::curves::{Curve, CurveKind};
 use hedra_geom::surfaces::Surface;
 use hedra_geom::{DVec3, NurbsCurve, NurbsSurface};
 use serde_json::{Value, json};
-use std::io::Write;
-use std::path::Path;
-use std::process::{Command, Stdio};
+
+mod reference;
 
 fn v3(p: DVec3) -> [f64; 3] {
     [p.x, p.y, p.z]
@@ -140,26 +139,7 @@ fn surfaces() -> Vec<(String, NurbsSurface)> {
 }
 
 fn run(input: &Value) -> Value {
-    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scripts/rhino_nurbs.py");
-    let mut child = Command::new("python3")
-        .arg(&script)
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("python3 runs");
-    let mut stdin = child.stdin.take().unwrap();
-    let text = serde_json::to_vec(input).unwrap();
-    let writer = std::thread::spawn(move || stdin.write_all(&text));
-    let out = child.wait_with_output().unwrap();
-    writer.join().unwrap().unwrap();
-    assert!(
-        out.status.success(),
-        "{} failed (run scripts/setup: it installs rhino3dm from scripts/requirements.txt): {}",
-        script.display(),
-        String::from_utf8_lossy(&out.stderr)
-    );
-    serde_json::from_slice(&out.stdout).expect("the script prints JSON")
+    reference::run("rhino_nurbs.py", "rhino3dm", input)
 }
 
 /// A control polygon with its knots (openNURBS drops the first and last).
