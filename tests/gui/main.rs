@@ -7,6 +7,7 @@ mod convert;
 mod files;
 mod gizmo;
 mod modeling;
+mod monkey;
 mod slow_machine;
 mod user;
 mod writers;
