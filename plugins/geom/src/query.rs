@@ -23,32 +23,33 @@ pub fn triangulate_face(mesh: &HalfEdgeMesh, f: FaceId) -> Vec<[VertexId; 3]> {
 /// a face without edges or a wire. Same method and complexity as
 /// [`triangulate_face`], which this is for a plain polygon.
 pub fn triangulate_outer_loop(mesh: &HalfEdgeMesh, f: FaceId) -> Vec<[VertexId; 3]> {
-    let verts: Vec<VertexId> = mesh.face_vertices(f).collect();
-    let n = verts.len();
+    let sides: Vec<crate::ids::HalfEdgeId> = mesh.face_halfedges(f).collect();
+    let vert = |i: usize| mesh.origin(sides[i]);
+    let n = sides.len();
     if n < 3 {
         return Vec::new();
     }
     if n == 3 {
-        return vec![[verts[0], verts[1], verts[2]]];
+        return vec![[vert(0), vert(1), vert(2)]];
     }
     // Newell's normal of the outer loop (a ring would subtract its area).
-    let normal = verts
-        .iter()
-        .zip(verts.iter().cycle().skip(1))
-        .map(|(&a, &b)| mesh.position(a).cross(mesh.position(b)))
+    let normal = (0..n)
+        .map(|i| {
+            mesh.position(vert(i))
+                .cross(mesh.position(vert((i + 1) % n)))
+        })
         .sum::<DVec3>()
         * 0.5;
     if normal.length_squared() < 1e-300 {
-        return fan(&verts);
+        return fan(&(0..n).map(vert).collect::<Vec<_>>());
     }
     // 2D coordinates in the face plane (u, v, normal right-handed).
     let nz = normal.normalize();
     let u = nz.any_orthonormal_vector();
     let v = nz.cross(u);
-    let pts: Vec<DVec2> = verts
-        .iter()
-        .map(|&x| {
-            let p = mesh.position(x);
+    let pts: Vec<DVec2> = (0..n)
+        .map(|i| {
+            let p = mesh.position(vert(i));
             DVec2::new(p.dot(u), p.dot(v))
         })
         .collect();
@@ -56,16 +57,22 @@ pub fn triangulate_outer_loop(mesh: &HalfEdgeMesh, f: FaceId) -> Vec<[VertexId; 
     // that share those edges: the same triangle twice, and four triangles
     // on the diagonal (issue 35). A nearly flat ear is a sliver without
     // area. Either is taken only when no other ear is left.
-    let shared = |i: usize| mesh.vertex_valence(verts[i]) == 2;
-    let turn = |a: usize, b: usize, c: usize| {
+    // Corner i has two edges when the edge after it, seen from the other
+    // side, runs on into the edge before it (one step, no walk round the
+    // vertex: this runs for every face the viewport and the exporters draw).
+    let shared = |i: usize| {
+        let (before, after) = (sides[(i + n - 1) % n], sides[i]);
+        mesh.next(after.twin()) == before.twin()
+    };
+    // Not flat: the turn's sine over FLAT_SINE (squared, without roots).
+    let sharp_turn = |a: usize, b: usize, c: usize| {
         let (e, f) = (pts[b] - pts[a], pts[c] - pts[b]);
-        (cross2(e, f), e.length() * f.length())
+        let cross = cross2(e, f);
+        cross > 0.0
+            && cross * cross > FLAT_SINE * FLAT_SINE * e.length_squared() * f.length_squared()
     };
     if n == 4 {
-        let good_ear = |a: usize, b: usize, c: usize| {
-            let (cross, lengths) = turn(a, b, c);
-            cross > FLAT_SINE * lengths && !shared(b)
-        };
+        let good_ear = |a: usize, b: usize, c: usize| sharp_turn(a, b, c) && !shared(b);
         // Split along the diagonal that keeps both triangles counter-clockwise,
         // preferring one whose ears are good, then the shorter one.
         let ccw = |a: usize, b: usize, c: usize| cross2(pts[b] - pts[a], pts[c] - pts[a]) > 0.0;
@@ -85,15 +92,9 @@ pub fn triangulate_outer_loop(mesh: &HalfEdgeMesh, f: FaceId) -> Vec<[VertexId; 
             },
         };
         return if use13 {
-            vec![
-                [verts[1], verts[2], verts[3]],
-                [verts[1], verts[3], verts[0]],
-            ]
+            vec![[vert(1), vert(2), vert(3)], [vert(1), vert(3), vert(0)]]
         } else {
-            vec![
-                [verts[0], verts[1], verts[2]],
-                [verts[0], verts[2], verts[3]],
-            ]
+            vec![[vert(0), vert(1), vert(2)], [vert(0), vert(2), vert(3)]]
         };
     }
     let mut idx: Vec<usize> = (0..n).collect();
@@ -119,8 +120,7 @@ pub fn triangulate_outer_loop(mesh: &HalfEdgeMesh, f: FaceId) -> Vec<[VertexId; 
         };
         let good = |i: usize| {
             let (a, b, c) = (at(i + m - 1), at(i), at(i + 1));
-            let (cross, lengths) = turn(a, b, c);
-            cross > FLAT_SINE * lengths && !pristine(i) && is_ear(i)
+            sharp_turn(a, b, c) && !pristine(i) && is_ear(i)
         };
         // First an ear beside such a vertex (it then gets a diagonal of its
         // own), then any good ear, then any ear at all.
@@ -129,15 +129,15 @@ pub fn triangulate_outer_loop(mesh: &HalfEdgeMesh, f: FaceId) -> Vec<[VertexId; 
             .or_else(|| (0..m).find(|&i| good(i)))
             .or_else(|| (0..m).find(|&i| is_ear(i)));
         let Some(i) = ear else { break };
-        out.push([verts[at(i + m - 1)], verts[at(i)], verts[at(i + 1)]]);
+        out.push([vert(at(i + m - 1)), vert(at(i)), vert(at(i + 1))]);
         idx.remove(i);
     }
     if idx.len() == 3 {
-        out.push([verts[idx[0]], verts[idx[1]], verts[idx[2]]]);
+        out.push([vert(idx[0]), vert(idx[1]), vert(idx[2])]);
         out
     } else {
         // Self-intersecting polygon: no ear left; finish with a fan of what remains.
-        let rest: Vec<VertexId> = idx.iter().map(|&i| verts[i]).collect();
+        let rest: Vec<VertexId> = idx.iter().map(|&i| vert(i)).collect();
         out.extend(fan(&rest));
         out
     }
