@@ -14,6 +14,8 @@
 
 use crate::user::User;
 use bevy::prelude::*;
+use bevy_egui::egui;
+use hedra_geom::DVec3;
 use hedra_scene::{DocRequest, DocState};
 use std::fmt::Write as _;
 
@@ -161,7 +163,34 @@ fn event(user: &mut User, hand: &mut Hand) -> String {
             user.wheel(lines);
             format!("wheel {lines}")
         }
-        84..=87 => {
+        84..=85 => {
+            // Into edit mode: click a mesh where its origin shows, then Tab.
+            let meshes: Vec<DVec3> = user
+                .doc()
+                .nodes()
+                .filter(|n| n.content.mesh().is_some())
+                .map(|n| user.doc().world_matrix(n.id).transform_point3(DVec3::ZERO))
+                .collect();
+            let Some(&origin) = meshes.get(hand.below(meshes.len().max(1))) else {
+                user.frame();
+                return "no mesh to edit".into();
+            };
+            let at = {
+                let world = user.app.world_mut();
+                let mut q = world.query_filtered::<(&Camera, &GlobalTransform), With<hedra_scene::ViewportCamera>>();
+                let (camera, transform) = q.single(world).unwrap();
+                camera.world_to_viewport(transform, origin.as_vec3()).ok()
+            };
+            let Some(at) = at.filter(|p| view.contains(egui::pos2(p.x, p.y))) else {
+                user.frame();
+                return "the mesh is out of view".into();
+            };
+            user.tap(KeyCode::Escape);
+            user.click(at);
+            user.tap(KeyCode::Tab);
+            format!("click the mesh at {at} and Tab")
+        }
+        86..=87 => {
             let at = point(hand);
             user.move_to(at);
             user.frame();
