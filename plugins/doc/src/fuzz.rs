@@ -176,6 +176,15 @@ pub fn stl(data: &[u8]) {
     check_imported(crate::import::stl_from_bytes(data, "fuzz", FUZZ_PATH));
 }
 
+/// STEP bytes (the exchange reader: faceted B-reps and triangulated
+/// solids).
+///
+/// # Panics
+/// When an imported mesh is not sane or an error does not name the file.
+pub fn step(data: &[u8]) {
+    check_imported(crate::step::read::step_from_bytes(data, FUZZ_PATH));
+}
+
 /// glTF JSON or GLB bytes, imported as a file of [`reference_sandbox`]'s
 /// `inside` folder: external buffers inside it are read; a buffer that
 /// leaves it (`../outside.bin`, a link, an absolute path, …) must be

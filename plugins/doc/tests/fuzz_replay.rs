@@ -64,6 +64,11 @@ fn replay_gltf_inputs() {
     replay("gltf", fuzz::gltf);
 }
 
+#[test]
+fn replay_step_inputs() {
+    replay("step", fuzz::step);
+}
+
 fn error_of<T: std::fmt::Debug, E: std::fmt::Display>(r: Result<T, E>) -> String {
     match r {
         Ok(v) => panic!("expected an error, got {v:?}"),
