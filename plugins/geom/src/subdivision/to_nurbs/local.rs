@@ -95,6 +95,27 @@ pub(super) struct CutOut {
     pub vertices: HashMap<u32, u32>,
 }
 
+impl CutOut {
+    /// `patches` made from this cut-out, their `cage_faces` turned from
+    /// faces of its mesh into the faces of the cage `prepared` refined.
+    pub fn patches_of(
+        &self,
+        prepared: &Prepared,
+        patches: Vec<ConvertedPatch>,
+    ) -> impl Iterator<Item = ConvertedPatch> {
+        let lv = prepared.level();
+        patches.into_iter().map(move |mut p| {
+            for f in &mut p.cage_faces {
+                let at = self.level_faces[f.0 as usize];
+                *f = prepared.refiner.cage.faces[lv.face_origin(at as usize) as usize];
+            }
+            p.cage_faces.sort();
+            p.cage_faces.dedup();
+            p
+        })
+    }
+}
+
 /// The faces of `prepared`'s level within `rings` rings of vertex `v` as a
 /// cage (`None` when they do not form a manifold mesh, as where two fans
 /// of a vertex on the cut touch only there).
@@ -277,17 +298,8 @@ pub(super) fn convert_star(
     )?;
     let mut report = exact.report.clone();
     report.merge(&inner.report);
-    let cage_face = |sub: FaceId| {
-        let f = next_cut.level_faces[sub.0 as usize];
-        finer.refiner.cage.faces[fl.face_origin(f as usize) as usize]
-    };
     let mut patches: Vec<ConvertedPatch> = exact.patches;
-    patches.extend(inner.patches.into_iter().map(|mut p| {
-        p.cage_faces = p.cage_faces.iter().map(|&f| cage_face(f)).collect();
-        p.cage_faces.sort();
-        p.cage_faces.dedup();
-        p
-    }));
+    patches.extend(next_cut.patches_of(&finer, inner.patches));
     debug_assert!(
         patches
             .iter()

@@ -440,16 +440,9 @@ pub fn to_nurbs(
             )?;
             conversion.report.merge(&part.report);
             conversion.deepest_level = conversion.deepest_level.max(part.deepest);
-            let lv = prepared.level();
-            for mut patch in part.patches {
-                for f in &mut patch.cage_faces {
-                    let at = cut.level_faces[f.0 as usize];
-                    *f = prepared.refiner.cage.faces[lv.face_origin(at as usize) as usize];
-                }
-                patch.cage_faces.sort();
-                patch.cage_faces.dedup();
-                conversion.patches.push(patch);
-            }
+            conversion
+                .patches
+                .extend(cut.patches_of(&prepared, part.patches));
         }
         return Ok(conversion);
     }
