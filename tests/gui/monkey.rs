@@ -175,12 +175,7 @@ fn event(user: &mut User, hand: &mut Hand) -> String {
                 user.frame();
                 return "no mesh to edit".into();
             };
-            let at = {
-                let world = user.app.world_mut();
-                let mut q = world.query_filtered::<(&Camera, &GlobalTransform), With<hedra_scene::ViewportCamera>>();
-                let (camera, transform) = q.single(world).unwrap();
-                camera.world_to_viewport(transform, origin.as_vec3()).ok()
-            };
+            let at = user.try_screen_of(origin.as_vec3());
             let Some(at) = at.filter(|p| view.contains(egui::pos2(p.x, p.y))) else {
                 user.frame();
                 return "the mesh is out of view".into();

@@ -406,13 +406,18 @@ impl User {
 
     /// Where the world point `p` is seen in the window, in logical pixels.
     pub fn screen_of(&mut self, p: Vec3) -> Vec2 {
+        self.try_screen_of(p)
+            .unwrap_or_else(|| panic!("{p} is not in view"))
+    }
+
+    /// [`screen_of`](Self::screen_of), `None` when `p` is behind the camera
+    /// or outside its view.
+    pub fn try_screen_of(&mut self, p: Vec3) -> Option<Vec2> {
         let world = self.app.world_mut();
         let mut q = world
             .query_filtered::<(&Camera, &GlobalTransform), With<hedra_scene::ViewportCamera>>();
         let (camera, transform) = q.single(world).unwrap();
-        camera
-            .world_to_viewport(transform, p)
-            .unwrap_or_else(|e| panic!("{p} is not in view: {e:?}"))
+        camera.world_to_viewport(transform, p).ok()
     }
 
     /// Shift+A with the pointer at `at`: the Add menu opens there.
