@@ -70,9 +70,11 @@ fn main_window() -> WindowPlugin {
 /// person does: they call `App::update` frame by frame and feed keys,
 /// buttons, cursor and wheel as Bevy's own input messages (`tests/gui/user.rs`).
 /// Nothing is drawn; cameras, egui layout, picking and the document run as
-/// in the window. Preferences are the defaults and recovery points go to
-/// `recovery_dir`, so a test touches nothing of the user's.
-pub fn windowless_gui_app(recovery_dir: PathBuf) -> App {
+/// in the window. `config_dir` stands for the configuration folder: the
+/// preferences are read from and saved to it (defaults when it has none)
+/// and recovery points go to its `recovery` folder, so a test touches
+/// nothing of the user's.
+pub fn windowless_gui_app(config_dir: PathBuf) -> App {
     let mut app = App::new();
     app.add_plugins(
         DefaultPlugins
@@ -90,8 +92,10 @@ pub fn windowless_gui_app(recovery_dir: PathBuf) -> App {
     )
     .add_plugins(HedraPlugins)
     .insert_resource(hedra_ui::SamplesDir(assets_dir().join("samples")))
-    .insert_resource(hedra_ui::Preferences::default())
-    .insert_resource(hedra_ui::recovery::Recovery::new(Some(recovery_dir)));
+    .insert_resource(hedra_ui::Preferences::load_from(Some(config_dir.clone())))
+    .insert_resource(hedra_ui::recovery::Recovery::new(Some(
+        config_dir.join("recovery"),
+    )));
     app.finish();
     app.cleanup();
     app

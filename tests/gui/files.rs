@@ -107,3 +107,32 @@ fn file_export_writes_every_format_and_a_dropped_export_comes_back() {
         assert_eq!(user.doc().nodes().count(), before, "{format:?}: undone");
     }
 }
+
+/// Edit ▸ Preferences…, dragging "Undo steps kept" down: the new limit is
+/// saved in the app's own configuration folder (a test's, here) and the
+/// history follows it. Found by the monkey (issue 35): the windowless app
+/// saved its preferences into the machine's real configuration folder, so
+/// one test's limit of 7 undo steps reached every later run.
+#[test]
+fn preferences_are_saved_in_the_apps_own_folder() {
+    let mut user = User::new();
+    let file = user.config_dir().join("preferences.ron");
+    assert!(!file.exists());
+    user.click_on("Edit");
+    user.click_on("Preferences…");
+    user.frames(2);
+    assert!(user.shows("Undo steps kept"), "{:?}", user.status());
+    let field = user.find("500");
+    user.drag(field, field - Vec2::new(60.0, 0.0), 6);
+    let prefs = user.app.world().resource::<hedra_ui::Preferences>().clone();
+    assert!(prefs.undo_steps < 500, "the drag changed nothing: {prefs:?}");
+    let saved = std::fs::read_to_string(&file)
+        .unwrap_or_else(|e| panic!("{} was not written: {e}", file.display()));
+    assert!(
+        saved.contains(&format!("undo_steps: {}", prefs.undo_steps)),
+        "{saved}"
+    );
+    user.frames(2);
+    let history = &user.app.world().resource::<hedra_scene::DocState>().session.history;
+    assert_eq!(history.max_steps, prefs.undo_steps);
+}

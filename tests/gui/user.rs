@@ -37,7 +37,7 @@ impl User {
     /// The app after its first frames, cursor in the middle of the viewport.
     pub fn new() -> User {
         let config = tempfile::tempdir().unwrap();
-        let mut app = hedra::windowless_gui_app(config.path().join("recovery"));
+        let mut app = hedra::windowless_gui_app(config.path().to_path_buf());
         let window = app
             .world_mut()
             .query_filtered::<Entity, With<PrimaryWindow>>()
@@ -63,6 +63,12 @@ impl User {
 
     pub fn frame(&mut self) {
         self.app.update();
+    }
+
+    /// The folder that stands for the configuration folder of this app
+    /// (preferences, recovery points): the test's own.
+    pub fn config_dir(&self) -> &std::path::Path {
+        self._config.path()
     }
 
     pub fn frames(&mut self, n: usize) {

@@ -140,6 +140,11 @@ pub struct Preferences {
     pub undo_steps: usize,
     /// Memory the undo history may hold, in MiB; older steps are dropped.
     pub undo_memory_mib: usize,
+    /// The folder they are saved in (not part of the file): the
+    /// configuration folder for the app, a test's own folder for the
+    /// windowless app, `None` when there is none (nothing is saved).
+    #[serde(skip)]
+    pub folder: Option<PathBuf>,
 }
 
 impl Default for Preferences {
@@ -149,6 +154,7 @@ impl Default for Preferences {
             autosave_seconds: 120,
             undo_steps: 500,
             undo_memory_mib: 512,
+            folder: None,
         }
     }
 }
@@ -161,17 +167,30 @@ impl Preferences {
         hedra_doc::recovery::config_dir()
     }
 
-    /// Reads the preferences; a missing or unreadable file gives defaults.
+    /// Reads the preferences of the configuration folder; a missing or
+    /// unreadable file gives defaults.
     pub fn load() -> Self {
-        Self::dir()
-            .and_then(|d| std::fs::read_to_string(d.join("preferences.ron")).ok())
-            .and_then(|t| ron::from_str(&t).ok())
-            .unwrap_or_default()
+        Self::load_from(Self::dir())
     }
 
-    /// Writes the preferences (atomically); failures only cost the preferences.
+    /// Reads the preferences saved in `folder` (defaults when there are
+    /// none); they are saved back there.
+    pub fn load_from(folder: Option<PathBuf>) -> Self {
+        let loaded: Preferences = folder
+            .as_ref()
+            .and_then(|d| std::fs::read_to_string(d.join("preferences.ron")).ok())
+            .and_then(|t| ron::from_str(&t).ok())
+            .unwrap_or_default();
+        Preferences { folder, ..loaded }
+    }
+
+    /// Writes the preferences into their folder (atomically); failures only
+    /// cost the preferences.
     pub fn save(&self) -> Result<(), String> {
-        let dir = Self::dir().ok_or("no configuration folder (HOME is not set)")?;
+        let dir = self
+            .folder
+            .clone()
+            .ok_or("no configuration folder (HOME is not set)")?;
         std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
         let text = ron::ser::to_string_pretty(self, ron::ser::PrettyConfig::default())
             .map_err(|e| e.to_string())?;
