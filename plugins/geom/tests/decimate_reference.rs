@@ -86,7 +86,9 @@ fn catmull_clark(cage: &HalfEdgeMesh, creases: &Creases, levels: u32) -> HalfEdg
         scheme: Scheme::CatmullClark,
         ..Options::default()
     };
-    Refiner::subdivide(cage, creases, options, levels).unwrap().0
+    Refiner::subdivide(cage, creases, options, levels)
+        .unwrap()
+        .0
 }
 
 fn inputs() -> Vec<Input> {
@@ -181,6 +183,11 @@ fn measured(v: &Value) -> Measured {
 /// factor covers the difference of sample sets between results).
 const SAMPLING_NOISE: f64 = 1.02;
 
+/// Distances below this fraction of the diagonal (0.001 %: a hundredth of
+/// a millimetre on a metre) count as equal: both results are then the
+/// input as far as anyone can see, and their ratio is sampling noise.
+const UNSEEN: f64 = 1e-5;
+
 /// A row where Hedra is not yet at or below a peer, with the factor it
 /// must stay within (so that it cannot get worse unnoticed). The test fails
 /// when a gap closes, so that this list says what is true.
@@ -192,7 +199,13 @@ struct Gap {
     bound: f64,
 }
 
-const fn gap(input: usize, percent: u32, peer: &'static str, metric: &'static str, bound: f64) -> Gap {
+const fn gap(
+    input: usize,
+    percent: u32,
+    peer: &'static str,
+    metric: &'static str,
+    bound: f64,
+) -> Gap {
     Gap {
         input,
         percent,
@@ -202,18 +215,53 @@ const fn gap(input: usize, percent: u32, peer: &'static str, metric: &'static st
     }
 }
 
+const SIMPLIFY: &str = "meshoptimizer simplify";
 const UPDATE: &str = "meshoptimizer simplifyWithUpdate";
 const MESHLAB: &str = "MeshLab quadric";
 
 /// The open gaps of issue 35's table (see the closing note), each bound
 /// about 5 % above the measured factor.
-const GAPS: &[Gap] = &[];
-
-const PEERS: [&str; 3] = [
-    "meshoptimizer simplify",
-    "meshoptimizer simplifyWithUpdate",
-    "MeshLab quadric",
+///
+/// What they are: optimal placement (meshoptimizer's `simplifyWithUpdate`,
+/// MeshLab) lowers the mean distance of smooth shapes, most on the UV
+/// sphere (1.5 to 2×); MeshLab removes the exactly flat parts of the
+/// creased cube at no error at all where Hedra's 50 % is 3e-5 of the
+/// diagonal; the bunny at 1 % and the scan at 10 % are up to 1.8× in the
+/// Hausdorff distance. Measured 2026-12-06 (issue 35's closing note).
+#[rustfmt::skip]
+const GAPS: &[Gap] = &[
+    gap(0, 50, UPDATE, "mean", 1.1),
+    gap(0, 50, MESHLAB, "Hausdorff", 1.15),
+    gap(0, 10, UPDATE, "Hausdorff", 1.09),
+    gap(0, 10, UPDATE, "mean", 1.12),
+    gap(0, 10, MESHLAB, "mean", 1.08),
+    gap(0, 1, SIMPLIFY, "Hausdorff", 1.25),
+    gap(0, 1, UPDATE, "Hausdorff", 1.9),
+    gap(0, 1, UPDATE, "mean", 1.12),
+    gap(0, 1, MESHLAB, "Hausdorff", 1.11),
+    gap(0, 1, MESHLAB, "mean", 1.1),
+    gap(1, 50, UPDATE, "mean", 1.89),
+    gap(1, 50, MESHLAB, "mean", 2.08),
+    gap(1, 10, UPDATE, "mean", 1.59),
+    gap(1, 10, MESHLAB, "mean", 1.57),
+    gap(1, 1, UPDATE, "mean", 1.24),
+    gap(1, 1, MESHLAB, "mean", 1.32),
+    gap(2, 10, MESHLAB, "Hausdorff", 1.17),
+    gap(2, 1, UPDATE, "mean", 1.17),
+    gap(2, 1, MESHLAB, "mean", 1.08),
+    gap(3, 50, MESHLAB, "Hausdorff", 2108.39),
+    gap(3, 10, MESHLAB, "Hausdorff", 1.19),
+    gap(3, 10, MESHLAB, "mean", 2.72),
+    gap(4, 50, MESHLAB, "Hausdorff", 2.3),
+    gap(4, 50, MESHLAB, "mean", 1.1),
+    gap(4, 10, SIMPLIFY, "Hausdorff", 1.82),
+    gap(4, 10, UPDATE, "Hausdorff", 1.26),
+    gap(4, 10, UPDATE, "mean", 1.14),
+    gap(4, 10, MESHLAB, "mean", 1.09),
+    gap(4, 1, UPDATE, "mean", 1.26),
 ];
+
+const PEERS: [&str; 3] = [SIMPLIFY, UPDATE, MESHLAB];
 
 #[test]
 fn decimation_is_at_or_below_meshoptimizer_and_meshlab_on_every_row() {
@@ -323,7 +371,7 @@ fn decimation_is_at_or_below_meshoptimizer_and_meshlab_on_every_row() {
             for label in std::iter::once("Hedra").chain(PEERS) {
                 let m = measured(&answer[label]);
                 table.push(format!(
-                    "| {} | {} | {}% | {label} | {} | {:.5} | {:.6} |",
+                    "| {} | {} | {}% | {label} | {} | {:.3e} | {:.3e} |",
                     input.name,
                     input.triangles.len(),
                     ratio * 100.0,
@@ -334,9 +382,14 @@ fn decimation_is_at_or_below_meshoptimizer_and_meshlab_on_every_row() {
             }
             let row = format!("{} at {}%", input.name, ratio * 100.0);
             if ours.faces as usize > target || (ours.faces as usize) < target * 9 / 10 {
-                failures.push(format!("{row}: Hedra has {} faces for {target}", ours.faces));
+                failures.push(format!(
+                    "{row}: Hedra has {} faces for {target}",
+                    ours.faces
+                ));
             }
-            if (ours.genus, ours.holes, ours.shells) != (original.genus, original.holes, original.shells) {
+            if (ours.genus, ours.holes, ours.shells)
+                != (original.genus, original.holes, original.shells)
+            {
                 failures.push(format!(
                     "{row}: Hedra's genus, border loops, shells {:?} differ from the input's {:?}",
                     (ours.genus, ours.holes, ours.shells),
@@ -349,18 +402,20 @@ fn decimation_is_at_or_below_meshoptimizer_and_meshlab_on_every_row() {
                     ("Hausdorff", ours.hausdorff, theirs.hausdorff),
                     ("mean", ours.mean, theirs.mean),
                 ] {
-                    let gap = GAPS
-                        .iter()
-                        .find(|g| (g.input, g.percent, g.peer, g.metric) == (n, (ratio * 100.0) as u32, peer, metric));
+                    let gap = GAPS.iter().find(|g| {
+                        (g.input, g.percent, g.peer, g.metric)
+                            == (n, (ratio * 100.0) as u32, peer, metric)
+                    });
                     let allowed = gap.map_or(SAMPLING_NOISE, |g| g.bound);
-                    if ours > theirs * allowed || ours.is_nan() || theirs.is_nan() {
+                    let equal = ours <= UNSEEN && theirs <= UNSEEN;
+                    if !equal && (ours > theirs * allowed || ours.is_nan() || theirs.is_nan()) {
                         failures.push(format!(
-                            "{row}: Hedra's {metric} {ours:.6} is {:.3}× {peer}'s {theirs:.6} (allowed {allowed})",
+                            "{row}: Hedra's {metric} {ours:.3e} is {:.3}× {peer}'s {theirs:.3e} (allowed {allowed})",
                             ours / theirs
                         ));
-                    } else if gap.is_some() && ours <= theirs * SAMPLING_NOISE {
+                    } else if gap.is_some() && (equal || ours <= theirs * SAMPLING_NOISE) {
                         failures.push(format!(
-                            "{row}: the gap to {peer}'s {metric} is closed ({ours:.6} against {theirs:.6}): take it off GAPS"
+                            "{row}: the gap to {peer}'s {metric} is closed ({ours:.3e} against {theirs:.3e}): take it off GAPS"
                         ));
                     }
                 }
@@ -374,4 +429,3 @@ fn decimation_is_at_or_below_meshoptimizer_and_meshlab_on_every_row() {
 fn triples(indices: &[u32]) -> Vec<[u32; 3]> {
     indices.chunks(3).map(|t| [t[0], t[1], t[2]]).collect()
 }
-

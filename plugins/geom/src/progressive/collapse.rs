@@ -40,33 +40,65 @@ impl Simplifier<'_> {
     fn is_feature(&self, e: EdgeId) -> bool {
         self.feature[e.index()] || self.mesh.is_boundary_edge(e)
     }
-    /// Number of feature edges at `v`, and whether `v` is a corner of
-    /// the features: one or three or more feature edges, or two that turn
-    /// by more than [`CORNER_TURN`].
-    fn feature_degree(&self, v: VertexId) -> (usize, bool) {
-        if !self.near_feature[v.index()] {
-            return (0, false);
-        }
+    /// The feature edges at `v`: how many, and the far ends of the first two.
+    fn feature_ends(&self, v: VertexId) -> (usize, [VertexId; 2]) {
         let m = &self.mesh;
-        let mut ends = [DVec3::ZERO; 2];
+        let mut ends = [v; 2];
         let mut n = 0;
         for h in m.vertex_outgoing(v) {
             if self.is_feature(h.edge()) {
                 if n < 2 {
-                    ends[n] = m.position(m.target(h));
+                    ends[n] = m.target(h);
                 }
                 n += 1;
             }
         }
+        (n, ends)
+    }
+    /// Whether the feature line turns by more than [`CORNER_TURN`] at `p`,
+    /// coming from `from` and going on to `to`.
+    fn turns_sharply(from: DVec3, p: DVec3, to: DVec3) -> bool {
+        let (x, y) = ((p - from).normalize_or_zero(), (to - p).normalize_or_zero());
+        x.dot(y) < CORNER_TURN.cos()
+    }
+    /// The vertex after `u` on the feature line that comes from `v`
+    /// (`u` itself where the line ends or branches at `u`).
+    fn beyond(&self, v: VertexId, u: VertexId) -> VertexId {
+        match self.feature_ends(u) {
+            (2, [a, b]) => {
+                if a == v {
+                    b
+                } else {
+                    a
+                }
+            }
+            _ => u,
+        }
+    }
+    /// Number of feature edges at `v`, and whether `v` is a corner of
+    /// the features: one or three or more feature edges, or two that turn
+    /// by more than [`CORNER_TURN`] both at `v` and over two edges on
+    /// each side. A line that zigzags (the jagged border of a scan) turns
+    /// sharply at its vertices but hardly over two edges: that is noise at
+    /// the scale of its edges, its vertices slide and the feature planes
+    /// of the quadrics hold its shape.
+    fn feature_degree(&self, v: VertexId) -> (usize, bool) {
+        if !self.near_feature[v.index()] {
+            return (0, false);
+        }
+        let (n, ends) = self.feature_ends(v);
         let corner = match n {
             0 => false,
             2 => {
+                let m = &self.mesh;
                 let p = m.position(v);
-                let (x, y) = (
-                    (p - ends[0]).normalize_or_zero(),
-                    (ends[1] - p).normalize_or_zero(),
-                );
-                x.dot(y) < CORNER_TURN.cos()
+                let [a, b] = ends;
+                Self::turns_sharply(m.position(a), p, m.position(b))
+                    && Self::turns_sharply(
+                        m.position(self.beyond(v, a)),
+                        p,
+                        m.position(self.beyond(v, b)),
+                    )
             }
             _ => true,
         };

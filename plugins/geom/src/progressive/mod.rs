@@ -29,7 +29,9 @@
 //! Feature edges hold: a vertex on two feature edges may only slide along
 //! them into a neighbour on the same line (placed on that edge), a vertex
 //! on one or three or more feature edges, or on two that turn by more than
-//! 45° (a corner), never moves, and with
+//! 45° both at it and over two edges on each side (a corner; a zigzag
+//! border of a scan turns at every vertex but not over two edges), never
+//! moves, and with
 //! [`DecimateOptions::keep_borders`] no border vertex moves at all.
 //!
 //! Levels are numbered from 0 (the base mesh) to
@@ -73,8 +75,8 @@ pub use quadric::Quadric;
 const FEATURE_WEIGHT: f64 = 20.0;
 
 /// A vertex where two feature edges (border, crease, seam, sharp) meet
-/// turning by more than this (45°) is a corner of the features and never
-/// moves.
+/// turning by more than this (45°), at the vertex and over two edges on
+/// each side, is a corner of the features and never moves.
 const CORNER_TURN: f64 = std::f64::consts::FRAC_PI_4;
 
 /// What [`ProgressiveMesh::build`] keeps while it simplifies.
