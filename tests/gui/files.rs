@@ -125,7 +125,10 @@ fn preferences_are_saved_in_the_apps_own_folder() {
     let field = user.find("500");
     user.drag(field, field - Vec2::new(60.0, 0.0), 6);
     let prefs = user.app.world().resource::<hedra_ui::Preferences>().clone();
-    assert!(prefs.undo_steps < 500, "the drag changed nothing: {prefs:?}");
+    assert!(
+        prefs.undo_steps < 500,
+        "the drag changed nothing: {prefs:?}"
+    );
     let saved = std::fs::read_to_string(&file)
         .unwrap_or_else(|e| panic!("{} was not written: {e}", file.display()));
     assert!(
@@ -133,6 +136,11 @@ fn preferences_are_saved_in_the_apps_own_folder() {
         "{saved}"
     );
     user.frames(2);
-    let history = &user.app.world().resource::<hedra_scene::DocState>().session.history;
+    let history = &user
+        .app
+        .world()
+        .resource::<hedra_scene::DocState>()
+        .session
+        .history;
     assert_eq!(history.max_steps, prefs.undo_steps);
 }

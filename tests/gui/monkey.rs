@@ -266,7 +266,12 @@ fn monkey(seed: u64, events: usize) {
     eprintln!(
         "monkey seed {seed}: {events} events, {} undo steps ({} dropped by the limits), {} nodes, {} faces",
         end_steps - start_steps,
-        user.app.world().resource::<DocState>().session.history.dropped,
+        user.app
+            .world()
+            .resource::<DocState>()
+            .session
+            .history
+            .dropped,
         end.nodes().count(),
         end.nodes()
             .filter_map(|n| n.content.mesh())
@@ -282,7 +287,13 @@ fn monkey(seed: u64, events: usize) {
     // A hand that lowered "Undo steps kept" in the preferences dropped the
     // oldest steps: undo all then reaches the oldest step kept, not the
     // start, and only the way back to the end can be checked.
-    let dropped = user.app.world().resource::<DocState>().session.history.dropped;
+    let dropped = user
+        .app
+        .world()
+        .resource::<DocState>()
+        .session
+        .history
+        .dropped;
     if dropped == 0 && (user.undo_steps() != start_steps || user.doc() != &start) {
         let what = format!(
             "undo all does not return to the start ({} undo steps left, {})",
