@@ -144,3 +144,39 @@ fn preferences_are_saved_in_the_apps_own_folder() {
         .history;
     assert_eq!(history.max_steps, prefs.undo_steps);
 }
+
+/// File ▸ Open Sample opens the sample as a new untitled scene: Ctrl+S
+/// then asks where to save (the path prompt opens) and the sample's file
+/// stays as it was. Found by the monkey (issue 35): it opened the table
+/// sample, pressed Ctrl+S and rewrote `assets/samples/table.hedra.ron`,
+/// which the USD test reads.
+#[test]
+fn a_sample_opens_untitled_and_save_never_overwrites_it() {
+    let mut user = User::new();
+    let sample =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/samples/table.hedra.ron");
+    let before = std::fs::read(&sample).unwrap();
+    user.click_on("File");
+    user.click_on("Open Sample ⏵");
+    user.click_on("table.hedra.ron");
+    for _ in 0..100 {
+        user.frame();
+        if user.doc().nodes().next().is_some() {
+            break;
+        }
+    }
+    assert!(user.doc().nodes().count() > 1, "{}", user.status());
+    let state = user.app.world().resource::<hedra_scene::DocState>();
+    assert_eq!(state.path, None, "the sample opened as itself");
+    assert!(
+        user.status().contains("as a new scene"),
+        "{}",
+        user.status()
+    );
+    user.shortcut(&[KeyCode::ControlLeft], KeyCode::KeyS);
+    user.frames(2);
+    let asked = prompt(&user).expect("Ctrl+S asks where to save");
+    assert!(asked.ends_with("untitled.hedra.ron"), "{asked}");
+    user.tap(KeyCode::Escape);
+    assert_eq!(std::fs::read(&sample).unwrap(), before);
+}

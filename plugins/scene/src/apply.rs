@@ -89,11 +89,18 @@ fn finish_file_job(
     done: FinishedFile,
 ) -> Result<Option<DocChanged>, String> {
     match done {
-        FinishedFile::Opened(path, Ok(loaded)) => {
+        FinishedFile::Opened(path, false, Ok(loaded)) => {
             status.info(format!("Opened {}", path.display()));
             Ok(Some(adopt(state, status, loaded, Some(path))))
         }
-        FinishedFile::Opened(_, Err(e)) => Err(e.to_string()),
+        FinishedFile::Opened(path, true, Ok(loaded)) => {
+            status.info(format!(
+                "Opened the sample {} as a new scene: Save asks where to keep it",
+                path.file_name().unwrap_or_default().to_string_lossy()
+            ));
+            Ok(Some(adopt(state, status, loaded, None)))
+        }
+        FinishedFile::Opened(_, _, Err(e)) => Err(e.to_string()),
         FinishedFile::Saved(path, serial, Ok(())) => {
             state.session.saved_serial = Some(serial);
             state.path = Some(path.clone());
@@ -171,8 +178,8 @@ fn apply(
                 replaced: true,
             }))
         }
-        DocRequest::Open(path) => {
-            jobs.start_open(path);
+        DocRequest::Open(path) | DocRequest::OpenSample(path) => {
+            jobs.start_open(path, matches!(request, DocRequest::OpenSample(_)));
             status.info(format!("Opening {}…", path.display()));
             Ok(None)
         }

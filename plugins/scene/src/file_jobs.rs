@@ -36,6 +36,8 @@ fn receive<T>(
 pub(crate) enum FileJob {
     Open {
         path: PathBuf,
+        /// A sample: the document it gives has no path.
+        untitled: bool,
         done: Mutex<Receiver<Result<Loaded, FileError>>>,
     },
     Save {
@@ -91,6 +93,7 @@ impl FileJobs {
                     || matches!(
                         request,
                         DocRequest::Open(_)
+                            | DocRequest::OpenSample(_)
                             | DocRequest::Save(_)
                             | DocRequest::New
                             | DocRequest::Recover(_)
@@ -99,8 +102,9 @@ impl FileJobs {
         }
     }
 
-    /// Reads `path` on a worker thread.
-    pub(crate) fn start_open(&mut self, path: &std::path::Path) {
+    /// Reads `path` on a worker thread (`untitled`: as a sample, whose
+    /// document gets no path).
+    pub(crate) fn start_open(&mut self, path: &std::path::Path, untitled: bool) {
         let (send, done) = channel();
         let owned = path.to_path_buf();
         std::thread::spawn(move || {
@@ -108,6 +112,7 @@ impl FileJobs {
         });
         self.running = Some(FileJob::Open {
             path: path.to_path_buf(),
+            untitled,
             done: Mutex::new(done),
         });
     }
@@ -131,9 +136,11 @@ impl FileJobs {
     /// The running job's result, if it has finished.
     pub(crate) fn finished(&mut self) -> Option<FinishedFile> {
         let result = match self.running.as_ref()? {
-            FileJob::Open { path, done } => {
-                FinishedFile::Opened(path.clone(), receive(done, path, false)?)
-            }
+            FileJob::Open {
+                path,
+                untitled,
+                done,
+            } => FinishedFile::Opened(path.clone(), *untitled, receive(done, path, false)?),
             FileJob::Save { path, serial, done } => {
                 FinishedFile::Saved(path.clone(), *serial, receive(done, path, false)?)
             }
@@ -145,7 +152,8 @@ impl FileJobs {
 
 /// A file job's outcome.
 pub(crate) enum FinishedFile {
-    Opened(PathBuf, Result<Loaded, FileError>),
+    /// The file read, whether it opens untitled (a sample), what was read.
+    Opened(PathBuf, bool, Result<Loaded, FileError>),
     Saved(PathBuf, u64, Result<(), FileError>),
 }
 

@@ -92,6 +92,10 @@ pub enum DocRequest {
     /// Load a scene file on a worker thread; it replaces the document when it
     /// has been read.
     Open(PathBuf),
+    /// Load a sample scene as [`Open`](Self::Open) does, as a new untitled
+    /// scene: Save then asks where to keep it, so that the sample (part of
+    /// the installation) is never overwritten.
+    OpenSample(PathBuf),
     /// Write the document to this file on a worker thread; the document's path
     /// becomes it when the write succeeds.
     Save(PathBuf),

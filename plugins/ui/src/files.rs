@@ -56,6 +56,8 @@ pub enum Pending {
     New,
     /// Open this scene file.
     Open(PathBuf),
+    /// Open this sample as a new untitled scene.
+    OpenSample(PathBuf),
     /// Show the Open dialog.
     BrowseOpen,
     /// Quit the app.

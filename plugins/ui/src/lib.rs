@@ -187,9 +187,12 @@ pub enum FileAction {
     /// Open a scene chosen in the file dialog or path prompt (Ctrl+O), after
     /// asking about unsaved changes.
     Open,
-    /// Open this scene (recent files, samples, a dropped file), after asking
-    /// about unsaved changes.
+    /// Open this scene (recent files, a dropped file), after asking about
+    /// unsaved changes.
     OpenPath(std::path::PathBuf),
+    /// Open this sample as a new untitled scene (File ▸ Open Sample), after
+    /// asking about unsaved changes.
+    OpenSample(std::path::PathBuf),
     /// Save to the document's file (Ctrl+S), or ask for a path when it has none.
     Save,
     /// Save under a path chosen in the file dialog or path prompt (Ctrl+Shift+S).
@@ -398,6 +401,7 @@ fn handle_file_actions(
             FileAction::New => guarded(Pending::New, &mut ui),
             FileAction::Open => guarded(Pending::BrowseOpen, &mut ui),
             FileAction::OpenPath(p) => guarded(Pending::Open(p.clone()), &mut ui),
+            FileAction::OpenSample(p) => guarded(Pending::OpenSample(p.clone()), &mut ui),
             FileAction::Quit => guarded(Pending::Quit, &mut ui),
             FileAction::Save => {
                 match &state.path {
@@ -441,6 +445,9 @@ pub fn run_pending(
         }
         Pending::Open(path) => {
             requests.write(DocRequest::Open(path));
+        }
+        Pending::OpenSample(path) => {
+            requests.write(DocRequest::OpenSample(path));
         }
         Pending::BrowseOpen => begin_path(ui, FilePurpose::Open, state),
         Pending::Quit => {

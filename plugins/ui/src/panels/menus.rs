@@ -81,8 +81,12 @@ pub(super) fn menu_bar(
                         .file_name()
                         .map(|n| n.to_string_lossy().into_owned())
                         .unwrap_or_default();
-                    if ui.button(name).clicked() {
-                        events.push(UiEvent::File(FileAction::OpenPath(p)));
+                    if ui
+                        .button(name)
+                        .on_hover_text("Opens as a new scene: the sample stays as it is")
+                        .clicked()
+                    {
+                        events.push(UiEvent::File(FileAction::OpenSample(p)));
                     }
                 }
             });
