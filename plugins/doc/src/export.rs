@@ -363,7 +363,17 @@ fn to_ascii_stl(items: &[ExportItem]) -> String {
 
 /// Every visible surface as world-space triangles with their normals.
 fn stl_triangles(items: &[ExportItem]) -> Vec<stl_io::Triangle> {
-    let mut triangles = Vec::new();
+    let mut triangles = Vec::with_capacity(
+        items
+            .iter()
+            .map(|i| match &i.geometry {
+                // At least two triangles per quad, one per triangle.
+                Geometry::Mesh(m) => m.halfedge_count() / 2,
+                Geometry::Triangles(_, _, t) => t.len(),
+                _ => 0,
+            })
+            .sum(),
+    );
     let mut push = |[a, b, c]: [DVec3; 3], mirrored: bool| {
         // A mirroring transform turns the winding over: turn it back.
         let [a, b, c] = if mirrored { [a, c, b] } else { [a, b, c] };
@@ -378,8 +388,11 @@ fn stl_triangles(items: &[ExportItem]) -> Vec<stl_io::Triangle> {
         let world = item.world;
         match &item.geometry {
             Geometry::Mesh(m) => {
+                let mut face = Vec::new();
                 for f in m.faces() {
-                    for corners in hedra_geom::query::triangulate_face(m, f) {
+                    face.clear();
+                    hedra_geom::query::triangulate_face_into(m, f, &mut face);
+                    for corners in &face {
                         push(
                             corners.map(|v| world.transform_point3(m.position(v))),
                             item.mirrored,
@@ -406,7 +419,9 @@ fn stl_triangles(items: &[ExportItem]) -> Vec<stl_io::Triangle> {
 /// node, positions in world space, faces 1-based and counter-clockwise;
 /// surfaces as triangles, curves as `l` polylines.
 fn to_obj(items: &[ExportItem]) -> String {
-    let mut out = String::from("# Hedra OBJ export\n");
+    let mut out = String::with_capacity(obj_size_estimate(items));
+    out.push_str("# Hedra OBJ export\n");
+    let mut numbers = Numbers::default();
     let mut base = 1usize;
     // Next 1-based `vt` and `vn` numbers.
     let (mut next_vt, mut next_vn) = (1usize, 1usize);
@@ -417,9 +432,14 @@ fn to_obj(items: &[ExportItem]) -> String {
             "o {}",
             item.node.name.replace(char::is_whitespace, "_")
         );
-        let vertex = |out: &mut String, p: DVec3| {
+        let mut vertex = |out: &mut String, p: DVec3| {
             let p = world.transform_point3(p);
-            let _ = writeln!(out, "v {} {} {}", p.x, p.y, p.z);
+            out.push('v');
+            for x in [p.x, p.y, p.z] {
+                out.push(' ');
+                numbers.float(out, x);
+            }
+            out.push('\n');
         };
         match &item.geometry {
             Geometry::Mesh(m) => {
@@ -429,14 +449,17 @@ fn to_obj(items: &[ExportItem]) -> String {
                     vertex(&mut out, m.position(v));
                 }
                 let Some(c) = item.corners else {
+                    let mut vs: Vec<hedra_geom::VertexId> = Vec::new();
                     for f in m.faces() {
                         out.push('f');
-                        let mut vs: Vec<hedra_geom::VertexId> = m.face_vertices(f).collect();
+                        vs.clear();
+                        vs.extend(m.face_vertices(f));
                         if item.mirrored {
                             vs.reverse();
                         }
-                        for v in vs {
-                            let _ = write!(out, " {}", index[v.index()]);
+                        for v in &vs {
+                            out.push(' ');
+                            numbers.int(&mut out, index[v.index()]);
                         }
                         out.push('\n');
                     }
@@ -503,13 +526,12 @@ fn to_obj(items: &[ExportItem]) -> String {
                     } else {
                         *t
                     };
-                    let _ = writeln!(
-                        out,
-                        "f {} {} {}",
-                        base + a as usize,
-                        base + b as usize,
-                        base + c as usize
-                    );
+                    out.push('f');
+                    for i in [a, b, c] {
+                        out.push(' ');
+                        numbers.int(&mut out, base + i as usize);
+                    }
+                    out.push('\n');
                 }
                 base += positions.len();
             }
@@ -530,6 +552,41 @@ fn to_obj(items: &[ExportItem]) -> String {
         }
     }
     out
+}
+
+/// Formats numbers for the OBJ writer without `fmt`'s machinery (zmij's
+/// shortest round-trip floats, itoa's integers): most of an OBJ is numbers.
+#[derive(Default)]
+struct Numbers {
+    floats: zmij::Buffer,
+    ints: itoa::Buffer,
+}
+
+impl Numbers {
+    fn float(&mut self, out: &mut String, x: f64) {
+        out.push_str(self.floats.format(x));
+    }
+    fn int(&mut self, out: &mut String, n: usize) {
+        out.push_str(self.ints.format(n));
+    }
+}
+
+/// About the size of the OBJ of `items`, so that its text grows once: a
+/// `v` line of about 60 bytes per vertex and an `f` line of about 8 bytes
+/// per corner.
+fn obj_size_estimate(items: &[ExportItem]) -> usize {
+    items
+        .iter()
+        .map(|item| match &item.geometry {
+            Geometry::Mesh(m) => {
+                60 * m.vertex_count() + 8 * m.halfedge_count() + 2 * m.face_count()
+            }
+            Geometry::Triangles(p, _, t) => 60 * p.len() + 26 * t.len(),
+            Geometry::Polyline(p) => 68 * p.len(),
+            Geometry::FreeForm(c) => 68 * c.points().len(),
+        })
+        .sum::<usize>()
+        + 64
 }
 
 /// An OBJ free-form B-spline record of `curve` mapped by `world`, its

@@ -27,21 +27,27 @@ use crate::import::{ImportError, ImportedMesh, corner_attributes};
 use crate::scene::{CornerAttributes, Document, NodeContent, NodeId, NodeTransform, Shading};
 use hedra_geom::subdivision::Creases;
 
-/// Appends `data` to the buffer (4-byte aligned) and returns its view.
-fn push_view(
+/// Appends `items` to the buffer as little-endian bytes (4-byte aligned),
+/// straight from the arrays, and returns their view.
+fn push_view<const N: usize, T: LittleEndian>(
     root: &mut json::Root,
     bin: &mut Vec<u8>,
-    data: &[u8],
+    items: &[[T; N]],
     target: json::buffer::Target,
 ) -> json::Index<json::buffer::View> {
     while !bin.len().is_multiple_of(4) {
         bin.push(0);
     }
     let offset = bin.len();
-    bin.extend_from_slice(data);
+    bin.reserve(items.len() * N * 4);
+    for item in items {
+        for x in item {
+            bin.extend_from_slice(&x.bytes());
+        }
+    }
     root.push(json::buffer::View {
         buffer: json::Index::new(0),
-        byte_length: USize64(data.len() as u64),
+        byte_length: USize64((bin.len() - offset) as u64),
         byte_offset: Some(USize64(offset as u64)),
         byte_stride: None,
         name: None,
@@ -76,10 +82,21 @@ fn push_accessor(
     })
 }
 
-fn f32_bytes(v: &[[f32; 3]]) -> Vec<u8> {
-    v.iter()
-        .flat_map(|p| p.iter().flat_map(|x| x.to_le_bytes()))
-        .collect()
+/// The 4-byte numbers glTF buffers hold, as they are stored.
+trait LittleEndian: Copy {
+    fn bytes(self) -> [u8; 4];
+}
+
+impl LittleEndian for f32 {
+    fn bytes(self) -> [u8; 4] {
+        self.to_le_bytes()
+    }
+}
+
+impl LittleEndian for u32 {
+    fn bytes(self) -> [u8; 4] {
+        self.to_le_bytes()
+    }
 }
 
 fn bounds(v: &[[f32; 3]]) -> ([f32; 3], [f32; 3]) {
@@ -147,15 +164,19 @@ fn mesh_triangles(
         Shading::Flat => {
             // Each face its own corners (a cube: 24 vertices, seed 000's
             // "cube problem"), triangulated by index.
+            let (mut corners, mut face) = (Vec::new(), Vec::new());
             for f in m.faces() {
                 let n = a(unit_or_up(m.face_normal(f), || neighbours_normal(m, f)));
                 let base = positions.len() as u32;
-                let corners: Vec<hedra_geom::VertexId> = m.face_vertices(f).collect();
+                corners.clear();
+                corners.extend(m.face_vertices(f));
                 for &v in &corners {
                     positions.push(a(m.position(v)));
                     normals.push(n);
                 }
-                for tri in hedra_geom::query::triangulate_face(m, f) {
+                face.clear();
+                hedra_geom::query::triangulate_face_into(m, f, &mut face);
+                for &tri in &face {
                     indices.extend(tri.map(|v| {
                         base + corners
                             .iter()
@@ -187,9 +208,13 @@ fn mesh_triangles(
                 }
             }
             let mut corner = 0usize;
+            let (mut corners, mut face) = (Vec::new(), Vec::new());
             for f in m.faces() {
-                let corners: Vec<hedra_geom::VertexId> = m.face_vertices(f).collect();
-                for tri in hedra_geom::query::triangulate_face(m, f) {
+                corners.clear();
+                corners.extend(m.face_vertices(f));
+                face.clear();
+                hedra_geom::query::triangulate_face_into(m, f, &mut face);
+                for &tri in &face {
                     indices.extend(tri.map(|v| {
                         let k = corners.iter().position(|c| *c == v).unwrap_or(0);
                         split.vertex(corner + k, index[v.index()])
@@ -350,7 +375,7 @@ pub fn to_gltf(doc: &Document, shape: ExportShape, binary: bool) -> Result<Vec<u
                 let view = push_view(
                     &mut root,
                     &mut bin,
-                    &f32_bytes(&positions),
+                    &positions,
                     json::buffer::Target::ArrayBuffer,
                 );
                 let pos = push_accessor(
@@ -367,7 +392,7 @@ pub fn to_gltf(doc: &Document, shape: ExportShape, binary: bool) -> Result<Vec<u
                     let view = push_view(
                         &mut root,
                         &mut bin,
-                        &f32_bytes(&normals),
+                        &normals,
                         json::buffer::Target::ArrayBuffer,
                     );
                     let nrm = push_accessor(
@@ -381,16 +406,8 @@ pub fn to_gltf(doc: &Document, shape: ExportShape, binary: bool) -> Result<Vec<u
                     attributes.insert(Valid(json::mesh::Semantic::Normals), nrm);
                 }
                 if !uvs.is_empty() {
-                    let bytes: Vec<u8> = uvs
-                        .iter()
-                        .flat_map(|t| t.iter().flat_map(|x| x.to_le_bytes()))
-                        .collect();
-                    let view = push_view(
-                        &mut root,
-                        &mut bin,
-                        &bytes,
-                        json::buffer::Target::ArrayBuffer,
-                    );
+                    let view =
+                        push_view(&mut root, &mut bin, &uvs, json::buffer::Target::ArrayBuffer);
                     let tex = push_accessor(
                         &mut root,
                         view,
@@ -402,11 +419,10 @@ pub fn to_gltf(doc: &Document, shape: ExportShape, binary: bool) -> Result<Vec<u
                     attributes.insert(Valid(json::mesh::Semantic::TexCoords(0)), tex);
                 }
                 let indices = (!indices.is_empty()).then(|| {
-                    let bytes: Vec<u8> = indices.iter().flat_map(|i| i.to_le_bytes()).collect();
                     let view = push_view(
                         &mut root,
                         &mut bin,
-                        &bytes,
+                        indices.as_chunks::<1>().0,
                         json::buffer::Target::ElementArrayBuffer,
                     );
                     push_accessor(

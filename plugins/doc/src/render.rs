@@ -4,7 +4,7 @@
 //! Bevy `Mesh`.
 
 use crate::scene::Shading;
-use hedra_geom::query::triangulate_outer_loop;
+use hedra_geom::query::triangulate_outer_loop_into;
 use hedra_geom::{DVec3, FaceId, HalfEdgeMesh, VertexId};
 
 /// Positions, normals and triangle indices for the GPU (f32, as rendered).
@@ -44,12 +44,15 @@ pub fn render_buffers_creased(
     creases: &hedra_geom::subdivision::Creases,
 ) -> RenderBuffers {
     let mut b = RenderBuffers::default();
+    // One face's corners and triangles, reused for every face.
+    let (mut corners, mut face): (Vec<VertexId>, Vec<[VertexId; 3]>) = (Vec::new(), Vec::new());
     match shading {
         Shading::Flat => {
             for f in mesh.faces() {
                 let n = mesh.face_normal(f).as_vec3().to_array();
                 let base = b.positions.len() as u32;
-                let corners: Vec<VertexId> = mesh.face_vertices(f).collect();
+                corners.clear();
+                corners.extend(mesh.face_vertices(f));
                 for &v in &corners {
                     b.positions.push(mesh.position(v).as_vec3().to_array());
                     b.normals.push(n);
@@ -62,7 +65,9 @@ pub fn render_buffers_creased(
                         .expect("a triangle corner is a face corner")
                         as u32
                 };
-                for tri in triangulate_outer_loop(mesh, f) {
+                face.clear();
+                triangulate_outer_loop_into(mesh, f, &mut face);
+                for tri in &face {
                     b.indices.extend(tri.iter().map(corner));
                 }
             }
@@ -81,12 +86,15 @@ pub fn render_buffers_creased(
             }
             let mut corner = 0usize;
             for f in mesh.faces() {
-                let corners: Vec<VertexId> = mesh.face_vertices(f).collect();
+                corners.clear();
+                corners.extend(mesh.face_vertices(f));
                 let render = |v: &VertexId| {
                     let k = corners.iter().position(|c| c == v).unwrap_or(0);
                     split.vertex(corner + k, index[v.index()])
                 };
-                for tri in triangulate_outer_loop(mesh, f) {
+                face.clear();
+                triangulate_outer_loop_into(mesh, f, &mut face);
+                for tri in &face {
                     b.indices.extend(tri.iter().map(render));
                 }
                 corner += corners.len();

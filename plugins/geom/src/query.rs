@@ -11,10 +11,19 @@ use glam::{DVec2, DVec3};
 ///
 /// Complexity: O(n²) for an n-gon; O(1) for triangles and quads.
 pub fn triangulate_face(mesh: &HalfEdgeMesh, f: FaceId) -> Vec<[VertexId; 3]> {
+    let mut out = Vec::new();
+    triangulate_face_into(mesh, f, &mut out);
+    out
+}
+
+/// [`triangulate_face`] appending to `out`: the exporters and the render
+/// buffers call it for every face with one vector, and triangles and quads
+/// then allocate nothing.
+pub fn triangulate_face_into(mesh: &HalfEdgeMesh, f: FaceId, out: &mut Vec<[VertexId; 3]>) {
     if !mesh.is_polygon_face(f) || mesh.face_degree(f) < 3 {
-        return Vec::new(); // rings, no edges or a wire: nothing to fill (issue 3)
+        return; // rings, no edges or a wire: nothing to fill (issue 3)
     }
-    triangulate_outer_loop(mesh, f)
+    triangulate_outer_loop_into(mesh, f, out);
 }
 
 /// Triangles of a face's outer loop alone, its inner rings ignored: how the
@@ -23,14 +32,40 @@ pub fn triangulate_face(mesh: &HalfEdgeMesh, f: FaceId) -> Vec<[VertexId; 3]> {
 /// a face without edges or a wire. Same method and complexity as
 /// [`triangulate_face`], which this is for a plain polygon.
 pub fn triangulate_outer_loop(mesh: &HalfEdgeMesh, f: FaceId) -> Vec<[VertexId; 3]> {
-    let sides: Vec<crate::ids::HalfEdgeId> = mesh.face_halfedges(f).collect();
+    let mut out = Vec::new();
+    triangulate_outer_loop_into(mesh, f, &mut out);
+    out
+}
+
+/// [`triangulate_outer_loop`] appending to `out`.
+pub fn triangulate_outer_loop_into(mesh: &HalfEdgeMesh, f: FaceId, out: &mut Vec<[VertexId; 3]>) {
+    // Triangles and quads on the stack; longer loops in vectors.
+    let mut small = [crate::ids::HalfEdgeId(0); 4];
+    let mut n = 0;
+    for h in mesh.face_halfedges(f) {
+        if n < 4 {
+            small[n] = h;
+        }
+        n += 1;
+        if n > 4 {
+            break;
+        }
+    }
+    let long: Vec<crate::ids::HalfEdgeId>;
+    let sides: &[crate::ids::HalfEdgeId] = if n <= 4 {
+        &small[..n]
+    } else {
+        long = mesh.face_halfedges(f).collect();
+        &long
+    };
     let vert = |i: usize| mesh.origin(sides[i]);
     let n = sides.len();
     if n < 3 {
-        return Vec::new();
+        return;
     }
     if n == 3 {
-        return vec![[vert(0), vert(1), vert(2)]];
+        out.push([vert(0), vert(1), vert(2)]);
+        return;
     }
     // Newell's normal of the outer loop (a ring would subtract its area).
     let normal = (0..n)
@@ -41,18 +76,28 @@ pub fn triangulate_outer_loop(mesh: &HalfEdgeMesh, f: FaceId) -> Vec<[VertexId; 
         .sum::<DVec3>()
         * 0.5;
     if normal.length_squared() < 1e-300 {
-        return fan(&(0..n).map(vert).collect::<Vec<_>>());
+        out.extend(fan(&(0..n).map(vert).collect::<Vec<_>>()));
+        return;
     }
     // 2D coordinates in the face plane (u, v, normal right-handed).
     let nz = normal.normalize();
     let u = nz.any_orthonormal_vector();
     let v = nz.cross(u);
-    let pts: Vec<DVec2> = (0..n)
-        .map(|i| {
-            let p = mesh.position(vert(i));
-            DVec2::new(p.dot(u), p.dot(v))
-        })
-        .collect();
+    let plane = |i: usize| {
+        let p = mesh.position(vert(i));
+        DVec2::new(p.dot(u), p.dot(v))
+    };
+    let mut quad = [DVec2::ZERO; 4];
+    let long_pts: Vec<DVec2>;
+    let pts: &[DVec2] = if n == 4 {
+        for (i, q) in quad.iter_mut().enumerate() {
+            *q = plane(i);
+        }
+        &quad
+    } else {
+        long_pts = (0..n).map(plane).collect();
+        &long_pts
+    };
     // An ear at a vertex of only two edges would be clipped by both faces
     // that share those edges: the same triangle twice, and four triangles
     // on the diagonal (issue 35). A nearly flat ear is a sliver without
@@ -91,14 +136,15 @@ pub fn triangulate_outer_loop(mesh: &HalfEdgeMesh, f: FaceId) -> Vec<[VertexId; 
                 _ => false,
             },
         };
-        return if use13 {
-            vec![[vert(1), vert(2), vert(3)], [vert(1), vert(3), vert(0)]]
+        out.extend(if use13 {
+            [[vert(1), vert(2), vert(3)], [vert(1), vert(3), vert(0)]]
         } else {
-            vec![[vert(0), vert(1), vert(2)], [vert(0), vert(2), vert(3)]]
-        };
+            [[vert(0), vert(1), vert(2)], [vert(0), vert(2), vert(3)]]
+        });
+        return;
     }
     let mut idx: Vec<usize> = (0..n).collect();
-    let mut out = Vec::with_capacity(n - 2);
+    out.reserve(n - 2);
     let mut guard = n * n;
     while idx.len() > 3 && guard > 0 {
         guard -= 1;
@@ -134,12 +180,10 @@ pub fn triangulate_outer_loop(mesh: &HalfEdgeMesh, f: FaceId) -> Vec<[VertexId; 
     }
     if idx.len() == 3 {
         out.push([vert(idx[0]), vert(idx[1]), vert(idx[2])]);
-        out
     } else {
         // Self-intersecting polygon: no ear left; finish with a fan of what remains.
         let rest: Vec<VertexId> = idx.iter().map(|&i| vert(i)).collect();
         out.extend(fan(&rest));
-        out
     }
 }
 
