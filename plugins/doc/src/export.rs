@@ -315,13 +315,26 @@ fn empty_solid_notes(doc: &Document) -> Vec<String> {
         .collect()
 }
 
-/// The visible meshes as binary STL (written by `stl_io`): every face
-/// triangulated, positions in world space, each triangle's normal from its
-/// corners (counter-clockwise is the outside).
+/// The visible meshes as binary STL: every face triangulated, positions
+/// in world space, each triangle's normal from its corners
+/// (counter-clockwise is the outside). Written straight into the output,
+/// 50 bytes a triangle after the 80-byte header and the count (the layout
+/// `stl_io::write_stl` writes, which needs every triangle in memory first):
+/// the export holds the file once.
 fn to_stl(items: &[ExportItem]) -> Vec<u8> {
-    let triangles = stl_triangles(items);
-    let mut out = Vec::new();
-    stl_io::write_stl(&mut out, triangles.iter()).expect("writing to memory cannot fail");
+    let mut out = Vec::with_capacity(84 + 50 * triangle_estimate(items));
+    out.extend_from_slice(&[0u8; 84]);
+    let mut count = 0u32;
+    each_stl_triangle(items, |normal, [a, b, c]| {
+        // Twelve floats and a zero attribute count, copied in one piece.
+        let mut record = [0u8; 50];
+        for (k, x) in [normal, a, b, c].as_flattened().iter().enumerate() {
+            record[4 * k..4 * k + 4].copy_from_slice(&x.to_le_bytes());
+        }
+        out.extend_from_slice(&record);
+        count += 1;
+    });
+    out[80..84].copy_from_slice(&count.to_le_bytes());
     out
 }
 
@@ -363,32 +376,46 @@ fn to_ascii_stl(items: &[ExportItem]) -> String {
 
 /// Every visible surface as world-space triangles with their normals.
 fn stl_triangles(items: &[ExportItem]) -> Vec<stl_io::Triangle> {
-    let mut triangles = Vec::with_capacity(
-        items
-            .iter()
-            .map(|i| match &i.geometry {
-                // At least two triangles per quad, one per triangle.
-                Geometry::Mesh(m) => m.halfedge_count() / 2,
-                Geometry::Triangles(_, _, t) => t.len(),
-                _ => 0,
-            })
-            .sum(),
-    );
+    let mut triangles = Vec::with_capacity(triangle_estimate(items));
+    each_stl_triangle(items, |normal, corners| {
+        triangles.push(stl_io::Triangle {
+            normal: stl_io::Normal::new(normal),
+            vertices: corners.map(stl_io::Vertex::new),
+        });
+    });
+    triangles
+}
+
+/// About how many triangles `items` make (two per quad, one per triangle),
+/// to size the output once.
+fn triangle_estimate(items: &[ExportItem]) -> usize {
+    items
+        .iter()
+        .map(|i| match &i.geometry {
+            Geometry::Mesh(m) => m.halfedge_count() / 2,
+            Geometry::Triangles(_, _, t) => t.len(),
+            _ => 0,
+        })
+        .sum()
+}
+
+/// Calls `visit` with the unit normal and the world-space corners of every
+/// triangle of the visible surfaces, in order (curves have none).
+fn each_stl_triangle(items: &[ExportItem], mut visit: impl FnMut([f32; 3], [[f32; 3]; 3])) {
     let mut push = |[a, b, c]: [DVec3; 3], mirrored: bool| {
         // A mirroring transform turns the winding over: turn it back.
         let [a, b, c] = if mirrored { [a, c, b] } else { [a, b, c] };
         let n = (b - a).cross(c - a).normalize_or_zero();
-        let vertex = |p: DVec3| stl_io::Vertex::new(p.as_vec3().to_array());
-        triangles.push(stl_io::Triangle {
-            normal: stl_io::Normal::new(n.as_vec3().to_array()),
-            vertices: [vertex(a), vertex(b), vertex(c)],
-        });
+        visit(
+            n.as_vec3().to_array(),
+            [a, b, c].map(|p| p.as_vec3().to_array()),
+        );
     };
+    let mut face = Vec::new();
     for item in items {
         let world = item.world;
         match &item.geometry {
             Geometry::Mesh(m) => {
-                let mut face = Vec::new();
                 for f in m.faces() {
                     face.clear();
                     hedra_geom::query::triangulate_face_into(m, f, &mut face);
@@ -412,7 +439,6 @@ fn stl_triangles(items: &[ExportItem]) -> Vec<stl_io::Triangle> {
             Geometry::Polyline(_) | Geometry::FreeForm(_) => {}
         }
     }
-    triangles
 }
 
 /// The scene's visible meshes as Wavefront OBJ text, one `o` object per
