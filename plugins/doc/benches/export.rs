@@ -5,7 +5,7 @@
 //!
 //! `cargo bench -p hedra_doc --bench export -- FILTER`
 
-use criterion::{Criterion, Throughput, criterion_group, criterion_main};
+use criterion::{Criterion, Throughput, criterion_main};
 use hedra_doc::export::{ExportOptions, ExportShape, export_bytes};
 use hedra_doc::{Command, NodeTransform, Session};
 use hedra_geom::Primitive;
@@ -62,5 +62,9 @@ fn export(c: &mut Criterion) {
     }
 }
 
-criterion_group!(benches, export);
-criterion_main!(benches);
+// The macro's `benches` function is Criterion's, not an API to document.
+#[allow(missing_docs)]
+mod group {
+    criterion::criterion_group!(benches, super::export);
+}
+criterion_main!(group::benches);
