@@ -27,23 +27,21 @@ use crate::import::{ImportError, ImportedMesh, corner_attributes};
 use crate::scene::{CornerAttributes, Document, NodeContent, NodeId, NodeTransform, Shading};
 use hedra_geom::subdivision::Creases;
 
-/// Appends `items` to the buffer as little-endian bytes (4-byte aligned),
-/// straight from the arrays, and returns their view.
-fn push_view<const N: usize, T: LittleEndian>(
+/// Appends `numbers` to the buffer as little-endian bytes (4-byte
+/// aligned), straight from the arrays, and returns their view.
+fn push_view<T: LittleEndian>(
     root: &mut json::Root,
     bin: &mut Vec<u8>,
-    items: &[[T; N]],
+    numbers: &[T],
     target: json::buffer::Target,
 ) -> json::Index<json::buffer::View> {
     while !bin.len().is_multiple_of(4) {
         bin.push(0);
     }
     let offset = bin.len();
-    bin.reserve(items.len() * N * 4);
-    for item in items {
-        for x in item {
-            bin.extend_from_slice(&x.bytes());
-        }
+    bin.reserve(numbers.len() * 4);
+    for x in numbers {
+        bin.extend_from_slice(&x.bytes());
     }
     root.push(json::buffer::View {
         buffer: json::Index::new(0),
@@ -375,7 +373,7 @@ pub fn to_gltf(doc: &Document, shape: ExportShape, binary: bool) -> Result<Vec<u
                 let view = push_view(
                     &mut root,
                     &mut bin,
-                    &positions,
+                    positions.as_flattened(),
                     json::buffer::Target::ArrayBuffer,
                 );
                 let pos = push_accessor(
@@ -392,7 +390,7 @@ pub fn to_gltf(doc: &Document, shape: ExportShape, binary: bool) -> Result<Vec<u
                     let view = push_view(
                         &mut root,
                         &mut bin,
-                        &normals,
+                        normals.as_flattened(),
                         json::buffer::Target::ArrayBuffer,
                     );
                     let nrm = push_accessor(
@@ -406,8 +404,12 @@ pub fn to_gltf(doc: &Document, shape: ExportShape, binary: bool) -> Result<Vec<u
                     attributes.insert(Valid(json::mesh::Semantic::Normals), nrm);
                 }
                 if !uvs.is_empty() {
-                    let view =
-                        push_view(&mut root, &mut bin, &uvs, json::buffer::Target::ArrayBuffer);
+                    let view = push_view(
+                        &mut root,
+                        &mut bin,
+                        uvs.as_flattened(),
+                        json::buffer::Target::ArrayBuffer,
+                    );
                     let tex = push_accessor(
                         &mut root,
                         view,
@@ -422,7 +424,7 @@ pub fn to_gltf(doc: &Document, shape: ExportShape, binary: bool) -> Result<Vec<u
                     let view = push_view(
                         &mut root,
                         &mut bin,
-                        indices.as_chunks::<1>().0,
+                        &indices,
                         json::buffer::Target::ElementArrayBuffer,
                     );
                     push_accessor(
