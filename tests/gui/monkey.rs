@@ -8,7 +8,9 @@
 //! all returns the document to where it started, redo all to where it
 //! ended, and save → load → save gives the same text.
 //!
-//! A failure prints the seed and the events so far. The short version runs
+//! A failure prints the seed, the events so far, and the shortest list of
+//! them found that still fails the same way (delta debugging on replays
+//! in fresh apps, [`shrink`]). The short version runs
 //! in CI (a few seeds of a few hundred events); `scripts/monkey` runs the
 //! long one (`HEDRA_MONKEY_SEEDS`, `HEDRA_MONKEY_EVENTS`).
 
@@ -107,21 +109,57 @@ fn forbidden(text: &str) -> bool {
         .any(|w| text.starts_with(w))
 }
 
-/// One random event, applied; returns what it was, for the log. An empty
-/// scene gets a primitive first, as a user would add one.
-fn event(user: &mut User, hand: &mut Hand) -> String {
+/// One thing a user did, recorded so that a failing run can be replayed
+/// and shrunk. What depends on the screen is kept by what the user aimed
+/// at (a widget's text, the n-th mesh), so that a replay of fewer events
+/// still aims at it.
+#[derive(Clone, Debug, PartialEq)]
+enum Event {
+    /// A primitive added through the command (the hand's first move on an
+    /// empty scene).
+    AddPrimitive(&'static str),
+    Tap(KeyCode),
+    Shortcut(&'static [KeyCode], KeyCode),
+    KeysInOneFrame(Vec<KeyCode>),
+    Click(Vec2),
+    Drag(Vec2, Vec2, usize),
+    Wheel(f32),
+    /// Click the n-th mesh (modulo their count) where its origin shows,
+    /// then Tab.
+    EditMesh(usize),
+    MoveTo(Vec2),
+    /// Click the first widget with this text (a frame when none shows).
+    ClickWidget(String),
+}
+
+impl std::fmt::Display for Event {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Event::AddPrimitive(p) => write!(f, "AddPrimitive(primitive: {p})"),
+            Event::Tap(k) => write!(f, "tap {k:?}"),
+            Event::Shortcut(mods, k) => write!(f, "shortcut {mods:?} {k:?}"),
+            Event::KeysInOneFrame(keys) => write!(f, "keys in one frame {keys:?}"),
+            Event::Click(at) => write!(f, "click {at}"),
+            Event::Drag(from, to, steps) => write!(f, "drag {from} → {to} in {steps} steps"),
+            Event::Wheel(lines) => write!(f, "wheel {lines}"),
+            Event::EditMesh(n) => write!(f, "click mesh {n} where its origin shows and Tab"),
+            Event::MoveTo(at) => write!(f, "move to {at}"),
+            Event::ClickWidget(text) => write!(f, "click widget '{text}'"),
+        }
+    }
+}
+
+/// The hand's next event. An empty scene gets a primitive first, as a
+/// user would add one.
+fn choose(user: &User, hand: &mut Hand) -> Event {
     if user.doc().nodes().next().is_none() {
-        let item = [
-            "Cube(size: 2.0)",
-            "UvSphere(segments: 12, rings: 6, radius: 1.0)",
-            "Cylinder(segments: 8, radius: 1.0, depth: 2.0)",
-        ][hand.below(3)];
-        let command = format!("AddPrimitive(primitive: {item})");
-        user.app.world_mut().write_message(DocRequest::Execute(
-            ron::from_str(&command).expect("a command"),
-        ));
-        user.frames(2);
-        return format!("{command} (the scene was empty)");
+        return Event::AddPrimitive(
+            [
+                "Cube(size: 2.0)",
+                "UvSphere(segments: 12, rings: 6, radius: 1.0)",
+                "Cylinder(segments: 8, radius: 1.0, depth: 2.0)",
+            ][hand.below(3)],
+        );
     }
     let view = user.viewport();
     let point = |hand: &mut Hand| {
@@ -131,85 +169,90 @@ fn event(user: &mut User, hand: &mut Hand) -> String {
         )
     };
     match hand.below(100) {
-        0..=44 => {
-            let key = KEYS[hand.below(KEYS.len())];
-            user.tap(key);
-            format!("tap {key:?}")
-        }
+        0..=44 => Event::Tap(KEYS[hand.below(KEYS.len())]),
         45..=54 => {
             let (mods, key) = CHORDS[hand.below(CHORDS.len())];
-            user.shortcut(mods, key);
-            format!("shortcut {mods:?} {key:?}")
+            Event::Shortcut(mods, key)
         }
-        55..=59 => {
-            let keys: Vec<KeyCode> = (0..2 + hand.below(3))
+        55..=59 => Event::KeysInOneFrame(
+            (0..2 + hand.below(3))
                 .map(|_| KEYS[hand.below(KEYS.len())])
-                .collect();
-            user.taps_in_one_frame(&keys);
-            format!("keys in one frame {keys:?}")
-        }
-        60..=71 => {
-            let at = point(hand);
-            user.click(at);
-            format!("click {at}")
-        }
+                .collect(),
+        ),
+        60..=71 => Event::Click(point(hand)),
         72..=79 => {
             let (from, to) = (point(hand), point(hand));
-            user.drag(from, to, 1 + hand.below(4));
-            format!("drag {from} → {to}")
+            Event::Drag(from, to, 1 + hand.below(4))
         }
-        80..=83 => {
-            let lines = hand.below(5) as f32 - 2.0;
-            user.wheel(lines);
-            format!("wheel {lines}")
+        80..=83 => Event::Wheel(hand.below(5) as f32 - 2.0),
+        84..=85 => Event::EditMesh(hand.below(1 << 16)),
+        86..=87 => Event::MoveTo(point(hand)),
+        _ => {
+            let widgets: Vec<String> = user
+                .widgets()
+                .iter()
+                .filter(|w| !w.text.is_empty() && !forbidden(&w.text))
+                .map(|w| w.text.clone())
+                .collect();
+            match widgets.len() {
+                0 => Event::MoveTo(point(hand)),
+                n => Event::ClickWidget(widgets[hand.below(n)].clone()),
+            }
         }
-        84..=85 => {
-            // Into edit mode: click a mesh where its origin shows, then Tab.
+    }
+}
+
+/// Sends `event` to the app as a user would.
+fn apply(user: &mut User, event: &Event) {
+    match event {
+        Event::AddPrimitive(item) => {
+            let command = format!("AddPrimitive(primitive: {item})");
+            user.app.world_mut().write_message(DocRequest::Execute(
+                ron::from_str(&command).expect("a command"),
+            ));
+            user.frames(2);
+        }
+        Event::Tap(key) => user.tap(*key),
+        Event::Shortcut(mods, key) => user.shortcut(mods, *key),
+        Event::KeysInOneFrame(keys) => user.taps_in_one_frame(keys),
+        Event::Click(at) => user.click(*at),
+        Event::Drag(from, to, steps) => user.drag(*from, *to, *steps),
+        Event::Wheel(lines) => user.wheel(*lines),
+        Event::EditMesh(n) => {
+            let view = user.viewport();
             let meshes: Vec<DVec3> = user
                 .doc()
                 .nodes()
                 .filter(|n| n.content.mesh().is_some())
                 .map(|n| user.doc().world_matrix(n.id).transform_point3(DVec3::ZERO))
                 .collect();
-            let Some(&origin) = meshes.get(hand.below(meshes.len().max(1))) else {
-                user.frame();
-                return "no mesh to edit".into();
-            };
-            let at = user.try_screen_of(origin.as_vec3());
-            let Some(at) = at.filter(|p| view.contains(egui::pos2(p.x, p.y))) else {
-                user.frame();
-                return "the mesh is out of view".into();
-            };
-            user.tap(KeyCode::Escape);
-            user.click(at);
-            user.tap(KeyCode::Tab);
-            format!("click the mesh at {at} and Tab")
+            let at = meshes
+                .get(n % meshes.len().max(1))
+                .and_then(|origin| user.try_screen_of(origin.as_vec3()))
+                .filter(|p| view.contains(egui::pos2(p.x, p.y)));
+            match at {
+                Some(at) => {
+                    user.tap(KeyCode::Escape);
+                    user.click(at);
+                    user.tap(KeyCode::Tab);
+                }
+                None => user.frame(),
+            }
         }
-        86..=87 => {
-            let at = point(hand);
-            user.move_to(at);
+        Event::MoveTo(at) => {
+            user.move_to(*at);
             user.frame();
-            format!("move to {at}")
         }
-        _ => {
-            let widgets: Vec<(String, Vec2)> = user
+        Event::ClickWidget(text) => {
+            let at = user
                 .widgets()
                 .iter()
-                .filter(|w| !w.text.is_empty() && !forbidden(&w.text))
-                .map(|w| {
-                    (
-                        w.text.clone(),
-                        Vec2::new(w.rect.center().x, w.rect.center().y),
-                    )
-                })
-                .collect();
-            if widgets.is_empty() {
-                user.frame();
-                return "no widget".into();
+                .find(|w| &w.text == text)
+                .map(|w| Vec2::new(w.rect.center().x, w.rect.center().y));
+            match at {
+                Some(at) => user.click(at),
+                None => user.frame(),
             }
-            let (text, at) = widgets[hand.below(widgets.len())].clone();
-            user.click(at);
-            format!("click widget '{text}' at {at}")
         }
     }
 }
@@ -223,104 +266,255 @@ fn invalid_mesh(user: &User) -> Option<String> {
     })
 }
 
-/// Runs `events` random events from `seed` and checks the invariants.
-fn monkey(seed: u64, events: usize) {
-    // The start is the empty scene before the first step: the hand may undo
-    // the cube too.
-    let mut user = User::new();
-    // Saves and exports go beside a scene file in the test's own folder
-    // (the hand may press Ctrl+S, or type into a path prompt and Enter).
-    let scene_path = user.config_dir().join("monkey.hedra.ron");
-    user.app.world_mut().resource_mut::<DocState>().path = Some(scene_path);
-    let start = user.doc().clone();
-    let start_steps = user.undo_steps();
-    user.add("Cube");
-    let mut hand = Hand(seed.wrapping_mul(0x9e37_79b9_7f4a_7c15) | 1);
-    let mut log = String::new();
-    let fail = |log: &str, what: &str| -> ! {
-        panic!("monkey seed {seed}: {what}\nevents:\n{log}");
-    };
-    for i in 0..events {
-        let what =
-            std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| event(&mut user, &mut hand)));
-        match what {
-            Ok(what) => {
-                let _ = writeln!(log, "{i}: {what}");
-            }
-            Err(_) => fail(
-                &log,
-                &format!("event {i} panicked (after the events below)"),
+/// What kind of failure a run found: a shrunk run must fail the same way.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Kind {
+    Panic,
+    Invalid,
+    Undo,
+    Redo,
+    SaveLoad,
+}
+
+/// A violation: its kind, what it says, and how many events had been sent.
+#[derive(Debug)]
+struct Failure {
+    kind: Kind,
+    what: String,
+    after: usize,
+}
+
+/// A run of the hand (or a replay): a fresh windowless app with one cube,
+/// the start recorded for the final checks.
+struct Run {
+    user: User,
+    start: hedra_doc::Document,
+    start_steps: usize,
+}
+
+/// A check beside validation (tests of the shrinker inject one).
+type Check = fn(&User) -> Option<String>;
+
+impl Run {
+    fn new() -> Run {
+        // The start is the empty scene before the first step: the hand may
+        // undo the cube too.
+        let mut user = User::new();
+        // Saves and exports go beside a scene file in the test's own folder
+        // (the hand may press Ctrl+S, or type into a path prompt and Enter).
+        let scene_path = user.config_dir().join("monkey.hedra.ron");
+        user.app.world_mut().resource_mut::<DocState>().path = Some(scene_path);
+        let start = user.doc().clone();
+        let start_steps = user.undo_steps();
+        user.add("Cube");
+        Run {
+            user,
+            start,
+            start_steps,
+        }
+    }
+
+    /// Sends one event and checks every mesh (and `extra`) after it.
+    fn step(&mut self, event: &Event, n: usize, extra: Option<Check>) -> Result<(), Failure> {
+        let user = &mut self.user;
+        let sent = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| apply(user, event)));
+        let fail = |kind, what| {
+            Err(Failure {
+                kind,
+                what,
+                after: n + 1,
+            })
+        };
+        if sent.is_err() {
+            return fail(Kind::Panic, format!("event {n} panicked"));
+        }
+        if let Some(problem) =
+            invalid_mesh(&self.user).or_else(|| extra.and_then(|c| c(&self.user)))
+        {
+            return fail(Kind::Invalid, format!("after event {n}: {problem}"));
+        }
+        Ok(())
+    }
+
+    /// Leaves any tool, then undo all, redo all, and save → load → save.
+    fn finish(mut self, events: usize) -> Result<(), Failure> {
+        let user = &mut self.user;
+        let fail = |kind, what| {
+            Err(Failure {
+                kind,
+                what,
+                after: events,
+            })
+        };
+        for _ in 0..3 {
+            user.tap(KeyCode::Escape);
+        }
+        user.frames(3);
+        let end = user.doc().clone();
+        let end_steps = user.undo_steps();
+        let history = |user: &User| {
+            user.app
+                .world()
+                .resource::<DocState>()
+                .session
+                .history
+                .dropped
+        };
+        eprintln!(
+            "monkey: {events} events, {} undo steps ({} dropped by the limits), {} nodes, {} faces",
+            end_steps - self.start_steps,
+            history(user),
+            end.nodes().count(),
+            end.nodes()
+                .filter_map(|n| n.content.mesh())
+                .map(|m| m.face_count())
+                .sum::<usize>()
+        );
+        let mut guard = 0;
+        while user.undo_steps() > self.start_steps && guard < 10_000 {
+            user.app.world_mut().write_message(DocRequest::Undo);
+            user.frame();
+            guard += 1;
+        }
+        // A hand that lowered "Undo steps kept" in the preferences dropped
+        // the oldest steps: undo all then reaches the oldest step kept, not
+        // the start, and only the way back to the end can be checked.
+        if history(user) == 0
+            && (user.undo_steps() != self.start_steps || user.doc() != &self.start)
+        {
+            return fail(
+                Kind::Undo,
+                format!(
+                    "undo all does not return to the start ({} undo steps left, {})",
+                    user.undo_steps() - self.start_steps,
+                    first_difference(&self.start, user.doc())
+                ),
+            );
+        }
+        while user.undo_steps() < end_steps && guard < 20_000 {
+            user.app.world_mut().write_message(DocRequest::Redo);
+            user.frame();
+            guard += 1;
+        }
+        if user.doc() != &end {
+            return fail(
+                Kind::Redo,
+                format!(
+                    "redo all does not return to the end ({})",
+                    first_difference(&end, user.doc())
+                ),
+            );
+        }
+        let session = &user.app.world().resource::<DocState>().session;
+        let text = hedra_doc::file::to_string(session);
+        match hedra_doc::file::from_str(&text, std::path::Path::new("monkey.hedra.ron")) {
+            Err(e) => fail(
+                Kind::SaveLoad,
+                format!("the saved scene does not load: {e}"),
             ),
-        }
-        if let Some(problem) = invalid_mesh(&user) {
-            fail(&log, &problem);
+            Ok(loaded) if hedra_doc::file::to_string(&loaded.session) != text => {
+                fail(Kind::SaveLoad, "save → load → save differs".into())
+            }
+            Ok(_) => Ok(()),
         }
     }
-    // Leave any tool and dialog, then undo all and redo all.
-    for _ in 0..3 {
-        user.tap(KeyCode::Escape);
+}
+
+/// Runs `events` random events from `seed` with the checks; on a failure
+/// returns the events sent up to it and the failure.
+fn run_seed(seed: u64, events: usize, extra: Option<Check>) -> Result<(), (Vec<Event>, Failure)> {
+    let mut run = Run::new();
+    let mut hand = Hand(seed.wrapping_mul(0x9e37_79b9_7f4a_7c15) | 1);
+    let mut sent = Vec::with_capacity(events);
+    for n in 0..events {
+        let event = choose(&run.user, &mut hand);
+        sent.push(event);
+        if let Err(failure) = run.step(&sent[n], n, extra) {
+            return Err((sent, failure));
+        }
     }
-    user.frames(3);
-    let end = user.doc().clone();
-    let end_steps = user.undo_steps();
-    eprintln!(
-        "monkey seed {seed}: {events} events, {} undo steps ({} dropped by the limits), {} nodes, {} faces",
-        end_steps - start_steps,
-        user.app
-            .world()
-            .resource::<DocState>()
-            .session
-            .history
-            .dropped,
-        end.nodes().count(),
-        end.nodes()
-            .filter_map(|n| n.content.mesh())
-            .map(|m| m.face_count())
-            .sum::<usize>()
+    run.finish(events).map_err(|failure| (sent, failure))
+}
+
+/// Replays `events` with the checks (a fresh app): the failure, if any.
+fn replay(events: &[Event], extra: Option<Check>) -> Option<Failure> {
+    let mut run = Run::new();
+    for (n, event) in events.iter().enumerate() {
+        if let Err(failure) = run.step(event, n, extra) {
+            return Some(failure);
+        }
+    }
+    run.finish(events.len()).err()
+}
+
+/// The shortest sublist of `events` found for which `fails` still holds,
+/// by delta debugging (A. Zeller, "Simplifying and Isolating
+/// Failure-Inducing Input", 2002): drop chunks of half the list, then of
+/// smaller and smaller sizes down to single events, keeping every drop
+/// after which it still fails. `fails` may also cut the list (it returns
+/// how many of the events it needed), as a replay stops at its failure.
+/// Stops at `deadline` with the shortest list so far.
+fn shrink<T: Clone>(
+    events: &[T],
+    mut fails: impl FnMut(&[T]) -> Option<usize>,
+    deadline: std::time::Instant,
+) -> Vec<T> {
+    let mut shortest = events.to_vec();
+    let mut chunk = shortest.len().div_ceil(2);
+    while chunk > 0 && std::time::Instant::now() < deadline {
+        let mut i = 0;
+        while i < shortest.len() && std::time::Instant::now() < deadline {
+            let mut candidate = shortest[..i].to_vec();
+            candidate.extend_from_slice(&shortest[(i + chunk).min(shortest.len())..]);
+            match fails(&candidate) {
+                Some(needed) => {
+                    candidate.truncate(needed);
+                    shortest = candidate;
+                }
+                None => i += chunk,
+            }
+        }
+        chunk /= 2;
+    }
+    shortest
+}
+
+/// Runs a seed; on a failure shrinks its events (for at most
+/// `HEDRA_MONKEY_SHRINK_SECS`, 300 by default) to a list that still fails
+/// the same way, and panics with the seed, the failure and both lists.
+fn monkey(seed: u64, events: usize) {
+    let Err((sent, failure)) = run_seed(seed, events, None) else {
+        return;
+    };
+    let budget = std::time::Duration::from_secs(from_env("HEDRA_MONKEY_SHRINK_SECS", 300));
+    let kind = failure.kind;
+    let sent = &sent[..failure.after.min(sent.len())];
+    let shrunk = shrink(
+        sent,
+        |events| {
+            replay(events, None)
+                .filter(|f| f.kind == kind)
+                .map(|f| f.after)
+        },
+        std::time::Instant::now() + budget,
     );
-    let mut guard = 0;
-    while user.undo_steps() > start_steps && guard < 10_000 {
-        user.app.world_mut().write_message(DocRequest::Undo);
-        user.frame();
-        guard += 1;
-    }
-    // A hand that lowered "Undo steps kept" in the preferences dropped the
-    // oldest steps: undo all then reaches the oldest step kept, not the
-    // start, and only the way back to the end can be checked.
-    let dropped = user
-        .app
-        .world()
-        .resource::<DocState>()
-        .session
-        .history
-        .dropped;
-    if dropped == 0 && (user.undo_steps() != start_steps || user.doc() != &start) {
-        let what = format!(
-            "undo all does not return to the start ({} undo steps left, {})",
-            user.undo_steps() - start_steps,
-            first_difference(&start, user.doc())
-        );
-        fail(&log, &what);
-    }
-    while user.undo_steps() < end_steps && guard < 20_000 {
-        user.app.world_mut().write_message(DocRequest::Redo);
-        user.frame();
-        guard += 1;
-    }
-    if user.doc() != &end {
-        let what = format!(
-            "redo all does not return to the end ({})",
-            first_difference(&end, user.doc())
-        );
-        fail(&log, &what);
-    }
-    let session = &user.app.world().resource::<DocState>().session;
-    let text = hedra_doc::file::to_string(session);
-    let loaded = hedra_doc::file::from_str(&text, std::path::Path::new("monkey.hedra.ron"))
-        .unwrap_or_else(|e| fail(&log, &format!("the saved scene does not load: {e}")));
-    if hedra_doc::file::to_string(&loaded.session) != text {
-        fail(&log, "save → load → save differs");
-    }
+    let list = |events: &[Event]| {
+        let mut log = String::new();
+        for (i, e) in events.iter().enumerate() {
+            let _ = writeln!(log, "{i}: {e}");
+        }
+        log
+    };
+    let again =
+        replay(&shrunk, None).map_or("(the shrunk list no longer fails)".into(), |f| f.what);
+    panic!(
+        "monkey seed {seed}: {}\n\nshrunk to {} of {} events, which fail with: {again}\n{}\nall events:\n{}",
+        failure.what,
+        shrunk.len(),
+        sent.len(),
+        list(&shrunk),
+        list(sent)
+    );
 }
 
 /// The first lines where two documents' debug forms differ, to say what a
@@ -344,6 +538,58 @@ fn from_env(name: &str, default: u64) -> u64 {
         .ok()
         .and_then(|v| v.parse().ok())
         .unwrap_or(default)
+}
+
+/// The shrinker keeps what makes a list fail: here an 8 followed later by
+/// a 3, hidden in 200 numbers; and a list cut at its failure stays cut.
+#[test]
+fn shrinking_finds_the_events_that_fail() {
+    let events: Vec<u32> = (0..200).map(|i| (i * 7 + 1) % 10).collect();
+    let fails = |e: &[u32]| {
+        let eight = e.iter().position(|&x| x == 8)?;
+        let three = e[eight..].iter().position(|&x| x == 3)?;
+        Some(eight + three + 1)
+    };
+    assert!(fails(&events).is_some());
+    let far = std::time::Instant::now() + std::time::Duration::from_secs(60);
+    assert_eq!(shrink(&events, fails, far), vec![8, 3]);
+    // A passed deadline returns the list as it was.
+    let past = std::time::Instant::now();
+    assert_eq!(shrink(&events, fails, past).len(), 200);
+}
+
+/// The monkey's own shrinking on the real app: a check that calls a moved
+/// object a violation fails a seeded run after a few events (a tool, then
+/// the mouse), and the shrunk list is a handful of events that, replayed,
+/// fail the same way.
+#[test]
+fn a_failing_run_shrinks_to_the_events_that_matter() {
+    fn moved(user: &User) -> Option<String> {
+        let doc = user.doc();
+        let node = doc.nodes().next()?;
+        let origin = doc.world_matrix(node.id).transform_point3(DVec3::ZERO);
+        (origin.length() > 1e-6).then(|| format!("'{}' moved to {origin}", node.name))
+    }
+    let (sent, failure) = (1..20)
+        .filter_map(|seed| run_seed(seed, 60, Some(moved)).err())
+        .find(|(_, failure)| failure.after >= 5)
+        .expect("some seed moves the object after 5 to 60 events");
+    assert_eq!(failure.kind, Kind::Invalid);
+    let far = std::time::Instant::now() + std::time::Duration::from_secs(240);
+    let shrunk = shrink(
+        &sent[..failure.after],
+        |events| replay(events, Some(moved)).map(|f| f.after),
+        far,
+    );
+    eprintln!("{} events shrunk to {shrunk:?}", failure.after);
+    let again = replay(&shrunk, Some(moved)).expect("the shrunk list fails");
+    assert_eq!(again.kind, Kind::Invalid);
+    assert!(
+        shrunk.len() <= 4 && shrunk.len() < failure.after,
+        "{} of {} events left: {shrunk:?}",
+        shrunk.len(),
+        failure.after
+    );
 }
 
 /// The short version, in CI: three seeds of 150 events.
