@@ -744,12 +744,14 @@ fn keep_quads_pairs_most_triangles_of_a_decimated_torus() {
     };
     let none = Creases::default();
     let mut pm = ProgressiveMesh::build(&torus, &none, &quads).unwrap();
-    // Measured: 94, 74, 60 and 43 % of the faces are quads at 1/2, 1/4,
-    // 1/10 and 1/20 of the 2304 triangles (96, 77, 73 and 68 % before
-    // quads were held to the 40° fold across both diagonals, issue 31
-    // item 18: at 1/20 the torus has 115 triangles, most pairs of which
+    // Measured: 85, 76, 62 and 36 % of the faces are quads at 1/2, 1/4,
+    // 1/10 and 1/20 of the 2304 triangles (94, 74, 60 and 43 % when the
+    // collapses went in passes, which removed every other vertex of a
+    // band evenly, at the price of a larger error; 96, 77, 73 and 68 %
+    // before quads were held to the 40° fold across both diagonals, issue
+    // 31 item 18: at 1/20 the torus has 115 triangles, most pairs of which
     // fold further).
-    for (ratio, least) in [(0.5, 0.9), (0.25, 0.7), (0.1, 0.55), (0.05, 0.4)] {
+    for (ratio, least) in [(0.5, 0.8), (0.25, 0.7), (0.1, 0.55), (0.05, 0.33)] {
         pm.seek(pm.nearest_level(DecimateTarget::Ratio(ratio)))
             .unwrap();
         let m = pm.output_mesh(&none, &quads);

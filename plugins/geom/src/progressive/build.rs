@@ -26,9 +26,9 @@ impl ProgressiveMesh {
     /// [`DecimateError::NoFaces`], [`DecimateError::Triangulate`]; the
     /// input is never changed.
     ///
-    /// Complexity: O(n) per pass for n edges (costing, a radix sort and
-    /// the collapses, each touching one vertex's neighbourhood); the
-    /// number of passes grows as log n.
+    /// Complexity: O(n log n) for n edges (each collapse costs the edges
+    /// of two rings of one vertex again and queues them in a binary
+    /// heap); a few rounds over every edge at the end retry refusals.
     pub fn build(
         mesh: &HalfEdgeMesh,
         creases: &Creases,
@@ -39,7 +39,7 @@ impl ProgressiveMesh {
     /// [`build`](Self::build) for a background job: calls `progress` with
     /// the fraction done, in [0, 1], never decreasing, each value at least
     /// 0.001 above the last and 1 as the last call when the build
-    /// succeeds; reads `cancel` a few hundred times per pass of the
+    /// succeeds; reads `cancel` every few thousand queue keys of the
     /// simplification (every few milliseconds) and stops when it is set.
     /// The input is borrowed and never changed; see [`BuildJob`](super::BuildJob) for a
     /// build that owns its inputs and moves to a worker thread.
@@ -74,7 +74,6 @@ impl ProgressiveMesh {
             corner_sharp: (0..input.vertex_capacity() as u32)
                 .map(|v| options.keep_creases && creases.vertex(VertexId(v)) > 0.0)
                 .collect(),
-            locked: vec![false; input.vertex_capacity()],
             removed_faces: 0,
             cos_limit: options.max_normal_change.to_radians().cos(),
             options,

@@ -125,7 +125,7 @@ impl Simplifier<'_> {
         let q = self.quadrics[a.index()] + self.quadrics[b.index()];
         let (pa, pb) = (m.position(a), m.position(b));
         if self.fixed(a, corner_a) || (da > 0 && db == 0) {
-            return Some((q.mean_error(pa), pa));
+            return Some((q.error(pa) / self.worst_shape(h, pa), pa));
         }
         let mid = (pa + pb) * 0.5;
         let mut best = (q.error(pa), pa);
@@ -147,10 +147,42 @@ impl Simplifier<'_> {
                 best = (e, p);
             }
         }
-        // The choice above compares one quadric's sums; the cost compares
-        // collapses everywhere, as a mean squared distance.
-        let w = q.weight();
-        Some((if w > 0.0 { best.0 / w } else { 0.0 }, best.1))
+        // The cost: the error, raised where the collapse leaves thin
+        // triangles (MeshLab's quality penalty, vcglib's
+        // `TriEdgeCollapseQuadric::ComputePriority`, here without its
+        // threshold: measured on the decimation table of issue 35, the
+        // full penalty has the lowest mean distances on curved surfaces).
+        Some((best.0 / self.worst_shape(h, best.1), best.1))
+    }
+    /// The worst shape of the triangles left around the collapse of `h`
+    /// with its vertex at `p`: the least of 4√3·area / (sum of the squared
+    /// edges) over them (1 for an equilateral triangle, 0 for a
+    /// degenerate one), at least 1e-6; 1 when none is left.
+    fn worst_shape(&self, h: HalfEdgeId, p: DVec3) -> f64 {
+        let m = &self.mesh;
+        let t = h.twin();
+        let (fl, fr) = (m.face(h), m.face(t));
+        let mut worst = 1.0f64;
+        for v in [m.origin(h), m.target(h)] {
+            for o in m.vertex_outgoing(v) {
+                let Some(f) = m.face(o) else { continue };
+                if Some(f) == fl || Some(f) == fr {
+                    continue;
+                }
+                let x = m.position(m.target(o));
+                let y = m.position(m.target(m.next(o)));
+                let twice_area = (x - p).cross(y - p).length();
+                let squares =
+                    (x - p).length_squared() + (y - p).length_squared() + (y - x).length_squared();
+                let shape = if squares > 0.0 {
+                    2.0 * 3f64.sqrt() * twice_area / squares
+                } else {
+                    0.0
+                };
+                worst = worst.min(shape);
+            }
+        }
+        worst.max(1e-6)
     }
     /// The allowed collapses of `e`, cheapest first. Away from features
     /// both directions have the same placement and cost, computed once.

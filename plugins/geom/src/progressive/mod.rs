@@ -15,11 +15,12 @@
 //! (face planes weighted by the square root of their area, plus strongly
 //! weighted planes through the feature edges, perpendicular to their
 //! faces: borders, creases, UV seams and edges sharper than the
-//! sharp-feature angle), costs a collapse as the weighted mean squared
-//! distance to the merged planes ([`Quadric::mean_error`]) and collapses edges
-//! cheapest first in passes (each pass costs every edge in memory order,
-//! radix-sorts the costs and collapses the cheap ones whose neighbourhood
-//! no earlier collapse of the pass changed), until no collapse is
+//! sharp-feature angle), costs a collapse as the quadric's error at the
+//! best of the two ends, the midpoint and the optimum, divided by the
+//! worst shape of the triangles it leaves (MeshLab's quality penalty), and
+//! collapses edges cheapest first from a priority queue, costing the
+//! edges around each collapse again (Garland and Heckbert's greedy
+//! order), until no collapse is
 //! allowed. Every collapse goes through the kernel's Euler
 //! operator [`HalfEdgeMesh::collapse_edge_removing_triangles`] (with its
 //! link condition, so genus, shells and border count never change) and is
@@ -59,7 +60,7 @@ mod build;
 mod collapse;
 mod decimate;
 mod levels;
-mod passes;
+mod order;
 mod quadric;
 
 pub use decimate::{LOOSE_JOIN_LIMIT, decimate, join_quads};
@@ -440,16 +441,13 @@ struct Simplifier<'a> {
     near_feature: Vec<bool>,
     /// Vertices with corner sharpness (with `keep_creases`): they stay.
     corner_sharp: Vec<bool>,
-    /// Vertices that a collapse of this pass moved: their edges wait for
-    /// the next pass, whose costs see the change.
-    locked: Vec<bool>,
     /// Triangles removed so far (for the progress).
     removed_faces: usize,
 }
 
-/// How often (in sort keys looked at) the build reports its progress and
-/// reads the cancel flag: a few hundred times per pass on a 1M-triangle
-/// mesh, each a relaxed atomic load.
+/// How often (in queue keys taken) the build reports its progress and
+/// reads the cancel flag: a few hundred times on a 1M-triangle mesh, each
+/// a relaxed atomic load.
 const CHECK_EVERY: usize = 4096;
 
 /// The build was cancelled (inside the simplifier).
@@ -485,7 +483,7 @@ impl Control<'_> {
         Ok(())
     }
     /// During the collapses: the share of the input's triangles removed
-    /// (the base keeps a few, so the last pass ends a little short).
+    /// (the base keeps a few, so the simplification ends a little short).
     fn collapsing(&mut self, removed: usize) -> Result<(), Cancelled> {
         let done = removed as f64 / self.faces.max(1) as f64;
         self.report(Self::BEFORE + (1.0 - Self::BEFORE - Self::AFTER) * done)

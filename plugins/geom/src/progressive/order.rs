@@ -1,0 +1,115 @@
+//! The order of collapses: cheapest first, by a priority queue whose
+//! keys are brought up to date around every collapse (Garland and
+//! Heckbert's greedy order).
+
+use super::{CHECK_EVERY, Cancelled, Control, Simplifier, VertexSplit};
+use crate::ids::{EdgeId, VertexId};
+use std::cmp::Reverse;
+use std::collections::BinaryHeap;
+
+/// A queue key packed in 8 bytes: the cost as `f32` bits (costs are never
+/// negative, so their bits order as the costs do) above the edge id. The
+/// exact cost is computed again when the edge's turn comes.
+fn entry(cost: f32, e: EdgeId) -> u64 {
+    ((cost.to_bits() as u64) << 32) | e.0 as u64
+}
+
+/// No key of this edge is in the queue.
+const NOT_QUEUED: u32 = u32::MAX;
+
+impl Simplifier<'_> {
+    /// Collapses cheapest first until none is possible, appending the
+    /// records (Garland and Heckbert 1997, §4: a heap of edge costs,
+    /// updated around each collapse). The queue holds at most one live
+    /// key per edge (`queued[e]`, the cost bits it was pushed with; older
+    /// keys are skipped when they come up). After a collapse the edges at
+    /// the kept vertex are costed again (its quadric and position
+    /// changed), so are the edges between its neighbours (the shapes of
+    /// the triangles they would leave changed; vcglib's `UpdateHeap` does
+    /// the same), and the other edges at its neighbours that were refused
+    /// and left the queue go back in (the fold-over test reads the faces
+    /// around their ends, which the collapse changed). When the queue is
+    /// empty, every edge is costed once more and the run repeats until a
+    /// round collapses nothing (refusals depend on the neighbourhood).
+    ///
+    /// `control` is told the faces removed and asked whether to stop
+    /// every [`CHECK_EVERY`] keys; `Err` when it says stop.
+    pub(super) fn run(
+        &mut self,
+        out: &mut Vec<VertexSplit>,
+        control: &mut Control,
+    ) -> Result<(), Cancelled> {
+        let mut queued = vec![NOT_QUEUED; self.mesh.edge_capacity()];
+        let mut ring: Vec<VertexId> = Vec::new();
+        let mut popped = 0usize;
+        loop {
+            let mut keys = Vec::with_capacity(self.mesh.edge_count());
+            for e in self.mesh.edges() {
+                if let Some(&(cost, _, _)) = self.candidates(e).first() {
+                    let bits = (cost as f32).to_bits();
+                    queued[e.index()] = bits;
+                    keys.push(Reverse(entry(f32::from_bits(bits), e)));
+                }
+            }
+            let mut heap = BinaryHeap::from(keys);
+            let before = out.len();
+            while let Some(Reverse(k)) = heap.pop() {
+                popped += 1;
+                if popped.is_multiple_of(CHECK_EVERY) {
+                    control.collapsing(self.removed_faces)?;
+                }
+                let e = EdgeId(k as u32);
+                if !self.mesh.is_edge(e) || queued[e.index()] != (k >> 32) as u32 {
+                    continue;
+                }
+                queued[e.index()] = NOT_QUEUED;
+                let mut done = None;
+                for (cost, h, p) in self.candidates(e).iter() {
+                    if !self.allowed(h, p) {
+                        continue;
+                    }
+                    if let Some(split) = self.collapse(h, p, cost) {
+                        done = Some(split);
+                        break;
+                    }
+                }
+                let Some(split) = done else { continue };
+                let kept = split.kept;
+                self.removed_faces += split.triangles();
+                out.push(split);
+                ring.clear();
+                for o in self.mesh.vertex_outgoing(kept) {
+                    ring.push(self.mesh.target(o));
+                    self.requeue(o.edge(), &mut queued, &mut heap);
+                }
+                for &u in &ring {
+                    for o in self.mesh.vertex_outgoing(u) {
+                        let f = o.edge();
+                        let link = ring.contains(&self.mesh.target(o));
+                        if link || queued[f.index()] == NOT_QUEUED {
+                            self.requeue(f, &mut queued, &mut heap);
+                        }
+                    }
+                }
+            }
+            if out.len() == before {
+                return Ok(());
+            }
+        }
+    }
+
+    /// Costs `e` again and queues its key (none when no collapse of it is
+    /// possible).
+    fn requeue(&self, e: EdgeId, queued: &mut [u32], heap: &mut BinaryHeap<Reverse<u64>>) {
+        match self.candidates(e).first() {
+            Some(&(cost, _, _)) => {
+                let bits = (cost as f32).to_bits();
+                if queued[e.index()] != bits {
+                    queued[e.index()] = bits;
+                    heap.push(Reverse(entry(f32::from_bits(bits), e)));
+                }
+            }
+            None => queued[e.index()] = NOT_QUEUED,
+        }
+    }
+}
