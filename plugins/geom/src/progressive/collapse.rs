@@ -109,8 +109,9 @@ impl Simplifier<'_> {
             || (self.options.keep_borders && self.mesh.is_boundary_vertex(v))
             || self.corner_sharp[v.index()]
     }
-    /// The position and error of collapsing `h` (its target into its
-    /// origin), or `None` when the features forbid it.
+    /// The position and quadric error of collapsing `h` (its target into
+    /// its origin), or `None` when the features forbid it. The error is a
+    /// lower bound of the cost ([`shaped`](Self::shaped)).
     fn candidate(&self, h: HalfEdgeId) -> Option<(f64, DVec3)> {
         let m = &self.mesh;
         let (a, b) = (m.origin(h), m.target(h));
@@ -125,7 +126,7 @@ impl Simplifier<'_> {
         let q = self.quadrics[a.index()] + self.quadrics[b.index()];
         let (pa, pb) = (m.position(a), m.position(b));
         if self.fixed(a, corner_a) || (da > 0 && db == 0) {
-            return Some((q.error(pa) / self.worst_shape(h, pa), pa));
+            return Some((q.error(pa), pa));
         }
         let mid = (pa + pb) * 0.5;
         let mut best = (q.error(pa), pa);
@@ -147,12 +148,30 @@ impl Simplifier<'_> {
                 best = (e, p);
             }
         }
-        // The cost: the error, raised where the collapse leaves thin
-        // triangles (MeshLab's quality penalty, vcglib's
-        // `TriEdgeCollapseQuadric::ComputePriority`, here without its
-        // threshold: measured on the decimation table of issue 35, the
-        // full penalty has the lowest mean distances on curved surfaces).
-        Some((best.0 / self.worst_shape(h, best.1), best.1))
+        Some(best)
+    }
+    /// The costs of `raw` candidates (from [`candidates`](Self::candidates)),
+    /// cheapest first: the error, raised where the collapse leaves thin
+    /// triangles, divided by their [`worst_shape`](Self::worst_shape)
+    /// (MeshLab's quality penalty, vcglib's
+    /// `TriEdgeCollapseQuadric::ComputePriority`, here without its
+    /// threshold: measured on the decimation table of issue 35, the full
+    /// penalty has the lowest mean distances on curved surfaces).
+    pub(super) fn shaped(&self, mut raw: Candidates) -> Candidates {
+        // Both directions to one position leave the same triangles.
+        let mut last: Option<(DVec3, f64)> = None;
+        for c in &mut raw.items[..raw.len] {
+            let shape = match last {
+                Some((p, shape)) if p == c.2 => shape,
+                _ => self.worst_shape(c.1, c.2),
+            };
+            last = Some((c.2, shape));
+            c.0 /= shape;
+        }
+        if raw.len == 2 && raw.items[1].0 < raw.items[0].0 {
+            raw.items.swap(0, 1);
+        }
+        raw
     }
     /// The worst shape of the triangles left around the collapse of `h`
     /// with its vertex at `p`: the least of 4√3·area / (sum of the squared
@@ -184,7 +203,8 @@ impl Simplifier<'_> {
         }
         worst.max(1e-6)
     }
-    /// The allowed collapses of `e`, cheapest first. Away from features
+    /// The allowed collapses of `e` with their quadric errors, least
+    /// first. Away from features
     /// both directions have the same placement and cost, computed once.
     pub(super) fn candidates(&self, e: EdgeId) -> Candidates {
         let [a, b] = self.mesh.edge_vertices(e);

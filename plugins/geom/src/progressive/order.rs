@@ -20,7 +20,12 @@ const NOT_QUEUED: u32 = u32::MAX;
 impl Simplifier<'_> {
     /// Collapses cheapest first until none is possible, appending the
     /// records (Garland and Heckbert 1997, §4: a heap of edge costs,
-    /// updated around each collapse). The queue holds at most one live
+    /// updated around each collapse). Keys are quadric errors, lower
+    /// bounds of the costs: the shape penalty
+    /// ([`shaped`](Simplifier::shaped)) is computed when an edge comes
+    /// up, and the edge goes back with its full cost when that is no
+    /// longer the cheapest (lazy evaluation, so the penalty is computed
+    /// about once per collapse). The queue holds at most one live
     /// key per edge (`queued[e]`, the cost bits it was pushed with; older
     /// keys are skipped when they come up). After a collapse the edges at
     /// the kept vertex are costed again (its quadric and position
@@ -51,7 +56,10 @@ impl Simplifier<'_> {
                     keys.push(Reverse(entry(f32::from_bits(bits), e)));
                 }
             }
+            // Room for the keys that collapses push (a few per collapse).
+            let room = keys.len();
             let mut heap = BinaryHeap::from(keys);
+            heap.reserve(room);
             let before = out.len();
             while let Some(Reverse(k)) = heap.pop() {
                 popped += 1;
@@ -62,9 +70,27 @@ impl Simplifier<'_> {
                 if !self.mesh.is_edge(e) || queued[e.index()] != (k >> 32) as u32 {
                     continue;
                 }
+                // The key was the quadric error, a lower bound; the cost
+                // with the shape penalty is computed only now, and the edge
+                // waits again when it is no longer the cheapest.
+                let shaped = self.shaped(self.candidates(e));
+                let Some(&(cost, _, _)) = shaped.first() else {
+                    queued[e.index()] = NOT_QUEUED;
+                    continue;
+                };
+                let bits = (cost as f32).to_bits();
+                if bits > (k >> 32) as u32
+                    && heap
+                        .peek()
+                        .is_some_and(|Reverse(n)| ((n >> 32) as u32) < bits)
+                {
+                    queued[e.index()] = bits;
+                    heap.push(Reverse(entry(f32::from_bits(bits), e)));
+                    continue;
+                }
                 queued[e.index()] = NOT_QUEUED;
                 let mut done = None;
-                for (cost, h, p) in self.candidates(e).iter() {
+                for (cost, h, p) in shaped.iter() {
                     if !self.allowed(h, p) {
                         continue;
                     }
@@ -82,10 +108,11 @@ impl Simplifier<'_> {
                     ring.push(self.mesh.target(o));
                     self.requeue(o.edge(), &mut queued, &mut heap);
                 }
-                for &u in &ring {
+                for (i, &u) in ring.iter().enumerate() {
                     for o in self.mesh.vertex_outgoing(u) {
                         let f = o.edge();
-                        let link = ring.contains(&self.mesh.target(o));
+                        // A link edge once, from its end earlier in the ring.
+                        let link = ring[i + 1..].contains(&self.mesh.target(o));
                         if link || queued[f.index()] == NOT_QUEUED {
                             self.requeue(f, &mut queued, &mut heap);
                         }
