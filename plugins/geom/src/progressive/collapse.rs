@@ -6,6 +6,11 @@ use super::{CORNER_TURN, FEATURE_WEIGHT, Quadric, Simplifier, VertexSplit};
 use crate::ids::{EdgeId, HalfEdgeId, VertexId};
 use glam::DVec3;
 
+/// The least error of a collapse, per cubed length of its edge (errors are
+/// weights, lengths, times squared distances): far below any visible
+/// error, it only orders the collapses of flat parts.
+const FLAT_ERROR: f64 = 1e-12;
+
 /// Up to two collapses of one edge (one per direction), cheapest first:
 /// cost, the half-edge whose target goes, the position.
 #[derive(Copy, Clone)]
@@ -166,7 +171,15 @@ impl Simplifier<'_> {
                 _ => self.worst_shape(c.1, c.2),
             };
             last = Some((c.2, shape));
-            c.0 /= shape;
+            // Where the error is nil (flat parts), it still orders the
+            // collapses: short edges and good shapes first, as vcglib's
+            // `QuadricEpsilon` times the edge length does; else a flat
+            // region collapses in id order into fans of thin triangles.
+            let length = self
+                .mesh
+                .position(self.mesh.origin(c.1))
+                .distance(self.mesh.position(self.mesh.target(c.1)));
+            c.0 = c.0.max(FLAT_ERROR * length * length * length) / shape;
         }
         if raw.len == 2 && raw.items[1].0 < raw.items[0].0 {
             raw.items.swap(0, 1);
