@@ -1060,7 +1060,8 @@ fn a_flat_grid_decimates_into_fair_triangles_not_fans() {
     .unwrap();
     let mut pm =
         ProgressiveMesh::build(&grid, &Creases::default(), &DecimateOptions::default()).unwrap();
-    pm.seek(pm.nearest_level(DecimateTarget::Ratio(0.1))).unwrap();
+    pm.seek(pm.nearest_level(DecimateTarget::Ratio(0.1)))
+        .unwrap();
     let m = pm.level_mesh();
     m.validate().unwrap();
     let valence = m
