@@ -191,30 +191,36 @@ impl Simplifier<'_> {
     /// edges) over them (1 for an equilateral triangle, 0 for a
     /// degenerate one), at least 1e-6; 1 when none is left.
     fn worst_shape(&self, h: HalfEdgeId, p: DVec3) -> f64 {
-        let m = &self.mesh;
-        let t = h.twin();
-        let (fl, fr) = (m.face(h), m.face(t));
         let mut worst = 1.0f64;
-        for v in [m.origin(h), m.target(h)] {
-            for o in m.vertex_outgoing(v) {
-                let Some(f) = m.face(o) else { continue };
-                if Some(f) == fl || Some(f) == fr {
-                    continue;
-                }
-                let x = m.position(m.target(o));
-                let y = m.position(m.target(m.next(o)));
-                let twice_area = (x - p).cross(y - p).length();
-                let squares =
-                    (x - p).length_squared() + (y - p).length_squared() + (y - x).length_squared();
-                let shape = if squares > 0.0 {
-                    2.0 * 3f64.sqrt() * twice_area / squares
-                } else {
-                    0.0
-                };
-                worst = worst.min(shape);
-            }
+        for (_, x, y) in self.surviving_triangles(h) {
+            let twice_area = (x - p).cross(y - p).length();
+            let squares =
+                (x - p).length_squared() + (y - p).length_squared() + (y - x).length_squared();
+            let shape = if squares > 0.0 {
+                2.0 * 3f64.sqrt() * twice_area / squares
+            } else {
+                0.0
+            };
+            worst = worst.min(shape);
         }
         worst.max(1e-6)
+    }
+    /// The triangles around both ends of `h` that its collapse keeps (all
+    /// but the one or two beside it), each as the end it has and the
+    /// positions of its other two corners, in order.
+    fn surviving_triangles(
+        &self,
+        h: HalfEdgeId,
+    ) -> impl Iterator<Item = (VertexId, DVec3, DVec3)> + '_ {
+        let m = &self.mesh;
+        let beside = [m.face(h), m.face(h.twin())];
+        [m.origin(h), m.target(h)].into_iter().flat_map(move |v| {
+            m.vertex_outgoing(v).filter_map(move |o| {
+                let f = m.face(o)?;
+                (!beside.contains(&Some(f)))
+                    .then(|| (v, m.position(m.target(o)), m.position(m.target(m.next(o)))))
+            })
+        })
     }
     /// The allowed collapses of `e` with their quadric errors, least
     /// first. Away from features
@@ -253,27 +259,17 @@ impl Simplifier<'_> {
                 return false;
             }
         }
-        let (a, b) = (m.origin(h), m.target(h));
-        let (fl, fr) = (m.face(h), m.face(t));
-        for v in [a, b] {
-            for o in m.vertex_outgoing(v) {
-                let Some(f) = m.face(o) else { continue };
-                if Some(f) == fl || Some(f) == fr {
-                    continue;
-                }
-                let x = m.position(m.target(o));
-                let y = m.position(m.target(m.next(o)));
-                let q = m.position(v);
-                let before = (x - q).cross(y - q);
-                let after = (x - p).cross(y - p);
-                let scale = before.length();
-                let turned = after.length();
-                if turned <= 1e-12 * scale.max(1e-300) || turned == 0.0 {
-                    return false;
-                }
-                if before.dot(after) < self.cos_limit * scale * turned {
-                    return false;
-                }
+        for (v, x, y) in self.surviving_triangles(h) {
+            let q = m.position(v);
+            let before = (x - q).cross(y - q);
+            let after = (x - p).cross(y - p);
+            let scale = before.length();
+            let turned = after.length();
+            if turned <= 1e-12 * scale.max(1e-300) || turned == 0.0 {
+                return false;
+            }
+            if before.dot(after) < self.cos_limit * scale * turned {
+                return false;
             }
         }
         true
