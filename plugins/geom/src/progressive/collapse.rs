@@ -223,8 +223,8 @@ impl Simplifier<'_> {
         })
     }
     /// The allowed collapses of `e` with their quadric errors, least
-    /// first. Away from features
-    /// both directions have the same placement and cost, computed once.
+    /// first. Away from features both directions have the same placement
+    /// and error, computed once.
     pub(super) fn candidates(&self, e: EdgeId) -> Candidates {
         let [a, b] = self.mesh.edge_vertices(e);
         let plain = |v: VertexId| !self.near_feature[v.index()] && !self.corner_sharp[v.index()];

@@ -7,11 +7,22 @@ use crate::ids::{EdgeId, VertexId};
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
 
-/// A queue key packed in 8 bytes: the cost as `f32` bits (costs are never
-/// negative, so their bits order as the costs do) above the edge id. The
-/// exact cost is computed again when the edge's turn comes.
-fn entry(cost: f32, e: EdgeId) -> u64 {
-    ((cost.to_bits() as u64) << 32) | e.0 as u64
+/// The bits a cost is queued by: the cost as `f32` (costs are never
+/// negative, so their bits order as the costs do). The exact cost is
+/// computed again when the edge's turn comes.
+fn cost_bits(cost: f64) -> u32 {
+    (cost as f32).to_bits()
+}
+
+/// A queue key packed in 8 bytes, cost bits above the edge id, reversed
+/// so that the heap gives the cheapest first.
+fn entry(bits: u32, e: EdgeId) -> Reverse<u64> {
+    Reverse(((bits as u64) << 32) | e.0 as u64)
+}
+
+/// The cost bits and the edge of a key.
+fn parts(key: u64) -> (u32, EdgeId) {
+    ((key >> 32) as u32, EdgeId(key as u32))
 }
 
 /// No key of this edge is in the queue.
@@ -51,9 +62,8 @@ impl Simplifier<'_> {
             let mut keys = Vec::with_capacity(self.mesh.edge_count());
             for e in self.mesh.edges() {
                 if let Some(&(cost, _, _)) = self.candidates(e).first() {
-                    let bits = (cost as f32).to_bits();
-                    queued[e.index()] = bits;
-                    keys.push(Reverse(entry(f32::from_bits(bits), e)));
+                    queued[e.index()] = cost_bits(cost);
+                    keys.push(entry(cost_bits(cost), e));
                 }
             }
             // Room for the keys that collapses push (a few per collapse).
@@ -66,8 +76,8 @@ impl Simplifier<'_> {
                 if popped.is_multiple_of(CHECK_EVERY) {
                     control.collapsing(self.removed_faces)?;
                 }
-                let e = EdgeId(k as u32);
-                if !self.mesh.is_edge(e) || queued[e.index()] != (k >> 32) as u32 {
+                let (key_bits, e) = parts(k);
+                if !self.mesh.is_edge(e) || queued[e.index()] != key_bits {
                     continue;
                 }
                 // The key was the quadric error, a lower bound; the cost
@@ -78,14 +88,10 @@ impl Simplifier<'_> {
                     queued[e.index()] = NOT_QUEUED;
                     continue;
                 };
-                let bits = (cost as f32).to_bits();
-                if bits > (k >> 32) as u32
-                    && heap
-                        .peek()
-                        .is_some_and(|Reverse(n)| ((n >> 32) as u32) < bits)
-                {
+                let bits = cost_bits(cost);
+                if bits > key_bits && heap.peek().is_some_and(|&Reverse(n)| parts(n).0 < bits) {
                     queued[e.index()] = bits;
-                    heap.push(Reverse(entry(f32::from_bits(bits), e)));
+                    heap.push(entry(bits, e));
                     continue;
                 }
                 queued[e.index()] = NOT_QUEUED;
@@ -130,10 +136,10 @@ impl Simplifier<'_> {
     fn requeue(&self, e: EdgeId, queued: &mut [u32], heap: &mut BinaryHeap<Reverse<u64>>) {
         match self.candidates(e).first() {
             Some(&(cost, _, _)) => {
-                let bits = (cost as f32).to_bits();
+                let bits = cost_bits(cost);
                 if queued[e.index()] != bits {
                     queued[e.index()] = bits;
-                    heap.push(Reverse(entry(f32::from_bits(bits), e)));
+                    heap.push(entry(bits, e));
                 }
             }
             None => queued[e.index()] = NOT_QUEUED,
