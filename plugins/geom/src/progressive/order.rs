@@ -4,8 +4,7 @@
 
 use super::{CHECK_EVERY, Cancelled, Control, Simplifier, VertexSplit};
 use crate::ids::{EdgeId, VertexId};
-use std::cmp::Reverse;
-use std::collections::BinaryHeap;
+use radix_heap::RadixHeapMap;
 
 /// The bits a cost is queued by: the cost as `f32` (costs are never
 /// negative, so their bits order as the costs do). The exact cost is
@@ -14,19 +13,42 @@ fn cost_bits(cost: f64) -> u32 {
     (cost as f32).to_bits()
 }
 
-/// A queue key packed in 8 bytes, cost bits above the edge id, reversed
-/// so that the heap gives the cheapest first.
-fn entry(bits: u32, e: EdgeId) -> Reverse<u64> {
-    Reverse(((bits as u64) << 32) | e.0 as u64)
-}
-
-/// The cost bits and the edge of a key.
-fn parts(key: u64) -> (u32, EdgeId) {
-    ((key >> 32) as u32, EdgeId(key as u32))
-}
-
 /// No key of this edge is in the queue.
 const NOT_QUEUED: u32 = u32::MAX;
+
+/// The queue of collapses, cheapest first: a radix heap (Ahuja, Mehlhorn,
+/// Orlin and Tarjan 1990), whose pushes are appends to one of 33 buckets
+/// and whose pops redistribute one bucket, instead of a binary heap's
+/// walk down a tree of millions of keys. A radix heap is monotone: no key
+/// may be cheaper than the last one taken. A collapse can make an edge
+/// cheaper than that; such a key is queued at the last cost taken, so it
+/// comes next, which is where the greedy order puts it. Of equal keys the
+/// last pushed comes first, so ties (flat and symmetric parts) go on
+/// where the last collapse was; on the decimation table of issue 35 this
+/// closed two gaps the binary heap's order by edge id left open.
+struct Queue {
+    /// Keyed by the cost bits inverted (the crate's heap gives the
+    /// greatest first); each item is the edge with the bits it was costed
+    /// at.
+    heap: RadixHeapMap<u32, (u32, EdgeId)>,
+}
+
+impl Queue {
+    fn new() -> Self {
+        Queue {
+            heap: RadixHeapMap::new(),
+        }
+    }
+    fn push(&mut self, bits: u32, e: EdgeId) {
+        let key = !bits;
+        let key = self.heap.top().map_or(key, |top| key.min(top));
+        self.heap.push(key, (bits, e));
+    }
+    /// The cheapest edge, with the cost bits it was queued with.
+    fn pop(&mut self) -> Option<(u32, EdgeId)> {
+        self.heap.pop().map(|(_, item)| item)
+    }
+}
 
 impl Simplifier<'_> {
     /// Collapses cheapest first until none is possible, appending the
@@ -34,9 +56,9 @@ impl Simplifier<'_> {
     /// updated around each collapse). Keys are quadric errors, lower
     /// bounds of the costs: the shape penalty
     /// ([`shaped`](Simplifier::shaped)) is computed when an edge comes
-    /// up, and the edge goes back with its full cost when that is no
-    /// longer the cheapest (lazy evaluation, so the penalty is computed
-    /// about once per collapse). The queue holds at most one live
+    /// up, and the edge goes back with its full cost when that is above
+    /// its key (lazy evaluation: the penalty is computed for the edges
+    /// that come up, not for every edge a collapse touches). The queue holds at most one live
     /// key per edge (`queued[e]`, the cost bits it was pushed with; older
     /// keys are skipped when they come up). After a collapse the edges at
     /// the kept vertex are costed again (its quadric and position
@@ -59,24 +81,19 @@ impl Simplifier<'_> {
         let mut ring: Vec<VertexId> = Vec::new();
         let mut popped = 0usize;
         loop {
-            let mut keys = Vec::with_capacity(self.mesh.edge_count());
+            let mut heap = Queue::new();
             for e in self.mesh.edges() {
                 if let Some(&(cost, _, _)) = self.candidates(e).first() {
                     queued[e.index()] = cost_bits(cost);
-                    keys.push(entry(cost_bits(cost), e));
+                    heap.push(cost_bits(cost), e);
                 }
             }
-            // Room for the keys that collapses push (a few per collapse).
-            let room = keys.len();
-            let mut heap = BinaryHeap::from(keys);
-            heap.reserve(room);
             let before = out.len();
-            while let Some(Reverse(k)) = heap.pop() {
+            while let Some((key_bits, e)) = heap.pop() {
                 popped += 1;
                 if popped.is_multiple_of(CHECK_EVERY) {
                     control.collapsing(self.removed_faces)?;
                 }
-                let (key_bits, e) = parts(k);
                 if !self.mesh.is_edge(e) || queued[e.index()] != key_bits {
                     continue;
                 }
@@ -89,9 +106,9 @@ impl Simplifier<'_> {
                     continue;
                 };
                 let bits = cost_bits(cost);
-                if bits > key_bits && heap.peek().is_some_and(|&Reverse(n)| parts(n).0 < bits) {
+                if bits > key_bits {
                     queued[e.index()] = bits;
-                    heap.push(entry(bits, e));
+                    heap.push(bits, e);
                     continue;
                 }
                 queued[e.index()] = NOT_QUEUED;
@@ -133,13 +150,13 @@ impl Simplifier<'_> {
 
     /// Costs `e` again and queues its key (none when no collapse of it is
     /// possible).
-    fn requeue(&self, e: EdgeId, queued: &mut [u32], heap: &mut BinaryHeap<Reverse<u64>>) {
+    fn requeue(&self, e: EdgeId, queued: &mut [u32], heap: &mut Queue) {
         match self.candidates(e).first() {
             Some(&(cost, _, _)) => {
                 let bits = cost_bits(cost);
                 if queued[e.index()] != bits {
                     queued[e.index()] = bits;
-                    heap.push(entry(bits, e));
+                    heap.push(bits, e);
                 }
             }
             None => queued[e.index()] = NOT_QUEUED,
