@@ -3,6 +3,7 @@
 //! `user.rs`), and the document, the selection, the status line and the
 //! render meshes are checked after.
 
+mod architecture_doc;
 mod convert;
 mod files;
 mod gizmo;
