@@ -19,9 +19,10 @@ use hedra_geom::subdivision::{
 };
 use hedra_geom::{DVec3, FaceId, HalfEdgeMesh, VertexId};
 
-/// Cages OpenSubdiv refines but Hedra's half-edge mesh cannot hold, with the
-/// reason. `hedra import` repairs such cages (splits the vertices and edges
-/// that join separate fans); subdividing them as they are is left for later.
+/// Cages OpenSubdiv refines but Hedra's half-edge mesh cannot hold, with
+/// the reason: they are refined as polygons kept as they are
+/// ([`Refiner::from_polygons`], issue 37), with OpenSubdiv's rules for
+/// non-manifold edges and vertices, and compared like the others.
 const NOT_MANIFOLD: &[(&str, &str)] = &[
     ("catmark_fan", "an edge in three faces"),
     (
@@ -98,7 +99,10 @@ fn tag(line: &str) -> (String, Vec<i64>, Vec<f64>, Vec<String>) {
 
 /// The cage and its tags, read as OpenSubdiv's `far_utils.h` reads them;
 /// `Err` with the build error when the cage is not a manifold mesh.
-fn load(name: &str) -> Result<Shape, String> {
+/// A shape file's vertices, faces (0-based) and `t` tags.
+type Tag = (String, Vec<i64>, Vec<f64>, Vec<String>);
+
+fn parse(name: &str) -> (Vec<DVec3>, Vec<Vec<u32>>, Vec<Tag>) {
     let text = std::fs::read_to_string(shapes_dir().join(format!("{name}.obj"))).unwrap();
     let mut positions = Vec::new();
     let mut faces: Vec<Vec<u32>> = Vec::new();
@@ -115,7 +119,11 @@ fn load(name: &str) -> Result<Shape, String> {
             _ => {}
         }
     }
-    let mesh = HalfEdgeMesh::from_polygons(&positions, &faces).map_err(|e| e.to_string())?;
+    (positions, faces, tags)
+}
+
+/// The refinement options a shape's name and tags ask for.
+fn options_of(name: &str, tags: &[Tag]) -> Options {
     let mut options = Options {
         scheme: if name.starts_with("loop") {
             Scheme::Loop
@@ -124,9 +132,7 @@ fn load(name: &str) -> Result<Shape, String> {
         },
         ..Options::default()
     };
-    let mut creases = Creases::default();
-    for (tag, ints, floats, strings) in tags {
-        let sharpness = |j: usize| floats[if floats.len() > 1 { j } else { 0 }].max(0.0);
+    for (tag, ints, _, strings) in tags {
         match tag.as_str() {
             "interpolateboundary" => {
                 options.boundary = match ints[0] {
@@ -139,7 +145,20 @@ fn load(name: &str) -> Result<Shape, String> {
                 options.crease_method = CreaseMethod::Chaikin
             }
             "smoothtriangles" => options.smooth_triangles = strings[0] == "smooth",
-            // Vertex pairs (j, j + 1), j += 2, as OpenSubdiv's regression reads them.
+            _ => {}
+        }
+    }
+    options
+}
+
+fn load(name: &str) -> Result<Shape, String> {
+    let (positions, faces, tags) = parse(name);
+    let mesh = HalfEdgeMesh::from_polygons(&positions, &faces).map_err(|e| e.to_string())?;
+    let options = options_of(name, &tags);
+    let mut creases = Creases::default();
+    for (tag, ints, floats, _) in tags {
+        let sharpness = |j: usize| floats[if floats.len() > 1 { j } else { 0 }].max(0.0);
+        match tag.as_str() {
             "crease" => {
                 for j in (0..ints.len().saturating_sub(1)).step_by(2) {
                     let (a, b) = (VertexId(ints[j] as u32), VertexId(ints[j + 1] as u32));
@@ -245,6 +264,40 @@ fn compare(shape: &Shape, levels: &[Stored]) -> Result<f64, String> {
         .vertices()
         .map(|v| shape.mesh.position(v))
         .collect();
+    compare_refinements(&cage, levels, |level| {
+        let r = Refiner::new(&shape.mesh, &shape.creases, shape.options, level)
+            .map_err(|e| format!("level {level}: {e}"))?;
+        let points = r.refine(&r.cage_positions(&shape.mesh));
+        Ok((r, points))
+    })
+}
+
+/// Compares a cage kept as polygons, non-manifold places and all, refined
+/// through [`Refiner::from_polygons`], with every stored level.
+fn compare_polygons(name: &str, levels: &[Stored]) -> Result<f64, String> {
+    let (positions, faces, tags) = parse(name);
+    if let Some((tag, ..)) = tags
+        .iter()
+        .find(|(t, ..)| ["crease", "corner", "hole"].contains(&t.as_str()))
+    {
+        return Err(format!("the polygon cage takes no `{tag}` tags yet"));
+    }
+    let options = options_of(name, &tags);
+    compare_refinements(&positions, levels, |level| {
+        let r = Refiner::from_polygons(positions.len(), &faces, options, level)
+            .map_err(|e| format!("level {level}: {e}"))?;
+        let points = r.refine(&positions);
+        Ok((r, points))
+    })
+}
+
+/// Compares the refinements `refine_at(level)` (with their points) of a
+/// cage with every stored level.
+fn compare_refinements(
+    cage: &[DVec3],
+    levels: &[Stored],
+    refine_at: impl Fn(u32) -> Result<(Refiner, Vec<DVec3>), String>,
+) -> Result<f64, String> {
     let (lo, hi) = cage
         .iter()
         .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), &p| {
@@ -253,9 +306,7 @@ fn compare(shape: &Shape, levels: &[Stored]) -> Result<f64, String> {
     let diagonal = (hi - lo).length();
     let mut worst = 0.0f64;
     for s in levels {
-        let r = Refiner::new(&shape.mesh, &shape.creases, shape.options, s.level)
-            .map_err(|e| format!("level {}: {e}", s.level))?;
-        let points = r.refine(&r.cage_positions(&shape.mesh));
+        let (r, points) = refine_at(s.level)?;
         if (points.len(), r.face_count()) != (s.points.len(), s.faces) {
             return Err(format!(
                 "level {}: {} vertices and {} faces, OpenSubdiv {} and {}",
@@ -302,14 +353,24 @@ fn opensubdiv_regression_shapes_match_opensubdiv() {
         .collect();
     names.sort();
     assert_eq!(names.len(), 118, "118 Catmull-Clark and Loop shapes");
-    let (mut passed, mut refused, mut different) = (Vec::new(), Vec::new(), Vec::new());
+    let (mut passed, mut kept, mut different) = (Vec::new(), Vec::new(), Vec::new());
     let mut worst = 0.0f64;
     for name in &names {
         let levels = stored
             .get(name)
             .unwrap_or_else(|| panic!("{name}: no stored result"));
         match load(name) {
-            Err(e) => refused.push((name.clone(), e)),
+            // Not manifold: kept as polygons.
+            Err(e) => match compare_polygons(name, levels) {
+                Ok(error) => {
+                    worst = worst.max(error);
+                    kept.push(name.clone());
+                    passed.push(name.clone());
+                }
+                Err(polygons) => {
+                    different.push((name.clone(), format!("{e}; as polygons: {polygons}")))
+                }
+            },
             Ok(shape) => match compare(&shape, levels) {
                 Ok(error) => {
                     worst = worst.max(error);
@@ -324,16 +385,13 @@ fn opensubdiv_regression_shapes_match_opensubdiv() {
         passed.len(),
         names.len()
     );
-    for (name, e) in &refused {
-        println!("not manifold: {name}: {e}");
-    }
+    println!("refined as polygons (not manifold): {}", kept.join(", "));
     for (name, e) in &different {
         println!("different: {name}: {e}");
     }
-    let refused_names: Vec<&str> = refused.iter().map(|(n, _)| n.as_str()).collect();
-    let mut expected_refused: Vec<&str> = NOT_MANIFOLD.iter().map(|(n, _)| *n).collect();
-    expected_refused.sort();
-    assert_eq!(refused_names, expected_refused, "cages Hedra cannot hold");
+    let mut expected_kept: Vec<&str> = NOT_MANIFOLD.iter().map(|(n, _)| *n).collect();
+    expected_kept.sort();
+    assert_eq!(kept, expected_kept, "cages refined as polygons");
     let different_names: Vec<&str> = different.iter().map(|(n, _)| n.as_str()).collect();
     let expected_different: Vec<&str> = KNOWN_DIFFERENT.iter().map(|(n, _)| *n).collect();
     assert_eq!(different_names, expected_different, "shapes that differ");
@@ -401,4 +459,26 @@ fn every_catmull_clark_shape_converts_to_watertight_nurbs() {
         names.len()
     );
     assert!(converted >= 78, "{converted}");
+}
+
+#[test]
+fn manifold_shapes_refined_as_polygons_match_opensubdiv_too() {
+    // The polygon path (`Refiner::from_polygons`) finds edges and rules
+    // itself; on the manifold shapes without crease, corner or hole tags
+    // it must agree with OpenSubdiv as the half-edge path does.
+    let stored = stored();
+    let mut checked = 0;
+    for (name, levels) in &stored {
+        let (_, _, tags) = parse(name);
+        let tagged = tags
+            .iter()
+            .any(|(t, ..)| ["crease", "corner", "hole"].contains(&t.as_str()));
+        if tagged || load(name).is_err() {
+            continue;
+        }
+        compare_polygons(name, levels).unwrap_or_else(|e| panic!("{name}: {e}"));
+        checked += 1;
+    }
+    assert_eq!(checked, 53, "untagged manifold shapes checked");
+    eprintln!("{checked} manifold shapes refined as polygons match OpenSubdiv");
 }

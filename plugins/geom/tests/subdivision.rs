@@ -715,3 +715,65 @@ fn loop_boundary_and_crease_rules_follow_the_cubic_b_spline_masks() {
     // (Every rim vertex touches two faces, so none is a corner here.)
     assert!(!p.iter().any(|q| close(*q, positions[1], 1e-15)));
 }
+
+/// Issue 37: a fin, three quads on one edge (which a half-edge mesh cannot
+/// hold), refined as polygons kept as they are. OpenSubdiv's rules: the
+/// edge in three faces is infinitely sharp, so its edge point is its
+/// midpoint; its ends are non-manifold with boundary edges, so they are
+/// corners and stay put; the face points are the quads' centroids.
+#[test]
+fn a_fin_of_three_quads_on_one_edge_refines_with_a_sharp_spine() {
+    use hedra_geom::subdivision::{Options, Refiner, Scheme, SubdivisionError};
+    let positions = [
+        DVec3::new(0.0, 0.0, 0.0),
+        DVec3::new(0.0, 0.0, 1.0),
+        DVec3::new(1.0, 0.0, 0.0),
+        DVec3::new(1.0, 0.0, 1.0),
+        DVec3::new(-0.5, 1.0, 0.0),
+        DVec3::new(-0.5, 1.0, 1.0),
+        DVec3::new(-0.5, -1.0, 0.0),
+        DVec3::new(-0.5, -1.0, 1.0),
+    ];
+    // The spine is 0–1; each blade goes out from it.
+    let faces = vec![vec![0, 2, 3, 1], vec![1, 5, 4, 0], vec![0, 6, 7, 1]];
+    let r = Refiner::from_polygons(8, &faces, Options::default(), 1).unwrap();
+    let points = r.refine(&positions);
+    // 3 face points, 10 edge points (the spine once), 8 vertex points.
+    assert_eq!(points.len(), 21);
+    assert_eq!(r.face_count(), 12);
+    let near = |p: DVec3| points.iter().any(|q| q.distance(p) < 1e-12);
+    assert!(
+        near(DVec3::new(0.0, 0.0, 0.5)),
+        "the spine's edge point is its midpoint"
+    );
+    assert!(
+        near(DVec3::new(0.0, 0.0, 0.0)) && near(DVec3::new(0.0, 0.0, 1.0)),
+        "its ends stay"
+    );
+    assert!(
+        near(DVec3::new(0.5, 0.0, 0.5)),
+        "a face point is its quad's centroid"
+    );
+    // A level 2 refines the level 1 as it is, spine and all.
+    let r2 = Refiner::from_polygons(8, &faces, Options::default(), 2).unwrap();
+    let points2 = r2.refine(&positions);
+    assert!(
+        points2
+            .iter()
+            .any(|q| q.distance(DVec3::new(0.0, 0.0, 0.25)) < 1e-12)
+    );
+    // Loop takes triangles only; indices must name vertices.
+    let looped = Options {
+        scheme: Scheme::Loop,
+        ..Options::default()
+    };
+    assert!(matches!(
+        Refiner::from_polygons(8, &faces, looped, 1),
+        Err(SubdivisionError::NotTriangles { sides: 4, .. })
+    ));
+    let err = Refiner::from_polygons(3, &faces, Options::default(), 1).unwrap_err();
+    assert_eq!(
+        err.to_string(),
+        "face f0 is not a polygon of the cage: vertex 3 is not one of the 3 vertices"
+    );
+}

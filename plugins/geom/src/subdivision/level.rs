@@ -44,6 +44,12 @@ pub(crate) struct Level {
     /// (read it through [`face_origin`](Self::face_origin)).
     pub face_origin: Arc<[u32]>,
     pub origin_shift: u32,
+    /// The level has an edge in more than two faces or a vertex whose
+    /// faces form more than one fan ([`Level::from_polygon_cage`]); its
+    /// children too. The edge tables then keep only the first two faces of
+    /// an edge, which the masks never read: such edges are infinitely
+    /// sharp.
+    pub non_manifold: bool,
     /// Tables derived from the face and edge lists on first use, each on
     /// its own: the last level of a refinement often needs none, and Loop
     /// never needs the vertices' corners.
@@ -63,6 +69,27 @@ pub(crate) struct Adjacency {
     vertex_edges: OnceLock<Lists>,
     /// Face corners at each vertex in increasing order.
     vertex_corners: OnceLock<Lists>,
+}
+
+/// What [`Level::from_polygon_cage`] learns of each edge while it finds
+/// them: how many faces use it, the last of them, and whether it is
+/// non-manifold.
+#[derive(Default)]
+struct CageEdges {
+    face_count: Vec<u32>,
+    last_face: Vec<u32>,
+    non_manifold: Vec<bool>,
+}
+
+impl CageEdges {
+    /// A new edge of `level` from `a` to `b`.
+    fn push(&mut self, level: &mut Level, [a, b]: [u32; 2], non_manifold: bool) -> u32 {
+        level.edge_vertices.push([a, b]);
+        self.face_count.push(0);
+        self.last_face.push(NONE);
+        self.non_manifold.push(non_manifold);
+        level.edge_vertices.len() as u32 - 1
+    }
 }
 
 /// One list per vertex, packed: list `v` is `items[offsets[v]..offsets[v + 1]]`.
@@ -153,7 +180,10 @@ impl Level {
             let mut edge_corners = vec![[NONE, NONE]; self.edge_vertices.len()];
             for (c, &e) in self.face_edges.iter().enumerate() {
                 let slot = &mut edge_corners[e as usize];
-                slot[usize::from(slot[0] != NONE)] = c as u32;
+                // A non-manifold edge keeps its first two corners.
+                if slot[1] == NONE {
+                    slot[usize::from(slot[0] != NONE)] = c as u32;
+                }
             }
             edge_corners
         })
@@ -455,6 +485,162 @@ impl Level {
         }
         level.drop_zero_sharpness();
         (level, map, hidden)
+    }
+
+    /// The cage level of polygons given as vertex lists, kept as they are:
+    /// an edge may be in more than two faces and a vertex may join
+    /// separate fans of faces. Topology and sharpness follow OpenSubdiv
+    /// (`Vtr::Level::completeTopologyFromFaceVertices` and
+    /// `Far::TopologyRefinerFactoryBase::prepareComponentTagsAndSharpness`):
+    ///
+    /// - an edge is non-manifold when it is in three or more faces, when two
+    ///   faces run along it the same way, or when one face uses it twice
+    ///   (each use is then an edge of its own) or joins a vertex to itself;
+    ///   non-manifold and boundary edges are infinitely sharp;
+    /// - a vertex is non-manifold at the end of a non-manifold edge or when
+    ///   its faces do not form one fan (separate fans, a face that comes
+    ///   back to it); it is then a corner, unless it is inside a fin crease
+    ///   (exactly two non-manifold edges, no boundary edge, more faces than
+    ///   edges), where it follows them as a crease;
+    /// - isolated vertices and, with [`BoundaryInterpolation::EdgesAndCorners`],
+    ///   vertices of one face and two edges are corners.
+    ///
+    /// Also returns, per face, whether boundary `None` (`hide_boundary`)
+    /// leaves it out, as [`from_mesh`](Self::from_mesh) does.
+    pub fn from_polygon_cage(
+        vertex_count: usize,
+        faces: &[Vec<u32>],
+        boundary: BoundaryInterpolation,
+        hide_boundary: bool,
+    ) -> (Level, Vec<bool>) {
+        let mut level = Level {
+            vertex_count,
+            face_offsets: vec![0],
+            face_origin: (0..faces.len() as u32).collect(),
+            ..Level::default()
+        };
+        let mut edges = CageEdges::default();
+        let mut edge_of: HashMap<(u32, u32), u32> = HashMap::new();
+        for (f, poly) in faces.iter().enumerate() {
+            let f = f as u32;
+            for (i, &a) in poly.iter().enumerate() {
+                let b = poly[(i + 1) % poly.len()];
+                let key = (a.min(b), a.max(b));
+                let e = match edge_of.get(&key) {
+                    _ if a == b => edges.push(&mut level, [a, b], true),
+                    None => {
+                        let e = edges.push(&mut level, [a, b], false);
+                        edge_of.insert(key, e);
+                        e
+                    }
+                    Some(&e) if edges.last_face[e as usize] == f => {
+                        // The face uses this edge twice: two edges.
+                        edges.non_manifold[e as usize] = true;
+                        edges.push(&mut level, [a, b], true)
+                    }
+                    Some(&e) => {
+                        let same_way = level.edge_vertices[e as usize][0] == a;
+                        if edges.face_count[e as usize] >= 2 || same_way {
+                            edges.non_manifold[e as usize] = true;
+                        }
+                        e
+                    }
+                };
+                edges.face_count[e as usize] += 1;
+                edges.last_face[e as usize] = f;
+                level.face_vertices.push(a);
+                level.face_edges.push(e);
+            }
+            level.face_offsets.push(level.face_vertices.len() as u32);
+        }
+        let CageEdges {
+            face_count: edge_face_count,
+            non_manifold: edge_non_manifold,
+            ..
+        } = edges;
+        level.settle_face_sizes();
+        let boundary_edge = |e: u32| edge_face_count[e as usize] < 2;
+        let mut hidden = vec![false; faces.len()];
+        if hide_boundary {
+            for v in 0..vertex_count as u32 {
+                if level.vertex_edges(v).iter().any(|&e| boundary_edge(e)) {
+                    for &c in level.vertex_corners(v) {
+                        hidden[level.corner_face(c as usize) as usize] = true;
+                    }
+                }
+            }
+        }
+        level.edge_sharpness = (0..level.edge_count())
+            .map(|e| {
+                if edge_non_manifold[e] || boundary_edge(e as u32) {
+                    INFINITE_SHARPNESS
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        level.vertex_sharpness = vec![0.0; vertex_count];
+        for v in 0..vertex_count as u32 {
+            let edges = level.vertex_edges(v);
+            let corners = level.vertex_corners(v);
+            let (e, f) = (edges.len(), corners.len());
+            let non_manifold_edges = edges
+                .iter()
+                .filter(|&&e| edge_non_manifold[e as usize])
+                .count();
+            let boundary_edges = edges.iter().filter(|&&e| boundary_edge(e)).count();
+            let one_fan = (e == f || e == f + 1) && level.single_fan(v, &edge_face_count);
+            let non_manifold = non_manifold_edges > 0 || (f > 0 && !one_fan);
+            let corner =
+                e == 0 || (boundary == BoundaryInterpolation::EdgesAndCorners && f == 1 && e == 2);
+            let fin_crease = non_manifold_edges == 2 && boundary_edges == 0 && f > e;
+            level.non_manifold |= non_manifold;
+            if corner || (non_manifold && !fin_crease) {
+                level.vertex_sharpness[v as usize] = INFINITE_SHARPNESS;
+            }
+        }
+        level.drop_zero_sharpness();
+        (level, hidden)
+    }
+
+    /// Whether the faces at `v` form one fan, each face there once, joined
+    /// through the edges at `v` that are in exactly two faces
+    /// (`edge_face_count`).
+    fn single_fan(&self, v: u32, edge_face_count: &[u32]) -> bool {
+        let faces: Vec<u32> = self
+            .vertex_corners(v)
+            .iter()
+            .map(|&c| self.corner_face(c as usize))
+            .collect();
+        if (1..faces.len()).any(|i| faces[..i].contains(&faces[i])) {
+            return false;
+        }
+        let mut parent: Vec<usize> = (0..faces.len()).collect();
+        fn root(parent: &mut [usize], mut i: usize) -> usize {
+            while parent[i] != i {
+                parent[i] = parent[parent[i]];
+                i = parent[i];
+            }
+            i
+        }
+        for &e in self.vertex_edges(v) {
+            if edge_face_count[e as usize] != 2 {
+                continue;
+            }
+            let [c0, c1] = self.edge_corner_table()[e as usize];
+            let (f0, f1) = (self.corner_face(c0 as usize), self.corner_face(c1 as usize));
+            if let (Some(i), Some(j)) = (
+                faces.iter().position(|&f| f == f0),
+                faces.iter().position(|&f| f == f1),
+            ) {
+                let (ri, rj) = (root(&mut parent, i), root(&mut parent, j));
+                parent[ri] = rj;
+            }
+        }
+        (0..faces.len())
+            .filter(|&i| root(&mut parent, i) == i)
+            .count()
+            == 1
     }
 
     /// A level from polygons alone (no creases); edges are found by vertex

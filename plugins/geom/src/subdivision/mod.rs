@@ -540,6 +540,15 @@ pub enum SubdivisionError {
         /// The face.
         face: FaceId,
     },
+    /// A polygon given as a vertex list ([`Refiner::from_polygons`]) has
+    /// fewer than three corners or names a vertex that is not there.
+    #[error("face {face} is not a polygon of the cage: {reason}")]
+    BadPolygon {
+        /// The face (its index in the list).
+        face: FaceId,
+        /// What is wrong with it.
+        reason: String,
+    },
     /// The result would have more than [`MAX_FACES`] faces.
     #[error("level {level} would make {faces} faces, more than the limit of {MAX_FACES}")]
     TooManyFaces {
@@ -613,6 +622,81 @@ impl Refiner {
             options.boundary == BoundaryInterpolation::None && options.scheme.applicable().boundary;
         let (cage_level, cage, hidden_cage_faces) =
             Level::from_mesh(mesh, creases, options.boundary, hide_boundary);
+        Self::from_cage(cage_level, cage, hidden_cage_faces, options, levels, go_on)
+    }
+
+    /// Builds the refinement of polygons given as vertex lists (indices
+    /// into `vertex_count` vertices), kept as they are: an edge may be in
+    /// more than two faces and a vertex may join separate fans, as in
+    /// scanned and game meshes (issue 37). Such edges are infinitely sharp
+    /// and such vertices corners or creases, as OpenSubdiv treats them
+    /// ([`Level::from_polygon_cage`]). Cage vertex, edge and face ids are
+    /// the indices (`VertexId(i)` is vertex `i`, `FaceId(f)` face `f`);
+    /// position the cage with `refine(&positions)`.
+    ///
+    /// # Errors
+    /// [`SubdivisionError::NotTriangles`] for Loop with a face of another
+    /// size; [`SubdivisionError::BadPolygon`] for a face of fewer than three
+    /// corners or a vertex index out of range;
+    /// `LevelTooHigh` / `TooManyFaces` as [`new`](Self::new).
+    pub fn from_polygons(
+        vertex_count: usize,
+        faces: &[Vec<u32>],
+        options: Options,
+        levels: u32,
+    ) -> Result<Self, SubdivisionError> {
+        if levels > MAX_LEVEL {
+            return Err(SubdivisionError::LevelTooHigh { level: levels });
+        }
+        for (f, face) in faces.iter().enumerate() {
+            let face_id = FaceId(f as u32);
+            if face.len() < 3 {
+                return Err(SubdivisionError::BadPolygon {
+                    face: face_id,
+                    reason: format!("{} corners", face.len()),
+                });
+            }
+            if let Some(&v) = face.iter().find(|&&v| v as usize >= vertex_count) {
+                return Err(SubdivisionError::BadPolygon {
+                    face: face_id,
+                    reason: format!("vertex {v} is not one of the {vertex_count} vertices"),
+                });
+            }
+            if options.scheme == Scheme::Loop && face.len() != 3 {
+                return Err(SubdivisionError::NotTriangles {
+                    face: FaceId(f as u32),
+                    sides: face.len(),
+                });
+            }
+        }
+        let hide_boundary =
+            options.boundary == BoundaryInterpolation::None && options.scheme.applicable().boundary;
+        let (cage_level, hidden_cage_faces) =
+            Level::from_polygon_cage(vertex_count, faces, options.boundary, hide_boundary);
+        let cage = CageMap {
+            vertices: (0..vertex_count as u32).map(VertexId).collect(),
+            edges: (0..cage_level.edge_count() as u32).map(EdgeId).collect(),
+            faces: (0..faces.len() as u32).map(FaceId).collect(),
+        };
+        Self::from_cage(
+            cage_level,
+            cage,
+            hidden_cage_faces,
+            options,
+            levels,
+            &mut |_| true,
+        )
+    }
+
+    /// The levels above `cage_level`, checked against the size limits.
+    fn from_cage(
+        cage_level: Level,
+        cage: CageMap,
+        hidden_cage_faces: Vec<bool>,
+        options: Options,
+        levels: u32,
+        go_on: &mut dyn FnMut(u32) -> bool,
+    ) -> Result<Self, SubdivisionError> {
         let split = split_for(options.scheme, &cage_level);
         for level in 1..=levels {
             let faces = faces_after(&cage_level, split, level);

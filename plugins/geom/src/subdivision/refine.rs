@@ -42,7 +42,9 @@ pub(crate) fn refine_topology(
     method: CreaseMethod,
     with_adjacency: bool,
 ) -> Level {
-    match split {
+    // The derived tables below assume at most two faces per edge.
+    let with_adjacency = with_adjacency && !parent.non_manifold;
+    let mut child = match split {
         Split::Quads => {
             let mut child = split_quads(parent, method);
             if with_adjacency {
@@ -58,7 +60,9 @@ pub(crate) fn refine_topology(
             child
         }
         Split::Dual => doo_sabin_topology(parent),
-    }
+    };
+    child.non_manifold = parent.non_manifold;
+    child
 }
 
 /// Child edges `2e` and `2e + 1` are the halves of parent edge `e` (at its
