@@ -1,16 +1,26 @@
-//! One writer per projected component (issue 12): node `Transform`s are
-//! written only by `project_transforms`, render meshes only by
-//! `project_render_meshes` (mesh nodes) and `project_surface_patches`
-//! (surface patches). Checked with Bevy's change ticks while a person
+//! One writer per projected component (issues 12 and 34): node
+//! `Transform`s are written only by `project_transforms`, render meshes only
+//! by `project_render_meshes` (mesh nodes) and `project_surface_patches`
+//! (surface patches); a node's `MeshMaterial3d` only by
+//! `project_render_meshes`, a patch's (and its `SurfacePatch`) only by
+//! `project_surface_patches`, `ControlPoint`s only by
+//! `project_control_points`, and the node components that mirror the
+//! document (`Name`, `Visibility`, `NodeMesh`, `NodeCurve`, `NodeSurface`)
+//! only by `sync_entities`. Checked with Bevy's change ticks while a person
 //! uses every tool: each system run has its own tick, so a value written by
 //! any other system carries a tick outside the projection's runs.
 
 use crate::user::User;
+use bevy::ecs::change_detection::ComponentTicks;
 use bevy::ecs::system::SystemChangeTick;
+
+/// A component's name, its writer's runs and its change ticks.
+type Check<'a> = (&'static str, &'a [(u32, u32)], Option<ComponentTicks>);
 use bevy::prelude::*;
 use hedra_scene::{
-    NodeEntity, project_control_points, project_render_meshes, project_surface_patches,
-    project_transforms, sync_entities,
+    ControlPoint, NodeCurve, NodeEntity, NodeMesh, NodeSurface, SurfacePatch,
+    project_control_points, project_render_meshes, project_surface_patches, project_transforms,
+    sync_entities,
 };
 
 /// The ticks between which each projection system ran, and what was
@@ -22,7 +32,30 @@ struct Audit {
     meshes: Vec<(u32, u32)>,
     update_opened: u32,
     updates: Vec<(u32, u32)>,
+    /// The runs of `sync_entities`, `project_render_meshes`,
+    /// `project_control_points` and `project_surface_patches`, by name.
+    runs: std::collections::HashMap<&'static str, Vec<(u32, u32)>>,
+    run_opened: std::collections::HashMap<&'static str, u32>,
     violations: Vec<String>,
+}
+
+/// A system that opens the audit window of the system named `name`.
+fn open_run(name: &'static str) -> impl FnMut(SystemChangeTick, ResMut<Audit>) {
+    move |ticks, mut audit| {
+        audit.run_opened.insert(name, ticks.this_run().get());
+    }
+}
+
+/// A system that closes the audit window of the system named `name`.
+fn close_run(name: &'static str) -> impl FnMut(SystemChangeTick, ResMut<Audit>) {
+    move |ticks, mut audit| {
+        let opened = audit.run_opened[name];
+        audit
+            .runs
+            .entry(name)
+            .or_default()
+            .push((opened, ticks.this_run().get()));
+    }
 }
 
 fn open(ticks: SystemChangeTick, mut audit: ResMut<Audit>) {
@@ -86,25 +119,78 @@ fn check_meshes(world: &mut World) {
     }
 }
 
-/// At the end of every frame: was each node `Transform` last changed
-/// inside a run of `project_transforms`?
+/// At the end of every frame: was each projected component last changed
+/// inside a run of its one writer?
 fn check(world: &mut World) {
-    let inside = |runs: &[(u32, u32)], tick: u32| runs.iter().any(|&(a, b)| a < tick && tick < b);
     let mut found = Vec::new();
     let mut nodes = world.query::<(Entity, &NodeEntity)>();
+    let mut points = world.query_filtered::<Entity, With<ControlPoint>>();
+    let mut patches = world.query_filtered::<Entity, With<SurfacePatch>>();
     let audit = world.resource::<Audit>();
+    let inside = |runs: &[(u32, u32)], tick: u32| runs.iter().any(|&(a, b)| a < tick && tick < b);
+    let runs = |name: &str| audit.runs.get(name).map_or(&[][..], |r| r.as_slice());
+    // Whether component `C` of `entity` was last changed outside `writer`'s
+    // runs (spawning it with its first value is not a second write).
+    let outside = |writer: &[(u32, u32)], ticks: Option<ComponentTicks>| {
+        ticks.is_some_and(|t| t.added.get() != t.changed.get() && !inside(writer, t.changed.get()))
+    };
     for (entity, node) in nodes.iter(world) {
-        let ticks = world
-            .entity(entity)
-            .get_change_ticks::<Transform>()
-            .expect("a node entity has a Transform");
-        // Spawned with its document transform: not a second write.
-        let changed = ticks.changed.get();
-        if ticks.added.get() != changed && !inside(&audit.transforms, changed) {
+        let e = world.entity(entity);
+        let node = node.0;
+        let mut checks: Vec<Check> = vec![
+            (
+                "Transform",
+                &audit.transforms[..],
+                e.get_change_ticks::<Transform>(),
+            ),
+            (
+                "MeshMaterial3d",
+                runs("project_render_meshes"),
+                e.get_change_ticks::<MeshMaterial3d<StandardMaterial>>(),
+            ),
+        ];
+        for (component, ticks) in [
+            ("Name", e.get_change_ticks::<Name>()),
+            ("Visibility", e.get_change_ticks::<Visibility>()),
+            ("NodeMesh", e.get_change_ticks::<NodeMesh>()),
+            ("NodeCurve", e.get_change_ticks::<NodeCurve>()),
+            ("NodeSurface", e.get_change_ticks::<NodeSurface>()),
+        ] {
+            checks.push((component, runs("sync_entities"), ticks));
+        }
+        for (component, writer, ticks) in checks {
+            if outside(writer, ticks) {
+                found.push(format!(
+                    "the {component} of node {node} was written outside its writer (tick {})",
+                    ticks.unwrap().changed.get()
+                ));
+            }
+        }
+    }
+    for entity in points.iter(world) {
+        let ticks = world.entity(entity).get_change_ticks::<ControlPoint>();
+        if outside(runs("project_control_points"), ticks) {
             found.push(format!(
-                "the Transform of node {} was written outside project_transforms (tick {changed})",
-                node.0
+                "a ControlPoint was written outside project_control_points (tick {})",
+                ticks.unwrap().changed.get()
             ));
+        }
+    }
+    for entity in patches.iter(world) {
+        let e = world.entity(entity);
+        for (component, ticks) in [
+            ("SurfacePatch", e.get_change_ticks::<SurfacePatch>()),
+            (
+                "MeshMaterial3d",
+                e.get_change_ticks::<MeshMaterial3d<StandardMaterial>>(),
+            ),
+        ] {
+            if outside(runs("project_surface_patches"), ticks) {
+                found.push(format!(
+                    "the {component} of a surface patch was written outside project_surface_patches (tick {})",
+                    ticks.unwrap().changed.get()
+                ));
+            }
         }
     }
     let mut audit = world.resource_mut::<Audit>();
@@ -134,6 +220,31 @@ fn audited() -> User {
                     .after(project_control_points)
                     .before(project_surface_patches),
                 close_patches.after(project_surface_patches),
+            ),
+        )
+        .add_systems(
+            Update,
+            (
+                open_run("sync_entities").before(sync_entities),
+                close_run("sync_entities")
+                    .after(sync_entities)
+                    .before(project_transforms),
+                open_run("project_render_meshes")
+                    .after(close_transforms)
+                    .before(project_render_meshes),
+                close_run("project_render_meshes")
+                    .after(project_render_meshes)
+                    .before(project_control_points),
+                open_run("project_control_points")
+                    .after(close_meshes)
+                    .before(project_control_points),
+                close_run("project_control_points")
+                    .after(project_control_points)
+                    .before(project_surface_patches),
+                open_run("project_surface_patches")
+                    .after(open_patches)
+                    .before(project_surface_patches),
+                close_run("project_surface_patches").after(project_surface_patches),
             ),
         )
         // Between PreUpdate (Bevy's asset bookkeeping) and Update.
@@ -203,6 +314,14 @@ fn only_the_projection_writes_node_transforms_and_render_meshes() {
         "the tools did their work: {}",
         user.status()
     );
+    // The face orientation overlay on and off, with the surface shown.
+    user.click_on("View");
+    user.click_on("Face Orientation");
+    user.frames(2);
+    user.tap(KeyCode::Escape);
+    user.click_on("View");
+    user.click_on("Face Orientation");
+    user.frames(2);
     user.tap(KeyCode::KeyX);
     user.frames(3);
     let audit = user.app.world().resource::<Audit>();
@@ -210,6 +329,14 @@ fn only_the_projection_writes_node_transforms_and_render_meshes() {
         audit.transforms.len() > 50 && audit.meshes.len() > 50,
         "the projection ran every frame"
     );
+    for writer in [
+        "sync_entities",
+        "project_render_meshes",
+        "project_control_points",
+        "project_surface_patches",
+    ] {
+        assert!(audit.runs[writer].len() > 50, "{writer} ran every frame");
+    }
     assert_eq!(violations(&user), Vec::<String>::new());
 }
 
@@ -231,9 +358,7 @@ fn a_second_writer_is_found() {
     user.frames(2);
     let found = violations(&user);
     assert!(
-        found
-            .iter()
-            .any(|v| v.contains("outside project_transforms")),
+        found.iter().any(|v| v.contains("the Transform of node")),
         "{found:?}"
     );
 
@@ -253,4 +378,34 @@ fn a_second_writer_is_found() {
         found.iter().any(|v| v.contains("outside the projection")),
         "{found:?}"
     );
+
+    // A node's material (as the face orientation overlay once swapped it)
+    // and a control point.
+    let mut user = audited();
+    user.add("Cube");
+    user.add("NURBS Surface");
+    user.app.add_systems(
+        Update,
+        (|mut materials: Query<&mut MeshMaterial3d<StandardMaterial>, With<NodeEntity>>,
+          mut points: Query<&mut ControlPoint>| {
+            for mut m in &mut materials {
+                m.set_changed();
+            }
+            for mut p in &mut points {
+                p.set_changed();
+            }
+        })
+        .after(hedra_scene::SceneSystems::Sync),
+    );
+    user.frames(2);
+    let found = violations(&user);
+    for expected in [
+        "the MeshMaterial3d of node",
+        "a ControlPoint was written outside project_control_points",
+    ] {
+        assert!(
+            found.iter().any(|v| v.contains(expected)),
+            "{expected}: {found:?}"
+        );
+    }
 }

@@ -252,32 +252,57 @@ fn setup_face_orientation(mut commands: Commands, mut materials: ResMut<Assets<S
     });
 }
 
-/// Shows or removes the face orientation overlay: mesh entities (nodes and
-/// surface patches) get the blue front material and a [`BackFaces`] child
-/// with the same mesh in red; turned off, they get the shared material
-/// back and the children go. Re-run every frame while on, because a
-/// rebuilt render mesh comes back with the shared material.
+/// The material model meshes (mesh nodes and surface patches) are drawn
+/// with: the shared one, or the blue front one while the face orientation
+/// overlay is on. Their writers (`project_render_meshes`,
+/// `project_surface_patches`) put it on; nothing else writes their
+/// `MeshMaterial3d`.
+pub fn model_material(
+    shared: &MeshMaterial,
+    orientation: Option<&FaceOrientationMaterials>,
+    shading: &ViewportShading,
+) -> MeshMaterial {
+    match orientation {
+        Some(o) if shading.face_orientation => MeshMaterial(o.front.clone()),
+        _ => MeshMaterial(shared.0.clone()),
+    }
+}
+
+/// Puts `chosen` on every entity of `entities` whose material differs,
+/// when the shading changed (the face orientation overlay turned on or
+/// off): the refresh pass of a model mesh writer.
+pub(crate) fn refresh_materials<F: bevy::ecs::query::QueryFilter>(
+    commands: &mut Commands,
+    shading: &Res<ViewportShading>,
+    chosen: Option<&MeshMaterial>,
+    entities: &Query<(Entity, &MeshMaterial3d<StandardMaterial>), F>,
+) {
+    let Some(chosen) = chosen.filter(|_| shading.is_changed()) else {
+        return;
+    };
+    for (e, m) in entities {
+        if m.0 != chosen.0 {
+            commands.entity(e).insert(MeshMaterial3d(chosen.0.clone()));
+        }
+    }
+}
+
+/// The red half of the face orientation overlay: while it is on, each
+/// model mesh (drawn with the blue front material by its own writer) gets
+/// a [`BackFaces`] child with the same mesh in red, front faces culled;
+/// turned off, the children go. Writes only its children.
 #[allow(clippy::type_complexity)]
 fn project_face_orientation(
     mut commands: Commands,
     shading: Res<ViewportShading>,
     orientation: Option<Res<FaceOrientationMaterials>>,
-    shared: Option<Res<MeshMaterial>>,
     meshes: Query<(Entity, &Mesh3d, &MeshMaterial3d<StandardMaterial>), Without<BackFaces>>,
     backs: Query<(Entity, &Mesh3d, &ChildOf), With<BackFaces>>,
 ) {
-    let (Some(orientation), Some(shared)) = (orientation, shared) else {
+    let Some(orientation) = orientation else {
         return;
     };
     if !shading.face_orientation {
-        if !shading.is_changed() {
-            return;
-        }
-        for (e, _, m) in &meshes {
-            if m.0 == orientation.front {
-                commands.entity(e).insert(MeshMaterial3d(shared.0.clone()));
-            }
-        }
         for (e, _, _) in &backs {
             commands.entity(e).despawn();
         }
@@ -286,25 +311,17 @@ fn project_face_orientation(
     let mut with_back = std::collections::HashSet::new();
     for (e, mesh, parent) in &backs {
         match meshes.get(parent.parent()) {
-            Ok((_, parent_mesh, _)) => {
+            Ok((_, parent_mesh, m)) if m.0 == orientation.front => {
                 with_back.insert(parent.parent());
                 if parent_mesh.0 != mesh.0 {
                     commands.entity(e).insert(Mesh3d(parent_mesh.0.clone()));
                 }
             }
-            Err(_) => commands.entity(e).despawn(),
+            _ => commands.entity(e).despawn(),
         }
     }
     for (e, mesh, m) in &meshes {
-        if m.0 != shared.0 && m.0 != orientation.front {
-            continue; // not a model mesh (gizmo proxies and the like)
-        }
-        if m.0 != orientation.front {
-            commands
-                .entity(e)
-                .insert(MeshMaterial3d(orientation.front.clone()));
-        }
-        if !with_back.contains(&e) {
+        if m.0 == orientation.front && !with_back.contains(&e) {
             commands.spawn((
                 BackFaces,
                 Mesh3d(mesh.0.clone()),

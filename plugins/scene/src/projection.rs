@@ -399,6 +399,8 @@ pub fn project_render_meshes(
     mut meshes: ResMut<Assets<Mesh>>,
     mut status: ResMut<StatusMessage>,
     material: Option<Res<MeshMaterial>>,
+    shading: Res<crate::ViewportShading>,
+    orientation: Option<Res<crate::FaceOrientationMaterials>>,
     map: Res<NodeEntities>,
     nodes: Query<(
         Entity,
@@ -408,7 +410,12 @@ pub fn project_render_meshes(
         Option<&Mesh3d>,
         Option<&OnScreen>,
     )>,
+    node_materials: Query<(Entity, &MeshMaterial3d<StandardMaterial>), With<NodeEntity>>,
 ) {
+    let chosen = material
+        .as_deref()
+        .map(|m| crate::model_material(m, orientation.as_deref(), &shading));
+    crate::refresh_materials(&mut commands, &shading, chosen.as_ref(), &node_materials);
     if keys.is_some_and(|k| k.just_pressed(KeyCode::Escape)) && !smooth.progress().is_empty() {
         smooth.cancel_all();
     }
@@ -436,7 +443,7 @@ pub fn project_render_meshes(
         meshes: &mut meshes,
         smooth: &mut smooth,
         status: &mut status,
-        material: material.as_deref(),
+        material: chosen.as_ref(),
     };
     let mut any_changed = false;
     for (entity, node, name, content, mesh3d, on_screen) in &nodes {

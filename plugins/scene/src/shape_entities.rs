@@ -197,6 +197,8 @@ pub fn project_surface_patches(
     mut commands: Commands,
     previews: Res<Previews>,
     material: Option<Res<MeshMaterial>>,
+    shading: Res<crate::ViewportShading>,
+    orientation: Option<Res<crate::FaceOrientationMaterials>>,
     mut meshes: ResMut<Assets<Mesh>>,
     nodes: Query<(
         Entity,
@@ -207,7 +209,12 @@ pub fn project_surface_patches(
     )>,
     points: Query<Ref<ControlPoint>>,
     patches: Query<(&SurfacePatch, &Mesh3d)>,
+    patch_materials: Query<(Entity, &MeshMaterial3d<StandardMaterial>), With<SurfacePatch>>,
 ) {
+    let material = material
+        .as_deref()
+        .map(|m| crate::model_material(m, orientation.as_deref(), &shading));
+    crate::refresh_materials(&mut commands, &shading, material.as_ref(), &patch_materials);
     for (entity, node, surface_component, layout, children) in &nodes {
         let changed =
             previews.is_changed() || surface_component.as_ref().is_some_and(|s| s.is_changed());
