@@ -3103,6 +3103,51 @@ fn a_big_decimate_builds_in_the_background_with_progress_and_cancel() {
     assert_eq!(user.undo_steps(), steps + 2, "nothing changed");
 }
 
+/// Esc cancels a smooth preview that refines in the background (level 3
+/// of a 10,000-quad torus, 640,000 faces): the cage stays on screen and
+/// the status line says so. The key is read with the other keys, in
+/// `SceneSystems::Tools` (issue 34), not by the projection.
+#[test]
+fn escape_cancels_a_background_subdivision() {
+    let mut user = User::new();
+    execute(
+        &mut user,
+        "AddPrimitive(primitive: Torus(major_segments: 100, minor_segments: 100, major_radius: 2.0, minor_radius: 0.5), name: Some(\"Ring\"))",
+    );
+    user.app
+        .world_mut()
+        .write_message(hedra_scene::DocRequest::Execute(
+            hedra_doc::Command::SetSubdivision {
+                nodes: vec![hedra_doc::NodeRef::Name("Ring".into())],
+                modifier: Some(hedra_doc::SubdivisionModifier::with_level(3)),
+            },
+        ));
+    user.frames(2);
+    let running = |user: &User| {
+        user.app
+            .world()
+            .resource::<hedra_scene::SmoothPreviews>()
+            .progress()
+            .len()
+    };
+    assert_eq!(
+        running(&user),
+        1,
+        "a background refinement runs: {}",
+        user.status()
+    );
+    user.tap(KeyCode::Escape);
+    for _ in 0..500 {
+        if running(&user) == 0 {
+            break;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(20));
+        user.frames(1);
+    }
+    assert_eq!(running(&user), 0, "the refinement stopped");
+    assert!(user.status().contains("cancelled"), "{}", user.status());
+}
+
 /// Issue 16, no hitch when a drag starts: giving a mesh a subdivision
 /// modifier (Ctrl+3) starts building its stencil table on a worker thread
 /// at once, so it is ready before the first vertex is dragged (it used to

@@ -122,11 +122,21 @@ fn may_decimate(doc: &hedra_doc::Document, cmd: &hedra_doc::Command) -> bool {
         .any(|n| matches!(&n.content, NodeContent::Mesh(c) if c.has_decimate()))
 }
 
-/// Esc cancels a running Decimate build.
-pub fn decimate_job_keys(keys: Option<Res<ButtonInput<KeyCode>>>, jobs: Res<FileJobs>) {
-    if let (Some(keys), Some(job)) = (keys, &jobs.decimation)
-        && keys.just_pressed(KeyCode::Escape)
-    {
+/// Esc cancels the work that runs in the background for the document: a
+/// Decimate build and smooth previews being refined (the frame shows the
+/// cage meanwhile). Read in `SceneSystems::Tools`, with the other keys.
+pub fn escape_cancels_background_jobs(
+    keys: Option<Res<ButtonInput<KeyCode>>>,
+    jobs: Res<FileJobs>,
+    mut smooth: ResMut<crate::SmoothPreviews>,
+) {
+    if !keys.is_some_and(|k| k.just_pressed(KeyCode::Escape)) {
+        return;
+    }
+    if let Some(job) = &jobs.decimation {
         job.cancel();
+    }
+    if !smooth.progress().is_empty() {
+        smooth.cancel_all();
     }
 }

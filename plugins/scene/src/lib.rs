@@ -410,7 +410,10 @@ impl Plugin for ScenePlugin {
                     .in_set(SceneSystems::Apply)
                     .after(apply_requests),
             )
-            .add_systems(Update, decimate_jobs::decimate_job_keys)
+            .add_systems(
+                Update,
+                decimate_jobs::escape_cancels_background_jobs.in_set(SceneSystems::Tools),
+            )
             .add_systems(
                 Update,
                 (

@@ -394,7 +394,6 @@ impl OnScreen {
 pub fn project_render_meshes(
     mut commands: Commands,
     previews: Res<Previews>,
-    keys: Option<Res<ButtonInput<KeyCode>>>,
     mut smooth: ResMut<SmoothPreviews>,
     mut meshes: ResMut<Assets<Mesh>>,
     mut status: ResMut<StatusMessage>,
@@ -416,9 +415,6 @@ pub fn project_render_meshes(
         .as_deref()
         .map(|m| crate::model_material(m, orientation.as_deref(), &shading));
     crate::refresh_materials(&mut commands, &shading, chosen.as_ref(), &node_materials);
-    if keys.is_some_and(|k| k.just_pressed(KeyCode::Escape)) && !smooth.progress().is_empty() {
-        smooth.cancel_all();
-    }
     for job in smooth.finished() {
         let node = map.0.get(&job.node).and_then(|e| nodes.get(*e).ok());
         let name = node.map_or_else(|| job.node.to_string(), |(_, _, n, ..)| n.to_string());
