@@ -15,8 +15,7 @@ pub fn place_cursor(
     tool: Res<TransformTool>,
     mode: Res<EditMode>,
     shape_edit: Res<ShapeEdit>,
-    window: Single<&Window, With<PrimaryWindow>>,
-    camera: Single<(&Camera, &GlobalTransform), With<ViewportCamera>>,
+    viewport: hedra_scene::ViewportPointer,
     state: Res<DocState>,
     mut cursor: ResMut<Cursor3d>,
     mut status: ResMut<StatusMessage>,
@@ -25,10 +24,10 @@ pub fn place_cursor(
     if busy || !gate.pointer_free || !shift(&keys) || !buttons.just_pressed(MouseButton::Right) {
         return;
     }
-    let (cam, cam_t) = *camera;
-    let Some((origin, dir)) = cursor_ray(&window, cam, cam_t) else {
+    let Some((origin, dir)) = viewport.ray() else {
         return;
     };
+    let (_, cam_t) = viewport.camera();
     let view_dir = (cam_t.rotation() * Vec3::NEG_Z).as_dvec3();
     let at = match pick_node(&state.session.doc, origin, dir) {
         Some((_, t)) => origin + dir * t,

@@ -11,13 +11,12 @@
 
 use crate::bindings::{Action, KeyMode, pressed};
 use bevy::prelude::*;
-use bevy::window::PrimaryWindow;
 use glam::DVec3;
 use hedra_doc::command::CurveSpec;
 use hedra_doc::construction::{Recipe, Space};
 use hedra_doc::{Command, Document, NodeId, NodeRef, NodeTransform};
 use hedra_geom::curves::{Curve, Join};
-use hedra_scene::{DocRequest, DocState, InputGate, StatusMessage, ViewportCamera};
+use hedra_scene::{DocRequest, DocState, InputGate, StatusMessage};
 
 /// The kinds of curve drawing makes, in the order T steps through them.
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
@@ -269,8 +268,7 @@ pub fn drive_curve_draw(
     keys: Res<ButtonInput<KeyCode>>,
     buttons: Res<ButtonInput<MouseButton>>,
     gate: Res<InputGate>,
-    window: Single<&Window, With<PrimaryWindow>>,
-    camera: Single<(&Camera, &GlobalTransform), With<ViewportCamera>>,
+    viewport: hedra_scene::ViewportPointer,
     state: Res<DocState>,
     cursor_3d: Res<hedra_scene::Cursor3d>,
     snapping: Res<crate::Snapping>,
@@ -278,6 +276,7 @@ pub fn drive_curve_draw(
     mut requests: MessageWriter<DocRequest>,
     mut status: ResMut<StatusMessage>,
 ) {
+    let (window, camera) = (viewport.window(), viewport.camera());
     draw.just_finished = false;
     if !draw.active {
         return;
@@ -296,13 +295,10 @@ pub fn drive_curve_draw(
         draw.kind = draw.kind.next();
         status.info(draw_help(draw.kind));
     }
-    let (cam, cam_t) = *camera;
+    let (cam, cam_t) = camera;
     let doc = &state.session.doc;
     let pointer = window.cursor_position();
-    let ray = pointer.and_then(|c| {
-        let r = cam.viewport_to_world(cam_t, c).ok()?;
-        Some((r.origin.as_dvec3(), Vec3::from(r.direction).as_dvec3()))
-    });
+    let ray = pointer.and_then(|c| viewport.ray_at(c));
     let view_dir = (cam_t.rotation() * Vec3::NEG_Z).as_dvec3();
     let to_screen = |p: DVec3| cam.world_to_viewport(cam_t, p.as_vec3()).ok();
     let mut scene = crate::SnapScene::of_document(doc, |_| true);

@@ -9,11 +9,10 @@
 #![allow(clippy::too_many_arguments, clippy::type_complexity)]
 
 use bevy::prelude::*;
-use bevy::window::PrimaryWindow;
 use glam::{DMat4, DQuat, DVec3};
 use hedra_doc::{Command, Document, NodeContent, NodeId, NodeRef, NodeTransform};
 use hedra_scene::modifiers::{alt, shift};
-use hedra_scene::{DocChanged, DocRequest, DocState, InputGate, SceneSystems, ViewportCamera};
+use hedra_scene::{DocChanged, DocRequest, DocState, InputGate, SceneSystems};
 
 pub mod bindings;
 mod cursor;
@@ -325,9 +324,7 @@ pub fn cursor_ray(
     camera: &Camera,
     camera_transform: &GlobalTransform,
 ) -> Option<(DVec3, DVec3)> {
-    let cursor = window.cursor_position()?;
-    let ray = camera.viewport_to_world(camera_transform, cursor).ok()?;
-    Some((ray.origin.as_dvec3(), Vec3::from(ray.direction).as_dvec3()))
+    hedra_scene::camera_ray(camera, camera_transform, window.cursor_position()?)
 }
 
 /// Whether a modal tool runs (object G/R/S, a mesh tool, a control-point
@@ -343,8 +340,7 @@ fn pick_objects(
     keys: Res<ButtonInput<KeyCode>>,
     gate: Res<InputGate>,
     tool: Res<TransformTool>,
-    window: Single<&Window, With<PrimaryWindow>>,
-    camera: Single<(&Camera, &GlobalTransform), With<ViewportCamera>>,
+    viewport: hedra_scene::ViewportPointer,
     state: Res<DocState>,
     mut selection: ResMut<Selection>,
     gizmo: Option<Res<TransformGizmoState>>,
@@ -352,6 +348,7 @@ fn pick_objects(
     shape_edit: Res<ShapeEdit>,
     draw: Res<CurveDraw>,
 ) {
+    let (window, camera) = (viewport.window(), viewport.camera());
     if mode.active()
         || shape_edit.active()
         || draw.active
@@ -369,8 +366,8 @@ fn pick_objects(
     if alt(&keys) {
         return; // Alt+drag orbits
     }
-    let (cam, cam_t) = *camera;
-    let Some((origin, dir)) = cursor_ray(&window, cam, cam_t) else {
+    let (cam, cam_t) = camera;
+    let Some((origin, dir)) = viewport.ray() else {
         return;
     };
     // A curve under the cursor wins: it is thin and drawn over surfaces.
@@ -434,8 +431,7 @@ pub fn object_shortcuts(
     mut selection: ResMut<Selection>,
     state: Res<DocState>,
     mut requests: MessageWriter<DocRequest>,
-    window: Single<&Window, With<PrimaryWindow>>,
-    camera: Single<(&Camera, &GlobalTransform), With<ViewportCamera>>,
+    viewport: hedra_scene::ViewportPointer,
     mode: Res<EditMode>,
     shape_edit: Res<ShapeEdit>,
     pivot_point: Res<PivotPoint>,
@@ -443,6 +439,7 @@ pub fn object_shortcuts(
     draw: Res<CurveDraw>,
     mut status: ResMut<hedra_scene::StatusMessage>,
 ) {
+    let (window, camera) = (viewport.window(), viewport.camera());
     if !gate.keyboard_free
         || tool.active.is_some()
         || mode.active()
@@ -529,9 +526,9 @@ pub fn object_shortcuts(
         None
     };
     if let Some(kind) = kind {
-        let (cam, cam_t) = *camera;
+        let (cam, cam_t) = camera;
         tool.active =
-            ModalTransform::start(kind, doc, &selection.nodes, &window, cam, cam_t).map(|m| {
+            ModalTransform::start(kind, doc, &selection.nodes, window, cam, cam_t).map(|m| {
                 match *pivot_point {
                     PivotPoint::Cursor => m.about(cursor.0, cam, cam_t),
                     PivotPoint::MedianPoint => m,

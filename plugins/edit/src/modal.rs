@@ -6,10 +6,9 @@
 use crate::bindings::{Action, KeyMode};
 use crate::{local_from_world, rotation_about};
 use bevy::prelude::*;
-use bevy::window::PrimaryWindow;
 use glam::{DMat4, DQuat, DVec3};
 use hedra_doc::{Command, Document, NodeId, NodeRef, NodeTransform};
-use hedra_scene::{DocRequest, DocState, PreviewSource, Previews, ToolPreview, ViewportCamera};
+use hedra_scene::{DocRequest, DocState, PreviewSource, Previews, ToolPreview};
 
 /// What a modal object transform does.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
@@ -266,8 +265,7 @@ pub fn drive_transform_tool(
     keys: Res<ButtonInput<KeyCode>>,
     strokes: Res<hedra_scene::Strokes>,
     buttons: Res<ButtonInput<MouseButton>>,
-    window: Single<&Window, With<PrimaryWindow>>,
-    camera: Single<(&Camera, &GlobalTransform), With<ViewportCamera>>,
+    viewport: hedra_scene::ViewportPointer,
     state: Res<DocState>,
     selection: Res<crate::Selection>,
     mut previews: ResMut<Previews>,
@@ -275,15 +273,16 @@ pub fn drive_transform_tool(
     snapping: Res<crate::Snapping>,
     mut snap_target: ResMut<crate::SnapTarget>,
 ) {
+    let (window, camera) = (viewport.window(), viewport.camera());
     tool.just_finished = false;
-    let (cam, cam_t) = *camera;
+    let (cam, cam_t) = camera;
     if tool.grab_after_duplicate && tool.active.is_none() {
         tool.grab_after_duplicate = false;
         tool.active = ModalTransform::start(
             TransformKind::Grab,
             &state.session.doc,
             &selection.nodes,
-            &window,
+            window,
             cam,
             cam_t,
         );
@@ -306,11 +305,7 @@ pub fn drive_transform_tool(
     modal.typed.read(&strokes, true);
     let cursor = window.cursor_position().unwrap_or(modal.start_cursor);
     let view_dir = (cam_t.rotation() * Vec3::NEG_Z).as_dvec3();
-    let ray_at = |p: Vec2| {
-        cam.viewport_to_world(cam_t, p)
-            .ok()
-            .map(|r| (r.origin.as_dvec3(), Vec3::from(r.direction).as_dvec3()))
-    };
+    let ray_at = |p: Vec2| viewport.ray_at(p);
     let active = snapping.active(&keys);
     let snap = if modal.kind == TransformKind::Grab {
         // The moved nodes and their children are neither targets nor left

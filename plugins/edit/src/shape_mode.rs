@@ -12,12 +12,11 @@ use std::collections::BTreeSet;
 
 use bevy::gizmos::transform_gizmo::TransformGizmoState;
 use bevy::prelude::*;
-use bevy::window::PrimaryWindow;
 use glam::DVec3;
 use hedra_doc::{Command, NodeContent, NodeId, NodeRef, SurfaceShape};
 use hedra_geom::curves::CurveEnd;
 use hedra_scene::modifiers::{alt, shift};
-use hedra_scene::{DocRequest, DocState, InputGate, StatusMessage, ViewportCamera};
+use hedra_scene::{DocRequest, DocState, InputGate, StatusMessage};
 
 pub use crate::shape_tool::{ShapeTool, ShapeToolKind, drive_shape_tool, publish_shape_preview};
 use crate::typing::TypedNumber;
@@ -151,8 +150,7 @@ pub fn shape_select_and_shortcuts(
     gate: Res<InputGate>,
     mut edit: ResMut<ShapeEdit>,
     state: Res<DocState>,
-    window: Single<&Window, With<PrimaryWindow>>,
-    camera: Single<(&Camera, &GlobalTransform), With<ViewportCamera>>,
+    viewport: hedra_scene::ViewportPointer,
     mut status: ResMut<StatusMessage>,
     mut requests: MessageWriter<DocRequest>,
     mut b_box: Local<bool>,
@@ -161,6 +159,7 @@ pub fn shape_select_and_shortcuts(
     cursor_3d: Res<hedra_scene::Cursor3d>,
     mut requested: ResMut<crate::bindings::RequestedAction>,
 ) {
+    let (window, camera) = (viewport.window(), viewport.camera());
     let Some(id) = edit.node else {
         *b_box = false;
         return;
@@ -177,7 +176,7 @@ pub fn shape_select_and_shortcuts(
     };
     let points = control_points(&node.content);
     let world = state.session.doc.world_matrix(id);
-    let (cam, cam_t) = *camera;
+    let (cam, cam_t) = camera;
     let cursor = window.cursor_position();
     // B (Blender): a box from the cursor follows the mouse; a click adds
     // the points it holds; Esc or a right click cancels.
@@ -463,10 +462,9 @@ fn knot_under_cursor(
             let SurfaceShape::Nurbs(n) = &**s else {
                 return None;
             };
-            let ray = cam.viewport_to_world(cam_t, cursor).ok()?;
+            let (origin, dir) = hedra_scene::camera_ray(cam, cam_t, cursor)?;
             let inv = world.inverse();
-            let origin = inv.transform_point3(ray.origin.as_dvec3());
-            let dir = inv.transform_vector3(Vec3::from(ray.direction).as_dvec3());
+            let (origin, dir) = (inv.transform_point3(origin), inv.transform_vector3(dir));
             let hit = hedra_geom::surfaces::intersect::ray_surface(n, origin, dir)?;
             Some(Command::InsertKnot {
                 node: NodeRef::from(id),

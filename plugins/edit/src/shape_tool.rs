@@ -6,11 +6,10 @@
 use std::collections::BTreeSet;
 
 use bevy::prelude::*;
-use bevy::window::PrimaryWindow;
 use glam::DVec3;
 use hedra_doc::{Command, NodeContent, NodeRef};
 use hedra_geom::curves::CurveEnd;
-use hedra_scene::{DocRequest, DocState, StatusMessage, ViewportCamera};
+use hedra_scene::{DocRequest, DocState, StatusMessage};
 
 use crate::ShapeEdit;
 use crate::modal::Axis;
@@ -63,8 +62,7 @@ pub fn drive_shape_tool(
     buttons: Res<ButtonInput<MouseButton>>,
     mut edit: ResMut<ShapeEdit>,
     state: Res<DocState>,
-    window: Single<&Window, With<PrimaryWindow>>,
-    camera: Single<(&Camera, &GlobalTransform), With<ViewportCamera>>,
+    viewport: hedra_scene::ViewportPointer,
     mut requests: MessageWriter<DocRequest>,
     mut status: ResMut<StatusMessage>,
     snapping: Res<crate::Snapping>,
@@ -73,6 +71,7 @@ pub fn drive_shape_tool(
     mut ring: ResMut<crate::ProportionalRing>,
     mut snap_target: ResMut<crate::SnapTarget>,
 ) {
+    let (window, camera) = (viewport.window(), viewport.camera());
     // The ring and the snap target are cleared each frame by
     // `clear_tool_overlays`, which runs first.
     let (Some(id), Some(mut tool)) = (edit.node, edit.tool.take()) else {
@@ -96,16 +95,13 @@ pub fn drive_shape_tool(
     tool.typed.read(&strokes, true);
     let cursor = window.cursor_position().unwrap_or(tool.start_cursor);
     let world = state.session.doc.world_matrix(id);
-    let (cam, cam_t) = *camera;
+    let (cam, cam_t) = camera;
     let points = control_points(&node.content);
     let reference = NodeRef::from(id);
     let cmd = match tool.kind {
         ShapeToolKind::Move | ShapeToolKind::Extrude(_) => {
             let view_dir = (cam_t.rotation() * Vec3::NEG_Z).as_dvec3();
-            let ray_at = |p: Vec2| {
-                let r = cam.viewport_to_world(cam_t, p).ok()?;
-                Some((r.origin.as_dvec3(), Vec3::from(r.direction).as_dvec3()))
-            };
+            let ray_at = |p: Vec2| viewport.ray_at(p);
             // Snapping: onto the shape's other control points and onto
             // every other node's vertices, edges, faces and control points.
             let doc = &state.session.doc;

@@ -474,6 +474,52 @@ impl Default for InputGate {
 #[derive(Component, Debug, Default)]
 pub struct ViewportCamera;
 
+/// The world ray (origin, unit direction, in `f64`) of `camera` through
+/// window point `p` (logical pixels).
+pub fn camera_ray(
+    camera: &Camera,
+    transform: &GlobalTransform,
+    p: Vec2,
+) -> Option<(glam::DVec3, glam::DVec3)> {
+    let ray = camera.viewport_to_world(transform, p).ok()?;
+    Some((ray.origin.as_dvec3(), Vec3::from(ray.direction).as_dvec3()))
+}
+
+/// The primary window and the viewport camera: what a system needs to
+/// work under the pointer (where it is, the ray through it, where a world
+/// point shows). One parameter instead of the window and camera queries
+/// every tool used to take and turn into a ray itself.
+#[derive(bevy::ecs::system::SystemParam)]
+pub struct ViewportPointer<'w, 's> {
+    window: Single<'w, 's, &'static Window, With<bevy::window::PrimaryWindow>>,
+    camera: Single<'w, 's, (&'static Camera, &'static GlobalTransform), With<ViewportCamera>>,
+}
+
+impl ViewportPointer<'_, '_> {
+    /// The primary window.
+    pub fn window(&self) -> &Window {
+        &self.window
+    }
+    /// The viewport camera and its world transform.
+    pub fn camera(&self) -> (&Camera, &GlobalTransform) {
+        *self.camera
+    }
+    /// The pointer in window coordinates (logical pixels), when it is over
+    /// the window.
+    pub fn cursor(&self) -> Option<Vec2> {
+        self.window.cursor_position()
+    }
+    /// The world ray (origin, unit direction) through window point `p`.
+    pub fn ray_at(&self, p: Vec2) -> Option<(glam::DVec3, glam::DVec3)> {
+        let (camera, transform) = self.camera();
+        camera_ray(camera, transform, p)
+    }
+    /// The world ray under the pointer.
+    pub fn ray(&self) -> Option<(glam::DVec3, glam::DVec3)> {
+        self.ray_at(self.cursor()?)
+    }
+}
+
 /// Modifier keys, counted as held when pressed or released this frame too
 /// (a quick Ctrl+S can press and release Ctrl within one or two frames).
 pub mod modifiers {

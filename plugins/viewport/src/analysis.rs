@@ -103,12 +103,12 @@ pub(crate) fn closest_point_to_pointer(
     mut analysis: ResMut<CurveAnalysis>,
     selection: Res<Selection>,
     state: Res<DocState>,
-    window: Single<&Window, With<bevy::window::PrimaryWindow>>,
-    camera: Single<(&Camera, &GlobalTransform), With<ViewportCamera>>,
+    viewport: hedra_scene::ViewportPointer,
     mut gizmos: Gizmos<AxisGizmos>,
 ) {
+    let (window, camera) = (viewport.window(), viewport.camera());
     let found = if analysis.closest {
-        find_closest(&selection, &state, &window, *camera)
+        find_closest(&selection, &state, window, camera)
     } else {
         None
     };
@@ -138,10 +138,7 @@ fn find_closest(
         return None;
     };
     let curve = world_curve(c.nurbs(), doc.world_matrix(id))?;
-    let ray = cam
-        .viewport_to_world(cam_t, window.cursor_position()?)
-        .ok()?;
-    let (o, d) = (ray.origin.as_dvec3(), Vec3::from(ray.direction).as_dvec3());
+    let (o, d) = hedra_scene::camera_ray(cam, cam_t, window.cursor_position()?)?;
     let middle = curve.points().iter().sum::<DVec3>() / curve.points().len() as f64;
     let normal = (cam_t.rotation() * Vec3::NEG_Z).as_dvec3();
     let denom = d.dot(normal);

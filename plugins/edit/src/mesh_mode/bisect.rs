@@ -33,8 +33,7 @@ pub fn bisect_by_drag(
     mut drag: ResMut<BisectDrag>,
     mode: Res<EditMode>,
     state: Res<DocState>,
-    window: Single<&Window, With<PrimaryWindow>>,
-    camera: Single<(&Camera, &GlobalTransform), With<ViewportCamera>>,
+    viewport: hedra_scene::ViewportPointer,
     mut requests: MessageWriter<DocRequest>,
     mut status: ResMut<StatusMessage>,
     mut gizmos: Gizmos,
@@ -51,25 +50,24 @@ pub fn bisect_by_drag(
         status.info("Bisect cancelled");
         return;
     }
-    let Some(cursor) = window.cursor_position() else {
+    let Some(cursor) = viewport.cursor() else {
         return;
     };
-    let (cam, cam_t) = *camera;
     let Some(start) = drag.start else {
         if gate.pointer_free && buttons.just_pressed(MouseButton::Left) {
             drag.start = Some(cursor);
         }
         return;
     };
-    let rays = [start, cursor].map(|p| cam.viewport_to_world(cam_t, p).ok());
-    let [Some(r0), Some(r1)] = rays else {
+    let rays = [start, cursor].map(|p| viewport.ray_at(p));
+    let [Some((o0, d0)), Some((o1, d1))] = rays else {
         return;
     };
     if buttons.pressed(MouseButton::Left) {
         // The line, just in front of the camera so nothing hides it.
         gizmos.line(
-            r0.get_point(0.5),
-            r1.get_point(0.5),
+            (o0 + d0 * 0.5).as_vec3(),
+            (o1 + d1 * 0.5).as_vec3(),
             Color::srgb(1.0, 0.85, 0.3),
         );
         return;
@@ -82,11 +80,7 @@ pub fn bisect_by_drag(
     // Two points on the first ray and one on the second span the plane
     // through both rays (through the eye in perspective, along the view in
     // orthographic); its normal points to the right of the drag.
-    let (a0, b0, a1) = (
-        r0.get_point(1.0).as_dvec3(),
-        r0.get_point(2.0).as_dvec3(),
-        r1.get_point(1.0).as_dvec3(),
-    );
+    let (a0, b0, a1) = (o0 + d0, o0 + d0 * 2.0, o1 + d1);
     let normal_world = (b0 - a0).cross(a1 - a0);
     let world = state.session.doc.world_matrix(node);
     let to_local = world.inverse();

@@ -10,8 +10,7 @@ pub fn edit_shortcuts(
     gate: Res<InputGate>,
     mut mode: ResMut<EditMode>,
     state: Res<DocState>,
-    window: Single<&Window, With<PrimaryWindow>>,
-    camera: Single<(&Camera, &GlobalTransform), With<ViewportCamera>>,
+    viewport: hedra_scene::ViewportPointer,
     mut requests: MessageWriter<DocRequest>,
     mut status: ResMut<hedra_scene::StatusMessage>,
     knife: Res<KnifeTool>,
@@ -20,6 +19,7 @@ pub fn edit_shortcuts(
     mut requested: ResMut<crate::bindings::RequestedAction>,
     shape_edit: Res<crate::ShapeEdit>,
 ) {
+    let (window, camera) = (viewport.window(), viewport.camera());
     if !mode.active() && !shape_edit.active() {
         // A menu's request outlives no edit mode.
         requested.0 = None;
@@ -71,9 +71,8 @@ pub fn edit_shortcuts(
         readout: String::new(),
     };
     if wants(Action::LoopCut) {
-        let (cam, cam_t) = *camera;
-        let edge = match element_under_cursor(ElementKind::Edge, &mesh, world, &window, cam, cam_t)
-        {
+        let (cam, cam_t) = camera;
+        let edge = match element_under_cursor(ElementKind::Edge, &mesh, world, window, cam, cam_t) {
             Some(ElementHit::Edge(e)) => Some(e),
             // Else the selected edge, or an edge of the selected face (face
             // mode; the ring then follows the pointer onto the one wanted).
@@ -235,7 +234,7 @@ pub fn edit_shortcuts(
         let mut ripped = (*mesh).clone();
         match hedra_geom::modeling::rip_edges(&mut ripped, &edges) {
             Ok(rip) => {
-                let (cam, cam_t) = *camera;
+                let (cam, cam_t) = camera;
                 let side_centre = |pick: &dyn Fn(&(EdgeId, EdgeId)) -> EdgeId| {
                     let faces: Vec<DVec3> = rip
                         .edges

@@ -115,11 +115,11 @@ pub fn drive_knife(
     mut knife: ResMut<KnifeTool>,
     mut mode: ResMut<EditMode>,
     state: Res<DocState>,
-    window: Single<&Window, With<PrimaryWindow>>,
-    camera: Single<(&Camera, &GlobalTransform), With<ViewportCamera>>,
+    viewport: hedra_scene::ViewportPointer,
     mut requests: MessageWriter<DocRequest>,
     mut status: ResMut<StatusMessage>,
 ) {
+    let (window, camera) = (viewport.window(), viewport.camera());
     if !knife.active {
         return;
     }
@@ -133,7 +133,7 @@ pub fn drive_knife(
         status.info("Knife cancelled");
         return;
     }
-    let (cam, cam_t) = *camera;
+    let (cam, cam_t) = camera;
     let world = state.session.doc.world_matrix(node);
     let to_screen = |p: DVec3| cam.world_to_viewport(cam_t, p.as_vec3()).ok();
     if pressed(Action::KnifeAngle) {
@@ -150,10 +150,7 @@ pub fn drive_knife(
         _ => c,
     });
     let under_pointer = pointer.and_then(|c| {
-        let ray = cam
-            .viewport_to_world(cam_t, c)
-            .ok()
-            .map(|r| (r.origin.as_dvec3(), Vec3::from(r.direction).as_dvec3()));
+        let ray = viewport.ray_at(c);
         knife_point(&mesh, world, ray, c, &to_screen)
     });
     if pressed(Action::RemoveLastPoint) {

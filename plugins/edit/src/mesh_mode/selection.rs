@@ -33,8 +33,7 @@ pub fn select_elements(
     gate: Res<InputGate>,
     mut mode: ResMut<EditMode>,
     state: Res<DocState>,
-    window: Single<&Window, With<PrimaryWindow>>,
-    camera: Single<(&Camera, &GlobalTransform), With<ViewportCamera>>,
+    viewport: hedra_scene::ViewportPointer,
     mut press: Local<Option<Press>>,
     mut b_box: Local<Option<Vec2>>,
     mut status: ResMut<StatusMessage>,
@@ -43,6 +42,7 @@ pub fn select_elements(
     bisect: Res<BisectDrag>,
     knife: Res<KnifeTool>,
 ) {
+    let (window, camera) = (viewport.window(), viewport.camera());
     if !mode.active() || mode.tool.is_some() || bisect.armed || knife.active {
         *press = None;
         *b_box = None;
@@ -54,10 +54,10 @@ pub fn select_elements(
     };
     let kind = mode.kind;
     let world = state.session.doc.world_matrix(mode.node.expect("active"));
-    let (cam, cam_t) = *camera;
+    let (cam, cam_t) = camera;
     let cursor = window.cursor_position();
     if gate.keyboard_free {
-        keyboard_selection(&keys, &mut mode, &mesh, kind, world, &window, cam, cam_t);
+        keyboard_selection(&keys, &mut mode, &mesh, kind, world, window, cam, cam_t);
     }
     // B (Blender): a box from the cursor follows the mouse; a click closes
     // it and adds what it holds; Esc or a right click cancels.
@@ -168,7 +168,7 @@ pub fn select_elements(
         }
         // Loop (Alt) or ring (Ctrl+Alt) through the edge under the cursor.
         let Some(ElementHit::Edge(e)) =
-            element_under_cursor(ElementKind::Edge, &mesh, world, &window, cam, cam_t)
+            element_under_cursor(ElementKind::Edge, &mesh, world, window, cam, cam_t)
         else {
             return;
         };
@@ -195,7 +195,7 @@ pub fn select_elements(
         }
         return;
     }
-    let hit = element_under_cursor(kind, &mesh, world, &window, cam, cam_t);
+    let hit = element_under_cursor(kind, &mesh, world, window, cam, cam_t);
     if !p.shift {
         *sel = ElementSelection::default();
     }

@@ -362,8 +362,7 @@ pub fn drive_mesh_tool(
     strokes: Res<hedra_scene::Strokes>,
     buttons: Res<ButtonInput<MouseButton>>,
     scroll: Res<bevy::input::mouse::AccumulatedMouseScroll>,
-    window: Single<&Window, With<PrimaryWindow>>,
-    camera: Single<(&Camera, &GlobalTransform), With<ViewportCamera>>,
+    viewport: hedra_scene::ViewportPointer,
     state: Res<DocState>,
     mut requests: MessageWriter<DocRequest>,
     mut status: ResMut<hedra_scene::StatusMessage>,
@@ -372,6 +371,7 @@ pub fn drive_mesh_tool(
     mut proportional: ResMut<crate::Proportional>,
     mut ring: ResMut<crate::ProportionalRing>,
 ) {
+    let (window, camera) = (viewport.window(), viewport.camera());
     mode.just_finished = false;
     let Some(mut tool) = mode.tool.take() else {
         return;
@@ -417,13 +417,13 @@ pub fn drive_mesh_tool(
             tool.cuts = (tool.cuts + 1).min(64);
         }
     }
-    let (cam, cam_t) = *camera;
+    let (cam, cam_t) = camera;
     let cursor = window.cursor_position().unwrap_or(tool.start_cursor);
     let world = state.session.doc.world_matrix(node_id);
     // Loop cut follows the edge under the pointer, as Blender's does.
     if tool.kind == MeshToolKind::LoopCut
         && let Some(ElementHit::Edge(e)) =
-            element_under_cursor(ElementKind::Edge, &mesh, world, &window, cam, cam_t)
+            element_under_cursor(ElementKind::Edge, &mesh, world, window, cam, cam_t)
     {
         tool.edge = Some(e);
     }
@@ -435,11 +435,7 @@ pub fn drive_mesh_tool(
         .distance(tool.pivot)
         .max(1e-6);
     let pixel_size = dist * 0.0008;
-    let ray_at = |p: Vec2| {
-        cam.viewport_to_world(cam_t, p)
-            .ok()
-            .map(|r| (r.origin.as_dvec3(), Vec3::from(r.direction).as_dvec3()))
-    };
+    let ray_at = |p: Vec2| viewport.ray_at(p);
     // Snapping: a move lands on the scene's vertices, edges or faces (this
     // mesh's moving part left out); the other tools go in increments.
     let snap = if matches!(tool.kind, MeshToolKind::Move | MeshToolKind::SplitVertex) {
