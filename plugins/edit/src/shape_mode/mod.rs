@@ -5,7 +5,7 @@
 //! K inserts a knot where the cursor points (Shift+K: in v on a surface).
 //! Like the mesh tools, a tool decides its command on a copy every frame
 //! and shows the result; Enter or a click confirms it as one undo step
-//! (the tools themselves: `shape_tool`).
+//! (the tools themselves: `tool.rs`).
 
 use crate::bindings::{Action, KeyMode};
 use std::collections::BTreeSet;
@@ -18,7 +18,8 @@ use hedra_geom::curves::CurveEnd;
 use hedra_scene::modifiers::{alt, shift};
 use hedra_scene::{DocRequest, DocState, InputGate, StatusMessage};
 
-pub use crate::shape_tool::{ShapeTool, ShapeToolKind, drive_shape_tool, publish_shape_preview};
+mod tool;
+pub use tool::{ShapeTool, ShapeToolKind, drive_shape_tool, publish_shape_preview};
 use crate::typing::TypedNumber;
 
 /// Edit-mode state of a curve or surface node.

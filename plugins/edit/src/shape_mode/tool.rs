@@ -11,9 +11,9 @@ use hedra_doc::{Command, NodeContent, NodeRef};
 use hedra_geom::curves::CurveEnd;
 use hedra_scene::{DocRequest, DocState, StatusMessage};
 
-use crate::ShapeEdit;
+use super::ShapeEdit;
 use crate::modal::Axis;
-use crate::shape_mode::{control_points, control_weights};
+use super::{control_points, control_weights};
 use crate::typing::TypedNumber;
 
 /// What a shape tool changes.
