@@ -16,34 +16,33 @@ use hedra_scene::{DocRequest, DocState, InputGate, SceneSystems};
 
 pub mod bindings;
 mod cursor;
-pub mod object_mode;
 mod curve_draw;
 pub mod mesh_mode;
 pub mod modal;
+pub mod object_mode;
 mod proportional;
 pub mod shape_mode;
 mod snapping;
 pub mod typing;
 
 pub use cursor::place_cursor;
-pub use hedra_doc::csg::{is_within, outermost_csg};
-pub use object_mode::{
-    Selection, boolean_command, curve_near_cursor, follow_document_changes, join_curves_command,
-    object_shortcuts, pick_node, visible,
-};
 pub use curve_draw::{CurveDraw, DrawKind, axis_command, construction_plane};
+pub use hedra_doc::csg::{is_within, outermost_csg};
 pub use mesh_mode::{
     BisectDrag, EditMode, ElementKind, ElementSelection, KnifeTool, MeshTool, MeshToolKind,
     start_bisect,
 };
 pub use modal::{Axis, ModalTransform, TransformKind, TransformTool};
+pub use object_mode::{
+    Selection, boolean_command, curve_near_cursor, follow_document_changes, join_curves_command,
+    object_shortcuts, pick_node, visible,
+};
 pub use proportional::{Proportional, ProportionalRing, proportional_keys};
 pub use shape_mode::ShapeEdit;
 pub use snapping::{
     MoveSnap, SnapElement, SnapMesh, SnapScene, SnapTarget, Snapping, drag_translation, move_snap,
     snap_translation, snapping_keys,
 };
-
 
 /// Tools, selection and shortcuts, in [`SceneSystems::Tools`]: they read
 /// this frame's input and write requests, which [`SceneSystems::Apply`]
@@ -125,7 +124,6 @@ impl Plugin for EditPlugin {
     }
 }
 
-
 /// The axis a running move, rotate or scale is locked to (X, Y or Z) and
 /// the pivot it passes through, for drawing the constraint line as Blender
 /// does; `None` while no tool runs or its axis is free.
@@ -161,7 +159,6 @@ fn clear_tool_overlays(mut snap_target: ResMut<SnapTarget>, mut ring: ResMut<Pro
     ring.0 = None;
 }
 
-
 /// The world-space ray under the cursor, in `f64`.
 pub fn cursor_ray(
     window: &Window,
@@ -195,7 +192,6 @@ pub fn undo_keys(
         requests.write(DocRequest::Redo);
     }
 }
-
 
 /// What R and S turn and scale about (Blender's Pivot Point).
 #[derive(Resource, Debug, Clone, Copy, Default, PartialEq, Eq)]

@@ -240,7 +240,6 @@ pub(crate) fn pick_objects(
     }
 }
 
-
 /// Object-mode keys: A / Alt+A, X / Delete, Shift+D,
 /// H / Alt+H, G / R / S.
 #[allow(clippy::too_many_arguments)]

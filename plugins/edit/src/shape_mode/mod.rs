@@ -19,8 +19,8 @@ use hedra_scene::modifiers::{alt, shift};
 use hedra_scene::{DocRequest, DocState, InputGate, StatusMessage};
 
 mod tool;
-pub use tool::{ShapeTool, ShapeToolKind, drive_shape_tool, publish_shape_preview};
 use crate::typing::TypedNumber;
+pub use tool::{ShapeTool, ShapeToolKind, drive_shape_tool, publish_shape_preview};
 
 /// Edit-mode state of a curve or surface node.
 #[derive(Resource, Default, Debug)]

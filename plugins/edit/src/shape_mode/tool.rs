@@ -12,8 +12,8 @@ use hedra_geom::curves::CurveEnd;
 use hedra_scene::{DocRequest, DocState, StatusMessage};
 
 use super::ShapeEdit;
-use crate::modal::Axis;
 use super::{control_points, control_weights};
+use crate::modal::Axis;
 use crate::typing::TypedNumber;
 
 /// What a shape tool changes.
