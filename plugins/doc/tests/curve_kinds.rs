@@ -363,3 +363,32 @@ fn join_takes_the_second_curve_into_the_first_ones_space() {
     let f = a.nurbs();
     assert!((f.point(f.domain().1) - v(3.0, -1.0)).length() < 1e-12);
 }
+
+/// The command's curve specs and the kernel's curve kinds stay in step
+/// (issue 34 item 6): every kind a spec makes (one of each, the shorthands
+/// Bézier, circle and closed among them) maps back through
+/// `CurveSpec::of_kind` to a spec that makes exactly that kind again.
+#[test]
+fn every_curve_kind_has_a_spec_that_makes_it_again() {
+    let mut all = specs();
+    all.push(("bezier", CurveSpec::Bezier { points: zigzag() }));
+    all.push(("circle", CurveSpec::Circle { radius: 1.5 }));
+    all.push((
+        "closed",
+        CurveSpec::Closed {
+            degree: 3,
+            points: zigzag(),
+            weights: None,
+        },
+    ));
+    let mut kinds = std::collections::HashSet::new();
+    for (name, spec) in all {
+        let kind = spec.curve().unwrap_or_else(|e| panic!("{name}: {e}"));
+        kinds.insert(std::mem::discriminant(&kind));
+        let again = CurveSpec::of_kind(&kind);
+        assert_eq!(again.curve().as_ref(), Ok(&kind), "{name}: {again:?}");
+    }
+    // Nurbs, Lagrange, both Hermites, Catmull-Rom, Kochanek-Bartels, the
+    // cubic spline, Chaikin, poly-Bézier and fractals: every kernel kind.
+    assert_eq!(kinds.len(), 10);
+}

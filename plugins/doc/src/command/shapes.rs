@@ -20,6 +20,97 @@ impl CurveSpec {
     pub fn curve(&self) -> Result<CurveKind, CurveError> {
         curve_from_spec(self)
     }
+
+    /// The spec that adds `kind` exactly (`of_kind(k).curve() == Ok(k)`),
+    /// with everything a spec may leave to its defaults written out. The
+    /// match names every kernel kind, so a kind added to
+    /// [`CurveKind`] without a spec here does not compile: the two enums
+    /// stay in step (`tests/curve_kinds.rs` checks the round trip of each).
+    pub fn of_kind(kind: &CurveKind) -> CurveSpec {
+        match kind.clone() {
+            CurveKind::Nurbs(c) => CurveSpec::Nurbs {
+                degree: c.degree(),
+                points: c.points().to_vec(),
+                weights: Some(c.weights().to_vec()),
+                knots: Some(c.knots().to_vec()),
+            },
+            CurveKind::Lagrange {
+                points,
+                parameterization,
+            } => CurveSpec::Lagrange {
+                points,
+                parameterization,
+            },
+            CurveKind::CubicHermite { points, tangents } => CurveSpec::Hermite { points, tangents },
+            CurveKind::QuinticHermite {
+                points,
+                tangents,
+                accelerations,
+            } => CurveSpec::QuinticHermite {
+                points,
+                tangents,
+                accelerations,
+            },
+            CurveKind::CatmullRom {
+                points,
+                parameterization,
+                closed,
+            } => CurveSpec::CatmullRom {
+                points,
+                parameterization,
+                closed,
+            },
+            CurveKind::KochanekBartels {
+                points,
+                keys,
+                closed,
+            } => CurveSpec::KochanekBartels {
+                points,
+                keys: Some(keys),
+                closed,
+            },
+            CurveKind::CubicSpline {
+                points,
+                parameterization,
+                ends,
+            } => CurveSpec::CubicSpline {
+                points,
+                parameterization,
+                ends,
+            },
+            CurveKind::Chaikin {
+                points,
+                level,
+                closed,
+            } => CurveSpec::Chaikin {
+                points,
+                level,
+                closed,
+            },
+            CurveKind::PolyBezier {
+                points,
+                joins,
+                closed,
+            } => CurveSpec::PolyBezier {
+                points,
+                joins: Some(joins),
+                closed,
+            },
+            CurveKind::Fractal {
+                rule,
+                points,
+                level,
+                closed,
+                normal,
+            } => CurveSpec::Fractal {
+                rule,
+                points,
+                level,
+                closed,
+                normal,
+            },
+        }
+    }
 }
 
 /// The curve kind a spec describes, checked.

@@ -31,7 +31,13 @@ pub enum ParameterDirection {
     V,
 }
 
-/// A curve to add.
+/// A curve to add, as a script writes it. It is not the kernel's
+/// [`CurveKind`](hedra_geom::curves::CurveKind), on purpose: a spec may
+/// leave knots, weights, keys and joins to their defaults and has shorthands
+/// that are NURBS curves in the kernel (`Bezier`, `Circle`, `Closed`), and
+/// its variant names are the file and script format (`Hermite` is the
+/// kernel's `CubicHermite`). [`CurveSpec::of_kind`] maps every kernel kind
+/// back to a spec with an exhaustive match, so the two cannot drift apart.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub enum CurveSpec {
     /// A NURBS curve; knots default to clamped uniform on [0, 1], weights to 1.
