@@ -110,6 +110,37 @@ fn catmull_clark(c: &mut Criterion) {
     bench_mesh(c, "cc_cube", &cube, cc, &[7], Set::All);
     bench_mesh(c, "cc_torus_10k", &torus(100), cc, &[1, 2, 3], Set::All);
     bench_mesh(c, "cc_torus_40k", &torus(200), cc, &[1], Set::Refine);
+    from_face_list(c, "cc_torus_40k", &torus(200), cc, 1);
+}
+
+/// Refinement from a face list, as OpenSubdiv starts (issue 36 item 3):
+/// through the half-edge mesh (`HalfEdgeMesh::from_polygons`, then
+/// `Refiner::new`), and straight from the polygons (`Refiner::from_polygons`,
+/// which also takes non-manifold cages).
+fn from_face_list(c: &mut Criterion, name: &str, mesh: &HalfEdgeMesh, opts: Options, level: u32) {
+    let positions: Vec<_> = mesh.vertices().map(|v| mesh.position(v)).collect();
+    let faces: Vec<Vec<u32>> = mesh
+        .faces()
+        .map(|f| mesh.face_vertices(f).map(|v| v.0).collect())
+        .collect();
+    let creases = Creases::default();
+    let mut g = c.benchmark_group(name);
+    g.sample_size(10);
+    g.bench_function(format!("level{level}/from_faces_via_half_edges"), |b| {
+        b.iter(|| {
+            let m = HalfEdgeMesh::from_polygons(black_box(&positions), &faces).unwrap();
+            let r = Refiner::new(&m, &creases, opts, level).unwrap();
+            r.refine(&r.cage_positions(&m))
+        })
+    });
+    g.bench_function(format!("level{level}/from_faces_as_polygons"), |b| {
+        b.iter(|| {
+            let r =
+                Refiner::from_polygons(positions.len(), black_box(&faces), opts, level).unwrap();
+            r.refine(&positions)
+        })
+    });
+    g.finish();
 }
 
 fn loop_scheme(c: &mut Criterion) {

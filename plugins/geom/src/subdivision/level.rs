@@ -73,22 +73,53 @@ pub(crate) struct Adjacency {
 
 /// What [`Level::from_polygon_cage`] learns of each edge while it finds
 /// them: how many faces use it, the last of them, and whether it is
-/// non-manifold.
+/// non-manifold. Edges are found by their lower vertex: `first_at[v]`
+/// starts the list of edges whose lower end is `v`, `next_at[e]` goes on
+/// (a vertex has a handful, so a walk beats hashing the vertex pair).
 #[derive(Default)]
 struct CageEdges {
     face_count: Vec<u32>,
     last_face: Vec<u32>,
     non_manifold: Vec<bool>,
+    first_at: Vec<u32>,
+    next_at: Vec<u32>,
 }
 
 impl CageEdges {
     /// A new edge of `level` from `a` to `b`.
     fn push(&mut self, level: &mut Level, [a, b]: [u32; 2], non_manifold: bool) -> u32 {
+        let e = level.edge_vertices.len() as u32;
         level.edge_vertices.push([a, b]);
         self.face_count.push(0);
         self.last_face.push(NONE);
         self.non_manifold.push(non_manifold);
-        level.edge_vertices.len() as u32 - 1
+        // Appended behind the vertex's other edges: the first edge of a
+        // vertex pair is the one `find` returns, as in OpenSubdiv.
+        let low = a.min(b) as usize;
+        self.next_at.push(NONE);
+        if self.first_at[low] == NONE {
+            self.first_at[low] = e;
+        } else {
+            let mut last = self.first_at[low];
+            while self.next_at[last as usize] != NONE {
+                last = self.next_at[last as usize];
+            }
+            self.next_at[last as usize] = e;
+        }
+        e
+    }
+    /// The first edge between `a` and `b` (two different vertices).
+    fn find(&self, level: &Level, a: u32, b: u32) -> Option<u32> {
+        let (low, high) = (a.min(b), a.max(b));
+        let mut e = self.first_at[low as usize];
+        while e != NONE {
+            let [x, y] = level.edge_vertices[e as usize];
+            if x.max(y) == high && x != y {
+                return Some(e);
+            }
+            e = self.next_at[e as usize];
+        }
+        None
     }
 }
 
@@ -519,26 +550,23 @@ impl Level {
             face_origin: (0..faces.len() as u32).collect(),
             ..Level::default()
         };
-        let mut edges = CageEdges::default();
-        let mut edge_of: HashMap<(u32, u32), u32> = HashMap::new();
+        let mut edges = CageEdges {
+            first_at: vec![NONE; vertex_count],
+            ..CageEdges::default()
+        };
         for (f, poly) in faces.iter().enumerate() {
             let f = f as u32;
             for (i, &a) in poly.iter().enumerate() {
                 let b = poly[(i + 1) % poly.len()];
-                let key = (a.min(b), a.max(b));
-                let e = match edge_of.get(&key) {
+                let e = match edges.find(&level, a, b) {
                     _ if a == b => edges.push(&mut level, [a, b], true),
-                    None => {
-                        let e = edges.push(&mut level, [a, b], false);
-                        edge_of.insert(key, e);
-                        e
-                    }
-                    Some(&e) if edges.last_face[e as usize] == f => {
+                    None => edges.push(&mut level, [a, b], false),
+                    Some(e) if edges.last_face[e as usize] == f => {
                         // The face uses this edge twice: two edges.
                         edges.non_manifold[e as usize] = true;
                         edges.push(&mut level, [a, b], true)
                     }
-                    Some(&e) => {
+                    Some(e) => {
                         let same_way = level.edge_vertices[e as usize][0] == a;
                         if edges.face_count[e as usize] >= 2 || same_way {
                             edges.non_manifold[e as usize] = true;
@@ -607,15 +635,29 @@ impl Level {
     /// through the edges at `v` that are in exactly two faces
     /// (`edge_face_count`).
     fn single_fan(&self, v: u32, edge_face_count: &[u32]) -> bool {
-        let faces: Vec<u32> = self
-            .vertex_corners(v)
-            .iter()
-            .map(|&c| self.corner_face(c as usize))
-            .collect();
+        let corners = self.vertex_corners(v);
+        // The faces at `v` and their union-find parents, on the stack for
+        // the usual valences.
+        let mut faces_buf = [0u32; 32];
+        let mut parent_buf = [0usize; 32];
+        let (mut faces_heap, mut parent_heap);
+        let (faces, parent): (&mut [u32], &mut [usize]) = if corners.len() <= 32 {
+            (
+                &mut faces_buf[..corners.len()],
+                &mut parent_buf[..corners.len()],
+            )
+        } else {
+            faces_heap = vec![0u32; corners.len()];
+            parent_heap = vec![0usize; corners.len()];
+            (&mut faces_heap[..], &mut parent_heap[..])
+        };
+        for (i, &c) in corners.iter().enumerate() {
+            faces[i] = self.corner_face(c as usize);
+            parent[i] = i;
+        }
         if (1..faces.len()).any(|i| faces[..i].contains(&faces[i])) {
             return false;
         }
-        let mut parent: Vec<usize> = (0..faces.len()).collect();
         fn root(parent: &mut [usize], mut i: usize) -> usize {
             while parent[i] != i {
                 parent[i] = parent[parent[i]];
@@ -633,14 +675,11 @@ impl Level {
                 faces.iter().position(|&f| f == f0),
                 faces.iter().position(|&f| f == f1),
             ) {
-                let (ri, rj) = (root(&mut parent, i), root(&mut parent, j));
+                let (ri, rj) = (root(parent, i), root(parent, j));
                 parent[ri] = rj;
             }
         }
-        (0..faces.len())
-            .filter(|&i| root(&mut parent, i) == i)
-            .count()
-            == 1
+        (0..faces.len()).filter(|&i| root(parent, i) == i).count() == 1
     }
 
     /// A level from polygons alone (no creases); edges are found by vertex
