@@ -482,3 +482,45 @@ fn manifold_shapes_refined_as_polygons_match_opensubdiv_too() {
     assert_eq!(checked, 53, "untagged manifold shapes checked");
     eprintln!("{checked} manifold shapes refined as polygons match OpenSubdiv");
 }
+
+#[test]
+fn non_manifold_places_name_what_the_half_edge_mesh_refuses() {
+    // Issue 37: the places a report names. On each of the 118 shapes, the
+    // polygon analysis finds nothing exactly when the half-edge builder
+    // takes the cage, and when the builder refuses, the element it names
+    // is among the places found (the builder is independent code: it
+    // pairs half-edges instead of walking vertex lists).
+    use hedra_geom::BuildError;
+    use hedra_geom::subdivision::non_manifold_places;
+    let stored = stored();
+    let mut refused = 0;
+    for name in stored.keys() {
+        let (positions, faces, _) = parse(name);
+        let places = non_manifold_places(positions.len(), &faces).unwrap();
+        let built = HalfEdgeMesh::from_polygons(&positions, &faces);
+        let Err(error) = built else {
+            assert!(places.is_empty(), "{name}: manifold, yet {places:?}");
+            continue;
+        };
+        refused += 1;
+        let named = match &error {
+            BuildError::NonManifoldEdge { a, b, faces } => {
+                places.crowded_edges.iter().any(|&([x, y], n)| {
+                    [x.min(y), x.max(y)] == [*a.min(b), *a.max(b)] && n as usize == faces.len()
+                })
+            }
+            BuildError::InconsistentOrientation { a, b, .. } => places
+                .same_way_edges
+                .iter()
+                .any(|&[x, y]| [x.min(y), x.max(y)] == [*a.min(b), *a.max(b)]),
+            BuildError::NonManifoldVertex { vertex } => places.split_vertices.contains(vertex),
+            BuildError::RepeatedVertex { face, .. } => places.repeating_faces.contains(face),
+            other => panic!("{name}: refused for another reason: {other}"),
+        };
+        assert!(
+            named,
+            "{name}: the builder says '{error}', the places are {places:?}"
+        );
+    }
+    assert_eq!(refused, NOT_MANIFOLD.len());
+}

@@ -71,6 +71,33 @@ pub(crate) struct Adjacency {
     vertex_corners: OnceLock<Lists>,
 }
 
+/// Where a polygon cage is not manifold (what a half-edge mesh cannot
+/// hold), as [`Level::from_polygon_cage`] finds it: for reports that name
+/// the places (issue 37).
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct NonManifoldPlaces {
+    /// Edges in three or more faces: their vertices and how many faces.
+    pub crowded_edges: Vec<([u32; 2], u32)>,
+    /// Edges two faces run along the same way (one of them is turned
+    /// over), as the vertex pair of the second face's run.
+    pub same_way_edges: Vec<[u32; 2]>,
+    /// Vertices where separate fans of faces meet (a bow-tie), other than
+    /// the ends of crowded edges and the corners of repeating faces.
+    pub split_vertices: Vec<u32>,
+    /// Faces that visit a vertex more than once.
+    pub repeating_faces: Vec<usize>,
+}
+
+impl NonManifoldPlaces {
+    /// True when the cage is manifold: a half-edge mesh holds it.
+    pub fn is_empty(&self) -> bool {
+        self.crowded_edges.is_empty()
+            && self.same_way_edges.is_empty()
+            && self.split_vertices.is_empty()
+            && self.repeating_faces.is_empty()
+    }
+}
+
 /// What [`Level::from_polygon_cage`] learns of each edge while it finds
 /// them: how many faces use it, the last of them, and whether it is
 /// non-manifold. Edges are found by their lower vertex: `first_at[v]`
@@ -543,7 +570,8 @@ impl Level {
         faces: &[Vec<u32>],
         boundary: BoundaryInterpolation,
         hide_boundary: bool,
-    ) -> (Level, Vec<bool>) {
+    ) -> (Level, Vec<bool>, NonManifoldPlaces) {
+        let mut places = NonManifoldPlaces::default();
         let mut level = Level {
             vertex_count,
             face_offsets: vec![0],
@@ -568,6 +596,9 @@ impl Level {
                     }
                     Some(e) => {
                         let same_way = level.edge_vertices[e as usize][0] == a;
+                        if same_way && edges.face_count[e as usize] == 1 {
+                            places.same_way_edges.push([b, a]);
+                        }
                         if edges.face_count[e as usize] >= 2 || same_way {
                             edges.non_manifold[e as usize] = true;
                         }
@@ -580,6 +611,9 @@ impl Level {
                 level.face_edges.push(e);
             }
             level.face_offsets.push(level.face_vertices.len() as u32);
+            if (1..poly.len()).any(|i| poly[..i].contains(&poly[i])) {
+                places.repeating_faces.push(f as usize);
+            }
         }
         let CageEdges {
             face_count: edge_face_count,
@@ -622,13 +656,24 @@ impl Level {
             let corner =
                 e == 0 || (boundary == BoundaryInterpolation::EdgesAndCorners && f == 1 && e == 2);
             let fin_crease = non_manifold_edges == 2 && boundary_edges == 0 && f > e;
+            let crowded = edges.iter().any(|&e| edge_face_count[e as usize] > 2);
+            let face = |c: u32| level.corner_face(c as usize);
+            let repeated = (1..corners.len())
+                .any(|i| corners[..i].iter().any(|&c| face(c) == face(corners[i])));
+            if f > 0 && !one_fan && !crowded && !repeated {
+                places.split_vertices.push(v);
+            }
             level.non_manifold |= non_manifold;
             if corner || (non_manifold && !fin_crease) {
                 level.vertex_sharpness[v as usize] = INFINITE_SHARPNESS;
             }
         }
+        places.crowded_edges = (0..level.edge_count())
+            .filter(|&e| edge_face_count[e] > 2)
+            .map(|e| (level.edge_vertices[e], edge_face_count[e]))
+            .collect();
         level.drop_zero_sharpness();
-        (level, hidden)
+        (level, hidden, places)
     }
 
     /// Whether the faces at `v` form one fan, each face there once, joined

@@ -30,6 +30,7 @@ use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
 use crate::{EdgeId, FaceId, HalfEdgeMesh, VertexId};
+pub use level::NonManifoldPlaces;
 use level::{CageMap, Level};
 use refine::{Split, doo_sabin_weight, refine_topology};
 use rules::{Masks, Sink};
@@ -648,30 +649,10 @@ impl Refiner {
         if levels > MAX_LEVEL {
             return Err(SubdivisionError::LevelTooHigh { level: levels });
         }
-        for (f, face) in faces.iter().enumerate() {
-            let face_id = FaceId(f as u32);
-            if face.len() < 3 {
-                return Err(SubdivisionError::BadPolygon {
-                    face: face_id,
-                    reason: format!("{} corners", face.len()),
-                });
-            }
-            if let Some(&v) = face.iter().find(|&&v| v as usize >= vertex_count) {
-                return Err(SubdivisionError::BadPolygon {
-                    face: face_id,
-                    reason: format!("vertex {v} is not one of the {vertex_count} vertices"),
-                });
-            }
-            if options.scheme == Scheme::Loop && face.len() != 3 {
-                return Err(SubdivisionError::NotTriangles {
-                    face: FaceId(f as u32),
-                    sides: face.len(),
-                });
-            }
-        }
+        check_polygons(vertex_count, faces, options.scheme)?;
         let hide_boundary =
             options.boundary == BoundaryInterpolation::None && options.scheme.applicable().boundary;
-        let (cage_level, hidden_cage_faces) =
+        let (cage_level, hidden_cage_faces, _) =
             Level::from_polygon_cage(vertex_count, faces, options.boundary, hide_boundary);
         let cage = CageMap {
             vertices: (0..vertex_count as u32).map(VertexId).collect(),
@@ -949,6 +930,54 @@ fn faces_after(cage: &Level, split: Split, levels: u32) -> usize {
         };
     }
     faces
+}
+
+/// Where polygons given as vertex lists are not manifold: edges in three
+/// or more faces, edges two faces run along the same way, vertices where
+/// separate fans meet, faces that visit a vertex twice; empty when a
+/// half-edge mesh can hold them. The same analysis
+/// [`Refiner::from_polygons`] refines them by (OpenSubdiv's Vtr).
+///
+/// # Errors
+/// [`SubdivisionError::BadPolygon`] as [`Refiner::from_polygons`].
+pub fn non_manifold_places(
+    vertex_count: usize,
+    faces: &[Vec<u32>],
+) -> Result<NonManifoldPlaces, SubdivisionError> {
+    check_polygons(vertex_count, faces, Scheme::CatmullClark)?;
+    let boundary = BoundaryInterpolation::EdgesOnly;
+    Ok(Level::from_polygon_cage(vertex_count, faces, boundary, false).2)
+}
+
+/// Refuses polygons of fewer than three corners, vertex indices out of
+/// range, and (for Loop) faces that are not triangles.
+fn check_polygons(
+    vertex_count: usize,
+    faces: &[Vec<u32>],
+    scheme: Scheme,
+) -> Result<(), SubdivisionError> {
+    for (f, face) in faces.iter().enumerate() {
+        let face_id = FaceId(f as u32);
+        if face.len() < 3 {
+            return Err(SubdivisionError::BadPolygon {
+                face: face_id,
+                reason: format!("{} corners", face.len()),
+            });
+        }
+        if let Some(&v) = face.iter().find(|&&v| v as usize >= vertex_count) {
+            return Err(SubdivisionError::BadPolygon {
+                face: face_id,
+                reason: format!("vertex {v} is not one of the {vertex_count} vertices"),
+            });
+        }
+        if scheme == Scheme::Loop && face.len() != 3 {
+            return Err(SubdivisionError::NotTriangles {
+                face: face_id,
+                sides: face.len(),
+            });
+        }
+    }
+    Ok(())
 }
 
 /// How many faces `levels` steps of `scheme` make from `mesh`, without
