@@ -45,7 +45,7 @@ pub(crate) struct Level {
     pub face_origin: Arc<[u32]>,
     pub origin_shift: u32,
     /// The level has an edge in more than two faces or a vertex whose
-    /// faces form more than one fan ([`Level::from_polygon_cage`]); its
+    /// faces form more than one fan (`Level::from_polygon_cage`); its
     /// children too. The edge tables then keep only the first two faces of
     /// an edge, which the masks never read: such edges are infinitely
     /// sharp.
@@ -72,7 +72,7 @@ pub(crate) struct Adjacency {
 }
 
 /// Where a polygon cage is not manifold (what a half-edge mesh cannot
-/// hold), as [`Level::from_polygon_cage`] finds it: for reports that name
+/// hold), as `Level::from_polygon_cage` finds it: for reports that name
 /// the places (issue 37).
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct NonManifoldPlaces {
@@ -98,7 +98,7 @@ impl NonManifoldPlaces {
     }
 }
 
-/// What [`Level::from_polygon_cage`] learns of each edge while it finds
+/// What `Level::from_polygon_cage` learns of each edge while it finds
 /// them: how many faces use it, the last of them, and whether it is
 /// non-manifold. Edges are found by their lower vertex: `first_at[v]`
 /// starts the list of edges whose lower end is `v`, `next_at[e]` goes on

@@ -4,8 +4,9 @@
 
 use glam::DVec3;
 
+use super::Refiner;
+use super::refiner::{ChildPoint, child_count, child_point, point_mask};
 use super::rules::Sink;
-use super::{ChildPoint, Refiner, child_count, child_point, point_mask};
 
 // What the doc above promises.
 const _: () = {
