@@ -159,15 +159,6 @@ fn clear_tool_overlays(mut snap_target: ResMut<SnapTarget>, mut ring: ResMut<Pro
     ring.0 = None;
 }
 
-/// The world-space ray under the cursor, in `f64`.
-pub fn cursor_ray(
-    window: &Window,
-    camera: &Camera,
-    camera_transform: &GlobalTransform,
-) -> Option<(DVec3, DVec3)> {
-    hedra_scene::camera_ray(camera, camera_transform, window.cursor_position()?)
-}
-
 /// Whether a modal tool runs (object G/R/S, a mesh tool, a control-point
 /// tool): its keys and clicks are not shortcuts then.
 pub fn modal_tool_running(tool: &TransformTool, mode: &EditMode, shape_edit: &ShapeEdit) -> bool {

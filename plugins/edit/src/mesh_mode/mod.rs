@@ -7,7 +7,7 @@
 //! decided on a copy each frame and shown as a preview.
 
 use crate::modal::Axis;
-use crate::{Selection, TransformTool, cursor_ray};
+use crate::{Selection, TransformTool};
 use bevy::gizmos::transform_gizmo::TransformGizmoState;
 use bevy::prelude::*;
 use glam::{DMat4, DVec3};

@@ -75,7 +75,7 @@ pub fn element_under_cursor(
                 .collect(),
         ),
         ElementKind::Face => {
-            let (o, d) = cursor_ray(window, camera, camera_transform)?;
+            let (o, d) = hedra_scene::camera_ray(camera, camera_transform, cursor)?;
             hedra_geom::query::ray_cast(mesh, inv.transform_point3(o), inv.transform_vector3(d))
                 .map(|(f, _)| ElementHit::Face(f))
         }

@@ -656,12 +656,16 @@ impl Level {
             let corner =
                 e == 0 || (boundary == BoundaryInterpolation::EdgesAndCorners && f == 1 && e == 2);
             let fin_crease = non_manifold_edges == 2 && boundary_edges == 0 && f > e;
-            let crowded = edges.iter().any(|&e| edge_face_count[e as usize] > 2);
-            let face = |c: u32| level.corner_face(c as usize);
-            let repeated = (1..corners.len())
-                .any(|i| corners[..i].iter().any(|&c| face(c) == face(corners[i])));
-            if f > 0 && !one_fan && !crowded && !repeated {
-                places.split_vertices.push(v);
+            // A split fan is reported as such unless a crowded edge or a
+            // face that comes back to `v` explains it (checked only then).
+            if f > 0 && !one_fan {
+                let crowded = edges.iter().any(|&e| edge_face_count[e as usize] > 2);
+                let face = |c: u32| level.corner_face(c as usize);
+                let repeated = (1..corners.len())
+                    .any(|i| corners[..i].iter().any(|&c| face(c) == face(corners[i])));
+                if !crowded && !repeated {
+                    places.split_vertices.push(v);
+                }
             }
             level.non_manifold |= non_manifold;
             if corner || (non_manifold && !fin_crease) {
