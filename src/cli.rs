@@ -116,6 +116,10 @@ pub enum Sub {
         /// Where to write the resulting scene (.hedra.ron).
         #[arg(short, long)]
         output: PathBuf,
+        /// Repair meshes that are not manifold into editable meshes (faces
+        /// dropped, fans split) instead of keeping them as in the file.
+        #[arg(long)]
+        repair: bool,
     },
     /// Write the scene in the format the output's extension names: .obj
     /// keeps n-gons, .stl is triangulated, .glb/.gltf keep the hierarchy
@@ -338,9 +342,15 @@ pub fn run(sub: Sub) -> Result<(), CliError> {
             file,
             input,
             output,
+            repair,
         } => {
             refuse_overwrite(&output, &[Some(file.as_path()), input.as_deref()])?;
-            let meshes = hedra_doc::import::import_file(&file)?;
+            let non_manifold = if repair {
+                hedra_doc::import::NonManifold::Repair
+            } else {
+                hedra_doc::import::NonManifold::Keep
+            };
+            let meshes = hedra_doc::import::import_file_with(&file, non_manifold)?;
             // A summary as the warning, then its details.
             for (i, note) in hedra_doc::import::describe_repairs(&meshes)
                 .iter()

@@ -394,6 +394,7 @@ fn triangle_estimate(items: &[ExportItem]) -> usize {
         .map(|i| match &i.geometry {
             Geometry::Mesh(m) => m.halfedge_count() / 2,
             Geometry::Triangles(_, _, t) => t.len(),
+            Geometry::Polygons(k) => k.corner_count(),
             _ => 0,
         })
         .sum()
@@ -431,6 +432,14 @@ fn each_stl_triangle(items: &[ExportItem], mut visit: impl FnMut([f32; 3], [[f32
                 for t in tris {
                     push(
                         t.map(|i| world.transform_point3(positions[i as usize])),
+                        item.mirrored,
+                    );
+                }
+            }
+            Geometry::Polygons(k) => {
+                for t in k.triangles() {
+                    push(
+                        t.map(|i| world.transform_point3(k.positions[i as usize])),
                         item.mirrored,
                     );
                 }
@@ -561,6 +570,25 @@ fn to_obj(items: &[ExportItem]) -> String {
                 }
                 base += positions.len();
             }
+            Geometry::Polygons(k) => {
+                for &p in &k.positions {
+                    vertex(&mut out, p);
+                }
+                for f in &k.faces {
+                    out.push('f');
+                    let mut corner = |i: u32| {
+                        out.push(' ');
+                        numbers.int(&mut out, base + i as usize);
+                    };
+                    if item.mirrored {
+                        f.iter().rev().for_each(|&i| corner(i));
+                    } else {
+                        f.iter().for_each(|&i| corner(i));
+                    }
+                    out.push('\n');
+                }
+                base += k.positions.len();
+            }
             Geometry::Polyline(points) => {
                 for &p in points {
                     vertex(&mut out, p);
@@ -608,6 +636,7 @@ fn obj_size_estimate(items: &[ExportItem]) -> usize {
                 60 * m.vertex_count() + 8 * m.halfedge_count() + 2 * m.face_count()
             }
             Geometry::Triangles(p, _, t) => 60 * p.len() + 26 * t.len(),
+            Geometry::Polygons(k) => 60 * k.positions.len() + 8 * k.corner_count(),
             Geometry::Polyline(p) => 68 * p.len(),
             Geometry::FreeForm(c) => 68 * c.points().len(),
         })
@@ -657,6 +686,9 @@ fn write_free_form(
 /// What is written for one node.
 pub(crate) enum Geometry<'a> {
     Mesh(Cow<'a, HalfEdgeMesh>),
+    /// A kept (non-manifold) mesh's faces as they are: OBJ writes them as
+    /// polygons, STL and glTF as their triangles.
+    Polygons(Cow<'a, crate::kept::KeptMesh>),
     /// A tessellated surface: positions, the surface's unit normals there
     /// (the limit at poles), triangles.
     Triangles(Vec<DVec3>, Vec<DVec3>, Vec<[u32; 3]>),
@@ -809,6 +841,11 @@ impl Geometry<'_> {
                 faces: t.len(),
                 triangles: t.len(),
             },
+            Geometry::Polygons(k) => WrittenCounts {
+                vertices: k.positions.len(),
+                faces: k.faces.len(),
+                triangles: k.triangles().len(),
+            },
             Geometry::Polyline(p) => WrittenCounts {
                 vertices: p.len(),
                 ..WrittenCounts::default()
@@ -885,6 +922,20 @@ pub(crate) fn node_geometry(
                     error,
                 })?;
             (Geometry::Mesh(evaluated.mesh), evaluated.creases)
+        }
+        NodeContent::Kept(content) => {
+            let level = match shape {
+                ExportShape::Cage => 0,
+                ExportShape::Evaluated => content.subdivision.map_or(0, |m| m.export_level),
+                ExportShape::Subdivided(level) => level,
+            };
+            let shape = content
+                .at_level(level)
+                .map_err(|error| ExportError::Evaluation {
+                    node: node.name.clone(),
+                    error: crate::EvaluationError::Subdivision(error),
+                })?;
+            (Geometry::Polygons(shape), no_creases())
         }
         NodeContent::Curve(c) => (Geometry::Polyline(curve_polyline(c.nurbs())), no_creases()),
         NodeContent::Surface(sf) => {

@@ -107,6 +107,16 @@ enum StoredContent {
     CurveKind(hedra_geom::curves::CurveKind),
     /// A CSG node (issue 17): its operands are its children.
     Csg(crate::csg::CsgContent),
+    /// A kept (non-manifold) mesh: its faces, by index into the file's
+    /// `kept` pool (the history's pool for history steps), its shading and
+    /// subdivision.
+    Kept {
+        mesh: usize,
+        #[serde(default)]
+        shading: Shading,
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        subdivision: Option<SubdivisionModifier>,
+    },
 }
 
 #[derive(Serialize, Deserialize)]
@@ -237,12 +247,15 @@ impl StoredCorners {
 /// list is left empty and the meshes' text put in its place
 /// ([`mesh_text`]).
 #[derive(Serialize, Deserialize)]
-struct StoredHistory<C, M> {
+struct StoredHistory<C, M, K> {
     /// Meshes only the history uses; index `i` here is pool index `scene_meshes + i`.
     meshes: Vec<M>,
     /// Corner attributes only the history uses, numbered after the scene's.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     corners: Vec<StoredCorners>,
+    /// Kept meshes only history steps hold.
+    #[serde(default = "Vec::new", skip_serializing_if = "Vec::is_empty")]
+    kept: Vec<K>,
     done: Vec<StoredTransaction<C>>,
     undone: Vec<StoredTransaction<C>>,
     #[serde(default)]
@@ -259,8 +272,11 @@ struct FileOut<'a> {
     meshes: Vec<()>,
     #[serde(skip_serializing_if = "Vec::is_empty")]
     corners: Vec<StoredCorners>,
+    /// Kept (non-manifold) meshes the scene's nodes hold.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    kept: Vec<&'a crate::kept::KeptMesh>,
     scene: StoredScene,
-    history: StoredHistory<WriteCommand<'a>, ()>,
+    history: StoredHistory<WriteCommand<'a>, (), &'a crate::kept::KeptMesh>,
 }
 
 #[derive(Deserialize)]
@@ -270,6 +286,8 @@ struct FileIn {
     meshes: Vec<mesh_text::StoredMesh>,
     #[serde(default)]
     corners: Vec<StoredCorners>,
+    #[serde(default)]
+    kept: Vec<crate::kept::KeptMesh>,
     scene: StoredScene,
     #[serde(default)]
     history: Option<Box<RawValue>>,

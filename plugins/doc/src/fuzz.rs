@@ -50,6 +50,10 @@ fn check_document(doc: &Document, when: &str) {
         match &n.content {
             NodeContent::Empty | NodeContent::Csg(_) => {}
             NodeContent::Mesh(m) => check_mesh(&m.mesh, &what),
+            NodeContent::Kept(k) => assert!(
+                k.mesh.check().is_ok(),
+                "{what}: kept mesh with a bad face or point"
+            ),
             NodeContent::Curve(c) => assert!(
                 c.control_points().iter().all(|p| p.is_finite())
                     && c.nurbs().points().iter().all(|p| p.is_finite())

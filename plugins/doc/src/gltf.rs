@@ -306,6 +306,7 @@ pub fn to_gltf(doc: &Document, shape: ExportShape, binary: bool) -> Result<Vec<u
             Some((geometry, creases)) => {
                 let (shading, corners) = match &node.content {
                     NodeContent::Mesh(c) => (c.shading, Some(&c.corners)),
+                    NodeContent::Kept(c) => (c.shading, None),
                     // A CSG solid is drawn flat, as the viewport draws it.
                     NodeContent::Csg(_) => (Shading::Flat, None),
                     _ => (Shading::Smooth, None),
@@ -324,6 +325,15 @@ pub fn to_gltf(doc: &Document, shape: ExportShape, binary: bool) -> Result<Vec<u
                     Geometry::Mesh(m) => {
                         let (p, n, i) = mesh_triangles(m, shading, &creases);
                         (p, n, i, json::mesh::Mode::Triangles)
+                    }
+                    Geometry::Polygons(k) => {
+                        let b = crate::render::kept_render_buffers(k, shading);
+                        (
+                            b.positions,
+                            b.normals,
+                            b.indices,
+                            json::mesh::Mode::Triangles,
+                        )
                     }
                     Geometry::Triangles(p, n, tris) => {
                         let positions: Vec<[f32; 3]> =
@@ -714,7 +724,12 @@ pub fn gltf_from_bytes(
             let mesh = mesh.compacted_if_needed();
             let arities = vec![3; polys.len()];
             let corners = corner_attributes(&mesh, &report, &arities, &corner_uvs, &corner_normals);
-            Some((mesh, report, corners))
+            // The triangles as the file gave them, should import keep them.
+            let input = (!report.is_clean()).then_some(crate::kept::KeptMesh {
+                positions: welded,
+                faces: polys,
+            });
+            Some((mesh, report, corners, input))
         };
         let me = out.len();
         out.push(ImportedMesh {
@@ -723,10 +738,14 @@ pub fn gltf_from_bytes(
             // report says why.
             mesh: mesh
                 .as_ref()
-                .map(|(m, _, _)| m.clone())
+                .map(|(m, ..)| m.clone())
                 .filter(|m| m.face_count() > 0),
-            corners: mesh.as_ref().map(|(_, _, c)| c.clone()).unwrap_or_default(),
-            report: mesh.map(|(_, r, _)| r).unwrap_or_default(),
+            corners: mesh
+                .as_ref()
+                .map(|(_, _, c, _)| c.clone())
+                .unwrap_or_default(),
+            input: mesh.as_ref().and_then(|(.., i)| i.clone()),
+            report: mesh.map(|(_, r, ..)| r).unwrap_or_default(),
             parent,
             transform,
             skipped_primitives: skipped,
@@ -738,6 +757,7 @@ pub fn gltf_from_bytes(
             curve: None,
             content: None,
             hidden: false,
+            kept_places: Vec::new(),
         });
         for child in node.children().collect::<Vec<_>>().into_iter().rev() {
             stack.push((child, Some(me)));

@@ -20,6 +20,7 @@
 //! curves, surfaces, trimming curves) are left out with a note.
 
 use crate::history::{NodeChange, Transaction};
+use crate::kept::{KeptMesh, KeptMeshContent};
 use crate::scene::{
     CornerAttributes, Document, MeshContent, Node, NodeContent, NodeId, NodeTransform,
 };
@@ -78,6 +79,13 @@ pub struct ImportedMesh {
     pub content: Option<NodeContent>,
     /// The file hides the node (USD `visibility = "invisible"`).
     pub hidden: bool,
+    /// The faces as the file gave them, when repair had to change them
+    /// to build `mesh` (or the mesh of `content`): [`keep_as_they_are`]
+    /// keeps them instead when they are not manifold.
+    pub input: Option<KeptMesh>,
+    /// Where the faces kept as they are ([`keep_as_they_are`]) are not
+    /// manifold, in words; empty when the node is not a kept mesh.
+    pub kept_places: Vec<String>,
 }
 
 impl ImportedMesh {
@@ -98,6 +106,8 @@ impl ImportedMesh {
             curve: None,
             content: None,
             hidden: false,
+            input: None,
+            kept_places: Vec::new(),
         }
     }
 
@@ -119,7 +129,98 @@ impl ImportedMesh {
             curve: None,
             content: None,
             hidden: false,
+            input: None,
+            kept_places: Vec::new(),
         }
+    }
+
+    /// The faces as the file gave them when the repair changed them
+    /// (`None` when it did not), to be kept by [`keep_as_they_are`].
+    pub(crate) fn with_input(mut self, positions: &[DVec3], polygons: &[Vec<u32>]) -> Self {
+        if !self.report.is_clean() {
+            self.input = Some(KeptMesh {
+                positions: positions.to_vec(),
+                faces: polygons.to_vec(),
+            });
+        }
+        self
+    }
+}
+
+/// How an import treats faces that a half-edge mesh cannot hold.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+pub enum NonManifold {
+    /// Keep them as they are (a kept mesh, [`crate::kept`]): the default.
+    #[default]
+    Keep,
+    /// Repair them into an editable half-edge mesh (faces dropped, fans
+    /// split), as `hedra import --repair` and Mesh ▸ Make Manifold do.
+    Repair,
+}
+
+/// Turns every imported node whose faces are not manifold into a kept
+/// mesh of the faces as the file gave them (issue 37): faces of fewer
+/// than three different corners are left out (they have no area), the rest
+/// are kept, with the node's shading and subdivision. A node whose repair
+/// only dropped such faces stays the repaired mesh. UVs and normals are
+/// not kept on a kept mesh.
+pub fn keep_as_they_are(meshes: &mut [ImportedMesh]) {
+    for m in meshes {
+        let Some(input) = m.input.take() else {
+            continue;
+        };
+        let (mut faces, mut origin) = (Vec::new(), Vec::new());
+        for (i, f) in input.faces.into_iter().enumerate() {
+            let mut corners = f.clone();
+            corners.sort_unstable();
+            corners.dedup();
+            let in_range = f.iter().all(|&v| (v as usize) < input.positions.len());
+            if corners.len() >= 3 && in_range {
+                faces.push(f);
+                origin.push(i);
+            }
+        }
+        let kept = KeptMesh {
+            positions: input.positions,
+            faces,
+        };
+        let places = kept.places();
+        if places.is_empty() {
+            continue;
+        }
+        let numbers = &m.face_numbers;
+        let vertex_numbers = &m.vertex_numbers;
+        let vertex = |v: u32| match vertex_numbers.get(v as usize) {
+            Some(&n) if n > 0 => n.to_string(),
+            _ => (v + 1).to_string(),
+        };
+        let face = |f: usize| numbers.name(origin[f]);
+        m.kept_places = crate::kept::describe_places(&places, 5, &vertex, &face);
+        let left_out = m.report.dropped_faces.len().saturating_sub(
+            // Faces the repair dropped that the kept mesh keeps.
+            m.report
+                .dropped_faces
+                .iter()
+                .filter(|(f, _)| origin.binary_search(f).is_ok())
+                .count(),
+        );
+        if left_out > 0 {
+            m.kept_places.push(format!(
+                "{left_out} face(s) of fewer than 3 different corners left out"
+            ));
+        }
+        let (shading, subdivision) = match &m.content {
+            Some(NodeContent::Mesh(c)) => (c.shading, c.subdivision),
+            _ => (crate::scene::Shading::Flat, None),
+        };
+        m.content = Some(NodeContent::Kept(KeptMeshContent {
+            mesh: Arc::new(kept),
+            shading,
+            subdivision,
+        }));
+        m.mesh = None;
+        m.report = RepairReport::default();
+        m.corners = CornerAttributes::default();
     }
 }
 
@@ -278,11 +379,33 @@ pub fn supported_imports() -> String {
         .join(", ")
 }
 
-/// Reads a file by its extension.
+/// Reads a file by its extension, keeping faces that are not manifold as
+/// they are ([`NonManifold::Keep`]).
 ///
 /// # Errors
 /// As [`obj_from_str`], plus unreadable files and unknown extensions.
 pub fn import_file(path: &Path) -> Result<Vec<ImportedMesh>, ImportError> {
+    import_file_with(path, NonManifold::Keep)
+}
+
+/// Reads a file by its extension, keeping or repairing faces that are not
+/// manifold.
+///
+/// # Errors
+/// As [`import_file`].
+pub fn import_file_with(
+    path: &Path,
+    non_manifold: NonManifold,
+) -> Result<Vec<ImportedMesh>, ImportError> {
+    let mut meshes = read_file(path)?;
+    if non_manifold == NonManifold::Keep {
+        keep_as_they_are(&mut meshes);
+    }
+    Ok(meshes)
+}
+
+/// The file's nodes, repaired where they are not manifold.
+fn read_file(path: &Path) -> Result<Vec<ImportedMesh>, ImportError> {
     let shown = path.display().to_string();
     let ext = path
         .extension()

@@ -15,6 +15,7 @@ pub mod history;
 pub mod import;
 pub mod input;
 pub mod join;
+pub mod kept;
 pub mod modifiers;
 pub mod preview;
 pub mod recovery;
@@ -31,6 +32,7 @@ pub mod usd;
 pub use command::{Command, CommandError, NodeRef};
 pub use elements::{EdgeSet, FaceSet, ProfileSet, VertexSet};
 pub use history::{History, NodeChange, Transaction};
+pub use kept::{KeptMesh, KeptMeshContent};
 pub use modifiers::{
     ArrayModifier, DecimateModifier, DecimateRecord, EvaluationError, MeshModifier, MirrorModifier,
 };

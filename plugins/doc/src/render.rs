@@ -104,6 +104,59 @@ pub fn render_buffers_creased(
     b
 }
 
+/// Triangle buffers of a kept (non-manifold) mesh, laid out as
+/// [`render_buffers`] lays out a half-edge mesh: flat shading gives each
+/// face its own corners with its Newell normal, smooth shading one corner
+/// per vertex with the area-weighted normal of its faces (each face counts
+/// once at each of its corners, so a fin's faces all bend the normal).
+pub fn kept_render_buffers(mesh: &crate::kept::KeptMesh, shading: Shading) -> RenderBuffers {
+    let mut b = RenderBuffers::default();
+    let (mut points, mut tris) = (Vec::new(), Vec::new());
+    let position = |v: u32| mesh.positions[v as usize];
+    match shading {
+        Shading::Flat => {
+            for (f, face) in mesh.faces.iter().enumerate() {
+                // A face without area gets a unit normal all the same
+                // (glTF requires unit normals).
+                let n = mesh.face_normal(f);
+                let n = if n == DVec3::ZERO { DVec3::Z } else { n };
+                let n = n.as_vec3().to_array();
+                let base = b.positions.len() as u32;
+                points.clear();
+                points.extend(face.iter().map(|&v| position(v)));
+                b.positions
+                    .extend(points.iter().map(|p| p.as_vec3().to_array()));
+                b.normals.extend(std::iter::repeat_n(n, face.len()));
+                tris.clear();
+                hedra_geom::query::triangulate_polygon_into(&points, &mut tris);
+                b.indices
+                    .extend(tris.iter().flatten().map(|&i| base + i as u32));
+            }
+        }
+        Shading::Smooth => {
+            let mut normals = vec![DVec3::ZERO; mesh.positions.len()];
+            for face in &mesh.faces {
+                let p = |i: usize| position(face[i % face.len()]);
+                let area: DVec3 = (0..face.len()).map(|i| p(i).cross(p(i + 1))).sum();
+                for &v in face {
+                    normals[v as usize] += area;
+                }
+            }
+            b.positions = mesh
+                .positions
+                .iter()
+                .map(|p| p.as_vec3().to_array())
+                .collect();
+            b.normals = normals
+                .iter()
+                .map(|n| n.normalize_or(DVec3::Z).as_vec3().to_array())
+                .collect();
+            b.indices = mesh.triangles().into_iter().flatten().collect();
+        }
+    }
+    b
+}
+
 /// [`split_sharp_corners`] of a half-edge mesh's faces (outer loops, in id
 /// order) along its infinitely sharp creases; `index` maps vertex ids to
 /// their ranks. Nothing when no crease is infinitely sharp.

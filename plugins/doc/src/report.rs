@@ -54,6 +54,56 @@ pub struct NodeReport {
     /// other nodes.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub export: Option<ExportReport>,
+    /// Kept (non-manifold) meshes: counts and where they are not
+    /// manifold; left out for other nodes.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub kept: Option<KeptReport>,
+}
+
+/// A kept mesh node: its counts and its non-manifold places (vertex and
+/// face numbers count from 0, in the node's lists).
+#[derive(Serialize)]
+pub struct KeptReport {
+    /// Vertices in the list (some may be used by no face).
+    pub vertices: usize,
+    /// Faces.
+    pub faces: usize,
+    /// Face corners.
+    pub corners: usize,
+    /// Edges in three or more faces: their two vertices and face count.
+    pub crowded_edges: Vec<([u32; 2], u32)>,
+    /// Edges two faces run along the same way.
+    pub same_way_edges: Vec<[u32; 2]>,
+    /// Vertices where separate fans of faces meet.
+    pub split_vertices: Vec<u32>,
+    /// Faces that visit a vertex twice.
+    pub repeating_faces: Vec<usize>,
+    /// The subdivision it is shown and exported with.
+    pub subdivision: Option<SubdivisionReport>,
+}
+
+impl KeptReport {
+    fn of(content: &crate::kept::KeptMeshContent) -> Self {
+        let m = &content.mesh;
+        let places = m.places();
+        KeptReport {
+            vertices: m.positions.len(),
+            faces: m.faces.len(),
+            corners: m.corner_count(),
+            crowded_edges: places.crowded_edges,
+            same_way_edges: places.same_way_edges,
+            split_vertices: places.split_vertices,
+            repeating_faces: places.repeating_faces,
+            subdivision: content.subdivision.map(|m| SubdivisionReport {
+                scheme: m.options.scheme.label(),
+                viewport_level: m.viewport_level,
+                export_level: m.export_level,
+                boundary: m.options.boundary.label(),
+                crease_method: m.options.crease_method.label(),
+                stack_position: 0,
+            }),
+        }
+    }
 }
 
 /// What `hedra export` writes for a node.
@@ -72,7 +122,10 @@ pub struct ExportReport {
 impl ExportReport {
     /// The report of a mesh or CSG node; `None` for other kinds.
     fn of(doc: &Document, node: &crate::scene::Node) -> Option<Self> {
-        if !matches!(node.content, NodeContent::Mesh(_) | NodeContent::Csg(_)) {
+        if !matches!(
+            node.content,
+            NodeContent::Mesh(_) | NodeContent::Csg(_) | NodeContent::Kept(_)
+        ) {
             return None;
         }
         Some(
@@ -497,6 +550,10 @@ impl SceneReport {
                 }),
                 csg: csg_report(doc, n.id),
                 export: ExportReport::of(doc, n),
+                kept: match &n.content {
+                    NodeContent::Kept(k) => Some(KeptReport::of(k)),
+                    _ => None,
+                },
             })
             .collect();
         let h = &session.history;
@@ -589,6 +646,31 @@ impl SceneReport {
                         e.vertices, e.faces, e.triangles
                     ),
                 };
+            }
+            if let Some(k) = &n.kept {
+                let _ = writeln!(
+                    out,
+                    "    kept mesh: V {} F {} ({} corners), NOT manifold (kept as imported; Mesh ▸ Make Manifold or the MakeManifold command makes it editable)",
+                    k.vertices, k.faces, k.corners
+                );
+                let places = hedra_geom::subdivision::NonManifoldPlaces {
+                    crowded_edges: k.crowded_edges.clone(),
+                    same_way_edges: k.same_way_edges.clone(),
+                    split_vertices: k.split_vertices.clone(),
+                    repeating_faces: k.repeating_faces.clone(),
+                };
+                let number = |v: u32| v.to_string();
+                let face = |f: usize| format!("face {f}");
+                for line in crate::kept::describe_places(&places, 10, &number, &face) {
+                    let _ = writeln!(out, "    not manifold: {line}");
+                }
+                if let Some(sd) = &k.subdivision {
+                    let _ = writeln!(
+                        out,
+                        "    subdivision: {}, level {} in the viewport, {} on export, boundary {} (non-manifold edges and vertices sharp, as OpenSubdiv)",
+                        sd.scheme, sd.viewport_level, sd.export_level, sd.boundary
+                    );
+                }
             }
             if let Some(m) = &n.mesh {
                 let _ = writeln!(

@@ -358,6 +358,9 @@ pub enum NodeContent {
     /// A CSG node: its children are its operands, combined by one boolean
     /// (see [`crate::csg`]); its solid is evaluated, not stored.
     Csg(crate::csg::CsgContent),
+    /// A polygon mesh kept as it came from a file because a half-edge
+    /// mesh cannot hold it (not manifold; see [`crate::kept`]).
+    Kept(crate::kept::KeptMeshContent),
 }
 
 impl NodeContent {
@@ -369,6 +372,7 @@ impl NodeContent {
             NodeContent::Curve(_) => "curve",
             NodeContent::Surface(_) => "surface",
             NodeContent::Csg(_) => "csg",
+            NodeContent::Kept(_) => "kept mesh",
         }
     }
     /// The mesh cage, for a mesh node.

@@ -181,60 +181,73 @@ fn split_vertices_are_named_as_the_file_numbers_them() {
 #[test]
 fn a_keyhole_face_exports_as_its_ring() {
     use hedra_doc::export::{ExportOptions, export_bytes};
-    use hedra_doc::import::import_file;
+    use hedra_doc::import::{NonManifold, import_file_with};
     let path = std::path::Path::new("/usr/share/assimp/models/OBJ/concave_polygon.obj");
     assert!(
         path.exists(),
         "run scripts/setup (it installs assimp-testmodels)"
     );
-    let meshes = import_file(path).unwrap();
-    let mut s = hedra_doc::Session::new();
-    s.import(&meshes, "Import");
-    let dir = tempfile::tempdir().unwrap();
-    let out = dir.path().join("ring.obj");
-    let text =
-        String::from_utf8(export_bytes(&s.doc, &out, ExportOptions::default()).unwrap()).unwrap();
-    // Read the export's polygons back from the text.
-    let v: Vec<glam::DVec3> = text
-        .lines()
-        .filter_map(|l| l.strip_prefix("v "))
-        .map(|l| {
-            let x: Vec<f64> = l.split(' ').map(|w| w.parse().unwrap()).collect();
-            glam::DVec3::new(x[0], x[1], x[2])
-        })
-        .collect();
-    let (mut total, mut unsigned, mut faces) = (glam::DVec3::ZERO, 0.0, 0);
-    for l in text.lines().filter_map(|l| l.strip_prefix("f ")) {
-        let corners: Vec<glam::DVec3> = l
-            .split(' ')
-            .map(|w| v[w.split('/').next().unwrap().parse::<usize>().unwrap() - 1])
+    // Repaired, the face is split into simple faces; kept (the default),
+    // it is written as the file has it, one face.
+    for (mode, note) in [
+        (NonManifold::Repair, "visits a corner twice"),
+        (
+            NonManifold::Keep,
+            "1 face(s) that visit a vertex twice: line",
+        ),
+    ] {
+        let meshes = import_file_with(path, mode).unwrap();
+        let mut s = hedra_doc::Session::new();
+        s.import(&meshes, "Import");
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path().join("ring.obj");
+        let text = String::from_utf8(export_bytes(&s.doc, &out, ExportOptions::default()).unwrap())
+            .unwrap();
+        // Read the export's polygons back from the text.
+        let v: Vec<glam::DVec3> = text
+            .lines()
+            .filter_map(|l| l.strip_prefix("v "))
+            .map(|l| {
+                let x: Vec<f64> = l.split(' ').map(|w| w.parse().unwrap()).collect();
+                glam::DVec3::new(x[0], x[1], x[2])
+            })
             .collect();
-        let mut area = glam::DVec3::ZERO;
-        for (i, p) in corners.iter().enumerate() {
-            area += 0.5 * p.cross(corners[(i + 1) % corners.len()]);
+        let (mut total, mut unsigned, mut faces) = (glam::DVec3::ZERO, 0.0, 0);
+        for l in text.lines().filter_map(|l| l.strip_prefix("f ")) {
+            let corners: Vec<glam::DVec3> = l
+                .split(' ')
+                .map(|w| v[w.split('/').next().unwrap().parse::<usize>().unwrap() - 1])
+                .collect();
+            let mut area = glam::DVec3::ZERO;
+            for (i, p) in corners.iter().enumerate() {
+                area += 0.5 * p.cross(corners[(i + 1) % corners.len()]);
+            }
+            assert!(
+                area.normalize().dot(glam::DVec3::X) > 0.999,
+                "a face facing {area}, not the file's +X"
+            );
+            total += area;
+            unsigned += area.length();
+            faces += 1;
+        }
+        match mode {
+            NonManifold::Repair => assert!(faces >= 2, "{faces} faces"),
+            NonManifold::Keep => assert_eq!(faces, 1, "the face as in the file"),
         }
         assert!(
-            area.normalize().dot(glam::DVec3::X) > 0.999,
-            "a face facing {area}, not the file's +X"
+            (total.length() - 0.245).abs() < 0.001,
+            "area {}",
+            total.length()
         );
-        total += area;
-        unsigned += area.length();
-        faces += 1;
+        assert!(
+            (unsigned - total.length()).abs() < 1e-9,
+            "faces overlap: {unsigned}"
+        );
+        // The import summary says what was done.
+        let notes = describe_repairs(&meshes);
+        assert!(
+            notes.iter().any(|n| n.contains(note)),
+            "{mode:?}: {notes:?}"
+        );
     }
-    assert!(faces >= 2, "{faces} faces");
-    assert!(
-        (total.length() - 0.245).abs() < 0.001,
-        "area {}",
-        total.length()
-    );
-    assert!(
-        (unsigned - total.length()).abs() < 1e-9,
-        "faces overlap: {unsigned}"
-    );
-    // The import summary says what was done.
-    let notes = describe_repairs(&meshes);
-    assert!(
-        notes.iter().any(|n| n.contains("visits a corner twice")),
-        "{notes:?}"
-    );
 }

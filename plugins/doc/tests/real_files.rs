@@ -42,15 +42,26 @@ fn summary(s: &Session) -> (usize, usize, DVec3, DVec3) {
     let (mut faces, mut vertices) = (0, 0);
     let (mut lo, mut hi) = (DVec3::INFINITY, DVec3::NEG_INFINITY);
     for node in s.doc.nodes() {
+        let world = s.doc.world_matrix(node.id);
+        let mut grow = |p: DVec3| {
+            let p = world.transform_point3(p);
+            lo = lo.min(p);
+            hi = hi.max(p);
+        };
         if let Some(m) = node.content.mesh() {
             faces += m.face_count();
             vertices += m.vertex_count();
-            let world = s.doc.world_matrix(node.id);
-            for v in m.vertices() {
-                let p = world.transform_point3(m.position(v));
-                lo = lo.min(p);
-                hi = hi.max(p);
-            }
+            m.vertices().for_each(|v| grow(m.position(v)));
+        }
+        // A kept (non-manifold) mesh: its faces and the points they use.
+        if let hedra_doc::NodeContent::Kept(k) = &node.content {
+            faces += k.mesh.faces.len();
+            let mut used: Vec<u32> = k.mesh.faces.iter().flatten().copied().collect();
+            used.sort_unstable();
+            used.dedup();
+            vertices += used.len();
+            used.iter()
+                .for_each(|&v| grow(k.mesh.positions[v as usize]));
         }
     }
     (faces, vertices, lo, hi)

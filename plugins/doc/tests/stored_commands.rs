@@ -169,7 +169,7 @@ fn the_golden_file_has_every_command_variant() {
     let mut variants: Vec<String> = command_variants().into_iter().map(String::from).collect();
     stored.sort();
     variants.sort();
-    assert_eq!(variants.len(), 92, "{variants:?}");
+    assert_eq!(variants.len(), 94, "{variants:?}");
     assert_eq!(
         stored, variants,
         "every command variant needs a line in the golden file (HEDRA_BLESS=1 appends it)"

@@ -187,6 +187,61 @@ pub fn triangulate_outer_loop_into(mesh: &HalfEdgeMesh, f: FaceId, out: &mut Vec
     }
 }
 
+/// Triangles of a polygon given by its corner points, as indices into
+/// `points`, appended to `out`: ear clipping in the plane of its Newell
+/// normal (as [`triangulate_face`]), a fan when the polygon has no area or
+/// no ear is left (self-intersecting). For faces that are not in a
+/// half-edge mesh: a kept non-manifold mesh's faces, which may visit a
+/// point twice.
+///
+/// Complexity: O(n²) for an n-gon; O(1) for triangles.
+pub fn triangulate_polygon_into(points: &[DVec3], out: &mut Vec<[usize; 3]>) {
+    let n = points.len();
+    if n < 3 {
+        return;
+    }
+    if n == 3 {
+        out.push([0, 1, 2]);
+        return;
+    }
+    let normal: DVec3 = (0..n).map(|i| points[i].cross(points[(i + 1) % n])).sum();
+    let fan = |out: &mut Vec<[usize; 3]>, rest: &[usize]| {
+        out.extend((1..rest.len() - 1).map(|i| [rest[0], rest[i], rest[i + 1]]));
+    };
+    if normal.length_squared() < 1e-300 {
+        fan(out, &(0..n).collect::<Vec<_>>());
+        return;
+    }
+    let nz = normal.normalize();
+    let (u, v) = (
+        nz.any_orthonormal_vector(),
+        nz.cross(nz.any_orthonormal_vector()),
+    );
+    let pts: Vec<DVec2> = points
+        .iter()
+        .map(|p| DVec2::new(p.dot(u), p.dot(v)))
+        .collect();
+    let mut idx: Vec<usize> = (0..n).collect();
+    while idx.len() > 3 {
+        let m = idx.len();
+        let at = |i: usize| idx[i % m];
+        let ear = (0..m).find(|&i| {
+            let (a, b, c) = (at(i + m - 1), at(i), at(i + 1));
+            cross2(pts[b] - pts[a], pts[c] - pts[b]) > 0.0
+                && !idx.iter().any(|&p| {
+                    pts[p] != pts[a]
+                        && pts[p] != pts[b]
+                        && pts[p] != pts[c]
+                        && in_triangle(pts[p], pts[a], pts[b], pts[c])
+                })
+        });
+        let Some(i) = ear else { break };
+        out.push([at(i + m - 1), at(i), at(i + 1)]);
+        idx.remove(i);
+    }
+    fan(out, &idx);
+}
+
 /// The sine of the turn below which a polygon corner counts as flat: its
 /// ear would be a sliver without area.
 const FLAT_SINE: f64 = 1e-9;

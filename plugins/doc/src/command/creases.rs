@@ -38,10 +38,11 @@ impl Plan<'_> {
         for r in nodes {
             let mut n = self.node(r)?;
             let label = self.doc.label_of(n.id);
-            let NodeContent::Mesh(content) = &mut n.content else {
-                return Err(CommandError::NotAMesh { node: label });
-            };
-            content.subdivision = modifier;
+            match &mut n.content {
+                NodeContent::Mesh(content) => content.subdivision = modifier,
+                NodeContent::Kept(content) => content.subdivision = modifier,
+                _ => return Err(CommandError::NotAMesh { node: label }),
+            }
             self.set(n);
         }
         Ok(())

@@ -130,6 +130,23 @@ pub enum CommandError {
         /// The node, as `'name' (#id)`.
         node: String,
     },
+    /// [`Command::AddKeptMesh`]'s faces name no vertex, or a point is not finite.
+    #[error(transparent)]
+    KeptMesh(crate::kept::KeptMeshError),
+    /// [`Command::MakeManifold`] on a node that is not a kept mesh.
+    #[error("{node} is not a kept (non-manifold) mesh: there is nothing to make manifold")]
+    NotKept {
+        /// The node, as `'name' (#id)`.
+        node: String,
+    },
+    /// [`Command::MakeManifold`] could keep no face of a kept mesh.
+    #[error("{node} cannot be made manifold: {reason}")]
+    Repair {
+        /// The node, as `'name' (#id)`.
+        node: String,
+        /// Why no face could be kept.
+        reason: String,
+    },
     /// [`Command::SetPrimitive`] on a mesh that is not an unedited primitive
     /// of the same kind.
     #[error("{node} was not made from a primitive (or has been edited since)")]

@@ -217,12 +217,46 @@ impl Plan<'_> {
     ) -> Result<(), CommandError> {
         for r in nodes {
             let mut n = self.node(r)?;
-            let NodeContent::Mesh(content) = &mut n.content else {
-                return Err(CommandError::NotAMesh {
-                    node: self.doc.label_of(n.id),
-                });
+            match &mut n.content {
+                NodeContent::Mesh(content) => content.shading = shading,
+                NodeContent::Kept(content) => content.shading = shading,
+                _ => {
+                    return Err(CommandError::NotAMesh {
+                        node: self.doc.label_of(n.id),
+                    });
+                }
+            }
+            self.set(n);
+        }
+        Ok(())
+    }
+
+    /// Repairs kept meshes into half-edge meshes ([`Command::MakeManifold`]).
+    pub(super) fn make_manifold(&mut self, nodes: &[NodeRef]) -> Result<(), CommandError> {
+        for r in nodes {
+            let mut n = self.node(r)?;
+            let label = self.doc.label_of(n.id);
+            let NodeContent::Kept(kept) = &n.content else {
+                return Err(CommandError::NotKept { node: label });
             };
-            content.shading = shading;
+            let (mesh, report) = kept.mesh.repaired().map_err(|e| CommandError::Repair {
+                node: label.clone(),
+                reason: e.to_string(),
+            })?;
+            if mesh.face_count() == 0 {
+                return Err(CommandError::Repair {
+                    node: label,
+                    reason: format!("no face could be kept ({report})"),
+                });
+            }
+            if !report.is_clean() {
+                self.notes.push(format!("'{}': {report}", n.name));
+            }
+            n.content = NodeContent::Mesh(crate::scene::MeshContent {
+                shading: kept.shading,
+                subdivision: kept.subdivision,
+                ..crate::scene::MeshContent::new(std::sync::Arc::new(mesh.compacted_if_needed()))
+            });
             self.set(n);
         }
         Ok(())

@@ -340,6 +340,19 @@ impl Plan<'_> {
                 parent,
                 transform,
             } => self.add_mesh(name, positions, polygons, parent, *transform),
+            Command::AddKeptMesh {
+                name,
+                positions,
+                faces,
+                parent,
+                transform,
+            } => {
+                let kept = crate::kept::KeptMesh::new(positions.clone(), faces.clone())
+                    .map_err(CommandError::KeptMesh)?;
+                let content =
+                    NodeContent::Kept(crate::kept::KeptMeshContent::new(std::sync::Arc::new(kept)));
+                self.add_node(name, parent, *transform, content).map(|_| ())
+            }
             Command::AddEmpty {
                 name,
                 parent,
@@ -362,6 +375,7 @@ impl Plan<'_> {
             } => self.reparent(node, parent, *keep_world),
             Command::SetVisible { nodes, visible } => self.set_visible(nodes, *visible),
             Command::SetShading { nodes, shading } => self.set_shading(nodes, *shading),
+            Command::MakeManifold { nodes } => self.make_manifold(nodes),
             Command::Delete { nodes } => self.delete(nodes),
             Command::Duplicate { nodes } => self.duplicate(nodes),
             // ----- CSG (csg.rs) -----

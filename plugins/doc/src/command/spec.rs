@@ -327,6 +327,26 @@ pub enum Command {
         #[serde(default)]
         transform: NodeTransform,
     },
+    /// Adds a mesh kept as it is, from positions and faces that need not
+    /// be manifold (an edge in three faces, a vertex where fans meet, a
+    /// face that visits a vertex twice): drawn, moved, subdivided and
+    /// exported, but not edited until [`Command::MakeManifold`].
+    AddKeptMesh {
+        /// The new node's name, made unique with a `.001`-style suffix when taken.
+        name: String,
+        /// Vertex positions in the node's local space.
+        positions: Vec<DVec3>,
+        /// Faces as vertex index lists into `positions`, each of three or
+        /// more corners.
+        faces: Vec<Vec<u32>>,
+        /// The new node's parent; `None` (the default): the top level.
+        #[serde(default)]
+        parent: Option<NodeRef>,
+        /// The new node's local transform, relative to its parent (default:
+        /// identity).
+        #[serde(default)]
+        transform: NodeTransform,
+    },
     /// Adds an empty (grouping) node.
     AddEmpty {
         /// The new node's name, made unique with a `.001`-style suffix when taken.
@@ -407,20 +427,31 @@ pub enum Command {
         /// `true` to show, `false` to hide.
         visible: bool,
     },
-    /// Flat or smooth shading of mesh nodes.
+    /// Flat or smooth shading of mesh nodes (kept meshes too).
     SetShading {
-        /// Mesh nodes (any other node is refused).
+        /// Mesh or kept mesh nodes (any other node is refused).
         nodes: Vec<NodeRef>,
         /// `Flat` (one normal per face) or `Smooth` (averaged vertex normals).
         shading: Shading,
     },
     /// Adds, changes or (with `None`) removes the subdivision modifier of
-    /// mesh nodes.
+    /// mesh nodes (kept meshes too: they subdivide by OpenSubdiv's rules
+    /// for non-manifold places).
     SetSubdivision {
-        /// Mesh nodes (any other node is refused).
+        /// Mesh or kept mesh nodes (any other node is refused).
         nodes: Vec<NodeRef>,
         /// The levels and options; `None` removes the modifier.
         modifier: Option<SubdivisionModifier>,
+    },
+    /// Turns kept (non-manifold) meshes into editable half-edge meshes by
+    /// the import repair (`hedra import --repair`): faces on an edge after
+    /// its first two and faces turned against their neighbours are
+    /// dropped, vertices where separate fans meet are split, faces that
+    /// visit a vertex twice are split there. Shading and subdivision stay;
+    /// the step's label says what changed.
+    MakeManifold {
+        /// Kept mesh nodes (any other node is refused).
+        nodes: Vec<NodeRef>,
     },
     /// Replaces the cage by its subdivision (at `levels`, or the modifier's
     /// viewport level) and removes the modifier; creases that are left after
@@ -1293,6 +1324,7 @@ impl Command {
         match self {
             Command::AddPrimitive { primitive, .. } => format!("Add {}", primitive.display_name()),
             Command::AddMesh { name, .. } => format!("Add Mesh '{name}'"),
+            Command::AddKeptMesh { name, .. } => format!("Add Kept Mesh '{name}'"),
             Command::AddEmpty { name, .. } => format!("Add Empty '{name}'"),
             Command::SetPrimitive { primitive, .. } => {
                 format!("Adjust {}", primitive.display_name())
@@ -1378,6 +1410,7 @@ impl Command {
             Command::SubdivideEdges { .. } => "Subdivide Edges".to_string(),
             Command::ConnectVertices { .. } => "Connect Vertices".to_string(),
             Command::Triangulate { .. } => "Triangulate Faces".to_string(),
+            Command::MakeManifold { .. } => "Make Manifold".to_string(),
             Command::TrisToQuads { .. } => "Tris to Quads".to_string(),
             Command::Bisect { .. } => "Bisect".to_string(),
             Command::Spin { .. } => "Spin".to_string(),

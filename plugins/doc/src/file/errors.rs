@@ -119,6 +119,16 @@ pub enum InvalidScene {
         /// The index it refers to.
         index: usize,
     },
+    /// A node refers to a kept mesh past the end of the pool.
+    #[error("node {node} '{name}' uses kept mesh {index}, which is not stored")]
+    MissingKeptMesh {
+        /// The node's id.
+        node: NodeId,
+        /// The node's name.
+        name: String,
+        /// The index it refers to.
+        index: usize,
+    },
     /// A node refers to a mesh past the end of the pool.
     #[error("node {node} '{name}' uses mesh {index}, which is not stored")]
     MissingMesh {
@@ -179,6 +189,10 @@ pub enum NodeProblem {
         /// The highest level Hedra subdivides to.
         max: u32,
     },
+    /// A kept mesh with a face that names no vertex, or a point that is
+    /// not finite.
+    #[error("kept mesh: {0}")]
+    Kept(#[from] crate::kept::KeptMeshError),
     /// A crease sharpness that is negative or not finite.
     #[error("crease sharpness {0} is not a finite value ≥ 0")]
     Sharpness(f64),

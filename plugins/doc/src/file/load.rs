@@ -8,6 +8,7 @@ use super::{
     StoredTransaction, mesh_text, stored_command,
 };
 use crate::history::{History, NodeChange, Transaction};
+use crate::kept::{KeptMesh, KeptMeshContent};
 use crate::scene::{CornerAttributes, CurveContent, Document, MeshContent, Node, NodeContent};
 use crate::session::Session;
 use hedra_geom::HalfEdgeMesh;
@@ -131,10 +132,15 @@ fn read_scene(text: &str, path: &Path) -> Result<Loaded, FileError> {
         None => file.meshes.into_iter().map(|m| Arc::new(m.0)).collect(),
     };
     let scene_corners = restore_corners(file.corners).map_err(&invalid)?;
+    let pools = Pools {
+        meshes: scene_pool,
+        corners: scene_corners,
+        kept: file.kept.into_iter().map(Arc::new).collect(),
+    };
     let mut doc = Document::new();
     doc.next_node_id = file.scene.next_node_id;
     for sn in file.scene.nodes {
-        let node = restore_node(sn, &scene_pool, &scene_corners).map_err(&invalid)?;
+        let node = restore_node(sn, &pools).map_err(&invalid)?;
         let id = node.id;
         if doc.nodes.insert(id, node).is_some() {
             return Err(invalid(InvalidScene::SharedId { node: id }));
@@ -148,14 +154,7 @@ fn read_scene(text: &str, path: &Path) -> Result<Loaded, FileError> {
     };
     if let Some(raw) = file.history {
         let meshes = prepared.history_meshes;
-        match restore_history(
-            &raw,
-            file.version,
-            meshes,
-            scene_pool,
-            scene_corners,
-            &session.doc,
-        ) {
+        match restore_history(&raw, file.version, meshes, pools, &session.doc) {
             Ok(h) => session.history = h,
             Err(why) => warnings.push(format!(
                 "the undo history is damaged ({why}); the scene opened without it"
@@ -179,12 +178,44 @@ fn restore_corners(stored: Vec<StoredCorners>) -> Result<Vec<CornerAttributes>, 
         .collect()
 }
 
-fn restore_node(
-    sn: StoredNode,
-    pool: &[Arc<HalfEdgeMesh>],
-    corner_pool: &[CornerAttributes],
-) -> Result<Node, InvalidScene> {
+/// The pools a file's nodes refer to by index: the scene's, then (for
+/// history steps) the history's appended.
+struct Pools {
+    meshes: Vec<Arc<HalfEdgeMesh>>,
+    corners: Vec<CornerAttributes>,
+    kept: Vec<Arc<KeptMesh>>,
+}
+
+fn restore_node(sn: StoredNode, pools: &Pools) -> Result<Node, InvalidScene> {
+    let (pool, corner_pool) = (&pools.meshes, &pools.corners);
     let content = match sn.content {
+        StoredContent::Kept {
+            mesh,
+            shading,
+            subdivision,
+        } => {
+            let kept = pools
+                .kept
+                .get(mesh)
+                .ok_or_else(|| InvalidScene::MissingKeptMesh {
+                    node: sn.id,
+                    name: sn.name.clone(),
+                    index: mesh,
+                })?;
+            let here = |problem: NodeProblem| InvalidScene::Node {
+                node: sn.id,
+                name: sn.name.clone(),
+                problem,
+            };
+            // The checks the importers make (a hand-edited file may break them).
+            kept.check().map_err(|e| here(e.into()))?;
+            check_level(subdivision.as_ref()).map_err(here)?;
+            NodeContent::Kept(KeptMeshContent {
+                mesh: kept.clone(),
+                shading,
+                subdivision,
+            })
+        }
         StoredContent::Empty => NodeContent::Empty,
         StoredContent::Csg(c) => NodeContent::Csg(c),
         StoredContent::Curve(c) => NodeContent::Curve(Arc::new(CurveContent::from_nurbs(c))),
@@ -228,13 +259,7 @@ fn restore_node(
             if let Some(p) = &primitive {
                 p.check().map_err(|e| here(e.into()))?;
             }
-            if let Some(m) = &subdivision {
-                let level = m.viewport_level.max(m.export_level);
-                let max = hedra_geom::subdivision::MAX_LEVEL;
-                if level > max {
-                    return Err(here(NodeProblem::Level { level, max }));
-                }
-            }
+            check_level(subdivision.as_ref()).map_err(here)?;
             for (index, m) in modifiers.iter().enumerate() {
                 m.check()
                     .map_err(|problem| here(NodeProblem::Modifier { index, problem }))?;
@@ -275,12 +300,23 @@ fn restore_node(
     })
 }
 
+/// Refuses a subdivision modifier above the highest level.
+fn check_level(modifier: Option<&crate::scene::SubdivisionModifier>) -> Result<(), NodeProblem> {
+    if let Some(m) = modifier {
+        let level = m.viewport_level.max(m.export_level);
+        let max = hedra_geom::subdivision::MAX_LEVEL;
+        if level > max {
+            return Err(NodeProblem::Level { level, max });
+        }
+    }
+    Ok(())
+}
+
 fn restore_history(
     raw: &RawValue,
     version: u32,
     meshes: Option<Vec<HalfEdgeMesh>>,
-    mut pool: Vec<Arc<HalfEdgeMesh>>,
-    mut corner_pool: Vec<CornerAttributes>,
+    mut pools: Pools,
     doc: &Document,
 ) -> Result<History, HistoryError> {
     let stored = stored_command::parse_history(version, raw).map_err(|e| HistoryError::Parse {
@@ -289,30 +325,30 @@ fn restore_history(
         message: e.code.to_string(),
     })?;
     match meshes {
-        Some(meshes) => pool.extend(meshes.into_iter().map(Arc::new)),
-        None => pool.extend(stored.meshes.into_iter().map(|m| Arc::new(m.0))),
+        Some(meshes) => pools.meshes.extend(meshes.into_iter().map(Arc::new)),
+        None => pools
+            .meshes
+            .extend(stored.meshes.into_iter().map(|m| Arc::new(m.0))),
     }
-    corner_pool.extend(restore_corners(stored.corners)?);
+    pools.corners.extend(restore_corners(stored.corners)?);
+    pools.kept.extend(stored.kept.into_iter().map(Arc::new));
+    let pools = &pools;
     let restore_tx =
         |t: StoredTransaction<stored_command::ReadCommand>| -> Result<Transaction, HistoryError> {
             let mut changes = Vec::with_capacity(t.changes.len());
             for c in t.changes {
                 changes.push(NodeChange {
                     id: c.id,
-                    before: c
-                        .before
-                        .map(|n| restore_node(n, &pool, &corner_pool))
-                        .transpose()?,
-                    after: c
-                        .after
-                        .map(|n| restore_node(n, &pool, &corner_pool))
-                        .transpose()?,
+                    before: c.before.map(|n| restore_node(n, pools)).transpose()?,
+                    after: c.after.map(|n| restore_node(n, pools)).transpose()?,
                 });
             }
             let command = match t.command {
-                Some(c) => Some(c.resolve(&pool).ok_or(HistoryError::MissingCommandMesh {
-                    label: t.label.clone(),
-                })?),
+                Some(c) => Some(c.resolve(&pools.meshes).ok_or(
+                    HistoryError::MissingCommandMesh {
+                        label: t.label.clone(),
+                    },
+                )?),
                 None => None,
             };
             Ok(Transaction {

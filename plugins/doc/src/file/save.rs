@@ -10,6 +10,7 @@ use super::{
 };
 use crate::command::Command;
 use crate::history::Transaction;
+use crate::kept::KeptMesh;
 use crate::scene::{CornerAttributes, Node, NodeContent};
 use crate::session::Session;
 use hedra_geom::HalfEdgeMesh;
@@ -25,6 +26,8 @@ struct MeshPool<'a> {
     /// addresses are stable: the pool borrows them for the whole save).
     corner_index: HashMap<(*const (), *const ()), usize>,
     corner_sets: Vec<&'a CornerAttributes>,
+    kept_index: HashMap<*const KeptMesh, usize>,
+    kept: Vec<&'a KeptMesh>,
 }
 
 impl<'a> MeshPool<'a> {
@@ -32,6 +35,12 @@ impl<'a> MeshPool<'a> {
         *self.index.entry(Arc::as_ptr(m)).or_insert_with(|| {
             self.meshes.push(m);
             self.meshes.len() - 1
+        })
+    }
+    fn add_kept(&mut self, m: &'a Arc<KeptMesh>) -> usize {
+        *self.kept_index.entry(Arc::as_ptr(m)).or_insert_with(|| {
+            self.kept.push(m);
+            self.kept.len() - 1
         })
     }
     fn add_corners(&mut self, c: &'a CornerAttributes) -> usize {
@@ -53,6 +62,11 @@ impl<'a> MeshPool<'a> {
             visible: n.visible,
             content: match &n.content {
                 NodeContent::Empty => StoredContent::Empty,
+                NodeContent::Kept(k) => StoredContent::Kept {
+                    mesh: self.add_kept(&k.mesh),
+                    shading: k.shading,
+                    subdivision: k.subdivision,
+                },
                 NodeContent::Csg(c) => StoredContent::Csg(*c),
                 NodeContent::Curve(c) => match c.kind() {
                     hedra_geom::curves::CurveKind::Nurbs(n) => StoredContent::Curve(n.clone()),
@@ -131,6 +145,8 @@ pub fn to_string(session: &Session) -> String {
         meshes: Vec::new(),
         corner_index: HashMap::new(),
         corner_sets: Vec::new(),
+        kept_index: HashMap::new(),
+        kept: Vec::new(),
     };
     let scene = StoredScene {
         next_node_id: session.doc.next_node_id,
@@ -138,6 +154,7 @@ pub fn to_string(session: &Session) -> String {
     };
     let scene_meshes = pool.meshes.len();
     let scene_corners = pool.corner_sets.len();
+    let scene_kept = pool.kept.len();
     let h = &session.history;
     let done = h.done.iter().map(|t| pool.transaction(t)).collect();
     let undone = h.undone.iter().map(|t| pool.transaction(t)).collect();
@@ -154,10 +171,12 @@ pub fn to_string(session: &Session) -> String {
         version: FORMAT_VERSION,
         meshes: Vec::new(),
         corners,
+        kept: pool.kept[..scene_kept].to_vec(),
         scene,
         history: StoredHistory {
             meshes: Vec::new(),
             corners: history_corners,
+            kept: pool.kept[scene_kept..].to_vec(),
             done,
             undone,
             dropped: h.dropped,

@@ -31,6 +31,7 @@
 use super::StoredHistory;
 use super::mesh_text::StoredMesh;
 use crate::command::{Command, NodeRef};
+use crate::kept::KeptMesh;
 use crate::scene::NodeTransform;
 use hedra_geom::{FaceId, HalfEdgeMesh, VertexId};
 use ron::value::RawValue;
@@ -94,15 +95,16 @@ fn config() -> ron::ser::PrettyConfig {
 pub(super) fn parse_history(
     version: u32,
     raw: &RawValue,
-) -> Result<StoredHistory<ReadCommand, StoredMesh>, ron::error::SpannedError> {
+) -> Result<StoredHistory<ReadCommand, StoredMesh, KeptMesh>, ron::error::SpannedError> {
     debug_assert!((1..=super::FORMAT_VERSION).contains(&version));
     if version >= 3 {
-        return raw.into_rust::<StoredHistory<ReadCommand, StoredMesh>>();
+        return raw.into_rust::<StoredHistory<ReadCommand, StoredMesh, KeptMesh>>();
     }
-    let h = raw.into_rust::<StoredHistory<StoredV2, StoredMesh>>()?;
+    let h = raw.into_rust::<StoredHistory<StoredV2, StoredMesh, KeptMesh>>()?;
     Ok(StoredHistory {
         meshes: h.meshes,
         corners: h.corners,
+        kept: h.kept,
         done: h
             .done
             .into_iter()

@@ -554,7 +554,8 @@ pub fn obj_from_str(text: &str, path: &str) -> Result<Vec<ImportedMesh>, ImportE
             face_numbers,
             vertex_numbers,
             ..ImportedMesh::mesh(String::new(), mesh, report)
-        };
+        }
+        .with_input(&positions, &polygons);
         match segment {
             // A group inside an object: a child of the object's node.
             Some(ObjSegment {

@@ -22,7 +22,7 @@ pub enum FaceNumbers {
 }
 
 impl FaceNumbers {
-    fn name(&self, face: usize) -> String {
+    pub(crate) fn name(&self, face: usize) -> String {
         match self {
             FaceNumbers::InNode => format!("face {}", face + 1),
             FaceNumbers::Lines(lines) => match lines.get(face) {
@@ -147,6 +147,13 @@ pub fn describe_repairs(meshes: &[ImportedMesh]) -> Vec<String> {
             ));
         }
     }
+    let kept: Vec<&ImportedMesh> = meshes
+        .iter()
+        .filter(|m| !m.kept_places.is_empty())
+        .collect();
+    for m in &kept {
+        details.extend(m.kept_places.iter().map(|p| format!("{}: {p}", m.name)));
+    }
     let primitives: usize = meshes.iter().map(|m| m.skipped_primitives).sum();
     let polylines: usize = meshes.iter().map(|m| m.skipped_polylines).sum();
     let mut parts = Vec::new();
@@ -169,6 +176,9 @@ pub fn describe_repairs(meshes: &[ImportedMesh]) -> Vec<String> {
             "{split} vertex(es) split where separate fans of faces met"
         ));
     }
+    // What repair changed comes after the count of objects repaired; the
+    // rest is said on its own.
+    let repair_parts = parts.len();
     if primitives > 0 {
         parts.push(format!("{primitives} point or line primitive(s) left out"));
     }
@@ -185,18 +195,45 @@ pub fn describe_repairs(meshes: &[ImportedMesh]) -> Vec<String> {
     if !not_imported.is_empty() {
         parts.push(format!("not imported: {}", not_imported.join(", ")));
     }
+    if !kept.is_empty() {
+        let mut names: Vec<String> = kept
+            .iter()
+            .take(3)
+            .map(|m| format!("'{}'", m.name))
+            .collect();
+        if kept.len() > 3 {
+            names.push(format!("{} more", kept.len() - 3));
+        }
+        parts.insert(
+            0,
+            format!(
+                "{} object(s) kept as in the file, not manifold: {} (Mesh ▸ Make Manifold repairs them for editing)",
+                kept.len(),
+                names.join(", ")
+            ),
+        );
+    }
     if parts.is_empty() {
         return Vec::new();
     }
-    let whom = if repaired > 0 {
-        format!(
-            "{repaired} of {} object(s) repaired: ",
-            meshes.iter().filter(|m| m.mesh.is_some()).count()
-        )
-    } else {
-        String::new()
-    };
-    let mut out = vec![format!("{whom}{}", parts.join("; "))];
+    let mut summary: Vec<String> = Vec::new();
+    if !kept.is_empty() {
+        summary.push(parts.remove(0));
+    }
+    let others = parts.split_off(repair_parts);
+    if !parts.is_empty() {
+        let whom = if repaired > 0 {
+            format!(
+                "{repaired} of {} object(s) repaired: ",
+                meshes.iter().filter(|m| m.mesh.is_some()).count()
+            )
+        } else {
+            String::new()
+        };
+        summary.push(format!("{whom}{}", parts.join("; ")));
+    }
+    summary.extend(others);
+    let mut out = vec![summary.join("; ")];
     let more = details.len().saturating_sub(MAX_DETAILS);
     out.extend(
         details

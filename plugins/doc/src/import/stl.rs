@@ -239,10 +239,13 @@ pub fn stl_from_bytes(
             }
             continue;
         }
-        out.push(ImportedMesh {
-            face_numbers: FaceNumbers::Triangles { offset: first },
-            ..ImportedMesh::mesh(node_name, mesh.compacted_if_needed(), report)
-        });
+        out.push(
+            ImportedMesh {
+                face_numbers: FaceNumbers::Triangles { offset: first },
+                ..ImportedMesh::mesh(node_name, mesh.compacted_if_needed(), report)
+            }
+            .with_input(&positions, &polygons),
+        );
     }
     if out.is_empty() {
         return Err(match dropped.first() {

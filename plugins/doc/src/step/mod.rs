@@ -214,6 +214,33 @@ pub fn to_step(
                     });
                 }
             }
+            NodeContent::Kept(content) if !options.meshes => {
+                left_meshes += 1;
+                left_subdivision += usize::from(content.subdivision.is_some());
+            }
+            NodeContent::Kept(_) => {
+                if let Some(Geometry::Polygons(kept)) =
+                    crate::export::export_geometry(doc, node, ExportShape::Evaluated)?
+                {
+                    let mirrored = m.determinant() < 0.0;
+                    let triangles = kept
+                        .triangles()
+                        .into_iter()
+                        .map(|[a, b, c]| if mirrored { [a, c, b] } else { [a, b, c] })
+                        .collect();
+                    meshes.push(FacetedMesh {
+                        name: node.name.clone(),
+                        positions: kept
+                            .positions
+                            .iter()
+                            .map(|&p| m.transform_point3(p))
+                            .collect(),
+                        triangles,
+                        // A kept mesh is not manifold: never a closed shell.
+                        closed: false,
+                    });
+                }
+            }
             NodeContent::Empty => {}
         }
     }

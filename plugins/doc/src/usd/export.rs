@@ -335,6 +335,10 @@ impl Writer {
                 let prim = self.mesh_prim(node, content, shape).map_err(evaluation)?;
                 self.prim(prim, depth);
             }
+            NodeContent::Kept(content) => {
+                let prim = self.kept_prim(node, content, shape).map_err(evaluation)?;
+                self.prim(prim, depth);
+            }
             NodeContent::Csg(_) => {
                 if let Some(Geometry::Mesh(m)) =
                     crate::export::export_geometry(doc, node, ExportShape::Evaluated)?
@@ -448,6 +452,71 @@ impl Writer {
     }
 
     /// A mesh node's `Mesh` prim, by the rules of the module doc.
+    /// A kept (non-manifold) mesh as a `Mesh` prim of its faces as they
+    /// are. Written as evaluated, its subdivision stays a scheme on the
+    /// cage (USD subdivides non-manifold cages by OpenSubdiv's rules, as
+    /// Hedra does); written subdivided, the faces of that level.
+    fn kept_prim(
+        &mut self,
+        node: &Node,
+        content: &crate::kept::KeptMeshContent,
+        shape: ExportShape,
+    ) -> Result<Prim, crate::modifiers::EvaluationError> {
+        let mut prim = Prim::new("Mesh");
+        let (mesh, subdivision) = match shape {
+            ExportShape::Cage => (std::borrow::Cow::Borrowed(&*content.mesh), None),
+            ExportShape::Evaluated => match content.subdivision {
+                Some(s) if s.options.scheme == Scheme::DooSabin => {
+                    self.note(
+                        node,
+                        "Doo-Sabin has no USD scheme: written subdivided, as plain polygons".into(),
+                    );
+                    (content.at_level(s.export_level)?, None)
+                }
+                s => (std::borrow::Cow::Borrowed(&*content.mesh), s),
+            },
+            ExportShape::Subdivided(level) => {
+                self.note(
+                    node,
+                    format!("written subdivided {level} level(s), as plain polygons"),
+                );
+                (content.at_level(level)?, None)
+            }
+        };
+        let scheme = subdivision.and_then(|s| scheme_token(s.options.scheme));
+        prim.attr(
+            "uniform token subdivisionScheme",
+            quoted(scheme.unwrap_or("none")),
+        );
+        if let Some(s) = subdivision.filter(|_| scheme.is_some()) {
+            prim.attr(
+                "token interpolateBoundary",
+                quoted(boundary_token(s.options.boundary)),
+            );
+            prim.attr(
+                &format!("custom int {HEDRA}viewportLevel"),
+                s.viewport_level.to_string(),
+            );
+            prim.attr(
+                &format!("custom int {HEDRA}exportLevel"),
+                s.export_level.to_string(),
+            );
+        }
+        prim.attr(
+            &format!("custom token {HEDRA}shading"),
+            quoted(match content.shading {
+                Shading::Flat => "flat",
+                Shading::Smooth => "smooth",
+            }),
+        );
+        let counts: Vec<usize> = mesh.faces.iter().map(Vec::len).collect();
+        let indices: Vec<u32> = mesh.faces.iter().flatten().copied().collect();
+        prim.attr("int[] faceVertexCounts", list(&counts, num));
+        prim.attr("int[] faceVertexIndices", list(&indices, num));
+        prim.points(&mesh.positions);
+        Ok(prim)
+    }
+
     fn mesh_prim(
         &mut self,
         node: &Node,

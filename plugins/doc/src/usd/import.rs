@@ -337,9 +337,10 @@ fn read_stage(stage: &usd::Stage) -> R<Vec<ImportedMesh>> {
                 let merged = get_bool(&prim, "hedra:nodeGeometry")? == Some(true);
                 match (merged, parent) {
                     (true, Some(p)) => {
-                        let (content, report) = single(geometry, &prim)?;
+                        let (content, report, input) = single(geometry, &prim)?;
                         out[p].content = Some(content);
                         out[p].report = report;
+                        out[p].input = input;
                         Some(p)
                     }
                     _ => Some(push_geometry(
@@ -420,16 +421,31 @@ fn push_node(
 /// What a geometry prim holds: one content, or (NurbsCurves with several
 /// curves) one per curve.
 enum Geometry {
-    One(Box<(NodeContent, hedra_geom::RepairReport)>),
+    /// A content, what repair changed, and the faces as the file gave
+    /// them when it changed them (for [`crate::import::keep_as_they_are`]).
+    One(
+        Box<(
+            NodeContent,
+            hedra_geom::RepairReport,
+            Option<crate::kept::KeptMesh>,
+        )>,
+    ),
     Curves(Vec<NurbsCurve>),
 }
 
-fn single(g: Geometry, prim: &usd::Prim) -> R<(NodeContent, hedra_geom::RepairReport)> {
+type Single = (
+    NodeContent,
+    hedra_geom::RepairReport,
+    Option<crate::kept::KeptMesh>,
+);
+
+fn single(g: Geometry, prim: &usd::Prim) -> R<Single> {
     match g {
         Geometry::One(one) => Ok(*one),
         Geometry::Curves(mut cs) if cs.len() == 1 => Ok((
             NodeContent::Curve(Arc::new(CurveContent::from_nurbs(cs.remove(0)))),
             Default::default(),
+            None,
         )),
         Geometry::Curves(_) => Err(prim_error(
             prim,
@@ -447,9 +463,10 @@ fn push_geometry(
 ) -> R<usize> {
     match g {
         Geometry::One(one) => {
-            let (content, report) = *one;
+            let (content, report, input) = *one;
             let i = push_node(out, prim, parent, content, skipped)?;
             out[i].report = report;
+            out[i].input = input;
             Ok(i)
         }
         Geometry::Curves(curves) if curves.len() == 1 => {
@@ -656,6 +673,7 @@ fn patch(prim: &usd::Prim, skipped: &mut Skipped) -> R<Geometry> {
     Ok(Geometry::One(Box::new((
         NodeContent::Surface(Arc::new(SurfaceShape::Nurbs(sf))),
         Default::default(),
+        None,
     ))))
 }
 
@@ -721,6 +739,7 @@ fn curves(prim: &usd::Prim) -> R<Geometry> {
         return Ok(Geometry::One(Box::new((
             NodeContent::Curve(Arc::new(content)),
             Default::default(),
+            None,
         ))));
     }
     Ok(Geometry::Curves(out))

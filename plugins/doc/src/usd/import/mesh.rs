@@ -81,6 +81,10 @@ pub(super) fn mesh(prim: &usd::Prim, skipped: &mut Skipped) -> R<Geometry> {
     }
     let (mesh, report) = HalfEdgeMesh::from_polygons_repaired(&points, &polygons)
         .map_err(|e| prim_error(prim, e.to_string()))?;
+    let input = (!report.is_clean()).then(|| crate::kept::KeptMesh {
+        positions: points.clone(),
+        faces: polygons.clone(),
+    });
     let verts: Vec<_> = mesh.vertices().collect();
     let vertex = |i: i64| usize::try_from(i).ok().and_then(|i| verts.get(i).copied());
     let mut face_of = vec![None; polygons.len()];
@@ -313,6 +317,7 @@ pub(super) fn mesh(prim: &usd::Prim, skipped: &mut Skipped) -> R<Geometry> {
         return Ok(Geometry::One(Box::new((
             NodeContent::Surface(Arc::new(SurfaceShape::Triangle(t))),
             Default::default(),
+            None,
         ))));
     }
     let content = MeshContent {
@@ -325,6 +330,7 @@ pub(super) fn mesh(prim: &usd::Prim, skipped: &mut Skipped) -> R<Geometry> {
     Ok(Geometry::One(Box::new((
         NodeContent::Mesh(content),
         report,
+        input,
     ))))
 }
 
