@@ -493,12 +493,121 @@ fn every_error_path_says_why_exits_non_zero_and_writes_nothing() {
 }
 
 #[test]
+fn import_keeps_a_non_manifold_object_as_in_the_file_by_default() {
+    let dir = tempfile::tempdir().unwrap();
+    let obj = dir.path().join("in.obj");
+    // Three triangles on the edge 1–2, and a plain quad.
+    std::fs::write(&obj, "o Fan\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 2 1 5\no Quad\nv 0 0 3\nv 1 0 3\nv 1 1 3\nv 0 1 3\nf 6 7 8 9\n").unwrap();
+    let out = dir.path().join("kept.hedra.ron");
+    let o = hedra(&["import", obj.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    // The warning names the object and its edge by the file's vertex numbers.
+    let err = stderr(&o);
+    assert!(
+        err.contains(": 1 object(s) kept as in the file, not manifold: 'Fan' (Mesh ▸ Make Manifold repairs them for editing)"),
+        "{err}"
+    );
+    assert!(
+        err.contains("  Fan: 1 edge(s) in 3 or more faces: 1–2 (3 faces)"),
+        "{err}"
+    );
+    let j = info_json(&out);
+    let fan = &j["nodes"][0];
+    assert_eq!(fan["kind"], "kept mesh");
+    assert_eq!(fan["kept"]["faces"], 3);
+    assert_eq!(fan["kept"]["crowded_edges"].as_array().unwrap().len(), 1);
+    assert_eq!(fan["kept"]["crowded_edges"][0][1], 3);
+    assert_eq!(fan["export"]["faces"], 3);
+    assert_eq!(j["nodes"][1]["mesh"]["faces"], 1);
+    let text = hedra(&["info", out.to_str().unwrap()]);
+    let text = String::from_utf8_lossy(&text.stdout).into_owned();
+    assert!(
+        text.contains("not manifold (numbers from 1): 1 edge(s) in 3 or more faces:"),
+        "{text}"
+    );
+    // Exported as it is (3 faces), and kept again when read back.
+    let back = dir.path().join("back.obj");
+    let o = hedra(&[
+        "export",
+        out.to_str().unwrap(),
+        "-o",
+        back.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let written = std::fs::read_to_string(&back).unwrap();
+    assert_eq!(written.lines().filter(|l| l.starts_with("f ")).count(), 4);
+    let again = dir.path().join("again.hedra.ron");
+    let o = hedra(&[
+        "import",
+        back.to_str().unwrap(),
+        "-o",
+        again.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(info_json(&again)["nodes"][0]["kept"]["faces"], 3);
+    // A script repairs it: MakeManifold drops the third face, says so in
+    // the step's label, and undo gives the kept mesh back.
+    let script = dir.path().join("repair.ron");
+    std::fs::write(&script, "[MakeManifold(nodes: [Name(\"Fan\")])]").unwrap();
+    let repaired = dir.path().join("repaired.hedra.ron");
+    let o = hedra(&[
+        "run",
+        script.to_str().unwrap(),
+        "--input",
+        out.to_str().unwrap(),
+        "-o",
+        repaired.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let j = info_json(&repaired);
+    assert_eq!(j["nodes"][0]["mesh"]["faces"], 2);
+    assert_eq!(j["nodes"][0]["mesh"]["valid"], true);
+    let label = j["history"]["labels"][1].as_str().unwrap();
+    assert!(
+        label.starts_with("Make Manifold ('Fan': dropped 1 face(s)"),
+        "{label}"
+    );
+    let undone = dir.path().join("undone.hedra.ron");
+    let o = hedra(&[
+        "undo",
+        repaired.to_str().unwrap(),
+        "-o",
+        undone.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(info_json(&undone)["nodes"][0]["kind"], "kept mesh");
+    // MakeManifold on a mesh that is manifold says so, naming the node.
+    let script = dir.path().join("again.ron");
+    std::fs::write(&script, "[MakeManifold(nodes: [Name(\"Quad\")])]").unwrap();
+    let o = hedra(&[
+        "run",
+        script.to_str().unwrap(),
+        "--input",
+        out.to_str().unwrap(),
+        "-o",
+        dir.path().join("no.hedra.ron").to_str().unwrap(),
+    ]);
+    assert!(!o.status.success());
+    assert!(
+        stderr(&o).contains("'Quad' (#2) is not a kept (non-manifold) mesh"),
+        "{}",
+        stderr(&o)
+    );
+}
+
+#[test]
 fn import_turns_obj_objects_into_nodes_and_reports_repairs() {
     let dir = tempfile::tempdir().unwrap();
     let obj = dir.path().join("in.obj");
     std::fs::write(&obj, "o Fan\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 2 1 5\no Quad\nv 0 0 3\nv 1 0 3\nv 1 1 3\nv 0 1 3\nf 6 7 8 9\n").unwrap();
     let out = dir.path().join("imported.hedra.ron");
-    let o = hedra(&["import", obj.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+    let o = hedra(&[
+        "import",
+        obj.to_str().unwrap(),
+        "--repair",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
     assert!(o.status.success(), "{}", stderr(&o));
     // One warning with the summary, the face named by its line in the file.
     let err = stderr(&o);
@@ -535,6 +644,7 @@ fn import_turns_obj_objects_into_nodes_and_reports_repairs() {
         hedra(&[
             "import",
             back.to_str().unwrap(),
+            "--repair",
             "-o",
             again.to_str().unwrap()
         ])

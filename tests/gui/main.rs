@@ -7,6 +7,7 @@ mod architecture_doc;
 mod convert;
 mod files;
 mod gizmo;
+mod kept;
 mod modeling;
 mod monkey;
 mod slow_machine;

@@ -5,7 +5,8 @@
 //! `project_render_meshes`, a patch's (and its `SurfacePatch`) only by
 //! `project_surface_patches`, `ControlPoint`s only by
 //! `project_control_points`, and the node components that mirror the
-//! document (`Name`, `Visibility`, `NodeMesh`, `NodeCurve`, `NodeSurface`)
+//! document (`Name`, `Visibility`, `NodeMesh`, `NodeCurve`, `NodeSurface`,
+//! `NodeKeptMesh`)
 //! only by `sync_entities`. Checked with Bevy's change ticks while a person
 //! uses every tool: each system run has its own tick, so a value written by
 //! any other system carries a tick outside the projection's runs.
@@ -18,7 +19,7 @@ use bevy::ecs::system::SystemChangeTick;
 type Check<'a> = (&'static str, &'a [(u32, u32)], Option<ComponentTicks>);
 use bevy::prelude::*;
 use hedra_scene::{
-    ControlPoint, NodeCurve, NodeEntity, NodeMesh, NodeSurface, SurfacePatch,
+    ControlPoint, NodeCurve, NodeEntity, NodeKeptMesh, NodeMesh, NodeSurface, SurfacePatch,
     project_control_points, project_render_meshes, project_surface_patches, project_transforms,
     sync_entities,
 };
@@ -155,6 +156,7 @@ fn check(world: &mut World) {
             ("NodeMesh", e.get_change_ticks::<NodeMesh>()),
             ("NodeCurve", e.get_change_ticks::<NodeCurve>()),
             ("NodeSurface", e.get_change_ticks::<NodeSurface>()),
+            ("NodeKeptMesh", e.get_change_ticks::<NodeKeptMesh>()),
         ] {
             checks.push((component, runs("sync_entities"), ticks));
         }
@@ -309,8 +311,47 @@ fn only_the_projection_writes_node_transforms_and_render_meshes() {
     user.tap(KeyCode::Tab);
     user.shortcut(&[KeyCode::ControlLeft], KeyCode::KeyZ);
     user.shortcut(&[KeyCode::ControlLeft, KeyCode::ShiftLeft], KeyCode::KeyZ);
+    // A kept (non-manifold) mesh: added, smoothed with Ctrl+1, moved.
+    user.app
+        .world_mut()
+        .write_message(hedra_scene::DocRequest::Execute(
+            hedra_doc::Command::AddKeptMesh {
+                name: "Flaps".into(),
+                positions: [
+                    [0.0, 0.0, 0.0],
+                    [0.0, 0.0, 1.0],
+                    [1.0, 0.0, 0.0],
+                    [1.0, 0.0, 1.0],
+                ]
+                .into_iter()
+                .chain([
+                    [0.0, 1.0, 0.0],
+                    [0.0, 1.0, 1.0],
+                    [-1.0, 0.0, 0.0],
+                    [-1.0, 0.0, 1.0],
+                ])
+                .map(hedra_geom::DVec3::from_array)
+                .collect(),
+                faces: vec![vec![0, 2, 3, 1], vec![1, 5, 4, 0], vec![0, 6, 7, 1]],
+                parent: None,
+                transform: hedra_doc::NodeTransform::IDENTITY,
+            },
+        ));
+    user.frames(2);
+    user.shortcut(&[KeyCode::ControlLeft], KeyCode::Digit1);
+    user.tap(KeyCode::KeyG);
+    user.glide_to(centre + Vec2::new(-40.0, 10.0), 4);
+    user.click(centre + Vec2::new(-40.0, 10.0));
     assert!(
-        user.undo_steps() >= 7,
+        matches!(
+            user.doc().find_by_name("Flaps").map(|n| &n.content),
+            Some(hedra_doc::NodeContent::Kept(k)) if k.subdivision.is_some()
+        ),
+        "a kept mesh, smoothed: {}",
+        user.status()
+    );
+    assert!(
+        user.undo_steps() >= 10,
         "the tools did their work: {}",
         user.status()
     );

@@ -157,6 +157,30 @@ impl KeptMesh {
         out
     }
 
+    /// The ray parameter of the nearest hit on the faces' triangles (from
+    /// either side), for picking.
+    pub fn ray_cast(&self, origin: DVec3, dir: DVec3) -> Option<f64> {
+        self.triangles()
+            .iter()
+            .filter_map(|t| {
+                let [a, b, c] = t.map(|v| self.positions[v as usize]);
+                hedra_geom::query::ray_triangle(origin, dir, a, b, c)
+            })
+            .min_by(f64::total_cmp)
+    }
+
+    /// The smallest box around the points the faces use; `None` without
+    /// faces.
+    pub fn bounds(&self) -> Option<(DVec3, DVec3)> {
+        self.faces
+            .iter()
+            .flatten()
+            .map(|&v| self.positions[v as usize])
+            .fold(None, |acc, p| {
+                Some(acc.map_or((p, p), |(lo, hi): (DVec3, DVec3)| (lo.min(p), hi.max(p))))
+            })
+    }
+
     /// The Newell normal of face `f`, of unit length (zero for a face
     /// without area).
     pub fn face_normal(&self, f: usize) -> DVec3 {

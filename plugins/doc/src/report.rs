@@ -659,10 +659,10 @@ impl SceneReport {
                     split_vertices: k.split_vertices.clone(),
                     repeating_faces: k.repeating_faces.clone(),
                 };
-                let number = |v: u32| v.to_string();
-                let face = |f: usize| format!("face {f}");
+                let number = |v: u32| (v + 1).to_string();
+                let face = |f: usize| format!("face {}", f + 1);
                 for line in crate::kept::describe_places(&places, 10, &number, &face) {
-                    let _ = writeln!(out, "    not manifold: {line}");
+                    let _ = writeln!(out, "    not manifold (numbers from 1): {line}");
                 }
                 if let Some(sd) = &k.subdivision {
                     let _ = writeln!(

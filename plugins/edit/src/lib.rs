@@ -278,10 +278,13 @@ pub fn subdivision_keys(
     let mut changed = Vec::new();
     for id in targets {
         let Some(node) = doc.node(id) else { continue };
-        let hedra_doc::NodeContent::Mesh(content) = &node.content else {
-            continue;
+        // Meshes and kept (non-manifold) meshes both have the modifier.
+        let subdivision = match &node.content {
+            hedra_doc::NodeContent::Mesh(content) => content.subdivision,
+            hedra_doc::NodeContent::Kept(content) => content.subdivision,
+            _ => continue,
         };
-        let modifier = match (set_level, content.subdivision) {
+        let modifier = match (set_level, subdivision) {
             (Some(level), Some(mut m)) => {
                 m.viewport_level = level;
                 m
@@ -299,7 +302,7 @@ pub fn subdivision_keys(
             }
             (None, None) => continue,
         };
-        if content.subdivision != Some(modifier) {
+        if subdivision != Some(modifier) {
             changed.push((id, modifier));
         }
     }

@@ -62,7 +62,7 @@ impl PreviewContent {
                 mesh: m.mesh.clone(),
                 creases: Some(m.creases.clone()),
             }),
-            NodeContent::Empty | NodeContent::Csg(_) => None,
+            NodeContent::Empty | NodeContent::Csg(_) | NodeContent::Kept(_) => None,
         }
     }
 

@@ -32,6 +32,8 @@ pub enum ContentSource {
     Curve(ByAddress<Arc<hedra_doc::CurveContent>>),
     /// A surface.
     Surface(ByAddress<Arc<hedra_doc::SurfaceShape>>),
+    /// A kept (non-manifold) mesh's faces.
+    Kept(ByAddress<Arc<hedra_doc::KeptMesh>>),
 }
 
 impl std::fmt::Debug for ContentSource {
@@ -41,6 +43,7 @@ impl std::fmt::Debug for ContentSource {
             ContentSource::Mesh(m) => write!(f, "Mesh({:p})", Arc::as_ptr(m)),
             ContentSource::Curve(c) => write!(f, "Curve({:p})", Arc::as_ptr(c)),
             ContentSource::Surface(s) => write!(f, "Surface({:p})", Arc::as_ptr(s)),
+            ContentSource::Kept(k) => write!(f, "Kept({:p})", Arc::as_ptr(k)),
         }
     }
 }
@@ -133,6 +136,16 @@ pub struct NodeCurve(pub Arc<hedra_doc::CurveContent>);
 #[derive(Component, Clone, Debug)]
 pub struct NodeSurface(pub Arc<hedra_doc::SurfaceShape>);
 
+/// The most faces a kept mesh's subdivision preview is made with in a
+/// frame (kept meshes have no background refinement).
+pub const KEPT_PREVIEW_FACES: usize = 1_000_000;
+
+/// A kept (non-manifold) mesh node's faces, shading and subdivision,
+/// mirrored from the document (the faces shared, not copied). Written
+/// only by [`sync_entities`], when it differs.
+#[derive(Component, Clone, Debug)]
+pub struct NodeKeptMesh(pub hedra_doc::KeptMeshContent);
+
 /// Node id → entity, kept by [`sync_entities`].
 #[derive(Resource, Default, Debug)]
 pub struct NodeEntities(pub HashMap<NodeId, Entity>);
@@ -165,6 +178,7 @@ pub fn sync_entities(
         Option<&mut NodeMesh>,
         Option<&mut NodeCurve>,
         Option<&mut NodeSurface>,
+        Option<&mut NodeKeptMesh>,
         Option<&mut ProjectedMesh>,
     )>,
 ) {
@@ -206,7 +220,7 @@ pub fn sync_entities(
         let content = drawn_content(doc, node);
         let node_content = &*content;
         let old_parent = match existing.get_mut(e) {
-            Ok((mut name, mut v, child_of, mesh, curve, surface, projected)) => {
+            Ok((mut name, mut v, child_of, mesh, curve, surface, kept, projected)) => {
                 if name.as_str() != node.name {
                     name.set(node.name.clone());
                 }
@@ -214,7 +228,8 @@ pub fn sync_entities(
                 if *v != wanted {
                     *v = wanted;
                 }
-                mirror_content(&mut commands.entity(e), node_content, mesh, curve, surface);
+                let content_components = (mesh, curve, surface, kept);
+                mirror_content(&mut commands.entity(e), node_content, content_components);
                 let wanted = ProjectedMesh::of(node_content);
                 match (projected, wanted) {
                     (Some(mut p), Some(w)) => {
@@ -232,7 +247,11 @@ pub fn sync_entities(
             }
             Err(_) => {
                 // Spawned above: its components go in with the spawn.
-                mirror_content(&mut commands.entity(e), node_content, None, None, None);
+                mirror_content(
+                    &mut commands.entity(e),
+                    node_content,
+                    (None, None, None, None),
+                );
                 if let Some(w) = ProjectedMesh::of(node_content) {
                     commands.entity(e).insert(w);
                 }
@@ -285,15 +304,33 @@ fn drawn_content<'a>(
 
 /// Puts a node's content on its entity: updates the component of its kind
 /// when it differs, removes the others.
+#[allow(clippy::type_complexity)]
 fn mirror_content(
     ec: &mut EntityCommands,
     content: &NodeContent,
-    mesh: Option<Mut<NodeMesh>>,
-    curve: Option<Mut<NodeCurve>>,
-    surface: Option<Mut<NodeSurface>>,
+    (mesh, curve, surface, kept): (
+        Option<Mut<NodeMesh>>,
+        Option<Mut<NodeCurve>>,
+        Option<Mut<NodeSurface>>,
+        Option<Mut<NodeKeptMesh>>,
+    ),
 ) {
     let (had_mesh, had_curve, had_surface) = (mesh.is_some(), curve.is_some(), surface.is_some());
+    let had_kept = kept.is_some();
     match content {
+        NodeContent::Kept(k) => match kept {
+            Some(mut old) => {
+                let same = Arc::ptr_eq(&old.0.mesh, &k.mesh)
+                    && old.0.shading == k.shading
+                    && old.0.subdivision == k.subdivision;
+                if !same {
+                    old.0 = k.clone();
+                }
+            }
+            None => {
+                ec.insert(NodeKeptMesh(k.clone()));
+            }
+        },
         NodeContent::Mesh(c) => match mesh {
             Some(mut m) => {
                 if !m.same(c) {
@@ -334,6 +371,9 @@ fn mirror_content(
     }
     if had_surface && !matches!(content, NodeContent::Surface(_)) {
         ec.remove::<NodeSurface>();
+    }
+    if had_kept && !matches!(content, NodeContent::Kept(_)) {
+        ec.remove::<NodeKeptMesh>();
     }
 }
 
@@ -409,6 +449,7 @@ pub fn project_render_meshes(
         Option<&Mesh3d>,
         Option<&OnScreen>,
     )>,
+    kept: Query<Ref<NodeKeptMesh>>,
     node_materials: Query<(Entity, &MeshMaterial3d<StandardMaterial>), With<NodeEntity>>,
 ) {
     let chosen = material
@@ -444,6 +485,17 @@ pub fn project_render_meshes(
     let mut any_changed = false;
     for (entity, node, name, content, mesh3d, on_screen) in &nodes {
         let Some(content) = content else {
+            // A kept (non-manifold) mesh: its faces, rebuilt when they change.
+            if let Ok(k) = kept.get(entity) {
+                if k.is_changed() || mesh3d.is_none() || on_screen.is_some() {
+                    let built = projector.kept(name, &k.0);
+                    let mut ec = commands.entity(entity);
+                    set_render_mesh(&mut ec, mesh3d, projector.meshes, built, projector.material);
+                    ec.remove::<OnScreen>();
+                    any_changed = true;
+                }
+                continue;
+            }
             // No longer a mesh: surfaces are drawn by their patch entities,
             // curves and empties by the overlays.
             if mesh3d.is_some() || on_screen.is_some() {
@@ -579,6 +631,41 @@ impl Projector<'_, '_, '_, '_> {
 }
 
 impl Projector<'_, '_, '_, '_> {
+    /// A kept mesh's render mesh: its faces, or their subdivision at the
+    /// modifier's viewport level (by OpenSubdiv's rules at the non-manifold
+    /// places); the faces with a message when the subdivision would be too
+    /// large to make in a frame or is refused.
+    fn kept(&mut self, name: &str, content: &hedra_doc::KeptMeshContent) -> Mesh {
+        let level = content.subdivision.map_or(0, |m| m.viewport_level);
+        let faces = content
+            .mesh
+            .faces
+            .len()
+            .saturating_mul(4usize.saturating_pow(level));
+        let shape = if faces > KEPT_PREVIEW_FACES {
+            self.status.error(format!(
+                "'{name}': subdivision level {level} not shown: {faces} faces, more than {KEPT_PREVIEW_FACES} (Ctrl+1…Ctrl+5 pick a lower level)"
+            ));
+            Ok(std::borrow::Cow::Borrowed(&*content.mesh))
+        } else {
+            content.at_level(level)
+        };
+        match shape {
+            Ok(shape) => buffers_mesh(hedra_doc::render::kept_render_buffers(
+                &shape,
+                content.shading,
+            )),
+            Err(e) => {
+                self.status
+                    .error(format!("'{name}': subdivision not shown: {e}"));
+                buffers_mesh(hedra_doc::render::kept_render_buffers(
+                    &content.mesh,
+                    content.shading,
+                ))
+            }
+        }
+    }
+
     /// The render mesh of a node with Mirror or Array modifiers: the stack
     /// evaluated on the cage (or a tool's preview of it) every time, then
     /// the smooth preview of that result when subdivision comes last, or
@@ -661,6 +748,11 @@ impl ProjectedMesh {
             NodeContent::Curve(c) => Some(ProjectedMesh {
                 source: ContentSource::Curve(ByAddress(c.clone())),
                 shading: Shading::Flat,
+                smooth: None,
+            }),
+            NodeContent::Kept(k) => Some(ProjectedMesh {
+                source: ContentSource::Kept(ByAddress(k.mesh.clone())),
+                shading: k.shading,
                 smooth: None,
             }),
             NodeContent::Empty | NodeContent::Csg(_) => None,

@@ -219,9 +219,14 @@ pub fn world_bounds(
     };
     for id in ids {
         let world = doc.world_matrix(id);
+        let bounds = match doc.node(id).map(|n| &n.content) {
+            Some(NodeContent::Mesh(m)) => m.mesh.bounds(),
+            Some(NodeContent::Kept(k)) => k.mesh.bounds(),
+            _ => None,
+        };
         match doc.node(id).map(|n| &n.content) {
-            Some(NodeContent::Mesh(m)) => {
-                if let Some((lo, hi)) = m.mesh.bounds() {
+            Some(NodeContent::Mesh(_) | NodeContent::Kept(_)) => {
+                if let Some((lo, hi)) = bounds {
                     for i in 0..8 {
                         let c = DVec3::new(
                             if i & 1 == 0 { lo.x } else { hi.x },

@@ -115,6 +115,7 @@ pub(crate) fn update_edge_overlays(
                     }
                 }
             }
+            NodeContent::Kept(kept) if shown => draw_kept_edges(&mut asset, &kept.mesh, color),
             NodeContent::Curve(curve) if shown => {
                 draw_curve(&mut asset, curve, selected, color);
             }
@@ -549,6 +550,38 @@ pub(crate) fn draw_csg_ghosts(
                     color,
                 );
             }
+        }
+    }
+}
+
+/// The edges of a kept (non-manifold) mesh's faces, each once, in `color`;
+/// the edges that make it not manifold (in three or more faces, or run the
+/// same way by two) in magenta, so that the user sees where it needs a
+/// repair.
+fn draw_kept_edges(asset: &mut GizmoAsset, mesh: &hedra_doc::KeptMesh, color: Color) {
+    let places = mesh.places();
+    let key = |a: u32, b: u32| (a.min(b), a.max(b));
+    let marked: std::collections::HashSet<(u32, u32)> = places
+        .crowded_edges
+        .iter()
+        .map(|([a, b], _)| key(*a, *b))
+        .chain(places.same_way_edges.iter().map(|[a, b]| key(*a, *b)))
+        .collect();
+    let mut drawn = std::collections::HashSet::new();
+    let magenta = Color::srgb(1.0, 0.1, 0.8);
+    for face in &mesh.faces {
+        for (i, &a) in face.iter().enumerate() {
+            let b = face[(i + 1) % face.len()];
+            if a == b || !drawn.insert(key(a, b)) {
+                continue;
+            }
+            let (pa, pb) = (mesh.positions[a as usize], mesh.positions[b as usize]);
+            let c = if marked.contains(&key(a, b)) {
+                magenta
+            } else {
+                color
+            };
+            asset.line(pa.as_vec3(), pb.as_vec3(), c);
         }
     }
 }

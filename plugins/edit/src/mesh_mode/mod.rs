@@ -345,6 +345,10 @@ pub fn mode_keys(
                 // Curves and surfaces have their own edit mode (shape_mode).
                 Some(n) if matches!(n.content, NodeContent::Curve(_) | NodeContent::Surface(_)) => {
                 }
+                // A kept mesh cannot hold edits until it is repaired.
+                Some(n) if matches!(n.content, NodeContent::Kept(_)) => {
+                    status.error(kept_mesh_not_editable(n));
+                }
                 Some(n) => status.error(format!(
                     "'{}' is an empty: meshes, curves and surfaces have an edit mode",
                     n.name
@@ -405,4 +409,20 @@ pub fn follow_changes(
             mode.preview = None;
         }
     }
+}
+
+/// Why edit mode does not open on a kept (non-manifold) mesh, naming where
+/// it is not manifold, and how to make it editable.
+pub fn kept_mesh_not_editable(node: &hedra_doc::Node) -> String {
+    let NodeContent::Kept(k) = &node.content else {
+        return format!("'{}' is not a kept mesh", node.name);
+    };
+    let number = |v: u32| (v + 1).to_string();
+    let face = |f: usize| format!("face {}", f + 1);
+    let places = hedra_doc::kept::describe_places(&k.mesh.places(), 2, &number, &face);
+    format!(
+        "'{}' is kept as imported and is not manifold ({}): edit mode needs Mesh ▸ Make Manifold first",
+        node.name,
+        places.join("; ")
+    )
 }

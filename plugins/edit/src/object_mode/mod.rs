@@ -103,6 +103,7 @@ pub fn pick_node(doc: &Document, origin: DVec3, dir: DVec3) -> Option<(NodeId, f
                 hedra_geom::query::ray_cast(&content.mesh, lo, ld).map(|(_, t)| t)
             }
             NodeContent::Surface(surface) => ray_surface_shape(surface, lo, ld),
+            NodeContent::Kept(kept) => kept.mesh.ray_cast(lo, ld),
             _ => None,
         };
         if let Some(t) = t {

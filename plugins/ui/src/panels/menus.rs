@@ -190,6 +190,12 @@ pub(super) fn menu_bar(
                 mesh_menu(ui, node, &model.mode, spin_axis, mesh.as_deref(), events)
             });
         }
+        if model.mode.node.is_none() {
+            // Object mode: the Mesh menu's one object-level tool.
+            ui.menu_button("Mesh", |ui| {
+                kept_mesh_items(ui, &model.state.session.doc, &model.selection, events)
+            });
+        }
         if let Some(node) = model.shape_edit.node
             && let Some(NodeContent::Curve(curve)) =
                 model.state.session.doc.node(node).map(|n| &n.content)
@@ -499,5 +505,35 @@ fn convert_items(
                 keep_cage: true,
             },
         );
+    }
+}
+
+/// Make Manifold: repairs the selected kept (non-manifold) meshes into
+/// editable meshes; disabled, with the reason on hover, when none is
+/// selected.
+pub(super) fn kept_mesh_items(
+    ui: &mut egui::Ui,
+    doc: &hedra_doc::Document,
+    selection: &Selection,
+    events: &mut Vec<UiEvent>,
+) {
+    let kept: Vec<NodeRef> = selection
+        .nodes
+        .iter()
+        .filter(|id| {
+            matches!(
+                doc.node(**id).map(|n| &n.content),
+                Some(NodeContent::Kept(_))
+            )
+        })
+        .map(|&id| NodeRef::from(id))
+        .collect();
+    let button = ui
+        .add_enabled(!kept.is_empty(), egui::Button::new("Make Manifold"))
+        .on_hover_text("Repair meshes kept as imported (not manifold) into editable meshes")
+        .on_disabled_hover_text("Select a mesh kept as imported (⚠ in the outliner)");
+    if button.clicked() {
+        exec(events, Command::MakeManifold { nodes: kept });
+        ui.close();
     }
 }

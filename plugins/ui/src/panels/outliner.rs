@@ -68,6 +68,8 @@ pub(super) fn outliner_row(
             NodeContent::Surface(_) => "🔳",
             NodeContent::Empty => "✚",
             NodeContent::Csg(_) => "➕",
+            // Kept as imported, not manifold: a warning sign.
+            NodeContent::Kept(_) => "⚠",
         };
         if let Some(rename) = state.rename.as_mut().filter(|r| r.node == id) {
             let mut output = egui::TextEdit::singleline(&mut rename.text).show(ui);

@@ -140,6 +140,11 @@ pub(super) fn properties(
             shape_panel(ui, id, &node.content, model, state, events, analysis)
         });
     }
+    if let NodeContent::Kept(kept) = &node.content {
+        egui::CollapsingHeader::new("Kept mesh (not manifold)")
+            .default_open(true)
+            .show(ui, |ui| kept_mesh_panel(ui, id, kept, events));
+    }
     if let NodeContent::Mesh(content) = &node.content {
         egui::CollapsingHeader::new("Modifiers")
             .default_open(true)
@@ -316,4 +321,81 @@ pub fn primitive_editor(ui: &mut egui::Ui, p: &mut Primitive) -> bool {
         }
     }
     changed || count_changed
+}
+
+/// A kept (non-manifold) mesh: its counts, where it is not manifold, its
+/// shading and subdivision (by OpenSubdiv's rules there), and the repair
+/// that makes it editable.
+fn kept_mesh_panel(
+    ui: &mut egui::Ui,
+    id: NodeId,
+    kept: &hedra_doc::KeptMeshContent,
+    events: &mut Vec<UiEvent>,
+) {
+    let m = &kept.mesh;
+    ui.label(format!(
+        "Vertices {}   Faces {}   Corners {}",
+        m.positions.len(),
+        m.faces.len(),
+        m.corner_count()
+    ));
+    let number = |v: u32| (v + 1).to_string();
+    let face = |f: usize| format!("face {}", f + 1);
+    for line in hedra_doc::kept::describe_places(&m.places(), 3, &number, &face) {
+        ui.colored_label(egui::Color32::from_rgb(255, 120, 210), line);
+    }
+    ui.label("Kept as imported: it is drawn, moved, smoothed and exported as it is; editing its elements needs a repair.");
+    if ui
+        .button("Make Manifold")
+        .on_hover_text("Drop the faces a manifold mesh cannot hold and split shared vertices, so that edit mode works")
+        .clicked()
+    {
+        exec(events, Command::MakeManifold { nodes: vec![id.into()] });
+    }
+    ui.horizontal(|ui| {
+        ui.label("Shading");
+        for (sh, label) in [(Shading::Flat, "Flat"), (Shading::Smooth, "Smooth")] {
+            if ui.selectable_label(kept.shading == sh, label).clicked() && kept.shading != sh {
+                exec(
+                    events,
+                    Command::SetShading {
+                        nodes: vec![id.into()],
+                        shading: sh,
+                    },
+                );
+            }
+        }
+    });
+    ui.horizontal(|ui| {
+        let mut on = kept.subdivision.is_some();
+        if ui.checkbox(&mut on, "Subdivision").changed() {
+            exec(
+                events,
+                Command::SetSubdivision {
+                    nodes: vec![id.into()],
+                    modifier: on.then(|| hedra_doc::SubdivisionModifier::with_level(1)),
+                },
+            );
+        }
+        if let Some(modifier) = kept.subdivision {
+            let mut level = modifier.viewport_level;
+            let drag = ui.add(
+                egui::DragValue::new(&mut level)
+                    .range(0..=4)
+                    .prefix("level "),
+            );
+            if drag.changed() && level != modifier.viewport_level {
+                exec(
+                    events,
+                    Command::SetSubdivision {
+                        nodes: vec![id.into()],
+                        modifier: Some(hedra_doc::SubdivisionModifier {
+                            viewport_level: level,
+                            ..modifier
+                        }),
+                    },
+                );
+            }
+        }
+    });
 }
