@@ -286,6 +286,13 @@ fn make_manifold_repairs_reports_and_undoes() {
             distance: 0.1,
         })
         .unwrap();
+    // Saved now, the kept mesh lives only in the history's pool; loaded,
+    // undo still brings it back.
+    let text = hedra_doc::file::to_string(&session);
+    let mut session = hedra_doc::file::from_str(&text, Path::new("fin.hedra.ron"))
+        .unwrap()
+        .session;
+    assert_eq!(hedra_doc::file::to_string(&session), text);
     session.undo();
     session.undo();
     assert_eq!(kept(&session, "Fin").mesh.faces.len(), 3);
