@@ -115,9 +115,10 @@ fn forbidden(text: &str) -> bool {
 /// still aims at it.
 #[derive(Clone, Debug, PartialEq)]
 enum Event {
-    /// A primitive added through the command (the hand's first move on an
-    /// empty scene).
-    AddPrimitive(&'static str),
+    /// A primitive or a kept (non-manifold) mesh added through its
+    /// command, given as its text (the hand's first move on an empty
+    /// scene).
+    Add(&'static str),
     Tap(KeyCode),
     Shortcut(&'static [KeyCode], KeyCode),
     KeysInOneFrame(Vec<KeyCode>),
@@ -135,7 +136,7 @@ enum Event {
 impl std::fmt::Display for Event {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
-            Event::AddPrimitive(p) => write!(f, "AddPrimitive(primitive: {p})"),
+            Event::Add(command) => write!(f, "{command}"),
             Event::Tap(k) => write!(f, "tap {k:?}"),
             Event::Shortcut(mods, k) => write!(f, "shortcut {mods:?} {k:?}"),
             Event::KeysInOneFrame(keys) => write!(f, "keys in one frame {keys:?}"),
@@ -149,16 +150,21 @@ impl std::fmt::Display for Event {
     }
 }
 
+/// Three quads on one edge, beside the z axis at x = 3: a mesh kept as
+/// imported (issue 37).
+const KEPT_FIN: &str = "AddKeptMesh(name: \"Fin\", positions: [(0.0, 0.0, 0.0), (0.0, 0.0, 1.0), (1.0, 0.0, 0.0), (1.0, 0.0, 1.0), (0.0, 1.0, 0.0), (0.0, 1.0, 1.0), (-1.0, 0.0, 0.0), (-1.0, 0.0, 1.0)], faces: [[0, 2, 3, 1], [1, 5, 4, 0], [0, 6, 7, 1]], transform: (translation: (3.0, 0.0, 0.0)))";
+
 /// The hand's next event. An empty scene gets a primitive first, as a
 /// user would add one.
 fn choose(user: &User, hand: &mut Hand) -> Event {
     if user.doc().nodes().next().is_none() {
-        return Event::AddPrimitive(
+        return Event::Add(
             [
-                "Cube(size: 2.0)",
-                "UvSphere(segments: 12, rings: 6, radius: 1.0)",
-                "Cylinder(segments: 8, radius: 1.0, depth: 2.0)",
-            ][hand.below(3)],
+                "AddPrimitive(primitive: Cube(size: 2.0))",
+                "AddPrimitive(primitive: UvSphere(segments: 12, rings: 6, radius: 1.0))",
+                "AddPrimitive(primitive: Cylinder(segments: 8, radius: 1.0, depth: 2.0))",
+                KEPT_FIN,
+            ][hand.below(4)],
         );
     }
     let view = user.viewport();
@@ -205,10 +211,9 @@ fn choose(user: &User, hand: &mut Hand) -> Event {
 /// Sends `event` to the app as a user would.
 fn apply(user: &mut User, event: &Event) {
     match event {
-        Event::AddPrimitive(item) => {
-            let command = format!("AddPrimitive(primitive: {item})");
+        Event::Add(command) => {
             user.app.world_mut().write_message(DocRequest::Execute(
-                ron::from_str(&command).expect("a command"),
+                ron::from_str(command).expect("a command"),
             ));
             user.frames(2);
         }
@@ -307,6 +312,8 @@ impl Run {
         let start = user.doc().clone();
         let start_steps = user.undo_steps();
         user.add("Cube");
+        // And a mesh kept as imported (not manifold), beside the cube.
+        apply(&mut user, &Event::Add(KEPT_FIN));
         Run {
             user,
             start,
