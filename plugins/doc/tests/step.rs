@@ -801,3 +801,40 @@ fn every_sample_with_its_meshes_reads_in_opencascade_and_comes_back_node_for_nod
         );
     }
 }
+
+/// A kept (non-manifold) mesh written as a faceted shell: OpenCASCADE
+/// reads it valid, one face per triangle, the spine an edge of three
+/// faces; read back into Hedra it is kept again, its crowded edge named.
+#[test]
+fn a_kept_mesh_is_written_as_facets_and_comes_back_kept() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut session = Session::new();
+    let fin: Command = ron::from_str(
+        "AddKeptMesh(name: \"Fin\", positions: [(0.0, 0.0, 0.0), (0.0, 0.0, 1.0), (1.0, 0.0, 0.0), (1.0, 0.0, 1.0), (0.0, 1.0, 0.0), (0.0, 1.0, 1.0), (-1.0, 0.0, 0.0), (-1.0, 0.0, 1.0)], faces: [[0, 2, 3, 1], [1, 5, 4, 0], [0, 6, 7, 1]])",
+    )
+    .unwrap();
+    session.execute(&fin).unwrap();
+    let (bytes, _) = to_step(
+        &session.doc,
+        StepOptions {
+            units: StepUnits::Metres,
+            meshes: true,
+            subdivision_as_nurbs: false,
+        },
+        "fin.step",
+    )
+    .unwrap();
+    let file = dir.path().join("fin.step");
+    std::fs::write(&file, bytes).unwrap();
+    let read = ocp(&file);
+    assert_eq!(read["valid"], true, "{read}");
+    assert_eq!(read["faces"].as_array().unwrap().len(), 6);
+    let imported = hedra_doc::import::import_file(&file).unwrap();
+    let mut back = Session::new();
+    back.import(&imported, "Import");
+    let NodeContent::Kept(k) = &back.doc.nodes().next().unwrap().content else {
+        panic!("kept again")
+    };
+    assert_eq!(k.mesh.faces.len(), 6);
+    assert_eq!(k.mesh.places().crowded_edges.len(), 1);
+}

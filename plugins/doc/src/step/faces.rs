@@ -104,11 +104,14 @@ impl Reader<'_> {
         let name = Some(self.name(r))
             .filter(|n| !n.is_empty())
             .unwrap_or_else(|| format!("Mesh #{id}"));
-        Ok(Some(ImportedMesh {
-            mesh: Some(mesh),
-            report,
-            ..ImportedMesh::empty(name)
-        }))
+        Ok(Some(
+            ImportedMesh {
+                mesh: Some(mesh),
+                report,
+                ..ImportedMesh::empty(name)
+            }
+            .with_input(&positions, &polygons),
+        ))
     }
 
     /// True when every vertex of the face's bounds, and three points
