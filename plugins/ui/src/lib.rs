@@ -14,6 +14,7 @@ use bevy_egui::{EguiGlobalSettings, EguiPlugin, EguiPrimaryContextPass, PrimaryE
 use hedra_doc::{Command, NodeId, NodeTransform};
 use hedra_edit::{Selection, TransformTool};
 use hedra_scene::{DocRequest, DocState, InputGate, StatusMessage, ViewportCamera};
+use std::sync::Arc;
 
 pub mod egui_input;
 pub mod files;
@@ -46,6 +47,8 @@ pub struct UiState {
     /// The object-mode statistics of the shown meshes (vertices, edges,
     /// faces, triangles) and the document revision they were counted at.
     pub shown_counts: Option<(u64, [usize; 4])>,
+    /// Counts and checks of the meshes the panels show, made once per mesh.
+    pub mesh_facts: MeshFacts,
     /// The outliner's tree and the document revision it was walked at.
     pub outliner_tree: Option<(u64, hedra_doc::Hierarchy)>,
     /// How File ▸ Export writes (its checkboxes: OBJ curves as NURBS
@@ -124,6 +127,7 @@ impl Default for UiState {
             show_history: false,
             show_statistics: false,
             shown_counts: None,
+            mesh_facts: MeshFacts::default(),
             outliner_tree: None,
             show_preferences: false,
             add_menu_at: None,
@@ -664,4 +668,50 @@ pub fn execute(requests: &mut MessageWriter<DocRequest>, cmd: Command) {
 /// The selected nodes as command references.
 pub fn selected_refs(selection: &Selection) -> Vec<hedra_doc::NodeRef> {
     selection.refs()
+}
+
+/// Counts and checks of the meshes the panels show (the Mesh section's
+/// statistics and validation, the topology inspector's V/E/F/L/S/H), made
+/// once per mesh instead of every frame: validating a 1M-face mesh takes
+/// tens of milliseconds, and a panel drew it in every frame of a drag
+/// (issue 36's frame benchmark found it). Keyed by the mesh's `Arc`, kept
+/// in the key, so the address compared is always a live one.
+#[derive(Default)]
+pub struct MeshFacts {
+    stats: Vec<(Arc<hedra_geom::HalfEdgeMesh>, Arc<hedra_geom::MeshStats>)>,
+    counts: Vec<(Arc<hedra_geom::HalfEdgeMesh>, hedra_geom::TopologyCounts)>,
+}
+
+/// Meshes remembered per kind of fact (the edited mesh, its last step's
+/// mesh, a few selected ones).
+const MESH_FACTS_KEPT: usize = 4;
+
+impl MeshFacts {
+    /// The statistics (with validation) of `mesh`.
+    pub fn stats(&mut self, mesh: &Arc<hedra_geom::HalfEdgeMesh>) -> Arc<hedra_geom::MeshStats> {
+        remembered(&mut self.stats, mesh, |m| Arc::new(m.stats()))
+    }
+
+    /// The topology counts of `mesh`.
+    pub fn counts(&mut self, mesh: &Arc<hedra_geom::HalfEdgeMesh>) -> hedra_geom::TopologyCounts {
+        remembered(&mut self.counts, mesh, hedra_geom::TopologyCounts::of)
+    }
+}
+
+/// The value for `mesh` in `memory`, made by `make` when it is not there;
+/// the oldest entry goes past [`MESH_FACTS_KEPT`].
+fn remembered<T: Clone>(
+    memory: &mut Vec<(Arc<hedra_geom::HalfEdgeMesh>, T)>,
+    mesh: &Arc<hedra_geom::HalfEdgeMesh>,
+    make: impl FnOnce(&hedra_geom::HalfEdgeMesh) -> T,
+) -> T {
+    if let Some((_, value)) = memory.iter().find(|(m, _)| Arc::ptr_eq(m, mesh)) {
+        return value.clone();
+    }
+    let value = make(mesh);
+    if memory.len() >= MESH_FACTS_KEPT {
+        memory.remove(0);
+    }
+    memory.push((mesh.clone(), value.clone()));
+    value
 }

@@ -136,11 +136,11 @@ pub(super) fn topology_inspector(
 pub(super) fn topology_counts(
     ui: &mut egui::Ui,
     id: NodeId,
-    mesh: &hedra_geom::HalfEdgeMesh,
+    mesh: &std::sync::Arc<hedra_geom::HalfEdgeMesh>,
     model: &Model,
+    facts: &mut crate::MeshFacts,
 ) {
-    use hedra_geom::TopologyCounts;
-    let now = TopologyCounts::of(mesh);
+    let now = facts.counts(mesh);
     ui.label(format!("{now}"));
     let Some(last) = model.state.session.history.done().last() else {
         return;
@@ -151,7 +151,7 @@ pub(super) fn topology_counts(
         .find(|c| c.id == id)
         .and_then(|c| c.before.as_ref())
         .and_then(|n| match &n.content {
-            NodeContent::Mesh(m) => Some(TopologyCounts::of(&m.mesh)),
+            NodeContent::Mesh(m) => Some(facts.counts(&m.mesh)),
             _ => None,
         });
     if let Some(before) = before {

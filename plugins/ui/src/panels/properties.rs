@@ -163,7 +163,7 @@ pub(super) fn properties(
         egui::CollapsingHeader::new("Topology inspector")
             .default_open(true)
             .show(ui, |ui| {
-                topology_counts(ui, id, &content.mesh, model);
+                topology_counts(ui, id, &content.mesh, model, &mut state.mesh_facts);
                 topology_inspector(ui, &content.mesh, &model.mode.selection)
             });
     }
@@ -171,7 +171,7 @@ pub(super) fn properties(
         egui::CollapsingHeader::new("Mesh")
             .default_open(true)
             .show(ui, |ui| {
-                let s = content.mesh.stats();
+                let s = state.mesh_facts.stats(&content.mesh);
                 ui.label(format!(
                     "Vertices {}   Edges {}   Faces {}",
                     s.vertices, s.edges, s.faces
