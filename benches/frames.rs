@@ -154,7 +154,13 @@ fn rows() -> Vec<Row> {
                 // the first time: wait for it.
                 for _ in 0..600 {
                     user.frame();
-                    if user.app.world().resource::<hedra_scene::SmoothPreviews>().progress().is_empty() {
+                    if user
+                        .app
+                        .world()
+                        .resource::<hedra_scene::SmoothPreviews>()
+                        .progress()
+                        .is_empty()
+                    {
                         break;
                     }
                 }
@@ -169,7 +175,11 @@ fn rows() -> Vec<Row> {
                 let points = (0..nu * nv)
                     .map(|k| {
                         let (i, j) = ((k / nv) as f64, (k % nv) as f64);
-                        DVec3::new(i * 0.05 - 5.0, (i * 0.3).sin() * (j * 0.2).cos() * 0.2, j * 0.05 - 5.0)
+                        DVec3::new(
+                            i * 0.05 - 5.0,
+                            (i * 0.3).sin() * (j * 0.2).cos() * 0.2,
+                            j * 0.05 - 5.0,
+                        )
                     })
                     .collect();
                 execute(
@@ -264,9 +274,7 @@ fn first_frame_after_opening() -> f64 {
     hedra_doc::file::save(&mut session, &path).unwrap();
     let mut user = User::new();
     let t = Instant::now();
-    user.app
-        .world_mut()
-        .write_message(DocRequest::Open(path));
+    user.app.world_mut().write_message(DocRequest::Open(path));
     loop {
         user.frame();
         let shown = user.doc().node_count() == 1

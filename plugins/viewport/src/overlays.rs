@@ -325,8 +325,11 @@ pub(crate) fn draw_edit_edges(
 ) {
     let sel = &mode.selection;
     let selected_vertices = sel.all_vertices(mesh);
-    let orange = Color::srgb(1.0, 0.55, 0.1);
-    let cyan = Color::srgb(0.2, 0.85, 0.95);
+    // Colours in linear space once (see `draw_edit_overlay`).
+    let linear = |c: Color| -> Color { c.to_linear().into() };
+    let orange = linear(Color::srgb(1.0, 0.55, 0.1));
+    let cyan = linear(Color::srgb(0.2, 0.85, 0.95));
+    let plain = linear(Color::srgb(0.08, 0.08, 0.1));
     let single = sel.vertices.len() + sel.edges.len() + sel.faces.len() == 1;
     let mut related_faces = std::collections::BTreeSet::new();
     let mut related_edges = std::collections::BTreeSet::new();
@@ -359,9 +362,9 @@ pub(crate) fn draw_edit_edges(
             EdgeLook::Related => cyan,
             EdgeLook::Crease(c) => {
                 let k = 0.35 + 0.65 * (c.min(10.0) / 10.0) as f32;
-                Color::srgb(0.95 * k, 0.1 * k, 0.8 * k)
+                linear(Color::srgb(0.95 * k, 0.1 * k, 0.8 * k))
             }
-            EdgeLook::Plain => Color::srgb(0.08, 0.08, 0.1),
+            EdgeLook::Plain => plain,
         };
         asset.line(Vec3::from(a), Vec3::from(b), color);
     }
@@ -462,37 +465,54 @@ pub(crate) fn draw_edit_overlay(
     };
     let world = state.session.doc.world_matrix(node);
     let sel = &mode.selection;
-    let orange = Color::srgb(1.0, 0.55, 0.1);
+    // Colours in linear space once: a gizmo converts an sRGB colour with
+    // three powf per point, millions of times in a frame of a dense mesh.
+    let orange: Color = Color::srgb(1.0, 0.55, 0.1).to_linear().into();
+    let dark: Color = Color::srgb(0.05, 0.05, 0.05).to_linear().into();
     let cam = *camera;
     let rotation = cam.rotation();
+    // A dense mesh shows only its selected elements' dots, walked from the
+    // selection (not a set lookup for each of a million elements).
     let dense = mesh.vertex_count() > 20_000;
+    let dots = match (mode.kind, dense) {
+        (ElementKind::Vertex, true) => sel.vertices.len(),
+        (ElementKind::Face, true) => sel.faces.len(),
+        (ElementKind::Vertex, false) => mesh.vertex_count(),
+        (ElementKind::Face, false) => mesh.face_count(),
+        (ElementKind::Edge, _) => 0,
+    };
+    // Many dots are drawn as diamonds: half the lines of an octagon.
+    let resolution = if dots > 10_000 { 4 } else { 8 };
     let mut dot = |p: DVec3, selected: bool, size: f32| {
         let p = world.transform_point3(p).as_vec3();
         let r = cam.translation().distance(p) * size;
-        let c = if selected {
-            orange
-        } else {
-            Color::srgb(0.05, 0.05, 0.05)
-        };
+        let c = if selected { orange } else { dark };
         gizmos
             .circle(Isometry3d::new(p, rotation), r, c)
-            .resolution(8);
+            .resolution(resolution);
     };
-    match mode.kind {
-        ElementKind::Vertex => {
-            for v in mesh
-                .vertices()
-                .filter(|v| !dense || sel.vertices.contains(v))
-            {
+    match (mode.kind, dense) {
+        (ElementKind::Vertex, true) => {
+            for &v in sel.vertices.iter().filter(|v| mesh.is_vertex(**v)) {
+                dot(mesh.position(v), true, 0.004);
+            }
+        }
+        (ElementKind::Vertex, false) => {
+            for v in mesh.vertices() {
                 dot(mesh.position(v), sel.vertices.contains(&v), 0.004);
             }
         }
-        ElementKind::Face => {
-            for f in mesh.faces().filter(|f| !dense || sel.faces.contains(f)) {
+        (ElementKind::Face, true) => {
+            for &f in sel.faces.iter().filter(|f| mesh.is_face(**f)) {
+                dot(mesh.face_centroid(f), true, 0.003);
+            }
+        }
+        (ElementKind::Face, false) => {
+            for f in mesh.faces() {
                 dot(mesh.face_centroid(f), sel.faces.contains(&f), 0.003);
             }
         }
-        ElementKind::Edge => {}
+        (ElementKind::Edge, _) => {}
     }
 }
 
