@@ -396,7 +396,9 @@ pub(crate) fn draw_shape_edit(
     };
     let world = state.session.doc.world_matrix(node);
     let to_world = |p: DVec3| world.transform_point3(p).as_vec3();
-    let net = Color::srgba(0.9, 0.9, 0.95, 0.85);
+    // Colours in linear space once (see `draw_edit_overlay`).
+    let linear = |c: Color| -> Color { c.to_linear().into() };
+    let net = linear(Color::srgba(0.9, 0.9, 0.95, 0.85));
     match &content {
         NodeContent::Curve(content) => {
             use hedra_geom::curves::Curve;
@@ -434,21 +436,30 @@ pub(crate) fn draw_shape_edit(
     };
     // A G1 join's points: on the joint cyan, those that follow violet.
     let roles = state.session.doc.g1_roles(node).unwrap_or_default();
+    let (selected, shared, dependent, plain) = (
+        linear(Color::srgb(1.0, 0.55, 0.1)),
+        linear(Color::srgb(0.2, 0.85, 1.0)),
+        linear(Color::srgb(0.75, 0.4, 1.0)),
+        linear(Color::srgb(0.05, 0.05, 0.05)),
+    );
+    let all = hedra_scene::control_points_of(entity, &points);
+    // A dense net's points as hexagons: half the lines of a 12-gon.
+    let resolution = if all.len() > 2_000 { 6 } else { 12 };
     // The control-point entities: position and weight as the screen shows them.
-    for point in hedra_scene::control_points_of(entity, &points) {
+    for point in all {
         let p = to_world(point.position);
         let w = point.weight as f32;
         let r = cam.translation().distance(p) * 0.005 * w.clamp(0.25, 4.0).sqrt();
         use hedra_geom::surfaces::patches::PointRole;
         let c = match roles.get(point.index as usize) {
-            _ if edit.selected.contains(&point.index) => Color::srgb(1.0, 0.55, 0.1),
-            Some(PointRole::Shared) => Color::srgb(0.2, 0.85, 1.0),
-            Some(PointRole::Dependent) => Color::srgb(0.75, 0.4, 1.0),
-            _ => Color::srgb(0.05, 0.05, 0.05),
+            _ if edit.selected.contains(&point.index) => selected,
+            Some(PointRole::Shared) => shared,
+            Some(PointRole::Dependent) => dependent,
+            _ => plain,
         };
         gizmos
             .circle(Isometry3d::new(p, cam.rotation()), r, c)
-            .resolution(12);
+            .resolution(resolution);
     }
 }
 
