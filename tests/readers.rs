@@ -214,6 +214,35 @@ fn the_khronos_validator_passes_every_gltf_and_glb_export() {
     );
 }
 
+/// assimp's test models (installed by `scripts/setup`) with these
+/// extensions (any case), sorted.
+fn assimp_models(extensions: &[&str]) -> Vec<std::path::PathBuf> {
+    let models = Path::new("/usr/share/assimp/models");
+    assert!(
+        models.is_dir(),
+        "{} is missing: run scripts/setup (it installs assimp-testmodels)",
+        models.display()
+    );
+    let mut out = Vec::new();
+    let mut stack = vec![models.to_path_buf()];
+    while let Some(dir) = stack.pop() {
+        for entry in std::fs::read_dir(&dir).unwrap() {
+            let path = entry.unwrap().path();
+            let ext = path
+                .extension()
+                .and_then(|e| e.to_str())
+                .map(str::to_ascii_lowercase);
+            if path.is_dir() {
+                stack.push(path);
+            } else if ext.is_some_and(|e| extensions.contains(&e.as_str())) {
+                out.push(path);
+            }
+        }
+    }
+    out.sort();
+    out
+}
+
 /// Faces and the bounds of the vertices they use, `[xmin, xmax, ymin,
 /// ymax, zmin, zmax]`, of each file as trimesh loads it (as one mesh, node
 /// transforms applied); `None` where trimesh cannot load it. One Python run
@@ -267,29 +296,7 @@ fn trimesh_face_bounds(files: &[&Path]) -> Vec<Option<(usize, [f64; 6])>> {
 #[test]
 fn trimesh_and_the_validator_read_the_exports_of_real_files() {
     require_python_readers();
-    let models = Path::new("/usr/share/assimp/models");
-    assert!(
-        models.is_dir(),
-        "{} is missing: run scripts/setup (it installs assimp-testmodels)",
-        models.display()
-    );
-    let mut inputs = Vec::new();
-    let mut stack = vec![models.to_path_buf()];
-    while let Some(dir) = stack.pop() {
-        for entry in std::fs::read_dir(&dir).unwrap() {
-            let path = entry.unwrap().path();
-            let ext = path
-                .extension()
-                .and_then(|e| e.to_str())
-                .map(str::to_ascii_lowercase);
-            if path.is_dir() {
-                stack.push(path);
-            } else if ext.is_some_and(|e| ["obj", "stl", "gltf", "glb"].contains(&e.as_str())) {
-                inputs.push(path);
-            }
-        }
-    }
-    inputs.sort();
+    let inputs = assimp_models(&["obj", "stl", "gltf", "glb"]);
     let dir = tempfile::tempdir().unwrap();
     let (mut exports, mut glbs) = (Vec::new(), Vec::new());
     for (i, input) in inputs.iter().enumerate() {
@@ -422,26 +429,15 @@ fn trimesh_and_the_validator_read_the_exports_of_real_files() {
 fn kept_meshes_have_the_area_trimesh_reads_from_the_file() {
     require_python_readers();
     use hedra_doc::NodeContent;
-    let models = Path::new("/usr/share/assimp/models");
-    let mut files = Vec::new();
-    for sub in ["OBJ", "STL", "glTF2"] {
-        let mut stack = vec![models.join(sub)];
-        while let Some(dir) = stack.pop() {
-            for entry in std::fs::read_dir(&dir).unwrap() {
-                let path = entry.unwrap().path();
-                let ext = path
-                    .extension()
-                    .and_then(|e| e.to_str())
-                    .map(str::to_ascii_lowercase);
-                if path.is_dir() {
-                    stack.push(path);
-                } else if ext.is_some_and(|e| ["obj", "stl", "glb"].contains(&e.as_str())) {
-                    files.push(path);
-                }
-            }
-        }
-    }
-    files.sort();
+    // glTF 2 binaries only: the .gltf files are the same models.
+    let files: Vec<_> = assimp_models(&["obj", "stl", "glb"])
+        .into_iter()
+        .filter(|f| {
+            ["OBJ", "STL", "glTF2"]
+                .iter()
+                .any(|d| f.starts_with(Path::new("/usr/share/assimp/models").join(d)))
+        })
+        .collect();
     // The area of a session's faces in world space, and whether it holds a
     // kept mesh.
     let area = |s: &hedra_doc::Session| -> (f64, bool) {

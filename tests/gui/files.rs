@@ -83,19 +83,7 @@ fn file_export_writes_every_format_and_a_dropped_export_comes_back() {
         );
 
         let (before, steps) = (user.doc().nodes().count(), user.undo_steps());
-        let window = user
-            .app
-            .world_mut()
-            .query_filtered::<Entity, With<bevy::window::PrimaryWindow>>()
-            .single(user.app.world())
-            .unwrap();
-        user.app
-            .world_mut()
-            .write_message(bevy::window::FileDragAndDrop::DroppedFile {
-                window,
-                path_buf: written.clone(),
-            });
-        user.frames(3);
+        user.drop_file(written.clone());
         assert!(
             user.doc().nodes().count() > before,
             "{format:?}: dropping {} imported nothing: {}",

@@ -23,22 +23,6 @@ f 2 6 5 1
 f 1 7 8 2
 ";
 
-fn dropped(user: &mut User, path: std::path::PathBuf) {
-    let window = user
-        .app
-        .world_mut()
-        .query_filtered::<Entity, With<bevy::window::PrimaryWindow>>()
-        .single(user.app.world())
-        .unwrap();
-    user.app
-        .world_mut()
-        .write_message(bevy::window::FileDragAndDrop::DroppedFile {
-            window,
-            path_buf: path,
-        });
-    user.frames(3);
-}
-
 fn fin_content(user: &User) -> NodeContent {
     user.doc()
         .find_by_name("Fin")
@@ -58,7 +42,7 @@ fn a_non_manifold_file_is_kept_drawn_picked_smoothed_and_repaired_on_request() {
     let path = dir.path().join("fin.obj");
     std::fs::write(&path, FIN).unwrap();
     let mut user = User::new();
-    dropped(&mut user, path);
+    user.drop_file(path);
     // Kept as in the file, with a note naming the edge in three faces.
     let NodeContent::Kept(kept) = fin_content(&user) else {
         panic!("the fin is kept: {}", user.status());

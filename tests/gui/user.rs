@@ -106,6 +106,18 @@ impl User {
             .unwrap_or_default()
     }
 
+    /// A file dropped on the window (it is imported), and three frames.
+    pub fn drop_file(&mut self, path: std::path::PathBuf) {
+        let window = self.window;
+        self.app
+            .world_mut()
+            .write_message(bevy::window::FileDragAndDrop::DroppedFile {
+                window,
+                path_buf: path,
+            });
+        self.frames(3);
+    }
+
     /// Moves the pointer to `to` (logical pixels) in one frame.
     pub fn move_to(&mut self, to: Vec2) {
         let from = self.cursor();

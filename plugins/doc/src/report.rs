@@ -94,14 +94,7 @@ impl KeptReport {
             same_way_edges: places.same_way_edges,
             split_vertices: places.split_vertices,
             repeating_faces: places.repeating_faces,
-            subdivision: content.subdivision.map(|m| SubdivisionReport {
-                scheme: m.options.scheme.label(),
-                viewport_level: m.viewport_level,
-                export_level: m.export_level,
-                boundary: m.options.boundary.label(),
-                crease_method: m.options.crease_method.label(),
-                stack_position: 0,
-            }),
+            subdivision: content.subdivision.map(|m| SubdivisionReport::of(&m, 0)),
         }
     }
 }
@@ -341,6 +334,21 @@ pub struct SubdivisionReport {
     pub stack_position: usize,
 }
 
+impl SubdivisionReport {
+    /// The report of a modifier that runs after `stack_position` stack
+    /// modifiers.
+    fn of(m: &crate::scene::SubdivisionModifier, stack_position: usize) -> Self {
+        SubdivisionReport {
+            scheme: m.options.scheme.label(),
+            viewport_level: m.viewport_level,
+            export_level: m.export_level,
+            boundary: m.options.boundary.label(),
+            crease_method: m.options.crease_method.label(),
+            stack_position,
+        }
+    }
+}
+
 /// A curve or surface node's shape.
 #[derive(Serialize)]
 pub struct ShapeReport {
@@ -463,14 +471,9 @@ fn mesh_report(content: &crate::scene::MeshContent) -> MeshReport {
             .keys()
             .filter(|v| content.mesh.is_vertex(**v))
             .count(),
-        subdivision: content.subdivision.map(|m| SubdivisionReport {
-            scheme: m.options.scheme.label(),
-            viewport_level: m.viewport_level,
-            export_level: m.export_level,
-            boundary: m.options.boundary.label(),
-            crease_method: m.options.crease_method.label(),
-            stack_position: content.subdivision_position(),
-        }),
+        subdivision: content
+            .subdivision
+            .map(|m| SubdivisionReport::of(&m, content.subdivision_position())),
         modifiers: content
             .modifiers
             .iter()

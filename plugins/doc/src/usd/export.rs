@@ -502,13 +502,7 @@ impl Writer {
                 s.export_level.to_string(),
             );
         }
-        prim.attr(
-            &format!("custom token {HEDRA}shading"),
-            quoted(match content.shading {
-                Shading::Flat => "flat",
-                Shading::Smooth => "smooth",
-            }),
-        );
+        shading_attr(&mut prim, content.shading);
         let counts: Vec<usize> = mesh.faces.iter().map(Vec::len).collect();
         let indices: Vec<u32> = mesh.faces.iter().flatten().copied().collect();
         prim.attr("int[] faceVertexCounts", list(&counts, num));
@@ -691,13 +685,7 @@ fn write_cage(
             }),
         );
     }
-    prim.attr(
-        &format!("custom token {HEDRA}shading"),
-        quoted(match shading {
-            Shading::Flat => "flat",
-            Shading::Smooth => "smooth",
-        }),
-    );
+    shading_attr(prim, shading);
     prim.attr("int[] faceVertexCounts", list(&counts, num));
     prim.attr("int[] faceVertexIndices", list(&indices, num));
     prim.points(&points);
@@ -754,6 +742,17 @@ fn write_cage(
         prim.attr("int[] primvars:st:indices", list(&st_indices, num));
     }
     write_creases(prim, mesh, creases, &index, &face_index);
+}
+
+/// Hedra's shading of a mesh, as a custom token USD readers ignore.
+fn shading_attr(prim: &mut Prim, shading: Shading) {
+    prim.attr(
+        &format!("custom token {HEDRA}shading"),
+        quoted(match shading {
+            Shading::Flat => "flat",
+            Shading::Smooth => "smooth",
+        }),
+    );
 }
 
 /// Creases (per-edge form), corners and holes.
