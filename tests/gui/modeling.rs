@@ -3259,3 +3259,77 @@ fn dragging_the_operands_of_a_live_intersection_apart_leaves_an_empty_solid() {
     let solid = hedra_doc::csg::evaluate(user.doc(), csg).unwrap();
     assert!((solid.volume() - 8.0).abs() < 1e-9, "{}", solid.volume());
 }
+
+/// Tab on a CSG node says that its operands are what is edited (it said
+/// "is an empty").
+#[test]
+fn tab_on_a_csg_node_points_at_its_operands() {
+    let mut user = User::new();
+    user.add("Cube");
+    let command: hedra_doc::Command =
+        ron::from_str(r#"AddCsg(op: Difference, operands: [Name("Cube")])"#).unwrap();
+    user.app
+        .world_mut()
+        .write_message(hedra_scene::DocRequest::Execute(command));
+    user.frames(2);
+    let csg = user
+        .doc()
+        .nodes()
+        .find(|n| matches!(n.content, NodeContent::Csg(_)))
+        .expect("a CSG node")
+        .id;
+    user.app
+        .world_mut()
+        .resource_mut::<hedra_edit::Selection>()
+        .set([csg]);
+    user.tap(KeyCode::Tab);
+    assert!(user.edit_mode().node.is_none());
+    let status = user.status();
+    assert!(status.contains("is a CSG node"), "{status}");
+}
+
+/// The edit-mode edges follow a G drag frame by frame (written in place
+/// while only positions change) and stay right after Escape.
+#[test]
+fn the_edit_edges_follow_a_g_drag() {
+    fn lines(user: &mut User) -> Vec<Vec3> {
+        let world = user.app.world_mut();
+        let handle = world
+            .query_filtered::<&bevy::gizmos::retained::Gizmo, With<hedra_viewport::EditEdges>>()
+            .single(world)
+            .expect("the edit edges")
+            .handle
+            .clone();
+        world
+            .resource::<Assets<bevy::gizmos::GizmoAsset>>()
+            .get(&handle)
+            .expect("their asset")
+            .list_positions
+            .clone()
+    }
+    fn edge_ends(mesh: &hedra_geom::HalfEdgeMesh) -> Vec<Vec3> {
+        mesh.edges()
+            .flat_map(|e| mesh.edge_vertices(e).map(|v| mesh.position(v).as_vec3()))
+            .collect()
+    }
+    let mut user = cube_in_edit_mode(KeyCode::Digit1);
+    user.tap(KeyCode::KeyA);
+    let centre = user.viewport_center();
+    user.tap(KeyCode::KeyG);
+    for step in 1..=4 {
+        user.move_to(centre + Vec2::new(25.0 * step as f32, -10.0 * step as f32));
+        let preview = user
+            .edit_mode()
+            .preview
+            .clone()
+            .expect("G previews the mesh");
+        assert_eq!(
+            lines(&mut user),
+            edge_ends(&preview),
+            "frame {step} of the drag"
+        );
+    }
+    user.tap(KeyCode::Escape);
+    let cube = user.first_mesh().clone();
+    assert_eq!(lines(&mut user), edge_ends(&cube), "back on the cube");
+}

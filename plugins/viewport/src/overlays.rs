@@ -286,7 +286,23 @@ pub(crate) fn update_edit_edges(
     if *built == key {
         return;
     }
+    // A tool that only moves vertices (G, R, S, a drag after an extrude):
+    // the same lines and colours at new places, written in place.
+    let moved_only = match (built.as_ref(), &key, shown, overlay.as_ref()) {
+        (Some((old, old_hash)), Some((_, hash)), Some((mesh, creases)), Some((_, handle))) => {
+            old_hash == hash
+                && creases.holes.is_empty()
+                && old.0.same_connectivity(mesh)
+                && assets
+                    .get_mut(handle.id())
+                    .is_some_and(|mut asset| move_edge_lines(&mut asset, mesh))
+        }
+        _ => false,
+    };
     *built = key;
+    if moved_only {
+        return;
+    }
     let (_, handle) = overlay.get_or_insert_with(|| {
         let handle = assets.add(GizmoAsset::new());
         let line_config = GizmoLineConfig {
@@ -313,6 +329,23 @@ pub(crate) fn update_edit_edges(
     if let Some(mut a) = assets.get_mut(handle.id()) {
         *a = asset;
     }
+}
+
+/// Moves the lines of an edit-edge overlay built by [`draw_edit_edges`]
+/// for a mesh of the same connectivity to `mesh`'s positions (one line per
+/// live edge, in id order). False, changing nothing, when the asset does
+/// not hold exactly those lines.
+fn move_edge_lines(asset: &mut GizmoAsset, mesh: &HalfEdgeMesh) -> bool {
+    let lines = &mut asset.list_positions;
+    if lines.len() != 2 * mesh.edge_count() {
+        return false;
+    }
+    for (i, e) in mesh.edges().enumerate() {
+        let [a, b] = mesh.edge_vertices(e);
+        lines[2 * i] = mesh.position(a).as_vec3();
+        lines[2 * i + 1] = mesh.position(b).as_vec3();
+    }
+    true
 }
 
 /// Edges in mesh space: selected ones orange, the inspector's related ones

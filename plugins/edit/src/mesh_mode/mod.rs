@@ -349,6 +349,11 @@ pub fn mode_keys(
                 Some(n) if matches!(n.content, NodeContent::Kept(_)) => {
                     status.error(kept_mesh_not_editable(n));
                 }
+                // A CSG node's solid is made from its operands: they are edited.
+                Some(n) if matches!(n.content, NodeContent::Csg(_)) => status.error(format!(
+                    "'{}' is a CSG node: its solid follows its operands (its children in the outliner); select one and press Tab to edit it",
+                    n.name
+                )),
                 Some(n) => status.error(format!(
                     "'{}' is an empty: meshes, curves and surfaces have an edit mode",
                     n.name
