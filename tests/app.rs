@@ -352,6 +352,103 @@ fn a_subdivision_modifier_renders_the_refined_mesh_and_drags_keep_its_layout() {
         }),
     );
     assert_eq!(count(&mut app), (98, 192));
+    // The positions and normals written in place are those of a preview
+    // made from scratch for the moved cage (in both shadings).
+    let attributes = |app: &mut App| {
+        let e = node_entities(app)[0].0;
+        let h = app.world().get::<Mesh3d>(e).unwrap().0.clone();
+        let m = app.world().resource::<Assets<Mesh>>().get(&h).unwrap();
+        let f = |id| match m.attribute(id) {
+            Some(bevy::mesh::VertexAttributeValues::Float32x3(v)) => v.clone(),
+            _ => panic!("f32x3 attribute"),
+        };
+        (f(Mesh::ATTRIBUTE_POSITION), f(Mesh::ATTRIBUTE_NORMAL))
+    };
+    for (step, shading) in [hedra_doc::Shading::Smooth, hedra_doc::Shading::Flat]
+        .into_iter()
+        .enumerate()
+    {
+        if step > 0 {
+            send(
+                &mut app,
+                DocRequest::Execute(Command::SetShading {
+                    nodes: vec![NodeRef::Name("Box".into())],
+                    shading,
+                }),
+            );
+        }
+        // A move after the shading is set: the preview is rewritten in place.
+        send(
+            &mut app,
+            DocRequest::Execute(Command::MoveVertices {
+                node: NodeRef::Name("Box".into()),
+                vertices: hedra_doc::elements::VertexSet::Ids(vec![step as u32 + 1]),
+                offset: hedra_geom::DVec3::new(0.25, 0.0, 0.0),
+            }),
+        );
+        let mut fresh = hedra::headless_app();
+        fresh.update();
+        let doc = app
+            .world()
+            .resource::<hedra_scene::DocState>()
+            .session
+            .doc
+            .clone();
+        let hedra_doc::NodeContent::Mesh(moved) = &doc.find_by_name("Box").unwrap().content else {
+            panic!("a mesh")
+        };
+        send(
+            &mut fresh,
+            DocRequest::Execute(Command::AddMesh {
+                name: "Box".into(),
+                positions: moved
+                    .mesh
+                    .vertices()
+                    .map(|v| moved.mesh.position(v))
+                    .collect(),
+                polygons: moved
+                    .mesh
+                    .faces()
+                    .map(|f| moved.mesh.face_vertices(f).map(|v| v.0).collect())
+                    .collect(),
+                parent: None,
+                transform: NodeTransform::IDENTITY,
+            }),
+        );
+        for command in [
+            Command::SetShading {
+                nodes: vec![NodeRef::Name("Box".into())],
+                shading,
+            },
+            Command::SetSubdivision {
+                nodes: vec![NodeRef::Name("Box".into())],
+                modifier: Some(hedra_doc::SubdivisionModifier::with_level(2)),
+            },
+        ] {
+            send(&mut fresh, DocRequest::Execute(command));
+        }
+        // Equal up to rounding (stencils applied to the moved cage, or the
+        // moved cage refined level by level).
+        let (a, b) = (attributes(&mut app), attributes(&mut fresh));
+        assert_eq!(
+            (a.0.len(), a.1.len()),
+            (b.0.len(), b.1.len()),
+            "{shading:?}"
+        );
+        let close = |x: &[[f32; 3]], y: &[[f32; 3]]| {
+            x.iter()
+                .zip(y)
+                .all(|(p, q)| (0..3).all(|k| (p[k] - q[k]).abs() < 1e-5))
+        };
+        assert!(close(&a.0, &b.0) && close(&a.1, &b.1), "{shading:?}");
+    }
+    send(
+        &mut app,
+        DocRequest::Execute(Command::SetShading {
+            nodes: vec![NodeRef::Name("Box".into())],
+            shading: hedra_doc::Shading::Smooth,
+        }),
+    );
     // Creases change the shape, not the layout; Ctrl+0's level 0 shows the cage.
     send(
         &mut app,

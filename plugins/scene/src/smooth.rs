@@ -294,15 +294,21 @@ impl SmoothPreviews {
         let Ok(points) = self.points(src) else {
             return false;
         };
-        let (positions, normals) = self.done[&src.node].attributes(&points, src.shading);
-        let count = render
-            .attribute(Mesh::ATTRIBUTE_POSITION)
-            .map_or(0, |a| a.len());
-        if count != positions.len() {
+        // The render mesh's own buffers are refilled: no new 100 MB
+        // allocation in every frame of a drag.
+        use bevy::mesh::VertexAttributeValues::Float32x3;
+        let (Some(Float32x3(mut positions)), Some(Float32x3(mut normals))) = (
+            render.remove_attribute(Mesh::ATTRIBUTE_POSITION),
+            render.remove_attribute(Mesh::ATTRIBUTE_NORMAL),
+        ) else {
+            // Not the layout `render_mesh` makes: rebuilt by the caller.
             return false;
-        }
+        };
+        let count = positions.len();
+        self.done[&src.node].attributes_into(&points, src.shading, &mut positions, &mut normals);
+        let fits = positions.len() == count;
         render.insert_attribute(Mesh::ATTRIBUTE_POSITION, positions);
         render.insert_attribute(Mesh::ATTRIBUTE_NORMAL, normals);
-        true
+        fits
     }
 }
