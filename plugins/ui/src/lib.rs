@@ -671,7 +671,8 @@ pub fn selected_refs(selection: &Selection) -> Vec<hedra_doc::NodeRef> {
 }
 
 /// Counts and checks of the meshes the panels show (the Mesh section's
-/// statistics and validation, the topology inspector's V/E/F/L/S/H), made
+/// statistics and validation, the topology inspector's V/E/F/L/S/H, a kept
+/// mesh's non-manifold places), made
 /// once per mesh instead of every frame: validating a 1M-face mesh takes
 /// tens of milliseconds, and a panel drew it in every frame of a drag
 /// (issue 36's frame benchmark found it). Keyed by the mesh's `Arc`, kept
@@ -680,6 +681,7 @@ pub fn selected_refs(selection: &Selection) -> Vec<hedra_doc::NodeRef> {
 pub struct MeshFacts {
     stats: Vec<(Arc<hedra_geom::HalfEdgeMesh>, Arc<hedra_geom::MeshStats>)>,
     counts: Vec<(Arc<hedra_geom::HalfEdgeMesh>, hedra_geom::TopologyCounts)>,
+    places: Vec<(Arc<hedra_doc::KeptMesh>, Arc<Vec<String>>)>,
 }
 
 /// Meshes remembered per kind of fact (the edited mesh, its last step's
@@ -696,14 +698,29 @@ impl MeshFacts {
     pub fn counts(&mut self, mesh: &Arc<hedra_geom::HalfEdgeMesh>) -> hedra_geom::TopologyCounts {
         remembered(&mut self.counts, mesh, hedra_geom::TopologyCounts::of)
     }
+
+    /// Where a kept mesh is not manifold, in words (numbers from 1, at
+    /// most 3 places of each kind).
+    pub fn places(&mut self, mesh: &Arc<hedra_doc::KeptMesh>) -> Arc<Vec<String>> {
+        remembered(&mut self.places, mesh, |m| {
+            let number = |v: u32| (v + 1).to_string();
+            let face = |f: usize| format!("face {}", f + 1);
+            Arc::new(hedra_doc::kept::describe_places(
+                &m.places(),
+                3,
+                &number,
+                &face,
+            ))
+        })
+    }
 }
 
 /// The value for `mesh` in `memory`, made by `make` when it is not there;
 /// the oldest entry goes past [`MESH_FACTS_KEPT`].
-fn remembered<T: Clone>(
-    memory: &mut Vec<(Arc<hedra_geom::HalfEdgeMesh>, T)>,
-    mesh: &Arc<hedra_geom::HalfEdgeMesh>,
-    make: impl FnOnce(&hedra_geom::HalfEdgeMesh) -> T,
+fn remembered<M, T: Clone>(
+    memory: &mut Vec<(Arc<M>, T)>,
+    mesh: &Arc<M>,
+    make: impl FnOnce(&M) -> T,
 ) -> T {
     if let Some((_, value)) = memory.iter().find(|(m, _)| Arc::ptr_eq(m, mesh)) {
         return value.clone();

@@ -489,18 +489,7 @@ impl Writer {
             quoted(scheme.unwrap_or("none")),
         );
         if let Some(s) = subdivision.filter(|_| scheme.is_some()) {
-            prim.attr(
-                "token interpolateBoundary",
-                quoted(boundary_token(s.options.boundary)),
-            );
-            prim.attr(
-                &format!("custom int {HEDRA}viewportLevel"),
-                s.viewport_level.to_string(),
-            );
-            prim.attr(
-                &format!("custom int {HEDRA}exportLevel"),
-                s.export_level.to_string(),
-            );
+            subdivision_attrs(&mut prim, s);
         }
         shading_attr(&mut prim, content.shading);
         let counts: Vec<usize> = mesh.faces.iter().map(Vec::len).collect();
@@ -652,38 +641,7 @@ fn write_cage(
         quoted(scheme.unwrap_or("none")),
     );
     if let Some(s) = subdivision.filter(|_| scheme.is_some()) {
-        let o: Options = s.options;
-        prim.attr(
-            "token interpolateBoundary",
-            quoted(boundary_token(o.boundary)),
-        );
-        prim.attr(
-            "token triangleSubdivisionRule",
-            quoted(if o.smooth_triangles {
-                "smooth"
-            } else {
-                "catmullClark"
-            }),
-        );
-        prim.attr(
-            &format!("custom int {HEDRA}viewportLevel"),
-            s.viewport_level.to_string(),
-        );
-        prim.attr(
-            &format!("custom int {HEDRA}exportLevel"),
-            s.export_level.to_string(),
-        );
-        prim.attr(
-            &format!("custom bool {HEDRA}showCage"),
-            u8::from(s.show_cage).to_string(),
-        );
-        prim.attr(
-            &format!("custom token {HEDRA}creaseMethod"),
-            quoted(match o.crease_method {
-                CreaseMethod::Uniform => "uniform",
-                CreaseMethod::Chaikin => "chaikin",
-            }),
-        );
+        subdivision_attrs(prim, s);
     }
     shading_attr(prim, shading);
     prim.attr("int[] faceVertexCounts", list(&counts, num));
@@ -742,6 +700,43 @@ fn write_cage(
         prim.attr("int[] primvars:st:indices", list(&st_indices, num));
     }
     write_creases(prim, mesh, creases, &index, &face_index);
+}
+
+/// A subdivision modifier's options and levels as the prim's attributes
+/// (the scheme itself is `subdivisionScheme`, written by the caller).
+fn subdivision_attrs(prim: &mut Prim, s: SubdivisionModifier) {
+    let o: Options = s.options;
+    prim.attr(
+        "token interpolateBoundary",
+        quoted(boundary_token(o.boundary)),
+    );
+    prim.attr(
+        "token triangleSubdivisionRule",
+        quoted(if o.smooth_triangles {
+            "smooth"
+        } else {
+            "catmullClark"
+        }),
+    );
+    prim.attr(
+        &format!("custom int {HEDRA}viewportLevel"),
+        s.viewport_level.to_string(),
+    );
+    prim.attr(
+        &format!("custom int {HEDRA}exportLevel"),
+        s.export_level.to_string(),
+    );
+    prim.attr(
+        &format!("custom bool {HEDRA}showCage"),
+        u8::from(s.show_cage).to_string(),
+    );
+    prim.attr(
+        &format!("custom token {HEDRA}creaseMethod"),
+        quoted(match o.crease_method {
+            CreaseMethod::Uniform => "uniform",
+            CreaseMethod::Chaikin => "chaikin",
+        }),
+    );
 }
 
 /// Hedra's shading of a mesh, as a custom token USD readers ignore.

@@ -143,7 +143,9 @@ pub(super) fn properties(
     if let NodeContent::Kept(kept) = &node.content {
         egui::CollapsingHeader::new("Kept mesh (not manifold)")
             .default_open(true)
-            .show(ui, |ui| kept_mesh_panel(ui, id, kept, events));
+            .show(ui, |ui| {
+                kept_mesh_panel(ui, id, kept, &mut state.mesh_facts, events)
+            });
     }
     if let NodeContent::Mesh(content) = &node.content {
         egui::CollapsingHeader::new("Modifiers")
@@ -330,6 +332,7 @@ fn kept_mesh_panel(
     ui: &mut egui::Ui,
     id: NodeId,
     kept: &hedra_doc::KeptMeshContent,
+    facts: &mut crate::MeshFacts,
     events: &mut Vec<UiEvent>,
 ) {
     let m = &kept.mesh;
@@ -339,9 +342,7 @@ fn kept_mesh_panel(
         m.faces.len(),
         m.corner_count()
     ));
-    let number = |v: u32| (v + 1).to_string();
-    let face = |f: usize| format!("face {}", f + 1);
-    for line in hedra_doc::kept::describe_places(&m.places(), 3, &number, &face) {
+    for line in facts.places(m).iter() {
         ui.colored_label(egui::Color32::from_rgb(255, 120, 210), line);
     }
     ui.label("Kept as imported: it is drawn, moved, smoothed and exported as it is; editing its elements needs a repair.");
