@@ -5,7 +5,9 @@
 //! line in the document fails this test with its name.
 
 use crate::user::User;
+use bevy::ecs::error::Result;
 use bevy::ecs::schedule::Schedules;
+use bevy::ecs::system::{IntoSystem, System};
 
 /// The last path segment of a Rust path, without generic arguments:
 /// `hedra_edit::mesh_mode::select_elements` → `select_elements`.
@@ -98,5 +100,68 @@ fn the_architecture_document_names_every_system_and_resource() {
         "docs/architecture.md does not name {} of the app's systems and resources:\n{}",
         missing.len(),
         missing.join("\n")
+    );
+}
+
+/// The Hedra resources that `system` may write, by short name, once it is
+/// initialised in `user`'s world.
+fn resources_written<O: 'static, M>(
+    user: &mut User,
+    system: impl IntoSystem<(), O, M>,
+) -> Vec<String> {
+    let mut system = IntoSystem::into_system(system);
+    let access = system.initialize(user.app.world_mut());
+    let access = access.combined_access();
+    let mut written: Vec<String> = user
+        .app
+        .world()
+        .iter_resources()
+        .filter(|(info, _)| is_hedras(info.name().as_ref()))
+        .filter(|(info, _)| access.has_write(info.id()))
+        .map(|(info, _)| short_name(info.name().as_ref()).to_string())
+        .collect();
+    written.sort();
+    written
+}
+
+/// Issue 34, item 1: the panels read state and send messages; no panel
+/// holds a `ResMut` of another crate's state (the settings of edit and the
+/// viewport, the selection, the status line, the previews, the input gate).
+#[test]
+fn the_panels_write_only_the_ui_crates_own_state() {
+    let mut user = User::new();
+    user.frames(2);
+    let own = |names: &[String]| {
+        names
+            .iter()
+            .filter(|n| !["UiState", "Preferences", "Recovery"].contains(&n.as_str()))
+            .cloned()
+            .collect::<Vec<_>>()
+    };
+    // The reading sees a write of another crate's state where there is one.
+    let status = resources_written::<(), _>(&mut user, hedra_scene::apply_status_requests);
+    assert_eq!(status, vec!["StatusMessage".to_string()]);
+    let draw_ui = resources_written::<Result, _>(&mut user, hedra_ui::draw_ui);
+    assert!(
+        draw_ui.contains(&"UiState".to_string()),
+        "the reading works: draw_ui keeps its own state ({draw_ui:?})"
+    );
+    assert_eq!(
+        own(&draw_ui),
+        Vec::<String>::new(),
+        "draw_ui writes {draw_ui:?}"
+    );
+    let recovery = resources_written::<Result, _>(&mut user, hedra_ui::recovery::recovery_window);
+    assert_eq!(
+        own(&recovery),
+        Vec::<String>::new(),
+        "recovery_window writes {recovery:?}"
+    );
+    let preferences =
+        resources_written::<Result, _>(&mut user, hedra_ui::recovery::preferences_window);
+    assert_eq!(
+        own(&preferences),
+        Vec::<String>::new(),
+        "preferences_window writes {preferences:?}"
     );
 }

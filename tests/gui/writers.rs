@@ -128,12 +128,18 @@ fn check(world: &mut World) {
     let mut points = world.query_filtered::<Entity, With<ControlPoint>>();
     let mut patches = world.query_filtered::<Entity, With<SurfacePatch>>();
     let audit = world.resource::<Audit>();
-    let inside = |runs: &[(u32, u32)], tick: u32| runs.iter().any(|&(a, b)| a < tick && tick < b);
+    // A writer's commands (a material inserted) are applied by the sync
+    // point right before its closing system and carry that system's tick:
+    // the named windows include their closing tick.
+    let inside_run =
+        |runs: &[(u32, u32)], tick: u32| runs.iter().any(|&(a, b)| a < tick && tick <= b);
     let runs = |name: &str| audit.runs.get(name).map_or(&[][..], |r| r.as_slice());
     // Whether component `C` of `entity` was last changed outside `writer`'s
     // runs (spawning it with its first value is not a second write).
     let outside = |writer: &[(u32, u32)], ticks: Option<ComponentTicks>| {
-        ticks.is_some_and(|t| t.added.get() != t.changed.get() && !inside(writer, t.changed.get()))
+        ticks.is_some_and(|t| {
+            t.added.get() != t.changed.get() && !inside_run(writer, t.changed.get())
+        })
     };
     for (entity, node) in nodes.iter(world) {
         let e = world.entity(entity);

@@ -12,7 +12,7 @@ use bevy::prelude::*;
 use glam::{DMat4, DQuat, DVec3};
 use hedra_doc::{Command, NodeId, NodeTransform};
 use hedra_scene::modifiers::shift;
-use hedra_scene::{DocRequest, DocState, InputGate, SceneSystems};
+use hedra_scene::{DocRequest, DocState, InputGate, SceneSystems, SettingsApp};
 
 pub mod bindings;
 mod cursor;
@@ -21,6 +21,7 @@ pub mod mesh_mode;
 pub mod modal;
 pub mod object_mode;
 mod proportional;
+mod requests;
 pub mod shape_mode;
 mod snapping;
 pub mod typing;
@@ -38,6 +39,7 @@ pub use object_mode::{
     object_shortcuts, pick_node, visible,
 };
 pub use proportional::{Proportional, ProportionalRing, proportional_keys};
+pub use requests::{EditRequest, apply_edit_requests};
 pub use shape_mode::ShapeEdit;
 pub use snapping::{
     MoveSnap, SnapElement, SnapMesh, SnapScene, SnapTarget, Snapping, drag_translation, move_snap,
@@ -71,6 +73,12 @@ impl Plugin for EditPlugin {
             .init_resource::<AxisLock>()
             .init_resource::<ShapeEdit>()
             .init_resource::<CurveDraw>()
+            .add_setting::<Snapping>()
+            .add_setting::<Proportional>()
+            .add_setting::<bindings::KeyHelp>()
+            .add_setting::<PivotPoint>()
+            .add_message::<EditRequest>()
+            .add_systems(Update, apply_edit_requests.in_set(SceneSystems::Requests))
             .configure_sets(Update, EditSystems.in_set(SceneSystems::Tools))
             // What a command created is selected in the frame that applied
             // it, so that frame already draws it selected.

@@ -34,6 +34,7 @@ mod preview;
 mod projection;
 mod render_mesh;
 mod render_projection;
+mod requests;
 mod shape_entities;
 mod smooth;
 mod strokes;
@@ -46,6 +47,7 @@ pub use preview::*;
 pub use projection::*;
 pub use render_mesh::*;
 pub use render_projection::*;
+pub use requests::*;
 pub use shape_entities::*;
 pub use smooth::{SmoothPreviews, SmoothSource};
 pub use strokes::{Strokes, record_strokes};
@@ -358,10 +360,14 @@ fn apply_viewport_shading(
 /// The stages of a frame's `Update`, in order (configured by
 /// [`ScenePlugin`]); every plugin puts its systems into one of them, inside
 /// its own set (`EditSystems`, `ViewportSystems`, `UiSystems`, …):
-/// input (Bevy's `PreUpdate`) → `Tools` → `Apply` → `Sync` → `View` →
-/// render (Bevy's `PostUpdate`, egui).
+/// input (Bevy's `PreUpdate`) → `Requests` → `Tools` → `Apply` → `Sync` →
+/// `View` → render (Bevy's `PostUpdate`, egui).
 #[derive(SystemSet, Debug, Clone, PartialEq, Eq, Hash)]
 pub enum SceneSystems {
+    /// Each plugin applies the messages the panels sent it in the last frame
+    /// (settings, selection, tools to start: see [`requests`](crate::ChangeSetting))
+    /// to the state it owns, before any tool reads this frame's input.
+    Requests,
     /// Tools, shortcuts and panels' input handlers read this frame's input,
     /// show previews ([`Previews`]) and write [`DocRequest`]s.
     Tools,
@@ -389,14 +395,22 @@ impl Plugin for ScenePlugin {
             .init_resource::<InputGate>()
             .init_resource::<ViewportShading>()
             .init_resource::<QuadView>()
+            .init_resource::<ViewportShading>()
+            .init_resource::<QuadView>()
             .init_resource::<Cursor3d>()
+            .add_setting::<ViewportShading>()
+            .add_setting::<QuadView>()
+            .add_setting::<Cursor3d>()
             .init_resource::<Strokes>()
             .add_systems(PreUpdate, record_strokes.after(bevy::input::InputSystems))
             .add_message::<DocRequest>()
             .add_message::<DocChanged>()
+            .add_message::<StatusRequest>()
+            .add_message::<PreviewRequest>()
             .configure_sets(
                 Update,
                 (
+                    SceneSystems::Requests,
                     SceneSystems::Tools,
                     SceneSystems::Apply,
                     SceneSystems::Sync,
@@ -405,6 +419,10 @@ impl Plugin for ScenePlugin {
                     .chain(),
             )
             .add_systems(Startup, (setup_material, setup_face_orientation))
+            .add_systems(
+                Update,
+                (apply_status_requests, apply_preview_requests).in_set(SceneSystems::Requests),
+            )
             .add_systems(Update, apply_requests.in_set(SceneSystems::Apply))
             .add_systems(
                 Update,

@@ -157,6 +157,11 @@ impl Previews {
         }
     }
 
+    /// Whether `source` shows a preview.
+    pub fn has(&self, source: PreviewSource) -> bool {
+        self.slots.contains_key(&source)
+    }
+
     /// Ends the preview of `source` (changing nothing when it shows none).
     pub fn clear(this: &mut impl std::ops::DerefMut<Target = Self>, source: PreviewSource) {
         if this.slots.contains_key(&source) {

@@ -227,3 +227,29 @@ pub(crate) fn refresh_pointer_gate(
         gate.pointer_free = free;
     }
 }
+
+/// The one writer of [`hedra_scene::InputGate::keyboard_free`], right after
+/// the panels are drawn: no shortcut runs while a text field has the
+/// keyboard or a dialog that is typed into is open (the path prompt,
+/// unsaved changes). Only text fields keep egui's focus: a clicked button
+/// would keep it, every shortcut blocked until a click elsewhere, and Enter
+/// or Space (a tool's confirm) would press it again.
+pub(crate) fn refresh_keyboard_gate(
+    mut contexts: Query<&mut EguiContext, With<PrimaryEguiContext>>,
+    ui: Res<crate::UiState>,
+    mut gate: ResMut<hedra_scene::InputGate>,
+) {
+    let Ok(mut context) = contexts.single_mut() else {
+        return;
+    };
+    let ctx = context.get_mut();
+    if let Some(id) = ctx.memory(|m| m.focused())
+        && !ctx.text_edit_focused()
+    {
+        ctx.memory_mut(|m| m.surrender_focus(id));
+    }
+    let free = !ctx.text_edit_focused() && ui.path_prompt.is_none() && ui.confirm.is_none();
+    if gate.keyboard_free != free {
+        gate.keyboard_free = free;
+    }
+}

@@ -19,7 +19,7 @@ use std::sync::Arc;
 pub mod egui_input;
 pub mod files;
 mod panels;
-pub use panels::{ADD_MENU, MERGE_MENU, SNAP_MENU};
+pub use panels::{ADD_MENU, MERGE_MENU, SNAP_MENU, draw_ui};
 pub mod recovery;
 
 pub use files::{FilePurpose, Pending, Preferences, SamplesDir};
@@ -208,6 +208,8 @@ pub enum FileAction {
     Export(hedra_doc::export::ExportFormat),
     /// Quit (Ctrl+Q or closing the window), after asking about unsaved changes.
     Quit,
+    /// The path typed into the path prompt, for what the prompt was for.
+    UsePath(FilePurpose, std::path::PathBuf),
 }
 
 /// The egui panels, menus and dialogs, the window title, the file workflow
@@ -241,7 +243,10 @@ impl Plugin for UiPlugin {
                 ),
             )
             .configure_sets(Update, UiSystems.in_set(hedra_scene::SceneSystems::Tools))
-            .add_systems(EguiPrimaryContextPass, panels::draw_ui)
+            .add_systems(
+                EguiPrimaryContextPass,
+                (panels::draw_ui, egui_input::refresh_keyboard_gate).chain(),
+            )
             .add_systems(
                 Update,
                 (
@@ -390,6 +395,7 @@ fn handle_file_actions(
     state: Res<DocState>,
     mut requests: MessageWriter<DocRequest>,
     mut exit: MessageWriter<AppExit>,
+    mut status: ResMut<StatusMessage>,
 ) {
     for action in actions.read() {
         let dirty = state.session.is_dirty();
@@ -426,6 +432,18 @@ fn handle_file_actions(
             }
             FileAction::Import => {
                 begin_path(&mut ui, FilePurpose::Import, &state);
+                None
+            }
+            FileAction::UsePath(purpose, path) => {
+                let options = ui.export_options;
+                use_path(
+                    *purpose,
+                    path.clone(),
+                    options,
+                    &state,
+                    &mut requests,
+                    &mut status,
+                );
                 None
             }
         };

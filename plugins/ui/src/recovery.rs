@@ -291,7 +291,7 @@ fn on_exit(mut exits: MessageReader<AppExit>, mut rec: ResMut<Recovery>) {
 }
 
 /// "Recover unsaved work": one row per recovery point.
-fn recovery_window(
+pub fn recovery_window(
     mut contexts: EguiContexts,
     mut rec: ResMut<Recovery>,
     state: Res<DocState>,
@@ -355,13 +355,13 @@ fn recovery_window(
 }
 
 /// Edit ▸ Preferences: autosave interval and undo limits, saved at once.
-fn preferences_window(
+pub fn preferences_window(
     mut contexts: EguiContexts,
     rec: Res<Recovery>,
     mut ui_state: ResMut<crate::UiState>,
     mut prefs: ResMut<Preferences>,
     state: Res<DocState>,
-    mut status: ResMut<StatusMessage>,
+    mut status: MessageWriter<hedra_scene::StatusRequest>,
 ) -> Result {
     if !ui_state.show_preferences {
         return Ok(());
@@ -406,7 +406,9 @@ fn preferences_window(
     if edited != *prefs {
         *prefs = edited;
         if let Err(e) = prefs.save() {
-            status.error(format!("Preferences not saved: {e}"));
+            status.write(hedra_scene::StatusRequest::Error(format!(
+                "Preferences not saved: {e}"
+            )));
         }
     }
     Ok(())

@@ -17,7 +17,8 @@ use hedra_doc::{NodeContent, NodeId, NodeTransform};
 use hedra_edit::{EditMode, ElementKind, Selection, TransformTool};
 use hedra_scene::modifiers;
 use hedra_scene::{
-    DocRequest, DocState, InputGate, NodeEntity, ProjectedMesh, SceneSystems, ViewportCamera,
+    DocRequest, DocState, InputGate, NodeEntity, ProjectedMesh, SceneSystems, SettingsApp,
+    ViewportCamera,
 };
 use std::f32::consts::FRAC_PI_2;
 
@@ -35,6 +36,23 @@ pub use grid::*;
 pub use overlays::*;
 pub use shading::shading_keys;
 
+/// Edit ▸ Gizmo: what the transform gizmo does from now on (a panel's
+/// request; Bevy's `TransformGizmoSettings` is not a value to send whole).
+#[derive(Message, Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SetGizmoMode(pub bevy::gizmos::transform_gizmo::TransformGizmoMode);
+
+/// Applies [`SetGizmoMode`] to the gizmo's settings.
+pub fn apply_gizmo_mode(
+    mut requests: MessageReader<SetGizmoMode>,
+    mut settings: ResMut<bevy::gizmos::transform_gizmo::TransformGizmoSettings>,
+) {
+    if let Some(SetGizmoMode(mode)) = requests.read().last()
+        && settings.mode != *mode
+    {
+        settings.mode = *mode;
+    }
+}
+
 /// The camera, grid, overlays, gizmo and analysis drawing, in
 /// `SceneSystems::View` (the gizmo's drag is a tool: `SceneSystems::Tools`).
 #[derive(SystemSet, Debug, Clone, PartialEq, Eq, Hash)]
@@ -48,6 +66,10 @@ impl Plugin for ViewportPlugin {
         app.configure_sets(Update, ViewportSystems.in_set(SceneSystems::View));
         app.init_resource::<CurveAnalysis>();
         app.init_resource::<SurfaceAnalysis>();
+        app.add_setting::<CurveAnalysis>()
+            .add_setting::<SurfaceAnalysis>()
+            .add_message::<SetGizmoMode>()
+            .add_systems(Update, apply_gizmo_mode.in_set(SceneSystems::Requests));
         app.init_resource::<SurfaceAnalysisShown>();
         app.insert_resource(ClearColor(Color::srgb(0.23, 0.23, 0.25)))
             .insert_resource(GlobalAmbientLight {

@@ -326,7 +326,7 @@ pub(super) fn add_shape_buttons(
             .on_hover_text("Click control points on a surface or the grid plane; Enter ends")
             .clicked()
         {
-            events.push(UiEvent::DrawCurve);
+            events.push(UiEvent::Edit(hedra_edit::EditRequest::DrawCurve));
             ui.close();
         }
         ui.separator();

@@ -478,7 +478,7 @@ pub(super) fn construction_panel(
     let mut pick_axis = false;
     let mut held = recipe_fields(ui, &mut edited.recipe, state.view_axis, &mut pick_axis);
     if pick_axis {
-        events.push(UiEvent::PickAxis(id));
+        events.push(UiEvent::Edit(hedra_edit::EditRequest::PickAxis(id)));
     }
     ui.horizontal(|ui| {
         ui.label("Output");

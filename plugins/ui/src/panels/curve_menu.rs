@@ -38,7 +38,7 @@ pub(super) fn curve_menu(
     let keyed = |label: &str, action: Action| keyed_in(KeyMode::ControlPoints, label, action);
     let mut start = |ui: &mut egui::Ui, label: String, enabled: bool, action: Action| {
         if ui.add_enabled(enabled, egui::Button::new(label)).clicked() {
-            events.push(UiEvent::Start(action));
+            events.push(UiEvent::Edit(hedra_edit::EditRequest::Start(action)));
             ui.close();
         }
     };

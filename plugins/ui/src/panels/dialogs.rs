@@ -5,8 +5,9 @@ use super::*;
 pub(super) fn dialogs(
     ctx: &egui::Context,
     state: &mut UiState,
-    model: &mut Model,
+    model: &Model,
     writers: &mut Writers,
+    events: &mut Vec<UiEvent>,
 ) {
     // Unsaved changes.
     if let Some(pending) = state.confirm.clone() {
@@ -84,9 +85,9 @@ pub(super) fn dialogs(
                 if ok && !prompt.text.trim().is_empty() {
                     let path = std::path::PathBuf::from(prompt.text.trim());
                     if reading && !path.exists() {
-                        model.status.error(format!("{}: no such file", path.display()));
+                        events.push(UiEvent::Error(format!("{}: no such file", path.display())));
                     } else {
-                        use_path(prompt.purpose, path, state.export_options, &model.state, &mut writers.requests, &mut model.status);
+                        events.push(UiEvent::File(FileAction::UsePath(prompt.purpose, path)));
                         keep = false;
                     }
                 }
@@ -117,7 +118,7 @@ pub(super) fn dialogs(
                 ok = ui.button("OK").clicked();
             });
         if ok {
-            model.status.warnings.clear();
+            events.push(UiEvent::ClearWarnings);
         }
     }
 }

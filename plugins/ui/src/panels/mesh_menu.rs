@@ -300,9 +300,10 @@ pub(super) fn mesh_menu(
     );
     events.extend(merge_events);
     events.extend(euler_events);
-    events.extend(tool_to_start.map(UiEvent::Start));
+    events
+        .extend(tool_to_start.map(|action| UiEvent::Edit(hedra_edit::EditRequest::Start(action))));
     if start_bisect {
-        events.push(UiEvent::StartBisect);
+        events.push(UiEvent::Edit(hedra_edit::EditRequest::StartBisect));
     }
 }
 

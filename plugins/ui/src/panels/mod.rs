@@ -6,7 +6,7 @@
 //! `weight_labels`.
 
 use crate::files::{self, FilePurpose, Pending, Preferences, SamplesDir};
-use crate::{FileAction, UiState, begin_path, run_pending, use_path};
+use crate::{FileAction, UiState, begin_path, run_pending};
 use bevy::ecs::system::SystemParam;
 use bevy::prelude::*;
 use bevy_egui::{EguiContexts, egui};
@@ -14,7 +14,10 @@ use glam::{DQuat, DVec3, EulerRot};
 use hedra_doc::{Command, Document, NodeContent, NodeId, NodeRef, NodeTransform, Shading};
 use hedra_edit::{EditMode, ElementKind, Selection, TransformTool};
 use hedra_geom::Primitive;
-use hedra_scene::{DocRequest, DocState, InputGate, StatusMessage};
+use hedra_scene::{
+    ChangeSetting, DocRequest, DocState, PreviewRequest, PreviewSource, StatusMessage,
+    StatusRequest,
+};
 
 mod add_menu;
 mod construction_panel;
@@ -74,60 +77,96 @@ enum UiEvent {
     File(FileAction),
     Preview(NodeId, NodeTransform),
     Error(String),
-    /// Mesh ▸ Bisect: arm the drag of the cutting line.
-    StartBisect,
-    /// A menu item that starts the same interactive tool as its keys.
-    Start(hedra_edit::bindings::Action),
-    /// Add ▸ Draw Curve: start drawing a curve by clicks.
-    DrawCurve,
+    /// The warnings dialog was acknowledged.
+    ClearWarnings,
+    /// Selection, tools started from a menu, the merge menu closed.
+    Edit(hedra_edit::EditRequest),
     /// A panel field being dragged: the nodes' contents as they would become.
     PreviewContents(Vec<(NodeId, NodeContent)>),
-    /// The *Pick axis* button of a revolution: click its axis's two points.
-    PickAxis(NodeId),
 }
 
+/// What the panels asked for, sent as messages to the plugins that own the
+/// state (`hedra_scene`'s settings, status and previews, `hedra_edit`'s
+/// selection and tools, `hedra_viewport`'s gizmo and analysis). No panel
+/// holds a `ResMut` of another crate's state: each plugin applies its own
+/// messages in `SceneSystems::Requests` of the next frame.
 #[derive(SystemParam)]
 pub struct Writers<'w> {
     requests: MessageWriter<'w, DocRequest>,
     files: MessageWriter<'w, FileAction>,
     exit: MessageWriter<'w, AppExit>,
-    analysis: ResMut<'w, hedra_viewport::CurveAnalysis>,
-    surface_analysis: ResMut<'w, hedra_viewport::SurfaceAnalysis>,
-    gizmo: ResMut<'w, bevy::gizmos::transform_gizmo::TransformGizmoSettings>,
-    bisect: ResMut<'w, hedra_edit::BisectDrag>,
-    snapping: ResMut<'w, hedra_edit::Snapping>,
-    proportional: ResMut<'w, hedra_edit::Proportional>,
-    key_help: ResMut<'w, hedra_edit::bindings::KeyHelp>,
-    requested: ResMut<'w, hedra_edit::bindings::RequestedAction>,
-    curve_draw: ResMut<'w, hedra_edit::CurveDraw>,
-    pivot: ResMut<'w, hedra_edit::PivotPoint>,
-    quad_view: ResMut<'w, hedra_scene::QuadView>,
-    cursor: ResMut<'w, hedra_scene::Cursor3d>,
+    edit: MessageWriter<'w, hedra_edit::EditRequest>,
+    status: MessageWriter<'w, StatusRequest>,
+    previews: MessageWriter<'w, PreviewRequest>,
+    gizmo_mode: MessageWriter<'w, hedra_viewport::SetGizmoMode>,
+    settings: SettingWriters<'w>,
 }
 
+/// The settings the panels change, one message kind each.
+#[derive(SystemParam)]
+pub struct SettingWriters<'w> {
+    shading: MessageWriter<'w, ChangeSetting<hedra_scene::ViewportShading>>,
+    quad_view: MessageWriter<'w, ChangeSetting<hedra_scene::QuadView>>,
+    cursor: MessageWriter<'w, ChangeSetting<hedra_scene::Cursor3d>>,
+    snapping: MessageWriter<'w, ChangeSetting<hedra_edit::Snapping>>,
+    proportional: MessageWriter<'w, ChangeSetting<hedra_edit::Proportional>>,
+    pivot: MessageWriter<'w, ChangeSetting<hedra_edit::PivotPoint>>,
+    key_help: MessageWriter<'w, ChangeSetting<hedra_edit::bindings::KeyHelp>>,
+    analysis: MessageWriter<'w, ChangeSetting<hedra_viewport::CurveAnalysis>>,
+    surface_analysis: MessageWriter<'w, ChangeSetting<hedra_viewport::SurfaceAnalysis>>,
+}
+
+/// Sends `edited` as the new value of a setting when a panel changed it.
+fn send_changed<T: hedra_scene::Setting>(
+    writer: &mut MessageWriter<ChangeSetting<T>>,
+    current: &T,
+    edited: T,
+) {
+    if *current != edited {
+        writer.write(ChangeSetting(edited));
+    }
+}
+
+/// The settings the panels show, read only.
+#[derive(SystemParam)]
+pub struct Settings<'w> {
+    gizmo: Res<'w, bevy::gizmos::transform_gizmo::TransformGizmoSettings>,
+    quad_view: Res<'w, hedra_scene::QuadView>,
+    cursor: Res<'w, hedra_scene::Cursor3d>,
+    snapping: Res<'w, hedra_edit::Snapping>,
+    proportional: Res<'w, hedra_edit::Proportional>,
+    pivot: Res<'w, hedra_edit::PivotPoint>,
+    key_help: Res<'w, hedra_edit::bindings::KeyHelp>,
+    analysis: Res<'w, hedra_viewport::CurveAnalysis>,
+    surface_analysis: Res<'w, hedra_viewport::SurfaceAnalysis>,
+}
+
+/// The state the panels show, read only.
 #[derive(SystemParam)]
 pub struct Model<'w> {
     state: Res<'w, DocState>,
-    selection: ResMut<'w, Selection>,
+    selection: Res<'w, Selection>,
     tool: Res<'w, TransformTool>,
-    status: ResMut<'w, StatusMessage>,
+    status: Res<'w, StatusMessage>,
     prefs: Res<'w, Preferences>,
     samples: Option<Res<'w, SamplesDir>>,
-    mode: ResMut<'w, EditMode>,
+    mode: Res<'w, EditMode>,
     previews: Res<'w, hedra_scene::SmoothPreviews>,
     jobs: Res<'w, hedra_scene::FileJobs>,
     shape_edit: Res<'w, hedra_edit::ShapeEdit>,
-    shading: ResMut<'w, hedra_scene::ViewportShading>,
+    shading: Res<'w, hedra_scene::ViewportShading>,
 }
 
+/// Draws every panel, menu and dialog, then sends what the user decided
+/// (see [`Writers`]); its only own state is [`UiState`].
 #[allow(clippy::too_many_arguments)]
 pub fn draw_ui(
     mut contexts: EguiContexts,
     mut ui_state: ResMut<UiState>,
-    mut model: Model,
+    model: Model,
+    settings: Settings,
     mut writers: Writers,
-    mut gate: ResMut<InputGate>,
-    mut tool_previews: ResMut<hedra_scene::Previews>,
+    tool_previews: Res<hedra_scene::Previews>,
     control_points: Query<(&hedra_scene::ControlPoint, &ChildOf)>,
     entities: Res<hedra_scene::NodeEntities>,
     camera: Query<(&Camera, &GlobalTransform), With<hedra_scene::ViewportCamera>>,
@@ -143,15 +182,14 @@ pub fn draw_ui(
     );
     let doc = &model.state.session.doc;
 
-    // View ▸ Gizmo chooses what the transform gizmo does.
-    // View ▸ Wireframe and X-ray choose the shading.
-    let mut gizmo_mode = writers.gizmo.mode;
+    // The menus edit copies of the settings; what changed is sent below.
+    let mut gizmo_mode = settings.gizmo.mode;
     let mut shading = *model.shading;
-    let mut snapping = *writers.snapping;
-    let mut proportional = *writers.proportional;
-    let mut pivot = *writers.pivot;
-    let mut quad_view = writers.quad_view.0;
-    let mut cursor = writers.cursor.0;
+    let mut snapping = *settings.snapping;
+    let mut proportional = *settings.proportional;
+    let mut pivot = *settings.pivot;
+    let mut quad_view = settings.quad_view.0;
+    let mut cursor = settings.cursor.0;
     let view_direction = camera
         .single()
         .ok()
@@ -171,21 +209,6 @@ pub fn draw_ui(
         };
         menu_bar(ui, &mut ui_state, &model, view, &mut events)
     });
-    if writers.gizmo.mode != gizmo_mode {
-        writers.gizmo.mode = gizmo_mode;
-    }
-    if *writers.snapping != snapping {
-        *writers.snapping = snapping;
-    }
-    if *writers.proportional != proportional {
-        *writers.proportional = proportional;
-    }
-    if *writers.pivot != pivot {
-        *writers.pivot = pivot;
-    }
-    if writers.quad_view.0 != quad_view {
-        writers.quad_view.0 = quad_view;
-    }
     snap_menu(&ctx, &mut ui_state, &model, &mut cursor, &mut events);
     shading_menu(
         &ctx,
@@ -194,12 +217,6 @@ pub fn draw_ui(
         &model.selection,
         &mut events,
     );
-    if *model.shading != shading {
-        *model.shading = shading;
-    }
-    if writers.cursor.0 != cursor {
-        writers.cursor.0 = cursor;
-    }
     egui::Panel::bottom("status").show(&mut root, |ui| status_bar(ui, &model));
     if ui_state.show_outliner {
         egui::Panel::left("outliner")
@@ -219,25 +236,19 @@ pub fn draw_ui(
                 );
             });
     }
+    let mut analysis = (settings.analysis.clone(), settings.surface_analysis.clone());
     if ui_state.show_properties {
         egui::Panel::right("properties")
             .resizable(true)
             .default_size(270.0)
             .show(&mut root, |ui| {
                 egui::ScrollArea::vertical().show(ui, |ui| {
-                    let mut analysis = (writers.analysis.clone(), writers.surface_analysis.clone());
                     // A running gizmo drag or G shows in the fields as it goes.
                     let shown = model
                         .selection
                         .active()
                         .and_then(|id| tool_previews.transform(id).copied());
                     properties(ui, &model, shown, &mut ui_state, &mut events, &mut analysis);
-                    if analysis.0 != *writers.analysis {
-                        *writers.analysis = analysis.0;
-                    }
-                    if analysis.1 != *writers.surface_analysis {
-                        *writers.surface_analysis = analysis.1;
-                    }
                 });
             });
     }
@@ -277,7 +288,7 @@ pub fn draw_ui(
         joint_labels(
             &root.painter_at(free),
             &model,
-            &writers.analysis,
+            &settings.analysis,
             cam,
             cam_t,
         );
@@ -305,40 +316,48 @@ pub fn draw_ui(
         statistics_overlay(&ctx, free, &model, &mut ui_state);
     }
     adjust_last_window(&ctx, free, &model, &mut events);
-    let mut key_help = *writers.key_help;
+    let mut key_help = *settings.key_help;
     key_help_window(&ctx, free, &model, &mut key_help);
-    if *writers.key_help != key_help {
-        *writers.key_help = key_help;
-    }
     let curve = active_curve(&model.state.session.doc, model.selection.active());
-    add_menu(&ctx, &mut ui_state, &mut events, curve, writers.cursor.0);
-    merge_menu(&ctx, &mut model, &mut events);
-    dialogs(&ctx, &mut ui_state, &mut model, &mut writers);
+    add_menu(&ctx, &mut ui_state, &mut events, curve, settings.cursor.0);
+    merge_menu(&ctx, &model, &mut events);
+    dialogs(&ctx, &mut ui_state, &model, &mut writers, &mut events);
 
-    // Whether the pointer is the viewport's is decided at the start of the
-    // next frame, from where it is then (`egui_input::refresh_pointer_gate`).
-    // Only text fields keep the keyboard. A clicked button would keep
-    // egui's focus: every shortcut blocked until a click elsewhere, and
-    // Enter or Space (a tool's confirm) would press it again.
-    if let Some(id) = ctx.memory(|m| m.focused())
-        && !ctx.text_edit_focused()
-    {
-        ctx.memory_mut(|m| m.surrender_focus(id));
+    // Send what the panels changed and decided.
+    if settings.gizmo.mode != gizmo_mode {
+        writers
+            .gizmo_mode
+            .write(hedra_viewport::SetGizmoMode(gizmo_mode));
     }
-    // No shortcut runs while a text field has the keyboard or a dialog
-    // that is typed into is open (the path prompt, unsaved changes).
-    gate.keyboard_free =
-        !ctx.text_edit_focused() && ui_state.path_prompt.is_none() && ui_state.confirm.is_none();
-
-    // Apply what the panels decided.
+    let to = &mut writers.settings;
+    send_changed(&mut to.shading, &model.shading, shading);
+    send_changed(&mut to.snapping, &settings.snapping, snapping);
+    send_changed(&mut to.proportional, &settings.proportional, proportional);
+    send_changed(&mut to.pivot, &settings.pivot, pivot);
+    send_changed(
+        &mut to.quad_view,
+        &settings.quad_view,
+        hedra_scene::QuadView(quad_view),
+    );
+    send_changed(
+        &mut to.cursor,
+        &settings.cursor,
+        hedra_scene::Cursor3d(cursor),
+    );
+    send_changed(&mut to.key_help, &settings.key_help, key_help);
+    send_changed(&mut to.analysis, &settings.analysis, analysis.0);
+    send_changed(
+        &mut to.surface_analysis,
+        &settings.surface_analysis,
+        analysis.1,
+    );
+    let mut properties_preview = false;
     for e in events {
         match e {
-            UiEvent::Select(id, additive) => {
-                if additive {
-                    model.selection.toggle(id);
-                } else {
-                    model.selection.set([id]);
-                }
+            UiEvent::Select(node, additive) => {
+                writers
+                    .edit
+                    .write(hedra_edit::EditRequest::Select { node, additive });
             }
             UiEvent::Request(r) => {
                 writers.requests.write(r);
@@ -346,14 +365,14 @@ pub fn draw_ui(
             UiEvent::File(f) => {
                 writers.files.write(f);
             }
-            UiEvent::Error(e) => model.status.error(e),
-            UiEvent::StartBisect => {
-                hedra_edit::start_bisect(&mut writers.bisect, &model.mode, &mut model.status)
+            UiEvent::Error(e) => {
+                writers.status.write(StatusRequest::Error(e));
             }
-            UiEvent::Start(action) => writers.requested.0 = Some(action),
-            UiEvent::DrawCurve => {
-                model.selection.nodes.clear();
-                writers.curve_draw.start(&mut model.status);
+            UiEvent::ClearWarnings => {
+                writers.status.write(StatusRequest::ClearWarnings);
+            }
+            UiEvent::Edit(request) => {
+                writers.edit.write(request);
             }
             UiEvent::PreviewContents(contents) => {
                 let contents: std::collections::HashMap<_, _> = contents
@@ -363,33 +382,37 @@ pub fn draw_ui(
                     })
                     .collect();
                 if !contents.is_empty() {
-                    hedra_scene::Previews::show(
-                        &mut tool_previews,
-                        hedra_scene::PreviewSource::Properties,
+                    properties_preview = true;
+                    writers.previews.write(PreviewRequest::Show(
+                        PreviewSource::Properties,
                         hedra_scene::ToolPreview {
                             contents: contents.into_iter().collect(),
                             ..default()
                         },
-                    )
+                    ));
                 }
             }
-            UiEvent::PickAxis(id) => {
-                model.selection.set([id]);
-                writers.curve_draw.start_axis(id, &mut model.status);
+            UiEvent::Preview(id, t) => {
+                properties_preview = true;
+                writers.previews.write(PreviewRequest::Show(
+                    PreviewSource::Properties,
+                    hedra_scene::ToolPreview {
+                        transforms: [(id, t)].into(),
+                        ..default()
+                    },
+                ));
             }
-            UiEvent::Preview(id, t) => hedra_scene::Previews::show(
-                &mut tool_previews,
-                hedra_scene::PreviewSource::Properties,
-                hedra_scene::ToolPreview {
-                    transforms: [(id, t)].into(),
-                    ..default()
-                },
-            ),
         }
     }
     // A field let go: its command (sent above) replaces the preview.
-    if ui_state.transform_edit.is_none() && ui_state.construction_edit.is_none() {
-        hedra_scene::Previews::clear(&mut tool_previews, hedra_scene::PreviewSource::Properties);
+    if !properties_preview
+        && ui_state.transform_edit.is_none()
+        && ui_state.construction_edit.is_none()
+        && tool_previews.has(PreviewSource::Properties)
+    {
+        writers
+            .previews
+            .write(PreviewRequest::Clear(PreviewSource::Properties));
     }
     Ok(())
 }

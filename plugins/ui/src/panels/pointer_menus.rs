@@ -149,12 +149,12 @@ pub(super) fn shading_menu(
 pub const MERGE_MENU: &str = "merge-menu";
 
 /// M in vertex edit mode: Blender's merge menu at the cursor.
-pub(super) fn merge_menu(ctx: &egui::Context, model: &mut Model, events: &mut Vec<UiEvent>) {
+pub(super) fn merge_menu(ctx: &egui::Context, model: &Model, events: &mut Vec<UiEvent>) {
     let Some(pos) = model.mode.merge_menu_at else {
         return;
     };
     let Some(node) = model.mode.node else {
-        model.mode.merge_menu_at = None;
+        events.push(UiEvent::Edit(hedra_edit::EditRequest::CloseMergeMenu));
         return;
     };
     let selection = &model.mode.selection;
@@ -166,7 +166,7 @@ pub(super) fn merge_menu(ctx: &egui::Context, model: &mut Model, events: &mut Ve
         events.len() > before
     });
     if close {
-        model.mode.merge_menu_at = None;
+        events.push(UiEvent::Edit(hedra_edit::EditRequest::CloseMergeMenu));
     }
 }
 
