@@ -3,7 +3,9 @@
 //! CSG node made of the selected objects; a CSG node's panel switches its
 //! operation and applies it.
 
+use super::menu_table::{MenuRow, When, item, keyed_item, with_hover};
 use super::*;
+use hedra_edit::bindings::{Action, KeyMode::Object};
 use hedra_geom::csg::BooleanOp;
 
 /// The three operations with their menu names.
@@ -15,55 +17,91 @@ const OPS: [(BooleanOp, &str); 3] = [
 
 use hedra_edit::boolean_command;
 
-/// Object ▸ Boolean: the one-shot operations and a live CSG node.
-pub(super) fn boolean_menu(ui: &mut egui::Ui, selection: &Selection, events: &mut Vec<UiEvent>) {
-    for ((op, label), action) in OPS.into_iter().zip([
-        hedra_edit::bindings::Action::BooleanUnion,
-        hedra_edit::bindings::Action::BooleanDifference,
-        hedra_edit::bindings::Action::BooleanIntersection,
-    ]) {
-        let cmd = boolean_command(selection, op);
-        if ui
-            .add_enabled(
-                cmd.is_some(),
-                egui::Button::new(keyed_in(
-                    hedra_edit::bindings::KeyMode::Object,
-                    &format!("{label} (apply)"),
-                    action,
-                )),
-            )
-            .on_disabled_hover_text("Select two closed meshes; the active one is kept")
-            .clicked()
-            && let Some(cmd) = cmd
-        {
-            exec(events, cmd);
-            ui.close();
-        }
-    }
-    ui.separator();
-    for (op, label) in OPS {
-        if ui
-            .add_enabled(
-                selection.nodes.len() >= 2,
-                egui::Button::new(format!("Live CSG {label}")),
-            )
-            .on_hover_text("A CSG node whose operands are the selected objects (editable later)")
-            .clicked()
-        {
-            exec(
-                events,
-                Command::AddCsg {
-                    op,
-                    name: Some(label.into()),
-                    operands: selection.refs(),
-                    parent: None,
-                    transform: Default::default(),
-                },
-            );
-            ui.close();
-        }
+/// Select two closed meshes for a one-shot boolean.
+const TWO_CLOSED: &str = "Select two closed meshes; the active one is kept";
+
+/// The one-shot boolean `op` of the selection, where there is one.
+fn one_shot(s: &MenuState<'_>, op: BooleanOp) -> Result<(), &'static str> {
+    boolean_command(s.selection, op)
+        .map(|_| ())
+        .ok_or(TWO_CLOSED)
+}
+
+/// Sends the one-shot boolean `op` of the selection.
+fn send_one_shot(s: &MenuState<'_>, op: BooleanOp, events: &mut Vec<UiEvent>) {
+    if let Some(cmd) = boolean_command(s.selection, op) {
+        exec(events, cmd);
     }
 }
+
+/// A live CSG node `op` of the selected objects.
+fn live(s: &MenuState<'_>, op: BooleanOp, events: &mut Vec<UiEvent>) {
+    let name = OPS
+        .iter()
+        .find(|(o, _)| *o == op)
+        .map(|(_, n)| n.to_string());
+    exec(
+        events,
+        Command::AddCsg {
+            op,
+            name,
+            operands: s.selection.refs(),
+            parent: None,
+            transform: Default::default(),
+        },
+    );
+}
+
+const TWO_OBJECTS: When = |s| match s.selection.nodes.len() >= 2 {
+    true => Ok(()),
+    false => Err("Select the objects to combine (two or more)"),
+};
+
+const LIVE_HOVER: &str = "A CSG node whose operands are the selected objects (editable later)";
+
+/// Object ▸ Boolean: the one-shot operations and a live CSG node.
+pub(super) const BOOLEAN_MENU: &[MenuRow] = &[
+    keyed_item(
+        "Union (apply)",
+        Object,
+        Action::BooleanUnion,
+        |s| one_shot(s, BooleanOp::Union),
+        |s, e| send_one_shot(s, BooleanOp::Union, e),
+    ),
+    keyed_item(
+        "Difference (apply)",
+        Object,
+        Action::BooleanDifference,
+        |s| one_shot(s, BooleanOp::Difference),
+        |s, e| send_one_shot(s, BooleanOp::Difference, e),
+    ),
+    keyed_item(
+        "Intersection (apply)",
+        Object,
+        Action::BooleanIntersection,
+        |s| one_shot(s, BooleanOp::Intersection),
+        |s, e| send_one_shot(s, BooleanOp::Intersection, e),
+    ),
+    MenuRow::Separator,
+    with_hover(
+        item("Live CSG Union", TWO_OBJECTS, |s, e| {
+            live(s, BooleanOp::Union, e)
+        }),
+        LIVE_HOVER,
+    ),
+    with_hover(
+        item("Live CSG Difference", TWO_OBJECTS, |s, e| {
+            live(s, BooleanOp::Difference, e)
+        }),
+        LIVE_HOVER,
+    ),
+    with_hover(
+        item("Live CSG Intersection", TWO_OBJECTS, |s, e| {
+            live(s, BooleanOp::Intersection, e)
+        }),
+        LIVE_HOVER,
+    ),
+];
 
 /// A CSG node's section: its operation (switchable), its operands, its
 /// solid's counts or why there is none, Apply.

@@ -1,10 +1,274 @@
 //! The menu bar: File, Edit, Add, Mesh (in edit mode), Object and View.
 
+use super::menu_table::{ALWAYS, MenuRow, When, item, keyed_item, with_hover};
 use super::*;
 use hedra_edit::bindings::{
     Action,
     KeyMode::{Edit, Everywhere, Object},
 };
+
+/// File ▸ up to Export (drawn by code: its option checkboxes).
+pub(super) const FILE_MENU: &[MenuRow] = &[
+    keyed_item("New", Everywhere, Action::NewFile, ALWAYS, |_, e| {
+        e.push(UiEvent::File(FileAction::New))
+    }),
+    keyed_item("Open…", Everywhere, Action::OpenFile, ALWAYS, |_, e| {
+        e.push(UiEvent::File(FileAction::Open))
+    }),
+    MenuRow::Submenu("Open Recent", None, &[MenuRow::Listed(recent_files)]),
+    MenuRow::Submenu("Open Sample", None, &[MenuRow::Listed(sample_files)]),
+    MenuRow::Separator,
+    keyed_item("Save", Everywhere, Action::Save, ALWAYS, |_, e| {
+        e.push(UiEvent::File(FileAction::Save))
+    }),
+    keyed_item("Save As…", Everywhere, Action::SaveAs, ALWAYS, |_, e| {
+        e.push(UiEvent::File(FileAction::SaveAs))
+    }),
+    MenuRow::Separator,
+    // Its hover text lists the formats the reader takes.
+    MenuRow::Listed(|ui, _, e| {
+        if ui
+            .button("Import…")
+            .on_hover_text(format!(
+                "Add a file's nodes to the scene: {}",
+                hedra_doc::import::supported_imports()
+            ))
+            .clicked()
+        {
+            e.push(UiEvent::File(FileAction::Import));
+            ui.close();
+        }
+    }),
+];
+
+/// File ▸ after Export.
+pub(super) const QUIT_MENU: &[MenuRow] = &[
+    MenuRow::Separator,
+    keyed_item("Quit", Everywhere, Action::Quit, ALWAYS, |_, e| {
+        e.push(UiEvent::File(FileAction::Quit))
+    }),
+];
+
+/// Edit ▸ Undo and Redo (the rest of the Edit menu are settings).
+pub(super) const EDIT_MENU: &[MenuRow] = &[
+    keyed_item(
+        "Undo",
+        Everywhere,
+        Action::Undo,
+        |s| match s.history.can_undo() {
+            true => Ok(()),
+            false => Err("Nothing to undo"),
+        },
+        |_, e| e.push(UiEvent::Request(DocRequest::Undo)),
+    ),
+    keyed_item(
+        "Redo",
+        Everywhere,
+        Action::Redo,
+        |s| match s.history.can_redo() {
+            true => Ok(()),
+            false => Err("Nothing to redo"),
+        },
+        |_, e| e.push(UiEvent::Request(DocRequest::Redo)),
+    ),
+];
+
+/// File ▸ Open Recent: one item per recent file.
+fn recent_files(ui: &mut egui::Ui, s: &MenuState<'_>, events: &mut Vec<UiEvent>) {
+    if s.recent.is_empty() {
+        ui.label("(no recent files)");
+    }
+    for p in s.recent {
+        if ui.button(p.display().to_string()).clicked() {
+            events.push(UiEvent::File(FileAction::OpenPath(p.clone())));
+            ui.close();
+        }
+    }
+}
+
+/// File ▸ Open Sample: one item per sample scene.
+fn sample_files(ui: &mut egui::Ui, s: &MenuState<'_>, events: &mut Vec<UiEvent>) {
+    let samples = s.samples.map(files::list_samples).unwrap_or_default();
+    if samples.is_empty() {
+        ui.label("(no samples found)");
+    }
+    for p in samples {
+        let name = p
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        if ui
+            .button(name)
+            .on_hover_text("Opens as a new scene: the sample stays as it is")
+            .clicked()
+        {
+            events.push(UiEvent::File(FileAction::OpenSample(p)));
+            ui.close();
+        }
+    }
+}
+
+const ANY_OBJECT: When = |s| match s.selection.nodes.is_empty() {
+    true => Err("Select objects first (click, or A for all)"),
+    false => Ok(()),
+};
+
+/// Object ▸ Convert ▸ To NURBS: why the active node cannot convert.
+const CONVERTIBLE: When = |s| {
+    use hedra_geom::subdivision::Scheme;
+    match s
+        .selection
+        .active()
+        .and_then(|id| s.doc.node(id))
+        .map(|n| &n.content)
+    {
+        None => Err("Select a mesh with a Catmull-Clark subdivision modifier"),
+        Some(NodeContent::Mesh(m)) => match &m.subdivision {
+            None => Err("The active mesh has no subdivision modifier (Ctrl+1 adds one)"),
+            Some(s) if s.options.scheme != Scheme::CatmullClark => {
+                Err("Only a Catmull-Clark limit surface converts to NURBS")
+            }
+            Some(_) => Ok(()),
+        },
+        Some(_) => Err("The active object is not a mesh"),
+    }
+};
+
+/// The selected kept (non-manifold) meshes.
+fn selected_kept(s: &MenuState<'_>) -> Vec<NodeRef> {
+    s.selection
+        .nodes
+        .iter()
+        .filter(|id| {
+            matches!(
+                s.doc.node(**id).map(|n| &n.content),
+                Some(NodeContent::Kept(_))
+            )
+        })
+        .map(|&id| NodeRef::from(id))
+        .collect()
+}
+
+/// The Mesh menu in object mode: Make Manifold repairs the selected kept
+/// meshes into editable meshes.
+pub(super) const OBJECT_MESH_MENU: &[MenuRow] = &[with_hover(
+    item(
+        "Make Manifold",
+        |s| match selected_kept(s).is_empty() {
+            true => Err("Select a mesh kept as imported (⚠ in the outliner)"),
+            false => Ok(()),
+        },
+        |s, e| {
+            exec(
+                e,
+                Command::MakeManifold {
+                    nodes: selected_kept(s),
+                },
+            )
+        },
+    ),
+    "Repair meshes kept as imported (not manifold) into editable meshes",
+)];
+
+/// The Object menu.
+pub(super) const OBJECT_MENU: &[MenuRow] = &[
+    keyed_item(
+        "Duplicate",
+        Object,
+        Action::Duplicate,
+        ANY_OBJECT,
+        |s, e| exec(e, Command::Duplicate { nodes: s.nodes() }),
+    ),
+    keyed_item("Delete", Object, Action::Delete, ANY_OBJECT, |s, e| {
+        exec(e, Command::Delete { nodes: s.nodes() })
+    }),
+    keyed_item("Hide", Object, Action::Hide, ANY_OBJECT, |s, e| {
+        exec(
+            e,
+            Command::SetVisible {
+                nodes: s.nodes(),
+                visible: false,
+            },
+        )
+    }),
+    MenuRow::Submenu(
+        "Surface from Curves",
+        None,
+        &[MenuRow::Listed(|ui, s, e| {
+            surface_from_curves_menu(ui, s.doc, s.selection, e)
+        })],
+    ),
+    MenuRow::Listed(|ui, s, e| g1_join_items(ui, s.doc, s.selection, e)),
+    MenuRow::Submenu(
+        "Convert",
+        None,
+        &[with_hover(
+            item("To NURBS", CONVERTIBLE, |s, e| {
+                if let Some(node) = s.selection.active() {
+                    exec(
+                        e,
+                        Command::ConvertSubdivisionToNurbs {
+                            node: NodeRef::from(node),
+                            tolerance: None,
+                            keep_cage: true,
+                        },
+                    )
+                }
+            }),
+            "The smooth surface as NURBS patches: exact B-spline surfaces where the cage is \
+             regular, fitted patches within 1e-4 of the size elsewhere; the cage is kept, hidden",
+        )],
+    ),
+    MenuRow::Separator,
+    MenuRow::Heading("Boolean"),
+    MenuRow::Listed(|ui, s, e| draw_menu(ui, BOOLEAN_MENU, s, e)),
+    MenuRow::Separator,
+    keyed_item(
+        "Join Curves",
+        Object,
+        Action::JoinCurves,
+        |s| match hedra_edit::join_curves_command(s.doc, s.selection) {
+            Ok(_) => Ok(()),
+            Err(_) => Err("Select two curves: the active one comes first"),
+        },
+        |s, e| {
+            if let Ok(cmd) = hedra_edit::join_curves_command(s.doc, s.selection) {
+                exec(e, cmd)
+            }
+        },
+    ),
+    item("Clear Parent", ANY_OBJECT, |s, e| {
+        for node in s.nodes() {
+            exec(
+                e,
+                Command::Reparent {
+                    node,
+                    parent: None,
+                    keep_world: true,
+                },
+            )
+        }
+    }),
+    MenuRow::Separator,
+    item("Shade Flat", ANY_OBJECT, |s, e| {
+        exec(
+            e,
+            Command::SetShading {
+                nodes: s.nodes(),
+                shading: Shading::Flat,
+            },
+        )
+    }),
+    item("Shade Smooth", ANY_OBJECT, |s, e| {
+        exec(
+            e,
+            Command::SetShading {
+                nodes: s.nodes(),
+                shading: Shading::Smooth,
+            },
+        )
+    }),
+];
 
 /// What the View menu changes in the viewport (written back after the menus).
 pub(super) struct ViewChoices<'a> {
@@ -22,14 +286,13 @@ pub(super) struct ViewChoices<'a> {
     pub proportional: &'a mut hedra_edit::Proportional,
     /// The 3D cursor's world position.
     pub cursor: &'a mut DVec3,
-    /// The direction the viewport looks (world), the axis Spin turns about.
-    pub view_direction: Option<DVec3>,
 }
 
 pub(super) fn menu_bar(
     ui: &mut egui::Ui,
     state: &mut UiState,
     model: &Model,
+    menu: &MenuState<'_>,
     view: ViewChoices,
     events: &mut Vec<UiEvent>,
 ) {
@@ -41,79 +304,10 @@ pub(super) fn menu_bar(
         pivot,
         quad_view,
         cursor,
-        view_direction,
     } = view;
     egui::MenuBar::new().ui(ui, |ui| {
         ui.menu_button("File", |ui| {
-            if ui
-                .button(keyed_in(Everywhere, "New", Action::NewFile))
-                .clicked()
-            {
-                events.push(UiEvent::File(FileAction::New));
-            }
-            if ui
-                .button(keyed_in(Everywhere, "Open…", Action::OpenFile))
-                .clicked()
-            {
-                events.push(UiEvent::File(FileAction::Open));
-            }
-            ui.menu_button("Open Recent", |ui| {
-                if model.prefs.recent.is_empty() {
-                    ui.label("(no recent files)");
-                }
-                for p in &model.prefs.recent {
-                    if ui.button(p.display().to_string()).clicked() {
-                        events.push(UiEvent::File(FileAction::OpenPath(p.clone())));
-                    }
-                }
-            });
-            ui.menu_button("Open Sample", |ui| {
-                let samples = model
-                    .samples
-                    .as_ref()
-                    .map(|d| files::list_samples(&d.0))
-                    .unwrap_or_default();
-                if samples.is_empty() {
-                    ui.label("(no samples found)");
-                }
-                for p in samples {
-                    let name = p
-                        .file_name()
-                        .map(|n| n.to_string_lossy().into_owned())
-                        .unwrap_or_default();
-                    if ui
-                        .button(name)
-                        .on_hover_text("Opens as a new scene: the sample stays as it is")
-                        .clicked()
-                    {
-                        events.push(UiEvent::File(FileAction::OpenSample(p)));
-                    }
-                }
-            });
-            ui.separator();
-            if ui
-                .button(keyed_in(Everywhere, "Save", Action::Save))
-                .clicked()
-            {
-                events.push(UiEvent::File(FileAction::Save));
-            }
-            if ui
-                .button(keyed_in(Everywhere, "Save As…", Action::SaveAs))
-                .clicked()
-            {
-                events.push(UiEvent::File(FileAction::SaveAs));
-            }
-            ui.separator();
-            if ui
-                .button("Import…")
-                .on_hover_text(format!(
-                    "Add a file's nodes to the scene: {}",
-                    hedra_doc::import::supported_imports()
-                ))
-                .clicked()
-            {
-                events.push(UiEvent::File(FileAction::Import));
-            }
+            draw_menu(ui, FILE_MENU, menu, events);
             ui.menu_button("Export", |ui| {
                 for format in hedra_doc::export::ExportFormat::ALL {
                     if ui.button(format.menu_label()).clicked() {
@@ -123,34 +317,10 @@ pub(super) fn menu_bar(
                 ui.separator();
                 export_option_checkboxes(ui, &mut state.export_options);
             });
-            ui.separator();
-            if ui
-                .button(keyed_in(Everywhere, "Quit", Action::Quit))
-                .clicked()
-            {
-                events.push(UiEvent::File(FileAction::Quit));
-            }
+            draw_menu(ui, QUIT_MENU, menu, events);
         });
         ui.menu_button("Edit", |ui| {
-            let h = &model.state.session.history;
-            if ui
-                .add_enabled(
-                    h.can_undo(),
-                    egui::Button::new(keyed_in(Everywhere, "Undo", Action::Undo)),
-                )
-                .clicked()
-            {
-                events.push(UiEvent::Request(DocRequest::Undo));
-            }
-            if ui
-                .add_enabled(
-                    h.can_redo(),
-                    egui::Button::new(keyed_in(Everywhere, "Redo", Action::Redo)),
-                )
-                .clicked()
-            {
-                events.push(UiEvent::Request(DocRequest::Redo));
-            }
+            draw_menu(ui, EDIT_MENU, menu, events);
             ui.separator();
             ui.checkbox(&mut state.show_history, "Undo History");
             ui.separator();
@@ -166,35 +336,12 @@ pub(super) fn menu_bar(
                 state.show_preferences = true;
             }
         });
-        let curve = active_curve(&model.state.session.doc, model.selection.active());
-        let at = *cursor;
-        ui.menu_button("Add", |ui| {
-            add_primitive_buttons(ui, events, at);
-            add_shape_buttons(ui, events, curve, at, None);
-        });
-        if let Some(node) = model.mode.node {
-            // Spin turns about the view axis through the 3D cursor (Blender),
-            // both given to the command in the node's local space.
-            let to_local = model.state.session.doc.world_matrix(node).inverse();
-            let spin_axis = view_direction.map(|d| {
-                (
-                    to_local.transform_point3(*cursor),
-                    to_local.transform_vector3(d),
-                )
-            });
-            ui.menu_button("Mesh", |ui| {
-                let mesh = match model.state.session.doc.node(node).map(|n| &n.content) {
-                    Some(NodeContent::Mesh(m)) => Some(m.mesh.clone()),
-                    _ => None,
-                };
-                mesh_menu(ui, node, &model.mode, spin_axis, mesh.as_deref(), events)
-            });
-        }
-        if model.mode.node.is_none() {
+        ui.menu_button("Add", |ui| draw_menu(ui, ADD_MENU_ROWS, menu, events));
+        if model.mode.node.is_some() {
+            ui.menu_button("Mesh", |ui| draw_menu(ui, MESH_MENU, menu, events));
+        } else {
             // Object mode: the Mesh menu's one object-level tool.
-            ui.menu_button("Mesh", |ui| {
-                kept_mesh_items(ui, &model.state.session.doc, &model.selection, events)
-            });
+            ui.menu_button("Mesh", |ui| draw_menu(ui, OBJECT_MESH_MENU, menu, events));
         }
         if let Some(node) = model.shape_edit.node
             && let Some(NodeContent::Curve(curve)) =
@@ -204,106 +351,7 @@ pub(super) fn menu_bar(
                 curve_menu(ui, node, curve, &model.shape_edit.selected, events)
             });
         }
-        ui.menu_button("Object", |ui| {
-            let sel = model.selection.refs();
-            let any = !sel.is_empty();
-            if ui
-                .add_enabled(
-                    any,
-                    egui::Button::new(keyed_in(Object, "Duplicate", Action::Duplicate)),
-                )
-                .clicked()
-            {
-                exec(events, Command::Duplicate { nodes: sel.clone() });
-            }
-            if ui
-                .add_enabled(
-                    any,
-                    egui::Button::new(keyed_in(Object, "Delete", Action::Delete)),
-                )
-                .clicked()
-            {
-                exec(events, Command::Delete { nodes: sel.clone() });
-            }
-            if ui
-                .add_enabled(
-                    any,
-                    egui::Button::new(keyed_in(Object, "Hide", Action::Hide)),
-                )
-                .clicked()
-            {
-                exec(
-                    events,
-                    Command::SetVisible {
-                        nodes: sel.clone(),
-                        visible: false,
-                    },
-                );
-            }
-            ui.menu_button("Surface from Curves", |ui| {
-                surface_from_curves_menu(ui, &model.state.session.doc, &model.selection, events)
-            });
-            g1_join_items(ui, &model.state.session.doc, &model.selection, events);
-            ui.menu_button("Convert", |ui| {
-                convert_items(ui, &model.state.session.doc, &model.selection, events)
-            });
-            ui.separator();
-            ui.label(egui::RichText::new("Boolean").weak());
-            boolean_menu(ui, &model.selection, events);
-            ui.separator();
-            let join = hedra_edit::join_curves_command(&model.state.session.doc, &model.selection);
-            if ui
-                .add_enabled(
-                    join.is_ok(),
-                    egui::Button::new(keyed_in(Object, "Join Curves", Action::JoinCurves)),
-                )
-                .on_disabled_hover_text("Select two curves: the active one comes first")
-                .clicked()
-                && let Ok(cmd) = join
-            {
-                exec(events, cmd);
-            }
-            if ui
-                .add_enabled(any, egui::Button::new("Clear Parent"))
-                .clicked()
-            {
-                for r in &sel {
-                    exec(
-                        events,
-                        Command::Reparent {
-                            node: r.clone(),
-                            parent: None,
-                            keep_world: true,
-                        },
-                    );
-                }
-            }
-            ui.separator();
-            if ui
-                .add_enabled(any, egui::Button::new("Shade Flat"))
-                .clicked()
-            {
-                exec(
-                    events,
-                    Command::SetShading {
-                        nodes: sel.clone(),
-                        shading: Shading::Flat,
-                    },
-                );
-            }
-            if ui
-                .add_enabled(any, egui::Button::new("Shade Smooth"))
-                .clicked()
-            {
-                exec(
-                    events,
-                    Command::SetShading {
-                        nodes: sel,
-                        shading: Shading::Smooth,
-                    },
-                );
-            }
-        });
+        ui.menu_button("Object", |ui| draw_menu(ui, OBJECT_MENU, menu, events));
         ui.menu_button("View", |ui| {
             ui.checkbox(&mut state.show_outliner, "Outliner");
             ui.checkbox(&mut state.show_properties, "Properties");
@@ -462,78 +510,5 @@ fn export_option_checkboxes(ui: &mut egui::Ui, options: &mut hedra_doc::export::
         } else {
             CurveExport::Polylines
         };
-    }
-}
-
-/// Object ▸ Convert: To NURBS turns the active mesh's Catmull-Clark limit
-/// surface into NURBS surfaces (the cage kept, hidden; Adjust Last sets
-/// the tolerance and whether the cage is kept).
-fn convert_items(
-    ui: &mut egui::Ui,
-    doc: &hedra_doc::Document,
-    selection: &hedra_edit::Selection,
-    events: &mut Vec<UiEvent>,
-) {
-    use hedra_geom::subdivision::Scheme;
-    let active = selection.active().and_then(|id| doc.node(id));
-    let why_not = match active.map(|n| &n.content) {
-        None => Some("Select a mesh with a Catmull-Clark subdivision modifier"),
-        Some(hedra_doc::NodeContent::Mesh(m)) => match &m.subdivision {
-            None => Some("The active mesh has no subdivision modifier (Ctrl+1 adds one)"),
-            Some(s) if s.options.scheme != Scheme::CatmullClark => {
-                Some("Only a Catmull-Clark limit surface converts to NURBS")
-            }
-            Some(_) => None,
-        },
-        Some(_) => Some("The active object is not a mesh"),
-    };
-    if ui
-        .add_enabled(why_not.is_none(), egui::Button::new("To NURBS"))
-        .on_hover_text(
-            "The smooth surface as NURBS patches: exact B-spline surfaces where the cage is regular, \
-             fitted patches within 1e-4 of the size elsewhere; the cage is kept, hidden",
-        )
-        .on_disabled_hover_text(why_not.unwrap_or_default())
-        .clicked()
-        && let Some(node) = active
-    {
-        exec(
-            events,
-            Command::ConvertSubdivisionToNurbs {
-                node: hedra_doc::NodeRef::Id(node.id.0),
-                tolerance: None,
-                keep_cage: true,
-            },
-        );
-    }
-}
-
-/// Make Manifold: repairs the selected kept (non-manifold) meshes into
-/// editable meshes; disabled, with the reason on hover, when none is
-/// selected.
-pub(super) fn kept_mesh_items(
-    ui: &mut egui::Ui,
-    doc: &hedra_doc::Document,
-    selection: &Selection,
-    events: &mut Vec<UiEvent>,
-) {
-    let kept: Vec<NodeRef> = selection
-        .nodes
-        .iter()
-        .filter(|id| {
-            matches!(
-                doc.node(**id).map(|n| &n.content),
-                Some(NodeContent::Kept(_))
-            )
-        })
-        .map(|&id| NodeRef::from(id))
-        .collect();
-    let button = ui
-        .add_enabled(!kept.is_empty(), egui::Button::new("Make Manifold"))
-        .on_hover_text("Repair meshes kept as imported (not manifold) into editable meshes")
-        .on_disabled_hover_text("Select a mesh kept as imported (⚠ in the outliner)");
-    if button.clicked() {
-        exec(events, Command::MakeManifold { nodes: kept });
-        ui.close();
     }
 }

@@ -1,311 +1,392 @@
-//! Edit mode's Mesh menu: every tool on the current selection.
+//! Edit mode's Mesh menu: every tool on the current selection, as a table
+//! ([`MESH_MENU`]). Amounts start at sensible defaults and are changed in
+//! the Adjust Last window, as in Blender; the keys run the same tools
+//! interactively.
 
+use super::menu_table::{ALWAYS, MenuRow, MenuState, When, item, keyed_item, with_hover};
 use super::*;
-use hedra_edit::bindings::{Action, KeyMode};
+use hedra_doc::ProfileSet;
+use hedra_edit::EditRequest;
+use hedra_edit::bindings::{Action as A, KeyMode::Edit};
+use hedra_geom::modeling::{MirrorAxis, TriangulateMethod};
 
-/// A menu item's text with its edit-mode keys from the keymap after a tab.
-fn keyed(label: &str, action: Action) -> String {
-    keyed_in(KeyMode::Edit, label, action)
+const FACES: When = |s| {
+    if s.mode.selection.faces.is_empty() {
+        Err("Select faces first (3: face mode, A: all)")
+    } else {
+        Ok(())
+    }
+};
+const EDGES: When = |s| {
+    if s.mode.selection.edges.is_empty() {
+        Err("Select edges first (2: edge mode)")
+    } else {
+        Ok(())
+    }
+};
+const VERTICES: When = |s| {
+    if s.mode.selection.vertices.is_empty() {
+        Err("Select vertices first (1: vertex mode)")
+    } else {
+        Ok(())
+    }
+};
+/// Spin and Screw: a profile of faces or boundary edges, and a known view.
+const PROFILE: When = |s| {
+    let sel = &s.mode.selection;
+    if sel.faces.is_empty() && sel.edges.is_empty() {
+        Err("Select the faces or boundary edges to sweep")
+    } else if s.spin_axis.is_none() {
+        Err("The view's direction is not known yet")
+    } else {
+        Ok(())
+    }
+};
+const ANY_ELEMENT: When = |s| match selection_vertices(&s.mode.selection) {
+    Some(_) => Ok(()),
+    None => Err("Select what to mirror"),
+};
+
+/// Spin and Screw sweep the selected faces, or else the selected boundary
+/// edges.
+fn profile(s: &MenuState<'_>) -> ProfileSet {
+    if s.mode.selection.faces.is_empty() {
+        ProfileSet::Edges(s.edges())
+    } else {
+        ProfileSet::Faces(s.faces())
+    }
 }
 
-/// Edit mode's Mesh menu: every tool on the current selection. Amounts start
-/// at sensible defaults and are changed in the Adjust Last window, as in
-/// Blender; the keys run the same tools interactively.
-pub(super) fn mesh_menu(
-    ui: &mut egui::Ui,
-    node: NodeId,
-    mode: &EditMode,
-    spin_axis: Option<(DVec3, DVec3)>,
-    mesh: Option<&hedra_geom::HalfEdgeMesh>,
-    events: &mut Vec<UiEvent>,
-) {
-    use hedra_doc::{EdgeSet, FaceSet, VertexSet};
-    let sel = &mode.selection;
-    let faces = || FaceSet::Ids(sel.faces.iter().map(|f| f.0).collect());
-    let edges = || EdgeSet::Ids(sel.edges.iter().map(|e| e.0).collect());
-    let vertices = || VertexSet::Ids(sel.vertices.iter().map(|v| v.0).collect());
-    let n = NodeRef::from(node);
-    let (has_f, has_e, has_v) = (
-        !sel.faces.is_empty(),
-        !sel.edges.is_empty(),
-        !sel.vertices.is_empty(),
-    );
-    let mut merge_events = Vec::new();
-    let mut euler_events = Vec::new();
-    let mut start_bisect = false;
-    let mut tool_to_start = None;
-    let mut item = |ui: &mut egui::Ui, label: &str, enabled: bool, cmd: &dyn Fn() -> Command| {
-        if ui.add_enabled(enabled, egui::Button::new(label)).clicked() {
-            exec(events, cmd());
-            ui.close();
-        }
-    };
-    ui.label(egui::RichText::new("Faces").weak());
-    item(
-        ui,
-        &keyed("Extrude Region", Action::Extrude),
-        has_f,
-        &|| Command::ExtrudeRegion {
-            node: n.clone(),
-            faces: faces(),
-            distance: 0.5,
+/// Mirror the vertices the selection touches across `axis`.
+fn mirror(s: &MenuState<'_>, axis: MirrorAxis, events: &mut Vec<UiEvent>) {
+    if let Some(vertices) = selection_vertices(&s.mode.selection) {
+        exec(
+            events,
+            Command::MirrorVertices {
+                node: s.edited(),
+                vertices,
+                axis,
+            },
+        );
+    }
+}
+
+fn symmetrize(s: &MenuState<'_>, axis: MirrorAxis, events: &mut Vec<UiEvent>) {
+    exec(
+        events,
+        Command::Symmetrize {
+            node: s.edited(),
+            axis,
         },
     );
-    item(
-        ui,
-        &keyed("Extrude Individual", Action::ExtrudeIndividual),
-        has_f,
-        &|| Command::ExtrudeFaces {
-            node: n.clone(),
-            faces: faces(),
-            distance: 0.5,
+}
+
+/// Starts the interactive tool of `action`, as its keys would.
+fn start(events: &mut Vec<UiEvent>, action: A) {
+    events.push(UiEvent::Edit(EditRequest::Start(action)));
+}
+
+/// Edit mode's Mesh menu.
+pub(super) const MESH_MENU: &[MenuRow] = &[
+    MenuRow::Heading("Faces"),
+    keyed_item("Extrude Region", Edit, A::Extrude, FACES, |s, e| {
+        exec(
+            e,
+            Command::ExtrudeRegion {
+                node: s.edited(),
+                faces: s.faces(),
+                distance: 0.5,
+            },
+        )
+    }),
+    keyed_item(
+        "Extrude Individual",
+        Edit,
+        A::ExtrudeIndividual,
+        FACES,
+        |s, e| {
+            exec(
+                e,
+                Command::ExtrudeFaces {
+                    node: s.edited(),
+                    faces: s.faces(),
+                    distance: 0.5,
+                },
+            )
         },
-    );
-    item(ui, &keyed("Inset Region", Action::Inset), has_f, &|| {
-        Command::InsetRegion {
-            node: n.clone(),
-            faces: faces(),
-            thickness: 0.1,
-            depth: 0.0,
-        }
-    });
-    item(
-        ui,
-        &keyed("Inset Individual", Action::InsetIndividual),
-        has_f,
-        &|| Command::InsetFaces {
-            node: n.clone(),
-            faces: faces(),
-            thickness: 0.1,
-            depth: 0.0,
+    ),
+    keyed_item("Inset Region", Edit, A::Inset, FACES, |s, e| {
+        exec(
+            e,
+            Command::InsetRegion {
+                node: s.edited(),
+                faces: s.faces(),
+                thickness: 0.1,
+                depth: 0.0,
+            },
+        )
+    }),
+    keyed_item(
+        "Inset Individual",
+        Edit,
+        A::InsetIndividual,
+        FACES,
+        |s, e| {
+            exec(
+                e,
+                Command::InsetFaces {
+                    node: s.edited(),
+                    faces: s.faces(),
+                    thickness: 0.1,
+                    depth: 0.0,
+                },
+            )
         },
-    );
-    item(ui, "Delete Only Faces (keep edges)", has_f, &|| {
-        Command::MakeHoles {
-            node: n.clone(),
-            faces: faces(),
-        }
-    });
-    item(
-        ui,
-        &keyed("Triangulate Faces", Action::Triangulate),
-        has_f,
-        &|| Command::Triangulate {
-            node: n.clone(),
-            faces: faces(),
-            method: hedra_geom::modeling::TriangulateMethod::Beauty,
-        },
-    );
-    item(
-        ui,
-        &keyed("Tris to Quads", Action::TrisToQuads),
-        has_f,
-        &|| Command::TrisToQuads {
-            node: n.clone(),
-            faces: faces(),
-            face_degrees: 40.0,
-            shape_degrees: 40.0,
-        },
-    );
+    ),
+    item("Delete Only Faces (keep edges)", FACES, |s, e| {
+        exec(
+            e,
+            Command::MakeHoles {
+                node: s.edited(),
+                faces: s.faces(),
+            },
+        )
+    }),
+    keyed_item("Triangulate Faces", Edit, A::Triangulate, FACES, |s, e| {
+        exec(
+            e,
+            Command::Triangulate {
+                node: s.edited(),
+                faces: s.faces(),
+                method: TriangulateMethod::Beauty,
+            },
+        )
+    }),
+    keyed_item("Tris to Quads", Edit, A::TrisToQuads, FACES, |s, e| {
+        exec(
+            e,
+            Command::TrisToQuads {
+                node: s.edited(),
+                faces: s.faces(),
+                face_degrees: 40.0,
+                shape_degrees: 40.0,
+            },
+        )
+    }),
     // Subdivision holes (OpenSubdiv's face hole tag): the faces leave no
     // surface; their neighbours keep their shape.
-    for (label, hole) in [("Make Hole (subdivision)", true), ("Clear Hole", false)] {
-        item(ui, label, has_f, &|| Command::SetFaceHole {
-            node: n.clone(),
-            faces: faces(),
-            hole,
-        });
-    }
-    // Spin and Screw sweep the selected faces, or else the selected
-    // boundary edges, about the view axis through the 3D cursor.
-    let profile = || {
-        if has_f {
-            hedra_doc::ProfileSet::Faces(faces())
-        } else {
-            hedra_doc::ProfileSet::Edges(edges())
+    item("Make Hole (subdivision)", FACES, |s, e| {
+        exec(
+            e,
+            Command::SetFaceHole {
+                node: s.edited(),
+                faces: s.faces(),
+                hole: true,
+            },
+        )
+    }),
+    item("Clear Hole", FACES, |s, e| {
+        exec(
+            e,
+            Command::SetFaceHole {
+                node: s.edited(),
+                faces: s.faces(),
+                hole: false,
+            },
+        )
+    }),
+    // About the view axis through the 3D cursor.
+    item("Spin (about the cursor, view axis)", PROFILE, |s, e| {
+        if let Some((center, axis)) = s.spin_axis {
+            exec(
+                e,
+                Command::Spin {
+                    node: s.edited(),
+                    profile: profile(s),
+                    center,
+                    axis,
+                    degrees: 90.0,
+                    steps: 9,
+                },
+            )
         }
-    };
-    if let Some((center, axis)) = spin_axis {
-        item(
-            ui,
-            "Spin (about the cursor, view axis)",
-            has_f || has_e,
-            &|| Command::Spin {
-                node: n.clone(),
-                profile: profile(),
-                center,
-                axis,
-                degrees: 90.0,
-                steps: 9,
-            },
-        );
-        item(
-            ui,
-            "Screw (about the cursor, view axis)",
-            has_f || has_e,
-            &|| Command::Screw {
-                node: n.clone(),
-                profile: profile(),
-                center,
-                axis,
-                turns: 2,
-                steps: 12,
-                pitch: 1.0,
-            },
-        );
-    }
-    if ui
-        .add_enabled(has_f, egui::Button::new("Bisect (drag a line)"))
-        .clicked()
-    {
-        // Pushed after the menu: `item` holds the event list until then.
-        start_bisect = true;
-        ui.close();
-    }
-    ui.separator();
-    ui.label(egui::RichText::new("Edges").weak());
+    }),
+    item("Screw (about the cursor, view axis)", PROFILE, |s, e| {
+        if let Some((center, axis)) = s.spin_axis {
+            exec(
+                e,
+                Command::Screw {
+                    node: s.edited(),
+                    profile: profile(s),
+                    center,
+                    axis,
+                    turns: 2,
+                    steps: 12,
+                    pitch: 1.0,
+                },
+            )
+        }
+    }),
+    item("Bisect (drag a line)", FACES, |_, e| {
+        e.push(UiEvent::Edit(EditRequest::StartBisect))
+    }),
+    MenuRow::Separator,
+    MenuRow::Heading("Edges"),
     // The interactive tool, as Ctrl+R: the ring follows the pointer, the
     // wheel sets the cuts, a click places them (any selection mode).
-    if ui
-        .button(keyed("Loop Cut", Action::LoopCut))
-        .on_hover_text("Point at an edge ring; the wheel or +/- sets the cuts; click to cut")
-        .clicked()
-    {
-        tool_to_start = Some(Action::LoopCut);
-        ui.close();
-    }
-    item(ui, "Subdivide", has_e, &|| Command::SubdivideEdges {
-        node: n.clone(),
-        edges: edges(),
-        cuts: 1,
-    });
-    item(ui, "Bridge Edge Loops", has_e, &|| Command::BridgeLoops {
-        node: n.clone(),
-        edges: edges(),
-    });
-    item(ui, &keyed("Fill", Action::Fill), has_e, &|| {
-        Command::FillHoles {
-            node: n.clone(),
-            edges: edges(),
-        }
-    });
-    item(
-        ui,
-        &keyed("Collapse", Action::MergeOrCollapse),
-        has_e,
-        &|| Command::CollapseEdges {
-            node: n.clone(),
-            edges: edges(),
-        },
-    );
-    item(
-        ui,
-        &keyed("Dissolve Edges", Action::Dissolve),
-        has_e,
-        &|| Command::DissolveEdges {
-            node: n.clone(),
-            edges: edges(),
-        },
-    );
-    ui.separator();
-    ui.label(egui::RichText::new("Vertices").weak());
-    item(
-        ui,
-        &keyed("Connect", Action::Connect),
-        sel.vertices.len() == 2,
-        &|| Command::ConnectVertices {
-            node: n.clone(),
-            vertices: vertices(),
-        },
-    );
-    ui.menu_button(keyed("Merge", Action::MergeOrCollapse), |ui| {
-        merge_buttons(ui, node, sel, &mut merge_events)
-    });
-    item(
-        ui,
-        &keyed("Bevel Vertices", Action::BevelVertices),
-        has_v,
-        &|| Command::BevelVertices {
-            node: n.clone(),
-            vertices: vertices(),
-            width: 0.1,
-        },
-    );
-    if ui
-        .add_enabled(
-            sel.vertices.len() == 1,
-            egui::Button::new(keyed("Split Vertex", Action::SplitVertex)),
-        )
-        .on_hover_text("The vertex's edges on the pointer's side go to a new vertex joined to it by an edge (the inverse of a collapse); click to place it")
-        .clicked()
-    {
-        tool_to_start = Some(Action::SplitVertex);
-        ui.close();
-    }
-    item(
-        ui,
-        &keyed("Dissolve Vertices", Action::Dissolve),
-        has_v,
-        &|| Command::DissolveVertices {
-            node: n.clone(),
-            vertices: vertices(),
-        },
-    );
-    ui.separator();
-    ui.label(egui::RichText::new("Symmetry").weak());
-    for axis in [
-        hedra_geom::modeling::MirrorAxis::X,
-        hedra_geom::modeling::MirrorAxis::Y,
-        hedra_geom::modeling::MirrorAxis::Z,
-    ] {
-        let set = selection_vertices(sel);
-        item(ui, &format!("Mirror {axis:?}"), set.is_some(), &|| {
-            Command::MirrorVertices {
-                node: n.clone(),
-                vertices: set.clone().unwrap_or(VertexSet::All),
-                axis,
-            }
-        });
-    }
-    for axis in [
-        hedra_geom::modeling::MirrorAxis::X,
-        hedra_geom::modeling::MirrorAxis::Y,
-        hedra_geom::modeling::MirrorAxis::Z,
-    ] {
-        item(
-            ui,
-            &format!("Symmetrize +{axis:?} to -{axis:?}"),
-            true,
-            &|| Command::Symmetrize {
-                node: n.clone(),
-                axis,
+    with_hover(
+        keyed_item("Loop Cut", Edit, A::LoopCut, ALWAYS, |_, e| {
+            start(e, A::LoopCut)
+        }),
+        "Point at an edge ring; the wheel or +/- sets the cuts; click to cut",
+    ),
+    item("Subdivide", EDGES, |s, e| {
+        exec(
+            e,
+            Command::SubdivideEdges {
+                node: s.edited(),
+                edges: s.edges(),
+                cuts: 1,
             },
-        );
-    }
-    if let Some(mesh) = mesh {
-        ui.menu_button("Euler Operators", |ui| {
-            euler_operator_buttons(ui, node, mesh, sel, &mut euler_events)
-        });
-    }
-    ui.separator();
-    ui.label(egui::RichText::new("Normals").weak());
-    item(ui, &keyed("Flip", Action::FlipNormals), true, &|| {
-        Command::FlipNormals { node: n.clone() }
-    });
-    item(
-        ui,
-        &keyed("Recalculate Outside", Action::RecalculateNormals),
-        true,
-        &|| Command::RecalculateNormals { node: n.clone() },
-    );
-    events.extend(merge_events);
-    events.extend(euler_events);
-    events
-        .extend(tool_to_start.map(|action| UiEvent::Edit(hedra_edit::EditRequest::Start(action))));
-    if start_bisect {
-        events.push(UiEvent::Edit(hedra_edit::EditRequest::StartBisect));
-    }
-}
+        )
+    }),
+    item("Bridge Edge Loops", EDGES, |s, e| {
+        exec(
+            e,
+            Command::BridgeLoops {
+                node: s.edited(),
+                edges: s.edges(),
+            },
+        )
+    }),
+    keyed_item("Fill", Edit, A::Fill, EDGES, |s, e| {
+        exec(
+            e,
+            Command::FillHoles {
+                node: s.edited(),
+                edges: s.edges(),
+            },
+        )
+    }),
+    keyed_item("Collapse", Edit, A::MergeOrCollapse, EDGES, |s, e| {
+        exec(
+            e,
+            Command::CollapseEdges {
+                node: s.edited(),
+                edges: s.edges(),
+            },
+        )
+    }),
+    keyed_item("Dissolve Edges", Edit, A::Dissolve, EDGES, |s, e| {
+        exec(
+            e,
+            Command::DissolveEdges {
+                node: s.edited(),
+                edges: s.edges(),
+            },
+        )
+    }),
+    MenuRow::Separator,
+    MenuRow::Heading("Vertices"),
+    keyed_item(
+        "Connect",
+        Edit,
+        A::Connect,
+        |s| match s.mode.selection.vertices.len() {
+            2 => Ok(()),
+            _ => Err("Select two vertices of one face"),
+        },
+        |s, e| {
+            exec(
+                e,
+                Command::ConnectVertices {
+                    node: s.edited(),
+                    vertices: s.vertices(),
+                },
+            )
+        },
+    ),
+    MenuRow::Submenu(
+        "Merge",
+        Some((Edit, A::MergeOrCollapse)),
+        &[MenuRow::Listed(|ui, s, e| {
+            merge_buttons(ui, s.mode.node.expect("edit mode"), &s.mode.selection, e)
+        })],
+    ),
+    keyed_item(
+        "Bevel Vertices",
+        Edit,
+        A::BevelVertices,
+        VERTICES,
+        |s, e| {
+            exec(
+                e,
+                Command::BevelVertices {
+                    node: s.edited(),
+                    vertices: s.vertices(),
+                    width: 0.1,
+                },
+            )
+        },
+    ),
+    with_hover(
+        keyed_item(
+            "Split Vertex",
+            Edit,
+            A::SplitVertex,
+            |s| match s.mode.selection.vertices.len() {
+                1 => Ok(()),
+                _ => Err("Select one vertex"),
+            },
+            |_, e| start(e, A::SplitVertex),
+        ),
+        "The vertex's edges on the pointer's side go to a new vertex joined to it by an \
+         edge (the inverse of a collapse); click to place it",
+    ),
+    keyed_item("Dissolve Vertices", Edit, A::Dissolve, VERTICES, |s, e| {
+        exec(
+            e,
+            Command::DissolveVertices {
+                node: s.edited(),
+                vertices: s.vertices(),
+            },
+        )
+    }),
+    MenuRow::Separator,
+    MenuRow::Heading("Symmetry"),
+    item("Mirror X", ANY_ELEMENT, |s, e| mirror(s, MirrorAxis::X, e)),
+    item("Mirror Y", ANY_ELEMENT, |s, e| mirror(s, MirrorAxis::Y, e)),
+    item("Mirror Z", ANY_ELEMENT, |s, e| mirror(s, MirrorAxis::Z, e)),
+    item("Symmetrize +X to -X", ALWAYS, |s, e| {
+        symmetrize(s, MirrorAxis::X, e)
+    }),
+    item("Symmetrize +Y to -Y", ALWAYS, |s, e| {
+        symmetrize(s, MirrorAxis::Y, e)
+    }),
+    item("Symmetrize +Z to -Z", ALWAYS, |s, e| {
+        symmetrize(s, MirrorAxis::Z, e)
+    }),
+    MenuRow::Listed(|ui, s, e| {
+        let node = s.mode.node.expect("edit mode");
+        if let Some(NodeContent::Mesh(m)) = s.doc.node(node).map(|n| &n.content) {
+            ui.menu_button("Euler Operators", |ui| {
+                euler_operator_buttons(ui, node, &m.mesh, &s.mode.selection, e)
+            });
+        }
+    }),
+    MenuRow::Separator,
+    MenuRow::Heading("Normals"),
+    keyed_item("Flip", Edit, A::FlipNormals, ALWAYS, |s, e| {
+        exec(e, Command::FlipNormals { node: s.edited() })
+    }),
+    keyed_item(
+        "Recalculate Outside",
+        Edit,
+        A::RecalculateNormals,
+        ALWAYS,
+        |s, e| exec(e, Command::RecalculateNormals { node: s.edited() }),
+    ),
+];
 
 /// The vertices a selection touches, of any element kind, as a command's set.
 pub(super) fn selection_vertices(

@@ -25,6 +25,7 @@ mod csg_menu;
 mod curve_menu;
 mod dialogs;
 mod inspector;
+mod menu_table;
 mod menus;
 mod mesh_menu;
 mod modifier_stack;
@@ -44,6 +45,7 @@ use csg_menu::*;
 use curve_menu::*;
 use dialogs::*;
 use inspector::*;
+use menu_table::{MenuState, draw_menu};
 use menus::*;
 use mesh_menu::*;
 use modifier_stack::*;
@@ -132,7 +134,6 @@ fn send_changed<T: hedra_scene::Setting>(
 pub struct Settings<'w> {
     gizmo: Res<'w, bevy::gizmos::transform_gizmo::TransformGizmoSettings>,
     quad_view: Res<'w, hedra_scene::QuadView>,
-    cursor: Res<'w, hedra_scene::Cursor3d>,
     snapping: Res<'w, hedra_edit::Snapping>,
     proportional: Res<'w, hedra_edit::Proportional>,
     pivot: Res<'w, hedra_edit::PivotPoint>,
@@ -155,6 +156,7 @@ pub struct Model<'w> {
     jobs: Res<'w, hedra_scene::FileJobs>,
     shape_edit: Res<'w, hedra_edit::ShapeEdit>,
     shading: Res<'w, hedra_scene::ViewportShading>,
+    cursor: Res<'w, hedra_scene::Cursor3d>,
 }
 
 /// Draws every panel, menu and dialog, then sends what the user decided
@@ -189,16 +191,16 @@ pub fn draw_ui(
     let mut proportional = *settings.proportional;
     let mut pivot = *settings.pivot;
     let mut quad_view = settings.quad_view.0;
-    let mut cursor = settings.cursor.0;
+    let mut cursor = model.cursor.0;
     let view_direction = camera
         .single()
         .ok()
         .map(|(_, t)| (t.rotation() * Vec3::NEG_Z).as_dvec3());
     // The view axis through the 3D cursor, for "Revolve about the view".
     ui_state.view_axis = view_direction.map(|d| (cursor, -d));
+    let menu = MenuState::of(&model, view_direction);
     egui::Panel::top("menu").show(&mut root, |ui| {
         let view = ViewChoices {
-            view_direction,
             gizmo_mode: &mut gizmo_mode,
             shading: &mut shading,
             snapping: &mut snapping,
@@ -207,7 +209,7 @@ pub fn draw_ui(
             quad_view: &mut quad_view,
             cursor: &mut cursor,
         };
-        menu_bar(ui, &mut ui_state, &model, view, &mut events)
+        menu_bar(ui, &mut ui_state, &model, &menu, view, &mut events)
     });
     snap_menu(&ctx, &mut ui_state, &model, &mut cursor, &mut events);
     shading_menu(
@@ -318,8 +320,7 @@ pub fn draw_ui(
     adjust_last_window(&ctx, free, &model, &mut events);
     let mut key_help = *settings.key_help;
     key_help_window(&ctx, free, &model, &mut key_help);
-    let curve = active_curve(&model.state.session.doc, model.selection.active());
-    add_menu(&ctx, &mut ui_state, &mut events, curve, settings.cursor.0);
+    add_menu(&ctx, &mut ui_state, &menu, &mut events);
     merge_menu(&ctx, &model, &mut events);
     dialogs(&ctx, &mut ui_state, &model, &mut writers, &mut events);
 
@@ -339,11 +340,7 @@ pub fn draw_ui(
         &settings.quad_view,
         hedra_scene::QuadView(quad_view),
     );
-    send_changed(
-        &mut to.cursor,
-        &settings.cursor,
-        hedra_scene::Cursor3d(cursor),
-    );
+    send_changed(&mut to.cursor, &model.cursor, hedra_scene::Cursor3d(cursor));
     send_changed(&mut to.key_help, &settings.key_help, key_help);
     send_changed(&mut to.analysis, &settings.analysis, analysis.0);
     send_changed(
