@@ -4,7 +4,9 @@
 use bevy::prelude::*;
 use hedra_doc::{Command, NodeRef, NodeTransform};
 use hedra_geom::Primitive;
-use hedra_scene::{DocRequest, DocState, NodeEntities, NodeEntity, ProjectedMesh, StatusMessage};
+use hedra_scene::{
+    DocRequest, DocState, NodeEntities, NodeEntity, NodeMesh, ShownMesh, ShownShape, StatusMessage,
+};
 
 fn send(app: &mut App, r: DocRequest) {
     app.world_mut().write_message(r);
@@ -152,7 +154,7 @@ fn changing_shading_or_primitive_rebuilds_only_that_render_mesh() {
         );
     }
     let ents = node_entities(&mut app);
-    let before_b = app.world().get::<ProjectedMesh>(ents[1].0).unwrap().clone();
+    let before_b = app.world().get::<ShownMesh>(ents[1].0).unwrap().clone();
     send(
         &mut app,
         DocRequest::Execute(Command::SetShading {
@@ -165,7 +167,7 @@ fn changing_shading_or_primitive_rebuilds_only_that_render_mesh() {
     // Flat: each of the 32 faces has its own corners (16 triangles x 3 + 16 quads x 4).
     assert_eq!(render.count_vertices(), 16 * 3 + 16 * 4);
     assert_eq!(
-        *app.world().get::<ProjectedMesh>(ents[1].0).unwrap(),
+        *app.world().get::<ShownMesh>(ents[1].0).unwrap(),
         before_b,
         "B was not rebuilt"
     );
@@ -337,9 +339,9 @@ fn a_subdivision_modifier_renders_the_refined_mesh_and_drags_keep_its_layout() {
     let e = node_entities(&mut app)[0].0;
     assert!(
         app.world()
-            .get::<ProjectedMesh>(e)
+            .get::<NodeMesh>(e)
             .unwrap()
-            .smooth
+            .active_modifier()
             .is_some()
     );
     // Moving a cage vertex keeps the refined layout; the preview follows.
@@ -636,7 +638,7 @@ fn curves_and_surfaces_get_render_meshes_and_can_be_picked() {
         "a curve has no surface"
     );
     assert!(
-        app.world().get::<ProjectedMesh>(ring).is_some(),
+        app.world().get::<ShownShape>(ring).is_some(),
         "but the overlays know it"
     );
     // Moving a control point changes the render mesh.

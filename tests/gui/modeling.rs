@@ -2985,6 +2985,24 @@ fn build_the_csg_emblem_in_the_app_and_drag_a_cylinder_through_it() {
         panic!("the emblem's solid is re-evaluated during the drag")
     };
     assert!(!std::sync::Arc::ptr_eq(&moving, &solid));
+    // What is shown of the emblem is the preview, for the render mesh and
+    // for its edge lines alike (the overlay drew the document's solid once).
+    let entity = user.app.world().resource::<hedra_scene::NodeEntities>().0[&emblem];
+    let shown = user
+        .app
+        .world()
+        .get::<hedra_scene::ShownMesh>(entity)
+        .unwrap();
+    assert!(shown.previewed && std::sync::Arc::ptr_eq(&shown.cage, &moving));
+    let children = user.app.world().get::<Children>(entity).unwrap();
+    let overlay = children
+        .iter()
+        .find_map(|c| user.app.world().get::<hedra_viewport::EdgeOverlay>(c))
+        .expect("the emblem's edge overlay");
+    assert!(matches!(
+        &overlay.source,
+        hedra_scene::ContentSource::Mesh(m) if std::sync::Arc::ptr_eq(m, &moving)
+    ));
     // The Y hole's rim on the top face (y = 1): vertices 0.55 from its axis.
     let rim = |m: &hedra_geom::HalfEdgeMesh, x: f64| {
         m.vertices()

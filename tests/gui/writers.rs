@@ -19,9 +19,9 @@ use bevy::ecs::system::SystemChangeTick;
 type Check<'a> = (&'static str, &'a [(u32, u32)], Option<ComponentTicks>);
 use bevy::prelude::*;
 use hedra_scene::{
-    ControlPoint, NodeCurve, NodeEntity, NodeKeptMesh, NodeMesh, NodeSurface, SurfacePatch,
-    project_control_points, project_render_meshes, project_surface_patches, project_transforms,
-    sync_entities,
+    ControlPoint, NodeCurve, NodeEntity, NodeKeptMesh, NodeMesh, NodeSurface, ShownMesh,
+    ShownShape, SurfacePatch, project_control_points, project_render_meshes, project_shown_meshes,
+    project_shown_shapes, project_surface_patches, project_transforms, sync_entities,
 };
 
 /// The ticks between which each projection system ran, and what was
@@ -156,6 +156,16 @@ fn check(world: &mut World) {
                 e.get_change_ticks::<MeshMaterial3d<StandardMaterial>>(),
             ),
         ];
+        checks.push((
+            "ShownMesh",
+            runs("project_shown_meshes"),
+            e.get_change_ticks::<ShownMesh>(),
+        ));
+        checks.push((
+            "ShownShape",
+            runs("project_shown_shapes"),
+            e.get_change_ticks::<ShownShape>(),
+        ));
         for (component, ticks) in [
             ("Name", e.get_change_ticks::<Name>()),
             ("Visibility", e.get_change_ticks::<Visibility>()),
@@ -236,6 +246,18 @@ fn audited() -> User {
                 open_run("sync_entities").before(sync_entities),
                 close_run("sync_entities")
                     .after(sync_entities)
+                    .before(project_shown_meshes),
+                open_run("project_shown_meshes")
+                    .after(sync_entities)
+                    .before(project_shown_meshes),
+                close_run("project_shown_meshes")
+                    .after(project_shown_meshes)
+                    .before(project_shown_shapes),
+                open_run("project_shown_shapes")
+                    .after(project_shown_meshes)
+                    .before(project_shown_shapes),
+                close_run("project_shown_shapes")
+                    .after(project_shown_shapes)
                     .before(project_transforms),
                 open_run("project_render_meshes")
                     .after(close_transforms)
@@ -434,12 +456,20 @@ fn a_second_writer_is_found() {
     user.app.add_systems(
         Update,
         (|mut materials: Query<&mut MeshMaterial3d<StandardMaterial>, With<NodeEntity>>,
-          mut points: Query<&mut ControlPoint>| {
+          mut points: Query<&mut ControlPoint>,
+          mut shown: Query<&mut ShownMesh>,
+          mut shapes: Query<&mut ShownShape>| {
             for mut m in &mut materials {
                 m.set_changed();
             }
             for mut p in &mut points {
                 p.set_changed();
+            }
+            for mut m in &mut shown {
+                m.set_changed();
+            }
+            for mut s in &mut shapes {
+                s.set_changed();
             }
         })
         .after(hedra_scene::SceneSystems::Sync),
@@ -449,6 +479,8 @@ fn a_second_writer_is_found() {
     for expected in [
         "the MeshMaterial3d of node",
         "a ControlPoint was written outside project_control_points",
+        "the ShownMesh of node",
+        "the ShownShape of node",
     ] {
         assert!(
             found.iter().any(|v| v.contains(expected)),

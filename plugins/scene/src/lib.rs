@@ -36,6 +36,7 @@ mod render_mesh;
 mod render_projection;
 mod requests;
 mod shape_entities;
+mod shown;
 mod smooth;
 mod strokes;
 
@@ -49,6 +50,7 @@ pub use render_mesh::*;
 pub use render_projection::*;
 pub use requests::*;
 pub use shape_entities::*;
+pub use shown::*;
 pub use smooth::{SmoothPreviews, SmoothSource};
 pub use strokes::{Strokes, record_strokes};
 
@@ -447,6 +449,8 @@ impl Plugin for ScenePlugin {
                 Update,
                 (
                     sync_entities,
+                    project_shown_meshes,
+                    project_shown_shapes,
                     project_transforms,
                     project_render_meshes,
                     project_control_points,

@@ -169,28 +169,6 @@ impl Previews {
         }
     }
 
-    /// A curve or surface node's content as the screen shows it: a
-    /// tool's preview, else the document's (`None` for other nodes).
-    pub fn shown_shape(&self, doc: &hedra_doc::Document, node: NodeId) -> Option<NodeContent> {
-        self.shape_or(node, || match &doc.node(node)?.content {
-            c @ (NodeContent::Curve(_) | NodeContent::Surface(_)) => Some(c.clone()),
-            _ => None,
-        })
-    }
-
-    /// A tool's preview of a curve or surface node, else `fallback()`.
-    pub fn shape_or(
-        &self,
-        node: NodeId,
-        fallback: impl FnOnce() -> Option<NodeContent>,
-    ) -> Option<NodeContent> {
-        match self.content(node) {
-            Some(PreviewContent::Curve(c)) => Some(NodeContent::Curve(c.clone())),
-            Some(PreviewContent::Surface(s)) => Some(NodeContent::Surface(s.clone())),
-            _ => fallback(),
-        }
-    }
-
     /// Nodes that the tools other than `source` preview.
     pub fn nodes_except(&self, source: PreviewSource) -> impl Iterator<Item = NodeId> + '_ {
         self.slots

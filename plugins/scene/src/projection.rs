@@ -8,20 +8,6 @@ use std::sync::Arc;
 #[derive(Component, Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct NodeEntity(pub NodeId);
 
-/// Which document content (by identity), shading and subdivision a node
-/// shows when no tool previews it; the overlays key on it. Written only by
-/// [`sync_entities`].
-#[derive(Component, Clone, Debug, PartialEq, Eq)]
-pub struct ProjectedMesh {
-    /// The content's shared geometry, compared by identity: a changed
-    /// mesh, curve or surface is a new `Arc`, so it gives a different value.
-    pub source: ContentSource,
-    /// The content's shading (curves count as flat, surfaces as smooth).
-    pub shading: Shading,
-    /// The modifier and a fingerprint of the creases, for smooth previews.
-    pub smooth: Option<(hedra_doc::SubdivisionModifier, u64)>,
-}
-
 /// The shared geometry of a node's content, held (so its address cannot be
 /// reused by another value while this is kept) and compared by address.
 #[derive(Clone, PartialEq, Eq)]
@@ -157,8 +143,8 @@ pub fn bevy_transform(t: &hedra_doc::NodeTransform) -> Transform {
 
 /// Mirrors the document's nodes into entities whenever its revision
 /// changes: spawns and despawns them, keeps `Name`, `Visibility`,
-/// `ChildOf`, the content components ([`NodeMesh`], [`NodeCurve`],
-/// [`NodeSurface`]) and [`ProjectedMesh`], each written only when it
+/// `ChildOf` and the content components ([`NodeMesh`], [`NodeCurve`],
+/// [`NodeSurface`], [`NodeKeptMesh`]), each written only when it
 /// differs. A new entity starts at its document transform;
 /// [`project_transforms`] writes it after that.
 #[allow(clippy::type_complexity)]
@@ -175,7 +161,6 @@ pub fn sync_entities(
         Option<&mut NodeCurve>,
         Option<&mut NodeSurface>,
         Option<&mut NodeKeptMesh>,
-        Option<&mut ProjectedMesh>,
     )>,
 ) {
     if *seen_revision == Some(state.revision) {
@@ -216,7 +201,7 @@ pub fn sync_entities(
         let content = drawn_content(doc, node);
         let node_content = &*content;
         let old_parent = match existing.get_mut(e) {
-            Ok((mut name, mut v, child_of, mesh, curve, surface, kept, projected)) => {
+            Ok((mut name, mut v, child_of, mesh, curve, surface, kept)) => {
                 if name.as_str() != node.name {
                     name.set(node.name.clone());
                 }
@@ -226,19 +211,6 @@ pub fn sync_entities(
                 }
                 let content_components = (mesh, curve, surface, kept);
                 mirror_content(&mut commands.entity(e), node_content, content_components);
-                let wanted = ProjectedMesh::of(node_content);
-                match (projected, wanted) {
-                    (Some(mut p), Some(w)) => {
-                        p.set_if_neq(w);
-                    }
-                    (None, Some(w)) => {
-                        commands.entity(e).insert(w);
-                    }
-                    (Some(_), None) => {
-                        commands.entity(e).remove::<ProjectedMesh>();
-                    }
-                    (None, None) => {}
-                }
                 child_of.map(|c| c.parent())
             }
             Err(_) => {
@@ -248,9 +220,6 @@ pub fn sync_entities(
                     node_content,
                     (None, None, None, None),
                 );
-                if let Some(w) = ProjectedMesh::of(node_content) {
-                    commands.entity(e).insert(w);
-                }
                 None
             }
         };
@@ -398,58 +367,33 @@ pub fn project_transforms(
     }
 }
 
-impl ProjectedMesh {
-    /// What the document content's render mesh and overlays are built
-    /// from; `None` for empties.
-    pub fn of(content: &NodeContent) -> Option<ProjectedMesh> {
-        match content {
-            NodeContent::Mesh(c) => {
-                let modifier = active_modifier(c);
-                Some(ProjectedMesh {
-                    source: ContentSource::Mesh(ByAddress(c.mesh.clone())),
-                    shading: c.shading,
-                    smooth: modifier.map(|m| (m, creases_fingerprint(&c.creases))),
-                })
-            }
-            NodeContent::Surface(s) => Some(ProjectedMesh {
-                source: ContentSource::Surface(ByAddress(s.clone())),
-                shading: Shading::Smooth,
-                smooth: None,
-            }),
-            NodeContent::Curve(c) => Some(ProjectedMesh {
-                source: ContentSource::Curve(ByAddress(c.clone())),
-                shading: Shading::Flat,
-                smooth: None,
-            }),
-            NodeContent::Kept(k) => Some(ProjectedMesh {
-                source: ContentSource::Kept(ByAddress(k.mesh.clone())),
-                shading: k.shading,
-                smooth: None,
-            }),
-            NodeContent::Empty | NodeContent::Csg(_) => None,
-        }
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use hedra_doc::MeshContent;
     use hedra_geom::Primitive;
 
+    /// The overlays' key for a mesh's content.
+    fn source(content: &NodeContent) -> ContentSource {
+        match content {
+            NodeContent::Mesh(c) => ContentSource::Mesh(ByAddress(c.mesh.clone())),
+            _ => unreachable!("a mesh"),
+        }
+    }
+
     /// A mesh replaced by another of the same size often gets the freed
-    /// mesh's address; the projection must still see a change (it held
-    /// the address alone before, and could miss it).
+    /// mesh's address; the overlays must still see a change (they held
+    /// the address alone once, and could miss it).
     #[test]
     fn a_replaced_mesh_is_a_new_source_even_at_the_same_address() {
         let cube = || Arc::new(Primitive::Cube { size: 1.0 }.build().unwrap());
         let first = NodeContent::Mesh(MeshContent::new(cube()));
-        let before = ProjectedMesh::of(&first).unwrap();
+        let before = source(&first);
         drop(first);
         let second = NodeContent::Mesh(MeshContent::new(cube()));
-        let after = ProjectedMesh::of(&second).unwrap();
+        let after = source(&second);
         assert_ne!(before, after);
-        // The same content projects equal, so nothing is rebuilt for it.
-        assert_eq!(after, ProjectedMesh::of(&second).unwrap());
+        // The same content gives an equal key, so nothing is rebuilt for it.
+        assert_eq!(after, source(&second));
     }
 }

@@ -32,8 +32,8 @@ impl OnScreen {
 }
 
 /// The one writer of mesh nodes' render meshes (the `Assets<Mesh>` entries
-/// behind their `Mesh3d`) and of [`SmoothPreviews`]. Draws each node's
-/// document mesh or the one a running tool previews ([`Previews::content`]):
+/// behind their `Mesh3d`) and of [`SmoothPreviews`]. Draws what each node
+/// shows ([`ShownMesh`]: the document's mesh or a running tool's preview):
 /// patches positions in place when only positions changed (cage or smooth
 /// stencils), rebuilds otherwise; starts large smooth
 /// previews in the background and puts them on screen when they finish
@@ -41,7 +41,6 @@ impl OnScreen {
 #[allow(clippy::too_many_arguments, clippy::type_complexity)]
 pub fn project_render_meshes(
     mut commands: Commands,
-    previews: Res<Previews>,
     mut smooth: ResMut<SmoothPreviews>,
     mut meshes: ResMut<Assets<Mesh>>,
     mut status: ResMut<StatusMessage>,
@@ -58,6 +57,7 @@ pub fn project_render_meshes(
         Option<&OnScreen>,
     )>,
     kept: Query<Ref<NodeKeptMesh>>,
+    shown: Query<Ref<ShownMesh>>,
     node_materials: Query<(Entity, &MeshMaterial3d<StandardMaterial>), With<NodeEntity>>,
 ) {
     let chosen = material
@@ -115,10 +115,13 @@ pub fn project_render_meshes(
             continue;
         };
         any_changed |= content.is_changed();
-        if content.is_changed() || previews.is_changed() {
-            let preview = previews.content(node.0);
+        // Written in the same stage, just before: always there for a mesh.
+        let Ok(shown) = shown.get(entity) else {
+            continue;
+        };
+        if content.is_changed() || shown.is_changed() {
             let mut ec = commands.entity(entity);
-            projector.mesh(&mut ec, node.0, name, &content, preview, mesh3d, on_screen);
+            projector.mesh(&mut ec, node.0, name, &content, &shown, mesh3d, on_screen);
         }
     }
     // Refinements of nodes that no longer smooth go (looked up only when
@@ -145,7 +148,8 @@ struct Projector<'a, 'm, 's, 't> {
 
 impl Projector<'_, '_, '_, '_> {
     /// A mesh node: its cage, or its smooth preview when it has a
-    /// subdivision modifier, of the document's mesh or a tool's preview.
+    /// subdivision modifier, of what it shows (the document's mesh or a
+    /// tool's preview).
     #[allow(clippy::too_many_arguments)]
     fn mesh(
         &mut self,
@@ -153,16 +157,11 @@ impl Projector<'_, '_, '_, '_> {
         node: NodeId,
         name: &str,
         content: &NodeMesh,
-        preview: Option<&PreviewContent>,
+        shown: &ShownMesh,
         mesh3d: Option<&Mesh3d>,
         on_screen: Option<&OnScreen>,
     ) {
-        let (cage, creases, is_preview) = match preview {
-            Some(PreviewContent::Mesh { mesh, creases }) => {
-                (mesh, creases.as_ref().unwrap_or(&content.creases), true)
-            }
-            _ => (&content.mesh, &content.creases, false),
-        };
+        let (cage, creases, is_preview) = (&shown.cage, shown.creases(content), shown.previewed);
         let modifier = content.active_modifier();
         let fingerprint = creases_fingerprint(creases);
         let wanted = OnScreen {

@@ -111,47 +111,23 @@ pub fn control_weights(content: &NodeContent) -> Option<Vec<f64>> {
     }
 }
 
-/// A curve or surface node's shape as the screen shows it: the running
-/// tool's preview, else the document's (mirrored on the entity).
-fn shown_shape(
-    previews: &Previews,
-    node: NodeId,
-    curve: Option<&NodeCurve>,
-    surface: Option<&NodeSurface>,
-) -> Option<NodeContent> {
-    previews.shape_or(node, || {
-        curve
-            .map(|c| NodeContent::Curve(c.0.clone()))
-            .or_else(|| surface.map(|s| NodeContent::Surface(s.0.clone())))
-    })
-}
-
 /// The one writer of [`ControlPoint`]s: one child entity per control point
-/// of every curve and surface node, with the values the screen shows (a
-/// tool's preview or the document). Runs for a node when its curve or
-/// surface component changed or the previews did; a value is written only
-/// when it differs, so change detection marks exactly the points that moved.
+/// of every curve and surface node, with the values the screen shows
+/// ([`ShownShape`]: a tool's preview or the document). Runs for a node when
+/// what it shows changed; a value is written only when it differs, so
+/// change detection marks exactly the points that moved.
 #[allow(clippy::type_complexity)]
 pub fn project_control_points(
     mut commands: Commands,
-    previews: Res<Previews>,
-    nodes: Query<(
-        Entity,
-        &NodeEntity,
-        Option<Ref<NodeCurve>>,
-        Option<Ref<NodeSurface>>,
-        Option<&Children>,
-    )>,
+    nodes: Query<(Entity, Option<Ref<ShownShape>>, Option<&Children>)>,
     mut points: Query<&mut ControlPoint>,
 ) {
-    for (entity, node, curve, surface, children) in &nodes {
-        let changed = previews.is_changed()
-            || curve.as_ref().is_some_and(|c| c.is_changed())
-            || surface.as_ref().is_some_and(|s| s.is_changed());
+    for (entity, shown, children) in &nodes {
+        let changed = shown.as_ref().is_some_and(|s| s.is_changed());
         // Nothing to do unless the shape changed, or a node that is no
         // longer a curve or surface still has point entities.
         let is_point = |c: &&Entity| points.contains(**c);
-        let shape = curve.is_some() || surface.is_some();
+        let shape = shown.is_some();
         if !changed && (shape || !children.into_iter().flatten().any(|c| is_point(&c))) {
             continue;
         }
@@ -161,7 +137,7 @@ pub fn project_control_points(
             .filter(is_point)
             .copied()
             .collect();
-        let content = shown_shape(&previews, node.0, curve.as_deref(), surface.as_deref());
+        let content = shown.as_ref().map(|s| s.content());
         let wanted = content.as_ref().map(control_points).unwrap_or_default();
         let weights = content.as_ref().and_then(control_weights);
         let value = |i: usize| ControlPoint {
@@ -195,15 +171,13 @@ pub fn project_control_points(
 #[allow(clippy::too_many_arguments, clippy::type_complexity)]
 pub fn project_surface_patches(
     mut commands: Commands,
-    previews: Res<Previews>,
     material: Option<Res<MeshMaterial>>,
     shading: Res<crate::ViewportShading>,
     orientation: Option<Res<crate::FaceOrientationMaterials>>,
     mut meshes: ResMut<Assets<Mesh>>,
     nodes: Query<(
         Entity,
-        &NodeEntity,
-        Option<Ref<NodeSurface>>,
+        Option<Ref<ShownShape>>,
         Option<&PatchLayout>,
         Option<&Children>,
     )>,
@@ -215,16 +189,15 @@ pub fn project_surface_patches(
         .as_deref()
         .map(|m| crate::model_material(m, orientation.as_deref(), &shading));
     crate::refresh_materials(&mut commands, &shading, material.as_ref(), &patch_materials);
-    for (entity, node, surface_component, layout, children) in &nodes {
-        let changed =
-            previews.is_changed() || surface_component.as_ref().is_some_and(|s| s.is_changed());
-        if !changed && (surface_component.is_some() || layout.is_none()) {
+    for (entity, shown, layout, children) in &nodes {
+        let changed = shown.as_ref().is_some_and(|s| s.is_changed());
+        if !changed && (shown.is_some() || layout.is_none()) {
             continue;
         }
         let children: Vec<Entity> = children.into_iter().flatten().copied().collect();
         let old_patches = || children.iter().copied().filter(|c| patches.contains(*c));
-        let surface = match shown_shape(&previews, node.0, None, surface_component.as_deref()) {
-            Some(NodeContent::Surface(s)) => s,
+        let surface = match shown.as_ref().map(|s| &s.shape) {
+            Some(Shape::Surface(s)) => s.clone(),
             _ => {
                 if layout.is_some() {
                     old_patches().for_each(|p| commands.entity(p).despawn());
@@ -234,7 +207,7 @@ pub fn project_surface_patches(
             }
         };
         let key = LayoutKey::of(&surface);
-        let previewed = previews.content(node.0).is_some();
+        let previewed = shown.as_ref().is_some_and(|s| s.previewed);
         let grid = |s: &SurfaceShape| match s {
             SurfaceShape::Nurbs(n) => Some(surface_grid(n)),
             SurfaceShape::Triangle(_) => None,

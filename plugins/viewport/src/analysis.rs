@@ -179,7 +179,7 @@ pub(crate) fn draw_curve_analysis(
     analysis: Res<CurveAnalysis>,
     selection: Res<Selection>,
     state: Res<DocState>,
-    previews: Res<hedra_scene::Previews>,
+    shown: hedra_scene::Shown,
     mut gizmos: Gizmos<AxisGizmos>,
 ) {
     use hedra_geom::curves::Curve;
@@ -189,7 +189,7 @@ pub(crate) fn draw_curve_analysis(
     }
     let Some(id) = selection.active() else { return };
     let doc = &state.session.doc;
-    let Some(NodeContent::Curve(content)) = &previews.shown_shape(doc, id) else {
+    let Some(NodeContent::Curve(content)) = &shown.shape(id) else {
         return;
     };
     let c = content.nurbs();

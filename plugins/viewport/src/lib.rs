@@ -17,8 +17,7 @@ use hedra_doc::{NodeContent, NodeId, NodeTransform};
 use hedra_edit::{EditMode, ElementKind, Selection, TransformTool};
 use hedra_scene::modifiers;
 use hedra_scene::{
-    DocRequest, DocState, InputGate, NodeEntity, ProjectedMesh, SceneSystems, SettingsApp,
-    ViewportCamera,
+    DocRequest, DocState, InputGate, NodeEntity, SceneSystems, SettingsApp, ViewportCamera,
 };
 use std::f32::consts::FRAC_PI_2;
 

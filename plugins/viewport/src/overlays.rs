@@ -2,35 +2,20 @@
 
 use crate::*;
 use by_address::ByAddress;
-use hedra_doc::{Document, NodeId};
+use hedra_doc::NodeId;
 use hedra_geom::HalfEdgeMesh;
-use hedra_geom::subdivision::Creases;
-use hedra_scene::{PreviewContent, Previews};
+use hedra_scene::{NodeKeptMesh, NodeMesh, Shape, ShownMesh, ShownShape};
 use std::sync::Arc;
-
-/// A mesh node's mesh and creases as the screen shows them: a running
-/// tool's or the gizmo's preview, else the document's.
-pub(crate) fn shown_mesh<'a>(
-    previews: &'a Previews,
-    doc: &'a Document,
-    node: NodeId,
-) -> Option<(&'a Arc<HalfEdgeMesh>, &'a Creases)> {
-    let NodeContent::Mesh(c) = &doc.node(node)?.content else {
-        return None;
-    };
-    Some(match previews.content(node) {
-        Some(PreviewContent::Mesh { mesh, creases }) => {
-            (mesh, creases.as_ref().unwrap_or(&c.creases))
-        }
-        _ => (&c.mesh, &c.creases),
-    })
-}
 
 /// Overlay child entity showing a mesh node's edges, and what it was built for.
 #[derive(Component, Debug, Clone, PartialEq, Eq)]
 pub struct EdgeOverlay {
-    /// The projected content the lines were built from (a change rebuilds them).
-    pub source: ProjectedMesh,
+    /// What the lines were built from: the shown content, held and compared
+    /// by identity (a change, a tool's preview included, rebuilds them).
+    pub source: hedra_scene::ContentSource,
+    /// A mesh's look as far as its cage lines go: smoothed, the modifier's
+    /// Show cage, and smoothed or modified (a derived surface).
+    pub look: Option<(bool, bool, bool)>,
     /// The node is selected (orange lines).
     pub selected: bool,
     /// The node is the active one (yellow lines).
@@ -56,14 +41,42 @@ pub(crate) fn update_edge_overlays(
     selection: Res<Selection>,
     mode: Res<EditMode>,
     shape_edit: Res<hedra_edit::ShapeEdit>,
-    nodes: Query<(Entity, &NodeEntity, &ProjectedMesh, Option<&Children>)>,
+    nodes: Query<(
+        Entity,
+        &NodeEntity,
+        Option<(&ShownMesh, &NodeMesh)>,
+        Option<&ShownShape>,
+        Option<&NodeKeptMesh>,
+        Option<&Children>,
+    )>,
     mut overlays: Query<(&mut EdgeOverlay, &Gizmo)>,
     mut assets: ResMut<Assets<GizmoAsset>>,
     shading: Res<hedra_scene::ViewportShading>,
 ) {
     let doc = &state.session.doc;
     let wireframe = shading.wireframe;
-    for (entity, node, projected, children) in &nodes {
+    for (entity, node, mesh, shape, kept, children) in &nodes {
+        use hedra_scene::ContentSource;
+        let source = match (mesh, shape, kept) {
+            (Some((shown, _)), _, _) => ContentSource::Mesh(ByAddress(shown.cage.clone())),
+            (_, Some(shown), _) => match &shown.shape {
+                Shape::Curve(c) => ContentSource::Curve(ByAddress(c.clone())),
+                Shape::Surface(s) => ContentSource::Surface(ByAddress(s.clone())),
+            },
+            (_, _, Some(k)) => ContentSource::Kept(ByAddress(k.0.mesh.clone())),
+            _ => continue,
+        };
+        // A smooth preview shows its cage as light lines, or none; a cage
+        // over a smoothed or modified mesh unless hidden.
+        let look = mesh.map(|(_, m)| {
+            let smooth = m.active_modifier();
+            let derived = smooth.is_some() || !m.modifiers.is_empty();
+            (
+                smooth.is_some(),
+                smooth.is_none_or(|m| m.show_cage),
+                derived,
+            )
+        });
         let selected = selection.contains(node.0);
         let active = selection.active() == Some(node.0);
         // A CSG operand is drawn through its CSG node's solid (and as a
@@ -73,7 +86,8 @@ pub(crate) fn update_edge_overlays(
             && mode.node != Some(node.0)
             && shape_edit.node != Some(node.0);
         let wanted = EdgeOverlay {
-            source: projected.clone(),
+            source: source.clone(),
+            look,
             selected,
             active,
             shown,
@@ -86,9 +100,6 @@ pub(crate) fn update_edge_overlays(
         {
             continue;
         }
-        let Some(content) = doc.node(node.0).map(|n| &n.content) else {
-            continue;
-        };
         let color = match (selected, active) {
             (true, true) => Color::srgb(1.0, 0.78, 0.25),
             (true, false) => Color::srgb(0.95, 0.45, 0.1),
@@ -96,30 +107,25 @@ pub(crate) fn update_edge_overlays(
             _ => Color::srgba(0.05, 0.05, 0.07, 0.8),
         };
         let mut asset = GizmoAsset::new();
-        match content {
-            NodeContent::Mesh(content) if shown => {
-                // A smooth preview shows its cage as light lines, or none.
-                let smooth = hedra_scene::active_modifier(content);
+        match (&source, look) {
+            (ContentSource::Mesh(m), Some((smooth, show_cage, derived))) if shown => {
                 let color = match smooth {
-                    Some(_) if !selected => Color::srgba(0.75, 0.78, 0.85, 0.55),
+                    true if !selected => Color::srgba(0.75, 0.78, 0.85, 0.55),
                     _ => color,
                 };
-                // A cage over a smoothed or modified mesh, unless hidden
-                // (View ▸ Cages, or the modifier's Show cage).
-                let derived = smooth.is_some() || content.has_stack_modifiers();
-                if smooth.is_none_or(|m| m.show_cage) && (wanted.cages || !derived) {
-                    let m = &content.mesh;
+                // View ▸ Cages, or the modifier's Show cage.
+                if show_cage && (wanted.cages || !derived) {
                     for e in m.edges() {
                         let [a, b] = m.edge_vertices(e);
                         asset.line(m.position(a).as_vec3(), m.position(b).as_vec3(), color);
                     }
                 }
             }
-            NodeContent::Kept(kept) if shown => draw_kept_edges(&mut asset, &kept.mesh, color),
-            NodeContent::Curve(curve) if shown => {
+            (ContentSource::Kept(k), _) if shown => draw_kept_edges(&mut asset, k, color),
+            (ContentSource::Curve(curve), _) if shown => {
                 draw_curve(&mut asset, curve, selected, color);
             }
-            NodeContent::Surface(surface) if shown && selected => {
+            (ContentSource::Surface(surface), _) if shown && selected => {
                 draw_control_net(&mut asset, surface, Color::srgba(0.85, 0.85, 0.9, 0.7));
             }
             _ => {}
@@ -250,16 +256,14 @@ pub(crate) fn update_edit_edges(
     mut commands: Commands,
     mode: Res<EditMode>,
     state: Res<DocState>,
-    previews: Res<Previews>,
+    shown: hedra_scene::Shown,
     mut assets: ResMut<Assets<GizmoAsset>>,
     mut overlay: Local<Option<(Entity, Handle<GizmoAsset>)>>,
     mut built: Local<Option<(ByAddress<Arc<HalfEdgeMesh>>, u64)>>,
     mut transforms: Query<&mut Transform, With<EditEdges>>,
 ) {
     use std::hash::{Hash, Hasher};
-    let shown = mode
-        .node
-        .and_then(|n| shown_mesh(&previews, &state.session.doc, n));
+    let shown = mode.node.and_then(|n| shown.mesh(n));
     let key = shown.map(|(m, creases)| {
         let mut h = std::collections::hash_map::DefaultHasher::new();
         (
@@ -417,14 +421,14 @@ pub(crate) fn draw_edit_edges(
 pub(crate) fn draw_shape_edit(
     edit: Res<hedra_edit::ShapeEdit>,
     state: Res<DocState>,
-    previews: Res<Previews>,
+    shown: hedra_scene::Shown,
     entities: Res<hedra_scene::NodeEntities>,
     points: Query<(&hedra_scene::ControlPoint, &ChildOf)>,
     camera: Single<&GlobalTransform, With<ViewportCamera>>,
     mut gizmos: Gizmos<AxisGizmos>,
 ) {
     let Some(node) = edit.node else { return };
-    let Some(content) = previews.shown_shape(&state.session.doc, node) else {
+    let Some(content) = shown.shape(node) else {
         return;
     };
     let world = state.session.doc.world_matrix(node);
@@ -499,12 +503,12 @@ pub(crate) fn draw_shape_edit(
 pub(crate) fn draw_edit_overlay(
     mode: Res<EditMode>,
     state: Res<DocState>,
-    previews: Res<Previews>,
+    shown: hedra_scene::Shown,
     camera: Single<&GlobalTransform, With<ViewportCamera>>,
     mut gizmos: Gizmos<AxisGizmos>,
 ) {
     let Some(node) = mode.node else { return };
-    let Some((mesh, _)) = shown_mesh(&previews, &state.session.doc, node) else {
+    let Some((mesh, _)) = shown.mesh(node) else {
         return;
     };
     let world = state.session.doc.world_matrix(node);
