@@ -55,6 +55,33 @@ fn a_vertex_moves_by_a_number_typed_within_one_frame() {
     );
 }
 
+/// G and X pressed within one frame in edit mode (a fast "move along X"):
+/// one action runs, the move, and X does not also delete the selection.
+/// (Every matching shortcut used to run, so the selection was deleted
+/// while the move started.)
+#[test]
+fn two_shortcuts_within_one_frame_run_one_action() {
+    let mut user = cube_in_edit_mode(KeyCode::Digit1);
+    let corner = user.screen_of(Vec3::new(1.0, 1.0, 1.0));
+    user.click(corner);
+    assert_eq!(user.edit_mode().selection.vertices.len(), 1);
+    let steps = user.undo_steps();
+    user.taps_in_one_frame(&[KeyCode::KeyG, KeyCode::KeyX]);
+    user.frames(2);
+    assert!(
+        user.edit_mode()
+            .tool
+            .as_ref()
+            .is_some_and(|t| t.kind == hedra_edit::MeshToolKind::Move),
+        "the move runs: {}",
+        user.status()
+    );
+    user.tap(KeyCode::Escape);
+    user.frames(2);
+    assert_eq!(user.undo_steps(), steps, "nothing was deleted");
+    assert_eq!(user.mesh_counts(), (8, 12, 6));
+}
+
 /// The wheel during loop cut adds a cut and leaves the view where it was;
 /// outside a tool it zooms.
 #[test]
