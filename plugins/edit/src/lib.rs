@@ -109,7 +109,6 @@ impl Plugin for EditPlugin {
                     place_cursor,
                     object_mode::pick_objects,
                     mesh_mode::select_elements,
-                    mesh_mode::publish_mesh_preview,
                 )
                     .chain()
                     .in_set(EditSystems),
@@ -121,12 +120,11 @@ impl Plugin for EditPlugin {
                     shape_mode::shape_mode_keys,
                     shape_mode::drive_shape_tool,
                     shape_mode::shape_select_and_shortcuts,
-                    shape_mode::publish_shape_preview,
                     curve_draw::drive_curve_draw,
                     publish_axis_lock,
                 )
                     .chain()
-                    .after(mesh_mode::publish_mesh_preview)
+                    .after(mesh_mode::select_elements)
                     .in_set(EditSystems),
             );
     }

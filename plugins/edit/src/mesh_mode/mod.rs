@@ -32,7 +32,7 @@ pub use bisect::*;
 pub use keymap::*;
 pub use knife::*;
 pub use picking::*;
-pub use preview::*;
+use preview::show_mesh_tool_preview;
 pub use selection::*;
 pub use tools::*;
 

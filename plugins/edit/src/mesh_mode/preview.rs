@@ -5,15 +5,16 @@ use hedra_scene::{PreviewContent, PreviewSource, Previews, ToolPreview};
 
 /// Puts the running mesh tool's result (`EditMode::preview`, shared, not
 /// copied) into its [`Previews`] slot, and clears the slot when the tool
-/// ends. The projection draws it: smoothed when the node has a subdivision
-/// modifier, patched in place when only positions moved.
-pub fn publish_mesh_preview(mode: Res<EditMode>, mut previews: ResMut<Previews>) {
+/// ends; called by [`drive_mesh_tool`] after each step. The projection
+/// draws it: smoothed when the node has a subdivision modifier, patched in
+/// place when only positions moved.
+pub(super) fn show_mesh_tool_preview(mode: &ResMut<EditMode>, previews: &mut ResMut<Previews>) {
     if !mode.is_changed() {
         return;
     }
     match (mode.node, &mode.preview) {
         (Some(node), Some(mesh)) => Previews::show(
-            &mut previews,
+            previews,
             PreviewSource::MeshTool,
             ToolPreview {
                 contents: [(
@@ -27,6 +28,6 @@ pub fn publish_mesh_preview(mode: Res<EditMode>, mut previews: ResMut<Previews>)
                 ..default()
             },
         ),
-        _ => Previews::clear(&mut previews, PreviewSource::MeshTool),
+        _ => Previews::clear(previews, PreviewSource::MeshTool),
     }
 }

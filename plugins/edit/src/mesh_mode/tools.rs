@@ -370,226 +370,233 @@ pub fn drive_mesh_tool(
     mut snap_target: ResMut<crate::SnapTarget>,
     mut proportional: ResMut<crate::Proportional>,
     mut ring: ResMut<crate::ProportionalRing>,
+    mut previews: ResMut<hedra_scene::Previews>,
 ) {
-    let (window, camera) = (viewport.window(), viewport.camera());
-    mode.just_finished = false;
-    let Some(mut tool) = mode.tool.take() else {
-        return;
-    };
-    let (Some(node_id), Some(mesh)) = (mode.node, edited_mesh(&state, &mode)) else {
-        mode.preview = None;
-        return;
-    };
-    let modal_keys = crate::modal::ModalKeys {
-        keys: &keys,
-        buttons: &buttons,
-    };
-    if modal_keys.cancel() {
-        mode.preview = None;
-        mode.just_finished = true;
-        return;
-    }
-    if matches!(
-        tool.kind,
-        MeshToolKind::Move | MeshToolKind::Rotate | MeshToolKind::Scale
-    ) {
-        modal_keys.toggle_axis(&mut tool.axis);
-    }
-    // G again while moving edges: slide them instead (Blender's G G).
-    if tool.kind == MeshToolKind::Move
-        && mode.kind == ElementKind::Edge
-        && crate::bindings::pressed(&keys, KeyMode::Tool, Action::Slide)
-    {
-        tool.kind = MeshToolKind::SlideEdges;
-        tool.typed = Default::default();
-    }
-    // Loop cut and bevel: minus, plus and the wheel change the count of cuts or segments.
-    let loop_cut = matches!(tool.kind, MeshToolKind::LoopCut | MeshToolKind::Bevel);
-    tool.typed.read(&strokes, !loop_cut);
-    if loop_cut {
-        let less = crate::bindings::pressed(&keys, KeyMode::Tool, Action::FewerCuts)
-            || scroll.delta.y < 0.0;
-        let more = crate::bindings::pressed(&keys, KeyMode::Tool, Action::MoreCuts)
-            || scroll.delta.y > 0.0;
-        if less {
-            tool.cuts = tool.cuts.saturating_sub(1).max(1);
-        } else if more {
-            tool.cuts = (tool.cuts + 1).min(64);
+    // The tool's step for this frame; then its slot in the previews
+    // shows what it decided (cleared when no tool runs).
+    (|| {
+        let (window, camera) = (viewport.window(), viewport.camera());
+        mode.just_finished = false;
+        let Some(mut tool) = mode.tool.take() else {
+            return;
+        };
+        let (Some(node_id), Some(mesh)) = (mode.node, edited_mesh(&state, &mode)) else {
+            mode.preview = None;
+            return;
+        };
+        let modal_keys = crate::modal::ModalKeys {
+            keys: &keys,
+            buttons: &buttons,
+        };
+        if modal_keys.cancel() {
+            mode.preview = None;
+            mode.just_finished = true;
+            return;
         }
-    }
-    let (cam, cam_t) = camera;
-    let cursor = window.cursor_position().unwrap_or(tool.start_cursor);
-    let world = state.session.doc.world_matrix(node_id);
-    // Loop cut follows the edge under the pointer, as Blender's does.
-    if tool.kind == MeshToolKind::LoopCut
-        && let Some(ElementHit::Edge(e)) =
-            element_under_cursor(ElementKind::Edge, &mesh, world, window, cam, cam_t)
-    {
-        tool.edge = Some(e);
-    }
-    let view_dir = (cam_t.rotation() * Vec3::NEG_Z).as_dvec3();
-    // World size of one pixel at the pivot, so drags feel the same at any zoom.
-    let dist = cam_t
-        .translation()
-        .as_dvec3()
-        .distance(tool.pivot)
-        .max(1e-6);
-    let pixel_size = dist * 0.0008;
-    let ray_at = |p: Vec2| viewport.ray_at(p);
-    // Snapping: a move lands on the scene's vertices, edges or faces (this
-    // mesh's moving part left out); the other tools go in increments.
-    let snap = if matches!(tool.kind, MeshToolKind::Move | MeshToolKind::SplitVertex) {
-        let to_screen = |p: DVec3| cam.world_to_viewport(cam_t, p.as_vec3()).ok();
-        let moving = mode.selection.all_vertices(&mesh);
-        let doc = &state.session.doc;
-        let mut scene = crate::SnapScene::of_document(doc, |id| id != node_id);
-        scene.meshes.push(crate::SnapMesh {
-            mesh: &mesh,
-            world,
-            moving: Some(&moving),
-        });
-        crate::move_snap(
-            &snapping,
-            snapping.active(&keys),
-            &scene,
-            moving
-                .iter()
-                .map(|&v| world.transform_point3(mesh.position(v))),
-            cursor,
-            ray_at(cursor),
-            &to_screen,
-            &mut snap_target,
-        )
-    } else if snapping.active(&keys) {
-        crate::MoveSnap::Increment(snapping.step)
-    } else {
-        crate::MoveSnap::Free
-    };
-    // Proportional editing: G/R/S move the neighbours too; the wheel sizes it.
-    let soft = proportional.enabled
-        && matches!(
-            tool.kind,
-            MeshToolKind::Move | MeshToolKind::Rotate | MeshToolKind::Scale
-        );
-    if soft {
-        proportional.adjust_radius(&keys, scroll.delta.y);
-        ring.0 = Some((tool.pivot, proportional.radius));
-        if tool
-            .proportional
-            .as_ref()
-            .is_none_or(|c| c.settings != *proportional)
-        {
-            let selected: Vec<VertexId> = mode.selection.all_vertices(&mesh).into_iter().collect();
-            let position = |v: VertexId| world.transform_point3(mesh.position(v));
-            tool.proportional = Some(tools::CachedWeights {
-                settings: *proportional,
-                weights: hedra_geom::proportional::mesh_weights(
-                    &mesh,
-                    &position,
-                    &selected,
-                    proportional.radius,
-                    proportional.falloff,
-                    proportional.connected_only,
-                ),
-            });
-        }
-    }
-    // Out of the tool while the tool is borrowed for the command.
-    let cached = tool.proportional.take();
-    let weights = cached.as_ref().filter(|_| soft).map(|c| &c.weights);
-    let cmd = tool_command(
-        &mut tool,
-        NodeRef::from(node_id),
-        &mesh,
-        &mode.selection,
-        world,
-        cursor,
-        &ray_at,
-        view_dir,
-        pixel_size,
-        snap,
-        snapping.active(&keys).then_some(&*snapping),
-        weights,
-    );
-    tool.proportional = cached;
-    let cmd = match state.session.doc.node(node_id).map(|n| &n.content) {
-        Some(NodeContent::Mesh(content)) => clip_to_mirrors(cmd, &mesh, &content.modifiers),
-        _ => cmd,
-    };
-    if soft {
-        tool.readout = format!(
-            "{} · proportional {} radius {:.3} (wheel)",
-            tool.readout,
-            proportional.falloff.label(),
-            proportional.radius
-        );
-    }
-    if !tool.typed.is_empty() {
-        tool.readout = format!("{} [{}]", tool.readout, tool.typed.as_str());
-    }
-    // Extrude and inset re-place vertices as the value changes: decided
-    // twice when the drag starts, then one mesh copy a frame
-    // (hedra_doc::preview). The command is decided in full on confirm.
-    let value = cmd.linear_parameter();
-    if value.is_some() && !tool.linear_tried {
-        tool.linear_tried = true;
-        tool.linear = state
-            .session
-            .doc
-            .linear_preview(&cmd, node_id)
-            .ok()
-            .flatten();
-    }
-    let inset = matches!(
-        cmd,
-        Command::InsetRegion { .. } | Command::InsetFaces { .. }
-    );
-    if let (Some(linear), Some(t)) = (&tool.linear, value)
-        && (t >= 0.0 || !inset)
-    {
-        tool.created_faces = linear.created_faces.clone();
-        mode.preview = Some(Arc::new(linear.mesh_at(t)));
-        mode.preview_creases = Some(linear.creases.clone());
-    } else {
-        decide_preview(&mut mode, &mut tool, &state, &cmd, node_id);
-    }
-    if modal_keys.confirm() {
-        // A region extrude or inset selects the faces it made (the caps, the
-        // inner faces), as Blender keeps them selected.
-        // A bevel selects the faces it made, so the selection survives the
-        // edges it replaces (and undo gives the edges back selected).
         if matches!(
             tool.kind,
-            MeshToolKind::Extrude | MeshToolKind::Inset | MeshToolKind::Bevel
-        ) && mode.preview.is_some()
-            && !tool.created_faces.is_empty()
+            MeshToolKind::Move | MeshToolKind::Rotate | MeshToolKind::Scale
+        ) {
+            modal_keys.toggle_axis(&mut tool.axis);
+        }
+        // G again while moving edges: slide them instead (Blender's G G).
+        if tool.kind == MeshToolKind::Move
+            && mode.kind == ElementKind::Edge
+            && crate::bindings::pressed(&keys, KeyMode::Tool, Action::Slide)
         {
-            mode.selection_before_step = Some(mode.selection.clone());
-            mode.selection.faces = tool.created_faces.iter().copied().collect();
-            // In edge mode the new faces show as their edges.
-            if mode.kind == ElementKind::Edge
-                && let Some(after) = &mode.preview
-            {
-                mode.selection.edges = tool
-                    .created_faces
-                    .iter()
-                    .filter(|f| after.is_face(**f))
-                    .flat_map(|&f| after.face_halfedges(f).map(|h| h.edge()))
-                    .collect();
+            tool.kind = MeshToolKind::SlideEdges;
+            tool.typed = Default::default();
+        }
+        // Loop cut and bevel: minus, plus and the wheel change the count of cuts or segments.
+        let loop_cut = matches!(tool.kind, MeshToolKind::LoopCut | MeshToolKind::Bevel);
+        tool.typed.read(&strokes, !loop_cut);
+        if loop_cut {
+            let less = crate::bindings::pressed(&keys, KeyMode::Tool, Action::FewerCuts)
+                || scroll.delta.y < 0.0;
+            let more = crate::bindings::pressed(&keys, KeyMode::Tool, Action::MoreCuts)
+                || scroll.delta.y > 0.0;
+            if less {
+                tool.cuts = tool.cuts.saturating_sub(1).max(1);
+            } else if more {
+                tool.cuts = (tool.cuts + 1).min(64);
             }
         }
-        mode.preview = None;
-        mode.just_finished = true;
-        let nothing =
-            matches!(&cmd, Command::MoveVertices { offset, .. } if *offset == DVec3::ZERO);
-        if !nothing {
-            requests.write(DocRequest::Execute(cmd));
-        } else {
-            status.info("Move cancelled (no movement)");
+        let (cam, cam_t) = camera;
+        let cursor = window.cursor_position().unwrap_or(tool.start_cursor);
+        let world = state.session.doc.world_matrix(node_id);
+        // Loop cut follows the edge under the pointer, as Blender's does.
+        if tool.kind == MeshToolKind::LoopCut
+            && let Some(ElementHit::Edge(e)) =
+                element_under_cursor(ElementKind::Edge, &mesh, world, window, cam, cam_t)
+        {
+            tool.edge = Some(e);
         }
-        return;
-    }
-    mode.tool = Some(tool);
+        let view_dir = (cam_t.rotation() * Vec3::NEG_Z).as_dvec3();
+        // World size of one pixel at the pivot, so drags feel the same at any zoom.
+        let dist = cam_t
+            .translation()
+            .as_dvec3()
+            .distance(tool.pivot)
+            .max(1e-6);
+        let pixel_size = dist * 0.0008;
+        let ray_at = |p: Vec2| viewport.ray_at(p);
+        // Snapping: a move lands on the scene's vertices, edges or faces (this
+        // mesh's moving part left out); the other tools go in increments.
+        let snap = if matches!(tool.kind, MeshToolKind::Move | MeshToolKind::SplitVertex) {
+            let to_screen = |p: DVec3| cam.world_to_viewport(cam_t, p.as_vec3()).ok();
+            let moving = mode.selection.all_vertices(&mesh);
+            let doc = &state.session.doc;
+            let mut scene = crate::SnapScene::of_document(doc, |id| id != node_id);
+            scene.meshes.push(crate::SnapMesh {
+                mesh: &mesh,
+                world,
+                moving: Some(&moving),
+            });
+            crate::move_snap(
+                &snapping,
+                snapping.active(&keys),
+                &scene,
+                moving
+                    .iter()
+                    .map(|&v| world.transform_point3(mesh.position(v))),
+                cursor,
+                ray_at(cursor),
+                &to_screen,
+                &mut snap_target,
+            )
+        } else if snapping.active(&keys) {
+            crate::MoveSnap::Increment(snapping.step)
+        } else {
+            crate::MoveSnap::Free
+        };
+        // Proportional editing: G/R/S move the neighbours too; the wheel sizes it.
+        let soft = proportional.enabled
+            && matches!(
+                tool.kind,
+                MeshToolKind::Move | MeshToolKind::Rotate | MeshToolKind::Scale
+            );
+        if soft {
+            proportional.adjust_radius(&keys, scroll.delta.y);
+            ring.0 = Some((tool.pivot, proportional.radius));
+            if tool
+                .proportional
+                .as_ref()
+                .is_none_or(|c| c.settings != *proportional)
+            {
+                let selected: Vec<VertexId> =
+                    mode.selection.all_vertices(&mesh).into_iter().collect();
+                let position = |v: VertexId| world.transform_point3(mesh.position(v));
+                tool.proportional = Some(tools::CachedWeights {
+                    settings: *proportional,
+                    weights: hedra_geom::proportional::mesh_weights(
+                        &mesh,
+                        &position,
+                        &selected,
+                        proportional.radius,
+                        proportional.falloff,
+                        proportional.connected_only,
+                    ),
+                });
+            }
+        }
+        // Out of the tool while the tool is borrowed for the command.
+        let cached = tool.proportional.take();
+        let weights = cached.as_ref().filter(|_| soft).map(|c| &c.weights);
+        let cmd = tool_command(
+            &mut tool,
+            NodeRef::from(node_id),
+            &mesh,
+            &mode.selection,
+            world,
+            cursor,
+            &ray_at,
+            view_dir,
+            pixel_size,
+            snap,
+            snapping.active(&keys).then_some(&*snapping),
+            weights,
+        );
+        tool.proportional = cached;
+        let cmd = match state.session.doc.node(node_id).map(|n| &n.content) {
+            Some(NodeContent::Mesh(content)) => clip_to_mirrors(cmd, &mesh, &content.modifiers),
+            _ => cmd,
+        };
+        if soft {
+            tool.readout = format!(
+                "{} · proportional {} radius {:.3} (wheel)",
+                tool.readout,
+                proportional.falloff.label(),
+                proportional.radius
+            );
+        }
+        if !tool.typed.is_empty() {
+            tool.readout = format!("{} [{}]", tool.readout, tool.typed.as_str());
+        }
+        // Extrude and inset re-place vertices as the value changes: decided
+        // twice when the drag starts, then one mesh copy a frame
+        // (hedra_doc::preview). The command is decided in full on confirm.
+        let value = cmd.linear_parameter();
+        if value.is_some() && !tool.linear_tried {
+            tool.linear_tried = true;
+            tool.linear = state
+                .session
+                .doc
+                .linear_preview(&cmd, node_id)
+                .ok()
+                .flatten();
+        }
+        let inset = matches!(
+            cmd,
+            Command::InsetRegion { .. } | Command::InsetFaces { .. }
+        );
+        if let (Some(linear), Some(t)) = (&tool.linear, value)
+            && (t >= 0.0 || !inset)
+        {
+            tool.created_faces = linear.created_faces.clone();
+            mode.preview = Some(Arc::new(linear.mesh_at(t)));
+            mode.preview_creases = Some(linear.creases.clone());
+        } else {
+            decide_preview(&mut mode, &mut tool, &state, &cmd, node_id);
+        }
+        if modal_keys.confirm() {
+            // A region extrude or inset selects the faces it made (the caps, the
+            // inner faces), as Blender keeps them selected.
+            // A bevel selects the faces it made, so the selection survives the
+            // edges it replaces (and undo gives the edges back selected).
+            if matches!(
+                tool.kind,
+                MeshToolKind::Extrude | MeshToolKind::Inset | MeshToolKind::Bevel
+            ) && mode.preview.is_some()
+                && !tool.created_faces.is_empty()
+            {
+                mode.selection_before_step = Some(mode.selection.clone());
+                mode.selection.faces = tool.created_faces.iter().copied().collect();
+                // In edge mode the new faces show as their edges.
+                if mode.kind == ElementKind::Edge
+                    && let Some(after) = &mode.preview
+                {
+                    mode.selection.edges = tool
+                        .created_faces
+                        .iter()
+                        .filter(|f| after.is_face(**f))
+                        .flat_map(|&f| after.face_halfedges(f).map(|h| h.edge()))
+                        .collect();
+                }
+            }
+            mode.preview = None;
+            mode.just_finished = true;
+            let nothing =
+                matches!(&cmd, Command::MoveVertices { offset, .. } if *offset == DVec3::ZERO);
+            if !nothing {
+                requests.write(DocRequest::Execute(cmd));
+            } else {
+                status.info("Move cancelled (no movement)");
+            }
+            return;
+        }
+        mode.tool = Some(tool);
+    })();
+    show_mesh_tool_preview(&mode, &mut previews);
 }
 
 /// Decides the tool's command on a copy of the document: the preview mesh,

@@ -20,7 +20,7 @@ use hedra_scene::{DocRequest, DocState, InputGate, StatusMessage};
 
 mod tool;
 use crate::typing::TypedNumber;
-pub use tool::{ShapeTool, ShapeToolKind, drive_shape_tool, publish_shape_preview};
+pub use tool::{ShapeTool, ShapeToolKind, drive_shape_tool};
 
 /// Edit-mode state of a curve or surface node.
 #[derive(Resource, Default, Debug)]
