@@ -2,7 +2,7 @@
 //! control points, weights, knot insertion and degree elevation.
 
 use super::plan::Plan;
-use super::{CommandError, CurveSpec, NodeRef, ParameterDirection, SurfaceSpec};
+use super::{Command, CommandError, CurveSpec, NodeRef, ParameterDirection, SurfaceSpec};
 use crate::scene::{CurveContent, NodeContent, NodeTransform, SurfaceShape};
 use glam::DVec3;
 use hedra_geom::curves::interpolating::Tbc;
@@ -632,5 +632,58 @@ impl Plan<'_> {
                 }
             },
         )
+    }
+}
+
+impl Plan<'_> {
+    /// Decides a command of the curves and surfaces family (the variants
+    /// [`Family::Shapes`](super::plan::Family::Shapes) names; [`Plan::run`] sends only those here).
+    pub(super) fn run_shape_command(&mut self, cmd: &Command) -> Result<(), CommandError> {
+        match cmd {
+            Command::AddCurve {
+                name,
+                curve,
+                parent,
+                transform,
+            } => self.add_curve(name, curve, parent, *transform),
+            Command::AddSurface {
+                name,
+                surface,
+                parent,
+                transform,
+            } => self.add_surface(name, surface, parent, *transform),
+            Command::SetControlPoints { node, points } => self.set_control_points(node, points),
+            Command::SetWeights { node, weights } => self.set_weights(node, weights),
+            Command::InsertKnot {
+                node,
+                at,
+                direction,
+            } => self.insert_knot(node, *at, *direction),
+            Command::ElevateDegree { node, direction } => self.elevate_degree(node, *direction),
+            Command::SetCurve { node, curve } => self.set_curve(node, curve),
+            Command::InsertCurvePoint { node, at } => {
+                self.edit_curve(node, |k| Ok(k.insert_point(*at)?.0))
+            }
+            Command::DeleteCurvePoints { node, points } => {
+                let points: Vec<usize> = points.iter().map(|&i| i as usize).collect();
+                self.edit_curve(node, |k| k.delete_points(&points))
+            }
+            Command::ExtrudeCurve { node, end, to } => {
+                self.edit_curve(node, |k| k.extrude(*end, *to))
+            }
+            Command::SetCurveClosed { node, closed } => {
+                self.edit_curve(node, |k| k.set_closed(*closed))
+            }
+            Command::ReverseCurve { node } => self.edit_curve(node, |k| k.reverse()),
+            Command::SplitCurve { node, at, name } => self.split_curve(node, *at, name),
+            Command::JoinCurves { first, second } => self.join_curves(first, second),
+            Command::SetCurveJoin { node, joint, join } => {
+                self.edit_curve(node, |k| k.set_join(*joint as usize, *join))
+            }
+            Command::ConvertCurveToNurbs { node } => {
+                self.edit_curve(node, |k| Ok(CurveKind::Nurbs(k.to_nurbs()?.curve)))
+            }
+            _ => unreachable!("not a command of the curves and surfaces family"),
+        }
     }
 }
