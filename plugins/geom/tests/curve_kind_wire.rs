@@ -6,7 +6,11 @@
 
 use glam::DVec3;
 use hedra_geom::curves::interpolating::Tbc;
-use hedra_geom::curves::{CurveKind, FractalRule, Join, NurbsCurve, Parameterization, SplineEnds};
+use hedra_geom::curves::{
+    CatmullRom, Chaikin, CubicHermite, CubicSpline, CurveKind, Fractal, FractalRule, Join,
+    KochanekBartels, Lagrange, NurbsCurve, Parameterization, PolyBezier, QuinticHermite,
+    SplineEnds,
+};
 
 fn v(x: f64, y: f64, z: f64) -> DVec3 {
     DVec3::new(x, y, z)
@@ -18,25 +22,25 @@ fn every_kind() -> Vec<CurveKind> {
     let p = vec![v(0.0, 0.0, 0.0), v(1.0, 2.0, 0.0), v(3.0, 1.5, -1.0)];
     vec![
         CurveKind::Nurbs(NurbsCurve::clamped(2, p.clone()).unwrap()),
-        CurveKind::Lagrange {
+        CurveKind::Lagrange(Lagrange {
             points: p.clone(),
             parameterization: Parameterization::Chord,
-        },
-        CurveKind::CubicHermite {
+        }),
+        CurveKind::CubicHermite(CubicHermite {
             points: p[..2].to_vec(),
             tangents: vec![v(1.0, 0.0, 0.0), v(0.0, 1.0, 0.0)],
-        },
-        CurveKind::QuinticHermite {
+        }),
+        CurveKind::QuinticHermite(QuinticHermite {
             points: p[..2].to_vec(),
             tangents: vec![v(1.0, 0.0, 0.0), v(0.0, 1.0, 0.0)],
             accelerations: vec![v(0.0, 0.0, 0.5), v(0.25, 0.0, 0.0)],
-        },
-        CurveKind::CatmullRom {
+        }),
+        CurveKind::CatmullRom(CatmullRom {
             points: p.clone(),
             parameterization: Parameterization::Centripetal,
             closed: true,
-        },
-        CurveKind::KochanekBartels {
+        }),
+        CurveKind::KochanekBartels(KochanekBartels {
             points: p.clone(),
             keys: vec![
                 Tbc::default(),
@@ -48,26 +52,26 @@ fn every_kind() -> Vec<CurveKind> {
                 Tbc::default(),
             ],
             closed: false,
-        },
-        CurveKind::CubicSpline {
+        }),
+        CurveKind::CubicSpline(CubicSpline {
             points: p.clone(),
             parameterization: Parameterization::Uniform,
             ends: SplineEnds::Clamped {
                 start: v(1.0, 0.0, 0.0),
                 end: v(0.0, -1.0, 0.0),
             },
-        },
-        CurveKind::CubicSpline {
+        }),
+        CurveKind::CubicSpline(CubicSpline {
             points: p.clone(),
             parameterization: Parameterization::Chord,
             ends: SplineEnds::Closed,
-        },
-        CurveKind::Chaikin {
+        }),
+        CurveKind::Chaikin(Chaikin {
             points: p.clone(),
             level: 3,
             closed: true,
-        },
-        CurveKind::PolyBezier {
+        }),
+        CurveKind::PolyBezier(PolyBezier {
             points: vec![
                 v(0.0, 0.0, 0.0),
                 v(1.0, 0.0, 0.0),
@@ -79,21 +83,21 @@ fn every_kind() -> Vec<CurveKind> {
             ],
             joins: vec![Join::Auto],
             closed: false,
-        },
-        CurveKind::Fractal {
+        }),
+        CurveKind::Fractal(Fractal {
             rule: FractalRule::Koch,
             points: p.clone(),
             level: 2,
             closed: true,
             normal: v(0.0, 0.0, 1.0),
-        },
-        CurveKind::Fractal {
+        }),
+        CurveKind::Fractal(Fractal {
             rule: FractalRule::QuadraticKoch,
             points: p[..2].to_vec(),
             level: 1,
             closed: false,
             normal: v(0.0, 1.0, 0.0),
-        },
+        }),
     ]
 }
 

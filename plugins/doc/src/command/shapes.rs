@@ -7,7 +7,10 @@ use crate::scene::{CurveContent, NodeContent, NodeTransform, SurfaceShape};
 use glam::DVec3;
 use hedra_geom::curves::interpolating::Tbc;
 use hedra_geom::curves::nurbs::clamped_uniform_knots;
-use hedra_geom::curves::{CurveError, CurveKind, Join, NurbsCurve};
+use hedra_geom::curves::{
+    CatmullRom, Chaikin, CubicHermite, CubicSpline, CurveError, CurveKind, Fractal, Join,
+    KochanekBartels, Lagrange, NurbsCurve, PolyBezier, QuinticHermite,
+};
 use hedra_geom::surfaces::{BezierTriangle, NurbsSurface};
 use std::sync::Arc;
 
@@ -34,75 +37,77 @@ impl CurveSpec {
                 weights: Some(c.weights().to_vec()),
                 knots: Some(c.knots().to_vec()),
             },
-            CurveKind::Lagrange {
+            CurveKind::Lagrange(Lagrange {
                 points,
                 parameterization,
-            } => CurveSpec::Lagrange {
+            }) => CurveSpec::Lagrange {
                 points,
                 parameterization,
             },
-            CurveKind::CubicHermite { points, tangents } => CurveSpec::Hermite { points, tangents },
-            CurveKind::QuinticHermite {
+            CurveKind::CubicHermite(CubicHermite { points, tangents }) => {
+                CurveSpec::Hermite { points, tangents }
+            }
+            CurveKind::QuinticHermite(QuinticHermite {
                 points,
                 tangents,
                 accelerations,
-            } => CurveSpec::QuinticHermite {
+            }) => CurveSpec::QuinticHermite {
                 points,
                 tangents,
                 accelerations,
             },
-            CurveKind::CatmullRom {
+            CurveKind::CatmullRom(CatmullRom {
                 points,
                 parameterization,
                 closed,
-            } => CurveSpec::CatmullRom {
+            }) => CurveSpec::CatmullRom {
                 points,
                 parameterization,
                 closed,
             },
-            CurveKind::KochanekBartels {
+            CurveKind::KochanekBartels(KochanekBartels {
                 points,
                 keys,
                 closed,
-            } => CurveSpec::KochanekBartels {
+            }) => CurveSpec::KochanekBartels {
                 points,
                 keys: Some(keys),
                 closed,
             },
-            CurveKind::CubicSpline {
+            CurveKind::CubicSpline(CubicSpline {
                 points,
                 parameterization,
                 ends,
-            } => CurveSpec::CubicSpline {
+            }) => CurveSpec::CubicSpline {
                 points,
                 parameterization,
                 ends,
             },
-            CurveKind::Chaikin {
+            CurveKind::Chaikin(Chaikin {
                 points,
                 level,
                 closed,
-            } => CurveSpec::Chaikin {
+            }) => CurveSpec::Chaikin {
                 points,
                 level,
                 closed,
             },
-            CurveKind::PolyBezier {
+            CurveKind::PolyBezier(PolyBezier {
                 points,
                 joins,
                 closed,
-            } => CurveSpec::PolyBezier {
+            }) => CurveSpec::PolyBezier {
                 points,
                 joins: Some(joins),
                 closed,
             },
-            CurveKind::Fractal {
+            CurveKind::Fractal(Fractal {
                 rule,
                 points,
                 level,
                 closed,
                 normal,
-            } => CurveSpec::Fractal {
+            }) => CurveSpec::Fractal {
                 rule,
                 points,
                 level,
@@ -154,61 +159,61 @@ pub(crate) fn curve_from_spec(spec: &CurveSpec) -> Result<CurveKind, CurveError>
         CurveSpec::Lagrange {
             points,
             parameterization,
-        } => CurveKind::Lagrange {
+        } => CurveKind::Lagrange(Lagrange {
             points: points.clone(),
             parameterization: *parameterization,
-        },
-        CurveSpec::Hermite { points, tangents } => CurveKind::CubicHermite {
+        }),
+        CurveSpec::Hermite { points, tangents } => CurveKind::CubicHermite(CubicHermite {
             points: points.clone(),
             tangents: tangents.clone(),
-        },
+        }),
         CurveSpec::QuinticHermite {
             points,
             tangents,
             accelerations,
-        } => CurveKind::QuinticHermite {
+        } => CurveKind::QuinticHermite(QuinticHermite {
             points: points.clone(),
             tangents: tangents.clone(),
             accelerations: accelerations.clone(),
-        },
+        }),
         CurveSpec::CatmullRom {
             points,
             parameterization,
             closed,
-        } => CurveKind::CatmullRom {
+        } => CurveKind::CatmullRom(CatmullRom {
             points: points.clone(),
             parameterization: *parameterization,
             closed: *closed,
-        },
+        }),
         CurveSpec::KochanekBartels {
             points,
             keys,
             closed,
-        } => CurveKind::KochanekBartels {
+        } => CurveKind::KochanekBartels(KochanekBartels {
             points: points.clone(),
             keys: keys
                 .clone()
                 .unwrap_or_else(|| vec![Tbc::default(); points.len()]),
             closed: *closed,
-        },
+        }),
         CurveSpec::CubicSpline {
             points,
             parameterization,
             ends,
-        } => CurveKind::CubicSpline {
+        } => CurveKind::CubicSpline(CubicSpline {
             points: points.clone(),
             parameterization: *parameterization,
             ends: *ends,
-        },
+        }),
         CurveSpec::Chaikin {
             points,
             level,
             closed,
-        } => CurveKind::Chaikin {
+        } => CurveKind::Chaikin(Chaikin {
             points: points.clone(),
             level: *level,
             closed: *closed,
-        },
+        }),
         CurveSpec::PolyBezier {
             points,
             joins,
@@ -225,11 +230,11 @@ pub(crate) fn curve_from_spec(spec: &CurveSpec) -> Result<CurveKind, CurveError>
                 segments.saturating_sub(1)
             };
             let joins = joins.clone().unwrap_or_else(|| vec![Join::G1; joints]);
-            let plain = CurveKind::PolyBezier {
+            let plain = CurveKind::PolyBezier(PolyBezier {
                 points: points.clone(),
                 joins: joins.clone(),
                 closed: *closed,
-            };
+            });
             plain.check()?;
             // Turn the handles to hold the joins.
             let mut k = plain;
@@ -244,13 +249,13 @@ pub(crate) fn curve_from_spec(spec: &CurveSpec) -> Result<CurveKind, CurveError>
             level,
             closed,
             normal,
-        } => CurveKind::Fractal {
+        } => CurveKind::Fractal(Fractal {
             rule: *rule,
             points: points.clone(),
             level: *level,
             closed: *closed,
             normal: *normal,
-        },
+        }),
     };
     kind.check()?;
     Ok(kind)
