@@ -1537,7 +1537,7 @@ fn draw_a_curve_by_clicks_on_the_grid() {
 /// the kind drawn last.
 #[test]
 fn draw_a_poly_bezier_pulling_a_handle_out() {
-    use hedra_geom::curves::CurveKind;
+    use hedra_geom::curves::{CurveKind, PolyBezier};
     let mut user = User::new();
     user.tap(KeyCode::Numpad7);
     user.shortcut(&[KeyCode::ShiftLeft], KeyCode::Tab);
@@ -1566,7 +1566,7 @@ fn draw_a_poly_bezier_pulling_a_handle_out() {
     let NodeContent::Curve(curve) = &node.content else {
         panic!("a curve")
     };
-    let CurveKind::PolyBezier { points, .. } = curve.kind() else {
+    let CurveKind::PolyBezier(PolyBezier { points, .. }) = curve.kind() else {
         panic!("a poly-Bézier: {}", curve.kind().name())
     };
     assert_eq!(points.len(), 7);
@@ -2157,7 +2157,7 @@ fn a_hermite_tangent_handle_is_dragged_like_a_point() {
 /// tension (one undo step when let go); the other keys keep theirs.
 #[test]
 fn the_panel_sets_a_kochanek_bartels_key_tension() {
-    use hedra_geom::curves::CurveKind;
+    use hedra_geom::curves::{CurveKind, KochanekBartels};
     let mut user = User::new();
     user.add("Kochanek-Bartels");
     user.tap(KeyCode::Tab);
@@ -2179,7 +2179,7 @@ fn the_panel_sets_a_kochanek_bartels_key_tension() {
     let NodeContent::Curve(c) = &node.content else {
         panic!("a curve")
     };
-    let CurveKind::KochanekBartels { keys, .. } = c.kind() else {
+    let CurveKind::KochanekBartels(KochanekBartels { keys, .. }) = c.kind() else {
         panic!("still Kochanek-Bartels")
     };
     assert!(keys[2].tension > 0.05, "{:?} {}", keys[2], user.status());

@@ -367,25 +367,25 @@ pub struct ShapeReport {
 
 /// The report's name of a curve kind ("nurbs curve", "catmull-rom curve").
 fn curve_kind_label(kind: &hedra_geom::curves::CurveKind) -> &'static str {
-    use hedra_geom::curves::{CurveKind as K, FractalRule};
+    use hedra_geom::curves::{CurveKind as K, Fractal, FractalRule};
     match kind {
         K::Nurbs(_) => "nurbs curve",
-        K::Lagrange { .. } => "lagrange curve",
-        K::CubicHermite { .. } => "cubic hermite curve",
-        K::QuinticHermite { .. } => "quintic hermite curve",
-        K::CatmullRom { .. } => "catmull-rom curve",
-        K::KochanekBartels { .. } => "kochanek-bartels curve",
-        K::CubicSpline { .. } => "c2 cubic spline",
-        K::Chaikin { .. } => "chaikin curve",
-        K::PolyBezier { .. } => "poly-bezier curve",
-        K::Fractal {
+        K::Lagrange(_) => "lagrange curve",
+        K::CubicHermite(_) => "cubic hermite curve",
+        K::QuinticHermite(_) => "quintic hermite curve",
+        K::CatmullRom(_) => "catmull-rom curve",
+        K::KochanekBartels(_) => "kochanek-bartels curve",
+        K::CubicSpline(_) => "c2 cubic spline",
+        K::Chaikin(_) => "chaikin curve",
+        K::PolyBezier(_) => "poly-bezier curve",
+        K::Fractal(Fractal {
             rule: FractalRule::Koch,
             ..
-        } => "koch curve",
-        K::Fractal {
+        }) => "koch curve",
+        K::Fractal(Fractal {
             rule: FractalRule::QuadraticKoch,
             ..
-        } => "quadratic koch curve",
+        }) => "quadratic koch curve",
     }
 }
 

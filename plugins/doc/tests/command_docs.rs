@@ -360,9 +360,9 @@ fn every_command_example_in_the_docs_runs() {
         hedra_doc::NodeContent::Curve(c) => c.clone(),
         _ => panic!("{name} is a curve"),
     };
-    use hedra_geom::curves::{CurveKind, Join};
+    use hedra_geom::curves::{CurveKind, Join, PolyBezier};
     let through = kind("Through");
-    assert!(matches!(through.kind(), CurveKind::Lagrange { .. }));
+    assert!(matches!(through.kind(), CurveKind::Lagrange(_)));
     assert_eq!(through.control_points().len(), 3, "one point deleted");
     let swing = kind("Swing");
     let keys = swing.kind().key_parameters().unwrap();
@@ -374,7 +374,7 @@ fn every_command_example_in_the_docs_runs() {
     }
     let path = kind("Path");
     match path.kind() {
-        CurveKind::PolyBezier { points, joins, .. } => {
+        CurveKind::PolyBezier(PolyBezier { points, joins, .. }) => {
             assert_eq!(
                 (points.len(), joins.as_slice()),
                 (10, &[Join::G1, Join::G1][..])

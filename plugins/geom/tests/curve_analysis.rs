@@ -13,8 +13,9 @@ use hedra_geom::curves::interpolating::Tbc;
 use hedra_geom::curves::joints::{Joint, JointTolerance, both_sides};
 use hedra_geom::curves::spans::{curve_length, span_length};
 use hedra_geom::curves::{
-    Bezier, Curve, CurveError, CurveKind, FractalRule, Join, NurbsCurve, Parameterization,
-    SplineEnds,
+    Bezier, CatmullRom, Chaikin, CubicHermite, CubicSpline, Curve, CurveError, CurveKind, Fractal,
+    FractalRule, Join, KochanekBartels, Lagrange, NurbsCurve, Parameterization, PolyBezier,
+    QuinticHermite, SplineEnds,
 };
 
 fn pts() -> Vec<DVec3> {
@@ -75,11 +76,11 @@ fn poly_bezier(closed: bool) -> CurveKind {
         joins.insert(0, Join::G1);
         joins.push(Join::C1);
     }
-    let mut c = CurveKind::PolyBezier {
+    let mut c = CurveKind::PolyBezier(PolyBezier {
         points,
         joins: joins.clone(),
         closed,
-    };
+    });
     for (j, &join) in joins.iter().enumerate() {
         c = c.set_join(j, join).unwrap();
     }
@@ -94,82 +95,82 @@ fn every_kind() -> Vec<CurveKind> {
     let mut out = vec![
         CurveKind::Nurbs(NurbsCurve::clamped(3, p.clone()).unwrap()),
         CurveKind::Nurbs(NurbsCurve::circle(DVec3::new(1.0, 0.0, -2.0), 2.5)),
-        CurveKind::CubicHermite {
+        CurveKind::CubicHermite(CubicHermite {
             points: p.clone(),
             tangents: tangents.clone(),
-        },
-        CurveKind::QuinticHermite {
+        }),
+        CurveKind::QuinticHermite(QuinticHermite {
             points: p.clone(),
             tangents: tangents.clone(),
             accelerations: tangents.iter().map(|t| t.cross(DVec3::Y)).collect(),
-        },
-        CurveKind::KochanekBartels {
+        }),
+        CurveKind::KochanekBartels(KochanekBartels {
             points: p.clone(),
             keys: keys(),
             closed: false,
-        },
-        CurveKind::KochanekBartels {
+        }),
+        CurveKind::KochanekBartels(KochanekBartels {
             points: p.clone(),
             keys: keys(),
             closed: true,
-        },
-        CurveKind::CubicSpline {
+        }),
+        CurveKind::CubicSpline(CubicSpline {
             points: p.clone(),
             parameterization: Parameterization::Chord,
             ends: SplineEnds::Clamped {
                 start: DVec3::X,
                 end: DVec3::Y,
             },
-        },
-        CurveKind::Chaikin {
+        }),
+        CurveKind::Chaikin(Chaikin {
             points: p.clone(),
             level: 3,
             closed: false,
-        },
-        CurveKind::Chaikin {
+        }),
+        CurveKind::Chaikin(Chaikin {
             points: p.clone(),
             level: 2,
             closed: true,
-        },
+        }),
         poly_bezier(false),
         poly_bezier(true),
-        CurveKind::Fractal {
+        CurveKind::Fractal(Fractal {
             rule: FractalRule::Koch,
             points: vec![DVec3::ZERO, DVec3::X],
             level: 3,
             closed: false,
             normal: DVec3::Z,
-        },
-        CurveKind::Fractal {
+        }),
+        CurveKind::Fractal(Fractal {
             rule: FractalRule::QuadraticKoch,
             points: vec![DVec3::ZERO, DVec3::new(0.5, 0.8, 0.0), DVec3::X],
             level: 2,
             closed: true,
             normal: DVec3::Z,
-        },
+        }),
     ];
     for param in [
         Parameterization::Uniform,
         Parameterization::Chord,
         Parameterization::Centripetal,
     ] {
-        out.push(CurveKind::Lagrange {
+        out.push(CurveKind::Lagrange(Lagrange {
             points: p.clone(),
             parameterization: param,
-        });
+        }));
         for closed in [false, true] {
-            out.push(CurveKind::CatmullRom {
+            out.push(CurveKind::CatmullRom(CatmullRom {
                 points: p.clone(),
                 parameterization: param,
                 closed,
-            });
+            }));
         }
         for ends in [SplineEnds::Natural, SplineEnds::Closed] {
-            out.push(CurveKind::CubicSpline {
+            out.push(CurveKind::CubicSpline(CubicSpline {
                 points: p.clone(),
                 parameterization: param,
                 ends,
-            });
+            }));
         }
     }
     out
@@ -198,12 +199,12 @@ fn every_kind_has_the_continuity_it_promises_at_each_joint() {
         // Where the joints are: every interior knot, the closing one last.
         let expected = form.interior_knots().len() + usize::from(kind.is_closed());
         match &kind {
-            CurveKind::Lagrange { .. } => assert!(joints.is_empty(), "{name}: one polynomial"),
+            CurveKind::Lagrange(_) => assert!(joints.is_empty(), "{name}: one polynomial"),
             _ => assert_eq!(joints.len(), expected, "{name}"),
         }
         assert_eq!(
             joints.iter().filter(|j| j.closing).count(),
-            usize::from(kind.is_closed() && !matches!(kind, CurveKind::Lagrange { .. }))
+            usize::from(kind.is_closed() && !matches!(kind, CurveKind::Lagrange(_)))
         );
         for j in &joints {
             let c = j.continuity;
@@ -222,13 +223,13 @@ fn every_kind_has_the_continuity_it_promises_at_each_joint() {
                     assert!(c.g2, "{at}");
                     assert_eq!(j.multiplicity, if j.closing { 0 } else { 2 });
                 }
-                CurveKind::QuinticHermite { .. } | CurveKind::CubicSpline { .. } => {
+                CurveKind::QuinticHermite(_) | CurveKind::CubicSpline(_) => {
                     assert_eq!(c.label(), "C2", "{at}")
                 }
-                CurveKind::CubicHermite { .. } | CurveKind::CatmullRom { .. } => {
+                CurveKind::CubicHermite(_) | CurveKind::CatmullRom(_) => {
                     assert!(c.c1 && c.g1, "{at}");
                 }
-                CurveKind::KochanekBartels { keys, .. } => {
+                CurveKind::KochanekBartels(KochanekBartels { keys, .. }) => {
                     let k = keys[key_index(&kind, j)];
                     if k.continuity == 0.0 {
                         assert!(c.c1, "{at}: C1 where continuity is 0");
@@ -236,7 +237,7 @@ fn every_kind_has_the_continuity_it_promises_at_each_joint() {
                         assert!(!c.c1 && !c.g1, "{at}: only C0 where continuity ≠ 0");
                     }
                 }
-                CurveKind::PolyBezier { joins, closed, .. } => {
+                CurveKind::PolyBezier(PolyBezier { joins, closed, .. }) => {
                     // Joint j of an open chain is at t = j + 1, of a closed
                     // one at t = j (the closing joint at t = 0).
                     let index = j.parameter as usize - usize::from(!closed);
@@ -249,7 +250,7 @@ fn every_kind_has_the_continuity_it_promises_at_each_joint() {
                     let anchor = kind.points()[3 * index + 3 * usize::from(!closed)];
                     assert!((j.position - anchor).length() < 1e-12, "{at}: the anchor");
                 }
-                CurveKind::Chaikin { .. } | CurveKind::Fractal { .. } => {
+                CurveKind::Chaikin(_) | CurveKind::Fractal(_) => {
                     // A polygon's vertex: smooth only where its two edges
                     // continue each other, seen on the polygon itself.
                     let poly = form.points();
@@ -275,10 +276,10 @@ fn every_kind_has_the_continuity_it_promises_at_each_joint() {
                     assert_eq!(c.g1, straight, "{at}");
                     if matches!(
                         kind,
-                        CurveKind::Fractal {
+                        CurveKind::Fractal(Fractal {
                             rule: FractalRule::Koch,
                             ..
-                        }
+                        })
                     ) {
                         assert!(!c.g1, "{at}: every Koch vertex is a corner");
                     }
@@ -289,19 +290,19 @@ fn every_kind_has_the_continuity_it_promises_at_each_joint() {
     }
     // The measurement can fail: Catmull-Rom is not C2 everywhere, and
     // quadratic Koch has straight vertices (C2 between equal edges).
-    let cr = CurveKind::CatmullRom {
+    let cr = CurveKind::CatmullRom(CatmullRom {
         points: pts(),
         parameterization: Parameterization::Uniform,
         closed: false,
-    };
+    });
     assert!(joints_of(&cr).iter().any(|j| !j.continuity.c2));
-    let quad = CurveKind::Fractal {
+    let quad = CurveKind::Fractal(Fractal {
         rule: FractalRule::QuadraticKoch,
         points: vec![DVec3::ZERO, DVec3::X],
         level: 1,
         closed: false,
         normal: DVec3::Z,
-    };
+    });
     let labels: Vec<&str> = joints_of(&quad)
         .iter()
         .map(|j| j.continuity.label())
@@ -355,11 +356,11 @@ fn a_gap_and_a_kink_are_told_apart_from_rounding() {
 
 #[test]
 fn both_sides_at_a_kochanek_bartels_corner_differ_and_open_ends_have_one() {
-    let kb = CurveKind::KochanekBartels {
+    let kb = CurveKind::KochanekBartels(KochanekBartels {
         points: pts(),
         keys: keys(),
         closed: false,
-    };
+    });
     let form = kb.to_nurbs().unwrap().curve;
     let (before, after) = both_sides(&form, false, 1.0);
     let (b, a) = (before.unwrap(), after.unwrap());
@@ -372,11 +373,11 @@ fn both_sides_at_a_kochanek_bartels_corner_differ_and_open_ends_have_one() {
     assert!(both_sides(&form, false, 0.0).0.is_none());
     assert!(both_sides(&form, false, 4.0).1.is_none());
     // A closed curve wraps: before its start is its end.
-    let closed = CurveKind::KochanekBartels {
+    let closed = CurveKind::KochanekBartels(KochanekBartels {
         points: pts(),
         keys: keys(),
         closed: true,
-    };
+    });
     let form = closed.to_nurbs().unwrap().curve;
     let (b, a) = both_sides(&form, true, 0.0);
     assert!((b.unwrap()[0] - a.unwrap()[0]).length() < 1e-12);
@@ -481,10 +482,10 @@ fn the_seed_003_cubic_hermite_matrix_converts_to_bezier_points() {
     // The same segment through a cubic Hermite curve kind's NURBS form.
     let (r0, r1) = (DVec3::new(1.0, 2.0, 3.0), DVec3::new(4.0, 0.0, -1.0));
     let (t0, t1) = (DVec3::new(3.0, 3.0, 0.0), DVec3::new(0.0, -6.0, 3.0));
-    let kind = CurveKind::CubicHermite {
+    let kind = CurveKind::CubicHermite(CubicHermite {
         points: vec![r0, r1],
         tangents: vec![t0, t1],
-    };
+    });
     let segs = power_basis_segments(&kind.to_nurbs().unwrap().curve).unwrap();
     assert_eq!(segs.len(), 1);
     let g = [r0, r1, t0, t1];
@@ -581,7 +582,7 @@ fn every_curve_sample_lies_in_its_segment_hull() {
         }
         // The kinds' hulls by dimension: a degree-1 piece is a segment, a
         // planar cubic a polygon, a twisted one a solid.
-        if let CurveKind::Fractal { .. } | CurveKind::Chaikin { .. } = kind {
+        if let CurveKind::Fractal(_) | CurveKind::Chaikin(_) = kind {
             assert!(
                 hulls
                     .iter()
@@ -611,11 +612,11 @@ fn span_lengths_of_parameters_and_of_selected_points() {
     assert!((quarter.length - exact / 4.0).abs() <= 1e-12 * exact);
 
     // Catmull-Rom points 1 and 3: the curve between their keys.
-    let cr = CurveKind::CatmullRom {
+    let cr = CurveKind::CatmullRom(CatmullRom {
         points: pts(),
         parameterization: Parameterization::Chord,
         closed: false,
-    };
+    });
     let form = cr.to_nurbs().unwrap().curve;
     let keys = cr.key_parameters().unwrap();
     let s = cr.selection_span(&form, &[3, 1]).unwrap();
@@ -637,13 +638,13 @@ fn span_lengths_of_parameters_and_of_selected_points() {
     assert!((s.length - arc_length(&seg, 0.0, 1.0)).abs() < 1e-12 * s.length);
 
     // Koch level 2 on a unit initiator: its two points span (4/3)² in all.
-    let koch = CurveKind::Fractal {
+    let koch = CurveKind::Fractal(Fractal {
         rule: FractalRule::Koch,
         points: vec![DVec3::ZERO, DVec3::X, DVec3::new(1.0, 1.0, 0.0)],
         level: 2,
         closed: false,
         normal: DVec3::Z,
-    };
+    });
     let form = koch.to_nurbs().unwrap().curve;
     let s = koch.selection_span(&form, &[0, 1]).unwrap();
     assert!((s.length - 16.0 / 9.0).abs() < 1e-12);

@@ -4,11 +4,12 @@
 
 use glam::DVec3;
 use hedra_geom::curves::analysis::closest_parameter;
-use hedra_geom::curves::interpolating::{QuinticHermite, Tbc};
+use hedra_geom::curves::interpolating::{self, Tbc};
 use hedra_geom::curves::kinds::lagrange_point;
 use hedra_geom::curves::{
-    Bezier, Curve, CurveEnd, CurveError, CurveKind, FractalRule, Join, NurbsCurve,
-    Parameterization, SplineEnds,
+    Bezier, CatmullRom, Chaikin, CubicHermite, CubicSpline, Curve, CurveEnd, CurveError, CurveKind,
+    Fractal, FractalRule, Join, KochanekBartels, Lagrange, NurbsCurve, Parameterization,
+    PolyBezier, QuinticHermite, SplineEnds,
 };
 
 fn pts() -> Vec<DVec3> {
@@ -43,88 +44,88 @@ fn every_kind() -> Vec<CurveKind> {
     ];
     let mut out = vec![
         CurveKind::Nurbs(NurbsCurve::clamped(3, p.clone()).unwrap()),
-        CurveKind::CubicHermite {
+        CurveKind::CubicHermite(CubicHermite {
             points: p.clone(),
             tangents: tangents.clone(),
-        },
-        CurveKind::QuinticHermite {
+        }),
+        CurveKind::QuinticHermite(QuinticHermite {
             points: p.clone(),
             tangents: tangents.clone(),
             accelerations: tangents.iter().map(|t| t.cross(DVec3::Y)).collect(),
-        },
-        CurveKind::KochanekBartels {
+        }),
+        CurveKind::KochanekBartels(KochanekBartels {
             points: p.clone(),
             keys: keys.clone(),
             closed: false,
-        },
-        CurveKind::KochanekBartels {
+        }),
+        CurveKind::KochanekBartels(KochanekBartels {
             points: p.clone(),
             keys,
             closed: true,
-        },
-        CurveKind::CubicSpline {
+        }),
+        CurveKind::CubicSpline(CubicSpline {
             points: p.clone(),
             parameterization: Parameterization::Chord,
             ends: SplineEnds::Clamped {
                 start: DVec3::X,
                 end: DVec3::Y,
             },
-        },
-        CurveKind::Chaikin {
+        }),
+        CurveKind::Chaikin(Chaikin {
             points: p.clone(),
             level: 3,
             closed: false,
-        },
-        CurveKind::Chaikin {
+        }),
+        CurveKind::Chaikin(Chaikin {
             points: p.clone(),
             level: 2,
             closed: true,
-        },
+        }),
         poly_bezier(),
-        CurveKind::Fractal {
+        CurveKind::Fractal(Fractal {
             rule: FractalRule::Koch,
             points: vec![DVec3::ZERO, DVec3::X],
             level: 3,
             closed: false,
             normal: DVec3::Z,
-        },
-        CurveKind::Fractal {
+        }),
+        CurveKind::Fractal(Fractal {
             rule: FractalRule::QuadraticKoch,
             points: vec![DVec3::ZERO, DVec3::new(0.5, 0.8, 0.0), DVec3::X],
             level: 2,
             closed: true,
             normal: DVec3::Z,
-        },
+        }),
     ];
     for param in [
         Parameterization::Uniform,
         Parameterization::Chord,
         Parameterization::Centripetal,
     ] {
-        out.push(CurveKind::Lagrange {
+        out.push(CurveKind::Lagrange(Lagrange {
             points: p.clone(),
             parameterization: param,
-        });
+        }));
         for closed in [false, true] {
-            out.push(CurveKind::CatmullRom {
+            out.push(CurveKind::CatmullRom(CatmullRom {
                 points: p.clone(),
                 parameterization: param,
                 closed,
-            });
+            }));
         }
         for ends in [SplineEnds::Natural, SplineEnds::Closed] {
-            out.push(CurveKind::CubicSpline {
+            out.push(CurveKind::CubicSpline(CubicSpline {
                 points: p.clone(),
                 parameterization: param,
                 ends,
-            });
+            }));
         }
     }
     out
 }
 
 fn poly_bezier() -> CurveKind {
-    CurveKind::PolyBezier {
+    CurveKind::PolyBezier(PolyBezier {
         points: vec![
             DVec3::ZERO,
             DVec3::new(1.0, 1.0, 0.0),
@@ -139,7 +140,7 @@ fn poly_bezier() -> CurveKind {
         ],
         joins: vec![Join::C1, Join::C0],
         closed: false,
-    }
+    })
 }
 
 fn samples(c: &dyn Curve, n: usize) -> Vec<f64> {
@@ -178,10 +179,10 @@ fn interpolating_kinds_pass_through_their_points() {
 fn nurbs_forms_equal_the_kinds_at_1000_parameters() {
     let p = pts();
     // Lagrange: the barycentric polynomial.
-    let lag = CurveKind::Lagrange {
+    let lag = CurveKind::Lagrange(Lagrange {
         points: p.clone(),
         parameterization: Parameterization::Chord,
-    };
+    });
     let form = lag.to_nurbs().unwrap().curve;
     let t = Parameterization::Chord.parameters(&p).unwrap();
     for x in samples(&form, 1000) {
@@ -200,18 +201,18 @@ fn nurbs_forms_equal_the_kinds_at_1000_parameters() {
         }
     }
     // Quintic Hermite: the kernel's quintic segment on each unit span.
-    let CurveKind::QuinticHermite {
+    let CurveKind::QuinticHermite(QuinticHermite {
         points,
         tangents,
         accelerations,
-    } = &every_kind()[2]
+    }) = &every_kind()[2]
     else {
         panic!()
     };
     let q = every_kind()[2].to_nurbs().unwrap().curve;
     for x in samples(&q, 1000) {
         let i = (x.floor() as usize).min(points.len() - 2);
-        let seg = QuinticHermite {
+        let seg = interpolating::QuinticHermite {
             points: [points[i], points[i + 1]],
             velocities: [tangents[i], tangents[i + 1]],
             accelerations: [accelerations[i], accelerations[i + 1]],
@@ -237,10 +238,10 @@ fn high_degree_lagrange_is_approximated_with_a_stated_tolerance() {
     let p: Vec<DVec3> = (0..20)
         .map(|i| DVec3::new(i as f64, (i as f64 * 0.7).sin(), 0.0))
         .collect();
-    let kind = CurveKind::Lagrange {
+    let kind = CurveKind::Lagrange(Lagrange {
         points: p.clone(),
         parameterization: Parameterization::Uniform,
-    };
+    });
     let form = kind.to_nurbs().unwrap();
     let tol = form.tolerance.expect("approximated");
     let t: Vec<f64> = (0..20).map(|i| i as f64).collect();
@@ -276,13 +277,13 @@ fn joints_have_the_continuity_they_promise() {
             let c1 = (l[1] - r[1]).length() < 1e-6;
             let c2 = (l[2] - r[2]).length() < 1e-5;
             match &kind {
-                CurveKind::CubicSpline { .. } | CurveKind::QuinticHermite { .. } => {
+                CurveKind::CubicSpline(_) | CurveKind::QuinticHermite(_) => {
                     assert!(c1 && c2, "{} C2 at {t}: {l:?} {r:?}", kind.name())
                 }
-                CurveKind::CatmullRom { .. } | CurveKind::CubicHermite { .. } => {
+                CurveKind::CatmullRom(_) | CurveKind::CubicHermite(_) => {
                     assert!(c1, "{} C1 at {t}", kind.name())
                 }
-                CurveKind::KochanekBartels { keys, .. } => {
+                CurveKind::KochanekBartels(KochanekBartels { keys, .. }) => {
                     // C1 where continuity is 0, a corner where it is not.
                     let k = keys[t.round() as usize % keys.len()];
                     assert_eq!(c1, k.continuity == 0.0, "{} at {t}", kind.name());
@@ -291,10 +292,10 @@ fn joints_have_the_continuity_they_promise() {
             }
         }
         // Closed C2 splines are C2 at the closing point too.
-        if let CurveKind::CubicSpline {
+        if let CurveKind::CubicSpline(CubicSpline {
             ends: SplineEnds::Closed,
             ..
-        } = kind
+        }) = kind
         {
             let (a, b) = form.domain();
             let (s, e) = (form.derivatives(a), form.derivatives(b));
@@ -345,13 +346,13 @@ fn poly_bezier_g1_join_holds_while_a_handle_moves() {
 #[test]
 fn koch_level_n_has_4_to_the_n_segments_of_total_length_4_3_to_the_n() {
     for level in 0..=6 {
-        let koch = CurveKind::Fractal {
+        let koch = CurveKind::Fractal(Fractal {
             rule: FractalRule::Koch,
             points: vec![DVec3::ZERO, DVec3::new(3.0, 0.0, 0.0)],
             level,
             closed: false,
             normal: DVec3::Z,
-        };
+        });
         let poly = koch.to_nurbs().unwrap().curve.points().to_vec();
         assert_eq!(poly.len() - 1, 4usize.pow(level));
         let len: f64 = poly.windows(2).map(|w| (w[1] - w[0]).length()).sum();
@@ -359,7 +360,7 @@ fn koch_level_n_has_4_to_the_n_segments_of_total_length_4_3_to_the_n() {
         // Every segment is 3^-n long; the curve stays in the plane, bumps up.
         assert!(poly.iter().all(|p| p.z == 0.0 && p.y >= -1e-12));
     }
-    let snow = CurveKind::Fractal {
+    let snow = CurveKind::Fractal(Fractal {
         rule: FractalRule::Koch,
         points: vec![
             DVec3::ZERO,
@@ -369,7 +370,7 @@ fn koch_level_n_has_4_to_the_n_segments_of_total_length_4_3_to_the_n() {
         level: 4,
         closed: true,
         normal: DVec3::Z,
-    };
+    });
     let poly = snow.to_nurbs().unwrap().curve.points().to_vec();
     assert_eq!(poly.len() - 1, 3 * 4usize.pow(4));
     assert_eq!(poly[0], poly[poly.len() - 1]);
@@ -380,24 +381,24 @@ fn koch_level_n_has_4_to_the_n_segments_of_total_length_4_3_to_the_n() {
     assert!(poly.iter().any(|p| (*p - centre).length() > 1.99 * r_in));
     assert!((FractalRule::Koch.dimension() - 4f64.ln() / 3f64.ln()).abs() < 1e-15);
     assert_eq!(FractalRule::QuadraticKoch.dimension(), 1.5);
-    let quad = CurveKind::Fractal {
+    let quad = CurveKind::Fractal(Fractal {
         rule: FractalRule::QuadraticKoch,
         points: vec![DVec3::ZERO, DVec3::X],
         level: 3,
         closed: false,
         normal: DVec3::Z,
-    };
+    });
     let poly = quad.to_nurbs().unwrap().curve.points().to_vec();
     assert_eq!(poly.len() - 1, 512);
     let len: f64 = poly.windows(2).map(|w| (w[1] - w[0]).length()).sum();
     assert!((len - 8.0).abs() < 1e-9, "length 2^3: {len}");
-    let too_deep = CurveKind::Fractal {
+    let too_deep = CurveKind::Fractal(Fractal {
         rule: FractalRule::QuadraticKoch,
         points: vec![DVec3::ZERO, DVec3::X],
         level: 40,
         closed: false,
         normal: DVec3::Z,
-    };
+    });
     assert!(matches!(
         too_deep.check(),
         Err(CurveError::LevelTooHigh { level: 40, .. })
@@ -416,7 +417,7 @@ fn insert_then_delete_gives_back_the_curve_and_keeps_the_others() {
             CurveKind::Nurbs(_) => {
                 assert_eq!(with.points().len(), kind.points().len() + 1);
             }
-            CurveKind::PolyBezier { .. } => {
+            CurveKind::PolyBezier(_) => {
                 // Exact: every point of the new curve is on the old one.
                 let f2 = with.to_nurbs().unwrap().curve;
                 for x in samples(&f2, 200) {
@@ -444,18 +445,18 @@ fn insert_then_delete_gives_back_the_curve_and_keeps_the_others() {
 
 #[test]
 fn refusals_are_named() {
-    let one = CurveKind::Lagrange {
+    let one = CurveKind::Lagrange(Lagrange {
         points: vec![DVec3::ZERO],
         parameterization: Parameterization::Uniform,
-    };
+    });
     assert_eq!(
         one.check().unwrap_err().to_string(),
         "Lagrange needs 2 points or more, got 1"
     );
-    let two = CurveKind::Lagrange {
+    let two = CurveKind::Lagrange(Lagrange {
         points: vec![DVec3::ZERO, DVec3::X],
         parameterization: Parameterization::Chord,
-    };
+    });
     assert_eq!(
         two.delete_points(&[0]).unwrap_err().to_string(),
         "Lagrange needs 2 points or more, got 1"
@@ -468,19 +469,19 @@ fn refusals_are_named() {
         poly_bezier().delete_points(&[4]),
         Err(CurveError::HandleNotAnchor { index: 4 })
     ));
-    let same = CurveKind::Lagrange {
+    let same = CurveKind::Lagrange(Lagrange {
         points: vec![DVec3::ZERO, DVec3::ZERO, DVec3::X],
         parameterization: Parameterization::Chord,
-    };
+    });
     assert!(matches!(
         same.check(),
         Err(CurveError::CoincidentPoints { index: 0, next: 1 })
     ));
-    let closed = CurveKind::CatmullRom {
+    let closed = CurveKind::CatmullRom(CatmullRom {
         points: pts(),
         parameterization: Parameterization::Uniform,
         closed: true,
-    };
+    });
     assert!(matches!(
         closed.extrude(CurveEnd::End, DVec3::ONE),
         Err(CurveError::NotForKind { .. })
@@ -504,7 +505,7 @@ fn reverse_traces_the_same_curve_backwards_and_is_its_own_inverse() {
             let p = f.point(s);
             // A closed Chaikin polygon starts elsewhere when reversed: the
             // same loop, compared as a shape.
-            let q = if matches!(kind, CurveKind::Chaikin { closed: true, .. }) {
+            let q = if matches!(kind, CurveKind::Chaikin(Chaikin { closed: true, .. })) {
                 g.point(closest_parameter(&g, p))
             } else {
                 g.point(c + (d - c) * (1.0 - u))
@@ -579,9 +580,9 @@ fn open_and_close() {
         let flipped = kind.set_closed(!kind.is_closed());
         match kind {
             CurveKind::Nurbs(_)
-            | CurveKind::Lagrange { .. }
-            | CurveKind::CubicHermite { .. }
-            | CurveKind::QuinticHermite { .. } => assert!(flipped.is_err()),
+            | CurveKind::Lagrange(_)
+            | CurveKind::CubicHermite(_)
+            | CurveKind::QuinticHermite(_) => assert!(flipped.is_err()),
             _ if kind.points().len() < 3 => assert!(matches!(
                 flipped,
                 Err(CurveError::KindTooFewPoints { needed: 3, .. })
@@ -638,11 +639,11 @@ fn tangent_handles_end_at_the_bezier_points_beside_each_key() {
         let handles = kind.tangent_handles();
         let hermite_family = matches!(
             kind,
-            CurveKind::CubicHermite { .. }
-                | CurveKind::QuinticHermite { .. }
-                | CurveKind::CatmullRom { .. }
-                | CurveKind::KochanekBartels { .. }
-                | CurveKind::CubicSpline { .. }
+            CurveKind::CubicHermite(_)
+                | CurveKind::QuinticHermite(_)
+                | CurveKind::CatmullRom(_)
+                | CurveKind::KochanekBartels(_)
+                | CurveKind::CubicSpline(_)
         );
         assert_eq!(!handles.is_empty(), hermite_family, "{}", kind.name());
         if !hermite_family || kind.is_closed() {
@@ -704,14 +705,14 @@ fn auto_joints_follow_their_neighbouring_anchors() {
     // A neighbouring anchor moves: the auto handles are placed again.
     let moved = pb.set_points(&[(9, DVec3::new(7.0, 3.0, 1.0))]).unwrap();
     handles_on_chord(&moved);
-    let CurveKind::PolyBezier { joins, .. } = &moved else {
+    let CurveKind::PolyBezier(PolyBezier { joins, .. }) = &moved else {
         panic!("poly-Bézier")
     };
     assert_eq!(joins[1], Join::Auto);
     // Dragging one of its handles makes the joint aligned (G1), as Blender.
     let to = moved.points()[7] + DVec3::new(0.0, 0.5, 0.0);
     let dragged = moved.set_points(&[(7, to)]).unwrap();
-    let CurveKind::PolyBezier { joins, .. } = &dragged else {
+    let CurveKind::PolyBezier(PolyBezier { joins, .. }) = &dragged else {
         panic!("poly-Bézier")
     };
     assert_eq!(joins[1], Join::G1);

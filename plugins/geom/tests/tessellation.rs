@@ -6,7 +6,10 @@
 //! rational patch with extreme weights stays bounded).
 
 use hedra_geom::DVec3;
-use hedra_geom::curves::{Curve, CurveKind, FractalRule, Join, NurbsCurve, Parameterization};
+use hedra_geom::curves::{
+    CatmullRom, Chaikin, CubicHermite, CubicSpline, Curve, CurveKind, Fractal, FractalRule, Join,
+    KochanekBartels, Lagrange, NurbsCurve, Parameterization, PolyBezier, QuinticHermite,
+};
 use hedra_geom::surfaces::tessellate::{
     MAX_CELLS, SurfaceMesh, curve_parameters, surface_parameters, tessellate, tessellate_nurbs,
 };
@@ -38,37 +41,37 @@ fn kinds() -> Vec<(&'static str, CurveKind)> {
     vec![
         (
             "Lagrange",
-            CurveKind::Lagrange {
+            CurveKind::Lagrange(Lagrange {
                 points: zig.clone(),
                 parameterization: Parameterization::Centripetal,
-            },
+            }),
         ),
         (
             "CubicHermite",
-            CurveKind::CubicHermite {
+            CurveKind::CubicHermite(CubicHermite {
                 points: zig.clone(),
                 tangents: vec![DVec3::X; 5],
-            },
+            }),
         ),
         (
             "QuinticHermite",
-            CurveKind::QuinticHermite {
+            CurveKind::QuinticHermite(QuinticHermite {
                 points: zig.clone(),
                 tangents: vec![DVec3::X; 5],
                 accelerations: vec![DVec3::Y; 5],
-            },
+            }),
         ),
         (
             "CatmullRom",
-            CurveKind::CatmullRom {
+            CurveKind::CatmullRom(CatmullRom {
                 points: zig.clone(),
                 parameterization: Parameterization::Chord,
                 closed: true,
-            },
+            }),
         ),
         (
             "KochanekBartels",
-            CurveKind::KochanekBartels {
+            CurveKind::KochanekBartels(KochanekBartels {
                 points: zig.clone(),
                 keys: vec![
                     hedra_geom::curves::interpolating::Tbc {
@@ -78,27 +81,27 @@ fn kinds() -> Vec<(&'static str, CurveKind)> {
                     5
                 ],
                 closed: false,
-            },
+            }),
         ),
         (
             "CubicSpline",
-            CurveKind::CubicSpline {
+            CurveKind::CubicSpline(CubicSpline {
                 points: zig.clone(),
                 parameterization: Parameterization::Uniform,
                 ends: Default::default(),
-            },
+            }),
         ),
         (
             "Chaikin",
-            CurveKind::Chaikin {
+            CurveKind::Chaikin(Chaikin {
                 points: zig.clone(),
                 level: 5,
                 closed: true,
-            },
+            }),
         ),
         (
             "PolyBezier",
-            CurveKind::PolyBezier {
+            CurveKind::PolyBezier(PolyBezier {
                 points: vec![
                     v(0.0, 0.0),
                     v(1.0, 1.0),
@@ -110,27 +113,27 @@ fn kinds() -> Vec<(&'static str, CurveKind)> {
                 ],
                 joins: vec![Join::C0],
                 closed: false,
-            },
+            }),
         ),
         (
             "Koch",
-            CurveKind::Fractal {
+            CurveKind::Fractal(Fractal {
                 rule: FractalRule::Koch,
                 points: vec![v(0.0, 0.0), v(1.0, 0.0)],
                 level: 4,
                 closed: false,
                 normal: DVec3::Z,
-            },
+            }),
         ),
         (
             "QuadraticKoch",
-            CurveKind::Fractal {
+            CurveKind::Fractal(Fractal {
                 rule: FractalRule::QuadraticKoch,
                 points: vec![v(0.0, 0.0), v(0.0, 2.0), v(2.0, 2.0), v(2.0, 0.0)],
                 level: 2,
                 closed: true,
                 normal: DVec3::Z,
-            },
+            }),
         ),
         (
             "Nurbs",
@@ -207,13 +210,13 @@ fn every_breakpoint_is_a_vertex_and_straight_pieces_get_no_others() {
 
 #[test]
 fn the_koch_curve_of_level_four_is_its_257_points() {
-    let kind = CurveKind::Fractal {
+    let kind = CurveKind::Fractal(Fractal {
         rule: FractalRule::Koch,
         points: vec![v(0.0, 0.0), v(1.0, 0.0)],
         level: 4,
         closed: false,
         normal: DVec3::Z,
-    };
+    });
     let curve = kind.to_nurbs().unwrap().curve;
     let ts = curve_parameters(&curve, 1e-4);
     assert_eq!(ts.len(), 257);

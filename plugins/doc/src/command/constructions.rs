@@ -267,3 +267,22 @@ impl Plan<'_> {
         Ok(notes)
     }
 }
+
+impl Plan<'_> {
+    /// Decides a command of the surfaces and meshes from curves family (the variants
+    /// [`Family::Constructions`](super::plan::Family::Constructions) names; [`Plan::run`] sends only those here).
+    pub(super) fn run_construction_command(&mut self, cmd: &Command) -> Result<(), CommandError> {
+        match cmd {
+            Command::MakeFromCurves { name, construction } => {
+                self.make_from_curves(name, construction)
+            }
+            Command::SetConstruction { node, construction } => {
+                self.set_construction(node, construction)
+            }
+            Command::ApplyConstruction { nodes } => self.apply_construction(nodes),
+            Command::MakeG1Join { triangle, quad } => self.make_g1_join(triangle, quad),
+            Command::BreakG1Join { node } => self.break_g1_join(node),
+            _ => unreachable!("not a command of the surfaces and meshes from curves family"),
+        }
+    }
+}

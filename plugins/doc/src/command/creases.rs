@@ -2,7 +2,7 @@
 //! creases, face holes, and snapping the cage to its limit surface.
 
 use super::plan::Plan;
-use super::{CommandError, EditError, NodeRef};
+use super::{Command, CommandError, EditError, NodeRef};
 use crate::elements::{EdgeSet, FaceSet, VertexSet};
 use crate::scene::{CornerAttributes, NodeContent, SubdivisionModifier};
 use hedra_geom::subdivision::{self, INFINITE_SHARPNESS, Refiner};
@@ -159,5 +159,41 @@ impl Plan<'_> {
             }
             Ok(())
         })
+    }
+}
+
+impl Plan<'_> {
+    /// Decides a command of the subdivision and creases family (the variants
+    /// [`Family::Creases`](super::plan::Family::Creases) names; [`Plan::run`] sends only those here).
+    pub(super) fn run_crease_command(&mut self, cmd: &Command) -> Result<(), CommandError> {
+        match cmd {
+            Command::SetSubdivision { nodes, modifier } => self.set_subdivision(nodes, *modifier),
+            Command::ApplySubdivision { node, levels } => self.apply_subdivision(node, *levels),
+            Command::SetEdgeCrease {
+                node,
+                edges,
+                sharpness,
+            } => self.set_edge_crease(node, edges, *sharpness),
+            Command::SetVertexCrease {
+                node,
+                vertices,
+                sharpness,
+            } => self.set_vertex_crease(node, vertices, *sharpness),
+            Command::SetCreaseTaper {
+                node,
+                edges,
+                from,
+                start,
+                end,
+            } => self.set_crease_taper(node, edges, from, *start, *end),
+            Command::SetFaceHole { node, faces, hole } => self.set_face_hole(node, faces, *hole),
+            Command::SnapToLimit { node } => self.snap_to_limit(node),
+            Command::ConvertSubdivisionToNurbs {
+                node,
+                tolerance,
+                keep_cage,
+            } => self.convert_subdivision_to_nurbs(node, *tolerance, *keep_cage),
+            _ => unreachable!("not a command of the subdivision and creases family"),
+        }
     }
 }

@@ -3,7 +3,7 @@
 //! boolean between two nodes.
 
 use super::plan::Plan;
-use super::{CommandError, NodeRef};
+use super::{Command, CommandError, NodeRef};
 use crate::csg::{self, CsgContent, CsgError};
 use crate::scene::{Document, MeshContent, NodeContent, NodeId, NodeTransform};
 use glam::DMat4;
@@ -256,5 +256,25 @@ fn default_csg_name(op: BooleanOp) -> &'static str {
         BooleanOp::Union => "Union",
         BooleanOp::Intersection => "Intersection",
         BooleanOp::Difference => "Difference",
+    }
+}
+
+impl Plan<'_> {
+    /// Decides a command of the CSG family (the variants
+    /// [`Family::Csg`](super::plan::Family::Csg) names; [`Plan::run`] sends only those here).
+    pub(super) fn run_csg_command(&mut self, cmd: &Command) -> Result<(), CommandError> {
+        match cmd {
+            Command::AddCsg {
+                op,
+                name,
+                operands,
+                parent,
+                transform,
+            } => self.add_csg(*op, name, operands, parent, *transform),
+            Command::SetCsgOp { node, op } => self.set_csg_op(node, *op),
+            Command::ApplyCsg { node } => self.apply_csg(node),
+            Command::Boolean { node, other, op } => self.boolean(node, other, *op),
+            _ => unreachable!("not a command of the CSG family"),
+        }
     }
 }

@@ -3,7 +3,7 @@
 //! elements a set names, in the node's local space.
 
 use super::plan::Plan;
-use super::{CommandError, EditError, NodeRef};
+use super::{Command, CommandError, EditError, NodeRef};
 use crate::elements::{EdgeSet, FaceSet, ProfileSet, VertexSet};
 use glam::DVec3;
 use hedra_geom::modeling::{self, BisectClear, MergePoint, MirrorAxis};
@@ -444,5 +444,144 @@ impl Plan<'_> {
         edges: &EdgeSet,
     ) -> Result<(), CommandError> {
         self.on_edges(node, edges, |m, es| modeling::bridge_loops(m, es).map(drop))
+    }
+}
+
+impl Plan<'_> {
+    /// Decides a command of the mesh modeling family (the variants
+    /// [`Family::Mesh`](super::plan::Family::Mesh) names; [`Plan::run`] sends only those here).
+    pub(super) fn run_mesh_command(&mut self, cmd: &Command) -> Result<(), CommandError> {
+        match cmd {
+            Command::MoveVertices {
+                node,
+                vertices,
+                offset,
+            } => self.move_vertices(node, vertices, *offset),
+            Command::SetVertexPositions { node, positions } => {
+                self.set_vertex_positions(node, positions)
+            }
+            Command::ExtrudeFaces {
+                node,
+                faces,
+                distance,
+            } => self.extrude_faces(node, faces, *distance),
+            Command::ExtrudeRegion {
+                node,
+                faces,
+                distance,
+            } => self.extrude_region(node, faces, *distance),
+            Command::InsetFaces {
+                node,
+                faces,
+                thickness,
+                depth,
+            } => self.inset_faces(node, faces, *thickness, *depth),
+            Command::InsetRegion {
+                node,
+                faces,
+                thickness,
+                depth,
+            } => self.inset_region(node, faces, *thickness, *depth),
+            Command::LoopCut { node, edge, cuts } => self.loop_cut(node, edge, *cuts),
+            Command::SubdivideEdges { node, edges, cuts } => {
+                self.subdivide_edges(node, edges, *cuts)
+            }
+            Command::ConnectVertices { node, vertices } => self.connect_vertices(node, vertices),
+            Command::Triangulate {
+                node,
+                faces,
+                method,
+            } => self.triangulate(node, faces, *method),
+            Command::TrisToQuads {
+                node,
+                faces,
+                face_degrees,
+                shape_degrees,
+            } => self.tris_to_quads(node, faces, *face_degrees, *shape_degrees),
+            Command::Bisect {
+                node,
+                faces,
+                point,
+                normal,
+                clear,
+                fill,
+            } => self.bisect(node, faces, *point, *normal, *clear, *fill),
+            Command::Spin {
+                node,
+                profile,
+                center,
+                axis,
+                degrees,
+                steps,
+            } => self.spin(node, profile, *center, *axis, *degrees, *steps),
+            Command::Screw {
+                node,
+                profile,
+                center,
+                axis,
+                turns,
+                steps,
+                pitch,
+            } => self.screw(node, profile, *center, *axis, *turns, *steps, *pitch),
+            Command::Knife { node, points, view } => self.knife(node, points, *view),
+            Command::Rip { node, edges } => self.rip(node, edges),
+            Command::RipVertex { node, vertex, face } => self.rip_vertex(node, vertex, face),
+            Command::SplitVertex {
+                node,
+                vertex,
+                first,
+                last,
+                position,
+            } => self.split_vertex(node, vertex, first, last, *position),
+            Command::Euler { node, op } => self.euler(node, op),
+            Command::DissolveEdges { node, edges } => self.dissolve_edges(node, edges),
+            Command::DissolveVertices { node, vertices } => self.dissolve_vertices(node, vertices),
+            Command::DissolveFaces { node, faces } => self.dissolve_faces(node, faces),
+            Command::FlipNormals { node } => self.flip_normals(node),
+            Command::RecalculateNormals { node } => self.recalculate_normals(node),
+            Command::MakeHoles { node, faces } => self.make_holes(node, faces),
+            Command::FillHoles { node, edges } => self.fill_holes(node, edges),
+            Command::CollapseEdges { node, edges } => self.collapse_edges(node, edges),
+            Command::ExtrudeEdges {
+                node,
+                edges,
+                offset,
+            } => self.extrude_edges(node, edges, *offset),
+            Command::MirrorVertices {
+                node,
+                vertices,
+                axis,
+            } => self.mirror_vertices(node, vertices, *axis),
+            Command::Symmetrize { node, axis } => self.symmetrize(node, *axis),
+            Command::SlideEdges {
+                node,
+                edges,
+                factor,
+            } => self.slide_edges(node, edges, *factor),
+            Command::BevelEdges {
+                node,
+                edges,
+                width,
+                segments,
+            } => self.bevel_edges(node, edges, *width, *segments),
+            Command::BevelVertices {
+                node,
+                vertices,
+                width,
+            } => self.bevel_vertices(node, vertices, *width),
+            Command::DeleteFaces { node, faces } => self.delete_faces(node, faces),
+            Command::DeleteEdges { node, edges } => self.delete_edges(node, edges),
+            Command::DeleteVertices { node, vertices } => self.delete_vertices(node, vertices),
+            Command::MergeVertices { node, vertices, at } => {
+                self.merge_vertices(node, vertices, *at)
+            }
+            Command::MergeByDistance {
+                node,
+                vertices,
+                distance,
+            } => self.merge_by_distance(node, vertices, *distance),
+            Command::BridgeLoops { node, edges } => self.bridge_loops(node, edges),
+            _ => unreachable!("not a command of the mesh modeling family"),
+        }
     }
 }

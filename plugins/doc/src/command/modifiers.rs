@@ -4,7 +4,7 @@
 //! with [`Command::SetSubdivision`](super::Command::SetSubdivision).
 
 use super::plan::Plan;
-use super::{CommandError, NodeRef};
+use super::{Command, CommandError, NodeRef};
 use crate::modifiers::{DecimateModifier, MeshModifier, decimated_uvs, uv_seams};
 use crate::scene::{MeshContent, Node, NodeContent};
 use hedra_geom::progressive::ProgressiveMesh;
@@ -199,5 +199,44 @@ fn slot(c: &MeshContent, index: usize, label: &str) -> Result<usize, CommandErro
             index,
             count: c.modifiers.len(),
         })
+    }
+}
+
+impl Plan<'_> {
+    /// Decides a command of the the modifier stack family (the variants
+    /// [`Family::Modifiers`](super::plan::Family::Modifiers) names; [`Plan::run`] sends only those here).
+    pub(super) fn run_modifier_command(&mut self, cmd: &Command) -> Result<(), CommandError> {
+        match cmd {
+            Command::AddModifier { node, modifier } => self.add_modifier(node, modifier),
+            Command::SetModifier {
+                node,
+                index,
+                modifier,
+            } => self.set_modifier(node, *index, modifier),
+            Command::RemoveModifier { node, index } => self.remove_modifier(node, *index),
+            Command::MoveModifier { node, from, to } => self.move_modifier(node, *from, *to),
+            Command::ApplyModifiers { node, count } => self.apply_modifiers(node, *count),
+            Command::Decimate {
+                node,
+                target,
+                keep_borders,
+                keep_creases,
+                keep_uv_seams,
+                sharp_angle,
+                keep_quads,
+            } => self.decimate(
+                node,
+                crate::modifiers::DecimateModifier {
+                    target: *target,
+                    level: None,
+                    keep_borders: *keep_borders,
+                    keep_creases: *keep_creases,
+                    keep_uv_seams: *keep_uv_seams,
+                    sharp_angle: *sharp_angle,
+                    keep_quads: *keep_quads,
+                },
+            ),
+            _ => unreachable!("not a command of the the modifier stack family"),
+        }
     }
 }

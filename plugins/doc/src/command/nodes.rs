@@ -3,7 +3,7 @@
 //! shading, deleting and duplicating.
 
 use super::plan::Plan;
-use super::{CommandError, NodeRef};
+use super::{Command, CommandError, NodeRef};
 use crate::scene::{CornerAttributes, MeshContent, NodeContent, NodeId, NodeTransform, Shading};
 use glam::{DQuat, DVec3};
 use hedra_geom::subdivision::Creases;
@@ -304,5 +304,66 @@ impl Plan<'_> {
             }
         }
         Ok(())
+    }
+}
+
+impl Plan<'_> {
+    /// Decides a command of the nodes and the scene tree family (the variants
+    /// [`Family::Nodes`](super::plan::Family::Nodes) names; [`Plan::run`] sends only those here).
+    pub(super) fn run_node_command(&mut self, cmd: &Command) -> Result<(), CommandError> {
+        match cmd {
+            Command::AddPrimitive {
+                primitive,
+                name,
+                parent,
+                transform,
+            } => self.add_primitive(primitive, name, parent, *transform),
+            Command::AddMesh {
+                name,
+                positions,
+                polygons,
+                parent,
+                transform,
+            } => self.add_mesh(name, positions, polygons, parent, *transform),
+            Command::AddKeptMesh {
+                name,
+                positions,
+                faces,
+                parent,
+                transform,
+            } => {
+                let kept = crate::kept::KeptMesh::new(positions.clone(), faces.clone())
+                    .map_err(CommandError::KeptMesh)?;
+                let content =
+                    NodeContent::Kept(crate::kept::KeptMeshContent::new(std::sync::Arc::new(kept)));
+                self.add_node(name, parent, *transform, content).map(|_| ())
+            }
+            Command::AddEmpty {
+                name,
+                parent,
+                transform,
+            } => self.add_empty(name, parent, *transform),
+            Command::SetPrimitive { node, primitive } => self.set_primitive(node, primitive),
+            Command::SetTransforms { nodes } => self.set_transforms(nodes),
+            Command::Translate { nodes, offset } => self.translate(nodes, *offset),
+            Command::Rotate {
+                nodes,
+                axis,
+                degrees,
+            } => self.rotate(nodes, *axis, *degrees),
+            Command::Scale { nodes, factor } => self.scale(nodes, *factor),
+            Command::Rename { node, name } => self.rename(node, name),
+            Command::Reparent {
+                node,
+                parent,
+                keep_world,
+            } => self.reparent(node, parent, *keep_world),
+            Command::SetVisible { nodes, visible } => self.set_visible(nodes, *visible),
+            Command::SetShading { nodes, shading } => self.set_shading(nodes, *shading),
+            Command::MakeManifold { nodes } => self.make_manifold(nodes),
+            Command::Delete { nodes } => self.delete(nodes),
+            Command::Duplicate { nodes } => self.duplicate(nodes),
+            _ => unreachable!("not a command of the nodes and the scene tree family"),
+        }
     }
 }

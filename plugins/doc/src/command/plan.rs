@@ -322,320 +322,139 @@ impl Plan<'_> {
         })
     }
 
-    /// Decides one command into this plan, by family: `nodes`, `shapes`,
-    /// `creases`, `mesh`.
+    /// Decides one command into this plan: hands it to its family's
+    /// function, in the family's file ([`Family`]).
     pub(super) fn run(&mut self, cmd: &Command) -> Result<(), CommandError> {
-        match cmd {
-            // ----- nodes and the scene tree (nodes.rs) -----
-            Command::AddPrimitive {
-                primitive,
-                name,
-                parent,
-                transform,
-            } => self.add_primitive(primitive, name, parent, *transform),
-            Command::AddMesh {
-                name,
-                positions,
-                polygons,
-                parent,
-                transform,
-            } => self.add_mesh(name, positions, polygons, parent, *transform),
-            Command::AddKeptMesh {
-                name,
-                positions,
-                faces,
-                parent,
-                transform,
-            } => {
-                let kept = crate::kept::KeptMesh::new(positions.clone(), faces.clone())
-                    .map_err(CommandError::KeptMesh)?;
-                let content =
-                    NodeContent::Kept(crate::kept::KeptMeshContent::new(std::sync::Arc::new(kept)));
-                self.add_node(name, parent, *transform, content).map(|_| ())
-            }
-            Command::AddEmpty {
-                name,
-                parent,
-                transform,
-            } => self.add_empty(name, parent, *transform),
-            Command::SetPrimitive { node, primitive } => self.set_primitive(node, primitive),
-            Command::SetTransforms { nodes } => self.set_transforms(nodes),
-            Command::Translate { nodes, offset } => self.translate(nodes, *offset),
-            Command::Rotate {
-                nodes,
-                axis,
-                degrees,
-            } => self.rotate(nodes, *axis, *degrees),
-            Command::Scale { nodes, factor } => self.scale(nodes, *factor),
-            Command::Rename { node, name } => self.rename(node, name),
-            Command::Reparent {
-                node,
-                parent,
-                keep_world,
-            } => self.reparent(node, parent, *keep_world),
-            Command::SetVisible { nodes, visible } => self.set_visible(nodes, *visible),
-            Command::SetShading { nodes, shading } => self.set_shading(nodes, *shading),
-            Command::MakeManifold { nodes } => self.make_manifold(nodes),
-            Command::Delete { nodes } => self.delete(nodes),
-            Command::Duplicate { nodes } => self.duplicate(nodes),
-            // ----- CSG (csg.rs) -----
-            Command::AddCsg {
-                op,
-                name,
-                operands,
-                parent,
-                transform,
-            } => self.add_csg(*op, name, operands, parent, *transform),
-            Command::SetCsgOp { node, op } => self.set_csg_op(node, *op),
-            Command::ApplyCsg { node } => self.apply_csg(node),
-            Command::Boolean { node, other, op } => self.boolean(node, other, *op),
-
-            // ----- curves and surfaces (shapes.rs) -----
-            Command::AddCurve {
-                name,
-                curve,
-                parent,
-                transform,
-            } => self.add_curve(name, curve, parent, *transform),
-            Command::AddSurface {
-                name,
-                surface,
-                parent,
-                transform,
-            } => self.add_surface(name, surface, parent, *transform),
-            Command::SetControlPoints { node, points } => self.set_control_points(node, points),
-            Command::SetWeights { node, weights } => self.set_weights(node, weights),
-            Command::InsertKnot {
-                node,
-                at,
-                direction,
-            } => self.insert_knot(node, *at, *direction),
-            Command::ElevateDegree { node, direction } => self.elevate_degree(node, *direction),
-            Command::SetCurve { node, curve } => self.set_curve(node, curve),
-            Command::InsertCurvePoint { node, at } => {
-                self.edit_curve(node, |k| Ok(k.insert_point(*at)?.0))
-            }
-            Command::DeleteCurvePoints { node, points } => {
-                let points: Vec<usize> = points.iter().map(|&i| i as usize).collect();
-                self.edit_curve(node, |k| k.delete_points(&points))
-            }
-            Command::ExtrudeCurve { node, end, to } => {
-                self.edit_curve(node, |k| k.extrude(*end, *to))
-            }
-            Command::SetCurveClosed { node, closed } => {
-                self.edit_curve(node, |k| k.set_closed(*closed))
-            }
-            Command::ReverseCurve { node } => self.edit_curve(node, |k| k.reverse()),
-            Command::SplitCurve { node, at, name } => self.split_curve(node, *at, name),
-            Command::JoinCurves { first, second } => self.join_curves(first, second),
-            Command::SetCurveJoin { node, joint, join } => {
-                self.edit_curve(node, |k| k.set_join(*joint as usize, *join))
-            }
-            Command::ConvertCurveToNurbs { node } => {
-                self.edit_curve(node, |k| Ok(CurveKind::Nurbs(k.to_nurbs()?.curve)))
-            }
-
-            // ----- surfaces and meshes from curves (constructions.rs) -----
-            Command::MakeFromCurves { name, construction } => {
-                self.make_from_curves(name, construction)
-            }
-            Command::SetConstruction { node, construction } => {
-                self.set_construction(node, construction)
-            }
-            Command::ApplyConstruction { nodes } => self.apply_construction(nodes),
-            Command::MakeG1Join { triangle, quad } => self.make_g1_join(triangle, quad),
-            Command::BreakG1Join { node } => self.break_g1_join(node),
-
-            // ----- subdivision and creases (creases.rs) -----
-            Command::SetSubdivision { nodes, modifier } => self.set_subdivision(nodes, *modifier),
-            Command::ApplySubdivision { node, levels } => self.apply_subdivision(node, *levels),
-            Command::SetEdgeCrease {
-                node,
-                edges,
-                sharpness,
-            } => self.set_edge_crease(node, edges, *sharpness),
-            Command::SetVertexCrease {
-                node,
-                vertices,
-                sharpness,
-            } => self.set_vertex_crease(node, vertices, *sharpness),
-            Command::SetCreaseTaper {
-                node,
-                edges,
-                from,
-                start,
-                end,
-            } => self.set_crease_taper(node, edges, from, *start, *end),
-            Command::SetFaceHole { node, faces, hole } => self.set_face_hole(node, faces, *hole),
-            Command::SnapToLimit { node } => self.snap_to_limit(node),
-            Command::ConvertSubdivisionToNurbs {
-                node,
-                tolerance,
-                keep_cage,
-            } => self.convert_subdivision_to_nurbs(node, *tolerance, *keep_cage),
-
-            // ----- the modifier stack (modifiers.rs) -----
-            Command::AddModifier { node, modifier } => self.add_modifier(node, modifier),
-            Command::SetModifier {
-                node,
-                index,
-                modifier,
-            } => self.set_modifier(node, *index, modifier),
-            Command::RemoveModifier { node, index } => self.remove_modifier(node, *index),
-            Command::MoveModifier { node, from, to } => self.move_modifier(node, *from, *to),
-            Command::ApplyModifiers { node, count } => self.apply_modifiers(node, *count),
-            Command::Decimate {
-                node,
-                target,
-                keep_borders,
-                keep_creases,
-                keep_uv_seams,
-                sharp_angle,
-                keep_quads,
-            } => self.decimate(
-                node,
-                crate::modifiers::DecimateModifier {
-                    target: *target,
-                    level: None,
-                    keep_borders: *keep_borders,
-                    keep_creases: *keep_creases,
-                    keep_uv_seams: *keep_uv_seams,
-                    sharp_angle: *sharp_angle,
-                    keep_quads: *keep_quads,
-                },
-            ),
-
-            // ----- mesh modeling (mesh.rs) -----
-            Command::MoveVertices {
-                node,
-                vertices,
-                offset,
-            } => self.move_vertices(node, vertices, *offset),
-            Command::SetVertexPositions { node, positions } => {
-                self.set_vertex_positions(node, positions)
-            }
-            Command::ExtrudeFaces {
-                node,
-                faces,
-                distance,
-            } => self.extrude_faces(node, faces, *distance),
-            Command::ExtrudeRegion {
-                node,
-                faces,
-                distance,
-            } => self.extrude_region(node, faces, *distance),
-            Command::InsetFaces {
-                node,
-                faces,
-                thickness,
-                depth,
-            } => self.inset_faces(node, faces, *thickness, *depth),
-            Command::InsetRegion {
-                node,
-                faces,
-                thickness,
-                depth,
-            } => self.inset_region(node, faces, *thickness, *depth),
-            Command::LoopCut { node, edge, cuts } => self.loop_cut(node, edge, *cuts),
-            Command::SubdivideEdges { node, edges, cuts } => {
-                self.subdivide_edges(node, edges, *cuts)
-            }
-            Command::ConnectVertices { node, vertices } => self.connect_vertices(node, vertices),
-            Command::Triangulate {
-                node,
-                faces,
-                method,
-            } => self.triangulate(node, faces, *method),
-            Command::TrisToQuads {
-                node,
-                faces,
-                face_degrees,
-                shape_degrees,
-            } => self.tris_to_quads(node, faces, *face_degrees, *shape_degrees),
-            Command::Bisect {
-                node,
-                faces,
-                point,
-                normal,
-                clear,
-                fill,
-            } => self.bisect(node, faces, *point, *normal, *clear, *fill),
-            Command::Spin {
-                node,
-                profile,
-                center,
-                axis,
-                degrees,
-                steps,
-            } => self.spin(node, profile, *center, *axis, *degrees, *steps),
-            Command::Screw {
-                node,
-                profile,
-                center,
-                axis,
-                turns,
-                steps,
-                pitch,
-            } => self.screw(node, profile, *center, *axis, *turns, *steps, *pitch),
-            Command::Knife { node, points, view } => self.knife(node, points, *view),
-            Command::Rip { node, edges } => self.rip(node, edges),
-            Command::RipVertex { node, vertex, face } => self.rip_vertex(node, vertex, face),
-            Command::SplitVertex {
-                node,
-                vertex,
-                first,
-                last,
-                position,
-            } => self.split_vertex(node, vertex, first, last, *position),
-            Command::Euler { node, op } => self.euler(node, op),
-            Command::DissolveEdges { node, edges } => self.dissolve_edges(node, edges),
-            Command::DissolveVertices { node, vertices } => self.dissolve_vertices(node, vertices),
-            Command::DissolveFaces { node, faces } => self.dissolve_faces(node, faces),
-            Command::FlipNormals { node } => self.flip_normals(node),
-            Command::RecalculateNormals { node } => self.recalculate_normals(node),
-            Command::MakeHoles { node, faces } => self.make_holes(node, faces),
-            Command::FillHoles { node, edges } => self.fill_holes(node, edges),
-            Command::CollapseEdges { node, edges } => self.collapse_edges(node, edges),
-            Command::ExtrudeEdges {
-                node,
-                edges,
-                offset,
-            } => self.extrude_edges(node, edges, *offset),
-            Command::MirrorVertices {
-                node,
-                vertices,
-                axis,
-            } => self.mirror_vertices(node, vertices, *axis),
-            Command::Symmetrize { node, axis } => self.symmetrize(node, *axis),
-            Command::SlideEdges {
-                node,
-                edges,
-                factor,
-            } => self.slide_edges(node, edges, *factor),
-            Command::BevelEdges {
-                node,
-                edges,
-                width,
-                segments,
-            } => self.bevel_edges(node, edges, *width, *segments),
-            Command::BevelVertices {
-                node,
-                vertices,
-                width,
-            } => self.bevel_vertices(node, vertices, *width),
-            Command::DeleteFaces { node, faces } => self.delete_faces(node, faces),
-            Command::DeleteEdges { node, edges } => self.delete_edges(node, edges),
-            Command::DeleteVertices { node, vertices } => self.delete_vertices(node, vertices),
-            Command::MergeVertices { node, vertices, at } => {
-                self.merge_vertices(node, vertices, *at)
-            }
-            Command::MergeByDistance {
-                node,
-                vertices,
-                distance,
-            } => self.merge_by_distance(node, vertices, *distance),
-            Command::BridgeLoops { node, edges } => self.bridge_loops(node, edges),
+        match family(cmd) {
+            Family::Nodes => self.run_node_command(cmd),
+            Family::Csg => self.run_csg_command(cmd),
+            Family::Shapes => self.run_shape_command(cmd),
+            Family::Constructions => self.run_construction_command(cmd),
+            Family::Creases => self.run_crease_command(cmd),
+            Family::Modifiers => self.run_modifier_command(cmd),
+            Family::Mesh => self.run_mesh_command(cmd),
         }
+    }
+}
+
+/// The families of commands, each decided in its own file by its own
+/// `run_…_command`, which matches only that family's variants.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Family {
+    /// Nodes and the scene tree (nodes.rs).
+    Nodes,
+    /// CSG (csg.rs).
+    Csg,
+    /// Curves and surfaces (shapes.rs).
+    Shapes,
+    /// Surfaces and meshes from curves (constructions.rs).
+    Constructions,
+    /// Subdivision and creases (creases.rs).
+    Creases,
+    /// The modifier stack (modifiers.rs).
+    Modifiers,
+    /// Mesh modeling (mesh.rs).
+    Mesh,
+}
+
+/// The family of a command: the one place every variant is named, so a
+/// new command does not compile until it has a family.
+fn family(cmd: &Command) -> Family {
+    match cmd {
+        Command::AddPrimitive { .. }
+        | Command::AddMesh { .. }
+        | Command::AddKeptMesh { .. }
+        | Command::AddEmpty { .. }
+        | Command::SetPrimitive { .. }
+        | Command::SetTransforms { .. }
+        | Command::Translate { .. }
+        | Command::Rotate { .. }
+        | Command::Scale { .. }
+        | Command::Rename { .. }
+        | Command::Reparent { .. }
+        | Command::SetVisible { .. }
+        | Command::SetShading { .. }
+        | Command::MakeManifold { .. }
+        | Command::Delete { .. }
+        | Command::Duplicate { .. } => Family::Nodes,
+        Command::AddCsg { .. }
+        | Command::SetCsgOp { .. }
+        | Command::ApplyCsg { .. }
+        | Command::Boolean { .. } => Family::Csg,
+        Command::AddCurve { .. }
+        | Command::AddSurface { .. }
+        | Command::SetControlPoints { .. }
+        | Command::SetWeights { .. }
+        | Command::InsertKnot { .. }
+        | Command::ElevateDegree { .. }
+        | Command::SetCurve { .. }
+        | Command::InsertCurvePoint { .. }
+        | Command::DeleteCurvePoints { .. }
+        | Command::ExtrudeCurve { .. }
+        | Command::SetCurveClosed { .. }
+        | Command::ReverseCurve { .. }
+        | Command::SplitCurve { .. }
+        | Command::JoinCurves { .. }
+        | Command::SetCurveJoin { .. }
+        | Command::ConvertCurveToNurbs { .. } => Family::Shapes,
+        Command::MakeFromCurves { .. }
+        | Command::SetConstruction { .. }
+        | Command::ApplyConstruction { .. }
+        | Command::MakeG1Join { .. }
+        | Command::BreakG1Join { .. } => Family::Constructions,
+        Command::SetSubdivision { .. }
+        | Command::ApplySubdivision { .. }
+        | Command::SetEdgeCrease { .. }
+        | Command::SetVertexCrease { .. }
+        | Command::SetCreaseTaper { .. }
+        | Command::SetFaceHole { .. }
+        | Command::SnapToLimit { .. }
+        | Command::ConvertSubdivisionToNurbs { .. } => Family::Creases,
+        Command::AddModifier { .. }
+        | Command::SetModifier { .. }
+        | Command::RemoveModifier { .. }
+        | Command::MoveModifier { .. }
+        | Command::ApplyModifiers { .. }
+        | Command::Decimate { .. } => Family::Modifiers,
+        Command::MoveVertices { .. }
+        | Command::SetVertexPositions { .. }
+        | Command::ExtrudeFaces { .. }
+        | Command::ExtrudeRegion { .. }
+        | Command::InsetFaces { .. }
+        | Command::InsetRegion { .. }
+        | Command::LoopCut { .. }
+        | Command::SubdivideEdges { .. }
+        | Command::ConnectVertices { .. }
+        | Command::Triangulate { .. }
+        | Command::TrisToQuads { .. }
+        | Command::Bisect { .. }
+        | Command::Spin { .. }
+        | Command::Screw { .. }
+        | Command::Knife { .. }
+        | Command::Rip { .. }
+        | Command::RipVertex { .. }
+        | Command::SplitVertex { .. }
+        | Command::Euler { .. }
+        | Command::DissolveEdges { .. }
+        | Command::DissolveVertices { .. }
+        | Command::DissolveFaces { .. }
+        | Command::FlipNormals { .. }
+        | Command::RecalculateNormals { .. }
+        | Command::MakeHoles { .. }
+        | Command::FillHoles { .. }
+        | Command::CollapseEdges { .. }
+        | Command::ExtrudeEdges { .. }
+        | Command::MirrorVertices { .. }
+        | Command::Symmetrize { .. }
+        | Command::SlideEdges { .. }
+        | Command::BevelEdges { .. }
+        | Command::BevelVertices { .. }
+        | Command::DeleteFaces { .. }
+        | Command::DeleteEdges { .. }
+        | Command::DeleteVertices { .. }
+        | Command::MergeVertices { .. }
+        | Command::MergeByDistance { .. }
+        | Command::BridgeLoops { .. } => Family::Mesh,
     }
 }
 

@@ -2,12 +2,15 @@
 //! control points, weights, knot insertion and degree elevation.
 
 use super::plan::Plan;
-use super::{CommandError, CurveSpec, NodeRef, ParameterDirection, SurfaceSpec};
+use super::{Command, CommandError, CurveSpec, NodeRef, ParameterDirection, SurfaceSpec};
 use crate::scene::{CurveContent, NodeContent, NodeTransform, SurfaceShape};
 use glam::DVec3;
 use hedra_geom::curves::interpolating::Tbc;
 use hedra_geom::curves::nurbs::clamped_uniform_knots;
-use hedra_geom::curves::{CurveError, CurveKind, Join, NurbsCurve};
+use hedra_geom::curves::{
+    CatmullRom, Chaikin, CubicHermite, CubicSpline, CurveError, CurveKind, Fractal, Join,
+    KochanekBartels, Lagrange, NurbsCurve, PolyBezier, QuinticHermite,
+};
 use hedra_geom::surfaces::{BezierTriangle, NurbsSurface};
 use std::sync::Arc;
 
@@ -34,75 +37,77 @@ impl CurveSpec {
                 weights: Some(c.weights().to_vec()),
                 knots: Some(c.knots().to_vec()),
             },
-            CurveKind::Lagrange {
+            CurveKind::Lagrange(Lagrange {
                 points,
                 parameterization,
-            } => CurveSpec::Lagrange {
+            }) => CurveSpec::Lagrange {
                 points,
                 parameterization,
             },
-            CurveKind::CubicHermite { points, tangents } => CurveSpec::Hermite { points, tangents },
-            CurveKind::QuinticHermite {
+            CurveKind::CubicHermite(CubicHermite { points, tangents }) => {
+                CurveSpec::Hermite { points, tangents }
+            }
+            CurveKind::QuinticHermite(QuinticHermite {
                 points,
                 tangents,
                 accelerations,
-            } => CurveSpec::QuinticHermite {
+            }) => CurveSpec::QuinticHermite {
                 points,
                 tangents,
                 accelerations,
             },
-            CurveKind::CatmullRom {
+            CurveKind::CatmullRom(CatmullRom {
                 points,
                 parameterization,
                 closed,
-            } => CurveSpec::CatmullRom {
+            }) => CurveSpec::CatmullRom {
                 points,
                 parameterization,
                 closed,
             },
-            CurveKind::KochanekBartels {
+            CurveKind::KochanekBartels(KochanekBartels {
                 points,
                 keys,
                 closed,
-            } => CurveSpec::KochanekBartels {
+            }) => CurveSpec::KochanekBartels {
                 points,
                 keys: Some(keys),
                 closed,
             },
-            CurveKind::CubicSpline {
+            CurveKind::CubicSpline(CubicSpline {
                 points,
                 parameterization,
                 ends,
-            } => CurveSpec::CubicSpline {
+            }) => CurveSpec::CubicSpline {
                 points,
                 parameterization,
                 ends,
             },
-            CurveKind::Chaikin {
+            CurveKind::Chaikin(Chaikin {
                 points,
                 level,
                 closed,
-            } => CurveSpec::Chaikin {
+            }) => CurveSpec::Chaikin {
                 points,
                 level,
                 closed,
             },
-            CurveKind::PolyBezier {
+            CurveKind::PolyBezier(PolyBezier {
                 points,
                 joins,
                 closed,
-            } => CurveSpec::PolyBezier {
+            }) => CurveSpec::PolyBezier {
                 points,
                 joins: Some(joins),
                 closed,
             },
-            CurveKind::Fractal {
+            CurveKind::Fractal(Fractal {
                 rule,
                 points,
                 level,
                 closed,
                 normal,
-            } => CurveSpec::Fractal {
+            }) => CurveSpec::Fractal {
                 rule,
                 points,
                 level,
@@ -154,61 +159,61 @@ pub(crate) fn curve_from_spec(spec: &CurveSpec) -> Result<CurveKind, CurveError>
         CurveSpec::Lagrange {
             points,
             parameterization,
-        } => CurveKind::Lagrange {
+        } => CurveKind::Lagrange(Lagrange {
             points: points.clone(),
             parameterization: *parameterization,
-        },
-        CurveSpec::Hermite { points, tangents } => CurveKind::CubicHermite {
+        }),
+        CurveSpec::Hermite { points, tangents } => CurveKind::CubicHermite(CubicHermite {
             points: points.clone(),
             tangents: tangents.clone(),
-        },
+        }),
         CurveSpec::QuinticHermite {
             points,
             tangents,
             accelerations,
-        } => CurveKind::QuinticHermite {
+        } => CurveKind::QuinticHermite(QuinticHermite {
             points: points.clone(),
             tangents: tangents.clone(),
             accelerations: accelerations.clone(),
-        },
+        }),
         CurveSpec::CatmullRom {
             points,
             parameterization,
             closed,
-        } => CurveKind::CatmullRom {
+        } => CurveKind::CatmullRom(CatmullRom {
             points: points.clone(),
             parameterization: *parameterization,
             closed: *closed,
-        },
+        }),
         CurveSpec::KochanekBartels {
             points,
             keys,
             closed,
-        } => CurveKind::KochanekBartels {
+        } => CurveKind::KochanekBartels(KochanekBartels {
             points: points.clone(),
             keys: keys
                 .clone()
                 .unwrap_or_else(|| vec![Tbc::default(); points.len()]),
             closed: *closed,
-        },
+        }),
         CurveSpec::CubicSpline {
             points,
             parameterization,
             ends,
-        } => CurveKind::CubicSpline {
+        } => CurveKind::CubicSpline(CubicSpline {
             points: points.clone(),
             parameterization: *parameterization,
             ends: *ends,
-        },
+        }),
         CurveSpec::Chaikin {
             points,
             level,
             closed,
-        } => CurveKind::Chaikin {
+        } => CurveKind::Chaikin(Chaikin {
             points: points.clone(),
             level: *level,
             closed: *closed,
-        },
+        }),
         CurveSpec::PolyBezier {
             points,
             joins,
@@ -225,11 +230,11 @@ pub(crate) fn curve_from_spec(spec: &CurveSpec) -> Result<CurveKind, CurveError>
                 segments.saturating_sub(1)
             };
             let joins = joins.clone().unwrap_or_else(|| vec![Join::G1; joints]);
-            let plain = CurveKind::PolyBezier {
+            let plain = CurveKind::PolyBezier(PolyBezier {
                 points: points.clone(),
                 joins: joins.clone(),
                 closed: *closed,
-            };
+            });
             plain.check()?;
             // Turn the handles to hold the joins.
             let mut k = plain;
@@ -244,13 +249,13 @@ pub(crate) fn curve_from_spec(spec: &CurveSpec) -> Result<CurveKind, CurveError>
             level,
             closed,
             normal,
-        } => CurveKind::Fractal {
+        } => CurveKind::Fractal(Fractal {
             rule: *rule,
             points: points.clone(),
             level: *level,
             closed: *closed,
             normal: *normal,
-        },
+        }),
     };
     kind.check()?;
     Ok(kind)
@@ -632,5 +637,58 @@ impl Plan<'_> {
                 }
             },
         )
+    }
+}
+
+impl Plan<'_> {
+    /// Decides a command of the curves and surfaces family (the variants
+    /// [`Family::Shapes`](super::plan::Family::Shapes) names; [`Plan::run`] sends only those here).
+    pub(super) fn run_shape_command(&mut self, cmd: &Command) -> Result<(), CommandError> {
+        match cmd {
+            Command::AddCurve {
+                name,
+                curve,
+                parent,
+                transform,
+            } => self.add_curve(name, curve, parent, *transform),
+            Command::AddSurface {
+                name,
+                surface,
+                parent,
+                transform,
+            } => self.add_surface(name, surface, parent, *transform),
+            Command::SetControlPoints { node, points } => self.set_control_points(node, points),
+            Command::SetWeights { node, weights } => self.set_weights(node, weights),
+            Command::InsertKnot {
+                node,
+                at,
+                direction,
+            } => self.insert_knot(node, *at, *direction),
+            Command::ElevateDegree { node, direction } => self.elevate_degree(node, *direction),
+            Command::SetCurve { node, curve } => self.set_curve(node, curve),
+            Command::InsertCurvePoint { node, at } => {
+                self.edit_curve(node, |k| Ok(k.insert_point(*at)?.0))
+            }
+            Command::DeleteCurvePoints { node, points } => {
+                let points: Vec<usize> = points.iter().map(|&i| i as usize).collect();
+                self.edit_curve(node, |k| k.delete_points(&points))
+            }
+            Command::ExtrudeCurve { node, end, to } => {
+                self.edit_curve(node, |k| k.extrude(*end, *to))
+            }
+            Command::SetCurveClosed { node, closed } => {
+                self.edit_curve(node, |k| k.set_closed(*closed))
+            }
+            Command::ReverseCurve { node } => self.edit_curve(node, |k| k.reverse()),
+            Command::SplitCurve { node, at, name } => self.split_curve(node, *at, name),
+            Command::JoinCurves { first, second } => self.join_curves(first, second),
+            Command::SetCurveJoin { node, joint, join } => {
+                self.edit_curve(node, |k| k.set_join(*joint as usize, *join))
+            }
+            Command::ConvertCurveToNurbs { node } => {
+                self.edit_curve(node, |k| Ok(CurveKind::Nurbs(k.to_nurbs()?.curve)))
+            }
+            _ => unreachable!("not a command of the curves and surfaces family"),
+        }
     }
 }

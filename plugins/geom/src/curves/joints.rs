@@ -235,7 +235,7 @@ impl CurveKind {
     ///
     /// [`Join`]: super::Join
     pub fn joints(&self, form: &NurbsCurve, tolerance: &JointTolerance) -> Vec<Joint> {
-        if matches!(self, CurveKind::Lagrange { .. }) {
+        if matches!(self, CurveKind::Lagrange(_)) {
             return Vec::new();
         }
         curve_joints(form, self.is_closed(), tolerance)

@@ -18,21 +18,91 @@
 //! ↔ power basis), seed 004 (C2 cubic spline, Koch curve and the Hausdorff
 //! dimension `D = log N / log(1/r)`).
 //!
+//! Each kind is its own type in its own module ([`Lagrange`] in
+//! `lagrange.rs`, [`PolyBezier`] in `poly_bezier.rs`, …; a NURBS curve is
+//! [`NurbsCurve`] itself, in `nurbs.rs`) and answers the questions and
+//! edits of one trait, [`KindRules`]; `CurveKind` holds one of them and
+//! hands each call to it in one place (the `each_kind!` macro). What is
+//! the same for every kind stays here and in `conversion.rs` (the NURBS
+//! form), `editing.rs` (point edits) and `reshape.rs` (whole-curve edits);
+//! `wire.rs` keeps the stored (RON) form that of the struct variants the
+//! kinds once were, so older scene files load and re-save unchanged.
+//!
 //! Every edit ([`set_points`](CurveKind::set_points),
 //! [`insert_point`](CurveKind::insert_point), …) returns a new value and
 //! leaves `self` untouched; a refused edit returns a named [`CurveError`].
 
-use super::interpolating::{HermiteSpline, Tbc};
+use super::interpolating::HermiteSpline;
 use super::nurbs::NurbsCurve;
-use super::{Curve, CurveError, check_points};
-use glam::DVec3;
+use super::{CurveError, check_points};
+use glam::{DMat4, DVec3};
 use serde::{Deserialize, Serialize};
 
-mod conversion;
-mod editing;
-mod reshape;
+/// `match` on a [`CurveKind`] (a value or a reference) with one arm per
+/// kind, binding the kind's own value to `$k`: the one place where a call
+/// is handed to the kind. Call the kind's [`KindRules`] methods in `$body`
+/// by path (`KindRules::reversed(k)`), as [`NurbsCurve`] has inherent
+/// methods of the same names.
+macro_rules! each_kind {
+    ($value:expr, $k:ident => $body:expr) => {
+        match $value {
+            CurveKind::Nurbs($k) => $body,
+            CurveKind::Lagrange($k) => $body,
+            CurveKind::CubicHermite($k) => $body,
+            CurveKind::QuinticHermite($k) => $body,
+            CurveKind::CatmullRom($k) => $body,
+            CurveKind::KochanekBartels($k) => $body,
+            CurveKind::CubicSpline($k) => $body,
+            CurveKind::Chaikin($k) => $body,
+            CurveKind::PolyBezier($k) => $body,
+            CurveKind::Fractal($k) => $body,
+        }
+    };
+    // Two values of one kind; `$other` for two of different kinds.
+    ($a:expr, $b:expr, ($x:ident, $y:ident) => $body:expr, _ => $other:expr) => {
+        match ($a, $b) {
+            (CurveKind::Nurbs($x), CurveKind::Nurbs($y)) => $body,
+            (CurveKind::Lagrange($x), CurveKind::Lagrange($y)) => $body,
+            (CurveKind::CubicHermite($x), CurveKind::CubicHermite($y)) => $body,
+            (CurveKind::QuinticHermite($x), CurveKind::QuinticHermite($y)) => $body,
+            (CurveKind::CatmullRom($x), CurveKind::CatmullRom($y)) => $body,
+            (CurveKind::KochanekBartels($x), CurveKind::KochanekBartels($y)) => $body,
+            (CurveKind::CubicSpline($x), CurveKind::CubicSpline($y)) => $body,
+            (CurveKind::Chaikin($x), CurveKind::Chaikin($y)) => $body,
+            (CurveKind::PolyBezier($x), CurveKind::PolyBezier($y)) => $body,
+            (CurveKind::Fractal($x), CurveKind::Fractal($y)) => $body,
+            _ => $other,
+        }
+    };
+}
 
-pub use conversion::lagrange_point;
+mod catmull_rom;
+mod chaikin;
+mod conversion;
+mod cubic_hermite;
+mod cubic_spline;
+mod editing;
+mod fractal;
+mod kochanek_bartels;
+mod lagrange;
+mod nurbs;
+mod poly_bezier;
+mod quintic_hermite;
+mod reshape;
+mod wire;
+
+pub use catmull_rom::CatmullRom;
+pub use chaikin::Chaikin;
+pub use cubic_hermite::CubicHermite;
+pub use cubic_spline::CubicSpline;
+pub use fractal::Fractal;
+pub use kochanek_bartels::KochanekBartels;
+pub use lagrange::{Lagrange, lagrange_point};
+pub use poly_bezier::PolyBezier;
+pub use quintic_hermite::QuinticHermite;
+
+use conversion::{closed_parameters, hermite_nurbs, hermite_to_nurbs, polyline};
+use reshape::{neg, rev, reverse_closed};
 
 /// Lagrange curves with at most this many points get an exact Bézier form
 /// (degree ≤ 11); above it the NURBS form is an interpolating cubic spline
@@ -188,110 +258,265 @@ pub enum CurveEnd {
     End,
 }
 
-/// A curve as the user defined it. See the module documentation.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+/// A curve as the user defined it: one of the kinds, each its own type
+/// with its own rules ([`KindRules`]). See the module documentation.
+///
+/// Stored (RON) as the struct variants of before
+/// (`Lagrange(points: […], parameterization: Chord)`), not as newtype
+/// variants holding a struct: see `wire.rs`.
+#[derive(Clone, Debug, PartialEq)]
 pub enum CurveKind {
     /// A NURBS curve, its own NURBS form.
     Nurbs(NurbsCurve),
     /// The polynomial of degree n − 1 through n points.
-    Lagrange {
-        /// The interpolated points (at least 2).
-        points: Vec<DVec3>,
-        /// How their parameters are chosen.
-        #[serde(default)]
-        parameterization: Parameterization,
-    },
+    Lagrange(Lagrange),
     /// Cubic Hermite segments through points with given derivatives, at
     /// parameters 0, 1, 2, …
-    CubicHermite {
-        /// The points (at least 2).
-        points: Vec<DVec3>,
-        /// dp/dt at each point.
-        tangents: Vec<DVec3>,
-    },
+    CubicHermite(CubicHermite),
     /// Quintic Hermite segments (C2): points with first and second
     /// derivatives, at parameters 0, 1, 2, … (seed 002).
-    QuinticHermite {
-        /// The points (at least 2).
-        points: Vec<DVec3>,
-        /// dp/dt at each point.
-        tangents: Vec<DVec3>,
-        /// d²p/dt² at each point.
-        accelerations: Vec<DVec3>,
-    },
+    QuinticHermite(QuinticHermite),
     /// The Catmull-Rom spline through the points.
-    CatmullRom {
-        /// The points (at least 2; 3 closed).
-        points: Vec<DVec3>,
-        /// How their parameters are chosen.
-        #[serde(default)]
-        parameterization: Parameterization,
-        /// A closed loop (tangents wrap around).
-        #[serde(default)]
-        closed: bool,
-    },
+    CatmullRom(CatmullRom),
     /// The Kochanek-Bartels spline: tension, bias, continuity per key,
     /// uniform parameters.
-    KochanekBartels {
-        /// The points (at least 2; 3 closed).
-        points: Vec<DVec3>,
-        /// One key per point.
-        keys: Vec<Tbc>,
-        /// A closed loop.
-        #[serde(default)]
-        closed: bool,
-    },
+    KochanekBartels(KochanekBartels),
     /// The interpolating C2 cubic spline (seed 004).
-    CubicSpline {
-        /// The points (at least 2; 3 closed).
-        points: Vec<DVec3>,
-        /// How their parameters are chosen.
-        #[serde(default)]
-        parameterization: Parameterization,
-        /// Natural, clamped or closed.
-        #[serde(default)]
-        ends: SplineEnds,
-    },
+    CubicSpline(CubicSpline),
     /// Chaikin's corner cutting of a control polygon, `level` times.
-    Chaikin {
-        /// The control polygon (at least 2; 3 closed).
-        points: Vec<DVec3>,
-        /// How many times the corners are cut.
-        level: u32,
-        /// A closed polygon.
-        #[serde(default)]
-        closed: bool,
-    },
-    /// Cubic Bézier segments sharing end points: anchors at 0, 3, 6, …,
-    /// handles between. Open: `3k + 1` points for k segments, `k − 1`
-    /// joins (joint j at anchor `3(j + 1)`). Closed: `3k` points, the last
-    /// segment ends at point 0, `k` joins (joint j at anchor `3j`).
-    PolyBezier {
-        /// Anchors and handles.
-        points: Vec<DVec3>,
-        /// The continuity kept at each joint.
-        joins: Vec<Join>,
-        /// A closed chain.
-        #[serde(default)]
-        closed: bool,
-    },
-    /// A fractal of the Koch family at a level: every segment of the
-    /// initiator polygon replaced `level` times by the rule's generator,
-    /// bumps on the left of each segment seen from `normal` (so a
-    /// clockwise triangle grows the Koch snowflake).
-    Fractal {
-        /// The replacement rule.
-        rule: FractalRule,
-        /// The initiator polygon (at least 2; 3 closed).
-        points: Vec<DVec3>,
-        /// How many times segments are replaced.
-        level: u32,
-        /// A closed initiator (the snowflake).
-        #[serde(default)]
-        closed: bool,
-        /// The plane's normal; bumps go to `normal × segment`.
-        normal: DVec3,
-    },
+    Chaikin(Chaikin),
+    /// Cubic Bézier segments sharing end points, with a join per joint.
+    PolyBezier(PolyBezier),
+    /// A fractal of the Koch family at a level.
+    Fractal(Fractal),
+}
+
+macro_rules! kind_from {
+    ($($variant:ident($ty:ty)),* $(,)?) => {
+        $(impl From<$ty> for CurveKind {
+            fn from(kind: $ty) -> CurveKind {
+                CurveKind::$variant(kind)
+            }
+        })*
+    };
+}
+
+kind_from!(
+    Nurbs(NurbsCurve),
+    Lagrange(Lagrange),
+    CubicHermite(CubicHermite),
+    QuinticHermite(QuinticHermite),
+    CatmullRom(CatmullRom),
+    KochanekBartels(KochanekBartels),
+    CubicSpline(CubicSpline),
+    Chaikin(Chaikin),
+    PolyBezier(PolyBezier),
+    Fractal(Fractal),
+);
+
+/// What each curve kind answers and does in its own way; [`CurveKind`]'s
+/// methods check what is the same for every kind (indices, finite
+/// positions, the result's [`check`](CurveKind::check)) and hand the rest
+/// to its kind through these. The defaults are those of a kind whose only
+/// data per point is the point itself ([`points_mut`](Self::points_mut)).
+pub trait KindRules: Clone + Into<CurveKind> {
+    /// The kind's name for messages and panels ("Catmull-Rom", …).
+    fn name(&self) -> &'static str;
+    /// The defining points the user edits.
+    fn points(&self) -> &[DVec3];
+    /// The defining points as the list the default edits change; `None`
+    /// for a kind that keeps them otherwise (NURBS), which overrides every
+    /// default that uses it.
+    fn points_mut(&mut self) -> Option<&mut Vec<DVec3>>;
+    /// True for a closed loop.
+    fn is_closed(&self) -> bool {
+        false
+    }
+    /// True when the curve passes through every defining point at
+    /// [`key_parameters`](Self::key_parameters).
+    fn interpolates(&self) -> bool {
+        false
+    }
+    /// True when the tangent handles are defining data a user drags.
+    fn handles_editable(&self) -> bool {
+        false
+    }
+    /// The kind's own checks of its data (counts, lists of matching
+    /// lengths, finite values, the level), after the points' own.
+    ///
+    /// # Errors
+    /// The first problem, named.
+    fn check_data(&self) -> Result<(), CurveError>;
+    /// The points finite and distinct enough, then
+    /// [`check_data`](Self::check_data).
+    ///
+    /// # Errors
+    /// The first problem, named.
+    fn checked(&self) -> Result<(), CurveError> {
+        check_points(self.points())?;
+        self.check_data()
+    }
+    /// The Hermite form of a Hermite-family kind, its data unchecked;
+    /// `None` for the others.
+    ///
+    /// # Errors
+    /// What the solver finds (coincident points for chord parameters).
+    fn hermite_form(&self) -> Result<Option<HermiteSpline>, CurveError> {
+        Ok(None)
+    }
+    /// The keys its tangent handles are drawn from and their degree; by
+    /// default the checked Hermite form, cubic.
+    fn handle_keys(&self) -> Option<(HermiteSpline, f64)> {
+        match self.checked().and_then(|()| self.hermite_form()) {
+            Ok(Some(h)) => Some((h, 3.0)),
+            _ => None,
+        }
+    }
+    /// The key parameters of an interpolating kind without a Hermite form;
+    /// empty for the others.
+    ///
+    /// # Errors
+    /// What the parameterization finds.
+    fn own_key_parameters(&self) -> Result<Vec<f64>, CurveError> {
+        Ok(Vec::new())
+    }
+    /// The parameters (of the NURBS form) at which the curve passes
+    /// through its points, checked: the Hermite form's, else
+    /// [`own_key_parameters`](Self::own_key_parameters).
+    ///
+    /// # Errors
+    /// As [`checked`](Self::checked).
+    fn key_parameters(&self) -> Result<Vec<f64>, CurveError> {
+        self.checked()?;
+        if let Some(h) = self.hermite_form()? {
+            return Ok(h.params);
+        }
+        self.own_key_parameters()
+    }
+    /// The polygon a Chaikin or fractal kind draws at its level.
+    fn level_polygon(&self) -> Option<Vec<DVec3>> {
+        None
+    }
+    /// The NURBS form of data already checked.
+    ///
+    /// # Errors
+    /// What the construction finds.
+    fn nurbs_form(&self) -> Result<NurbsForm, CurveError>;
+    /// Moves defining points (indices checked); indices past the points
+    /// name the `handles` of a kind with editable handles.
+    ///
+    /// # Errors
+    /// What the kind refuses.
+    fn move_points(
+        &mut self,
+        moves: &[(usize, DVec3)],
+        handles: &[TangentHandle],
+    ) -> Result<(), CurveError> {
+        let _ = handles;
+        let count = self.points().len();
+        let points = self.points_mut().expect("a kind with a list of points");
+        for &(i, p) in moves.iter().filter(|m| m.0 < count) {
+            points[i] = p;
+        }
+        Ok(())
+    }
+    /// Maps the data by the affine map `m` (points by it, vectors by its
+    /// linear part).
+    ///
+    /// # Errors
+    /// A map that makes a value non-finite.
+    fn transform(&mut self, m: &DMat4) -> Result<(), CurveError> {
+        let points = self.points_mut().expect("a kind with a list of points");
+        *points = map_points(m, points);
+        Ok(())
+    }
+    /// A kind's own exact insertion at parameter `t` (the new curve and
+    /// the new point's index), instead of [`insert_at`](Self::insert_at).
+    fn insert_exact(&self, t: f64) -> Option<Result<(CurveKind, usize), CurveError>> {
+        let _ = t;
+        None
+    }
+    /// How many spans a parameter falls among when the kind has no key
+    /// parameters: the polygon's edges.
+    fn edges(&self) -> usize {
+        self.points().len() - usize::from(!self.is_closed())
+    }
+    /// Inserts a point in span `(i, s)` (index and fraction) at index `at`
+    /// (`i + 1`), given the curve's point and first two derivatives there;
+    /// returns the new point's index.
+    fn insert_at(&mut self, span: (usize, f64), at: usize, curve: [DVec3; 3]) -> usize {
+        let _ = span;
+        let points = self.points_mut().expect("a kind with a list of points");
+        points.insert(at, curve[0]);
+        at
+    }
+    /// The parameter at which the curve passes through defining point
+    /// `index`, if it does.
+    fn on_curve_parameter(&self, index: usize) -> Option<f64> {
+        if self.interpolates() {
+            self.key_parameters().ok()?.get(index).copied()
+        } else {
+            None
+        }
+    }
+    /// A kind's own exact split at `t`, instead of inserting a point and
+    /// cutting there.
+    fn split_exact(&self, t: f64) -> Option<Result<(CurveKind, CurveKind), CurveError>> {
+        let _ = t;
+        None
+    }
+    /// Deletes the defining points `gone` (sorted, distinct, existing).
+    ///
+    /// # Errors
+    /// What the kind refuses.
+    fn delete(&mut self, gone: &[usize]) -> Result<(), CurveError> {
+        let points = self.points_mut().expect("a kind with a list of points");
+        *points = remove_indices(points, gone);
+        Ok(())
+    }
+    /// Adds a point after the last one.
+    ///
+    /// # Errors
+    /// What the kind refuses.
+    fn push_end(&mut self, to: DVec3) -> Result<(), CurveError> {
+        self.points_mut()
+            .expect("a kind with a list of points")
+            .push(to);
+        Ok(())
+    }
+    /// The same curve traced the other way.
+    ///
+    /// # Errors
+    /// A rebuilt value that is not valid.
+    fn reversed(&self) -> Result<Self, CurveError>;
+    /// Opens or closes the curve; by default refused.
+    ///
+    /// # Errors
+    /// A kind that cannot be closed.
+    fn set_closed(&mut self, closed: bool) -> Result<(), CurveError> {
+        Err(CurveError::NotForKind {
+            operation: if closed { "closing" } else { "opening" },
+            kind: self.name(),
+        })
+    }
+    /// One half of a split at defining point `k`: up to and with `k`
+    /// (`left`) or from `k` on.
+    fn keep(&mut self, k: usize, left: bool) {
+        let points = self.points_mut().expect("a kind with a list of points");
+        cubic_hermite::keep(points, k, left);
+    }
+    /// Appends `other`'s data, its first `skip` points left out (its start
+    /// already at this end).
+    ///
+    /// # Errors
+    /// What the kind refuses.
+    fn append(&mut self, other: &Self, skip: usize) -> Result<(), CurveError> {
+        let more = other.points()[skip..].to_vec();
+        self.points_mut()
+            .expect("a kind with a list of points")
+            .extend_from_slice(&more);
+        Ok(())
+    }
 }
 
 /// A tangent drawn as a handle at a key of a Hermite-family curve: the
@@ -334,46 +559,40 @@ fn count(points: usize, what: &'static str, got: usize) -> Result<(), CurveError
     }
 }
 
+/// The fewest points of an open (2) or closed (3) curve.
+fn least(closed: bool) -> usize {
+    if closed { 3 } else { 2 }
+}
+
+/// Points mapped by the affine map `m`.
+fn map_points(m: &DMat4, v: &[DVec3]) -> Vec<DVec3> {
+    v.iter().map(|x| m.transform_point3(*x)).collect()
+}
+
+/// Vectors mapped by the linear part of `m`.
+fn map_vectors(m: &DMat4, v: &[DVec3]) -> Vec<DVec3> {
+    v.iter().map(|x| m.transform_vector3(*x)).collect()
+}
+
+fn remove_indices<T: Clone>(v: &[T], gone: &[usize]) -> Vec<T> {
+    v.iter()
+        .enumerate()
+        .filter(|(i, _)| !gone.contains(i))
+        .map(|(_, x)| x.clone())
+        .collect()
+}
+
 impl CurveKind {
     /// The kind's name for messages and panels ("Catmull-Rom", …).
     pub fn name(&self) -> &'static str {
-        match self {
-            CurveKind::Nurbs(_) => "NURBS",
-            CurveKind::Lagrange { .. } => "Lagrange",
-            CurveKind::CubicHermite { .. } => "cubic Hermite",
-            CurveKind::QuinticHermite { .. } => "quintic Hermite",
-            CurveKind::CatmullRom { .. } => "Catmull-Rom",
-            CurveKind::KochanekBartels { .. } => "Kochanek-Bartels",
-            CurveKind::CubicSpline { .. } => "C2 cubic spline",
-            CurveKind::Chaikin { .. } => "Chaikin",
-            CurveKind::PolyBezier { .. } => "poly-Bézier",
-            CurveKind::Fractal {
-                rule: FractalRule::Koch,
-                ..
-            } => "Koch",
-            CurveKind::Fractal {
-                rule: FractalRule::QuadraticKoch,
-                ..
-            } => "quadratic Koch",
-        }
+        each_kind!(self, k => KindRules::name(k))
     }
 
     /// The defining points the user edits: NURBS control points,
     /// interpolation points, a poly-Bézier's anchors and handles, a
     /// Chaikin control polygon, a fractal's initiator.
     pub fn points(&self) -> &[DVec3] {
-        match self {
-            CurveKind::Nurbs(c) => c.points(),
-            CurveKind::Lagrange { points, .. }
-            | CurveKind::CubicHermite { points, .. }
-            | CurveKind::QuinticHermite { points, .. }
-            | CurveKind::CatmullRom { points, .. }
-            | CurveKind::KochanekBartels { points, .. }
-            | CurveKind::CubicSpline { points, .. }
-            | CurveKind::Chaikin { points, .. }
-            | CurveKind::PolyBezier { points, .. }
-            | CurveKind::Fractal { points, .. } => points,
-        }
+        each_kind!(self, k => KindRules::points(k))
     }
 
     /// The tangent handles of a Hermite-family kind (cubic and quintic
@@ -381,24 +600,8 @@ impl CurveKind {
     /// incoming one (but the first of an open curve) and an outgoing one
     /// (but the last), in that order. Empty for the other kinds.
     pub fn tangent_handles(&self) -> Vec<TangentHandle> {
-        let (keys, degree) = match self {
-            CurveKind::QuinticHermite {
-                points,
-                tangents,
-                accelerations: _,
-            } => (
-                HermiteSpline {
-                    params: (0..points.len()).map(|i| i as f64).collect(),
-                    points: points.clone(),
-                    tangents: tangents.clone(),
-                    incoming: tangents.clone(),
-                },
-                5.0,
-            ),
-            _ => match self.hermite() {
-                Ok(Some(h)) => (h, 3.0),
-                _ => return Vec::new(),
-            },
+        let Some((keys, degree)) = each_kind!(self, k => KindRules::handle_keys(k)) else {
+            return Vec::new();
         };
         let n = self.points().len();
         let closed = self.is_closed();
@@ -436,10 +639,7 @@ impl CurveKind {
     /// and quintic Hermite); for the other Hermite kinds they are derived
     /// from the points and shown only.
     pub fn handles_editable(&self) -> bool {
-        matches!(
-            self,
-            CurveKind::CubicHermite { .. } | CurveKind::QuinticHermite { .. }
-        )
+        each_kind!(self, k => KindRules::handles_editable(k))
     }
 
     /// The points a user edits: the [defining points](Self::points), then
@@ -454,157 +654,19 @@ impl CurveKind {
         all
     }
 
-    fn points_mut(&mut self) -> Option<&mut Vec<DVec3>> {
-        match self {
-            CurveKind::Nurbs(_) => None,
-            CurveKind::Lagrange { points, .. }
-            | CurveKind::CubicHermite { points, .. }
-            | CurveKind::QuinticHermite { points, .. }
-            | CurveKind::CatmullRom { points, .. }
-            | CurveKind::KochanekBartels { points, .. }
-            | CurveKind::CubicSpline { points, .. }
-            | CurveKind::Chaikin { points, .. }
-            | CurveKind::PolyBezier { points, .. }
-            | CurveKind::Fractal { points, .. } => Some(points),
-        }
-    }
-
     /// True for a closed loop (a NURBS curve: its ends meet).
     pub fn is_closed(&self) -> bool {
-        match self {
-            CurveKind::Nurbs(c) => {
-                let (a, b) = c.domain();
-                (c.point(a) - c.point(b)).length() < 1e-12
-            }
-            CurveKind::Lagrange { .. }
-            | CurveKind::CubicHermite { .. }
-            | CurveKind::QuinticHermite { .. } => false,
-            CurveKind::CatmullRom { closed, .. }
-            | CurveKind::KochanekBartels { closed, .. }
-            | CurveKind::Chaikin { closed, .. }
-            | CurveKind::PolyBezier { closed, .. }
-            | CurveKind::Fractal { closed, .. } => *closed,
-            CurveKind::CubicSpline { ends, .. } => *ends == SplineEnds::Closed,
-        }
+        each_kind!(self, k => KindRules::is_closed(k))
     }
 
     /// True for kinds whose curve passes through every defining point at
     /// [`key_parameters`](Self::key_parameters).
     pub fn interpolates(&self) -> bool {
-        matches!(
-            self,
-            CurveKind::Lagrange { .. }
-                | CurveKind::CubicHermite { .. }
-                | CurveKind::QuinticHermite { .. }
-                | CurveKind::CatmullRom { .. }
-                | CurveKind::KochanekBartels { .. }
-                | CurveKind::CubicSpline { .. }
-        )
+        each_kind!(self, k => KindRules::interpolates(k))
     }
 
     fn check_counts(&self) -> Result<(), CurveError> {
-        let name = self.name();
-        let least = if self.is_closed() { 3 } else { 2 };
-        check_points(self.points())?;
-        match self {
-            CurveKind::Nurbs(_) => Ok(()),
-            CurveKind::Lagrange { points, .. } | CurveKind::CatmullRom { points, .. } => {
-                too_few(name, least, points.len())
-            }
-            CurveKind::CubicHermite { points, tangents } => {
-                too_few(name, 2, points.len())?;
-                count(points.len(), "tangents", tangents.len())?;
-                check_points(tangents)
-                    .map_err(|_| CurveError::NotFiniteVector { what: "a tangent" })
-            }
-            CurveKind::QuinticHermite {
-                points,
-                tangents,
-                accelerations,
-            } => {
-                too_few(name, 2, points.len())?;
-                count(points.len(), "tangents", tangents.len())?;
-                count(points.len(), "accelerations", accelerations.len())?;
-                check_points(tangents)
-                    .map_err(|_| CurveError::NotFiniteVector { what: "a tangent" })?;
-                check_points(accelerations).map_err(|_| CurveError::NotFiniteVector {
-                    what: "an acceleration",
-                })
-            }
-            CurveKind::KochanekBartels { points, keys, .. } => {
-                too_few(name, least, points.len())?;
-                count(points.len(), "T/B/C keys", keys.len())?;
-                if keys.iter().any(|k| {
-                    !(k.tension.is_finite() && k.bias.is_finite() && k.continuity.is_finite())
-                }) {
-                    return Err(CurveError::NotFiniteVector {
-                        what: "a T/B/C key",
-                    });
-                }
-                Ok(())
-            }
-            CurveKind::CubicSpline { points, .. } => too_few(name, least, points.len()),
-            CurveKind::Chaikin {
-                points,
-                level,
-                closed,
-            } => {
-                too_few(name, least, points.len())?;
-                let edges = points.len() - usize::from(!closed);
-                let max = (0..=20u32)
-                    .take_while(|&l| edges << l <= MAX_LEVEL_POINTS)
-                    .last()
-                    .unwrap_or(0);
-                if *level > max {
-                    return Err(CurveError::LevelTooHigh { level: *level, max });
-                }
-                Ok(())
-            }
-            CurveKind::PolyBezier {
-                points,
-                joins,
-                closed,
-            } => {
-                let (needed, per) = if *closed { (3, 0) } else { (4, 1) };
-                too_few(name, needed, points.len())?;
-                if (points.len() - per) % 3 != 0 {
-                    return Err(CurveError::CountMismatch {
-                        points: points.len(),
-                        what: if *closed {
-                            "a multiple of 3 points (3 per segment)"
-                        } else {
-                            "3k + 1 points (3 per segment and one)"
-                        },
-                        got: points.len(),
-                    });
-                }
-                let segments = (points.len() - per) / 3;
-                count(segments - per, "joins", joins.len())
-            }
-            CurveKind::Fractal {
-                rule,
-                points,
-                level,
-                closed,
-                normal,
-            } => {
-                too_few(name, least, points.len())?;
-                if !normal.is_finite() || normal.length_squared() < 1e-24 {
-                    return Err(CurveError::NotFiniteVector {
-                        what: "the fractal's plane normal",
-                    });
-                }
-                let edges = points.len() - usize::from(!closed);
-                let mut max = 0;
-                while edges * rule.pieces().pow(max + 1) <= MAX_LEVEL_POINTS {
-                    max += 1;
-                }
-                if *level > max {
-                    return Err(CurveError::LevelTooHigh { level: *level, max });
-                }
-                Ok(())
-            }
-        }
+        each_kind!(self, k => KindRules::checked(k))
     }
 
     /// Checks the kind's data: enough points, matching list lengths,

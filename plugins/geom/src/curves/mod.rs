@@ -20,7 +20,9 @@ use glam::DVec3;
 
 pub use bezier::Bezier;
 pub use kinds::{
-    CurveEnd, CurveKind, FractalRule, Join, NurbsForm, Parameterization, SplineEnds, TangentHandle,
+    CatmullRom, Chaikin, CubicHermite, CubicSpline, CurveEnd, CurveKind, Fractal, FractalRule,
+    Join, KindRules, KochanekBartels, Lagrange, NurbsForm, Parameterization, PolyBezier,
+    QuinticHermite, SplineEnds, TangentHandle,
 };
 pub use nurbs::{NurbsCurve, Side};
 

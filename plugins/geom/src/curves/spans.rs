@@ -10,7 +10,7 @@ use serde::{Deserialize, Serialize};
 
 use super::analysis::{arc_length, closest_parameter};
 use super::nurbs::NurbsCurve;
-use super::{Curve, CurveError, CurveKind};
+use super::{Curve, CurveError, CurveKind, Fractal};
 
 /// The arc length of `curve` between parameters `a` and `b` (in either
 /// order): adaptive 5-point Gauss-Legendre on each knot span inside, to a
@@ -83,12 +83,12 @@ impl CurveKind {
             return Ok(keys);
         }
         Ok(match self {
-            CurveKind::Nurbs(_) | CurveKind::PolyBezier { .. } => {
+            CurveKind::Nurbs(_) | CurveKind::PolyBezier(_) => {
                 let mut g = form.greville();
                 g.truncate(n);
                 g
             }
-            CurveKind::Fractal { rule, level, .. } => {
+            CurveKind::Fractal(Fractal { rule, level, .. }) => {
                 let (a, b) = form.domain();
                 let per = rule.pieces().pow(*level) as f64;
                 let segments = (form.points().len() - 1) as f64;

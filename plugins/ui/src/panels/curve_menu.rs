@@ -4,13 +4,13 @@
 
 use super::*;
 use hedra_edit::bindings::{Action, KeyMode};
-use hedra_geom::curves::{CurveKind, Join};
+use hedra_geom::curves::{CurveKind, Join, PolyBezier};
 
 /// The poly-Bézier joint at anchor `anchor`, as `SetCurveJoin` numbers
 /// joints (an open chain's first joint is its second anchor); `None` for a
 /// handle or an open chain's end.
 pub(super) fn joint_of_anchor(kind: &CurveKind, anchor: usize) -> Option<u32> {
-    let CurveKind::PolyBezier { points, closed, .. } = kind else {
+    let CurveKind::PolyBezier(PolyBezier { points, closed, .. }) = kind else {
         return None;
     };
     if !anchor.is_multiple_of(3) || anchor >= points.len() {
@@ -93,7 +93,7 @@ pub(super) fn curve_menu(
         exec(events, Command::ConvertCurveToNurbs { node: n.clone() });
         ui.close();
     }
-    if let CurveKind::PolyBezier { .. } = kind {
+    if let CurveKind::PolyBezier(_) = kind {
         let joint = one.and_then(|i| joint_of_anchor(kind, i as usize));
         ui.separator();
         ui.label(egui::RichText::new("Joint at the selected anchor").weak());

@@ -104,7 +104,12 @@ pub(super) fn shape_panel(
             ));
             // The seed's Hausdorff dimension of a fractal, and how far an
             // approximated NURBS form may stray.
-            if let hedra_geom::curves::CurveKind::Fractal { rule, level, .. } = content.kind() {
+            if let hedra_geom::curves::CurveKind::Fractal(hedra_geom::curves::Fractal {
+                rule,
+                level,
+                ..
+            }) = content.kind()
+            {
                 ui.label(format!(
                     "level {level}, Hausdorff dimension {:.4}",
                     rule.dimension()
@@ -309,11 +314,11 @@ fn key_tbc(
     state: &mut UiState,
     events: &mut Vec<UiEvent>,
 ) {
-    let hedra_geom::curves::CurveKind::KochanekBartels {
+    let hedra_geom::curves::CurveKind::KochanekBartels(hedra_geom::curves::KochanekBartels {
         points,
         keys,
         closed,
-    } = kind
+    }) = kind
     else {
         return;
     };

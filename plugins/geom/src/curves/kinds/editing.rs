@@ -1,19 +1,11 @@
 //! Point edits of a curve kind: moving, transforming, joins between
-//! poly-Bézier segments, inserting, deleting and extruding points.
+//! poly-Bézier segments, inserting, deleting and extruding points. What
+//! every kind shares (indices, finite positions, the check of the result)
+//! is here; the edit itself is the kind's ([`KindRules`]).
 
-use super::{CurveEnd, CurveKind, Join, SplineEnds};
-use crate::curves::interpolating::Tbc;
-use crate::curves::nurbs::{NurbsCurve, clamped_uniform_knots};
+use super::{CurveEnd, CurveKind, Join, KindRules};
 use crate::curves::{Curve, CurveError};
 use glam::{DMat4, DVec3};
-
-fn remove_indices<T: Clone>(v: &[T], gone: &[usize]) -> Vec<T> {
-    v.iter()
-        .enumerate()
-        .filter(|(i, _)| !gone.contains(i))
-        .map(|(_, x)| x.clone())
-        .collect()
-}
 
 impl CurveKind {
     /// Moves defining points, `(index, position)`. A poly-Bézier keeps its
@@ -44,96 +36,7 @@ impl CurveKind {
             }
         }
         let mut out = self.clone();
-        match &mut out {
-            CurveKind::Nurbs(c) => {
-                for &(i, p) in moves {
-                    c.set_point(i, p)?;
-                }
-            }
-            CurveKind::PolyBezier {
-                points,
-                joins,
-                closed,
-            } => {
-                let before = points.clone();
-                let moved: Vec<usize> = moves.iter().map(|m| m.0).collect();
-                for &(i, p) in moves {
-                    points[i] = p;
-                }
-                let n = points.len();
-                for (j, &join) in joins.iter().enumerate() {
-                    let (hin, a, hout) = joint_indices(j, n, *closed);
-                    let (mi, ma, mo) = (
-                        moved.contains(&hin),
-                        moved.contains(&a),
-                        moved.contains(&hout),
-                    );
-                    if ma {
-                        let delta = points[a] - before[a];
-                        if !mi {
-                            points[hin] += delta;
-                        }
-                        if !mo {
-                            points[hout] += delta;
-                        }
-                    } else if mi && !mo {
-                        enforce_join(points, join, hin, a, hout);
-                    } else if mo && !mi {
-                        enforce_join(points, join, hout, a, hin);
-                    }
-                }
-                // Auto joints: a dragged handle makes the joint G1 (its
-                // partner was aligned above); else the handles follow the
-                // anchors.
-                for (j, join) in joins.iter_mut().enumerate() {
-                    if *join != Join::Auto {
-                        continue;
-                    }
-                    let (hin, a, hout) = joint_indices(j, n, *closed);
-                    let handle_dragged =
-                        (moved.contains(&hin) || moved.contains(&hout)) && !moved.contains(&a);
-                    if handle_dragged {
-                        *join = Join::G1;
-                    } else {
-                        auto_handles(points, hin, a, hout);
-                    }
-                }
-                // The free ends of an open chain carry their one handle.
-                if !*closed {
-                    for (a, h) in [(0, 1), (n - 1, n - 2)] {
-                        if moved.contains(&a) && !moved.contains(&h) {
-                            let d = points[a] - before[a];
-                            points[h] += d;
-                        }
-                    }
-                }
-            }
-            other => {
-                let pts = other.points_mut().expect("not NURBS");
-                for &(i, p) in moves.iter().filter(|m| m.0 < points) {
-                    pts[i] = p;
-                }
-                let keys = pts.clone();
-                // A dragged handle sets its key's tangent, relative to
-                // the key's new position: m = (end − p)·d/h (uniform keys,
-                // h = 1), the incoming side negated.
-                let degree = if matches!(other, CurveKind::QuinticHermite { .. }) {
-                    5.0
-                } else {
-                    3.0
-                };
-                for &(i, end) in moves.iter().filter(|m| m.0 >= points) {
-                    let h = handles[i - points];
-                    let m = (end - keys[h.point]) * degree;
-                    let m = if h.incoming { -m } else { m };
-                    match other {
-                        CurveKind::CubicHermite { tangents, .. }
-                        | CurveKind::QuinticHermite { tangents, .. } => tangents[h.point] = m,
-                        _ => unreachable!("only Hermite handles are editable"),
-                    }
-                }
-            }
-        }
+        each_kind!(&mut out, k => KindRules::move_points(k, moves, &handles))?;
         out.check()?;
         Ok(out)
     }
@@ -146,51 +49,8 @@ impl CurveKind {
     /// # Errors
     /// A map that makes a value non-finite.
     pub fn transformed(&self, m: &DMat4) -> Result<CurveKind, CurveError> {
-        let p = |v: &[DVec3]| -> Vec<DVec3> { v.iter().map(|x| m.transform_point3(*x)).collect() };
-        let v = |v: &[DVec3]| -> Vec<DVec3> { v.iter().map(|x| m.transform_vector3(*x)).collect() };
         let mut out = self.clone();
-        match &mut out {
-            CurveKind::Nurbs(c) => {
-                *c = NurbsCurve::new(
-                    c.degree(),
-                    c.knots().to_vec(),
-                    p(c.points()),
-                    c.weights().to_vec(),
-                )?;
-            }
-            CurveKind::CubicHermite { points, tangents } => {
-                *points = p(points);
-                *tangents = v(tangents);
-            }
-            CurveKind::QuinticHermite {
-                points,
-                tangents,
-                accelerations,
-            } => {
-                *points = p(points);
-                *tangents = v(tangents);
-                *accelerations = v(accelerations);
-            }
-            CurveKind::CubicSpline { points, ends, .. } => {
-                *points = p(points);
-                if let SplineEnds::Clamped { start, end } = ends {
-                    *start = m.transform_vector3(*start);
-                    *end = m.transform_vector3(*end);
-                }
-            }
-            CurveKind::Fractal { points, normal, .. } => {
-                *points = p(points);
-                *normal = m
-                    .inverse()
-                    .transpose()
-                    .transform_vector3(*normal)
-                    .normalize_or_zero();
-            }
-            other => {
-                let pts = other.points_mut().expect("not NURBS");
-                *pts = p(pts);
-            }
-        }
+        each_kind!(&mut out, k => KindRules::transform(k, m))?;
         out.check()?;
         Ok(out)
     }
@@ -201,30 +61,13 @@ impl CurveKind {
     /// Not a poly-Bézier, or no such joint.
     pub fn set_join(&self, joint: usize, join: Join) -> Result<CurveKind, CurveError> {
         let mut out = self.clone();
-        let CurveKind::PolyBezier {
-            points,
-            joins,
-            closed,
-        } = &mut out
-        else {
+        let CurveKind::PolyBezier(chain) = &mut out else {
             return Err(CurveError::NotForKind {
                 operation: "setting a joint's continuity",
                 kind: self.name(),
             });
         };
-        if joint >= joins.len() {
-            return Err(CurveError::NoSuchJoint {
-                index: joint,
-                count: joins.len(),
-            });
-        }
-        joins[joint] = join;
-        let (hin, a, hout) = joint_indices(joint, points.len(), *closed);
-        if join == Join::Auto {
-            auto_handles(points, hin, a, hout);
-        } else {
-            enforce_join(points, join, hin, a, hout);
-        }
+        chain.set_join(joint, join)?;
         Ok(out)
     }
     /// Which defining point a parameter of the NURBS form falls after, and
@@ -245,12 +88,7 @@ impl CurveKind {
             let i = keys.partition_point(|&k| k <= t).clamp(1, keys.len() - 1) - 1;
             return Ok((i, (t - keys[i]) / (keys[i + 1] - keys[i])));
         }
-        let edges = match self {
-            CurveKind::PolyBezier { points, closed, .. } => {
-                (points.len() - usize::from(!closed)) / 3
-            }
-            _ => self.points().len() - usize::from(!self.is_closed()),
-        };
+        let edges = each_kind!(self, k => KindRules::edges(k));
         let x = (t - start) / (end - start) * edges as f64;
         let i = (x.floor() as usize).min(edges - 1);
         Ok((i, x - i as f64))
@@ -268,67 +106,14 @@ impl CurveKind {
     /// # Errors
     /// `t` outside the open domain; a NURBS knot at full multiplicity.
     pub fn insert_point(&self, t: f64) -> Result<(CurveKind, usize), CurveError> {
-        if let CurveKind::Nurbs(c) = self {
-            let c2 = c.insert_knot(t)?;
-            let idx = (0..c2.points().len())
-                .find(|&i| c.points().get(i) != c2.points().get(i))
-                .unwrap_or(0);
-            return Ok((CurveKind::Nurbs(c2), idx));
+        if let Some(done) = each_kind!(self, k => KindRules::insert_exact(k, t)) {
+            return done;
         }
         let (i, s) = self.span_at(t)?;
         let form = self.to_nurbs()?.curve;
-        let [p, d1, d2] = form.derivatives(t);
+        let at_curve = form.derivatives(t);
         let mut out = self.clone();
-        let at = i + 1;
-        match &mut out {
-            CurveKind::PolyBezier {
-                points,
-                joins,
-                closed,
-            } => {
-                let n = points.len();
-                let seg: Vec<DVec3> = (0..4).map(|k| points[(3 * i + k) % n]).collect();
-                let (l, r) = crate::curves::Bezier { points: seg }.split(s);
-                points.splice(
-                    3 * i + 1..3 * i + 3,
-                    [
-                        l.points[1],
-                        l.points[2],
-                        l.points[3],
-                        r.points[1],
-                        r.points[2],
-                    ],
-                );
-                joins.insert(if *closed { i + 1 } else { i }, Join::C1);
-                out.check()?;
-                return Ok((out, 3 * i + 3));
-            }
-            CurveKind::CubicHermite { points, tangents } => {
-                points.insert(at, p);
-                tangents.insert(at, d1 * 0.5);
-            }
-            CurveKind::QuinticHermite {
-                points,
-                tangents,
-                accelerations,
-            } => {
-                points.insert(at, p);
-                tangents.insert(at, d1 * 0.5);
-                accelerations.insert(at, d2 * 0.25);
-            }
-            CurveKind::KochanekBartels { points, keys, .. } => {
-                points.insert(at, p);
-                keys.insert(at, Tbc::default());
-            }
-            CurveKind::Chaikin { points, .. } | CurveKind::Fractal { points, .. } => {
-                let n = points.len();
-                let q = points[i].lerp(points[(i + 1) % n], s);
-                points.insert(at, q);
-            }
-            other => {
-                other.points_mut().expect("not NURBS").insert(at, p);
-            }
-        }
+        let at = each_kind!(&mut out, k => KindRules::insert_at(k, (i, s), i + 1, at_curve));
         out.check()?;
         Ok((out, at))
     }
@@ -338,13 +123,7 @@ impl CurveKind {
     /// the curve does not pass through (NURBS control points, handles,
     /// Chaikin and fractal polygons).
     pub fn on_curve_parameter(&self, index: usize) -> Option<f64> {
-        match self {
-            CurveKind::PolyBezier { points, .. } => {
-                (index.is_multiple_of(3) && index < points.len()).then_some((index / 3) as f64)
-            }
-            _ if self.interpolates() => self.key_parameters().ok()?.get(index).copied(),
-            _ => None,
-        }
+        each_kind!(self, k => KindRules::on_curve_parameter(k, index))
     }
     /// The defining point the curve passes through at parameter `t`
     /// (within 1e-9 of its [`on_curve_parameter`](Self::on_curve_parameter)),
@@ -373,97 +152,7 @@ impl CurveKind {
             return Err(CurveError::NoSuchPoint { index, count });
         }
         let mut out = self.clone();
-        match &mut out {
-            CurveKind::Nurbs(c) => {
-                if !c.is_clamped() {
-                    return Err(CurveError::NotForKind {
-                        operation: "deleting points (clamp it first)",
-                        kind: "periodic NURBS",
-                    });
-                }
-                let points = remove_indices(c.points(), &gone);
-                let weights = remove_indices(c.weights(), &gone);
-                if points.len() < 2 {
-                    return Err(CurveError::KindTooFewPoints {
-                        kind: "NURBS",
-                        needed: 2,
-                        got: points.len(),
-                    });
-                }
-                let degree = c.degree().min(points.len() - 1);
-                let (a, b) = c.domain();
-                let knots = clamped_uniform_knots(degree, points.len())
-                    .into_iter()
-                    .map(|k| a + (b - a) * k)
-                    .collect();
-                *c = NurbsCurve::new(degree, knots, points, weights)?;
-            }
-            CurveKind::PolyBezier {
-                points,
-                joins,
-                closed,
-            } => {
-                if let Some(&index) = gone.iter().find(|&&i| i % 3 != 0) {
-                    return Err(CurveError::HandleNotAnchor { index });
-                }
-                // Highest first, so lower indices stay valid.
-                for &a in gone.iter().rev() {
-                    let n = points.len();
-                    let segs = if *closed { n / 3 } else { (n - 1) / 3 };
-                    if segs <= 1 {
-                        return Err(CurveError::KindTooFewPoints {
-                            kind: "poly-Bézier",
-                            needed: if *closed { 3 } else { 4 },
-                            got: n.saturating_sub(3),
-                        });
-                    }
-                    if *closed {
-                        if a == 0 {
-                            // Rotate the anchor to the end, then remove it.
-                            points.rotate_left(3);
-                            joins.rotate_left(1);
-                            points.drain(n - 4..=n - 2);
-                            joins.pop();
-                        } else {
-                            points.drain(a - 1..=a + 1);
-                            joins.remove(a / 3);
-                        }
-                    } else if a == 0 {
-                        points.drain(0..3);
-                        joins.remove(0);
-                    } else if a == n - 1 {
-                        points.drain(n - 3..n);
-                        joins.pop();
-                    } else {
-                        points.drain(a - 1..=a + 1);
-                        joins.remove(a / 3 - 1);
-                    }
-                }
-            }
-            other => {
-                let drop = |v: &mut Vec<DVec3>| *v = remove_indices(v, &gone);
-                match other {
-                    CurveKind::CubicHermite { points, tangents } => {
-                        drop(points);
-                        drop(tangents);
-                    }
-                    CurveKind::QuinticHermite {
-                        points,
-                        tangents,
-                        accelerations,
-                    } => {
-                        drop(points);
-                        drop(tangents);
-                        drop(accelerations);
-                    }
-                    CurveKind::KochanekBartels { points, keys, .. } => {
-                        drop(points);
-                        *keys = remove_indices(keys, &gone);
-                    }
-                    o => drop(o.points_mut().expect("not NURBS")),
-                }
-            }
-        }
+        each_kind!(&mut out, k => KindRules::delete(k, &gone))?;
         out.check()?;
         Ok(out)
     }
@@ -488,91 +177,9 @@ impl CurveKind {
             });
         }
         let mut out = self.clone().reversed_if(end == CurveEnd::Start)?;
-        match &mut out {
-            CurveKind::Nurbs(c) => {
-                if !c.is_clamped() {
-                    return Err(CurveError::NotForKind {
-                        operation: "extruding (clamp it first)",
-                        kind: "periodic NURBS",
-                    });
-                }
-                let mut points = c.points().to_vec();
-                let mut weights = c.weights().to_vec();
-                points.push(to);
-                weights.push(1.0);
-                let (a, b) = c.domain();
-                let knots = clamped_uniform_knots(c.degree(), points.len())
-                    .into_iter()
-                    .map(|k| a + (b - a) * k)
-                    .collect();
-                *c = NurbsCurve::new(c.degree(), knots, points, weights)?;
-            }
-            CurveKind::PolyBezier { points, joins, .. } => {
-                let n = points.len();
-                let (a, h) = (points[n - 1], points[n - 2]);
-                let reach = (to - a).length() / 3.0;
-                let dir = (a - h)
-                    .try_normalize()
-                    .unwrap_or((to - a).normalize_or_zero());
-                points.extend([a + dir * reach, to + (a - to) / 3.0, to]);
-                joins.push(Join::G1);
-            }
-            CurveKind::CubicHermite { points, tangents } => {
-                tangents.push(to - points[points.len() - 1]);
-                points.push(to);
-            }
-            CurveKind::QuinticHermite {
-                points,
-                tangents,
-                accelerations,
-            } => {
-                tangents.push(to - points[points.len() - 1]);
-                accelerations.push(DVec3::ZERO);
-                points.push(to);
-            }
-            CurveKind::KochanekBartels { points, keys, .. } => {
-                points.push(to);
-                keys.push(Tbc::default());
-            }
-            other => other.points_mut().expect("not NURBS").push(to),
-        }
+        each_kind!(&mut out, k => KindRules::push_end(k, to))?;
         let out = out.reversed_if(end == CurveEnd::Start)?;
         out.check()?;
         Ok(out)
-    }
-}
-
-/// The joint's incoming handle, anchor and outgoing handle indices.
-fn joint_indices(j: usize, n: usize, closed: bool) -> (usize, usize, usize) {
-    let a = if closed { 3 * j } else { 3 * (j + 1) };
-    ((a + n - 1) % n, a, (a + 1) % n)
-}
-
-/// Places the handles of the auto joint at anchor `a` from its neighbouring
-/// anchors (three points away along the chain, modulo its length).
-fn auto_handles(points: &mut [DVec3], hin: usize, a: usize, hout: usize) {
-    let n = points.len();
-    let (prev, next) = (points[(a + n - 3) % n], points[(a + 3) % n]);
-    let Some(dir) = (next - prev).try_normalize() else {
-        return;
-    };
-    let p = points[a];
-    points[hin] = p - dir * (p - prev).length() / 3.0;
-    points[hout] = p + dir * (next - p).length() / 3.0;
-}
-
-/// Turns handle `other` about anchor `a` so the joint holds `join`, given
-/// the handle `fixed`.
-fn enforce_join(points: &mut [DVec3], join: Join, fixed: usize, a: usize, other: usize) {
-    let arm = points[a] - points[fixed];
-    match join {
-        Join::C0 => {}
-        Join::C1 => points[other] = points[a] + arm,
-        Join::G1 | Join::Auto => {
-            if let Some(dir) = arm.try_normalize() {
-                let len = (points[other] - points[a]).length();
-                points[other] = points[a] + dir * len;
-            }
-        }
     }
 }
