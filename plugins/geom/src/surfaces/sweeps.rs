@@ -37,8 +37,6 @@ mod loft;
 mod meshes;
 mod revolve;
 mod sweep;
-#[cfg(test)]
-mod tests;
 
 pub use caps::{Along, check_end_caps, end_caps, planar_cap, profile_plane};
 pub use extrude::extrude;

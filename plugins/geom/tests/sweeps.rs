@@ -1,9 +1,10 @@
 //! Tests of the sweeps: revolve, extrude, caps, sweep frames, sweep2,
 //! loft and the meshes made from them.
 
-use super::meshes::signed_volume;
-use super::*;
-use crate::surfaces::{NurbsSurface, Surface};
+use glam::DVec3;
+use hedra_geom::curves::{Curve, NurbsCurve};
+use hedra_geom::surfaces::sweeps::*;
+use hedra_geom::surfaces::{NurbsSurface, Surface};
 use glam::DMat4;
 use std::f64::consts::TAU;
 
@@ -82,7 +83,9 @@ fn revolving_a_segment_makes_an_exact_cone_about_any_axis() {
     // The end of the turn is the segment turned by 200°.
     let ((_, u1), _) = cone.domain();
     let end = cone.point(u1, 0.0);
-    let expected = axis.unit().unwrap().turn(base, 200f64.to_radians(), 0.0);
+    // (Turned right-handed about the axis, by glam's rotation.)
+    let turn = glam::DQuat::from_axis_angle(d, 200f64.to_radians());
+    let expected = axis.origin + turn * (base - axis.origin);
     assert!(end.distance(expected) < 1e-12);
 }
 
@@ -164,9 +167,7 @@ fn a_capped_extrusion_is_a_closed_genus_0_mesh() {
     // 16 around × 4 rings; 16 × 3 quads + 2 caps.
     assert_eq!((m.vertex_count(), m.face_count()), (64, 50));
     // Outwards: positive volume near π r² h.
-    let (pos, polys) = m.to_polygons();
-    let polys: Vec<Vec<u32>> = polys;
-    let vol = signed_volume(&pos, &polys);
+    let vol = m.volume();
     // The prism over the sampled 16-gon (XZ plane) of height 2.
     let (params, _) = profile_parameters(&c, 16);
     let ring = c.points_at(&params);
