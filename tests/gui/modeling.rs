@@ -1653,6 +1653,52 @@ fn r_and_s_turn_and_scale_control_points_about_their_median() {
     assert_eq!(user.undo_steps(), steps + 2, "{}", user.status());
 }
 
+/// The curve panel shows what the viewport shows: while a control point is
+/// dragged its length is the previewed curve's, and Esc gives the
+/// document's back (it measured the document's curve during the drag once).
+#[test]
+fn the_curve_panel_follows_a_control_point_drag() {
+    use hedra_geom::curves::Curve;
+    use hedra_geom::curves::analysis::arc_length;
+    let length = |c: &hedra_doc::CurveContent| {
+        let n = c.nurbs();
+        let (a, b) = n.domain();
+        arc_length(&**n, a, b)
+    };
+    let mut user = User::new();
+    user.add("NURBS Curve");
+    let node = user.doc().nodes().next().unwrap().clone();
+    let NodeContent::Curve(curve) = &node.content else {
+        panic!("a curve")
+    };
+    let before = length(curve);
+    assert!(user.shows(&format!("Length {before:.6}")));
+    user.tap(KeyCode::Tab);
+    let at = user.screen_of(curve.control_points()[2].as_vec3());
+    user.click(at);
+    user.tap(KeyCode::KeyG);
+    user.glide_to(at + Vec2::new(40.0, -30.0), 3);
+    user.frames(2);
+    let preview = user
+        .app
+        .world()
+        .resource::<hedra_scene::Previews>()
+        .content(node.id)
+        .cloned();
+    let Some(hedra_scene::PreviewContent::Curve(moving)) = preview else {
+        panic!("G previews the curve: {}", user.status())
+    };
+    let during = length(&moving);
+    assert!((during - before).abs() > 1e-3, "{before} → {during}");
+    assert!(
+        user.shows(&format!("Length {during:.6}")),
+        "the panel measures the dragged curve ({during:.6})"
+    );
+    user.tap(KeyCode::Escape);
+    user.frames(2);
+    assert!(user.shows(&format!("Length {before:.6}")));
+}
+
 /// The curve panel measures the selected curve: its length (against the
 /// kernel's arc length of the same curve), Divide makes a polyline whose
 /// points are an equal arc length apart along it, and the closest point to

@@ -1,11 +1,11 @@
 //! Tests of the sweeps: revolve, extrude, caps, sweep frames, sweep2,
 //! loft and the meshes made from them.
 
+use glam::DMat4;
 use glam::DVec3;
 use hedra_geom::curves::{Curve, NurbsCurve};
 use hedra_geom::surfaces::sweeps::*;
 use hedra_geom::surfaces::{NurbsSurface, Surface};
-use glam::DMat4;
 use std::f64::consts::TAU;
 
 fn line(a: DVec3, b: DVec3) -> NurbsCurve {

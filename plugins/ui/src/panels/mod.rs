@@ -144,7 +144,7 @@ pub struct Settings<'w> {
 
 /// The state the panels show, read only.
 #[derive(SystemParam)]
-pub struct Model<'w> {
+pub struct Model<'w, 's> {
     state: Res<'w, DocState>,
     selection: Res<'w, Selection>,
     tool: Res<'w, TransformTool>,
@@ -157,6 +157,8 @@ pub struct Model<'w> {
     shape_edit: Res<'w, hedra_edit::ShapeEdit>,
     shading: Res<'w, hedra_scene::ViewportShading>,
     cursor: Res<'w, hedra_scene::Cursor3d>,
+    /// What each node shows (a running tool's preview, else the document).
+    shown: hedra_scene::Shown<'w, 's>,
 }
 
 /// Draws every panel, menu and dialog, then sends what the user decided

@@ -137,7 +137,11 @@ pub(super) fn properties(
         .default_open(true)
         .show(ui, |ui| {
             g1_join_panel(ui, doc, id);
-            shape_panel(ui, id, &node.content, model, state, events, analysis)
+            // What the viewport shows: a control-point drag shows in the
+            // measures and fields as it goes.
+            let shown = model.shown.shape(id);
+            let content = shown.as_ref().unwrap_or(&node.content);
+            shape_panel(ui, id, content, model, state, events, analysis)
         });
     }
     if let NodeContent::Kept(kept) = &node.content {
