@@ -17,6 +17,8 @@ pub(super) struct MenuState<'a> {
     pub selection: &'a Selection,
     /// Edit mode: the edited node and its element selection.
     pub mode: &'a EditMode,
+    /// Control-point mode: the edited curve or surface and its selected points.
+    pub shape_edit: &'a hedra_edit::ShapeEdit,
     /// The 3D cursor: where new objects go.
     pub cursor: DVec3,
     /// Spin's axis in the edited node's local space: the view axis through
@@ -47,6 +49,7 @@ impl<'a> MenuState<'a> {
             history: &model.state.session.history,
             selection: &model.selection,
             mode: &model.mode,
+            shape_edit: &model.shape_edit,
             cursor,
             spin_axis,
             recent: &model.prefs.recent,
@@ -235,6 +238,7 @@ mod tests {
             ("Add", crate::panels::add_menu::ADD_MENU_ROWS),
             ("Add ▸ Curve", crate::panels::add_menu::CURVE_ITEMS),
             ("Add ▸ Surface", crate::panels::add_menu::SURFACE_ITEMS),
+            ("Curve", crate::panels::curve_menu::CURVE_MENU),
         ]
     }
 

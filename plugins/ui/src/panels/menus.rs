@@ -344,12 +344,10 @@ pub(super) fn menu_bar(
             ui.menu_button("Mesh", |ui| draw_menu(ui, OBJECT_MESH_MENU, menu, events));
         }
         if let Some(node) = model.shape_edit.node
-            && let Some(NodeContent::Curve(curve)) =
+            && let Some(NodeContent::Curve(_)) =
                 model.state.session.doc.node(node).map(|n| &n.content)
         {
-            ui.menu_button("Curve", |ui| {
-                curve_menu(ui, node, curve, &model.shape_edit.selected, events)
-            });
+            ui.menu_button("Curve", |ui| draw_menu(ui, CURVE_MENU, menu, events));
         }
         ui.menu_button("Object", |ui| draw_menu(ui, OBJECT_MENU, menu, events));
         ui.menu_button("View", |ui| {

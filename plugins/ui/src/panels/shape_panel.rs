@@ -408,7 +408,9 @@ fn point_coordinates(
     let median = chosen.iter().map(|&i| points[i as usize]).sum::<DVec3>() / chosen.len() as f64;
     let mut at = state.point_edit.unwrap_or(median);
     let (mut edited, mut busy) = (false, false);
-    ui.horizontal(|ui| {
+    // Wrapped: the fields follow a drag, and a longer number must not
+    // widen the panel (the viewport would shrink under the pointer).
+    ui.horizontal_wrapped(|ui| {
         ui.label(if chosen.len() == 1 {
             format!("Point {}", chosen[0])
         } else {
