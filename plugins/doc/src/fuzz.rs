@@ -130,10 +130,15 @@ pub fn scene(data: &[u8]) {
 }
 
 fn check_imported(result: Result<Vec<ImportedMesh>, ImportError>) {
+    check_imported_from(result, FUZZ_PATH)
+}
+
+/// As [`check_imported`] for a file read from `path` (errors name it).
+fn check_imported_from(result: Result<Vec<ImportedMesh>, ImportError>, path: &str) {
     let meshes = match result {
         Ok(m) => m,
         Err(e) => {
-            assert!(e.to_string().starts_with(FUZZ_PATH), "unnamed error: {e}");
+            assert!(e.to_string().starts_with(path), "unnamed error: {e}");
             return;
         }
     };
@@ -208,6 +213,26 @@ pub fn gltf(data: &[u8]) {
         }
     }
     check_imported(result);
+}
+
+/// USD bytes: text (`.usda`), or binary crate (`.usdc`) when they start
+/// with its magic, imported as a file of [`reference_sandbox`]'s `inside`
+/// folder (one file per process), so that sublayers, references and
+/// payloads are resolved as for a user's file and refused when they leave
+/// the folder.
+///
+/// # Panics
+/// When an imported mesh is not sane or an error does not name the file.
+pub fn usd(data: &[u8]) {
+    let extension = if data.starts_with(b"PXR-USDC") {
+        "usdc"
+    } else {
+        "usda"
+    };
+    let path = reference_sandbox().join(format!("fuzz-input-{}.{extension}", std::process::id()));
+    std::fs::write(&path, data).expect("the fuzz sandbox can be written");
+    let shown = path.display().to_string();
+    check_imported_from(crate::usd::usd_from_path(&path), &shown);
 }
 
 /// The x coordinate of every point of the sandbox's `outside.bin`.

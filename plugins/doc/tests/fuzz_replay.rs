@@ -69,6 +69,11 @@ fn replay_step_inputs() {
     replay("step", fuzz::step);
 }
 
+#[test]
+fn replay_usd_inputs() {
+    replay("usd", fuzz::usd);
+}
+
 fn error_of<T: std::fmt::Debug, E: std::fmt::Display>(r: Result<T, E>) -> String {
     match r {
         Ok(v) => panic!("expected an error, got {v:?}"),
