@@ -379,6 +379,15 @@ impl Path {
     /// ""            -> None
     /// ```
     pub fn parent(&self) -> Option<Path> {
+        // Hedra: a malformed path (from a damaged file) could be its own
+        // parent, and a walk up the namespace (`ancestors`) then never
+        // ended. A parent is always shorter, so every walk ends.
+        self.parent_step()
+            .filter(|parent| parent.path.len() < self.path.len())
+    }
+
+    /// [`parent`](Self::parent) before its check that the parent is shorter.
+    fn parent_step(&self) -> Option<Path> {
         if self.path.is_empty() || self.path == "/" {
             return None;
         }
