@@ -353,10 +353,25 @@ pub(super) const MESH_MENU: &[MenuRow] = &[
         )
     }),
     MenuRow::Separator,
-    MenuRow::Heading("Symmetry"),
+    // Submenus, as Blender's: the whole menu fits a window 800 pixels high.
+    MenuRow::Submenu("Symmetry", None, SYMMETRY),
+    MenuRow::Listed(|ui, s, e| {
+        let node = s.mode.node.expect("edit mode");
+        if let Some(NodeContent::Mesh(m)) = s.doc.node(node).map(|n| &n.content) {
+            ui.menu_button("Euler Operators", |ui| {
+                euler_operator_buttons(ui, node, &m.mesh, &s.mode.selection, e)
+            });
+        }
+    }),
+    MenuRow::Submenu("Normals", None, NORMALS),
+];
+
+/// Mesh ▸ Symmetry.
+const SYMMETRY: &[MenuRow] = &[
     item("Mirror X", ANY_ELEMENT, |s, e| mirror(s, MirrorAxis::X, e)),
     item("Mirror Y", ANY_ELEMENT, |s, e| mirror(s, MirrorAxis::Y, e)),
     item("Mirror Z", ANY_ELEMENT, |s, e| mirror(s, MirrorAxis::Z, e)),
+    MenuRow::Separator,
     item("Symmetrize +X to -X", ALWAYS, |s, e| {
         symmetrize(s, MirrorAxis::X, e)
     }),
@@ -366,16 +381,10 @@ pub(super) const MESH_MENU: &[MenuRow] = &[
     item("Symmetrize +Z to -Z", ALWAYS, |s, e| {
         symmetrize(s, MirrorAxis::Z, e)
     }),
-    MenuRow::Listed(|ui, s, e| {
-        let node = s.mode.node.expect("edit mode");
-        if let Some(NodeContent::Mesh(m)) = s.doc.node(node).map(|n| &n.content) {
-            ui.menu_button("Euler Operators", |ui| {
-                euler_operator_buttons(ui, node, &m.mesh, &s.mode.selection, e)
-            });
-        }
-    }),
-    MenuRow::Separator,
-    MenuRow::Heading("Normals"),
+];
+
+/// Mesh ▸ Normals.
+const NORMALS: &[MenuRow] = &[
     keyed_item("Flip", Edit, A::FlipNormals, ALWAYS, |s, e| {
         exec(e, Command::FlipNormals { node: s.edited() })
     }),
