@@ -1518,6 +1518,40 @@ fn usd_import_refuses_a_reference_outside_the_folder() {
     assert!(!out.exists());
 }
 
+/// Damaged USD files the fuzz target found (`plugins/doc/fuzz/regressions/usd`)
+/// through the command line: each is an error naming the file, with exit
+/// code 1 and nothing written, never a crash, a hang or a stack trace (the
+/// reader's panic is reported as the file's error).
+#[test]
+fn damaged_usd_files_are_errors_that_name_the_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let regressions =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("plugins/doc/fuzz/regressions/usd");
+    for (name, expected) in [
+        (
+            "usdc_path_index_out_of_range_is_a_reader_error.usdc",
+            "the USD reader failed on this file (index out of bounds",
+        ),
+        (
+            "usda_path_its_own_parent_hung_the_reader.usda",
+            "is not an xform op",
+        ),
+    ] {
+        let out = dir.path().join("out.hedra.ron");
+        let o = hedra(&[
+            "import",
+            regressions.join(name).to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+        ]);
+        let e = stderr(&o);
+        assert_eq!(o.status.code(), Some(1), "{name}: {e}");
+        assert!(e.contains(name) && e.contains(expected), "{name}: {e}");
+        assert!(!e.contains("panicked") && !e.contains("backtrace"), "{e}");
+        assert!(!out.exists());
+    }
+}
+
 /// `--step-subdivision-nurbs`: the cup (a closed, creased Catmull-Clark
 /// cage) goes to STEP as its limit surface in NURBS patches, one closed
 /// solid, and the note says how many patches and how close they are.

@@ -234,8 +234,9 @@ pub fn usd_from_path(path: &Path) -> Result<Vec<ImportedMesh>, ImportError> {
     }
     // The crate is young: it runs on its own thread with a large stack, and
     // a panic on a hostile file is an error, not a crash.
+    quiet_reader_panics();
     let result = std::thread::Builder::new()
-        .name("usd import".into())
+        .name(READER_THREAD.into())
         .stack_size(READER_STACK)
         .spawn(move || {
             let stage = usd::Stage::builder()
@@ -246,8 +247,15 @@ pub fn usd_from_path(path: &Path) -> Result<Vec<ImportedMesh>, ImportError> {
         })
         .map_err(|e| UsdError::Open(format!("cannot start the reader: {e}")))
         .and_then(|h| {
-            h.join().unwrap_or_else(|_| {
-                Err(UsdError::Open("the USD reader failed on this file".into()))
+            h.join().unwrap_or_else(|panic| {
+                let why = panic
+                    .downcast_ref::<&str>()
+                    .map(|s| s.to_string())
+                    .or_else(|| panic.downcast_ref::<String>().cloned())
+                    .unwrap_or_default();
+                Err(UsdError::Open(format!(
+                    "the USD reader failed on this file ({why})"
+                )))
             })
         });
     if let Some(e) = refused.lock().ok().and_then(|mut r| r.drain(..).next()) {
@@ -258,6 +266,25 @@ pub fn usd_from_path(path: &Path) -> Result<Vec<ImportedMesh>, ImportError> {
         return Err(ImportError::Empty { path: shown });
     }
     Ok(nodes)
+}
+
+/// The name of the thread the USD crate reads on.
+const READER_THREAD: &str = "usd import";
+
+/// A panic of the USD reader's thread is reported as the file's error (with
+/// its message), so the panic hook does not also print it, with a stack
+/// trace, as if Hedra had crashed. Installed once; other threads' panics go
+/// to the hook that was there before.
+fn quiet_reader_panics() {
+    static QUIET: std::sync::Once = std::sync::Once::new();
+    QUIET.call_once(|| {
+        let before = std::panic::take_hook();
+        std::panic::set_hook(Box::new(move |info| {
+            if std::thread::current().name() != Some(READER_THREAD) {
+                before(info)
+            }
+        }));
+    });
 }
 
 /// What the walk gathers besides nodes, for the report.
