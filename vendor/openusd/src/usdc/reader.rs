@@ -341,11 +341,15 @@ impl<R: io::Read + io::Seek> CrateFile<R> {
         } else {
             // Read # of paths.
             let path_count = self.reader.read_count()?;
-            // Hedra: every path takes at least one byte of the section.
+            // Hedra: every path takes at least one byte of the file, and the
+            // section's own size is read from the file too.
+            let here = self.reader.stream_position()?;
+            let file_size = self.reader.seek(io::SeekFrom::End(0))?;
+            self.reader.seek(io::SeekFrom::Start(here))?;
             ensure!(
-                path_count as u64 <= section.size,
+                path_count as u64 <= section.size.min(file_size),
                 "{path_count} paths cannot fit in a section of {} bytes",
-                section.size
+                section.size.min(file_size)
             );
             self.paths = vec![sdf::Path::default(); path_count];
 
