@@ -2,7 +2,7 @@
 //! X, Alt+C, Y) and those without a key (reverse, joint continuity,
 //! conversion to NURBS).
 
-use super::menu_table::{ALWAYS, MenuRow, item, keyed_item};
+use super::menu_table::{ALWAYS, MenuRow, item, keyed_item, start_tool};
 use super::*;
 use hedra_edit::bindings::{Action, KeyMode::ControlPoints};
 use hedra_geom::curves::{CurveKind, Join, PolyBezier};
@@ -44,11 +44,6 @@ fn one_selected(s: &MenuState<'_>) -> Option<u32> {
     }
 }
 
-/// Starts the interactive edit of `action`, as its keys would.
-fn start(events: &mut Vec<UiEvent>, action: Action) {
-    events.push(UiEvent::Edit(hedra_edit::EditRequest::Start(action)));
-}
-
 /// The Curve menu of control-point mode.
 pub(super) const CURVE_MENU: &[MenuRow] = &[
     keyed_item(
@@ -63,7 +58,7 @@ pub(super) const CURVE_MENU: &[MenuRow] = &[
                 _ => Err("Select the first or last point of an open curve"),
             }
         },
-        |_, e| start(e, Action::Extrude),
+        |_, e| start_tool(e, Action::Extrude),
     ),
     keyed_item(
         "Delete Points",
@@ -73,7 +68,7 @@ pub(super) const CURVE_MENU: &[MenuRow] = &[
             true => Err("Select the points to delete"),
             false => Ok(()),
         },
-        |_, e| start(e, Action::Delete),
+        |_, e| start_tool(e, Action::Delete),
     ),
     // Its label says what it does to this curve.
     MenuRow::Listed(|ui, s, e| {
@@ -84,7 +79,7 @@ pub(super) const CURVE_MENU: &[MenuRow] = &[
             Action::ToggleClosed,
         );
         if ui.button(label).clicked() {
-            start(e, Action::ToggleClosed);
+            start_tool(e, Action::ToggleClosed);
             ui.close();
         }
     }),
@@ -102,7 +97,7 @@ pub(super) const CURVE_MENU: &[MenuRow] = &[
                 false => Err("Select one point on an open curve"),
             }
         },
-        |_, e| start(e, Action::SplitCurve),
+        |_, e| start_tool(e, Action::SplitCurve),
     ),
     MenuRow::Separator,
     item("Reverse Direction", ALWAYS, |s, e| {

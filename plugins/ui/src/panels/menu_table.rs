@@ -169,6 +169,12 @@ pub(super) const fn with_hover(row: MenuRow, hover: &'static str) -> MenuRow {
     }
 }
 
+/// Starts the interactive tool of `action`, as its keys would (edit
+/// applies it before the shortcut systems read the next frame's keys).
+pub(super) fn start_tool(events: &mut Vec<UiEvent>, action: Action) {
+    events.push(UiEvent::Edit(hedra_edit::EditRequest::Start(action)));
+}
+
 /// A label with its keys after a tab, or the label alone.
 fn label_of(label: &str, key: Option<(KeyMode, Action)>) -> String {
     match key {

@@ -3,7 +3,9 @@
 //! the Adjust Last window, as in Blender; the keys run the same tools
 //! interactively.
 
-use super::menu_table::{ALWAYS, MenuRow, MenuState, When, item, keyed_item, with_hover};
+use super::menu_table::{
+    ALWAYS, MenuRow, MenuState, When, item, keyed_item, start_tool, with_hover,
+};
 use super::*;
 use hedra_doc::ProfileSet;
 use hedra_edit::EditRequest;
@@ -79,11 +81,6 @@ fn symmetrize(s: &MenuState<'_>, axis: MirrorAxis, events: &mut Vec<UiEvent>) {
             axis,
         },
     );
-}
-
-/// Starts the interactive tool of `action`, as its keys would.
-fn start(events: &mut Vec<UiEvent>, action: A) {
-    events.push(UiEvent::Edit(EditRequest::Start(action)));
 }
 
 /// Edit mode's Mesh menu.
@@ -236,7 +233,7 @@ pub(super) const MESH_MENU: &[MenuRow] = &[
     // wheel sets the cuts, a click places them (any selection mode).
     with_hover(
         keyed_item("Loop Cut", Edit, A::LoopCut, ALWAYS, |_, e| {
-            start(e, A::LoopCut)
+            start_tool(e, A::LoopCut)
         }),
         "Point at an edge ring; the wheel or +/- sets the cuts; click to cut",
     ),
@@ -338,7 +335,7 @@ pub(super) const MESH_MENU: &[MenuRow] = &[
                 1 => Ok(()),
                 _ => Err("Select one vertex"),
             },
-            |_, e| start(e, A::SplitVertex),
+            |_, e| start_tool(e, A::SplitVertex),
         ),
         "The vertex's edges on the pointer's side go to a new vertex joined to it by an \
          edge (the inverse of a collapse); click to place it",
