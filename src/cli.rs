@@ -416,10 +416,9 @@ pub fn run(sub: Sub) -> Result<(), CliError> {
                     subdivision_as_nurbs: step_subdivision_nurbs,
                 },
             };
-            let exported = hedra_doc::export::export_file(&session.doc, &output, options)
+            let notes = hedra_doc::export::export_to_path(&session.doc, &output, options)
                 .map_err(|e| CliError(e.to_string()))?;
-            file::write_atomic_bytes(&output, &exported.bytes)?;
-            for note in &exported.notes {
+            for note in &notes {
                 eprintln!("hedra: note: {}: {note}", output.display());
             }
         }

@@ -202,12 +202,12 @@ pub enum ExportError {
         /// The visible mesh and CSG nodes left out.
         meshes: usize,
     },
+    /// The exported file could not be written (the old file is kept).
+    #[error(transparent)]
+    Write(Box<crate::file::FileError>),
     /// serde_json could not write the glTF document.
     #[error("cannot write glTF: {0}")]
     GltfJson(String),
-    /// The GLB container could not be assembled.
-    #[error("cannot write GLB: {0}")]
-    Glb(String),
 }
 
 /// The export extensions as the error lists them: `.obj, .stl, ...`.
@@ -234,18 +234,101 @@ pub fn export_bytes(
 }
 
 /// The document in the format that `path`'s extension names, with the notes
-/// the user should see. The readers ([`crate::import::import_file`]) turn
-/// what Hedra writes back into nodes.
+/// the user should see, in memory. The readers
+/// ([`crate::import::import_file`]) turn what Hedra writes back into nodes.
 ///
 /// # Errors
-/// [`ExportError`] naming the file when the extension is not an export
-/// format or the scene holds nothing the format can, or naming the node
-/// whose subdivision failed.
+/// As [`prepare_export`].
 pub fn export_file(
     doc: &Document,
     path: &Path,
     options: ExportOptions,
 ) -> Result<Exported, ExportError> {
+    let prepared = prepare_export(doc, path, options)?;
+    let mut bytes = std::io::Cursor::new(Vec::new());
+    prepared
+        .write_to(&mut bytes)
+        .expect("writing to memory cannot fail");
+    Ok(Exported {
+        bytes: bytes.into_inner(),
+        notes: prepared.notes,
+    })
+}
+
+/// Exports the document to `path` (the format its extension names),
+/// streamed into the file ([`crate::file::write_atomic_streamed`]: the old
+/// file stays until the new one is whole), and returns the notes the user
+/// should see. What File ▸ Export and `hedra export` do: a large export is
+/// never held in memory as a whole file.
+///
+/// # Errors
+/// As [`prepare_export`]; [`ExportError::Write`] when the file cannot be
+/// written.
+pub fn export_to_path(
+    doc: &Document,
+    path: &Path,
+    options: ExportOptions,
+) -> Result<Vec<String>, ExportError> {
+    let prepared = prepare_export(doc, path, options)?;
+    crate::file::write_atomic_streamed(path, |out| prepared.write_to(out))
+        .map_err(|e| ExportError::Write(Box::new(e)))?;
+    Ok(prepared.notes)
+}
+
+/// An output an export can be written to: a file, or memory through a
+/// [`std::io::Cursor`]. Binary STL seeks back to fill in its triangle count.
+pub trait ExportOutput: std::io::Write + std::io::Seek {}
+impl<T: std::io::Write + std::io::Seek> ExportOutput for T {}
+
+/// An export made from the document and ready to write: everything that
+/// can fail for a reason of the scene (a node's shape, a format that holds
+/// nothing of it) has been found, so writing it can fail only as its
+/// output does.
+pub struct PreparedExport<'a> {
+    body: Body<'a>,
+    /// One line per thing the user should know, naming the node.
+    pub notes: Vec<String>,
+}
+
+/// What each format writes from.
+enum Body<'a> {
+    Obj(Vec<ExportItem<'a>>),
+    Stl(Vec<ExportItem<'a>>),
+    AsciiStl(Vec<ExportItem<'a>>),
+    Glb(Box<crate::gltf::GltfParts>),
+    /// Formats written whole in memory (glTF text, USD, STEP).
+    Bytes(Vec<u8>),
+}
+
+impl PreparedExport<'_> {
+    /// Writes the file's bytes to `out`, streamed: OBJ and STL as their
+    /// faces are triangulated and formatted, GLB's buffer array by array.
+    ///
+    /// # Errors
+    /// What `out` returns.
+    pub fn write_to(&self, out: &mut dyn ExportOutput) -> std::io::Result<()> {
+        match &self.body {
+            Body::Obj(items) => write_obj(items, out),
+            Body::Stl(items) => write_stl(items, out),
+            Body::AsciiStl(items) => out.write_all(to_ascii_stl(items).as_bytes()),
+            Body::Glb(parts) => parts.write_glb(out),
+            Body::Bytes(bytes) => out.write_all(bytes),
+        }
+    }
+}
+
+/// Makes the export of the document in the format that `path`'s extension
+/// names, with the notes the user should see.
+///
+/// # Errors
+/// [`ExportError`] naming the file when the extension is not an export
+/// format or the scene holds nothing the format can, or naming the node
+/// whose subdivision failed.
+pub fn prepare_export<'a>(
+    doc: &'a Document,
+    path: &Path,
+    options: ExportOptions,
+) -> Result<PreparedExport<'a>, ExportError> {
     let curves = options.curves;
     let shape = options.shape;
     let ext = path
@@ -271,16 +354,19 @@ pub fn export_file(
         }
         Ok(items)
     };
-    let bytes = match ext.as_str() {
-        "obj" => to_obj(&items(false)?).into_bytes(),
-        "stl" if options.ascii_stl => to_ascii_stl(&items(true)?).into_bytes(),
-        "stl" => to_stl(&items(true)?),
-        "gltf" => crate::gltf::to_gltf(doc, shape, false)?,
-        "glb" => crate::gltf::to_gltf(doc, shape, true)?,
+    let body = match ext.as_str() {
+        "obj" => Body::Obj(items(false)?),
+        "stl" if options.ascii_stl => Body::AsciiStl(items(true)?),
+        "stl" => Body::Stl(items(true)?),
+        "gltf" => Body::Bytes(crate::gltf::gltf_parts(doc, shape)?.to_gltf_text()?),
+        "glb" => Body::Glb(Box::new(crate::gltf::gltf_parts(doc, shape)?)),
         "usda" => {
             let (bytes, mut notes) = crate::usd::to_usd(doc, path, shape)?;
             notes.extend(empty_solid_notes(doc));
-            return Ok(Exported { bytes, notes });
+            return Ok(PreparedExport {
+                body: Body::Bytes(bytes),
+                notes,
+            });
         }
         "step" | "stp" => {
             let name = path
@@ -288,7 +374,10 @@ pub fn export_file(
                 .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
             let (bytes, mut notes) = crate::step::to_step(doc, options.step, &name)?;
             notes.extend(empty_solid_notes(doc));
-            return Ok(Exported { bytes, notes });
+            return Ok(PreparedExport {
+                body: Body::Bytes(bytes),
+                notes,
+            });
         }
         other => {
             return Err(ExportError::UnsupportedFormat {
@@ -297,8 +386,8 @@ pub fn export_file(
             });
         }
     };
-    Ok(Exported {
-        bytes,
+    Ok(PreparedExport {
+        body,
         notes: empty_solid_notes(doc),
     })
 }
@@ -317,25 +406,32 @@ fn empty_solid_notes(doc: &Document) -> Vec<String> {
 
 /// The visible meshes as binary STL: every face triangulated, positions
 /// in world space, each triangle's normal from its corners
-/// (counter-clockwise is the outside). Written straight into the output,
-/// 50 bytes a triangle after the 80-byte header and the count (the layout
-/// `stl_io::write_stl` writes, which needs every triangle in memory first):
-/// the export holds the file once.
-fn to_stl(items: &[ExportItem]) -> Vec<u8> {
-    let mut out = Vec::with_capacity(84 + 50 * triangle_estimate(items));
-    out.extend_from_slice(&[0u8; 84]);
+/// (counter-clockwise is the outside). Streamed into `out`, 50 bytes a
+/// triangle after the 80-byte header and the count (the layout
+/// `stl_io::write_stl` writes, which needs every triangle in memory
+/// first); the count is filled in at the end, when it is known.
+fn write_stl(items: &[ExportItem], out: &mut dyn ExportOutput) -> std::io::Result<()> {
+    use std::io::SeekFrom;
+    let start = out.stream_position()?;
+    out.write_all(&[0u8; 84])?;
     let mut count = 0u32;
+    let mut failed = Ok(());
     each_stl_triangle(items, |normal, [a, b, c]| {
         // Twelve floats and a zero attribute count, copied in one piece.
         let mut record = [0u8; 50];
         for (k, x) in [normal, a, b, c].as_flattened().iter().enumerate() {
             record[4 * k..4 * k + 4].copy_from_slice(&x.to_le_bytes());
         }
-        out.extend_from_slice(&record);
+        if failed.is_ok() {
+            failed = out.write_all(&record);
+        }
         count += 1;
     });
-    out[80..84].copy_from_slice(&count.to_le_bytes());
-    out
+    failed?;
+    out.seek(SeekFrom::Start(start + 80))?;
+    out.write_all(&count.to_le_bytes())?;
+    out.seek(SeekFrom::End(0))?;
+    Ok(())
 }
 
 /// ASCII STL: the same triangles as text, one `solid` block per node named
@@ -452,9 +548,11 @@ fn each_stl_triangle(items: &[ExportItem], mut visit: impl FnMut([f32; 3], [[f32
 
 /// The scene's visible meshes as Wavefront OBJ text, one `o` object per
 /// node, positions in world space, faces 1-based and counter-clockwise;
-/// surfaces as triangles, curves as `l` polylines.
-fn to_obj(items: &[ExportItem]) -> String {
-    let mut out = String::with_capacity(obj_size_estimate(items));
+/// surfaces as triangles, curves as `l` polylines. The text is formatted
+/// into a buffer that is passed on to `w` whenever it holds
+/// [`OBJ_SPILL`] bytes, so the file is never held whole.
+fn write_obj(items: &[ExportItem], w: &mut dyn ExportOutput) -> std::io::Result<()> {
+    let mut out = String::with_capacity(OBJ_SPILL + (1 << 16));
     out.push_str("# Hedra OBJ export\n");
     let mut numbers = Numbers::default();
     let mut base = 1usize;
@@ -482,6 +580,7 @@ fn to_obj(items: &[ExportItem]) -> String {
                 for (i, v) in m.vertices().enumerate() {
                     index[v.index()] = base + i;
                     vertex(&mut out, m.position(v));
+                    spill(&mut out, w)?;
                 }
                 let Some(c) = item.corners else {
                     let mut vs: Vec<hedra_geom::VertexId> = Vec::new();
@@ -497,6 +596,7 @@ fn to_obj(items: &[ExportItem]) -> String {
                             numbers.int(&mut out, index[v.index()]);
                         }
                         out.push('\n');
+                        spill(&mut out, w)?;
                     }
                     base += m.vertex_count();
                     continue;
@@ -549,11 +649,13 @@ fn to_obj(items: &[ExportItem]) -> String {
                 out.push_str(&vts);
                 out.push_str(&vns);
                 out.push_str(&faces);
+                spill(&mut out, w)?;
                 base += m.vertex_count();
             }
             Geometry::Triangles(positions, _, tris) => {
                 for &p in positions {
                     vertex(&mut out, p);
+                    spill(&mut out, w)?;
                 }
                 for t in tris {
                     let [a, b, c] = if item.mirrored {
@@ -567,12 +669,14 @@ fn to_obj(items: &[ExportItem]) -> String {
                         numbers.int(&mut out, base + i as usize);
                     }
                     out.push('\n');
+                    spill(&mut out, w)?;
                 }
                 base += positions.len();
             }
             Geometry::Polygons(k) => {
                 for &p in &k.positions {
                     vertex(&mut out, p);
+                    spill(&mut out, w)?;
                 }
                 for f in &k.faces {
                     out.push('f');
@@ -586,6 +690,7 @@ fn to_obj(items: &[ExportItem]) -> String {
                         f.iter().for_each(|&i| corner(i));
                     }
                     out.push('\n');
+                    spill(&mut out, w)?;
                 }
                 base += k.positions.len();
             }
@@ -604,8 +709,21 @@ fn to_obj(items: &[ExportItem]) -> String {
                 base += write_free_form(&mut out, curve, world, base);
             }
         }
+        spill(&mut out, w)?;
     }
-    out
+    w.write_all(out.as_bytes())
+}
+
+/// How much OBJ text is formatted before it is passed on to the output.
+const OBJ_SPILL: usize = 1 << 20;
+
+/// Passes `out` on to `w` once it holds [`OBJ_SPILL`] bytes.
+fn spill(out: &mut String, w: &mut dyn ExportOutput) -> std::io::Result<()> {
+    if out.len() >= OBJ_SPILL {
+        w.write_all(out.as_bytes())?;
+        out.clear();
+    }
+    Ok(())
 }
 
 /// Formats numbers for the OBJ writer without `fmt`'s machinery (zmij's
@@ -623,25 +741,6 @@ impl Numbers {
     fn int(&mut self, out: &mut String, n: usize) {
         out.push_str(self.ints.format(n));
     }
-}
-
-/// About the size of the OBJ of `items`, so that its text grows once: a
-/// `v` line of about 60 bytes per vertex and an `f` line of about 8 bytes
-/// per corner.
-fn obj_size_estimate(items: &[ExportItem]) -> usize {
-    items
-        .iter()
-        .map(|item| match &item.geometry {
-            Geometry::Mesh(m) => {
-                60 * m.vertex_count() + 8 * m.halfedge_count() + 2 * m.face_count()
-            }
-            Geometry::Triangles(p, _, t) => 60 * p.len() + 26 * t.len(),
-            Geometry::Polygons(k) => 60 * k.positions.len() + 8 * k.corner_count(),
-            Geometry::Polyline(p) => 68 * p.len(),
-            Geometry::FreeForm(c) => 68 * c.points().len(),
-        })
-        .sum::<usize>()
-        + 64
 }
 
 /// An OBJ free-form B-spline record of `curve` mapped by `world`, its

@@ -48,7 +48,9 @@ mod mesh_text;
 mod save;
 pub mod stored_command;
 
-pub use atomic::{write_atomic, write_atomic_bytes, write_atomic_without_backup};
+pub use atomic::{
+    write_atomic, write_atomic_bytes, write_atomic_streamed, write_atomic_without_backup,
+};
 pub use errors::{CornerCounts, FileError, HistoryError, InvalidScene, NodeProblem, NotAScene};
 pub use load::{from_str, load};
 pub use save::{save, to_string};

@@ -27,25 +27,46 @@ use crate::import::{ImportError, ImportedMesh, corner_attributes};
 use crate::scene::{CornerAttributes, Document, NodeContent, NodeId, NodeTransform, Shading};
 use hedra_geom::subdivision::Creases;
 
-/// Appends `numbers` to the buffer as little-endian bytes (4-byte
-/// aligned), straight from the arrays, and returns their view.
-fn push_view<T: LittleEndian>(
+/// The binary buffer of a glTF export as the arrays it is made of, kept
+/// as they are until they are written (GLB streams them, array by array;
+/// a `.gltf` encodes them as a data URI).
+#[derive(Default)]
+struct Buffer {
+    arrays: Vec<BufferArray>,
+    /// Bytes so far, with the padding between arrays.
+    length: usize,
+}
+
+/// One array of the buffer: 4-byte numbers.
+enum BufferArray {
+    F32(Vec<f32>),
+    U32(Vec<u32>),
+}
+
+impl BufferArray {
+    fn len(&self) -> usize {
+        match self {
+            BufferArray::F32(v) => v.len(),
+            BufferArray::U32(v) => v.len(),
+        }
+    }
+}
+
+/// Appends `numbers` to the buffer (4-byte aligned: every number is 4
+/// bytes) and returns their view.
+fn push_view(
     root: &mut json::Root,
-    bin: &mut Vec<u8>,
-    numbers: &[T],
+    bin: &mut Buffer,
+    numbers: BufferArray,
     target: json::buffer::Target,
 ) -> json::Index<json::buffer::View> {
-    while !bin.len().is_multiple_of(4) {
-        bin.push(0);
-    }
-    let offset = bin.len();
-    bin.reserve(numbers.len() * 4);
-    for x in numbers {
-        bin.extend_from_slice(&x.bytes());
-    }
+    let offset = bin.length;
+    let byte_length = 4 * numbers.len();
+    bin.length += byte_length;
+    bin.arrays.push(numbers);
     root.push(json::buffer::View {
         buffer: json::Index::new(0),
-        byte_length: USize64((bin.len() - offset) as u64),
+        byte_length: USize64(byte_length as u64),
         byte_offset: Some(USize64(offset as u64)),
         byte_stride: None,
         name: None,
@@ -53,6 +74,29 @@ fn push_view<T: LittleEndian>(
         extensions: None,
         extras: Default::default(),
     })
+}
+
+impl Buffer {
+    /// Writes the arrays as little-endian bytes, through a small staging
+    /// buffer.
+    fn write(&self, out: &mut dyn std::io::Write) -> std::io::Result<()> {
+        let mut staged: Vec<u8> = Vec::with_capacity(1 << 16);
+        let mut put = |bytes: [u8; 4], out: &mut dyn std::io::Write| {
+            staged.extend_from_slice(&bytes);
+            if staged.len() >= 1 << 16 {
+                out.write_all(&staged)?;
+                staged.clear();
+            }
+            Ok::<(), std::io::Error>(())
+        };
+        for array in &self.arrays {
+            match array {
+                BufferArray::F32(v) => v.iter().try_for_each(|x| put(x.to_le_bytes(), out))?,
+                BufferArray::U32(v) => v.iter().try_for_each(|x| put(x.to_le_bytes(), out))?,
+            }
+        }
+        out.write_all(&staged)
+    }
 }
 
 /// An accessor of `count` elements over a view.
@@ -78,23 +122,6 @@ fn push_accessor(
         normalized: false,
         sparse: None,
     })
-}
-
-/// The 4-byte numbers glTF buffers hold, as they are stored.
-trait LittleEndian: Copy {
-    fn bytes(self) -> [u8; 4];
-}
-
-impl LittleEndian for f32 {
-    fn bytes(self) -> [u8; 4] {
-        self.to_le_bytes()
-    }
-}
-
-impl LittleEndian for u32 {
-    fn bytes(self) -> [u8; 4] {
-        self.to_le_bytes()
-    }
 }
 
 fn bounds(v: &[[f32; 3]]) -> ([f32; 3], [f32; 3]) {
@@ -274,11 +301,19 @@ fn corner_triangles(m: &HalfEdgeMesh, shading: Shading, c: &CornerAttributes) ->
     (positions, normals, uvs, indices)
 }
 
-/// The document's visible nodes as glTF (`binary`: a `.glb` file).
+/// A glTF export made from the document: its JSON document and its
+/// binary buffer as arrays, written as a `.glb` ([`write_glb`](Self::write_glb))
+/// or a `.gltf` ([`to_gltf_text`](Self::to_gltf_text)).
+pub struct GltfParts {
+    root: json::Root,
+    bin: Buffer,
+}
+
+/// The document's visible nodes as glTF.
 ///
 /// # Errors
 /// [`ExportError`] naming a node whose shape cannot be evaluated.
-pub fn to_gltf(doc: &Document, shape: ExportShape, binary: bool) -> Result<Vec<u8>, ExportError> {
+pub fn gltf_parts(doc: &Document, shape: ExportShape) -> Result<GltfParts, ExportError> {
     let mut root = json::Root {
         asset: json::Asset {
             version: "2.0".into(),
@@ -290,7 +325,7 @@ pub fn to_gltf(doc: &Document, shape: ExportShape, binary: bool) -> Result<Vec<u
         },
         ..Default::default()
     };
-    let mut bin: Vec<u8> = Vec::new();
+    let mut bin = Buffer::default();
     let mut index_of: HashMap<NodeId, json::Index<json::Node>> = HashMap::new();
     // Visible nodes, without CSG operands (their CSG node writes its
     // solid), parents before children; world transforms are not needed
@@ -380,33 +415,35 @@ pub fn to_gltf(doc: &Document, shape: ExportShape, binary: bool) -> Result<Vec<u
                         json::mesh::Mode::LineStrip,
                     ),
                 };
+                let (vertex_count, position_bounds) = (positions.len(), bounds(&positions));
                 let view = push_view(
                     &mut root,
                     &mut bin,
-                    positions.as_flattened(),
+                    BufferArray::F32(positions.into_flattened()),
                     json::buffer::Target::ArrayBuffer,
                 );
                 let pos = push_accessor(
                     &mut root,
                     view,
-                    positions.len(),
+                    vertex_count,
                     json::accessor::ComponentType::F32,
                     json::accessor::Type::Vec3,
-                    Some(bounds(&positions)),
+                    Some(position_bounds),
                 );
                 let mut attributes = BTreeMap::new();
                 attributes.insert(Valid(json::mesh::Semantic::Positions), pos);
                 if !normals.is_empty() {
+                    let count = normals.len();
                     let view = push_view(
                         &mut root,
                         &mut bin,
-                        normals.as_flattened(),
+                        BufferArray::F32(normals.into_flattened()),
                         json::buffer::Target::ArrayBuffer,
                     );
                     let nrm = push_accessor(
                         &mut root,
                         view,
-                        normals.len(),
+                        count,
                         json::accessor::ComponentType::F32,
                         json::accessor::Type::Vec3,
                         None,
@@ -414,16 +451,17 @@ pub fn to_gltf(doc: &Document, shape: ExportShape, binary: bool) -> Result<Vec<u
                     attributes.insert(Valid(json::mesh::Semantic::Normals), nrm);
                 }
                 if !uvs.is_empty() {
+                    let count = uvs.len();
                     let view = push_view(
                         &mut root,
                         &mut bin,
-                        uvs.as_flattened(),
+                        BufferArray::F32(uvs.into_flattened()),
                         json::buffer::Target::ArrayBuffer,
                     );
                     let tex = push_accessor(
                         &mut root,
                         view,
-                        uvs.len(),
+                        count,
                         json::accessor::ComponentType::F32,
                         json::accessor::Type::Vec2,
                         None,
@@ -431,16 +469,17 @@ pub fn to_gltf(doc: &Document, shape: ExportShape, binary: bool) -> Result<Vec<u
                     attributes.insert(Valid(json::mesh::Semantic::TexCoords(0)), tex);
                 }
                 let indices = (!indices.is_empty()).then(|| {
+                    let count = indices.len();
                     let view = push_view(
                         &mut root,
                         &mut bin,
-                        &indices,
+                        BufferArray::U32(indices),
                         json::buffer::Target::ElementArrayBuffer,
                     );
                     push_accessor(
                         &mut root,
                         view,
-                        indices.len(),
+                        count,
                         json::accessor::ComponentType::U32,
                         json::accessor::Type::Scalar,
                         None,
@@ -493,45 +532,86 @@ pub fn to_gltf(doc: &Document, shape: ExportShape, binary: bool) -> Result<Vec<u
         nodes: roots,
     });
     root.scene = Some(scene);
-    while !bin.len().is_multiple_of(4) {
-        bin.push(0);
-    }
-    let uri = (!binary).then(|| {
-        format!(
-            "data:application/octet-stream;base64,{}",
-            base64::engine::general_purpose::STANDARD.encode(&bin)
-        )
-    });
-    if !bin.is_empty() {
+    if bin.length > 0 {
         root.push(json::Buffer {
-            byte_length: USize64(bin.len() as u64),
+            byte_length: USize64(bin.length as u64),
             name: None,
-            uri,
+            uri: None,
             extensions: None,
             extras: Default::default(),
         });
     }
-    let text = root
-        .to_string()
-        .map_err(|e| ExportError::GltfJson(e.to_string()))?;
-    if !binary {
-        return Ok(text.into_bytes());
+    Ok(GltfParts { root, bin })
+}
+
+impl GltfParts {
+    /// The `.gltf` text: the buffer embedded as a base64 data URI.
+    ///
+    /// # Errors
+    /// [`ExportError::GltfJson`] when the JSON cannot be written.
+    pub fn to_gltf_text(mut self) -> Result<Vec<u8>, ExportError> {
+        if let Some(buffer) = self.root.buffers.first_mut() {
+            let mut bytes = Vec::with_capacity(self.bin.length);
+            self.bin
+                .write(&mut bytes)
+                .expect("writing to memory cannot fail");
+            buffer.uri = Some(format!(
+                "data:application/octet-stream;base64,{}",
+                base64::engine::general_purpose::STANDARD.encode(&bytes)
+            ));
+        }
+        self.root
+            .to_string()
+            .map(String::into_bytes)
+            .map_err(|e| ExportError::GltfJson(e.to_string()))
     }
-    let mut json_bytes = text.into_bytes();
-    while json_bytes.len() % 4 != 0 {
-        json_bytes.push(b' ');
+
+    /// Writes the `.glb`: the 12-byte header, the JSON chunk (padded with
+    /// spaces to 4 bytes) and the binary chunk, streamed from the arrays
+    /// (glTF 2.0, section 4.4 "GLB File Format Specification").
+    ///
+    /// # Errors
+    /// What `out` returns; JSON that cannot be written, as
+    /// [`std::io::ErrorKind::InvalidData`].
+    pub fn write_glb(&self, out: &mut dyn std::io::Write) -> std::io::Result<()> {
+        let mut json_bytes = self
+            .root
+            .to_string()
+            .map_err(|e| std::io::Error::new(std::io::ErrorKind::InvalidData, e.to_string()))?
+            .into_bytes();
+        while !json_bytes.len().is_multiple_of(4) {
+            json_bytes.push(b' ');
+        }
+        let bin_chunk = if self.bin.length == 0 {
+            0
+        } else {
+            8 + self.bin.length
+        };
+        let length = 12 + 8 + json_bytes.len() + bin_chunk;
+        let too_large = || {
+            std::io::Error::new(
+                std::io::ErrorKind::InvalidData,
+                format!("the GLB would be {length} bytes; GLB holds at most 4 GiB"),
+            )
+        };
+        let word = |n: usize| {
+            u32::try_from(n)
+                .map(u32::to_le_bytes)
+                .map_err(|_| too_large())
+        };
+        out.write_all(b"glTF")?;
+        out.write_all(&2u32.to_le_bytes())?;
+        out.write_all(&word(length)?)?;
+        out.write_all(&word(json_bytes.len())?)?;
+        out.write_all(b"JSON")?;
+        out.write_all(&json_bytes)?;
+        if self.bin.length > 0 {
+            out.write_all(&word(self.bin.length)?)?;
+            out.write_all(b"BIN\0")?;
+            self.bin.write(out)?;
+        }
+        Ok(())
     }
-    let length = 12 + 8 + json_bytes.len() + if bin.is_empty() { 0 } else { 8 + bin.len() };
-    let glb = gltf::binary::Glb {
-        header: gltf::binary::Header {
-            magic: *b"glTF",
-            version: 2,
-            length: length as u32,
-        },
-        json: json_bytes.into(),
-        bin: (!bin.is_empty()).then(|| bin.into()),
-    };
-    glb.to_vec().map_err(|e| ExportError::Glb(e.to_string()))
 }
 
 /// Reads a `.gltf` or `.glb` file's scene: every node becomes a node with

@@ -542,13 +542,8 @@ pub fn use_path(
             } else {
                 path
             };
-            let written = hedra_doc::export::export_file(&state.session.doc, &path, options)
-                .map_err(|e| e.to_string())
-                .and_then(|exported| {
-                    hedra_doc::file::write_atomic_bytes(&path, &exported.bytes)
-                        .map(|()| exported.notes)
-                        .map_err(|e| e.to_string())
-                });
+            let written = hedra_doc::export::export_to_path(&state.session.doc, &path, options)
+                .map_err(|e| e.to_string());
             match written {
                 Ok(notes) => {
                     status.info(format!("Exported {}", path.display()));

@@ -38,7 +38,33 @@ pub fn write_atomic_without_backup(path: &Path, bytes: &[u8]) -> Result<(), File
     write_atomic_impl(path, bytes, false)
 }
 
+/// [`write_atomic_bytes`] with the contents streamed by `write` into the
+/// temporary file (buffered; `write` may seek, as the STL writer does to
+/// fill in its triangle count), so that a large export is never held in
+/// memory whole. A `write` error leaves the old file in place.
+///
+/// # Errors
+/// [`FileError::Io`] naming the path.
+pub fn write_atomic_streamed(
+    path: &Path,
+    write: impl FnOnce(&mut std::io::BufWriter<&mut std::fs::File>) -> std::io::Result<()>,
+) -> Result<(), FileError> {
+    write_atomic_with(path, true, |f| {
+        let mut out = std::io::BufWriter::with_capacity(1 << 20, f);
+        write(&mut out)?;
+        out.flush()
+    })
+}
+
 fn write_atomic_impl(path: &Path, bytes: &[u8], keep_backup: bool) -> Result<(), FileError> {
+    write_atomic_with(path, keep_backup, |f| f.write_all(bytes))
+}
+
+fn write_atomic_with(
+    path: &Path,
+    keep_backup: bool,
+    write: impl FnOnce(&mut std::fs::File) -> std::io::Result<()>,
+) -> Result<(), FileError> {
     let dir = match path.parent() {
         Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
         _ => PathBuf::from("."),
@@ -72,7 +98,7 @@ fn write_atomic_impl(path: &Path, bytes: &[u8], keep_backup: bool) -> Result<(),
     ));
     let result = (|| {
         let mut f = std::fs::File::create(&tmp).map_err(in_folder)?;
-        f.write_all(bytes).map_err(in_folder)?;
+        write(&mut f).map_err(in_folder)?;
         f.sync_all().map_err(in_folder)?;
         drop(f);
         if keep_backup && path.exists() {
