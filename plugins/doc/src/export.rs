@@ -12,7 +12,7 @@
 use crate::scene::{CornerAttributes, Document, Node, NodeContent};
 use glam::DVec3;
 use hedra_geom::HalfEdgeMesh;
-use hedra_geom::subdivision::Creases;
+use hedra_geom::subdivision::{Creases, Refiner, Scheme};
 use std::borrow::Cow;
 use std::collections::HashMap;
 use std::fmt::Write;
@@ -489,6 +489,7 @@ fn triangle_estimate(items: &[ExportItem]) -> usize {
         .iter()
         .map(|i| match &i.geometry {
             Geometry::Mesh(m) => m.halfedge_count() / 2,
+            Geometry::Refined(r) => 2 * r.refiner.face_count(),
             Geometry::Triangles(_, _, t) => t.len(),
             Geometry::Polygons(k) => k.corner_count(),
             _ => 0,
@@ -524,6 +525,9 @@ fn each_stl_triangle(items: &[ExportItem], mut visit: impl FnMut([f32; 3], [[f32
                     }
                 }
             }
+            Geometry::Refined(r) => r.each_triangle(|corners| {
+                push(corners.map(|p| world.transform_point3(p)), item.mirrored);
+            }),
             Geometry::Triangles(positions, _, tris) => {
                 for t in tris {
                     push(
@@ -651,6 +655,28 @@ fn write_obj(items: &[ExportItem], w: &mut dyn ExportOutput) -> std::io::Result<
                 out.push_str(&faces);
                 spill(&mut out, w)?;
                 base += m.vertex_count();
+            }
+            Geometry::Refined(r) => {
+                for p in r.written_positions() {
+                    vertex(&mut out, p);
+                    spill(&mut out, w)?;
+                }
+                let mut vs: Vec<u32> = Vec::new();
+                for face in r.faces() {
+                    out.push('f');
+                    vs.clear();
+                    vs.extend(face);
+                    if item.mirrored {
+                        vs.reverse();
+                    }
+                    for &v in &vs {
+                        out.push(' ');
+                        numbers.int(&mut out, base + v as usize);
+                    }
+                    out.push('\n');
+                    spill(&mut out, w)?;
+                }
+                base += r.order.len();
             }
             Geometry::Triangles(positions, _, tris) => {
                 for &p in positions {
@@ -785,6 +811,9 @@ fn write_free_form(
 /// What is written for one node.
 pub(crate) enum Geometry<'a> {
     Mesh(Cow<'a, HalfEdgeMesh>),
+    /// A mesh subdivided for OBJ or STL, written straight from the
+    /// refiner's faces ([`RefinedFaces`]).
+    Refined(RefinedFaces),
     /// A kept (non-manifold) mesh's faces as they are: OBJ writes them as
     /// polygons, STL and glTF as their triangles.
     Polygons(Cow<'a, crate::kept::KeptMesh>),
@@ -796,6 +825,100 @@ pub(crate) enum Geometry<'a> {
     /// A curve written exactly as an OBJ free-form record (OBJ only; never
     /// made by [`node_geometry`]).
     FreeForm(std::sync::Arc<hedra_geom::NurbsCurve>),
+}
+
+/// A mesh subdivided by Catmull-Clark or Loop for export, kept as the
+/// refiner's faces (all quads or all triangles) and positions instead of
+/// being built into a half-edge mesh, which an 8M-triangle export does not
+/// need and which took most of its time and memory (issue 36, item 2).
+/// Writes the same vertices (numbered as [`Refiner::to_mesh`] numbers
+/// them), faces and triangles ([`hedra_geom::query::triangulate_quad`])
+/// as the mesh would.
+pub(crate) struct RefinedFaces {
+    refiner: Refiner,
+    /// Refined positions, in the refiner's order.
+    positions: Vec<DVec3>,
+    /// The written vertices as refined indices, in the mesh's order.
+    order: Vec<u32>,
+    /// Each refined vertex's written number (`u32::MAX`: not written).
+    number: Vec<u32>,
+}
+
+impl RefinedFaces {
+    /// `content` subdivided `level` times when its subdivision can be
+    /// written this way: the last step of its stack (the default), by
+    /// Catmull-Clark or Loop. `None` otherwise (the caller evaluates the
+    /// mesh).
+    fn of(
+        content: &crate::scene::MeshContent,
+        level: u32,
+    ) -> Result<Option<Self>, crate::EvaluationError> {
+        let options = content.subdivision.unwrap_or_default().options;
+        if level == 0 || !matches!(options.scheme, Scheme::CatmullClark | Scheme::Loop) {
+            return Ok(None);
+        }
+        let Some(cage) = content.smooth_cage()? else {
+            return Ok(None);
+        };
+        let refiner = Refiner::new(&cage.mesh, &cage.creases, options, level)?;
+        let positions = refiner.refine(&refiner.cage_positions(&cage.mesh));
+        let (order, number) = refiner.mesh_vertex_order();
+        Ok(Some(RefinedFaces {
+            refiner,
+            positions,
+            order,
+            number,
+        }))
+    }
+
+    /// The written vertices' positions, in order.
+    fn written_positions(&self) -> impl Iterator<Item = DVec3> + '_ {
+        self.order.iter().map(|&v| self.positions[v as usize])
+    }
+
+    /// The faces as written vertex numbers.
+    fn faces(&self) -> impl Iterator<Item = impl Iterator<Item = u32> + '_> + '_ {
+        self.refiner
+            .faces()
+            .map(|f| f.iter().map(|&v| self.number[v as usize]))
+    }
+
+    /// Calls `visit` with the corner positions of every triangle, face by
+    /// face, as [`hedra_geom::query::triangulate_face`] splits the mesh's.
+    fn each_triangle(&self, mut visit: impl FnMut([DVec3; 3])) {
+        let at = |v: u32| self.positions[v as usize];
+        for face in self.refiner.faces() {
+            match *face {
+                [a, b, c] => visit([a, b, c].map(at)),
+                [a, b, c, d] => {
+                    let corners = [a, b, c, d];
+                    let two_edged = corners.map(|v| self.refiner.vertex_edge_count(v) == 2);
+                    for t in hedra_geom::query::triangulate_quad(corners.map(at), two_edged) {
+                        visit(t.map(|k| at(corners[k])));
+                    }
+                }
+                // Never made: Catmull-Clark gives quads, Loop triangles.
+                _ => unreachable!("a refined face of {} sides", face.len()),
+            }
+        }
+    }
+
+    /// The half-edge mesh and creases these faces are of (what
+    /// [`Refiner::subdivide`] returns), for writers that need adjacency.
+    pub(crate) fn to_mesh(&self) -> (HalfEdgeMesh, Creases) {
+        self.refiner
+            .to_mesh(&self.positions)
+            .expect("refining a valid half-edge mesh gives a valid mesh")
+    }
+
+    fn counts(&self) -> WrittenCounts {
+        let faces = self.refiner.faces().count();
+        WrittenCounts {
+            vertices: self.order.len(),
+            faces,
+            triangles: self.refiner.faces().map(|f| f.len() - 2).sum(),
+        }
+    }
 }
 
 /// A node, what to write for it and its world matrix.
@@ -845,7 +968,10 @@ fn export_meshes(
         };
         let geometry = match exact_curve {
             Some(g) => Some(g),
-            None => export_geometry(doc, node, shape)?,
+            None => match refined_geometry(node, shape)? {
+                Some(refined) => Some(refined),
+                None => export_geometry(doc, node, shape)?,
+            },
         };
         if let Some(geometry) = geometry {
             let corners = match (&node.content, &geometry) {
@@ -867,6 +993,39 @@ fn export_meshes(
         }
     }
     Ok(out)
+}
+
+/// A mesh node's subdivided shape as [`RefinedFaces`], for the writers
+/// that take faces as they are (OBJ, STL, the written counts); `None` when
+/// the node is not a mesh subdivided that way (the caller uses
+/// [`export_geometry`]).
+///
+/// # Errors
+/// As [`node_geometry`].
+fn refined_geometry(node: &Node, shape: ExportShape) -> Result<Option<Geometry<'_>>, ExportError> {
+    let NodeContent::Mesh(content) = &node.content else {
+        return Ok(None);
+    };
+    let level = match shape {
+        ExportShape::Cage => 0,
+        ExportShape::Evaluated => content.subdivision.map_or(0, |m| m.export_level),
+        ExportShape::Subdivided(level) => level,
+    };
+    if level == 0 {
+        return Ok(None);
+    }
+    if let Some(face) = content.mesh.first_non_polygon_face() {
+        return Err(ExportError::NotPolygon {
+            node: node.name.clone(),
+            face,
+        });
+    }
+    RefinedFaces::of(content, level)
+        .map(|r| r.map(Geometry::Refined))
+        .map_err(|error| ExportError::Evaluation {
+            node: node.name.clone(),
+            error,
+        })
 }
 
 /// What every export format writes for `node`, in its own (local) space:
@@ -927,6 +1086,7 @@ impl Geometry<'_> {
     /// The counts of what is written for this geometry.
     fn counts(&self) -> WrittenCounts {
         match self {
+            Geometry::Refined(r) => r.counts(),
             Geometry::Mesh(m) => WrittenCounts {
                 vertices: m.vertex_count(),
                 faces: m.face_count(),
@@ -974,6 +1134,9 @@ pub fn written_counts(
     let Some(node) = doc.node(id) else {
         return Ok(None);
     };
+    if let Some(refined) = refined_geometry(node, shape)? {
+        return Ok(Some(refined.counts()));
+    }
     Ok(export_geometry(doc, node, shape)?.map(|g| g.counts()))
 }
 
@@ -1102,4 +1265,201 @@ pub fn is_visible(doc: &Document, id: crate::scene::NodeId) -> bool {
         }
     }
     true
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::{MeshContent, NodeId, NodeTransform, SubdivisionModifier};
+    use hedra_geom::subdivision::{BoundaryInterpolation, Options};
+    use std::sync::Arc;
+
+    fn node(mesh: HalfEdgeMesh, creases: Creases, options: Options) -> Node {
+        let mut content = MeshContent::new(Arc::new(mesh));
+        content.creases = creases;
+        content.subdivision = Some(SubdivisionModifier {
+            options,
+            ..SubdivisionModifier::with_level(1)
+        });
+        Node {
+            id: NodeId(1),
+            name: "Cage".into(),
+            parent: None,
+            transform: NodeTransform::IDENTITY,
+            visible: true,
+            content: NodeContent::Mesh(content),
+            construction: None,
+            g1_join: None,
+        }
+    }
+
+    /// OBJ and binary STL of `geometry`, mirrored or not.
+    fn written(node: &Node, geometry: Geometry<'_>, mirrored: bool) -> (Vec<u8>, Vec<u8>) {
+        let world = if mirrored {
+            glam::DMat4::from_scale(DVec3::new(-1.0, 2.0, 1.0))
+        } else {
+            glam::DMat4::from_translation(DVec3::new(0.5, 0.0, -1.0))
+        };
+        let items = [ExportItem {
+            node,
+            geometry,
+            world,
+            mirrored,
+            corners: None,
+        }];
+        let (mut obj, mut stl) = (
+            std::io::Cursor::new(Vec::new()),
+            std::io::Cursor::new(Vec::new()),
+        );
+        write_obj(&items, &mut obj).unwrap();
+        write_stl(&items, &mut stl).unwrap();
+        (obj.into_inner(), stl.into_inner())
+    }
+
+    /// The refined faces are written exactly as the subdivided half-edge
+    /// mesh was: same vertex numbers, faces and triangles, byte for byte,
+    /// on cages with what changes them: corners of two edges (whose ears
+    /// the triangulation must not clip), hidden boundary faces (boundary
+    /// `None`: vertices left out), creases, a vertex without edges,
+    /// triangles (Loop) and a mirroring transform.
+    #[test]
+    fn refined_faces_write_what_the_subdivided_mesh_writes() {
+        let cc = |boundary| Options {
+            boundary,
+            ..Options::default()
+        };
+        let loop_ = Options {
+            scheme: Scheme::Loop,
+            ..Options::default()
+        };
+        // One thin parallelogram: its corners have two edges, and at its
+        // sharp ones the shorter diagonal of a refined quad would cut the
+        // ear at the corner.
+        let thin = HalfEdgeMesh::from_polygons(
+            &[
+                DVec3::ZERO,
+                DVec3::new(2.0, 0.0, 0.0),
+                DVec3::new(2.5, 0.4, 0.1),
+                DVec3::new(0.5, 0.4, 0.0),
+            ],
+            &[vec![0, 1, 2, 3]],
+        )
+        .unwrap();
+        // A pillow: two quads on the same four edges (every vertex has two).
+        let pillow = HalfEdgeMesh::from_polygons(
+            &[
+                DVec3::ZERO,
+                DVec3::new(2.0, 0.0, 0.0),
+                DVec3::new(2.5, 0.4, 0.1),
+                DVec3::new(0.5, 0.4, 0.0),
+            ],
+            &[vec![0, 1, 2, 3], vec![3, 2, 1, 0]],
+        )
+        .unwrap();
+        // An open 3 × 2 grid of quads and a triangle, with a lone vertex.
+        let mut points: Vec<DVec3> = (0..12)
+            .map(|i| DVec3::new((i % 4) as f64, (i / 4) as f64, ((i * 7) % 5) as f64 * 0.1))
+            .collect();
+        points.push(DVec3::new(5.0, 5.0, 5.0));
+        points.push(DVec3::new(-1.0, 0.5, 0.0));
+        let open = HalfEdgeMesh::from_polygons(
+            &points,
+            &[
+                vec![0, 1, 5, 4],
+                vec![1, 2, 6, 5],
+                vec![2, 3, 7, 6],
+                vec![4, 5, 9, 8],
+                vec![5, 6, 10, 9],
+                vec![6, 7, 11, 10],
+                vec![13, 0, 4],
+            ],
+        )
+        .unwrap();
+        assert_eq!(open.vertex_count(), 14, "the lone vertex is kept");
+        let mut creased = Creases::default();
+        creased.set_edge(open.edges().nth(3).unwrap(), 2.5);
+        creased.set_edge(open.edges().nth(8).unwrap(), f64::INFINITY);
+        // An octahedron, slightly uneven: triangles for Loop.
+        let octahedron = HalfEdgeMesh::from_polygons(
+            &[
+                DVec3::X,
+                DVec3::new(0.0, 1.2, 0.1),
+                -DVec3::X,
+                -DVec3::Y,
+                DVec3::new(0.1, 0.0, 0.9),
+                -DVec3::Z,
+            ],
+            &[
+                vec![0, 1, 4],
+                vec![1, 2, 4],
+                vec![2, 3, 4],
+                vec![3, 0, 4],
+                vec![1, 0, 5],
+                vec![2, 1, 5],
+                vec![3, 2, 5],
+                vec![0, 3, 5],
+            ],
+        )
+        .unwrap();
+        let cases = [
+            (
+                "thin quad",
+                thin,
+                Creases::default(),
+                cc(BoundaryInterpolation::EdgesAndCorners),
+            ),
+            (
+                "pillow",
+                pillow,
+                Creases::default(),
+                cc(BoundaryInterpolation::EdgesOnly),
+            ),
+            (
+                "open grid",
+                open.clone(),
+                creased.clone(),
+                cc(BoundaryInterpolation::EdgesOnly),
+            ),
+            (
+                "open grid, boundary None",
+                open,
+                creased,
+                cc(BoundaryInterpolation::None),
+            ),
+            ("octahedron, Loop", octahedron, Creases::default(), loop_),
+        ];
+        for (name, mesh, creases, options) in cases {
+            let node = node(mesh, creases, options);
+            for level in 1..=2 {
+                let shape = ExportShape::Subdivided(level);
+                let Some(Geometry::Refined(refined)) = refined_geometry(&node, shape).unwrap()
+                else {
+                    panic!("{name}: written as refined faces")
+                };
+                let (mesh, _) = node_geometry(&node, shape).unwrap().unwrap();
+                let Geometry::Mesh(m) = &mesh else { panic!() };
+                assert_eq!(refined.counts(), mesh.counts(), "{name}, level {level}");
+                for mirrored in [false, true] {
+                    let fast = written(
+                        &node,
+                        Geometry::Refined(
+                            RefinedFaces::of(
+                                match &node.content {
+                                    NodeContent::Mesh(c) => c,
+                                    _ => unreachable!(),
+                                },
+                                level,
+                            )
+                            .unwrap()
+                            .unwrap(),
+                        ),
+                        mirrored,
+                    );
+                    let slow = written(&node, Geometry::Mesh(Cow::Borrowed(m)), mirrored);
+                    assert!(fast.0 == slow.0, "{name}, level {level}: the OBJ differs");
+                    assert!(fast.1 == slow.1, "{name}, level {level}: the STL differs");
+                }
+            }
+        }
+    }
 }

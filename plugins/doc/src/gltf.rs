@@ -361,6 +361,11 @@ pub fn gltf_parts(doc: &Document, shape: ExportShape) -> Result<GltfParts, Expor
                         let (p, n, i) = mesh_triangles(m, shading, &creases);
                         (p, n, i, json::mesh::Mode::Triangles)
                     }
+                    Geometry::Refined(r) => {
+                        let (m, creases) = r.to_mesh();
+                        let (p, n, i) = mesh_triangles(&m, shading, &creases);
+                        (p, n, i, json::mesh::Mode::Triangles)
+                    }
                     Geometry::Polygons(k) => {
                         let b = crate::render::kept_render_buffers(k, shading);
                         (

@@ -67,6 +67,18 @@ pub fn triangulate_outer_loop_into(mesh: &HalfEdgeMesh, f: FaceId, out: &mut Vec
         out.push([vert(0), vert(1), vert(2)]);
         return;
     }
+    // Corner i has two edges when the edge after it, seen from the other
+    // side, runs on into the edge before it (one step, no walk round the
+    // vertex: this runs for every face the viewport and the exporters draw).
+    let shared = |i: usize| {
+        let (before, after) = (sides[(i + n - 1) % n], sides[i]);
+        mesh.next(after.twin()) == before.twin()
+    };
+    if n == 4 {
+        let corners = [0, 1, 2, 3].map(|i| mesh.position(vert(i)));
+        out.extend(triangulate_quad(corners, [0, 1, 2, 3].map(shared)).map(|t| t.map(vert)));
+        return;
+    }
     // Newell's normal of the outer loop (a ring would subtract its area).
     let normal = (0..n)
         .map(|i| {
@@ -87,62 +99,13 @@ pub fn triangulate_outer_loop_into(mesh: &HalfEdgeMesh, f: FaceId, out: &mut Vec
         let p = mesh.position(vert(i));
         DVec2::new(p.dot(u), p.dot(v))
     };
-    let mut quad = [DVec2::ZERO; 4];
-    let long_pts: Vec<DVec2>;
-    let pts: &[DVec2] = if n == 4 {
-        for (i, q) in quad.iter_mut().enumerate() {
-            *q = plane(i);
-        }
-        &quad
-    } else {
-        long_pts = (0..n).map(plane).collect();
-        &long_pts
-    };
+    let pts: Vec<DVec2> = (0..n).map(plane).collect();
     // An ear at a vertex of only two edges would be clipped by both faces
     // that share those edges: the same triangle twice, and four triangles
     // on the diagonal (issue 35). A nearly flat ear is a sliver without
     // area. Either is taken only when no other ear is left.
-    // Corner i has two edges when the edge after it, seen from the other
-    // side, runs on into the edge before it (one step, no walk round the
-    // vertex: this runs for every face the viewport and the exporters draw).
-    let shared = |i: usize| {
-        let (before, after) = (sides[(i + n - 1) % n], sides[i]);
-        mesh.next(after.twin()) == before.twin()
-    };
-    // Not flat: the turn's sine over FLAT_SINE (squared, without roots).
-    let sharp_turn = |a: usize, b: usize, c: usize| {
-        let (e, f) = (pts[b] - pts[a], pts[c] - pts[b]);
-        let cross = cross2(e, f);
-        cross > 0.0
-            && cross * cross > FLAT_SINE * FLAT_SINE * e.length_squared() * f.length_squared()
-    };
-    if n == 4 {
-        let good_ear = |a: usize, b: usize, c: usize| sharp_turn(a, b, c) && !shared(b);
-        // Split along the diagonal that keeps both triangles counter-clockwise,
-        // preferring one whose ears are good, then the shorter one.
-        let ccw = |a: usize, b: usize, c: usize| cross2(pts[b] - pts[a], pts[c] - pts[a]) > 0.0;
-        let d02 = ccw(0, 1, 2) && ccw(0, 2, 3);
-        let d13 = ccw(1, 2, 3) && ccw(1, 3, 0);
-        let good02 = d02 && good_ear(0, 1, 2) && good_ear(2, 3, 0);
-        let good13 = d13 && good_ear(1, 2, 3) && good_ear(3, 0, 1);
-        let shorter13 = pts[1].distance_squared(pts[3]) < pts[0].distance_squared(pts[2]);
-        let use13 = match (good02, good13) {
-            (true, true) => shorter13,
-            (false, true) => true,
-            (true, false) => false,
-            (false, false) => match (d02, d13) {
-                (true, true) => shorter13,
-                (false, true) => true,
-                _ => false,
-            },
-        };
-        out.extend(if use13 {
-            [[vert(1), vert(2), vert(3)], [vert(1), vert(3), vert(0)]]
-        } else {
-            [[vert(0), vert(1), vert(2)], [vert(0), vert(2), vert(3)]]
-        });
-        return;
-    }
+    let sharp_turn = |a: usize, b: usize, c: usize| sharp_turn(pts[a], pts[b], pts[c]);
+
     let mut idx: Vec<usize> = (0..n).collect();
     out.reserve(n - 2);
     let mut guard = n * n;
@@ -185,6 +148,56 @@ pub fn triangulate_outer_loop_into(mesh: &HalfEdgeMesh, f: FaceId, out: &mut Vec
         let rest: Vec<VertexId> = idx.iter().map(|&i| vert(i)).collect();
         out.extend(fan(&rest));
     }
+}
+
+/// The two triangles of a quad, as corner indices (0 to 3), split along
+/// the diagonal that keeps both counter-clockwise in the plane of its
+/// Newell normal, preferring one whose ears are good (not nearly flat, and
+/// not at a corner of only two edges: `two_edged[i]`, whose ear the face
+/// on the other side of those edges would clip too, issue 35), then the
+/// shorter one; a fan when the quad has no area. How
+/// [`triangulate_face`] splits every quad, so that the exporters writing
+/// refined quads without a half-edge mesh split them the same way.
+pub fn triangulate_quad(corners: [DVec3; 4], two_edged: [bool; 4]) -> [[usize; 3]; 2] {
+    const FAN: [[usize; 3]; 2] = [[0, 1, 2], [0, 2, 3]];
+    let normal = (0..4)
+        .map(|i| corners[i].cross(corners[(i + 1) % 4]))
+        .sum::<DVec3>()
+        * 0.5;
+    if normal.length_squared() < 1e-300 {
+        return FAN;
+    }
+    let nz = normal.normalize();
+    let u = nz.any_orthonormal_vector();
+    let v = nz.cross(u);
+    let pts = corners.map(|p| DVec2::new(p.dot(u), p.dot(v)));
+    let good_ear =
+        |a: usize, b: usize, c: usize| sharp_turn(pts[a], pts[b], pts[c]) && !two_edged[b];
+    let ccw = |a: usize, b: usize, c: usize| cross2(pts[b] - pts[a], pts[c] - pts[a]) > 0.0;
+    let d02 = ccw(0, 1, 2) && ccw(0, 2, 3);
+    let d13 = ccw(1, 2, 3) && ccw(1, 3, 0);
+    let good02 = d02 && good_ear(0, 1, 2) && good_ear(2, 3, 0);
+    let good13 = d13 && good_ear(1, 2, 3) && good_ear(3, 0, 1);
+    let shorter13 = pts[1].distance_squared(pts[3]) < pts[0].distance_squared(pts[2]);
+    let use13 = match (good02, good13) {
+        (true, true) => shorter13,
+        (false, true) => true,
+        (true, false) => false,
+        (false, false) => match (d02, d13) {
+            (true, true) => shorter13,
+            (false, true) => true,
+            _ => false,
+        },
+    };
+    if use13 { [[1, 2, 3], [1, 3, 0]] } else { FAN }
+}
+
+/// A left turn a → b → c that is not nearly straight: the turn's sine
+/// over [`FLAT_SINE`] (squared, without roots).
+fn sharp_turn(a: DVec2, b: DVec2, c: DVec2) -> bool {
+    let (e, f) = (b - a, c - b);
+    let cross = cross2(e, f);
+    cross > 0.0 && cross * cross > FLAT_SINE * FLAT_SINE * e.length_squared() * f.length_squared()
 }
 
 /// Triangles of a polygon given by its corner points, as indices into

@@ -214,6 +214,37 @@ impl Refiner {
             .enumerate()
             .map(|(e, &ends)| (ends, last.edge_sharp(e as u32)))
     }
+    /// Edges at refined vertex `v`.
+    pub fn vertex_edge_count(&self, v: u32) -> usize {
+        self.last().vertex_edges(v).len()
+    }
+    /// The refined vertices in the order [`to_mesh`](Self::to_mesh)
+    /// numbers them (first use by the shown faces, corner by corner, then
+    /// the vertices without edges), as refined vertex indices; and each
+    /// refined vertex's number in that order (`u32::MAX`: left out, used
+    /// only by hidden faces). For writers that take the faces straight
+    /// from [`faces`](Self::faces) and must number vertices as the mesh
+    /// would.
+    pub fn mesh_vertex_order(&self) -> (Vec<u32>, Vec<u32>) {
+        let last = self.last();
+        let mut number = vec![u32::MAX; last.vertex_count];
+        let mut order = Vec::with_capacity(last.vertex_count);
+        for face in self.faces() {
+            for &v in face {
+                if number[v as usize] == u32::MAX {
+                    number[v as usize] = order.len() as u32;
+                    order.push(v);
+                }
+            }
+        }
+        for v in 0..last.vertex_count as u32 {
+            if number[v as usize] == u32::MAX && last.vertex_edges(v).is_empty() {
+                number[v as usize] = order.len() as u32;
+                order.push(v);
+            }
+        }
+        (order, number)
+    }
     /// The cage's positions in the order [`refine`](Self::refine) expects.
     pub fn cage_positions(&self, mesh: &HalfEdgeMesh) -> Vec<DVec3> {
         self.cage
