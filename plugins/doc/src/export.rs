@@ -883,24 +883,96 @@ impl RefinedFaces {
             .map(|f| f.iter().map(|&v| self.number[v as usize]))
     }
 
+    /// The triangles of a refined face (a triangle or a quad) as corner
+    /// indices, as [`hedra_geom::query::triangulate_face`] splits the
+    /// mesh's: the first `count` of the pair.
+    fn face_triangles(&self, face: &[u32]) -> ([[usize; 3]; 2], usize) {
+        match *face {
+            [a, b, c, d] => {
+                let corners = [a, b, c, d];
+                let two_edged = corners.map(|v| self.refiner.vertex_edge_count(v) == 2);
+                let at = |v: u32| self.positions[v as usize];
+                (
+                    hedra_geom::query::triangulate_quad(corners.map(at), two_edged),
+                    2,
+                )
+            }
+            [_, _, _] => ([[0, 1, 2], [0, 1, 2]], 1),
+            // Never made: Catmull-Clark gives quads, Loop triangles.
+            _ => unreachable!("a refined face of {} sides", face.len()),
+        }
+    }
+
     /// Calls `visit` with the corner positions of every triangle, face by
-    /// face, as [`hedra_geom::query::triangulate_face`] splits the mesh's.
+    /// face.
     fn each_triangle(&self, mut visit: impl FnMut([DVec3; 3])) {
-        let at = |v: u32| self.positions[v as usize];
         for face in self.refiner.faces() {
-            match *face {
-                [a, b, c] => visit([a, b, c].map(at)),
-                [a, b, c, d] => {
-                    let corners = [a, b, c, d];
-                    let two_edged = corners.map(|v| self.refiner.vertex_edge_count(v) == 2);
-                    for t in hedra_geom::query::triangulate_quad(corners.map(at), two_edged) {
-                        visit(t.map(|k| at(corners[k])));
-                    }
-                }
-                // Never made: Catmull-Clark gives quads, Loop triangles.
-                _ => unreachable!("a refined face of {} sides", face.len()),
+            let (triangles, count) = self.face_triangles(face);
+            for t in &triangles[..count] {
+                visit(t.map(|k| self.positions[face[k] as usize]));
             }
         }
+    }
+
+    /// Positions, unit normals and triangle indices for glTF, as
+    /// `gltf::mesh_triangles` makes them from the subdivided mesh: flat,
+    /// each face its own corners and normal; smooth, shared vertices with
+    /// area-weighted normals (Newell's area vectors of the faces around
+    /// each vertex, summed). `None` where that needs the mesh's adjacency:
+    /// a face (flat) or vertex (smooth) without a normal, or smooth normals
+    /// to split along infinitely sharp edges.
+    pub(crate) fn gltf_triangles(&self, smooth: bool) -> Option<GltfTriangles> {
+        let at = |v: u32| self.positions[v as usize];
+        let f32s = |p: DVec3| p.as_vec3().to_array();
+        let area_vector = |face: &[u32]| {
+            let n = face.len();
+            (0..n)
+                .map(|i| at(face[i]).cross(at(face[(i + 1) % n])))
+                .sum::<DVec3>()
+                * 0.5
+        };
+        let faces = self.refiner.faces();
+        let corner_count: usize = self.refiner.faces().map(<[u32]>::len).sum();
+        let mut indices = Vec::with_capacity(3 * (corner_count - 2 * self.refiner.faces().count()));
+        if smooth {
+            if self.refiner.has_infinitely_sharp_inner_edge() {
+                return None;
+            }
+            let mut normals = vec![DVec3::ZERO; self.order.len()];
+            for face in faces {
+                let area = area_vector(face);
+                for &v in face {
+                    normals[self.number[v as usize] as usize] += area;
+                }
+                let (triangles, count) = self.face_triangles(face);
+                for t in &triangles[..count] {
+                    indices.extend(t.map(|k| self.number[face[k] as usize]));
+                }
+            }
+            let normals = normals
+                .into_iter()
+                .map(|n| n.try_normalize().map(f32s))
+                .collect::<Option<Vec<_>>>()?;
+            let positions = self.written_positions().map(f32s).collect();
+            return Some((positions, normals, indices));
+        }
+        let (mut positions, mut normals) = (
+            Vec::with_capacity(corner_count),
+            Vec::with_capacity(corner_count),
+        );
+        for face in faces {
+            let normal = f32s(area_vector(face).try_normalize()?);
+            let base = positions.len() as u32;
+            for &v in face {
+                positions.push(f32s(at(v)));
+                normals.push(normal);
+            }
+            let (triangles, count) = self.face_triangles(face);
+            for t in &triangles[..count] {
+                indices.extend(t.map(|k| base + k as u32));
+            }
+        }
+        Some((positions, normals, indices))
     }
 
     /// The half-edge mesh and creases these faces are of (what
@@ -920,6 +992,9 @@ impl RefinedFaces {
         }
     }
 }
+
+/// glTF positions, normals and triangle indices of one mesh.
+pub(crate) type GltfTriangles = (Vec<[f32; 3]>, Vec<[f32; 3]>, Vec<u32>);
 
 /// A node, what to write for it and its world matrix.
 struct ExportItem<'a> {
@@ -1002,7 +1077,10 @@ fn export_meshes(
 ///
 /// # Errors
 /// As [`node_geometry`].
-fn refined_geometry(node: &Node, shape: ExportShape) -> Result<Option<Geometry<'_>>, ExportError> {
+pub(crate) fn refined_geometry(
+    node: &Node,
+    shape: ExportShape,
+) -> Result<Option<Geometry<'_>>, ExportError> {
     let NodeContent::Mesh(content) = &node.content else {
         return Ok(None);
     };
@@ -1458,6 +1536,55 @@ mod tests {
                     let slow = written(&node, Geometry::Mesh(Cow::Borrowed(m)), mirrored);
                     assert!(fast.0 == slow.0, "{name}, level {level}: the OBJ differs");
                     assert!(fast.1 == slow.1, "{name}, level {level}: the STL differs");
+                }
+                // glTF: flat as the mesh makes it, byte for byte; smooth
+                // the same vertices and triangles, normals summed in
+                // another order (to 1e-6), or the mesh's own where they
+                // must be split.
+                let mesh_creases = Refiner::subdivide(
+                    match &node.content {
+                        NodeContent::Mesh(c) => &c.mesh,
+                        _ => unreachable!(),
+                    },
+                    match &node.content {
+                        NodeContent::Mesh(c) => &c.creases,
+                        _ => unreachable!(),
+                    },
+                    options,
+                    level,
+                )
+                .unwrap()
+                .1;
+                for smooth in [false, true] {
+                    let shading = if smooth {
+                        crate::scene::Shading::Smooth
+                    } else {
+                        crate::scene::Shading::Flat
+                    };
+                    let slow = crate::gltf::mesh_triangles(m, shading, &mesh_creases);
+                    let Some(fast) = refined.gltf_triangles(smooth) else {
+                        // The pillow's faces have no area (its two
+                        // faces meet); the grid's crease is infinitely
+                        // sharp. Everything else is written from the faces.
+                        assert!(
+                            name == "pillow" || (smooth && name.contains("grid")),
+                            "{name}: glTF from the faces"
+                        );
+                        continue;
+                    };
+                    assert_eq!(fast.0, slow.0, "{name}, level {level}: glTF positions");
+                    assert_eq!(fast.2, slow.2, "{name}, level {level}: glTF triangles");
+                    if smooth {
+                        for (a, b) in fast.1.iter().zip(&slow.1) {
+                            let d = glam::Vec3::from(*a).distance(glam::Vec3::from(*b));
+                            assert!(
+                                d < 1e-6,
+                                "{name}, level {level}: normal {a:?} against {b:?}"
+                            );
+                        }
+                    } else {
+                        assert_eq!(fast.1, slow.1, "{name}, level {level}: glTF flat normals");
+                    }
                 }
             }
         }

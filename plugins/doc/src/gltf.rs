@@ -12,6 +12,7 @@
 //! v is flipped both ways (v' = 1 − v). Import reads `NORMAL` and
 //! `TEXCOORD_0` into corner attributes.
 
+use std::borrow::Cow;
 use std::collections::{BTreeMap, HashMap};
 use std::path::Path;
 
@@ -178,7 +179,7 @@ fn neighbours_normal(m: &HalfEdgeMesh, f: hedra_geom::FaceId) -> DVec3 {
 /// normal when flat, shared vertices with area-weighted normals when smooth,
 /// split along the infinitely sharp creases of `creases` (one vertex per
 /// side, with its side's normal, as the viewport draws them).
-fn mesh_triangles(
+pub(crate) fn mesh_triangles(
     m: &HalfEdgeMesh,
     shading: Shading,
     creases: &Creases,
@@ -336,7 +337,13 @@ pub fn gltf_parts(doc: &Document, shape: ExportShape) -> Result<GltfParts, Expor
         .filter(|n| tree.is_visible(n.id) && !tree.inside_csg(n.id))
         .collect();
     for node in &visible {
-        let mesh = match export_geometry_creased(doc, node, shape)? {
+        // A subdivided mesh from the refiner's faces; anything else as
+        // every format evaluates it.
+        let geometry = match crate::export::refined_geometry(node, shape)? {
+            Some(refined) => Some((refined, Cow::Owned(Creases::default()))),
+            None => export_geometry_creased(doc, node, shape)?,
+        };
+        let mesh = match geometry {
             None => None,
             Some((geometry, creases)) => {
                 let (shading, corners) = match &node.content {
@@ -362,8 +369,12 @@ pub fn gltf_parts(doc: &Document, shape: ExportShape) -> Result<GltfParts, Expor
                         (p, n, i, json::mesh::Mode::Triangles)
                     }
                     Geometry::Refined(r) => {
-                        let (m, creases) = r.to_mesh();
-                        let (p, n, i) = mesh_triangles(&m, shading, &creases);
+                        let (p, n, i) = r
+                            .gltf_triangles(shading == Shading::Smooth)
+                            .unwrap_or_else(|| {
+                                let (m, creases) = r.to_mesh();
+                                mesh_triangles(&m, shading, &creases)
+                            });
                         (p, n, i, json::mesh::Mode::Triangles)
                     }
                     Geometry::Polygons(k) => {

@@ -218,6 +218,13 @@ impl Refiner {
     pub fn vertex_edge_count(&self, v: u32) -> usize {
         self.last().vertex_edges(v).len()
     }
+    /// True when an edge of the refined mesh between two faces is still
+    /// infinitely sharp (where smooth normals are split).
+    pub fn has_infinitely_sharp_inner_edge(&self) -> bool {
+        let last = self.last();
+        (0..last.edge_count() as u32)
+            .any(|e| last.edge_sharp(e) >= INFINITE_SHARPNESS && !last.is_boundary_edge(e))
+    }
     /// The refined vertices in the order [`to_mesh`](Self::to_mesh)
     /// numbers them (first use by the shown faces, corner by corner, then
     /// the vertices without edges), as refined vertex indices; and each
