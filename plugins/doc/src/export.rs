@@ -914,65 +914,97 @@ impl RefinedFaces {
         }
     }
 
-    /// Positions, unit normals and triangle indices for glTF, as
-    /// `gltf::mesh_triangles` makes them from the subdivided mesh: flat,
-    /// each face its own corners and normal; smooth, shared vertices with
-    /// area-weighted normals (Newell's area vectors of the faces around
-    /// each vertex, summed). `None` where that needs the mesh's adjacency:
-    /// a face (flat) or vertex (smooth) without a normal, or smooth normals
-    /// to split along infinitely sharp edges.
-    pub(crate) fn gltf_triangles(&self, smooth: bool) -> Option<GltfTriangles> {
+    /// Newell's area vector of a refined face (as
+    /// [`HalfEdgeMesh::face_area_vector`] sums it, corner by corner).
+    fn area_vector(&self, face: &[u32]) -> DVec3 {
         let at = |v: u32| self.positions[v as usize];
-        let f32s = |p: DVec3| p.as_vec3().to_array();
-        let area_vector = |face: &[u32]| {
-            let n = face.len();
-            (0..n)
-                .map(|i| at(face[i]).cross(at(face[(i + 1) % n])))
-                .sum::<DVec3>()
-                * 0.5
-        };
-        let faces = self.refiner.faces();
-        let corner_count: usize = self.refiner.faces().map(<[u32]>::len).sum();
-        let mut indices = Vec::with_capacity(3 * (corner_count - 2 * self.refiner.faces().count()));
-        if smooth {
-            if self.refiner.has_infinitely_sharp_inner_edge() {
-                return None;
-            }
-            let mut normals = vec![DVec3::ZERO; self.order.len()];
-            for face in faces {
-                let area = area_vector(face);
-                for &v in face {
-                    normals[self.number[v as usize] as usize] += area;
-                }
-                let (triangles, count) = self.face_triangles(face);
-                for t in &triangles[..count] {
-                    indices.extend(t.map(|k| self.number[face[k] as usize]));
-                }
-            }
-            let normals = normals
-                .into_iter()
-                .map(|n| n.try_normalize().map(f32s))
-                .collect::<Option<Vec<_>>>()?;
-            let positions = self.written_positions().map(f32s).collect();
-            return Some((positions, normals, indices));
-        }
-        let (mut positions, mut normals) = (
-            Vec::with_capacity(corner_count),
-            Vec::with_capacity(corner_count),
-        );
-        for face in faces {
-            let normal = f32s(area_vector(face).try_normalize()?);
-            let base = positions.len() as u32;
+        let n = face.len();
+        (0..n)
+            .map(|i| at(face[i]).cross(at(face[(i + 1) % n])))
+            .sum::<DVec3>()
+            * 0.5
+    }
+
+    /// Written vertices of all faces, corner by corner.
+    pub(crate) fn corner_count(&self) -> usize {
+        self.refiner.faces().map(<[u32]>::len).sum()
+    }
+
+    /// Triangles of all faces.
+    pub(crate) fn triangle_count(&self) -> usize {
+        self.refiner.faces().map(|f| f.len() - 2).sum()
+    }
+
+    /// The written vertices' positions as glTF stores them.
+    pub(crate) fn each_position(&self, mut visit: impl FnMut([f32; 3])) {
+        self.written_positions()
+            .for_each(|p| visit(p.as_vec3().to_array()));
+    }
+
+    /// True when every face has a normal: flat glTF can be written from
+    /// the faces (else the mesh's neighbours stand in).
+    pub(crate) fn faces_have_normals(&self) -> bool {
+        self.refiner
+            .faces()
+            .all(|f| self.area_vector(f).try_normalize().is_some())
+    }
+
+    /// Flat glTF vertices, as `gltf::mesh_triangles` makes them from the
+    /// subdivided mesh: each face's corners with its unit normal, face by
+    /// face. Call when [`faces_have_normals`](Self::faces_have_normals).
+    pub(crate) fn each_flat_corner(&self, mut visit: impl FnMut([f32; 3], [f32; 3])) {
+        for face in self.refiner.faces() {
+            let normal = self
+                .area_vector(face)
+                .normalize_or_zero()
+                .as_vec3()
+                .to_array();
             for &v in face {
-                positions.push(f32s(at(v)));
-                normals.push(normal);
+                visit(self.positions[v as usize].as_vec3().to_array(), normal);
             }
+        }
+    }
+
+    /// Smooth glTF normals of the written vertices: the area vectors of
+    /// the faces around each vertex, summed in face order, as unit
+    /// vectors (to 1e-6 of `HalfEdgeMesh::vertex_normal`). `None` where
+    /// the mesh is needed: a vertex without a normal, or normals to split
+    /// along infinitely sharp edges.
+    pub(crate) fn smooth_normals(&self) -> Option<Vec<[f32; 3]>> {
+        if self.refiner.has_infinitely_sharp_inner_edge() {
+            return None;
+        }
+        let mut normals = vec![DVec3::ZERO; self.order.len()];
+        for face in self.refiner.faces() {
+            let area = self.area_vector(face);
+            for &v in face {
+                normals[self.number[v as usize] as usize] += area;
+            }
+        }
+        normals
+            .into_iter()
+            .map(|n| n.try_normalize().map(|n| n.as_vec3().to_array()))
+            .collect()
+    }
+
+    /// The triangles' corners as glTF indices: into the flat corners
+    /// ([`each_flat_corner`](Self::each_flat_corner)), or into the written
+    /// vertices when `smooth`.
+    pub(crate) fn each_triangle_index(&self, smooth: bool, mut visit: impl FnMut(u32)) {
+        let mut base = 0u32;
+        for face in self.refiner.faces() {
             let (triangles, count) = self.face_triangles(face);
             for t in &triangles[..count] {
-                indices.extend(t.map(|k| base + k as u32));
+                for k in *t {
+                    visit(if smooth {
+                        self.number[face[k] as usize]
+                    } else {
+                        base + k as u32
+                    });
+                }
             }
+            base += face.len() as u32;
         }
-        Some((positions, normals, indices))
     }
 
     /// The half-edge mesh and creases these faces are of (what
@@ -992,9 +1024,6 @@ impl RefinedFaces {
         }
     }
 }
-
-/// glTF positions, normals and triangle indices of one mesh.
-pub(crate) type GltfTriangles = (Vec<[f32; 3]>, Vec<[f32; 3]>, Vec<u32>);
 
 /// A node, what to write for it and its world matrix.
 struct ExportItem<'a> {
@@ -1394,6 +1423,29 @@ mod tests {
         (obj.into_inner(), stl.into_inner())
     }
 
+    /// glTF positions, normals and triangle indices of one mesh.
+    type GltfTriangles = (Vec<[f32; 3]>, Vec<[f32; 3]>, Vec<u32>);
+
+    /// The glTF arrays the GLB writer streams from `refined`, in memory.
+    fn gltf_arrays(refined: &RefinedFaces, smooth: bool) -> Option<GltfTriangles> {
+        let (mut positions, mut indices) = (Vec::new(), Vec::new());
+        refined.each_triangle_index(smooth, |i| indices.push(i));
+        if smooth {
+            let normals = refined.smooth_normals()?;
+            refined.each_position(|p| positions.push(p));
+            return Some((positions, normals, indices));
+        }
+        if !refined.faces_have_normals() {
+            return None;
+        }
+        let mut normals = Vec::new();
+        refined.each_flat_corner(|p, n| {
+            positions.push(p);
+            normals.push(n);
+        });
+        Some((positions, normals, indices))
+    }
+
     /// The refined faces are written exactly as the subdivided half-edge
     /// mesh was: same vertex numbers, faces and triangles, byte for byte,
     /// on cages with what changes them: corners of two edges (whose ears
@@ -1562,7 +1614,7 @@ mod tests {
                         crate::scene::Shading::Flat
                     };
                     let slow = crate::gltf::mesh_triangles(m, shading, &mesh_creases);
-                    let Some(fast) = refined.gltf_triangles(smooth) else {
+                    let Some(fast) = gltf_arrays(&refined, smooth) else {
                         // The pillow's faces have no area (its two
                         // faces meet); the grid's crease is infinitely
                         // sharp. Everything else is written from the faces.

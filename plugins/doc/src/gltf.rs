@@ -42,13 +42,48 @@ struct Buffer {
 enum BufferArray {
     F32(Vec<f32>),
     U32(Vec<u32>),
+    /// Numbers made as they are written (as their bits), so that a large
+    /// subdivided mesh's arrays are never held: `len` of them, passed to
+    /// the sink in pieces.
+    Made {
+        len: usize,
+        make: MakeNumbers,
+    },
 }
+
+/// Makes an array's numbers and passes them on in pieces; stops at the
+/// first error the sink returns.
+type MakeNumbers =
+    Box<dyn Fn(&mut dyn FnMut(&[u32]) -> std::io::Result<()>) -> std::io::Result<()>>;
 
 impl BufferArray {
     fn len(&self) -> usize {
         match self {
             BufferArray::F32(v) => v.len(),
             BufferArray::U32(v) => v.len(),
+            BufferArray::Made { len, .. } => *len,
+        }
+    }
+
+    /// An array made by `each`, which calls its visitor once per number.
+    fn made(len: usize, each: impl Fn(&mut dyn FnMut(u32)) + 'static) -> BufferArray {
+        BufferArray::Made {
+            len,
+            make: Box::new(move |sink| {
+                let mut piece: Vec<u32> = Vec::with_capacity(1 << 14);
+                let mut result = Ok(());
+                each(&mut |x| {
+                    piece.push(x);
+                    if piece.len() == piece.capacity() {
+                        if result.is_ok() {
+                            result = sink(&piece);
+                        }
+                        piece.clear();
+                    }
+                });
+                result?;
+                sink(&piece)
+            }),
         }
     }
 }
@@ -94,6 +129,18 @@ impl Buffer {
             match array {
                 BufferArray::F32(v) => v.iter().try_for_each(|x| put(x.to_le_bytes(), out))?,
                 BufferArray::U32(v) => v.iter().try_for_each(|x| put(x.to_le_bytes(), out))?,
+                BufferArray::Made { len, make } => {
+                    let mut written = 0;
+                    make(&mut |piece| {
+                        written += piece.len();
+                        piece.iter().try_for_each(|x| put(x.to_le_bytes(), out))
+                    })?;
+                    if written != *len {
+                        return Err(std::io::Error::other(format!(
+                            "a glTF array made {written} numbers where its view holds {len}"
+                        )));
+                    }
+                }
             }
         }
         out.write_all(&staged)
@@ -302,6 +349,110 @@ fn corner_triangles(m: &HalfEdgeMesh, shading: Shading, c: &CornerAttributes) ->
     (positions, normals, uvs, indices)
 }
 
+/// One primitive's arrays, as the buffer will hold them: positions (with
+/// their count and bounds), and normals, UVs and indices where there are
+/// any.
+struct PrimitiveArrays {
+    positions: BufferArray,
+    vertex_count: usize,
+    bounds: ([f32; 3], [f32; 3]),
+    normals: Option<BufferArray>,
+    uvs: Option<BufferArray>,
+    indices: Option<BufferArray>,
+    mode: json::mesh::Mode,
+}
+
+impl PrimitiveArrays {
+    /// Arrays held in memory; empty ones are left out.
+    fn new(
+        positions: Vec<[f32; 3]>,
+        normals: Vec<[f32; 3]>,
+        uvs: Vec<[f32; 2]>,
+        indices: Vec<u32>,
+        mode: json::mesh::Mode,
+    ) -> Self {
+        let f32s = |v: Vec<f32>| (!v.is_empty()).then_some(BufferArray::F32(v));
+        PrimitiveArrays {
+            vertex_count: positions.len(),
+            bounds: bounds(&positions),
+            positions: BufferArray::F32(positions.into_flattened()),
+            normals: f32s(normals.into_flattened()),
+            uvs: f32s(uvs.into_flattened()),
+            indices: (!indices.is_empty()).then_some(BufferArray::U32(indices)),
+            mode,
+        }
+    }
+}
+
+/// A subdivided mesh's arrays made from the refiner's faces as the GLB is
+/// written (the same numbers `mesh_triangles` gives the subdivided mesh:
+/// the export holds no copy of the file); from the mesh, built for it,
+/// where its adjacency is needed (a face or vertex without a normal,
+/// normals split at infinitely sharp edges).
+fn refined_arrays(refined: crate::export::RefinedFaces, shading: Shading) -> PrimitiveArrays {
+    let smooth = shading == Shading::Smooth;
+    let smooth_normals = if smooth {
+        refined.smooth_normals()
+    } else {
+        None
+    };
+    if (smooth && smooth_normals.is_none()) || (!smooth && !refined.faces_have_normals()) {
+        let (m, creases) = refined.to_mesh();
+        let (p, n, i) = mesh_triangles(&m, shading, &creases);
+        return PrimitiveArrays::new(p, n, Vec::new(), i, json::mesh::Mode::Triangles);
+    }
+    let mut lo = [f32::INFINITY; 3];
+    let mut hi = [f32::NEG_INFINITY; 3];
+    refined.each_position(|p| {
+        for k in 0..3 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    });
+    let refined = std::rc::Rc::new(refined);
+    let index_count = 3 * refined.triangle_count();
+    let indices = {
+        let refined = refined.clone();
+        BufferArray::made(index_count, move |put| {
+            refined.each_triangle_index(smooth, &mut *put)
+        })
+    };
+    let (vertex_count, positions, normals) = match smooth_normals {
+        Some(normals) => {
+            let count = normals.len();
+            let positions = {
+                let refined = refined.clone();
+                BufferArray::made(3 * count, move |put| {
+                    refined.each_position(|p| p.iter().for_each(|x| put(x.to_bits())))
+                })
+            };
+            (count, positions, BufferArray::F32(normals.into_flattened()))
+        }
+        None => {
+            let count = refined.corner_count();
+            let corners = |normal: bool| {
+                let refined = refined.clone();
+                BufferArray::made(3 * count, move |put| {
+                    refined.each_flat_corner(|p, n| {
+                        let x = if normal { n } else { p };
+                        x.iter().for_each(|x| put(x.to_bits()));
+                    })
+                })
+            };
+            (count, corners(false), corners(true))
+        }
+    };
+    PrimitiveArrays {
+        positions,
+        vertex_count,
+        bounds: (lo, hi),
+        normals: Some(normals),
+        uvs: None,
+        indices: (index_count > 0).then_some(indices),
+        mode: json::mesh::Mode::Triangles,
+    }
+}
+
 /// A glTF export made from the document: its JSON document and its
 /// binary buffer as arrays, written as a `.glb` ([`write_glb`](Self::write_glb))
 /// or a `.gltf` ([`to_gltf_text`](Self::to_gltf_text)).
@@ -353,35 +504,26 @@ pub fn gltf_parts(doc: &Document, shape: ExportShape) -> Result<GltfParts, Expor
                     NodeContent::Csg(_) => (Shading::Flat, None),
                     _ => (Shading::Smooth, None),
                 };
-                let mut uvs: Vec<[f32; 2]> = Vec::new();
-                let (positions, normals, indices, mode) = match &geometry {
+                let arrays = match geometry {
                     // The cage carries the corner attributes; a subdivided shape does not.
                     Geometry::Mesh(std::borrow::Cow::Borrowed(m))
                         if corners.is_some_and(|c| !c.is_empty()) =>
                     {
                         let (p, n, t, i) =
                             corner_triangles(m, shading, corners.expect("checked above"));
-                        uvs = t;
-                        (p, n, i, json::mesh::Mode::Triangles)
+                        PrimitiveArrays::new(p, n, t, i, json::mesh::Mode::Triangles)
                     }
                     Geometry::Mesh(m) => {
-                        let (p, n, i) = mesh_triangles(m, shading, &creases);
-                        (p, n, i, json::mesh::Mode::Triangles)
+                        let (p, n, i) = mesh_triangles(&m, shading, &creases);
+                        PrimitiveArrays::new(p, n, Vec::new(), i, json::mesh::Mode::Triangles)
                     }
-                    Geometry::Refined(r) => {
-                        let (p, n, i) = r
-                            .gltf_triangles(shading == Shading::Smooth)
-                            .unwrap_or_else(|| {
-                                let (m, creases) = r.to_mesh();
-                                mesh_triangles(&m, shading, &creases)
-                            });
-                        (p, n, i, json::mesh::Mode::Triangles)
-                    }
+                    Geometry::Refined(r) => refined_arrays(r, shading),
                     Geometry::Polygons(k) => {
-                        let b = crate::render::kept_render_buffers(k, shading);
-                        (
+                        let b = crate::render::kept_render_buffers(&k, shading);
+                        PrimitiveArrays::new(
                             b.positions,
                             b.normals,
+                            Vec::new(),
                             b.indices,
                             json::mesh::Mode::Triangles,
                         )
@@ -392,7 +534,7 @@ pub fn gltf_parts(doc: &Document, shape: ExportShape) -> Result<GltfParts, Expor
                         // The surface's own normals; a point where even the
                         // limit is undefined takes its triangles' normals.
                         let mut area = vec![DVec3::ZERO; p.len()];
-                        for t in tris {
+                        for t in &tris {
                             let [a, b, c] = t.map(|i| p[i as usize]);
                             for i in t {
                                 area[*i as usize] += (b - a).cross(c - a);
@@ -407,35 +549,46 @@ pub fn gltf_parts(doc: &Document, shape: ExportShape) -> Result<GltfParts, Expor
                                     .to_array()
                             })
                             .collect();
-                        (
+                        PrimitiveArrays::new(
                             positions,
                             normals,
-                            tris.iter().flatten().copied().collect(),
+                            Vec::new(),
+                            tris.into_flattened(),
                             json::mesh::Mode::Triangles,
                         )
                     }
-                    Geometry::Polyline(p) => (
+                    Geometry::Polyline(p) => PrimitiveArrays::new(
                         p.iter().map(|x| x.as_vec3().to_array()).collect(),
+                        Vec::new(),
                         Vec::new(),
                         Vec::new(),
                         json::mesh::Mode::LineStrip,
                     ),
                     // Not made for glTF (node_geometry tessellates curves).
-                    Geometry::FreeForm(c) => (
-                        crate::export::curve_polyline(c)
+                    Geometry::FreeForm(c) => PrimitiveArrays::new(
+                        crate::export::curve_polyline(&c)
                             .iter()
                             .map(|x| x.as_vec3().to_array())
                             .collect(),
                         Vec::new(),
                         Vec::new(),
+                        Vec::new(),
                         json::mesh::Mode::LineStrip,
                     ),
                 };
-                let (vertex_count, position_bounds) = (positions.len(), bounds(&positions));
+                let PrimitiveArrays {
+                    positions,
+                    vertex_count,
+                    bounds: position_bounds,
+                    normals,
+                    uvs,
+                    indices,
+                    mode,
+                } = arrays;
                 let view = push_view(
                     &mut root,
                     &mut bin,
-                    BufferArray::F32(positions.into_flattened()),
+                    positions,
                     json::buffer::Target::ArrayBuffer,
                 );
                 let pos = push_accessor(
@@ -448,12 +601,12 @@ pub fn gltf_parts(doc: &Document, shape: ExportShape) -> Result<GltfParts, Expor
                 );
                 let mut attributes = BTreeMap::new();
                 attributes.insert(Valid(json::mesh::Semantic::Positions), pos);
-                if !normals.is_empty() {
-                    let count = normals.len();
+                if let Some(normals) = normals {
+                    let count = normals.len() / 3;
                     let view = push_view(
                         &mut root,
                         &mut bin,
-                        BufferArray::F32(normals.into_flattened()),
+                        normals,
                         json::buffer::Target::ArrayBuffer,
                     );
                     let nrm = push_accessor(
@@ -466,14 +619,10 @@ pub fn gltf_parts(doc: &Document, shape: ExportShape) -> Result<GltfParts, Expor
                     );
                     attributes.insert(Valid(json::mesh::Semantic::Normals), nrm);
                 }
-                if !uvs.is_empty() {
-                    let count = uvs.len();
-                    let view = push_view(
-                        &mut root,
-                        &mut bin,
-                        BufferArray::F32(uvs.into_flattened()),
-                        json::buffer::Target::ArrayBuffer,
-                    );
+                if let Some(uvs) = uvs {
+                    let count = uvs.len() / 2;
+                    let view =
+                        push_view(&mut root, &mut bin, uvs, json::buffer::Target::ArrayBuffer);
                     let tex = push_accessor(
                         &mut root,
                         view,
@@ -484,12 +633,12 @@ pub fn gltf_parts(doc: &Document, shape: ExportShape) -> Result<GltfParts, Expor
                     );
                     attributes.insert(Valid(json::mesh::Semantic::TexCoords(0)), tex);
                 }
-                let indices = (!indices.is_empty()).then(|| {
+                let indices = indices.map(|indices| {
                     let count = indices.len();
                     let view = push_view(
                         &mut root,
                         &mut bin,
-                        BufferArray::U32(indices),
+                        indices,
                         json::buffer::Target::ElementArrayBuffer,
                     );
                     push_accessor(
