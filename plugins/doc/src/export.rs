@@ -415,23 +415,53 @@ fn write_stl(items: &[ExportItem], out: &mut dyn ExportOutput) -> std::io::Resul
     let start = out.stream_position()?;
     out.write_all(&[0u8; 84])?;
     let mut count = 0u32;
-    let mut failed = Ok(());
-    each_stl_triangle(items, |normal, [a, b, c]| {
-        // Twelve floats and a zero attribute count, copied in one piece.
-        let mut record = [0u8; 50];
-        for (k, x) in [normal, a, b, c].as_flattened().iter().enumerate() {
-            record[4 * k..4 * k + 4].copy_from_slice(&x.to_le_bytes());
+    for item in items {
+        // A large subdivided mesh's records are made on every core.
+        if let Geometry::Refined(r) = &item.geometry
+            && r.refiner.face_count() >= PARALLEL_STL_FACES
+        {
+            count += r.write_stl_records(item.world, item.mirrored, out)?;
+            continue;
         }
-        if failed.is_ok() {
-            failed = out.write_all(&record);
-        }
-        count += 1;
-    });
-    failed?;
+        let mut failed = Ok(());
+        each_stl_triangle(std::slice::from_ref(item), |normal, corners| {
+            if failed.is_ok() {
+                failed = out.write_all(&stl_record(normal, corners));
+            }
+            count += 1;
+        });
+        failed?;
+    }
     out.seek(SeekFrom::Start(start + 80))?;
     out.write_all(&count.to_le_bytes())?;
     out.seek(SeekFrom::End(0))?;
     Ok(())
+}
+
+/// Faces of a subdivided mesh from which its STL records are made on all
+/// cores: below it, the threads cost more than they save.
+const PARALLEL_STL_FACES: usize = 1 << 16;
+
+/// A binary STL record: the normal, three corners (twelve floats) and a
+/// zero attribute count.
+fn stl_record(normal: [f32; 3], [a, b, c]: [[f32; 3]; 3]) -> [u8; 50] {
+    let mut record = [0u8; 50];
+    for (k, x) in [normal, a, b, c].as_flattened().iter().enumerate() {
+        record[4 * k..4 * k + 4].copy_from_slice(&x.to_le_bytes());
+    }
+    record
+}
+
+/// The unit normal and the corners of a world-space triangle as STL holds
+/// them, counter-clockwise seen from outside (a mirroring transform turns
+/// the winding over: it is turned back).
+fn stl_triangle([a, b, c]: [DVec3; 3], mirrored: bool) -> ([f32; 3], [[f32; 3]; 3]) {
+    let [a, b, c] = if mirrored { [a, c, b] } else { [a, b, c] };
+    let n = (b - a).cross(c - a).normalize_or_zero();
+    (
+        n.as_vec3().to_array(),
+        [a, b, c].map(|p| p.as_vec3().to_array()),
+    )
 }
 
 /// ASCII STL: the same triangles as text, one `solid` block per node named
@@ -500,14 +530,9 @@ fn triangle_estimate(items: &[ExportItem]) -> usize {
 /// Calls `visit` with the unit normal and the world-space corners of every
 /// triangle of the visible surfaces, in order (curves have none).
 fn each_stl_triangle(items: &[ExportItem], mut visit: impl FnMut([f32; 3], [[f32; 3]; 3])) {
-    let mut push = |[a, b, c]: [DVec3; 3], mirrored: bool| {
-        // A mirroring transform turns the winding over: turn it back.
-        let [a, b, c] = if mirrored { [a, c, b] } else { [a, b, c] };
-        let n = (b - a).cross(c - a).normalize_or_zero();
-        visit(
-            n.as_vec3().to_array(),
-            [a, b, c].map(|p| p.as_vec3().to_array()),
-        );
+    let mut push = |corners: [DVec3; 3], mirrored: bool| {
+        let (normal, corners) = stl_triangle(corners, mirrored);
+        visit(normal, corners);
     };
     let mut face = Vec::new();
     for item in items {
@@ -901,6 +926,47 @@ impl RefinedFaces {
             // Never made: Catmull-Clark gives quads, Loop triangles.
             _ => unreachable!("a refined face of {} sides", face.len()),
         }
+    }
+
+    /// Writes the binary STL records of the triangles in world space
+    /// (`world`, `mirrored` as [`stl_triangle`] takes them), face by face
+    /// as [`each_triangle`](Self::each_triangle) visits them, made in
+    /// pieces on all cores and written in order. Returns how many.
+    fn write_stl_records(
+        &self,
+        world: glam::DMat4,
+        mirrored: bool,
+        out: &mut dyn ExportOutput,
+    ) -> std::io::Result<u32> {
+        use rayon::prelude::*;
+        const FACES_PER_PIECE: usize = 1 << 14;
+        let faces = self.refiner.face_count();
+        let pieces: Vec<usize> = (0..faces.div_ceil(FACES_PER_PIECE)).collect();
+        let piece_records = |piece: usize| {
+            let faces = piece * FACES_PER_PIECE..((piece + 1) * FACES_PER_PIECE).min(faces);
+            let mut bytes = Vec::with_capacity(2 * 50 * faces.len());
+            for f in faces.filter(|&f| !self.refiner.is_face_hidden(f)) {
+                let face = self.refiner.face(f);
+                let (triangles, count) = self.face_triangles(face);
+                for t in &triangles[..count] {
+                    let corners =
+                        t.map(|k| world.transform_point3(self.positions[face[k] as usize]));
+                    let (normal, corners) = stl_triangle(corners, mirrored);
+                    bytes.extend_from_slice(&stl_record(normal, corners));
+                }
+            }
+            bytes
+        };
+        let mut count = 0u32;
+        // A few pieces per thread at a time, so that little is held.
+        for batch in pieces.chunks(2 * rayon::current_num_threads()) {
+            let made: Vec<Vec<u8>> = batch.par_iter().map(|&p| piece_records(p)).collect();
+            for bytes in made {
+                out.write_all(&bytes)?;
+                count += (bytes.len() / 50) as u32;
+            }
+        }
+        Ok(count)
     }
 
     /// Calls `visit` with the corner positions of every triangle, face by
@@ -1444,6 +1510,53 @@ mod tests {
             normals.push(n);
         });
         Some((positions, normals, indices))
+    }
+
+    /// A large subdivided mesh's STL records, made in pieces on all cores,
+    /// are the ones the mesh's faces give, in the same order.
+    #[test]
+    fn stl_records_made_on_all_cores_are_the_mesh_s() {
+        let grid = hedra_geom::Primitive::Grid {
+            x_segments: 90,
+            z_segments: 70,
+            size: 2.0,
+        }
+        .build()
+        .unwrap();
+        let node = node(grid, Creases::default(), Options::default());
+        let shape = ExportShape::Subdivided(2);
+        let Some(Geometry::Refined(refined)) = refined_geometry(&node, shape).unwrap() else {
+            panic!("written as refined faces")
+        };
+        assert!(refined.refiner.face_count() >= PARALLEL_STL_FACES);
+        let (mesh, _) = node_geometry(&node, shape).unwrap().unwrap();
+        let stl = |geometry, mirrored| {
+            let world = if mirrored {
+                glam::DMat4::from_scale(DVec3::new(1.0, -1.0, 3.0))
+            } else {
+                glam::DMat4::IDENTITY
+            };
+            let items = [ExportItem {
+                node: &node,
+                geometry,
+                world,
+                mirrored,
+                corners: None,
+            }];
+            let mut bytes = std::io::Cursor::new(Vec::new());
+            write_stl(&items, &mut bytes).unwrap();
+            bytes.into_inner()
+        };
+        let Geometry::Mesh(m) = &mesh else { panic!() };
+        let refined = || refined_geometry(&node, shape).unwrap().unwrap();
+        for mirrored in [false, true] {
+            let (fast, slow) = (
+                stl(refined(), mirrored),
+                stl(Geometry::Mesh(Cow::Borrowed(m)), mirrored),
+            );
+            assert_eq!(fast.len(), 84 + 50 * 2 * 90 * 70 * 16);
+            assert!(fast == slow, "mirrored {mirrored}: the records differ");
+        }
     }
 
     /// The refined faces are written exactly as the subdivided half-edge
