@@ -2,7 +2,7 @@
 //! corners that hold, the candidate positions and their costs, the
 //! fold-over check, and the collapse itself with its vertex split.
 
-use super::{CORNER_TURN, FEATURE_WEIGHT, Quadric, Simplifier, VertexSplit};
+use super::{CORNER_TURN, CURVATURE_WEIGHT, FEATURE_WEIGHT, Quadric, Simplifier, VertexSplit};
 use crate::ids::{EdgeId, HalfEdgeId, VertexId};
 use glam::DVec3;
 
@@ -129,12 +129,14 @@ impl Simplifier<'_> {
             return None;
         }
         let q = self.quadrics[a.index()] + self.quadrics[b.index()];
+        // The cost's quadric: the placement's plus the curved spots'.
+        let cost = q + self.curvature[a.index()] + self.curvature[b.index()];
         let (pa, pb) = (m.position(a), m.position(b));
         if self.fixed(a, corner_a) || (da > 0 && db == 0) {
-            return Some((q.error(pa), pa));
+            return Some((cost.error(pa), pa));
         }
         let mid = (pa + pb) * 0.5;
-        let mut best = (q.error(pa), pa);
+        let mut best = (cost.error(pa), pa);
         let optimum = q.minimizer().map(|p| {
             if db == 2 {
                 // Sliding along a feature line: stay on the edge.
@@ -147,7 +149,7 @@ impl Simplifier<'_> {
         let reach = 2.0 * pa.distance(pb);
         let optimum = optimum.filter(|p| p.distance(mid) <= reach);
         for p in [Some(pb), Some(mid), optimum].into_iter().flatten() {
-            let e = q.error(p);
+            let e = cost.error(p);
             // Endpoints win ties, so exact positions (corners) stay exact.
             if e < best.0 * (1.0 - 1e-9) {
                 best = (e, p);
@@ -297,6 +299,8 @@ impl Simplifier<'_> {
                 self.quadrics[v.index()] += q;
             }
         }
+        self.init_curvature();
+        let m = &self.mesh;
         for e in m.edges() {
             let crease = self.options.keep_creases && self.creases.edge(e) > 0.0;
             let seam = self.options.seams.contains(&e);
@@ -322,6 +326,51 @@ impl Simplifier<'_> {
                 let q = Quadric::plane(n, pa, FEATURE_WEIGHT * len);
                 self.quadrics[a.index()] += q;
                 self.quadrics[b.index()] += q;
+            }
+        }
+    }
+    /// The tangent planes of the doubly curved vertices
+    /// ([`CURVATURE_WEIGHT`]): at an inner vertex whose angle defect has
+    /// the sign of every neighbour's, the plane through it normal to its
+    /// ring's vector area, weighted by the defect times the square root
+    /// of a third of the ring's area.
+    fn init_curvature(&mut self) {
+        let m = &self.mesh;
+        let mut defect = vec![f64::NAN; m.vertex_capacity()];
+        for v in m.vertices() {
+            if m.is_boundary_vertex(v) {
+                continue;
+            }
+            let p = m.position(v);
+            let mut angles = 0.0;
+            for o in m.vertex_outgoing(v) {
+                let (x, y) = (
+                    m.position(m.target(o)) - p,
+                    m.position(m.target(m.next(o))) - p,
+                );
+                angles += x.angle_between(y);
+            }
+            defect[v.index()] = std::f64::consts::TAU - angles;
+        }
+        for v in m.vertices() {
+            let d = defect[v.index()];
+            // NaN (a border, a degenerate corner) is never consistent.
+            if !m
+                .vertex_outgoing(v)
+                .all(|o| defect[m.target(o).index()] * d > 0.0)
+            {
+                continue;
+            }
+            let p = m.position(v);
+            let area = m
+                .vertex_outgoing(v)
+                .map(|o| (m.position(m.target(o)) - p).cross(m.position(m.target(m.next(o))) - p))
+                .sum::<DVec3>()
+                * 0.5;
+            let a = area.length();
+            let weight = CURVATURE_WEIGHT * d.abs() * (a / 3.0).sqrt();
+            if a > 0.0 && weight > 0.0 && weight.is_finite() {
+                self.curvature[v.index()] = Quadric::plane(area / a, p, weight);
             }
         }
     }
@@ -361,6 +410,8 @@ impl Simplifier<'_> {
         }
         let q = self.quadrics[a.index()] + self.quadrics[b.index()];
         self.quadrics[a.index()] = q;
+        let c = self.curvature[a.index()] + self.curvature[b.index()];
+        self.curvature[a.index()] = c;
         self.near_feature[a.index()] |= self.near_feature[b.index()];
         Some(split)
     }
