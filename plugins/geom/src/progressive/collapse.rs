@@ -323,9 +323,19 @@ impl Simplifier<'_> {
                 if n == DVec3::ZERO {
                     continue;
                 }
-                let q = Quadric::plane(n, pa, FEATURE_WEIGHT * len);
-                self.quadrics[a.index()] += q;
-                self.quadrics[b.index()] += q;
+                // The face's own plane as well, as strongly: the
+                // perpendicular plane holds the line within the surface,
+                // this one holds it across (a border that dips out of
+                // its surface, a scan's rim); meshoptimizer's
+                // `fillEdgeQuadrics` adds the triangle's quadric to each
+                // border edge's the same way.
+                for q in [
+                    Quadric::plane(n, pa, FEATURE_WEIGHT * len),
+                    Quadric::plane(m.face_normal(f), pa, FEATURE_WEIGHT * len),
+                ] {
+                    self.quadrics[a.index()] += q;
+                    self.quadrics[b.index()] += q;
+                }
             }
         }
     }

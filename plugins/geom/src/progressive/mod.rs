@@ -14,8 +14,8 @@
 //! into quads afterwards, [`join_quads`]), computes a quadric per vertex
 //! (face planes weighted by the square root of their area, plus strongly
 //! weighted planes through the feature edges, perpendicular to their
-//! faces: borders, creases, UV seams and edges sharper than the
-//! sharp-feature angle), costs a collapse as the quadric's error at the
+//! faces and along them: borders, creases, UV seams and edges sharper
+//! than the sharp-feature angle), costs a collapse as the quadric's error at the
 //! best of the two ends, the midpoint and the optimum (with the tangent
 //! planes of doubly curved vertices added to the cost,
 //! `CURVATURE_WEIGHT`), divided by the
@@ -72,10 +72,16 @@ pub use quadric::Quadric;
 /// weighted by the square root of their area (Garland and Heckbert's
 /// boundary penalty, scaled as meshoptimizer scales it: both weights are
 /// lengths, so the balance does not depend on the mesh's size or
-/// density). Measured on `bench/decimate-compare` (sampled Hausdorff
-/// error of the open tube at 1 %): 15 and 20 give 0.0035, 25 to 60 give
-/// 0.0054 to 0.0057; the gear's sharp edges hold at all of them.
-const FEATURE_WEIGHT: f64 = 20.0;
+/// density). Each side of a feature edge gives two planes through it,
+/// both this strong: the one perpendicular to the face and the face's own
+/// (meshoptimizer's `fillEdgeQuadrics`, `kEdgeWeightBorder` = 10).
+/// Measured with the face's plane added, on issue 35's table (the range
+/// scan, the one input with borders: at 10 % its Hausdorff distance
+/// 7.20e-4 → 5.52e-4, at 1 % its mean 4.04e-4 → 3.75e-4, 20 gives
+/// 5.70e-4 and 3.93e-4) and on `bench/decimate-compare`'s open tube at 1 %
+/// (0.00841 → 0.00337; 20 gives 0.00270; meshoptimizer 0.00436). With the
+/// perpendicular plane alone, 15 and 20 gave the tube's lowest error.
+const FEATURE_WEIGHT: f64 = 10.0;
 
 /// Weight of a vertex's tangent plane per radian of its angle defect and
 /// unit of the square root of its area (so a length, like the other
