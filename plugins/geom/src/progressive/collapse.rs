@@ -2,7 +2,9 @@
 //! corners that hold, the candidate positions and their costs, the
 //! fold-over check, and the collapse itself with its vertex split.
 
-use super::{CORNER_TURN, CURVATURE_WEIGHT, FEATURE_WEIGHT, Quadric, Simplifier, VertexSplit};
+use super::{
+    CORNER_TURN, CURVATURE_WEIGHT, FEATURE_WEIGHT, NOT_CURVED, Quadric, Simplifier, VertexSplit,
+};
 use crate::ids::{EdgeId, HalfEdgeId, VertexId};
 use glam::DVec3;
 
@@ -130,7 +132,12 @@ impl Simplifier<'_> {
         }
         let q = self.quadrics[a.index()] + self.quadrics[b.index()];
         // The cost's quadric: the placement's plus the curved spots'.
-        let cost = q + self.curvature[a.index()] + self.curvature[b.index()];
+        let mut cost = q;
+        for v in [a, b] {
+            if let Some(c) = self.curvature.get(self.curved_at[v.index()] as usize) {
+                cost += *c;
+            }
+        }
         let (pa, pb) = (m.position(a), m.position(b));
         if self.fixed(a, corner_a) || (da > 0 && db == 0) {
             return Some((cost.error(pa), pa));
@@ -380,7 +387,8 @@ impl Simplifier<'_> {
             let a = area.length();
             let weight = CURVATURE_WEIGHT * d.abs() * (a / 3.0).sqrt();
             if a > 0.0 && weight > 0.0 && weight.is_finite() {
-                self.curvature[v.index()] = Quadric::plane(area / a, p, weight);
+                self.curved_at[v.index()] = self.curvature.len() as u32;
+                self.curvature.push(Quadric::plane(area / a, p, weight));
             }
         }
     }
@@ -420,8 +428,14 @@ impl Simplifier<'_> {
         }
         let q = self.quadrics[a.index()] + self.quadrics[b.index()];
         self.quadrics[a.index()] = q;
-        let c = self.curvature[a.index()] + self.curvature[b.index()];
-        self.curvature[a.index()] = c;
+        match (self.curved_at[a.index()], self.curved_at[b.index()]) {
+            (_, NOT_CURVED) => {}
+            (NOT_CURVED, j) => self.curved_at[a.index()] = j,
+            (i, j) => {
+                let c = self.curvature[j as usize];
+                self.curvature[i as usize] += c;
+            }
+        }
         self.near_feature[a.index()] |= self.near_feature[b.index()];
         Some(split)
     }

@@ -107,6 +107,9 @@ const FEATURE_WEIGHT: f64 = 10.0;
 /// add nothing.
 const CURVATURE_WEIGHT: f64 = 4.0;
 
+/// `curved_at` of a vertex without tangent planes.
+const NOT_CURVED: u32 = u32::MAX;
+
 /// A vertex where two feature edges (border, crease, seam, sharp) meet
 /// turning by more than this (45°), at the vertex and over two edges on
 /// each side, is a corner of the features and never moves.
@@ -466,10 +469,14 @@ struct Simplifier<'a> {
     options: &'a DecimateOptions,
     creases: &'a Creases,
     quadrics: Vec<Quadric>,
-    /// Per vertex, the tangent planes of the curved spots it stands for
+    /// The tangent planes of the curved spots a vertex stands for
     /// ([`CURVATURE_WEIGHT`]): added to the cost of its collapses, never
-    /// to the quadric that places the vertex.
+    /// to the quadric that places the vertex. Only the vertices that have
+    /// any hold one (`curved_at[v]`, an index into `curvature`, or
+    /// [`NOT_CURVED`]), so that the costing of the others reads no more
+    /// memory than before.
     curvature: Vec<Quadric>,
+    curved_at: Vec<u32>,
     feature: Vec<bool>,
     cos_limit: f64,
     /// Vertices on a feature edge or a border (a collapse passes the flag
