@@ -69,6 +69,8 @@ impl ProgressiveMesh {
         control.faces = input.face_count();
         let mut s = Simplifier {
             quadrics: vec![Quadric::default(); input.vertex_capacity()],
+            curvature: Vec::new(),
+            curved_at: vec![super::NOT_CURVED; input.vertex_capacity()],
             feature: vec![false; input.edge_capacity()],
             near_feature: vec![false; input.vertex_capacity()],
             corner_sharp: (0..input.vertex_capacity() as u32)

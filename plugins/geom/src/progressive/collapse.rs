@@ -2,7 +2,9 @@
 //! corners that hold, the candidate positions and their costs, the
 //! fold-over check, and the collapse itself with its vertex split.
 
-use super::{CORNER_TURN, FEATURE_WEIGHT, Quadric, Simplifier, VertexSplit};
+use super::{
+    CORNER_TURN, CURVATURE_WEIGHT, FEATURE_WEIGHT, NOT_CURVED, Quadric, Simplifier, VertexSplit,
+};
 use crate::ids::{EdgeId, HalfEdgeId, VertexId};
 use glam::DVec3;
 
@@ -129,12 +131,19 @@ impl Simplifier<'_> {
             return None;
         }
         let q = self.quadrics[a.index()] + self.quadrics[b.index()];
+        // The cost's quadric: the placement's plus the curved spots'.
+        let mut cost = q;
+        for v in [a, b] {
+            if let Some(c) = self.curvature.get(self.curved_at[v.index()] as usize) {
+                cost += *c;
+            }
+        }
         let (pa, pb) = (m.position(a), m.position(b));
         if self.fixed(a, corner_a) || (da > 0 && db == 0) {
-            return Some((q.error(pa), pa));
+            return Some((cost.error(pa), pa));
         }
         let mid = (pa + pb) * 0.5;
-        let mut best = (q.error(pa), pa);
+        let mut best = (cost.error(pa), pa);
         let optimum = q.minimizer().map(|p| {
             if db == 2 {
                 // Sliding along a feature line: stay on the edge.
@@ -147,7 +156,7 @@ impl Simplifier<'_> {
         let reach = 2.0 * pa.distance(pb);
         let optimum = optimum.filter(|p| p.distance(mid) <= reach);
         for p in [Some(pb), Some(mid), optimum].into_iter().flatten() {
-            let e = q.error(p);
+            let e = cost.error(p);
             // Endpoints win ties, so exact positions (corners) stay exact.
             if e < best.0 * (1.0 - 1e-9) {
                 best = (e, p);
@@ -297,6 +306,8 @@ impl Simplifier<'_> {
                 self.quadrics[v.index()] += q;
             }
         }
+        self.init_curvature();
+        let m = &self.mesh;
         for e in m.edges() {
             let crease = self.options.keep_creases && self.creases.edge(e) > 0.0;
             let seam = self.options.seams.contains(&e);
@@ -319,9 +330,65 @@ impl Simplifier<'_> {
                 if n == DVec3::ZERO {
                     continue;
                 }
-                let q = Quadric::plane(n, pa, FEATURE_WEIGHT * len);
-                self.quadrics[a.index()] += q;
-                self.quadrics[b.index()] += q;
+                // The face's own plane as well, as strongly: the
+                // perpendicular plane holds the line within the surface,
+                // this one holds it across (a border that dips out of
+                // its surface, a scan's rim); meshoptimizer's
+                // `fillEdgeQuadrics` adds the triangle's quadric to each
+                // border edge's the same way.
+                for q in [
+                    Quadric::plane(n, pa, FEATURE_WEIGHT * len),
+                    Quadric::plane(m.face_normal(f), pa, FEATURE_WEIGHT * len),
+                ] {
+                    self.quadrics[a.index()] += q;
+                    self.quadrics[b.index()] += q;
+                }
+            }
+        }
+    }
+    /// The tangent planes of the doubly curved vertices
+    /// ([`CURVATURE_WEIGHT`]): at an inner vertex whose angle defect has
+    /// the sign of every neighbour's, the plane through it normal to its
+    /// ring's vector area, weighted by the defect times the square root
+    /// of a third of the ring's area.
+    fn init_curvature(&mut self) {
+        let m = &self.mesh;
+        let mut defect = vec![f64::NAN; m.vertex_capacity()];
+        for v in m.vertices() {
+            if m.is_boundary_vertex(v) {
+                continue;
+            }
+            let p = m.position(v);
+            let mut angles = 0.0;
+            for o in m.vertex_outgoing(v) {
+                let (x, y) = (
+                    m.position(m.target(o)) - p,
+                    m.position(m.target(m.next(o))) - p,
+                );
+                angles += x.angle_between(y);
+            }
+            defect[v.index()] = std::f64::consts::TAU - angles;
+        }
+        for v in m.vertices() {
+            let d = defect[v.index()];
+            // NaN (a border, a degenerate corner) is never consistent.
+            if !m
+                .vertex_outgoing(v)
+                .all(|o| defect[m.target(o).index()] * d > 0.0)
+            {
+                continue;
+            }
+            let p = m.position(v);
+            let area = m
+                .vertex_outgoing(v)
+                .map(|o| (m.position(m.target(o)) - p).cross(m.position(m.target(m.next(o))) - p))
+                .sum::<DVec3>()
+                * 0.5;
+            let a = area.length();
+            let weight = CURVATURE_WEIGHT * d.abs() * (a / 3.0).sqrt();
+            if a > 0.0 && weight > 0.0 && weight.is_finite() {
+                self.curved_at[v.index()] = self.curvature.len() as u32;
+                self.curvature.push(Quadric::plane(area / a, p, weight));
             }
         }
     }
@@ -361,6 +428,14 @@ impl Simplifier<'_> {
         }
         let q = self.quadrics[a.index()] + self.quadrics[b.index()];
         self.quadrics[a.index()] = q;
+        match (self.curved_at[a.index()], self.curved_at[b.index()]) {
+            (_, NOT_CURVED) => {}
+            (NOT_CURVED, j) => self.curved_at[a.index()] = j,
+            (i, j) => {
+                let c = self.curvature[j as usize];
+                self.curvature[i as usize] += c;
+            }
+        }
         self.near_feature[a.index()] |= self.near_feature[b.index()];
         Some(split)
     }
