@@ -1,0 +1,313 @@
+//! The export writers against the paths they replace.
+
+use super::*;
+use crate::scene::{MeshContent, NodeId, NodeTransform, SubdivisionModifier};
+use hedra_geom::subdivision::{BoundaryInterpolation, Options, Refiner, Scheme};
+use std::sync::Arc;
+
+fn node(mesh: HalfEdgeMesh, creases: Creases, options: Options) -> Node {
+    let mut content = MeshContent::new(Arc::new(mesh));
+    content.creases = creases;
+    content.subdivision = Some(SubdivisionModifier {
+        options,
+        ..SubdivisionModifier::with_level(1)
+    });
+    Node {
+        id: NodeId(1),
+        name: "Cage".into(),
+        parent: None,
+        transform: NodeTransform::IDENTITY,
+        visible: true,
+        content: NodeContent::Mesh(content),
+        construction: None,
+        g1_join: None,
+    }
+}
+
+/// OBJ and binary STL of `geometry`, mirrored or not.
+fn written(node: &Node, geometry: Geometry<'_>, mirrored: bool) -> (Vec<u8>, Vec<u8>) {
+    let world = if mirrored {
+        glam::DMat4::from_scale(DVec3::new(-1.0, 2.0, 1.0))
+    } else {
+        glam::DMat4::from_translation(DVec3::new(0.5, 0.0, -1.0))
+    };
+    let items = [ExportItem {
+        node,
+        geometry,
+        world,
+        mirrored,
+        corners: None,
+    }];
+    let (mut obj, mut stl) = (
+        std::io::Cursor::new(Vec::new()),
+        std::io::Cursor::new(Vec::new()),
+    );
+    write_obj(&items, &mut obj).unwrap();
+    write_stl(&items, &mut stl).unwrap();
+    (obj.into_inner(), stl.into_inner())
+}
+
+/// glTF positions, normals and triangle indices of one mesh.
+type GltfTriangles = (Vec<[f32; 3]>, Vec<[f32; 3]>, Vec<u32>);
+
+/// The glTF arrays the GLB writer streams from `refined`, in memory.
+fn gltf_arrays(refined: &RefinedFaces, smooth: bool) -> Option<GltfTriangles> {
+    let (mut positions, mut indices) = (Vec::new(), Vec::new());
+    refined.each_triangle_index(smooth, |i| indices.push(i));
+    if smooth {
+        let normals = refined.smooth_normals()?;
+        refined.each_position(|p| positions.push(p));
+        return Some((positions, normals, indices));
+    }
+    if !refined.faces_have_normals() {
+        return None;
+    }
+    let mut normals = Vec::new();
+    refined.each_flat_corner(|p, n| {
+        positions.push(p);
+        normals.push(n);
+    });
+    Some((positions, normals, indices))
+}
+
+/// A large subdivided mesh's STL records, made in pieces on all cores,
+/// are the ones the mesh's faces give, in the same order.
+#[test]
+fn stl_records_made_on_all_cores_are_the_mesh_s() {
+    let grid = hedra_geom::Primitive::Grid {
+        x_segments: 90,
+        z_segments: 70,
+        size: 2.0,
+    }
+    .build()
+    .unwrap();
+    let node = node(grid, Creases::default(), Options::default());
+    let shape = ExportShape::Subdivided(2);
+    let Some(Geometry::Refined(refined)) = refined_geometry(&node, shape).unwrap() else {
+        panic!("written as refined faces")
+    };
+    assert!(refined.refiner.face_count() >= PARALLEL_STL_FACES);
+    let (mesh, _) = node_geometry(&node, shape).unwrap().unwrap();
+    let stl = |geometry, mirrored| {
+        let world = if mirrored {
+            glam::DMat4::from_scale(DVec3::new(1.0, -1.0, 3.0))
+        } else {
+            glam::DMat4::IDENTITY
+        };
+        let items = [ExportItem {
+            node: &node,
+            geometry,
+            world,
+            mirrored,
+            corners: None,
+        }];
+        let mut bytes = std::io::Cursor::new(Vec::new());
+        write_stl(&items, &mut bytes).unwrap();
+        bytes.into_inner()
+    };
+    let Geometry::Mesh(m) = &mesh else { panic!() };
+    let refined = || refined_geometry(&node, shape).unwrap().unwrap();
+    for mirrored in [false, true] {
+        let (fast, slow) = (
+            stl(refined(), mirrored),
+            stl(Geometry::Mesh(Cow::Borrowed(m)), mirrored),
+        );
+        assert_eq!(fast.len(), 84 + 50 * 2 * 90 * 70 * 16);
+        assert!(fast == slow, "mirrored {mirrored}: the records differ");
+    }
+}
+
+/// The refined faces are written exactly as the subdivided half-edge
+/// mesh was: same vertex numbers, faces and triangles, byte for byte,
+/// on cages with what changes them: corners of two edges (whose ears
+/// the triangulation must not clip), hidden boundary faces (boundary
+/// `None`: vertices left out), creases, a vertex without edges,
+/// triangles (Loop) and a mirroring transform.
+#[test]
+fn refined_faces_write_what_the_subdivided_mesh_writes() {
+    let cc = |boundary| Options {
+        boundary,
+        ..Options::default()
+    };
+    let loop_ = Options {
+        scheme: Scheme::Loop,
+        ..Options::default()
+    };
+    // One thin parallelogram: its corners have two edges, and at its
+    // sharp ones the shorter diagonal of a refined quad would cut the
+    // ear at the corner.
+    let thin = HalfEdgeMesh::from_polygons(
+        &[
+            DVec3::ZERO,
+            DVec3::new(2.0, 0.0, 0.0),
+            DVec3::new(2.5, 0.4, 0.1),
+            DVec3::new(0.5, 0.4, 0.0),
+        ],
+        &[vec![0, 1, 2, 3]],
+    )
+    .unwrap();
+    // A pillow: two quads on the same four edges (every vertex has two).
+    let pillow = HalfEdgeMesh::from_polygons(
+        &[
+            DVec3::ZERO,
+            DVec3::new(2.0, 0.0, 0.0),
+            DVec3::new(2.5, 0.4, 0.1),
+            DVec3::new(0.5, 0.4, 0.0),
+        ],
+        &[vec![0, 1, 2, 3], vec![3, 2, 1, 0]],
+    )
+    .unwrap();
+    // An open 3 × 2 grid of quads and a triangle, with a lone vertex.
+    let mut points: Vec<DVec3> = (0..12)
+        .map(|i| DVec3::new((i % 4) as f64, (i / 4) as f64, ((i * 7) % 5) as f64 * 0.1))
+        .collect();
+    points.push(DVec3::new(5.0, 5.0, 5.0));
+    points.push(DVec3::new(-1.0, 0.5, 0.0));
+    let open = HalfEdgeMesh::from_polygons(
+        &points,
+        &[
+            vec![0, 1, 5, 4],
+            vec![1, 2, 6, 5],
+            vec![2, 3, 7, 6],
+            vec![4, 5, 9, 8],
+            vec![5, 6, 10, 9],
+            vec![6, 7, 11, 10],
+            vec![13, 0, 4],
+        ],
+    )
+    .unwrap();
+    assert_eq!(open.vertex_count(), 14, "the lone vertex is kept");
+    let mut creased = Creases::default();
+    creased.set_edge(open.edges().nth(3).unwrap(), 2.5);
+    creased.set_edge(open.edges().nth(8).unwrap(), f64::INFINITY);
+    // An octahedron, slightly uneven: triangles for Loop.
+    let octahedron = HalfEdgeMesh::from_polygons(
+        &[
+            DVec3::X,
+            DVec3::new(0.0, 1.2, 0.1),
+            -DVec3::X,
+            -DVec3::Y,
+            DVec3::new(0.1, 0.0, 0.9),
+            -DVec3::Z,
+        ],
+        &[
+            vec![0, 1, 4],
+            vec![1, 2, 4],
+            vec![2, 3, 4],
+            vec![3, 0, 4],
+            vec![1, 0, 5],
+            vec![2, 1, 5],
+            vec![3, 2, 5],
+            vec![0, 3, 5],
+        ],
+    )
+    .unwrap();
+    let cases = [
+        (
+            "thin quad",
+            thin,
+            Creases::default(),
+            cc(BoundaryInterpolation::EdgesAndCorners),
+        ),
+        (
+            "pillow",
+            pillow,
+            Creases::default(),
+            cc(BoundaryInterpolation::EdgesOnly),
+        ),
+        (
+            "open grid",
+            open.clone(),
+            creased.clone(),
+            cc(BoundaryInterpolation::EdgesOnly),
+        ),
+        (
+            "open grid, boundary None",
+            open,
+            creased,
+            cc(BoundaryInterpolation::None),
+        ),
+        ("octahedron, Loop", octahedron, Creases::default(), loop_),
+    ];
+    for (name, mesh, creases, options) in cases {
+        let node = node(mesh, creases, options);
+        for level in 1..=2 {
+            let shape = ExportShape::Subdivided(level);
+            let Some(Geometry::Refined(refined)) = refined_geometry(&node, shape).unwrap() else {
+                panic!("{name}: written as refined faces")
+            };
+            let (mesh, _) = node_geometry(&node, shape).unwrap().unwrap();
+            let Geometry::Mesh(m) = &mesh else { panic!() };
+            assert_eq!(refined.counts(), mesh.counts(), "{name}, level {level}");
+            for mirrored in [false, true] {
+                let fast = written(
+                    &node,
+                    Geometry::Refined(
+                        RefinedFaces::of(
+                            match &node.content {
+                                NodeContent::Mesh(c) => c,
+                                _ => unreachable!(),
+                            },
+                            level,
+                        )
+                        .unwrap()
+                        .unwrap(),
+                    ),
+                    mirrored,
+                );
+                let slow = written(&node, Geometry::Mesh(Cow::Borrowed(m)), mirrored);
+                assert!(fast.0 == slow.0, "{name}, level {level}: the OBJ differs");
+                assert!(fast.1 == slow.1, "{name}, level {level}: the STL differs");
+            }
+            // glTF: flat as the mesh makes it, byte for byte; smooth
+            // the same vertices and triangles, normals summed in
+            // another order (to 1e-6), or the mesh's own where they
+            // must be split.
+            let mesh_creases = Refiner::subdivide(
+                match &node.content {
+                    NodeContent::Mesh(c) => &c.mesh,
+                    _ => unreachable!(),
+                },
+                match &node.content {
+                    NodeContent::Mesh(c) => &c.creases,
+                    _ => unreachable!(),
+                },
+                options,
+                level,
+            )
+            .unwrap()
+            .1;
+            for smooth in [false, true] {
+                let shading = if smooth {
+                    crate::scene::Shading::Smooth
+                } else {
+                    crate::scene::Shading::Flat
+                };
+                let slow = crate::gltf::mesh_triangles(m, shading, &mesh_creases);
+                let Some(fast) = gltf_arrays(&refined, smooth) else {
+                    // The pillow's faces have no area (its two
+                    // faces meet); the grid's crease is infinitely
+                    // sharp. Everything else is written from the faces.
+                    assert!(
+                        name == "pillow" || (smooth && name.contains("grid")),
+                        "{name}: glTF from the faces"
+                    );
+                    continue;
+                };
+                assert_eq!(fast.0, slow.0, "{name}, level {level}: glTF positions");
+                assert_eq!(fast.2, slow.2, "{name}, level {level}: glTF triangles");
+                if smooth {
+                    for (a, b) in fast.1.iter().zip(&slow.1) {
+                        let d = glam::Vec3::from(*a).distance(glam::Vec3::from(*b));
+                        assert!(
+                            d < 1e-6,
+                            "{name}, level {level}: normal {a:?} against {b:?}"
+                        );
+                    }
+                } else {
+                    assert_eq!(fast.1, slow.1, "{name}, level {level}: glTF flat normals");
+                }
+            }
+        }
+    }
+}
