@@ -1136,6 +1136,84 @@ fn deep_nesting_is_refused_without_a_crash() {
     assert_eq!(hedra_doc::import::import_file(&file).unwrap().len(), 900);
 }
 
+#[test]
+fn inactive_classes_and_overs_are_skipped_with_everything_below_them_as_usd_core_does() {
+    require_pxr();
+    let mesh = |name: &str| {
+        format!(
+            "def Mesh \"{name}\" {{\n int[] faceVertexCounts = [3]\n int[] faceVertexIndices = [0, 1, 2]\n point3f[] points = [(0, 0, 0), (1, 0, 0), (0, 1, 0)]\n}}\n"
+        )
+    };
+    let text = format!(
+        "#usda 1.0\n\
+         def Xform \"Kept\" {{\n{kept}def Xform \"Inner\" {{\n{inner}}}\n}}\n\
+         def Xform \"Off\" (active = false) {{\n{off}def Xform \"OnUnderOff\" (active = true) {{\n{on_under_off}}}\n}}\n\
+         class Xform \"Class\" {{\n{in_class}}}\n\
+         over \"Over\" {{\n{in_over}}}\n",
+        kept = mesh("KeptMesh"),
+        inner = mesh("InnerMesh"),
+        off = mesh("OffMesh"),
+        on_under_off = mesh("OnUnderOffMesh"),
+        in_class = mesh("ClassMesh"),
+        in_over = mesh("OverMesh"),
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("flags.usda");
+    std::fs::write(&file, text).unwrap();
+    let mut ours: Vec<String> = hedra_doc::import::import_file(&file)
+        .unwrap()
+        .into_iter()
+        .map(|n| n.name)
+        .collect();
+    ours.sort();
+    let listed = Command::new("python3")
+        .args([
+            "-c",
+            "import sys; from pxr import Usd\n\
+             s = Usd.Stage.Open(sys.argv[1])\n\
+             print(' '.join(sorted(p.GetName() for p in s.Traverse())))",
+        ])
+        .arg(&file)
+        .output()
+        .expect("python3 runs");
+    assert!(
+        listed.status.success(),
+        "{}",
+        String::from_utf8_lossy(&listed.stderr)
+    );
+    let theirs: Vec<String> = String::from_utf8(listed.stdout)
+        .unwrap()
+        .split_whitespace()
+        .map(str::to_string)
+        .collect();
+    assert_eq!(
+        theirs,
+        ["Inner", "InnerMesh", "Kept", "KeptMesh"],
+        "usd-core's traversal"
+    );
+    assert_eq!(ours, theirs);
+}
+
+#[test]
+fn a_prim_name_that_is_not_an_identifier_is_refused_naming_it() {
+    // A fuzzed file named a prim with a thousand `/` in it: one prim became a
+    // path a thousand levels deep, and the import took seconds before failing
+    // (`fuzz/regressions/usd/prim_name_with_slashes_was_slow.usda`).
+    let e = refused("slashes.usda", "#usda 1.0\ndef Xform \"a/b/c\" {\n}\n", &[]);
+    assert!(e.contains("slashes.usda"), "{e}");
+    assert!(e.contains("Invalid prim name \"a/b/c\""), "{e}");
+    let long = format!("#usda 1.0\ndef Xform \"{}\" {{\n}}\n", "x/".repeat(3000));
+    let e = refused("long.usda", &long, &[]);
+    assert!(e.contains("Invalid prim name \"x/x/x/"), "{e}");
+    assert!(e.len() < 400, "the name is shortened in the message: {e}");
+    // Names of letters, digits and underscores (also beyond ASCII) are read.
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("ok.usda");
+    std::fs::write(&file, "#usda 1.0\ndef Xform \"_Größe_2\" {\n}\n").unwrap();
+    let nodes = hedra_doc::import::import_file(&file).unwrap();
+    assert_eq!(nodes.len(), 1);
+}
+
 #[cfg(unix)]
 #[test]
 fn a_link_out_of_the_folder_is_refused() {

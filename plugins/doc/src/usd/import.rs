@@ -316,9 +316,13 @@ fn read_stage(stage: &usd::Stage) -> R<Vec<ImportedMesh>> {
         if seen > MAX_PRIMS || depth > MAX_DEPTH {
             return Err(UsdError::TooLarge);
         }
-        if !prim.is_active().unwrap_or(false)
-            || prim.is_abstract().unwrap_or(false)
-            || !prim.is_defined().unwrap_or(false)
+        // Read a defined, active prim, not a class or an `over` (USD's
+        // `IsActive`, `IsDefined` and not `IsAbstract`). Its ancestors were
+        // checked on the way down (a skipped prim's children are never
+        // visited), so only the prim's own opinions are asked: asking for the
+        // ancestors' again made a 999-deep file take seconds.
+        if !prim.is_active_here().unwrap_or(false)
+            || prim.specifier().ok().flatten() != Some(sdf::Specifier::Def)
         {
             continue;
         }

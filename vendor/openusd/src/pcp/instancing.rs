@@ -556,6 +556,14 @@ impl IndexCache {
             if self.is_instance(graph, &current)? {
                 return Ok(Some(current));
             }
+            // Hedra: an ancestor memoized as composing in place is inside no
+            // instance, and neither is anything below it short of `current`
+            // (which is not an instance): stop here. Without this, each prim
+            // walked all its ancestors, cubic in the depth (a 999-deep file
+            // took 6 s).
+            if self.redirected_prims.get(&current) == Some(&current) {
+                break;
+            }
             ancestor = current.parent();
         }
         Ok(None)

@@ -327,6 +327,14 @@ impl Prim {
         self.all_ancestors(|stage, path| Ok(stage.field::<bool>(path, sdf::FieldKey::Active)?.unwrap_or(true)))
     }
 
+    /// Hedra: the prim's own composed `active` opinion (`true` when
+    /// unauthored), without its ancestors'. A traversal from the root that
+    /// skips inactive subtrees needs only this: [`Self::is_active`] walks every
+    /// ancestor, cubic in the depth over a whole stage.
+    pub fn is_active_here(&self) -> anyhow::Result<bool> {
+        Ok(self.stage.field::<bool>(&self.path, sdf::FieldKey::Active)?.unwrap_or(true))
+    }
+
     /// Composed `instanceable` flag (spec 11.3.1). Mirrors C++
     /// `UsdPrim::IsInstanceable`; an unauthored flag resolves to `false`.
     pub fn is_instanceable(&self) -> anyhow::Result<bool> {

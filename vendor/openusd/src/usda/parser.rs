@@ -347,6 +347,14 @@ impl<'a> Parser<'a> {
         let Token::String(name) = name_token else {
             bail!("Expected prim name string, got {name_token:?}");
         };
+        // Hedra: a prim name is an identifier, as Pixar's text reader
+        // requires. A name holding `/` made one prim a path thousands of
+        // levels deep, and composing it took seconds.
+        if !sdf::Path::is_valid_identifier(name) {
+            let shown: String = name.chars().take(40).collect();
+            let more = if shown.len() < name.len() { "…" } else { "" };
+            bail!("Invalid prim name {shown:?}{more}: a prim name is letters, digits and underscores, not starting with a digit");
+        }
         parent_children.push(name.to_string());
         let prim_path = current_path.append_path(name)?;
 
