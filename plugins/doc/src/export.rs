@@ -1165,8 +1165,10 @@ pub fn is_visible(doc: &Document, id: crate::scene::NodeId) -> bool {
     true
 }
 
+mod pieces;
 mod refined;
 #[cfg(test)]
 mod tests;
 
-pub(crate) use refined::{RefinedFaces, refined_geometry};
+pub(crate) use pieces::write_pieces_in_order;
+pub(crate) use refined::{RefinedFaces, VERTICES_PER_PIECE, refined_geometry};

@@ -42,19 +42,18 @@ struct Buffer {
 enum BufferArray {
     F32(Vec<f32>),
     U32(Vec<u32>),
-    /// Numbers made as they are written (as their bits), so that a large
-    /// subdivided mesh's arrays are never held: `len` of them, passed to
-    /// the sink in pieces.
+    /// Numbers made as they are written, so that a large subdivided mesh's
+    /// arrays are never held: `len` of them, in `pieces` made on all cores
+    /// ([`crate::export::write_pieces_in_order`]).
     Made {
         len: usize,
-        make: MakeNumbers,
+        pieces: usize,
+        make: MakePiece,
     },
 }
 
-/// Makes an array's numbers and passes them on in pieces; stops at the
-/// first error the sink returns.
-type MakeNumbers =
-    Box<dyn Fn(&mut dyn FnMut(&[u32]) -> std::io::Result<()>) -> std::io::Result<()>>;
+/// Appends the little-endian bytes of one piece's numbers.
+type MakePiece = Box<dyn Fn(usize, &mut Vec<u8>) + Send + Sync>;
 
 impl BufferArray {
     fn len(&self) -> usize {
@@ -65,27 +64,56 @@ impl BufferArray {
         }
     }
 
-    /// An array made by `each`, which calls its visitor once per number.
-    fn made(len: usize, each: impl Fn(&mut dyn FnMut(u32)) + 'static) -> BufferArray {
+    /// An array of `len` numbers in `pieces`: `each(piece, put)` calls
+    /// `put` with the bits of each number of the piece, in order.
+    fn made(
+        len: usize,
+        pieces: usize,
+        each: impl Fn(usize, &mut dyn FnMut(u32)) + Send + Sync + 'static,
+    ) -> BufferArray {
         BufferArray::Made {
             len,
-            make: Box::new(move |sink| {
-                let mut piece: Vec<u32> = Vec::with_capacity(1 << 14);
-                let mut result = Ok(());
-                each(&mut |x| {
-                    piece.push(x);
-                    if piece.len() == piece.capacity() {
-                        if result.is_ok() {
-                            result = sink(&piece);
-                        }
-                        piece.clear();
-                    }
-                });
-                result?;
-                sink(&piece)
+            pieces,
+            make: Box::new(move |piece, bytes| {
+                each(piece, &mut |x| bytes.extend_from_slice(&x.to_le_bytes()))
             }),
         }
     }
+
+    /// Writes the array as little-endian bytes.
+    fn write(&self, out: &mut dyn std::io::Write) -> std::io::Result<()> {
+        match self {
+            BufferArray::F32(v) => write_numbers(v.iter().map(|x| x.to_bits()), out),
+            BufferArray::U32(v) => write_numbers(v.iter().copied(), out),
+            BufferArray::Made { len, pieces, make } => {
+                let written = crate::export::write_pieces_in_order(*pieces, make, out)?;
+                if written != 4 * *len as u64 {
+                    return Err(std::io::Error::other(format!(
+                        "a glTF array made {} numbers where its view holds {len}",
+                        written / 4
+                    )));
+                }
+                Ok(())
+            }
+        }
+    }
+}
+
+/// Writes `numbers` as little-endian bytes through a small staging
+/// buffer.
+fn write_numbers(
+    numbers: impl Iterator<Item = u32>,
+    out: &mut dyn std::io::Write,
+) -> std::io::Result<()> {
+    let mut staged: Vec<u8> = Vec::with_capacity(1 << 16);
+    for x in numbers {
+        staged.extend_from_slice(&x.to_le_bytes());
+        if staged.len() == staged.capacity() {
+            out.write_all(&staged)?;
+            staged.clear();
+        }
+    }
+    out.write_all(&staged)
 }
 
 /// Appends `numbers` to the buffer (4-byte aligned: every number is 4
@@ -113,37 +141,9 @@ fn push_view(
 }
 
 impl Buffer {
-    /// Writes the arrays as little-endian bytes, through a small staging
-    /// buffer.
+    /// Writes the arrays as little-endian bytes, one after the other.
     fn write(&self, out: &mut dyn std::io::Write) -> std::io::Result<()> {
-        let mut staged: Vec<u8> = Vec::with_capacity(1 << 16);
-        let mut put = |bytes: [u8; 4], out: &mut dyn std::io::Write| {
-            staged.extend_from_slice(&bytes);
-            if staged.len() >= 1 << 16 {
-                out.write_all(&staged)?;
-                staged.clear();
-            }
-            Ok::<(), std::io::Error>(())
-        };
-        for array in &self.arrays {
-            match array {
-                BufferArray::F32(v) => v.iter().try_for_each(|x| put(x.to_le_bytes(), out))?,
-                BufferArray::U32(v) => v.iter().try_for_each(|x| put(x.to_le_bytes(), out))?,
-                BufferArray::Made { len, make } => {
-                    let mut written = 0;
-                    make(&mut |piece| {
-                        written += piece.len();
-                        piece.iter().try_for_each(|x| put(x.to_le_bytes(), out))
-                    })?;
-                    if written != *len {
-                        return Err(std::io::Error::other(format!(
-                            "a glTF array made {written} numbers where its view holds {len}"
-                        )));
-                    }
-                }
-            }
-        }
-        out.write_all(&staged)
+        self.arrays.iter().try_for_each(|array| array.write(out))
     }
 }
 
@@ -352,7 +352,7 @@ fn corner_triangles(m: &HalfEdgeMesh, shading: Shading, c: &CornerAttributes) ->
 /// One primitive's arrays, as the buffer will hold them: positions (with
 /// their count and bounds), and normals, UVs and indices where there are
 /// any.
-struct PrimitiveArrays {
+pub(crate) struct PrimitiveArrays {
     positions: BufferArray,
     vertex_count: usize,
     bounds: ([f32; 3], [f32; 3]),
@@ -384,37 +384,43 @@ impl PrimitiveArrays {
     }
 }
 
-/// A subdivided mesh's arrays made from the refiner's faces as the GLB is
-/// written (the same numbers `mesh_triangles` gives the subdivided mesh:
-/// the export holds no copy of the file); from the mesh, built for it,
-/// where its adjacency is needed (a face or vertex without a normal,
-/// normals split at infinitely sharp edges).
+/// A subdivided mesh's arrays: from the refiner's faces as the GLB is
+/// written ([`arrays_from_faces`]); from the mesh, built for it, where
+/// its adjacency is needed.
 fn refined_arrays(refined: crate::export::RefinedFaces, shading: Shading) -> PrimitiveArrays {
-    let smooth = shading == Shading::Smooth;
-    let smooth_normals = if smooth {
-        refined.smooth_normals()
-    } else {
-        None
-    };
-    if (smooth && smooth_normals.is_none()) || (!smooth && !refined.faces_have_normals()) {
+    let refined = std::sync::Arc::new(refined);
+    arrays_from_faces(&refined, shading).unwrap_or_else(|| {
         let (m, creases) = refined.to_mesh();
         let (p, n, i) = mesh_triangles(&m, shading, &creases);
-        return PrimitiveArrays::new(p, n, Vec::new(), i, json::mesh::Mode::Triangles);
-    }
-    let mut lo = [f32::INFINITY; 3];
-    let mut hi = [f32::NEG_INFINITY; 3];
-    refined.each_position(|p| {
-        for k in 0..3 {
-            lo[k] = lo[k].min(p[k]);
-            hi[k] = hi[k].max(p[k]);
-        }
-    });
-    let refined = std::rc::Rc::new(refined);
+        PrimitiveArrays::new(p, n, Vec::new(), i, json::mesh::Mode::Triangles)
+    })
+}
+
+/// A subdivided mesh's arrays made from the refiner's faces as the GLB is
+/// written, in pieces on all cores (the same numbers `mesh_triangles`
+/// gives the subdivided mesh: the export holds no copy of the file).
+/// `None` where the mesh is needed: a face or vertex without a normal,
+/// normals split at infinitely sharp edges.
+pub(crate) fn arrays_from_faces(
+    refined: &std::sync::Arc<crate::export::RefinedFaces>,
+    shading: Shading,
+) -> Option<PrimitiveArrays> {
+    use crate::export::VERTICES_PER_PIECE;
+    let smooth = shading == Shading::Smooth;
+    let smooth_normals = if smooth {
+        Some(refined.smooth_normals()?)
+    } else if refined.faces_have_normals() {
+        None
+    } else {
+        return None;
+    };
+    let pieces = refined.piece_count();
+    let corner_starts = std::sync::Arc::new(refined.piece_corner_starts());
     let index_count = 3 * refined.triangle_count();
     let indices = {
-        let refined = refined.clone();
-        BufferArray::made(index_count, move |put| {
-            refined.each_triangle_index(smooth, &mut *put)
+        let (refined, corner_starts) = (refined.clone(), corner_starts.clone());
+        BufferArray::made(index_count, pieces, move |piece, put| {
+            refined.piece_triangle_indices(piece, smooth, corner_starts[piece], &mut *put)
         })
     };
     let (vertex_count, positions, normals) = match smooth_normals {
@@ -422,18 +428,26 @@ fn refined_arrays(refined: crate::export::RefinedFaces, shading: Shading) -> Pri
             let count = normals.len();
             let positions = {
                 let refined = refined.clone();
-                BufferArray::made(3 * count, move |put| {
-                    refined.each_position(|p| p.iter().for_each(|x| put(x.to_bits())))
-                })
+                BufferArray::made(
+                    3 * count,
+                    count.div_ceil(VERTICES_PER_PIECE),
+                    move |piece, put| {
+                        let range = piece * VERTICES_PER_PIECE
+                            ..((piece + 1) * VERTICES_PER_PIECE).min(count);
+                        refined.written_positions_f32(range, |p| {
+                            p.iter().for_each(|x| put(x.to_bits()))
+                        })
+                    },
+                )
             };
             (count, positions, BufferArray::F32(normals.into_flattened()))
         }
         None => {
-            let count = refined.corner_count();
+            let count = corner_starts[pieces] as usize;
             let corners = |normal: bool| {
                 let refined = refined.clone();
-                BufferArray::made(3 * count, move |put| {
-                    refined.each_flat_corner(|p, n| {
+                BufferArray::made(3 * count, pieces, move |piece, put| {
+                    refined.piece_flat_corners(piece, |p, n| {
                         let x = if normal { n } else { p };
                         x.iter().for_each(|x| put(x.to_bits()));
                     })
@@ -442,14 +456,38 @@ fn refined_arrays(refined: crate::export::RefinedFaces, shading: Shading) -> Pri
             (count, corners(false), corners(true))
         }
     };
-    PrimitiveArrays {
+    Some(PrimitiveArrays {
         positions,
         vertex_count,
-        bounds: (lo, hi),
+        bounds: refined.written_bounds(),
         normals: Some(normals),
         uvs: None,
         indices: (index_count > 0).then_some(indices),
         mode: json::mesh::Mode::Triangles,
+    })
+}
+
+#[cfg(test)]
+impl PrimitiveArrays {
+    /// The positions, normals and indices as they are written, read back.
+    pub(crate) fn written(&self) -> (Vec<[f32; 3]>, Vec<[f32; 3]>, Vec<u32>) {
+        let numbers = |array: &BufferArray| {
+            let mut bytes = Vec::new();
+            array.write(&mut bytes).unwrap();
+            bytes
+                .chunks(4)
+                .map(|b| u32::from_le_bytes(b.try_into().unwrap()))
+                .collect::<Vec<u32>>()
+        };
+        let vectors = |array: &BufferArray| {
+            numbers(array)
+                .chunks(3)
+                .map(|v| [v[0], v[1], v[2]].map(f32::from_bits))
+                .collect::<Vec<[f32; 3]>>()
+        };
+        let normals = self.normals.as_ref().map(vectors).unwrap_or_default();
+        let indices = self.indices.as_ref().map(numbers).unwrap_or_default();
+        (vectors(&self.positions), normals, indices)
     }
 }
 

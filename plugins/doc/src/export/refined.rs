@@ -2,6 +2,7 @@
 //! item 2): OBJ, STL, glTF and the written counts of a Catmull-Clark or
 //! Loop subdivision, without a half-edge mesh built for them.
 
+use super::pieces::write_pieces_in_order;
 use super::{
     ExportError, ExportOutput, ExportShape, Geometry, WrittenCounts, stl_record, stl_triangle,
 };
@@ -9,6 +10,13 @@ use crate::scene::{Node, NodeContent};
 use glam::DVec3;
 use hedra_geom::HalfEdgeMesh;
 use hedra_geom::subdivision::{Creases, Refiner, Scheme};
+
+/// Refined faces per piece of work made on all cores (STL records,
+/// glTF arrays).
+pub(crate) const FACES_PER_PIECE: usize = 1 << 14;
+
+/// Written vertices per piece of work made on all cores.
+pub(crate) const VERTICES_PER_PIECE: usize = 1 << 15;
 
 /// A mesh subdivided by Catmull-Clark or Loop for export, kept as the
 /// refiner's faces (all quads or all triangles) and positions instead of
@@ -86,6 +94,38 @@ impl RefinedFaces {
         }
     }
 
+    /// How many pieces of [`FACES_PER_PIECE`] faces (hidden ones
+    /// included) the faces are cut into, for work on all cores.
+    pub(crate) fn piece_count(&self) -> usize {
+        self.refiner.face_count().div_ceil(FACES_PER_PIECE)
+    }
+
+    /// The shown faces of `piece`, in [`faces`](Self::faces) order.
+    fn piece_faces(&self, piece: usize) -> impl Iterator<Item = &[u32]> + '_ {
+        let end = ((piece + 1) * FACES_PER_PIECE).min(self.refiner.face_count());
+        (piece * FACES_PER_PIECE..end)
+            .filter(|&f| !self.refiner.is_face_hidden(f))
+            .map(|f| self.refiner.face(f))
+    }
+
+    /// The number of the first flat corner of each piece (the corners of
+    /// the shown faces before it), and the number of all corners last.
+    pub(crate) fn piece_corner_starts(&self) -> Vec<u32> {
+        use rayon::prelude::*;
+        let counts: Vec<u32> = (0..self.piece_count())
+            .into_par_iter()
+            .map(|p| self.piece_faces(p).map(|f| f.len() as u32).sum())
+            .collect();
+        let mut starts = Vec::with_capacity(counts.len() + 1);
+        let mut start = 0u32;
+        starts.push(0);
+        for count in counts {
+            start += count;
+            starts.push(start);
+        }
+        starts
+    }
+
     /// Writes the binary STL records of the triangles in world space
     /// (`world`, `mirrored` as [`stl_triangle`] takes them), face by face
     /// as [`each_triangle`](Self::each_triangle) visits them, made in
@@ -96,15 +136,9 @@ impl RefinedFaces {
         mirrored: bool,
         out: &mut dyn ExportOutput,
     ) -> std::io::Result<u32> {
-        use rayon::prelude::*;
-        const FACES_PER_PIECE: usize = 1 << 14;
-        let faces = self.refiner.face_count();
-        let pieces: Vec<usize> = (0..faces.div_ceil(FACES_PER_PIECE)).collect();
-        let piece_records = |piece: usize| {
-            let faces = piece * FACES_PER_PIECE..((piece + 1) * FACES_PER_PIECE).min(faces);
-            let mut bytes = Vec::with_capacity(2 * 50 * faces.len());
-            for f in faces.filter(|&f| !self.refiner.is_face_hidden(f)) {
-                let face = self.refiner.face(f);
+        let piece_records = |piece: usize, bytes: &mut Vec<u8>| {
+            bytes.reserve(2 * 50 * FACES_PER_PIECE);
+            for face in self.piece_faces(piece) {
                 let (triangles, count) = self.face_triangles(face);
                 for t in &triangles[..count] {
                     let corners =
@@ -113,18 +147,9 @@ impl RefinedFaces {
                     bytes.extend_from_slice(&stl_record(normal, corners));
                 }
             }
-            bytes
         };
-        let mut count = 0u32;
-        // A few pieces per thread at a time, so that little is held.
-        for batch in pieces.chunks(2 * rayon::current_num_threads()) {
-            let made: Vec<Vec<u8>> = batch.par_iter().map(|&p| piece_records(p)).collect();
-            for bytes in made {
-                out.write_all(&bytes)?;
-                count += (bytes.len() / 50) as u32;
-            }
-        }
-        Ok(count)
+        let written = write_pieces_in_order(self.piece_count(), &piece_records, out)?;
+        Ok((written / 50) as u32)
     }
 
     /// Calls `visit` with the corner positions of every triangle, face by
@@ -149,35 +174,70 @@ impl RefinedFaces {
             * 0.5
     }
 
-    /// Written vertices of all faces, corner by corner.
-    pub(crate) fn corner_count(&self) -> usize {
-        self.refiner.faces().map(<[u32]>::len).sum()
-    }
-
     /// Triangles of all faces.
     pub(crate) fn triangle_count(&self) -> usize {
         self.refiner.faces().map(|f| f.len() - 2).sum()
     }
 
-    /// The written vertices' positions as glTF stores them.
-    pub(crate) fn each_position(&self, mut visit: impl FnMut([f32; 3])) {
-        self.written_positions()
-            .for_each(|p| visit(p.as_vec3().to_array()));
+    /// The positions of written vertices `range`, as glTF stores them.
+    pub(crate) fn written_positions_f32(
+        &self,
+        range: std::ops::Range<usize>,
+        mut visit: impl FnMut([f32; 3]),
+    ) {
+        for &v in &self.order[range] {
+            visit(self.positions[v as usize].as_vec3().to_array());
+        }
+    }
+
+    /// The bounds of the written positions as glTF stores them (its
+    /// accessor's `min` and `max`), found on all cores.
+    pub(crate) fn written_bounds(&self) -> ([f32; 3], [f32; 3]) {
+        use rayon::prelude::*;
+        let empty = ([f32::INFINITY; 3], [f32::NEG_INFINITY; 3]);
+        self.order
+            .par_chunks(VERTICES_PER_PIECE)
+            .map(|chunk| {
+                let (mut lo, mut hi) = empty;
+                for &v in chunk {
+                    let p = self.positions[v as usize].as_vec3().to_array();
+                    for k in 0..3 {
+                        lo[k] = lo[k].min(p[k]);
+                        hi[k] = hi[k].max(p[k]);
+                    }
+                }
+                (lo, hi)
+            })
+            .reduce(
+                || empty,
+                |(a, b), (c, d)| {
+                    (
+                        std::array::from_fn(|k| a[k].min(c[k])),
+                        std::array::from_fn(|k| b[k].max(d[k])),
+                    )
+                },
+            )
     }
 
     /// True when every face has a normal: flat glTF can be written from
     /// the faces (else the mesh's neighbours stand in).
     pub(crate) fn faces_have_normals(&self) -> bool {
-        self.refiner
-            .faces()
-            .all(|f| self.area_vector(f).try_normalize().is_some())
+        use rayon::prelude::*;
+        (0..self.piece_count()).into_par_iter().all(|p| {
+            self.piece_faces(p)
+                .all(|f| self.area_vector(f).try_normalize().is_some())
+        })
     }
 
-    /// Flat glTF vertices, as `gltf::mesh_triangles` makes them from the
-    /// subdivided mesh: each face's corners with its unit normal, face by
-    /// face. Call when [`faces_have_normals`](Self::faces_have_normals).
-    pub(crate) fn each_flat_corner(&self, mut visit: impl FnMut([f32; 3], [f32; 3])) {
-        for face in self.refiner.faces() {
+    /// Flat glTF vertices of `piece`, as `gltf::mesh_triangles` makes them
+    /// from the subdivided mesh: each face's corners with its unit normal,
+    /// face by face. Call when [`faces_have_normals`](Self::faces_have_normals).
+    pub(crate) fn piece_flat_corners(
+        &self,
+        piece: usize,
+        mut visit: impl FnMut([f32; 3], [f32; 3]),
+    ) {
+        for face in self.piece_faces(piece) {
             let normal = self
                 .area_vector(face)
                 .normalize_or_zero()
@@ -211,12 +271,20 @@ impl RefinedFaces {
             .collect()
     }
 
-    /// The triangles' corners as glTF indices: into the flat corners
-    /// ([`each_flat_corner`](Self::each_flat_corner)), or into the written
-    /// vertices when `smooth`.
-    pub(crate) fn each_triangle_index(&self, smooth: bool, mut visit: impl FnMut(u32)) {
-        let mut base = 0u32;
-        for face in self.refiner.faces() {
+    /// The triangles' corners of `piece` as glTF indices: into the flat
+    /// corners ([`piece_flat_corners`](Self::piece_flat_corners)), numbered
+    /// from `first_corner` (the piece's entry of
+    /// [`piece_corner_starts`](Self::piece_corner_starts)), or into the
+    /// written vertices when `smooth`.
+    pub(crate) fn piece_triangle_indices(
+        &self,
+        piece: usize,
+        smooth: bool,
+        first_corner: u32,
+        mut visit: impl FnMut(u32),
+    ) {
+        let mut base = first_corner;
+        for face in self.piece_faces(piece) {
             let (triangles, count) = self.face_triangles(face);
             for t in &triangles[..count] {
                 for k in *t {

@@ -50,30 +50,23 @@ fn written(node: &Node, geometry: Geometry<'_>, mirrored: bool) -> (Vec<u8>, Vec
 /// glTF positions, normals and triangle indices of one mesh.
 type GltfTriangles = (Vec<[f32; 3]>, Vec<[f32; 3]>, Vec<u32>);
 
-/// The glTF arrays the GLB writer streams from `refined`, in memory.
-fn gltf_arrays(refined: &RefinedFaces, smooth: bool) -> Option<GltfTriangles> {
-    let (mut positions, mut indices) = (Vec::new(), Vec::new());
-    refined.each_triangle_index(smooth, |i| indices.push(i));
-    if smooth {
-        let normals = refined.smooth_normals()?;
-        refined.each_position(|p| positions.push(p));
-        return Some((positions, normals, indices));
-    }
-    if !refined.faces_have_normals() {
-        return None;
-    }
-    let mut normals = Vec::new();
-    refined.each_flat_corner(|p, n| {
-        positions.push(p);
-        normals.push(n);
-    });
-    Some((positions, normals, indices))
+/// The glTF arrays the GLB writer streams from `refined`, read back;
+/// `None` when they are not written from the faces.
+fn gltf_arrays(refined: &Arc<RefinedFaces>, smooth: bool) -> Option<GltfTriangles> {
+    let shading = if smooth {
+        crate::scene::Shading::Smooth
+    } else {
+        crate::scene::Shading::Flat
+    };
+    Some(crate::gltf::arrays_from_faces(refined, shading)?.written())
 }
 
-/// A large subdivided mesh's STL records, made in pieces on all cores,
-/// are the ones the mesh's faces give, in the same order.
+/// A large subdivided mesh's STL records and glTF arrays, made in pieces
+/// on all cores, are the ones the mesh's faces give, in the same order:
+/// also with boundary None, whose hidden faces leave pieces of uneven
+/// length (the flat corners' numbers start where the last piece ended).
 #[test]
-fn stl_records_made_on_all_cores_are_the_mesh_s() {
+fn stl_records_and_gltf_arrays_made_on_all_cores_are_the_mesh_s() {
     let grid = hedra_geom::Primitive::Grid {
         x_segments: 90,
         z_segments: 70,
@@ -81,39 +74,87 @@ fn stl_records_made_on_all_cores_are_the_mesh_s() {
     }
     .build()
     .unwrap();
-    let node = node(grid, Creases::default(), Options::default());
-    let shape = ExportShape::Subdivided(2);
-    let Some(Geometry::Refined(refined)) = refined_geometry(&node, shape).unwrap() else {
-        panic!("written as refined faces")
-    };
-    assert!(refined.refiner.face_count() >= PARALLEL_STL_FACES);
-    let (mesh, _) = node_geometry(&node, shape).unwrap().unwrap();
-    let stl = |geometry, mirrored| {
-        let world = if mirrored {
-            glam::DMat4::from_scale(DVec3::new(1.0, -1.0, 3.0))
-        } else {
-            glam::DMat4::IDENTITY
+    for boundary in [
+        BoundaryInterpolation::EdgesOnly,
+        BoundaryInterpolation::None,
+    ] {
+        let options = Options {
+            boundary,
+            ..Options::default()
         };
-        let items = [ExportItem {
-            node: &node,
-            geometry,
-            world,
-            mirrored,
-            corners: None,
-        }];
-        let mut bytes = std::io::Cursor::new(Vec::new());
-        write_stl(&items, &mut bytes).unwrap();
-        bytes.into_inner()
-    };
-    let Geometry::Mesh(m) = &mesh else { panic!() };
-    let refined = || refined_geometry(&node, shape).unwrap().unwrap();
-    for mirrored in [false, true] {
-        let (fast, slow) = (
-            stl(refined(), mirrored),
-            stl(Geometry::Mesh(Cow::Borrowed(m)), mirrored),
-        );
-        assert_eq!(fast.len(), 84 + 50 * 2 * 90 * 70 * 16);
-        assert!(fast == slow, "mirrored {mirrored}: the records differ");
+        let node = node(grid.clone(), Creases::default(), options);
+        let shape = ExportShape::Subdivided(2);
+        let Some(Geometry::Refined(refined)) = refined_geometry(&node, shape).unwrap() else {
+            panic!("written as refined faces")
+        };
+        assert!(refined.refiner.face_count() >= PARALLEL_STL_FACES);
+        assert!(refined.piece_count() > 4, "{boundary:?}: pieces");
+        let (mesh, creases) = node_geometry(&node, shape).unwrap().unwrap();
+        let stl = |geometry, mirrored| {
+            let world = if mirrored {
+                glam::DMat4::from_scale(DVec3::new(1.0, -1.0, 3.0))
+            } else {
+                glam::DMat4::IDENTITY
+            };
+            let items = [ExportItem {
+                node: &node,
+                geometry,
+                world,
+                mirrored,
+                corners: None,
+            }];
+            let mut bytes = std::io::Cursor::new(Vec::new());
+            write_stl(&items, &mut bytes).unwrap();
+            bytes.into_inner()
+        };
+        let Geometry::Mesh(m) = &mesh else { panic!() };
+        let shown_faces = m.face_count();
+        if boundary == BoundaryInterpolation::None {
+            assert!(shown_faces < 90 * 70 * 16, "faces are hidden");
+        }
+        let refined_again = || refined_geometry(&node, shape).unwrap().unwrap();
+        for mirrored in [false, true] {
+            let (fast, slow) = (
+                stl(refined_again(), mirrored),
+                stl(Geometry::Mesh(Cow::Borrowed(m)), mirrored),
+            );
+            assert_eq!(fast.len(), 84 + 50 * 2 * shown_faces);
+            assert!(
+                fast == slow,
+                "{boundary:?}, mirrored {mirrored}: the records differ"
+            );
+        }
+        let refined = Arc::new(refined);
+        for smooth in [false, true] {
+            let shading = if smooth {
+                crate::scene::Shading::Smooth
+            } else {
+                crate::scene::Shading::Flat
+            };
+            let fast = gltf_arrays(&refined, smooth).expect("written from the faces");
+            let slow = crate::gltf::mesh_triangles(m, shading, &creases);
+            assert!(
+                fast.0 == slow.0,
+                "{boundary:?}, {shading:?}: glTF positions"
+            );
+            assert!(
+                fast.2 == slow.2,
+                "{boundary:?}, {shading:?}: glTF triangles"
+            );
+            if smooth {
+                let off = fast
+                    .1
+                    .iter()
+                    .zip(&slow.1)
+                    .map(|(a, b)| glam::Vec3::from(*a).distance(glam::Vec3::from(*b)));
+                assert!(
+                    off.fold(0.0, f32::max) < 1e-6,
+                    "{boundary:?}: smooth normals"
+                );
+            } else {
+                assert!(fast.1 == slow.1, "{boundary:?}: flat normals");
+            }
+        }
     }
 }
 
@@ -239,6 +280,7 @@ fn refined_faces_write_what_the_subdivided_mesh_writes() {
             let (mesh, _) = node_geometry(&node, shape).unwrap().unwrap();
             let Geometry::Mesh(m) = &mesh else { panic!() };
             assert_eq!(refined.counts(), mesh.counts(), "{name}, level {level}");
+            let refined = Arc::new(refined);
             for mirrored in [false, true] {
                 let fast = written(
                     &node,
