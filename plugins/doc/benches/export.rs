@@ -3,10 +3,14 @@
 //! subdivided once (1M quads, 2M triangles: what `hedra export
 //! --subdivide 1` does). Criterion reports the output's MB/s.
 //!
+//! `export_4m_quads`: the cage of a 2000 × 2000 grid (4M quads) written
+//! to a file from memory, the mesh `bench/export-table` gives trimesh and
+//! Blender (the writers alone, disk included, beside theirs).
+//!
 //! `cargo bench -p hedra_doc --bench export -- FILTER`
 
 use criterion::{Criterion, Throughput, criterion_main};
-use hedra_doc::export::{ExportOptions, ExportShape, export_bytes};
+use hedra_doc::export::{ExportOptions, ExportShape, export_bytes, export_to_path};
 use hedra_doc::{Command, NodeTransform, Session};
 use hedra_geom::Primitive;
 use std::hint::black_box;
@@ -17,12 +21,12 @@ use std::time::Duration;
 #[global_allocator]
 static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 
-fn grid_scene() -> Session {
+fn grid_scene(segments: u32) -> Session {
     let mut s = Session::new();
     s.execute(&Command::AddPrimitive {
         primitive: Primitive::Grid {
-            x_segments: 500,
-            z_segments: 500,
+            x_segments: segments,
+            z_segments: segments,
             size: 2.0,
         },
         name: Some("Grid".into()),
@@ -34,7 +38,7 @@ fn grid_scene() -> Session {
 }
 
 fn export(c: &mut Criterion) {
-    let scene = grid_scene();
+    let scene = grid_scene(500);
     for (label, shape) in [
         ("cage", ExportShape::Cage),
         ("subdivided", ExportShape::Subdivided(1)),
@@ -62,9 +66,34 @@ fn export(c: &mut Criterion) {
     }
 }
 
+/// Writing the 4M-quad cage to a file, as `hedra export` does: what
+/// trimesh and Blender are timed doing in `bench/export-table`.
+fn export_to_file(c: &mut Criterion) {
+    let scene = grid_scene(2000);
+    let folder = tempfile::tempdir().unwrap();
+    let mut group = c.benchmark_group("export_4m_quads");
+    group
+        .sample_size(10)
+        .measurement_time(Duration::from_secs(20))
+        .warm_up_time(Duration::from_secs(1));
+    for ext in ["stl", "obj", "glb"] {
+        let path = folder.path().join(format!("grid.{ext}"));
+        let options = ExportOptions {
+            shape: ExportShape::Cage,
+            ..ExportOptions::default()
+        };
+        export_to_path(&scene.doc, &path, options).unwrap();
+        group.throughput(Throughput::Bytes(std::fs::metadata(&path).unwrap().len()));
+        group.bench_function(ext, |b| {
+            b.iter(|| export_to_path(&scene.doc, black_box(&path), options).unwrap())
+        });
+    }
+    group.finish();
+}
+
 // The macro's `benches` function is Criterion's, not an API to document.
 #[allow(missing_docs)]
 mod group {
-    criterion::criterion_group!(benches, super::export);
+    criterion::criterion_group!(benches, super::export, super::export_to_file);
 }
 criterion_main!(group::benches);

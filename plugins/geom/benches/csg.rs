@@ -7,6 +7,10 @@
 //! one by one: triangulating into arrays, the self-intersection check,
 //! the engine (with face numbers), merging polygons back, building the
 //! half-edge mesh with vertex provenance.
+//!
+//! `peers/*`: the cases of `bench/boolean-table` (issue 36, item 5: two
+//! 200k-triangle spheres and the bunny, beside Manifold), read from the
+//! JSON file that `HEDRA_BOOLEAN_CASES` names; left out when it is unset.
 
 use boolmesh::prelude::{Manifold, OpType, compute_boolean};
 use criterion::{Criterion, criterion_main};
@@ -103,9 +107,60 @@ fn bench(c: &mut Criterion) {
     g.finish();
 }
 
+/// One case of `bench/boolean-table`: two triangle meshes and an operation.
+fn peer_case(case: &serde_json::Value) -> (String, HalfEdgeMesh, HalfEdgeMesh, BooleanOp) {
+    let mesh = |m: &serde_json::Value| {
+        let number = |x: &serde_json::Value| x.as_f64().expect("a number");
+        let positions: Vec<DVec3> = m["positions"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|p| DVec3::new(number(&p[0]), number(&p[1]), number(&p[2])))
+            .collect();
+        let triangles: Vec<Vec<u32>> = m["triangles"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|t| (0..3).map(|i| number(&t[i]) as u32).collect())
+            .collect();
+        HalfEdgeMesh::from_polygons(&positions, &triangles).expect("a manifold operand")
+    };
+    let op = match case["op"].as_str().unwrap() {
+        "union" => BooleanOp::Union,
+        "difference" => BooleanOp::Difference,
+        "intersection" => BooleanOp::Intersection,
+        other => panic!("unknown operation {other}"),
+    };
+    (
+        case["name"].as_str().unwrap().to_string(),
+        mesh(&case["a"]),
+        mesh(&case["b"]),
+        op,
+    )
+}
+
+/// Hedra's whole call (half-edge meshes in and out) on the cases of
+/// `bench/boolean-table`, which times Manifold on the same triangles.
+fn peers(c: &mut Criterion) {
+    let Ok(path) = std::env::var("HEDRA_BOOLEAN_CASES") else {
+        return;
+    };
+    let text = std::fs::read_to_string(&path).expect("HEDRA_BOOLEAN_CASES names a readable file");
+    let cases: serde_json::Value = serde_json::from_str(&text).expect("JSON cases");
+    let mut g = c.benchmark_group("peers");
+    g.sample_size(10);
+    for case in cases.as_array().unwrap() {
+        let (name, a, b, op) = peer_case(case);
+        g.bench_function(name, |bench| {
+            bench.iter(|| black_box(boolean(&a, &b, op, 0.0).unwrap()))
+        });
+    }
+    g.finish();
+}
+
 // The macro's `benches` function is Criterion's, not an API to document.
 #[allow(missing_docs)]
 mod group {
-    criterion::criterion_group!(benches, super::bench);
+    criterion::criterion_group!(benches, super::bench, super::peers);
 }
 criterion_main!(group::benches);
