@@ -1,4 +1,5 @@
-//! Subdivision speed (issues 4 and 16): Catmull-Clark of the cube to level 7
+//! Subdivision speed (issues 4 and 16), single thread (`refine_serial`,
+//! `apply_serial`) unless a row says otherwise: Catmull-Clark of the cube to level 7
 //! (98,304 faces), of a 10,000-quad cage to levels 1–3 and of a 40,000-quad
 //! torus (200 × 200) to level 1; Loop of the icosahedron to level 6 (81,920
 //! triangles). Single thread and parallel; re-applying the stencils after a
@@ -57,13 +58,13 @@ fn bench_mesh(
         g.bench_function(format!("level{level}/full"), |b| {
             b.iter(|| {
                 let r = Refiner::new(black_box(mesh), &creases, opts, level).unwrap();
-                r.refine(&r.cage_positions(mesh))
+                r.refine_serial(&r.cage_positions(mesh))
             })
         });
         g.bench_function(format!("level{level}/positions"), |b| {
-            b.iter(|| refiner.refine(black_box(&cage)))
+            b.iter(|| refiner.refine_serial(black_box(&cage)))
         });
-        let points = refiner.refine(&cage);
+        let points = refiner.refine_serial(&cage);
         g.bench_function(format!("level{level}/to_mesh"), |b| {
             b.iter(|| refiner.to_mesh(black_box(&points)).unwrap())
         });
@@ -84,7 +85,7 @@ fn bench_mesh(
         });
         let stencils = refiner.stencils();
         g.bench_function(format!("level{level}/stencil"), |b| {
-            b.iter(|| stencils.apply(black_box(&cage)))
+            b.iter(|| stencils.apply_serial(black_box(&cage)))
         });
         g.bench_function(format!("level{level}/stencil_parallel"), |b| {
             b.iter(|| stencils.apply_parallel(black_box(&cage)))
@@ -108,9 +109,47 @@ fn catmull_clark(c: &mut Criterion) {
     let cube = Primitive::Cube { size: 2.0 }.build().unwrap();
     let cc = Options::default();
     bench_mesh(c, "cc_cube", &cube, cc, &[7], Set::All);
+    from_face_list(c, "cc_cube", &cube, cc, 7);
     bench_mesh(c, "cc_torus_10k", &torus(100), cc, &[1, 2, 3], Set::All);
+    from_face_list(c, "cc_torus_10k", &torus(100), cc, 3);
     bench_mesh(c, "cc_torus_40k", &torus(200), cc, &[1], Set::Refine);
     from_face_list(c, "cc_torus_40k", &torus(200), cc, 1);
+    two_cores(c, "cc_torus_10k", &torus(100), cc, 4);
+}
+
+/// One thread against all (issue 36 item 4) on a refinement of more than
+/// 1M output faces (the 100 × 100 torus to level 4: 2,560,000 quads): the
+/// whole refinement and the positions alone, serial and on the rayon pool.
+fn two_cores(c: &mut Criterion, name: &str, mesh: &HalfEdgeMesh, opts: Options, level: u32) {
+    let creases = Creases::default();
+    let refiner = Refiner::new(mesh, &creases, opts, level).unwrap();
+    assert!(refiner.face_count() > 1_000_000);
+    let cage = refiner.cage_positions(mesh);
+    let mut g = c.benchmark_group(name);
+    g.sample_size(10);
+    for (label, parallel) in [("serial", false), ("parallel", true)] {
+        g.bench_function(format!("level{level}/full_{label}"), |b| {
+            b.iter(|| {
+                let r = Refiner::new(black_box(mesh), &creases, opts, level).unwrap();
+                let cage = r.cage_positions(mesh);
+                if parallel {
+                    r.refine_parallel(&cage)
+                } else {
+                    r.refine(&cage)
+                }
+            })
+        });
+        g.bench_function(format!("level{level}/positions_{label}"), |b| {
+            b.iter(|| {
+                if parallel {
+                    refiner.refine(black_box(&cage))
+                } else {
+                    refiner.refine_serial(black_box(&cage))
+                }
+            })
+        });
+    }
+    g.finish();
 }
 
 /// Refinement from a face list, as OpenSubdiv starts (issue 36 item 3):
@@ -130,14 +169,14 @@ fn from_face_list(c: &mut Criterion, name: &str, mesh: &HalfEdgeMesh, opts: Opti
         b.iter(|| {
             let m = HalfEdgeMesh::from_polygons(black_box(&positions), &faces).unwrap();
             let r = Refiner::new(&m, &creases, opts, level).unwrap();
-            r.refine(&r.cage_positions(&m))
+            r.refine_serial(&r.cage_positions(&m))
         })
     });
     g.bench_function(format!("level{level}/from_faces_as_polygons"), |b| {
         b.iter(|| {
             let r =
                 Refiner::from_polygons(positions.len(), black_box(&faces), opts, level).unwrap();
-            r.refine(&positions)
+            r.refine_serial(&positions)
         })
     });
     g.finish();
@@ -155,6 +194,7 @@ fn loop_scheme(c: &mut Criterion) {
         ..Options::default()
     };
     bench_mesh(c, "loop_icosahedron", &ico, opts, &[6], Set::Refine);
+    from_face_list(c, "loop_icosahedron", &ico, opts, 6);
 }
 
 /// A STREAM-like copy of 64 MB of f64: the bandwidth floor that the

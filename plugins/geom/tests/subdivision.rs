@@ -644,10 +644,13 @@ proptest! {
         let direct = r.refine(&cage_points);
         let stencil = r.stencils().apply(&cage_points);
         let parallel = r.refine_parallel(&cage_points);
+        let serial = r.refine_serial(&cage_points);
         prop_assert_eq!(direct.len(), stencil.len());
-        for ((a, b), c) in direct.iter().zip(&stencil).zip(&parallel) {
+        prop_assert_eq!(&r.stencils().apply_parallel(&cage_points), &stencil);
+        for ((a, b), (c, d)) in direct.iter().zip(&stencil).zip(parallel.iter().zip(&serial)) {
             prop_assert!(close(*a, *b, 1e-12), "{} vs {}", a, b);
             prop_assert_eq!(a, c);
+            prop_assert_eq!(a, d);
         }
         let (out, _) = r.to_mesh(&direct).unwrap();
         prop_assert!(out.validate().is_ok());
@@ -776,4 +779,38 @@ fn a_fin_of_three_quads_on_one_edge_refines_with_a_sharp_spine() {
         err.to_string(),
         "face f0 is not a polygon of the cage: vertex 3 is not one of the 3 vertices"
     );
+}
+
+/// A refinement large enough to take both cores (levels of
+/// `PARALLEL_POINTS` points or more) gives the serial path's bits, and so
+/// does the stencil table's apply (issue 36, item 4).
+#[test]
+fn refining_on_all_cores_by_size_gives_the_serial_bits() {
+    use hedra_geom::subdivision::PARALLEL_POINTS;
+    let torus = Primitive::Torus {
+        major_segments: 100,
+        minor_segments: 100,
+        major_radius: 2.0,
+        minor_radius: 0.5,
+    }
+    .build()
+    .unwrap();
+    let mut creases = Creases::default();
+    let e = torus.edges().nth(7).unwrap();
+    creases.set_edge(e, 1.5);
+    let r = Refiner::new(&torus, &creases, Options::default(), 3).unwrap();
+    let cage = r.cage_positions(&torus);
+    let serial = r.refine_serial(&cage);
+    assert!(
+        serial.len() > PARALLEL_POINTS,
+        "the last level is refined on all cores"
+    );
+    assert!(r.refine(&cage) == serial, "by size");
+    assert!(
+        r.refine_parallel(&cage) == serial,
+        "every level on all cores"
+    );
+    let table = r.stencils();
+    let applied = table.apply_serial(&cage);
+    assert!(table.apply(&cage) == applied, "stencils by size");
 }

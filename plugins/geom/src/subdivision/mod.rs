@@ -39,7 +39,7 @@ use rules::{Masks, Sink};
 
 pub use creases::{CreaseTaper, Creases, TaperError};
 pub use limit::{limit_normals, limit_positions, snap_to_limit};
-pub use refiner::{Refiner, face_count_after, non_manifold_places};
+pub use refiner::{PARALLEL_POINTS, Refiner, face_count_after, non_manifold_places};
 pub use stencil::{StencilEvaluation, StencilTable};
 
 /// Sharpness at or above this is infinitely sharp (OpenSubdiv's

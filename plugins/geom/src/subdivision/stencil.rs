@@ -246,17 +246,26 @@ impl StencilTable {
     }
 
     /// Refined positions from cage positions (in
-    /// [`Refiner::cage_positions`] order). Complexity: O(nonzeros).
+    /// [`Refiner::cage_positions`] order); a level of
+    /// [`super::PARALLEL_POINTS`] points or more on all cores, as
+    /// [`Refiner::refine`] does. Complexity: O(nonzeros).
     pub fn apply(&self, cage: &[DVec3]) -> Vec<DVec3> {
-        self.apply_with(cage, false)
+        self.apply_with(cage, None)
     }
 
-    /// [`apply`](Self::apply) on all cores.
+    /// [`apply`](Self::apply) on this thread only.
+    pub fn apply_serial(&self, cage: &[DVec3]) -> Vec<DVec3> {
+        self.apply_with(cage, Some(false))
+    }
+
+    /// [`apply`](Self::apply) with every level on all cores, however small.
     pub fn apply_parallel(&self, cage: &[DVec3]) -> Vec<DVec3> {
-        self.apply_with(cage, true)
+        self.apply_with(cage, Some(true))
     }
 
-    fn apply_with(&self, cage: &[DVec3], parallel: bool) -> Vec<DVec3> {
+    /// `parallel`: forced one way, or `None` for by size (levels of
+    /// [`super::PARALLEL_POINTS`] points or more on all cores).
+    fn apply_with(&self, cage: &[DVec3], parallel: Option<bool>) -> Vec<DVec3> {
         assert_eq!(
             cage.len(),
             self.cage_vertices,
@@ -272,16 +281,12 @@ impl StencilTable {
                     .zip(&rows.weights[r])
                     .fold(DVec3::ZERO, |sum, (&c, &w)| sum + w * points[c as usize])
             };
-            let mut next = vec![DVec3::ZERO; n];
-            if parallel {
+            let mut next = Vec::with_capacity(n);
+            if parallel.unwrap_or(n >= super::PARALLEL_POINTS) {
                 use rayon::prelude::*;
-                next.par_iter_mut()
-                    .enumerate()
-                    .for_each(|(i, p)| *p = row(i));
+                next.par_extend((0..n).into_par_iter().map(row));
             } else {
-                for (i, p) in next.iter_mut().enumerate() {
-                    *p = row(i);
-                }
+                next.extend((0..n).map(row));
             }
             points = next;
         }
