@@ -416,12 +416,17 @@ fn write_stl(items: &[ExportItem], out: &mut dyn ExportOutput) -> std::io::Resul
     out.write_all(&[0u8; 84])?;
     let mut count = 0u32;
     for item in items {
-        // A large subdivided mesh's records are made on every core.
-        if let Geometry::Refined(r) = &item.geometry
-            && r.refiner.face_count() >= PARALLEL_STL_FACES
-        {
-            count += r.write_stl_records(item.world, item.mirrored, out)?;
-            continue;
+        // A large mesh's records are made on every core.
+        match &item.geometry {
+            Geometry::Refined(r) if r.refiner.face_count() >= PARALLEL_STL_FACES => {
+                count += r.write_stl_records(item.world, item.mirrored, out)?;
+                continue;
+            }
+            Geometry::Mesh(m) if m.face_count() >= PARALLEL_STL_FACES => {
+                count += write_mesh_stl_records(m, item.world, item.mirrored, out)?;
+                continue;
+            }
+            _ => {}
         }
         let mut failed = Ok(());
         each_stl_triangle(std::slice::from_ref(item), |normal, corners| {
@@ -438,9 +443,38 @@ fn write_stl(items: &[ExportItem], out: &mut dyn ExportOutput) -> std::io::Resul
     Ok(())
 }
 
-/// Faces of a subdivided mesh from which its STL records are made on all
-/// cores: below it, the threads cost more than they save.
+/// Faces of a mesh from which its STL records are made on all cores:
+/// below it, the threads cost more than they save.
 const PARALLEL_STL_FACES: usize = 1 << 16;
+
+/// The binary STL records of `m`'s triangles in world space, face by face
+/// as [`each_stl_triangle`] visits them, made in pieces of
+/// [`refined::FACES_PER_PIECE`] faces on all cores and written in order.
+/// Returns how many.
+fn write_mesh_stl_records(
+    m: &HalfEdgeMesh,
+    world: glam::DMat4,
+    mirrored: bool,
+    out: &mut dyn ExportOutput,
+) -> std::io::Result<u32> {
+    let faces: Vec<hedra_geom::FaceId> = m.faces().collect();
+    let pieces: Vec<&[hedra_geom::FaceId]> = faces.chunks(refined::FACES_PER_PIECE).collect();
+    let piece_records = |piece: usize, bytes: &mut Vec<u8>| {
+        bytes.reserve(2 * 50 * pieces[piece].len());
+        let mut face = Vec::new();
+        for &f in pieces[piece] {
+            face.clear();
+            hedra_geom::query::triangulate_face_into(m, f, &mut face);
+            for corners in &face {
+                let corners = corners.map(|v| world.transform_point3(m.position(v)));
+                let (normal, corners) = stl_triangle(corners, mirrored);
+                bytes.extend_from_slice(&stl_record(normal, corners));
+            }
+        }
+    };
+    let written = write_pieces_in_order(pieces.len(), &piece_records, out)?;
+    Ok((written / 50) as u32)
+}
 
 /// A binary STL record: the normal, three corners (twelve floats) and a
 /// zero attribute count.

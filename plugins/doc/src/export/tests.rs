@@ -123,6 +123,28 @@ fn stl_records_and_gltf_arrays_made_on_all_cores_are_the_mesh_s() {
                 fast == slow,
                 "{boundary:?}, mirrored {mirrored}: the records differ"
             );
+            // The mesh's records (made on all cores too) are the ones
+            // each_stl_triangle visits one by one.
+            assert!(m.face_count() >= PARALLEL_STL_FACES);
+            let item = ExportItem {
+                node: &node,
+                geometry: Geometry::Mesh(Cow::Borrowed(m)),
+                world: if mirrored {
+                    glam::DMat4::from_scale(DVec3::new(1.0, -1.0, 3.0))
+                } else {
+                    glam::DMat4::IDENTITY
+                },
+                mirrored,
+                corners: None,
+            };
+            let mut one_by_one = Vec::new();
+            each_stl_triangle(std::slice::from_ref(&item), |normal, corners| {
+                one_by_one.extend_from_slice(&stl_record(normal, corners))
+            });
+            assert!(
+                slow[84..] == one_by_one[..],
+                "{boundary:?}, mirrored {mirrored}: the mesh's records"
+            );
         }
         let refined = Arc::new(refined);
         for smooth in [false, true] {
