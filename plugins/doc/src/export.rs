@@ -295,7 +295,7 @@ enum Body<'a> {
     Obj(Vec<ExportItem<'a>>),
     Stl(Vec<ExportItem<'a>>),
     AsciiStl(Vec<ExportItem<'a>>),
-    Glb(Box<crate::gltf::GltfParts>),
+    Glb(Box<crate::gltf::GltfParts<'a>>),
     /// Formats written whole in memory (glTF text, USD, STEP).
     Bytes(Vec<u8>),
 }
@@ -1205,4 +1205,4 @@ mod refined;
 mod tests;
 
 pub(crate) use pieces::write_pieces_in_order;
-pub(crate) use refined::{RefinedFaces, VERTICES_PER_PIECE, refined_geometry};
+pub(crate) use refined::{FACES_PER_PIECE, RefinedFaces, VERTICES_PER_PIECE, refined_geometry};

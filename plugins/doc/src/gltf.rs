@@ -32,14 +32,14 @@ use hedra_geom::subdivision::Creases;
 /// as they are until they are written (GLB streams them, array by array;
 /// a `.gltf` encodes them as a data URI).
 #[derive(Default)]
-struct Buffer {
-    arrays: Vec<BufferArray>,
+struct Buffer<'a> {
+    arrays: Vec<BufferArray<'a>>,
     /// Bytes so far, with the padding between arrays.
     length: usize,
 }
 
 /// One array of the buffer: 4-byte numbers.
-enum BufferArray {
+enum BufferArray<'a> {
     F32(Vec<f32>),
     U32(Vec<u32>),
     /// Numbers made as they are written, so that a large subdivided mesh's
@@ -48,14 +48,14 @@ enum BufferArray {
     Made {
         len: usize,
         pieces: usize,
-        make: MakePiece,
+        make: MakePiece<'a>,
     },
 }
 
 /// Appends the little-endian bytes of one piece's numbers.
-type MakePiece = Box<dyn Fn(usize, &mut Vec<u8>) + Send + Sync>;
+type MakePiece<'a> = Box<dyn Fn(usize, &mut Vec<u8>) + Send + Sync + 'a>;
 
-impl BufferArray {
+impl<'a> BufferArray<'a> {
     fn len(&self) -> usize {
         match self {
             BufferArray::F32(v) => v.len(),
@@ -69,8 +69,8 @@ impl BufferArray {
     fn made(
         len: usize,
         pieces: usize,
-        each: impl Fn(usize, &mut dyn FnMut(u32)) + Send + Sync + 'static,
-    ) -> BufferArray {
+        each: impl Fn(usize, &mut dyn FnMut(u32)) + Send + Sync + 'a,
+    ) -> BufferArray<'a> {
         BufferArray::Made {
             len,
             pieces,
@@ -118,10 +118,10 @@ fn write_numbers(
 
 /// Appends `numbers` to the buffer (4-byte aligned: every number is 4
 /// bytes) and returns their view.
-fn push_view(
+fn push_view<'a>(
     root: &mut json::Root,
-    bin: &mut Buffer,
-    numbers: BufferArray,
+    bin: &mut Buffer<'a>,
+    numbers: BufferArray<'a>,
     target: json::buffer::Target,
 ) -> json::Index<json::buffer::View> {
     let offset = bin.length;
@@ -140,7 +140,7 @@ fn push_view(
     })
 }
 
-impl Buffer {
+impl Buffer<'_> {
     /// Writes the arrays as little-endian bytes, one after the other.
     fn write(&self, out: &mut dyn std::io::Write) -> std::io::Result<()> {
         self.arrays.iter().try_for_each(|array| array.write(out))
@@ -300,6 +300,101 @@ pub(crate) fn mesh_triangles(
     (positions, normals, indices)
 }
 
+/// A large mesh's flat arrays, made in pieces on all cores as the GLB is
+/// written: the numbers [`mesh_triangles`] gives with [`Shading::Flat`]
+/// (each face's corners with its unit normal, its triangles by index),
+/// without holding them (issue 36, item 2).
+pub(crate) fn flat_mesh_arrays(mesh: Cow<'_, HalfEdgeMesh>) -> PrimitiveArrays<'_> {
+    use crate::export::FACES_PER_PIECE;
+    use rayon::prelude::*;
+    let mesh = std::sync::Arc::new(mesh);
+    let faces: std::sync::Arc<Vec<hedra_geom::FaceId>> =
+        std::sync::Arc::new(mesh.faces().collect());
+    let pieces = faces.len().div_ceil(FACES_PER_PIECE);
+    let piece = |faces: &[hedra_geom::FaceId], p: usize| -> std::ops::Range<usize> {
+        p * FACES_PER_PIECE..((p + 1) * FACES_PER_PIECE).min(faces.len())
+    };
+    // Each piece's corners, triangles and bounds, found on all cores.
+    let measured: Vec<(u32, usize, [f32; 3], [f32; 3])> = (0..pieces)
+        .into_par_iter()
+        .map(|p| {
+            let (mut corners, mut triangles) = (0u32, 0usize);
+            let (mut lo, mut hi) = ([f32::INFINITY; 3], [f32::NEG_INFINITY; 3]);
+            let mut face = Vec::new();
+            for &f in &faces[piece(&faces, p)] {
+                for v in mesh.face_vertices(f) {
+                    let x = mesh.position(v).as_vec3().to_array();
+                    for k in 0..3 {
+                        lo[k] = lo[k].min(x[k]);
+                        hi[k] = hi[k].max(x[k]);
+                    }
+                    corners += 1;
+                }
+                face.clear();
+                hedra_geom::query::triangulate_face_into(&mesh, f, &mut face);
+                triangles += face.len();
+            }
+            (corners, triangles, lo, hi)
+        })
+        .collect();
+    let mut starts = Vec::with_capacity(pieces);
+    let (mut corner_count, mut triangle_count) = (0u32, 0usize);
+    let (mut lo, mut hi) = ([f32::INFINITY; 3], [f32::NEG_INFINITY; 3]);
+    for (corners, triangles, l, h) in measured {
+        starts.push(corner_count);
+        corner_count += corners;
+        triangle_count += triangles;
+        for k in 0..3 {
+            lo[k] = lo[k].min(l[k]);
+            hi[k] = hi[k].max(h[k]);
+        }
+    }
+    let corners = |normal: bool| {
+        let (mesh, faces) = (mesh.clone(), faces.clone());
+        BufferArray::made(3 * corner_count as usize, pieces, move |p, put| {
+            for &f in &faces[piece(&faces, p)] {
+                let n = unit_or_up(mesh.face_normal(f), || neighbours_normal(&mesh, f));
+                for v in mesh.face_vertices(f) {
+                    let x = if normal { n } else { mesh.position(v) };
+                    x.as_vec3().to_array().iter().for_each(|x| put(x.to_bits()));
+                }
+            }
+        })
+    };
+    let indices = {
+        let (mesh, faces) = (mesh.clone(), faces.clone());
+        BufferArray::made(3 * triangle_count, pieces, move |p, put| {
+            let (mut corners, mut face) = (Vec::new(), Vec::new());
+            let mut base = starts[p];
+            for &f in &faces[piece(&faces, p)] {
+                corners.clear();
+                corners.extend(mesh.face_vertices(f));
+                face.clear();
+                hedra_geom::query::triangulate_face_into(&mesh, f, &mut face);
+                for tri in &face {
+                    for v in tri {
+                        let k = corners
+                            .iter()
+                            .position(|c| c == v)
+                            .expect("a triangle corner is a face corner");
+                        put(base + k as u32);
+                    }
+                }
+                base += corners.len() as u32;
+            }
+        })
+    };
+    PrimitiveArrays {
+        positions: corners(false),
+        vertex_count: corner_count as usize,
+        bounds: (lo, hi),
+        normals: Some(corners(true)),
+        uvs: None,
+        indices: (triangle_count > 0).then_some(indices),
+        mode: json::mesh::Mode::Triangles,
+    }
+}
+
 /// Positions, normals, UVs (empty when no corner has one) and triangle
 /// indices of a mesh with corner attributes: one vertex per distinct
 /// corner, custom normals where given, computed ones elsewhere.
@@ -352,17 +447,17 @@ fn corner_triangles(m: &HalfEdgeMesh, shading: Shading, c: &CornerAttributes) ->
 /// One primitive's arrays, as the buffer will hold them: positions (with
 /// their count and bounds), and normals, UVs and indices where there are
 /// any.
-pub(crate) struct PrimitiveArrays {
-    positions: BufferArray,
+pub(crate) struct PrimitiveArrays<'a> {
+    positions: BufferArray<'a>,
     vertex_count: usize,
     bounds: ([f32; 3], [f32; 3]),
-    normals: Option<BufferArray>,
-    uvs: Option<BufferArray>,
-    indices: Option<BufferArray>,
+    normals: Option<BufferArray<'a>>,
+    uvs: Option<BufferArray<'a>>,
+    indices: Option<BufferArray<'a>>,
     mode: json::mesh::Mode,
 }
 
-impl PrimitiveArrays {
+impl PrimitiveArrays<'_> {
     /// Arrays held in memory; empty ones are left out.
     fn new(
         positions: Vec<[f32; 3]>,
@@ -387,7 +482,10 @@ impl PrimitiveArrays {
 /// A subdivided mesh's arrays: from the refiner's faces as the GLB is
 /// written ([`arrays_from_faces`]); from the mesh, built for it, where
 /// its adjacency is needed.
-fn refined_arrays(refined: crate::export::RefinedFaces, shading: Shading) -> PrimitiveArrays {
+fn refined_arrays(
+    refined: crate::export::RefinedFaces,
+    shading: Shading,
+) -> PrimitiveArrays<'static> {
     let refined = std::sync::Arc::new(refined);
     arrays_from_faces(&refined, shading).unwrap_or_else(|| {
         let (m, creases) = refined.to_mesh();
@@ -404,7 +502,7 @@ fn refined_arrays(refined: crate::export::RefinedFaces, shading: Shading) -> Pri
 pub(crate) fn arrays_from_faces(
     refined: &std::sync::Arc<crate::export::RefinedFaces>,
     shading: Shading,
-) -> Option<PrimitiveArrays> {
+) -> Option<PrimitiveArrays<'static>> {
     use crate::export::VERTICES_PER_PIECE;
     let smooth = shading == Shading::Smooth;
     let smooth_normals = if smooth {
@@ -468,7 +566,7 @@ pub(crate) fn arrays_from_faces(
 }
 
 #[cfg(test)]
-impl PrimitiveArrays {
+impl PrimitiveArrays<'_> {
     /// The positions, normals and indices as they are written, read back.
     pub(crate) fn written(&self) -> (Vec<[f32; 3]>, Vec<[f32; 3]>, Vec<u32>) {
         let numbers = |array: &BufferArray| {
@@ -494,16 +592,16 @@ impl PrimitiveArrays {
 /// A glTF export made from the document: its JSON document and its
 /// binary buffer as arrays, written as a `.glb` ([`write_glb`](Self::write_glb))
 /// or a `.gltf` ([`to_gltf_text`](Self::to_gltf_text)).
-pub struct GltfParts {
+pub struct GltfParts<'a> {
     root: json::Root,
-    bin: Buffer,
+    bin: Buffer<'a>,
 }
 
 /// The document's visible nodes as glTF.
 ///
 /// # Errors
 /// [`ExportError`] naming a node whose shape cannot be evaluated.
-pub fn gltf_parts(doc: &Document, shape: ExportShape) -> Result<GltfParts, ExportError> {
+pub fn gltf_parts(doc: &Document, shape: ExportShape) -> Result<GltfParts<'_>, ExportError> {
     let mut root = json::Root {
         asset: json::Asset {
             version: "2.0".into(),
@@ -550,6 +648,12 @@ pub fn gltf_parts(doc: &Document, shape: ExportShape) -> Result<GltfParts, Expor
                         let (p, n, t, i) =
                             corner_triangles(m, shading, corners.expect("checked above"));
                         PrimitiveArrays::new(p, n, t, i, json::mesh::Mode::Triangles)
+                    }
+                    Geometry::Mesh(m)
+                        if shading == Shading::Flat
+                            && m.face_count() >= crate::export::FACES_PER_PIECE =>
+                    {
+                        flat_mesh_arrays(m)
                     }
                     Geometry::Mesh(m) => {
                         let (p, n, i) = mesh_triangles(&m, shading, &creases);
@@ -747,7 +851,7 @@ pub fn gltf_parts(doc: &Document, shape: ExportShape) -> Result<GltfParts, Expor
     Ok(GltfParts { root, bin })
 }
 
-impl GltfParts {
+impl GltfParts<'_> {
     /// The `.gltf` text: the buffer embedded as a base64 data URI.
     ///
     /// # Errors

@@ -375,3 +375,48 @@ fn refined_faces_write_what_the_subdivided_mesh_writes() {
         }
     }
 }
+
+/// A large mesh's flat glTF arrays, made in pieces on all cores, are the
+/// ones `mesh_triangles` makes: with a hexagon (two quads merged), so the
+/// corners per face vary, and a quad of zero area, whose normal comes from
+/// its neighbours.
+#[test]
+fn flat_gltf_arrays_made_on_all_cores_are_mesh_triangles() {
+    let n = 230u32;
+    let mut positions: Vec<DVec3> = (0..=n)
+        .flat_map(|j| {
+            (0..=n).map(move |i| DVec3::new(i as f64, (i * j % 7) as f64 * 0.1, j as f64))
+        })
+        .collect();
+    let at = |i: u32, j: u32| j * (n + 1) + i;
+    let mut faces: Vec<Vec<u32>> = Vec::new();
+    for j in 0..n {
+        for i in 0..n {
+            if (i, j) == (5, 5) {
+                // The hexagon: this quad and the next one.
+                faces.push(vec![
+                    at(5, 5),
+                    at(5, 6),
+                    at(6, 6),
+                    at(7, 6),
+                    at(7, 5),
+                    at(6, 5),
+                ]);
+            } else if (i, j) != (6, 5) {
+                faces.push(vec![at(i, j), at(i, j + 1), at(i + 1, j + 1), at(i + 1, j)]);
+            }
+        }
+    }
+    // A quad of zero area.
+    let p = positions[at(20, 20) as usize];
+    for (i, j) in [(20, 21), (21, 21), (21, 20)] {
+        positions[at(i, j) as usize] = p;
+    }
+    let m = HalfEdgeMesh::from_polygons(&positions, &faces).unwrap();
+    assert!(m.face_count() > 3 * crate::export::FACES_PER_PIECE);
+    let fast = crate::gltf::flat_mesh_arrays(Cow::Borrowed(&m)).written();
+    let slow = crate::gltf::mesh_triangles(&m, crate::scene::Shading::Flat, &Creases::default());
+    assert!(fast.0 == slow.0, "positions");
+    assert!(fast.1 == slow.1, "normals");
+    assert!(fast.2 == slow.2, "triangles");
+}
