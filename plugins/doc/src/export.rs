@@ -418,11 +418,11 @@ fn write_stl(items: &[ExportItem], out: &mut dyn ExportOutput) -> std::io::Resul
     for item in items {
         // A large mesh's records are made on every core.
         match &item.geometry {
-            Geometry::Refined(r) if r.refiner.face_count() >= PARALLEL_STL_FACES => {
+            Geometry::Refined(r) if r.refiner.face_count() >= PARALLEL_FACES => {
                 count += r.write_stl_records(item.world, item.mirrored, out)?;
                 continue;
             }
-            Geometry::Mesh(m) if m.face_count() >= PARALLEL_STL_FACES => {
+            Geometry::Mesh(m) if m.face_count() >= PARALLEL_FACES => {
                 count += write_mesh_stl_records(m, item.world, item.mirrored, out)?;
                 continue;
             }
@@ -443,9 +443,9 @@ fn write_stl(items: &[ExportItem], out: &mut dyn ExportOutput) -> std::io::Resul
     Ok(())
 }
 
-/// Faces of a mesh from which its STL records are made on all cores:
-/// below it, the threads cost more than they save.
-const PARALLEL_STL_FACES: usize = 1 << 16;
+/// Faces of a mesh from which its STL records and OBJ lines are made on
+/// all cores: below it, the threads cost more than they save.
+const PARALLEL_FACES: usize = 1 << 16;
 
 /// The binary STL records of `m`'s triangles in world space, face by face
 /// as [`each_stl_triangle`] visits them, made in pieces of
@@ -629,15 +629,21 @@ fn write_obj(items: &[ExportItem], w: &mut dyn ExportOutput) -> std::io::Result<
             item.node.name.replace(char::is_whitespace, "_")
         );
         let mut vertex = |out: &mut String, p: DVec3| {
-            let p = world.transform_point3(p);
-            out.push('v');
-            for x in [p.x, p.y, p.z] {
-                out.push(' ');
-                numbers.float(out, x);
-            }
-            out.push('\n');
+            obj_vertex_line(out, &mut numbers, world.transform_point3(p))
         };
         match &item.geometry {
+            Geometry::Mesh(m) if item.corners.is_none() && m.face_count() >= PARALLEL_FACES => {
+                w.write_all(out.as_bytes())?;
+                out.clear();
+                write_mesh_obj_lines(m, world, item.mirrored, base, w)?;
+                base += m.vertex_count();
+            }
+            Geometry::Refined(r) if r.refiner.face_count() >= PARALLEL_FACES => {
+                w.write_all(out.as_bytes())?;
+                out.clear();
+                r.write_obj_lines(world, item.mirrored, base, w)?;
+                base += r.order.len();
+            }
             Geometry::Mesh(m) => {
                 let mut index = vec![0usize; m.vertex_capacity()];
                 for (i, v) in m.vertices().enumerate() {
@@ -646,19 +652,11 @@ fn write_obj(items: &[ExportItem], w: &mut dyn ExportOutput) -> std::io::Result<
                     spill(&mut out, w)?;
                 }
                 let Some(c) = item.corners else {
-                    let mut vs: Vec<hedra_geom::VertexId> = Vec::new();
+                    let mut vs = Vec::new();
                     for f in m.faces() {
-                        out.push('f');
                         vs.clear();
-                        vs.extend(m.face_vertices(f));
-                        if item.mirrored {
-                            vs.reverse();
-                        }
-                        for v in &vs {
-                            out.push(' ');
-                            numbers.int(&mut out, index[v.index()]);
-                        }
-                        out.push('\n');
+                        vs.extend(m.face_vertices(f).map(|v| index[v.index()]));
+                        obj_face_line(&mut out, &mut numbers, &mut vs, item.mirrored);
                         spill(&mut out, w)?;
                     }
                     base += m.vertex_count();
@@ -720,19 +718,11 @@ fn write_obj(items: &[ExportItem], w: &mut dyn ExportOutput) -> std::io::Result<
                     vertex(&mut out, p);
                     spill(&mut out, w)?;
                 }
-                let mut vs: Vec<u32> = Vec::new();
+                let mut vs = Vec::new();
                 for face in r.faces() {
-                    out.push('f');
                     vs.clear();
-                    vs.extend(face);
-                    if item.mirrored {
-                        vs.reverse();
-                    }
-                    for &v in &vs {
-                        out.push(' ');
-                        numbers.int(&mut out, base + v as usize);
-                    }
-                    out.push('\n');
+                    vs.extend(face.map(|v| base + v as usize));
+                    obj_face_line(&mut out, &mut numbers, &mut vs, item.mirrored);
                     spill(&mut out, w)?;
                 }
                 base += r.order.len();
@@ -797,6 +787,74 @@ fn write_obj(items: &[ExportItem], w: &mut dyn ExportOutput) -> std::io::Result<
         spill(&mut out, w)?;
     }
     w.write_all(out.as_bytes())
+}
+
+/// An OBJ `v` line.
+fn obj_vertex_line(out: &mut String, numbers: &mut Numbers, p: DVec3) {
+    out.push('v');
+    for x in [p.x, p.y, p.z] {
+        out.push(' ');
+        numbers.float(out, x);
+    }
+    out.push('\n');
+}
+
+/// An OBJ `f` line of 1-based vertex numbers, in reverse order when
+/// `mirrored` (so the face keeps facing out).
+fn obj_face_line(out: &mut String, numbers: &mut Numbers, vertices: &mut [usize], mirrored: bool) {
+    if mirrored {
+        vertices.reverse();
+    }
+    out.push('f');
+    for &v in vertices.iter() {
+        out.push(' ');
+        numbers.int(out, v);
+    }
+    out.push('\n');
+}
+
+/// The OBJ `v` and `f` lines of a mesh without corner attributes, its
+/// vertices numbered from `base`, made in pieces on all cores and written
+/// in order (the lines `write_obj` makes one by one for a small mesh).
+fn write_mesh_obj_lines(
+    m: &HalfEdgeMesh,
+    world: glam::DMat4,
+    mirrored: bool,
+    base: usize,
+    w: &mut dyn ExportOutput,
+) -> std::io::Result<()> {
+    let vertices: Vec<hedra_geom::VertexId> = m.vertices().collect();
+    let mut index = vec![0usize; m.vertex_capacity()];
+    for (i, v) in vertices.iter().enumerate() {
+        index[v.index()] = base + i;
+    }
+    let vertex_pieces: Vec<&[hedra_geom::VertexId]> =
+        vertices.chunks(refined::VERTICES_PER_PIECE).collect();
+    let vertex_lines = |piece: usize, bytes: &mut Vec<u8>| {
+        let (mut out, mut numbers) = (String::new(), Numbers::default());
+        for &v in vertex_pieces[piece] {
+            obj_vertex_line(
+                &mut out,
+                &mut numbers,
+                world.transform_point3(m.position(v)),
+            );
+        }
+        bytes.extend_from_slice(out.as_bytes());
+    };
+    write_pieces_in_order(vertex_pieces.len(), &vertex_lines, w)?;
+    let faces: Vec<hedra_geom::FaceId> = m.faces().collect();
+    let face_pieces: Vec<&[hedra_geom::FaceId]> = faces.chunks(refined::FACES_PER_PIECE).collect();
+    let face_lines = |piece: usize, bytes: &mut Vec<u8>| {
+        let (mut out, mut numbers, mut vs) = (String::new(), Numbers::default(), Vec::new());
+        for &f in face_pieces[piece] {
+            vs.clear();
+            vs.extend(m.face_vertices(f).map(|v| index[v.index()]));
+            obj_face_line(&mut out, &mut numbers, &mut vs, mirrored);
+        }
+        bytes.extend_from_slice(out.as_bytes());
+    };
+    write_pieces_in_order(face_pieces.len(), &face_lines, w)?;
+    Ok(())
 }
 
 /// How much OBJ text is formatted before it is passed on to the output.

@@ -152,6 +152,47 @@ impl RefinedFaces {
         Ok((written / 50) as u32)
     }
 
+    /// The OBJ `v` and `f` lines of these faces (the written vertices
+    /// numbered from `base`), made in pieces on all cores and written in
+    /// order: the lines `write_obj` makes one by one for a small mesh.
+    pub(super) fn write_obj_lines(
+        &self,
+        world: glam::DMat4,
+        mirrored: bool,
+        base: usize,
+        out: &mut dyn ExportOutput,
+    ) -> std::io::Result<()> {
+        let vertex_lines = |piece: usize, bytes: &mut Vec<u8>| {
+            let (mut text, mut numbers) = (String::new(), super::Numbers::default());
+            let end = ((piece + 1) * VERTICES_PER_PIECE).min(self.order.len());
+            for &v in &self.order[piece * VERTICES_PER_PIECE..end] {
+                let p = world.transform_point3(self.positions[v as usize]);
+                super::obj_vertex_line(&mut text, &mut numbers, p);
+            }
+            bytes.extend_from_slice(text.as_bytes());
+        };
+        write_pieces_in_order(
+            self.order.len().div_ceil(VERTICES_PER_PIECE),
+            &vertex_lines,
+            out,
+        )?;
+        let face_lines = |piece: usize, bytes: &mut Vec<u8>| {
+            let (mut text, mut numbers, mut vs) =
+                (String::new(), super::Numbers::default(), Vec::new());
+            for face in self.piece_faces(piece) {
+                vs.clear();
+                vs.extend(
+                    face.iter()
+                        .map(|&v| base + self.number[v as usize] as usize),
+                );
+                super::obj_face_line(&mut text, &mut numbers, &mut vs, mirrored);
+            }
+            bytes.extend_from_slice(text.as_bytes());
+        };
+        write_pieces_in_order(self.piece_count(), &face_lines, out)?;
+        Ok(())
+    }
+
     /// Calls `visit` with the corner positions of every triangle, face by
     /// face.
     pub(super) fn each_triangle(&self, mut visit: impl FnMut([DVec3; 3])) {

@@ -61,12 +61,13 @@ fn gltf_arrays(refined: &Arc<RefinedFaces>, smooth: bool) -> Option<GltfTriangle
     Some(crate::gltf::arrays_from_faces(refined, shading)?.written())
 }
 
-/// A large subdivided mesh's STL records and glTF arrays, made in pieces
-/// on all cores, are the ones the mesh's faces give, in the same order:
+/// A large subdivided mesh's STL records, OBJ lines and glTF arrays, made
+/// in pieces on all cores, are the ones the mesh's faces give, in the same
+/// order:
 /// also with boundary None, whose hidden faces leave pieces of uneven
 /// length (the flat corners' numbers start where the last piece ended).
 #[test]
-fn stl_records_and_gltf_arrays_made_on_all_cores_are_the_mesh_s() {
+fn stl_obj_and_gltf_made_on_all_cores_are_the_mesh_s() {
     let grid = hedra_geom::Primitive::Grid {
         x_segments: 90,
         z_segments: 70,
@@ -87,7 +88,7 @@ fn stl_records_and_gltf_arrays_made_on_all_cores_are_the_mesh_s() {
         let Some(Geometry::Refined(refined)) = refined_geometry(&node, shape).unwrap() else {
             panic!("written as refined faces")
         };
-        assert!(refined.refiner.face_count() >= PARALLEL_STL_FACES);
+        assert!(refined.refiner.face_count() >= PARALLEL_FACES);
         assert!(refined.piece_count() > 4, "{boundary:?}: pieces");
         let (mesh, creases) = node_geometry(&node, shape).unwrap().unwrap();
         let stl = |geometry, mirrored| {
@@ -125,7 +126,7 @@ fn stl_records_and_gltf_arrays_made_on_all_cores_are_the_mesh_s() {
             );
             // The mesh's records (made on all cores too) are the ones
             // each_stl_triangle visits one by one.
-            assert!(m.face_count() >= PARALLEL_STL_FACES);
+            assert!(m.face_count() >= PARALLEL_FACES);
             let item = ExportItem {
                 node: &node,
                 geometry: Geometry::Mesh(Cow::Borrowed(m)),
@@ -141,6 +142,31 @@ fn stl_records_and_gltf_arrays_made_on_all_cores_are_the_mesh_s() {
             each_stl_triangle(std::slice::from_ref(&item), |normal, corners| {
                 one_by_one.extend_from_slice(&stl_record(normal, corners))
             });
+            // OBJ: the refined faces' and the mesh's lines, made in pieces on
+            // all cores, against the mesh's written one by one (the path of
+            // a mesh with corner attributes, here none).
+            let no_corners = CornerAttributes::default();
+            let obj = |geometry, corners| {
+                let items = [ExportItem {
+                    node: &node,
+                    geometry,
+                    world: item.world,
+                    mirrored,
+                    corners,
+                }];
+                let mut bytes = std::io::Cursor::new(Vec::new());
+                write_obj(&items, &mut bytes).unwrap();
+                bytes.into_inner()
+            };
+            let serial = obj(Geometry::Mesh(Cow::Borrowed(m)), Some(&no_corners));
+            assert!(
+                obj(Geometry::Mesh(Cow::Borrowed(m)), None) == serial,
+                "{boundary:?}, mirrored {mirrored}: the mesh's OBJ"
+            );
+            assert!(
+                obj(refined_again(), None) == serial,
+                "{boundary:?}, mirrored {mirrored}: the refined faces' OBJ"
+            );
             assert!(
                 slow[84..] == one_by_one[..],
                 "{boundary:?}, mirrored {mirrored}: the mesh's records"
