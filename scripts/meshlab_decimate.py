@@ -23,11 +23,22 @@ Reads one JSON request on stdin and prints one JSON answer.
       mean of both ways' mean distances, both sampled (every vertex plus s
       points on the faces) and divided by the input's bounding-box
       diagonal; g, b and c are MeshLab's genus, border-loop count and
-      connected-component count ("input" gives the input's).
+      connected-component count ("input" gives the input's). Each
+      candidate is measured in a process of its own ("measure" below):
+      MeshLab's sampler draws from one random generator per process, so
+      measured in turn, a candidate's samples would depend on how many
+      were drawn for the candidates before it, and a change of one result
+      would move the figures of the others.
+
+  {"op": "measure", "input": "in.ply", "candidate": "result.ply",
+   "samples": s}
+      One candidate's measures, as "compare" gives them.
 """
 import json
 import os
+import subprocess
 import sys
+import tempfile
 
 import pymeshlab
 
@@ -71,24 +82,44 @@ def measures(ms, index, input_index, samples, diagonal):
     }
 
 
-def compare(request):
+def measure(request):
     ms = pymeshlab.MeshSet()
     ms.load_new_mesh(request["input"])
     input_index = ms.current_mesh_id()
     diagonal = ms.current_mesh().bounding_box().diagonal()
-    labels = {}
-    for label, path in request["candidates"].items():
-        ms.load_new_mesh(path)
-        labels[label] = ms.current_mesh_id()
-    ms.set_current_mesh(input_index)
-    ms.generate_copy_of_current_mesh()
-    ms.meshing_decimation_quadric_edge_collapse(targetfacenum=int(request["target_faces"]))
-    labels["MeshLab quadric"] = ms.current_mesh_id()
-    samples = int(request["samples"])
-    answer = {
-        label: measures(ms, index, input_index, samples, diagonal)
-        for label, index in labels.items()
-    }
+    ms.load_new_mesh(request["candidate"])
+    index = ms.current_mesh_id()
+    return measures(ms, index, input_index, int(request["samples"]), diagonal)
+
+
+def measure_alone(input_path, candidate, samples):
+    """`measure` in a fresh process (see "compare" in the module's doc)."""
+    request = {"op": "measure", "input": input_path, "candidate": candidate, "samples": samples}
+    out = subprocess.run(
+        [sys.executable, __file__],
+        input=json.dumps(request),
+        stdout=subprocess.PIPE,
+        text=True,
+        check=True,
+    )
+    return json.loads(out.stdout)
+
+
+def compare(request):
+    ms = pymeshlab.MeshSet()
+    ms.load_new_mesh(request["input"])
+    input_index = ms.current_mesh_id()
+    candidates = dict(request["candidates"])
+    with tempfile.TemporaryDirectory() as folder:
+        ms.generate_copy_of_current_mesh()
+        ms.meshing_decimation_quadric_edge_collapse(targetfacenum=int(request["target_faces"]))
+        candidates["MeshLab quadric"] = os.path.join(folder, "meshlab.ply")
+        ms.save_current_mesh(candidates["MeshLab quadric"], binary=True)
+        samples = int(request["samples"])
+        answer = {
+            label: measure_alone(request["input"], path, samples)
+            for label, path in candidates.items()
+        }
     ms.set_current_mesh(input_index)
     topology = ms.get_topological_measures()
     answer["input"] = {
@@ -106,6 +137,8 @@ def main():
         answer = sample(request["name"])
     elif request["op"] == "compare":
         answer = compare(request)
+    elif request["op"] == "measure":
+        answer = measure(request)
     else:
         raise ValueError(f"unknown op {request['op']!r}")
     json.dump(answer, sys.stdout)

@@ -6,7 +6,9 @@
 //! borders from pymeshlab's samples, a UV sphere, a 1M-triangle torus and a
 //! cube with semi-sharp creases, each at 50, 10 and 1 % of its triangles.
 //! MeshLab's Hausdorff filter measures every result against the input the
-//! same way (symmetric, sampled), so the measure is not Hedra's either.
+//! same way (symmetric, sampled; each result in a process of its own, so
+//! that its samples do not depend on the other results), so the measure
+//! is not Hedra's either.
 //!
 //! On every row Hedra's Hausdorff and mean distances are at or below every
 //! peer's, at no more faces than the target, and Hedra's result keeps the
@@ -226,20 +228,33 @@ const MESHLAB: &str = "MeshLab quadric";
 /// heap, the shape penalty, the curvature term of the cost and the face
 /// planes along borders; 29 gaps before the greedy order): at 1 %
 /// MeshLab keeps the UV sphere's mean distance 2 % lower, and
-/// `simplifyWithUpdate` has a 6 % lower Hausdorff distance on the bunny,
-/// where one far vertex (an ear tip) decides it, and an 8 % lower mean on
-/// the torus; on the scan's Hausdorff distance at 50 % MeshLab is 5 %
-/// lower (one noisy spot of the scan). The creased cube's rounded corners
-/// at 1 % (17 % behind `simplifyWithUpdate` before the curvature term)
-/// and the scan's Hausdorff distance at 10 % and mean at 1 % (19 and 9 %
-/// behind before the borders held their faces' planes) are no longer
-/// gaps.
+/// `simplifyWithUpdate` has a 7 % lower Hausdorff distance on the bunny,
+/// where one far vertex (an ear tip) decides it; on the scan's Hausdorff
+/// distance at 50 % MeshLab is 4 % lower (one noisy spot of the scan;
+/// with 2M samples instead of 200k, MeshLab's is 1.08e-4 to 1.17e-4 and
+/// Hedra's 1.05e-4 to 1.10e-4 over two runs: this gap is the
+/// sampling's). The creased cube's rounded corners at 1 % (17 % behind
+/// `simplifyWithUpdate` before the curvature term) and the scan's
+/// Hausdorff distance at 10 % and mean at 1 % (19 and 9 % behind before
+/// the borders held their faces' planes) are no longer gaps. Nor is the
+/// torus's mean at 1 % (8 % behind `simplifyWithUpdate`, 0.82× since its
+/// result is measured without the input's unused vertices, see
+/// [`referenced`]; MeshLab's, 5.74e-5, is now the lowest peer's there).
+///
+/// How chaotic the 1 % rows are (measured 2026-12-07): with every face
+/// plane's weight scaled by 1 + 1e-12 or 1 − 1e-12, a change at the
+/// rounding's scale, the sphere's 1 % mean reads 1.028× and 1.051×
+/// MeshLab's (1.025× unscaled), its Hausdorff 0.885× and 1.006×
+/// (0.974×), the creased cube's 1 % Hausdorff 0.890× and 0.992×, the
+/// torus's 1.002× at most; the bunny's 1 % rows do not move (its
+/// Hausdorff is one vertex of the result beside the tip of an ear, 1.03e-2
+/// of the diagonal off the input: every input point within 0.03 of it
+/// lies on one side, the quadric's optimum overshoots the tip).
 #[rustfmt::skip]
 const GAPS: &[Gap] = &[
-    gap(0, 1, UPDATE, "Hausdorff", 1.08),
+    gap(0, 1, UPDATE, "Hausdorff", 1.12),
     gap(1, 1, MESHLAB, "mean", 1.08),
-    gap(2, 1, UPDATE, "mean", 1.14),
-    gap(4, 50, MESHLAB, "Hausdorff", 1.11),
+    gap(4, 50, MESHLAB, "Hausdorff", 1.09),
 ];
 
 const PEERS: [&str; 3] = [SIMPLIFY, UPDATE, MESHLAB];
@@ -313,7 +328,8 @@ fn decimation_is_at_or_below_meshoptimizer_and_meshlab_on_every_row() {
                 None,
             );
             let simplify_path = file(format!("simplify{tag}.ply"));
-            write_ply(&simplify_path, &input_widened, &triples(&simplified));
+            let (positions, triangles) = referenced(&input_widened, &triples(&simplified));
+            write_ply(&simplify_path, &positions, &triangles);
 
             let mut updated_indices = indices.clone();
             let mut updated_positions = positions32.clone();
@@ -331,7 +347,8 @@ fn decimation_is_at_or_below_meshoptimizer_and_meshlab_on_every_row() {
             );
             let update_path = file(format!("update{tag}.ply"));
             let widened: Vec<DVec3> = updated_positions.iter().map(|&p| widen(p)).collect();
-            write_ply(&update_path, &widened, &triples(&updated_indices[..kept]));
+            let (positions, triangles) = referenced(&widened, &triples(&updated_indices[..kept]));
+            write_ply(&update_path, &positions, &triangles);
 
             let answer = reference::run(
                 "meshlab_decimate.py",
@@ -406,6 +423,30 @@ fn decimation_is_at_or_below_meshoptimizer_and_meshlab_on_every_row() {
     }
     println!("{}", table.join("\n"));
     assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// The vertices the triangles use, renumbered, and the triangles in the
+/// new numbers. meshoptimizer's results index into the input's vertex
+/// buffer; written whole, the vertices they no longer use (still on the
+/// input's surface) would be sampled by MeshLab's Hausdorff filter, which
+/// samples every vertex, as distances of 0: on the torus at 1 % they
+/// brought `simplifyWithUpdate`'s mean from 6.98e-5 down to 5.29e-5.
+fn referenced(positions: &[DVec3], triangles: &[[u32; 3]]) -> (Vec<DVec3>, Vec<[u32; 3]>) {
+    let mut index = vec![u32::MAX; positions.len()];
+    let mut kept = Vec::new();
+    let triangles = triangles
+        .iter()
+        .map(|t| {
+            t.map(|v| {
+                if index[v as usize] == u32::MAX {
+                    index[v as usize] = kept.len() as u32;
+                    kept.push(positions[v as usize]);
+                }
+                index[v as usize]
+            })
+        })
+        .collect();
+    (kept, triangles)
 }
 
 fn triples(indices: &[u32]) -> Vec<[u32; 3]> {
