@@ -12,8 +12,9 @@ whole frame:
   one `transform.translate` of the selection;
 - an extrude of 1,000 faces of that grid: one `mesh.extrude_region_move`;
 - one vertex of a 316 x 316 grid (99,856 faces) moved under a Subdivision
-  Surface modifier at level 2: the evaluated mesh updated;
-- one of two UV spheres of 198,448 triangles moved under a Boolean
+  Surface modifier at level 2 (on the CPU): the dependency graph updated
+  and the subdivided mesh read, which makes Blender subdivide it;
+- one of two UV spheres of 198,024 triangles moved under a Boolean
   modifier (union, Manifold solver): the evaluated mesh updated;
 - opening the 1M-quad grid from an OBJ (`wm.obj_import`).
 
@@ -101,6 +102,9 @@ def subdivision_drag(rounds):
         vertex.co.z += 0.001
         obj.data.update()
         depsgraph.update()
+        # The modifier's result is made when it is read (as drawing reads
+        # it): the update alone leaves it to be subdivided later.
+        return len(obj.evaluated_get(depsgraph).data.vertices)
 
     return faces, timed(move, rounds)
 
@@ -109,7 +113,7 @@ def boolean_drag(rounds):
     reset()
     spheres = []
     for offset in [(0.0, 0.0, 0.0), (0.3, 0.2, 0.1)]:
-        bpy.ops.mesh.primitive_uv_sphere_add(segments=316, ring_count=158, radius=1.0, location=offset)
+        bpy.ops.mesh.primitive_uv_sphere_add(segments=446, ring_count=223, radius=1.0, location=offset)
         spheres.append(bpy.context.active_object)
     a, b = spheres
     modifier = a.modifiers.new("Boolean", "BOOLEAN")
@@ -153,7 +157,7 @@ def main():
     faces, t = extrude_a_thousand(rounds)
     rows.append((f"extrude of 1,000 faces of a {faces:,}-face grid (`mesh.extrude_region_move`)", t))
     faces, t = subdivision_drag(rounds)
-    rows.append((f"one vertex of a {faces:,}-face grid moved, Subdivision Surface level 2 (depsgraph update)", t))
+    rows.append((f"one vertex of a {faces:,}-face grid moved, Subdivision Surface level 2 on the CPU (depsgraph update, result read)", t))
     triangles, t, solver = boolean_drag(rounds)
     rows.append((f"operand of a Boolean union moved, 2 × {triangles // 2:,} triangles, {solver} solver "
                  f"(depsgraph update)", t))
