@@ -814,3 +814,64 @@ fn refining_on_all_cores_by_size_gives_the_serial_bits() {
     let applied = table.apply_serial(&cage);
     assert!(table.apply(&cage) == applied, "stencils by size");
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// Whole pieces (closed and open, each oriented) glued at single
+    /// vertices meet there in separate fans (bow-ties), and nowhere else.
+    /// The polygon analysis that the refinement from a face list runs
+    /// walks the fans around each vertex when every edge is manifold; it
+    /// must name exactly the glued vertices, and the half-edge builder
+    /// (independent code: it pairs half-edges) must refuse exactly when it
+    /// names one.
+    #[test]
+    fn glued_pieces_are_split_exactly_at_the_glued_vertices(
+        picks in proptest::collection::vec((0usize..4, any::<prop::sample::Index>()), 2..5),
+        glue in proptest::collection::vec(
+            (any::<prop::sample::Index>(), any::<prop::sample::Index>()), 0..3),
+    ) {
+        use hedra_geom::subdivision::non_manifold_places;
+        let cages = cages();
+        // The pieces side by side, each one's vertices numbered after the last's.
+        let mut faces: Vec<Vec<u32>> = Vec::new();
+        let mut starts = Vec::new();
+        let mut count = 0u32;
+        for &(kind, _) in &picks {
+            let mesh = &cages[kind];
+            starts.push((count, mesh.vertex_count() as u32));
+            for f in mesh.faces() {
+                faces.push(mesh.face_vertices(f).map(|v| count + v.0).collect());
+            }
+            count += mesh.vertex_count() as u32;
+        }
+        // Glue `p` joins a vertex of piece `p` to a vertex of piece `p + 1`,
+        // renaming the second into the first (one glue per pair: two would
+        // share the edge between them when their vertices are neighbours).
+        let mut rename: Vec<u32> = (0..count).collect();
+        let mut glued = std::collections::BTreeSet::new();
+        for (p, (a, b)) in glue.iter().enumerate().take(picks.len() - 1) {
+            let (sa, na) = starts[p];
+            let (sb, nb) = starts[p + 1];
+            let (va, vb) = (sa + a.index(na as usize) as u32, sb + b.index(nb as usize) as u32);
+            // A vertex glued twice would join three pieces or two of its
+            // own: keep each glue to fresh vertices.
+            if rename[va as usize] != va || rename[vb as usize] != vb || glued.contains(&va) {
+                continue;
+            }
+            rename[vb as usize] = va;
+            glued.insert(va);
+        }
+        for face in &mut faces {
+            for v in face.iter_mut() {
+                *v = rename[*v as usize];
+            }
+        }
+        let places = non_manifold_places(count as usize, &faces).unwrap();
+        let named: std::collections::BTreeSet<u32> = places.split_vertices.iter().copied().collect();
+        prop_assert_eq!(&named, &glued);
+        prop_assert!(places.crowded_edges.is_empty() && places.same_way_edges.is_empty());
+        let positions = vec![DVec3::ZERO; count as usize];
+        prop_assert_eq!(HalfEdgeMesh::from_polygons(&positions, &faces).is_ok(), glued.is_empty());
+    }
+}

@@ -105,6 +105,10 @@ impl NonManifoldPlaces {
 /// (a vertex has a handful, so a walk beats hashing the vertex pair).
 #[derive(Default)]
 struct CageEdges {
+    /// The first two corners that start each edge, as
+    /// [`Level::edge_corner_table`] has them (found here, where each
+    /// corner's edge is at hand, instead of in a pass of its own).
+    corners: Vec<[u32; 2]>,
     face_count: Vec<u32>,
     last_face: Vec<u32>,
     non_manifold: Vec<bool>,
@@ -117,6 +121,7 @@ impl CageEdges {
     fn push(&mut self, level: &mut Level, [a, b]: [u32; 2], non_manifold: bool) -> u32 {
         let e = level.edge_vertices.len() as u32;
         level.edge_vertices.push([a, b]);
+        self.corners.push([NONE, NONE]);
         self.face_count.push(0);
         self.last_face.push(NONE);
         self.non_manifold.push(non_manifold);
@@ -607,6 +612,13 @@ impl Level {
                 };
                 edges.face_count[e as usize] += 1;
                 edges.last_face[e as usize] = f;
+                let corner = level.face_vertices.len() as u32;
+                let slot = &mut edges.corners[e as usize];
+                if slot[0] == NONE {
+                    slot[0] = corner;
+                } else if slot[1] == NONE {
+                    slot[1] = corner;
+                }
                 level.face_vertices.push(a);
                 level.face_edges.push(e);
             }
@@ -616,10 +628,12 @@ impl Level {
             }
         }
         let CageEdges {
+            corners: edge_corners,
             face_count: edge_face_count,
             non_manifold: edge_non_manifold,
             ..
         } = edges;
+        level.adjacency.edge_corners = OnceLock::from(edge_corners);
         level.settle_face_sizes();
         let boundary_edge = |e: u32| edge_face_count[e as usize] < 2;
         let mut hidden = vec![false; faces.len()];
@@ -642,6 +656,11 @@ impl Level {
             })
             .collect();
         level.vertex_sharpness = vec![0.0; vertex_count];
+        // Every edge in one or two faces that run along it in opposite
+        // directions, no face coming back to a vertex: the fans at a vertex
+        // can then be walked instead of joined (much the cheaper).
+        let oriented_edges =
+            places.repeating_faces.is_empty() && !edge_non_manifold.iter().any(|&n| n);
         for v in 0..vertex_count as u32 {
             let edges = level.vertex_edges(v);
             let corners = level.vertex_corners(v);
@@ -651,7 +670,12 @@ impl Level {
                 .filter(|&&e| edge_non_manifold[e as usize])
                 .count();
             let boundary_edges = edges.iter().filter(|&&e| boundary_edge(e)).count();
-            let one_fan = (e == f || e == f + 1) && level.single_fan(v, &edge_face_count);
+            let one_fan = (e == f || e == f + 1)
+                && if oriented_edges {
+                    level.walks_one_fan(corners)
+                } else {
+                    level.single_fan(v, &edge_face_count)
+                };
             let non_manifold = non_manifold_edges > 0 || (f > 0 && !one_fan);
             let corner =
                 e == 0 || (boundary == BoundaryInterpolation::EdgesAndCorners && f == 1 && e == 2);
@@ -678,6 +702,42 @@ impl Level {
             .collect();
         level.drop_zero_sharpness();
         (level, hidden, places)
+    }
+
+    /// Whether the faces at a vertex (its `corners`; none: false) form
+    /// one fan, when every edge is in one face or in two that run along it
+    /// in opposite directions and no face comes back to a vertex. From
+    /// corner `c`, the edge into the vertex (the edge of the corner before)
+    /// leads to the other face's corner at the same vertex; a fan is the
+    /// walk along these steps, from a corner whose edge out of the vertex
+    /// is on the boundary (none: any corner, round to it again). One fan
+    /// when the walk meets every corner.
+    fn walks_one_fan(&self, corners: &[u32]) -> bool {
+        if corners.is_empty() {
+            return false;
+        }
+        let edge_corners = self.edge_corner_table();
+        let boundary_out = |c: u32| edge_corners[self.face_edges[c as usize] as usize][1] == NONE;
+        let start = corners
+            .iter()
+            .copied()
+            .find(|&c| boundary_out(c))
+            .unwrap_or(corners[0]);
+        let mut c = start;
+        let mut met = 1;
+        loop {
+            let before = self.prev_corner(c as usize) as u32;
+            let [c0, c1] = edge_corners[self.face_edges[before as usize] as usize];
+            let across = if c0 == before { c1 } else { c0 };
+            if across == NONE || across == start {
+                return met == corners.len();
+            }
+            met += 1;
+            if met > corners.len() {
+                return false;
+            }
+            c = across;
+        }
     }
 
     /// Whether the faces at `v` form one fan, each face there once, joined
@@ -782,5 +842,53 @@ fn clamp_sharpness(s: f64) -> f32 {
         0.0
     } else {
         (s as f32).min(INFINITE_SHARPNESS)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The edge table `from_polygon_cage` fills while it finds the edges
+    /// equals the one counted afresh from the face list: on a closed cube,
+    /// an open strip, a crowded edge (three faces), a face turned over and
+    /// a face that uses an edge twice.
+    #[test]
+    fn cage_edge_corners_equal_counted() {
+        let cases: [(&str, usize, Vec<Vec<u32>>); 5] = [
+            (
+                "cube",
+                8,
+                vec![
+                    vec![0, 3, 2, 1],
+                    vec![4, 5, 6, 7],
+                    vec![0, 1, 5, 4],
+                    vec![1, 2, 6, 5],
+                    vec![2, 3, 7, 6],
+                    vec![3, 0, 4, 7],
+                ],
+            ),
+            ("strip", 6, vec![vec![0, 1, 4, 3], vec![1, 2, 5, 4]]),
+            (
+                "crowded",
+                5,
+                vec![vec![0, 1, 2], vec![1, 0, 3], vec![0, 1, 4]],
+            ),
+            ("turned over", 4, vec![vec![0, 1, 2], vec![0, 1, 3]]),
+            ("edge twice", 4, vec![vec![0, 1, 2, 1, 3], vec![1, 0, 3]]),
+        ];
+        for (name, vertex_count, faces) in cases {
+            let boundary = BoundaryInterpolation::EdgesOnly;
+            let (level, _, _) = Level::from_polygon_cage(vertex_count, &faces, boundary, false);
+            let counted = Level {
+                adjacency: Adjacency::default(),
+                ..level.clone()
+            };
+            assert_eq!(
+                level.edge_corner_table(),
+                counted.edge_corner_table(),
+                "{name}"
+            );
+        }
     }
 }
