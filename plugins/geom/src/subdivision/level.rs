@@ -102,7 +102,8 @@ impl NonManifoldPlaces {
 /// them: how many faces use it, the last of them, and whether it is
 /// non-manifold. Edges are found by their lower vertex: `first_at[v]`
 /// starts the list of edges whose lower end is `v`, `next_at[e]` goes on
-/// (a vertex has a handful, so a walk beats hashing the vertex pair).
+/// and `last_at[v]` ends it (a vertex has a handful, so a walk beats
+/// hashing the vertex pair).
 #[derive(Default)]
 struct CageEdges {
     /// The first two corners that start each edge, as
@@ -112,7 +113,11 @@ struct CageEdges {
     face_count: Vec<u32>,
     last_face: Vec<u32>,
     non_manifold: Vec<bool>,
+    /// Each edge's higher vertex ([`NONE`] for an edge from a vertex to
+    /// itself, which `find` never returns), beside `next_at` for the walk.
+    high_end: Vec<u32>,
     first_at: Vec<u32>,
+    last_at: Vec<u32>,
     next_at: Vec<u32>,
 }
 
@@ -128,25 +133,21 @@ impl CageEdges {
         // Appended behind the vertex's other edges: the first edge of a
         // vertex pair is the one `find` returns, as in OpenSubdiv.
         let low = a.min(b) as usize;
+        self.high_end.push(if a == b { NONE } else { a.max(b) });
         self.next_at.push(NONE);
-        if self.first_at[low] == NONE {
-            self.first_at[low] = e;
-        } else {
-            let mut last = self.first_at[low];
-            while self.next_at[last as usize] != NONE {
-                last = self.next_at[last as usize];
-            }
-            self.next_at[last as usize] = e;
+        match self.last_at[low] {
+            NONE => self.first_at[low] = e,
+            last => self.next_at[last as usize] = e,
         }
+        self.last_at[low] = e;
         e
     }
     /// The first edge between `a` and `b` (two different vertices).
-    fn find(&self, level: &Level, a: u32, b: u32) -> Option<u32> {
+    fn find(&self, a: u32, b: u32) -> Option<u32> {
         let (low, high) = (a.min(b), a.max(b));
         let mut e = self.first_at[low as usize];
         while e != NONE {
-            let [x, y] = level.edge_vertices[e as usize];
-            if x.max(y) == high && x != y {
+            if self.high_end[e as usize] == high {
                 return Some(e);
             }
             e = self.next_at[e as usize];
@@ -585,13 +586,19 @@ impl Level {
         };
         let mut edges = CageEdges {
             first_at: vec![NONE; vertex_count],
+            last_at: vec![NONE; vertex_count],
             ..CageEdges::default()
         };
         for (f, poly) in faces.iter().enumerate() {
             let f = f as u32;
             for (i, &a) in poly.iter().enumerate() {
-                let b = poly[(i + 1) % poly.len()];
-                let e = match edges.find(&level, a, b) {
+                // (No `%`: a division per corner is a measurable share here.)
+                let b = if i + 1 == poly.len() {
+                    poly[0]
+                } else {
+                    poly[i + 1]
+                };
+                let e = match edges.find(a, b) {
                     _ if a == b => edges.push(&mut level, [a, b], true),
                     None => edges.push(&mut level, [a, b], false),
                     Some(e) if edges.last_face[e as usize] == f => {
@@ -665,14 +672,24 @@ impl Level {
             let edges = level.vertex_edges(v);
             let corners = level.vertex_corners(v);
             let (e, f) = (edges.len(), corners.len());
-            let non_manifold_edges = edges
-                .iter()
-                .filter(|&&e| edge_non_manifold[e as usize])
-                .count();
-            let boundary_edges = edges.iter().filter(|&&e| boundary_edge(e)).count();
+            // (Counted only when some edge is not manifold: else both are
+            // read only where `non_manifold_edges` is 2.)
+            let non_manifold_edges = if oriented_edges {
+                0
+            } else {
+                edges
+                    .iter()
+                    .filter(|&&e| edge_non_manifold[e as usize])
+                    .count()
+            };
+            let boundary_edges = if oriented_edges {
+                0
+            } else {
+                edges.iter().filter(|&&e| boundary_edge(e)).count()
+            };
             let one_fan = (e == f || e == f + 1)
                 && if oriented_edges {
-                    level.walks_one_fan(corners)
+                    level.walks_one_fan(corners, e == f + 1)
                 } else {
                     level.single_fan(v, &edge_face_count)
                 };
@@ -712,17 +729,19 @@ impl Level {
     /// walk along these steps, from a corner whose edge out of the vertex
     /// is on the boundary (none: any corner, round to it again). One fan
     /// when the walk meets every corner.
-    fn walks_one_fan(&self, corners: &[u32]) -> bool {
+    /// `open`: the vertex has one edge more than faces, so a boundary
+    /// edge (else none is looked for).
+    fn walks_one_fan(&self, corners: &[u32], open: bool) -> bool {
         if corners.is_empty() {
             return false;
         }
         let edge_corners = self.edge_corner_table();
         let boundary_out = |c: u32| edge_corners[self.face_edges[c as usize] as usize][1] == NONE;
-        let start = corners
-            .iter()
-            .copied()
-            .find(|&c| boundary_out(c))
-            .unwrap_or(corners[0]);
+        let start = match open {
+            true => corners.iter().copied().find(|&c| boundary_out(c)),
+            false => None,
+        }
+        .unwrap_or(corners[0]);
         let mut c = start;
         let mut met = 1;
         loop {
