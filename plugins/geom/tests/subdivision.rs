@@ -875,3 +875,58 @@ proptest! {
         prop_assert_eq!(HalfEdgeMesh::from_polygons(&positions, &faces).is_ok(), glued.is_empty());
     }
 }
+
+/// `Refiner::vertex_edge_count` counts a refined vertex's edges from the
+/// level before; it must equal the count of the refined edges themselves,
+/// for every scheme, with boundaries and creases, and on a cage with an
+/// edge in three faces (counted on the last level then).
+#[test]
+fn refined_vertex_edge_counts_equal_the_refined_edges() {
+    let crowded = Refiner::from_polygons(
+        5,
+        &[vec![0, 1, 2], vec![1, 0, 3], vec![0, 1, 4]],
+        options(Scheme::CatmullClark),
+        2,
+    )
+    .unwrap();
+    let fan_positions: Vec<DVec3> = (0..5)
+        .map(|i| DVec3::new(f64::from(i).cos(), f64::from(i).sin(), 0.0))
+        .chain([DVec3::ZERO])
+        .collect();
+    let fan = HalfEdgeMesh::from_polygons(
+        &fan_positions,
+        &[[5, 0, 1], [5, 1, 2], [5, 2, 3], [5, 3, 4]],
+    )
+    .unwrap();
+    let mut refiners = vec![("crowded", crowded)];
+    for (name, mesh) in cages().into_iter().enumerate() {
+        for scheme in [Scheme::CatmullClark, Scheme::Linear, Scheme::DooSabin] {
+            for levels in [1, 2] {
+                let creases = all_edges(&mesh, 1.5);
+                let r = Refiner::new(&mesh, &creases, options(scheme), levels).unwrap();
+                refiners.push((["cube", "cylinder", "grid", "icosahedron"][name], r));
+            }
+        }
+    }
+    for mesh in [icosahedron(), fan] {
+        for scheme in [Scheme::Loop, Scheme::Linear] {
+            let r = Refiner::new(&mesh, &Creases::default(), options(scheme), 2).unwrap();
+            refiners.push(("triangles", r));
+        }
+    }
+    for (name, r) in refiners {
+        let mut counted = vec![0usize; r.vertex_count()];
+        for ([a, b], _) in r.edges() {
+            counted[a as usize] += 1;
+            counted[b as usize] += 1;
+        }
+        for (v, &n) in counted.iter().enumerate() {
+            assert_eq!(
+                r.vertex_edge_count(v as u32),
+                n,
+                "{name}, {:?}, vertex {v}",
+                r.options().scheme
+            );
+        }
+    }
+}

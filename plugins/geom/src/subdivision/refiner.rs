@@ -214,9 +214,31 @@ impl Refiner {
             .enumerate()
             .map(|(e, &ends)| (ends, last.edge_sharp(e as u32)))
     }
-    /// Edges at refined vertex `v`.
+    /// Edges at refined vertex `v`. Counted from the level before (the
+    /// last level's own vertex-edge lists, as large as its edges, are never
+    /// built for it: an export asks this of every vertex): a face point has
+    /// one edge per side of its face, an edge point its two halves and one
+    /// edge per face of its parent edge (Catmull-Clark; two per triangle
+    /// for Loop), a vertex point as many as its parent vertex. Levels with
+    /// an edge in more than two faces, the cage and Doo-Sabin's count on
+    /// the last level itself.
     pub fn vertex_edge_count(&self, v: u32) -> usize {
-        self.last().vertex_edges(v).len()
+        let [.., parent, last] = &self.levels[..] else {
+            return self.last().vertex_edges(v).len();
+        };
+        if parent.non_manifold {
+            return last.vertex_edges(v).len();
+        }
+        let (nf, ne) = (parent.face_count() as u32, parent.edge_count() as u32);
+        let edge_faces = |e: u32| 1 + usize::from(!parent.is_boundary_edge(e));
+        match self.split() {
+            Split::Quads if v < nf => parent.face_corners(v).len(),
+            Split::Quads if v < nf + ne => 2 + edge_faces(v - nf),
+            Split::Quads => parent.vertex_edges(v - nf - ne).len(),
+            Split::Triangles if v < ne => 2 + 2 * edge_faces(v),
+            Split::Triangles => parent.vertex_edges(v - ne).len(),
+            Split::Dual => last.vertex_edges(v).len(),
+        }
     }
     /// True when an edge of the refined mesh between two faces is still
     /// infinitely sharp (where smooth normals are split).
@@ -245,7 +267,7 @@ impl Refiner {
             }
         }
         for v in 0..last.vertex_count as u32 {
-            if number[v as usize] == u32::MAX && last.vertex_edges(v).is_empty() {
+            if number[v as usize] == u32::MAX && self.vertex_edge_count(v) == 0 {
                 number[v as usize] = order.len() as u32;
                 order.push(v);
             }
