@@ -20,6 +20,7 @@
 mod creases;
 mod level;
 mod limit;
+mod moves;
 mod refine;
 mod refiner;
 mod rules;
@@ -39,6 +40,7 @@ use rules::{Masks, Sink};
 
 pub use creases::{CreaseTaper, Creases, TaperError};
 pub use limit::{limit_normals, limit_positions, snap_to_limit};
+pub use moves::LevelPoints;
 pub use refiner::{PARALLEL_POINTS, Refiner, face_count_after, non_manifold_places};
 pub use stencil::{StencilEvaluation, StencilTable};
 

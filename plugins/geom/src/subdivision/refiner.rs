@@ -541,10 +541,10 @@ fn masks_for(scheme: Scheme) -> Masks {
 }
 
 /// Accumulates a point from parent positions and face points.
-struct PointSink<'a> {
-    points: &'a [DVec3],
-    face_points: &'a [DVec3],
-    sum: DVec3,
+pub(crate) struct PointSink<'a> {
+    pub points: &'a [DVec3],
+    pub face_points: &'a [DVec3],
+    pub sum: DVec3,
 }
 
 impl Sink for PointSink<'_> {
@@ -637,7 +637,7 @@ pub(crate) fn child_count(parent: &Level, split: Split) -> usize {
 /// with their masks written out; every other point goes through
 /// [`point_mask`]. Both add the same terms in the same order, so the result
 /// is the same to the last bit either way (and the same as the stencils').
-fn interpolate(
+pub(crate) fn interpolate(
     parent: &Level,
     split: Split,
     options: Options,
