@@ -3401,3 +3401,124 @@ fn the_edit_edges_follow_a_g_drag() {
     let cube = user.first_mesh().clone();
     assert_eq!(lines(&mut user), edge_ends(&cube), "back on the cube");
 }
+
+/// Issue 36, item 1: a drag on a cage whose level-2 preview is too large
+/// for stencils (a 161 × 160 grid: 412,160 faces) recomputes and rewrites
+/// only what the moved vertex reaches, and the viewport keeps the bounds
+/// the mesh is culled by itself (Bevy no longer goes over every position).
+/// While G runs, with the wheel turned in the middle of it, and after the
+/// click that confirms it, the render mesh is a fresh refinement of the
+/// shown cage, and its bounds hold every position.
+#[test]
+fn a_drag_on_a_large_smooth_preview_shows_the_moved_shape_within_its_bounds() {
+    use bevy::camera::primitives::Aabb;
+    use hedra_doc::smooth::SmoothRefinement;
+    let mut user = User::new();
+    execute(
+        &mut user,
+        "AddPrimitive(primitive: Grid(x_segments: 161, z_segments: 160, size: 4.0), name: Some(\"Sheet\"))",
+    );
+    user.app
+        .world_mut()
+        .write_message(hedra_scene::DocRequest::Execute(
+            hedra_doc::Command::SetSubdivision {
+                nodes: vec![hedra_doc::NodeRef::Name("Sheet".into())],
+                modifier: Some(hedra_doc::SubdivisionModifier::with_level(2)),
+            },
+        ));
+    user.frames(2);
+    for _ in 0..1000 {
+        let running = user
+            .app
+            .world()
+            .resource::<hedra_scene::SmoothPreviews>()
+            .progress()
+            .len();
+        if running == 0 {
+            break;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(20));
+        user.frames(1);
+    }
+    user.frames(2);
+    let sheet = node_named(&user, "Sheet").unwrap().id;
+    let entity = user.app.world().resource::<hedra_scene::NodeEntities>().0[&sheet];
+    // The fresh refinement of what the node shows, flat shaded, and
+    // whether the entity's bounds hold every drawn position.
+    let check = |user: &mut User, when: &str| {
+        let shown = user
+            .app
+            .world()
+            .get::<hedra_scene::ShownMesh>(entity)
+            .expect("shown")
+            .cage
+            .clone();
+        let modifier = hedra_doc::SubdivisionModifier::with_level(2);
+        let mut fresh = SmoothRefinement::new(
+            &shown,
+            &hedra_geom::subdivision::Creases::default(),
+            &modifier,
+        )
+        .unwrap();
+        let points = fresh.points(&shown);
+        let (expected, _) = fresh.attributes(&points, hedra_doc::Shading::Flat);
+        let drawn = user.render_positions();
+        assert_eq!(
+            drawn.len(),
+            expected.len(),
+            "{when}: the level-2 preview is drawn"
+        );
+        assert!(
+            drawn
+                .iter()
+                .zip(&expected)
+                .all(|(a, b)| *a == Vec3::from(*b)),
+            "{when}: the drawn shape is the refinement of the shown cage"
+        );
+        let aabb = *user.app.world().get::<Aabb>(entity).expect("bounds");
+        let (min, max) = (Vec3::from(aabb.min()), Vec3::from(aabb.max()));
+        assert!(
+            drawn
+                .iter()
+                .all(|p| p.cmpge(min).all() && p.cmple(max).all()),
+            "{when}: a position lies outside the bounds {min} … {max}"
+        );
+    };
+    check(&mut user, "before the drag");
+    user.tap(KeyCode::Tab);
+    let mesh = user.first_mesh().clone();
+    let middle = mesh
+        .vertices()
+        .min_by(|a, b| {
+            let (pa, pb) = (mesh.position(*a), mesh.position(*b));
+            pa.length().total_cmp(&pb.length())
+        })
+        .unwrap();
+    user.app
+        .world_mut()
+        .resource_mut::<hedra_edit::EditMode>()
+        .selection
+        .vertices = [middle].into_iter().collect();
+    user.frames(1);
+    let centre = user.viewport_center();
+    user.move_to(centre);
+    // Up, off the sheet: the bounds must grow to hold the moved corners.
+    user.tap(KeyCode::KeyG);
+    user.tap(KeyCode::KeyY);
+    user.glide_to(centre + Vec2::new(0.0, -120.0), 6);
+    check(&mut user, "during G");
+    user.wheel(2.0);
+    user.glide_to(centre + Vec2::new(0.0, -200.0), 4);
+    check(&mut user, "during G, after the wheel");
+    user.click(user.cursor());
+    user.frames(3);
+    assert!(
+        user.doc().nodes().any(|n| match &n.content {
+            NodeContent::Mesh(m) => m.mesh.position(middle).length() > 1e-3,
+            _ => false,
+        }),
+        "the vertex moved: {}",
+        user.status()
+    );
+    check(&mut user, "after the click");
+}

@@ -7,17 +7,44 @@
 use crate::render::{RenderBuffers, SharpSplit, split_sharp_corners};
 use crate::{Shading, SubdivisionModifier};
 use hedra_geom::subdivision::{
-    Creases, INFINITE_SHARPNESS, Refiner, StencilEvaluation, StencilTable, limit_normals,
+    Creases, INFINITE_SHARPNESS, LevelPoints, Refiner, StencilEvaluation, StencilTable,
+    limit_normals,
 };
 use hedra_geom::{DVec3, HalfEdgeMesh};
 use std::collections::HashSet;
 use std::sync::Arc;
 use std::sync::OnceLock;
 
-/// Above this many refined faces a drag refines positions through the
-/// masks each frame instead of keeping stencils (whose weights would take
-/// hundreds of megabytes).
+/// Above this many refined faces a drag keeps every level's points
+/// instead of stencils (whose weights would take hundreds of megabytes)
+/// and recomputes the points the moved vertices reach through the masks
+/// ([`Refiner::update_kept`]).
 pub const STENCIL_FACE_LIMIT: usize = 400_000;
+
+/// Which positions [`SmoothRefinement::update_attributes`] rewrote.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Rewritten {
+    /// All of them.
+    All,
+    /// Some, all within these bounds (empty, min above max, when none).
+    Some {
+        /// The least coordinates of the rewritten positions.
+        min: [f32; 3],
+        /// The greatest.
+        max: [f32; 3],
+    },
+}
+
+impl Rewritten {
+    fn include(&mut self, p: [f32; 3]) {
+        if let Rewritten::Some { min, max } = self {
+            for i in 0..3 {
+                min[i] = min[i].min(p[i]);
+                max[i] = max[i].max(p[i]);
+            }
+        }
+    }
+}
 
 /// The refinement of one cage, kept while its connectivity, creases and
 /// modifier stay.
@@ -30,9 +57,16 @@ pub struct SmoothRefinement {
     /// ([`stencil_job`](SmoothRefinement::stencil_job)): the weights and
     /// every level's points.
     stencils: Option<(StencilTable, StencilEvaluation)>,
+    /// Above [`STENCIL_FACE_LIMIT`]: every level's points, made on first
+    /// use and updated where the cage moved.
+    kept: Option<LevelPoints>,
     /// The refined corners split along infinitely sharp creases, made on
     /// first use and kept while only positions change.
     sharp: OnceLock<SharpSplit>,
+    /// Where each refined face's corners start in the flat-shaded
+    /// attributes (`u32::MAX`: a hidden face), made on the first update
+    /// of a few faces.
+    flat_starts: OnceLock<Vec<u32>>,
 }
 
 /// A stencil table with the evaluation of the cage it was built for, made
@@ -83,7 +117,9 @@ impl SmoothRefinement {
             modifier: *modifier,
             refiner: Arc::new(refiner),
             stencils: None,
+            kept: None,
             sharp: OnceLock::new(),
+            flat_starts: OnceLock::new(),
         }
     }
 
@@ -144,10 +180,14 @@ impl SmoothRefinement {
     /// cage is refined through the masks instead of building the stencils
     /// on this frame.
     pub fn points_with(&mut self, cage: &Arc<HalfEdgeMesh>, build_stencils: bool) -> Vec<DVec3> {
+        if self.refiner.face_count() > STENCIL_FACE_LIMIT {
+            self.update_kept(cage);
+            return self.kept.as_ref().expect("made above").points().to_vec();
+        }
         let first = self.stencils.is_none() && (!build_stencils || Arc::ptr_eq(&self.cage, cage));
         self.cage = cage.clone();
         let cage_points = self.refiner.cage_positions(cage);
-        if first || self.refiner.face_count() > STENCIL_FACE_LIMIT {
+        if first {
             return self.refiner.refine(&cage_points);
         }
         let refiner = &*self.refiner;
@@ -167,6 +207,86 @@ impl SmoothRefinement {
             table.update(eval, &moved);
         }
         eval.points().to_vec()
+    }
+
+    /// Makes or updates the kept levels for `cage`: the refined points
+    /// that were recomputed (`None`: all of them).
+    fn update_kept(&mut self, cage: &Arc<HalfEdgeMesh>) -> Option<Vec<u32>> {
+        self.cage = cage.clone();
+        let cage_points = self.refiner.cage_positions(cage);
+        let Some(kept) = &mut self.kept else {
+            self.kept = Some(self.refiner.refine_kept(&cage_points));
+            return None;
+        };
+        let moved: Vec<(u32, DVec3)> = cage_points
+            .iter()
+            .zip(kept.cage())
+            .enumerate()
+            .filter(|(_, (new, old))| new != old)
+            .map(|(i, (new, _))| (i as u32, *new))
+            .collect();
+        self.refiner.update_kept(kept, &moved)
+    }
+
+    /// Rewrites `positions` and `normals` (the [`attributes`](Self::attributes)
+    /// of this refinement) for `cage` (which [`fits`](Self::fits)). Flat
+    /// shaded above [`STENCIL_FACE_LIMIT`], only the corners of the faces
+    /// at the recomputed points are written (a drag of one vertex of a
+    /// 100k-face cage at level 2 rewrites a few hundred of 6.4M corners);
+    /// otherwise all, from [`points_with`](Self::points_with). Says which
+    /// (the caller's bounds of the positions follow from it).
+    pub fn update_attributes(
+        &mut self,
+        cage: &Arc<HalfEdgeMesh>,
+        build_stencils: bool,
+        shading: Shading,
+        positions: &mut Vec<[f32; 3]>,
+        normals: &mut Vec<[f32; 3]>,
+    ) -> Rewritten {
+        let patch = shading == Shading::Flat
+            && self.kept.is_some()
+            && self.refiner.face_count() > STENCIL_FACE_LIMIT
+            && positions.len() == normals.len();
+        if !patch {
+            let points = self.points_with(cage, build_stencils);
+            self.attributes_into(&points, shading, positions, normals);
+            return Rewritten::All;
+        }
+        let Some(recomputed) = self.update_kept(cage) else {
+            let points = self.kept.as_ref().expect("kept").points();
+            let split = self.sharp_split(shading);
+            attributes_into(&self.refiner, points, shading, split, positions, normals);
+            return Rewritten::All;
+        };
+        let mut written = Rewritten::Some {
+            min: [f32::INFINITY; 3],
+            max: [f32::NEG_INFINITY; 3],
+        };
+        let refiner = &*self.refiner;
+        let starts = self.flat_starts.get_or_init(|| flat_starts(refiner));
+        let points = self.kept.as_ref().expect("kept").points();
+        let mut faces: Vec<usize> = recomputed
+            .iter()
+            .flat_map(|&v| refiner.faces_at(v))
+            .collect();
+        faces.sort_unstable();
+        faces.dedup();
+        let f32s = |p: &DVec3| p.as_vec3().to_array();
+        for f in faces {
+            let start = starts[f];
+            if start == u32::MAX {
+                continue;
+            }
+            let face = refiner.face(f);
+            let n = newell_normal(face, points).as_vec3().to_array();
+            for (k, &v) in face.iter().enumerate() {
+                let p = f32s(&points[v as usize]);
+                positions[start as usize + k] = p;
+                normals[start as usize + k] = n;
+                written.include(p);
+            }
+        }
+        written
     }
 
     /// Render buffers of the refined faces at `points`.
@@ -332,6 +452,22 @@ fn refined_sharp_split(refiner: &Refiner) -> SharpSplit {
     split_sharp_corners(&faces, refiner.vertex_count(), &sharp)
 }
 
+/// Where each refined face's corners start in the flat-shaded attributes
+/// (`u32::MAX` for a hidden face), as [`attributes_into`] writes them.
+fn flat_starts(refiner: &Refiner) -> Vec<u32> {
+    let mut next = 0u32;
+    (0..refiner.face_count())
+        .map(|f| {
+            if refiner.is_face_hidden(f) {
+                return u32::MAX;
+            }
+            let start = next;
+            next += refiner.face(f).len() as u32;
+            start
+        })
+        .collect()
+}
+
 /// Newell's normal of a polygon (Newell 1972; unit, or zero when degenerate).
 fn newell_normal(face: &[u32], points: &[DVec3]) -> DVec3 {
     newell_sum(face, points).normalize_or_zero()
@@ -392,6 +528,71 @@ mod tests {
         // Outward: each smooth normal points away from the centre.
         for (p, n) in smooth.positions.iter().zip(&smooth.normals) {
             assert!(glam::Vec3::from(*p).dot(glam::Vec3::from(*n)) > 0.0);
+        }
+    }
+
+    /// Above the stencil limit a drag keeps every level's points and
+    /// rewrites only the flat corners of the faces the move reaches: after
+    /// each of several moves (one vertex, then a few, then every vertex,
+    /// which rewrites all) the attributes are the same bits as those of a
+    /// fresh refinement of the moved cage. With boundary `None` (faces
+    /// hidden, so the corners of a face do not start at 4 × its index) and
+    /// without.
+    #[test]
+    fn a_large_drag_rewrites_the_reached_faces_to_a_fresh_refinement_s_attributes() {
+        use hedra_geom::subdivision::BoundaryInterpolation;
+        for boundary in [
+            BoundaryInterpolation::EdgesOnly,
+            BoundaryInterpolation::None,
+        ] {
+            let grid = Primitive::Grid {
+                x_segments: 161,
+                z_segments: 160,
+                size: 2.0,
+            };
+            let cage = Arc::new(grid.build().unwrap());
+            let mut modifier = SubdivisionModifier::with_level(2);
+            modifier.options.boundary = boundary;
+            let creases = Creases::default();
+            let mut r = SmoothRefinement::new(&cage, &creases, &modifier).unwrap();
+            assert!(r.refiner.face_count() > STENCIL_FACE_LIMIT);
+            let points = r.points(&cage);
+            let (mut positions, mut normals) = r.attributes(&points, Shading::Flat);
+            let vertices: Vec<_> = cage.vertices().collect();
+            let mut moved = (*cage).clone();
+            let moves: [&[usize]; 3] = [&[13_000], &[0, 161, 5_000, 5_001], &[]];
+            for (step, which) in moves.into_iter().enumerate() {
+                let which: Vec<usize> = if which.is_empty() {
+                    (0..vertices.len()).collect()
+                } else {
+                    which.to_vec()
+                };
+                for &i in &which {
+                    let v = vertices[i];
+                    let p = moved.position(v) + DVec3::new(0.01, 0.02 * step as f64 + 0.03, -0.01);
+                    moved.set_position(v, p);
+                }
+                let cage = Arc::new(moved.clone());
+                let before = positions.clone();
+                let written =
+                    r.update_attributes(&cage, true, Shading::Flat, &mut positions, &mut normals);
+                // Every position that changed is within the bounds reported.
+                if let Rewritten::Some { min, max } = written {
+                    for (a, b) in before.iter().zip(&positions).filter(|(a, b)| a != b) {
+                        assert!(
+                            (0..3).all(|i| min[i] <= b[i] && b[i] <= max[i]),
+                            "{a:?} -> {b:?}"
+                        );
+                    }
+                } else {
+                    assert_eq!(step, 2, "only moving every vertex rewrites all");
+                }
+                let mut fresh = SmoothRefinement::new(&cage, &creases, &modifier).unwrap();
+                let points = fresh.points(&cage);
+                let (p, n) = fresh.attributes(&points, Shading::Flat);
+                assert!(p == positions, "{boundary:?}, move {step}: positions");
+                assert!(n == normals, "{boundary:?}, move {step}: normals");
+            }
         }
     }
 

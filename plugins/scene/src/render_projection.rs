@@ -4,6 +4,9 @@
 //! smooth previews in the background.
 
 use crate::*;
+use bevy::camera::primitives::{Aabb, MeshAabb};
+use bevy::camera::visibility::NoAutoAabb;
+use hedra_doc::smooth::Rewritten;
 use std::sync::Arc;
 
 /// The most faces a kept mesh's subdivision preview is made with in a
@@ -23,6 +26,9 @@ pub struct OnScreen {
     /// The creases drawn with (infinitely sharp ones split the normals of
     /// the cage too).
     creases: u64,
+    /// The bounds set on the entity (its `Aabb`, which this module keeps:
+    /// see [`set_bounds`]).
+    bounds: Option<Aabb>,
 }
 
 impl OnScreen {
@@ -69,11 +75,14 @@ pub fn project_render_meshes(
         let name = node.map_or_else(|| job.node.to_string(), |(_, _, n, ..)| n.to_string());
         match job.result {
             Ok(mesh) => {
-                if let Some(mut m) = node
-                    .and_then(|(_, _, _, _, m, _)| m)
-                    .and_then(|h| meshes.get_mut(&h.0))
-                {
+                if let Some((entity, mut m)) = node.and_then(|(e, _, _, _, m, _)| {
+                    m.and_then(|h| meshes.get_mut(&h.0)).map(|m| (e, m))
+                }) {
+                    let bounds = mesh.compute_aabb();
                     *m = mesh;
+                    set_bounds(&mut commands.entity(entity), bounds);
+                    // The bounds are no longer those `OnScreen` holds.
+                    commands.entity(entity).remove::<OnScreen>();
                 }
             }
             Err(e) if e == "cancelled" => status.info(format!(
@@ -164,12 +173,13 @@ impl Projector<'_, '_, '_, '_> {
         let (cage, creases, is_preview) = (&shown.cage, shown.creases(content), shown.previewed);
         let modifier = content.active_modifier();
         let fingerprint = creases_fingerprint(creases);
-        let wanted = OnScreen {
+        let mut wanted = OnScreen {
             mesh: cage.clone(),
             shading: content.shading,
             smooth: modifier.map(|m| (m, fingerprint)),
             modifiers: content.modifiers.clone(),
             creases: fingerprint,
+            bounds: None,
         };
         let same_look = on_screen.is_some_and(|o| {
             o.shading == wanted.shading
@@ -182,28 +192,49 @@ impl Projector<'_, '_, '_, '_> {
         }
         if !content.modifiers.is_empty() {
             let built = self.with_stack(node, name, content, cage, creases, modifier.as_ref());
-            set_render_mesh(ec, mesh3d, self.meshes, built, self.material);
+            wanted.bounds = set_render_mesh(ec, mesh3d, self.meshes, built, self.material);
             ec.insert(wanted);
             return;
         }
         let mut render = mesh3d.and_then(|h| self.meshes.get_mut(&h.0));
         let patched = match (&modifier, render.as_deref_mut()) {
-            (Some(m), Some(r)) if same_look => self.smooth.update_positions(
-                r,
-                &SmoothSource {
-                    node,
-                    cage,
-                    creases,
-                    modifier: m,
-                    shading: content.shading,
-                },
-            ),
+            (Some(m), Some(r)) if same_look => self
+                .smooth
+                .update_positions(
+                    r,
+                    &SmoothSource {
+                        node,
+                        cage,
+                        creases,
+                        modifier: m,
+                        shading: content.shading,
+                    },
+                )
+                .map(
+                    |written| match (written, on_screen.and_then(|o| o.bounds)) {
+                        // A few corners moved: the old bounds grown to hold
+                        // them (never too small; a drag's box only grows).
+                        (Rewritten::Some { min, max }, Some(old)) if min[0] <= max[0] => {
+                            Some(Aabb::from_min_max(
+                                Vec3::from(old.min()).min(Vec3::from(min)),
+                                Vec3::from(old.max()).max(Vec3::from(max)),
+                            ))
+                        }
+                        // None moved.
+                        (Rewritten::Some { .. }, Some(old)) => Some(old),
+                        _ => r.compute_aabb(),
+                    },
+                ),
             (None, Some(r)) if same_look => on_screen
-                .is_some_and(|o| update_render_positions(r, &o.mesh, cage, content.shading)),
-            _ => false,
+                .is_some_and(|o| update_render_positions(r, &o.mesh, cage, content.shading))
+                .then(|| r.compute_aabb()),
+            _ => None,
         };
         drop(render);
-        if !patched {
+        if let Some(bounds) = patched {
+            set_bounds(ec, bounds);
+            wanted.bounds = bounds;
+        } else {
             let built = match &modifier {
                 None => render_mesh(cage, content.shading, creases),
                 Some(m) => {
@@ -231,7 +262,7 @@ impl Projector<'_, '_, '_, '_> {
                     }
                 }
             };
-            set_render_mesh(ec, mesh3d, self.meshes, built, self.material);
+            wanted.bounds = set_render_mesh(ec, mesh3d, self.meshes, built, self.material);
         }
         ec.insert(wanted);
     }
@@ -335,20 +366,23 @@ impl Projector<'_, '_, '_, '_> {
 }
 
 /// Puts `render` on the entity's mesh asset (or a new one) with the material.
+/// Returns the bounds it set on the entity ([`set_bounds`]).
 pub(crate) fn set_render_mesh(
     ec: &mut EntityCommands,
     mesh3d: Option<&Mesh3d>,
     meshes: &mut Assets<Mesh>,
     render: Mesh,
     material: Option<&MeshMaterial>,
-) {
+) -> Option<Aabb> {
     if render.count_vertices() == 0 {
         // Nothing to draw (an empty CSG solid, a mesh whose faces were all
         // deleted): Bevy's mesh allocator keeps no slab for an empty mesh
         // and reports a use-after-free when one is drawn.
         ec.remove::<Mesh3d>();
-        return;
+        return None;
     }
+    let bounds = render.compute_aabb();
+    set_bounds(ec, bounds);
     match mesh3d.filter(|m| meshes.contains(&m.0)) {
         Some(m) => {
             if let Some(mut existing) = meshes.get_mut(&m.0) {
@@ -362,6 +396,19 @@ pub(crate) fn set_render_mesh(
     if let Some(m) = material {
         ec.insert(MeshMaterial3d(m.0.clone()));
     }
+    bounds
+}
+
+/// Sets the bounds a node's render mesh is culled by. This module keeps
+/// them (`NoAutoAabb`) instead of Bevy's `calculate_bounds`, which goes
+/// over every position of a mesh whose asset changed, in every frame of a
+/// drag: for a subdivision preview of 6.4M corners that was most of the
+/// frame, while the drag had moved a few hundred (issue 36, item 1).
+fn set_bounds(ec: &mut EntityCommands, bounds: Option<Aabb>) {
+    match bounds {
+        Some(aabb) => ec.insert((aabb, NoAutoAabb)),
+        None => ec.remove::<Aabb>().insert(NoAutoAabb),
+    };
 }
 
 /// Updates a render mesh built by [`render_mesh`] from `old` so that it shows

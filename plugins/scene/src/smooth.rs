@@ -12,7 +12,7 @@ use std::thread::JoinHandle;
 
 use crate::buffers_mesh;
 use bevy::prelude::*;
-use hedra_doc::smooth::{PreparedStencils, SmoothRefinement};
+use hedra_doc::smooth::{PreparedStencils, Rewritten, SmoothRefinement};
 use hedra_doc::{NodeId, Shading, SubdivisionModifier};
 use hedra_geom::HalfEdgeMesh;
 use hedra_geom::subdivision::{Creases, Refiner};
@@ -235,23 +235,28 @@ impl SmoothPreviews {
             let r = SmoothRefinement::new(src.cage, src.creases, src.modifier)?;
             self.keep(src.node, r);
         }
-        // Stencils built meanwhile are installed; while they are still
-        // being built, a drag frame refines through the masks.
-        let building = match self.stencils.remove(&src.node) {
+        let building = self.install_stencils(src.node);
+        let r = self.done.get_mut(&src.node).expect("inserted above");
+        Ok(r.points_with(src.cage, !building))
+    }
+
+    /// Installs `node`'s stencils when their worker has finished; true
+    /// while they are still being built (a drag frame then refines through
+    /// the masks).
+    fn install_stencils(&mut self, node: NodeId) -> bool {
+        match self.stencils.remove(&node) {
             Some(job) if job.is_finished() => {
-                if let (Ok(prepared), Some(r)) = (job.join(), self.done.get_mut(&src.node)) {
+                if let (Ok(prepared), Some(r)) = (job.join(), self.done.get_mut(&node)) {
                     r.set_stencils(prepared);
                 }
                 false
             }
             Some(job) => {
-                self.stencils.insert(src.node, job);
+                self.stencils.insert(node, job);
                 true
             }
             None => false,
-        };
-        let r = self.done.get_mut(&src.node).expect("inserted above");
-        Ok(r.points_with(src.cage, !building))
+        }
     }
 
     /// Keeps a new refinement of `node` and starts building its stencils on
@@ -281,34 +286,40 @@ impl SmoothPreviews {
 
     /// Rewrites positions and normals of a render mesh made by
     /// [`render_mesh`](Self::render_mesh) when only cage positions changed
-    /// (stencils re-applied, no triangles rebuilt). Returns false, changing
-    /// nothing, when it has to be rebuilt.
-    pub fn update_positions(&mut self, render: &mut Mesh, src: &SmoothSource) -> bool {
+    /// (stencils re-applied, no triangles rebuilt): which positions it
+    /// rewrote, or `None`, changing nothing, when it has to be rebuilt.
+    pub fn update_positions(&mut self, render: &mut Mesh, src: &SmoothSource) -> Option<Rewritten> {
         let fits = self
             .done
             .get(&src.node)
             .is_some_and(|r| r.fits(src.cage, src.creases, src.modifier));
         if !fits {
-            return false;
+            return None;
         }
-        let Ok(points) = self.points(src) else {
-            return false;
-        };
-        // The render mesh's own buffers are refilled: no new 100 MB
-        // allocation in every frame of a drag.
+        let building = self.install_stencils(src.node);
+        // The render mesh's own buffers are refilled (no new 100 MB
+        // allocation in every frame of a drag), only where the cage moved
+        // when the refinement can tell.
         use bevy::mesh::VertexAttributeValues::Float32x3;
         let (Some(Float32x3(mut positions)), Some(Float32x3(mut normals))) = (
             render.remove_attribute(Mesh::ATTRIBUTE_POSITION),
             render.remove_attribute(Mesh::ATTRIBUTE_NORMAL),
         ) else {
             // Not the layout `render_mesh` makes: rebuilt by the caller.
-            return false;
+            return None;
         };
         let count = positions.len();
-        self.done[&src.node].attributes_into(&points, src.shading, &mut positions, &mut normals);
+        let r = self.done.get_mut(&src.node).expect("fits");
+        let written = r.update_attributes(
+            src.cage,
+            !building,
+            src.shading,
+            &mut positions,
+            &mut normals,
+        );
         let fits = positions.len() == count;
         render.insert_attribute(Mesh::ATTRIBUTE_POSITION, positions);
         render.insert_attribute(Mesh::ATTRIBUTE_NORMAL, normals);
-        fits
+        fits.then_some(written)
     }
 }

@@ -183,6 +183,15 @@ impl Refiner {
         let last = self.last();
         &last.face_vertices[last.face_corners(f as u32)]
     }
+    /// The refined faces (of all [`face_count`](Self::face_count) faces,
+    /// hidden ones included) at refined vertex `v`, in increasing order (a
+    /// face once per corner at `v`).
+    pub fn faces_at(&self, v: u32) -> impl Iterator<Item = usize> + '_ {
+        let last = self.last();
+        last.vertex_corners(v)
+            .iter()
+            .map(|&c| last.corner_face(c as usize) as usize)
+    }
     /// True when refined face `f` (of all [`face_count`](Self::face_count)
     /// faces) is left out of the result: it descends from a hole, or from a
     /// face that boundary `None` leaves out.
