@@ -3522,3 +3522,49 @@ fn a_drag_on_a_large_smooth_preview_shows_the_moved_shape_within_its_bounds() {
     );
     check(&mut user, "after the click");
 }
+
+/// The bounds a cage's render mesh is culled by follow a drag that moves
+/// its vertices off it (the viewport keeps them, growing them by the moved
+/// vertices, instead of Bevy going over every position): while G runs and
+/// after the click, every drawn position is within them.
+#[test]
+fn a_cage_drag_keeps_every_drawn_position_within_the_bounds() {
+    use bevy::camera::primitives::Aabb;
+    let mut user = User::new();
+    execute(
+        &mut user,
+        "AddPrimitive(primitive: Grid(x_segments: 20, z_segments: 20, size: 4.0), name: Some(\"Sheet\"))",
+    );
+    user.frames(2);
+    let sheet = node_named(&user, "Sheet").unwrap().id;
+    let entity = user.app.world().resource::<hedra_scene::NodeEntities>().0[&sheet];
+    let within = |user: &User, when: &str| {
+        let aabb = *user.app.world().get::<Aabb>(entity).expect("bounds");
+        let (min, max) = (Vec3::from(aabb.min()), Vec3::from(aabb.max()));
+        let drawn = user.render_positions();
+        assert!(
+            drawn.iter().all(|p| p.cmpge(min).all() && p.cmple(max).all()),
+            "{when}: a position lies outside the bounds {min} … {max}"
+        );
+        max.y
+    };
+    assert_eq!(within(&user, "before"), 0.0, "a flat sheet");
+    user.tap(KeyCode::Tab);
+    let mesh = user.first_mesh().clone();
+    let corner = mesh.vertices().next().unwrap();
+    user.app
+        .world_mut()
+        .resource_mut::<hedra_edit::EditMode>()
+        .selection
+        .vertices = [corner].into_iter().collect();
+    user.frames(1);
+    let centre = user.viewport_center();
+    user.move_to(centre);
+    user.tap(KeyCode::KeyG);
+    user.tap(KeyCode::KeyY);
+    user.glide_to(centre + Vec2::new(0.0, -150.0), 5);
+    assert!(within(&user, "during G") > 0.0, "the box grew upwards");
+    user.click(user.cursor());
+    user.frames(3);
+    within(&user, "after the click");
+}

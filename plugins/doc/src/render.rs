@@ -398,11 +398,47 @@ pub fn sharp_edges(
         .collect()
 }
 
+/// Which positions of a render mesh a patch rewrote
+/// ([`patch_positions`], `SmoothRefinement::update_attributes`), so that
+/// the viewport can grow the mesh's bounds instead of going over them all.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Rewritten {
+    /// All of them.
+    All,
+    /// Some, all within these bounds (empty, min above max, when none).
+    Some {
+        /// The least coordinates of the rewritten positions.
+        min: [f32; 3],
+        /// The greatest.
+        max: [f32; 3],
+    },
+}
+
+impl Rewritten {
+    /// None rewritten yet.
+    pub fn nothing() -> Rewritten {
+        Rewritten::Some {
+            min: [f32::INFINITY; 3],
+            max: [f32::NEG_INFINITY; 3],
+        }
+    }
+    /// Counts `p` as rewritten.
+    pub fn include(&mut self, p: [f32; 3]) {
+        if let Rewritten::Some { min, max } = self {
+            for i in 0..3 {
+                min[i] = min[i].min(p[i]);
+                max[i] = max[i].max(p[i]);
+            }
+        }
+    }
+}
+
 /// Rewrites, in buffers made by [`render_buffers`] from `old`, only the
 /// positions and normals that differ in `new`, when the two meshes differ
 /// only in vertex positions (a move, rotate or scale of elements while the
-/// mouse drags). Returns false, changing nothing, when the connectivity or
-/// the buffer layout differs: rebuild with [`render_buffers`] then.
+/// mouse drags): which positions it rewrote, or `None`, changing nothing,
+/// when the connectivity or the buffer layout differs: rebuild with
+/// [`render_buffers`] then.
 ///
 /// Complexity: O(V + F) comparisons plus work proportional to the moved
 /// vertices' neighbourhoods; no triangulation, no allocation per face.
@@ -412,16 +448,21 @@ pub fn patch_positions(
     old: &HalfEdgeMesh,
     new: &HalfEdgeMesh,
     shading: Shading,
-) -> bool {
+) -> Option<Rewritten> {
     if !old.same_connectivity(new) || positions.len() != normals.len() {
-        return false;
+        return None;
     }
     let moved: Vec<VertexId> = new
         .vertices()
         .filter(|&v| old.position(v) != new.position(v))
         .collect();
+    // Every rewritten position is a moved vertex's.
+    let mut written = Rewritten::nothing();
+    for &v in &moved {
+        written.include(new.position(v).as_vec3().to_array());
+    }
     if moved.is_empty() {
-        return true;
+        return Some(written);
     }
     match shading {
         Shading::Flat => {
@@ -433,7 +474,7 @@ pub fn patch_positions(
                 at += new.face_degree(f) as u32;
             }
             if at as usize != positions.len() {
-                return false;
+                return None;
             }
             let mut faces: Vec<FaceId> = moved.iter().flat_map(|&v| new.vertex_faces(v)).collect();
             faces.sort();
@@ -449,7 +490,7 @@ pub fn patch_positions(
         }
         Shading::Smooth => {
             if new.vertex_count() != positions.len() {
-                return false;
+                return None;
             }
             let mut rank = vec![u32::MAX; new.vertex_capacity()];
             for (i, v) in new.vertices().enumerate() {
@@ -469,7 +510,7 @@ pub fn patch_positions(
             }
         }
     }
-    true
+    Some(written)
 }
 
 /// How the edit-mode overlay draws an edge (the viewport picks the colour).
@@ -717,13 +758,23 @@ mod tests {
         }
         for shading in [Shading::Flat, Shading::Smooth] {
             let mut b = render_buffers(&grid, shading);
-            assert!(patch_positions(
-                &mut b.positions,
-                &mut b.normals,
-                &grid,
-                &moved,
-                shading
-            ));
+            let written = patch_positions(&mut b.positions, &mut b.normals, &grid, &moved, shading);
+            let Some(Rewritten::Some { min, max }) = written else {
+                panic!("{shading:?}: patched, within bounds: {written:?}");
+            };
+            let expected = moved
+                .vertices()
+                .filter(|&v| moved.position(v) != grid.position(v))
+                .map(|v| moved.position(v).as_vec3());
+            let (lo, hi) = expected.fold(
+                (glam::Vec3::INFINITY, glam::Vec3::NEG_INFINITY),
+                |(lo, hi), p| (lo.min(p), hi.max(p)),
+            );
+            assert_eq!(
+                (min, max),
+                (lo.to_array(), hi.to_array()),
+                "{shading:?}: the moved vertices' bounds"
+            );
             let rebuilt = render_buffers(&moved, shading);
             assert_eq!(b.positions, rebuilt.positions, "{shading:?}");
             for (n, m) in b.normals.iter().zip(&rebuilt.normals) {
@@ -732,13 +783,9 @@ mod tests {
             // Different connectivity: refused, buffers untouched.
             let cube = Primitive::Cube { size: 1.0 }.build().unwrap();
             let before = b.clone();
-            assert!(!patch_positions(
-                &mut b.positions,
-                &mut b.normals,
-                &grid,
-                &cube,
-                shading
-            ));
+            assert!(
+                patch_positions(&mut b.positions, &mut b.normals, &grid, &cube, shading).is_none()
+            );
             assert_eq!(b, before);
         }
         assert_eq!(render_buffers(&grid, Shading::Flat).positions.len(), 30 * 4);

@@ -4,7 +4,7 @@
 //! a drag recomputes only what the moved vertices influence), and the
 //! render buffers of the refined faces (normals, triangles).
 
-use crate::render::{RenderBuffers, SharpSplit, split_sharp_corners};
+use crate::render::{RenderBuffers, Rewritten, SharpSplit, split_sharp_corners};
 use crate::{Shading, SubdivisionModifier};
 use hedra_geom::subdivision::{
     Creases, INFINITE_SHARPNESS, LevelPoints, Refiner, StencilEvaluation, StencilTable,
@@ -20,31 +20,6 @@ use std::sync::OnceLock;
 /// and recomputes the points the moved vertices reach through the masks
 /// ([`Refiner::update_kept`]).
 pub const STENCIL_FACE_LIMIT: usize = 400_000;
-
-/// Which positions [`SmoothRefinement::update_attributes`] rewrote.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Rewritten {
-    /// All of them.
-    All,
-    /// Some, all within these bounds (empty, min above max, when none).
-    Some {
-        /// The least coordinates of the rewritten positions.
-        min: [f32; 3],
-        /// The greatest.
-        max: [f32; 3],
-    },
-}
-
-impl Rewritten {
-    fn include(&mut self, p: [f32; 3]) {
-        if let Rewritten::Some { min, max } = self {
-            for i in 0..3 {
-                min[i] = min[i].min(p[i]);
-                max[i] = max[i].max(p[i]);
-            }
-        }
-    }
-}
 
 /// The refinement of one cage, kept while its connectivity, creases and
 /// modifier stay.
@@ -258,10 +233,7 @@ impl SmoothRefinement {
             attributes_into(&self.refiner, points, shading, split, positions, normals);
             return Rewritten::All;
         };
-        let mut written = Rewritten::Some {
-            min: [f32::INFINITY; 3],
-            max: [f32::NEG_INFINITY; 3],
-        };
+        let mut written = Rewritten::nothing();
         let refiner = &*self.refiner;
         let starts = self.flat_starts.get_or_init(|| flat_starts(refiner));
         let points = self.kept.as_ref().expect("kept").points();

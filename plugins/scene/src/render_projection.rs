@@ -6,7 +6,7 @@
 use crate::*;
 use bevy::camera::primitives::{Aabb, MeshAabb};
 use bevy::camera::visibility::NoAutoAabb;
-use hedra_doc::smooth::Rewritten;
+use hedra_doc::render::Rewritten;
 use std::sync::Arc;
 
 /// The most faces a kept mesh's subdivision preview is made with in a
@@ -210,24 +210,11 @@ impl Projector<'_, '_, '_, '_> {
                         shading: content.shading,
                     },
                 )
-                .map(
-                    |written| match (written, on_screen.and_then(|o| o.bounds)) {
-                        // A few corners moved: the old bounds grown to hold
-                        // them (never too small; a drag's box only grows).
-                        (Rewritten::Some { min, max }, Some(old)) if min[0] <= max[0] => {
-                            Some(Aabb::from_min_max(
-                                Vec3::from(old.min()).min(Vec3::from(min)),
-                                Vec3::from(old.max()).max(Vec3::from(max)),
-                            ))
-                        }
-                        // None moved.
-                        (Rewritten::Some { .. }, Some(old)) => Some(old),
-                        _ => r.compute_aabb(),
-                    },
-                ),
-            (None, Some(r)) if same_look => on_screen
-                .is_some_and(|o| update_render_positions(r, &o.mesh, cage, content.shading))
-                .then(|| r.compute_aabb()),
+                .map(|written| grown_bounds(written, on_screen.and_then(|o| o.bounds), r)),
+            (None, Some(r)) if same_look => on_screen.and_then(|o| {
+                update_render_positions(r, &o.mesh, cage, content.shading)
+                    .map(|written| grown_bounds(written, o.bounds, r))
+            }),
             _ => None,
         };
         drop(render);
@@ -414,18 +401,19 @@ fn set_bounds(ec: &mut EntityCommands, bounds: Option<Aabb>) {
 /// Updates a render mesh built by [`render_mesh`] from `old` so that it shows
 /// `new` when only vertex positions differ, rewriting only what changed
 /// ([`hedra_doc::render::patch_positions`]); the attribute arrays are taken
-/// out and put back, not copied. Returns false, changing nothing, when the
-/// connectivity differs: rebuild with [`render_mesh`] then.
+/// out and put back, not copied. Returns which positions it rewrote, or
+/// `None`, changing nothing, when the connectivity differs: rebuild with
+/// [`render_mesh`] then.
 pub fn update_render_positions(
     render: &mut Mesh,
     old: &HalfEdgeMesh,
     new: &HalfEdgeMesh,
     shading: Shading,
-) -> bool {
+) -> Option<Rewritten> {
     use bevy::mesh::VertexAttributeValues::Float32x3;
     let is_f32x3 = |id| matches!(render.attribute(id), Some(Float32x3(_)));
     if !(is_f32x3(Mesh::ATTRIBUTE_POSITION) && is_f32x3(Mesh::ATTRIBUTE_NORMAL)) {
-        return false;
+        return None;
     }
     let (Some(Float32x3(mut positions)), Some(Float32x3(mut normals))) = (
         render.remove_attribute(Mesh::ATTRIBUTE_POSITION),
@@ -438,4 +426,19 @@ pub fn update_render_positions(
     render.insert_attribute(Mesh::ATTRIBUTE_POSITION, positions);
     render.insert_attribute(Mesh::ATTRIBUTE_NORMAL, normals);
     patched
+}
+
+/// The bounds of a patched render mesh: the old ones grown to hold the
+/// rewritten positions (never too small; a drag's box only grows), or
+/// computed afresh when all were rewritten or none were known.
+fn grown_bounds(written: Rewritten, old: Option<Aabb>, render: &Mesh) -> Option<Aabb> {
+    match (written, old) {
+        (Rewritten::Some { min, max }, Some(old)) if min[0] <= max[0] => Some(Aabb::from_min_max(
+            Vec3::from(old.min()).min(Vec3::from(min)),
+            Vec3::from(old.max()).max(Vec3::from(max)),
+        )),
+        // None moved.
+        (Rewritten::Some { .. }, Some(old)) => Some(old),
+        _ => render.compute_aabb(),
+    }
 }

@@ -12,7 +12,8 @@ use std::thread::JoinHandle;
 
 use crate::buffers_mesh;
 use bevy::prelude::*;
-use hedra_doc::smooth::{PreparedStencils, Rewritten, SmoothRefinement};
+use hedra_doc::render::Rewritten;
+use hedra_doc::smooth::{PreparedStencils, SmoothRefinement};
 use hedra_doc::{NodeId, Shading, SubdivisionModifier};
 use hedra_geom::HalfEdgeMesh;
 use hedra_geom::subdivision::{Creases, Refiner};
