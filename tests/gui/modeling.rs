@@ -3545,7 +3545,9 @@ fn a_cage_drag_keeps_every_drawn_position_within_the_bounds() {
         let (min, max) = (Vec3::from(aabb.min()), Vec3::from(aabb.max()));
         let drawn = user.render_positions();
         assert!(
-            drawn.iter().all(|p| p.cmpge(min).all() && p.cmple(max).all()),
+            drawn
+                .iter()
+                .all(|p| p.cmpge(min).all() && p.cmple(max).all()),
             "{when}: a position lies outside the bounds {min} … {max}"
         );
         max.y

@@ -171,13 +171,7 @@ impl SmoothRefinement {
             let eval = table.evaluate(&cage_points);
             (table, eval)
         });
-        let moved: Vec<(u32, DVec3)> = cage_points
-            .iter()
-            .zip(eval.cage())
-            .enumerate()
-            .filter(|(_, (new, old))| new != old)
-            .map(|(i, (new, _))| (i as u32, *new))
-            .collect();
+        let moved = moved_between(eval.cage(), &cage_points);
         if !moved.is_empty() {
             table.update(eval, &moved);
         }
@@ -193,13 +187,7 @@ impl SmoothRefinement {
             self.kept = Some(self.refiner.refine_kept(&cage_points));
             return None;
         };
-        let moved: Vec<(u32, DVec3)> = cage_points
-            .iter()
-            .zip(kept.cage())
-            .enumerate()
-            .filter(|(_, (new, old))| new != old)
-            .map(|(i, (new, _))| (i as u32, *new))
-            .collect();
+        let moved = moved_between(kept.cage(), &cage_points);
         self.refiner.update_kept(kept, &moved)
     }
 
@@ -422,6 +410,17 @@ fn refined_sharp_split(refiner: &Refiner) -> SharpSplit {
     }
     let faces: Vec<&[u32]> = refiner.faces().collect();
     split_sharp_corners(&faces, refiner.vertex_count(), &sharp)
+}
+
+/// The cage vertices whose position differs between `old` and `new` (in
+/// `Refiner::cage_positions` order), with the new position.
+fn moved_between(old: &[DVec3], new: &[DVec3]) -> Vec<(u32, DVec3)> {
+    new.iter()
+        .zip(old)
+        .enumerate()
+        .filter(|(_, (new, old))| new != old)
+        .map(|(i, (new, _))| (i as u32, *new))
+        .collect()
 }
 
 /// Where each refined face's corners start in the flat-shaded attributes

@@ -606,6 +606,35 @@ fn cages() -> Vec<HalfEdgeMesh> {
     ]
 }
 
+/// The creases and options the property tests draw: edge `i` gets
+/// sharpness `sharp[i] - 2` where that is positive, and the boundary rule,
+/// crease method and scheme drawn.
+fn random_rules(
+    mesh: &HalfEdgeMesh,
+    sharp: &[f64],
+    scheme: Scheme,
+    boundary: usize,
+    chaikin: bool,
+) -> (Creases, Options) {
+    let mut creases = Creases::default();
+    for (e, s) in mesh.edges().zip(sharp) {
+        if *s > 2.0 {
+            creases.set_edge(e, s - 2.0);
+        }
+    }
+    let opts = Options {
+        scheme,
+        boundary: BoundaryInterpolation::ALL[boundary],
+        crease_method: if chaikin {
+            CreaseMethod::Chaikin
+        } else {
+            CreaseMethod::Uniform
+        },
+        smooth_triangles: scheme == Scheme::CatmullClark && boundary == 1,
+    };
+    (creases, opts)
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(48))]
 
@@ -629,16 +658,7 @@ proptest! {
             let p = mesh.position(v) + DVec3::splat(wiggle[i % wiggle.len()]);
             mesh.set_position(v, p);
         }
-        let mut creases = Creases::default();
-        for (e, s) in mesh.edges().zip(&sharp) {
-            if *s > 2.0 { creases.set_edge(e, s - 2.0); }
-        }
-        let opts = Options {
-            scheme,
-            boundary: BoundaryInterpolation::ALL[boundary],
-            crease_method: if chaikin { CreaseMethod::Chaikin } else { CreaseMethod::Uniform },
-            smooth_triangles: scheme == Scheme::CatmullClark && boundary == 1,
-        };
+        let (creases, opts) = random_rules(&mesh, &sharp, scheme, boundary, chaikin);
         let r = Refiner::new(&mesh, &creases, opts, levels).unwrap();
         let cage_points = r.cage_positions(&mesh);
         let direct = r.refine(&cage_points);
@@ -963,16 +983,7 @@ proptest! {
         let mesh = all.swap_remove(cage);
         let scheme = Scheme::ALL[scheme];
         prop_assume!(scheme != Scheme::Loop || cage == 3 || cage == 7);
-        let mut creases = Creases::default();
-        for (e, s) in mesh.edges().zip(&sharp) {
-            if *s > 2.0 { creases.set_edge(e, s - 2.0); }
-        }
-        let opts = Options {
-            scheme,
-            boundary: BoundaryInterpolation::ALL[boundary],
-            crease_method: if chaikin { CreaseMethod::Chaikin } else { CreaseMethod::Uniform },
-            smooth_triangles: scheme == Scheme::CatmullClark && boundary == 1,
-        };
+        let (creases, opts) = random_rules(&mesh, &sharp, scheme, boundary, chaikin);
         let r = Refiner::new(&mesh, &creases, opts, levels).unwrap();
         let mut cage_points = r.cage_positions(&mesh);
         let mut kept = r.refine_kept(&cage_points);
