@@ -75,14 +75,17 @@ pub fn project_render_meshes(
         let name = node.map_or_else(|| job.node.to_string(), |(_, _, n, ..)| n.to_string());
         match job.result {
             Ok(mesh) => {
-                if let Some((entity, mut m)) = node.and_then(|(e, _, _, _, m, _)| {
-                    m.and_then(|h| meshes.get_mut(&h.0)).map(|m| (e, m))
+                if let Some((entity, on_screen, mut m)) = node.and_then(|(e, _, _, _, m, o)| {
+                    m.and_then(|h| meshes.get_mut(&h.0)).map(|m| (e, o, m))
                 }) {
                     let bounds = mesh.compute_aabb();
                     *m = mesh;
-                    set_bounds(&mut commands.entity(entity), bounds);
-                    // The bounds are no longer those `OnScreen` holds.
-                    commands.entity(entity).remove::<OnScreen>();
+                    let mut ec = commands.entity(entity);
+                    set_bounds(&mut ec, bounds);
+                    // What is on screen is the same; its bounds are new.
+                    if let Some(o) = on_screen {
+                        ec.insert(OnScreen { bounds, ..o.clone() });
+                    }
                 }
             }
             Err(e) if e == "cancelled" => status.info(format!(
