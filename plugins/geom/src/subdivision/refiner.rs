@@ -10,6 +10,9 @@ use super::*;
 #[derive(Clone, Debug)]
 pub struct Refiner {
     options: Options,
+    /// How each level's faces are split (from the scheme and the cage;
+    /// kept, as per-vertex queries ask it).
+    split: Split,
     pub(crate) levels: Vec<Level>,
     pub(super) cage: CageMap,
     /// Per cage face (dense): left out of the result (a hole, or boundary
@@ -144,6 +147,7 @@ impl Refiner {
         }
         Ok(Refiner {
             options,
+            split,
             levels: all,
             cage,
             hidden_cage_faces,
@@ -366,7 +370,7 @@ impl Refiner {
     }
 
     pub(crate) fn split(&self) -> Split {
-        split_for(self.options.scheme, &self.levels[0])
+        self.split
     }
 
     /// The weights of every level, for re-applying after cage moves.
