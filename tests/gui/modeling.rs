@@ -1819,14 +1819,7 @@ fn make_hole_leaves_no_surface_and_doo_sabin_greys_out_its_options() {
 
     let mut modifier = mesh_content(&user).subdivision.unwrap();
     modifier.options.scheme = hedra_geom::subdivision::Scheme::DooSabin;
-    user.app
-        .world_mut()
-        .write_message(hedra_scene::DocRequest::Execute(
-            hedra_doc::Command::SetSubdivision {
-                nodes: vec![hedra_doc::NodeRef::Name("Cube".into())],
-                modifier: Some(modifier),
-            },
-        ));
+    set_subdivision(&mut user, "Cube", Some(modifier));
     user.frames(2);
     assert!(
         user.shows(
@@ -3088,6 +3081,39 @@ fn build_the_csg_emblem_in_the_app_and_drag_a_cylinder_through_it() {
     assert_eq!(fewer.stats().genus, Some(3), "one hole less");
 }
 
+/// Asks, as the panel's menu would, for `modifier` on the node `name`.
+fn set_subdivision(user: &mut User, name: &str, modifier: Option<hedra_doc::SubdivisionModifier>) {
+    user.app
+        .world_mut()
+        .write_message(hedra_scene::DocRequest::Execute(
+            hedra_doc::Command::SetSubdivision {
+                nodes: vec![hedra_doc::NodeRef::Name(name.into())],
+                modifier,
+            },
+        ));
+}
+
+/// Smooth previews being refined in the background.
+fn smooth_refinements_running(user: &User) -> usize {
+    user.app
+        .world()
+        .resource::<hedra_scene::SmoothPreviews>()
+        .progress()
+        .len()
+}
+
+/// Draws frames until no smooth preview is refined in the background (at
+/// most about 20 s).
+fn wait_for_smooth_refinements(user: &mut User) {
+    for _ in 0..1000 {
+        if smooth_refinements_running(user) == 0 {
+            break;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(20));
+        user.frames(1);
+    }
+}
+
 /// Draws frames until no background build runs (at most about 12 s).
 fn wait_for_background_jobs(user: &mut User) {
     for _ in 0..600 {
@@ -3184,37 +3210,25 @@ fn escape_cancels_a_background_subdivision() {
         &mut user,
         "AddPrimitive(primitive: Torus(major_segments: 100, minor_segments: 100, major_radius: 2.0, minor_radius: 0.5), name: Some(\"Ring\"))",
     );
-    user.app
-        .world_mut()
-        .write_message(hedra_scene::DocRequest::Execute(
-            hedra_doc::Command::SetSubdivision {
-                nodes: vec![hedra_doc::NodeRef::Name("Ring".into())],
-                modifier: Some(hedra_doc::SubdivisionModifier::with_level(4)),
-            },
-        ));
+    set_subdivision(
+        &mut user,
+        "Ring",
+        Some(hedra_doc::SubdivisionModifier::with_level(4)),
+    );
     user.frames(2);
-    let running = |user: &User| {
-        user.app
-            .world()
-            .resource::<hedra_scene::SmoothPreviews>()
-            .progress()
-            .len()
-    };
     assert_eq!(
-        running(&user),
+        smooth_refinements_running(&user),
         1,
         "a background refinement runs: {}",
         user.status()
     );
     user.tap(KeyCode::Escape);
-    for _ in 0..500 {
-        if running(&user) == 0 {
-            break;
-        }
-        std::thread::sleep(std::time::Duration::from_millis(20));
-        user.frames(1);
-    }
-    assert_eq!(running(&user), 0, "the refinement stopped");
+    wait_for_smooth_refinements(&mut user);
+    assert_eq!(
+        smooth_refinements_running(&user),
+        0,
+        "the refinement stopped"
+    );
     assert!(user.status().contains("cancelled"), "{}", user.status());
 }
 
@@ -3420,28 +3434,13 @@ fn a_drag_on_a_large_smooth_preview_shows_the_moved_shape_within_its_bounds() {
         &mut user,
         "AddPrimitive(primitive: Grid(x_segments: 161, z_segments: 160, size: 4.0), name: Some(\"Sheet\"))",
     );
-    user.app
-        .world_mut()
-        .write_message(hedra_scene::DocRequest::Execute(
-            hedra_doc::Command::SetSubdivision {
-                nodes: vec![hedra_doc::NodeRef::Name("Sheet".into())],
-                modifier: Some(hedra_doc::SubdivisionModifier::with_level(2)),
-            },
-        ));
+    set_subdivision(
+        &mut user,
+        "Sheet",
+        Some(hedra_doc::SubdivisionModifier::with_level(2)),
+    );
     user.frames(2);
-    for _ in 0..1000 {
-        let running = user
-            .app
-            .world()
-            .resource::<hedra_scene::SmoothPreviews>()
-            .progress()
-            .len();
-        if running == 0 {
-            break;
-        }
-        std::thread::sleep(std::time::Duration::from_millis(20));
-        user.frames(1);
-    }
+    wait_for_smooth_refinements(&mut user);
     user.frames(2);
     let sheet = node_named(&user, "Sheet").unwrap().id;
     let entity = user.app.world().resource::<hedra_scene::NodeEntities>().0[&sheet];
