@@ -150,6 +150,20 @@ pub fn triangulate_outer_loop_into(mesh: &HalfEdgeMesh, f: FaceId, out: &mut Vec
     }
 }
 
+/// Area vector of a closed polygon by Newell's method (Newell 1972):
+/// ½ Σ pᵢ × pᵢ₊₁ over its corners in order; its length is the area of a
+/// planar polygon. Summed in the same order as
+/// [`HalfEdgeMesh::face_area_vector`], so both give the same bits for a face
+/// without rings.
+pub fn polygon_area_vector(points: &[DVec3]) -> DVec3 {
+    let mut n = DVec3::ZERO;
+    for (i, a) in points.iter().enumerate() {
+        let b = points[if i + 1 == points.len() { 0 } else { i + 1 }];
+        n += a.cross(b);
+    }
+    n * 0.5
+}
+
 /// The two triangles of a quad, as corner indices (0 to 3), split along
 /// the diagonal that keeps both counter-clockwise in the plane of its
 /// Newell normal, preferring one whose ears are good (not nearly flat, and

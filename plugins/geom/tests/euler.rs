@@ -3,7 +3,8 @@
 //! V − E + F − (L − F) = 2(S − H).
 
 use hedra_geom::{
-    DVec3, EdgeId, EulerError, FaceId, HalfEdgeId, HalfEdgeMesh, LoopStart, Primitive, VertexId,
+    DVec3, EdgeId, EulerError, FaceId, HalfEdgeId, HalfEdgeMesh, LoopStart, MeshData, Primitive,
+    VertexId,
 };
 use proptest::prelude::*;
 
@@ -494,6 +495,9 @@ proptest! {
         let (mut shells, mut genus) = (s0.shells, s0.genus.unwrap());
         for op in &ops {
             let before = m.clone();
+            // A copy with records of its own, to check that the operator
+            // changed `m` alone and not the connectivity `before` shares.
+            let separate = HalfEdgeMesh::try_from(MeshData::from(before.clone())).unwrap();
             let same_shell = match *op {
                 Op::Kfmrh(a, b) if before.faces().next().is_some() => {
                     let faces: Vec<FaceId> = before.faces().collect();
@@ -522,6 +526,7 @@ proptest! {
                 }
                 Err(_) => prop_assert_eq!(&m, &before, "a refused {:?} changed the mesh", op),
             }
+            prop_assert_eq!(&before, &separate, "{:?} changed a copy of the mesh", op);
             let b = m.boundary_loops().len();
             prop_assert!(euler_poincare_holds(&m, shells, genus, b), "{:?}: V - E + F - (L - F) != 2(S - H)", op);
             let s = m.stats();
@@ -531,6 +536,30 @@ proptest! {
             }
         }
     }
+}
+
+/// Copies share their connectivity until one of them changes it: moving
+/// vertices keeps it shared, an operator gives the changed copy its own.
+#[test]
+fn copies_share_connectivity_until_one_changes_it() {
+    let original = cube();
+    let mut moved = original.clone();
+    let v = moved.vertices().next().unwrap();
+    moved.set_position(v, DVec3::new(5.0, 5.0, 5.0));
+    assert!(moved.same_connectivity(&original));
+    assert_ne!(moved, original);
+    let mut split = moved.clone();
+    let e = split.edges().next().unwrap();
+    split.split_edge(e, DVec3::ZERO).unwrap();
+    split.validate().unwrap();
+    assert!(!split.same_connectivity(&moved));
+    assert_eq!((moved.vertex_count(), moved.edge_count()), (8, 12));
+    assert_eq!((split.vertex_count(), split.edge_count()), (9, 13));
+    // A copy built separately compares by its records, not by sharing.
+    let rebuilt = HalfEdgeMesh::try_from(MeshData::from(moved.clone())).unwrap();
+    assert!(rebuilt.same_connectivity(&original));
+    assert_eq!(rebuilt, moved);
+    original.validate().unwrap();
 }
 
 #[test]

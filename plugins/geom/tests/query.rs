@@ -125,3 +125,37 @@ fn region_normal_weighs_faces_by_area() {
     assert_eq!(m.region_normal(&[top, bottom]), hedra_geom::DVec3::ZERO);
     assert_eq!(m.region_normal(&[top]), hedra_geom::DVec3::Y);
 }
+
+/// The area vector of a list of corners is the face's, bit for bit, on
+/// non-planar faces of every size; a quad's equals the half cross product
+/// of its diagonals.
+#[test]
+fn polygon_area_vector_equals_the_face_s() {
+    use hedra_geom::query::polygon_area_vector;
+    let mut m = Primitive::UvSphere {
+        segments: 7,
+        rings: 5,
+        radius: 1.3,
+    }
+    .build()
+    .unwrap();
+    for (i, v) in m.vertices().collect::<Vec<_>>().into_iter().enumerate() {
+        let p = m.position(v);
+        m.set_position(v, p + DVec3::new(0.01 * i as f64, -0.003 * i as f64, 0.1));
+    }
+    let mut sizes = std::collections::BTreeSet::new();
+    for f in m.faces() {
+        let corners: Vec<DVec3> = m.face_vertices(f).map(|v| m.position(v)).collect();
+        sizes.insert(corners.len());
+        assert_eq!(polygon_area_vector(&corners), m.face_area_vector(f), "face {f}");
+    }
+    assert_eq!(sizes.into_iter().collect::<Vec<_>>(), vec![3, 4]);
+    let q = [
+        DVec3::new(0.0, 0.0, 0.0),
+        DVec3::new(2.0, 0.0, 0.3),
+        DVec3::new(2.0, 1.0, 0.0),
+        DVec3::new(0.0, 1.0, 0.5),
+    ];
+    let diagonals = (q[2] - q[0]).cross(q[3] - q[1]) * 0.5;
+    assert!((polygon_area_vector(&q) - diagonals).length() < 1e-15);
+}

@@ -76,7 +76,7 @@ impl HalfEdgeMesh {
             {
                 let outer_prev = inner_next.twin();
                 let mut boundary_prev = outer_prev;
-                let mut guard = self.halfedges.len();
+                let mut guard = self.topology.halfedges.len();
                 loop {
                     boundary_prev = self.next(boundary_prev).twin();
                     guard -= 1;
@@ -126,19 +126,19 @@ impl HalfEdgeMesh {
                     1 => {
                         let boundary_prev = self.prev(inner_next);
                         next_cache.push((boundary_prev, outer_next));
-                        self.vertex_out[v.index()] = outer_next.0;
+                        self.topology_mut().vertex_out[v.index()] = outer_next.0;
                     }
                     2 => {
                         let boundary_next = self.next(inner_prev);
                         next_cache.push((outer_prev, boundary_next));
-                        self.vertex_out[v.index()] = boundary_next.0;
+                        self.topology_mut().vertex_out[v.index()] = boundary_next.0;
                     }
                     _ => {
-                        if self.vertex_out[v.index()] == NONE {
-                            self.vertex_out[v.index()] = outer_next.0;
+                        if self.topology.vertex_out[v.index()] == NONE {
+                            self.topology_mut().vertex_out[v.index()] = outer_next.0;
                             next_cache.push((outer_prev, outer_next));
                         } else {
-                            let boundary_next = HalfEdgeId(self.vertex_out[v.index()]);
+                            let boundary_next = HalfEdgeId(self.topology.vertex_out[v.index()]);
                             let boundary_prev = self.prev(boundary_next);
                             next_cache.push((boundary_prev, outer_next));
                             next_cache.push((outer_prev, boundary_next));
@@ -147,9 +147,9 @@ impl HalfEdgeMesh {
                 }
                 next_cache.push((inner_prev, inner_next));
             } else {
-                needs_adjust[ii] = self.vertex_out[v.index()] == inner_next.0;
+                needs_adjust[ii] = self.topology.vertex_out[v.index()] == inner_next.0;
             }
-            self.halfedges[hs[i].index()].face = f.0;
+            self.topology_mut().halfedges[hs[i].index()].face = f.0;
         }
         for (a, b) in next_cache {
             self.link(a, b);
@@ -157,7 +157,7 @@ impl HalfEdgeMesh {
         for i in 0..n {
             if needs_adjust[i] {
                 let v = vertices[i];
-                let current = HalfEdgeId(self.vertex_out[v.index()]);
+                let current = HalfEdgeId(self.topology.vertex_out[v.index()]);
                 self.fix_vertex_halfedge(v, current);
             }
         }
@@ -184,10 +184,10 @@ impl HalfEdgeMesh {
             // A loop passing a vertex twice (a wire) must not free it twice.
             corners.sort_unstable();
             corners.dedup();
-            self.face_rings.remove(&f);
-            self.face_lone_vertex.remove(&f);
+            self.topology_mut().face_rings.remove(&f);
+            self.topology_mut().face_lone_vertex.remove(&f);
             for &h in &loop_ {
-                self.halfedges[h.index()].face = NONE;
+                self.topology_mut().halfedges[h.index()].face = NONE;
             }
             self.free_face(f);
             for &h in &loop_ {
@@ -201,21 +201,21 @@ impl HalfEdgeMesh {
                 let (v0, v1) = (self.target(h0), self.target(h1));
                 self.link(prev0, next1);
                 self.link(prev1, next0);
-                if self.vertex_out[v0.index()] == h1.0 {
-                    self.vertex_out[v0.index()] = if next0 == h1 { NONE } else { next0.0 };
+                if self.topology.vertex_out[v0.index()] == h1.0 {
+                    self.topology_mut().vertex_out[v0.index()] = if next0 == h1 { NONE } else { next0.0 };
                 }
-                if self.vertex_out[v1.index()] == h0.0 {
-                    self.vertex_out[v1.index()] = if next1 == h0 { NONE } else { next1.0 };
+                if self.topology.vertex_out[v1.index()] == h0.0 {
+                    self.topology_mut().vertex_out[v1.index()] = if next1 == h0 { NONE } else { next1.0 };
                 }
                 self.free_edge(h.edge());
             }
             for v in corners {
-                if self.vertex_out[v.index()] == NONE {
+                if self.topology.vertex_out[v.index()] == NONE {
                     if !keep_vertices {
                         self.free_vertex(v);
                     }
                 } else {
-                    let current = HalfEdgeId(self.vertex_out[v.index()]);
+                    let current = HalfEdgeId(self.topology.vertex_out[v.index()]);
                     self.fix_vertex_halfedge(v, current);
                 }
             }

@@ -10,7 +10,7 @@
 //! linear in the number of corners and the search reads one short
 //! contiguous list per corner.
 
-use super::{HalfEdgeMesh, HalfEdgeRecord};
+use super::{HalfEdgeMesh, HalfEdgeRecord, Topology};
 use crate::build::{BuildError, check_face};
 use crate::ids::NONE;
 use glam::DVec3;
@@ -333,7 +333,7 @@ impl HalfEdgeMesh {
         let mesh = HalfEdgeMesh::all_live(kept_positions, vertex_out, halfedges, face_halfedge);
         if check_fans {
             let mut degree = vec![0u32; nv];
-            for r in mesh.halfedges.iter().filter(|r| r.face != NONE) {
+            for r in mesh.topology.halfedges.iter().filter(|r| r.face != NONE) {
                 degree[r.origin as usize] += 1;
             }
             mesh.check_fans(|v| degree[v])?;
@@ -422,19 +422,21 @@ impl HalfEdgeMesh {
         face_halfedge: Vec<u32>,
     ) -> HalfEdgeMesh {
         let (nv, ne, nf) = (positions.len(), halfedges.len() / 2, face_halfedge.len());
-        HalfEdgeMesh {
+        HalfEdgeMesh::from_parts(
             positions,
-            vertex_out,
-            halfedges,
-            face_halfedge,
-            vertex_dead: vec![false; nv],
-            edge_dead: vec![false; ne],
-            face_dead: vec![false; nf],
-            live_vertices: nv,
-            live_edges: ne,
-            live_faces: nf,
-            ..Default::default()
-        }
+            Topology {
+                vertex_out,
+                halfedges,
+                face_halfedge,
+                vertex_dead: vec![false; nv],
+                edge_dead: vec![false; ne],
+                face_dead: vec![false; nf],
+                live_vertices: nv,
+                live_edges: ne,
+                live_faces: nf,
+                ..Default::default()
+            },
+        )
     }
 
     /// Closed fans touching at a vertex (two cones tip to tip) pass the
@@ -445,7 +447,7 @@ impl HalfEdgeMesh {
     fn check_fans(&self, corners_at: impl Fn(usize) -> u32) -> Result<(), BuildError> {
         for v in 0..self.positions.len() {
             let corners = corners_at(v);
-            let start = self.vertex_out[v];
+            let start = self.topology.vertex_out[v];
             if start == NONE {
                 if corners > 0 {
                     return Err(BuildError::NonManifoldVertex { vertex: v as u32 });
@@ -454,11 +456,11 @@ impl HalfEdgeMesh {
             }
             // The fan around v: twin(prev(h)) from its outgoing half-edge,
             // which must come back to the start after `degree` steps.
-            let boundary = self.halfedges[start as usize].face == NONE;
+            let boundary = self.topology.halfedges[start as usize].face == NONE;
             let deg = corners as usize + usize::from(boundary);
             let (mut h, mut steps) = (start, 0);
             loop {
-                h = self.halfedges[h as usize].prev ^ 1;
+                h = self.topology.halfedges[h as usize].prev ^ 1;
                 steps += 1;
                 if h == start || steps > deg {
                     break;

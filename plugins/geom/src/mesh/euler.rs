@@ -205,36 +205,35 @@ impl HalfEdgeMesh {
 
     pub(super) fn alloc_vertex(&mut self, p: DVec3) -> VertexId {
         self.positions.push(p);
-        self.vertex_out.push(NONE);
-        self.vertex_dead.push(false);
-        self.live_vertices += 1;
+        let t = self.topology_mut();
+        t.vertex_out.push(NONE);
+        t.vertex_dead.push(false);
+        t.live_vertices += 1;
         VertexId(self.positions.len() as u32 - 1)
     }
 
     pub(super) fn alloc_edge(&mut self, a: VertexId, b: VertexId) -> HalfEdgeId {
-        let h = self.halfedges.len() as u32;
-        self.halfedges.push(HalfEdgeRecord {
-            origin: a.0,
-            next: NONE,
-            prev: NONE,
-            face: NONE,
-        });
-        self.halfedges.push(HalfEdgeRecord {
-            origin: b.0,
-            next: NONE,
-            prev: NONE,
-            face: NONE,
-        });
-        self.edge_dead.push(false);
-        self.live_edges += 1;
+        let t = self.topology_mut();
+        let h = t.halfedges.len() as u32;
+        for origin in [a.0, b.0] {
+            t.halfedges.push(HalfEdgeRecord {
+                origin,
+                next: NONE,
+                prev: NONE,
+                face: NONE,
+            });
+        }
+        t.edge_dead.push(false);
+        t.live_edges += 1;
         HalfEdgeId(h)
     }
 
     pub(super) fn alloc_face(&mut self, h: HalfEdgeId) -> FaceId {
-        self.face_halfedge.push(h.0);
-        self.face_dead.push(false);
-        self.live_faces += 1;
-        FaceId(self.face_halfedge.len() as u32 - 1)
+        let t = self.topology_mut();
+        t.face_halfedge.push(h.0);
+        t.face_dead.push(false);
+        t.live_faces += 1;
+        FaceId(t.face_halfedge.len() as u32 - 1)
     }
 
     /// Marks a vertex dead; its id is never handed out again.
@@ -246,48 +245,52 @@ impl HalfEdgeMesh {
     /// before it replaces the mesh. A vertex that still has edges leaves
     /// dangling records, which that validation reports.
     pub(crate) fn free_vertex(&mut self, v: VertexId) {
-        self.live_vertices -= 1;
-        self.vertex_dead[v.index()] = true;
-        self.vertex_out[v.index()] = NONE;
+        let t = self.topology_mut();
+        t.live_vertices -= 1;
+        t.vertex_dead[v.index()] = true;
+        t.vertex_out[v.index()] = NONE;
     }
 
     /// Marks an edge dead; its ids are never handed out again.
     pub(super) fn free_edge(&mut self, e: EdgeId) {
-        self.live_edges -= 1;
-        self.edge_dead[e.index()] = true;
+        let t = self.topology_mut();
+        t.live_edges -= 1;
+        t.edge_dead[e.index()] = true;
     }
 
     /// Marks a face dead; its id is never handed out again.
     pub(super) fn free_face(&mut self, f: FaceId) {
-        self.live_faces -= 1;
-        self.face_dead[f.index()] = true;
+        let t = self.topology_mut();
+        t.live_faces -= 1;
+        t.face_dead[f.index()] = true;
     }
 
     #[inline]
     pub(super) fn link(&mut self, h: HalfEdgeId, n: HalfEdgeId) {
-        self.halfedges[h.index()].next = n.0;
-        self.halfedges[n.index()].prev = h.0;
+        let halfedges = &mut self.topology_mut().halfedges;
+        halfedges[h.index()].next = n.0;
+        halfedges[n.index()].prev = h.0;
     }
 
     #[inline]
     pub(super) fn set_face(&mut self, h: HalfEdgeId, f: Option<FaceId>) {
-        self.halfedges[h.index()].face = f.map_or(NONE, |f| f.0);
+        self.topology_mut().halfedges[h.index()].face = f.map_or(NONE, |f| f.0);
     }
 
     #[inline]
     pub(super) fn set_origin(&mut self, h: HalfEdgeId, v: VertexId) {
-        self.halfedges[h.index()].origin = v.0;
+        self.topology_mut().halfedges[h.index()].origin = v.0;
     }
 
     /// Re-establishes the vertex's stored half-edge: a boundary one if any,
     /// else `preferred` (an outgoing half-edge known to be live).
     pub(super) fn fix_vertex_halfedge(&mut self, v: VertexId, preferred: HalfEdgeId) {
-        self.vertex_out[v.index()] = preferred.0;
+        self.topology_mut().vertex_out[v.index()] = preferred.0;
         let boundary = self
             .vertex_outgoing(v)
             .find(|&h| self.is_boundary_halfedge(h));
         if let Some(b) = boundary {
-            self.vertex_out[v.index()] = b.0;
+            self.topology_mut().vertex_out[v.index()] = b.0;
         }
     }
 
@@ -312,7 +315,7 @@ impl HalfEdgeMesh {
     /// Which loop of `f` the loop through `l` is (`l` must lie on `f`).
     /// O(1) for a face without rings, else O(loop length · log).
     fn loop_role(&self, f: FaceId, l: LoopStart) -> Role {
-        let Some(rings) = self.face_rings.get(&f) else {
+        let Some(rings) = self.topology.face_rings.get(&f) else {
             return Role::Outer;
         };
         match l {
@@ -334,28 +337,28 @@ impl HalfEdgeMesh {
     fn set_loop(&mut self, f: FaceId, role: Role, l: LoopStart) {
         match (role, l) {
             (Role::Outer, LoopStart::HalfEdge(h)) => {
-                self.face_halfedge[f.index()] = h.0;
-                self.face_lone_vertex.remove(&f);
+                self.topology_mut().face_halfedge[f.index()] = h.0;
+                self.topology_mut().face_lone_vertex.remove(&f);
             }
             (Role::Outer, LoopStart::Vertex(v)) => {
-                self.face_halfedge[f.index()] = NONE;
-                self.face_lone_vertex.insert(f, v);
+                self.topology_mut().face_halfedge[f.index()] = NONE;
+                self.topology_mut().face_lone_vertex.insert(f, v);
             }
             (Role::Ring(i), _) => {
-                self.face_rings.get_mut(&f).expect("a face with rings")[i] = l;
+                self.topology_mut().face_rings.get_mut(&f).expect("a face with rings")[i] = l;
             }
         }
     }
 
     fn push_ring(&mut self, f: FaceId, l: LoopStart) {
-        self.face_rings.entry(f).or_default().push(l);
+        self.topology_mut().face_rings.entry(f).or_default().push(l);
     }
 
     fn remove_ring(&mut self, f: FaceId, i: usize) -> LoopStart {
-        let rings = self.face_rings.get_mut(&f).expect("a face with rings");
+        let rings = self.topology_mut().face_rings.get_mut(&f).expect("a face with rings");
         let r = rings.remove(i);
         if rings.is_empty() {
-            self.face_rings.remove(&f);
+            self.topology_mut().face_rings.remove(&f);
         }
         r
     }
@@ -369,11 +372,11 @@ impl HalfEdgeMesh {
         new: LoopStart,
     ) {
         let Some(f) = f else { return };
-        let fh = self.face_halfedge[f.index()];
+        let fh = self.topology.face_halfedge[f.index()];
         if fh != NONE && old.contains(&HalfEdgeId(fh)) {
             self.set_loop(f, Role::Outer, new);
         }
-        if let Some(rings) = self.face_rings.get_mut(&f) {
+        if let Some(rings) = self.topology_mut().face_rings.get_mut(&f) {
             for r in rings.iter_mut() {
                 if matches!(r, LoopStart::HalfEdge(x) if old.contains(x)) {
                     *r = new;
@@ -401,7 +404,7 @@ impl HalfEdgeMesh {
 
     /// Refuses faces with rings or without edges.
     fn check_polygon_face(&self, f: FaceId) -> Result<(), EulerError> {
-        if self.face_rings.contains_key(&f) || self.face_lone_vertex.contains_key(&f) {
+        if self.topology.face_rings.contains_key(&f) || self.topology.face_lone_vertex.contains_key(&f) {
             Err(EulerError::HasRings { face: f })
         } else {
             Ok(())

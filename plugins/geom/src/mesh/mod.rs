@@ -56,6 +56,7 @@ use crate::ids::{EdgeId, FaceId, HalfEdgeId, NONE, VertexId};
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
+use std::sync::Arc;
 
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 struct HalfEdgeRecord {
@@ -114,6 +115,17 @@ impl std::fmt::Display for LoopStart {
 #[serde(try_from = "MeshData", into = "MeshData")]
 pub struct HalfEdgeMesh {
     positions: Vec<DVec3>,
+    /// The connectivity, shared by copies of the mesh until one of them
+    /// changes it (copy on write, `Arc::make_mut`): a copy that only moves
+    /// vertices, such as a tool preview in every frame of a drag, copies
+    /// the positions alone, and [`same_connectivity`](Self::same_connectivity)
+    /// of two such copies is a pointer comparison.
+    topology: Arc<Topology>,
+}
+
+/// The records of a [`HalfEdgeMesh`] apart from its positions.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+struct Topology {
     vertex_out: Vec<u32>,
     halfedges: Vec<HalfEdgeRecord>,
     face_halfedge: Vec<u32>,
@@ -176,23 +188,36 @@ impl HalfEdgeMesh {
         Self::default()
     }
 
+    /// A mesh of these positions and records.
+    fn from_parts(positions: Vec<DVec3>, topology: Topology) -> Self {
+        HalfEdgeMesh {
+            positions,
+            topology: Arc::new(topology),
+        }
+    }
+
+    /// The connectivity for writing: copied first when another mesh shares it.
+    fn topology_mut(&mut self) -> &mut Topology {
+        Arc::make_mut(&mut self.topology)
+    }
+
     // ----- counts --------------------------------------------------------
 
     /// Number of live vertices.
     pub fn vertex_count(&self) -> usize {
-        self.live_vertices
+        self.topology.live_vertices
     }
     /// Number of live edges.
     pub fn edge_count(&self) -> usize {
-        self.live_edges
+        self.topology.live_edges
     }
     /// Number of live faces.
     pub fn face_count(&self) -> usize {
-        self.live_faces
+        self.topology.live_faces
     }
     /// Number of live half-edges (two per edge).
     pub fn halfedge_count(&self) -> usize {
-        self.live_edges * 2
+        self.topology.live_edges * 2
     }
     /// Size of the vertex id space (live and dead).
     pub fn vertex_capacity(&self) -> usize {
@@ -200,22 +225,22 @@ impl HalfEdgeMesh {
     }
     /// Size of the edge id space (live and dead).
     pub fn edge_capacity(&self) -> usize {
-        self.edge_dead.len()
+        self.topology.edge_dead.len()
     }
     /// Size of the face id space (live and dead).
     pub fn face_capacity(&self) -> usize {
-        self.face_halfedge.len()
+        self.topology.face_halfedge.len()
     }
 
     // ----- liveness ------------------------------------------------------
 
     /// True when `v` is a live vertex (in range and not removed).
     pub fn is_vertex(&self, v: VertexId) -> bool {
-        v.index() < self.vertex_dead.len() && !self.vertex_dead[v.index()]
+        v.index() < self.topology.vertex_dead.len() && !self.topology.vertex_dead[v.index()]
     }
     /// True when `e` is a live edge.
     pub fn is_edge(&self, e: EdgeId) -> bool {
-        e.index() < self.edge_dead.len() && !self.edge_dead[e.index()]
+        e.index() < self.topology.edge_dead.len() && !self.topology.edge_dead[e.index()]
     }
     /// True when `h` belongs to a live edge.
     pub fn is_halfedge(&self, h: HalfEdgeId) -> bool {
@@ -223,21 +248,21 @@ impl HalfEdgeMesh {
     }
     /// True when `f` is a live face.
     pub fn is_face(&self, f: FaceId) -> bool {
-        f.index() < self.face_dead.len() && !self.face_dead[f.index()]
+        f.index() < self.topology.face_dead.len() && !self.topology.face_dead[f.index()]
     }
 
     // ----- iteration over live elements ----------------------------------
 
     /// Live vertices in id order.
     pub fn vertices(&self) -> impl Iterator<Item = VertexId> + '_ {
-        (0..self.vertex_dead.len() as u32)
-            .filter(|&i| !self.vertex_dead[i as usize])
+        (0..self.topology.vertex_dead.len() as u32)
+            .filter(|&i| !self.topology.vertex_dead[i as usize])
             .map(VertexId)
     }
     /// Live edges in id order.
     pub fn edges(&self) -> impl Iterator<Item = EdgeId> + '_ {
-        (0..self.edge_dead.len() as u32)
-            .filter(|&i| !self.edge_dead[i as usize])
+        (0..self.topology.edge_dead.len() as u32)
+            .filter(|&i| !self.topology.edge_dead[i as usize])
             .map(EdgeId)
     }
     /// Both half-edges of every live edge, in id order.
@@ -246,8 +271,8 @@ impl HalfEdgeMesh {
     }
     /// Live faces in id order.
     pub fn faces(&self) -> impl Iterator<Item = FaceId> + '_ {
-        (0..self.face_dead.len() as u32)
-            .filter(|&i| !self.face_dead[i as usize])
+        (0..self.topology.face_dead.len() as u32)
+            .filter(|&i| !self.topology.face_dead[i as usize])
             .map(FaceId)
     }
 
@@ -255,7 +280,7 @@ impl HalfEdgeMesh {
 
     #[inline]
     fn he(&self, h: HalfEdgeId) -> &HalfEdgeRecord {
-        &self.halfedges[h.index()]
+        &self.topology.halfedges[h.index()]
     }
     /// Vertex the half-edge starts at.
     #[inline]
@@ -296,7 +321,7 @@ impl HalfEdgeMesh {
     /// a boundary); `None` for an isolated vertex.
     #[inline]
     pub fn vertex_halfedge(&self, v: VertexId) -> Option<HalfEdgeId> {
-        let h = self.vertex_out[v.index()];
+        let h = self.topology.vertex_out[v.index()];
         (h != NONE).then_some(HalfEdgeId(h))
     }
     /// True when `v` lies on a boundary (false for an isolated vertex).
@@ -306,7 +331,7 @@ impl HalfEdgeMesh {
     }
     /// True when `v` has no edges.
     pub fn is_isolated_vertex(&self, v: VertexId) -> bool {
-        self.vertex_out[v.index()] == NONE
+        self.topology.vertex_out[v.index()] == NONE
     }
     /// One half-edge of the face's outer loop. For a face without edges
     /// (see [`lone_vertex_face`](Self::lone_vertex_face)) this is an invalid
@@ -314,7 +339,7 @@ impl HalfEdgeMesh {
     /// may occur.
     #[inline]
     pub fn face_halfedge(&self, f: FaceId) -> HalfEdgeId {
-        HalfEdgeId(self.face_halfedge[f.index()])
+        HalfEdgeId(self.topology.face_halfedge[f.index()])
     }
     /// The two vertices of an edge, in the direction of its half-edge 0.
     pub fn edge_vertices(&self, e: EdgeId) -> [VertexId; 2] {
@@ -330,7 +355,7 @@ impl HalfEdgeMesh {
     /// [`face_halfedge`](Self::face_halfedge); none for a face without edges.
     /// Inner rings are not included: see [`face_loops`](Self::face_loops).
     pub fn face_halfedges(&self, f: FaceId) -> LoopIter<'_> {
-        if self.face_halfedge[f.index()] == NONE {
+        if self.topology.face_halfedge[f.index()] == NONE {
             return LoopIter {
                 mesh: self,
                 start: HalfEdgeId(NONE),
@@ -354,15 +379,15 @@ impl HalfEdgeMesh {
         corner_vertex: &mut Vec<u32>,
         corner_edge: &mut Vec<u32>,
     ) {
-        for (f, &start) in self.face_halfedge.iter().enumerate() {
-            if self.face_dead[f] {
+        for (f, &start) in self.topology.face_halfedge.iter().enumerate() {
+            if self.topology.face_dead[f] {
                 continue;
             }
             if start != NONE {
                 let mut h = start;
                 // A valid loop closes within the half-edge count.
-                for _ in 0..self.halfedges.len() {
-                    let r = &self.halfedges[h as usize];
+                for _ in 0..self.topology.halfedges.len() {
+                    let r = &self.topology.halfedges[h as usize];
                     corner_vertex.push(r.origin);
                     corner_edge.push(h / 2);
                     h = r.next;
@@ -377,18 +402,18 @@ impl HalfEdgeMesh {
 
     /// True when some face has an inner ring.
     pub fn has_rings(&self) -> bool {
-        !self.face_rings.is_empty()
+        !self.topology.face_rings.is_empty()
     }
     /// True when some face has no edges (its outer loop is a lone vertex).
     pub fn has_edgeless_faces(&self) -> bool {
-        !self.face_lone_vertex.is_empty()
+        !self.topology.face_lone_vertex.is_empty()
     }
     /// The first face that is not a plain polygon (one loop of half-edges):
     /// a face with rings or without edges. Code that triangulates, refines
     /// or exports faces as polygons refuses a mesh where this is `Some`.
     pub fn first_non_polygon_face(&self) -> Option<FaceId> {
-        let a = self.face_rings.keys().next().copied();
-        let b = self.face_lone_vertex.keys().next().copied();
+        let a = self.topology.face_rings.keys().next().copied();
+        let b = self.topology.face_lone_vertex.keys().next().copied();
         match (a, b) {
             (Some(a), Some(b)) => Some(a.min(b)),
             (a, b) => a.or(b),
@@ -396,27 +421,27 @@ impl HalfEdgeMesh {
     }
     /// True when the face is a plain polygon: its only loop has edges.
     pub fn is_polygon_face(&self, f: FaceId) -> bool {
-        self.face_halfedge[f.index()] != NONE && !self.face_rings.contains_key(&f)
+        self.topology.face_halfedge[f.index()] != NONE && !self.topology.face_rings.contains_key(&f)
     }
     /// The inner rings of a face (empty for almost every face).
     pub fn face_rings(&self, f: FaceId) -> &[LoopStart] {
-        self.face_rings.get(&f).map_or(&[], Vec::as_slice)
+        self.topology.face_rings.get(&f).map_or(&[], Vec::as_slice)
     }
     /// Number of inner rings over all faces (L − F).
     pub fn ring_count(&self) -> usize {
-        self.face_rings.values().map(Vec::len).sum()
+        self.topology.face_rings.values().map(Vec::len).sum()
     }
     /// Number of loops L: one outer loop per face plus the rings.
     pub fn loop_count(&self) -> usize {
-        self.live_faces + self.ring_count()
+        self.topology.live_faces + self.ring_count()
     }
     /// The lone vertex of a face without edges (made by MVFS), else `None`.
     pub fn lone_vertex_face(&self, f: FaceId) -> Option<VertexId> {
-        self.face_lone_vertex.get(&f).copied()
+        self.topology.face_lone_vertex.get(&f).copied()
     }
     /// The outer loop of a face.
     pub fn outer_loop(&self, f: FaceId) -> LoopStart {
-        match self.face_lone_vertex.get(&f) {
+        match self.topology.face_lone_vertex.get(&f) {
             Some(&v) => LoopStart::Vertex(v),
             None => LoopStart::HalfEdge(self.face_halfedge(f)),
         }
@@ -444,10 +469,10 @@ impl HalfEdgeMesh {
     /// The face and loop a lone vertex belongs to (`None` for a vertex with
     /// edges or a free isolated vertex). O(number of edge-less loops).
     pub fn lone_vertex_loop(&self, v: VertexId) -> Option<FaceId> {
-        if let Some((&f, _)) = self.face_lone_vertex.iter().find(|(_, x)| **x == v) {
+        if let Some((&f, _)) = self.topology.face_lone_vertex.iter().find(|(_, x)| **x == v) {
             return Some(f);
         }
-        self.face_rings
+        self.topology.face_rings
             .iter()
             .find(|(_, rings)| rings.contains(&LoopStart::Vertex(v)))
             .map(|(&f, _)| f)
@@ -458,7 +483,7 @@ impl HalfEdgeMesh {
             mesh: self,
             start: h,
             current: Some(h),
-            guard: self.halfedges.len(),
+            guard: self.topology.halfedges.len(),
         }
     }
     /// Vertices of a face in order (counter-clockwise seen from the front).
@@ -481,7 +506,7 @@ impl HalfEdgeMesh {
             mesh: self,
             start,
             current: start,
-            guard: self.halfedges.len(),
+            guard: self.topology.halfedges.len(),
         }
     }
     /// Vertices joined to `v` by an edge.
@@ -507,7 +532,7 @@ impl HalfEdgeMesh {
 
     /// Every boundary loop, as the half-edges (without faces) around each hole.
     pub fn boundary_loops(&self) -> Vec<Vec<HalfEdgeId>> {
-        let mut seen = vec![false; self.halfedges.len()];
+        let mut seen = vec![false; self.topology.halfedges.len()];
         let mut loops = Vec::new();
         for h in self.halfedges() {
             if seen[h.index()] || !self.is_boundary_halfedge(h) {
@@ -550,6 +575,8 @@ impl HalfEdgeMesh {
     /// exact for planar polygons and robust for non-planar ones.
     /// Inner rings, oriented the other way round, subtract their area.
     pub fn face_area_vector(&self, f: FaceId) -> DVec3 {
+        // Summed in the order of `query::polygon_area_vector`: the same bits
+        // for a face without rings.
         let mut n = DVec3::ZERO;
         for h in self.face_halfedges(f) {
             let a = self.position(self.origin(h));
@@ -656,7 +683,7 @@ impl HalfEdgeMesh {
             }
             count += 1;
         }
-        if self.face_rings.is_empty() {
+        if self.topology.face_rings.is_empty() {
             return (comp, count);
         }
         // The loops of one face belong to one shell (a ring may be a loop of
@@ -669,7 +696,7 @@ impl HalfEdgeMesh {
             }
             x
         }
-        for (&f, rings) in &self.face_rings {
+        for (&f, rings) in &self.topology.face_rings {
             let a = comp[self.outer_loop(f).vertex(self).index()];
             for r in rings {
                 let b = comp[r.vertex(self).index()];

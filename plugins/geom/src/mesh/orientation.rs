@@ -34,8 +34,9 @@ impl HalfEdgeMesh {
     fn reverse_halfedges(&mut self, hs: &[HalfEdgeId]) {
         let targets: Vec<u32> = hs.iter().map(|&h| self.target(h).0).collect();
         let mut touched = Vec::new();
+        let halfedges = &mut self.topology_mut().halfedges;
         for (&h, &t) in hs.iter().zip(&targets) {
-            let r = &mut self.halfedges[h.index()];
+            let r = &mut halfedges[h.index()];
             std::mem::swap(&mut r.next, &mut r.prev);
             r.origin = t;
             touched.push(VertexId(t));

@@ -34,7 +34,7 @@
 //! twin of a corner would be ambiguous): [`HalfEdgeMesh::polygon_data`]
 //! returns `None` for those meshes.
 
-use super::{HalfEdgeMesh, HalfEdgeRecord};
+use super::{HalfEdgeMesh, HalfEdgeRecord, Topology};
 use crate::ids::{ElementKind, NONE, VertexId};
 use crate::mesh::MeshDataError;
 use glam::DVec3;
@@ -84,14 +84,14 @@ impl HalfEdgeMesh {
     ///
     /// Complexity: O(V + corners × valence).
     pub fn polygon_data(&self) -> Option<PolygonData> {
-        if !self.face_rings.is_empty() || !self.face_lone_vertex.is_empty() {
+        if !self.topology.face_rings.is_empty() || !self.topology.face_lone_vertex.is_empty() {
             return None;
         }
         let nv = self.positions.len();
-        let ne = self.edge_dead.len();
-        let nf = self.face_halfedge.len();
+        let ne = self.topology.edge_dead.len();
+        let nf = self.topology.face_halfedge.len();
         let mut face_start = Vec::with_capacity(nf + 1);
-        let mut corners = Vec::with_capacity(self.live_edges * 2);
+        let mut corners = Vec::with_capacity(self.topology.live_edges * 2);
         let mut corner_halfedges = Vec::new();
         let mut dead_faces = Vec::new();
         let mut dead_face_halfedges = Vec::new();
@@ -100,27 +100,27 @@ impl HalfEdgeMesh {
         let mut free = 0usize;
         face_start.push(0u32);
         for f in 0..nf {
-            if self.face_dead[f] {
+            if self.topology.face_dead[f] {
                 dead_faces.push(f as u32);
-                dead_face_halfedges.push(self.face_halfedge[f]);
+                dead_face_halfedges.push(self.topology.face_halfedge[f]);
                 face_start.push(corners.len() as u32);
                 continue;
             }
-            let start = self.face_halfedge[f];
+            let start = self.topology.face_halfedge[f];
             if start == NONE {
                 return None;
             }
             let mut h = start;
             loop {
                 let c = corners.len() as u32;
-                let origin = self.halfedges[h as usize].origin;
+                let origin = self.topology.halfedges[h as usize].origin;
                 corners.push(origin);
                 if first_out[origin as usize] == NONE {
                     first_out[origin as usize] = h;
                 }
                 let e = h as usize / 2;
                 if !edge_used[e] {
-                    while free < ne && (self.edge_dead[free] || edge_used[free]) {
+                    while free < ne && (self.topology.edge_dead[free] || edge_used[free]) {
                         free += 1;
                     }
                     if h as usize != 2 * free {
@@ -128,11 +128,11 @@ impl HalfEdgeMesh {
                     }
                     edge_used[e] = true;
                 }
-                h = self.halfedges[h as usize].next;
+                h = self.topology.halfedges[h as usize].next;
                 if h == start {
                     break;
                 }
-                if corners.len() > 2 * self.halfedges.len() {
+                if corners.len() > 2 * self.topology.halfedges.len() {
                     return None;
                 }
             }
@@ -141,14 +141,14 @@ impl HalfEdgeMesh {
         // Every live edge has a corner; boundaries follow the rule.
         let mut boundary_out = vec![NONE; nv];
         for (e, used) in edge_used.iter().enumerate() {
-            if self.edge_dead[e] {
+            if self.topology.edge_dead[e] {
                 continue;
             }
             if !used {
                 return None;
             }
             for h in [2 * e, 2 * e + 1] {
-                let r = self.halfedges[h];
+                let r = self.topology.halfedges[h];
                 if r.face == NONE {
                     if boundary_out[r.origin as usize] != NONE {
                         return None;
@@ -158,13 +158,13 @@ impl HalfEdgeMesh {
             }
         }
         for e in 0..ne {
-            if self.edge_dead[e] {
+            if self.topology.edge_dead[e] {
                 continue;
             }
             for h in [2 * e, 2 * e + 1] {
-                let r = self.halfedges[h];
+                let r = self.topology.halfedges[h];
                 if r.face == NONE {
-                    let end = self.halfedges[h ^ 1].origin as usize;
+                    let end = self.topology.halfedges[h ^ 1].origin as usize;
                     if r.next != boundary_out[end] {
                         return None;
                     }
@@ -174,11 +174,11 @@ impl HalfEdgeMesh {
         // No two edges between the same two vertices.
         let mut seen = vec![NONE; nv];
         for v in 0..nv {
-            if self.vertex_dead[v] || self.vertex_out[v] == NONE {
+            if self.topology.vertex_dead[v] || self.topology.vertex_out[v] == NONE {
                 continue;
             }
             for h in self.vertex_outgoing(VertexId(v as u32)) {
-                let to = self.halfedges[h.0 as usize ^ 1].origin as usize;
+                let to = self.topology.halfedges[h.0 as usize ^ 1].origin as usize;
                 if seen[to] == v as u32 {
                     return None;
                 }
@@ -192,14 +192,14 @@ impl HalfEdgeMesh {
                 } else {
                     first_out[v]
                 };
-                (self.vertex_out[v] != rule).then_some((v as u32, self.vertex_out[v]))
+                (self.topology.vertex_out[v] != rule).then_some((v as u32, self.topology.vertex_out[v]))
             })
             .collect();
         let dead_edges: Vec<u32> = (0..ne as u32)
-            .filter(|&e| self.edge_dead[e as usize])
+            .filter(|&e| self.topology.edge_dead[e as usize])
             .collect();
         let record = |h: usize| {
-            let r = self.halfedges[h];
+            let r = self.topology.halfedges[h];
             [r.origin, r.next, r.prev, r.face]
         };
         Some(PolygonData {
@@ -209,7 +209,7 @@ impl HalfEdgeMesh {
             corner_halfedges,
             vertex_halfedges,
             dead_vertices: (0..nv as u32)
-                .filter(|&v| self.vertex_dead[v as usize])
+                .filter(|&v| self.topology.vertex_dead[v as usize])
                 .collect(),
             dead_halfedges: dead_edges
                 .iter()
@@ -463,11 +463,10 @@ impl TryFrom<PolygonData> for HalfEdgeMesh {
             face_halfedge[f as usize] = h;
         }
         edge_dead.truncate(ne);
-        let m = HalfEdgeMesh {
+        let topology = Topology {
             live_vertices: nv - vertex_dead.iter().filter(|x| **x).count(),
             live_edges: ne - edge_dead.iter().filter(|x| **x).count(),
             live_faces: nf - d.dead_faces.len(),
-            positions: d.positions,
             vertex_out,
             halfedges,
             face_halfedge,
@@ -476,6 +475,7 @@ impl TryFrom<PolygonData> for HalfEdgeMesh {
             face_dead,
             ..Default::default()
         };
+        let m = HalfEdgeMesh::from_parts(d.positions, topology);
         m.validate()?;
         Ok(m)
     }

@@ -3,7 +3,7 @@
 //! meshes with rings). Both copy raw records, so they live inside the
 //! [`mesh`](super) module.
 
-use super::{HalfEdgeMesh, HalfEdgeRecord, LoopStart};
+use super::{HalfEdgeMesh, HalfEdgeRecord, LoopStart, Topology};
 use crate::ids::{ElementKind, FaceId, HalfEdgeId, NONE, VertexId};
 use crate::validate::ValidationError;
 use glam::DVec3;
@@ -109,18 +109,19 @@ impl From<HalfEdgeMesh> for MeshData {
                 .collect()
         };
         MeshData {
-            vertex_halfedge: m.vertex_out.iter().map(|&x| opt_to_i64(x)).collect(),
+            vertex_halfedge: m.topology.vertex_out.iter().map(|&x| opt_to_i64(x)).collect(),
             halfedges: m
+                .topology
                 .halfedges
                 .iter()
                 .map(|r| (r.origin, r.next, r.prev, opt_to_i64(r.face)))
                 .collect(),
-            face_halfedge: m.face_halfedge.clone(),
-            dead_vertices: dead(&m.vertex_dead),
-            dead_edges: dead(&m.edge_dead),
-            dead_faces: dead(&m.face_dead),
-            face_rings: m.face_rings.iter().map(|(f, r)| (f.0, r.clone())).collect(),
-            lone_vertex_faces: m.face_lone_vertex.iter().map(|(f, v)| (f.0, v.0)).collect(),
+            face_halfedge: m.topology.face_halfedge.clone(),
+            dead_vertices: dead(&m.topology.vertex_dead),
+            dead_edges: dead(&m.topology.edge_dead),
+            dead_faces: dead(&m.topology.face_dead),
+            face_rings: m.topology.face_rings.iter().map(|(f, r)| (f.0, r.clone())).collect(),
+            lone_vertex_faces: m.topology.face_lone_vertex.iter().map(|(f, v)| (f.0, v.0)).collect(),
             positions: m.positions,
         }
     }
@@ -150,8 +151,7 @@ impl TryFrom<MeshData> for HalfEdgeMesh {
                 Err(MeshDataError::IdOutOfRange { kind, id: x })
             }
         };
-        let mut m = HalfEdgeMesh {
-            positions: d.positions,
+        let mut t = Topology {
             vertex_out: d
                 .vertex_halfedge
                 .iter()
@@ -172,13 +172,13 @@ impl TryFrom<MeshData> for HalfEdgeMesh {
             face_halfedge: d.face_halfedge,
             ..Default::default()
         };
-        m.vertex_dead = vec![false; nv];
-        m.edge_dead = vec![false; m.halfedges.len() / 2];
-        m.face_dead = vec![false; m.face_halfedge.len()];
+        t.vertex_dead = vec![false; nv];
+        t.edge_dead = vec![false; t.halfedges.len() / 2];
+        t.face_dead = vec![false; t.face_halfedge.len()];
         for (list, flags, kind) in [
-            (&d.dead_vertices, &mut m.vertex_dead, ElementKind::Vertex),
-            (&d.dead_edges, &mut m.edge_dead, ElementKind::Edge),
-            (&d.dead_faces, &mut m.face_dead, ElementKind::Face),
+            (&d.dead_vertices, &mut t.vertex_dead, ElementKind::Vertex),
+            (&d.dead_edges, &mut t.edge_dead, ElementKind::Edge),
+            (&d.dead_faces, &mut t.face_dead, ElementKind::Face),
         ] {
             for &i in list {
                 *flags
@@ -186,19 +186,20 @@ impl TryFrom<MeshData> for HalfEdgeMesh {
                     .ok_or(MeshDataError::DeadOutOfRange { kind, id: i })? = true;
             }
         }
-        m.live_vertices = m.vertex_dead.iter().filter(|d| !**d).count();
-        m.live_edges = m.edge_dead.iter().filter(|d| !**d).count();
-        m.live_faces = m.face_dead.iter().filter(|d| !**d).count();
+        t.live_vertices = t.vertex_dead.iter().filter(|d| !**d).count();
+        t.live_edges = t.edge_dead.iter().filter(|d| !**d).count();
+        t.live_faces = t.face_dead.iter().filter(|d| !**d).count();
         for (f, rings) in d.face_rings {
-            if m.face_rings.insert(FaceId(f), rings).is_some() {
+            if t.face_rings.insert(FaceId(f), rings).is_some() {
                 return Err(MeshDataError::TwoRingLists { face: FaceId(f) });
             }
         }
         for (f, v) in d.lone_vertex_faces {
-            if m.face_lone_vertex.insert(FaceId(f), VertexId(v)).is_some() {
+            if t.face_lone_vertex.insert(FaceId(f), VertexId(v)).is_some() {
                 return Err(MeshDataError::TwoLoneVertices { face: FaceId(f) });
             }
         }
+        let m = HalfEdgeMesh::from_parts(d.positions, t);
         m.validate()?;
         Ok(m)
     }
@@ -209,10 +210,11 @@ impl HalfEdgeMesh {
     /// records with dense ids, in the old order.
     pub(crate) fn compacted_records(&self) -> HalfEdgeMesh {
         let lone: Vec<VertexId> = self
+            .topology
             .face_lone_vertex
             .values()
             .copied()
-            .chain(self.face_rings.values().flatten().filter_map(|l| match l {
+            .chain(self.topology.face_rings.values().flatten().filter_map(|l| match l {
                 LoopStart::Vertex(v) => Some(*v),
                 LoopStart::HalfEdge(_) => None,
             }))
@@ -226,7 +228,7 @@ impl HalfEdgeMesh {
             vmap[v.index()] = positions.len() as u32;
             positions.push(self.position(v));
         }
-        let mut emap = vec![NONE; self.edge_dead.len()];
+        let mut emap = vec![NONE; self.topology.edge_dead.len()];
         for (i, e) in self.edges().enumerate() {
             emap[e.index()] = i as u32;
         }
@@ -237,14 +239,14 @@ impl HalfEdgeMesh {
                 (emap[h as usize / 2] << 1) | (h & 1)
             }
         };
-        let mut fmap = vec![NONE; self.face_halfedge.len()];
+        let mut fmap = vec![NONE; self.topology.face_halfedge.len()];
         for (i, f) in self.faces().enumerate() {
             fmap[f.index()] = i as u32;
         }
         let halfedges = self
             .halfedges()
             .map(|h| {
-                let r = &self.halfedges[h.index()];
+                let r = &self.topology.halfedges[h.index()];
                 HalfEdgeRecord {
                     origin: vmap[r.origin as usize],
                     next: hmap(r.next),
@@ -264,24 +266,26 @@ impl HalfEdgeMesh {
         let vertex_out = self
             .vertices()
             .filter(|v| vmap[v.index()] != NONE)
-            .map(|v| hmap(self.vertex_out[v.index()]))
+            .map(|v| hmap(self.topology.vertex_out[v.index()]))
             .collect();
         let face_halfedge = self
             .faces()
-            .map(|f| hmap(self.face_halfedge[f.index()]))
+            .map(|f| hmap(self.topology.face_halfedge[f.index()]))
             .collect();
-        HalfEdgeMesh {
-            face_rings: self
-                .face_rings
-                .iter()
-                .map(|(f, r)| (FaceId(fmap[f.index()]), r.iter().map(map_loop).collect()))
-                .collect(),
-            face_lone_vertex: self
-                .face_lone_vertex
-                .iter()
-                .map(|(f, v)| (FaceId(fmap[f.index()]), VertexId(vmap[v.index()])))
-                .collect(),
-            ..HalfEdgeMesh::all_live(positions, vertex_out, halfedges, face_halfedge)
-        }
+        let mut m = HalfEdgeMesh::all_live(positions, vertex_out, halfedges, face_halfedge);
+        let topology = m.topology_mut();
+        topology.face_rings = self
+            .topology
+            .face_rings
+            .iter()
+            .map(|(f, r)| (FaceId(fmap[f.index()]), r.iter().map(map_loop).collect()))
+            .collect();
+        topology.face_lone_vertex = self
+            .topology
+            .face_lone_vertex
+            .iter()
+            .map(|(f, v)| (FaceId(fmap[f.index()]), VertexId(vmap[v.index()])))
+            .collect();
+        m
     }
 }

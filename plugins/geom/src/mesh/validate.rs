@@ -238,31 +238,31 @@ impl HalfEdgeMesh {
     /// Pass 1: array sizes, id ranges and liveness, so pass 2 can index freely.
     fn check_records(&self, out: &mut Vec<Violation>) {
         let nv = self.positions.len();
-        let nh = self.halfedges.len();
-        let nf = self.face_halfedge.len();
-        if self.vertex_out.len() != nv || self.vertex_dead.len() != nv {
+        let nh = self.topology.halfedges.len();
+        let nf = self.topology.face_halfedge.len();
+        if self.topology.vertex_out.len() != nv || self.topology.vertex_dead.len() != nv {
             out.push(Violation::WrongCount {
                 what: "vertex record",
-                cached: self.vertex_out.len(),
+                cached: self.topology.vertex_out.len(),
                 actual: nv,
             });
             return;
         }
-        if self.edge_dead.len() * 2 != nh || self.face_dead.len() != nf {
+        if self.topology.edge_dead.len() * 2 != nh || self.topology.face_dead.len() != nf {
             out.push(Violation::WrongCount {
                 what: "edge record",
-                cached: self.edge_dead.len() * 2,
+                cached: self.topology.edge_dead.len() * 2,
                 actual: nh,
             });
             return;
         }
-        let live_v = self.vertex_dead.iter().filter(|d| !**d).count();
-        let live_e = self.edge_dead.iter().filter(|d| !**d).count();
-        let live_f = self.face_dead.iter().filter(|d| !**d).count();
+        let live_v = self.topology.vertex_dead.iter().filter(|d| !**d).count();
+        let live_e = self.topology.edge_dead.iter().filter(|d| !**d).count();
+        let live_f = self.topology.face_dead.iter().filter(|d| !**d).count();
         for (what, cached, actual) in [
-            ("vertex", self.live_vertices, live_v),
-            ("edge", self.live_edges, live_e),
-            ("face", self.live_faces, live_f),
+            ("vertex", self.topology.live_vertices, live_v),
+            ("edge", self.topology.live_edges, live_e),
+            ("face", self.topology.live_faces, live_f),
         ] {
             if cached != actual {
                 out.push(Violation::WrongCount {
@@ -272,9 +272,9 @@ impl HalfEdgeMesh {
                 });
             }
         }
-        let live_vertex = |x: u32| (x as usize) < nv && !self.vertex_dead[x as usize];
-        let live_he = |x: u32| (x as usize) < nh && !self.edge_dead[x as usize / 2];
-        let live_face = |x: u32| (x as usize) < nf && !self.face_dead[x as usize];
+        let live_vertex = |x: u32| (x as usize) < nv && !self.topology.vertex_dead[x as usize];
+        let live_he = |x: u32| (x as usize) < nh && !self.topology.edge_dead[x as usize / 2];
+        let live_face = |x: u32| (x as usize) < nf && !self.topology.face_dead[x as usize];
         let push = |out: &mut Vec<Violation>, element: ElementId, field, value| {
             if out.len() < ValidationError::LIMIT {
                 out.push(Violation::DanglingReference {
@@ -285,7 +285,7 @@ impl HalfEdgeMesh {
             }
         };
         for v in self.vertices() {
-            let h = self.vertex_out[v.index()];
+            let h = self.topology.vertex_out[v.index()];
             if h != NONE && !live_he(h) {
                 push(out, v.into(), "half-edge", h);
             }
@@ -294,7 +294,7 @@ impl HalfEdgeMesh {
             }
         }
         for h in self.halfedges() {
-            let r = &self.halfedges[h.index()];
+            let r = &self.topology.halfedges[h.index()];
             if !live_vertex(r.origin) {
                 push(out, h.into(), "origin", r.origin);
             }
@@ -309,8 +309,8 @@ impl HalfEdgeMesh {
             }
         }
         for f in self.faces() {
-            let h = self.face_halfedge[f.index()];
-            let lone = self.face_lone_vertex.get(&f);
+            let h = self.topology.face_halfedge[f.index()];
+            let lone = self.topology.face_lone_vertex.get(&f);
             if let Some(&v) = lone.filter(|_| h != NONE) {
                 out.push(Violation::BadLoneVertex { face: f, vertex: v });
             } else if lone.is_none() && !live_he(h) {
@@ -320,18 +320,18 @@ impl HalfEdgeMesh {
         // Rings and lone vertices (side tables, empty for ordinary meshes).
         let mut lone_seen = std::collections::BTreeSet::new();
         let mut check_lone = |out: &mut Vec<Violation>, f: FaceId, v: VertexId| {
-            if !live_vertex(v.0) || self.vertex_out[v.index()] != NONE || !lone_seen.insert(v) {
+            if !live_vertex(v.0) || self.topology.vertex_out[v.index()] != NONE || !lone_seen.insert(v) {
                 out.push(Violation::BadLoneVertex { face: f, vertex: v });
             }
         };
-        for (&f, &v) in &self.face_lone_vertex {
+        for (&f, &v) in &self.topology.face_lone_vertex {
             if !live_face(f.0) {
                 out.push(Violation::BadRingTable { face: f });
             } else {
                 check_lone(out, f, v);
             }
         }
-        for (&f, rings) in &self.face_rings {
+        for (&f, rings) in &self.topology.face_rings {
             if !live_face(f.0) || rings.is_empty() {
                 out.push(Violation::BadRingTable { face: f });
                 continue;
@@ -372,17 +372,17 @@ impl HalfEdgeMesh {
             return;
         }
         // Face loops: closed, at least 3 sides, and own all half-edges naming them.
-        let mut named = vec![0usize; self.face_halfedge.len()];
+        let mut named = vec![0usize; self.topology.face_halfedge.len()];
         for h in self.halfedges() {
             if let Some(f) = self.face(h) {
                 named[f.index()] += 1;
             }
         }
         // Half-edges already walked, to find rings lying on another loop.
-        let mut seen = if self.face_rings.is_empty() {
+        let mut seen = if self.topology.face_rings.is_empty() {
             Vec::new()
         } else {
-            vec![false; self.halfedges.len()]
+            vec![false; self.topology.halfedges.len()]
         };
         'faces: for f in self.faces() {
             if full(out) {
@@ -403,7 +403,7 @@ impl HalfEdgeMesh {
                 let mut len = 0;
                 let mut h = start;
                 let mut closed = false;
-                while len <= self.halfedges.len() {
+                while len <= self.topology.halfedges.len() {
                     if self.face(h) != Some(f) {
                         break;
                     }

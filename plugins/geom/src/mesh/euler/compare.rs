@@ -4,18 +4,22 @@
 use crate::ids::FaceId;
 use crate::mesh::{HalfEdgeMesh, LoopStart};
 use std::collections::BTreeSet;
+use std::sync::Arc;
 
 impl HalfEdgeMesh {
     /// True when both meshes have the same elements and links (positions may
     /// differ): what a tool that only moves vertices leaves unchanged.
+    /// O(1) for copies that share their connectivity (see
+    /// [`HalfEdgeMesh`]); otherwise compares the records.
     pub fn same_connectivity(&self, other: &HalfEdgeMesh) -> bool {
-        self.halfedges == other.halfedges
-            && self.face_halfedge == other.face_halfedge
-            && self.vertex_dead == other.vertex_dead
-            && self.edge_dead == other.edge_dead
-            && self.face_dead == other.face_dead
-            && self.face_rings == other.face_rings
-            && self.face_lone_vertex == other.face_lone_vertex
+        Arc::ptr_eq(&self.topology, &other.topology)
+            || self.topology.halfedges == other.topology.halfedges
+            && self.topology.face_halfedge == other.topology.face_halfedge
+            && self.topology.vertex_dead == other.topology.vertex_dead
+            && self.topology.edge_dead == other.topology.edge_dead
+            && self.topology.face_dead == other.topology.face_dead
+            && self.topology.face_rings == other.topology.face_rings
+            && self.topology.face_lone_vertex == other.topology.face_lone_vertex
     }
     /// Structural equality: the same live vertices at the same positions, the
     /// same live edges with the same half-edge links and faces, the same live
@@ -35,14 +39,14 @@ impl HalfEdgeMesh {
         }
         let loops_of: BTreeSet<FaceId> = [self, other]
             .iter()
-            .flat_map(|m| m.face_rings.keys().chain(m.face_lone_vertex.keys()))
+            .flat_map(|m| m.topology.face_rings.keys().chain(m.topology.face_lone_vertex.keys()))
             .copied()
             .collect();
         self.vertices()
             .all(|v| self.position(v) == other.position(v))
             && self
                 .halfedges()
-                .all(|h| self.halfedges[h.index()] == other.halfedges[h.index()])
+                .all(|h| self.topology.halfedges[h.index()] == other.topology.halfedges[h.index()])
             && loops_of
                 .into_iter()
                 .all(|f| self.canonical_loops(f) == other.canonical_loops(f))

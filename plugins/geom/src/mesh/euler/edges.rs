@@ -42,7 +42,7 @@ impl HalfEdgeMesh {
         self.link(h_in, out);
         self.link(out, back);
         self.link(back, n);
-        self.vertex_out[w.index()] = back.0;
+        self.topology_mut().vertex_out[w.index()] = back.0;
         Ok((out.edge(), w))
     }
     /// KEV, kill edge and vertex: removes a dangling edge and its end vertex
@@ -76,7 +76,7 @@ impl HalfEdgeMesh {
             self.replace_loop_start(face, &[out, back], LoopStart::Vertex(v));
             self.free_edge(e);
             self.free_vertex(w);
-            self.vertex_out[v.index()] = NONE;
+            self.topology_mut().vertex_out[v.index()] = NONE;
             return Ok(w);
         }
         let h_in = self.prev(out);
@@ -204,7 +204,7 @@ impl HalfEdgeMesh {
         }
         let (a, b) = (self.origin(h0), self.origin(h1));
         let (p0, n0, p1, n1) = (self.prev(h0), self.next(h0), self.prev(h1), self.next(h1));
-        let rings = self.face_rings.contains_key(&f0) || self.face_rings.contains_key(&f1);
+        let rings = self.topology.face_rings.contains_key(&f0) || self.topology.face_rings.contains_key(&f1);
         let (role0, role1) = (
             self.loop_role(f0, LoopStart::HalfEdge(h0)),
             self.loop_role(f1, LoopStart::HalfEdge(h1)),
@@ -227,10 +227,10 @@ impl HalfEdgeMesh {
         self.link(p0, n1);
         self.link(p1, n0);
         let merged = LoopStart::HalfEdge(p0);
-        let mut rings1 = self.face_rings.remove(&f1).unwrap_or_default();
-        self.face_lone_vertex.remove(&f1);
+        let mut rings1 = self.topology_mut().face_rings.remove(&f1).unwrap_or_default();
+        self.topology_mut().face_lone_vertex.remove(&f1);
         match (role0, role1) {
-            (Role::Outer, Role::Outer) => self.face_halfedge[f0.index()] = p0.0,
+            (Role::Outer, Role::Outer) => self.topology_mut().face_halfedge[f0.index()] = p0.0,
             (Role::Ring(i), Role::Outer) => self.set_loop(f0, Role::Ring(i), merged),
             (Role::Outer, Role::Ring(j)) => {
                 rings1.remove(j);
@@ -309,8 +309,8 @@ impl HalfEdgeMesh {
             self.link(po, g1);
             self.link(g1, o);
         }
-        if self.vertex_out[b.index()] == o.0 {
-            self.vertex_out[b.index()] = g1.0;
+        if self.topology.vertex_out[b.index()] == o.0 {
+            self.topology_mut().vertex_out[b.index()] = g1.0;
         }
         self.fix_vertex_halfedge(m, o);
         Ok(m)
@@ -372,8 +372,8 @@ impl HalfEdgeMesh {
             self.link(hk, nx);
             self.link(ptx, tk);
         }
-        if self.vertex_out[y.index()] == tx.0 {
-            self.vertex_out[y.index()] = tk.0;
+        if self.topology.vertex_out[y.index()] == tx.0 {
+            self.topology_mut().vertex_out[y.index()] = tk.0;
         }
         self.free_edge(kill);
         self.free_vertex(v);

@@ -53,7 +53,7 @@ impl HalfEdgeMesh {
             self.set_face(h, None);
             // The vertex now lies on a boundary: store the boundary half-edge.
             let v = self.origin(h);
-            self.vertex_out[v.index()] = h.0;
+            self.topology_mut().vertex_out[v.index()] = h.0;
         }
         self.free_face(f);
         Ok(loop_[0])
@@ -105,7 +105,7 @@ impl HalfEdgeMesh {
         }
         let v = self.alloc_vertex(p);
         let f = self.alloc_face(HalfEdgeId(NONE));
-        self.face_lone_vertex.insert(f, v);
+        self.topology_mut().face_lone_vertex.insert(f, v);
         Ok((v, f))
     }
     /// KVFS, kill vertex, face and shell: removes a face whose only loop is a
@@ -123,10 +123,10 @@ impl HalfEdgeMesh {
         let Some(v) = self.lone_vertex_face(f) else {
             return Err(EulerError::NotVertexFaceShell { face: f });
         };
-        if self.face_rings.contains_key(&f) {
+        if self.topology.face_rings.contains_key(&f) {
             return Err(EulerError::NotVertexFaceShell { face: f });
         }
-        self.face_lone_vertex.remove(&f);
+        self.topology_mut().face_lone_vertex.remove(&f);
         self.free_face(f);
         self.free_vertex(v);
         Ok(v)
@@ -158,8 +158,8 @@ impl HalfEdgeMesh {
         self.set_face(t, Some(f));
         self.link(h, t);
         self.link(t, h);
-        self.vertex_out[v.index()] = h.0;
-        self.vertex_out[w.index()] = t.0;
+        self.topology_mut().vertex_out[v.index()] = h.0;
+        self.topology_mut().vertex_out[w.index()] = t.0;
         self.set_loop(f, role, LoopStart::HalfEdge(h));
         Ok((h.edge(), w))
     }
@@ -216,7 +216,7 @@ impl HalfEdgeMesh {
         for (v, l) in [(a, kept), (b, ring)] {
             match l {
                 LoopStart::HalfEdge(x) => self.fix_vertex_halfedge(v, x),
-                LoopStart::Vertex(_) => self.vertex_out[v.index()] = NONE,
+                LoopStart::Vertex(_) => self.topology_mut().vertex_out[v.index()] = NONE,
             }
         }
         self.set_loop(f, role, kept);
@@ -271,7 +271,7 @@ impl HalfEdgeMesh {
             }
             LoopStart::Vertex(_) => {
                 self.link(n, t);
-                self.vertex_out[vb.index()] = t.0;
+                self.topology_mut().vertex_out[vb.index()] = t.0;
             }
         }
         match a {
@@ -282,7 +282,7 @@ impl HalfEdgeMesh {
             }
             LoopStart::Vertex(_) => {
                 self.link(t, n);
-                self.vertex_out[va.index()] = n.0;
+                self.topology_mut().vertex_out[va.index()] = n.0;
             }
         }
         self.set_loop(f, role_a, LoopStart::HalfEdge(n));
@@ -319,7 +319,7 @@ impl HalfEdgeMesh {
         if keep == kill {
             return Err(EulerError::FaceWithItself { face: keep });
         }
-        if self.face_rings.contains_key(&kill) {
+        if self.topology.face_rings.contains_key(&kill) {
             return Err(EulerError::HasRings { face: kill });
         }
         let ring = self.outer_loop(kill);
@@ -346,7 +346,7 @@ impl HalfEdgeMesh {
         for h in hs {
             self.set_face(h, Some(keep));
         }
-        self.face_lone_vertex.remove(&kill);
+        self.topology_mut().face_lone_vertex.remove(&kill);
         self.free_face(kill);
         self.push_ring(keep, ring);
         Ok(ring)
@@ -379,7 +379,7 @@ impl HalfEdgeMesh {
             }
             LoopStart::Vertex(v) => {
                 let g = self.alloc_face(HalfEdgeId(NONE));
-                self.face_lone_vertex.insert(g, v);
+                self.topology_mut().face_lone_vertex.insert(g, v);
                 g
             }
         };
