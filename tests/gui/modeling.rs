@@ -3372,30 +3372,89 @@ fn tab_on_a_csg_node_points_at_its_operands() {
     assert!(status.contains("is a CSG node"), "{status}");
 }
 
+/// The edit-mode edge lines as drawn.
+fn edit_edge_lines(user: &mut User) -> Vec<Vec3> {
+    let world = user.app.world_mut();
+    let handle = world
+        .query_filtered::<&bevy::gizmos::retained::Gizmo, With<hedra_viewport::EditEdges>>()
+        .single(world)
+        .expect("the edit edges")
+        .handle
+        .clone();
+    world
+        .resource::<Assets<bevy::gizmos::GizmoAsset>>()
+        .get(&handle)
+        .expect("their asset")
+        .list_positions
+        .clone()
+}
+
+/// Both ends of every live edge, in the overlay's order.
+fn edge_ends(mesh: &hedra_geom::HalfEdgeMesh) -> Vec<Vec3> {
+    mesh.edges()
+        .flat_map(|e| mesh.edge_vertices(e).map(|v| mesh.position(v).as_vec3()))
+        .collect()
+}
+
+/// G on one clicked vertex: the edges at it follow the drag frame by frame
+/// (only they are rewritten), on a whole cube and on one with a deleted
+/// edge (a dead slot in the edge ids, where every line is rewritten).
+#[test]
+fn the_edit_edges_at_one_dragged_vertex_follow_it() {
+    let mut user = User::new();
+    user.add("Cube");
+    for deleted_edge in [false, true] {
+        if deleted_edge {
+            user.app
+                .world_mut()
+                .write_message(hedra_scene::DocRequest::Execute(hedra_doc::Command::DeleteEdges {
+                    node: hedra_doc::NodeRef::Name("Cube".into()),
+                    edges: hedra_doc::EdgeSet::Ids(vec![0]),
+                }));
+            user.frames(2);
+            assert_eq!(user.first_mesh().edge_count(), 11);
+        }
+        user.tap(KeyCode::Tab);
+        user.tap(KeyCode::Digit1);
+        let cube = user.first_mesh().clone();
+        let corner = cube
+            .vertices()
+            .max_by(|&a, &b| {
+                let sum = |v| cube.position(v).element_sum();
+                sum(a).total_cmp(&sum(b))
+            })
+            .unwrap();
+        let at = user.screen_of(cube.position(corner).as_vec3());
+        user.click(at);
+        assert_eq!(
+            user.edit_mode().selection.vertices.iter().copied().collect::<Vec<_>>(),
+            vec![corner]
+        );
+        user.tap(KeyCode::KeyG);
+        for step in 1..=3 {
+            user.move_to(at + Vec2::new(20.0 * step as f32, -15.0 * step as f32));
+            let preview = user.edit_mode().preview.clone().expect("G previews the mesh");
+            let moved: Vec<_> = preview
+                .vertices()
+                .filter(|&v| preview.position(v) != cube.position(v))
+                .collect();
+            assert_eq!(moved, vec![corner], "frame {step}: one vertex moves");
+            assert_eq!(
+                edit_edge_lines(&mut user),
+                edge_ends(&preview),
+                "frame {step} of the drag, deleted edge: {deleted_edge}"
+            );
+        }
+        user.tap(KeyCode::Escape);
+        assert_eq!(edit_edge_lines(&mut user), edge_ends(&cube), "back on the cube");
+        user.tap(KeyCode::Tab);
+    }
+}
+
 /// The edit-mode edges follow a G drag frame by frame (written in place
 /// while only positions change) and stay right after Escape.
 #[test]
 fn the_edit_edges_follow_a_g_drag() {
-    fn lines(user: &mut User) -> Vec<Vec3> {
-        let world = user.app.world_mut();
-        let handle = world
-            .query_filtered::<&bevy::gizmos::retained::Gizmo, With<hedra_viewport::EditEdges>>()
-            .single(world)
-            .expect("the edit edges")
-            .handle
-            .clone();
-        world
-            .resource::<Assets<bevy::gizmos::GizmoAsset>>()
-            .get(&handle)
-            .expect("their asset")
-            .list_positions
-            .clone()
-    }
-    fn edge_ends(mesh: &hedra_geom::HalfEdgeMesh) -> Vec<Vec3> {
-        mesh.edges()
-            .flat_map(|e| mesh.edge_vertices(e).map(|v| mesh.position(v).as_vec3()))
-            .collect()
-    }
     let mut user = cube_in_edit_mode(KeyCode::Digit1);
     user.tap(KeyCode::KeyA);
     let centre = user.viewport_center();
@@ -3408,14 +3467,14 @@ fn the_edit_edges_follow_a_g_drag() {
             .clone()
             .expect("G previews the mesh");
         assert_eq!(
-            lines(&mut user),
+            edit_edge_lines(&mut user),
             edge_ends(&preview),
             "frame {step} of the drag"
         );
     }
     user.tap(KeyCode::Escape);
     let cube = user.first_mesh().clone();
-    assert_eq!(lines(&mut user), edge_ends(&cube), "back on the cube");
+    assert_eq!(edit_edge_lines(&mut user), edge_ends(&cube), "back on the cube");
 }
 
 /// Issue 36, item 1: a drag on a cage whose level-2 preview is too large
