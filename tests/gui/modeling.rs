@@ -3407,10 +3407,12 @@ fn the_edit_edges_at_one_dragged_vertex_follow_it() {
         if deleted_edge {
             user.app
                 .world_mut()
-                .write_message(hedra_scene::DocRequest::Execute(hedra_doc::Command::DeleteEdges {
-                    node: hedra_doc::NodeRef::Name("Cube".into()),
-                    edges: hedra_doc::EdgeSet::Ids(vec![0]),
-                }));
+                .write_message(hedra_scene::DocRequest::Execute(
+                    hedra_doc::Command::DeleteEdges {
+                        node: hedra_doc::NodeRef::Name("Cube".into()),
+                        edges: hedra_doc::EdgeSet::Ids(vec![0]),
+                    },
+                ));
             user.frames(2);
             assert_eq!(user.first_mesh().edge_count(), 11);
         }
@@ -3427,13 +3429,22 @@ fn the_edit_edges_at_one_dragged_vertex_follow_it() {
         let at = user.screen_of(cube.position(corner).as_vec3());
         user.click(at);
         assert_eq!(
-            user.edit_mode().selection.vertices.iter().copied().collect::<Vec<_>>(),
+            user.edit_mode()
+                .selection
+                .vertices
+                .iter()
+                .copied()
+                .collect::<Vec<_>>(),
             vec![corner]
         );
         user.tap(KeyCode::KeyG);
         for step in 1..=3 {
             user.move_to(at + Vec2::new(20.0 * step as f32, -15.0 * step as f32));
-            let preview = user.edit_mode().preview.clone().expect("G previews the mesh");
+            let preview = user
+                .edit_mode()
+                .preview
+                .clone()
+                .expect("G previews the mesh");
             let moved: Vec<_> = preview
                 .vertices()
                 .filter(|&v| preview.position(v) != cube.position(v))
@@ -3446,7 +3457,11 @@ fn the_edit_edges_at_one_dragged_vertex_follow_it() {
             );
         }
         user.tap(KeyCode::Escape);
-        assert_eq!(edit_edge_lines(&mut user), edge_ends(&cube), "back on the cube");
+        assert_eq!(
+            edit_edge_lines(&mut user),
+            edge_ends(&cube),
+            "back on the cube"
+        );
         user.tap(KeyCode::Tab);
     }
 }
@@ -3474,7 +3489,11 @@ fn the_edit_edges_follow_a_g_drag() {
     }
     user.tap(KeyCode::Escape);
     let cube = user.first_mesh().clone();
-    assert_eq!(edit_edge_lines(&mut user), edge_ends(&cube), "back on the cube");
+    assert_eq!(
+        edit_edge_lines(&mut user),
+        edge_ends(&cube),
+        "back on the cube"
+    );
 }
 
 /// Issue 36, item 1: a drag on a cage whose level-2 preview is too large

@@ -147,7 +147,11 @@ fn polygon_area_vector_equals_the_face_s() {
     for f in m.faces() {
         let corners: Vec<DVec3> = m.face_vertices(f).map(|v| m.position(v)).collect();
         sizes.insert(corners.len());
-        assert_eq!(polygon_area_vector(&corners), m.face_area_vector(f), "face {f}");
+        assert_eq!(
+            polygon_area_vector(&corners),
+            m.face_area_vector(f),
+            "face {f}"
+        );
     }
     assert_eq!(sizes.into_iter().collect::<Vec<_>>(), vec![3, 4]);
     let q = [

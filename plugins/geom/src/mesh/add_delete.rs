@@ -202,10 +202,12 @@ impl HalfEdgeMesh {
                 self.link(prev0, next1);
                 self.link(prev1, next0);
                 if self.topology.vertex_out[v0.index()] == h1.0 {
-                    self.topology_mut().vertex_out[v0.index()] = if next0 == h1 { NONE } else { next0.0 };
+                    self.topology_mut().vertex_out[v0.index()] =
+                        if next0 == h1 { NONE } else { next0.0 };
                 }
                 if self.topology.vertex_out[v1.index()] == h0.0 {
-                    self.topology_mut().vertex_out[v1.index()] = if next1 == h0 { NONE } else { next1.0 };
+                    self.topology_mut().vertex_out[v1.index()] =
+                        if next1 == h0 { NONE } else { next1.0 };
                 }
                 self.free_edge(h.edge());
             }

@@ -345,7 +345,10 @@ impl HalfEdgeMesh {
                 self.topology_mut().face_lone_vertex.insert(f, v);
             }
             (Role::Ring(i), _) => {
-                self.topology_mut().face_rings.get_mut(&f).expect("a face with rings")[i] = l;
+                self.topology_mut()
+                    .face_rings
+                    .get_mut(&f)
+                    .expect("a face with rings")[i] = l;
             }
         }
     }
@@ -355,7 +358,11 @@ impl HalfEdgeMesh {
     }
 
     fn remove_ring(&mut self, f: FaceId, i: usize) -> LoopStart {
-        let rings = self.topology_mut().face_rings.get_mut(&f).expect("a face with rings");
+        let rings = self
+            .topology_mut()
+            .face_rings
+            .get_mut(&f)
+            .expect("a face with rings");
         let r = rings.remove(i);
         if rings.is_empty() {
             self.topology_mut().face_rings.remove(&f);
@@ -404,7 +411,9 @@ impl HalfEdgeMesh {
 
     /// Refuses faces with rings or without edges.
     fn check_polygon_face(&self, f: FaceId) -> Result<(), EulerError> {
-        if self.topology.face_rings.contains_key(&f) || self.topology.face_lone_vertex.contains_key(&f) {
+        if self.topology.face_rings.contains_key(&f)
+            || self.topology.face_lone_vertex.contains_key(&f)
+        {
             Err(EulerError::HasRings { face: f })
         } else {
             Ok(())

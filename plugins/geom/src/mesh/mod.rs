@@ -469,10 +469,16 @@ impl HalfEdgeMesh {
     /// The face and loop a lone vertex belongs to (`None` for a vertex with
     /// edges or a free isolated vertex). O(number of edge-less loops).
     pub fn lone_vertex_loop(&self, v: VertexId) -> Option<FaceId> {
-        if let Some((&f, _)) = self.topology.face_lone_vertex.iter().find(|(_, x)| **x == v) {
+        if let Some((&f, _)) = self
+            .topology
+            .face_lone_vertex
+            .iter()
+            .find(|(_, x)| **x == v)
+        {
             return Some(f);
         }
-        self.topology.face_rings
+        self.topology
+            .face_rings
             .iter()
             .find(|(_, rings)| rings.contains(&LoopStart::Vertex(v)))
             .map(|(&f, _)| f)

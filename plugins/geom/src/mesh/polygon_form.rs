@@ -192,7 +192,8 @@ impl HalfEdgeMesh {
                 } else {
                     first_out[v]
                 };
-                (self.topology.vertex_out[v] != rule).then_some((v as u32, self.topology.vertex_out[v]))
+                (self.topology.vertex_out[v] != rule)
+                    .then_some((v as u32, self.topology.vertex_out[v]))
             })
             .collect();
         let dead_edges: Vec<u32> = (0..ne as u32)

@@ -109,7 +109,12 @@ impl From<HalfEdgeMesh> for MeshData {
                 .collect()
         };
         MeshData {
-            vertex_halfedge: m.topology.vertex_out.iter().map(|&x| opt_to_i64(x)).collect(),
+            vertex_halfedge: m
+                .topology
+                .vertex_out
+                .iter()
+                .map(|&x| opt_to_i64(x))
+                .collect(),
             halfedges: m
                 .topology
                 .halfedges
@@ -120,8 +125,18 @@ impl From<HalfEdgeMesh> for MeshData {
             dead_vertices: dead(&m.topology.vertex_dead),
             dead_edges: dead(&m.topology.edge_dead),
             dead_faces: dead(&m.topology.face_dead),
-            face_rings: m.topology.face_rings.iter().map(|(f, r)| (f.0, r.clone())).collect(),
-            lone_vertex_faces: m.topology.face_lone_vertex.iter().map(|(f, v)| (f.0, v.0)).collect(),
+            face_rings: m
+                .topology
+                .face_rings
+                .iter()
+                .map(|(f, r)| (f.0, r.clone()))
+                .collect(),
+            lone_vertex_faces: m
+                .topology
+                .face_lone_vertex
+                .iter()
+                .map(|(f, v)| (f.0, v.0))
+                .collect(),
             positions: m.positions,
         }
     }
@@ -214,10 +229,16 @@ impl HalfEdgeMesh {
             .face_lone_vertex
             .values()
             .copied()
-            .chain(self.topology.face_rings.values().flatten().filter_map(|l| match l {
-                LoopStart::Vertex(v) => Some(*v),
-                LoopStart::HalfEdge(_) => None,
-            }))
+            .chain(
+                self.topology
+                    .face_rings
+                    .values()
+                    .flatten()
+                    .filter_map(|l| match l {
+                        LoopStart::Vertex(v) => Some(*v),
+                        LoopStart::HalfEdge(_) => None,
+                    }),
+            )
             .collect();
         let mut vmap = vec![NONE; self.positions.len()];
         let mut positions = Vec::new();

@@ -320,7 +320,10 @@ impl HalfEdgeMesh {
         // Rings and lone vertices (side tables, empty for ordinary meshes).
         let mut lone_seen = std::collections::BTreeSet::new();
         let mut check_lone = |out: &mut Vec<Violation>, f: FaceId, v: VertexId| {
-            if !live_vertex(v.0) || self.topology.vertex_out[v.index()] != NONE || !lone_seen.insert(v) {
+            if !live_vertex(v.0)
+                || self.topology.vertex_out[v.index()] != NONE
+                || !lone_seen.insert(v)
+            {
                 out.push(Violation::BadLoneVertex { face: f, vertex: v });
             }
         };

@@ -14,12 +14,12 @@ impl HalfEdgeMesh {
     pub fn same_connectivity(&self, other: &HalfEdgeMesh) -> bool {
         Arc::ptr_eq(&self.topology, &other.topology)
             || self.topology.halfedges == other.topology.halfedges
-            && self.topology.face_halfedge == other.topology.face_halfedge
-            && self.topology.vertex_dead == other.topology.vertex_dead
-            && self.topology.edge_dead == other.topology.edge_dead
-            && self.topology.face_dead == other.topology.face_dead
-            && self.topology.face_rings == other.topology.face_rings
-            && self.topology.face_lone_vertex == other.topology.face_lone_vertex
+                && self.topology.face_halfedge == other.topology.face_halfedge
+                && self.topology.vertex_dead == other.topology.vertex_dead
+                && self.topology.edge_dead == other.topology.edge_dead
+                && self.topology.face_dead == other.topology.face_dead
+                && self.topology.face_rings == other.topology.face_rings
+                && self.topology.face_lone_vertex == other.topology.face_lone_vertex
     }
     /// Structural equality: the same live vertices at the same positions, the
     /// same live edges with the same half-edge links and faces, the same live
@@ -39,7 +39,12 @@ impl HalfEdgeMesh {
         }
         let loops_of: BTreeSet<FaceId> = [self, other]
             .iter()
-            .flat_map(|m| m.topology.face_rings.keys().chain(m.topology.face_lone_vertex.keys()))
+            .flat_map(|m| {
+                m.topology
+                    .face_rings
+                    .keys()
+                    .chain(m.topology.face_lone_vertex.keys())
+            })
             .copied()
             .collect();
         self.vertices()

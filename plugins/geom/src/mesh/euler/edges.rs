@@ -204,7 +204,8 @@ impl HalfEdgeMesh {
         }
         let (a, b) = (self.origin(h0), self.origin(h1));
         let (p0, n0, p1, n1) = (self.prev(h0), self.next(h0), self.prev(h1), self.next(h1));
-        let rings = self.topology.face_rings.contains_key(&f0) || self.topology.face_rings.contains_key(&f1);
+        let rings = self.topology.face_rings.contains_key(&f0)
+            || self.topology.face_rings.contains_key(&f1);
         let (role0, role1) = (
             self.loop_role(f0, LoopStart::HalfEdge(h0)),
             self.loop_role(f1, LoopStart::HalfEdge(h1)),
@@ -227,7 +228,11 @@ impl HalfEdgeMesh {
         self.link(p0, n1);
         self.link(p1, n0);
         let merged = LoopStart::HalfEdge(p0);
-        let mut rings1 = self.topology_mut().face_rings.remove(&f1).unwrap_or_default();
+        let mut rings1 = self
+            .topology_mut()
+            .face_rings
+            .remove(&f1)
+            .unwrap_or_default();
         self.topology_mut().face_lone_vertex.remove(&f1);
         match (role0, role1) {
             (Role::Outer, Role::Outer) => self.topology_mut().face_halfedge[f0.index()] = p0.0,
