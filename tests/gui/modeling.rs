@@ -3396,9 +3396,9 @@ fn edge_ends(mesh: &hedra_geom::HalfEdgeMesh) -> Vec<Vec3> {
         .collect()
 }
 
-/// G on one clicked vertex: the edges at it follow the drag frame by frame
-/// (only they are rewritten), on a whole cube and on one with a deleted
-/// edge (a dead slot in the edge ids, where every line is rewritten).
+/// G on one clicked vertex: the edges at it follow the drag frame by frame,
+/// on a whole cube and on one with a deleted edge (a dead slot in the edge
+/// ids, so that line `i` is no longer edge `i`).
 #[test]
 fn the_edit_edges_at_one_dragged_vertex_follow_it() {
     let mut user = User::new();

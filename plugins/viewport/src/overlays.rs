@@ -299,7 +299,7 @@ pub(crate) fn update_edit_edges(
                 && old.0.same_connectivity(mesh)
                 && assets
                     .get_mut(handle.id())
-                    .is_some_and(|mut asset| move_edge_lines(&mut asset, &old.0, mesh))
+                    .is_some_and(|mut asset| move_edge_lines(&mut asset, mesh))
         }
         _ => false,
     };
@@ -336,28 +336,13 @@ pub(crate) fn update_edit_edges(
 }
 
 /// Moves the lines of an edit-edge overlay built by [`draw_edit_edges`]
-/// (one line per live edge, in id order) from `old`'s positions to those of
-/// `mesh`, of the same connectivity: the lines at moved vertices when the
-/// edge ids have no dead slot (line `i` is then edge `i`), else every line.
-/// False, changing nothing, when the asset does not hold one line per edge.
-fn move_edge_lines(asset: &mut GizmoAsset, old: &HalfEdgeMesh, mesh: &HalfEdgeMesh) -> bool {
+/// for a mesh of the same connectivity to `mesh`'s positions (one line per
+/// live edge, in id order). False, changing nothing, when the asset does
+/// not hold exactly those lines.
+fn move_edge_lines(asset: &mut GizmoAsset, mesh: &HalfEdgeMesh) -> bool {
     let lines = &mut asset.list_positions;
     if lines.len() != 2 * mesh.edge_count() {
         return false;
-    }
-    if mesh.edge_count() == mesh.edge_capacity() {
-        for v in mesh.vertices() {
-            let p = mesh.position(v);
-            if p == old.position(v) {
-                continue;
-            }
-            for h in mesh.vertex_outgoing(v) {
-                // `v` is the first end of the edge when `h` is its half-edge 0.
-                let e = h.edge();
-                lines[2 * e.index() + usize::from(h != e.halfedge(0))] = p.as_vec3();
-            }
-        }
-        return true;
     }
     for (i, e) in mesh.edges().enumerate() {
         let [a, b] = mesh.edge_vertices(e);
