@@ -73,6 +73,9 @@ pub struct SmoothPreviews {
     jobs: HashMap<NodeId, Job>,
     /// Sources the user cancelled: not started again until they change.
     cancelled: HashMap<NodeId, JobKey>,
+    /// While set, background refinements wait between their steps (see
+    /// [`hold_background`](Self::hold_background)).
+    held: Arc<AtomicBool>,
 }
 
 /// What a smooth preview is made from.
@@ -90,6 +93,13 @@ pub struct SmoothSource<'a> {
 }
 
 impl SmoothPreviews {
+    /// Makes this app's background refinements wait after each step while
+    /// `hold` is set (they still stop at once when cancelled): a test can
+    /// then press a key while one surely runs, however fast the machine.
+    pub fn hold_background(&mut self, hold: bool) {
+        self.held.store(hold, Ordering::Relaxed);
+    }
+
     /// Forgets nodes that no longer have a smooth preview.
     pub fn retain(&mut self, keep: impl Fn(NodeId) -> bool) {
         self.done.retain(|n, _| keep(*n));
@@ -161,10 +171,13 @@ impl SmoothPreviews {
             *src.modifier,
             src.shading,
         );
-        let (done, stop) = (steps_done.clone(), cancel.clone());
+        let (done, stop, held) = (steps_done.clone(), cancel.clone(), self.held.clone());
         let handle = std::thread::spawn(move || {
             let mut go_on = |_| {
                 done.fetch_add(1, Ordering::Relaxed);
+                while held.load(Ordering::Relaxed) && !stop.load(Ordering::Relaxed) {
+                    std::thread::sleep(std::time::Duration::from_millis(1));
+                }
                 !stop.load(Ordering::Relaxed)
             };
             let refiner =
